@@ -1,0 +1,51 @@
+# img2logo: the whole set-up is `make figures` and `make test` on a machine with Python >= 3.11.
+# Both create the virtual environment .venv/ and install the package into it on first use.
+
+PYTHON ?= python3
+VENV   := .venv
+BIN    := $(VENV)/bin
+STAMP  := $(VENV)/.installed
+LIB    := $(wildcard img2logo/*.py) pyproject.toml
+DATA   := $(wildcard data/*.png)
+NB     ?= $(basename $(notdir $(wildcard notebooks/*.ipynb)))
+RUNS   := $(patsubst %,build/notebooks/%.ipynb,$(NB))
+
+.DELETE_ON_ERROR:
+.PHONY: install test lint format bench figures clean
+
+install: $(STAMP)
+
+$(STAMP): pyproject.toml
+	@test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
+	$(BIN)/python -m pip install --quiet --upgrade pip
+	$(BIN)/python -m pip install --quiet -e '.[dev]'
+	@touch $@
+
+test: $(STAMP)
+	$(BIN)/python -m pytest
+
+lint: $(STAMP)
+	$(BIN)/ruff check img2logo tests benchmarks
+	$(BIN)/ruff format --check img2logo tests benchmarks
+	$(BIN)/python -m img2logo.notebook_check notebooks
+
+format: $(STAMP)
+	$(BIN)/ruff format img2logo tests benchmarks
+	$(BIN)/ruff check --fix img2logo tests benchmarks
+
+bench: $(STAMP)
+	$(BIN)/python benchmarks/bench.py
+
+# Every notebook is executed by papermill with its full parameters; its outputs
+# go to figures/<notebook>/, the executed copy to build/notebooks/. Only the
+# notebooks whose source, library or data changed run again. One alone:
+# make figures NB=00_segment_graphs
+figures: $(RUNS)
+
+build/notebooks/%.ipynb: notebooks/%.ipynb $(LIB) $(DATA) | $(STAMP)
+	@mkdir -p $(dir $@)
+	$(BIN)/papermill --cwd notebooks --kernel python3 --log-output --no-progress-bar $< $@ \
+	  || { echo "make figures: notebook $< failed (the executed copy is deleted; re-run papermill by hand to see the failing cell)"; exit 1; }
+
+clean:
+	rm -rf build .pytest_cache .ruff_cache

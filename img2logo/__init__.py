@@ -1,0 +1,85 @@
+"""img2logo: golden ratio logos from images (Hsiao et al., CGF 2023).
+
+The pipeline flows one way: image -> feature lines -> segment graph L = {S, J}
+-> levels of abstraction -> writers. The public names below are loaded on first
+use (PEP 562), so ``import img2logo`` stays fast for the command line.
+"""
+
+from __future__ import annotations
+
+import importlib
+from typing import TYPE_CHECKING, Any
+
+from .constants import PHI
+from .errors import FitError, ImageNotFoundError, Img2LogoError, InvalidImageError, InvalidParameterError
+
+__version__ = "0.1.0"
+
+_LAZY = {
+    "load_image": "preprocessing",
+    "extract_feature_lines": "preprocessing",
+    "detect_kind": "preprocessing",
+    "LoadedImage": "preprocessing",
+    "FeatureLines": "preprocessing",
+    "DownscaleWarning": "preprocessing",
+    "build_segment_graph": "segment_graph",
+    "SegmentGraph": "segment_graph",
+    "Circle": "geometry",
+    "Arc": "geometry",
+    "Abstraction": "geometry",
+    "plot_segment_graph": "plotting",
+    "plot_abstraction": "plotting",
+    "write_segment_graph_png": "writers",
+}
+
+__all__ = [
+    "PHI",
+    "Abstraction",
+    "Arc",
+    "Circle",
+    "DownscaleWarning",
+    "FeatureLines",
+    "FitError",
+    "ImageNotFoundError",
+    "Img2LogoError",
+    "InvalidImageError",
+    "InvalidParameterError",
+    "LoadedImage",
+    "SegmentGraph",
+    "__version__",
+    "build_segment_graph",
+    "detect_kind",
+    "extract_feature_lines",
+    "load_image",
+    "plot_abstraction",
+    "plot_segment_graph",
+    "write_segment_graph_png",
+]
+
+
+def __getattr__(name: str) -> Any:
+    module = _LAZY.get(name)
+    if module is None:
+        raise AttributeError(f"module 'img2logo' has no attribute {name!r}")
+    value = getattr(importlib.import_module(f".{module}", __name__), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(__all__)
+
+
+if TYPE_CHECKING:  # for type checkers and IDEs: the lazy names, eagerly
+    from .geometry import Abstraction, Arc, Circle
+    from .plotting import plot_abstraction, plot_segment_graph
+    from .preprocessing import (
+        DownscaleWarning,
+        FeatureLines,
+        LoadedImage,
+        detect_kind,
+        extract_feature_lines,
+        load_image,
+    )
+    from .segment_graph import SegmentGraph, build_segment_graph
+    from .writers import write_segment_graph_png

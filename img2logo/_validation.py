@@ -1,0 +1,64 @@
+"""Small validation helpers for the public boundary.
+
+Each raises :class:`~img2logo.errors.InvalidParameterError` with a message that
+says what was expected and what came, e.g.
+``points must have shape (N, 2), got (3,)``.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterable
+
+import numpy as np
+
+from .errors import InvalidParameterError
+
+
+def check_points(points: object, name: str = "points", min_count: int = 1) -> np.ndarray:
+    """Return ``points`` as a float64 array of shape (N, 2), N >= ``min_count``.
+
+    Raises
+    ------
+    InvalidParameterError
+        If the shape is not (N, 2), N is too small, or a value is not finite.
+    """
+    try:
+        arr = np.asarray(points, dtype=np.float64)
+    except (TypeError, ValueError) as exc:
+        raise InvalidParameterError(f"{name} must be an array of numbers, got {type(points).__name__}") from exc
+    if arr.ndim != 2 or arr.shape[1] != 2:
+        raise InvalidParameterError(f"{name} must have shape (N, 2), got {arr.shape}")
+    if arr.shape[0] < min_count:
+        raise InvalidParameterError(f"{name} must have at least {min_count} points, got {arr.shape[0]}")
+    if not np.all(np.isfinite(arr)):
+        raise InvalidParameterError(f"{name} must be finite, got NaN or infinity")
+    return arr
+
+
+def check_positive(value: object, name: str, *, allow_zero: bool = False) -> float:
+    """Return ``value`` as a float, checking it is finite and > 0 (or >= 0)."""
+    try:
+        v = float(value)  # type: ignore[arg-type]
+    except (TypeError, ValueError) as exc:
+        raise InvalidParameterError(f"{name} must be a number, got {value!r}") from exc
+    if not math.isfinite(v):
+        raise InvalidParameterError(f"{name} must be finite, got {v}")
+    if v < 0 or (v == 0 and not allow_zero):
+        bound = ">= 0" if allow_zero else "> 0"
+        raise InvalidParameterError(f"{name} must be {bound}, got {v}")
+    return v
+
+
+def check_choice(value: object, name: str, choices: Iterable[str]) -> str:
+    """Return ``value`` if it is one of ``choices``, else raise with the list."""
+    options = tuple(choices)
+    if value not in options:
+        raise InvalidParameterError(f"{name} must be one of {', '.join(map(repr, options))}, got {value!r}")
+    return str(value)
+
+
+def readonly(arr: np.ndarray) -> np.ndarray:
+    """Return ``arr`` marked read-only, so frozen values stay frozen."""
+    arr.setflags(write=False)
+    return arr

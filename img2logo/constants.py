@@ -1,0 +1,103 @@
+"""The golden ratio and every documented default and tolerance of img2logo.
+
+One place for the numbers: a module that needs a threshold imports it from here,
+so that a figure, a test and the README all speak of the same value.
+
+Units: lengths are in pixels of the input image (px), angles in radians.
+"""
+
+from __future__ import annotations
+
+import math
+
+#: The golden ratio phi = (1 + sqrt 5) / 2 (paper Eqn. 2, 10).
+PHI: float = (1.0 + math.sqrt(5.0)) / 2.0
+#: log(phi), used to move between radii and ladder exponents (Eqn. 12, 14).
+LOG_PHI: float = math.log(PHI)
+
+#: Name of the result-file format (``contract/README.md``).
+FORMAT_NAME: str = "img2logo.abstraction/1"
+
+# --- Input images (preprocessing) -------------------------------------------------
+#: Smallest accepted side of an input image, px.
+MIN_IMAGE_SIDE: int = 16
+#: Images whose longer side exceeds this are downscaled (with a warning), px.
+MAX_IMAGE_SIDE: int = 2048
+#: An image whose channel values span less than this (on a 0..1 scale) is "blank".
+BLANK_IMAGE_RANGE: float = 1.0 / 255.0
+
+# --- Feature lines ----------------------------------------------------------------
+#: Side spurs of the skeleton shorter than this are pruned, px.
+SPUR_LENGTH: float = 12.0
+#: Connected specks of line pixels smaller than this are dropped, px (area).
+MIN_SPECK_AREA: int = 24
+#: Clip art: colours closer than this (CIELAB Delta E 76) fall in one palette entry.
+CLIPART_COLOR_DISTANCE: float = 12.0
+#: Clip art: regions smaller than this are merged into a neighbour, px (area).
+CLIPART_MIN_REGION_AREA: int = 64
+#: Photo: the flow-based difference of Gaussians [KD09] parameters.
+FDOG_SIGMA_C: float = 1.0
+FDOG_SIGMA_M: float = 3.0
+FDOG_RHO: float = 0.99
+FDOG_TAU: float = 0.5
+#: Photo: the bilateral filter applied before the FDoG (diameter px, colour sigma
+#: on a 0..1 gray scale).
+BILATERAL_DIAMETER: int = 9
+BILATERAL_SIGMA_COLOR: float = 0.1
+#: Photo: smoothing of the structure tensor for the edge tangent flow, px.
+ETF_SIGMA: float = 3.0
+
+# --- Segment graph ----------------------------------------------------------------
+#: Default Ramer-Douglas-Peucker tolerance of the over-segmentation, px (Sec. 4).
+RDP_TOLERANCE: float = 2.0
+#: Default: segments (whole chains between nodes) shorter than this are dropped
+#: when they hang free at one end, px.
+MIN_SEGMENT_LENGTH: float = 6.0
+#: Two junctions joined by a chain shorter than this are one junction, px (a
+#: thick "X" thins to two "Y"s and a short bridge).
+JUNCTION_MERGE_DISTANCE: float = 6.0
+
+# --- Result files and figures (writers, plotting) ---------------------------------
+#: Contract invariant: a circle's radius is phi ** (k + bias) within this fraction
+#: of r (``contract/README.md``).
+RADIUS_RELATIVE_TOLERANCE: float = 1e-6
+#: Contract invariant: a junction lies on the circle of each arc listed for it, and
+#: at an end point of that arc, within this distance, px (``contract/README.md``).
+JUNCTION_TOLERANCE: float = 1e-3
+#: Decimal places of the coordinates written to SVG: 1e-6 px, far below
+#: ``JUNCTION_TOLERANCE``.
+SVG_DECIMALS: int = 6
+#: Default stroke width of drawn arcs, as a fraction of the longer image side ...
+STROKE_WIDTH_FRACTION: float = 1.0 / 128.0
+#: ... but never thinner than this, px.
+MIN_STROKE_WIDTH: float = 1.0
+#: Resolution of PNG figures, dots per inch. It only converts px to matplotlib
+#: points: a PNG is always exactly width x height px of the input.
+PNG_DPI: float = 100.0
+#: How far a background image is faded towards white under a drawing
+#: (0 = as it is, 1 = white).
+IMAGE_FADE: float = 0.6
+#: Spacing of the sample points when an arc is drawn as a polyline in a raster, px.
+ARC_SAMPLE_STEP: float = 0.5
+
+# --- Golden ladder and circle fitting (golden_ladder.py, circle_fitting.py) --------
+#: fit_circle: default cap on a fitted radius, as a multiple of the points' extent
+#: (the distance between their two extreme points along the principal axis). An
+#: arc of radius 20 x its chord c has a sagitta of c / 160: it is nearly straight.
+MAX_RADIUS_FACTOR: float = 20.0
+#: fit_circle: most Levenberg-Marquardt iterations refining the algebraic (Hyper) fit.
+CIRCLE_REFINE_MAX_ITER: int = 30
+#: fit_constrained: default tolerance on the connectivity constraints (Eqn. 13),
+#: and on the size of the last Gauss-Newton step, px.
+CONSTRAINED_FIT_TOL: float = 1e-6
+#: fit_constrained: default maximum number of SQP (Gauss-Newton-KKT) iterations.
+CONSTRAINED_FIT_MAX_ITER: int = 50
+#: fit_constrained: damping mu of the KKT system, relative to the largest diagonal
+#: entry of the Gauss-Newton matrix (the constraint block gets the same relative
+#: regularization), so nearly singular systems (huge radii) stay solvable.
+KKT_DAMPING: float = 1e-9
+#: fit_constrained: KKT systems larger than this (unknowns + multipliers) are
+#: solved by a sparse LU, smaller ones (a local window) by a dense solve.
+KKT_DENSE_MAX: int = 60
+#: Photo: isolated feature lines shorter than this are texture, not features, px.
+PHOTO_MIN_LINE_LENGTH: float = 40.0

@@ -1,0 +1,30 @@
+"""The exceptions img2logo raises on bad input or a failed fit.
+
+Every error the library raises on purpose derives from :class:`Img2LogoError`, and
+also from the built-in exception a caller would expect (``ValueError`` for a bad
+value, ``FileNotFoundError`` for a missing file), so both ``except Img2LogoError``
+and ``except ValueError`` catch it. The command line prints the message of an
+``Img2LogoError`` as one line and exits non-zero, with no traceback.
+"""
+
+from __future__ import annotations
+
+
+class Img2LogoError(Exception):
+    """Base class of every error img2logo raises deliberately."""
+
+
+class ImageNotFoundError(Img2LogoError, FileNotFoundError):
+    """The input image path does not exist or is not a file."""
+
+
+class InvalidImageError(Img2LogoError, ValueError):
+    """The input is not a usable image: unreadable, empty, blank, too small."""
+
+
+class InvalidParameterError(Img2LogoError, ValueError):
+    """A parameter is out of range or of the wrong shape or type."""
+
+
+class FitError(Img2LogoError, ValueError):
+    """A fit could not be computed (too few points, degenerate geometry)."""

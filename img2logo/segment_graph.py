@@ -1,0 +1,205 @@
+"""The line-segment graph L = {S, J} (paper Sec. 4, 5.1) built from feature lines.
+
+A 1-px-wide feature-line map becomes a graph whose nodes are end points
+(valence 1), junctions (valence >= 3; touching junction pixels are one node) and
+the split points of the Ramer-Douglas-Peucker over-segmentation (valence 2), and
+whose edges are the ordered pixel chains between them: the segments.
+
+Coordinates follow ``contract/README.md``: x to the right, y downwards, pixel
+(row i, column j) has its centre at (j + 0.5, i + 0.5).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+
+from . import _skeleton
+from ._validation import check_positive, readonly
+from .constants import JUNCTION_MERGE_DISTANCE, MIN_SEGMENT_LENGTH, RDP_TOLERANCE
+from .errors import InvalidParameterError
+
+
+@dataclass(frozen=True, eq=False)
+class SegmentGraph:
+    """The line-segment graph L = {S, J}.
+
+    Attributes
+    ----------
+    segments : tuple of ndarray, each of shape (n_i, 2)
+        Ordered pixel centres (x, y) of each segment, px, n_i >= 2. The first
+        point is exactly ``junctions[ends[i, 0]]`` and the last exactly
+        ``junctions[ends[i, 1]]``, so segments meet where they share a node.
+    junctions : ndarray, shape (J, 2)
+        The nodes p_k: end points, junctions and RDP split points, px.
+    ends : ndarray of int, shape (S, 2)
+        ``ends[i] = (k0, k1)``: the nodes at the start and end of segment i.
+        ``k0 != k1`` always: closed loops are split.
+    width, height : int
+        Size of the image the graph was built from, px.
+    """
+
+    segments: tuple[np.ndarray, ...]
+    junctions: np.ndarray
+    ends: np.ndarray
+    width: int
+    height: int
+
+    def __post_init__(self) -> None:
+        segs = tuple(readonly(np.array(s, dtype=np.float64).reshape(-1, 2)) for s in self.segments)
+        junctions = readonly(np.array(self.junctions, dtype=np.float64).reshape(-1, 2))
+        ends = readonly(np.array(self.ends, dtype=np.int64).reshape(-1, 2))
+        if len(ends) != len(segs):
+            raise InvalidParameterError(f"ends must have one row per segment ({len(segs)}), got {len(ends)}")
+        if len(ends) and (ends.min() < 0 or ends.max() >= len(junctions)):
+            raise InvalidParameterError(f"ends must index junctions 0..{len(junctions) - 1}")
+        for i, s in enumerate(segs):
+            if len(s) < 2:
+                raise InvalidParameterError(f"segment {i} must have at least 2 points, got {len(s)}")
+        object.__setattr__(self, "segments", segs)
+        object.__setattr__(self, "junctions", junctions)
+        object.__setattr__(self, "ends", ends)
+
+    @property
+    def n_segments(self) -> int:
+        """|S|, the number of segments."""
+        return len(self.segments)
+
+    @property
+    def n_junctions(self) -> int:
+        """|J|, the number of nodes (end points, junctions and split points)."""
+        return len(self.junctions)
+
+    @cached_property
+    def valence(self) -> np.ndarray:
+        """Number of segment ends at each node, shape (J,)."""
+        return readonly(np.bincount(self.ends.ravel(), minlength=self.n_junctions))
+
+    @cached_property
+    def lengths(self) -> np.ndarray:
+        """Polyline length of each segment, shape (S,), px."""
+        return readonly(np.array([np.sum(np.hypot(*np.diff(s, axis=0).T)) for s in self.segments]))
+
+    def segments_at(self, k: int) -> tuple[int, ...]:
+        """Indices of the segments with an end at node ``k`` (the paper's Omega(p_k))."""
+        return tuple(int(i) for i in np.flatnonzero((self.ends == k).any(axis=1)))
+
+    def n_components(self) -> int:
+        """Number of connected components of the graph."""
+        from scipy.sparse import coo_matrix
+        from scipy.sparse.csgraph import connected_components
+
+        n = self.n_junctions
+        if n == 0:
+            return 0
+        adj = coo_matrix((np.ones(len(self.ends)), (self.ends[:, 0], self.ends[:, 1])), shape=(n, n))
+        count, _ = connected_components(adj, directed=False)
+        return int(count)
+
+
+def build_segment_graph(
+    lines: object,
+    *,
+    rdp_tolerance: float = RDP_TOLERANCE,
+    min_length: float = MIN_SEGMENT_LENGTH,
+) -> SegmentGraph:
+    """Build the segment graph L = {S, J} from a feature-line map (paper Sec. 4).
+
+    Parameters
+    ----------
+    lines : FeatureLines or ndarray of bool, shape (H, W)
+        Feature lines, as returned by :func:`img2logo.extract_feature_lines`, or
+        any binary map of lines (it is thinned to 1 px first).
+    rdp_tolerance : float, optional
+        Tolerance of the Ramer-Douglas-Peucker over-segmentation, px (> 0). Each
+        chain between two nodes is split at the vertices RDP keeps, and those
+        split points become nodes of valence 2. Larger values give fewer, longer
+        segments (paper Fig. 13).
+    min_length : float, optional
+        Side spurs (a chain from a free end to a junction) and isolated chains
+        shorter than this are dropped, px (>= 0).
+
+    Returns
+    -------
+    SegmentGraph
+        Nodes are end points (valence 1), junctions (valence >= 3, touching
+        junction pixels merged into one node at their centroid) and RDP split
+        points (valence 2). A closed loop with no junction is split at its
+        first pixel and at the middle of its length, so every segment has two
+        distinct end nodes.
+
+    Raises
+    ------
+    InvalidParameterError
+        If ``lines`` is not a 2-D map or a parameter is out of range.
+    """
+    from skimage.morphology import skeletonize
+
+    rdp_tolerance = check_positive(rdp_tolerance, "rdp_tolerance")
+    min_length = check_positive(min_length, "min_length", allow_zero=True)
+    line_map = getattr(lines, "lines", lines)
+    arr = np.asarray(line_map)
+    if arr.ndim != 2:
+        raise InvalidParameterError(f"lines must be a 2-D map of shape (H, W), got shape {arr.shape}")
+    skel = skeletonize(arr.astype(bool))
+    graph = _skeleton.trace(skel)
+    _skeleton.prune(graph, spur_length=min_length, min_length=min_length, junction_merge=JUNCTION_MERGE_DISTANCE)
+
+    junctions = list(graph.nodes)
+    segments: list[np.ndarray] = []
+    ends: list[tuple[int, int]] = []
+    for c, (a, b) in enumerate(graph.ends):
+        poly = graph.polyline(c)
+        pieces = [(a, b, poly)]
+        if a == b:
+            # A loop on one node: split it half-way along its length.
+            mid = _index_at_half_length(poly)
+            junctions.append(poly[mid])
+            m = len(junctions) - 1
+            pieces = [(a, m, poly[: mid + 1]), (m, b, poly[mid:])]
+        for start, stop, piece in pieces:
+            cuts = _rdp_split_indices(piece, rdp_tolerance)
+            nodes = [start]
+            for i in cuts:
+                junctions.append(piece[i])
+                nodes.append(len(junctions) - 1)
+            nodes.append(stop)
+            bounds = [0, *cuts, len(piece) - 1]
+            for k in range(len(bounds) - 1):
+                segments.append(piece[bounds[k] : bounds[k + 1] + 1])
+                ends.append((nodes[k], nodes[k + 1]))
+    h, w = arr.shape
+    return SegmentGraph(
+        segments=tuple(segments),
+        junctions=np.array(junctions).reshape(-1, 2),
+        ends=np.array(ends, dtype=np.int64).reshape(-1, 2),
+        width=w,
+        height=h,
+    )
+
+
+def _index_at_half_length(poly: np.ndarray) -> int:
+    cum = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(poly, axis=0).T))])
+    mid = int(np.searchsorted(cum, cum[-1] / 2.0))
+    return min(max(mid, 1), len(poly) - 2)
+
+
+def _rdp_split_indices(poly: np.ndarray, tolerance: float) -> list[int]:
+    """Indices of the interior vertices that Ramer-Douglas-Peucker keeps."""
+    import cv2
+
+    if len(poly) < 3:
+        return []
+    # OpenCV's approxPolyDP is RDP; it returns a subset of the input points in
+    # order, so their indices are found by a forward scan (a chain may cross
+    # itself, so no lookup table).
+    pts = poly.astype(np.float32)
+    kept = cv2.approxPolyDP(pts.reshape(-1, 1, 2), tolerance, False).reshape(-1, 2)
+    out, i = [], 0
+    for q in kept[1:-1]:
+        while not np.array_equal(pts[i], q):
+            i += 1
+        out.append(i)
+    return [k for k in out if 0 < k < len(poly) - 1]

@@ -1,0 +1,298 @@
+"""Tests of img2logo.preprocessing: loading, kinds, feature lines, bad input."""
+
+from __future__ import annotations
+
+import warnings
+
+import cv2
+import numpy as np
+import pytest
+from conftest import DATA, drawing, two_discs
+
+from img2logo import (
+    DownscaleWarning,
+    ImageNotFoundError,
+    Img2LogoError,
+    InvalidImageError,
+    InvalidParameterError,
+    detect_kind,
+    extract_feature_lines,
+    load_image,
+)
+from img2logo.preprocessing import edge_tangent_flow
+
+
+# --------------------------------------------------------------------------- loading
+def test_load_png_gives_float_rgb_over_white(tmp_path):
+    im = two_discs()
+    path = tmp_path / "discs.png"
+    cv2.imwrite(str(path), im[:, :, ::-1])  # OpenCV writes BGR
+    img = load_image(path)
+    assert img.rgb.shape == (200, 200, 3)
+    assert img.rgb.dtype == np.float64
+    assert 0.0 <= img.rgb.min() and img.rgb.max() <= 1.0
+    np.testing.assert_allclose(img.rgb, im / 255.0)  # channel order is RGB
+    assert not img.has_alpha and img.foreground.all()
+    assert img.source == str(path)
+
+
+def test_load_sixteen_bit_matches_eight_bit(tmp_path):
+    im = two_discs()
+    path = tmp_path / "discs16.png"
+    cv2.imwrite(str(path), (im[:, :, ::-1].astype(np.uint16) * 257))
+    assert cv2.imread(str(path), cv2.IMREAD_UNCHANGED).dtype == np.uint16
+    np.testing.assert_allclose(load_image(path).rgb, load_image(im).rgb, atol=1e-12)
+
+
+def test_load_rgba_composites_transparency_on_white():
+    rgba = np.zeros((40, 40, 4), np.uint8)
+    rgba[10:30, 10:30] = (255, 0, 0, 255)  # opaque red square on transparent black
+    img = load_image(rgba)
+    assert img.has_alpha
+    np.testing.assert_allclose(img.rgb[0, 0], [1.0, 1.0, 1.0])
+    np.testing.assert_allclose(img.rgb[20, 20], [1.0, 0.0, 0.0])
+    assert img.foreground.sum() == 400
+
+
+def test_load_gray_and_bool_and_float_arrays():
+    gray = np.zeros((32, 32), np.uint8)
+    gray[8:24, 8:24] = 255
+    for arr in (gray, gray > 0, gray / 255.0, gray[:, :, None]):
+        img = load_image(arr)
+        assert img.rgb.shape == (32, 32, 3)
+        np.testing.assert_allclose(img.rgb[16, 16], [1.0, 1.0, 1.0])
+        np.testing.assert_allclose(img.rgb[0, 0], [0.0, 0.0, 0.0])
+
+
+def test_input_array_is_never_modified():
+    im = two_discs()
+    before = im.copy()
+    extract_feature_lines(im)
+    np.testing.assert_array_equal(im, before)
+    img = load_image(im)
+    with pytest.raises(ValueError):
+        img.rgb[0, 0, 0] = 0.5  # frozen value: read-only arrays
+
+
+def test_huge_image_is_downscaled_with_a_warning():
+    big = np.full((3000, 600, 3), 255, np.uint8)
+    big[1000:2000, 200:400] = 0
+    with pytest.warns(DownscaleWarning, match="3000 px.*downscaled to 410x2048"):
+        img = load_image(big)
+    assert (img.height, img.width) == (2048, 410)
+    assert img.scale == pytest.approx(2048 / 3000)
+
+
+# --------------------------------------------------------------------------- bad input
+def test_missing_file(tmp_path):
+    with pytest.raises(ImageNotFoundError, match=r"image file not found: .*nope\.png"):
+        load_image(tmp_path / "nope.png")
+    with pytest.raises(FileNotFoundError):  # also the built-in exception
+        load_image(tmp_path / "nope.png")
+
+
+def test_directory_is_not_an_image(tmp_path):
+    with pytest.raises(ImageNotFoundError, match="not an image file"):
+        load_image(tmp_path)
+
+
+def test_not_an_image(tmp_path):
+    path = tmp_path / "notes.png"
+    path.write_text("this is text, not pixels")
+    with pytest.raises(InvalidImageError, match="not a readable image"):
+        load_image(path)
+
+
+def test_empty_file(tmp_path):
+    path = tmp_path / "empty.png"
+    path.write_bytes(b"")
+    with pytest.raises(InvalidImageError, match="file is empty"):
+        load_image(path)
+
+
+def test_zero_size_array():
+    with pytest.raises(InvalidImageError, match=r"image is empty \(shape \(0, 5, 1\)\)"):
+        load_image(np.zeros((0, 5), np.uint8))
+
+
+@pytest.mark.parametrize("value", [0, 255, 128])
+def test_blank_image(value):
+    with pytest.raises(InvalidImageError, match="image is blank"):
+        load_image(np.full((64, 64, 3), value, np.uint8))
+
+
+def test_fully_transparent_image_is_blank():
+    with pytest.raises(InvalidImageError, match="image is blank"):
+        load_image(np.zeros((64, 64, 4), np.uint8))
+
+
+def test_tiny_image():
+    tiny = np.zeros((15, 40), np.uint8)
+    tiny[5:10, 5:30] = 255
+    with pytest.raises(InvalidImageError, match="image is 40x15 px; at least 16 px on each side"):
+        load_image(tiny)
+
+
+@pytest.mark.parametrize(
+    ("arr", "message"),
+    [
+        (np.zeros((20, 20, 5), np.uint8), r"shape \(H, W\) or \(H, W, C\) with C in 1..4, got \(20, 20, 5\)"),
+        (np.zeros((20, 20), np.int32), "unsupported dtype int32"),
+        (np.full((20, 20), 255.0), r"float images must have values in \[0, 1\], got \[255, 255\]"),
+        (np.full((20, 20), np.nan), "NaN or infinite"),
+    ],
+)
+def test_bad_arrays(arr, message):
+    with pytest.raises(InvalidImageError, match=message):
+        load_image(arr)
+
+
+def test_not_a_path_or_array():
+    with pytest.raises(InvalidImageError, match="file path or a numpy array, got int"):
+        load_image(42)
+
+
+def test_errors_share_one_base_class():
+    for exc in (ImageNotFoundError, InvalidImageError, InvalidParameterError):
+        assert issubclass(exc, Img2LogoError)
+
+
+def test_bad_kind_and_foreground():
+    im = two_discs()
+    with pytest.raises(InvalidParameterError, match="kind must be one of 'auto', 'photo', 'clipart', 'drawing'"):
+        extract_feature_lines(im, kind="painting")
+    with pytest.raises(InvalidParameterError, match=r"foreground mask must have the image's shape \(200, 200\)"):
+        extract_feature_lines(im, kind="photo", foreground=np.ones((10, 10), bool))
+    with pytest.raises(InvalidParameterError, match="foreground mask is empty"):
+        extract_feature_lines(im, kind="photo", foreground=np.zeros((200, 200), bool))
+    with pytest.raises(InvalidParameterError, match="spur_length must be >= 0"):
+        extract_feature_lines(im, spur_length=-1)
+
+
+# --------------------------------------------------------------------------- kinds
+@pytest.mark.parametrize(
+    ("name", "kind"),
+    [
+        ("clipart-fish", "clipart"),
+        ("clipart-snail", "clipart"),
+        ("clipart-apple", "clipart"),
+        ("drawing-fish", "drawing"),
+        ("drawing-leaf", "drawing"),
+        ("photo-cat", "photo"),
+        ("photo-flower", "photo"),
+    ],
+)
+def test_detect_kind_on_the_examples(name, kind):
+    found, reason = detect_kind(load_image(DATA / f"{name}.png"))
+    assert found == kind, reason
+
+
+def test_detect_kind_on_synthetic_inputs():
+    assert detect_kind(load_image(drawing("Y")))[0] == "drawing"
+    assert detect_kind(load_image(two_discs()))[0] == "clipart"
+    rng = np.random.default_rng(0)
+    noise = (rng.random((64, 64, 3)) * 255).astype(np.uint8)
+    assert detect_kind(load_image(noise))[0] == "photo"
+
+
+def test_auto_reports_its_choice():
+    lines = extract_feature_lines(drawing("circle"))
+    assert lines.kind == "drawing"
+    assert "line drawing" in lines.reason
+    assert extract_feature_lines(drawing("circle"), kind="drawing").reason == "given"
+
+
+# --------------------------------------------------------------------------- feature lines
+def _is_one_pixel_wide(lines: np.ndarray) -> bool:
+    """No 2x2 block of line pixels: the map is thin."""
+    blocks = lines[:-1, :-1] & lines[1:, :-1] & lines[:-1, 1:] & lines[1:, 1:]
+    return not blocks.any()
+
+
+@pytest.mark.parametrize("thickness", [1, 4, 9])
+def test_drawing_lines_are_thin_and_on_the_stroke(thickness):
+    im = drawing("circle", thickness=thickness)
+    lines = extract_feature_lines(im, kind="drawing").lines
+    assert _is_one_pixel_wide(lines)
+    rows, cols = np.nonzero(lines)
+    radius = np.hypot(cols - 100, rows - 100)
+    assert np.all(np.abs(radius - 60) <= 1.5)
+    assert len(rows) > 0.8 * 2 * np.pi * 60 / 1.42  # the whole circle, 8-connected
+
+
+def test_drawing_specks_are_dropped():
+    im = drawing("Y")
+    im[10:13, 180:183] = 0  # a 3x3 speck
+    lines = extract_feature_lines(im, kind="drawing").lines
+    assert not lines[5:20, 175:190].any()
+
+
+def test_clipart_boundaries_separate_regions():
+    fl = extract_feature_lines(two_discs(), kind="clipart")
+    assert fl.regions is not None
+    assert len(np.unique(fl.regions)) == 3  # background, red, blue
+    assert fl.regions[0, 0] == 0  # background is label 0
+    assert _is_one_pixel_wide(fl.lines)
+    # The lines lie on region borders: every line pixel has a differently labelled pixel near it.
+    rows, cols = np.nonzero(fl.lines)
+    near = [
+        len(np.unique(fl.regions[max(r - 2, 0) : r + 3, max(c - 2, 0) : c + 3])) > 1
+        for r, c in zip(rows, cols, strict=True)
+    ]
+    assert np.mean(near) > 0.99
+
+
+def test_clipart_rgba_matches_white_background():
+    im = two_discs()
+    rgba = np.dstack([im, np.full(im.shape[:2], 255, np.uint8)])
+    rgba[(im == 255).all(axis=2)] = 0  # transparent background
+    a = extract_feature_lines(im, kind="clipart").lines
+    b = extract_feature_lines(rgba, kind="clipart").lines
+    np.testing.assert_array_equal(a, b)
+
+
+def test_photo_lines_follow_strong_edges():
+    # A smooth dark disc on a noisy light background: the outline is found, the noise is not.
+    rng = np.random.default_rng(1)
+    yy, xx = np.mgrid[0:160, 0:160]
+    img = 0.8 + 0.03 * rng.standard_normal((160, 160))
+    img[np.hypot(xx - 80, yy - 80) < 40] = 0.2
+    fl = extract_feature_lines(np.clip(img, 0, 1), kind="photo")
+    rows, cols = np.nonzero(fl.lines)
+    assert len(rows) > 100
+    assert np.mean(np.abs(np.hypot(cols - 80, rows - 80) - 40) < 4) > 0.9
+
+
+def test_photo_foreground_mask_restricts_lines():
+    rng = np.random.default_rng(2)
+    yy, xx = np.mgrid[0:160, 0:160]
+    img = np.full((160, 160), 0.8)
+    img[np.hypot(xx - 50, yy - 80) < 25] = 0.2
+    img[np.hypot(xx - 120, yy - 80) < 25] = 0.2
+    img = np.clip(img + 0.01 * rng.standard_normal(img.shape), 0, 1)
+    mask = xx < 85
+    lines = extract_feature_lines(img, kind="photo", foreground=mask).lines
+    assert lines[:, :60].any()
+    assert not lines[:, 95:].any()
+
+
+def test_edge_tangent_flow_runs_along_edges():
+    # Vertical edge: the tangent is vertical (x component ~ 0) near it.
+    img = np.zeros((64, 64))
+    img[:, 32:] = 1.0
+    flow = edge_tangent_flow(img)
+    assert np.allclose(np.linalg.norm(flow, axis=-1), 1.0)
+    assert np.all(np.abs(flow[20:44, 30:34, 0]) < 0.05)
+
+
+@pytest.mark.parametrize("name", ["clipart-fish", "drawing-fish", "photo-cat"])
+def test_example_feature_lines_are_thin(name):
+    fl = extract_feature_lines(DATA / f"{name}.png")
+    assert _is_one_pixel_wide(fl.lines)
+    assert fl.lines.sum() > 300
+
+
+def test_no_runtime_warnings_on_examples():
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        extract_feature_lines(DATA / "clipart-bird.png")
