@@ -27,7 +27,7 @@ test: $(STAMP)
 lint: $(STAMP)
 	$(BIN)/ruff check img2logo tests benchmarks
 	$(BIN)/ruff format --check img2logo tests benchmarks
-	$(BIN)/python -m img2logo.notebook_check notebooks
+	$(BIN)/python -m pytest -q tests/test_notebooks.py -m "not notebook"
 
 format: $(STAMP)
 	$(BIN)/ruff format img2logo tests benchmarks

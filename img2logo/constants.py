@@ -90,6 +90,9 @@ CIRCLE_REFINE_MAX_ITER: int = 30
 #: fit_constrained: default tolerance on the connectivity constraints (Eqn. 13),
 #: and on the size of the last Gauss-Newton step, px.
 CONSTRAINED_FIT_TOL: float = 1e-6
+#: fit_constrained: a feasible iterate whose next step would lower E^l (Eqn. 7) by
+#: less than this fraction of it has converged, even if the step exceeds the tolerance.
+CONSTRAINED_FIT_FTOL: float = 1e-12
 #: fit_constrained: default maximum number of SQP (Gauss-Newton-KKT) iterations.
 CONSTRAINED_FIT_MAX_ITER: int = 50
 #: fit_constrained: damping mu of the KKT system, relative to the largest diagonal

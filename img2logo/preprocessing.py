@@ -252,11 +252,12 @@ def detect_kind(image: LoadedImage) -> tuple[str, str]:
     quant = (np.round(rgb * 15).astype(np.int64) * np.array([256, 16, 1])).sum(axis=2)
     counts = np.sort(np.bincount(quant.ravel()))[::-1]
     coverage = float(counts[:12].sum() / quant.size)
-    stroke = _median_stroke_width(ink) if ink.any() else 0.0
     # Saturation of the drawn pixels only: a white canvas would make any clip art gray.
     drawn = (gray < 0.9) & img.foreground
     drawn_sat = float(np.median(sat[drawn])) if drawn.any() else 0.0
-    if drawn_sat < 0.05 and 0.0 < ink_fraction < 0.35 and stroke <= 0.05 * min(gray.shape):
+    looks_drawn = drawn_sat < 0.05 and 0.0 < ink_fraction < 0.35
+    stroke = _median_stroke_width(ink) if looks_drawn else 0.0  # the costly test last
+    if looks_drawn and stroke <= 0.05 * min(gray.shape):
         return "drawing", (
             f"nearly gray, {ink_fraction:.0%} dark pixels in strokes about {stroke:.0f} px wide: a line drawing"
         )
@@ -370,12 +371,15 @@ def _clipart_regions(img: LoadedImage) -> np.ndarray:
 
     lab = rgb2lab(img.rgb)
     transparent = ~img.foreground
-    # Quantize to 4 units of L*, a*, b* and pack into one integer key: a 1-D
-    # unique is far faster than np.unique(axis=0) over rows.
-    quant = np.round(lab.reshape(-1, 3) / 4.0).astype(np.int64) + np.array([0, 40, 40])
-    _, inverse, counts = np.unique(quant @ np.array([81 * 81, 81, 1]), return_inverse=True, return_counts=True)
-    sums = np.stack([np.bincount(inverse, weights=lab.reshape(-1, 3)[:, c]) for c in range(3)], axis=1)
-    order = np.argsort(-counts, kind="stable")
+    # Quantize to 4 units of L*, a*, b* and pack into one integer key: a
+    # bincount over keys is far faster than np.unique(axis=0) over rows.
+    flat = lab.reshape(-1, 3)
+    quant = np.clip(np.round(flat / 4.0).astype(np.int64) + np.array([0, 40, 40]), 0, 80)
+    key = quant @ np.array([81 * 81, 81, 1])
+    counts = np.bincount(key, minlength=81**3)
+    sums = np.stack([np.bincount(key, weights=flat[:, c], minlength=81**3) for c in range(3)], axis=1)
+    used = np.flatnonzero(counts)
+    order = used[np.argsort(-counts[used], kind="stable")]
     palette: list[np.ndarray] = []
     for k in order:
         if counts[k] < CLIPART_MIN_REGION_AREA:
@@ -385,9 +389,8 @@ def _clipart_regions(img: LoadedImage) -> np.ndarray:
             palette.append(mean)
     if not palette:
         palette = [lab.reshape(-1, 3).mean(axis=0)]
-    pal = np.array(palette)
-    dist = np.linalg.norm(lab[:, :, None, :] - pal[None, None], axis=3)
-    index = np.argmin(dist, axis=2)
+    pal = np.array(palette, dtype=np.float32)
+    index = np.argmin(np.sum((lab.astype(np.float32)[:, :, None, :] - pal) ** 2, axis=3), axis=2)
     index[transparent] = -1
     regions = label(index, background=-2, connectivity=1)
     regions = _merge_small_regions(regions, CLIPART_MIN_REGION_AREA)

@@ -1,0 +1,144 @@
+"""Helpers for the notebooks: where data and figures live, and small figure layouts.
+
+Notebooks communicate, the library computes: a notebook asks this module for
+paths (absolute, so a notebook runs from any working directory) and never
+writes ``../data`` itself.
+"""
+
+from __future__ import annotations
+
+import os
+import time
+from collections.abc import Iterable
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from .constants import MIN_SEGMENT_LENGTH, RDP_TOLERANCE
+from .errors import Img2LogoError
+from .preprocessing import FeatureLines, LoadedImage, extract_feature_lines, load_image
+from .segment_graph import SegmentGraph, build_segment_graph
+
+#: Environment variable naming the repository root, when it cannot be found.
+ROOT_ENV = "IMG2LOGO_ROOT"
+_MARKER = Path("data") / "ATTRIBUTION.md"
+
+
+def project_root() -> Path:
+    """The repository root: the folder holding ``data/ATTRIBUTION.md``.
+
+    Looked up from ``$IMG2LOGO_ROOT``, then upwards from the working directory,
+    then upwards from this package (an editable install inside the repository).
+    """
+    env = os.environ.get(ROOT_ENV)
+    if env:
+        root = Path(env).resolve()
+        if not (root / _MARKER).is_file():
+            raise Img2LogoError(f"${ROOT_ENV}={env} does not hold {_MARKER}")
+        return root
+    for start in (Path.cwd(), Path(__file__).resolve().parent):
+        for folder in (start, *start.parents):
+            if (folder / _MARKER).is_file():
+                return folder
+    raise Img2LogoError(f"cannot find the img2logo repository (a folder with {_MARKER}); set ${ROOT_ENV}")
+
+
+def data_path(name: str) -> Path:
+    """Absolute path of an example image in ``data/``, e.g. ``data_path("clipart-fish.png")``."""
+    path = project_root() / "data" / name
+    if not path.is_file():
+        available = ", ".join(sorted(p.name for p in (project_root() / "data").glob("*.png")))
+        raise Img2LogoError(f"no example image {name!r} in data/; available: {available}")
+    return path
+
+
+def example_images(prefix: str = "") -> list[Path]:
+    """The example images of ``data/`` whose names start with ``prefix``, sorted."""
+    return sorted((project_root() / "data").glob(f"{prefix}*.png"))
+
+
+def figure_dir(notebook: str, *, smoke: bool = False) -> Path:
+    """The output folder of a notebook, created: ``figures/<notebook>/``.
+
+    Smoke runs (CI) write to ``build/smoke/<notebook>/`` instead, never over the
+    committed figures.
+    """
+    base = project_root() / ("build/smoke" if smoke else "figures")
+    out = base / notebook
+    out.mkdir(parents=True, exist_ok=True)
+    return out
+
+
+# --------------------------------------------------------------------------- preprocessing
+@dataclass(frozen=True, eq=False)
+class Preprocessed:
+    """One example through preprocessing: image, feature lines, segment graph, time (s)."""
+
+    name: str
+    image: LoadedImage
+    lines: FeatureLines
+    graph: SegmentGraph
+    seconds: float
+
+
+def preprocess(
+    paths: Iterable[str | os.PathLike[str]],
+    *,
+    kind: str = "auto",
+    rdp_tolerance: float = RDP_TOLERANCE,
+    min_length: float = MIN_SEGMENT_LENGTH,
+) -> list[Preprocessed]:
+    """Load each image, extract its feature lines and build its segment graph (Sec. 4)."""
+    out = []
+    for path in paths:
+        start = time.perf_counter()
+        image = load_image(path)
+        lines = extract_feature_lines(image, kind=kind)
+        graph = build_segment_graph(lines, rdp_tolerance=rdp_tolerance, min_length=min_length)
+        out.append(Preprocessed(Path(path).stem, image, lines, graph, time.perf_counter() - start))
+    return out
+
+
+def preprocessing_table(examples: Iterable[Preprocessed]) -> Any:
+    """A pandas DataFrame: per example its kind, |S|, node counts by valence, components.
+
+    No timings: the table is a committed figure and must not change from run to
+    run; ``make bench`` measures speed.
+    """
+    import pandas as pd
+
+    rows = []
+    for ex in examples:
+        g = ex.graph
+        rows.append(
+            {
+                "image": ex.name,
+                "kind": ex.lines.kind,
+                "segments": g.n_segments,
+                "junctions (valence >= 3)": int((g.valence >= 3).sum()),
+                "end points": int((g.valence == 1).sum()),
+                "split points": int((g.valence == 2).sum()),
+                "components": g.n_components(),
+            }
+        )
+    return pd.DataFrame(rows)
+
+
+def plot_preprocessing(examples: list[Preprocessed], *, panel_size: float = 3.0) -> Any:
+    """A figure, one row per example: input | feature lines | segment graph (paper Fig. 4a, 4b)."""
+    from matplotlib.figure import Figure
+
+    from .plotting import plot_segment_graph
+
+    fig = Figure(figsize=(3 * panel_size, panel_size * max(1, len(examples))), layout="constrained")
+    axes = fig.subplots(max(1, len(examples)), 3, squeeze=False)
+    for row, ex in zip(axes, examples, strict=False):
+        row[0].imshow(ex.image.rgb, extent=(0, ex.image.width, ex.image.height, 0))
+        row[0].set_title(f"{ex.name} ({ex.lines.kind})", fontsize=9)
+        row[1].imshow(~ex.lines.lines, cmap="gray", extent=(0, ex.image.width, ex.image.height, 0))
+        row[1].set_title("feature lines", fontsize=9)
+        plot_segment_graph(ex.graph, row[2])
+        row[2].set_title(f"segments |S| = {ex.graph.n_segments}", fontsize=9)
+        for ax in row:
+            ax.set_axis_off()
+    return fig

@@ -1,0 +1,886 @@
+"""Result files: the ``img2logo.abstraction/1`` JSON document, SVG and PNG.
+
+The JSON document is the stable record of a result (``contract/README.md``, JSON
+Schema ``abstraction.schema.json`` shipped in this package). The SVG is for
+designers: one exact elliptical-arc ``<path>`` per arc in an "Arcs" layer, and the
+golden circles in a hidden "Golden circles" construction layer that Inkscape and
+Illustrator show as a layer to toggle. The PNGs are quick looks, drawn with
+:mod:`img2logo.plotting` on matplotlib's Agg canvas, exactly ``width`` x ``height``
+px of the input image.
+
+Every writer is atomic and deterministic: the bytes go to a temporary file in the
+target's directory that is then renamed over the target (:func:`os.replace`), so a
+file is written whole or not at all; missing parent directories are created; the
+same input always gives byte-identical files (sorted JSON keys, ``repr`` floats, SVG
+written by hand with fixed decimals, PNG without timestamp or software metadata).
+
+Coordinates are input-image pixels: x right, y down, angles from +x towards +y, so
+a positive sweep is clockwise on screen, SVG's ``sweep-flag = 1``.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import copy
+import json
+import math
+import os
+import secrets
+from collections.abc import Callable, Mapping
+from enum import Enum
+from functools import lru_cache
+from importlib import resources
+from pathlib import Path
+from typing import IO, TYPE_CHECKING, Any
+
+import numpy as np
+
+from ._validation import check_positive
+from .constants import (
+    FORMAT_NAME,
+    JUNCTION_TOLERANCE,
+    PHI,
+    PNG_DPI,
+    RADIUS_RELATIVE_TOLERANCE,
+    SVG_DECIMALS,
+)
+from .errors import InvalidParameterError
+from .geometry import TAU, Abstraction, Arc, Circle
+from .plotting import ARC_COLOR, CIRCLE_COLOR, default_stroke_width, plot_abstraction, plot_segment_graph
+
+if TYPE_CHECKING:
+    from .segment_graph import SegmentGraph
+
+__all__ = [
+    "SCHEMA_RESOURCE",
+    "from_document",
+    "read_json",
+    "to_document",
+    "to_svg",
+    "validate_document",
+    "write_json",
+    "write_png",
+    "write_segment_graph_png",
+    "write_svg",
+]
+
+#: File name of the packaged JSON Schema of the document (read with importlib.resources).
+SCHEMA_RESOURCE: str = "abstraction.schema.json"
+
+#: An arc whose |sweep| exceeds this (but is not a full circle) has its two end points
+#: so close that an SVG renderer could not place its centre reliably: it is written as
+#: two arc commands. A full circle always is.
+_NEAR_FULL_SWEEP: float = TAU - 1e-3
+
+_SVG_NS = "http://www.w3.org/2000/svg"
+_INKSCAPE_NS = "http://www.inkscape.org/namespaces/inkscape"
+
+
+# --- the JSON document --------------------------------------------------------------
+
+
+def to_document(
+    abstraction: Abstraction, params: Mapping[str, Any] | None = None, *, check: bool = True
+) -> dict[str, Any]:
+    """The ``img2logo.abstraction/1`` JSON document of an abstraction (``contract/README.md``).
+
+    Circles are deduplicated: arcs on one circle share its index, and circles are
+    numbered in order of first use (``Abstraction.circles``). A junction lists only
+    the arcs that have an end point there: an arc that passes through a junction
+    in its interior (the progressive optimization keeps valence >= 3 junctions
+    inside merged arcs) is left out, as the contract requires. Junctions left with
+    no arc are omitted. ``extra.arc_segments`` records, for each arc, the indices of
+    the segment-graph segments it abstracts.
+
+    Parameters
+    ----------
+    abstraction : Abstraction
+        The result; every circle must have its ladder exponent ``k``.
+    params : mapping, optional
+        Parameters to record besides ``abstraction.params`` (they win on equal
+        keys). Values are made JSON-safe: numpy scalars and arrays become Python
+        numbers and lists, tuples lists, paths strings, enums their values, and
+        non-finite floats the strings ``"NaN"``, ``"Infinity"``, ``"-Infinity"``.
+        ``params["ladder"] == "fibonacci"`` (with ``params["unit"]``) writes the
+        contract's Fibonacci-ladder keys ``ladder`` and ``unit``.
+    check : bool
+        Check the contract's invariants on the result (radii on the ladder,
+        junctions on their arcs' circles and at their end points) and raise if one
+        fails, so a file that breaks the contract is never written. The JSON
+        Schema itself is checked by :func:`validate_document` (needs jsonschema).
+
+    Returns
+    -------
+    dict
+        A JSON-safe document (only dicts, lists, str, int, float, bool, None).
+
+    Raises
+    ------
+    InvalidParameterError
+        If a circle has no ``k``, a field is out of the contract's range, a
+        parameter is not JSON-safe, or (with ``check``) an invariant fails.
+    """
+    if not isinstance(abstraction, Abstraction):
+        raise InvalidParameterError(f"abstraction must be an Abstraction, got {type(abstraction).__name__}")
+    if params is not None and not isinstance(params, Mapping):
+        raise InvalidParameterError(f"params must be a mapping, got {type(params).__name__}")
+    if not isinstance(abstraction.params, Mapping):
+        raise InvalidParameterError(f"abstraction.params must be a mapping, got {type(abstraction.params).__name__}")
+    merged = _json_safe({**abstraction.params, **(params or {})}, "params")
+
+    width = _int_at_least(abstraction.width, "width", 1)
+    height = _int_at_least(abstraction.height, "height", 1)
+    level = _int_at_least(abstraction.level, "level", 0)
+    bias = _finite(abstraction.bias, "bias")
+    if not 0.0 <= bias < 1.0:
+        raise InvalidParameterError(f"bias must be in [0, 1), got {bias!r}")
+    similarity = _finite(abstraction.similarity, "similarity")
+    if similarity < 0.0:
+        raise InvalidParameterError(f"similarity must be >= 0, got {similarity!r}")
+    tolerance = _finite(abstraction.tolerance, "tolerance")
+    if tolerance <= 0.0:
+        raise InvalidParameterError(f"tolerance must be > 0, got {tolerance!r}")
+
+    circles = abstraction.circles
+    index = {c: i for i, c in enumerate(circles)}
+    circle_docs = []
+    for i, c in enumerate(circles):
+        if c.k is None:
+            raise InvalidParameterError(
+                f"circle {i} (centre ({c.cx:.6g}, {c.cy:.6g}), r={c.r:.6g}) has no ladder exponent k: "
+                "only golden circles, r = phi**(k+bias), can be written"
+            )
+        circle_docs.append({"cx": float(c.cx), "cy": float(c.cy), "r": float(c.r), "k": int(c.k)})
+
+    arcs = abstraction.arcs
+    arc_docs = [
+        {"circle": index[a.circle], "theta0": float(a.theta0), "sweep": min(TAU, max(-TAU, float(a.sweep)))}
+        for a in arcs
+    ]
+
+    junction_docs = []
+    for j, (point, listed) in enumerate(zip(abstraction.junctions, abstraction.junction_arcs, strict=True)):
+        kept: list[int] = []
+        for a in listed:
+            ai = _int_at_least(a, f"junction_arcs[{j}] entry", 0)
+            if ai >= len(arcs):
+                raise InvalidParameterError(
+                    f"junction {j}: arc index {ai} is out of range (the abstraction has {len(arcs)} arcs)"
+                )
+            if ai not in kept and not _passes_through(arcs[ai], point):
+                kept.append(ai)
+        if kept:
+            junction_docs.append({"x": float(point[0]), "y": float(point[1]), "arcs": kept})
+
+    arc_segments = [[_int_at_least(s, "arc_segments entry", 0) for s in segs] for segs in abstraction.arc_segments]
+
+    doc: dict[str, Any] = {
+        "format": FORMAT_NAME,
+        "width": width,
+        "height": height,
+        "phi": PHI,
+        "bias": bias,
+        "circles": circle_docs,
+        "arcs": arc_docs,
+        "junctions": junction_docs,
+        "level": level,
+        "similarity": similarity,
+        "tolerance": tolerance,
+        "params": merged,
+        "extra": {"arc_segments": arc_segments},
+    }
+    ladder = merged.get("ladder", "phi")
+    if ladder == "fibonacci":
+        unit = merged.get("unit")
+        doc["ladder"] = "fibonacci"
+        doc["unit"] = check_positive(unit, "params['unit'] (the Fibonacci ladder's unit)")
+    elif ladder != "phi":
+        raise InvalidParameterError(f"params['ladder'] must be 'phi' or 'fibonacci', got {ladder!r}")
+    if check:
+        _check_invariants(doc)
+    return doc
+
+
+def from_document(doc: Mapping[str, Any]) -> Abstraction:
+    """The abstraction stored in an ``img2logo.abstraction/1`` document.
+
+    The document is validated first: against the packaged JSON Schema when
+    jsonschema is installed, and always against the contract's invariants.
+    Round trip: ``from_document(to_document(a))`` has the same circles, arcs,
+    ``arc_segments`` and parameters as ``a``, and its junctions are those of ``a``
+    that had an arc ending there, each listing those arcs. Top-level ``ladder`` and
+    ``unit`` go into ``params``; ``fills`` and ``extra`` keys other than
+    ``arc_segments`` are not kept.
+
+    Parameters
+    ----------
+    doc : mapping
+        The parsed JSON document.
+
+    Returns
+    -------
+    Abstraction
+
+    Raises
+    ------
+    InvalidParameterError
+        With jsonschema's message if the document does not match the schema, or
+        naming the first invariant that fails.
+    """
+    if not isinstance(doc, Mapping):
+        raise InvalidParameterError(f"document must be a JSON object (mapping), got {type(doc).__name__}")
+    d = dict(doc)
+    _check_schema(d, required=False)
+    try:
+        _check_invariants(d)
+        circles = [Circle(float(c["cx"]), float(c["cy"]), float(c["r"]), int(c["k"])) for c in d["circles"]]
+        arcs = tuple(Arc(circles[int(a["circle"])], float(a["theta0"]), float(a["sweep"])) for a in d["arcs"])
+        junctions = np.array([[float(j["x"]), float(j["y"])] for j in d["junctions"]], dtype=np.float64)
+        junction_arcs = tuple(tuple(int(i) for i in j["arcs"]) for j in d["junctions"])
+        extra = d.get("extra") or {}
+        segs = extra.get("arc_segments")
+        if segs is None:
+            arc_segments: tuple[tuple[int, ...], ...] = tuple(() for _ in arcs)
+        else:
+            if len(segs) != len(arcs):
+                raise InvalidParameterError(
+                    f"extra.arc_segments must have one entry per arc ({len(arcs)}), got {len(segs)}"
+                )
+            arc_segments = tuple(tuple(int(s) for s in entry) for entry in segs)
+        params = copy.deepcopy(dict(d["params"]))
+        if d.get("ladder") == "fibonacci":
+            params.setdefault("ladder", "fibonacci")
+            params.setdefault("unit", d["unit"])
+        return Abstraction(
+            level=int(d["level"]),
+            arcs=arcs,
+            arc_segments=arc_segments,
+            junctions=junctions.reshape(-1, 2),
+            junction_arcs=junction_arcs,
+            similarity=float(d["similarity"]),
+            bias=float(d["bias"]),
+            tolerance=float(d["tolerance"]),
+            width=int(d["width"]),
+            height=int(d["height"]),
+            params=params,
+        )
+    except InvalidParameterError:
+        raise
+    except (KeyError, TypeError, ValueError, IndexError, AttributeError) as exc:
+        raise InvalidParameterError(f"not a valid {FORMAT_NAME} document: {type(exc).__name__}: {exc}") from exc
+
+
+def validate_document(doc: Mapping[str, Any]) -> None:
+    """Check a document against the packaged JSON Schema and the contract's invariants.
+
+    The invariants (``contract/README.md``), checked in this order:
+
+    - ``format`` is ``img2logo.abstraction/1``;
+    - every circle has ``abs(r - phi**(k + bias)) <= 1e-6 r`` (Fibonacci ladder:
+      ``abs(r - unit * F(k)) <= 1e-6 r``);
+    - every arc names an existing circle and has ``0 < abs(sweep) <= 2 pi``;
+    - every junction lists existing arcs, lies on the circle of each within
+      1e-3 px, and each has an end point at the junction within 1e-3 px.
+
+    Parameters
+    ----------
+    doc : mapping
+        The parsed JSON document.
+
+    Raises
+    ------
+    InvalidParameterError
+        With jsonschema's message and the failing path, or naming the first
+        violated invariant, e.g. ``circle 3: r=12.0 is not phi**(k+bias) = 11.09 ...``.
+    ImportError
+        If jsonschema (a development dependency) is not installed.
+    """
+    if not isinstance(doc, Mapping):
+        raise InvalidParameterError(f"document must be a JSON object (mapping), got {type(doc).__name__}")
+    d = dict(doc)
+    _check_schema(d, required=True)
+    _check_invariants(d)
+
+
+def read_json(path: str | os.PathLike[str]) -> Abstraction:
+    """Read an ``img2logo.abstraction/1`` JSON file written by :func:`write_json`.
+
+    Raises
+    ------
+    FileNotFoundError
+        If there is no such file.
+    InvalidParameterError
+        If it is not JSON or not a valid document (see :func:`from_document`).
+    """
+    p = _as_path(path)
+    text = p.read_text(encoding="utf-8")
+    try:
+        doc = json.loads(text)
+    except json.JSONDecodeError as exc:
+        raise InvalidParameterError(f"{p} is not JSON: {exc}") from exc
+    return from_document(doc)
+
+
+def write_json(
+    abstraction: Abstraction,
+    path: str | os.PathLike[str],
+    params: Mapping[str, Any] | None = None,
+    *,
+    check: bool = True,
+) -> Path:
+    """Write the ``img2logo.abstraction/1`` document of ``abstraction`` (see :func:`to_document`).
+
+    UTF-8 JSON with sorted keys, two-space indentation and a final newline; floats
+    are written with Python's ``repr``, so they read back exactly. Atomic.
+
+    Returns
+    -------
+    pathlib.Path
+        The path written.
+    """
+    doc = to_document(abstraction, params, check=check)
+    data = (json.dumps(doc, indent=2, sort_keys=True, allow_nan=False, ensure_ascii=False) + "\n").encode("utf-8")
+    return _atomic_write(path, lambda f: f.write(data))
+
+
+# --- SVG ---------------------------------------------------------------------------
+
+
+def to_svg(
+    abstraction: Abstraction,
+    *,
+    construction_circles: bool = True,
+    show_construction_circles: bool = False,
+    stroke_width: float | None = None,
+    image_size: tuple[float, float] | None = None,
+) -> str:
+    """The SVG text of an abstraction (see :func:`write_svg` for the layout)."""
+    if not isinstance(abstraction, Abstraction):
+        raise InvalidParameterError(f"abstraction must be an Abstraction, got {type(abstraction).__name__}")
+    width = _int_at_least(abstraction.width, "width", 1)
+    height = _int_at_least(abstraction.height, "height", 1)
+    sw = default_stroke_width(width, height) if stroke_width is None else check_positive(stroke_width, "stroke_width")
+    if image_size is None:
+        shown_w, shown_h = float(width), float(height)
+    else:
+        try:
+            shown_w, shown_h = image_size
+        except (TypeError, ValueError) as exc:
+            raise InvalidParameterError(f"image_size must be a pair (width, height), got {image_size!r}") from exc
+        shown_w = check_positive(shown_w, "image_size width")
+        shown_h = check_positive(shown_h, "image_size height")
+
+    circles = abstraction.circles
+    index = {c: i for i, c in enumerate(circles)}
+    n = _num
+    desc = (
+        f"{FORMAT_NAME} golden ratio logo by img2logo (Hsiao et al., Img2Logo, CGF 2023): "
+        f"{len(abstraction.arcs)} circular arcs on {len(circles)} circles of radius phi**(k+bias); "
+        f"bias={float(abstraction.bias):.6g}, level={int(abstraction.level)}, "
+        f"E^s={float(abstraction.similarity):.6g} px, tolerance T={float(abstraction.tolerance):.6g} px. "
+        f"Coordinates in pixels of the {width} x {height} input image."
+    )
+    lines = [
+        '<?xml version="1.0" encoding="UTF-8" standalone="no"?>',
+        f'<svg xmlns="{_SVG_NS}" xmlns:inkscape="{_INKSCAPE_NS}" version="1.1" '
+        f'width="{n(shown_w)}" height="{n(shown_h)}" viewBox="0 0 {width} {height}">',
+        f"  <title>{_escape(f'Golden ratio logo (level {int(abstraction.level)})')}</title>",
+        f"  <desc>{_escape(desc)}</desc>",
+    ]
+    if construction_circles:
+        hidden = "" if show_construction_circles else ' style="display:none"'
+        lines.append(
+            '  <g id="golden-circles" inkscape:groupmode="layer" inkscape:label="Golden circles"'
+            f'{hidden} fill="none" stroke="{CIRCLE_COLOR}" stroke-width="{n(max(0.5, sw / 4.0))}">'
+        )
+        for i, c in enumerate(circles):
+            lines.append(f'    <circle id="circle-{i}"{_k_attr(c)} cx="{n(c.cx)}" cy="{n(c.cy)}" r="{n(c.r)}"/>')
+        lines.append("  </g>")
+    lines.append(
+        f'  <g id="arcs" inkscape:groupmode="layer" inkscape:label="Arcs" fill="none" stroke="{ARC_COLOR}" '
+        f'stroke-width="{n(sw)}" stroke-linecap="round" stroke-linejoin="round">'
+    )
+    for i, a in enumerate(abstraction.arcs):
+        lines.append(
+            f'    <path id="arc-{i}" data-circle="{index[a.circle]}"{_k_attr(a.circle)} d="{_arc_path_data(a)}"/>'
+        )
+    lines.append("  </g>")
+    lines.append("</svg>")
+    return "\n".join(lines) + "\n"
+
+
+def write_svg(
+    abstraction: Abstraction,
+    path: str | os.PathLike[str],
+    *,
+    construction_circles: bool = True,
+    show_construction_circles: bool = False,
+    stroke_width: float | None = None,
+    image_size: tuple[float, float] | None = None,
+) -> Path:
+    """Write an abstraction as SVG for designers: exact arcs, construction circles as a layer.
+
+    The drawing's user units are input-image pixels: ``viewBox="0 0 W H"`` with W x H
+    the input size. Each arc is one ``<path id="arc-i" data-circle="c" data-k="k">``
+    made of SVG elliptical-arc commands ``A r r 0 large-arc sweep x y`` (exact, not
+    polylines): ``large-arc = |sweep| > pi``, ``sweep-flag = 1`` for a positive
+    sweep (clockwise with y down). A full circle is two half arcs closed with
+    ``Z``; an arc within 1e-3 rad of a full turn is also split in two. Arcs sit in
+    an Inkscape layer "Arcs" (black stroke, no fill, round caps and joins); the
+    circles, numbered as in the JSON document, in a layer "Golden circles" hidden
+    by default (``style="display:none"``). Coordinates carry ``SVG_DECIMALS``
+    decimals. Atomic and deterministic.
+
+    Parameters
+    ----------
+    abstraction : Abstraction
+        The result to write.
+    path : str or path-like
+        Target file; parent directories are created.
+    construction_circles : bool
+        Include the "Golden circles" layer.
+    show_construction_circles : bool
+        Make that layer visible instead of hidden.
+    stroke_width : float, optional
+        Width of the arcs, px; default :func:`img2logo.plotting.default_stroke_width`.
+    image_size : (float, float), optional
+        Displayed size (width, height) in px of the SVG; default the input size.
+        The viewBox stays the input frame, so the drawing scales.
+
+    Returns
+    -------
+    pathlib.Path
+        The path written.
+    """
+    text = to_svg(
+        abstraction,
+        construction_circles=construction_circles,
+        show_construction_circles=show_construction_circles,
+        stroke_width=stroke_width,
+        image_size=image_size,
+    )
+    data = text.encode("utf-8")
+    return _atomic_write(path, lambda f: f.write(data))
+
+
+# --- PNG ---------------------------------------------------------------------------
+
+
+def write_png(
+    abstraction: Abstraction,
+    path: str | os.PathLike[str],
+    *,
+    image: np.ndarray | None = None,
+    dpi: float = PNG_DPI,
+    show_junctions: bool = False,
+    show_circles: bool = False,
+    stroke_width: float | None = None,
+) -> Path:
+    """Render an abstraction to a PNG of exactly the input image's size.
+
+    Drawn with :func:`img2logo.plotting.plot_abstraction` on matplotlib's Agg
+    canvas with matplotlib's default style (a user's matplotlibrc does not change
+    the file), on white, without metadata that could vary: the same input gives
+    the same bytes. Atomic.
+
+    Parameters
+    ----------
+    abstraction : Abstraction
+        The result to draw.
+    path : str or path-like
+        Target file; parent directories are created.
+    image : ndarray, shape (height, width) or (height, width, 3 or 4), optional
+        The input image, drawn faded underneath.
+    dpi : float
+        Figure resolution; it only converts px to points, the PNG is always
+        ``width`` x ``height`` px.
+    show_junctions, show_circles : bool
+        Mark the junctions; draw the golden circles.
+    stroke_width : float, optional
+        Width of the arcs, px; default :func:`img2logo.plotting.default_stroke_width`.
+
+    Returns
+    -------
+    pathlib.Path
+        The path written.
+    """
+    if not isinstance(abstraction, Abstraction):
+        raise InvalidParameterError(f"abstraction must be an Abstraction, got {type(abstraction).__name__}")
+    width = _int_at_least(abstraction.width, "width", 1)
+    height = _int_at_least(abstraction.height, "height", 1)
+    d = check_positive(dpi, "dpi")
+    sw = default_stroke_width(width, height) if stroke_width is None else check_positive(stroke_width, "stroke_width")
+
+    def draw(ax: Any) -> None:
+        plot_abstraction(
+            abstraction,
+            ax,
+            image=image,
+            show_circles=show_circles,
+            show_junctions=show_junctions,
+            linewidth=sw * 72.0 / d,
+        )
+
+    return _write_figure_png(path, width, height, d, draw)
+
+
+def write_segment_graph_png(
+    graph: SegmentGraph,
+    path: str | os.PathLike[str],
+    *,
+    image: np.ndarray | None = None,
+    dpi: float = PNG_DPI,
+    show_junctions: bool = True,
+    stroke_width: float | None = None,
+) -> Path:
+    """Render a segment graph (paper Fig. 4b) to a PNG of exactly the graph's image size.
+
+    Drawn with :func:`img2logo.plotting.plot_segment_graph`: one colour per segment,
+    nodes marked by valence. Atomic and deterministic like :func:`write_png`.
+
+    Parameters
+    ----------
+    graph : SegmentGraph
+        The graph to draw.
+    path : str or path-like
+        Target file; parent directories are created.
+    image : ndarray, shape (height, width) or (height, width, 3 or 4), optional
+        The input image, drawn faded underneath.
+    dpi : float
+        Figure resolution; it only converts px to points.
+    show_junctions : bool
+        Mark the nodes by valence.
+    stroke_width : float, optional
+        Width of the segments, px; default half of
+        :func:`img2logo.plotting.default_stroke_width`, at least 1 px.
+
+    Returns
+    -------
+    pathlib.Path
+        The path written.
+    """
+    from .segment_graph import SegmentGraph  # lazily: it loads scipy
+
+    if not isinstance(graph, SegmentGraph):
+        raise InvalidParameterError(f"graph must be a SegmentGraph, got {type(graph).__name__}")
+    width = _int_at_least(graph.width, "graph width", 1)
+    height = _int_at_least(graph.height, "graph height", 1)
+    d = check_positive(dpi, "dpi")
+    if stroke_width is None:
+        sw = max(1.0, default_stroke_width(width, height) / 2.0)
+    else:
+        sw = check_positive(stroke_width, "stroke_width")
+    lw = sw * 72.0 / d
+    ms = max(3.0 * lw, 5.0 * 72.0 / d)  # node dots at least 5 px across
+
+    def draw(ax: Any) -> None:
+        plot_segment_graph(graph, ax, image=image, show_junctions=show_junctions, linewidth=lw, markersize=ms)
+
+    return _write_figure_png(path, width, height, d, draw)
+
+
+# --- helpers -----------------------------------------------------------------------
+
+
+def _write_figure_png(
+    path: str | os.PathLike[str], width: int, height: int, dpi: float, draw: Callable[[Any], None]
+) -> Path:
+    """Draw on full-figure axes of a ``width`` x ``height`` px Agg figure and save it atomically."""
+    import matplotlib.style
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    target = _as_path(path)
+    with matplotlib.style.context("default"):
+        fig = Figure(figsize=(width / dpi, height / dpi), dpi=dpi, facecolor="white")
+        FigureCanvasAgg(fig)
+        ax = fig.add_axes((0.0, 0.0, 1.0, 1.0))
+        draw(ax)
+
+        def save(f: IO[bytes]) -> None:
+            fig.savefig(
+                f,
+                format="png",
+                dpi=dpi,
+                facecolor="white",
+                edgecolor="white",
+                transparent=False,
+                metadata={"Software": None},
+            )
+
+        return _atomic_write(target, save)
+
+
+def save_figure(fig: Any, path: str | os.PathLike[str], *, dpi: float = PNG_DPI) -> Path:
+    """Save a matplotlib figure (PNG or SVG by the suffix) whole or not at all, byte-deterministically.
+
+    No timestamp or software tag goes into the file, and SVG ids use a fixed
+    hash salt, so the same figure gives the same bytes (``make figures`` can be
+    checked with ``git diff``).
+    """
+    import matplotlib
+
+    target = _as_path(path)
+    fmt = target.suffix.lstrip(".").lower()
+    if fmt not in ("png", "svg"):
+        raise InvalidParameterError(f"figure path must end in .png or .svg, got {target.name!r}")
+    metadata = {"Software": None} if fmt == "png" else {"Date": None, "Creator": None}
+
+    def save(f: IO[bytes]) -> None:
+        with matplotlib.rc_context({"svg.hashsalt": "img2logo"}):
+            fig.savefig(f, format=fmt, dpi=dpi, metadata=metadata, facecolor="white")
+
+    return _atomic_write(target, save)
+
+
+def write_table(table: Any, path: str | os.PathLike[str]) -> Path:
+    """Write a pandas DataFrame as CSV (no index), whole or not at all."""
+    text = table.to_csv(index=False, lineterminator="\n", float_format="%.6g")
+    return _atomic_write(path, lambda f: f.write(text.encode("utf-8")))
+
+
+def _atomic_write(path: str | os.PathLike[str], write: Callable[[IO[bytes]], object]) -> Path:
+    """Write a file whole or not at all: into a temporary sibling, then :func:`os.replace`.
+
+    ``write`` gets the open binary temporary file. Parent directories are created.
+    On any error the temporary file is removed and an existing target is untouched.
+    The file gets the usual permissions (0o666 less the umask).
+    """
+    target = _as_path(path)
+    parent = target.parent
+    parent.mkdir(parents=True, exist_ok=True)
+    flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_BINARY", 0)
+    for _ in range(100):
+        tmp = parent / f".{target.name}.{secrets.token_hex(6)}.tmp"
+        try:
+            fd = os.open(tmp, flags, 0o666)
+            break
+        except FileExistsError:
+            continue
+    else:  # pragma: no cover - 100 random name collisions
+        raise FileExistsError(f"could not create a temporary file next to {target}")
+    try:
+        with os.fdopen(fd, "wb") as f:
+            write(f)
+            f.flush()
+            os.fsync(f.fileno())
+        os.replace(tmp, target)
+    except BaseException:
+        with contextlib.suppress(OSError):
+            os.unlink(tmp)
+        raise
+    return target
+
+
+def _as_path(path: object) -> Path:
+    """``path`` as a :class:`pathlib.Path`, for a str or path-like that is not empty."""
+    if isinstance(path, str | os.PathLike):
+        p = os.fspath(path)
+        if isinstance(p, str) and p:
+            return Path(p)
+    raise InvalidParameterError(f"path must be a non-empty str or path-like, got {path!r}")
+
+
+@lru_cache(maxsize=1)
+def _schema() -> dict[str, Any]:
+    """The packaged JSON Schema of the document (never read from outside the package)."""
+    text = resources.files(__package__).joinpath(SCHEMA_RESOURCE).read_text(encoding="utf-8")
+    return json.loads(text)
+
+
+def _check_schema(doc: dict[str, Any], *, required: bool) -> None:
+    """Validate ``doc`` against the packaged schema; without jsonschema raise or skip."""
+    try:
+        import jsonschema
+    except ImportError as exc:
+        if not required:
+            return
+        raise ImportError(
+            "validating an img2logo document against its JSON Schema needs the optional package "
+            "jsonschema (a development dependency): pip install jsonschema"
+        ) from exc
+    validator = jsonschema.Draft202012Validator(_schema())
+    error = jsonschema.exceptions.best_match(validator.iter_errors(doc))
+    if error is not None:
+        where = "/".join(str(p) for p in error.absolute_path) or "(top level)"
+        raise InvalidParameterError(f"document does not match the {FORMAT_NAME} schema at {where}: {error.message}")
+
+
+def _check_invariants(doc: Mapping[str, Any]) -> None:
+    """Raise InvalidParameterError naming the first contract invariant ``doc`` breaks."""
+    if doc.get("format") != FORMAT_NAME:
+        raise InvalidParameterError(f"format must be {FORMAT_NAME!r}, got {doc.get('format')!r}")
+    phi = float(doc["phi"])
+    bias = float(doc["bias"])
+    fibonacci = doc.get("ladder", "phi") == "fibonacci"
+    unit = float(doc["unit"]) if fibonacci else 0.0
+    circles = doc["circles"]
+    for i, c in enumerate(circles):
+        r, k = float(c["r"]), int(c["k"])
+        if fibonacci:
+            if k < 1:
+                raise InvalidParameterError(f"circle {i}: k={k} is not a Fibonacci index (k >= 1)")
+            expected, rule = unit * _fibonacci(k), f"unit*F(k) (k={k}, unit={unit!r})"
+        else:
+            expected, rule = phi ** (k + bias), f"phi**(k+bias) (k={k}, bias={bias!r})"
+        if not abs(r - expected) <= RADIUS_RELATIVE_TOLERANCE * r:
+            name, _, detail = rule.partition(" ")
+            raise InvalidParameterError(
+                f"circle {i}: r={r!r} is not {name} = {expected:.10g} {detail}, "
+                f"relative error {abs(r - expected) / r:.3g} > {RADIUS_RELATIVE_TOLERANCE:g}"
+            )
+    arcs = doc["arcs"]
+    for i, a in enumerate(arcs):
+        ci = int(a["circle"])
+        if not 0 <= ci < len(circles):
+            raise InvalidParameterError(
+                f"arc {i}: circle index {ci} is out of range (the document has {len(circles)} circles)"
+            )
+        sweep = float(a["sweep"])
+        if not 0.0 < abs(sweep) <= TAU + 1e-12:
+            raise InvalidParameterError(f"arc {i}: sweep must satisfy 0 < |sweep| <= 2 pi, got {sweep!r}")
+    tol = JUNCTION_TOLERANCE
+    for j, junction in enumerate(doc["junctions"]):
+        x, y = float(junction["x"]), float(junction["y"])
+        for ai in junction["arcs"]:
+            ai = int(ai)
+            if not 0 <= ai < len(arcs):
+                raise InvalidParameterError(
+                    f"junction {j}: arc index {ai} is out of range (the document has {len(arcs)} arcs)"
+                )
+            a = arcs[ai]
+            ci = int(a["circle"])
+            c = circles[ci]
+            cx, cy, r = float(c["cx"]), float(c["cy"]), float(c["r"])
+            off = abs(math.hypot(x - cx, y - cy) - r)
+            if not off <= tol:
+                raise InvalidParameterError(
+                    f"junction {j}: ({x:.6g}, {y:.6g}) is {off:.3g} px off the circle {ci} of arc {ai}, "
+                    f"more than {tol:g} px"
+                )
+            t0 = float(a["theta0"])
+            t1 = t0 + float(a["sweep"])
+            ends = [(cx + r * math.cos(t), cy + r * math.sin(t)) for t in (t0, t1)]
+            gap = min(math.hypot(x - ex, y - ey) for ex, ey in ends)
+            if not gap <= tol:
+                raise InvalidParameterError(
+                    f"junction {j}: arc {ai} has no end point at ({x:.6g}, {y:.6g}): its nearest end is "
+                    f"{gap:.3g} px away, more than {tol:g} px"
+                )
+
+
+def _fibonacci(k: int) -> int:
+    """F(k) with F(1) = F(2) = 1."""
+    a, b = 0, 1
+    for _ in range(k):
+        a, b = b, a + b
+    return a
+
+
+def _passes_through(arc: Arc, point: np.ndarray) -> bool:
+    """True when ``point`` lies on ``arc`` strictly inside it, not at one of its end points.
+
+    Within the contract's junction tolerance: such a junction must not list the arc.
+    """
+    p = np.asarray(point, dtype=np.float64)
+    tol = JUNCTION_TOLERANCE
+    if min(float(np.hypot(*(p - arc.start))), float(np.hypot(*(p - arc.end)))) <= tol:
+        return False
+    c = arc.circle
+    if abs(float(c.distance(p))) > tol:
+        return False
+    return bool(arc.contains_angle(float(c.angle_of(p)), tol=tol / c.r))
+
+
+def _json_safe(value: Any, where: str) -> Any:
+    """``value`` made of JSON types only (see :func:`to_document`); raise if impossible."""
+    if value is None or isinstance(value, bool | str):
+        return value
+    if isinstance(value, np.bool_):
+        return bool(value)
+    if isinstance(value, int | np.integer):
+        return int(value)
+    if isinstance(value, float | np.floating):
+        f = float(value)
+        if math.isnan(f):
+            return "NaN"
+        if math.isinf(f):
+            return "Infinity" if f > 0 else "-Infinity"
+        return f
+    if isinstance(value, Enum):
+        return _json_safe(value.value, where)
+    if isinstance(value, os.PathLike):
+        return os.fsdecode(os.fspath(value))
+    if isinstance(value, np.ndarray):
+        return _json_safe(value.tolist(), where)
+    if isinstance(value, Mapping):
+        out = {}
+        for key, item in value.items():
+            if not isinstance(key, str):
+                raise InvalidParameterError(f"{where} keys must be strings, got {key!r}")
+            out[key] = _json_safe(item, f"{where}[{key!r}]")
+        return out
+    if isinstance(value, list | tuple):
+        return [_json_safe(item, f"{where}[{i}]") for i, item in enumerate(value)]
+    raise InvalidParameterError(
+        f"{where} must be JSON-safe (numbers, strings, lists, mappings, numpy values), got {type(value).__name__}"
+    )
+
+
+def _int_at_least(value: object, name: str, minimum: int) -> int:
+    """``value`` as an int >= ``minimum`` (Python or numpy integer, not bool)."""
+    if isinstance(value, bool | np.bool_) or not isinstance(value, int | np.integer):
+        raise InvalidParameterError(f"{name} must be an integer, got {value!r}")
+    v = int(value)
+    if v < minimum:
+        raise InvalidParameterError(f"{name} must be >= {minimum}, got {v}")
+    return v
+
+
+def _finite(value: object, name: str) -> float:
+    """``value`` as a finite float."""
+    try:
+        v = float(value)  # type: ignore[arg-type]
+    except (TypeError, ValueError) as exc:
+        raise InvalidParameterError(f"{name} must be a number, got {value!r}") from exc
+    if not math.isfinite(v):
+        raise InvalidParameterError(f"{name} must be finite, got {v}")
+    return v
+
+
+def _num(v: float) -> str:
+    """A coordinate for SVG: fixed point with ``SVG_DECIMALS`` decimals, trailing zeros dropped."""
+    s = f"{float(v):.{SVG_DECIMALS}f}"
+    if "." in s:
+        s = s.rstrip("0").rstrip(".")
+    return "0" if s in ("-0", "") else s
+
+
+def _escape(text: str) -> str:
+    """``text`` safe as XML character data (``xml.sax.saxutils.escape`` without its slow import)."""
+    return text.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
+
+
+def _k_attr(circle: Circle) -> str:
+    """The ``data-k`` attribute of a circle, or nothing when it has no k."""
+    return "" if circle.k is None else f' data-k="{int(circle.k)}"'
+
+
+def _arc_path_data(arc: Arc) -> str:
+    """SVG path data of an arc with elliptical-arc commands (see :func:`write_svg`)."""
+    c = arc.circle
+    sweep = min(TAU, max(-TAU, float(arc.sweep)))
+    pieces = 2 if (arc.is_full_circle or abs(sweep) > _NEAR_FULL_SWEEP) else 1
+    angles = float(arc.theta0) + sweep * np.linspace(0.0, 1.0, pieces + 1)
+    points = c.point_at(angles)
+    if arc.is_full_circle:
+        points[-1] = points[0]
+    large = 1 if abs(sweep) / pieces > math.pi else 0
+    flag = 1 if sweep > 0 else 0
+    r = _num(c.r)
+    parts = [f"M {_num(points[0, 0])} {_num(points[0, 1])}"]
+    for x, y in points[1:]:
+        parts.append(f"A {r} {r} 0 {large} {flag} {_num(x)} {_num(y)}")
+    if arc.is_full_circle:
+        parts.append("Z")
+    return " ".join(parts)
