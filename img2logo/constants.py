@@ -40,6 +40,8 @@ FDOG_SIGMA_C: float = 1.0
 FDOG_SIGMA_M: float = 3.0
 FDOG_RHO: float = 0.99
 FDOG_TAU: float = 0.5
+#: Photo: isolated feature lines shorter than this are texture, not features, px.
+PHOTO_MIN_LINE_LENGTH: float = 40.0
 #: Photo: the bilateral filter applied before the FDoG (diameter px, colour sigma
 #: on a 0..1 gray scale).
 BILATERAL_DIAMETER: int = 9
@@ -88,13 +90,17 @@ MAX_RADIUS_FACTOR: float = 20.0
 #: fit_circle: most Levenberg-Marquardt iterations refining the algebraic (Hyper) fit.
 CIRCLE_REFINE_MAX_ITER: int = 30
 #: fit_constrained: default tolerance on the connectivity constraints (Eqn. 13),
-#: and on the size of the last Gauss-Newton step, px.
+#: and on the size of the last SQP step, px.
 CONSTRAINED_FIT_TOL: float = 1e-6
 #: fit_constrained: a feasible iterate whose next step would lower E^l (Eqn. 7) by
 #: less than this fraction of it has converged, even if the step exceeds the tolerance.
 CONSTRAINED_FIT_FTOL: float = 1e-12
-#: fit_constrained: default maximum number of SQP (Gauss-Newton-KKT) iterations.
+#: fit_constrained: default maximum number of SQP iterations.
 CONSTRAINED_FIT_MAX_ITER: int = 50
+#: fit_constrained: a fit whose constraint violation (still above the tolerance)
+#: has not halved over this many iterations stops, unconverged: the fixed
+#: variables most likely leave no feasible solution.
+CONSTRAINED_FIT_STALL: int = 5
 #: fit_constrained: damping mu of the KKT system, relative to the largest diagonal
 #: entry of the Gauss-Newton matrix (the constraint block gets the same relative
 #: regularization), so nearly singular systems (huge radii) stay solvable.
@@ -102,5 +108,10 @@ KKT_DAMPING: float = 1e-9
 #: fit_constrained: KKT systems larger than this (unknowns + multipliers) are
 #: solved by a sparse LU, smaller ones (a local window) by a dense solve.
 KKT_DENSE_MAX: int = 60
-#: Photo: isolated feature lines shorter than this are texture, not features, px.
-PHOTO_MIN_LINE_LENGTH: float = 40.0
+
+# --- Progressive optimization (progressive.py) -------------------------------------
+#: Default tolerance T on the similarity error E^s (Eqn. 1), px; the paper's default.
+TOLERANCE: float = 5.0
+#: Line-segment simplification (Sec. 5.4): neighbours are merged before the loop when
+#: one circle fits them with a mean absolute error below this, px (the paper's 1.0).
+SIMPLIFICATION_ERROR: float = 1.0

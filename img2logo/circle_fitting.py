@@ -1,0 +1,670 @@
+"""Circle fitting: free fits to one segment, and the connectivity-constrained fit (Sec. 5.3).
+
+* :func:`fit_circle` fits centre and radius to one segment's points: the
+  algebraic Hyper fit [Al-Sharadqah & Chernov 2009] followed by a geometric
+  Levenberg-Marquardt refinement of the residuals ``|p - o| - r`` (Eqn. 9). It is
+  the first stage of the two-stage golden ratio circle fitting, whose radii are
+  then snapped to the ladder (Eqn. 12), and the fit behind the bias estimate
+  (Eqn. 14). Unlike the Kasa fit (scikit-image's ``CircleModel``) it does not
+  shrink the radius of short noisy arcs.
+* :func:`fit_constrained` solves Eqn. 13: with the (golden) radii fixed it moves
+  the circle centres o_i and junction displacements d_k to minimize E^l (Eqn. 7)
+  subject to every circle passing through its displaced junctions (Eqn. 8, 9).
+  Variables may be held fixed, which is the localized fitting of Sec. 5.4.
+* :func:`mean_abs_error` is the "average fitting error" of the line-segment
+  simplification (Sec. 5.4).
+
+Coordinates are input-image pixels: x to the right, y downwards, the pixel in row
+i, column j has its centre at (j + 0.5, i + 0.5). Lengths are in px.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+
+from ._validation import check_points, check_positive, readonly
+from .constants import (
+    CIRCLE_REFINE_MAX_ITER,
+    CONSTRAINED_FIT_FTOL,
+    CONSTRAINED_FIT_MAX_ITER,
+    CONSTRAINED_FIT_STALL,
+    CONSTRAINED_FIT_TOL,
+    KKT_DAMPING,
+    KKT_DENSE_MAX,
+    MAX_RADIUS_FACTOR,
+)
+from .errors import FitError, InvalidParameterError
+
+__all__ = ["CircleFit", "ConstrainedFit", "fit_circle", "fit_constrained", "mean_abs_error"]
+
+
+# --------------------------------------------------------------------------------
+# Free fit of one circle
+# --------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True, eq=False)
+class CircleFit:
+    """The result of :func:`fit_circle`.
+
+    Attributes
+    ----------
+    center : ndarray, shape (2,)
+        Centre (x, y), px.
+    radius : float
+        Radius, px.
+    rms : float
+        Root mean square of the geometric residuals ``|p - o| - r``, px.
+    capped : bool
+        True when the points were (nearly) straight and the radius was capped at
+        ``max_radius`` (see :func:`fit_circle`).
+    """
+
+    center: np.ndarray
+    radius: float
+    rms: float
+    capped: bool
+
+
+def _hyper_fit(x: np.ndarray, y: np.ndarray) -> tuple[float, float, float]:
+    """Hyper fit of centred, unit-scaled coordinates: (a, b, r); r is inf for a line."""
+    z = x * x + y * y
+    design = np.column_stack([z, x, y, np.ones_like(x)])
+    if len(design) < 4:  # zero rows change nothing but give the SVD four singular values
+        design = np.vstack([design, np.zeros((4 - len(design), 4))])
+    _, s, vt = np.linalg.svd(design, full_matrices=False)
+    if s[3] < 1e-12 * s[0]:  # points exactly on a circle (or line): the null vector
+        coef = vt[3]
+    else:
+        # Generalized eigenproblem M A = eta N A with the Hyper constraint matrix N;
+        # solved as in Chernov's HyperSVD through W = V S V^T (M = W^2 / n).
+        w = vt.T @ np.diag(s) @ vt
+        zm, xm, ym = z.mean(), x.mean(), y.mean()
+        n_mat = np.array(
+            [[8 * zm, 4 * xm, 4 * ym, 2], [4 * xm, 1, 0, 0], [4 * ym, 0, 1, 0], [2, 0, 0, 0]], dtype=np.float64
+        )
+        evals, evecs = np.linalg.eig(w @ np.linalg.solve(n_mat, w))
+        order = np.argsort(evals.real)
+        coef = np.linalg.solve(w, evecs[:, order[1]].real)  # the smallest positive eigenvalue
+    a0, a1, a2, a3 = coef
+    disc = a1 * a1 + a2 * a2 - 4 * a0 * a3
+    if abs(a0) <= 1e-14 * math.sqrt(max(disc, 0.0)) or disc <= 0:
+        return 0.0, 0.0, math.inf
+    return -a1 / (2 * a0), -a2 / (2 * a0), math.sqrt(disc) / (2 * abs(a0))
+
+
+def _refine(x: np.ndarray, y: np.ndarray, a: float, b: float, r: float) -> tuple[float, float, float]:
+    """Levenberg-Marquardt on the geometric residuals ``|(x, y) - (a, b)| - r`` (Eqn. 9).
+
+    Works in the centred, unit-scaled coordinates of :func:`fit_circle`; stops when
+    a step is below 1e-9 of the radius.
+    """
+
+    def residuals(a: float, b: float, r: float) -> tuple[float, np.ndarray]:
+        dx, dy = x - a, y - b
+        d = np.sqrt(dx * dx + dy * dy)
+        safe = np.where(d > 0, d, 1.0)
+        # Rows: residuals e, and their derivatives by a and b (the one by r is -1).
+        rows = np.stack([d - r, np.where(d > 0, -dx / safe, 1.0), -dy / safe])
+        return float(rows[0] @ rows[0]), rows
+
+    f, rows = residuals(a, b, r)
+    lam = 1e-6
+    for _ in range(CIRCLE_REFINE_MAX_ITER):
+        # J^T J and J^T e from one matrix product (cheaper than nine sums).
+        m = rows @ np.vstack([rows, np.ones(len(x))]).T  # (3, 4)
+        jtj = np.array([[m[1, 1], m[1, 2], -m[1, 3]], [m[1, 2], m[2, 2], -m[2, 3]], [-m[1, 3], -m[2, 3], len(x)]])
+        grad = np.array([m[0, 1], m[0, 2], -m[0, 3]])
+        while lam < 1e10:
+            step = np.linalg.solve(jtj + lam * np.diag(np.diag(jtj)), -grad)
+            if np.max(np.abs(step)) <= 1e-9 * max(1.0, abs(r)):
+                return a, b, r  # converged
+            f_new, rows_new = residuals(a + step[0], b + step[1], r + step[2])
+            if f_new <= f:
+                a, b, r = a + step[0], b + step[1], r + step[2]
+                f, rows = f_new, rows_new
+                lam = max(lam / 10, 1e-12)
+                break
+            lam *= 10
+        else:
+            break  # no decrease: at the minimum to rounding
+    return a, b, r
+
+
+def fit_circle(points: object, *, max_radius: float | None = None) -> CircleFit:
+    """Fit a circle to ``points`` (unconstrained; first stage of Sec. 5.3, and Eqn. 14).
+
+    The algebraic Hyper fit [Al-Sharadqah & Chernov 2009] (a 4x4 eigenproblem on
+    centred, unit-scaled coordinates) gives a start that a few Levenberg-Marquardt
+    iterations refine into the geometric least-squares circle, minimizing
+    ``sum (|p - o| - r)^2``.
+
+    Nearly straight points have a huge (or, exactly collinear, infinite) radius.
+    If the fitted radius exceeds ``max_radius``, or no finite circle exists, the
+    result is instead the circle of radius ``max_radius`` through the two
+    extreme points of ``points`` along their principal axis (the end points of a
+    straight-ish segment), with its centre on the concave side of the points,
+    i.e. curving the same way they do (the side opposite to their mean offset
+    from the chord). For exactly straight points the centre is on the left of
+    the chord direction (the direction is fixed by making the principal axis
+    point towards +x, or +y if vertical), and ``capped`` is True.
+
+    Parameters
+    ----------
+    points : array_like, shape (N, 2)
+        Points (x, y), px, at least 3 distinct. Their order does not matter.
+    max_radius : float, optional
+        Largest radius returned, px. Default: ``MAX_RADIUS_FACTOR`` (20) times the
+        points' extent (the distance between the two extreme points).
+
+    Returns
+    -------
+    CircleFit
+
+    Raises
+    ------
+    FitError
+        Fewer than 3 (distinct) points, or ``max_radius`` smaller
+        than half the extent (no circle of that radius through the end points).
+    InvalidParameterError
+        ``points`` not of shape (N, 2) or not finite; ``max_radius`` not > 0.
+    """
+    p = check_points(points)
+    if len(p) < 3:
+        raise FitError(f"a circle fit needs at least 3 points, got {len(p)}")
+    # Count distinct points up to 3 (np.unique(axis=0) is slow): any circle through
+    # two points would fit them exactly.
+    not_first = np.any(p != p[0], axis=1)
+    distinct = 1
+    if not_first.any():
+        not_second = np.any(p != p[np.argmax(not_first)], axis=1)
+        distinct = 3 if np.any(not_first & not_second) else 2
+    if distinct < 3:
+        raise FitError(f"a circle fit needs at least 3 distinct points, got {distinct}")
+    centroid = p.mean(axis=0)
+    q = p - centroid
+    scale = math.sqrt(float(np.mean(np.sum(q * q, axis=1))))
+    # The principal axis, oriented towards +x (or +y), and the extreme points along it.
+    axis = np.linalg.svd(q, full_matrices=False)[2][0]
+    if axis[0] < 0 or (axis[0] == 0 and axis[1] < 0):
+        axis = -axis
+    proj = q @ axis
+    end_a, end_b = p[np.argmin(proj)], p[np.argmax(proj)]
+    extent = float(np.hypot(*(end_b - end_a)))
+    r_max = MAX_RADIUS_FACTOR * extent if max_radius is None else check_positive(max_radius, "max_radius")
+
+    x, y = q[:, 0] / scale, q[:, 1] / scale
+    a, b, r = _hyper_fit(x, y)
+    if math.isfinite(r) and r * scale <= 1e3 * max(r_max, extent):
+        a, b, r = _refine(x, y, a, b, r)
+    center = centroid + scale * np.array([a, b])
+    radius = abs(r) * scale
+    capped = not (math.isfinite(radius) and radius <= r_max)
+    if capped:
+        half = extent / 2
+        if r_max < half:
+            raise FitError(f"max_radius {r_max:g} is less than half the points' extent {half:g}")
+        tangent = (end_b - end_a) / extent
+        normal = np.array([-tangent[1], tangent[0]])
+        mid = (end_a + end_b) / 2
+        bow = float(np.mean((p - mid) @ normal))
+        side = -1.0 if bow > 1e-12 * extent else 1.0  # the centre is opposite the bulge
+        center = mid + side * math.sqrt(r_max * r_max - half * half) * normal
+        radius = r_max
+    res = np.hypot(p[:, 0] - center[0], p[:, 1] - center[1]) - radius
+    return CircleFit(readonly(center), float(radius), float(np.sqrt(np.mean(res * res))), capped)
+
+
+def mean_abs_error(points: object, center: object, radius: float) -> float:
+    """Mean absolute geometric error ``mean | |p - o| - r |`` of ``points`` (N, 2), px.
+
+    The "average fitting error" of the line-segment simplification (Sec. 5.4).
+    """
+    p = check_points(points)
+    o = np.asarray(center, dtype=np.float64)
+    if o.shape != (2,) or not np.all(np.isfinite(o)):
+        raise InvalidParameterError(f"center must be a finite array of shape (2,), got {o.shape}")
+    r = check_positive(radius, "radius")
+    return float(np.mean(np.abs(np.hypot(p[:, 0] - o[0], p[:, 1] - o[1]) - r)))
+
+
+# --------------------------------------------------------------------------------
+# Connectivity-constrained fit (Eqn. 13)
+# --------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True, eq=False)
+class ConstrainedFit:
+    """The result of :func:`fit_constrained`.
+
+    Attributes
+    ----------
+    centers : ndarray, shape (C, 2)
+        Circle centres o_i, px.
+    displacements : ndarray, shape (J, 2)
+        Junction displacements d_k, px; the displaced junctions are ``p_k + d_k``.
+    objective : float
+        E^l of Eqn. 7 at the result, px^2 (times the weights).
+    violation : float
+        Largest ``| |o_i - (p_k + d_k)| - r_i |`` over all incidences, px; 0 if
+        there are none. Incidences between fixed variables count too.
+    iterations : int
+        SQP steps taken.
+    converged : bool
+        Whether ``violation <= tol`` and the next step would be below ``tol`` px
+        or lower E^l by less than ``CONSTRAINED_FIT_FTOL`` of it (for
+        ``connectivity=False``, only the latter). False when ``max_iter`` ran
+        out, the constraints cannot be met, or the line search stalled while
+        infeasible.
+    """
+
+    centers: np.ndarray
+    displacements: np.ndarray
+    objective: float
+    violation: float
+    iterations: int
+    converged: bool
+
+
+def _index_array(values: object, name: str, size: int) -> np.ndarray:
+    arr = np.asarray(values)
+    if arr.size == 0:
+        return np.zeros(0, dtype=np.int64)
+    if arr.ndim != 1 or not np.issubdtype(arr.dtype, np.integer):
+        raise InvalidParameterError(f"{name} must be a 1-D array of integers, got shape {arr.shape}, {arr.dtype}")
+    if arr.min() < 0 or arr.max() >= size:
+        raise InvalidParameterError(f"{name} must index 0..{size - 1}, got values from {arr.min()} to {arr.max()}")
+    return np.unique(arr).astype(np.int64)
+
+
+def _as_points(values: object, name: str, count: int | None = None) -> np.ndarray:
+    if np.size(values) == 0 and count in (None, 0):
+        return np.zeros((0, 2))
+    arr = check_points(values, name)
+    if count is not None and len(arr) != count:
+        raise InvalidParameterError(f"{name} must have shape ({count}, 2), got {arr.shape}")
+    return arr
+
+
+def _norm(vx: np.ndarray, vy: np.ndarray) -> np.ndarray:
+    # sqrt(x^2 + y^2): pixel coordinates cannot overflow, and np.hypot is ~5x slower.
+    return np.sqrt(vx * vx + vy * vy)
+
+
+class _Problem:
+    """Eqn. 13 in terms of the free variables x = (free centres, free displacements)."""
+
+    def __init__(
+        self,
+        points: np.ndarray,
+        owner: np.ndarray,
+        radii: np.ndarray,
+        centers: np.ndarray,
+        junctions: np.ndarray,
+        disp: np.ndarray,
+        incidence: np.ndarray,
+        free_c: np.ndarray,
+        free_j: np.ndarray,
+        ws: float,
+        wj: float,
+        connectivity: bool,
+    ) -> None:
+        self.radii, self.junctions, self.ws, self.wj = radii, junctions, ws, wj
+        self.centers, self.disp = centers.copy(), disp.copy()
+        self.free_c, self.free_j = free_c, free_j
+        nc, nj = len(free_c), len(free_j)
+        self.n = 2 * (nc + nj)
+        # Positions of circles / junctions among the free ones (-1: fixed).
+        pos_c = np.full(len(radii), -1)
+        pos_c[free_c] = np.arange(nc)
+        pos_j = np.full(len(junctions), -1)
+        pos_j[free_j] = np.arange(nj)
+        # Points of free circles vary (grouped by circle: every group is non-empty,
+        # so sums per circle are np.add.reduceat); those of fixed circles add a constant.
+        on_free = pos_c[owner] >= 0
+        self.px, self.py = points[on_free, 0].copy(), points[on_free, 1].copy()
+        self.counts = np.bincount(pos_c[owner[on_free]], minlength=nc)
+        self.starts = (np.cumsum(self.counts) - self.counts).astype(np.intp)
+        self.r_pts = np.repeat(radii[free_c], self.counts)
+        fixed_pts, fixed_own = points[~on_free], owner[~on_free]
+        e = _norm(*(fixed_pts - centers[fixed_own]).T) - radii[fixed_own]
+        fixed_j = np.ones(len(junctions), dtype=bool)
+        fixed_j[free_j] = False
+        self.f_const = ws * float(np.sum(e * e)) + wj * float(np.sum(disp[fixed_j] ** 2))
+        # Incidences: all are evaluated; those with a free variable are constraints.
+        self.inc_i, self.inc_k = incidence[:, 0], incidence[:, 1]
+        ci, ck = pos_c[self.inc_i], pos_j[self.inc_k]
+        self.active = ((ci >= 0) | (ck >= 0)) if connectivity else np.zeros(len(incidence), dtype=bool)
+        self.m = int(self.active.sum())
+        ci, ck = ci[self.active], ck[self.active]
+        # Sparsity pattern of the KKT matrix [[H, A^T], [A, -delta I]]: the 2x2 blocks
+        # of H, the entries of A and A^T for free centres and displacements, the diagonal.
+        blk = np.repeat(np.arange(0, self.n, 2), 4)
+        blk_r, blk_c = blk + np.tile([0, 0, 1, 1], self.n // 2), blk + np.tile([0, 1, 0, 1], self.n // 2)
+        rows_a = np.arange(self.m)
+        self.a_mask_c, self.a_mask_k = ci >= 0, ck >= 0
+        a_rows = np.concatenate([np.repeat(rows_a[self.a_mask_c], 2), np.repeat(rows_a[self.a_mask_k], 2)])
+        a_cols = np.concatenate(
+            [(2 * ci[self.a_mask_c])[:, None] + [0, 1], (2 * (nc + ck[self.a_mask_k]))[:, None] + [0, 1]]
+        ).ravel()
+        # Second-order coupling blocks (o_i, d_k) of the constraint curvature, both free.
+        self.both = self.a_mask_c & self.a_mask_k
+        cb, kb = 2 * ci[self.both], 2 * (nc + ck[self.both])
+        cpl_r = np.concatenate([(cb[:, None] + [0, 0, 1, 1]).ravel(), (kb[:, None] + [0, 0, 1, 1]).ravel()])
+        cpl_c = np.concatenate([(kb[:, None] + [0, 1, 0, 1]).ravel(), (cb[:, None] + [0, 1, 0, 1]).ravel()])
+        # Block (of H) of the centre and of the displacement in each constraint; -1: fixed.
+        self.blk_ci = np.where(self.a_mask_c, ci, -1)
+        self.blk_ck = np.where(self.a_mask_k, nc + ck, -1)
+        diag_m = np.arange(self.n, self.n + self.m)
+        self.kkt_rows = np.concatenate([blk_r, self.n + a_rows, a_cols, cpl_r, diag_m])
+        self.kkt_cols = np.concatenate([blk_c, a_cols, self.n + a_rows, cpl_c, diag_m])
+        # No entry repeats, so a CSC matrix is the data in column-major order.
+        size = self.n + self.m
+        self.csc_order = np.lexsort((self.kkt_rows, self.kkt_cols))
+        self.csc_indptr = np.concatenate([[0], np.cumsum(np.bincount(self.kkt_cols, minlength=size))])
+
+    def set_x(self, x: np.ndarray) -> None:
+        nc = len(self.free_c)
+        self.centers[self.free_c] = x[: 2 * nc].reshape(-1, 2)
+        self.disp[self.free_j] = x[2 * nc :].reshape(-1, 2)
+
+    def get_x(self) -> np.ndarray:
+        return np.concatenate([self.centers[self.free_c].ravel(), self.disp[self.free_j].ravel()])
+
+    def constraints(self) -> tuple[np.ndarray, np.ndarray]:
+        """All incidence residuals ``|o_i - (p_k + d_k)| - r_i`` (M,) and vectors v (M, 2)."""
+        v = self.centers[self.inc_i] - self.junctions[self.inc_k] - self.disp[self.inc_k]
+        return _norm(v[:, 0], v[:, 1]) - self.radii[self.inc_i], v
+
+    def objective(self) -> tuple[float, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """E^l (Eqn. 7); point residuals, vectors o - p (x, y) and distances of free circles."""
+        cf = self.centers[self.free_c]
+        vx = np.repeat(cf[:, 0], self.counts) - self.px
+        vy = np.repeat(cf[:, 1], self.counts) - self.py
+        dist = _norm(vx, vy)
+        e = dist - self.r_pts
+        d = self.disp[self.free_j]
+        return self.f_const + self.ws * float(np.sum(e * e)) + self.wj * float(np.sum(d * d)), e, vx, vy, dist
+
+    def merit(self, nu: float) -> float:
+        """The L1 merit function E^l + nu * sum |c| over the constraints."""
+        return self.objective()[0] + nu * float(np.abs(self.constraints()[0][self.active]).sum())
+
+    def linearize(self) -> tuple[float, np.ndarray, np.ndarray, float]:
+        """E^l, its gradient g, active constraint values c, and the violation (max |c| over all).
+
+        Keeps the unit vectors and residuals that :meth:`matrix` needs.
+        """
+        nj = len(self.free_j)
+        f, e, vx, vy, dist = self.objective()
+        safe = np.where(dist > 0, dist, 1.0)
+        ux, uy = np.where(dist > 0, vx / safe, 1.0), vy / safe
+        self._pt = (ux, uy, e / safe)
+        g = np.concatenate(
+            [
+                np.column_stack([self._gsum(e * ux), self._gsum(e * uy)]).ravel(),
+                (2.0 * self.wj * self.disp[self.free_j]).ravel(),
+            ]
+        )
+        self._gn = np.concatenate(
+            [
+                np.column_stack([self._gsum(ux * ux), self._gsum(ux * uy), self._gsum(ux * uy), self._gsum(uy * uy)]),
+                np.tile([2.0 * self.wj, 0.0, 0.0, 2.0 * self.wj], (nj, 1)),
+            ]
+        )
+        c_all, vc = self.constraints()
+        c, vc = c_all[self.active], vc[self.active]
+        dc = _norm(vc[:, 0], vc[:, 1])
+        dsafe = np.where(dc > 0, dc, 1.0)
+        self._uc = np.column_stack([np.where(dc > 0, vc[:, 0] / dsafe, 1.0), vc[:, 1] / dsafe])
+        self._dc = dsafe
+        return f, g, c, float(np.max(np.abs(c_all), initial=0.0))
+
+    def _gsum(self, values: np.ndarray) -> np.ndarray:
+        """2 * segment_weight * the sum of ``values`` over each free circle's points."""
+        return 2.0 * self.ws * np.add.reduceat(values, self.starts) if len(self.starts) else np.zeros(0)
+
+    def matrix(self, lam: np.ndarray | None) -> tuple[sp.csc_matrix | np.ndarray, float]:
+        """The damped KKT matrix at the last :meth:`linearize`, and the damping delta.
+
+        ``lam=None`` gives the Gauss-Newton matrix J^T J; with multipliers it is the
+        Hessian of the Lagrangian E^l + lam^T c (residual and constraint curvature).
+        """
+        h = self._gn.copy()  # rows: the 2x2 blocks (xx, xy, yx, yy) of the free variables
+        scale = max(float(np.max(h, initial=0.0)), 1e-300)
+        h[:, 0] += KKT_DAMPING * scale
+        h[:, 3] += KKT_DAMPING * scale
+        cpl = np.zeros((int(self.both.sum()), 4))
+        if lam is not None:
+            # Residual curvature: 2 w sum (e / |o - p|) (I - u u^T) for each centre.
+            ux, uy, q = self._pt
+            qxy = self._gsum(q * ux * uy)
+            h[: len(self.starts)] += np.column_stack([self._gsum(q * uy * uy), -qxy, -qxy, self._gsum(q * ux * ux)])
+            # Constraint curvature: lam (I - u u^T) / |v| on o_i and d_k, minus it between them.
+            ux, uy = self._uc[:, 0], self._uc[:, 1]
+            s = lam / self._dc
+            k = np.column_stack([s * uy * uy, -s * ux * uy, -s * ux * uy, s * ux * ux])
+            for blk in (self.blk_ci, self.blk_ck):
+                on = blk >= 0
+                np.add.at(h, blk[on], k[on])
+            cpl = -k[self.both]
+        a_vals = np.concatenate([self._uc[self.a_mask_c].ravel(), -self._uc[self.a_mask_k].ravel()])
+        delta = KKT_DAMPING / scale
+        cpl = cpl.ravel()
+        data = np.concatenate([h.ravel(), a_vals, a_vals, cpl, cpl, np.full(self.m, -delta)])
+        size = self.n + self.m
+        if size <= KKT_DENSE_MAX:
+            mat = np.zeros((size, size))
+            mat[self.kkt_rows, self.kkt_cols] = data
+            return mat, delta
+        return sp.csc_matrix(
+            (data[self.csc_order], self.kkt_rows[self.csc_order], self.csc_indptr), (size, size)
+        ), delta
+
+
+def _solve(
+    mat: sp.csc_matrix | np.ndarray, delta: float, g: np.ndarray, c: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, float] | None:
+    """Solve the KKT system for (dx, lambda); also return the curvature dx^T W dx (None: failed)."""
+    rhs = np.concatenate([-g, -c])
+    try:
+        sol = np.linalg.solve(mat, rhs) if isinstance(mat, np.ndarray) else spla.splu(mat).solve(rhs)
+    except (np.linalg.LinAlgError, RuntimeError):
+        return None
+    if not np.all(np.isfinite(sol)):
+        return None
+    n = len(g)
+    dx, lam = sol[:n], sol[n:]
+    # From the first block row W dx = -g - A^T lam and A dx - delta lam = -c.
+    curvature = -float(np.sum(g * dx)) + float(np.sum(lam * c)) - delta * float(np.sum(lam * lam))
+    return dx, lam, curvature
+
+
+def fit_constrained(
+    point_sets: Sequence[object],
+    radii: object,
+    centers0: object,
+    junctions: object,
+    incidence: object,
+    *,
+    displacements0: object | None = None,
+    free_circles: object | None = None,
+    free_junctions: object | None = None,
+    segment_weight: float | None = None,
+    junction_weight: float | None = None,
+    tol: float = CONSTRAINED_FIT_TOL,
+    max_iter: int = CONSTRAINED_FIT_MAX_ITER,
+    connectivity: bool = True,
+) -> ConstrainedFit:
+    """Connectivity-constrained least-squares fit of circles with fixed radii (Eqn. 13).
+
+    Minimizes E^l (Eqn. 7)::
+
+        segment_weight * sum_i sum_{p in S_i} (|p - o_i| - r_i)^2
+            + junction_weight * sum_k |d_k|^2
+
+    over the free centres o_i and free junction displacements d_k, subject to
+    ``|o_i - (p_k + d_k)| - r_i = 0`` for every incidence (i, k) (Eqn. 8, 9).
+
+    The solver is an SQP method with analytic derivatives: each step solves the
+    KKT system ``[[W + mu I, A^T], [A, -delta I]] [dx; lambda] = [-g; -c]``,
+    with g the gradient of E^l, A the Jacobian of the constraints c, and W the
+    Gauss-Newton matrix J^T J (block-diagonal with 2x2 blocks) in the first step;
+    afterwards W is the Hessian of the Lagrangian (adding the residual curvature
+    and the multiplier-weighted constraint curvature, which couples a centre
+    with its junctions), falling back to J^T J when that step lacks positive
+    curvature. ``mu`` and ``delta`` are ``KKT_DAMPING`` relative to the largest
+    entry of J^T J, so nearly singular systems (huge radii, redundant
+    constraints) stay solvable. The system is solved densely for a small
+    window and by a sparse LU above ``KKT_DENSE_MAX`` unknowns; a backtracking
+    line search on the L1 merit ``E^l + nu * sum |c|`` (``nu`` = 1.5 x the
+    largest multiplier seen) chooses the step length.
+
+    Parameters
+    ----------
+    point_sets : sequence of array_like, each of shape (n_i, 2)
+        The points of the segments S_i that circle i fits, px; n_i >= 1.
+    radii : array_like, shape (C,)
+        The fixed (golden) radii r_i, px, > 0.
+    centers0 : array_like, shape (C, 2)
+        Starting centres o_i, px; the final centres of the fixed circles.
+    junctions : array_like, shape (J, 2)
+        The undisplaced junctions p_k, px.
+    incidence : array_like of int, shape (M, 2)
+        Rows (i, k): circle i must pass through displaced junction k.
+    displacements0 : array_like, shape (J, 2), optional
+        Starting displacements d_k, px (default zeros); the final displacements
+        of the fixed junctions.
+    free_circles, free_junctions : array_like of int, optional
+        Indices of the circles / junctions that may move; None means all. The
+        others keep their given values exactly (the boundary conditions of the
+        localized fitting, Sec. 5.4).
+    segment_weight : float, optional
+        Weight of the fitting term, default ``1 / C`` (the paper's 1/|S|).
+    junction_weight : float, optional
+        Weight of the displacement term, default ``1 / J`` (the paper's 1/|J|).
+    tol : float
+        Tolerance on the constraints and on the last step, px.
+    max_iter : int
+        Most SQP steps.
+    connectivity : bool
+        False drops the constraints (the ablation of Fig. 11c): each free centre
+        moves to its best position for its fixed radius, and free displacements go
+        to zero.
+
+    Returns
+    -------
+    ConstrainedFit
+        With ``converged=False`` (never an exception) when the constraints could
+        not be met, e.g. when fixed junctions leave no feasible circle position.
+
+    Raises
+    ------
+    InvalidParameterError
+        On inputs of the wrong shape, out-of-range indices, or bad weights.
+    """
+    radii_arr = np.asarray(radii, dtype=np.float64)
+    if radii_arr.ndim != 1:
+        raise InvalidParameterError(f"radii must have shape (C,), got {radii_arr.shape}")
+    if not np.all(np.isfinite(radii_arr)) or np.any(radii_arr <= 0):
+        raise InvalidParameterError("radii must be finite and > 0")
+    n_c = len(radii_arr)
+    if len(point_sets) != n_c:
+        raise InvalidParameterError(f"point_sets must have one entry per radius ({n_c}), got {len(point_sets)}")
+    sets = [check_points(s, f"point_sets[{i}]") for i, s in enumerate(point_sets)]
+    centers = _as_points(centers0, "centers0", n_c)
+    junc = _as_points(junctions, "junctions")
+    n_j = len(junc)
+    disp = np.zeros((n_j, 2)) if displacements0 is None else _as_points(displacements0, "displacements0", n_j)
+    inc = np.asarray(incidence)
+    if inc.size == 0:
+        inc = np.zeros((0, 2), dtype=np.int64)
+    if inc.ndim != 2 or inc.shape[1] != 2 or not np.issubdtype(inc.dtype, np.integer):
+        raise InvalidParameterError(f"incidence must be an integer array of shape (M, 2), got {inc.shape}, {inc.dtype}")
+    _index_array(inc[:, 0], "incidence[:, 0]", n_c)
+    _index_array(inc[:, 1], "incidence[:, 1]", n_j)
+    inc = np.unique(inc.astype(np.int64), axis=0)
+    free_c = np.arange(n_c) if free_circles is None else _index_array(free_circles, "free_circles", n_c)
+    free_j = np.arange(n_j) if free_junctions is None else _index_array(free_junctions, "free_junctions", n_j)
+    ws = 1.0 / n_c if segment_weight is None else check_positive(segment_weight, "segment_weight", allow_zero=True)
+    if junction_weight is None:
+        wj = 1.0 / n_j if n_j else 1.0
+    else:
+        wj = check_positive(junction_weight, "junction_weight", allow_zero=True)
+    tol = check_positive(tol, "tol")
+    if isinstance(max_iter, bool) or not isinstance(max_iter, int) or max_iter < 0:
+        raise InvalidParameterError(f"max_iter must be an integer >= 0, got {max_iter!r}")
+
+    owner = np.repeat(np.arange(n_c), [len(s) for s in sets])
+    points = np.concatenate(sets) if sets else np.zeros((0, 2))
+    prob = _Problem(points, owner, radii_arr, centers, junc, disp, inc, free_c, free_j, ws, wj, connectivity)
+    iterations, converged, nu, lam = 0, False, 0.0, None
+    x = prob.get_x()
+    history: list[float] = []  # violations, to stop early on infeasible problems
+    while True:
+        f, g, c, violation = prob.linearize()
+        feasible = violation <= tol or not connectivity
+        if prob.n == 0 or iterations >= max_iter:
+            converged = feasible and prob.n == 0
+            break
+        history.append(violation)
+        if (
+            not feasible
+            and len(history) > CONSTRAINED_FIT_STALL
+            and violation > 0.5 * history[-1 - CONSTRAINED_FIT_STALL]
+        ):
+            break  # stalled: most likely the fixed variables leave no feasible solution
+        # A Newton step on the Lagrangian once multipliers are known; Gauss-Newton
+        # when there are none yet or the Newton step has no positive curvature.
+        sol = None
+        for multipliers in (lam, None) if lam is not None else (None,):
+            sol = _solve(*prob.matrix(multipliers), g, c)
+            if sol is not None and sol[2] > 0:
+                break
+        if sol is None:
+            break
+        dx, lam, curvature = sol
+        nu = max(nu, 1.5 * float(np.max(np.abs(lam), initial=0.0)) + 1e-12)
+        phi0 = f + nu * float(np.abs(c).sum())
+        # Converged: feasible, and the step is below tol px or would lower E^l by a
+        # negligible fraction (ill-conditioned directions, e.g. huge radii, keep
+        # rounding-noise steps larger than tol).
+        if feasible and (np.max(np.abs(dx)) <= tol or abs(curvature) <= CONSTRAINED_FIT_FTOL * f):
+            converged = True
+            prob.set_x(x + dx)  # a last full step polishes the result, if it helps
+            new_violation = float(np.max(np.abs(prob.constraints()[0]), initial=0.0))
+            if prob.merit(nu) <= phi0 and (not connectivity or new_violation <= violation):
+                iterations += 1
+            else:
+                prob.set_x(x)
+            break
+        slope = float(np.sum(g * dx)) - nu * float(np.abs(c).sum())
+        alpha, accepted = 1.0, False
+        for _ in range(40):
+            prob.set_x(x + alpha * dx)
+            if prob.merit(nu) <= phi0 + 1e-4 * alpha * min(slope, 0.0):
+                accepted = True
+                break
+            alpha *= 0.5
+        if not accepted:
+            prob.set_x(x)
+            converged = feasible
+            break
+        x = x + alpha * dx
+        iterations += 1
+
+    c_all = prob.constraints()[0]
+    return ConstrainedFit(
+        centers=readonly(prob.centers.copy()),
+        displacements=readonly(prob.disp.copy()),
+        objective=prob.objective()[0],
+        violation=float(np.max(np.abs(c_all), initial=0.0)),
+        iterations=iterations,
+        converged=converged,
+    )
