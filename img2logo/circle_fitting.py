@@ -234,6 +234,31 @@ def mean_abs_error(points: object, center: object, radius: float) -> float:
     return float(np.mean(np.abs(np.hypot(p[:, 0] - o[0], p[:, 1] - o[1]) - r)))
 
 
+def fit_center(points: object, radius: float, center0: object, *, iterations: int = 8) -> np.ndarray:
+    """Best centre, shape (2,), px, of a circle of fixed ``radius`` for ``points`` (N, 2).
+
+    Gauss-Newton on the geometric residuals ``|p - o| - r`` from ``center0``:
+    the second stage of Sec. 5.3 for one circle alone, when its radius has been
+    snapped to the ladder (Eqn. 12) and no junction constrains it. Stops early
+    once a step is below 1e-9 px.
+    """
+    p = check_points(points)
+    o = np.array(center0, dtype=np.float64).reshape(2)
+    r = check_positive(radius, "radius")
+    for _ in range(iterations):
+        vx, vy = o[0] - p[:, 0], o[1] - p[:, 1]
+        dist = _norm(vx, vy)
+        dist[dist == 0] = 1e-12
+        ux, uy = vx / dist, vy / dist
+        e = dist - r
+        jtj = np.array([[ux @ ux, ux @ uy], [ux @ uy, uy @ uy]])
+        step = np.linalg.lstsq(jtj, -np.array([ux @ e, uy @ e]), rcond=None)[0]
+        o += step
+        if float(np.abs(step).max()) < 1e-9:
+            break
+    return o
+
+
 # --------------------------------------------------------------------------------
 # Connectivity-constrained fit (Eqn. 13)
 # --------------------------------------------------------------------------------
@@ -311,11 +336,11 @@ class _Problem:
         incidence: np.ndarray,
         free_c: np.ndarray,
         free_j: np.ndarray,
-        ws: float,
+        ws: np.ndarray,
         wj: float,
         connectivity: bool,
     ) -> None:
-        self.radii, self.junctions, self.ws, self.wj = radii, junctions, ws, wj
+        self.radii, self.junctions, self.wj = radii, junctions, wj
         self.centers, self.disp = centers.copy(), disp.copy()
         self.free_c, self.free_j = free_c, free_j
         nc, nj = len(free_c), len(free_j)
@@ -332,11 +357,12 @@ class _Problem:
         self.counts = np.bincount(pos_c[owner[on_free]], minlength=nc)
         self.starts = (np.cumsum(self.counts) - self.counts).astype(np.intp)
         self.r_pts = np.repeat(radii[free_c], self.counts)
+        self.w_pts = np.repeat(ws[free_c], self.counts)  # the segment weight of each point
         fixed_pts, fixed_own = points[~on_free], owner[~on_free]
         e = _norm(*(fixed_pts - centers[fixed_own]).T) - radii[fixed_own]
         fixed_j = np.ones(len(junctions), dtype=bool)
         fixed_j[free_j] = False
-        self.f_const = ws * float(np.sum(e * e)) + wj * float(np.sum(disp[fixed_j] ** 2))
+        self.f_const = float(np.sum(ws[fixed_own] * e * e)) + wj * float(np.sum(disp[fixed_j] ** 2))
         # Incidences: all are evaluated; those with a free variable are constraints.
         self.inc_i, self.inc_k = incidence[:, 0], incidence[:, 1]
         ci, ck = pos_c[self.inc_i], pos_j[self.inc_k]
@@ -390,7 +416,7 @@ class _Problem:
         dist = _norm(vx, vy)
         e = dist - self.r_pts
         d = self.disp[self.free_j]
-        return self.f_const + self.ws * float(np.sum(e * e)) + self.wj * float(np.sum(d * d)), e, vx, vy, dist
+        return self.f_const + float(np.sum(self.w_pts * e * e)) + self.wj * float(np.sum(d * d)), e, vx, vy, dist
 
     def merit(self, nu: float) -> float:
         """The L1 merit function E^l + nu * sum |c| over the constraints."""
@@ -427,8 +453,8 @@ class _Problem:
         return f, g, c, float(np.max(np.abs(c_all), initial=0.0))
 
     def _gsum(self, values: np.ndarray) -> np.ndarray:
-        """2 * segment_weight * the sum of ``values`` over each free circle's points."""
-        return 2.0 * self.ws * np.add.reduceat(values, self.starts) if len(self.starts) else np.zeros(0)
+        """2 * the segment-weighted sum of ``values`` over each free circle's points."""
+        return 2.0 * np.add.reduceat(self.w_pts * values, self.starts) if len(self.starts) else np.zeros(0)
 
     def matrix(self, lam: np.ndarray | None) -> tuple[sp.csc_matrix | np.ndarray, float]:
         """The damped KKT matrix at the last :meth:`linearize`, and the damping delta.
@@ -496,7 +522,7 @@ def fit_constrained(
     displacements0: object | None = None,
     free_circles: object | None = None,
     free_junctions: object | None = None,
-    segment_weight: float | None = None,
+    segment_weight: float | np.ndarray | None = None,
     junction_weight: float | None = None,
     tol: float = CONSTRAINED_FIT_TOL,
     max_iter: int = CONSTRAINED_FIT_MAX_ITER,
@@ -545,8 +571,10 @@ def fit_constrained(
         Indices of the circles / junctions that may move; None means all. The
         others keep their given values exactly (the boundary conditions of the
         localized fitting, Sec. 5.4).
-    segment_weight : float, optional
-        Weight of the fitting term, default ``1 / C`` (the paper's 1/|S|).
+    segment_weight : float or array_like of shape (C,), optional
+        Weight of the fitting term, one for all circles or one per circle;
+        default ``1 / C`` (the paper's 1/|S|). ``1 / (C n_i)`` makes each
+        segment's term its mean squared error instead of its sum.
     junction_weight : float, optional
         Weight of the displacement term, default ``1 / J`` (the paper's 1/|J|).
     tol : float
@@ -592,7 +620,16 @@ def fit_constrained(
     inc = np.unique(inc.astype(np.int64), axis=0)
     free_c = np.arange(n_c) if free_circles is None else _index_array(free_circles, "free_circles", n_c)
     free_j = np.arange(n_j) if free_junctions is None else _index_array(free_junctions, "free_junctions", n_j)
-    ws = 1.0 / n_c if segment_weight is None else check_positive(segment_weight, "segment_weight", allow_zero=True)
+    if segment_weight is None:
+        ws = np.full(n_c, 1.0 / max(n_c, 1))
+    elif np.ndim(segment_weight) == 0:
+        ws = np.full(n_c, check_positive(segment_weight, "segment_weight", allow_zero=True))
+    else:
+        ws = np.asarray(segment_weight, dtype=np.float64)
+        if ws.shape != (n_c,):
+            raise InvalidParameterError(f"segment_weight must be a number or have shape ({n_c},), got {ws.shape}")
+        if not np.all(np.isfinite(ws)) or np.any(ws < 0):
+            raise InvalidParameterError("segment_weight must be finite and >= 0")
     if junction_weight is None:
         wj = 1.0 / n_j if n_j else 1.0
     else:

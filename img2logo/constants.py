@@ -115,3 +115,30 @@ TOLERANCE: float = 5.0
 #: Line-segment simplification (Sec. 5.4): neighbours are merged before the loop when
 #: one circle fits them with a mean absolute error below this, px (the paper's 1.0).
 SIMPLIFICATION_ERROR: float = 1.0
+
+# --- Arc extraction and intersections (arc_extraction.py) --------------------------
+#: Spacing of the samples of a candidate arc compared with a segment's pixels by
+#: the discrete Fréchet distance (Sec. 5.3, Eqn. 3), px: about one per pixel, like
+#: the pixel chain itself.
+FRECHET_SAMPLE_STEP: float = 1.0
+#: Arc extraction skips a candidate arc longer than this multiple of the segment's
+#: polyline length plus ``ARC_CANDIDATE_LENGTH_SLACK`` before computing its Fréchet
+#: distance: the "long way round" of a huge circle is tens of thousands of px long
+#: (and as far from the segment). When every candidate is that long, the shortest
+#: is kept.
+ARC_CANDIDATE_LENGTH_RATIO: float = 3.0
+#: See ``ARC_CANDIDATE_LENGTH_RATIO``, px: keeps short segments' candidates.
+ARC_CANDIDATE_LENGTH_SLACK: float = 10.0
+#: Arc-arc intersection: circles that overlap or miss each other by at most this
+#: touch once (tangency); centres and radii equal within it make one circle; a
+#: point within it of an arc's angle range is on the arc, px.
+INTERSECTION_TOL: float = 1e-6
+#: A point where two arcs meet is redundant (Sec. 5.2, Fig. 6c, 12) unless it is
+#: within this distance of a junction both arcs belong to, px. It absorbs the two
+#: nearby crossings of circles that should touch at a shared junction but overlap
+#: by a rounding error: for radii 100 and 162 overlapping by 1e-3 px they lie
+#: 0.35 px (touching outside) or 0.72 px (inside) from the point of contact.
+REDUNDANT_INTERSECTION_TOL: float = 1.0
+#: Ladder snapping (Eqn. 12): a radius at most this fraction above a rung snaps to
+#: that rung, not the next one (a clean circle fit is exact to about 1e-12 only).
+LADDER_SNAP_RTOL: float = 1e-9

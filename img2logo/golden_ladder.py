@@ -21,7 +21,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._validation import check_positive
-from .constants import LOG_PHI, PHI
+from .constants import LADDER_SNAP_RTOL, LOG_PHI, PHI
+from ._validation import check_choice
 from .errors import InvalidParameterError
 from .geometry import Circle
 
@@ -49,6 +50,13 @@ class GoldenLadder:
     exponents : tuple of int or None
         If given, the only allowed exponents k (a user's choice of radii, Sec. 7,
         Fig. 15); stored sorted and without repeats. None allows every integer.
+    rounding : {"nearest", "ceil"}
+        How a fitted radius is snapped on the full ladder. ``"ceil"`` is the
+        paper's Eqn. 12, the smallest rung >= r: a radius a hair above a rung
+        (a noisy fit of a golden arc) then jumps a whole rung up, a factor phi.
+        ``"nearest"`` (the default) takes the rung nearest in log space, so the
+        radius is off by at most a factor sqrt(phi) and golden arcs keep their
+        rung under noise.
 
     Raises
     ------
@@ -59,8 +67,10 @@ class GoldenLadder:
 
     bias: float
     exponents: tuple[int, ...] | None = None
+    rounding: str = "nearest"
 
     def __post_init__(self) -> None:
+        check_choice(self.rounding, "rounding", ("nearest", "ceil"))
         try:
             bias = float(self.bias)
         except (TypeError, ValueError) as exc:
@@ -93,8 +103,12 @@ class GoldenLadder:
     def snap(self, r: float) -> tuple[int, float]:
         """Snap a fitted radius ``r`` (px) to the ladder: ``(k, phi ** (k + bias))``.
 
-        On the full ladder this is Eqn. 12, ``k = ceil(log r / log phi - bias)``:
-        the smallest ladder radius >= ``r``, so ``r <= snapped < r * phi``. The
+        With ``rounding="nearest"`` (default), k is the integer nearest to the
+        continuous exponent ``log r / log phi - bias``, so ``r / sqrt(phi) <=
+        snapped <= r * sqrt(phi)``. With ``rounding="ceil"``, on the full ladder
+        this is Eqn. 12, ``k = ceil(log r / log phi - bias)``:
+        the smallest ladder radius >= ``r`` (less a relative ``LADDER_SNAP_RTOL``
+        = 1e-9, the accuracy of a fit), so ``r <= snapped < r * phi``. The
         ceiling is taken on the radii themselves, so a radius that is already on
         the ladder snaps to itself despite rounding in the logarithm. With a
         subset of ``exponents``, k is the allowed exponent nearest to the
@@ -114,11 +128,15 @@ class GoldenLadder:
         if not np.all(np.isfinite(r)) or np.any(r <= 0):
             raise InvalidParameterError("radii must be finite and > 0")
         x = np.log(r) / LOG_PHI - self.bias
-        if self.exponents is None:
+        if self.exponents is None and self.rounding == "nearest":
+            k = np.floor(x + 0.5).astype(np.int64)  # ties go to the larger radius
+        elif self.exponents is None:
             k = np.ceil(x)
             # Correct the ceiling by one where rounding put it on the wrong side.
-            k = np.where(_powers(k - 1.0 + self.bias) >= r, k - 1.0, k)
-            k = np.where(_powers(k + self.bias) < r, k + 1.0, k)
+            # A fitted radius within LADDER_SNAP_RTOL above a rung is that rung: a
+            # clean fit is only exact to ~1e-12, and the ceiling would jump a rung.
+            k = np.where(_powers(k - 1.0 + self.bias) >= r * (1.0 - LADDER_SNAP_RTOL), k - 1.0, k)
+            k = np.where(_powers(k + self.bias) < r * (1.0 - LADDER_SNAP_RTOL), k + 1.0, k)
             k = k.astype(np.int64)
         else:
             allowed = np.asarray(self.exponents, dtype=np.int64)

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import img2logo.circle_fitting as cf
-from img2logo.circle_fitting import fit_circle, fit_constrained, mean_abs_error
+from img2logo.circle_fitting import fit_center, fit_circle, fit_constrained, mean_abs_error
 from img2logo.constants import CONSTRAINED_FIT_MAX_ITER, MAX_RADIUS_FACTOR, PHI
 from img2logo.errors import FitError, InvalidParameterError
 
@@ -400,3 +400,17 @@ def test_bad_point_set(chain):
     sets, radii, centers, junctions, incidence = chain
     with pytest.raises(InvalidParameterError, match=r"point_sets\[1\] must have shape \(N, 2\), got \(4,\)"):
         fit_constrained([sets[0], np.zeros(4), sets[2]], radii, centers, junctions, incidence)
+
+
+def test_fit_center_recovers_a_fixed_radius_centre():
+    t = np.linspace(0.2, 1.4, 120)
+    pts = np.column_stack([40.0 + 25.0 * np.cos(t), -10.0 + 25.0 * np.sin(t)])
+    np.testing.assert_allclose(fit_center(pts, 25.0, [35.0, -5.0]), [40.0, -10.0], atol=1e-8)
+
+
+def test_fit_center_matches_the_unconstrained_fit_of_fit_constrained():
+    rng = np.random.default_rng(7)
+    t = np.linspace(0.0, 1.0, 80)
+    pts = np.column_stack([100 * np.cos(t), 100 * np.sin(t)]) + rng.normal(0, 0.5, (80, 2))
+    ref = fit_constrained([pts], [120.0], [[0.0, 0.0]], np.zeros((0, 2)), np.zeros((0, 2), int), connectivity=False)
+    np.testing.assert_allclose(fit_center(pts, 120.0, [0.0, 0.0]), ref.centers[0], atol=1e-6)

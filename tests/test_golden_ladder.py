@@ -40,17 +40,32 @@ def test_exponent_is_continuous_log_phi_minus_bias():
     assert ladder.exponent(PHI**4.7) == pytest.approx(4.5, abs=1e-12)
 
 
-def test_snap_rounds_up():  # Eqn. 12
-    ladder = GoldenLadder(0.0)
+def test_ceil_snap_rounds_up():  # Eqn. 12
+    ladder = GoldenLadder(0.0, rounding="ceil")
     assert ladder.snap(PHI**3.01) == (4, pytest.approx(PHI**4))
     assert ladder.snap(PHI**3.99)[0] == 4
     assert ladder.snap(PHI**2.2 * 1.0)[0] == 3
-    assert GoldenLadder(0.5).snap(10.0) == (5, pytest.approx(PHI**5.5))  # log_phi 10 = 4.785
+    assert GoldenLadder(0.5, rounding="ceil").snap(10.0) == (5, pytest.approx(PHI**5.5))  # log_phi 10 = 4.785
 
 
-def test_snap_of_a_ladder_radius_is_itself():
+def test_nearest_snap_rounds_in_log_space():
+    ladder = GoldenLadder(0.0)
+    assert ladder.rounding == "nearest"
+    assert ladder.snap(PHI**3.01) == (3, pytest.approx(PHI**3))
+    assert ladder.snap(PHI**3.49)[0] == 3
+    assert ladder.snap(PHI**3.51)[0] == 4
+    assert GoldenLadder(0.5).snap(10.0) == (4, pytest.approx(PHI**4.5))  # log_phi 10 - 0.5 = 4.285
+
+
+def test_bad_rounding():
+    with pytest.raises(InvalidParameterError, match="rounding must be one of 'nearest', 'ceil', got 'floor'"):
+        GoldenLadder(0.0, rounding="floor")
+
+
+@pytest.mark.parametrize("rounding", ["nearest", "ceil"])
+def test_snap_of_a_ladder_radius_is_itself(rounding):
     for bias in (0.0, 0.3, 0.999):
-        ladder = GoldenLadder(bias)
+        ladder = GoldenLadder(bias, rounding=rounding)
         for k in range(-5, 30):
             assert ladder.snap(ladder.radius(k)) == (k, ladder.radius(k))
 
@@ -108,7 +123,7 @@ def test_bias_is_always_in_unit_interval(r):
 
 @given(bias=biases, r=radii)
 def test_snapped_radius_is_the_smallest_ladder_radius_not_below_r(bias, r):
-    ladder = GoldenLadder(bias)
+    ladder = GoldenLadder(bias, rounding="ceil")
     k, snapped = ladder.snap(r)
     assert snapped == ladder.radius(k)
     assert snapped >= r
@@ -178,3 +193,16 @@ def test_bad_radii_in_snap_many():
 def test_bad_center():
     with pytest.raises(InvalidParameterError, match=r"center must have shape \(2,\), got \(3,\)"):
         golden_circle((1.0, 2.0, 3.0), 5.0, GoldenLadder(0.0))
+
+
+@given(bias=biases, r=radii)
+def test_nearest_snap_is_within_sqrt_phi(bias, r):
+    k, snapped = GoldenLadder(bias).snap(r)
+    assert r / np.sqrt(PHI) * (1 - 1e-12) <= snapped <= r * np.sqrt(PHI) * (1 + 1e-12)
+
+
+def test_a_fitted_radius_a_hair_above_a_rung_snaps_to_it():
+    ladder = GoldenLadder(0.3, rounding="ceil")
+    rung = ladder.radius(8)
+    assert ladder.snap(rung * (1 + 1e-12)) == (8, rung)
+    assert ladder.snap(rung * (1 + 1e-6))[0] == 9
