@@ -16,6 +16,8 @@ import time
 from pathlib import Path
 
 from img2logo import build_segment_graph, extract_feature_lines, load_image
+from img2logo.pipeline import abstract
+from img2logo.progressive import optimize
 
 ROOT = Path(__file__).resolve().parents[1]
 DATA = ROOT / "data"
@@ -23,6 +25,10 @@ DATA = ROOT / "data"
 PREPROCESS_BUDGET = 1.0
 #: Budget for the command line's start-up (import), s.
 STARTUP_BUDGET = 0.5
+#: Budget for the whole pipeline on the 512 px clip-art fish (issue: under 2 s), s.
+PIPELINE_BUDGET = 2.0
+#: The paper's Table 3 (its fish, Python, i9 3.6 GHz), s; None where it says ">= 2 hrs".
+PAPER_TABLE3 = {(False, False): None, (True, False): 257.47, (False, True): 338.87, (True, True): 65.37}
 
 
 def median_time(fn, repeat: int) -> tuple[float, object]:
@@ -52,6 +58,45 @@ def bench_preprocessing(names: list[str], repeat: int) -> None:
         )
 
 
+def bench_pipeline(name: str, repeat: int) -> None:
+    path = DATA / f"{name}.png"
+    runs = []
+    for _ in range(repeat + 1):
+        start = time.perf_counter()
+        result = abstract(path, progress=False)
+        runs.append((time.perf_counter() - start, result))
+    runs = runs[1:]  # the first run pays for imports
+    total = statistics.median(t for t, _ in runs)
+    stages = {k: statistics.median(r.timings[k] for _, r in runs) for k in runs[0][1].timings}
+    result = runs[0][1]
+    ratio = total / PIPELINE_BUDGET
+    print(
+        f"\nWhole pipeline on {name} (median of {repeat}): {total:.2f} s, ratio {ratio:.2f} of {PIPELINE_BUDGET:.0f} s"
+    )
+    print("  " + ", ".join(f"{k} {v * 1e3:.0f} ms" for k, v in stages.items()))
+    prog = result.progression
+    print(f"  arcs {prog.arc_counts[0]} -> {prog.arc_counts[-1]} over {len(prog.levels)} levels; stats {prog.stats}")
+
+
+def bench_table3(name: str, repeat: int) -> None:
+    graph = build_segment_graph(extract_feature_lines(DATA / f"{name}.png"))
+    print(f"\nTable 3 on {name} ({graph.n_segments} segments), optimization only, median of {repeat}:")
+    head = ("localized", "simplify", "ours (s)", "vs both", "paper (s)", "vs both", "arcs")
+    print(" ".join(f"{h:>10s}" for h in head))
+    cells = {}
+    for localized in (False, True):
+        for simplify in (False, True):
+            t, prog = median_time(lambda lo=localized, si=simplify: optimize(graph, localized=lo, simplify=si), repeat)
+            cells[(localized, simplify)] = (t, prog)
+    base = cells[(True, True)][0]
+    for key, (t, prog) in cells.items():
+        paper = PAPER_TABLE3[key]
+        paper_txt = f"{paper:10.2f}" if paper else "   >= 7200"
+        paper_ratio = (paper or 7200.0) / PAPER_TABLE3[(True, True)]
+        cols = (f"{key[0]!s:>10s}", f"{key[1]!s:>10s}", f"{t:10.2f}", f"{t / base:9.1f}x", paper_txt)
+        print(" ".join(cols) + f" {paper_ratio:9.1f}x {prog.arc_counts[-1]:10d}")
+
+
 def bench_startup(repeat: int) -> None:
     times = []
     for _ in range(repeat):
@@ -70,6 +115,8 @@ def main() -> None:
     parser.add_argument("--repeat", type=int, default=5)
     args = parser.parse_args()
     bench_preprocessing(["clipart-fish", "clipart-cat", "drawing-fish", "drawing-rabbit", "photo-cat"], args.repeat)
+    bench_pipeline("clipart-fish", args.repeat)
+    bench_table3("clipart-fish", max(1, args.repeat // 2))
     bench_startup(args.repeat)
 
 

@@ -30,6 +30,15 @@ _LAZY = {
     "plot_segment_graph": "plotting",
     "plot_abstraction": "plotting",
     "write_segment_graph_png": "writers",
+    "write_json": "writers",
+    "write_svg": "writers",
+    "write_png": "writers",
+    "read_json": "writers",
+    "abstract": "pipeline",
+    "Result": "pipeline",
+    "optimize": "progressive",
+    "Progression": "progressive",
+    "GoldenLadder": "golden_ladder",
 }
 
 __all__ = [
@@ -40,20 +49,29 @@ __all__ = [
     "DownscaleWarning",
     "FeatureLines",
     "FitError",
+    "GoldenLadder",
     "ImageNotFoundError",
     "Img2LogoError",
     "InvalidImageError",
     "InvalidParameterError",
     "LoadedImage",
+    "Progression",
+    "Result",
     "SegmentGraph",
     "__version__",
+    "abstract",
     "build_segment_graph",
     "detect_kind",
     "extract_feature_lines",
     "load_image",
+    "optimize",
     "plot_abstraction",
     "plot_segment_graph",
+    "read_json",
+    "write_json",
+    "write_png",
     "write_segment_graph_png",
+    "write_svg",
 ]
 
 
@@ -72,6 +90,8 @@ def __dir__() -> list[str]:
 
 if TYPE_CHECKING:  # for type checkers and IDEs: the lazy names, eagerly
     from .geometry import Abstraction, Arc, Circle
+    from .golden_ladder import GoldenLadder
+    from .pipeline import Result, abstract
     from .plotting import plot_abstraction, plot_segment_graph
     from .preprocessing import (
         DownscaleWarning,
@@ -81,5 +101,6 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the lazy names, eagerly
         extract_feature_lines,
         load_image,
     )
+    from .progressive import Progression, optimize
     from .segment_graph import SegmentGraph, build_segment_graph
-    from .writers import write_segment_graph_png
+    from .writers import read_json, write_json, write_png, write_segment_graph_png, write_svg

@@ -1,24 +1,26 @@
 """The ``img2logo`` command line.
 
-``img2logo INPUT [--kind K] [--rdp R] [--min-length L] --segments-png OUT.png``
-extracts the feature lines of INPUT, builds the segment graph L = {S, J} and
-draws it (each segment its own colour, junctions as dots: paper Fig. 4b).
+``img2logo INPUT [--svg OUT.svg] [--json OUT.json] [--png OUT.png]
+[--segments-png OUT.png] [--levels-dir DIR] [options]`` turns INPUT into a
+golden ratio logo: feature lines, the segment graph L = {S, J}, then the
+progressive optimization; it writes the final level (or ``--level N``), every
+level with ``--levels-dir``, and the segment graph with ``--segments-png``.
 
 Errors in the input or the options print one line, ``img2logo: error: ...``, and
-exit with status 2; nothing is written then.
+exit with status 2; nothing is written then. The same input and options give the
+same files, byte for byte.
 """
 
 from __future__ import annotations
 
 import argparse
 import sys
-import time
 import warnings
 from collections.abc import Sequence
 
 from . import __version__
-from .constants import MIN_SEGMENT_LENGTH, RDP_TOLERANCE
-from .errors import Img2LogoError
+from .constants import MIN_SEGMENT_LENGTH, RDP_TOLERANCE, TOLERANCE
+from .errors import Img2LogoError, InvalidParameterError
 
 EXIT_ERROR = 2
 
@@ -56,6 +58,38 @@ def _parser() -> argparse.ArgumentParser:
         help="photos: keep only lines on the object found by GrabCut (default none)",
     )
     p.add_argument("--segments-png", metavar="OUT.png", help="draw the segment graph L = {S, J} to this PNG")
+    out = p.add_argument_group("outputs (the final level, or --level N)")
+    out.add_argument("--svg", metavar="OUT.svg", help="the logo as SVG: exact arcs, golden circles on a hidden layer")
+    out.add_argument("--json", metavar="OUT.json", help="the logo as a document of the img2logo.abstraction/1 contract")
+    out.add_argument("--png", metavar="OUT.png", help="the logo drawn over the faded input")
+    out.add_argument(
+        "--level", type=int, metavar="N", help="write level N (0 = the initial fit) instead of the final one"
+    )
+    out.add_argument("--levels-dir", metavar="DIR", help="write every level as DIR/level-0000.json and .svg, ...")
+    opt = p.add_argument_group("optimization (paper Sec. 5)")
+    opt.add_argument(
+        "--tolerance",
+        "-T",
+        type=float,
+        default=TOLERANCE,
+        metavar="PX",
+        help=f"largest similarity error E^s, px; larger gives fewer arcs (default {TOLERANCE})",
+    )
+    opt.add_argument("--bias", type=float, metavar="S", help="ladder bias sigma in [0, 1) (default: Eqn. 14)")
+    opt.add_argument("--radii", metavar="K1,K2,...", help="only these ladder exponents k: radii phi**(k + bias)")
+    opt.add_argument(
+        "--rounding", choices=("nearest", "ceil"), default="nearest", help="radius snapping (ceil: the paper's Eqn. 12)"
+    )
+    opt.add_argument("--lock-mask", metavar="MASK.png", help="segments inside the mask's white pixels are never merged")
+    for flag, what in (
+        ("connectivity", "the connectivity constraint (Fig. 11c)"),
+        ("inner-junctions", "junctions inside merged arcs as constraints (Fig. 11d)"),
+        ("merging", "merging segments (Fig. 11e)"),
+        ("intersection-avoidance", "rejecting merges that leave redundant intersections (Fig. 12)"),
+        ("localized", "localized fitting (Sec. 5.4)"),
+        ("simplify", "line-segment simplification (Sec. 5.4)"),
+    ):
+        opt.add_argument(f"--no-{flag}", action="store_true", help=f"switch off {what}")
     p.add_argument("-q", "--quiet", action="store_true", help="print nothing but errors")
     p.add_argument("--version", action="version", version=f"img2logo {__version__}")
     return p
@@ -78,28 +112,92 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 
 def _run(args: argparse.Namespace, say) -> int:
-    from .preprocessing import extract_feature_lines, load_image
-    from .segment_graph import build_segment_graph
+    from .pipeline import abstract
+    from .preprocessing import load_image
 
-    t0 = time.perf_counter()
+    exponents = _parse_radii(args.radii)
+    lock_mask = None
+    if args.lock_mask:
+        lock_mask = load_image(args.lock_mask).gray >= 0.5
     image = load_image(args.input)
-    foreground = None if args.foreground == "none" else args.foreground
-    lines = extract_feature_lines(image, kind=args.kind, foreground=foreground)
-    say(f"{args.input}: {image.width}x{image.height} px, kind {lines.kind} ({lines.reason})")
-    graph = build_segment_graph(lines, rdp_tolerance=args.rdp, min_length=args.min_length)
+    say(f"{args.input}: {image.width}x{image.height} px")
+    result = abstract(
+        image,
+        tolerance=args.tolerance,
+        kind=args.kind,
+        rdp_tolerance=args.rdp,
+        min_length=args.min_length,
+        foreground=None if args.foreground == "none" else args.foreground,
+        bias=args.bias,
+        exponents=exponents,
+        rounding=args.rounding,
+        lock_mask=lock_mask,
+        progress=None if not args.quiet else False,
+        connectivity=not args.no_connectivity,
+        inner_junctions=not args.no_inner_junctions,
+        merging=not args.no_merging,
+        avoid_intersections=not args.no_intersection_avoidance,
+        localized=not args.no_localized,
+        simplify=not args.no_simplify,
+    )
+    graph, prog = result.graph, result.progression
+    say(f"kind {result.lines.kind} ({result.lines.reason})")
     say(
         f"segment graph: {graph.n_segments} segments, {graph.n_junctions} nodes "
-        f"({int((graph.valence >= 3).sum())} junctions), {graph.n_components()} components "
-        f"in {time.perf_counter() - t0:.2f} s"
+        f"({int((graph.valence >= 3).sum())} junctions), {graph.n_components()} components"
     )
-    if args.segments_png:
-        from .writers import write_segment_graph_png
-
-        write_segment_graph_png(graph, args.segments_png, image=image.rgb)
-        say(f"wrote {args.segments_png}")
-    elif not args.quiet:
-        say("nothing written: give --segments-png OUT.png to draw the segment graph")
+    say(
+        f"levels: {len(prog.levels)}, arcs {prog.arc_counts[0]} -> {prog.arc_counts[-1]}, "
+        f"E^s {prog.final.similarity:.2f} px (T = {args.tolerance:g}), bias {prog.bias:.4f}, "
+        f"stopped: {prog.stopped_because}, {sum(result.timings.values()):.2f} s"
+    )
+    level = _pick_level(result, args.level)
+    _write_outputs(result, level, args, say)
+    if not any((args.svg, args.json, args.png, args.segments_png, args.levels_dir)):
+        say("nothing written: give --svg, --json, --png, --segments-png or --levels-dir")
     return 0
+
+
+def _parse_radii(text: str | None) -> list[int] | None:
+    if text is None:
+        return None
+    try:
+        values = [int(v) for v in text.split(",") if v.strip()]
+    except ValueError as exc:
+        raise InvalidParameterError(f"--radii must be integers separated by commas, got {text!r}") from exc
+    if not values:
+        raise InvalidParameterError("--radii must list at least one exponent k")
+    return values
+
+
+def _pick_level(result, n: int | None):
+    if n is None:
+        return result.final
+    count = len(result.levels)
+    if not 0 <= n < count:
+        raise InvalidParameterError(f"--level must be in 0..{count - 1} (this run has {count} levels), got {n}")
+    return result.levels[n]
+
+
+def _write_outputs(result, level, args: argparse.Namespace, say) -> None:
+    from pathlib import Path
+
+    from . import writers
+
+    if args.segments_png:
+        say(f"wrote {writers.write_segment_graph_png(result.graph, args.segments_png, image=result.image.rgb)}")
+    if args.json:
+        say(f"wrote {writers.write_json(level, args.json)}")
+    if args.svg:
+        say(f"wrote {writers.write_svg(level, args.svg)}")
+    if args.png:
+        say(f"wrote {writers.write_png(level, args.png, image=result.image.rgb)}")
+    if args.levels_dir:
+        folder = Path(args.levels_dir)
+        for lv in result.levels:
+            writers.write_json(lv, folder / f"level-{lv.level:04d}.json")
+            writers.write_svg(lv, folder / f"level-{lv.level:04d}.svg")
+        say(f"wrote {len(result.levels)} levels to {folder}/")
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -20,9 +20,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._validation import check_positive
+from ._validation import check_choice, check_positive
 from .constants import LADDER_SNAP_RTOL, LOG_PHI, PHI
-from ._validation import check_choice
 from .errors import InvalidParameterError
 from .geometry import Circle
 

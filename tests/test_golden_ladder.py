@@ -197,7 +197,7 @@ def test_bad_center():
 
 @given(bias=biases, r=radii)
 def test_nearest_snap_is_within_sqrt_phi(bias, r):
-    k, snapped = GoldenLadder(bias).snap(r)
+    _, snapped = GoldenLadder(bias).snap(r)
     assert r / np.sqrt(PHI) * (1 - 1e-12) <= snapped <= r * np.sqrt(PHI) * (1 + 1e-12)
 
 

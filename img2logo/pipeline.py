@@ -1,0 +1,162 @@
+"""The whole pipeline in one call: image -> feature lines -> segment graph -> levels.
+
+:func:`abstract` is what the command line, the notebooks and most users call.
+It returns a :class:`Result` holding every stage's output, so that a slider can
+show any level without recomputing and a figure can show any stage.
+"""
+
+from __future__ import annotations
+
+import sys
+import time
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from .constants import MIN_SEGMENT_LENGTH, RDP_TOLERANCE, TOLERANCE
+from .geometry import Abstraction
+from .preprocessing import FeatureLines, LoadedImage, extract_feature_lines, load_image
+from .progressive import ProgressCallback, Progression, optimize
+from .segment_graph import SegmentGraph, build_segment_graph
+
+
+@dataclass(frozen=True, eq=False)
+class Result:
+    """Everything one run computed.
+
+    Attributes
+    ----------
+    image : LoadedImage
+    lines : FeatureLines
+    graph : SegmentGraph
+        L = {S, J}, the input of the optimization.
+    progression : Progression
+        Every level A^0 ... A^final, the bias, stats.
+    timings : dict
+        Seconds per stage: ``feature_lines``, ``segment_graph``,
+        ``simplification``, ``initial_fit``, ``loop``.
+    params : dict
+        The parameters of the run (as recorded in every level).
+    """
+
+    image: LoadedImage
+    lines: FeatureLines
+    graph: SegmentGraph
+    progression: Progression
+    timings: dict[str, float] = field(default_factory=dict)
+    params: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def levels(self) -> tuple[Abstraction, ...]:
+        """A^0 ... A^final."""
+        return self.progression.levels
+
+    @property
+    def final(self) -> Abstraction:
+        """The result: the simplest level within the tolerance."""
+        return self.progression.final
+
+    @property
+    def bias(self) -> float:
+        """The ladder bias sigma used."""
+        return self.progression.bias
+
+    def level(self, t: int) -> Abstraction:
+        """A^t; negative t counts from the end like a list index."""
+        return self.progression.levels[t]
+
+
+def abstract(
+    image: object,
+    tolerance: float = TOLERANCE,
+    kind: str = "auto",
+    *,
+    rdp_tolerance: float = RDP_TOLERANCE,
+    min_length: float = MIN_SEGMENT_LENGTH,
+    foreground: object = None,
+    bias: float | None = None,
+    exponents: Sequence[int] | None = None,
+    lock_mask: np.ndarray | None = None,
+    progress: ProgressCallback | bool | None = None,
+    **switches: Any,
+) -> Result:
+    """Turn an image into a sequence of golden ratio logo abstractions.
+
+    Parameters
+    ----------
+    image : path, ndarray or LoadedImage
+        The input (see :func:`img2logo.load_image`).
+    tolerance : float
+        T, the largest similarity error E^s (Eqn. 1) accepted, px.
+    kind : {"auto", "photo", "clipart", "drawing"}
+        The kind of input (see :func:`img2logo.extract_feature_lines`).
+    rdp_tolerance, min_length : float
+        Segment-graph parameters (see :func:`img2logo.build_segment_graph`), px.
+    foreground : None, "grabcut" or ndarray of bool
+        Photos: restrict the lines to the object.
+    bias, exponents, lock_mask
+        The ladder bias, a subset of ladder exponents, a lock mask (Sec. 7).
+    progress : callable, bool or None
+        A callback ``progress(t, n_arcs, similarity)``; ``True`` shows a
+        progress bar on the terminal; ``None`` (default) shows one only when
+        standard error is a terminal.
+    **switches
+        The ablation switches of :func:`img2logo.progressive.optimize`:
+        ``connectivity``, ``inner_junctions``, ``merging``,
+        ``avoid_intersections``, ``localized``, ``simplify``, ``arc_selection``.
+
+    Returns
+    -------
+    Result
+    """
+    timings: dict[str, float] = {}
+    start = time.perf_counter()
+    img = load_image(image)
+    lines = extract_feature_lines(img, kind=kind, foreground=foreground)
+    timings["feature_lines"] = time.perf_counter() - start
+    start = time.perf_counter()
+    graph = build_segment_graph(lines, rdp_tolerance=rdp_tolerance, min_length=min_length)
+    timings["segment_graph"] = time.perf_counter() - start
+    params = {
+        "source": img.source,
+        "kind": lines.kind,
+        "rdp_tolerance": float(rdp_tolerance),
+        "min_length": float(min_length),
+        "scale": img.scale,
+    }
+    callback, bar = _progress(progress, graph.n_segments)
+    try:
+        progression = optimize(
+            graph,
+            tolerance=tolerance,
+            bias=bias,
+            exponents=exponents,
+            lock_mask=lock_mask,
+            progress=callback,
+            params=params,
+            **switches,
+        )
+    finally:
+        if bar is not None:
+            bar.close()
+    timings.update(progression.timings)
+    return Result(img, lines, graph, progression, timings, dict(progression.levels[0].params))
+
+
+def _progress(progress: ProgressCallback | bool | None, total: int) -> tuple[ProgressCallback | None, Any]:
+    """A callback, and the tqdm bar behind it when one is shown."""
+    if callable(progress):
+        return progress, None
+    if progress is False or (progress is None and not sys.stderr.isatty()):
+        return None, None
+    from tqdm.auto import tqdm
+
+    bar = tqdm(total=max(total - 1, 1), desc="merging", unit="merge", leave=False)
+
+    def update(t: int, n_arcs: int, similarity: float) -> None:
+        bar.n = t
+        bar.set_postfix(arcs=n_arcs, Es=f"{similarity:.2f}px", refresh=True)
+
+    return update, bar

@@ -1,0 +1,693 @@
+"""Progressive optimization (paper Sec. 5.2-5.4): a sequence of golden ratio abstractions.
+
+Starting from the segment graph L = {S, J}, every segment gets a golden circle
+(Sec. 5.3: a free fit, its radius snapped to the ladder by Eqn. 12, then the
+connectivity-constrained fit of Eqn. 13 moving centres and junctions) and an
+arc (the candidate with the smallest discrete Fréchet distance to its pixels).
+Then neighbouring segments are merged one pair at a time, the pair with the
+lowest merge error first, until the similarity error E^s (Eqn. 3) would exceed
+the tolerance T. Every iteration is kept: level t is the abstraction A^t.
+
+Two accelerations of Sec. 5.4 are switches: *line-segment simplification*
+(before the loop, neighbours that one arc fits with a mean error below 1 px are
+merged) and *localized fitting* (a merge refits only the new circle and its
+neighbours, the junctions it does not touch held fixed; when that window does
+not converge the global problem is solved instead). So are the ablations of
+Sec. 6.2: the connectivity constraint (Fig. 11c), constraints only at the ends
+of merged segments (Fig. 11d), no merging (Fig. 11e) and redundant-intersection
+avoidance (Fig. 12).
+
+The *merge error* of a candidate pair is the E^s that the abstraction would
+have after merging it, computed from the exact local refit. All candidates are
+compared on that one scale (|A| and |J'| of the state after the merge), which
+the changing weights 1/|A| and 1/|J'| would otherwise distort. A candidate's
+score is cached with the set of arcs its refit touched, and recomputed from
+the current state whenever one of them changed.
+
+Coordinates: px, x right, y down (``contract/README.md``).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from ._validation import check_choice, check_positive
+from .arc_extraction import ArcFit, extract_arc, redundant_intersections
+from .circle_fitting import fit_center, fit_circle, fit_constrained, mean_abs_error
+from .constants import SIMPLIFICATION_ERROR, TOLERANCE
+from .errors import InvalidParameterError
+from .geometry import Abstraction, Circle
+from .golden_ladder import GoldenLadder, bias_from_radius
+from .segment_graph import SegmentGraph
+
+#: Signature of a progress callback: (level t, number of arcs, E^s in px).
+ProgressCallback = Callable[[int, int, float], None]
+
+
+# --------------------------------------------------------------------------- results
+@dataclass(frozen=True, eq=False)
+class Progression:
+    """The output of :func:`optimize`: every level A^0 ... A^final.
+
+    Attributes
+    ----------
+    levels : tuple of Abstraction
+        ``levels[t]`` is A^t; each has fewer arcs than the one before. The last
+        one is the result: its E^s is within the tolerance (unless A^0 already
+        exceeds it, then A^0 is the only level).
+    bias : float
+        The ladder bias sigma used (Eqn. 14 from the longest segment, or given).
+    simplified : tuple of tuple of int
+        The segments of the graph grouped by the line-segment simplification
+        (Sec. 5.4), in the order of A^0's arcs.
+    stopped_because : str
+        Why the loop stopped: ``"tolerance"``, ``"no mergeable pair"`` or ``"merging off"``.
+    stats : dict
+        Counts: merge candidates evaluated, local windows that failed, global
+        solves, candidates rejected for redundant intersections.
+    timings : dict
+        Seconds spent in simplification, the initial fit and the loop.
+    """
+
+    levels: tuple[Abstraction, ...]
+    bias: float
+    simplified: tuple[tuple[int, ...], ...]
+    stopped_because: str
+    stats: dict[str, int] = field(default_factory=dict)
+    timings: dict[str, float] = field(default_factory=dict)
+
+    @property
+    def final(self) -> Abstraction:
+        """The result: the last level, the simplest within the tolerance."""
+        return self.levels[-1]
+
+    @property
+    def arc_counts(self) -> list[int]:
+        """|A^t| for every level t."""
+        return [len(a.arcs) for a in self.levels]
+
+    @property
+    def similarities(self) -> list[float]:
+        """E^s(A^t) for every level t, px."""
+        return [a.similarity for a in self.levels]
+
+
+# --------------------------------------------------------------------------- groups
+@dataclass(frozen=True, eq=False)
+class _Group:
+    """Segments of the graph merged into one arc: a path through the graph (private).
+
+    ``nodes`` has one more entry than ``segments``; ``points`` is the ordered
+    pixel chain, (n, 2) px. A closed group starts and ends at the same node.
+    """
+
+    segments: tuple[int, ...]
+    nodes: tuple[int, ...]
+    points: np.ndarray
+    locked: bool
+
+    @property
+    def closed(self) -> bool:
+        return self.nodes[0] == self.nodes[-1]
+
+    @property
+    def ends(self) -> tuple[int, int]:
+        return self.nodes[0], self.nodes[-1]
+
+    def reversed(self) -> _Group:
+        return _Group(self.segments[::-1], self.nodes[::-1], self.points[::-1], self.locked)
+
+
+def _merge_groups(a: _Group, b: _Group, node: int) -> _Group:
+    """Join ``a`` and ``b`` at their common end ``node``; ``a``'s far end starts the result."""
+    if a.nodes[-1] != node:
+        a = a.reversed()
+    if b.nodes[0] != node:
+        b = b.reversed()
+    return _Group(
+        a.segments + b.segments,
+        a.nodes + b.nodes[1:],
+        np.vstack([a.points, b.points[1:]]),
+        a.locked or b.locked,
+    )
+
+
+# --------------------------------------------------------------------------- state
+@dataclass
+class _Fit:
+    """A group's golden circle and arc (private, mutable state of the loop)."""
+
+    center: np.ndarray
+    radius: float
+    k: int
+    arc: ArcFit
+
+
+@dataclass
+class _Outcome:
+    """What merging one candidate pair would give (private)."""
+
+    pair: tuple[int, int, int]  # (group a, group b, shared node)
+    merged: _Group
+    fits: dict[int, _Fit]  # new fits of the changed groups; key -1 is the merged group
+    displacements: dict[int, np.ndarray]  # node -> new d_k
+    window: frozenset[int]  # groups whose state this outcome depends on
+    delta_f: float  # change of the sum of Fréchet distances
+    delta_d: float  # change of the sum of |d_k| over J'
+    delta_j: int  # change of |J'|
+    redundant: int  # redundant intersections the merge would leave
+    global_solve: bool
+
+
+class _Optimizer:
+    """The mutable state of one run of the progressive optimization (private)."""
+
+    def __init__(self, graph: SegmentGraph, options: dict[str, Any]) -> None:
+        self.graph = graph
+        self.opt = options
+        self.groups: dict[int, _Group] = {}
+        self.fits: dict[int, _Fit] = {}
+        self.disp = np.zeros((graph.n_junctions, 2))
+        self.next_id = 0
+        self.stats = {"evaluated": 0, "local_failed": 0, "global_solves": 0, "rejected_intersections": 0}
+        self._circle_cache: dict[tuple[int, ...], tuple[np.ndarray, float]] = {}
+        self.ladder: GoldenLadder | None = None
+
+    # ----------------------------------------------------------------- groups and nodes
+    def add_group(self, group: _Group) -> int:
+        gid = self.next_id
+        self.next_id += 1
+        self.groups[gid] = group
+        return gid
+
+    def constrained_nodes(self, group: _Group) -> tuple[int, ...]:
+        """Nodes where ``group``'s arc must pass (its J' part), in path order.
+
+        The two ends, and inner nodes where other segments meet (valence >= 3
+        in the graph, Sec. 6.2) unless only the ends are constrained (Fig. 11d).
+        """
+        if group.closed:
+            head = (group.nodes[0],)
+        else:
+            head = ()
+        inner = ()
+        if self.opt["inner_junctions"]:
+            valence = self.graph.valence
+            inner = tuple(n for n in group.nodes[1:-1] if valence[n] >= 3)
+        if group.closed:
+            return head + inner
+        return (group.nodes[0], *inner, group.nodes[-1])
+
+    def node_groups(self, groups: dict[int, _Group] | None = None) -> dict[int, list[int]]:
+        """For every node of J', the groups constrained there."""
+        out: dict[int, list[int]] = {}
+        for gid, g in (self.groups if groups is None else groups).items():
+            for n in set(self.constrained_nodes(g)):
+                out.setdefault(n, []).append(gid)
+        return out
+
+    def end_groups(self) -> dict[int, list[int]]:
+        """For every node, the groups with an end there (each group once)."""
+        out: dict[int, list[int]] = {}
+        for gid, g in self.groups.items():
+            for n in set(g.ends):
+                out.setdefault(n, []).append(gid)
+        return out
+
+    # ----------------------------------------------------------------- circles
+    def free_circle(self, group: _Group) -> tuple[np.ndarray, float]:
+        """Unconstrained circle fit of a group (Sec. 5.3, first stage), cached."""
+        key = group.segments
+        if key not in self._circle_cache:
+            pts = group.points
+            if len(pts) < 3:  # two pixels: a straight piece, capped like any
+                pts = np.linspace(pts[0], pts[-1], 3)
+            fit = fit_circle(pts)
+            self._circle_cache[key] = (np.asarray(fit.center, dtype=np.float64), float(fit.radius))
+        return self._circle_cache[key]
+
+    def free_error(self, group: _Group) -> float:
+        """Mean distance of the group's pixels to its free circle, px."""
+        center, radius = self.free_circle(group)
+        return mean_abs_error(group.points, center, radius)
+
+    def golden_error(self, group: _Group) -> float:
+        """Mean distance of the group's pixels to its golden circle, px.
+
+        The free radius snapped to the ladder (Eqn. 12), the centre then placed
+        where it fits best for that fixed radius.
+        """
+        center, radius, _ = self.golden(group)
+        return mean_abs_error(group.points, fit_center(group.points, radius, center), radius)
+
+    def golden(self, group: _Group) -> tuple[np.ndarray, float, int]:
+        """Free fit snapped to the ladder (Eqn. 12): (centre, radius, k)."""
+        center, radius = self.free_circle(group)
+        k, r = self.ladder.snap(radius)
+        return center, r, k
+
+    # ----------------------------------------------------------------- arcs
+    def arc_for(self, group: _Group, center: np.ndarray, radius: float, k: int, disp: Any) -> ArcFit:
+        """Extract the arc of ``group`` on its circle through its displaced junctions."""
+        circle = Circle(float(center[0]), float(center[1]), float(radius), int(k))
+        nodes = self.constrained_nodes(group)
+        pts = np.array([self.graph.junctions[n] + disp(n) for n in nodes])
+        if group.closed:
+            pts = np.vstack([pts, pts[:1]])
+        if not self.opt["connectivity"]:
+            # No constraint: the arc ends where the junctions project on its circle.
+            pts = circle.point_at(circle.angle_of(pts))
+        return extract_arc(circle, group.points, pts, method=self.opt["arc_selection"])
+
+    # ----------------------------------------------------------------- the constrained fit
+    def solve(
+        self,
+        groups: dict[int, _Group],
+        seeds: dict[int, tuple[np.ndarray, float, int]],
+        free_groups: Sequence[int],
+        free_nodes: Sequence[int],
+        n_groups_total: int,
+        n_junctions_total: int,
+    ) -> tuple[dict[int, _Fit], dict[int, np.ndarray]] | None:
+        """Eqn. 13 over ``groups`` (the window), then their arcs; None if it fails."""
+        gids = list(groups)
+        node_list = sorted({n for g in groups.values() for n in self.constrained_nodes(g)})
+        node_index = {n: i for i, n in enumerate(node_list)}
+        incidence = [(i, node_index[n]) for i, gid in enumerate(gids) for n in set(self.constrained_nodes(groups[gid]))]
+        fit = fit_constrained(
+            [groups[g].points for g in gids],
+            np.array([seeds[g][1] for g in gids]),
+            np.array([seeds[g][0] for g in gids]),
+            self.graph.junctions[node_list],
+            np.array(incidence, dtype=np.int64).reshape(-1, 2),
+            displacements0=self.disp[node_list],
+            free_circles=[gids.index(g) for g in free_groups],
+            free_junctions=[node_index[n] for n in free_nodes if n in node_index],
+            # E^sqr of Eqn. 7 as the *mean* squared error of a segment: with the
+            # sum over its pixels, a junction moves px away to shave a little off
+            # a long segment's fit, and E^s (Fréchet + |d|) pays for it.
+            segment_weight=1.0 / (max(n_groups_total, 1) * np.array([len(groups[g].points) for g in gids])),
+            junction_weight=1.0 / max(n_junctions_total, 1),
+            connectivity=self.opt["connectivity"],
+        )
+        if self.opt["connectivity"] and not fit.converged:
+            return None
+        disp = {n: fit.displacements[node_index[n]].copy() for n in node_list}
+        if not self.opt["connectivity"]:
+            disp = {n: np.zeros(2) for n in node_list}
+        fits = {}
+        for i, gid in enumerate(gids):
+            if gid not in free_groups:
+                continue
+            _, r, k = seeds[gid]
+            center = fit.centers[i].copy()
+            fits[gid] = _Fit(center, r, k, self.arc_for(groups[gid], center, r, k, lambda n: disp[n]))
+        return fits, disp
+
+    def initial_fit(self) -> None:
+        """A^0: golden circles for every group, fitted jointly (Sec. 5.3)."""
+        seeds = {gid: self.golden(g) for gid, g in self.groups.items()}
+        nodes = sorted(self.node_groups())
+        out = self.solve(dict(self.groups), seeds, list(self.groups), nodes, len(self.groups), len(nodes))
+        self.stats["global_solves"] += 1
+        if out is None:  # cannot happen for a feasible problem; keep the seeds, say so
+            raise InvalidParameterError("the connectivity-constrained fit of the initial segments did not converge")
+        fits, disp = out
+        self.fits = fits
+        for n, d in disp.items():
+            self.disp[n] = d
+
+    # ----------------------------------------------------------------- errors
+    def totals(self) -> tuple[float, float, int]:
+        """(sum of Fréchet distances, sum of |d_k| over J', |J'|)."""
+        nodes = list(self.node_groups())
+        f = sum(fit.arc.frechet for fit in self.fits.values())
+        d = float(np.sum(np.linalg.norm(self.disp[nodes], axis=1))) if nodes else 0.0
+        return f, d, len(nodes)
+
+    def similarity(self) -> float:
+        """E^s (Eqn. 3): mean Fréchet distance of the arcs plus mean junction displacement."""
+        f, d, nj = self.totals()
+        return f / max(len(self.fits), 1) + (d / nj if nj else 0.0)
+
+    # ----------------------------------------------------------------- merging
+    def candidates(self) -> list[tuple[int, int, int]]:
+        """Mergeable pairs (a, b, node): two groups with a common end (Sec. 5.2)."""
+        out = []
+        for node, gids in sorted(self.end_groups().items()):
+            ok = [g for g in sorted(gids) if not self.groups[g].locked and not self.groups[g].closed]
+            out.extend((a, b, node) for i, a in enumerate(ok) for b in ok[i + 1 :])
+        return out
+
+    def evaluate(self, pair: tuple[int, int, int]) -> _Outcome | None:
+        """Merge ``pair`` tentatively, refit, and score it; None if infeasible."""
+        self.stats["evaluated"] += 1
+        a, b, node = pair
+        merged = _merge_groups(self.groups[a], self.groups[b], node)
+        after = {g: grp for g, grp in self.groups.items() if g not in (a, b)}
+        after[-1] = merged
+        n_groups = len(after)
+        node_groups_after = self.node_groups(after)
+        nj_after = len(node_groups_after)
+        seeds = {g: (self.fits[g].center, self.fits[g].radius, self.fits[g].k) for g in after if g != -1}
+        seeds[-1] = self.golden(merged)
+
+        merged_nodes = set(self.constrained_nodes(merged))
+        global_solve = not self.opt["localized"]
+        out = None
+        if not global_solve:
+            neighbours = sorted({g for n in merged_nodes for g in node_groups_after.get(n, []) if g != -1})
+            window = {-1: merged, **{g: after[g] for g in neighbours}}
+            free = [-1, *neighbours] if self.opt["connectivity"] else [-1]
+            out = self.solve(window, seeds, free, sorted(merged_nodes), n_groups, nj_after)
+            if out is None:
+                self.stats["local_failed"] += 1
+                global_solve = True
+        if global_solve:
+            self.stats["global_solves"] += 1
+            out = self.solve(after, seeds, list(after), sorted(node_groups_after), n_groups, nj_after)
+            if out is None:
+                return None
+        fits, disp = out
+
+        old_nodes = set(self.node_groups())
+        changed_nodes = set(disp) | {node}
+        delta_d = sum(float(np.linalg.norm(disp[n])) for n in changed_nodes if n in node_groups_after and n in disp)
+        delta_d -= sum(float(np.linalg.norm(self.disp[n])) for n in changed_nodes if n in old_nodes)
+        delta_f = sum(f.arc.frechet for f in fits.values())
+        delta_f -= sum(self.fits[g].arc.frechet for g in {a, b} | (set(fits) - {-1}))
+        window_ids = frozenset({a, b} | (set(fits) - {-1}))
+
+        redundant = 0
+        if self.opt["avoid_intersections"]:
+            redundant = self._redundant(after, fits, disp, node_groups_after)
+        return _Outcome(
+            pair, merged, fits, disp, window_ids, delta_f, delta_d, nj_after - len(old_nodes), redundant, global_solve
+        )
+
+    def _redundant(
+        self,
+        after: dict[int, _Group],
+        fits: dict[int, _Fit],
+        disp: dict[int, np.ndarray],
+        node_groups_after: dict[int, list[int]],
+    ) -> int:
+        """Redundant intersections that involve the arcs a merge changed."""
+        gids = list(after)
+        arcs = [(fits[g] if g in fits else self.fits[g]).arc.arc for g in gids]
+        nodes = sorted(node_groups_after)
+        node_index = {n: i for i, n in enumerate(nodes)}
+        points = np.array([self.graph.junctions[n] + (disp[n] if n in disp else self.disp[n]) for n in nodes])
+        arc_junctions = [[node_index[n] for n in self.constrained_nodes(after[g])] for g in gids]
+        changed = [i for i, g in enumerate(gids) if g in fits]
+        return len(redundant_intersections(arcs, points, arc_junctions, candidates=changed))
+
+    def apply(self, outcome: _Outcome) -> int:
+        """Carry out a merge: the merged group replaces its two parts."""
+        a, b, _ = outcome.pair
+        del self.groups[a], self.groups[b]
+        self.fits.pop(a)
+        self.fits.pop(b)
+        gid = self.add_group(outcome.merged)
+        for g, fit in outcome.fits.items():
+            self.fits[gid if g == -1 else g] = fit
+        for n, d in outcome.displacements.items():
+            self.disp[n] = d
+        return gid
+
+    # ----------------------------------------------------------------- levels
+    def abstraction(self, level: int, params: dict[str, Any]) -> Abstraction:
+        """The current state as a frozen :class:`Abstraction` A^t."""
+        order = sorted(self.groups, key=lambda g: min(self.groups[g].segments))
+        index = {g: i for i, g in enumerate(order)}
+        node_groups = self.node_groups()
+        nodes = sorted(node_groups)
+        return Abstraction(
+            level=level,
+            arcs=tuple(self.fits[g].arc.arc for g in order),
+            arc_segments=tuple(self.groups[g].segments for g in order),
+            junctions=np.array([self.graph.junctions[n] + self.disp[n] for n in nodes]).reshape(-1, 2),
+            junction_arcs=tuple(tuple(sorted(index[g] for g in node_groups[n])) for n in nodes),
+            similarity=float(self.similarity()),
+            bias=float(self.ladder.bias),
+            tolerance=float(self.opt["tolerance"]),
+            width=self.graph.width,
+            height=self.graph.height,
+            params=params,
+        )
+
+
+# --------------------------------------------------------------------------- the entry point
+def optimize(
+    graph: SegmentGraph,
+    *,
+    tolerance: float = TOLERANCE,
+    bias: float | None = None,
+    exponents: Sequence[int] | None = None,
+    rounding: str = "nearest",
+    connectivity: bool = True,
+    inner_junctions: bool = True,
+    merging: bool = True,
+    avoid_intersections: bool = True,
+    localized: bool = True,
+    simplify: bool = True,
+    arc_selection: str = "frechet",
+    lock_mask: np.ndarray | None = None,
+    progress: ProgressCallback | None = None,
+    params: dict[str, Any] | None = None,
+) -> Progression:
+    """Run the progressive optimization of Sec. 5.2 on a segment graph.
+
+    Parameters
+    ----------
+    graph : SegmentGraph
+        The line-segment graph L = {S, J}.
+    tolerance : float
+        T of Eqn. 1, px (> 0): merging stops before E^s would exceed it.
+    bias : float, optional
+        The ladder bias sigma in [0, 1) (Eqn. 10); default: Eqn. 14 on the
+        longest segment after simplification.
+    exponents : sequence of int, optional
+        Restrict the ladder exponents k to these (Sec. 7, Fig. 15).
+    rounding : {"nearest", "ceil"}
+        How a fitted radius is snapped to the ladder: to the nearest rung in
+        log space (default), or up as in the paper's Eqn. 12 (see
+        :class:`~img2logo.golden_ladder.GoldenLadder`).
+    connectivity : bool
+        The connectivity constraint of Eqn. 13 (off: Fig. 11c).
+    inner_junctions : bool
+        Keep junctions of valence >= 3 inside merged segments as constraints
+        (off: only the start and end junctions are, Fig. 11d).
+    merging : bool
+        Merge segments at all (off: only A^0, Fig. 11e).
+    avoid_intersections : bool
+        Reject merges that leave a redundant intersection (off: Fig. 12c).
+    localized : bool
+        Refit only the merged circle and its neighbours (Sec. 5.4, Table 3).
+    simplify : bool
+        Line-segment simplification before the loop (Sec. 5.4, Table 3).
+    arc_selection : {"frechet", "sum_of_squares"}
+        How the arc is chosen among the candidates on a circle (Fig. 9).
+    lock_mask : ndarray of bool, shape (H, W), optional
+        Segments mostly inside it are never merged (Sec. 7, Fig. 16).
+    progress : callable, optional
+        Called as ``progress(t, n_arcs, similarity)`` after every level.
+    params : dict, optional
+        Extra entries recorded in every level's ``params``.
+
+    Returns
+    -------
+    Progression
+    """
+    tolerance = check_positive(tolerance, "tolerance")
+    check_choice(arc_selection, "arc_selection", ("frechet", "sum_of_squares"))
+    if not isinstance(graph, SegmentGraph):
+        raise InvalidParameterError(f"graph must be a SegmentGraph, got {type(graph).__name__}")
+    if graph.n_segments == 0:
+        raise InvalidParameterError("the segment graph has no segments: nothing to abstract (no feature lines found)")
+    locked = _locked_segments(graph, lock_mask)
+    ladder_exponents = None if exponents is None else tuple(int(k) for k in exponents)
+    if ladder_exponents is not None and not ladder_exponents:
+        raise InvalidParameterError("exponents must not be empty")
+    options = {
+        "tolerance": tolerance,
+        "connectivity": bool(connectivity),
+        "inner_junctions": bool(inner_junctions),
+        "avoid_intersections": bool(avoid_intersections),
+        "localized": bool(localized),
+        "arc_selection": arc_selection,
+    }
+    record = {
+        "tolerance": tolerance,
+        "bias_given": bias,
+        "exponents": list(ladder_exponents) if ladder_exponents else None,
+        "rounding": rounding,
+        "connectivity": bool(connectivity),
+        "inner_junctions": bool(inner_junctions),
+        "merging": bool(merging),
+        "avoid_intersections": bool(avoid_intersections),
+        "localized": bool(localized),
+        "simplify": bool(simplify),
+        "arc_selection": arc_selection,
+        "locked_segments": int(locked.sum()),
+        **(params or {}),
+    }
+
+    opt = _Optimizer(graph, options)
+    timings: dict[str, float] = {}
+    start = time.perf_counter()
+    groups = [
+        _Group((i,), tuple(int(n) for n in graph.ends[i]), seg, bool(locked[i])) for i, seg in enumerate(graph.segments)
+    ]
+    # The bias comes from the longest segment after simplification (Eqn. 14), by
+    # free circles as in the paper. The simplification that the loop starts
+    # from then asks for a *golden* arc within 1 px: a free fit within 1 px can
+    # be far off once its radius is snapped up the ladder (by up to phi).
+    if bias is None:
+        probe = _simplify(opt, groups, opt.free_error) if simplify else groups
+        bias = bias_from_radius(opt.free_circle(max(probe, key=lambda g: _length(g.points)))[1])
+    opt.ladder = GoldenLadder(bias, ladder_exponents, rounding)
+    if simplify:
+        groups = _simplify(opt, groups, opt.golden_error)
+    for g in sorted(groups, key=lambda g: min(g.segments)):
+        opt.add_group(g)
+    timings["simplification"] = time.perf_counter() - start
+
+    start = time.perf_counter()
+    opt.initial_fit()
+    record["bias"] = float(opt.ladder.bias)
+    levels = [opt.abstraction(0, record)]
+    simplified = tuple(lv for lv in levels[0].arc_segments)
+    timings["initial_fit"] = time.perf_counter() - start
+    if progress:
+        progress(0, len(levels[0].arcs), levels[0].similarity)
+
+    start = time.perf_counter()
+    stopped = "merging off"
+    if merging:
+        stopped = _loop(opt, levels, record, tolerance, progress)
+    timings["loop"] = time.perf_counter() - start
+    return Progression(tuple(levels), float(opt.ladder.bias), simplified, stopped, dict(opt.stats), timings)
+
+
+def _loop(
+    opt: _Optimizer,
+    levels: list[Abstraction],
+    record: dict[str, Any],
+    tolerance: float,
+    progress: ProgressCallback | None,
+) -> str:
+    """Merge the best pair until E^s would exceed ``tolerance`` (Sec. 5.2, steps 1-6).
+
+    Scores are kept between iterations. After a merge, the pairs with the new
+    segment are scored afresh; a pair whose refit window the merge changed
+    keeps its old score as an estimate (the paper keeps it as it was, step 5)
+    and is rescored from the current state when it comes out best: so the pair
+    merged is always scored exactly (lazy greedy).
+    """
+    cache: dict[tuple[int, int, int], _Outcome | None] = {}
+    stale: set[tuple[int, int, int]] = set()
+    while True:
+        pairs = opt.candidates()
+        if not pairs:
+            return "no mergeable pair"
+        f, d, nj = opt.totals()
+        n_arcs = len(opt.fits)
+        while True:
+            best, best_error = None, math.inf
+            for pair in pairs:
+                if pair not in cache or (pair in stale and cache[pair] is None):
+                    cache[pair] = opt.evaluate(pair)
+                    stale.discard(pair)
+                out = cache[pair]
+                if out is None or (out.redundant and pair not in stale):
+                    continue
+                nj_after = nj + out.delta_j
+                error = (f + out.delta_f) / max(n_arcs - 1, 1) + ((d + out.delta_d) / nj_after if nj_after else 0.0)
+                if error < best_error:
+                    best, best_error = pair, error
+            if best is None or best not in stale:
+                break
+            cache[best] = opt.evaluate(best)
+            stale.discard(best)
+        opt.stats["rejected_intersections"] = sum(1 for o in cache.values() if o is not None and o.redundant)
+        if best is None:
+            return "no mergeable pair"
+        if best_error > tolerance:
+            return "tolerance"
+        outcome = cache[best]
+        opt.apply(outcome)
+        changed = outcome.window | {outcome.pair[0], outcome.pair[1]}
+        cache = {p: o for p, o in cache.items() if p[0] in opt.groups and p[1] in opt.groups}
+        for p, o in cache.items():
+            if outcome.global_solve or o is None or (o.window & changed):
+                stale.add(p)
+        stale &= set(cache)
+        level = opt.abstraction(len(levels), record)
+        levels.append(level)
+        if progress:
+            progress(level.level, len(level.arcs), level.similarity)
+
+
+def _simplify(opt: _Optimizer, groups: list[_Group], error: Callable[[_Group], float]) -> list[_Group]:
+    """Line-segment simplification (Sec. 5.4): merge neighbours one arc fits within 1 px.
+
+    Greedy, the lowest ``error`` (mean absolute distance of the pixels to the
+    fitted circle, px) first, while it is below ``SIMPLIFICATION_ERROR``. Only
+    at split points (nodes of valence 2 in the graph): a real junction is left
+    to the progressive loop. Returns the simplified groups.
+    """
+    valence = opt.graph.valence
+    current = list(groups)
+    scores: dict[tuple[tuple[int, ...], tuple[int, ...]], tuple[float, _Group]] = {}
+    while True:
+        at: dict[int, list[int]] = {}
+        for i, g in enumerate(current):
+            for n in set(g.ends):
+                at.setdefault(n, []).append(i)
+        best, best_err = None, SIMPLIFICATION_ERROR
+        for node, idx in sorted(at.items()):
+            if valence[node] != 2 or len(idx) != 2:
+                continue
+            ga, gb = current[idx[0]], current[idx[1]]
+            if ga.locked or gb.locked or ga is gb:
+                continue
+            key = (ga.segments, gb.segments)
+            if key not in scores:
+                merged = _merge_groups(ga, gb, node)
+                scores[key] = (error(merged), merged)
+            err, merged = scores[key]
+            if err < best_err:
+                best, best_err = (idx[0], idx[1], merged), err
+        if best is None:
+            return current
+        i, j, merged = best
+        current = [g for k, g in enumerate(current) if k not in (i, j)] + [merged]
+
+
+def _locked_segments(graph: SegmentGraph, lock_mask: np.ndarray | None) -> np.ndarray:
+    """Segments with most of their points inside ``lock_mask`` (Sec. 7, Fig. 16)."""
+    if lock_mask is None:
+        return np.zeros(graph.n_segments, dtype=bool)
+    mask = np.asarray(lock_mask)
+    if mask.shape != (graph.height, graph.width):
+        raise InvalidParameterError(
+            f"lock_mask must have the image's shape {(graph.height, graph.width)}, got {mask.shape}"
+        )
+    mask = mask.astype(bool)
+    out = np.zeros(graph.n_segments, dtype=bool)
+    for i, seg in enumerate(graph.segments):
+        cols = np.clip((seg[:, 0] - 0.5).round().astype(int), 0, graph.width - 1)
+        rows = np.clip((seg[:, 1] - 0.5).round().astype(int), 0, graph.height - 1)
+        out[i] = mask[rows, cols].mean() > 0.5
+    return out
+
+
+def _length(points: np.ndarray) -> float:
+    return float(np.sum(np.hypot(*np.diff(points, axis=0).T)))

@@ -1,0 +1,262 @@
+"""Tests of img2logo.progressive: known answers, invariants of every level, switches, errors."""
+
+from __future__ import annotations
+
+import itertools
+
+import cv2
+import numpy as np
+import pytest
+from conftest import DATA, blank
+
+from img2logo import InvalidParameterError, SegmentGraph, build_segment_graph, extract_feature_lines
+from img2logo.arc_extraction import redundant_intersections
+from img2logo.constants import PHI
+from img2logo.geometry import Abstraction
+from img2logo.progressive import optimize
+
+BIAS = 0.3
+
+
+def golden_radius(k: int) -> float:
+    return PHI ** (k + BIAS)
+
+
+def arc_points(center, radius, t0, t1, step=1.0, noise=0.0, rng=None):
+    n = max(3, int(abs(t1 - t0) * radius / step) + 1)
+    t = np.linspace(t0, t1, n)
+    pts = np.column_stack([center[0] + radius * np.cos(t), center[1] + radius * np.sin(t)])
+    if noise:
+        pts[1:-1] += rng.normal(0.0, noise, (n - 2, 2))
+    return pts
+
+
+def golden_chain(noise: float = 0.0, seed: int = 0) -> tuple[SegmentGraph, list[tuple[np.ndarray, float]]]:
+    """Three golden arcs (k = 8, 9, 10) joined end to end at two junctions: an S-like stroke."""
+    rng = np.random.default_rng(seed)
+    r1, r2, r3 = golden_radius(8), golden_radius(9), golden_radius(10)
+    c1 = np.array([150.0, 150.0])
+    a1 = arc_points(c1, r1, np.pi, np.pi / 2, noise=noise, rng=rng)  # ends at the bottom of circle 1
+    j1 = a1[-1]
+    # Circle 2 touches circle 1 at j1 from outside, continuing the stroke.
+    c2 = j1 + np.array([0.0, r2])
+    a2 = arc_points(c2, r2, -np.pi / 2, -np.pi / 2 + 1.2, noise=noise, rng=rng)
+    j2 = a2[-1]
+    u = (j2 - c2) / r2
+    c3 = j2 - u * r3  # circle 3 is internally tangent at j2: the same side, larger
+    t3 = np.arctan2(u[1], u[0])
+    a3 = arc_points(c3, r3, t3, t3 + 0.8, noise=noise, rng=rng)
+    graph = SegmentGraph(
+        segments=(a1, a2, a3),
+        junctions=np.array([a1[0], j1, j2, a3[-1]]),
+        ends=np.array([[0, 1], [1, 2], [2, 3]]),
+        width=600,
+        height=600,
+    )
+    return graph, [(c1, r1), (c2, r2), (c3, r3)]
+
+
+def check_level(level: Abstraction, atol: float = 1e-6) -> None:
+    """Every junction lies on the circle of each arc listed there; arcs pass through it."""
+    for point, arcs in zip(level.junctions, level.junction_arcs, strict=True):
+        for i in arcs:
+            arc = level.arcs[i]
+            assert abs(arc.circle.distance(point[None])[0]) <= atol
+            assert arc.contains_angle(arc.circle.angle_of(point[None]), tol=1e-6)[0]
+    for arc in level.arcs:
+        assert abs(arc.circle.r - PHI ** (arc.circle.k + level.bias)) <= 1e-9 * arc.circle.r
+
+
+# --------------------------------------------------------------------------- known answers
+def test_golden_arcs_are_recovered_with_their_radii():
+    graph, truth = golden_chain()
+    prog = optimize(graph, bias=BIAS, tolerance=5.0, simplify=False, merging=False)
+    a0 = prog.levels[0]
+    assert len(a0.arcs) == 3
+    for arc, (center, radius) in zip(a0.arcs, truth, strict=True):
+        assert arc.circle.r == pytest.approx(radius, rel=1e-12)
+        np.testing.assert_allclose(arc.circle.center, center, atol=1e-6)
+    # The arcs are exact; E^s is not 0 only because the *discrete* Fréchet distance
+    # couples 1-px-spaced points with arc samples up to half a spacing apart.
+    assert a0.similarity < 0.6
+    check_level(a0)
+
+
+def test_noisy_golden_arcs_keep_their_rungs():
+    graph, truth = golden_chain(noise=0.3, seed=3)
+    prog = optimize(graph, bias=BIAS, tolerance=5.0, simplify=False, merging=False)
+    a0 = prog.levels[0]
+    for arc, (_, radius) in zip(a0.arcs, truth, strict=True):
+        assert arc.circle.r == pytest.approx(radius, rel=1e-9)
+    assert a0.similarity < 1.5
+    check_level(a0)
+
+
+def test_bias_from_the_longest_segment():
+    graph, _ = golden_chain()
+    prog = optimize(graph, tolerance=5.0, simplify=False, merging=False)
+    # The longest arc is on circle 3, radius phi**(10 + 0.3): Eqn. 14 gives sigma = 0.3.
+    assert prog.bias == pytest.approx(BIAS, abs=1e-6)
+
+
+def test_a_drawn_circle_becomes_one_full_circle():
+    im = blank(240)
+    cv2.circle(im, (120, 120), 70, (0, 0, 0), 3)
+    graph = build_segment_graph(extract_feature_lines(im, kind="drawing"))
+    assert graph.n_segments >= 4
+    prog = optimize(graph, tolerance=5.0)
+    final = prog.final
+    assert len(final.arcs) == 1
+    assert final.arcs[0].is_full_circle
+    assert abs(final.arcs[0].circle.r - 70) < 70 * (PHI - 1)  # the rung above 70 px
+    np.testing.assert_allclose(final.arcs[0].circle.center, [120.5, 120.5], atol=3.0)
+
+
+# --------------------------------------------------------------------------- every level
+@pytest.fixture(scope="module")
+def fish_progression():
+    graph = build_segment_graph(extract_feature_lines(DATA / "clipart-fish.png"))
+    return graph, optimize(graph, tolerance=5.0)
+
+
+def test_every_level_meets_its_junctions(fish_progression):
+    _, prog = fish_progression
+    for level in prog.levels:
+        check_level(level)
+
+
+def test_arc_count_decreases_and_final_is_within_tolerance(fish_progression):
+    graph, prog = fish_progression
+    counts = prog.arc_counts
+    assert all(b == a - 1 for a, b in itertools.pairwise(counts))
+    assert prog.final.similarity <= 5.0
+    assert prog.stopped_because in ("tolerance", "no mergeable pair")
+    assert counts[-1] <= 0.5 * graph.n_segments
+    assert [lv.level for lv in prog.levels] == list(range(len(prog.levels)))
+
+
+def test_every_segment_is_in_exactly_one_arc(fish_progression):
+    graph, prog = fish_progression
+    for level in prog.levels:
+        segs = sorted(s for group in level.arc_segments for s in group)
+        assert segs == list(range(graph.n_segments))
+
+
+def test_no_redundant_intersection_in_any_level(fish_progression):
+    _, prog = fish_progression
+    for level in prog.levels:
+        index = {tuple(p): i for i, p in enumerate(level.junctions)}
+        assert len(index) == len(level.junctions)
+        arc_junctions = [[] for _ in level.arcs]
+        for k, arcs in enumerate(level.junction_arcs):
+            for i in arcs:
+                arc_junctions[i].append(k)
+        assert redundant_intersections(list(level.arcs), level.junctions, arc_junctions) == []
+
+
+# --------------------------------------------------------------------------- switches
+def test_merging_off_gives_only_the_initial_level():
+    graph, _ = golden_chain(noise=0.3)
+    prog = optimize(graph, bias=BIAS, merging=False)
+    assert len(prog.levels) == 1 and prog.stopped_because == "merging off"
+
+
+def test_without_connectivity_the_arcs_do_not_meet():
+    graph = build_segment_graph(extract_feature_lines(DATA / "drawing-fish.png"))
+    with_c = optimize(graph, merging=False)
+    without = optimize(graph, merging=False, connectivity=False)
+    gap_with = _max_end_gap(with_c.final)
+    gap_without = _max_end_gap(without.final)
+    assert gap_with < 1e-5
+    assert gap_without > 0.5
+
+
+def _max_end_gap(level: Abstraction) -> float:
+    """Largest distance from a junction to the nearest end of an arc listed there."""
+    worst = 0.0
+    for point, arcs in zip(level.junctions, level.junction_arcs, strict=True):
+        for i in arcs:
+            arc = level.arcs[i]
+            ends = np.array([arc.start, arc.end])
+            if np.min(np.hypot(*(ends - point).T)) > 1e-3 and abs(arc.circle.distance(point[None])[0]) < 1e-6:
+                continue  # an inner junction the arc passes through
+            worst = max(worst, float(np.min(np.hypot(*(ends - point).T))))
+    return worst
+
+
+def test_simplification_reduces_the_initial_arcs():
+    graph = build_segment_graph(extract_feature_lines(DATA / "drawing-fish.png"))
+    plain = optimize(graph, simplify=False, merging=False)
+    simplified = optimize(graph, simplify=True, merging=False)
+    assert len(plain.levels[0].arcs) == graph.n_segments
+    assert len(simplified.levels[0].arcs) < 0.6 * graph.n_segments
+    assert len(simplified.simplified) == len(simplified.levels[0].arcs)
+
+
+def test_lock_mask_keeps_locked_segments_apart():
+    graph = build_segment_graph(extract_feature_lines(DATA / "drawing-fish.png"))
+    mask = np.zeros((graph.height, graph.width), bool)
+    mask[:, :256] = True  # lock the left half (the tail)
+    prog = optimize(graph, lock_mask=mask, tolerance=8.0)
+    locked = {
+        i
+        for i, s in enumerate(graph.segments)
+        if mask[(s[:, 1] - 0.5).astype(int).clip(0, 511), (s[:, 0] - 0.5).astype(int).clip(0, 511)].mean() > 0.5
+    }
+    assert locked
+    for level in prog.levels:
+        for group in level.arc_segments:
+            if set(group) & locked:
+                assert len(group) == 1
+
+
+def test_exponents_restrict_the_radii():
+    graph, _ = golden_chain(noise=0.3)
+    prog = optimize(graph, bias=BIAS, exponents=[9], merging=False)
+    assert {a.circle.k for a in prog.final.arcs} == {9}
+
+
+def test_progress_callback_sees_every_level():
+    graph, _ = golden_chain(noise=0.3)
+    seen = []
+    prog = optimize(graph, bias=BIAS, tolerance=50.0, progress=lambda t, n, e: seen.append((t, n, e)))
+    assert [s[0] for s in seen] == list(range(len(prog.levels)))
+    assert [s[1] for s in seen] == prog.arc_counts
+
+
+def test_deterministic():
+    graph = build_segment_graph(extract_feature_lines(DATA / "drawing-fish.png"))
+    a, b = optimize(graph), optimize(graph)
+    assert a.arc_counts == b.arc_counts
+    assert a.similarities == b.similarities
+    for la, lb in zip(a.levels, b.levels, strict=True):
+        assert la.arcs == lb.arcs
+
+
+# --------------------------------------------------------------------------- errors
+@pytest.mark.parametrize(
+    ("kw", "message"),
+    [
+        ({"tolerance": 0}, "tolerance must be > 0, got 0.0"),
+        ({"tolerance": -1.0}, "tolerance must be > 0"),
+        ({"exponents": []}, "exponents must not be empty"),
+        ({"bias": 1.5}, r"bias must be in \[0, 1\), got 1.5"),
+        ({"lock_mask": np.zeros((3, 3), bool)}, r"lock_mask must have the image's shape \(600, 600\), got \(3, 3\)"),
+        ({"arc_selection": "closest"}, "arc_selection must be one of 'frechet', 'sum_of_squares'"),
+    ],
+)
+def test_bad_parameters(kw, message):
+    graph, _ = golden_chain()
+    with pytest.raises(InvalidParameterError, match=message):
+        optimize(graph, **kw)
+
+
+def test_empty_graph_is_refused():
+    empty = build_segment_graph(np.zeros((32, 32), bool))
+    with pytest.raises(InvalidParameterError, match="no segments"):
+        optimize(empty)
+
+
+def test_graph_must_be_a_segment_graph():
+    with pytest.raises(InvalidParameterError, match="graph must be a SegmentGraph, got list"):
+        optimize([])  # type: ignore[arg-type]
