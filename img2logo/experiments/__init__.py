@@ -1,8 +1,11 @@
-"""Helpers for the notebooks: where data and figures live, and small figure layouts.
+"""Helpers for the notebooks: where data and figures live, sweeps and figure layouts.
 
-Notebooks communicate, the library computes: a notebook asks this module for
-paths (absolute, so a notebook runs from any working directory) and never
-writes ``../data`` itself.
+Notebooks communicate, the library computes: a notebook asks this package for
+paths (absolute, so a notebook runs from any working directory; it never
+writes ``../data`` itself), runs the sweeps it defines and gets the figures
+and tables back. Submodules group them by the paper's evaluation:
+``results`` (Fig. 1, 4, 7, 8, 10, Tables 1, 2), ``ablations`` (Fig. 6, 9, 11,
+12, 13), ``design`` (Table 3, Fig. 15, 16, the level explorer).
 """
 
 from __future__ import annotations
@@ -14,10 +17,10 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from .constants import MIN_SEGMENT_LENGTH, RDP_TOLERANCE
-from .errors import Img2LogoError
-from .preprocessing import FeatureLines, LoadedImage, extract_feature_lines, load_image
-from .segment_graph import SegmentGraph, build_segment_graph
+from ..constants import MIN_SEGMENT_LENGTH, RDP_TOLERANCE
+from ..errors import Img2LogoError
+from ..preprocessing import FeatureLines, LoadedImage, extract_feature_lines, load_image
+from ..segment_graph import SegmentGraph, build_segment_graph
 
 #: Environment variable naming the repository root, when it cannot be found.
 ROOT_ENV = "IMG2LOGO_ROOT"
@@ -36,7 +39,7 @@ def project_root() -> Path:
         if not (root / _MARKER).is_file():
             raise Img2LogoError(f"${ROOT_ENV}={env} does not hold {_MARKER}")
         return root
-    for start in (Path.cwd(), Path(__file__).resolve().parent):
+    for start in (Path.cwd(), Path(__file__).resolve().parent.parent):
         for folder in (start, *start.parents):
             if (folder / _MARKER).is_file():
                 return folder
@@ -128,7 +131,7 @@ def plot_preprocessing(examples: list[Preprocessed], *, panel_size: float = 3.0)
     """A figure, one row per example: input | feature lines | segment graph (paper Fig. 4a, 4b)."""
     from matplotlib.figure import Figure
 
-    from .plotting import plot_segment_graph
+    from ..plotting import plot_segment_graph
 
     fig = Figure(figsize=(3 * panel_size, panel_size * max(1, len(examples))), layout="constrained")
     axes = fig.subplots(max(1, len(examples)), 3, squeeze=False)
