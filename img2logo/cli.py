@@ -19,6 +19,7 @@ import warnings
 from collections.abc import Sequence
 
 from . import __version__
+from ._validation import check_positive
 from .constants import MIN_SEGMENT_LENGTH, RDP_TOLERANCE, TOLERANCE
 from .errors import Img2LogoError, InvalidParameterError
 
@@ -112,14 +113,17 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 
 def _run(args: argparse.Namespace, say) -> int:
+    from .golden_ladder import GoldenLadder
     from .pipeline import abstract
-    from .preprocessing import load_image
+    from .preprocessing import load_image, load_mask
 
+    # Check the options before the run: a bad value should not cost a run.
     exponents = _parse_radii(args.radii)
-    lock_mask = None
-    if args.lock_mask:
-        lock_mask = load_image(args.lock_mask).gray >= 0.5
+    check_positive(args.tolerance, "tolerance")
+    check_positive(args.rdp, "rdp_tolerance")
+    GoldenLadder(0.0 if args.bias is None else args.bias, exponents, args.rounding)
     image = load_image(args.input)
+    lock_mask = None if not args.lock_mask else load_mask(args.lock_mask, (image.height, image.width))
     say(f"{args.input}: {image.width}x{image.height} px")
     result = abstract(
         image,

@@ -180,6 +180,35 @@ def load_image(source: object, *, max_side: int = MAX_IMAGE_SIDE) -> LoadedImage
     return LoadedImage(readonly(rgb), readonly(alpha), has_alpha, scale, name)
 
 
+def load_mask(source: object, shape: tuple[int, int] | None = None) -> np.ndarray:
+    """Read a binary mask (a lock mask, a foreground): white (>= 50 % gray) is True.
+
+    Parameters
+    ----------
+    source : str, Path or ndarray
+        An image file or an array, as for :func:`load_image`; unlike an input
+        image, a mask may be all one colour.
+    shape : (H, W), optional
+        The shape the mask must have (the input image's), checked if given.
+
+    Returns
+    -------
+    ndarray of bool, shape (H, W)
+    """
+    if isinstance(source, (str, Path)):
+        arr, name, bgr = _read_file(Path(source)), str(source), True
+    else:
+        arr, name, bgr = np.asarray(source), "<array>", False
+    if arr.dtype == bool and arr.ndim == 2:
+        mask = arr.copy()
+    else:
+        rgb, alpha, _ = _normalize(arr, name, bgr=bgr)
+        mask = (rgb @ np.array([0.299, 0.587, 0.114]) >= 0.5) & (alpha >= 0.5)
+    if shape is not None and mask.shape != tuple(shape):
+        raise InvalidParameterError(f"{name}: mask must have the image's shape {tuple(shape)}, got {mask.shape}")
+    return mask
+
+
 def _read_file(path: Path) -> np.ndarray:
     import cv2
 

@@ -82,3 +82,91 @@ def test_console_entry_point_runs():
         [sys.executable, "-m", "img2logo.cli", "--version"], capture_output=True, text=True, check=False
     )
     assert done.returncode == 0 and done.stdout.startswith("img2logo ")
+
+
+# --------------------------------------------------------------------------- logo outputs
+def test_logo_outputs_are_written_and_valid(tmp_path, capsys):
+    pytest.importorskip("jsonschema")
+    import json
+    import xml.etree.ElementTree as ET
+
+    from img2logo.writers import validate_document
+
+    out = tmp_path / "o"
+    args = [str(DATA / "drawing-fish.png"), "--svg", str(out / "a.svg"), "--json", str(out / "a.json")]
+    assert main([*args, "--png", str(out / "a.png")]) == 0
+    doc = json.loads((out / "a.json").read_text())
+    validate_document(doc)
+    root = ET.parse(out / "a.svg").getroot()
+    paths = [e for e in root.iter() if e.tag.endswith("path")]
+    assert len(paths) == len(doc["arcs"])
+    assert "levels:" in capsys.readouterr().err
+
+
+def test_same_input_same_bytes(tmp_path):
+    for name in ("a", "b"):
+        assert main([str(DATA / "drawing-leaf.png"), "-q", "--json", str(tmp_path / f"{name}.json")]) == 0
+        assert main([str(DATA / "drawing-leaf.png"), "-q", "--svg", str(tmp_path / f"{name}.svg")]) == 0
+    assert (tmp_path / "a.json").read_bytes() == (tmp_path / "b.json").read_bytes()
+    assert (tmp_path / "a.svg").read_bytes() == (tmp_path / "b.svg").read_bytes()
+
+
+def test_levels_dir_and_level(tmp_path, capsys):
+    import json
+
+    args = ["--levels-dir", str(tmp_path / "lv"), "--json", str(tmp_path / "0.json"), "--level", "0"]
+    assert main([str(DATA / "drawing-fish.png"), *args]) == 0
+    files = sorted((tmp_path / "lv").glob("level-*.json"))
+    assert files[0].name == "level-0000.json" and len(files) >= 2
+    assert len(sorted((tmp_path / "lv").glob("level-*.svg"))) == len(files)
+    assert json.loads((tmp_path / "0.json").read_text())["level"] == 0
+    counts = [len(json.loads(f.read_text())["arcs"]) for f in files]
+    assert counts == sorted(counts, reverse=True)
+
+
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [
+        (["--level", "999"], "--level must be in 0.."),
+        (["--radii", "3,x"], "--radii must be integers separated by commas"),
+        (["--tolerance", "0"], "tolerance must be > 0"),
+        (["--bias", "1.5"], r"bias must be in [0, 1)"),
+    ],
+)
+def test_bad_logo_options(tmp_path, capsys, args, message):
+    out = tmp_path / "x.json"
+    assert main([str(DATA / "drawing-leaf.png"), "--json", str(out), *args]) == EXIT_ERROR
+    err = capsys.readouterr().err
+    last = err.strip().splitlines()[-1]
+    assert last.startswith("img2logo: error: ") and message in last
+    assert "Traceback" not in err
+    assert not out.exists()
+
+
+def test_radii_option_restricts_the_circles(tmp_path):
+    import json
+
+    out = tmp_path / "r.json"
+    assert main([str(DATA / "drawing-leaf.png"), "-q", "--radii", "9,10,11", "--json", str(out)]) == 0
+    assert {c["k"] for c in json.loads(out.read_text())["circles"]} <= {9, 10, 11}
+
+
+def test_lock_mask_of_the_wrong_size(tmp_path, capsys):
+    import cv2
+
+    mask = tmp_path / "mask.png"
+    cv2.imwrite(str(mask), np.full((40, 40), 255, np.uint8))
+    assert main([str(DATA / "drawing-leaf.png"), "--lock-mask", str(mask)]) == EXIT_ERROR
+    assert "mask must have the image's shape (512, 512), got (40, 40)" in capsys.readouterr().err
+
+
+def test_all_white_lock_mask_is_accepted(tmp_path):
+    import cv2
+
+    mask = tmp_path / "mask.png"
+    cv2.imwrite(str(mask), np.full((512, 512), 255, np.uint8))
+    out = tmp_path / "l.json"
+    assert main([str(DATA / "drawing-fish.png"), "-q", "--lock-mask", str(mask), "--json", str(out)]) == 0
+    import json
+
+    assert json.loads(out.read_text())["params"]["locked_segments"] > 0

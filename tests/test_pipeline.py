@@ -1,0 +1,69 @@
+"""img2logo.abstract: the whole pipeline on the example images, and the contract."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+from conftest import DATA, drawing
+
+import img2logo
+from img2logo import InvalidParameterError, abstract
+from img2logo.writers import to_document, validate_document
+
+
+@pytest.fixture(scope="module", params=["clipart-fish", "drawing-bird", "photo-cat"])
+def result(request):
+    return abstract(DATA / f"{request.param}.png", progress=False)
+
+
+def test_result_holds_every_stage(result):
+    assert result.graph.n_segments > 0
+    assert result.levels[0].level == 0 and result.final is result.levels[-1]
+    assert result.level(-1) is result.final
+    assert 0.0 <= result.bias < 1.0
+    assert set(result.timings) == {"feature_lines", "segment_graph", "simplification", "initial_fit", "loop"}
+    assert result.params["kind"] == result.lines.kind
+
+
+def test_every_level_is_a_valid_contract_document(result):
+    pytest.importorskip("jsonschema")
+    for level in result.levels:
+        doc = to_document(level)
+        validate_document(doc)
+        assert doc["similarity"] == pytest.approx(level.similarity)
+        json.dumps(doc)  # serializable
+
+
+def test_final_level_is_far_simpler_than_the_segments(result):
+    assert len(result.final.arcs) <= 0.5 * result.graph.n_segments
+    assert result.final.similarity <= result.final.tolerance
+
+
+def test_abstract_accepts_arrays_and_reports_the_kind():
+    res = abstract(drawing("circle"), tolerance=5.0, progress=False)
+    assert res.lines.kind == "drawing"
+    assert len(res.final.arcs) == 1
+
+
+def test_progress_callback_and_switches_pass_through():
+    calls = []
+    res = abstract(drawing("spiral"), tolerance=3.0, progress=lambda *a: calls.append(a), merging=False)
+    assert len(res.levels) == 1 and len(calls) == 1
+
+
+def test_unknown_switch_is_an_error():
+    with pytest.raises(TypeError, match="connectvity"):
+        abstract(drawing("Y"), progress=False, connectvity=False)
+
+
+def test_tolerance_zero_is_refused():
+    with pytest.raises(InvalidParameterError, match=r"tolerance must be > 0, got 0\.0"):
+        abstract(drawing("Y"), tolerance=0, progress=False)
+
+
+def test_public_names_resolve():
+    for name in img2logo.__all__:
+        assert getattr(img2logo, name) is not None
+    with pytest.raises(AttributeError, match=r"no attribute 'nope'"):
+        img2logo.nope  # noqa: B018
