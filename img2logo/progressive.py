@@ -70,7 +70,9 @@ class Progression:
         Why the loop stopped: ``"tolerance"``, ``"no mergeable pair"`` or ``"merging off"``.
     stats : dict
         Counts: merge candidates evaluated, local windows that failed, global
-        solves, candidates rejected for redundant intersections.
+        solves, candidates rejected without a global solve because their own
+        golden circle is off by more than T, candidates rejected for redundant
+        intersections.
     timings : dict
         Seconds spent in simplification, the initial fit and the loop.
     """
@@ -175,7 +177,13 @@ class _Optimizer:
         self.fits: dict[int, _Fit] = {}
         self.disp = np.zeros((graph.n_junctions, 2))
         self.next_id = 0
-        self.stats = {"evaluated": 0, "local_failed": 0, "global_solves": 0, "rejected_intersections": 0}
+        self.stats = {
+            "evaluated": 0,
+            "local_failed": 0,
+            "global_solves": 0,
+            "rejected_hopeless": 0,
+            "rejected_intersections": 0,
+        }
         self._circle_cache: dict[tuple[int, ...], tuple[np.ndarray, float]] = {}
         self.ladder: GoldenLadder | None = None
 
@@ -362,12 +370,28 @@ class _Optimizer:
         global_solve = not self.opt["localized"]
         out = None
         if not global_solve:
-            neighbours = sorted({g for n in merged_nodes for g in node_groups_after.get(n, []) if g != -1})
-            window = {-1: merged, **{g: after[g] for g in neighbours}}
-            free = [-1, *neighbours] if self.opt["connectivity"] else [-1]
-            out = self.solve(window, seeds, free, sorted(merged_nodes), n_groups, nj_after)
+            # The window: the new circle and its neighbours, with the new circle's
+            # junctions free (Sec. 5.4). If the fixed junctions leave no solution,
+            # a second ring (the neighbours' junctions and their circles) is freed
+            # before the global problem is solved.
+            free_nodes = set(merged_nodes)
+            for _ring in range(2):
+                free = sorted({g for n in free_nodes for g in node_groups_after.get(n, [])} - {-1})
+                window = {-1: merged, **{g: after[g] for g in free}}
+                movable = [-1, *free] if self.opt["connectivity"] else [-1]
+                out = self.solve(window, seeds, movable, sorted(free_nodes), n_groups, nj_after)
+                if out is not None:
+                    break
+                free_nodes |= {n for g in free for n in self.constrained_nodes(after[g])}
             if out is None:
                 self.stats["local_failed"] += 1
+                # A merged segment whose pixels lie on average more than T from
+                # their own best golden circle, constraints aside, cannot give an
+                # arc within the tolerance: reject it without the costly global
+                # solve (measured: such windows fail globally too).
+                if self.golden_error(merged) > self.opt["tolerance"]:
+                    self.stats["rejected_hopeless"] += 1
+                    return None
                 global_solve = True
         if global_solve:
             self.stats["global_solves"] += 1
