@@ -126,7 +126,7 @@ def abstract(
         "min_length": float(min_length),
         "scale": img.scale,
     }
-    callback, bar = _progress(progress, graph.n_segments)
+    callback, bar = _progress(progress, tolerance)
     try:
         progression = optimize(
             graph,
@@ -145,18 +145,27 @@ def abstract(
     return Result(img, lines, graph, progression, timings, dict(progression.levels[0].params))
 
 
-def _progress(progress: ProgressCallback | bool | None, total: int) -> tuple[ProgressCallback | None, Any]:
-    """A callback, and the tqdm bar behind it when one is shown."""
+def _progress(progress: ProgressCallback | bool | None, tolerance: float) -> tuple[ProgressCallback | None, Any]:
+    """A callback, and the tqdm bar behind it when one is shown.
+
+    The bar fills with E^s towards the tolerance T: the loop stops when E^s
+    would exceed T, so the number of merges is not known in advance.
+    """
     if callable(progress):
         return progress, None
     if progress is False or (progress is None and not sys.stderr.isatty()):
         return None, None
     from tqdm.auto import tqdm
 
-    bar = tqdm(total=max(total - 1, 1), desc="merging", unit="merge", leave=False)
+    bar = tqdm(
+        total=float(tolerance),
+        desc="merging",
+        leave=False,
+        bar_format="{desc}: {bar} E^s {n:.2f} of T = {total:.2f} px{postfix}",
+    )
 
     def update(t: int, n_arcs: int, similarity: float) -> None:
-        bar.n = t
-        bar.set_postfix(arcs=n_arcs, Es=f"{similarity:.2f}px", refresh=True)
+        bar.n = min(float(similarity), float(tolerance))
+        bar.set_postfix_str(f"level {t}, {n_arcs} arcs", refresh=True)
 
     return update, bar
