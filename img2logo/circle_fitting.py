@@ -137,7 +137,7 @@ def _refine(x: np.ndarray, y: np.ndarray, a: float, b: float, r: float) -> tuple
     return a, b, r
 
 
-def fit_circle(points: object, *, max_radius: float | None = None) -> CircleFit:
+def fit_circle(points: object, *, max_radius: float | None = None, refine: bool = True) -> CircleFit:
     """Fit a circle to ``points`` (unconstrained; first stage of Sec. 5.3, and Eqn. 14).
 
     The algebraic Hyper fit [Al-Sharadqah & Chernov 2009] (a 4x4 eigenproblem on
@@ -162,6 +162,11 @@ def fit_circle(points: object, *, max_radius: float | None = None) -> CircleFit:
     max_radius : float, optional
         Largest radius returned, px. Default: ``MAX_RADIUS_FACTOR`` (20) times the
         points' extent (the distance between the two extreme points).
+    refine : bool, optional
+        Polish the Hyper fit by Levenberg-Marquardt (default). The progressive
+        optimization skips it: it snaps the radius to the ladder and refits the
+        centre anyway, and the Hyper fit's radius is already unbiased to
+        second order.
 
     Returns
     -------
@@ -201,7 +206,7 @@ def fit_circle(points: object, *, max_radius: float | None = None) -> CircleFit:
 
     x, y = q[:, 0] / scale, q[:, 1] / scale
     a, b, r = _hyper_fit(x, y)
-    if math.isfinite(r) and r * scale <= 1e3 * max(r_max, extent):
+    if refine and math.isfinite(r) and r * scale <= 1e3 * max(r_max, extent):
         a, b, r = _refine(x, y, a, b, r)
     center = centroid + scale * np.array([a, b])
     radius = abs(r) * scale

@@ -391,7 +391,7 @@ def _clipart_regions(img: LoadedImage) -> np.ndarray:
 
     A palette is built from the most frequent colours (quantized), merging
     entries closer than ``CLIPART_COLOR_DISTANCE`` in CIELAB; each pixel takes
-    its nearest entry; connected regions smaller than
+    the entry nearest to its quantized colour; connected regions smaller than
     ``CLIPART_MIN_REGION_AREA`` (anti-aliased rims, specks) are merged into the
     neighbouring region they share the longest border with.
     """
@@ -418,8 +418,13 @@ def _clipart_regions(img: LoadedImage) -> np.ndarray:
             palette.append(mean)
     if not palette:
         palette = [lab.reshape(-1, 3).mean(axis=0)]
-    pal = np.array(palette, dtype=np.float32)
-    index = np.argmin(np.sum((lab.astype(np.float32)[:, :, None, :] - pal) ** 2, axis=3), axis=2)
+    # Each pixel takes the entry nearest to the mean colour of its quantized
+    # cell: one lookup per distinct cell (a few thousand), not per pixel.
+    pal = np.array(palette)
+    means = sums[used] / counts[used, None]
+    lut = np.zeros(81**3, dtype=np.int64)
+    lut[used] = np.argmin(((means[:, None, :] - pal[None]) ** 2).sum(axis=2), axis=1)
+    index = lut[key].reshape(lab.shape[:2])
     index[transparent] = -1
     regions = label(index, background=-2, connectivity=1)
     regions = _merge_small_regions(regions, CLIPART_MIN_REGION_AREA)

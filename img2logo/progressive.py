@@ -236,7 +236,7 @@ class _Optimizer:
             pts = group.points
             if len(pts) < 3:  # two pixels: a straight piece, capped like any
                 pts = np.linspace(pts[0], pts[-1], 3)
-            fit = fit_circle(pts)
+            fit = fit_circle(pts, refine=False)  # the centre is refitted after snapping
             self._circle_cache[key] = (np.asarray(fit.center, dtype=np.float64), float(fit.radius))
         return self._circle_cache[key]
 

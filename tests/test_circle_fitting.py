@@ -414,3 +414,13 @@ def test_fit_center_matches_the_unconstrained_fit_of_fit_constrained():
     pts = np.column_stack([100 * np.cos(t), 100 * np.sin(t)]) + rng.normal(0, 0.5, (80, 2))
     ref = fit_constrained([pts], [120.0], [[0.0, 0.0]], np.zeros((0, 2)), np.zeros((0, 2), int), connectivity=False)
     np.testing.assert_allclose(fit_center(pts, 120.0, [0.0, 0.0]), ref.centers[0], atol=1e-6)
+
+
+def test_unrefined_hyper_fit_is_close_on_pixel_arcs():
+    # The optimizer uses the Hyper fit alone: on a rasterized arc it must agree
+    # with the refined fit to a small fraction of a pixel.
+    t = np.linspace(0.3, 1.5, 200)
+    pts = np.floor(np.column_stack([200 + 90 * np.cos(t), 150 + 90 * np.sin(t)])) + 0.5
+    a, b = fit_circle(pts), fit_circle(pts, refine=False)
+    assert abs(a.radius - b.radius) < 0.5
+    assert np.hypot(*(a.center - b.center)) < 0.5
