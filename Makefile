@@ -5,13 +5,13 @@ PYTHON ?= python3
 VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
-LIB    := $(wildcard img2logo/*.py) pyproject.toml
+LIB    := $(wildcard img2logo/*.py img2logo/*/*.py) pyproject.toml
 DATA   := $(wildcard data/*.png)
 NB     ?= $(basename $(notdir $(wildcard notebooks/*.ipynb)))
 RUNS   := $(patsubst %,build/notebooks/%.ipynb,$(NB))
 
 .DELETE_ON_ERROR:
-.PHONY: install test lint format bench figures clean
+.PHONY: install test lint format bench figures figures-smoke clean
 
 install: $(STAMP)
 
@@ -44,8 +44,18 @@ figures: $(RUNS)
 
 build/notebooks/%.ipynb: notebooks/%.ipynb $(LIB) $(DATA) | $(STAMP)
 	@mkdir -p $(dir $@)
-	$(BIN)/papermill --cwd notebooks --kernel python3 --log-output --no-progress-bar $< $@ \
-	  || { echo "make figures: notebook $< failed (the executed copy is deleted; re-run papermill by hand to see the failing cell)"; exit 1; }
+	@echo "== $< (full parameters)"
+	@$(BIN)/papermill --cwd notebooks --kernel python3 --no-progress-bar --stdout-file /dev/null $< $(@:.ipynb=.part.ipynb) \
+	  || { echo "make figures: notebook $< failed; the failing cell is shown above, the executed copy is $(@:.ipynb=.part.ipynb)"; exit 1; }
+	@mv $(@:.ipynb=.part.ipynb) $@
+	@$(BIN)/python -c "from img2logo.experiments import write_provenance; write_provenance('$@')"
+
+# The same notebooks with smoke=True: small and fast, outputs in build/smoke/ (never over figures/).
+figures-smoke: $(STAMP)
+	@mkdir -p build/smoke/notebooks
+	@for nb in $(NB); do echo "== notebooks/$$nb.ipynb (smoke)"; \
+	  $(BIN)/papermill --cwd notebooks --kernel python3 --no-progress-bar -p smoke True \
+	    notebooks/$$nb.ipynb build/smoke/notebooks/$$nb.ipynb > /dev/null || exit 1; done
 
 clean:
 	rm -rf build .pytest_cache .ruff_cache

@@ -145,3 +145,44 @@ def plot_preprocessing(examples: list[Preprocessed], *, panel_size: float = 3.0)
         for ax in row:
             ax.set_axis_off()
     return fig
+
+
+# --------------------------------------------------------------------------- provenance
+def write_provenance(executed: str | os.PathLike[str]) -> Path:
+    """Write ``figures/<notebook>/provenance.json`` for a notebook papermill executed.
+
+    It records the git commit of the repository (and whether the work tree had
+    uncommitted changes), the parameters papermill injected and the defaults of
+    the notebook's parameters cell, and the date of the run (UTC): what a
+    reader needs to know where a committed figure came from.
+    """
+    import datetime
+    import json
+    import subprocess
+
+    from ..writers import _atomic_write
+
+    path = Path(executed)
+    nb = json.loads(path.read_text(encoding="utf-8"))
+    meta = nb.get("metadata", {}).get("papermill", {})
+    defaults = next(
+        ("".join(c["source"]) for c in nb["cells"] if "parameters" in c.get("metadata", {}).get("tags", [])), ""
+    )
+    root = project_root()
+
+    def git(*args: str) -> str:
+        done = subprocess.run(["git", *args], cwd=root, capture_output=True, text=True, check=False)
+        return done.stdout.strip() if done.returncode == 0 else "unknown"
+
+    record = {
+        "notebook": f"notebooks/{path.name}",
+        "git_commit": git("rev-parse", "HEAD"),
+        "uncommitted_changes": bool(git("status", "--porcelain", "--", "img2logo", "notebooks", "data")),
+        "parameters_injected": meta.get("parameters", {}),
+        "parameters_cell": defaults,
+        "date_utc": datetime.datetime.now(datetime.UTC).strftime("%Y-%m-%dT%H:%M:%SZ"),
+        "duration_s": round(float(meta.get("duration") or 0.0), 1),
+    }
+    target = figure_dir(path.stem) / "provenance.json"
+    text = json.dumps(record, indent=2, sort_keys=True) + "\n"
+    return _atomic_write(target, lambda f: f.write(text.encode("utf-8")))
