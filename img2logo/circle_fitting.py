@@ -41,7 +41,7 @@ from .constants import (
 )
 from .errors import FitError, InvalidParameterError
 
-__all__ = ["CircleFit", "ConstrainedFit", "fit_circle", "fit_constrained", "mean_abs_error"]
+__all__ = ["CircleFit", "ConstrainedFit", "fit_center", "fit_circle", "fit_constrained", "mean_abs_error"]
 
 
 # --------------------------------------------------------------------------------

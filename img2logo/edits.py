@@ -1,0 +1,789 @@
+"""User edits of a golden ratio logo (paper Sec. 7 "User edits", Fig. 17).
+
+Starting from an automated result (an :class:`~img2logo.geometry.Abstraction`,
+e.g. ``img2logo.abstract(image).final``) the user deletes, adds, connects and
+perturbs arcs "based on their underlying circles ... while still satisfying the
+golden ratio constraint" (Sec. 7). Every operation here returns a NEW
+abstraction and leaves its input untouched (abstractions are immutable values,
+so undo is keeping the old one):
+
+* :func:`delete_arc` removes an arc; junctions left without an arc disappear.
+* :func:`add_arc` adds an arc on an existing circle between two junctions on it
+  (e.g. the other side of a circle).
+* :func:`connect` joins two free ends with a new golden arc.
+* :func:`move_circle` moves a circle; its neighbours follow.
+* :func:`change_rung` moves a circle one rung up or down the golden ladder.
+
+The invariants of the result format (``contract/README.md``) hold after every
+edit: every radius stays ``phi ** (k + bias)`` with the same bias (Eqn. 10),
+and every junction lies on every arc listed at it (within ``EDIT_TOLERANCE`` =
+1e-6 px), at one of its end points or, for an arc passing through, inside it.
+Where the geometry changes the junctions are re-solved by the
+connectivity-constrained fit of Eqn. 13
+(:func:`~img2logo.circle_fitting.fit_constrained`) in a local window like the
+localized fitting of Sec. 5.4, and the changed arcs are re-extracted between
+their (moved) junctions.
+
+Circles are addressed by their index in ``Abstraction.circles`` (the distinct
+circles of the arcs, in order of first use; several arcs may share a circle,
+e.g. after :func:`add_arc`); arcs and junctions by their index in ``arcs`` and
+``junctions``. Indices of later arcs, circles and junctions shift when one is
+removed. Each result records the edit in ``params["edits"]``, a list of
+strings such as ``"delete_arc(3)"`` appended to that of the input. ``level``,
+``similarity`` (E^s), ``tolerance`` and ``arc_segments`` of surviving arcs are
+those of the automated result: the edits are the user's, not a fit to the
+image, and E^s is not recomputed (new arcs abstract no segment: ``()``).
+
+Coordinates are input-image pixels (x right, y down), angles radians from +x
+towards +y (:mod:`img2logo.geometry`).
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+import numbers
+import operator
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from .circle_fitting import fit_center, fit_constrained
+from .constants import JUNCTION_TOLERANCE, LOG_PHI
+from .errors import FitError, InvalidParameterError
+from .geometry import TAU, Abstraction, Arc, Circle
+from .golden_ladder import GoldenLadder
+
+__all__ = ["EDIT_TOLERANCE", "add_arc", "change_rung", "connect", "delete_arc", "move_circle"]
+
+#: After an edit every junction lies on the circle of every arc listed at it, and
+#: at an end point of that arc (or inside it, for an arc passing through), within
+#: this distance, px. It is the tolerance of the constrained re-fit (Eqn. 13).
+EDIT_TOLERANCE: float = 1e-6
+
+#: Spacing of the points sampled along an arc that the re-fit of a changed
+#: neighbour keeps its circle close to (the E^l term of Eqn. 7), px.
+_SAMPLE_STEP: float = 1.0
+
+#: Windows of the re-fit tried before giving up: the edited circle's junctions
+#: and its neighbours first; then also the neighbours' junctions and their
+#: circles (the second ring of the localized fitting, Sec. 5.4).
+_RINGS: int = 2
+
+#: Most equal steps a move or rung change is split into when a single re-fit
+#: does not converge (a continuation: each step starts from the last).
+_CONTINUATION_STEPS: int = 8
+
+
+# --------------------------------------------------------------------------- validation
+def _check_abstraction(a: object) -> Abstraction:
+    if not isinstance(a, Abstraction):
+        raise InvalidParameterError(f"abstraction must be an Abstraction, got {type(a).__name__}")
+    return a
+
+
+def _index(value: object, what: str, size: int) -> int:
+    """``value`` as an index in 0..size-1 of an arc, circle or junction, else raise."""
+    if isinstance(value, bool | np.bool_):
+        raise InvalidParameterError(f"{what} index must be an integer, got {value!r}")
+    try:
+        i = operator.index(value)  # type: ignore[arg-type]
+    except TypeError as exc:
+        raise InvalidParameterError(f"{what} index must be an integer, got {value!r}") from exc
+    if not 0 <= i < size:
+        raise InvalidParameterError(
+            f"{what} index {i} is out of range: the abstraction has {size} {what}s (valid: 0..{size - 1})"
+            if size
+            else f"{what} index {i} is out of range: the abstraction has no {what}s"
+        )
+    return i
+
+
+def _sign(value: object, name: str) -> int:
+    if isinstance(value, bool | np.bool_) or not isinstance(value, numbers.Real) or value not in (1, -1):
+        raise InvalidParameterError(f"{name} must be +1 or -1, got {value!r}")
+    return int(value)
+
+
+def _phi_ladder(a: Abstraction, op: str) -> GoldenLadder:
+    ladder = a.params.get("ladder", "phi") if isinstance(a.params, Mapping) else "phi"
+    if ladder != "phi":
+        raise InvalidParameterError(
+            f"{op} supports only the golden ratio ladder r = phi**(k+bias), got params['ladder'] = {ladder!r}"
+        )
+    return GoldenLadder(a.bias)
+
+
+# --------------------------------------------------------------------------- topology
+@dataclass(frozen=True)
+class _Ends:
+    """Where an arc meets its junctions: start / end junction (or None), inner ones."""
+
+    start: int | None
+    end: int | None
+    inner: tuple[int, ...]
+
+
+def _arc_ends(arcs: Sequence[Arc], junctions: np.ndarray, junction_arcs: Sequence[Sequence[int]]) -> list[_Ends]:
+    """For each arc, the listed junctions at its start, at its end, and the others.
+
+    A junction is at an end when it is within ``JUNCTION_TOLERANCE`` (1e-3 px) of
+    it; the nearest listed junction wins. A full circle has one junction at both ends.
+    """
+    listed: list[list[int]] = [[] for _ in arcs]
+    for j, entries in enumerate(junction_arcs):
+        for i in dict.fromkeys(int(x) for x in entries):
+            listed[i].append(j)
+    out = []
+    for arc, js in zip(arcs, listed, strict=True):
+        ends: list[int | None] = []
+        for point in (arc.start, arc.end):
+            d = [math.dist(point, junctions[j]) for j in js]
+            best = int(np.argmin(d)) if d else -1
+            ends.append(js[best] if d and d[best] <= JUNCTION_TOLERANCE else None)
+        start, end = ends
+        out.append(_Ends(start, end, tuple(j for j in js if j not in (start, end))))
+    return out
+
+
+def _distinct_circles(arcs: Sequence[Arc]) -> tuple[list[Circle], list[int]]:
+    """The distinct circles (order of first use, as ``Abstraction.circles``) and each arc's index."""
+    index: dict[Circle, int] = {}
+    for arc in arcs:
+        index.setdefault(arc.circle, len(index))
+    return list(index), [index[arc.circle] for arc in arcs]
+
+
+def _incidence(
+    arc_circle: Sequence[int], n_circles: int, junction_arcs: Sequence[Sequence[int]]
+) -> tuple[list[set[int]], list[set[int]]]:
+    """Junctions of each circle and circles at each junction (through the listed arcs)."""
+    circle_junctions: list[set[int]] = [set() for _ in range(n_circles)]
+    junction_circles: list[set[int]] = [set() for _ in junction_arcs]
+    for j, entries in enumerate(junction_arcs):
+        for i in entries:
+            c = arc_circle[int(i)]
+            circle_junctions[c].add(j)
+            junction_circles[j].add(c)
+    return circle_junctions, junction_circles
+
+
+# --------------------------------------------------------------------------- re-extraction
+def _reextract(old: Arc, circle: Circle, ends: _Ends, junctions: np.ndarray, edit: str) -> Arc:
+    """The arc ``old`` on its changed ``circle``, running between its (moved) junctions.
+
+    The start and end angles are those of the arc's junctions on the new circle
+    (an end without a junction keeps its angle). Of the two arcs between them,
+    the same way round as ``old`` and the other, the one whose sweep is nearer
+    ``old.sweep`` is taken (it keeps the orientation and the long or short way
+    of a continuous deformation), among those still containing the junctions
+    the arc passes through. A full circle stays a full circle.
+
+    Raises
+    ------
+    FitError
+        If no arc between the junctions contains the inner junctions, or the
+        start and end junction have come together.
+    """
+    theta0 = float(circle.angle_of(junctions[ends.start])) if ends.start is not None else old.theta0
+    if old.is_full_circle:
+        return Arc(circle, theta0, old.sweep)
+    theta1 = float(circle.angle_of(junctions[ends.end])) if ends.end is not None else old.theta0 + old.sweep
+    sense = math.copysign(1.0, old.sweep)
+    same_way = sense * float(np.mod(sense * (theta1 - theta0), TAU))
+    inner = circle.angle_of(junctions[list(ends.inner)]) if ends.inner else np.zeros(0)
+    options = []
+    for sweep in (same_way, same_way - sense * TAU):
+        if abs(sweep) * circle.r <= EDIT_TOLERANCE or (TAU - abs(sweep)) * circle.r <= EDIT_TOLERANCE:
+            continue  # the two ends coincide: no arc left between them
+        arc = Arc(circle, theta0, sweep)
+        if np.all(arc.contains_angle(inner, tol=EDIT_TOLERANCE / circle.r)):
+            options.append(arc)
+    if not options:
+        raise FitError(f"{edit} cannot keep the junctions connected: an arc no longer runs through its junctions")
+    return min(options, key=lambda arc: abs(arc.sweep - old.sweep))
+
+
+# --------------------------------------------------------------------------- the re-fit
+def _refit(
+    arcs: Sequence[Arc],
+    junctions: np.ndarray,
+    junction_arcs: Sequence[Sequence[int]],
+    ends: Sequence[_Ends],
+    *,
+    new_circles: dict[int, Circle],
+    fixed: set[int],
+    free_junctions: set[int],
+    references: dict[int, np.ndarray],
+    edit: str,
+) -> tuple[tuple[Arc, ...], np.ndarray]:
+    """Re-solve the junctions and neighbouring circles around an edit (Eqn. 13, Sec. 5.4).
+
+    Parameters
+    ----------
+    arcs, junctions, junction_arcs, ends
+        The state before the re-fit: arcs, (J, 2) junction points px, the arcs
+        listed at each junction, and :func:`_arc_ends` of the arcs.
+    new_circles : dict
+        Distinct-circle index -> the user's new circle (moved, or a new radius):
+        its start value in the fit.
+    fixed : set of int
+        Distinct circles held fixed (a moved circle stays where it was put).
+    free_junctions : set of int
+        Junctions that may move (the window's first ring).
+    references : dict
+        Junction index -> the point (2,) its displacement is measured from, px
+        (default: where it is). A moved circle carries its junctions along.
+    edit : str
+        The edit, for the error message.
+
+    Returns
+    -------
+    arcs : tuple of Arc
+        The arcs, those on changed circles re-extracted.
+    junctions : ndarray, shape (J, 2)
+        The junctions, px.
+
+    Raises
+    ------
+    FitError
+        If the constrained fit does not converge in the widest window.
+    """
+    circles, arc_circle = _distinct_circles(arcs)
+    circle_junctions, junction_circles = _incidence(arc_circle, len(circles), junction_arcs)
+    start = {c: new_circles.get(c, circles[c]) for c in range(len(circles))}
+    samples: list[list[np.ndarray]] = [[] for _ in circles]
+    for arc, c in zip(arcs, arc_circle, strict=True):
+        samples[c].append(arc.sample(_SAMPLE_STEP, min_points=3))
+    ref = np.array(junctions, dtype=np.float64, copy=True).reshape(-1, 2)
+    for j, p in references.items():
+        ref[j] = p
+
+    free_j = set(free_junctions)
+    fit = None
+    solved = False
+    for _ring in range(_RINGS):
+        free_c = {c for j in free_j for c in junction_circles[j]} - fixed
+        window = sorted(free_c | set(new_circles))
+        nodes = sorted({j for c in window for j in circle_junctions[c]} | free_j)
+        if not nodes:
+            solved = True  # nothing connects the changed circles: they just change
+            break
+        c_pos = {c: i for i, c in enumerate(window)}
+        j_pos = {j: i for i, j in enumerate(nodes)}
+        incidence = [(c_pos[c], j_pos[j]) for c in window for j in sorted(circle_junctions[c])]
+        points = [np.concatenate(samples[c]) for c in window]
+        centers0 = []
+        for c in window:
+            center = start[c].center
+            if c in new_circles and c not in fixed and not math.isclose(start[c].r, circles[c].r):
+                # A new radius: start where that radius fits the arcs' points best.
+                center = fit_center(points[c_pos[c]], start[c].r, center)
+            centers0.append(center)
+        fit = fit_constrained(
+            points,
+            np.array([start[c].r for c in window]),
+            np.array(centers0),
+            ref[nodes],
+            np.array(incidence, dtype=np.int64).reshape(-1, 2),
+            free_circles=[c_pos[c] for c in window if c not in fixed],
+            free_junctions=[j_pos[j] for j in sorted(free_j)],
+            # The mean squared error of each circle's points (as the progressive
+            # optimization weighs E^sqr), so long arcs do not drag the junctions.
+            segment_weight=1.0 / (len(window) * np.array([len(p) for p in points])),
+            junction_weight=1.0 / len(nodes),
+            tol=EDIT_TOLERANCE / 10,
+        )
+        if fit.converged and fit.violation <= EDIT_TOLERANCE:
+            solved = True
+            break
+        grown = free_j | {j for c in free_c for j in circle_junctions[c]}
+        if grown == free_j:
+            break  # the next ring would be the same window
+        free_j = grown
+    if not solved:
+        violation = math.nan if fit is None else fit.violation
+        raise FitError(
+            f"{edit} cannot keep the junctions connected: the constrained fit (Eqn. 13) did not converge "
+            f"(largest junction-circle gap {violation:.3g} px)"
+        )
+
+    new = dict(start)
+    out_junctions = np.array(junctions, dtype=np.float64, copy=True).reshape(-1, 2)
+    if fit is not None and nodes:
+        for c in window:
+            cx, cy = fit.centers[c_pos[c]]
+            new[c] = Circle(float(cx), float(cy), start[c].r, start[c].k)
+        for j in nodes:
+            out_junctions[j] = ref[j] + fit.displacements[j_pos[j]]
+    changed = {c for c in range(len(circles)) if new[c] != circles[c]} | set(new_circles)
+    out_arcs = tuple(
+        _reextract(arc, new[c], e, out_junctions, edit) if c in changed else arc
+        for arc, c, e in zip(arcs, arc_circle, ends, strict=True)
+    )
+    return out_arcs, out_junctions
+
+
+# --------------------------------------------------------------------------- assembling
+def _edited(
+    a: Abstraction,
+    edit: str,
+    *,
+    arcs: Sequence[Arc] | None = None,
+    arc_segments: Sequence[Sequence[int]] | None = None,
+    junctions: np.ndarray | None = None,
+    junction_arcs: Sequence[Sequence[int]] | None = None,
+    changed_arcs: Sequence[int] = (),
+) -> Abstraction:
+    """A copy of ``a`` with the given parts replaced and ``edit`` appended to ``params["edits"]``.
+
+    Checks that every junction that moved, and every junction of the arcs in
+    ``changed_arcs`` (new indices), lies on its arcs (at an end or inside)
+    within ``EDIT_TOLERANCE`` px, and raises FitError if not. The rest is as
+    connected as it was in ``a``.
+    """
+    params = copy.deepcopy(dict(a.params))
+    params["edits"] = [*list(params.get("edits", [])), edit]
+    junction_arcs = a.junction_arcs if junction_arcs is None else junction_arcs
+    out = Abstraction(
+        level=a.level,
+        arcs=tuple(a.arcs if arcs is None else arcs),
+        arc_segments=tuple(tuple(s) for s in (a.arc_segments if arc_segments is None else arc_segments)),
+        junctions=np.array(a.junctions if junctions is None else junctions, dtype=np.float64).reshape(-1, 2),
+        junction_arcs=tuple(tuple(int(i) for i in js) for js in junction_arcs),
+        similarity=a.similarity,
+        bias=a.bias,
+        tolerance=a.tolerance,
+        width=a.width,
+        height=a.height,
+        params=params,
+    )
+    moved = set()
+    if junctions is not None and len(out.junctions) == len(a.junctions):
+        moved = set(np.flatnonzero(np.any(out.junctions != a.junctions, axis=1)).tolist())
+    _check_connected(out, edit, set(changed_arcs), moved)
+    return out
+
+
+def _check_connected(a: Abstraction, edit: str, arcs: set[int], junctions: set[int]) -> None:
+    """Raise FitError unless the junctions listed at ``arcs``, and ``junctions``, lie on their arcs."""
+    for j, (point, entries) in enumerate(zip(a.junctions, a.junction_arcs, strict=True)):
+        for i in entries:
+            if i not in arcs and j not in junctions:
+                continue
+            arc = a.arcs[i]
+            off = abs(float(arc.circle.distance(point)))
+            at_end = min(math.dist(point, arc.start), math.dist(point, arc.end)) <= EDIT_TOLERANCE
+            inside = bool(arc.contains_angle(float(arc.circle.angle_of(point)), tol=EDIT_TOLERANCE / arc.circle.r))
+            if off > EDIT_TOLERANCE or not (at_end or inside):
+                where = f"{off:.3g} px off the circle of arc {i}" if off > EDIT_TOLERANCE else f"not on arc {i}"
+                raise FitError(f"{edit} cannot keep the junctions connected: junction {j} is {where}")
+
+
+def _changed(old: Sequence[Arc], new: Sequence[Arc]) -> list[int]:
+    """Indices of the arcs of ``new`` that are not those of ``old`` (new ones included)."""
+    return [i for i, arc in enumerate(new) if i >= len(old) or arc is not old[i]]
+
+
+def _fmt(x: float) -> str:
+    return repr(float(x))
+
+
+# --------------------------------------------------------------------------- the edits
+def delete_arc(abstraction: Abstraction, arc: int) -> Abstraction:
+    """Delete one arc (Sec. 7, Fig. 17: "delete").
+
+    The other arcs keep their geometry. Junctions left with no arc are dropped;
+    arc indices in ``junction_arcs`` above ``arc`` shift down by one, and so do
+    junction indices after a dropped junction. Deleting an arc may turn the
+    ends of its neighbours into free ends (see :func:`connect`).
+
+    Parameters
+    ----------
+    abstraction : Abstraction
+        The logo to edit (unchanged).
+    arc : int
+        Index of the arc to delete, in ``abstraction.arcs``.
+
+    Returns
+    -------
+    Abstraction
+        The edited logo; ``params["edits"]`` ends with ``"delete_arc(<arc>)"``.
+
+    Raises
+    ------
+    InvalidParameterError
+        If ``arc`` is not an integer index of an arc, or it is the only arc.
+    """
+    a = _check_abstraction(abstraction)
+    i = _index(arc, "arc", len(a.arcs))
+    if len(a.arcs) == 1:
+        raise InvalidParameterError(f"cannot delete arc {i}: it is the only arc, and an abstraction needs one")
+    renumber = {old: old - (old > i) for old in range(len(a.arcs)) if old != i}
+    kept_j, junction_arcs = [], []
+    for j, entries in enumerate(a.junction_arcs):
+        left = tuple(renumber[int(x)] for x in entries if int(x) != i)
+        if left:
+            kept_j.append(j)
+            junction_arcs.append(left)
+    return _edited(
+        a,
+        f"delete_arc({i})",
+        arcs=a.arcs[:i] + a.arcs[i + 1 :],
+        arc_segments=a.arc_segments[:i] + a.arc_segments[i + 1 :],
+        junctions=a.junctions[kept_j],
+        junction_arcs=junction_arcs,
+    )
+
+
+def add_arc(abstraction: Abstraction, circle: int | Circle, j0: int, j1: int, *, sweep_sign: int = +1) -> Abstraction:
+    """Add an arc on an existing circle between two junctions on it (Sec. 7, Fig. 17: "add").
+
+    The new arc runs from junction ``j0`` to junction ``j1`` around the circle
+    in the sense ``sweep_sign`` (+1: increasing angle, clockwise on screen with
+    y down; -1: the other way). For a circle carrying an arc from ``j0`` to
+    ``j1``, the opposite ``sweep_sign`` adds its other side. The arc is appended
+    (index ``len(abstraction.arcs)``), listed at both junctions, and shares the
+    circle with its other arcs. A junction within 1e-3 px of the circle but
+    farther than ``EDIT_TOLERANCE`` is put on it by the constrained re-fit of
+    the circles meeting there (as :func:`move_circle`).
+
+    Parameters
+    ----------
+    abstraction : Abstraction
+        The logo to edit (unchanged).
+    circle : int or Circle
+        Index in ``abstraction.circles``, or a circle of the logo itself, e.g.
+        ``abstraction.arcs[i].circle`` for the circle of arc i.
+    j0, j1 : int
+        Indices of the start and end junctions, different, both on the circle.
+    sweep_sign : {+1, -1}
+        Sense of the new arc.
+
+    Returns
+    -------
+    Abstraction
+        The edited logo; ``params["edits"]`` ends with
+        ``"add_arc(circle=<c>, j0=<j0>, j1=<j1>, sweep_sign=<s>)"``.
+
+    Raises
+    ------
+    InvalidParameterError
+        On a bad index, equal junctions, a junction farther than 1e-3 px from the
+        circle, or an arc that the circle already has between the two junctions.
+    FitError
+        If the re-fit putting the junctions on the circle does not converge.
+    """
+    a = _check_abstraction(abstraction)
+    circles = a.circles
+    if isinstance(circle, Circle):
+        if circle not in circles:
+            raise InvalidParameterError(f"circle {circle} is not a circle of the abstraction")
+        ci = circles.index(circle)
+    else:
+        ci = _index(circle, "circle", len(circles))
+    n_j = len(a.junctions)
+    j0, j1 = _index(j0, "junction", n_j), _index(j1, "junction", n_j)
+    sign = _sign(sweep_sign, "sweep_sign")
+    if j0 == j1:
+        raise InvalidParameterError(f"add_arc needs two different junctions, got junction {j0} twice")
+    c = circles[ci]
+    for j in (j0, j1):
+        off = abs(float(c.distance(a.junctions[j])))
+        if off > JUNCTION_TOLERANCE:
+            raise InvalidParameterError(
+                f"junction {j} at ({a.junctions[j][0]:.6g}, {a.junctions[j][1]:.6g}) is {off:.3g} px off circle "
+                f"{ci} (centre ({c.cx:.6g}, {c.cy:.6g}), r={c.r:.6g}), more than {JUNCTION_TOLERANCE:g} px: "
+                "add_arc needs two junctions on the circle"
+            )
+    theta = c.angle_of(a.junctions[[j0, j1]])
+    sweep = sign * float(np.mod(sign * (theta[1] - theta[0]), TAU))
+    if min(abs(sweep), TAU - abs(sweep)) * c.r <= JUNCTION_TOLERANCE:
+        raise InvalidParameterError(f"junctions {j0} and {j1} coincide on circle {ci}: no arc runs between them")
+    new_arc = Arc(c, float(theta[0]), sweep)
+    ends = _arc_ends(a.arcs, a.junctions, a.junction_arcs)
+    for i, (arc, e) in enumerate(zip(a.arcs, ends, strict=True)):
+        same = (e.start, e.end, math.copysign(1, arc.sweep)) in ((j0, j1, sign), (j1, j0, -sign))
+        if arc.circle == c and same:
+            raise InvalidParameterError(
+                f"arc {i} already runs on circle {ci} between junctions {j0} and {j1} that way round; "
+                f"sweep_sign={-sign} adds the circle's other side"
+            )
+    edit = f"add_arc(circle={ci}, j0={j0}, j1={j1}, sweep_sign={sign})"
+    arcs = (*a.arcs, new_arc)
+    n = len(a.arcs)
+    junction_arcs = [tuple(js) + ((n,) if j in (j0, j1) else ()) for j, js in enumerate(a.junction_arcs)]
+    junctions = np.array(a.junctions, dtype=np.float64)
+    offsets = np.abs(c.distance(a.junctions[[j0, j1]]))
+    if offsets.max() > EDIT_TOLERANCE:
+        arcs, junctions = _refit(
+            arcs,
+            junctions,
+            junction_arcs,
+            [*ends, _Ends(j0, j1, ())],
+            new_circles={},
+            fixed=set(),
+            free_junctions={j0, j1},
+            references={},
+            edit=edit,
+        )
+    return _edited(
+        a,
+        edit,
+        arcs=arcs,
+        arc_segments=(*a.arc_segments, ()),
+        junctions=junctions,
+        junction_arcs=junction_arcs,
+        changed_arcs=_changed(a.arcs, arcs),
+    )
+
+
+def connect(abstraction: Abstraction, j0: int, j1: int, *, k: int | None = None, side: int = +1) -> Abstraction:
+    """Connect two free ends with a new golden arc (Sec. 7, Fig. 17: "connect").
+
+    A free end is a junction with a single arc ending there. The new arc lies
+    on a new golden circle of radius ``r = phi ** (k + bias)`` (Eqn. 10) through
+    both junctions, and is the shorter of its two arcs between them
+    (``|sweep| <= pi``), from ``j0`` to ``j1``. Of the two such circles, ``side``
+    chooses the centre: with ``u`` the unit vector from ``j0`` to ``j1`` and
+    ``n = (-u_y, u_x)`` (u turned by +90 degrees, clockwise on screen), the
+    centre is ``midpoint + side * sqrt(r^2 - (d/2)^2) * n``, and the arc bulges
+    the other way, towards ``-side * n``. No junction moves.
+
+    Parameters
+    ----------
+    abstraction : Abstraction
+        The logo to edit (unchanged).
+    j0, j1 : int
+        Indices of two different free-end junctions.
+    k : int, optional
+        Ladder exponent of the new circle. Default: the smallest rung whose
+        circle passes through both points, ``2 r >= d`` with ``d`` their distance
+        in px (among ``params["exponents"]`` when the run restricted the ladder,
+        Sec. 7, Fig. 15). Larger k gives a flatter arc.
+    side : {+1, -1}
+        Which of the two circles through the points (see above).
+
+    Returns
+    -------
+    Abstraction
+        The edited logo with the new arc appended and listed at both junctions;
+        ``params["edits"]`` ends with ``"connect(j0=<j0>, j1=<j1>, k=<k>, side=<side>)"``
+        with the k used.
+
+    Raises
+    ------
+    InvalidParameterError
+        On a bad index, equal or coincident junctions, a junction that is not a
+        free end, a ``k`` whose diameter is shorter than the distance, or a
+        Fibonacci-ladder abstraction.
+    """
+    a = _check_abstraction(abstraction)
+    ladder = _phi_ladder(a, "connect")
+    n_j = len(a.junctions)
+    j0, j1 = _index(j0, "junction", n_j), _index(j1, "junction", n_j)
+    s = _sign(side, "side")
+    if j0 == j1:
+        raise InvalidParameterError(f"connect needs two different junctions, got junction {j0} twice")
+    ends = _arc_ends(a.arcs, a.junctions, a.junction_arcs)
+    for j in (j0, j1):
+        listed = sorted(set(a.junction_arcs[j]))
+        if len(listed) != 1 or j not in (ends[listed[0]].start, ends[listed[0]].end):
+            raise InvalidParameterError(
+                f"junction {j} is not a free end: {len(listed)} arcs meet there "
+                "(connect needs two junctions with one arc ending at each)"
+            )
+    p0, p1 = a.junctions[j0], a.junctions[j1]
+    d = math.dist(p0, p1)
+    if d <= EDIT_TOLERANCE:
+        raise InvalidParameterError(f"junctions {j0} and {j1} coincide ({d:.3g} px apart): no arc connects them")
+    k_min = math.floor(math.log(d / 2) / LOG_PHI - a.bias) - 1
+    while 2 * ladder.radius(k_min) < d:
+        k_min += 1
+    if k is None:
+        allowed = a.params.get("exponents")
+        if allowed:
+            big = sorted(int(e) for e in allowed if int(e) >= k_min)
+            if not big:
+                raise InvalidParameterError(
+                    f"no rung among params['exponents'] {sorted(int(e) for e in allowed)} can connect junctions "
+                    f"{j0} and {j1} ({d:.6g} px apart): it needs k >= {k_min}"
+                )
+            k_used = big[0]
+        else:
+            k_used = k_min
+    else:
+        if isinstance(k, bool | np.bool_) or not isinstance(k, numbers.Integral):
+            raise InvalidParameterError(f"k must be an integer, got {k!r}")
+        k_used = int(k)
+        if k_used < k_min:
+            r = ladder.radius(k_used)
+            raise InvalidParameterError(
+                f"rung k={k_used} (r={r:.6g} px) is too small to connect junctions {j0} and {j1}: they are "
+                f"{d:.6g} px apart, more than its diameter {2 * r:.6g} px; use k >= {k_min}"
+            )
+    r = ladder.radius(k_used)
+    u = (p1 - p0) / d
+    normal = np.array([-u[1], u[0]])
+    h = math.sqrt(max(r * r - d * d / 4, 0.0))
+    center = (p0 + p1) / 2 + s * h * normal
+    circle = Circle(float(center[0]), float(center[1]), r, k_used)
+    theta0 = float(circle.angle_of(p0))
+    bulge = math.atan2(-s * normal[1], -s * normal[0])  # direction of the arc's midpoint
+    half = math.remainder(bulge - theta0, TAU)
+    new_arc = Arc(circle, theta0, 2.0 * half)
+    n = len(a.arcs)
+    junction_arcs = [tuple(js) + ((n,) if j in (j0, j1) else ()) for j, js in enumerate(a.junction_arcs)]
+    return _edited(
+        a,
+        f"connect(j0={j0}, j1={j1}, k={k_used}, side={s})",
+        arcs=(*a.arcs, new_arc),
+        arc_segments=(*a.arc_segments, ()),
+        junction_arcs=junction_arcs,
+        changed_arcs=(n,),
+    )
+
+
+def move_circle(abstraction: Abstraction, circle: int, new_center: Sequence[float] | np.ndarray) -> Abstraction:
+    """Move a circle; its junctions and neighbours follow (Sec. 7, Fig. 17: "perturb").
+
+    The circle keeps its radius and is fixed at ``new_center``. Its junctions
+    are carried along with it and then re-solved together with the
+    neighbouring circles (those of the other arcs at these junctions) by the
+    constrained fit of Eqn. 13 (:func:`~img2logo.circle_fitting.fit_constrained`):
+    every junction stays on all its circles, the neighbours keep radii and
+    their other junctions, and stay as close as they can to their arcs' current
+    points (sampled 1 px apart), the junctions to the carried-along points. If
+    that window has no solution, the neighbours' junctions and their circles
+    are freed too (the second ring of Sec. 5.4). Every changed arc is then
+    re-extracted between its junctions, the same way round as before.
+
+    Parameters
+    ----------
+    abstraction : Abstraction
+        The logo to edit (unchanged).
+    circle : int
+        Index in ``abstraction.circles``.
+    new_center : array_like, shape (2,)
+        The new centre (x, y), px.
+
+    Returns
+    -------
+    Abstraction
+        The edited logo; ``params["edits"]`` ends with
+        ``"move_circle(<circle>, (<x>, <y>))"``.
+
+    Raises
+    ------
+    InvalidParameterError
+        On a bad index or a centre that is not a finite point.
+    FitError
+        If the junctions cannot stay on their circles (the re-fit does not converge).
+    """
+    a = _check_abstraction(abstraction)
+    circles = a.circles
+    ci = _index(circle, "circle", len(circles))
+    try:
+        center = np.asarray(new_center, dtype=np.float64)
+    except (TypeError, ValueError) as exc:
+        raise InvalidParameterError(f"new_center must be a finite point (x, y), got {new_center!r}") from exc
+    if center.shape != (2,) or not np.all(np.isfinite(center)):
+        raise InvalidParameterError(f"new_center must be a finite point (x, y), got {new_center!r}")
+    old = circles[ci]
+    moved = Circle(float(center[0]), float(center[1]), old.r, old.k)
+    edit = f"move_circle({ci}, ({_fmt(center[0])}, {_fmt(center[1])}))"
+    return _change_circle(a, ci, moved, fixed=True, carry=True, edit=edit)
+
+
+def change_rung(abstraction: Abstraction, circle: int, delta: int = +1) -> Abstraction:
+    """Move a circle ``delta`` rungs along the golden ladder (Sec. 7; Eqn. 10, 11).
+
+    The radius becomes ``phi ** (k + delta + bias)``, i.e. ``r * phi ** delta``,
+    the bias unchanged. Its centre, its junctions and the neighbouring circles
+    are then re-solved as in :func:`move_circle`, the circle's own centre free
+    too (starting where the new radius fits its arcs best), the junctions
+    staying as close as they can to where they are; the changed arcs are
+    re-extracted between their junctions.
+
+    Parameters
+    ----------
+    abstraction : Abstraction
+        The logo to edit (unchanged).
+    circle : int
+        Index in ``abstraction.circles``; it must have a ladder exponent k.
+    delta : int
+        Rungs to move, nonzero: +1 one rung up (larger, flatter), -1 one down.
+
+    Returns
+    -------
+    Abstraction
+        The edited logo; ``params["edits"]`` ends with ``"change_rung(<circle>, delta=<delta>)"``.
+
+    Raises
+    ------
+    InvalidParameterError
+        On a bad index, a ``delta`` that is not a nonzero integer, a circle
+        without k, or a Fibonacci-ladder abstraction.
+    FitError
+        If the junctions cannot stay on their circles (the re-fit does not converge).
+    """
+    a = _check_abstraction(abstraction)
+    ladder = _phi_ladder(a, "change_rung")
+    circles = a.circles
+    ci = _index(circle, "circle", len(circles))
+    if isinstance(delta, bool | np.bool_) or not isinstance(delta, numbers.Integral) or delta == 0:
+        raise InvalidParameterError(f"delta must be a nonzero integer, got {delta!r}")
+    old = circles[ci]
+    if old.k is None:
+        raise InvalidParameterError(f"circle {ci} has no ladder exponent k: change_rung needs a golden circle")
+    k = old.k + int(delta)
+    changed = Circle(old.cx, old.cy, ladder.radius(k), k)
+    edit = f"change_rung({ci}, delta={int(delta)})"
+    return _change_circle(a, ci, changed, fixed=False, carry=False, edit=edit)
+
+
+def _change_circle(a: Abstraction, ci: int, target: Circle, *, fixed: bool, carry: bool, edit: str) -> Abstraction:
+    """Replace distinct circle ``ci`` by ``target`` and re-fit its window (move_circle, change_rung).
+
+    When one re-fit does not converge, the change is made in ``2, 4, ...,
+    _CONTINUATION_STEPS`` equal steps (centre interpolated linearly, radius
+    geometrically), each re-fit starting from the last: a continuation that
+    follows the solution for large moves.
+    """
+    _, arc_circle = _distinct_circles(a.arcs)
+    circle_junctions, _ = _incidence(arc_circle, len(a.circles), a.junction_arcs)
+    own = set(circle_junctions[ci])
+    ends = _arc_ends(a.arcs, a.junctions, a.junction_arcs)
+    old = a.circles[ci]
+    error: FitError | None = None
+    n = 1
+    while n <= _CONTINUATION_STEPS:
+        arcs, junctions = a.arcs, a.junctions
+        try:
+            for step in range(1, n + 1):
+                t = step / n
+                current = _distinct_circles(arcs)[0][ci]
+                new = target
+                if step < n:
+                    center = old.center + t * (target.center - old.center)
+                    new = Circle(float(center[0]), float(center[1]), old.r * (target.r / old.r) ** t, None)
+                shift = new.center - current.center
+                arcs, junctions = _refit(
+                    arcs,
+                    junctions,
+                    a.junction_arcs,
+                    ends,
+                    new_circles={ci: new},
+                    fixed={ci} if fixed else set(),
+                    free_junctions=own,
+                    references={j: junctions[j] + shift for j in own} if carry else {},
+                    edit=edit,
+                )
+        except FitError as exc:
+            error = exc if error is None else error
+            n *= 2
+            continue
+        return _edited(a, edit, arcs=arcs, junctions=junctions, changed_arcs=_changed(a.arcs, arcs))
+    assert error is not None
+    raise error
