@@ -67,6 +67,13 @@ def _parser() -> argparse.ArgumentParser:
         "--level", type=int, metavar="N", help="write level N (0 = the initial fit) instead of the final one"
     )
     out.add_argument("--levels-dir", metavar="DIR", help="write every level as DIR/level-0000.json and .svg, ...")
+    out.add_argument(
+        "--fill",
+        metavar="SPEC",
+        default="none",
+        help="colour the regions bounded by the arcs (paper Fig. 18): none (default), auto (colours of the "
+        "input), palette:#rrggbb,..., linear[@DEG]:#rrggbb,#rrggbb,... or radial:#rrggbb,#rrggbb,...",
+    )
     opt = p.add_argument_group("optimization (paper Sec. 5)")
     opt.add_argument(
         "--tolerance",
@@ -113,6 +120,7 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 
 def _run(args: argparse.Namespace, say) -> int:
+    from .fills import parse_fill_option
     from .golden_ladder import GoldenLadder
     from .pipeline import abstract
     from .preprocessing import load_image, load_mask
@@ -122,6 +130,7 @@ def _run(args: argparse.Namespace, say) -> int:
     check_positive(args.tolerance, "tolerance")
     check_positive(args.rdp, "rdp_tolerance")
     GoldenLadder(0.0 if args.bias is None else args.bias, exponents, args.rounding)
+    fill_spec = parse_fill_option(args.fill)
     image = load_image(args.input)
     lock_mask = None if not args.lock_mask else load_mask(args.lock_mask, (image.height, image.width))
     say(f"{args.input}: {image.width}x{image.height} px")
@@ -156,7 +165,7 @@ def _run(args: argparse.Namespace, say) -> int:
         f"stopped: {prog.stopped_because}, {sum(result.timings.values()):.2f} s"
     )
     level = _pick_level(result, args.level)
-    _write_outputs(result, level, args, say)
+    _write_outputs(result, level, args, say, fill_spec)
     if not any((args.svg, args.json, args.png, args.segments_png, args.levels_dir)):
         say("nothing written: give --svg, --json, --png, --segments-png or --levels-dir")
     return 0
@@ -183,19 +192,23 @@ def _pick_level(result, n: int | None):
     return result.levels[n]
 
 
-def _write_outputs(result, level, args: argparse.Namespace, say) -> None:
+def _write_outputs(result, level, args: argparse.Namespace, say, fill_spec) -> None:
     from pathlib import Path
 
     from . import writers
 
+    fills = None if fill_spec.mode == "none" else fill_spec.make(level, result.image)
+    if fills is not None:
+        say(f"fills: {len(fills)} regions ({args.fill})")
+
     if args.segments_png:
         say(f"wrote {writers.write_segment_graph_png(result.graph, args.segments_png, image=result.image.rgb)}")
     if args.json:
-        say(f"wrote {writers.write_json(level, args.json)}")
+        say(f"wrote {writers.write_json(level, args.json, fills=fills)}")
     if args.svg:
-        say(f"wrote {writers.write_svg(level, args.svg)}")
+        say(f"wrote {writers.write_svg(level, args.svg, fills=fills)}")
     if args.png:
-        say(f"wrote {writers.write_png(level, args.png, image=result.image.rgb)}")
+        say(f"wrote {writers.write_png(level, args.png, image=result.image.rgb, fills=fills)}")
     if args.levels_dir:
         folder = Path(args.levels_dir)
         for lv in result.levels:

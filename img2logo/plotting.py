@@ -16,7 +16,7 @@ matplotlib; :mod:`img2logo.writers` converts its pixel stroke widths to points.
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable
+from collections.abc import Iterable, Sequence
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -29,6 +29,7 @@ from .geometry import Abstraction, Circle
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
 
+    from .fills import Fill
     from .segment_graph import SegmentGraph
 
 __all__ = [
@@ -39,6 +40,7 @@ __all__ = [
     "SEGMENT_COLORMAP",
     "SPLIT_POINT_COLOR",
     "default_stroke_width",
+    "draw_fills",
     "plot_abstraction",
     "plot_circles",
     "plot_segment_graph",
@@ -80,8 +82,9 @@ def plot_abstraction(
     circle_color: str = CIRCLE_COLOR,
     junction_color: str = JUNCTION_COLOR,
     image_fade: float = IMAGE_FADE,
+    fills: Sequence[Fill] | None = None,
 ) -> Axes:
-    """Draw a golden ratio abstraction: its arcs, optionally over the input image.
+    """Draw a golden ratio abstraction: its arcs, optionally over the input image and fills.
 
     Parameters
     ----------
@@ -104,6 +107,11 @@ def plot_abstraction(
         Colours of the construction circles and of the junction marks.
     image_fade : float
         How far ``image`` is faded towards white, in [0, 1].
+    fills : sequence of img2logo.fills.Fill, optional
+        Coloured regions (paper Fig. 18; :mod:`img2logo.fills`), drawn under the
+        arcs and circles and over the image: each fill's path sampled every
+        ``ARC_SAMPLE_STEP`` px, its loops filled with the even-odd rule (holes
+        stay empty), in its colour or its gradient.
 
     Returns
     -------
@@ -116,9 +124,12 @@ def plot_abstraction(
         raise InvalidParameterError(f"abstraction must be an Abstraction, got {type(abstraction).__name__}")
     lw = check_positive(linewidth, "linewidth")
     width, height = int(abstraction.width), int(abstraction.height)
+    fill_list = _check_fills(fills)
     ax = _axes(ax, width, height)
     if image is not None:
         _draw_image(ax, image, width, height, image_fade)
+    if fill_list:
+        draw_fills(fill_list, ax, width=width, height=height)
     if show_circles:
         plot_circles(abstraction.circles, ax, color=circle_color, width=width, height=height)
     lines = [arc.sample(step=ARC_SAMPLE_STEP) for arc in abstraction.arcs]
@@ -310,7 +321,111 @@ def plot_circles(
     return ax
 
 
+def draw_fills(
+    fills: Sequence[Fill],
+    ax: Axes,
+    *,
+    width: int,
+    height: int,
+    zorder: float = 0.5,
+) -> Axes:
+    """Draw coloured regions (paper Fig. 18; :mod:`img2logo.fills`) into image-pixel axes.
+
+    Each fill's SVG path is sampled every ``ARC_SAMPLE_STEP`` px
+    (:func:`img2logo.fills.sample_path`) and drawn as one matplotlib
+    ``PathPatch`` without edge; its loops are oriented by nesting depth so that
+    matplotlib's non-zero rule fills them as SVG's ``fill-rule="evenodd"``
+    would (a loop inside another is a hole). A fill with a gradient is drawn as
+    the gradient, computed at every pixel centre of the ``width`` x ``height``
+    frame, clipped to the region.
+
+    Parameters
+    ----------
+    fills : sequence of Fill
+    ax : matplotlib.axes.Axes
+        Axes in image pixels (y down), e.g. from :func:`plot_abstraction`.
+    width, height : int
+        Size of the image frame, px (for gradients).
+    zorder : float
+        Matplotlib z-order of the patches: the default puts them over an image
+        (0) and under circles (1) and arcs (2).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+    """
+    from matplotlib.patches import PathPatch
+    from matplotlib.path import Path as MplPath
+
+    fill_list = _check_fills(fills)
+    w = int(check_positive(width, "width"))
+    h = int(check_positive(height, "height"))
+    gradients: dict[object, np.ndarray] = {}
+    for fill in fill_list:
+        rings = _evenodd_orient(fill.rings(ARC_SAMPLE_STEP))
+        if not rings:
+            continue
+        vertices = np.concatenate([np.vstack([r, r[:1]]) for r in rings])
+        codes = np.concatenate(
+            [[MplPath.MOVETO] + [MplPath.LINETO] * (len(r) - 1) + [MplPath.CLOSEPOLY] for r in rings]
+        )
+        path = MplPath(vertices, codes)
+        if fill.gradient is None:
+            ax.add_patch(PathPatch(path, facecolor=fill.color, edgecolor="none", linewidth=0.0, zorder=zorder))
+            continue
+        patch = PathPatch(path, facecolor="none", edgecolor="none", linewidth=0.0, zorder=zorder)
+        ax.add_patch(patch)
+        if fill.gradient not in gradients:
+            rows, cols = np.mgrid[0:h, 0:w]
+            centres = np.stack([cols + 0.5, rows + 0.5], axis=-1)
+            gradients[fill.gradient] = fill.gradient.color_at(centres)
+        shown = ax.imshow(
+            gradients[fill.gradient],
+            extent=(0.0, float(w), float(h), 0.0),
+            origin="upper",
+            interpolation="nearest",
+            zorder=zorder,
+        )
+        shown.set_clip_path(patch)
+    return ax
+
+
 # --- helpers -----------------------------------------------------------------------
+
+
+def _check_fills(fills: object) -> list[Fill]:
+    """``fills`` as a list of :class:`img2logo.fills.Fill` (None: empty)."""
+    if fills is None:
+        return []
+    from .fills import Fill
+
+    if isinstance(fills, Fill) or isinstance(fills, str) or not isinstance(fills, Iterable):
+        raise InvalidParameterError(f"fills must be a sequence of Fill, got {type(fills).__name__}")
+    out = list(fills)
+    for i, f in enumerate(out):
+        if not isinstance(f, Fill):
+            raise InvalidParameterError(f"fills[{i}] must be a Fill, got {type(f).__name__}")
+    return out
+
+
+def _evenodd_orient(rings: list[np.ndarray]) -> list[np.ndarray]:
+    """Orient loops so that the non-zero rule fills like even-odd: outer loops positive, holes negative.
+
+    A loop's depth is the number of other loops around its first point; loops
+    are assumed not to cross (faces of an arrangement never do).
+    """
+    from matplotlib.path import Path as MplPath
+
+    paths = [MplPath(r) for r in rings]
+    out = []
+    for i, r in enumerate(rings):
+        depth = sum(1 for j, p in enumerate(paths) if j != i and p.contains_point(r[0]))
+        x, y = r[:, 0], r[:, 1]
+        signed = 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(np.roll(x, -1), y))
+        if (signed < 0) != (depth % 2 == 1):
+            r = r[::-1]
+        out.append(r)
+    return out
 
 
 def _axes(ax: Axes | None, width: int, height: int) -> Axes:

@@ -4,7 +4,9 @@ The JSON document is the stable record of a result (``contract/README.md``, JSON
 Schema ``abstraction.schema.json`` shipped in this package). The SVG is for
 designers: one exact elliptical-arc ``<path>`` per arc in an "Arcs" layer, and the
 golden circles in a hidden "Golden circles" construction layer that Inkscape and
-Illustrator show as a layer to toggle. The PNGs are quick looks, drawn with
+Illustrator show as a layer to toggle, and, when given, the coloured regions of
+:mod:`img2logo.fills` (paper Fig. 18) in a "Fills" layer under everything else
+(also the document's ``fills`` key and the PNG). The PNGs are quick looks, drawn with
 :mod:`img2logo.plotting` on matplotlib's Agg canvas, exactly ``width`` x ``height``
 px of the input image.
 
@@ -26,7 +28,7 @@ import json
 import math
 import os
 import secrets
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Mapping, Sequence
 from enum import Enum
 from functools import lru_cache
 from importlib import resources
@@ -45,6 +47,7 @@ from .constants import (
     SVG_DECIMALS,
 )
 from .errors import InvalidParameterError
+from .fills import Fill, sample_path
 from .geometry import TAU, Abstraction, Arc, Circle
 from .plotting import ARC_COLOR, CIRCLE_COLOR, default_stroke_width, plot_abstraction, plot_segment_graph
 
@@ -54,6 +57,7 @@ if TYPE_CHECKING:
 __all__ = [
     "SCHEMA_RESOURCE",
     "from_document",
+    "read_fills",
     "read_json",
     "to_document",
     "to_svg",
@@ -80,7 +84,11 @@ _INKSCAPE_NS = "http://www.inkscape.org/namespaces/inkscape"
 
 
 def to_document(
-    abstraction: Abstraction, params: Mapping[str, Any] | None = None, *, check: bool = True
+    abstraction: Abstraction,
+    params: Mapping[str, Any] | None = None,
+    *,
+    check: bool = True,
+    fills: Sequence[Fill] | None = None,
 ) -> dict[str, Any]:
     """The ``img2logo.abstraction/1`` JSON document of an abstraction (``contract/README.md``).
 
@@ -108,6 +116,14 @@ def to_document(
         junctions on their arcs' circles and at their end points) and raise if one
         fails, so a file that breaks the contract is never written. The JSON
         Schema itself is checked by :func:`validate_document` (needs jsonschema).
+    fills : sequence of img2logo.fills.Fill, optional
+        Coloured regions (paper Fig. 18, :mod:`img2logo.fills`), written as the
+        contract's optional ``fills`` key: a list of ``{"path", "color"}``, the
+        SVG path data of the region (exact arc commands, even-odd rule) and its
+        ``#rrggbb`` colour. A gradient fill records the gradient's colour at its
+        face's centroid (the contract has one colour per region); the SVG
+        writer draws the true gradient. None (the default) writes no ``fills``
+        key; an empty sequence writes an empty list.
 
     Returns
     -------
@@ -118,10 +134,12 @@ def to_document(
     ------
     InvalidParameterError
         If a circle has no ``k``, a field is out of the contract's range, a
-        parameter is not JSON-safe, or (with ``check``) an invariant fails.
+        parameter is not JSON-safe, a fill is not a Fill, or (with ``check``) an
+        invariant fails.
     """
     if not isinstance(abstraction, Abstraction):
         raise InvalidParameterError(f"abstraction must be an Abstraction, got {type(abstraction).__name__}")
+    fill_list = _check_fills(fills)
     if params is not None and not isinstance(params, Mapping):
         raise InvalidParameterError(f"params must be a mapping, got {type(params).__name__}")
     if not isinstance(abstraction.params, Mapping):
@@ -196,6 +214,8 @@ def to_document(
         doc["unit"] = check_positive(unit, "params['unit'] (the Fibonacci ladder's unit)")
     elif ladder != "phi":
         raise InvalidParameterError(f"params['ladder'] must be 'phi' or 'fibonacci', got {ladder!r}")
+    if fill_list is not None:
+        doc["fills"] = [f.to_json() for f in fill_list]
     if check:
         _check_invariants(doc)
     return doc
@@ -209,8 +229,8 @@ def from_document(doc: Mapping[str, Any]) -> Abstraction:
     Round trip: ``from_document(to_document(a))`` has the same circles, arcs,
     ``arc_segments`` and parameters as ``a``, and its junctions are those of ``a``
     that had an arc ending there, each listing those arcs. Top-level ``ladder`` and
-    ``unit`` go into ``params``; ``fills`` and ``extra`` keys other than
-    ``arc_segments`` are not kept.
+    ``unit`` go into ``params``; ``extra`` keys other than ``arc_segments`` are
+    not kept, and ``fills`` are read by :func:`read_fills`.
 
     Parameters
     ----------
@@ -302,6 +322,58 @@ def validate_document(doc: Mapping[str, Any]) -> None:
     _check_invariants(d)
 
 
+def read_fills(source: Mapping[str, Any] | str | os.PathLike[str]) -> tuple[Fill, ...]:
+    """The coloured regions (``fills`` key, paper Fig. 18) of a document or JSON file.
+
+    Pass them on to :func:`write_svg` or :func:`write_png` with the abstraction
+    from :func:`from_document` / :func:`read_json`. Each comes back as a plain
+    :class:`img2logo.fills.Fill` (its path and ``#rrggbb`` colour; no gradient
+    and no face index, which the document does not record).
+
+    Parameters
+    ----------
+    source : mapping or str or path-like
+        A parsed document, or the path of a JSON file.
+
+    Returns
+    -------
+    tuple of Fill
+        Empty when the document has no ``fills``.
+
+    Raises
+    ------
+    InvalidParameterError
+        If an entry has no ``path`` or ``color``, a colour is not ``#rrggbb`` or a
+        path is not SVG path data that :func:`img2logo.fills.sample_path` reads.
+    """
+    if isinstance(source, Mapping):
+        doc: Any = source
+    else:
+        p = _as_path(source)
+        try:
+            doc = json.loads(p.read_text(encoding="utf-8"))
+        except json.JSONDecodeError as exc:
+            raise InvalidParameterError(f"{p} is not JSON: {exc}") from exc
+        if not isinstance(doc, Mapping):
+            raise InvalidParameterError(f"{p}: document must be a JSON object, got {type(doc).__name__}")
+    entries = doc.get("fills")
+    if entries is None:
+        return ()
+    if not isinstance(entries, list):
+        raise InvalidParameterError(f"fills must be a list, got {type(entries).__name__}")
+    out = []
+    for i, entry in enumerate(entries):
+        if not isinstance(entry, Mapping) or "path" not in entry or "color" not in entry:
+            raise InvalidParameterError(f"fills[{i}] must be an object with 'path' and 'color', got {entry!r:.80}")
+        try:
+            fill = Fill(entry["path"], entry["color"])
+            sample_path(fill.path)
+        except InvalidParameterError as exc:
+            raise InvalidParameterError(f"fills[{i}]: {exc}") from exc
+        out.append(fill)
+    return tuple(out)
+
+
 def read_json(path: str | os.PathLike[str]) -> Abstraction:
     """Read an ``img2logo.abstraction/1`` JSON file written by :func:`write_json`.
 
@@ -327,18 +399,21 @@ def write_json(
     params: Mapping[str, Any] | None = None,
     *,
     check: bool = True,
+    fills: Sequence[Fill] | None = None,
 ) -> Path:
     """Write the ``img2logo.abstraction/1`` document of ``abstraction`` (see :func:`to_document`).
 
     UTF-8 JSON with sorted keys, two-space indentation and a final newline; floats
     are written with Python's ``repr``, so they read back exactly. Atomic.
+    ``fills`` (:mod:`img2logo.fills`) go into the ``fills`` key; read them back
+    with :func:`read_fills`.
 
     Returns
     -------
     pathlib.Path
         The path written.
     """
-    doc = to_document(abstraction, params, check=check)
+    doc = to_document(abstraction, params, check=check, fills=fills)
     data = (json.dumps(doc, indent=2, sort_keys=True, allow_nan=False, ensure_ascii=False) + "\n").encode("utf-8")
     return _atomic_write(path, lambda f: f.write(data))
 
@@ -353,10 +428,12 @@ def to_svg(
     show_construction_circles: bool = False,
     stroke_width: float | None = None,
     image_size: tuple[float, float] | None = None,
+    fills: Sequence[Fill] | None = None,
 ) -> str:
     """The SVG text of an abstraction (see :func:`write_svg` for the layout)."""
     if not isinstance(abstraction, Abstraction):
         raise InvalidParameterError(f"abstraction must be an Abstraction, got {type(abstraction).__name__}")
+    fill_list = _check_fills(fills) or []
     width = _int_at_least(abstraction.width, "width", 1)
     height = _int_at_least(abstraction.height, "height", 1)
     sw = default_stroke_width(width, height) if stroke_width is None else check_positive(stroke_width, "stroke_width")
@@ -387,6 +464,8 @@ def to_svg(
         f"  <title>{_escape(f'Golden ratio logo (level {int(abstraction.level)})')}</title>",
         f"  <desc>{_escape(desc)}</desc>",
     ]
+    if fill_list:
+        lines.extend(_svg_fill_layer(fill_list))
     if construction_circles:
         hidden = "" if show_construction_circles else ' style="display:none"'
         lines.append(
@@ -417,6 +496,7 @@ def write_svg(
     show_construction_circles: bool = False,
     stroke_width: float | None = None,
     image_size: tuple[float, float] | None = None,
+    fills: Sequence[Fill] | None = None,
 ) -> Path:
     """Write an abstraction as SVG for designers: exact arcs, construction circles as a layer.
 
@@ -430,6 +510,14 @@ def write_svg(
     circles, numbered as in the JSON document, in a layer "Golden circles" hidden
     by default (``style="display:none"``). Coordinates carry ``SVG_DECIMALS``
     decimals. Atomic and deterministic.
+
+    With ``fills`` (paper Fig. 18, :mod:`img2logo.fills`) the coloured regions
+    come first, so they lie under everything else: an Inkscape layer "Fills"
+    (``<g id="fills">``, no stroke) with one ``<path id="fill-i" fill="#rrggbb"
+    fill-rule="evenodd">`` per region, its ``d`` the region's exact arc path
+    (holes as extra subpaths). Gradient fills are painted with
+    ``fill="url(#fill-gradient-j)"``, the gradients defined once each in
+    ``<defs>`` in image-pixel user space.
 
     Parameters
     ----------
@@ -446,6 +534,8 @@ def write_svg(
     image_size : (float, float), optional
         Displayed size (width, height) in px of the SVG; default the input size.
         The viewBox stays the input frame, so the drawing scales.
+    fills : sequence of img2logo.fills.Fill, optional
+        Coloured regions, drawn under the arcs.
 
     Returns
     -------
@@ -458,6 +548,7 @@ def write_svg(
         show_construction_circles=show_construction_circles,
         stroke_width=stroke_width,
         image_size=image_size,
+        fills=fills,
     )
     data = text.encode("utf-8")
     return _atomic_write(path, lambda f: f.write(data))
@@ -475,6 +566,7 @@ def write_png(
     show_junctions: bool = False,
     show_circles: bool = False,
     stroke_width: float | None = None,
+    fills: Sequence[Fill] | None = None,
 ) -> Path:
     """Render an abstraction to a PNG of exactly the input image's size.
 
@@ -498,6 +590,9 @@ def write_png(
         Mark the junctions; draw the golden circles.
     stroke_width : float, optional
         Width of the arcs, px; default :func:`img2logo.plotting.default_stroke_width`.
+    fills : sequence of img2logo.fills.Fill, optional
+        Coloured regions (paper Fig. 18), drawn under the arcs
+        (:func:`img2logo.plotting.draw_fills`).
 
     Returns
     -------
@@ -506,6 +601,7 @@ def write_png(
     """
     if not isinstance(abstraction, Abstraction):
         raise InvalidParameterError(f"abstraction must be an Abstraction, got {type(abstraction).__name__}")
+    fill_list = _check_fills(fills)
     width = _int_at_least(abstraction.width, "width", 1)
     height = _int_at_least(abstraction.height, "height", 1)
     d = check_positive(dpi, "dpi")
@@ -519,6 +615,7 @@ def write_png(
             show_circles=show_circles,
             show_junctions=show_junctions,
             linewidth=sw * 72.0 / d,
+            fills=fill_list,
         )
 
     return _write_figure_png(path, width, height, d, draw)
@@ -580,6 +677,39 @@ def write_segment_graph_png(
 
 
 # --- helpers -----------------------------------------------------------------------
+
+
+def _check_fills(fills: object) -> list[Fill] | None:
+    """``fills`` as a list of Fill, or None when not given."""
+    if fills is None:
+        return None
+    if isinstance(fills, Fill | str) or not isinstance(fills, Sequence):
+        raise InvalidParameterError(f"fills must be a sequence of Fill, got {type(fills).__name__}")
+    out = list(fills)
+    for i, f in enumerate(out):
+        if not isinstance(f, Fill):
+            raise InvalidParameterError(f"fills[{i}] must be a Fill, got {type(f).__name__}")
+    return out
+
+
+def _svg_fill_layer(fills: Sequence[Fill]) -> list[str]:
+    """The ``<defs>`` of the gradients and the "Fills" layer (see :func:`write_svg`)."""
+    gradient_ids: dict[Any, str] = {}
+    for f in fills:
+        if f.gradient is not None and f.gradient not in gradient_ids:
+            gradient_ids[f.gradient] = f"fill-gradient-{len(gradient_ids)}"
+    lines = []
+    if gradient_ids:
+        lines.append("  <defs>")
+        lines.extend(f"    {g.svg(gid)}" for g, gid in gradient_ids.items())
+        lines.append("  </defs>")
+    lines.append('  <g id="fills" inkscape:groupmode="layer" inkscape:label="Fills" stroke="none">')
+    for i, f in enumerate(fills):
+        paint = f.color if f.gradient is None else f"url(#{gradient_ids[f.gradient]})"
+        face = "" if f.face is None else f' data-face="{int(f.face)}"'
+        lines.append(f'    <path id="fill-{i}"{face} fill="{paint}" fill-rule="evenodd" d="{_escape(f.path)}"/>')
+    lines.append("  </g>")
+    return lines
 
 
 def _write_figure_png(
