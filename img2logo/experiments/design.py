@@ -1,0 +1,1144 @@
+"""Timing (Table 3), design exploration (Fig. 15, 16) and the level explorer.
+
+Everything the notebooks ``09_timing``, ``10_design_exploration`` and
+``11_explore_levels`` compute or draw:
+
+* Table 3 (Sec. 6.4): the 2 x 2 of localized circle fitting x line-segment
+  simplification (Sec. 5.4), timed on the optimization alone
+  (:func:`timing_table`, :func:`plot_timing`), and the per-stage breakdown of a
+  full :func:`img2logo.abstract` run (:func:`stage_table`, :func:`plot_stages`).
+* Fig. 15 (Sec. 7): automated golden radii vs a user-chosen subset of ladder
+  exponents (:func:`compare_exponents`, :func:`plot_exponent_comparison`).
+* Fig. 16 (Sec. 7): a lock mask that keeps a salient detail from being merged
+  away (:func:`region_mask`, :func:`lock_search`, :func:`plot_lock_comparison`),
+  and the effect of the ladder bias sigma (Eqn. 10, 14; :func:`bias_sweep`).
+* The interactive explorer of the levels A^0 ... A^final (:class:`LevelExplorer`):
+  the widgets and their callbacks live here, so they are tested without a
+  browser; ipywidgets is imported only when the widgets are built.
+
+Matplotlib figures are :class:`matplotlib.figure.Figure` objects (no pyplot);
+tables are pandas DataFrames. Timings are wall-clock seconds and change from run
+to run: the timing tables and charts are not byte-deterministic.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import io
+import math
+import os
+import statistics
+import time
+from collections import Counter
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from ..constants import PHI, RDP_TOLERANCE, TOLERANCE
+from ..errors import InvalidParameterError
+from ..geometry import Abstraction
+
+if TYPE_CHECKING:
+    import pandas as pd
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+
+    from ..pipeline import Result
+    from ..progressive import Progression
+    from ..segment_graph import SegmentGraph
+    from . import Preprocessed
+
+__all__ = [
+    "CELLS",
+    "PAPER_TABLE3",
+    "STAGES",
+    "ExplorerSettings",
+    "ExponentComparison",
+    "LevelExplorer",
+    "LockRun",
+    "TimingRun",
+    "bias_sweep",
+    "bias_table",
+    "compare_exponents",
+    "comparison_table",
+    "detail_error",
+    "exponent_table",
+    "first_lost",
+    "level_title",
+    "levels_table",
+    "lock_search",
+    "lock_table",
+    "most_used_exponents",
+    "plot_bias_sweep",
+    "plot_exponent_comparison",
+    "plot_level_strip",
+    "plot_lock_comparison",
+    "plot_stages",
+    "plot_timing",
+    "region_mask",
+    "stage_table",
+    "time_optimization",
+    "timing_table",
+]
+
+
+# =========================================================================== Table 3
+#: The paper's Table 3 (Python on an Intel i9 at 3.6 GHz, its fish of Fig. 1):
+#: (localized, simplify) -> (seconds, as printed). No/No is a lower bound, ">= 2 hrs".
+PAPER_TABLE3: dict[tuple[bool, bool], tuple[float, str]] = {
+    (False, False): (7200.0, ">= 2 hrs"),
+    (True, False): (257.47, "257.47"),
+    (False, True): (338.87, "338.87"),
+    (True, True): (65.37, "65.37"),
+}
+
+#: The four cells of Table 3, in the paper's row order: (localized, simplify).
+CELLS: tuple[tuple[bool, bool], ...] = ((False, False), (True, False), (False, True), (True, True))
+
+
+@dataclass(frozen=True, eq=False)
+class TimingRun:
+    """One cell of Table 3 on one image: the repeated timings of :func:`img2logo.optimize`.
+
+    Attributes
+    ----------
+    image : str
+        Name of the example.
+    localized, simplify : bool
+        The two accelerations of Sec. 5.4.
+    seconds : tuple of float
+        Wall-clock time of every repeat, s.
+    progression : Progression
+        The output of the last repeat (the runs are deterministic).
+    segments : int
+        |S| of the segment graph.
+    """
+
+    image: str
+    localized: bool
+    simplify: bool
+    seconds: tuple[float, ...]
+    progression: Progression
+    segments: int
+
+    @property
+    def median(self) -> float:
+        """Median of the repeats, s."""
+        return float(statistics.median(self.seconds))
+
+
+def time_optimization(
+    examples: Iterable[Preprocessed],
+    *,
+    repeats: int = 3,
+    tolerance: float = TOLERANCE,
+    warmup: bool = True,
+) -> list[TimingRun]:
+    """Time the progressive optimization in the four settings of Table 3 (Sec. 6.4).
+
+    Only :func:`img2logo.progressive.optimize` is timed, on each example's
+    segment graph, so preprocessing does not blur the comparison. The repeats
+    go round robin over all cells, so that a burst of load from other
+    processes spreads over the cells instead of skewing one.
+
+    Parameters
+    ----------
+    examples : iterable of Preprocessed
+        From :func:`img2logo.experiments.preprocess`.
+    repeats : int
+        Runs per cell (>= 1); the table reports their median.
+    tolerance : float
+        T, px.
+    warmup : bool
+        Run the optimization once, untimed, before the first measurement (the
+        first call in a process loads the compiled Fréchet kernel).
+
+    Returns
+    -------
+    list of TimingRun
+        One per (example, cell), cells in the paper's row order.
+    """
+    from ..progressive import optimize
+
+    if int(repeats) < 1:
+        raise InvalidParameterError(f"repeats must be >= 1, got {repeats!r}")
+    examples = list(examples)
+    if warmup and examples:
+        optimize(examples[0].graph, tolerance=tolerance)
+    # Round robin: every repeat runs all cells once, so a burst of load on a
+    # shared machine slows every cell a little rather than one cell a lot.
+    seconds: dict[tuple[int, bool, bool], list[float]] = {}
+    last: dict[tuple[int, bool, bool], Progression] = {}
+    for _ in range(int(repeats)):
+        for i, ex in enumerate(examples):
+            for localized, simplify in CELLS:
+                start = time.perf_counter()
+                progression = optimize(ex.graph, tolerance=tolerance, localized=localized, simplify=simplify)
+                seconds.setdefault((i, localized, simplify), []).append(time.perf_counter() - start)
+                last[(i, localized, simplify)] = progression
+    runs = [
+        TimingRun(ex.name, loc, simp, tuple(seconds[(i, loc, simp)]), last[(i, loc, simp)], ex.graph.n_segments)
+        for i, ex in enumerate(examples)
+        for loc, simp in CELLS
+    ]
+    return runs
+
+
+def _yes_no(flag: bool) -> str:
+    return "Yes" if flag else "No"
+
+
+def timing_table(runs: Sequence[TimingRun]) -> pd.DataFrame:
+    """Table 3: per image and cell, our median time and the paper's, and both as ratios to Yes/Yes.
+
+    Columns: ``image``, ``localized``, ``simplify`` (Yes/No), ``segments`` (|S|),
+    ``initial arcs`` (|A^0|: |S| after the simplification, when on), ``levels``,
+    ``final arcs``, ``final E^s (px)``, ``repeats``, ``median (s)``, ``min (s)``,
+    ``max (s)``, ``ratio to Yes/Yes``, ``paper (s)`` (as printed), ``paper ratio
+    to Yes/Yes`` (a lower bound for No/No). Not byte-deterministic: the times
+    change from run to run.
+    """
+    import pandas as pd
+
+    paper_base = PAPER_TABLE3[(True, True)][0]
+    base = {r.image: r.median for r in runs if r.localized and r.simplify}
+    rows = []
+    for r in runs:
+        p = r.progression
+        paper_seconds, paper_text = PAPER_TABLE3[(r.localized, r.simplify)]
+        ratio = paper_seconds / paper_base
+        rows.append(
+            {
+                "image": r.image,
+                "localized": _yes_no(r.localized),
+                "simplify": _yes_no(r.simplify),
+                "segments": r.segments,
+                "initial arcs": len(p.levels[0].arcs),
+                "levels": len(p.levels),
+                "final arcs": len(p.final.arcs),
+                "final E^s (px)": round(p.final.similarity, 3),
+                "repeats": len(r.seconds),
+                "median (s)": r.median,
+                "min (s)": min(r.seconds),
+                "max (s)": max(r.seconds),
+                "ratio to Yes/Yes": r.median / base[r.image] if r.image in base else math.nan,
+                "paper (s)": paper_text,
+                "paper ratio to Yes/Yes": (">= " if paper_text.startswith(">=") else "") + f"{ratio:.2f}",
+            }
+        )
+    return pd.DataFrame(rows)
+
+
+def _cell_label(localized: bool, simplify: bool) -> str:
+    return f"localized {_yes_no(localized)}\nsimplify {_yes_no(simplify)}"
+
+
+def _fmt_seconds(v: float) -> str:
+    if not math.isfinite(v):
+        return ""
+    if v >= 3600:
+        return f"{v / 3600:.3g} h"
+    return f"{v:.3g} s" if v >= 0.1 else f"{1000 * v:.3g} ms"
+
+
+def _fmt_ratio(v: float) -> str:
+    return f"{v:.3g}\u00d7" if math.isfinite(v) else ""
+
+
+def plot_timing(runs: Sequence[TimingRun], *, figsize: tuple[float, float] = (12.0, 4.5)) -> Figure:
+    """Table 3 as bars, log scale: seconds (left) and ratios to the Yes/Yes cell (right).
+
+    The paper's bars (hatched) stand beside ours, one colour per image; the
+    paper's No/No bar is its lower bound of 2 hours, labelled with a "\u2265".
+    """
+    from matplotlib.figure import Figure
+
+    images = list(dict.fromkeys(r.image for r in runs))
+    by = {(r.image, r.localized, r.simplify): r for r in runs}
+    series = ["paper", *images]
+    fig = Figure(figsize=figsize, layout="constrained")
+    ax_s, ax_r = fig.subplots(1, 2)
+    x = np.arange(len(CELLS))
+    width = 0.8 / len(series)
+    paper_base = PAPER_TABLE3[(True, True)][0]
+    colors = [f"C{i}" for i in range(len(images))]
+    for i, name in enumerate(series):
+        offset = (i - (len(series) - 1) / 2) * width
+        if name == "paper":
+            secs = np.array([PAPER_TABLE3[c][0] for c in CELLS])
+            ratios = secs / paper_base
+            style = {"color": "0.85", "edgecolor": "0.3", "hatch": "//", "label": "paper (i9 3.6 GHz, its fish)"}
+        else:
+            secs = np.array([by[(name, *c)].median if (name, *c) in by else np.nan for c in CELLS])
+            base = by[(name, True, True)].median if (name, True, True) in by else np.nan
+            ratios = secs / base
+            style = {"color": colors[i - 1], "label": f"ours: {name}"}
+        for ax, values, fmt in ((ax_s, secs, _fmt_seconds), (ax_r, ratios, _fmt_ratio)):
+            bars = ax.bar(x + offset, values, width, **style)
+            labels = [
+                ("\u2265 " if name == "paper" and c == (False, False) else "") + fmt(v)
+                for v, c in zip(values, CELLS, strict=True)
+            ]
+            ax.bar_label(bars, labels=labels, fontsize=7, padding=2)
+    for ax, ylabel, title in (
+        (ax_s, "time (s), log scale", "Table 3: progressive optimization time"),
+        (ax_r, "time / time of Yes/Yes, log scale", "relative to localized + simplified"),
+    ):
+        ax.set_yscale("log")
+        ax.set_xticks(x, [_cell_label(*c) for c in CELLS], fontsize=8)
+        ax.set_ylabel(ylabel)
+        ax.set_title(title, fontsize=10)
+        ax.grid(axis="y", which="major", alpha=0.3)
+        ax.margins(y=0.25)
+    ax_r.axhline(1.0, color="0.5", linewidth=0.8)
+    ax_s.legend(fontsize=8, loc="upper right")
+    return fig
+
+
+#: The stages of :attr:`img2logo.Result.timings`, in pipeline order.
+STAGES: tuple[str, ...] = ("feature_lines", "segment_graph", "simplification", "initial_fit", "loop")
+
+
+def stage_table(results: Sequence[Result], names: Sequence[str] | None = None) -> pd.DataFrame:
+    """Seconds per pipeline stage (``Result.timings``) of full :func:`img2logo.abstract` runs.
+
+    One row per result: ``image``, one column per stage of :data:`STAGES`,
+    ``total``, ``arcs`` (|A| of the result). Not byte-deterministic.
+    """
+    import pandas as pd
+
+    names = list(names) if names is not None else [Path(str(r.params.get("source", "?"))).stem for r in results]
+    rows = []
+    for name, r in zip(names, results, strict=True):
+        row: dict[str, Any] = {"image": name}
+        row.update({s: float(r.timings.get(s, 0.0)) for s in STAGES})
+        row["total"] = sum(row[s] for s in STAGES)
+        row["arcs"] = len(r.final.arcs)
+        rows.append(row)
+    return pd.DataFrame(rows)
+
+
+def plot_stages(table: pd.DataFrame, *, figsize: tuple[float, float] = (8.0, 2.8)) -> Figure:
+    """The per-stage breakdown of :func:`stage_table` as stacked horizontal bars (s)."""
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(figsize[0], max(figsize[1], 1.2 + 0.6 * len(table))), layout="constrained")
+    ax = fig.subplots()
+    y = np.arange(len(table))
+    left = np.zeros(len(table))
+    for i, stage in enumerate(STAGES):
+        values = table[stage].to_numpy(dtype=float)
+        ax.barh(y, values, left=left, color=f"C{i}", label=stage.replace("_", " "))
+        left += values
+    for yi, total in zip(y, left, strict=True):
+        ax.text(total, yi, f"  {total:.2f} s", va="center", fontsize=8)
+    ax.set_yticks(y, list(table["image"]))
+    ax.invert_yaxis()
+    ax.set_xlabel("time (s)")
+    ax.set_xlim(0, 1.2 * max(float(left.max()), 1e-3))
+    ax.set_title("one full abstract() run, per stage", fontsize=10)
+    ax.legend(fontsize=8, ncols=len(STAGES), loc="upper center", bbox_to_anchor=(0.5, -0.3))
+    return fig
+
+
+# =========================================================================== Fig. 15
+def most_used_exponents(abstraction: Abstraction, n: int = 3) -> tuple[int, ...]:
+    """The ``n`` ladder exponents k used by the most arcs of ``abstraction``, sorted.
+
+    Ties go to the exponent whose arcs are longer in total (then to the larger k).
+    """
+    if int(n) < 1:
+        raise InvalidParameterError(f"n must be >= 1, got {n!r}")
+    count: Counter[int] = Counter()
+    length: Counter[int] = Counter()
+    for arc in abstraction.arcs:
+        if arc.circle.k is not None:
+            count[arc.circle.k] += 1
+            length[arc.circle.k] += arc.length
+    ranked = sorted(count, key=lambda k: (-count[k], -length[k], -k))
+    return tuple(sorted(ranked[: int(n)]))
+
+
+@dataclass(frozen=True, eq=False)
+class ExponentComparison:
+    """Fig. 15: the automated run and the run restricted to user-chosen exponents.
+
+    Attributes
+    ----------
+    automated, user : Progression
+        The two runs (same bias, same tolerance).
+    exponents : tuple of int
+        The allowed ladder exponents of the user run.
+    """
+
+    automated: Progression
+    user: Progression
+    exponents: tuple[int, ...]
+
+
+def compare_exponents(
+    example: Preprocessed,
+    *,
+    tolerance: float = TOLERANCE,
+    exponents: Sequence[int] | None = None,
+    n_exponents: int = 3,
+) -> ExponentComparison:
+    """Run the optimization automated and with a small set of ladder exponents (Sec. 7, Fig. 15).
+
+    Parameters
+    ----------
+    example : Preprocessed
+        The input segment graph.
+    tolerance : float
+        T, px, for both runs.
+    exponents : sequence of int, optional
+        The user's exponents; default: the ``n_exponents`` most used k of the
+        automated result (:func:`most_used_exponents`).
+    n_exponents : int
+        How many exponents to pick when ``exponents`` is None.
+    """
+    from ..progressive import optimize
+
+    auto = optimize(example.graph, tolerance=tolerance)
+    chosen = tuple(sorted({int(k) for k in exponents})) if exponents is not None else None
+    if chosen is None:
+        chosen = most_used_exponents(auto.final, n_exponents)
+    user = optimize(example.graph, tolerance=tolerance, bias=auto.bias, exponents=chosen)
+    return ExponentComparison(auto, user, chosen)
+
+
+def _k_counts(abstraction: Abstraction) -> Counter[int]:
+    return Counter(a.circle.k for a in abstraction.arcs if a.circle.k is not None)
+
+
+def exponent_table(comparison: ExponentComparison) -> pd.DataFrame:
+    """Per ladder exponent k: its radius and the arcs using it, automated and user-specified (Fig. 15)."""
+    import pandas as pd
+
+    a, u = _k_counts(comparison.automated.final), _k_counts(comparison.user.final)
+    bias = comparison.automated.bias
+    rows = [
+        {
+            "k": k,
+            "radius (px)": round(PHI ** (k + bias), 3),
+            "allowed in user setting": k in comparison.exponents,
+            "arcs, automated": a.get(k, 0),
+            "arcs, user-specified": u.get(k, 0),
+        }
+        for k in sorted(set(a) | set(u) | set(comparison.exponents))
+    ]
+    return pd.DataFrame(rows)
+
+
+def comparison_table(comparison: ExponentComparison) -> pd.DataFrame:
+    """Fig. 15 in numbers: per setting, the allowed and used exponents, |A|, E^s and levels."""
+    import pandas as pd
+
+    rows = []
+    for setting, prog, allowed in (
+        ("automated", comparison.automated, "all"),
+        ("user-specified", comparison.user, " ".join(map(str, comparison.exponents))),
+    ):
+        used = _k_counts(prog.final)
+        rows.append(
+            {
+                "setting": setting,
+                "allowed k": allowed,
+                "used k": " ".join(map(str, sorted(used))),
+                "distinct radii": len(used),
+                "arcs": len(prog.final.arcs),
+                "E^s (px)": round(prog.final.similarity, 3),
+                "levels": len(prog.levels),
+                "bias": round(prog.bias, 4),
+            }
+        )
+    return pd.DataFrame(rows)
+
+
+def _ladder_inset(ax: Axes, used: Counter[int], bias: float, ks: Sequence[int], *, margin: float) -> Axes:
+    """The ladder radii ``ks`` as nested circles tangent at the bottom, ``used`` ones red.
+
+    Drawn in the right ``margin`` (a fraction of the axes width) that the caller
+    left free next to the drawing, with the arc count of every used k above it.
+    """
+    x0, x1 = ax.get_xlim()
+    y0, y1 = ax.get_ylim()
+    side = margin * abs(x1 - x0) / abs(y1 - y0)  # a square inset (equal aspect): its height in axes fraction
+    inset = ax.inset_axes((1.0 - margin, 0.02, margin, side))
+    big = PHI ** (max(ks) + bias)
+    t = np.linspace(0.0, 2.0 * math.pi, 200)
+    for k in ks:
+        r = PHI ** (k + bias) / big
+        on = k in used
+        inset.plot(
+            r * np.cos(t),
+            r * (1.0 + np.sin(t)) - 1.0,
+            color="#d62728" if on else "0.75",
+            linewidth=1.2 if on else 0.6,
+            zorder=2 if on else 1,
+        )
+    inset.set_aspect("equal")
+    inset.set_xlim(-1.05, 1.05)
+    inset.set_ylim(-1.05, 1.05)
+    inset.set_xticks([])
+    inset.set_yticks([])
+    for spine in inset.spines.values():
+        spine.set_color("0.6")
+    lines = ["k  arcs", *(f"{k:<3d} {used[k]}" for k in sorted(used))]
+    ax.text(
+        1.0 - margin / 2,
+        0.04 + side,
+        "\n".join(lines),
+        transform=ax.transAxes,
+        ha="center",
+        va="bottom",
+        fontsize=7,
+        family="monospace",
+        color="#d62728",
+    )
+    return inset
+
+
+def plot_exponent_comparison(
+    example: Preprocessed, comparison: ExponentComparison, *, panel_size: float = 4.0
+) -> Figure:
+    """Fig. 15: (a) line segments, (b) automated radii, (c) user-specified radii.
+
+    Beside each result, the golden ladder (scaled down, nested circles from the
+    smallest to the largest k either result uses) with its radii in red, and
+    the number of arcs per exponent k.
+    """
+    from matplotlib.figure import Figure
+
+    from ..plotting import plot_abstraction, plot_segment_graph
+
+    margin = 0.28  # fraction of a result panel kept for the ladder
+    fig = Figure(figsize=(panel_size * (1 + 2 / (1 - margin)), panel_size + 0.5))
+    grid = fig.add_gridspec(1, 3, width_ratios=(1 - margin, 1, 1), left=0.01, right=0.99, bottom=0.02, top=0.86)
+    axes = [fig.add_subplot(grid[0, i]) for i in range(3)]
+    plot_segment_graph(example.graph, axes[0], show_junctions=False)
+    axes[0].set_title(f"(a) line segments of {example.name}\n|S| = {example.graph.n_segments}", fontsize=9)
+    used = {"auto": _k_counts(comparison.automated.final), "user": _k_counts(comparison.user.final)}
+    ks = sorted(set(used["auto"]) | set(used["user"]))
+    ks = list(range(ks[0], ks[-1] + 1))
+    allowed = ", ".join(map(str, comparison.exponents))
+    for ax, key, prog, title in (
+        (axes[1], "auto", comparison.automated, "(b) automated setting"),
+        (axes[2], "user", comparison.user, f"(c) user-specified k \u2208 {{{allowed}}}"),
+    ):
+        a = prog.final
+        plot_abstraction(a, ax)
+        ax.set_xlim(0.0, a.width / (1 - margin))
+        ax.set_title(
+            f"{title}\n|A| = {len(a.arcs)}, {len(used[key])} radii, E^s = {a.similarity:.2f} px",
+            fontsize=9,
+        )
+        _ladder_inset(ax, used[key], prog.bias, ks, margin=margin)
+    return fig
+
+
+# =========================================================================== Fig. 16
+def region_mask(
+    size: tuple[int, int] | np.ndarray | Any,
+    center: Sequence[float],
+    radius: float,
+    *,
+    form: str = "disc",
+) -> np.ndarray:
+    """A lock mask (Sec. 7, Fig. 16): the pixels within ``radius`` of ``center``.
+
+    Parameters
+    ----------
+    size : (height, width), an image array, or an object with ``width`` and ``height``
+        The image the mask is for.
+    center : (x, y)
+        Centre of the region, px (x right, y down; pixel (i, j) has its centre at
+        (j + 0.5, i + 0.5)).
+    radius : float
+        Radius of the disc, or half the side of the square, px.
+    form : {"disc", "square"}
+        The region's shape.
+
+    Returns
+    -------
+    ndarray of bool, shape (height, width)
+    """
+    if hasattr(size, "width") and hasattr(size, "height"):
+        height, width = int(size.height), int(size.width)
+    elif isinstance(size, np.ndarray):
+        height, width = size.shape[:2]
+    else:
+        height, width = (int(v) for v in size)
+    if form not in ("disc", "square"):
+        raise InvalidParameterError(f"form must be 'disc' or 'square', got {form!r}")
+    if not (math.isfinite(float(radius)) and float(radius) > 0):
+        raise InvalidParameterError(f"radius must be finite and > 0, got {radius!r}")
+    cx, cy = (float(v) for v in center)
+    y, x = np.mgrid[0:height, 0:width] + 0.5
+    if form == "disc":
+        return (x - cx) ** 2 + (y - cy) ** 2 <= float(radius) ** 2
+    return (np.abs(x - cx) <= radius) & (np.abs(y - cy) <= radius)
+
+
+def detail_error(abstraction: Abstraction, graph: SegmentGraph, mask: np.ndarray) -> float:
+    """How well ``abstraction`` keeps the detail under ``mask``, px.
+
+    The mean distance from the segment graph's pixels inside ``mask`` to the
+    nearest point of the arcs (sampled every 0.5 px). A detail is *lost* when
+    this grows beyond a pixel or two: its strokes are no longer traced.
+    """
+    from scipy.spatial import cKDTree
+
+    pts = np.vstack(list(graph.segments))
+    rows = np.clip((pts[:, 1] - 0.5).round().astype(int), 0, mask.shape[0] - 1)
+    cols = np.clip((pts[:, 0] - 0.5).round().astype(int), 0, mask.shape[1] - 1)
+    inside = pts[np.asarray(mask, dtype=bool)[rows, cols]]
+    if not len(inside) or not abstraction.arcs:
+        return math.nan
+    samples = np.vstack([a.sample(step=0.5) for a in abstraction.arcs])
+    distance, _ = cKDTree(samples).query(inside)
+    return float(distance.mean())
+
+
+@dataclass(frozen=True, eq=False)
+class LockRun:
+    """One tolerance of the Fig. 16 search: the runs without and with the lock mask.
+
+    Attributes
+    ----------
+    tolerance : float
+        T, px.
+    free, locked : Progression
+        Without and with the lock mask.
+    error_free, error_locked : float
+        :func:`detail_error` of the two results under the mask, px.
+    """
+
+    tolerance: float
+    free: Progression
+    locked: Progression
+    error_free: float
+    error_locked: float
+
+
+def lock_search(example: Preprocessed, mask: np.ndarray, tolerances: Iterable[float]) -> list[LockRun]:
+    """Run the optimization without and with ``mask`` locked at every tolerance (Fig. 16)."""
+    from ..progressive import optimize
+
+    runs = []
+    for t in tolerances:
+        free = optimize(example.graph, tolerance=float(t))
+        locked = optimize(example.graph, tolerance=float(t), lock_mask=mask)
+        runs.append(
+            LockRun(
+                float(t),
+                free,
+                locked,
+                detail_error(free.final, example.graph, mask),
+                detail_error(locked.final, example.graph, mask),
+            )
+        )
+    return runs
+
+
+def lock_table(runs: Sequence[LockRun], threshold: float) -> pd.DataFrame:
+    """The search of :func:`lock_search` as a table: per T, |A|, E^s and the detail error of both runs.
+
+    ``lost without lock`` / ``lost with lock``: the detail error exceeds ``threshold`` px.
+    """
+    import pandas as pd
+
+    return pd.DataFrame(
+        [
+            {
+                "T": r.tolerance,
+                "arcs, no lock": len(r.free.final.arcs),
+                "E^s, no lock (px)": round(r.free.final.similarity, 3),
+                "detail error, no lock (px)": round(r.error_free, 3),
+                "lost without lock": bool(r.error_free > threshold),
+                "locked segments": int(r.locked.final.params.get("locked_segments", 0)),
+                "arcs, lock": len(r.locked.final.arcs),
+                "E^s, lock (px)": round(r.locked.final.similarity, 3),
+                "detail error, lock (px)": round(r.error_locked, 3),
+                "lost with lock": bool(r.error_locked > threshold),
+            }
+            for r in runs
+        ]
+    )
+
+
+def first_lost(runs: Sequence[LockRun], threshold: float) -> LockRun:
+    """The run at the smallest T where the detail is lost without the lock and kept with it.
+
+    Falls back to the run where the detail errors differ the most when no T qualifies.
+    """
+    if not runs:
+        raise InvalidParameterError("no runs to choose from")
+    for r in sorted(runs, key=lambda r: r.tolerance):
+        if r.error_free > threshold >= r.error_locked:
+            return r
+    return max(runs, key=lambda r: r.error_free - r.error_locked)
+
+
+def _crop(ax: Axes, graph: SegmentGraph, pad: float = 0.08) -> None:
+    """Show only the bounding box of the graph's segments, padded by ``pad`` of its size."""
+    pts = np.vstack(list(graph.segments))
+    lo, hi = pts.min(axis=0), pts.max(axis=0)
+    margin = pad * float(max(hi - lo)) + 2.0
+    ax.set_xlim(max(lo[0] - margin, 0.0), min(hi[0] + margin, graph.width))
+    ax.set_ylim(min(hi[1] + margin, graph.height), max(lo[1] - margin, 0.0))
+
+
+def _zoom(ax: Axes, center: Sequence[float], radius: float) -> None:
+    """Show the square of side 3 ``radius`` around ``center``, framed, with the region dashed."""
+    from matplotlib.patches import Circle as CirclePatch
+
+    ax.add_patch(CirclePatch(tuple(center), radius, fill=False, edgecolor="#1f77b4", linestyle="--", linewidth=0.8))
+    pad = 1.5 * radius
+    ax.set_xlim(center[0] - pad, center[0] + pad)
+    ax.set_ylim(center[1] + pad, center[1] - pad)
+    ax.set_axis_on()
+    ax.set_xticks([])
+    ax.set_yticks([])
+    for spine in ax.spines.values():
+        spine.set_color("#1f77b4")
+
+
+def plot_lock_comparison(
+    example: Preprocessed,
+    mask: np.ndarray,
+    run: LockRun,
+    *,
+    center: Sequence[float],
+    radius: float,
+    panel_size: float = 3.6,
+) -> Figure:
+    """Fig. 16: (a) the user's region over the segments, (b) result without, (c) with the lock.
+
+    The bottom row zooms into the region (dashed), junctions marked on the results.
+    """
+    from matplotlib.figure import Figure
+
+    from ..plotting import plot_abstraction, plot_segment_graph
+
+    fig = Figure(figsize=(3 * panel_size, 2 * panel_size + 0.6), layout="constrained")
+    axes = fig.subplots(2, 3, height_ratios=(0.8, 1.0))
+    rgb = example.image.rgb
+    for ax in axes[:, 0]:
+        plot_segment_graph(example.graph, ax, image=rgb, show_junctions=ax is axes[1, 0])
+    overlay = np.zeros((*mask.shape, 4))
+    overlay[mask] = (0.12, 0.47, 0.71, 0.3)
+    axes[0, 0].imshow(overlay, extent=(0, mask.shape[1], mask.shape[0], 0), zorder=4)
+    n_locked = int(run.locked.final.params.get("locked_segments", 0))
+    axes[0, 0].set_title(f"(a) locked region of {example.name}\n{n_locked} segments locked", fontsize=9)
+    for col, prog, err, title in (
+        (1, run.free, run.error_free, "(b) without the lock"),
+        (2, run.locked, run.error_locked, "(c) with the lock"),
+    ):
+        for ax in axes[:, col]:
+            plot_abstraction(prog.final, ax, image=rgb, show_junctions=ax is axes[1, col])
+        axes[0, col].set_title(
+            f"{title}, T = {run.tolerance:g}: |A| = {len(prog.final.arcs)}\n"
+            f"E^s = {prog.final.similarity:.2f} px, detail error = {err:.2f} px",
+            fontsize=9,
+        )
+    for ax in axes[0]:
+        _crop(ax, example.graph)
+    for ax in axes[1]:
+        _zoom(ax, center, radius)
+    axes[1, 0].set_title("the region: segments and nodes", fontsize=9)
+    axes[1, 1].set_title("zoom: the detail is merged away", fontsize=9)
+    axes[1, 2].set_title("zoom: the locked segments are kept", fontsize=9)
+    return fig
+
+
+def bias_sweep(
+    example: Preprocessed, biases: Iterable[float | None], *, tolerance: float = TOLERANCE
+) -> list[Progression]:
+    """The optimization with every ladder bias sigma of ``biases`` (Eqn. 10; None: Eqn. 14)."""
+    from ..progressive import optimize
+
+    return [optimize(example.graph, tolerance=tolerance, bias=b) for b in biases]
+
+
+def bias_table(progressions: Sequence[Progression], biases: Sequence[float | None]) -> pd.DataFrame:
+    """Per bias: sigma used, |A|, distinct radii, E^s and levels of the result."""
+    import pandas as pd
+
+    return pd.DataFrame(
+        [
+            {
+                "bias": "auto (Eqn. 14)" if b is None else f"{b:g}",
+                "sigma": round(p.bias, 4),
+                "arcs": len(p.final.arcs),
+                "distinct radii": len({a.circle.k for a in p.final.arcs}),
+                "E^s (px)": round(p.final.similarity, 3),
+                "levels": len(p.levels),
+            }
+            for p, b in zip(progressions, biases, strict=True)
+        ]
+    )
+
+
+def plot_bias_sweep(
+    example: Preprocessed,
+    progressions: Sequence[Progression],
+    biases: Sequence[float | None],
+    *,
+    panel_size: float = 3.0,
+) -> Figure:
+    """One panel per bias: the result with its golden circles (the Fig. 8 look)."""
+    from matplotlib.figure import Figure
+
+    from ..plotting import plot_abstraction
+
+    n = len(progressions)
+    fig = Figure(figsize=(n * panel_size, panel_size + 0.5), layout="constrained")
+    axes = np.atleast_1d(fig.subplots(1, n))
+    for i, (ax, p, b) in enumerate(zip(axes, progressions, biases, strict=True)):
+        plot_abstraction(p.final, ax, show_circles=True)
+        label = f"auto \u03c3 = {p.bias:.3f} (Eqn. 14)" if b is None else f"\u03c3 = {p.bias:g}"
+        prefix = f"{example.name}: " if i == 0 else ""
+        ax.set_title(f"{prefix}{label}\n|A| = {len(p.final.arcs)}, E^s = {p.final.similarity:.2f} px", fontsize=9)
+    return fig
+
+
+# =========================================================================== level explorer
+def level_title(result: Result, t: int, name: str | None = None) -> str:
+    """The title of level ``t``: the level, |A|, E^s and T."""
+    levels = result.levels
+    a = levels[t]
+    prefix = f"{name}: " if name else ""
+    return (
+        f"{prefix}level t = {a.level} of {len(levels) - 1}, |A| = {len(a.arcs)}, "
+        f"E^s = {a.similarity:.2f} px (T = {a.tolerance:g})"
+    )
+
+
+def levels_table(result: Result) -> pd.DataFrame:
+    """Per level t of a run: |A^t|, distinct radii and E^s (px), the numbers behind the slider."""
+    import pandas as pd
+
+    return pd.DataFrame(
+        [
+            {
+                "t": a.level,
+                "arcs": len(a.arcs),
+                "distinct radii": len({arc.circle.k for arc in a.arcs}),
+                "E^s (px)": round(a.similarity, 3),
+            }
+            for a in result.levels
+        ]
+    )
+
+
+def plot_level_strip(
+    result: Result, levels: Sequence[int] | int = 4, *, name: str | None = None, panel_size: float = 3.0
+) -> Figure:
+    """A row of levels of one run, arcs over the faded input (a static view of the explorer).
+
+    ``levels`` is a list of t (negative counts from the end) or a number of
+    levels spread evenly from A^0 to the final one.
+    """
+    from matplotlib.figure import Figure
+
+    from ..plotting import plot_abstraction
+
+    n_levels = len(result.levels)
+    if isinstance(levels, int):
+        ts = sorted({round(float(v)) for v in np.linspace(0, n_levels - 1, max(1, min(levels, n_levels)))})
+    else:
+        ts = [t % n_levels for t in levels]
+    fig = Figure(figsize=(len(ts) * panel_size, panel_size + 0.5), layout="constrained")
+    axes = np.atleast_1d(fig.subplots(1, len(ts)))
+    for ax, t in zip(axes, ts, strict=True):
+        a = result.level(t)
+        plot_abstraction(a, ax, image=result.image.rgb)
+        _crop(ax, result.graph)
+        ax.set_title(f"t = {t}: |A| = {len(a.arcs)}, E^s = {a.similarity:.2f} px", fontsize=9)
+    if name:
+        fig.suptitle(f"{name}: levels of one run (T = {result.final.tolerance:g})", fontsize=10)
+    return fig
+
+
+@dataclass(frozen=True)
+class ExplorerSettings:
+    """The inputs of one :class:`LevelExplorer` run.
+
+    Attributes
+    ----------
+    image : str
+        A file name in ``data/`` or a path.
+    tolerance : float
+        T, px.
+    bias : float or None
+        The ladder bias sigma; None: automatic (Eqn. 14).
+    rdp_tolerance : float
+        Ramer-Douglas-Peucker tolerance, px.
+    kind : str
+        ``"auto"``, ``"photo"``, ``"clipart"`` or ``"drawing"``.
+    """
+
+    image: str = "clipart-fish.png"
+    tolerance: float = TOLERANCE
+    bias: float | None = None
+    rdp_tolerance: float = RDP_TOLERANCE
+    kind: str = "auto"
+
+
+class LevelExplorer:
+    """Browse the levels A^0 ... A^final of a run, and re-run with other settings.
+
+    The state and the callbacks work on plain values, so they run (and are
+    tested) without a browser; :meth:`widget` wraps them in ipywidgets: a level
+    slider (instant redraw: every level is precomputed), controls for T, the
+    bias (with an "auto" box), the RDP tolerance, the image and its kind, and a
+    Run button with a progress bar (E^s filling towards T) fed by
+    :func:`img2logo.abstract`'s progress callback.
+
+    Parameters
+    ----------
+    settings : ExplorerSettings, optional
+        The first run's inputs; keyword arguments override its fields.
+    result : Result, optional
+        A precomputed run for ``settings``; computed now when None.
+    panel_size : float
+        Size of the drawing, inches.
+    dpi : float
+        Resolution of the drawing shown by the widget.
+
+    Attributes
+    ----------
+    settings : ExplorerSettings
+        The inputs of the run shown.
+    result : Result
+        The run shown.
+    level : int
+        The level shown.
+    figure : matplotlib.figure.Figure
+        The drawing of that level.
+    title : str
+        Its title (:func:`level_title`).
+    progress_text : str
+        The last progress message of a run.
+    controls : dict
+        The widgets by name, once :meth:`widget` built them (else empty).
+    """
+
+    def __init__(
+        self,
+        settings: ExplorerSettings | None = None,
+        *,
+        result: Result | None = None,
+        panel_size: float = 5.0,
+        dpi: float = 80.0,
+        **overrides: Any,
+    ) -> None:
+        from matplotlib.figure import Figure
+
+        self.settings = dataclasses.replace(settings or ExplorerSettings(), **overrides)
+        self.dpi = float(dpi)
+        self.figure = Figure(figsize=(panel_size, panel_size), layout="constrained")
+        self._ax = self.figure.subplots()
+        self.controls: dict[str, Any] = {}
+        self.progress_text = ""
+        self.level = 0
+        self.title = ""
+        self._syncing = False
+        self.result = result if result is not None else self._compute(self.settings)
+        self.on_level_change(len(self.result.levels) - 1)
+
+    # ------------------------------------------------------------------ plain callbacks
+    @property
+    def n_levels(self) -> int:
+        """Number of levels of the run shown."""
+        return len(self.result.levels)
+
+    @property
+    def name(self) -> str:
+        """The image's name."""
+        return Path(self.settings.image).stem
+
+    def on_level_change(self, t: int) -> Figure:
+        """Show level ``t`` (negative counts from the end): redraw the figure and title."""
+        from ..plotting import plot_abstraction
+
+        t = int(t)
+        if not -self.n_levels <= t < self.n_levels:
+            raise InvalidParameterError(f"level must be in [0, {self.n_levels - 1}], got {t}")
+        self.level = t % self.n_levels
+        self.title = level_title(self.result, self.level, self.name)
+        self._ax.clear()
+        plot_abstraction(self.result.level(self.level), self._ax, image=self.result.image.rgb)
+        self._ax.set_title(self.title, fontsize=9)
+        self._sync_widgets()
+        return self.figure
+
+    def on_run(self, **changes: Any) -> Result:
+        """Re-run :func:`img2logo.abstract` with ``changes`` to the settings; show its final level.
+
+        ``changes`` are fields of :class:`ExplorerSettings` (``bias=None`` is automatic).
+        """
+        unknown = set(changes) - {f.name for f in dataclasses.fields(ExplorerSettings)}
+        if unknown:
+            raise InvalidParameterError(f"unknown settings {sorted(unknown)}")
+        settings = dataclasses.replace(self.settings, **changes)
+        self.result = self._compute(settings)
+        self.settings = settings
+        self.on_level_change(self.n_levels - 1)
+        return self.result
+
+    def on_progress(self, t: int, n_arcs: int, similarity: float) -> None:
+        """The progress callback of a run: level t reached with ``n_arcs`` arcs and E^s (px).
+
+        The bar fills with E^s towards T, as the terminal bar of :func:`img2logo.abstract`
+        does: the loop stops when E^s would exceed T, so the number of merges is
+        not known in advance.
+        """
+        self.progress_text = f"level {t}: |A| = {n_arcs}, E^s = {similarity:.2f} px"
+        bar = self.controls.get("progress")
+        if bar is not None:
+            bar.value = min(float(similarity), bar.max)
+            self.controls["status"].value = self.progress_text
+
+    def png(self) -> bytes:
+        """The current figure as PNG bytes."""
+        buf = io.BytesIO()
+        self.figure.savefig(buf, format="png", dpi=self.dpi, facecolor="white", metadata={"Software": None})
+        return buf.getvalue()
+
+    def _compute(self, settings: ExplorerSettings) -> Result:
+        from ..pipeline import abstract
+        from . import data_path
+
+        image = settings.image
+        path = Path(image) if os.sep in image or Path(image).is_file() else data_path(image)
+        self.progress_text = "running"
+        bar = self.controls.get("progress")
+        if bar is not None:
+            bar.bar_style = ""
+            bar.max = float(settings.tolerance)
+            bar.value = 0.0
+        result = abstract(
+            path,
+            tolerance=settings.tolerance,
+            kind=settings.kind,
+            rdp_tolerance=settings.rdp_tolerance,
+            bias=settings.bias,
+            progress=self.on_progress,
+        )
+        self.progress_text = (
+            f"done: {len(result.levels)} levels, |A| = {len(result.final.arcs)}, "
+            f"{sum(result.timings.values()):.2f} s ({result.progression.stopped_because})"
+        )
+        if bar is not None:
+            bar.value = min(float(result.final.similarity), bar.max)
+            bar.bar_style = "success"
+            self.controls["status"].value = self.progress_text
+        return result
+
+    # ------------------------------------------------------------------ widgets
+    def widget(self) -> Any:
+        """The ipywidgets interface (built once): controls, Run, progress, level slider, drawing."""
+        import ipywidgets as w
+
+        from . import example_images
+
+        if "box" in self.controls:
+            return self.controls["box"]
+        s = self.settings
+        images = [p.name for p in example_images()]
+        if s.image not in images:
+            images.append(s.image)
+        c = self.controls
+        c["image"] = w.Dropdown(options=images, value=s.image, description="image")
+        c["kind"] = w.Dropdown(options=["auto", "photo", "clipart", "drawing"], value=s.kind, description="kind")
+        c["tolerance"] = w.FloatSlider(value=s.tolerance, min=0.5, max=30.0, step=0.5, description="T (px)")
+        c["bias_auto"] = w.Checkbox(value=s.bias is None, description="auto bias")
+        c["bias"] = w.FloatSlider(
+            value=self.result.bias if s.bias is None else s.bias,
+            min=0.0,
+            max=0.99,
+            step=0.01,
+            description="bias \u03c3",
+            disabled=s.bias is None,
+        )
+        c["rdp_tolerance"] = w.FloatSlider(value=s.rdp_tolerance, min=0.5, max=8.0, step=0.25, description="RDP (px)")
+        c["run"] = w.Button(description="Run", button_style="primary", icon="play")
+        c["progress"] = w.FloatProgress(
+            value=min(self.result.final.similarity, s.tolerance), min=0.0, max=s.tolerance, description="E^s \u2192 T"
+        )
+        c["status"] = w.Label(value=self.progress_text)
+        c["level"] = w.IntSlider(value=self.level, min=0, max=self.n_levels - 1, description="level t")
+        c["title"] = w.Label(value=self.title)
+        c["drawing"] = w.Image(value=self.png(), format="png")
+        c["level"].observe(self._level_widget_changed, names="value")
+        c["bias_auto"].observe(self._bias_auto_changed, names="value")
+        c["run"].on_click(self._run_clicked)
+        c["box"] = w.VBox(
+            [
+                w.HBox([c["image"], c["kind"]]),
+                w.HBox([c["tolerance"], c["rdp_tolerance"]]),
+                w.HBox([c["bias"], c["bias_auto"]]),
+                w.HBox([c["run"], c["progress"], c["status"]]),
+                c["level"],
+                c["title"],
+                c["drawing"],
+            ]
+        )
+        return c["box"]
+
+    def display(self) -> None:
+        """Show :meth:`widget` in the notebook."""
+        from IPython.display import display
+
+        display(self.widget())
+
+    def widget_settings(self) -> ExplorerSettings:
+        """The settings the widgets hold now."""
+        c = self.controls
+        if not c:
+            return self.settings
+        return ExplorerSettings(
+            image=c["image"].value,
+            tolerance=float(c["tolerance"].value),
+            bias=None if c["bias_auto"].value else float(c["bias"].value),
+            rdp_tolerance=float(c["rdp_tolerance"].value),
+            kind=c["kind"].value,
+        )
+
+    def _level_widget_changed(self, change: dict[str, Any]) -> None:
+        if not self._syncing:
+            self.on_level_change(change["new"])
+
+    def _bias_auto_changed(self, change: dict[str, Any]) -> None:
+        self.controls["bias"].disabled = bool(change["new"])
+
+    def _run_clicked(self, _button: Any = None) -> None:
+        button = self.controls.get("run")
+        if button is not None:
+            button.disabled = True
+        try:
+            self.on_run(**dataclasses.asdict(self.widget_settings()))
+        finally:
+            if button is not None:
+                button.disabled = False
+
+    def _sync_widgets(self) -> None:
+        """Push the state (level, its range, title, drawing) to the widgets, without echo."""
+        c = self.controls
+        if not c:
+            return
+        self._syncing = True
+        try:
+            c["level"].max = self.n_levels - 1
+            c["level"].value = self.level
+            c["title"].value = self.title
+            c["drawing"].value = self.png()
+            if self.settings.bias is None:
+                c["bias"].value = round(self.result.bias, 2)
+        finally:
+            self._syncing = False
