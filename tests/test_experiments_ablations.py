@@ -1,0 +1,194 @@
+"""The ablations of Sec. 6.2 (Fig. 6, 9, 11, 12, 13): experiments.ablations."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pandas as pd
+import pytest
+from conftest import drawing
+from matplotlib.figure import Figure
+
+from img2logo import experiments
+from img2logo.errors import InvalidParameterError
+from img2logo.experiments import ablations
+from img2logo.geometry import Arc, Circle
+from img2logo.progressive import optimize
+from img2logo.segment_graph import SegmentGraph
+
+
+@pytest.fixture(scope="module")
+def bird() -> experiments.Preprocessed:
+    return experiments.preprocess([experiments.data_path("drawing-bird.png")])[0]
+
+
+@pytest.fixture(scope="module")
+def connectivity_runs(bird) -> list[ablations.AblationRun]:
+    return ablations.run_variants([bird], ablations.CONNECTIVITY_VARIANTS)
+
+
+def y_graph() -> SegmentGraph:
+    """A "Y": three straight segments meeting at node 0, the stem split in two at node 4."""
+    arm = np.linspace(0.0, 30.0, 31)
+    segments = [
+        np.column_stack([50 - arm, 50 - arm]),  # 0 -> 1
+        np.column_stack([50 + arm, 50 - arm]),  # 0 -> 2
+        np.column_stack([50 + 0 * arm, 50 + arm]),  # 0 -> 4
+        np.column_stack([50 + 0 * arm, 80 + arm]),  # 4 -> 3
+    ]
+    nodes = [[50, 50], [20, 20], [80, 20], [50, 110], [50, 80]]
+    return SegmentGraph(tuple(segments), np.array(nodes, float), np.array([[0, 1], [0, 2], [0, 4], [4, 3]]), 120, 120)
+
+
+# --------------------------------------------------------------------------- topology of a level
+def test_arc_chain_orients_the_segments_along_the_path() -> None:
+    g = y_graph()
+    nodes, points = ablations.arc_chain(g, [1, 2, 3])
+    assert nodes == (2, 0, 4, 3)
+    np.testing.assert_allclose(points[0], [80, 20])
+    np.testing.assert_allclose(points[-1], [50, 110])
+    assert len(points) == 3 * 31 - 2
+    assert ablations.arc_chain(g, [2])[0] == (0, 4)  # one segment keeps its direction
+    with pytest.raises(InvalidParameterError, match="do not form a path"):
+        ablations.arc_chain(g, [0, 3])
+
+
+def test_junction_nodes_match_the_level(connectivity_runs) -> None:
+    for run in connectivity_runs:
+        for level in (run.progression.levels[0], run.final):
+            nodes = ablations.junction_nodes(level, run.graph)
+            assert len(nodes) == len(level.junctions)
+            # displaced junctions stay near their nodes
+            assert np.max(np.hypot(*(level.junctions - run.graph.junctions[nodes]).T)) < 20.0
+
+
+def test_nearest_on_arc_projects_inside_and_clamps_to_the_ends() -> None:
+    arc = Arc(Circle(0.0, 0.0, 10.0), 0.0, math.pi / 2)  # from (10, 0) to (0, 10)
+    d, q = ablations.nearest_on_arc(arc, np.array([20.0, 20.0]))
+    assert d == pytest.approx(math.hypot(20, 20) - 10)
+    np.testing.assert_allclose(q, [10 / math.sqrt(2), 10 / math.sqrt(2)])
+    d, q = ablations.nearest_on_arc(arc, np.array([12.0, -5.0]))
+    np.testing.assert_allclose(q, [10.0, 0.0], atol=1e-12)
+    assert d == pytest.approx(math.hypot(2, 5))
+
+
+# --------------------------------------------------------------------------- Fig. 11
+def test_connectivity_constraint_closes_every_gap(connectivity_runs) -> None:
+    table = ablations.connectivity_table(connectivity_runs)
+    assert list(table["variant"]) == list(ablations.CONNECTIVITY_VARIANTS)
+    assert {"arcs", "E^s", "max gap", "mean gap", "junctions with gap > 0.5 px", "redundant intersections"} <= set(
+        table.columns
+    )
+    by = table.set_index("variant")
+    assert by.loc["(b) with connectivity", "max gap"] < 1e-3
+    assert by.loc["(e) as (d), no merging", "max gap"] < 1e-3
+    assert by.loc["(c) without connectivity", "max gap"] > 1.0
+    assert by.loc["(c) without connectivity", "junctions with gap > 0.5 px"] > 0
+    # no merging keeps more arcs than merging
+    assert by.loc["(e) as (d), no merging", "arcs"] > by.loc["(d) start/end junctions only", "arcs"]
+    assert (table["E^s"] <= 5.0).all()
+
+
+def test_end_junction_constraints_miss_an_inner_junction_of_a_synthetic_y() -> None:
+    # The Y's stem (segments 2, 3) merged into one arc: with only its ends
+    # constrained it need not pass through node 0, where the arms end.
+    g = y_graph()
+    bent = optimize(g, tolerance=50.0, inner_junctions=False)
+    gaps = ablations.junction_gaps(bent.final, g)
+    assert set(gaps.columns) >= {"node", "x", "y", "gap", "spread", "arcs"}
+    assert (gaps["arcs"] >= 2).all()
+    assert bent.final.arc_segments == ((0,), (1, 2, 3))  # an arm and the stem through node 0
+    inner = gaps.set_index("node").loc[0]
+    assert inner["in_J'"] and inner["valence"] == 3
+    assert inner["gap"] > 0.5  # the merged arc misses the junction the other arm ends at
+    full = ablations.junction_gaps(optimize(g, tolerance=50.0).final, g)
+    assert full["gap"].max() < 1e-3
+
+
+def test_gap_table_and_figure(connectivity_runs) -> None:
+    gaps = ablations.junction_gap_table(connectivity_runs)
+    assert set(gaps["variant"]) == set(ablations.CONNECTIVITY_VARIANTS)
+    windows = ablations.gap_windows(connectivity_runs, count=2)
+    assert 1 <= len(windows) <= 2
+    for _, (x0, y0, x1, y1) in windows:
+        assert x1 - x0 == pytest.approx(y1 - y0) and x1 - x0 >= 48.0
+    fig = ablations.plot_connectivity_ablation(connectivity_runs, zooms=1)
+    assert isinstance(fig, Figure)
+    assert len(fig.axes) == 2 * 5
+
+
+# --------------------------------------------------------------------------- Fig. 12
+def test_redundant_intersections_of_two_crossing_arcs() -> None:
+    from img2logo.geometry import Abstraction
+
+    a = Arc(Circle(0.0, 0.0, 10.0), 0.0, math.pi)
+    b = Arc(Circle(10.0, 0.0, 10.0), math.pi / 2, math.pi)
+    junctions = np.array([[10.0, 0.0], [-10.0, 0.0]])  # the ends of a; b owns none
+    level = Abstraction(0, (a, b), ((0,), (1,)), junctions, ((0,), (0,)), 1.0, 0.0, 5.0, 30, 30)
+    found = ablations.level_redundant_intersections(level)
+    assert len(found) == 1
+    np.testing.assert_allclose(found[0].point, [5.0, math.sqrt(75.0)])
+    assert ablations.arc_junction_lists(level) == [[0, 1], []]
+
+
+def test_redundant_table_and_selection(bird) -> None:
+    runs = ablations.run_variants([bird], ablations.AVOIDANCE_VARIANTS, tolerance=[5.0, 9.0])
+    table = ablations.redundant_table(runs)
+    assert len(table) == 4
+    assert list(table["T"]) == [5.0, 5.0, 9.0, 9.0]
+    assert (table["redundant intersections"] >= 0).all()
+    effect = ablations.avoidance_effect(table)
+    assert list(effect.columns) == ["image", "T", "with", "without", "difference", "arcs with", "arcs without"]
+    assert len(effect) == 2
+    fake = pd.DataFrame({"image": ["a", "a", "b", "c"], "T": [5.0, 9.0, 5.0, 5.0], "difference": [1, 3, 1, 0]})
+    assert ablations.select_cases(fake, 2) == [("a", 9.0), ("b", 5.0)]
+    fig = ablations.plot_redundant_intersections(runs, [("drawing-bird", 5.0)])
+    assert len(fig.axes) == 5
+    with pytest.raises(InvalidParameterError, match="no runs"):
+        ablations.plot_redundant_intersections(runs, [("drawing-bird", 7.0)])
+
+
+# --------------------------------------------------------------------------- Fig. 9
+def test_hook_sum_of_squares_keeps_a_redundant_part() -> None:
+    ex = ablations.hook_example(60.0)
+    assert ex.differs
+    assert abs(ex.frechet.arc.sweep) == pytest.approx(math.pi / 2)
+    assert abs(ex.sum_of_squares.arc.sweep) == pytest.approx(1.5 * math.pi)
+    assert ex.sum_of_squares.frechet > ex.frechet.frechet + 40.0
+    table = ablations.hook_table([0.0, 60.0])
+    assert list(table["differs"]) == [False, True]
+    assert table.loc[0, "Fréchet F"] == pytest.approx(0.0, abs=1e-9)
+    assert isinstance(ablations.plot_hook_example(ex, table), Figure)
+    with pytest.raises(InvalidParameterError):
+        ablations.hook_example(200.0)
+
+
+def test_compare_arc_selection_reproduces_the_levels(bird) -> None:
+    runs = ablations.run_variants([bird], ablations.ARC_SELECTION_VARIANTS)
+    comparisons = ablations.arc_selection_study(runs)
+    assert len(comparisons) == len(runs[0].progression.levels)
+    for comp in comparisons:
+        assert comp.table["reproduces level"].all()
+        assert len(comp.table) == len(comp.level.arcs)
+        assert (comp.table["candidates"] >= 1).all()
+    table = ablations.arc_selection_table(runs, comparisons)
+    assert len(table) == 1
+    row = table.iloc[0]
+    assert row["arcs compared"] == sum(len(c.level.arcs) for c in comparisons)
+    assert row["differ"] == len(ablations.differing_arcs(comparisons))
+    assert isinstance(ablations.plot_arc_selection(comparisons), Figure)
+
+
+# --------------------------------------------------------------------------- Fig. 13
+def test_rdp_sweep_fewer_segments_for_larger_tolerances() -> None:
+    from img2logo.preprocessing import load_image
+
+    runs = ablations.rdp_sweep([load_image(drawing("spiral", size=160))], [1.0, 4.0])
+    table = ablations.rdp_table(runs)
+    assert list(table["rdp tolerance"]) == [1.0, 4.0]
+    assert table["segments"].iloc[0] > table["segments"].iloc[1]
+    assert (table["final arcs"] <= table["arcs at A^0"]).all()
+    assert (table["arcs at A^0"] <= table["segments"]).all()
+    fig = ablations.plot_rdp_sweep(runs)
+    assert len(fig.axes) == 4
