@@ -39,6 +39,8 @@ _LAZY = {
     "optimize": "progressive",
     "Progression": "progressive",
     "GoldenLadder": "golden_ladder",
+    "FibonacciLadder": "golden_ladder",
+    "run_batch": "batch",
 }
 
 __all__ = [
@@ -48,6 +50,7 @@ __all__ = [
     "Circle",
     "DownscaleWarning",
     "FeatureLines",
+    "FibonacciLadder",
     "FitError",
     "GoldenLadder",
     "ImageNotFoundError",
@@ -68,6 +71,7 @@ __all__ = [
     "plot_abstraction",
     "plot_segment_graph",
     "read_json",
+    "run_batch",
     "write_json",
     "write_png",
     "write_segment_graph_png",
@@ -89,8 +93,9 @@ def __dir__() -> list[str]:
 
 
 if TYPE_CHECKING:  # for type checkers and IDEs: the lazy names, eagerly
+    from .batch import run_batch
     from .geometry import Abstraction, Arc, Circle
-    from .golden_ladder import GoldenLadder
+    from .golden_ladder import FibonacciLadder, GoldenLadder
     from .pipeline import Result, abstract
     from .plotting import plot_abstraction, plot_segment_graph
     from .preprocessing import (

@@ -6,6 +6,11 @@ golden ratio logo: feature lines, the segment graph L = {S, J}, then the
 progressive optimization; it writes the final level (or ``--level N``), every
 level with ``--levels-dir``, and the segment graph with ``--segments-png``.
 
+``img2logo batch INPUT_DIR OUTPUT_DIR [options]`` does every image of a folder
+(:mod:`img2logo.batch`) on all cores (``--jobs N``), writing
+``OUTPUT_DIR/<stem>.svg``, ``.json``, ``.png`` and ``OUTPUT_DIR/summary.csv``; it
+goes on past a bad file, lists it at the end and then exits with status 1.
+
 Errors in the input or the options print one line, ``img2logo: error: ...``, and
 exit with status 2; nothing is written then. The same input and options give the
 same files, byte for byte.
@@ -24,14 +29,63 @@ from .constants import MIN_SEGMENT_LENGTH, RDP_TOLERANCE, TOLERANCE
 from .errors import Img2LogoError, InvalidParameterError
 
 EXIT_ERROR = 2
+#: Exit status of ``img2logo batch`` when some images failed (the others were done).
+EXIT_FAILED = 1
 
 
 def _parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(
         prog="img2logo",
+        usage="%(prog)s INPUT [options]\n       %(prog)s batch INPUT_DIR OUTPUT_DIR [options]",
         description="Turn an image into a golden ratio logo: circular arcs on a phi circle grid.",
+        epilog="img2logo batch INPUT_DIR OUTPUT_DIR [options]: every image of a folder, on all cores, "
+        "with a summary table (see img2logo batch --help).",
     )
     p.add_argument("input", help="input image (PNG, JPEG, ...): a photo, a clip art or a line drawing")
+    _add_input_options(p)
+    p.add_argument("--segments-png", metavar="OUT.png", help="draw the segment graph L = {S, J} to this PNG")
+    out = p.add_argument_group("outputs (the final level, or --level N)")
+    out.add_argument("--svg", metavar="OUT.svg", help="the logo as SVG: exact arcs, golden circles on a hidden layer")
+    out.add_argument("--json", metavar="OUT.json", help="the logo as a document of the img2logo.abstraction/1 contract")
+    out.add_argument("--png", metavar="OUT.png", help="the logo drawn over the faded input")
+    out.add_argument(
+        "--level", type=int, metavar="N", help="write level N (0 = the initial fit) instead of the final one"
+    )
+    out.add_argument("--levels-dir", metavar="DIR", help="write every level as DIR/level-0000.json and .svg, ...")
+    _add_fill_option(out)
+    _add_optimization_options(p, lock_mask=True)
+    p.add_argument("-q", "--quiet", action="store_true", help="print nothing but errors")
+    p.add_argument("--version", action="version", version=f"img2logo {__version__}")
+    return p
+
+
+def _batch_parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(
+        prog="img2logo batch",
+        description="Turn every image of a folder (png, jpg, jpeg, tif, tiff, bmp, webp; sorted by name) into a "
+        "golden ratio logo: OUTPUT_DIR/<stem>.svg, .json and .png, and OUTPUT_DIR/summary.csv (image, kind, "
+        "arcs, levels, E^s, seconds, error). A file that fails is reported at the end and the exit status is "
+        "then 1; the other images are done.",
+    )
+    p.add_argument("input_dir", metavar="INPUT_DIR", help="folder of input images (not searched recursively)")
+    p.add_argument("output_dir", metavar="OUTPUT_DIR", help="folder for the results (created if missing)")
+    _add_input_options(p)
+    out = p.add_argument_group("outputs")
+    _add_fill_option(out)
+    _add_optimization_options(p, lock_mask=False)
+    p.add_argument(
+        "--jobs",
+        "-j",
+        type=int,
+        metavar="N",
+        help="images processed at once, each in its own process (default: the number of CPUs)",
+    )
+    p.add_argument("-q", "--quiet", action="store_true", help="print nothing but errors")
+    return p
+
+
+def _add_input_options(p: argparse.ArgumentParser) -> None:
+    """--kind, --rdp, --min-length, --foreground: feature lines and the segment graph."""
     p.add_argument(
         "--kind",
         choices=("auto", "photo", "clipart", "drawing"),
@@ -58,15 +112,9 @@ def _parser() -> argparse.ArgumentParser:
         default="none",
         help="photos: keep only lines on the object found by GrabCut (default none)",
     )
-    p.add_argument("--segments-png", metavar="OUT.png", help="draw the segment graph L = {S, J} to this PNG")
-    out = p.add_argument_group("outputs (the final level, or --level N)")
-    out.add_argument("--svg", metavar="OUT.svg", help="the logo as SVG: exact arcs, golden circles on a hidden layer")
-    out.add_argument("--json", metavar="OUT.json", help="the logo as a document of the img2logo.abstraction/1 contract")
-    out.add_argument("--png", metavar="OUT.png", help="the logo drawn over the faded input")
-    out.add_argument(
-        "--level", type=int, metavar="N", help="write level N (0 = the initial fit) instead of the final one"
-    )
-    out.add_argument("--levels-dir", metavar="DIR", help="write every level as DIR/level-0000.json and .svg, ...")
+
+
+def _add_fill_option(out: argparse._ArgumentGroup) -> None:
     out.add_argument(
         "--fill",
         metavar="SPEC",
@@ -74,6 +122,10 @@ def _parser() -> argparse.ArgumentParser:
         help="colour the regions bounded by the arcs (paper Fig. 18): none (default), auto (colours of the "
         "input), palette:#rrggbb,..., linear[@DEG]:#rrggbb,#rrggbb,... or radial:#rrggbb,#rrggbb,...",
     )
+
+
+def _add_optimization_options(p: argparse.ArgumentParser, *, lock_mask: bool) -> None:
+    """The optimization's options (paper Sec. 5); ``--lock-mask`` only for a single image."""
     opt = p.add_argument_group("optimization (paper Sec. 5)")
     opt.add_argument(
         "--tolerance",
@@ -83,12 +135,31 @@ def _parser() -> argparse.ArgumentParser:
         metavar="PX",
         help=f"largest similarity error E^s, px; larger gives fewer arcs (default {TOLERANCE})",
     )
-    opt.add_argument("--bias", type=float, metavar="S", help="ladder bias sigma in [0, 1) (default: Eqn. 14)")
-    opt.add_argument("--radii", metavar="K1,K2,...", help="only these ladder exponents k: radii phi**(k + bias)")
+    opt.add_argument(
+        "--ladder",
+        choices=("phi", "fibonacci"),
+        default="phi",
+        help="the radii: phi**(k + bias) (default, the paper) or unit * F(k), F(k) = 1, 1, 2, 3, 5, 8, ... the "
+        "Fibonacci grid designers draw (paper Fig. 2b)",
+    )
+    opt.add_argument("--bias", type=float, metavar="S", help="phi ladder bias sigma in [0, 1) (default: Eqn. 14)")
+    opt.add_argument(
+        "--unit",
+        type=float,
+        metavar="PX",
+        help="Fibonacci ladder unit, the smallest radius, px (default: the largest <= 1 px putting the longest "
+        "segment's radius on a rung)",
+    )
+    opt.add_argument(
+        "--radii", metavar="K1,K2,...", help="only these ladder exponents k: radii phi**(k + bias) (or unit * F(k))"
+    )
     opt.add_argument(
         "--rounding", choices=("nearest", "ceil"), default="nearest", help="radius snapping (ceil: the paper's Eqn. 12)"
     )
-    opt.add_argument("--lock-mask", metavar="MASK.png", help="segments inside the mask's white pixels are never merged")
+    if lock_mask:
+        opt.add_argument(
+            "--lock-mask", metavar="MASK.png", help="segments inside the mask's white pixels are never merged"
+        )
     for flag, what in (
         ("connectivity", "the connectivity constraint (Fig. 11c)"),
         ("inner-junctions", "junctions inside merged arcs as constraints (Fig. 11d)"),
@@ -98,19 +169,25 @@ def _parser() -> argparse.ArgumentParser:
         ("simplify", "line-segment simplification (Sec. 5.4)"),
     ):
         opt.add_argument(f"--no-{flag}", action="store_true", help=f"switch off {what}")
-    p.add_argument("-q", "--quiet", action="store_true", help="print nothing but errors")
-    p.add_argument("--version", action="version", version=f"img2logo {__version__}")
-    return p
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """Run the command line; return the exit status."""
-    args = _parser().parse_args(argv)
+    """Run the command line; return the exit status.
+
+    ``img2logo batch ...`` (the first argument ``batch``) runs a folder; to
+    abstract an image file named ``batch``, write ``./batch``.
+    """
+    args_list = list(sys.argv[1:] if argv is None else argv)
+    batch = bool(args_list) and args_list[0] == "batch"
+    if batch:
+        args = _batch_parser().parse_args(args_list[1:])
+    else:
+        args = _parser().parse_args(args_list)
     say = (lambda *a: None) if args.quiet else (lambda *a: print(*a, file=sys.stderr))
     try:
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
-            status = _run(args, say)
+            status = _batch(args, say) if batch else _run(args, say)
         for w in caught:
             say(f"img2logo: warning: {w.message}")
         return status
@@ -119,40 +196,50 @@ def main(argv: Sequence[str] | None = None) -> int:
         return EXIT_ERROR
 
 
-def _run(args: argparse.Namespace, say) -> int:
-    from .fills import parse_fill_option
-    from .golden_ladder import GoldenLadder
-    from .pipeline import abstract
-    from .preprocessing import load_image, load_mask
+def _abstract_options(args: argparse.Namespace) -> dict:
+    """The keyword arguments of :func:`img2logo.abstract` the options ask for, checked.
 
-    # Check the options before the run: a bad value should not cost a run.
+    Checked before the run: a bad value should not cost a run.
+    """
+    from .golden_ladder import make_ladder
+
     exponents = _parse_radii(args.radii)
     check_positive(args.tolerance, "tolerance")
     check_positive(args.rdp, "rdp_tolerance")
-    GoldenLadder(0.0 if args.bias is None else args.bias, exponents, args.rounding)
+    # 1.0: a stand-in for the longest segment's radius; only the values given are checked.
+    make_ladder(args.ladder, 1.0, bias=args.bias, unit=args.unit, exponents=exponents, rounding=args.rounding)
+    options = {
+        "tolerance": args.tolerance,
+        "kind": args.kind,
+        "rdp_tolerance": args.rdp,
+        "min_length": args.min_length,
+        "foreground": None if args.foreground == "none" else args.foreground,
+        "bias": args.bias,
+        "exponents": exponents,
+        "rounding": args.rounding,
+        "connectivity": not args.no_connectivity,
+        "inner_junctions": not args.no_inner_junctions,
+        "merging": not args.no_merging,
+        "avoid_intersections": not args.no_intersection_avoidance,
+        "localized": not args.no_localized,
+        "simplify": not args.no_simplify,
+    }
+    if args.ladder == "fibonacci":  # only then: a phi run's parameters stay as they were
+        options.update(ladder=args.ladder, unit=args.unit)
+    return options
+
+
+def _run(args: argparse.Namespace, say) -> int:
+    from .fills import parse_fill_option
+    from .pipeline import abstract
+    from .preprocessing import load_image, load_mask
+
+    options = _abstract_options(args)
     fill_spec = parse_fill_option(args.fill)
     image = load_image(args.input)
     lock_mask = None if not args.lock_mask else load_mask(args.lock_mask, (image.height, image.width))
     say(f"{args.input}: {image.width}x{image.height} px")
-    result = abstract(
-        image,
-        tolerance=args.tolerance,
-        kind=args.kind,
-        rdp_tolerance=args.rdp,
-        min_length=args.min_length,
-        foreground=None if args.foreground == "none" else args.foreground,
-        bias=args.bias,
-        exponents=exponents,
-        rounding=args.rounding,
-        lock_mask=lock_mask,
-        progress=None if not args.quiet else False,
-        connectivity=not args.no_connectivity,
-        inner_junctions=not args.no_inner_junctions,
-        merging=not args.no_merging,
-        avoid_intersections=not args.no_intersection_avoidance,
-        localized=not args.no_localized,
-        simplify=not args.no_simplify,
-    )
+    result = abstract(image, lock_mask=lock_mask, progress=None if not args.quiet else False, **options)
     graph, prog = result.graph, result.progression
     say(f"kind {result.lines.kind} ({result.lines.reason})")
     say(
@@ -161,7 +248,7 @@ def _run(args: argparse.Namespace, say) -> int:
     )
     say(
         f"levels: {len(prog.levels)}, arcs {prog.arc_counts[0]} -> {prog.arc_counts[-1]}, "
-        f"E^s {prog.final.similarity:.2f} px (T = {args.tolerance:g}), bias {prog.bias:.4f}, "
+        f"E^s {prog.final.similarity:.2f} px (T = {args.tolerance:g}), {_ladder_text(prog)}, "
         f"stopped: {prog.stopped_because}, {sum(result.timings.values()):.2f} s"
     )
     level = _pick_level(result, args.level)
@@ -169,6 +256,40 @@ def _run(args: argparse.Namespace, say) -> int:
     if not any((args.svg, args.json, args.png, args.segments_png, args.levels_dir)):
         say("nothing written: give --svg, --json, --png, --segments-png or --levels-dir")
     return 0
+
+
+def _ladder_text(prog) -> str:
+    """``bias 0.1234`` on the phi ladder, ``Fibonacci unit 0.8726 px`` on the Fibonacci one."""
+    unit = getattr(prog.ladder, "unit", None)
+    return f"bias {prog.bias:.4f}" if unit is None else f"Fibonacci unit {unit:.4g} px"
+
+
+def _batch(args: argparse.Namespace, say) -> int:
+    """``img2logo batch``: every image of a folder (:func:`img2logo.batch.run_batch`)."""
+    from .batch import find_images, run_batch
+    from .fills import parse_fill_option
+
+    options = _abstract_options(args)
+    parse_fill_option(args.fill)
+    if args.jobs is not None and args.jobs < 1:
+        raise InvalidParameterError(f"--jobs must be >= 1, got {args.jobs}")
+    paths = find_images(args.input_dir)
+    say(f"{args.input_dir}: {len(paths)} images")
+    report = run_batch(
+        paths,
+        args.output_dir,
+        jobs=args.jobs,
+        progress=None if not args.quiet else False,
+        fill=args.fill,
+        **options,
+    )
+    for w in report.warnings:
+        say(f"img2logo: warning: {w}")
+    say(report.summary(failures=False))
+    say(f"wrote {len(report.rows)} logos (.svg, .json, .png) to {args.output_dir}/ and {report.summary_path}")
+    for f in report.failures:
+        print(f"img2logo: error: {f.line}", file=sys.stderr)
+    return EXIT_FAILED if report.failures else 0
 
 
 def _parse_radii(text: str | None) -> list[int] | None:

@@ -78,6 +78,8 @@ def abstract(
     foreground: object = None,
     bias: float | None = None,
     exponents: Sequence[int] | None = None,
+    ladder: str = "phi",
+    unit: float | None = None,
     lock_mask: np.ndarray | None = None,
     progress: ProgressCallback | bool | None = None,
     **switches: Any,
@@ -98,6 +100,12 @@ def abstract(
         Photos: restrict the lines to the object.
     bias, exponents, lock_mask
         The ladder bias, a subset of ladder exponents, a lock mask (Sec. 7).
+    ladder : {"phi", "fibonacci"}
+        Radii ``phi ** (k + bias)`` (default, the paper) or ``unit * F(k)``,
+        the Fibonacci grid designers draw (Fig. 2b; see
+        :func:`img2logo.progressive.optimize`).
+    unit : float, optional
+        The Fibonacci ladder's unit, px; default: chosen from the longest segment.
     progress : callable, bool or None
         A callback ``progress(t, n_arcs, similarity)``; ``True`` shows a
         progress bar on the terminal; ``None`` (default) shows one only when
@@ -133,6 +141,8 @@ def abstract(
             tolerance=tolerance,
             bias=bias,
             exponents=exponents,
+            ladder=ladder,
+            unit=unit,
             lock_mask=lock_mask,
             progress=callback,
             params=params,

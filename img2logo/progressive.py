@@ -29,6 +29,7 @@ Coordinates: px, x right, y down (``contract/README.md``).
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import time
 from collections.abc import Callable, Sequence
@@ -43,7 +44,7 @@ from .circle_fitting import fit_center, fit_circle, fit_constrained, mean_abs_er
 from .constants import SIMPLIFICATION_ERROR, TOLERANCE
 from .errors import InvalidParameterError
 from .geometry import Abstraction, Circle
-from .golden_ladder import GoldenLadder, bias_from_radius
+from .golden_ladder import Ladder, make_ladder
 from .segment_graph import SegmentGraph
 
 #: Signature of a progress callback: (level t, number of arcs, E^s in px).
@@ -62,7 +63,8 @@ class Progression:
         one is the result: its E^s is within the tolerance (unless A^0 already
         exceeds it, then A^0 is the only level).
     bias : float
-        The ladder bias sigma used (Eqn. 14 from the longest segment, or given).
+        The ladder bias sigma used (Eqn. 14 from the longest segment, or given);
+        0.0 on the Fibonacci ladder (its unit is ``ladder.unit``).
     simplified : tuple of tuple of int
         The segments of the graph grouped by the line-segment simplification
         (Sec. 5.4), in the order of A^0's arcs.
@@ -75,6 +77,8 @@ class Progression:
         intersections.
     timings : dict
         Seconds spent in simplification, the initial fit and the loop.
+    ladder : GoldenLadder or FibonacciLadder or None
+        The ladder the radii were snapped to.
     """
 
     levels: tuple[Abstraction, ...]
@@ -83,6 +87,7 @@ class Progression:
     stopped_because: str
     stats: dict[str, int] = field(default_factory=dict)
     timings: dict[str, float] = field(default_factory=dict)
+    ladder: Ladder | None = None
 
     @property
     def final(self) -> Abstraction:
@@ -185,7 +190,7 @@ class _Optimizer:
             "rejected_intersections": 0,
         }
         self._circle_cache: dict[tuple[int, ...], tuple[np.ndarray, float]] = {}
-        self.ladder: GoldenLadder | None = None
+        self.ladder: Ladder | None = None
 
     # ----------------------------------------------------------------- groups and nodes
     def add_group(self, group: _Group) -> int:
@@ -432,6 +437,17 @@ class _Optimizer:
         changed = [i for i, g in enumerate(gids) if g in fits]
         return len(redundant_intersections(arcs, points, arc_junctions, candidates=changed))
 
+    def recheck_redundant(self, outcome: _Outcome) -> int:
+        """Redundant intersections a cached outcome would leave against the *current* arcs.
+
+        A cached count goes stale when any arc moves, not only the arcs of the
+        outcome's window: the chosen merge is checked again before it is made.
+        """
+        a, b, _ = outcome.pair
+        after = {g: grp for g, grp in self.groups.items() if g not in (a, b)}
+        after[-1] = outcome.merged
+        return self._redundant(after, outcome.fits, outcome.displacements, self.node_groups(after))
+
     def apply(self, outcome: _Outcome) -> int:
         """Carry out a merge: the merged group replaces its two parts."""
         a, b, _ = outcome.pair
@@ -475,6 +491,8 @@ def optimize(
     bias: float | None = None,
     exponents: Sequence[int] | None = None,
     rounding: str = "nearest",
+    ladder: str = "phi",
+    unit: float | None = None,
     connectivity: bool = True,
     inner_junctions: bool = True,
     merging: bool = True,
@@ -503,6 +521,17 @@ def optimize(
         How a fitted radius is snapped to the ladder: to the nearest rung in
         log space (default), or up as in the paper's Eqn. 12 (see
         :class:`~img2logo.golden_ladder.GoldenLadder`).
+    ladder : {"phi", "fibonacci"}
+        The radii: ``phi ** (k + bias)`` (the paper, Eqn. 10) or ``unit * F(k)``
+        with F the Fibonacci numbers, the grid designers draw (Fig. 2b, 3a;
+        :class:`~img2logo.golden_ladder.FibonacciLadder`). A Fibonacci run
+        records ``ladder`` and ``unit`` in every level's ``params`` (the
+        contract's Fibonacci keys) and has bias 0.0.
+    unit : float, optional
+        The Fibonacci ladder's unit, px (only with ``ladder="fibonacci"``);
+        default: :func:`~img2logo.golden_ladder.unit_from_radius` on the longest
+        segment after simplification, the largest unit <= 1 px that puts its
+        radius on a rung (the analogue of Eqn. 14).
     connectivity : bool
         The connectivity constraint of Eqn. 13 (off: Fig. 11c).
     inner_junctions : bool
@@ -531,6 +560,7 @@ def optimize(
     """
     tolerance = check_positive(tolerance, "tolerance")
     check_choice(arc_selection, "arc_selection", ("frechet", "sum_of_squares"))
+    check_choice(ladder, "ladder", ("phi", "fibonacci"))
     if not isinstance(graph, SegmentGraph):
         raise InvalidParameterError(f"graph must be a SegmentGraph, got {type(graph).__name__}")
     if graph.n_segments == 0:
@@ -552,6 +582,7 @@ def optimize(
         "bias_given": bias,
         "exponents": list(ladder_exponents) if ladder_exponents else None,
         "rounding": rounding,
+        **({"ladder": "fibonacci", "unit_given": unit} if ladder == "fibonacci" else {}),
         "connectivity": bool(connectivity),
         "inner_junctions": bool(inner_junctions),
         "merging": bool(merging),
@@ -572,11 +603,13 @@ def optimize(
     # The bias comes from the longest segment after simplification (Eqn. 14), by
     # free circles as in the paper. The simplification that the loop starts
     # from then asks for a *golden* arc within 1 px: a free fit within 1 px can
-    # be far off once its radius is snapped up the ladder (by up to phi).
-    if bias is None:
+    # be far off once its radius is snapped up the ladder (by up to phi). The
+    # Fibonacci ladder's unit comes from the same radius (unit_from_radius).
+    longest = None
+    if (unit if ladder == "fibonacci" else bias) is None:
         probe = _simplify(opt, groups, opt.free_error) if simplify else groups
-        bias = bias_from_radius(opt.free_circle(max(probe, key=lambda g: _length(g.points)))[1])
-    opt.ladder = GoldenLadder(bias, ladder_exponents, rounding)
+        longest = opt.free_circle(max(probe, key=lambda g: _length(g.points)))[1]
+    opt.ladder = make_ladder(ladder, longest, bias=bias, unit=unit, exponents=ladder_exponents, rounding=rounding)
     if simplify:
         groups = _simplify(opt, groups, opt.golden_error)
     for g in sorted(groups, key=lambda g: min(g.segments)):
@@ -586,6 +619,8 @@ def optimize(
     start = time.perf_counter()
     opt.initial_fit()
     record["bias"] = float(opt.ladder.bias)
+    if ladder == "fibonacci":
+        record["unit"] = float(opt.ladder.unit)
     levels = [opt.abstraction(0, record)]
     simplified = tuple(lv for lv in levels[0].arc_segments)
     timings["initial_fit"] = time.perf_counter() - start
@@ -597,7 +632,7 @@ def optimize(
     if merging:
         stopped = _loop(opt, levels, record, tolerance, progress)
     timings["loop"] = time.perf_counter() - start
-    return Progression(tuple(levels), float(opt.ladder.bias), simplified, stopped, dict(opt.stats), timings)
+    return Progression(tuple(levels), float(opt.ladder.bias), simplified, stopped, dict(opt.stats), timings, opt.ladder)
 
 
 def _loop(
@@ -646,6 +681,11 @@ def _loop(
         if best_error > tolerance:
             return "tolerance"
         outcome = cache[best]
+        if opt.opt["avoid_intersections"]:
+            now = opt.recheck_redundant(outcome)
+            if now:
+                cache[best] = dataclasses.replace(outcome, redundant=now)
+                continue
         opt.apply(outcome)
         changed = outcome.window | {outcome.pair[0], outcome.pair[1]}
         cache = {p: o for p, o in cache.items() if p[0] in opt.groups and p[1] in opt.groups}

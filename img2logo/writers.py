@@ -450,10 +450,14 @@ def to_svg(
     circles = abstraction.circles
     index = {c: i for i, c in enumerate(circles)}
     n = _num
+    if abstraction.params.get("ladder") == "fibonacci":
+        grid = f"unit*F(k) (Fibonacci grid, unit={float(abstraction.params['unit']):.6g} px)"
+    else:
+        grid = f"phi**(k+bias); bias={float(abstraction.bias):.6g}"
     desc = (
         f"{FORMAT_NAME} golden ratio logo by img2logo (Hsiao et al., Img2Logo, CGF 2023): "
-        f"{len(abstraction.arcs)} circular arcs on {len(circles)} circles of radius phi**(k+bias); "
-        f"bias={float(abstraction.bias):.6g}, level={int(abstraction.level)}, "
+        f"{len(abstraction.arcs)} circular arcs on {len(circles)} circles of radius {grid}, "
+        f"level={int(abstraction.level)}, "
         f"E^s={float(abstraction.similarity):.6g} px, tolerance T={float(abstraction.tolerance):.6g} px. "
         f"Coordinates in pixels of the {width} x {height} input image."
     )

@@ -131,6 +131,10 @@ def test_levels_dir_and_level(tmp_path, capsys):
         (["--radii", "3,x"], "--radii must be integers separated by commas"),
         (["--tolerance", "0"], "tolerance must be > 0"),
         (["--bias", "1.5"], r"bias must be in [0, 1)"),
+        (["--unit", "2"], "unit is a parameter of the Fibonacci ladder (ladder='fibonacci')"),
+        (["--ladder", "fibonacci", "--bias", "0.2"], "bias is a parameter of the phi ladder"),
+        (["--ladder", "fibonacci", "--unit", "0"], "unit must be > 0, got 0.0"),
+        (["--ladder", "fibonacci", "--radii", "1,5"], "exponents of the Fibonacci ladder must be >= 2"),
     ],
 )
 def test_bad_logo_options(tmp_path, capsys, args, message):
@@ -170,3 +174,104 @@ def test_all_white_lock_mask_is_accepted(tmp_path):
     import json
 
     assert json.loads(out.read_text())["params"]["locked_segments"] > 0
+
+
+# --------------------------------------------------------------------------- the Fibonacci ladder
+@pytest.mark.parametrize("unit", [None, "2.5"])
+def test_fibonacci_ladder_gives_a_valid_document_in_fibonacci_proportion(tmp_path, capsys, unit):
+    pytest.importorskip("jsonschema")
+    import json
+
+    from img2logo.golden_ladder import fibonacci
+    from img2logo.writers import validate_document
+
+    out = tmp_path / "f.json"
+    args = [str(DATA / "drawing-leaf.png"), "--ladder", "fibonacci", "--json", str(out)]
+    assert main([*args, *(["--unit", unit] if unit else [])]) == 0
+    assert "Fibonacci unit" in capsys.readouterr().err
+    doc = json.loads(out.read_text())
+    validate_document(doc)
+    assert doc["ladder"] == "fibonacci" and doc["bias"] == 0.0 and doc["params"]["ladder"] == "fibonacci"
+    if unit is not None:
+        assert doc["unit"] == float(unit)
+    else:
+        assert 0.5 < doc["unit"] <= 1.0  # the largest unit <= 1 px putting the longest radius on a rung
+    fib = {fibonacci(k) for k in range(2, 60)}
+    for c in doc["circles"]:
+        ratio = c["r"] / doc["unit"]
+        assert round(ratio) in fib and ratio == pytest.approx(round(ratio), rel=1e-9)
+        assert round(ratio) == fibonacci(c["k"])
+
+
+# --------------------------------------------------------------------------- img2logo batch
+def _batch_folder(tmp_path, names=("drawing-leaf.png", "drawing-snail.png"), bad=True):
+    import shutil
+
+    folder = tmp_path / "in"
+    folder.mkdir()
+    for name in names:
+        shutil.copy(DATA / name, folder / name)
+    if bad:
+        (folder / "corrupt.png").write_text("not an image at all")
+    return folder
+
+
+def test_batch_command_reports_a_bad_file_and_exits_one(tmp_path, capsys):
+    from img2logo.cli import EXIT_FAILED
+
+    folder, out = _batch_folder(tmp_path), tmp_path / "out"
+    assert main(["batch", str(folder), str(out), "--jobs", "2", "--tolerance", "6"]) == EXIT_FAILED == 1
+    err = capsys.readouterr().err
+    lines = err.strip().splitlines()
+    assert lines[-1].startswith("img2logo: error: ") and "corrupt.png: not a readable image" in lines[-1]
+    assert err.count("corrupt.png") == 1 and "Traceback" not in err
+    assert "drawing-leaf.png" in err and "E^s (px)" in err and "2 of 3 images done" in err
+    names = sorted(p.name for p in out.iterdir())
+    logos = [f"drawing-{n}.{f}" for n in ("leaf", "snail") for f in ("svg", "json", "png")]
+    assert names == sorted(["summary.csv", *logos])
+    summary = (out / "summary.csv").read_text().splitlines()
+    assert summary[0] == "image,kind,arcs,levels,similarity,seconds,error"
+    assert [line.split(",")[0] for line in summary[1:]] == ["corrupt.png", "drawing-leaf.png", "drawing-snail.png"]
+
+
+def test_batch_command_all_good_is_quiet_and_exits_zero(tmp_path, capsys):
+    import json
+
+    folder, out = _batch_folder(tmp_path, names=("drawing-leaf.png",), bad=False), tmp_path / "out"
+    options = ["--ladder", "fibonacci", "--fill", "palette:#ff0000,#00ff00", "--rdp", "3"]
+    assert main(["batch", str(folder), str(out), "-q", *options]) == 0
+    assert capsys.readouterr().err == ""
+    single = tmp_path / "single.json"
+    assert main([str(folder / "drawing-leaf.png"), "-q", "--json", str(single), *options]) == 0
+    assert (out / "drawing-leaf.json").read_bytes() == single.read_bytes()  # the options are passed on
+    doc = json.loads(single.read_text())
+    assert doc["ladder"] == "fibonacci" and doc["fills"] and doc["params"]["rdp_tolerance"] == 3.0
+
+
+@pytest.mark.parametrize(
+    ("make", "args", "message"),
+    [
+        (lambda d: d / "missing", [], "input folder not found"),
+        (lambda d: d, [], "no images (png, jpg, jpeg, tif, tiff, bmp, webp) in"),
+        (lambda d: d, ["--jobs", "0"], "--jobs must be >= 1, got 0"),
+        (lambda d: d, ["--tolerance", "-1"], "tolerance must be > 0"),
+    ],
+)
+def test_batch_command_errors_exit_two(tmp_path, capsys, make, args, message):
+    assert main(["batch", str(make(tmp_path)), str(tmp_path / "out"), *args]) == EXIT_ERROR
+    err = capsys.readouterr().err
+    assert err.startswith("img2logo: error: ") and message in err and err.count("\n") == 1
+    assert not (tmp_path / "out").exists()
+
+
+def test_help_mentions_batch(capsys):
+    with pytest.raises(SystemExit) as exc:
+        main(["--help"])
+    assert exc.value.code == 0
+    text = capsys.readouterr().out
+    assert "img2logo batch INPUT_DIR OUTPUT_DIR" in text and "--ladder {phi,fibonacci}" in text
+    with pytest.raises(SystemExit) as exc:
+        main(["batch", "--help"])
+    assert exc.value.code == 0
+    text = capsys.readouterr().out
+    assert text.startswith("usage: img2logo batch") and "--jobs N" in text and "--lock-mask" not in text

@@ -260,3 +260,16 @@ def test_empty_graph_is_refused():
 def test_graph_must_be_a_segment_graph():
     with pytest.raises(InvalidParameterError, match="graph must be a SegmentGraph, got list"):
         optimize([])  # type: ignore[arg-type]
+
+
+def test_no_redundant_intersection_when_an_arc_outside_the_window_moved():
+    # Regression: on the clip-art fox at T = 12 a merge was cached with no crossing,
+    # then applied after another merge had moved an arc it crosses.
+    graph = build_segment_graph(extract_feature_lines(DATA / "clipart-fox.png"))
+    prog = optimize(graph, tolerance=12.0)
+    level = prog.final
+    arc_junctions = [[] for _ in level.arcs]
+    for k, arcs in enumerate(level.junction_arcs):
+        for i in arcs:
+            arc_junctions[i].append(k)
+    assert redundant_intersections(list(level.arcs), level.junctions, arc_junctions) == []

@@ -1,0 +1,674 @@
+"""Batch runs: every image of a folder, on all cores or on any executor (beyond the paper).
+
+:func:`run_batch` abstracts a list of images with :func:`img2logo.abstract` and
+writes, for each, ``OUTPUT_DIR/<stem>.svg``, ``.json`` and ``.png`` (the same files
+as ``img2logo INPUT --svg --json --png``), then ``OUTPUT_DIR/summary.csv``: one row
+per image (``image, kind, arcs, levels, similarity, seconds, error``). A file that
+fails (unreadable, blank, ...) does not stop the others: it is reported in
+:attr:`BatchReport.failures` with its one-line error message. :func:`sweep` runs a
+grid of parameters over images and returns the table (for the notebooks).
+
+The work is done by :func:`process_image`, a module-level function that takes and
+returns plain values (a path, a dict of options; a dict with the file contents as
+bytes), so that any :class:`concurrent.futures.Executor` can run it:
+
+- by default a local :class:`~concurrent.futures.ProcessPoolExecutor` with
+  ``os.cpu_count()`` workers (``jobs`` to change it; ``jobs=1`` runs in this process);
+- a :class:`~concurrent.futures.ThreadPoolExecutor` (mostly for tests: the work
+  is Python-bound and holds the GIL);
+- a cluster: ``run_batch(paths, out, executor=client.get_executor())`` with a
+  ``dask.distributed.Client`` (or any other executor). The workers read the input
+  images, so they must see the paths (a shared file system); the results come
+  back as bytes and are written by the calling process, so the output folder need
+  not be shared.
+
+The results do not depend on the executor: every image is processed alone and
+deterministically, the files are byte-identical, and rows are in input order.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import os
+import sys
+import tempfile
+import threading
+import time
+import warnings
+from collections.abc import Callable, Iterable, Mapping, Sequence
+from concurrent.futures import Executor, Future, as_completed
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+from ._validation import check_choice, check_positive
+from .errors import Img2LogoError, InvalidParameterError
+
+if TYPE_CHECKING:
+    import pandas as pd
+
+__all__ = [
+    "IMAGE_SUFFIXES",
+    "OUTPUT_FORMATS",
+    "SUMMARY_COLUMNS",
+    "BatchFailure",
+    "BatchProgress",
+    "BatchReport",
+    "BatchRow",
+    "find_images",
+    "process_image",
+    "run_batch",
+    "sweep",
+]
+
+#: File suffixes (lower case) of the images a folder run picks up.
+IMAGE_SUFFIXES: tuple[str, ...] = (".png", ".jpg", ".jpeg", ".tif", ".tiff", ".bmp", ".webp")
+#: The files written per image, by suffix.
+OUTPUT_FORMATS: tuple[str, ...] = ("svg", "json", "png")
+#: Columns of ``summary.csv`` and of :meth:`BatchReport.to_frame`.
+SUMMARY_COLUMNS: tuple[str, ...] = ("image", "kind", "arcs", "levels", "similarity", "seconds", "error")
+
+#: Signature of a progress callback: (images done, images in all, name of the last one).
+BatchProgress = Callable[[int, int, str], None]
+
+#: Keyword arguments of :func:`img2logo.abstract` a batch passes on (not ``image``,
+#: ``progress``, nor ``lock_mask``, which belongs to one image).
+_ABSTRACT_OPTIONS: frozenset[str] = frozenset(
+    {
+        "tolerance",
+        "kind",
+        "rdp_tolerance",
+        "min_length",
+        "foreground",
+        "bias",
+        "exponents",
+        "ladder",
+        "unit",
+        "rounding",
+        "connectivity",
+        "inner_junctions",
+        "merging",
+        "avoid_intersections",
+        "localized",
+        "simplify",
+        "arc_selection",
+    }
+)
+
+# matplotlib's style context (used by the PNG writer) is global state: within one
+# process, files are written one at a time (it matters for a ThreadPoolExecutor).
+_WRITE_LOCK = threading.Lock()
+
+
+# --------------------------------------------------------------------------- results
+@dataclass(frozen=True)
+class BatchRow:
+    """One image abstracted.
+
+    Attributes
+    ----------
+    image : str
+        The input's file name.
+    path : str
+        The input's path, as given.
+    kind : str
+        The kind of input used (``"photo"``, ``"clipart"``, ``"drawing"``).
+    arcs : int
+        |A| of the final level.
+    levels : int
+        The number of levels A^0 ... A^final.
+    similarity : float
+        E^s of the final level (paper Eqn. 3), px.
+    seconds : float
+        Wall time for the image: loading, the abstraction and the files.
+    outputs : tuple of str
+        The files written.
+    """
+
+    image: str
+    path: str
+    kind: str
+    arcs: int
+    levels: int
+    similarity: float
+    seconds: float
+    outputs: tuple[str, ...] = ()
+
+
+@dataclass(frozen=True)
+class BatchFailure:
+    """One image that failed: its file name, its path as given and the one-line error message."""
+
+    image: str
+    path: str
+    message: str
+
+    @property
+    def line(self) -> str:
+        """The message naming the file: ``"<path>: <message>"``, the path not repeated."""
+        return self.message if self.message.startswith(self.path) else f"{self.path}: {self.message}"
+
+
+@dataclass(frozen=True)
+class BatchReport:
+    """The outcome of :func:`run_batch`.
+
+    Attributes
+    ----------
+    rows : tuple of BatchRow
+        The images done, in input order.
+    failures : tuple of BatchFailure
+        The images that failed, in input order.
+    inputs : tuple of str
+        Every input path, in input order (the order of :meth:`to_frame`).
+    warnings : tuple of str
+        ``"<image>: <message>"`` for every warning a run gave (e.g. an image
+        downscaled), in input order. Not collected under a thread pool
+        (Python's warning capture is not thread-safe): they are printed there.
+    summary_path : str or None
+        The ``summary.csv`` written, if any.
+    """
+
+    rows: tuple[BatchRow, ...]
+    failures: tuple[BatchFailure, ...]
+    inputs: tuple[str, ...] = ()
+    warnings: tuple[str, ...] = ()
+    summary_path: str | None = None
+
+    @property
+    def ok(self) -> bool:
+        """True when no image failed."""
+        return not self.failures
+
+    def to_frame(self) -> pd.DataFrame:
+        """The summary table: one row per image (failed ones with their ``error``), ``SUMMARY_COLUMNS``."""
+        import pandas as pd
+
+        keyed = [
+            (
+                r.path,
+                {
+                    "image": r.image,
+                    "kind": r.kind,
+                    "arcs": r.arcs,
+                    "levels": r.levels,
+                    "similarity": r.similarity,
+                    "seconds": r.seconds,
+                    "error": "",
+                },
+            )
+            for r in self.rows
+        ]
+        keyed += [(f.path, {"image": f.image, "error": f.message}) for f in self.failures]
+        order = {path: i for i, path in enumerate(self.inputs)}
+        keyed.sort(key=lambda item: order.get(item[0], len(order)))  # stable: rows before failures otherwise
+        table = pd.DataFrame.from_records([rec for _, rec in keyed], columns=list(SUMMARY_COLUMNS))
+        return table.astype({"arcs": "Int64", "levels": "Int64"})
+
+    def summary(self, *, failures: bool = True) -> str:
+        """The summary as a text table: image, kind, arcs, E^s, seconds; then the failures, unless not asked."""
+        head = ("image", "kind", "arcs", "E^s (px)", "seconds")
+        body = [(r.image, r.kind, str(r.arcs), f"{r.similarity:.2f}", f"{r.seconds:.1f}") for r in self.rows]
+        widths = [max(len(row[i]) for row in [head, *body]) for i in range(len(head))]
+        align = ("<", "<", ">", ">", ">")
+
+        def line(row: Sequence[str]) -> str:
+            return "  ".join(f"{cell:{a}{w}}" for cell, a, w in zip(row, align, widths, strict=True)).rstrip()
+
+        lines = [line(head), line(["-" * w for w in widths]), *(line(row) for row in body)]
+        total = len(self.rows) + len(self.failures)
+        seconds = sum(r.seconds for r in self.rows)
+        lines.append(f"{len(self.rows)} of {total} images done, {seconds:.1f} s of work")
+        if self.failures and failures:
+            lines.append(f"{len(self.failures)} failed:")
+            lines.extend(f"  {f.line}" for f in self.failures)
+        return "\n".join(lines)
+
+
+# --------------------------------------------------------------------------- the worker
+def process_image(
+    path: str,
+    options: Mapping[str, Any] | None = None,
+    outputs: Sequence[str] = OUTPUT_FORMATS,
+    fill: str = "none",
+) -> dict[str, Any]:
+    """Abstract one image; return its files and numbers as plain values (the batch worker).
+
+    Module-level and picklable, it takes and returns only plain values, so any
+    :class:`concurrent.futures.Executor` (processes, threads, a dask cluster)
+    can run it. It never raises for a bad image: the error is returned.
+
+    Parameters
+    ----------
+    path : str
+        The input image.
+    options : mapping, optional
+        Keyword arguments of :func:`img2logo.abstract` (``tolerance``, ``kind``,
+        ``ladder``, ...).
+    outputs : sequence of {"svg", "json", "png"}
+        The files to make, as :func:`img2logo.writers.write_svg`,
+        :func:`~img2logo.writers.write_json` and :func:`~img2logo.writers.write_png`
+        (over the faded input) write them.
+    fill : str
+        The ``--fill`` option (:func:`img2logo.fills.parse_fill_option`).
+
+    Returns
+    -------
+    dict
+        ``image`` (file name), ``path``, ``seconds``, ``warnings`` (list of str)
+        and either ``error`` (the one-line message) or ``kind``, ``arcs``,
+        ``levels``, ``similarity`` and ``files`` (suffix -> bytes).
+    """
+    start = time.perf_counter()
+    name = Path(path).name
+    record = threading.current_thread() is threading.main_thread()
+    caught: list[warnings.WarningMessage] = []
+    try:
+        if record:  # warnings.catch_warnings is process-wide: only outside thread pools
+            with warnings.catch_warnings(record=True) as caught:
+                warnings.simplefilter("always")
+                out = _process(path, dict(options or {}), tuple(outputs), fill)
+        else:
+            out = _process(path, dict(options or {}), tuple(outputs), fill)
+    except Exception as exc:  # a batch keeps going past a bad file
+        out = {"error": _one_line(exc)}
+    seen = dict.fromkeys(" ".join(str(w.message).split()) for w in caught)
+    return {"image": name, "path": str(path), "seconds": time.perf_counter() - start, "warnings": list(seen), **out}
+
+
+def _process(path: str, options: dict[str, Any], outputs: tuple[str, ...], fill: str) -> dict[str, Any]:
+    from . import writers
+    from .fills import parse_fill_option
+    from .pipeline import abstract
+
+    spec = parse_fill_option(fill)
+    result = abstract(path, progress=False, **options)
+    final = result.final
+    fills = None if spec.mode == "none" else spec.make(final, result.image)
+    files: dict[str, bytes] = {}
+    if outputs:
+        with _WRITE_LOCK, tempfile.TemporaryDirectory(prefix="img2logo-") as tmp:
+            for fmt in outputs:
+                target = Path(tmp) / f"logo.{fmt}"
+                if fmt == "svg":
+                    writers.write_svg(final, target, fills=fills)
+                elif fmt == "json":
+                    writers.write_json(final, target, fills=fills)
+                else:
+                    writers.write_png(final, target, image=result.image.rgb, fills=fills)
+                files[fmt] = target.read_bytes()
+    return {
+        "kind": result.lines.kind,
+        "arcs": len(final.arcs),
+        "levels": len(result.levels),
+        "similarity": float(final.similarity),
+        "files": files,
+    }
+
+
+def _one_line(exc: BaseException) -> str:
+    """The exception's message on one line; its type is named unless it is one of ours."""
+    text = " ".join(str(exc).split())
+    if not isinstance(exc, Img2LogoError):
+        text = f"{type(exc).__name__}: {text}" if text else type(exc).__name__
+    return text
+
+
+def _init_worker() -> None:
+    """Initializer of the default process pool: one thread per worker (the pool uses the cores)."""
+    for var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS", "NUMBA_NUM_THREADS"):
+        os.environ.setdefault(var, "1")
+    try:
+        import cv2
+
+        cv2.setNumThreads(1)
+    except ImportError:  # pragma: no cover - a dependency
+        pass
+
+
+# --------------------------------------------------------------------------- running
+def find_images(folder: str | os.PathLike[str]) -> list[Path]:
+    """The images directly in ``folder`` (suffixes ``IMAGE_SUFFIXES``, any case), sorted by name.
+
+    Raises
+    ------
+    InvalidParameterError
+        If ``folder`` is not a directory or holds no image.
+    """
+    root = Path(folder)
+    if not root.is_dir():
+        raise InvalidParameterError(f"input folder not found: {root}")
+    found = sorted(
+        (p for p in root.iterdir() if p.is_file() and p.suffix.lower() in IMAGE_SUFFIXES), key=lambda p: p.name
+    )
+    if not found:
+        kinds = ", ".join(s.lstrip(".") for s in IMAGE_SUFFIXES)
+        raise InvalidParameterError(f"no images ({kinds}) in {root}")
+    return found
+
+
+def run_batch(
+    paths: Iterable[str | os.PathLike[str]],
+    output_dir: str | os.PathLike[str],
+    *,
+    executor: Executor | None = None,
+    jobs: int | None = None,
+    progress: BatchProgress | bool | None = None,
+    outputs: Sequence[str] = OUTPUT_FORMATS,
+    fill: str = "none",
+    summary: bool = True,
+    **options: Any,
+) -> BatchReport:
+    """Abstract every image of ``paths``, writing ``output_dir/<stem>.svg``, ``.json``, ``.png``.
+
+    Each image is processed by :func:`process_image` on ``executor``; the files
+    come back as bytes and are written here, atomically, as the images finish.
+    A failing image is reported, never raised. The files are the same bytes
+    whatever the executor, and the report's rows are in input order.
+
+    Parameters
+    ----------
+    paths : iterable of str or path-like
+        The input images, e.g. :func:`find_images` of a folder.
+    output_dir : str or path-like
+        Where the files go; created if missing. Two inputs with the same stem
+        (``a.png``, ``a.jpg``) are written as ``a-png.*`` and ``a-jpg.*``.
+    executor : concurrent.futures.Executor, optional
+        Runs the images. Default: a ProcessPoolExecutor of ``jobs`` workers,
+        made and shut down here. Any executor works: a ThreadPoolExecutor, or on
+        a cluster a dask.distributed client's ``client.get_executor()`` (the
+        workers must be able to read ``paths``). It is not shut down.
+    jobs : int, optional
+        Workers of the default pool (>= 1); default ``os.cpu_count()``. With 1
+        (or a single image) the images run here, one after the other. Ignored
+        when ``executor`` is given.
+    progress : callable, bool or None
+        ``progress(done, total, image)`` after every image; ``True`` shows a
+        tqdm bar on standard error; ``None`` (default) shows it only when
+        standard error is a terminal; ``False`` shows nothing.
+    outputs : sequence of {"svg", "json", "png"}
+        The files to write per image.
+    fill : str
+        Colour the regions (paper Fig. 18): the ``--fill`` option's syntax,
+        e.g. ``"auto"`` (:func:`img2logo.fills.parse_fill_option`).
+    summary : bool
+        Write ``output_dir/summary.csv`` (:meth:`BatchReport.to_frame`).
+    **options
+        Keyword arguments of :func:`img2logo.abstract`: ``tolerance``, ``kind``,
+        ``rdp_tolerance``, ``min_length``, ``foreground``, ``bias``,
+        ``exponents``, ``ladder``, ``unit``, ``rounding`` and the switches
+        ``connectivity``, ``inner_junctions``, ``merging``,
+        ``avoid_intersections``, ``localized``, ``simplify``, ``arc_selection``.
+
+    Returns
+    -------
+    BatchReport
+
+    Raises
+    ------
+    InvalidParameterError
+        Before any work, if an option is unknown or out of range, ``outputs``
+        names an unknown format, ``jobs`` < 1, or ``paths`` is empty.
+
+    Examples
+    --------
+    >>> report = run_batch(find_images("data"), "out", tolerance=7.0, ladder="fibonacci")  # doctest: +SKIP
+    >>> from dask.distributed import Client  # doctest: +SKIP
+    >>> with Client("scheduler:8786") as client:  # doctest: +SKIP
+    ...     report = run_batch(find_images("/shared/in"), "out", executor=client.get_executor())
+    """
+    inputs = [Path(p) for p in paths]
+    if not inputs:
+        raise InvalidParameterError("paths must name at least one image, got none")
+    formats = _check_outputs(outputs)
+    _check_options(options, fill)
+    out_dir = Path(output_dir)
+    stems = _output_stems(inputs)
+    tasks = [(str(p), dict(options), formats, fill) for p in inputs]
+
+    written: dict[int, tuple[str, ...]] = {}
+
+    def write(i: int, result: dict[str, Any]) -> None:
+        from .writers import _atomic_write
+
+        files = result.get("files") or {}
+        done = []
+        for fmt in formats:
+            if fmt in files:
+                data = files[fmt]
+                done.append(str(_atomic_write(out_dir / f"{stems[i]}.{fmt}", lambda f, d=data: f.write(d))))
+        written[i] = tuple(done)
+
+    results = _run_tasks(tasks, executor, jobs, progress, on_result=write)
+    rows, failures, warns = [], [], []
+    for i, res in enumerate(results):
+        warns.extend(f"{res['image']}: {w}" for w in res.get("warnings", ()))
+        if "error" in res:
+            failures.append(BatchFailure(res["image"], res["path"], res["error"]))
+        else:
+            rows.append(
+                BatchRow(
+                    res["image"],
+                    res["path"],
+                    res["kind"],
+                    int(res["arcs"]),
+                    int(res["levels"]),
+                    float(res["similarity"]),
+                    float(res["seconds"]),
+                    written.get(i, ()),
+                )
+            )
+    report = BatchReport(tuple(rows), tuple(failures), tuple(str(p) for p in inputs), tuple(warns))
+    if summary:
+        from .writers import write_table
+
+        path = write_table(report.to_frame(), out_dir / "summary.csv")
+        report = dataclasses.replace(report, summary_path=str(path))
+    return report
+
+
+def sweep(
+    paths: Iterable[str | os.PathLike[str]],
+    parameter_grid: Sequence[Mapping[str, Any]],
+    *,
+    executor: Executor | None = None,
+    jobs: int | None = None,
+    progress: BatchProgress | bool | None = None,
+) -> pd.DataFrame:
+    """Run :func:`img2logo.abstract` for every image and every parameter set; the results as a table.
+
+    No file is written. Runs on ``executor`` like :func:`run_batch` (same
+    ``jobs`` and ``progress``), so a sweep can use all cores or a cluster.
+
+    Parameters
+    ----------
+    paths : iterable of str or path-like
+        The input images.
+    parameter_grid : sequence of mapping
+        Keyword arguments of :func:`img2logo.abstract`, one mapping per run,
+        e.g. ``[{"tolerance": t} for t in (3, 5, 9)]``.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per (image, parameter set), image-major in the given orders:
+        ``image``, one column per parameter named in the grid (missing: NaN),
+        then ``kind``, ``arcs``, ``levels``, ``similarity``, ``seconds``,
+        ``error`` (empty when the run succeeded).
+
+    Raises
+    ------
+    InvalidParameterError
+        If the grid is empty or a parameter set has an unknown or bad option.
+    """
+    import pandas as pd
+
+    inputs = [Path(p) for p in paths]
+    grid = [dict(g) for g in parameter_grid]
+    if not inputs:
+        raise InvalidParameterError("paths must name at least one image, got none")
+    if not grid:
+        raise InvalidParameterError("parameter_grid must hold at least one set of parameters, got none")
+    for params in grid:
+        _check_options(params, "none")
+    keys = list(dict.fromkeys(k for g in grid for k in g))
+    tasks = [(str(p), params, (), "none") for p in inputs for params in grid]
+    results = _run_tasks(tasks, executor, jobs, progress)
+    records = []
+    for (_, params, _, _), res in zip(tasks, results, strict=True):
+        records.append(
+            {
+                "image": res["image"],
+                **{k: params.get(k) for k in keys},
+                "kind": res.get("kind"),
+                "arcs": res.get("arcs"),
+                "levels": res.get("levels"),
+                "similarity": res.get("similarity"),
+                "seconds": res["seconds"],
+                "error": res.get("error", ""),
+            }
+        )
+    columns = ["image", *keys, "kind", "arcs", "levels", "similarity", "seconds", "error"]
+    return pd.DataFrame.from_records(records, columns=columns).astype({"arcs": "Int64", "levels": "Int64"})
+
+
+def _run_tasks(
+    tasks: list[tuple[Any, ...]],
+    executor: Executor | None,
+    jobs: int | None,
+    progress: BatchProgress | bool | None,
+    on_result: Callable[[int, dict[str, Any]], None] | None = None,
+) -> list[dict[str, Any]]:
+    """Run ``process_image(*task)`` for every task; results in task order.
+
+    ``on_result(i, result)`` is called here, in the calling thread, as each
+    task finishes. An executor failure (a crashed worker) becomes that task's error.
+    """
+    if jobs is not None:
+        if isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1:
+            raise InvalidParameterError(f"jobs must be an integer >= 1, got {jobs!r}")
+    total = len(tasks)
+    tick, close = _silent, _nothing
+    results: list[dict[str, Any] | None] = [None] * total
+
+    def finish(i: int, result: dict[str, Any], done: int) -> None:
+        results[i] = result
+        if on_result is not None:
+            on_result(i, result)
+        tick(done, total, result["image"])
+
+    try:
+        workers = min(jobs or os.cpu_count() or 1, total)
+        if executor is None and workers <= 1:
+            tick, close = _progress(progress, total)
+            for i, task in enumerate(tasks):
+                finish(i, process_image(*task), i + 1)
+            return [r for r in results if r is not None]
+        own = executor is None
+        pool = executor if executor is not None else _default_pool(workers)
+        try:
+            futures: dict[Future[dict[str, Any]], int] = {
+                pool.submit(process_image, *task): i for i, task in enumerate(tasks)
+            }
+            # The bar (a thread) only now: a forked worker should not inherit threads.
+            tick, close = _progress(progress, total)
+            for done, future in enumerate(as_completed(futures), start=1):
+                i = futures[future]
+                try:
+                    result = future.result()
+                except Exception as exc:  # the executor failed, not the image (a worker died)
+                    result = {"image": Path(tasks[i][0]).name, "path": tasks[i][0], "seconds": 0.0}
+                    result["error"] = _one_line(exc)
+                finish(i, result, done)
+        finally:
+            if own:
+                pool.shutdown(wait=True, cancel_futures=True)
+    finally:
+        close()
+    return [r for r in results if r is not None]
+
+
+def _default_pool(workers: int) -> Executor:
+    """A ProcessPoolExecutor of ``workers`` processes, by the platform's default start method.
+
+    That is fork on Linux before Python 3.14: a script without an ``if __name__ ==
+    "__main__":`` guard works. Where it is spawn or forkserver, the guard is needed.
+    """
+    from concurrent.futures import ProcessPoolExecutor
+
+    return ProcessPoolExecutor(max_workers=workers, initializer=_init_worker)
+
+
+def _progress(progress: BatchProgress | bool | None, total: int) -> tuple[BatchProgress, Callable[[], None]]:
+    """The progress callback and a function closing its bar (see :func:`run_batch`)."""
+    if callable(progress):
+        return progress, _nothing
+    if progress is False or (progress is None and not sys.stderr.isatty()):
+        return _silent, _nothing
+    from tqdm.auto import tqdm
+
+    bar = tqdm(total=total, desc="images", unit="image", file=sys.stderr, leave=False)
+
+    def tick(done: int, n: int, image: str) -> None:
+        bar.n = done
+        bar.set_postfix_str(image, refresh=True)
+
+    return tick, bar.close
+
+
+def _silent(done: int, total: int, image: str) -> None:
+    """A progress callback that shows nothing."""
+
+
+def _nothing() -> None:
+    """Nothing to close."""
+
+
+def _check_outputs(outputs: Sequence[str]) -> tuple[str, ...]:
+    if isinstance(outputs, str):
+        outputs = (outputs,)
+    formats = tuple(dict.fromkeys(outputs))
+    for fmt in formats:
+        check_choice(fmt, "outputs entry", OUTPUT_FORMATS)
+    return formats
+
+
+def _check_options(options: Mapping[str, Any], fill: str) -> None:
+    """Check options before any work: a bad value should not fail every image one by one."""
+    from .fills import parse_fill_option
+    from .golden_ladder import make_ladder
+
+    unknown = sorted(set(options) - _ABSTRACT_OPTIONS)
+    if unknown:
+        raise InvalidParameterError(
+            f"unknown option {unknown[0]!r}: expected keyword arguments of img2logo.abstract "
+            f"({', '.join(sorted(_ABSTRACT_OPTIONS))})"
+        )
+    for name in ("tolerance", "rdp_tolerance"):
+        if name in options:
+            check_positive(options[name], name)
+    if "kind" in options:
+        check_choice(options["kind"], "kind", ("auto", "photo", "clipart", "drawing"))
+    make_ladder(
+        options.get("ladder", "phi"),
+        1.0,  # a stand-in radius: only the values given are checked
+        bias=options.get("bias"),
+        unit=options.get("unit"),
+        exponents=options.get("exponents"),
+        rounding=options.get("rounding", "nearest"),
+    )
+    parse_fill_option(fill)
+
+
+def _output_stems(paths: Sequence[Path]) -> list[str]:
+    """File stems of the outputs: the input's stem, ``<stem>-<suffix>`` where stems collide, numbered if still."""
+    counts: dict[str, int] = {}
+    for p in paths:
+        counts[p.stem] = counts.get(p.stem, 0) + 1
+    stems = [p.stem if counts[p.stem] == 1 else f"{p.stem}-{p.suffix.lstrip('.').lower()}" for p in paths]
+    seen: dict[str, int] = {}
+    out = []
+    for s in stems:
+        seen[s] = seen.get(s, 0) + 1
+        out.append(s if seen[s] == 1 else f"{s}-{seen[s]}")
+    return out

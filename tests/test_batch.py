@@ -1,0 +1,220 @@
+"""Batch runs (img2logo.batch): every image of a folder, on any concurrent.futures executor."""
+
+from __future__ import annotations
+
+import json
+import shutil
+from concurrent.futures import Executor, Future, ProcessPoolExecutor, ThreadPoolExecutor
+from pathlib import Path
+
+import pandas as pd
+import pytest
+from conftest import DATA
+
+from img2logo.batch import (
+    SUMMARY_COLUMNS,
+    BatchReport,
+    _output_stems,
+    find_images,
+    process_image,
+    run_batch,
+    sweep,
+)
+from img2logo.errors import InvalidParameterError
+
+GOOD = ("drawing-leaf.png", "drawing-snail.png")  # fast: about 1 s each
+
+
+@pytest.fixture(scope="module")
+def folder(tmp_path_factory) -> Path:
+    """Two small drawings, one corrupt PNG (text inside) and a file that is no image."""
+    root = tmp_path_factory.mktemp("batch-in")
+    for name in GOOD:
+        shutil.copy(DATA / name, root / name)
+    (root / "broken.png").write_text("this is not a PNG\n")
+    (root / "notes.txt").write_text("not an image: skipped\n")
+    (root / "sub").mkdir()
+    shutil.copy(DATA / GOOD[0], root / "sub" / "nested.png")  # not searched
+    return root
+
+
+@pytest.fixture(scope="module")
+def runs(folder, tmp_path_factory) -> dict[str, tuple[BatchReport, Path]]:
+    """The same batch on a thread pool and on a process pool of two workers."""
+    out = {}
+    for label, make in (("threads", lambda: ThreadPoolExecutor(2)), ("processes", lambda: ProcessPoolExecutor(2))):
+        target = tmp_path_factory.mktemp(f"batch-{label}")
+        with make() as executor:
+            out[label] = (run_batch(find_images(folder), target, executor=executor, progress=False), target)
+    return out
+
+
+def test_find_images_is_sorted_and_flat(folder):
+    assert [p.name for p in find_images(folder)] == ["broken.png", *GOOD]
+
+
+def test_find_images_errors(tmp_path):
+    with pytest.raises(InvalidParameterError, match="input folder not found: "):
+        find_images(tmp_path / "missing")
+    with pytest.raises(InvalidParameterError, match=r"no images \(png, jpg, jpeg, tif, tiff, bmp, webp\) in "):
+        find_images(tmp_path)
+
+
+@pytest.mark.parametrize("label", ["threads", "processes"])
+def test_batch_goes_past_a_bad_file(runs, label):
+    report, out = runs[label]
+    assert [r.image for r in report.rows] == list(GOOD)
+    assert not report.ok and len(report.failures) == 1
+    failure = report.failures[0]
+    assert failure.image == "broken.png"
+    assert "not a readable image" in failure.message and "\n" not in failure.message
+    assert failure.line.startswith(str(Path(failure.path))) and failure.line.count("broken.png") == 1
+    for row in report.rows:
+        assert row.kind == "drawing" and row.arcs > 0 and row.levels >= 1 and 0 < row.similarity <= 5.0
+        assert row.seconds > 0
+        stem = Path(row.image).stem
+        assert row.outputs == tuple(str(out / f"{stem}.{fmt}") for fmt in ("svg", "json", "png"))
+    assert sorted(p.name for p in out.iterdir()) == sorted(
+        ["summary.csv", *(f"{Path(n).stem}.{fmt}" for n in GOOD for fmt in ("svg", "json", "png"))]
+    )
+
+
+def test_summary_csv(runs):
+    report, out = runs["threads"]
+    assert report.summary_path == str(out / "summary.csv")
+    table = pd.read_csv(out / "summary.csv", keep_default_na=False)
+    assert tuple(table.columns) == SUMMARY_COLUMNS
+    assert table["image"].tolist() == ["broken.png", *GOOD]  # input order, failures included
+    assert "not a readable image" in table.loc[0, "error"] and table.loc[0, "arcs"] == ""
+    assert table.loc[1:, "error"].tolist() == ["", ""]
+    assert table.loc[1:, "arcs"].astype(int).tolist() == [r.arcs for r in report.rows]
+    frame = report.to_frame()
+    assert frame["image"].tolist() == table["image"].tolist() and frame["arcs"].dtype == "Int64"
+
+
+def test_summary_text(runs):
+    report, _ = runs["threads"]
+    text = report.summary()
+    head = text.splitlines()[0].split()
+    assert head[:4] == ["image", "kind", "arcs", "E^s"] and head[-1] == "seconds"
+    assert "2 of 3 images done" in text and "1 failed:" in text and "not a readable image" in text
+    assert "failed" not in report.summary(failures=False)
+
+
+def test_outputs_do_not_depend_on_the_executor(runs):
+    (_, a), (_, b) = runs["threads"], runs["processes"]
+    for name in GOOD:
+        for fmt in ("svg", "json", "png"):
+            file = f"{Path(name).stem}.{fmt}"
+            assert (a / file).read_bytes() == (b / file).read_bytes(), file
+
+
+def test_outputs_are_those_of_the_single_image_command(runs, tmp_path):
+    pytest.importorskip("jsonschema")
+    from img2logo.cli import main
+    from img2logo.writers import validate_document
+
+    _, out = runs["processes"]
+    single = tmp_path / "single.json"
+    assert main([str(DATA / GOOD[0]), "-q", "--json", str(single)]) == 0
+    batch = json.loads((out / "drawing-leaf.json").read_text())
+    validate_document(batch)
+    mine = json.loads(single.read_text())
+    assert batch["params"].pop("source") != mine["params"].pop("source")  # the input's path
+    assert batch == mine
+
+
+def test_any_executor_and_its_failures(folder, tmp_path):
+    class Broken(Executor):
+        """An executor whose every task fails (a worker that died)."""
+
+        def submit(self, fn, /, *args, **kwargs):
+            future: Future = Future()
+            future.set_exception(RuntimeError("worker lost"))
+            return future
+
+    seen = []
+    report = run_batch(
+        find_images(folder), tmp_path, executor=Broken(), progress=lambda *a: seen.append(a), summary=False
+    )
+    assert not report.rows and [f.message for f in report.failures] == ["RuntimeError: worker lost"] * 3
+    assert sorted(image for _, _, image in seen) == ["broken.png", *GOOD]  # in completion order
+    assert [(done, total) for done, total, _ in seen] == [(1, 3), (2, 3), (3, 3)]
+    assert report.summary_path is None
+    assert not (tmp_path / "summary.csv").exists()
+
+
+def test_in_process_run_with_options(folder, tmp_path):
+    pytest.importorskip("jsonschema")
+    from img2logo.golden_ladder import fibonacci
+    from img2logo.writers import validate_document
+
+    report = run_batch(
+        [folder / GOOD[1]], tmp_path, jobs=1, progress=False, outputs=("json",), ladder="fibonacci", tolerance=7.0
+    )
+    assert report.ok and report.rows[0].outputs == (str(tmp_path / "drawing-snail.json"),)
+    doc = json.loads((tmp_path / "drawing-snail.json").read_text())
+    validate_document(doc)
+    assert doc["ladder"] == "fibonacci" and doc["tolerance"] == 7.0
+    assert all(c["r"] / doc["unit"] == pytest.approx(fibonacci(c["k"]), rel=1e-9) for c in doc["circles"])
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["drawing-snail.json", "summary.csv"]
+
+
+def test_process_image_returns_plain_values(folder):
+    out = process_image(str(folder / "broken.png"), {"tolerance": 5.0})
+    assert set(out) == {"image", "path", "seconds", "warnings", "error"}
+    assert out["image"] == "broken.png" and "not a readable image" in out["error"]
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "message"),
+    [
+        ({"tolerance": 0}, "tolerance must be > 0, got 0"),
+        ({"colour": "red"}, "unknown option 'colour': expected keyword arguments of img2logo.abstract"),
+        ({"image": "x.png"}, "unknown option 'image'"),
+        ({"ladder": "fibonacci", "bias": 0.2}, "bias is a parameter of the phi ladder"),
+        ({"unit": 2.0}, "unit is a parameter of the Fibonacci ladder"),
+        ({"kind": "painting"}, "kind must be one of 'auto', 'photo', 'clipart', 'drawing', got 'painting'"),
+        ({"fill": "palette:"}, "the palette is empty"),
+        ({"outputs": ("svg", "pdf")}, "outputs entry must be one of 'svg', 'json', 'png', got 'pdf'"),
+        ({"jobs": 0}, "jobs must be an integer >= 1, got 0"),
+    ],
+)
+def test_bad_options_fail_before_any_work(folder, tmp_path, kwargs, message):
+    with pytest.raises(InvalidParameterError, match=message):
+        run_batch(find_images(folder), tmp_path / "out", progress=False, **kwargs)
+    assert not (tmp_path / "out").exists()
+
+
+def test_no_paths(tmp_path):
+    with pytest.raises(InvalidParameterError, match="paths must name at least one image, got none"):
+        run_batch([], tmp_path)
+
+
+def test_output_stems_never_collide():
+    paths = [Path("a.png"), Path("a.jpg"), Path("b.png"), Path("x/a.png")]
+    assert _output_stems(paths) == ["a-png", "a-jpg", "b", "a-png-2"]
+
+
+def test_sweep(folder):
+    grid = [{"tolerance": 3.0}, {"tolerance": 9.0}, {"tolerance": 9.0, "ladder": "fibonacci"}]
+    with ThreadPoolExecutor(2) as executor:
+        table = sweep([folder / GOOD[1], folder / "broken.png"], grid, executor=executor, progress=False)
+    assert table.columns.tolist() == [
+        "image",
+        "tolerance",
+        "ladder",
+        "kind",
+        "arcs",
+        "levels",
+        "similarity",
+        "seconds",
+        "error",
+    ]
+    assert table["image"].tolist() == [GOOD[1]] * 3 + ["broken.png"] * 3
+    snail = table.iloc[:3]
+    assert (snail["error"] == "").all() and snail["arcs"].iloc[0] >= snail["arcs"].iloc[1]  # fewer arcs at larger T
+    assert snail["ladder"].tolist()[2] == "fibonacci" and (snail["similarity"] <= snail["tolerance"]).all()
+    assert table.iloc[3:]["error"].str.contains("not a readable image").all()
+    with pytest.raises(InvalidParameterError, match="parameter_grid must hold at least one set of parameters"):
+        sweep([folder / GOOD[1]], [])
