@@ -24,7 +24,6 @@ import warnings
 from collections.abc import Sequence
 
 from . import __version__
-from ._validation import check_positive
 from .constants import MIN_SEGMENT_LENGTH, RDP_TOLERANCE, TOLERANCE
 from .errors import Img2LogoError, InvalidParameterError
 
@@ -201,6 +200,7 @@ def _abstract_options(args: argparse.Namespace) -> dict:
 
     Checked before the run: a bad value should not cost a run.
     """
+    from ._validation import check_positive
     from .golden_ladder import make_ladder
 
     exponents = _parse_radii(args.radii)
