@@ -36,14 +36,20 @@ def check_points(points: object, name: str = "points", min_count: int = 1) -> np
     return arr
 
 
-def check_positive(value: object, name: str, *, allow_zero: bool = False) -> float:
-    """Return ``value`` as a float, checking it is finite and > 0 (or >= 0)."""
+def check_finite(value: object, name: str) -> float:
+    """Return ``value`` as a finite float."""
     try:
         v = float(value)  # type: ignore[arg-type]
     except (TypeError, ValueError) as exc:
         raise InvalidParameterError(f"{name} must be a number, got {value!r}") from exc
     if not math.isfinite(v):
         raise InvalidParameterError(f"{name} must be finite, got {v}")
+    return v
+
+
+def check_positive(value: object, name: str, *, allow_zero: bool = False) -> float:
+    """Return ``value`` as a float, checking it is finite and > 0 (or >= 0)."""
+    v = check_finite(value, name)
     if v < 0 or (v == 0 and not allow_zero):
         bound = ">= 0" if allow_zero else "> 0"
         raise InvalidParameterError(f"{name} must be {bound}, got {v}")

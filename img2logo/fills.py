@@ -423,6 +423,19 @@ class FillSpec:
 # --- faces of the arrangement ----------------------------------------------------------
 
 
+def check_fills(fills: object) -> list[Fill] | None:
+    """``fills`` as a list of :class:`Fill`, or None when not given (writers and plotting)."""
+    if fills is None:
+        return None
+    if isinstance(fills, Fill | str) or not isinstance(fills, Sequence):
+        raise InvalidParameterError(f"fills must be a sequence of Fill, got {type(fills).__name__}")
+    out = list(fills)
+    for i, f in enumerate(out):
+        if not isinstance(f, Fill):
+            raise InvalidParameterError(f"fills[{i}] must be a Fill, got {type(f).__name__}")
+    return out
+
+
 def faces(
     abstraction: Abstraction,
     *,

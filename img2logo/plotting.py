@@ -24,6 +24,7 @@ import numpy as np
 from ._validation import check_positive
 from .constants import ARC_SAMPLE_STEP, IMAGE_FADE, MIN_STROKE_WIDTH, STROKE_WIDTH_FRACTION
 from .errors import InvalidParameterError
+from .fills import check_fills
 from .geometry import Abstraction, Circle
 
 if TYPE_CHECKING:
@@ -124,7 +125,7 @@ def plot_abstraction(
         raise InvalidParameterError(f"abstraction must be an Abstraction, got {type(abstraction).__name__}")
     lw = check_positive(linewidth, "linewidth")
     width, height = int(abstraction.width), int(abstraction.height)
-    fill_list = _check_fills(fills)
+    fill_list = check_fills(fills) or []
     ax = _axes(ax, width, height)
     if image is not None:
         _draw_image(ax, image, width, height, image_fade)
@@ -357,7 +358,7 @@ def draw_fills(
     from matplotlib.patches import PathPatch
     from matplotlib.path import Path as MplPath
 
-    fill_list = _check_fills(fills)
+    fill_list = check_fills(fills) or []
     w = int(check_positive(width, "width"))
     h = int(check_positive(height, "height"))
     gradients: dict[object, np.ndarray] = {}
@@ -391,21 +392,6 @@ def draw_fills(
 
 
 # --- helpers -----------------------------------------------------------------------
-
-
-def _check_fills(fills: object) -> list[Fill]:
-    """``fills`` as a list of :class:`img2logo.fills.Fill` (None: empty)."""
-    if fills is None:
-        return []
-    from .fills import Fill
-
-    if isinstance(fills, Fill) or isinstance(fills, str) or not isinstance(fills, Iterable):
-        raise InvalidParameterError(f"fills must be a sequence of Fill, got {type(fills).__name__}")
-    out = list(fills)
-    for i, f in enumerate(out):
-        if not isinstance(f, Fill):
-            raise InvalidParameterError(f"fills[{i}] must be a Fill, got {type(f).__name__}")
-    return out
 
 
 def _evenodd_orient(rings: list[np.ndarray]) -> list[np.ndarray]:

@@ -37,7 +37,7 @@ from typing import IO, TYPE_CHECKING, Any
 
 import numpy as np
 
-from ._validation import check_positive
+from ._validation import check_finite, check_positive
 from .constants import (
     FORMAT_NAME,
     JUNCTION_TOLERANCE,
@@ -47,7 +47,7 @@ from .constants import (
     SVG_DECIMALS,
 )
 from .errors import InvalidParameterError
-from .fills import Fill, sample_path
+from .fills import Fill, check_fills, sample_path
 from .geometry import TAU, Abstraction, Arc, Circle
 from .plotting import ARC_COLOR, CIRCLE_COLOR, default_stroke_width, plot_abstraction, plot_segment_graph
 
@@ -139,7 +139,7 @@ def to_document(
     """
     if not isinstance(abstraction, Abstraction):
         raise InvalidParameterError(f"abstraction must be an Abstraction, got {type(abstraction).__name__}")
-    fill_list = _check_fills(fills)
+    fill_list = check_fills(fills)
     if params is not None and not isinstance(params, Mapping):
         raise InvalidParameterError(f"params must be a mapping, got {type(params).__name__}")
     if not isinstance(abstraction.params, Mapping):
@@ -149,13 +149,13 @@ def to_document(
     width = _int_at_least(abstraction.width, "width", 1)
     height = _int_at_least(abstraction.height, "height", 1)
     level = _int_at_least(abstraction.level, "level", 0)
-    bias = _finite(abstraction.bias, "bias")
+    bias = check_finite(abstraction.bias, "bias")
     if not 0.0 <= bias < 1.0:
         raise InvalidParameterError(f"bias must be in [0, 1), got {bias!r}")
-    similarity = _finite(abstraction.similarity, "similarity")
+    similarity = check_finite(abstraction.similarity, "similarity")
     if similarity < 0.0:
         raise InvalidParameterError(f"similarity must be >= 0, got {similarity!r}")
-    tolerance = _finite(abstraction.tolerance, "tolerance")
+    tolerance = check_finite(abstraction.tolerance, "tolerance")
     if tolerance <= 0.0:
         raise InvalidParameterError(f"tolerance must be > 0, got {tolerance!r}")
 
@@ -433,7 +433,7 @@ def to_svg(
     """The SVG text of an abstraction (see :func:`write_svg` for the layout)."""
     if not isinstance(abstraction, Abstraction):
         raise InvalidParameterError(f"abstraction must be an Abstraction, got {type(abstraction).__name__}")
-    fill_list = _check_fills(fills) or []
+    fill_list = check_fills(fills) or []
     width = _int_at_least(abstraction.width, "width", 1)
     height = _int_at_least(abstraction.height, "height", 1)
     sw = default_stroke_width(width, height) if stroke_width is None else check_positive(stroke_width, "stroke_width")
@@ -605,7 +605,7 @@ def write_png(
     """
     if not isinstance(abstraction, Abstraction):
         raise InvalidParameterError(f"abstraction must be an Abstraction, got {type(abstraction).__name__}")
-    fill_list = _check_fills(fills)
+    fill_list = check_fills(fills)
     width = _int_at_least(abstraction.width, "width", 1)
     height = _int_at_least(abstraction.height, "height", 1)
     d = check_positive(dpi, "dpi")
@@ -681,19 +681,6 @@ def write_segment_graph_png(
 
 
 # --- helpers -----------------------------------------------------------------------
-
-
-def _check_fills(fills: object) -> list[Fill] | None:
-    """``fills`` as a list of Fill, or None when not given."""
-    if fills is None:
-        return None
-    if isinstance(fills, Fill | str) or not isinstance(fills, Sequence):
-        raise InvalidParameterError(f"fills must be a sequence of Fill, got {type(fills).__name__}")
-    out = list(fills)
-    for i, f in enumerate(out):
-        if not isinstance(f, Fill):
-            raise InvalidParameterError(f"fills[{i}] must be a Fill, got {type(f).__name__}")
-    return out
 
 
 def _svg_fill_layer(fills: Sequence[Fill]) -> list[str]:
@@ -968,17 +955,6 @@ def _int_at_least(value: object, name: str, minimum: int) -> int:
     v = int(value)
     if v < minimum:
         raise InvalidParameterError(f"{name} must be >= {minimum}, got {v}")
-    return v
-
-
-def _finite(value: object, name: str) -> float:
-    """``value`` as a finite float."""
-    try:
-        v = float(value)  # type: ignore[arg-type]
-    except (TypeError, ValueError) as exc:
-        raise InvalidParameterError(f"{name} must be a number, got {value!r}") from exc
-    if not math.isfinite(v):
-        raise InvalidParameterError(f"{name} must be finite, got {v}")
     return v
 
 
