@@ -91,6 +91,7 @@ _ABSTRACT_OPTIONS: frozenset[str] = frozenset(
         "avoid_intersections",
         "localized",
         "simplify",
+        "lines",
         "arc_selection",
     }
 )

@@ -168,6 +168,11 @@ def _add_optimization_options(p: argparse.ArgumentParser, *, lock_mask: bool) ->
         ("simplify", "line-segment simplification (Sec. 5.4)"),
     ):
         opt.add_argument(f"--no-{flag}", action="store_true", help=f"switch off {what}")
+    opt.add_argument(
+        "--lines",
+        action="store_true",
+        help="let nearly straight segments be straight lines, not arcs of huge circles (paper Sec. 9, Fig. 20b)",
+    )
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -223,6 +228,7 @@ def _abstract_options(args: argparse.Namespace) -> dict:
         "avoid_intersections": not args.no_intersection_avoidance,
         "localized": not args.no_localized,
         "simplify": not args.no_simplify,
+        "lines": args.lines,
     }
     if args.ladder == "fibonacci":  # only then: a phi run's parameters stay as they were
         options.update(ladder=args.ladder, unit=args.unit)

@@ -142,3 +142,19 @@ REDUNDANT_INTERSECTION_TOL: float = 1.0
 #: Ladder snapping (Eqn. 12): a radius at most this fraction above a rung snaps to
 #: that rung, not the next one (a clean circle fit is exact to about 1e-12 only).
 LADDER_SNAP_RTOL: float = 1e-9
+
+# --- Straight lines (paper Sec. 9 future work, Fig. 20b) ----------------------------
+#: With the lines option, a segment whose pixels all lie within this of their
+#: best (total least squares) line is a straight line, px; a pixel staircase
+#: strays up to about 0.7 px from its line.
+LINE_TOLERANCE: float = 1.0
+#: ... not counting this much of the segment at each end, px: thinning bevels the
+#: corners of thick strokes towards the junction.
+LINE_END_SKIP: float = 4.0
+#: Two lines meeting at a junction must differ in direction by at least this, radians
+#: (15 degrees): fixed lines pin their junction to their intersection.
+LINE_MIN_ANGLE: float = 0.2617993877991494
+#: A line is fitted as a circle of this fixed radius (outside the ladder, k = None):
+#: the connectivity-constrained fit handles it like any circle, and over a 500 px
+#: chord it is 0.03 px from straight. It is written as a true line, px.
+LINE_RADIUS: float = 1e6

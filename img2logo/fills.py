@@ -56,7 +56,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ._validation import check_choice, check_positive
-from .constants import ARC_SAMPLE_STEP, CLIPART_COLOR_DISTANCE, INTERSECTION_TOL, SVG_DECIMALS
+from .constants import ARC_SAMPLE_STEP, CLIPART_COLOR_DISTANCE, INTERSECTION_TOL, LINE_RADIUS, SVG_DECIMALS
 from .errors import InvalidParameterError
 from .geometry import TAU, Abstraction, Circle
 
@@ -887,6 +887,9 @@ def _loop_path(loop: Sequence[ArcPiece]) -> str:
         halves = 2 if abs(sweep) > _NEAR_FULL_SWEEP else 1
         flag = 1 if sweep > 0 else 0
         large = 1 if abs(sweep) / halves > math.pi else 0
+        if circle.k is None and circle.r >= 0.5 * LINE_RADIUS:
+            parts.append(f"L {n_(end[0])} {n_(end[1])}")  # a straight line (the lines option)
+            continue
         r = n_(circle.r)
         if halves == 2:
             mid = circle.point_at(run[0].t0 + 0.5 * sweep)

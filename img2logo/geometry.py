@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 
 from ._validation import readonly
-from .constants import PHI
+from .constants import LINE_RADIUS, PHI
 from .errors import InvalidParameterError
 
 TAU = 2.0 * math.pi
@@ -93,6 +93,15 @@ class Arc:
         return abs(self.sweep) * self.circle.r
 
     @property
+    def is_line(self) -> bool:
+        """True for a straight line (the lines option): an arc of a ``LINE_RADIUS`` circle without k.
+
+        It is drawn and written as the straight segment from :attr:`start` to
+        :attr:`end`; its circle is not on the golden ladder.
+        """
+        return self.circle.k is None and self.circle.r >= 0.5 * LINE_RADIUS
+
+    @property
     def is_full_circle(self) -> bool:
         """True when the arc is the whole circle."""
         return abs(self.sweep) >= TAU - 1e-9
@@ -120,6 +129,26 @@ class Arc:
         # Offset from the start measured in the sweep's own sense, in [0, 2 pi).
         offset = np.mod((t - self.theta0) * math.copysign(1.0, self.sweep), TAU)
         return (offset <= abs(self.sweep) + tol) | (offset >= TAU - tol)
+
+
+def line_arc(p0: np.ndarray, p1: np.ndarray, side: float = 1.0) -> Arc:
+    """The straight line from ``p0`` to ``p1`` (px) as an arc of a ``LINE_RADIUS`` circle.
+
+    The circle's centre is on the perpendicular bisector, on the left of the
+    direction p0 -> p1 for ``side`` > 0 (right otherwise); the arc is the short
+    way from p0 to p1, so its ends are exactly p0 and p1 (to rounding).
+    """
+    a, b = np.asarray(p0, dtype=np.float64), np.asarray(p1, dtype=np.float64)
+    chord = b - a
+    length = float(np.hypot(*chord))
+    if not length > 0:
+        raise InvalidParameterError("a line needs two distinct end points")
+    normal = np.array([-chord[1], chord[0]]) / length * math.copysign(1.0, side)
+    centre = (a + b) / 2.0 + normal * math.sqrt(LINE_RADIUS**2 - (length / 2.0) ** 2)
+    circle = Circle(float(centre[0]), float(centre[1]), LINE_RADIUS, None)
+    t0 = math.atan2(a[1] - centre[1], a[0] - centre[0])
+    t1 = math.atan2(b[1] - centre[1], b[0] - centre[0])
+    return Arc(circle, t0, math.remainder(t1 - t0, TAU))
 
 
 @dataclass(frozen=True, eq=False)

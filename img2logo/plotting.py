@@ -132,8 +132,12 @@ def plot_abstraction(
     if fill_list:
         draw_fills(fill_list, ax, width=width, height=height)
     if show_circles:
-        plot_circles(abstraction.circles, ax, color=circle_color, width=width, height=height)
-    lines = [arc.sample(step=ARC_SAMPLE_STEP) for arc in abstraction.arcs]
+        golden = [c for c in abstraction.circles if c.k is not None]  # not the circles of straight lines
+        plot_circles(golden, ax, color=circle_color, width=width, height=height)
+    lines = [
+        arc.sample(step=ARC_SAMPLE_STEP) if not arc.is_line else np.array([arc.start, arc.end])
+        for arc in abstraction.arcs
+    ]
     collection = LineCollection(lines, colors=color, linewidths=lw, capstyle="round", joinstyle="round", zorder=2)
     ax.add_collection(collection, autolim=False)
     if show_junctions and len(abstraction.junctions):

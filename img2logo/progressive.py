@@ -32,7 +32,7 @@ from __future__ import annotations
 import dataclasses
 import math
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -41,9 +41,9 @@ import numpy as np
 from ._validation import check_choice, check_positive
 from .arc_extraction import ArcFit, extract_arc, redundant_intersections
 from .circle_fitting import fit_center, fit_circle, fit_constrained, mean_abs_error
-from .constants import SIMPLIFICATION_ERROR, TOLERANCE
+from .constants import LINE_END_SKIP, LINE_MIN_ANGLE, LINE_TOLERANCE, SIMPLIFICATION_ERROR, TOLERANCE
 from .errors import InvalidParameterError
-from .geometry import Abstraction, Circle
+from .geometry import Abstraction, Circle, line_arc
 from .golden_ladder import Ladder, make_ladder
 from .segment_graph import SegmentGraph
 
@@ -259,8 +259,32 @@ class _Optimizer:
         center, radius, _ = self.golden(group)
         return mean_abs_error(group.points, fit_center(group.points, radius, center), radius)
 
-    def golden(self, group: _Group) -> tuple[np.ndarray, float, int]:
-        """Free fit snapped to the ladder (Eqn. 12): (centre, radius, k)."""
+    def golden(
+        self, group: _Group, *, held: Mapping[int, list[np.ndarray]] | None = None
+    ) -> tuple[np.ndarray, float, int | None]:
+        """Free fit snapped to the ladder (Eqn. 12): (centre, radius, k).
+
+        With the lines option, a group whose pixels all lie within
+        ``LINE_TOLERANCE`` of the chord between its ends is a straight line
+        instead: a circle of ``LINE_RADIUS`` with k None (see :func:`line_arc`),
+        placed on the pixels' total-least-squares line; it stays fixed in the
+        constrained fit, where its junctions slide onto it. ``held`` maps a
+        junction to the directions of the lines already there: a junction takes
+        at most two lines, at least ``LINE_MIN_ANGLE`` apart, since fixed lines
+        pin it to their intersection (far away, or nowhere, for nearly parallel
+        ones); otherwise the group stays an arc.
+        """
+        line = _straight_line(group) if self.opt["lines"] else None
+        if line is not None and held is not None:
+            u = (line[1] - line[0]) / np.hypot(*(line[1] - line[0]))
+            for n in self.constrained_nodes(group):
+                others = held.get(n, [])
+                if len(others) >= 2 or any(abs(float(u @ v)) > math.cos(LINE_MIN_ANGLE) for v in others):
+                    line = None
+                    break
+        if line is not None:
+            arc = line_arc(line[0], line[1])
+            return arc.circle.center, arc.circle.r, None
         center, radius = self.free_circle(group)
         k, r = self.ladder.snap(radius)
         return center, r, k
@@ -268,7 +292,7 @@ class _Optimizer:
     # ----------------------------------------------------------------- arcs
     def arc_for(self, group: _Group, center: np.ndarray, radius: float, k: int, disp: Any) -> ArcFit:
         """Extract the arc of ``group`` on its circle through its displaced junctions."""
-        circle = Circle(float(center[0]), float(center[1]), float(radius), int(k))
+        circle = Circle(float(center[0]), float(center[1]), float(radius), None if k is None else int(k))
         nodes = self.constrained_nodes(group)
         pts = np.array([self.graph.junctions[n] + disp(n) for n in nodes])
         if group.closed:
@@ -293,6 +317,9 @@ class _Optimizer:
         node_list = sorted({n for g in groups.values() for n in self.constrained_nodes(g)})
         node_index = {n: i for i, n in enumerate(node_list)}
         incidence = [(i, node_index[n]) for i, gid in enumerate(gids) for n in set(self.constrained_nodes(groups[gid]))]
+        # Straight lines stay where they are: a huge free circle is nearly
+        # singular along its chord. Their junctions slide onto them.
+        free_groups = [g for g in free_groups if seeds[g][2] is not None]
         fit = fit_constrained(
             [groups[g].points for g in gids],
             np.array([seeds[g][1] for g in gids]),
@@ -315,8 +342,10 @@ class _Optimizer:
         if not self.opt["connectivity"]:
             disp = {n: np.zeros(2) for n in node_list}
         fits = {}
+        moved = set(free_nodes)
         for i, gid in enumerate(gids):
-            if gid not in free_groups:
+            line_moved = seeds[gid][2] is None and bool(moved & set(self.constrained_nodes(groups[gid])))
+            if gid not in free_groups and not line_moved:
                 continue
             _, r, k = seeds[gid]
             center = fit.centers[i].copy()
@@ -325,7 +354,14 @@ class _Optimizer:
 
     def initial_fit(self) -> None:
         """A^0: golden circles for every group, fitted jointly (Sec. 5.3)."""
-        seeds = {gid: self.golden(g) for gid, g in self.groups.items()}
+        # Longest groups first: a straight group is a line unless a line already
+        # holds one of its junctions (see golden).
+        seeds: dict[int, tuple[np.ndarray, float, int | None]] = {}
+        held: dict[int, list[np.ndarray]] = {}
+        for gid in sorted(self.groups, key=lambda g: -_length(self.groups[g].points)):
+            seeds[gid] = self.golden(self.groups[gid], held=held)
+            if seeds[gid][2] is None:
+                _hold(held, self.groups[gid], self.constrained_nodes(self.groups[gid]))
         nodes = sorted(self.node_groups())
         out = self.solve(dict(self.groups), seeds, list(self.groups), nodes, len(self.groups), len(nodes))
         self.stats["global_solves"] += 1
@@ -369,7 +405,11 @@ class _Optimizer:
         node_groups_after = self.node_groups(after)
         nj_after = len(node_groups_after)
         seeds = {g: (self.fits[g].center, self.fits[g].radius, self.fits[g].k) for g in after if g != -1}
-        seeds[-1] = self.golden(merged)
+        held: dict[int, list[np.ndarray]] = {}
+        for g, f in self.fits.items():
+            if f.k is None and g not in (a, b):
+                _hold(held, self.groups[g], self.constrained_nodes(self.groups[g]))
+        seeds[-1] = self.golden(merged, held=held)
 
         merged_nodes = set(self.constrained_nodes(merged))
         global_solve = not self.opt["localized"]
@@ -499,6 +539,7 @@ def optimize(
     avoid_intersections: bool = True,
     localized: bool = True,
     simplify: bool = True,
+    lines: bool = False,
     arc_selection: str = "frechet",
     lock_mask: np.ndarray | None = None,
     progress: ProgressCallback | None = None,
@@ -545,6 +586,12 @@ def optimize(
         Refit only the merged circle and its neighbours (Sec. 5.4, Table 3).
     simplify : bool
         Line-segment simplification before the loop (Sec. 5.4, Table 3).
+    lines : bool
+        Let nearly straight segments be straight lines instead of arcs of huge
+        circles (the paper's future work, Sec. 9, Fig. 20b): a segment whose
+        pixels are all within ``LINE_TOLERANCE`` of its chord. Lines are arcs
+        with :attr:`~img2logo.geometry.Arc.is_line`; their circles are off the
+        ladder, and the writers write them as lines, apart from the circles.
     arc_selection : {"frechet", "sum_of_squares"}
         How the arc is chosen among the candidates on a circle (Fig. 9).
     lock_mask : ndarray of bool, shape (H, W), optional
@@ -575,6 +622,7 @@ def optimize(
         "inner_junctions": bool(inner_junctions),
         "avoid_intersections": bool(avoid_intersections),
         "localized": bool(localized),
+        "lines": bool(lines),
         "arc_selection": arc_selection,
     }
     record = {
@@ -589,6 +637,7 @@ def optimize(
         "avoid_intersections": bool(avoid_intersections),
         "localized": bool(localized),
         "simplify": bool(simplify),
+        "lines": bool(lines),
         "arc_selection": arc_selection,
         "locked_segments": int(locked.sum()),
         **(params or {}),
@@ -751,6 +800,48 @@ def _locked_segments(graph: SegmentGraph, lock_mask: np.ndarray | None) -> np.nd
         rows = np.clip((seg[:, 1] - 0.5).round().astype(int), 0, graph.height - 1)
         out[i] = mask[rows, cols].mean() > 0.5
     return out
+
+
+def _straight_line(group: _Group) -> tuple[np.ndarray, np.ndarray] | None:
+    """The end points of a straight group's line, or None if it is not straight.
+
+    The line is the pixels' total-least-squares line; its ends are the
+    projections of the group's end points on it.
+    """
+    if not _is_straight(group):
+        return None
+    pts = group.points
+    mean = pts.mean(axis=0)
+    direction = np.linalg.svd(pts - mean, full_matrices=False)[2][0]
+    ends = mean + np.outer((pts[[0, -1]] - mean) @ direction, direction)
+    return ends[0], ends[1]
+
+
+def _hold(held: dict[int, list[np.ndarray]], group: _Group, nodes: Sequence[int]) -> None:
+    """Record a line group's direction at each of its junctions (see ``golden``)."""
+    d = group.points[-1] - group.points[0]
+    u = d / max(float(np.hypot(*d)), 1e-12)
+    for n in set(nodes):
+        held.setdefault(n, []).append(u)
+
+
+def _is_straight(group: _Group) -> bool:
+    """Whether an open group is a straight stroke (the lines option).
+
+    Its pixels, but for ``LINE_END_SKIP`` px at each end (where thinning bevels
+    a thick stroke's corners towards the junction), all lie within
+    ``LINE_TOLERANCE`` of their total-least-squares line.
+    """
+    if group.closed:
+        return False
+    pts = group.points
+    arc_len = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(pts, axis=0).T))])
+    inner = pts[(arc_len >= LINE_END_SKIP) & (arc_len <= arc_len[-1] - LINE_END_SKIP)]
+    if len(inner) < 3:
+        return False
+    centred = inner - inner.mean(axis=0)
+    normal = np.linalg.svd(centred, full_matrices=False)[2][1]  # the direction of least spread
+    return float(np.max(np.abs(centred @ normal))) <= LINE_TOLERANCE
 
 
 def _length(points: np.ndarray) -> float:

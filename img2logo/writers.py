@@ -41,6 +41,7 @@ from ._validation import check_finite, check_positive
 from .constants import (
     FORMAT_NAME,
     JUNCTION_TOLERANCE,
+    LINE_RADIUS,
     PHI,
     PNG_DPI,
     RADIUS_RELATIVE_TOLERANCE,
@@ -48,7 +49,7 @@ from .constants import (
 )
 from .errors import InvalidParameterError
 from .fills import Fill, check_fills, sample_path
-from .geometry import TAU, Abstraction, Arc, Circle
+from .geometry import TAU, Abstraction, Arc, Circle, line_arc
 from .plotting import ARC_COLOR, CIRCLE_COLOR, default_stroke_width, plot_abstraction, plot_segment_graph
 
 if TYPE_CHECKING:
@@ -159,7 +160,11 @@ def to_document(
     if tolerance <= 0.0:
         raise InvalidParameterError(f"tolerance must be > 0, got {tolerance!r}")
 
-    circles = abstraction.circles
+    # Straight lines (the lines option) are not arcs of the contract: they go to
+    # extra.lines, so every circle of the document stays on the golden ladder.
+    arcs = tuple(a for a in abstraction.arcs if not a.is_line)
+    arc_number = {i: n for n, i in enumerate(i for i, a in enumerate(abstraction.arcs) if not a.is_line)}
+    circles = tuple(dict.fromkeys(a.circle for a in arcs))
     index = {c: i for i, c in enumerate(circles)}
     circle_docs = []
     for i, c in enumerate(circles):
@@ -170,7 +175,6 @@ def to_document(
             )
         circle_docs.append({"cx": float(c.cx), "cy": float(c.cy), "r": float(c.r), "k": int(c.k)})
 
-    arcs = abstraction.arcs
     arc_docs = [
         {"circle": index[a.circle], "theta0": float(a.theta0), "sweep": min(TAU, max(-TAU, float(a.sweep)))}
         for a in arcs
@@ -181,16 +185,31 @@ def to_document(
         kept: list[int] = []
         for a in listed:
             ai = _int_at_least(a, f"junction_arcs[{j}] entry", 0)
-            if ai >= len(arcs):
+            if ai >= len(abstraction.arcs):
                 raise InvalidParameterError(
-                    f"junction {j}: arc index {ai} is out of range (the abstraction has {len(arcs)} arcs)"
+                    f"junction {j}: arc index {ai} is out of range (the abstraction has {len(abstraction.arcs)} arcs)"
                 )
+            if ai not in arc_number:
+                continue  # a straight line: recorded in extra.lines
+            ai = arc_number[ai]
             if ai not in kept and not _passes_through(arcs[ai], point):
                 kept.append(ai)
         if kept:
             junction_docs.append({"x": float(point[0]), "y": float(point[1]), "arcs": kept})
 
-    arc_segments = [[_int_at_least(s, "arc_segments entry", 0) for s in segs] for segs in abstraction.arc_segments]
+    all_segments = [[_int_at_least(s, "arc_segments entry", 0) for s in segs] for segs in abstraction.arc_segments]
+    arc_segments = [all_segments[i] for i in arc_number]
+    line_docs = [
+        {
+            "x0": float(a.start[0]),
+            "y0": float(a.start[1]),
+            "x1": float(a.end[0]),
+            "y1": float(a.end[1]),
+            "segments": all_segments[i],
+        }
+        for i, a in enumerate(abstraction.arcs)
+        if a.is_line
+    ]
 
     doc: dict[str, Any] = {
         "format": FORMAT_NAME,
@@ -205,7 +224,7 @@ def to_document(
         "similarity": similarity,
         "tolerance": tolerance,
         "params": merged,
-        "extra": {"arc_segments": arc_segments},
+        "extra": {"arc_segments": arc_segments, **({"lines": line_docs} if line_docs else {})},
     }
     ladder = merged.get("ladder", "phi")
     if ladder == "fibonacci":
@@ -267,6 +286,9 @@ def from_document(doc: Mapping[str, Any]) -> Abstraction:
                     f"extra.arc_segments must have one entry per arc ({len(arcs)}), got {len(segs)}"
                 )
             arc_segments = tuple(tuple(int(s) for s in entry) for entry in segs)
+        lines = extra.get("lines") or []
+        arcs += tuple(line_arc((ln["x0"], ln["y0"]), (ln["x1"], ln["y1"])) for ln in lines)
+        arc_segments += tuple(tuple(int(s) for s in ln.get("segments", ())) for ln in lines)
         params = copy.deepcopy(dict(d["params"]))
         if d.get("ladder") == "fibonacci":
             params.setdefault("ladder", "fibonacci")
@@ -477,6 +499,8 @@ def to_svg(
             f'{hidden} fill="none" stroke="{CIRCLE_COLOR}" stroke-width="{n(max(0.5, sw / 4.0))}">'
         )
         for i, c in enumerate(circles):
+            if c.k is None and c.r >= 0.5 * LINE_RADIUS:
+                continue  # the circle of a straight line is no construction circle
             lines.append(f'    <circle id="circle-{i}"{_k_attr(c)} cx="{n(c.cx)}" cy="{n(c.cy)}" r="{n(c.r)}"/>')
         lines.append("  </g>")
     lines.append(
@@ -484,6 +508,10 @@ def to_svg(
         f'stroke-width="{n(sw)}" stroke-linecap="round" stroke-linejoin="round">'
     )
     for i, a in enumerate(abstraction.arcs):
+        if a.is_line:
+            d = f"M {n(a.start[0])} {n(a.start[1])} L {n(a.end[0])} {n(a.end[1])}"
+            lines.append(f'    <path id="line-{i}" data-line="true" d="{d}"/>')
+            continue
         lines.append(
             f'    <path id="arc-{i}" data-circle="{index[a.circle]}"{_k_attr(a.circle)} d="{_arc_path_data(a)}"/>'
         )

@@ -275,3 +275,18 @@ def test_help_mentions_batch(capsys):
     assert exc.value.code == 0
     text = capsys.readouterr().out
     assert text.startswith("usage: img2logo batch") and "--jobs N" in text and "--lock-mask" not in text
+
+
+def test_lines_option(tmp_path):
+    import json
+
+    import cv2
+
+    path = tmp_path / "frame.png"
+    im = np.full((240, 240, 3), 255, np.uint8)
+    cv2.rectangle(im, (40, 60), (200, 180), (0, 0, 0), 3)
+    cv2.imwrite(str(path), im)
+    for flag, expected in (([], 0), (["--lines"], 4)):
+        out = tmp_path / f"f{len(flag)}.json"
+        assert main([str(path), "-q", "--json", str(out), *flag]) == 0
+        assert len(json.loads(out.read_text())["extra"].get("lines", [])) == expected

@@ -273,3 +273,81 @@ def test_no_redundant_intersection_when_an_arc_outside_the_window_moved():
         for i in arcs:
             arc_junctions[i].append(k)
     assert redundant_intersections(list(level.arcs), level.junctions, arc_junctions) == []
+
+
+# --------------------------------------------------------------------------- straight lines
+@pytest.fixture(scope="module")
+def frame_and_disc():
+    im = blank(240)
+    cv2.rectangle(im, (40, 60), (200, 180), (0, 0, 0), 3)
+    cv2.circle(im, (120, 120), 35, (0, 0, 0), 3)
+    return build_segment_graph(extract_feature_lines(im, kind="drawing"))
+
+
+def test_lines_appear_only_with_the_option(frame_and_disc):
+    off = optimize(frame_and_disc, tolerance=5.0)
+    on = optimize(frame_and_disc, tolerance=5.0, lines=True)
+    assert not any(a.is_line for lv in off.levels for a in lv.arcs)
+    final = on.final
+    lines = [a for a in final.arcs if a.is_line]
+    assert len(lines) == 4  # the frame's four sides
+    # The sides are straight, axis-aligned and meet at the corners.
+    for a in lines:
+        d = a.end - a.start
+        assert min(abs(d[0]), abs(d[1])) < 0.01 * max(abs(d[0]), abs(d[1]))
+    # Each corner is shared by two sides, to the constraint tolerance.
+    corners = np.array([p for a in lines for p in (a.start, a.end)])
+    for p in corners:
+        dist = np.hypot(*(corners - p).T)
+        assert np.sort(dist)[1] < 1e-5
+    # The disc stays a golden circle.
+    golden = [a for a in final.arcs if not a.is_line]
+    assert golden and all(a.circle.k is not None for a in golden)
+    check_level_lines(final)
+
+
+def check_level_lines(level: Abstraction) -> None:
+    """Junctions on every listed arc or line; golden circles on the ladder."""
+    for point, arcs in zip(level.junctions, level.junction_arcs, strict=True):
+        for i in arcs:
+            arc = level.arcs[i]
+            assert abs(arc.circle.distance(point[None])[0]) <= 1e-6
+    for arc in level.arcs:
+        if not arc.is_line:
+            assert abs(arc.circle.r - PHI ** (arc.circle.k + level.bias)) <= 1e-9 * arc.circle.r
+
+
+def test_lines_are_written_apart_from_the_golden_circles(frame_and_disc, tmp_path):
+    pytest.importorskip("jsonschema")
+    import xml.etree.ElementTree as ET
+
+    from img2logo.writers import from_document, to_document, validate_document, write_svg
+
+    final = optimize(frame_and_disc, tolerance=5.0, lines=True).final
+    doc = to_document(final)
+    validate_document(doc)  # every circle in the document is golden
+    assert len(doc["extra"]["lines"]) == 4
+    assert len(doc["arcs"]) == len(final.arcs) - 4
+    assert sorted(s for ln in doc["extra"]["lines"] for s in ln["segments"]) == sorted(
+        s for a, segs in zip(final.arcs, final.arc_segments, strict=True) if a.is_line for s in segs
+    )
+    back = from_document(doc)
+    assert sum(a.is_line for a in back.arcs) == 4
+    write_svg(final, tmp_path / "f.svg")
+    paths = [e for e in ET.parse(tmp_path / "f.svg").getroot().iter() if e.tag.endswith("path")]
+    line_paths = [p for p in paths if p.get("data-line") == "true"]
+    assert len(line_paths) == 4 and all(" L " in p.get("d") for p in line_paths)
+    circles = [e for e in ET.parse(tmp_path / "f.svg").getroot().iter() if e.tag.endswith("circle")]
+    assert len(circles) == len(doc["circles"])  # no construction circle for a line
+
+
+def test_line_arc_is_straight_between_its_ends():
+    from img2logo.geometry import line_arc
+
+    arc = line_arc([10.0, 20.0], [310.0, 170.0])
+    assert arc.is_line
+    np.testing.assert_allclose(arc.start, [10.0, 20.0], atol=1e-6)
+    np.testing.assert_allclose(arc.end, [310.0, 170.0], atol=1e-6)
+    # Its sagitta over 335 px is far below a pixel.
+    mid = arc.circle.point_at(arc.theta0 + arc.sweep / 2)
+    assert np.hypot(*(mid - [160.0, 95.0])) < 0.02
