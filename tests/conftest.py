@@ -51,6 +51,21 @@ def two_discs(size: int = 200) -> np.ndarray:
     return im
 
 
+def small_graph():
+    """A hand-built segment graph: 5 nodes of valence 1, 3, 2, 1, 1; 4 segments; 20 x 14 px."""
+    from img2logo.segment_graph import SegmentGraph
+
+    nodes = np.array([[2.5, 2.5], [10.5, 2.5], [10.5, 10.5], [2.5, 10.5], [17.5, 9.5]])
+    segments = (
+        np.array([[x + 0.5, 2.5] for x in range(2, 11)]),
+        np.array([[10.5, y + 0.5] for y in range(2, 11)]),
+        np.array([[10.5 + t, 2.5 + t] for t in range(8)]),
+        np.array([[x + 0.5, 10.5] for x in range(10, 1, -1)]),
+    )
+    ends = np.array([[0, 1], [1, 2], [1, 4], [2, 3]])
+    return SegmentGraph(segments=segments, junctions=nodes, ends=ends, width=20, height=14)
+
+
 @pytest.fixture
 def data_dir() -> Path:
     return DATA

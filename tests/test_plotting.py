@@ -12,6 +12,7 @@ import matplotlib.colors as mcolors
 import matplotlib.pyplot as plt
 import numpy as np
 import pytest
+from conftest import small_graph
 from matplotlib.collections import LineCollection
 from matplotlib.image import AxesImage
 from matplotlib.patches import Circle as CirclePatch
@@ -47,18 +48,6 @@ def make_abstraction() -> Abstraction:
         width=W,
         height=H,
     )
-
-
-def make_graph() -> SegmentGraph:
-    nodes = np.array([[2.5, 2.5], [10.5, 2.5], [10.5, 10.5], [2.5, 10.5], [17.5, 9.5]])
-    segments = (
-        np.array([[x + 0.5, 2.5] for x in range(2, 11)]),
-        np.array([[10.5, y + 0.5] for y in range(2, 11)]),
-        np.array([[10.5 + t, 2.5 + t] for t in range(8)]),
-        np.array([[x + 0.5, 10.5] for x in range(10, 1, -1)]),
-    )
-    ends = np.array([[0, 1], [1, 2], [1, 4], [2, 3]])
-    return SegmentGraph(segments=segments, junctions=nodes, ends=ends, width=20, height=14)
 
 
 def assert_image_frame(ax, width, height):
@@ -141,7 +130,7 @@ def test_background_conversion():
 
 
 def test_plot_segment_graph():
-    g = make_graph()
+    g = small_graph()
     ax = plotting.plot_segment_graph(g, image=np.ones((14, 20)))
     assert_image_frame(ax, 20, 14)
     (collection,) = ax.collections

@@ -14,12 +14,12 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from conftest import small_graph
 
 from img2logo import writers
 from img2logo.constants import FORMAT_NAME, PHI
 from img2logo.errors import InvalidParameterError
 from img2logo.geometry import Abstraction, Arc, Circle
-from img2logo.segment_graph import SegmentGraph
 
 jsonschema = pytest.importorskip("jsonschema")
 
@@ -562,19 +562,6 @@ def test_png_with_background_image(tmp_path):
     assert not (tmp_path / "x.png").exists()
     with pytest.raises(InvalidParameterError, match="dpi must be > 0"):
         writers.write_png(a, tmp_path / "x.png", dpi=0)
-
-
-def small_graph() -> SegmentGraph:
-    nodes = np.array([[2.5, 2.5], [10.5, 2.5], [10.5, 10.5], [2.5, 10.5], [17.5, 9.5]])
-    segments = (
-        np.array([[x + 0.5, 2.5] for x in range(2, 11)]),
-        np.array([[10.5, y + 0.5] for y in range(2, 11)]),
-        np.array([[10.5 + t, 2.5 + t] for t in range(8)]),
-        np.array([[x + 0.5, 10.5] for x in range(10, 1, -1)]),
-    )
-    return SegmentGraph(
-        segments=segments, junctions=nodes, ends=np.array([[0, 1], [1, 2], [1, 4], [2, 3]]), width=20, height=14
-    )
 
 
 def test_segment_graph_png(tmp_path):
