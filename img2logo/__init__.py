@@ -16,12 +16,12 @@ from .errors import FitError, ImageNotFoundError, Img2LogoError, InvalidImageErr
 __version__ = "0.1.0"
 
 _LAZY = {
-    "load_image": "preprocessing",
+    "load_image": "loading",
     "extract_feature_lines": "preprocessing",
     "detect_kind": "preprocessing",
-    "LoadedImage": "preprocessing",
+    "LoadedImage": "loading",
     "FeatureLines": "preprocessing",
-    "DownscaleWarning": "preprocessing",
+    "DownscaleWarning": "loading",
     "build_segment_graph": "segment_graph",
     "SegmentGraph": "segment_graph",
     "Circle": "geometry",

@@ -237,8 +237,8 @@ def _abstract_options(args: argparse.Namespace) -> dict:
 
 def _run(args: argparse.Namespace, say) -> int:
     from .fills import parse_fill_option
+    from .loading import load_image, load_mask
     from .pipeline import abstract
-    from .preprocessing import load_image, load_mask
 
     options = _abstract_options(args)
     fill_spec = parse_fill_option(args.fill)
