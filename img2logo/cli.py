@@ -42,6 +42,12 @@ def _parser() -> argparse.ArgumentParser:
     )
     p.add_argument("input", help="input image (PNG, JPEG, ...): a photo, a clip art or a line drawing")
     _add_input_options(p)
+    p.add_argument(
+        "--subject",
+        metavar="X,Y,W,H",
+        help="photos: a rectangle around the object, px (x, y of its top-left corner, width, height); "
+        "it seeds the object's segmentation",
+    )
     p.add_argument("--segments-png", metavar="OUT.png", help="draw the segment graph L = {S, J} to this PNG")
     out = p.add_argument_group("outputs (the final level, or --level N)")
     out.add_argument("--svg", metavar="OUT.svg", help="the logo as SVG: exact arcs, golden circles on a hidden layer")
@@ -107,9 +113,10 @@ def _add_input_options(p: argparse.ArgumentParser) -> None:
     )
     p.add_argument(
         "--foreground",
-        choices=("none", "grabcut"),
-        default="none",
-        help="photos: keep only lines on the object found by GrabCut (default none)",
+        default="auto",
+        metavar="auto|none|grabcut|MASK.png",
+        help="photos: the subject drawn: auto (default: the main object if there is one, else the whole image), "
+        "none (the whole image), grabcut (what GrabCut finds), or a mask image (white = object)",
     )
 
 
@@ -218,7 +225,7 @@ def _abstract_options(args: argparse.Namespace) -> dict:
         "kind": args.kind,
         "rdp_tolerance": args.rdp,
         "min_length": args.min_length,
-        "foreground": None if args.foreground == "none" else args.foreground,
+        "foreground": args.foreground,
         "bias": args.bias,
         "exponents": exponents,
         "rounding": args.rounding,
@@ -245,9 +252,15 @@ def _run(args: argparse.Namespace, say) -> int:
     image = load_image(args.input)
     lock_mask = None if not args.lock_mask else load_mask(args.lock_mask, (image.height, image.width))
     say(f"{args.input}: {image.width}x{image.height} px")
+    if args.subject is not None:
+        from .subject import parse_subject_rectangle
+
+        options["subject"] = parse_subject_rectangle(args.subject, (image.height, image.width))
     result = abstract(image, lock_mask=lock_mask, progress=None if not args.quiet else False, **options)
     graph, prog = result.graph, result.progression
     say(f"kind {result.lines.kind} ({result.lines.reason})")
+    if result.lines.subject is not None:
+        say(f"subject: {result.lines.subject.description}")
     say(
         f"segment graph: {graph.n_segments} segments, {graph.n_junctions} nodes "
         f"({int((graph.valence >= 3).sum())} junctions), {graph.n_components()} components"

@@ -49,6 +49,41 @@ BILATERAL_SIGMA_COLOR: float = 0.1
 #: Photo: smoothing of the structure tensor for the edge tangent flow, px.
 ETF_SIGMA: float = 3.0
 
+#: Photo subject (subject.py): GrabCut runs on a copy whose longer side is this, px
+#: (about 0.1 s; the object's shape, not its texture, decides the cut).
+SUBJECT_WORK_SIDE: int = 192
+#: ... for this many iterations (OpenCV's default is 5; the cut changes little after).
+SUBJECT_GRABCUT_ITERATIONS: int = 5
+#: Automatic subject: the strip of this fraction of each side along the frame is
+#: background when GrabCut starts (the object is away from the image's edges).
+SUBJECT_FRAME_INSET: float = 0.05
+#: The full-size refinement relabels a band this wide around the first cut, px of
+#: the working copy (a working pixel is 2-3 px of a 512 px photo).
+SUBJECT_REFINE_BAND: int = 2
+#: The subject mask is smoothed by a Gaussian of this sigma and thresholded at
+#: one half: no pixel staircase, nothing thinner than about 2 sigma, px.
+SUBJECT_SMOOTH_SIGMA: float = 2.0
+#: Holes of a subject mask smaller than this fraction of its area are GrabCut's
+#: specks and are filled; larger ones (a handle's loop) are the object's.
+SUBJECT_MAX_HOLE: float = 0.01
+#: Automatic subject: a candidate smaller than this fraction of the image is
+#: a detail (an eye, a highlight), not the photo's subject ...
+SUBJECT_MIN_AREA: float = 0.04
+#: ... one larger than this is the scene itself ...
+SUBJECT_MAX_AREA: float = 0.85
+#: ... and one touching more than this fraction of the image frame runs off
+#: the picture: the whole image is kept then.
+SUBJECT_MAX_FRAME: float = 0.25
+#: Photo outline: parts of the subject's outline within this of the image
+#: frame are the picture's edge, not the object's, px.
+OUTLINE_FRAME_MARGIN: float = 2.0
+#: Photo inner lines are kept this far inside the subject's outline, px (the
+#: outline is drawn from the mask; an edge line next to it would double it).
+INNER_LINE_MARGIN: int = 4
+#: Photo inner lines: an end of a line that stops within this distance of
+#: another line is joined to it (a junction), px.
+LINE_JOIN_DISTANCE: float = 6.0
+
 # --- Segment graph ----------------------------------------------------------------
 #: Default Ramer-Douglas-Peucker tolerance of the over-segmentation, px (Sec. 4).
 RDP_TOLERANCE: float = 2.0

@@ -1,8 +1,19 @@
-"""Feature lines of real photos (paper Sec. 4): a flow-based line drawing [KD09].
+"""Feature lines of real photos (paper Sec. 4): the subject's outline and a flow-based line drawing [KD09].
 
-An edge tangent flow from the smoothed structure tensor, a difference of
-Gaussians across the flow, smoothed along it, binarized (thinned by the caller);
-optionally only on the foreground object (a mask, or OpenCV's GrabCut).
+:func:`photo_feature_lines` draws a photo's subject (found by
+:mod:`img2logo.subject`) as
+
+* its **outline**: the boundary of the subject mask, a closed smooth curve
+  (the mask is smoothed; the parts on the image frame are left out);
+* its **inner lines**: an edge tangent flow from the smoothed structure tensor,
+  a difference of Gaussians across the flow, smoothed along it, binarized
+  (:func:`flow_dog`), kept ``INNER_LINE_MARGIN`` px inside the outline;
+* **joined**: a line end that stops within ``LINE_JOIN_DISTANCE`` of another
+  line is linked to it by a straight run of pixels (:func:`join_line_ends`), so
+  that the segment graph has a junction there, not a near-miss gap.
+
+Without a subject (a scene) the inner lines of the whole image are drawn and
+joined. The caller prunes spurs and short isolated lines.
 
 Arrays are indexed (row, column); points are (x, y) = (column + 0.5, row + 0.5)
 in px, x to the right, y downwards (``contract/README.md``).
@@ -14,7 +25,6 @@ import math
 
 import numpy as np
 
-from ._validation import check_choice
 from .constants import (
     BILATERAL_DIAMETER,
     BILATERAL_SIGMA_COLOR,
@@ -23,40 +33,128 @@ from .constants import (
     FDOG_SIGMA_C,
     FDOG_SIGMA_M,
     FDOG_TAU,
+    INNER_LINE_MARGIN,
+    LINE_JOIN_DISTANCE,
+    OUTLINE_FRAME_MARGIN,
 )
-from .errors import InvalidParameterError
 from .loading import LoadedImage
+from .subject import Subject
 
 
-def foreground_mask(img: LoadedImage, foreground: object) -> np.ndarray | None:
-    if foreground is None:
-        return img.foreground if img.has_alpha else None
-    if isinstance(foreground, str):
-        check_choice(foreground, "foreground", ("grabcut",))
-        return _grabcut(img)
-    mask = np.asarray(foreground)
-    if mask.shape != (img.height, img.width):
-        raise InvalidParameterError(
-            f"foreground mask must have the image's shape {(img.height, img.width)}, got {mask.shape}"
+def photo_feature_lines(img: LoadedImage, subject: Subject) -> np.ndarray:
+    """A photo's feature lines, (H, W) bool, 1 px wide: outline, inner lines, joined.
+
+    Parameters
+    ----------
+    img : LoadedImage
+        The photo.
+    subject : Subject
+        Its subject (:func:`img2logo.subject.find_subject`); a mask of None
+        draws the whole image.
+    """
+    from scipy import ndimage
+    from skimage.morphology import skeletonize
+
+    mask = subject.mask
+    inner = photo_lines(img, None)
+    if mask is None:
+        return join_line_ends(skeletonize(inner))
+    inside = ndimage.binary_erosion(mask, iterations=INNER_LINE_MARGIN)
+    outline = subject_outline(mask)
+    lines = skeletonize(inner & inside) | outline
+    return join_line_ends(skeletonize(lines))
+
+
+def subject_outline(mask: np.ndarray, frame_margin: float = OUTLINE_FRAME_MARGIN) -> np.ndarray:
+    """The outline of a subject mask as 8-connected 1-px curves, (H, W) bool.
+
+    The iso-line at one half of the mask (blurred by a Gaussian of 1 px, so the
+    curve is sub-pixel smooth), with the parts within ``frame_margin`` px of the
+    image frame left out: there the picture ends, not the object. Holes give
+    their own closed curves.
+    """
+    from scipy import ndimage
+    from skimage.draw import line
+    from skimage.measure import find_contours
+
+    h, w = mask.shape
+    out = np.zeros((h, w), bool)
+    soft = ndimage.gaussian_filter(np.pad(mask.astype(np.float64), 1), 1.0)
+    for contour in find_contours(soft, 0.5):
+        rc = contour - 1.0  # (row, col) of pixel centres, unpadded
+        keep = (
+            (rc[:, 0] >= frame_margin)
+            & (rc[:, 0] <= h - 1 - frame_margin)
+            & (rc[:, 1] >= frame_margin)
+            & (rc[:, 1] <= w - 1 - frame_margin)
         )
-    mask = mask.astype(bool)
-    if not mask.any():
-        raise InvalidParameterError("foreground mask is empty: no pixel is marked as the object")
-    return mask
+        ij = np.clip(np.round(rc).astype(np.int64), 0, [h - 1, w - 1])
+        for a in range(len(ij) - 1):
+            if keep[a] and keep[a + 1]:
+                rr, cc = line(ij[a, 0], ij[a, 1], ij[a + 1, 0], ij[a + 1, 1])
+                out[rr, cc] = True
+    return out
 
 
-def _grabcut(img: LoadedImage) -> np.ndarray:
-    """Foreground by OpenCV's GrabCut started from a rectangle inset by 5 % of each side."""
-    import cv2
+def join_line_ends(skel: np.ndarray, distance: float = LINE_JOIN_DISTANCE) -> np.ndarray:
+    """Link every end of a 1-px line map that stops near another line to it, (H, W) bool.
 
-    h, w = img.height, img.width
-    bgr = np.ascontiguousarray((img.rgb[:, :, ::-1] * 255).round().astype(np.uint8))
-    mask = np.zeros((h, w), np.uint8)
-    rect = (int(0.05 * w), int(0.05 * h), int(0.9 * w), int(0.9 * h))
-    bgd, fgd = np.zeros((1, 65), np.float64), np.zeros((1, 65), np.float64)
-    cv2.setRNGSeed(0)  # deterministic
-    cv2.grabCut(bgr, mask, rect, bgd, fgd, 5, cv2.GC_INIT_WITH_RECT)
-    return (mask == cv2.GC_FGD) | (mask == cv2.GC_PR_FGD)
+    An end (a pixel with one 8-neighbour) whose nearest line pixel not on its
+    own stretch of line (the pixels within ``3 * distance`` steps along it) is
+    at most ``distance`` px away is joined to that pixel by a straight run of
+    pixels. Ends are taken in raster order; a new run is itself a line for
+    the ends after it.
+    """
+    from scipy import ndimage
+    from scipy.spatial import cKDTree
+    from skimage.draw import line
+
+    out = np.asarray(skel, dtype=bool).copy()
+    if not out.any():
+        return out
+    neighbours = ndimage.convolve(out.astype(np.uint8), np.ones((3, 3), np.uint8), mode="constant") - 1
+    ends = np.argwhere(out & (neighbours == 1))
+    if len(ends) == 0:
+        return out
+    pixels = np.argwhere(out)
+    tree = cKDTree(pixels)
+    reach = math.ceil(3.0 * distance)
+    h, w = out.shape
+    for r, c in ends:
+        own = _walk(out, (int(r), int(c)), reach)
+        near = tree.query_ball_point((r, c), distance)
+        best, best_d = None, math.inf
+        for k in near:
+            pr, pc = pixels[k]
+            if (int(pr), int(pc)) in own or not out[pr, pc]:
+                continue
+            d = math.hypot(pr - r, pc - c)
+            if d < best_d:
+                best, best_d = (int(pr), int(pc)), d
+        if best is not None and best_d > 1.5:
+            rr, cc = line(int(r), int(c), best[0], best[1])
+            out[np.clip(rr, 0, h - 1), np.clip(cc, 0, w - 1)] = True
+    return out
+
+
+def _walk(skel: np.ndarray, start: tuple[int, int], steps: int) -> set[tuple[int, int]]:
+    """Pixels of ``skel`` within ``steps`` 8-connected steps of ``start`` along it."""
+    h, w = skel.shape
+    seen = {start}
+    frontier = [start]
+    for _ in range(steps):
+        nxt = []
+        for r, c in frontier:
+            for dr in (-1, 0, 1):
+                for dc in (-1, 0, 1):
+                    q = (r + dr, c + dc)
+                    if 0 <= q[0] < h and 0 <= q[1] < w and skel[q] and q not in seen:
+                        seen.add(q)
+                        nxt.append(q)
+        if not nxt:
+            break
+        frontier = nxt
+    return seen
 
 
 def photo_lines(img: LoadedImage, mask: np.ndarray | None) -> np.ndarray:

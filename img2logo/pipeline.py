@@ -75,7 +75,8 @@ def abstract(
     *,
     rdp_tolerance: float = RDP_TOLERANCE,
     min_length: float = MIN_SEGMENT_LENGTH,
-    foreground: object = None,
+    foreground: object = "auto",
+    subject: object = None,
     bias: float | None = None,
     exponents: Sequence[int] | None = None,
     ladder: str = "phi",
@@ -96,8 +97,11 @@ def abstract(
         The kind of input (see :func:`img2logo.extract_feature_lines`).
     rdp_tolerance, min_length : float
         Segment-graph parameters (see :func:`img2logo.build_segment_graph`), px.
-    foreground : None, "grabcut" or ndarray of bool
-        Photos: restrict the lines to the object.
+    foreground : {"auto", "none", "grabcut"}, path or ndarray of bool
+        Photos: the subject drawn (see :func:`img2logo.extract_feature_lines`);
+        found automatically by default.
+    subject : (x, y, w, h) or "X,Y,W,H", optional
+        Photos: a rectangle around the object that seeds its segmentation, px.
     bias, exponents, lock_mask
         The ladder bias, a subset of ladder exponents, a lock mask (Sec. 7).
     ladder : {"phi", "fibonacci"}
@@ -122,7 +126,7 @@ def abstract(
     timings: dict[str, float] = {}
     start = time.perf_counter()
     img = load_image(image)
-    lines = extract_feature_lines(img, kind=kind, foreground=foreground)
+    lines = extract_feature_lines(img, kind=kind, foreground=foreground, subject=subject)
     timings["feature_lines"] = time.perf_counter() - start
     start = time.perf_counter()
     graph = build_segment_graph(lines, rdp_tolerance=rdp_tolerance, min_length=min_length)

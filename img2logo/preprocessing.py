@@ -31,7 +31,8 @@ from .constants import (
     SPUR_LENGTH,
 )
 from .loading import DownscaleWarning, LoadedImage, load_image, load_mask
-from .photo import edge_tangent_flow, flow_dog, foreground_mask, photo_lines
+from .photo import edge_tangent_flow, flow_dog, photo_feature_lines
+from .subject import Subject, find_subject
 
 __all__ = [
     "KINDS",
@@ -63,12 +64,16 @@ class FeatureLines:
         Why this kind: ``"given"`` or what :func:`detect_kind` measured.
     regions : ndarray of int, shape (H, W), or None
         For clip art, the flat-colour region label of each pixel (0 = background).
+    subject : Subject or None
+        For photos, the part of the image drawn and how it was found
+        (:func:`img2logo.subject.find_subject`).
     """
 
     lines: np.ndarray
     kind: str
     reason: str
     regions: np.ndarray | None = None
+    subject: Subject | None = None
 
     @property
     def shape(self) -> tuple[int, int]:
@@ -121,7 +126,8 @@ def extract_feature_lines(
     image: object,
     kind: str = "auto",
     *,
-    foreground: object = None,
+    foreground: object = "auto",
+    subject: object = None,
     spur_length: float = SPUR_LENGTH,
     min_line_length: float | None = None,
 ) -> FeatureLines:
@@ -134,10 +140,13 @@ def extract_feature_lines(
     kind : {"auto", "photo", "clipart", "drawing"}
         The kind of input; ``"auto"`` chooses with :func:`detect_kind` and says
         why in the result's ``reason``.
-    foreground : None, "grabcut" or ndarray of bool, shape (H, W), optional
-        Photos only: keep the lines on the object. A boolean mask given by the
-        user, or ``"grabcut"`` to segment it with OpenCV's GrabCut from a
-        centred rectangle. An image with transparency uses its alpha by default.
+    foreground : {"auto", "none", "grabcut"}, path or ndarray of bool, shape (H, W), optional
+        Photos only: the subject whose outline and inner lines are drawn
+        (:func:`img2logo.subject.find_subject`): found automatically (default;
+        an image with transparency uses its alpha), the whole image, GrabCut
+        kept whatever it finds, or a mask (white = object). None is ``"auto"``.
+    subject : (x, y, w, h) or "X,Y,W,H", optional
+        Photos only: a rectangle around the object, px, that seeds GrabCut.
     spur_length : float, optional
         Side spurs of the skeleton shorter than this are pruned, px.
     min_line_length : float, optional
@@ -157,6 +166,7 @@ def extract_feature_lines(
     else:
         reason = "given"
     regions = None
+    found = None
     if kind == "drawing":
         raw = _drawing_lines(img)
         min_len = spur_length if min_line_length is None else min_line_length
@@ -165,11 +175,12 @@ def extract_feature_lines(
         raw = region_boundaries(regions)
         min_len = spur_length if min_line_length is None else min_line_length
     else:
-        raw = photo_lines(img, foreground_mask(img, foreground))
+        found = find_subject(img, foreground, subject)
+        raw = photo_feature_lines(img, found)
         min_len = PHOTO_MIN_LINE_LENGTH if min_line_length is None else min_line_length
     min_len = check_positive(min_len, "min_line_length", allow_zero=True)
     lines = _clean_skeleton(raw, spur_length=spur_length, min_length=min_len)
-    return FeatureLines(readonly(lines), kind, reason, None if regions is None else readonly(regions))
+    return FeatureLines(readonly(lines), kind, reason, None if regions is None else readonly(regions), found)
 
 
 def _clean_skeleton(mask: np.ndarray, *, spur_length: float, min_length: float) -> np.ndarray:

@@ -290,3 +290,26 @@ def test_lines_option(tmp_path):
         out = tmp_path / f"f{len(flag)}.json"
         assert main([str(path), "-q", "--json", str(out), *flag]) == 0
         assert len(json.loads(out.read_text())["extra"].get("lines", [])) == expected
+
+
+def test_photo_subject_is_reported_and_can_be_chosen(tmp_path, capsys):
+    import cv2
+    from test_subject import textured_photo
+
+    rgb, _ = textured_photo([(90, 120, 60, 60, (0.9, 0.2, 0.3)), (250, 120, 55, 55, (0.2, 0.4, 0.95))], size=(240, 340))
+    path = tmp_path / "two.png"
+    cv2.imwrite(str(path), (rgb[:, :, ::-1] * 255).round().astype(np.uint8))
+    assert main([str(path), "--kind", "photo", "--subject", "185,55,130,130"]) == 0
+    assert "subject: kept the object in 185,55,130,130 (GrabCut)" in capsys.readouterr().err
+    assert main([str(path), "--kind", "photo", "--foreground", "none"]) == 0
+    assert "subject: kept the whole image (foreground none)" in capsys.readouterr().err
+    out = tmp_path / "x.json"
+    for args, message in [
+        (["--foreground", "magic"], "foreground must be one of auto, none, grabcut"),
+        (["--foreground", str(tmp_path / "missing.png")], "image file not found"),
+        (["--subject", "1,2"], "subject must be a rectangle X,Y,W,H"),
+    ]:
+        assert main([str(path), "--kind", "photo", "--json", str(out), *args]) == EXIT_ERROR
+        err = capsys.readouterr().err
+        assert err.strip().splitlines()[-1].startswith("img2logo: error: ") and message in err
+        assert not out.exists()

@@ -1,0 +1,281 @@
+"""Subject isolation for photos: which pixels are the object the logo is of.
+
+A photo shows its subject on a background; the logo should draw the subject
+only (paper Fig. 1, 10). :func:`find_subject` finds it without user input
+(``foreground="auto"``) or from the user's hint:
+
+* an image with transparency: its opaque pixels;
+* ``"auto"``: OpenCV's GrabCut [RKB04] started from the frame of the image (a
+  strip of ``SUBJECT_FRAME_INSET`` of each side is background, the rest maybe
+  object), run on a copy whose longer side is ``SUBJECT_WORK_SIDE`` px, then
+  refined at full size in a band around its boundary. The result is kept if
+  it is one dominant object: between ``SUBJECT_MIN_AREA`` and
+  ``SUBJECT_MAX_AREA`` of the image, touching at most ``SUBJECT_MAX_FRAME`` of
+  the frame; otherwise the whole image is kept (a scene, or a close-up that
+  fills the frame), and :attr:`Subject.description` says why;
+* ``"grabcut"``: the same GrabCut, kept whatever it finds;
+* a rectangle ``subject=(x, y, w, h)``: GrabCut started from it (outside is
+  background);
+* a mask (an array, or a file read by :func:`img2logo.load_mask`);
+* ``"none"``: the whole image.
+
+The mask is cleaned the same way whatever found it: its largest connected
+piece, holes under ``SUBJECT_MAX_HOLE`` of its area filled (a handle's loop
+stays open), then smoothed by a Gaussian of ``SUBJECT_SMOOTH_SIGMA``
+(no pixel staircase from the small working copy).
+
+Arrays are indexed (row, column); a rectangle is (x, y, w, h) in px with x the
+column and y the row of its top-left corner.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ._validation import readonly
+from .constants import (
+    SUBJECT_FRAME_INSET,
+    SUBJECT_GRABCUT_ITERATIONS,
+    SUBJECT_MAX_AREA,
+    SUBJECT_MAX_FRAME,
+    SUBJECT_MAX_HOLE,
+    SUBJECT_MIN_AREA,
+    SUBJECT_REFINE_BAND,
+    SUBJECT_SMOOTH_SIGMA,
+    SUBJECT_WORK_SIDE,
+)
+from .errors import InvalidParameterError
+from .loading import LoadedImage, load_mask
+
+#: The string values of ``foreground``.
+FOREGROUND_CHOICES = ("auto", "none", "grabcut")
+
+
+@dataclass(frozen=True, eq=False)
+class Subject:
+    """The part of a photo its logo is drawn from.
+
+    Attributes
+    ----------
+    mask : ndarray of bool, shape (H, W), or None
+        The object's pixels; None when the whole image is kept.
+    method : str
+        How it was found: ``"alpha"``, ``"auto"``, ``"grabcut"``,
+        ``"rectangle"``, ``"mask"`` or ``"none"``.
+    description : str
+        One line for the user: what was kept and how it was found.
+    """
+
+    mask: np.ndarray | None
+    method: str
+    description: str
+
+    @property
+    def area_fraction(self) -> float:
+        """Fraction of the image the subject covers (1.0 for the whole image)."""
+        return 1.0 if self.mask is None else float(self.mask.mean())
+
+
+def parse_subject_rectangle(value: object, shape: tuple[int, int]) -> tuple[int, int, int, int]:
+    """Check a subject rectangle ``(x, y, w, h)`` (or the text ``"X,Y,W,H"``) against an image of ``shape``.
+
+    Returns
+    -------
+    (x, y, w, h) : tuple of int
+        Clipped to the image, px.
+    """
+    if isinstance(value, str):
+        parts = value.split(",")
+        try:
+            nums = [float(p) for p in parts]
+        except ValueError:
+            nums = []
+    else:
+        try:
+            nums = [float(v) for v in np.asarray(value, dtype=float).ravel()]
+        except (TypeError, ValueError):
+            nums = []
+    if len(nums) != 4 or not all(np.isfinite(nums)):
+        raise InvalidParameterError(f"subject must be a rectangle X,Y,W,H of four numbers in px, got {value!r}")
+    x, y, w, h = (round(v) for v in nums)
+    height, width = shape
+    x0, y0 = max(0, x), max(0, y)
+    x1, y1 = min(width, x + w), min(height, y + h)
+    if w <= 0 or h <= 0 or x1 - x0 < 4 or y1 - y0 < 4:
+        raise InvalidParameterError(
+            f"subject rectangle {x},{y},{w},{h} must cover at least 4x4 px of the {width}x{height} image"
+        )
+    if x0 == 0 and y0 == 0 and x1 == width and y1 == height:
+        raise InvalidParameterError(
+            f"subject rectangle {x},{y},{w},{h} covers the whole {width}x{height} image: it must leave some "
+            "background outside"
+        )
+    return x0, y0, x1 - x0, y1 - y0
+
+
+def find_subject(img: LoadedImage, foreground: object = "auto", subject: object = None) -> Subject:
+    """Find the subject of a photo.
+
+    Parameters
+    ----------
+    img : LoadedImage
+        The photo.
+    foreground : {"auto", "none", "grabcut"}, None, path or ndarray of bool, shape (H, W)
+        How to find it (see the module's documentation); None is ``"auto"``. A
+        path is read as a mask image (white = object).
+    subject : (x, y, w, h) or "X,Y,W,H", optional
+        A rectangle around the object, px: GrabCut starts from it. Only with
+        ``foreground`` ``"auto"`` or ``"grabcut"``.
+
+    Returns
+    -------
+    Subject
+    """
+    shape = (img.height, img.width)
+    if foreground is None:
+        foreground = "auto"
+    if isinstance(foreground, str) and foreground not in FOREGROUND_CHOICES:
+        if not Path(foreground).suffix:
+            raise InvalidParameterError(
+                f"foreground must be one of {', '.join(FOREGROUND_CHOICES)}, a mask image or array, got {foreground!r}"
+            )
+        foreground = Path(foreground)
+    if subject is not None:
+        if not (isinstance(foreground, str) and foreground in ("auto", "grabcut")):
+            raise InvalidParameterError("subject (a rectangle) needs foreground auto or grabcut, not a mask or none")
+        rect = parse_subject_rectangle(subject, shape)
+        mask = _clean(_grabcut(img, rect=rect))
+        if not mask.any():
+            raise InvalidParameterError(f"no object found in the subject rectangle {','.join(map(str, rect))}")
+        x, y, w, h = rect
+        return Subject(
+            readonly(mask), "rectangle", f"kept the object in {x},{y},{w},{h} (GrabCut): {mask.mean():.0%} of the image"
+        )
+    if isinstance(foreground, str):
+        if foreground == "none":
+            return Subject(None, "none", "kept the whole image (foreground none)")
+        if foreground == "auto" and img.has_alpha and not img.foreground.all():
+            mask = img.foreground
+            return Subject(readonly(mask.copy()), "alpha", f"kept the opaque pixels (alpha): {mask.mean():.0%}")
+        mask = _clean(_grabcut(img))
+        if foreground == "grabcut":
+            if not mask.any():
+                return Subject(None, "grabcut", "GrabCut found no object: kept the whole image")
+            return Subject(
+                readonly(mask), "grabcut", f"kept the object found by GrabCut: {mask.mean():.0%} of the image"
+            )
+        why = _not_dominant(mask)
+        if why:
+            return Subject(None, "auto", f"kept the whole image: no dominant object ({why})")
+        return Subject(
+            readonly(mask),
+            "auto",
+            f"kept the main object, {mask.mean():.0%} of the image (found by GrabCut from the image frame)",
+        )
+    mask = load_mask(foreground, shape) if isinstance(foreground, Path) else np.asarray(foreground)
+    if mask.shape != shape:
+        raise InvalidParameterError(f"foreground mask must have the image's shape {shape}, got {mask.shape}")
+    mask = mask.astype(bool)
+    if not mask.any():
+        raise InvalidParameterError("foreground mask is empty: no pixel is marked as the object")
+    return Subject(readonly(mask.copy()), "mask", f"kept the object of the given mask: {mask.mean():.0%} of the image")
+
+
+def _not_dominant(mask: np.ndarray) -> str:
+    """Why ``mask`` is not one dominant object, or ``""`` if it is."""
+    area = float(mask.mean())
+    if area < SUBJECT_MIN_AREA:
+        return f"the best candidate covers {area:.1%} of the image, under {SUBJECT_MIN_AREA:.0%}"
+    if area > SUBJECT_MAX_AREA:
+        return f"the candidate covers {area:.0%} of the image, over {SUBJECT_MAX_AREA:.0%}"
+    frame = np.concatenate([mask[0], mask[-1], mask[1:-1, 0], mask[1:-1, -1]])
+    touching = float(frame.mean())
+    if touching > SUBJECT_MAX_FRAME:
+        return f"the candidate touches {touching:.0%} of the image frame"
+    return ""
+
+
+def _grabcut(img: LoadedImage, rect: tuple[int, int, int, int] | None = None) -> np.ndarray:
+    """GrabCut from a rectangle (default: the frame inset by ``SUBJECT_FRAME_INSET``), (H, W) bool.
+
+    Run on a copy whose longer side is ``SUBJECT_WORK_SIDE`` px, then once more
+    at full size, only in a band of ``SUBJECT_REFINE_BAND`` px (at the working
+    scale) around the boundary found, with the colour models of the first run.
+    Deterministic (OpenCV's random generator is seeded).
+    """
+    import cv2
+    from scipy import ndimage
+
+    h, w = img.height, img.width
+    scale = min(1.0, SUBJECT_WORK_SIDE / max(h, w))
+    sw, sh = max(8, round(w * scale)), max(8, round(h * scale))
+    sx, sy = sw / w, sh / h
+    small = cv2.resize(img.rgb.astype(np.float32), (sw, sh), interpolation=cv2.INTER_AREA)
+    if rect is None:
+        x0, y0 = round(SUBJECT_FRAME_INSET * sw), round(SUBJECT_FRAME_INSET * sh)
+        box = (x0, y0, sw - 2 * x0, sh - 2 * y0)
+    else:
+        x, y, rw, rh = rect
+        bx0, by0 = int(np.floor(x * sx)), int(np.floor(y * sy))
+        bx1, by1 = min(sw, int(np.ceil((x + rw) * sx))), min(sh, int(np.ceil((y + rh) * sy)))
+        box = (bx0, by0, max(2, bx1 - bx0), max(2, by1 - by0))
+    label = np.zeros((sh, sw), np.uint8)
+    bgd, fgd = np.zeros((1, 65), np.float64), np.zeros((1, 65), np.float64)
+    cv2.setRNGSeed(0)
+    cv2.grabCut(_bgr8(small), label, box, bgd, fgd, SUBJECT_GRABCUT_ITERATIONS, cv2.GC_INIT_WITH_RECT)
+    fg = _largest((label == cv2.GC_FGD) | (label == cv2.GC_PR_FGD))
+    if not fg.any():
+        return np.zeros((h, w), bool)
+    fg = _fill_small_holes(fg)
+    up = cv2.resize(fg.astype(np.float32), (w, h), interpolation=cv2.INTER_LINEAR) >= 0.5
+    if scale == 1.0:
+        return up
+    band = max(2, round(SUBJECT_REFINE_BAND / scale))
+    full = np.full((h, w), cv2.GC_BGD, np.uint8)
+    full[ndimage.binary_dilation(up, iterations=band)] = cv2.GC_PR_BGD
+    full[up] = cv2.GC_PR_FGD
+    full[ndimage.binary_erosion(up, iterations=band)] = cv2.GC_FGD
+    if rect is not None:  # outside the user's rectangle stays background
+        x, y, rw, rh = rect
+        outside = np.ones((h, w), bool)
+        outside[y : y + rh, x : x + rw] = False
+        full[outside] = cv2.GC_BGD
+    cv2.grabCut(_bgr8(img.rgb), full, None, bgd, fgd, 1, cv2.GC_INIT_WITH_MASK)
+    return (full == cv2.GC_FGD) | (full == cv2.GC_PR_FGD)
+
+
+def _bgr8(rgb: np.ndarray) -> np.ndarray:
+    return np.ascontiguousarray((np.clip(rgb[:, :, ::-1], 0.0, 1.0) * 255).round().astype(np.uint8))
+
+
+def _largest(mask: np.ndarray) -> np.ndarray:
+    """The largest 8-connected piece of ``mask``."""
+    from scipy import ndimage
+
+    lab, n = ndimage.label(mask, structure=np.ones((3, 3)))
+    if n <= 1:
+        return mask.copy()
+    sizes = np.bincount(lab.ravel())[1:]
+    return lab == 1 + int(np.argmax(sizes))
+
+
+def _clean(mask: np.ndarray) -> np.ndarray:
+    """Largest piece, holes filled, smoothed by a Gaussian of ``SUBJECT_SMOOTH_SIGMA`` px, (H, W) bool."""
+    from scipy import ndimage
+
+    if not mask.any():
+        return mask
+    mask = _fill_small_holes(_largest(mask))
+    smooth = ndimage.gaussian_filter(mask.astype(np.float32), SUBJECT_SMOOTH_SIGMA) >= 0.5
+    smooth = _largest(smooth)
+    return _fill_small_holes(smooth) if smooth.any() else mask
+
+
+def _fill_small_holes(mask: np.ndarray) -> np.ndarray:
+    """Fill the holes of ``mask`` smaller than ``SUBJECT_MAX_HOLE`` of its area (GrabCut's specks)."""
+    from skimage.morphology import remove_small_holes
+
+    return remove_small_holes(mask, max_size=max(1, int(SUBJECT_MAX_HOLE * mask.sum())))

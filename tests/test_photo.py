@@ -1,0 +1,77 @@
+"""Tests of img2logo.photo: a photo's outline, inner lines and their joins."""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy import ndimage
+from test_subject import textured_photo
+
+from img2logo import extract_feature_lines, load_image
+from img2logo.photo import join_line_ends, subject_outline
+from img2logo.subject import Subject
+
+
+def test_photo_lines_are_the_outline_and_inner_lines_of_the_subject_only():
+    rgb, (truth,) = textured_photo([(170, 120, 80, 60, (0.95, 0.75, 0.2))])
+    fl = extract_feature_lines(rgb, kind="photo")
+    assert fl.subject is not None and fl.subject.method == "auto"
+    lines = fl.lines
+    # Nothing on the background ...
+    near = ndimage.binary_dilation(truth, iterations=3)
+    assert lines.any() and not (lines & ~near).any()
+    # ... the silhouette, whole, within 3 px ...
+    edge = truth & ~ndimage.binary_erosion(truth)
+    dist = ndimage.distance_transform_edt(~lines)
+    assert np.mean(dist[edge] <= 3) > 0.98
+    # ... and the inner stripe (y = 120 +- 7) inside it.
+    assert lines[105:136, 120:220].sum() > 100
+
+
+def test_subject_outline_is_closed_and_leaves_out_the_image_frame():
+    mask = np.zeros((100, 120), bool)
+    yy, xx = np.mgrid[0:100, 0:120]
+    mask[np.hypot(xx - 40, yy - 50) < 30] = True
+    out = subject_outline(mask)
+    # A closed 8-connected curve: one piece, and every pixel has two neighbours or more.
+    _, n = ndimage.label(out, structure=np.ones((3, 3)))
+    assert n == 1
+    nb = ndimage.convolve(out.astype(int), np.ones((3, 3), int), mode="constant") - 1
+    assert (nb[out] >= 2).all()
+    r = np.hypot(*(np.argwhere(out)[:, ::-1] + 0.5 - (40.5, 50.5)).T)
+    assert np.all(np.abs(r - 30) < 1.5)
+    # An object cut by the right edge: no line along the frame.
+    mask2 = np.hypot(xx - 110, yy - 50) < 30
+    out2 = subject_outline(mask2)
+    assert out2.any() and not out2[:, -2:].any()
+
+
+def test_two_line_ends_3_px_apart_are_joined():
+    skel = np.zeros((40, 60), bool)
+    skel[20, 5:28] = True  # ends at column 27
+    skel[20, 31:55] = True  # starts at column 31: a 3 px gap
+    skel[5, 5:20] = True  # far from everything: left alone
+    out = join_line_ends(skel)
+    assert out[20, 5:55].all()
+    _, n = ndimage.label(out, structure=np.ones((3, 3)))
+    assert n == 2
+    np.testing.assert_array_equal(out[:15], skel[:15])
+
+
+def test_a_line_end_near_another_line_makes_a_junction():
+    skel = np.zeros((40, 40), bool)
+    skel[5:35, 20] = True  # vertical line
+    skel[18, 2:16] = True  # stops 4 px short of it
+    out = join_line_ends(skel)
+    assert out[18, 2:21].all()
+    assert out.sum() == skel.sum() + 4
+
+
+def test_a_scene_draws_the_whole_image():
+    rgb, _ = textured_photo([(170, 120, 80, 60, (0.95, 0.75, 0.2))])
+    img = load_image(rgb)
+    fl = extract_feature_lines(img, kind="photo", foreground="none")
+    assert fl.subject.mask is None and fl.subject.method == "none"
+    whole = Subject(None, "none", "")
+    from img2logo.photo import photo_feature_lines
+
+    assert photo_feature_lines(img, whole).shape == (240, 320)

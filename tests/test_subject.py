@@ -1,0 +1,129 @@
+"""Tests of img2logo.subject: finding a photo's subject (automatic, rectangle, mask, none)."""
+
+from __future__ import annotations
+
+import cv2
+import numpy as np
+import pytest
+from scipy import ndimage
+
+from img2logo import InvalidParameterError, load_image
+from img2logo.subject import find_subject, parse_subject_rectangle
+
+
+def textured_photo(shapes, size=(240, 320), seed=0):
+    """Objects on a noise-texture background: an RGB float image and each object's true mask.
+
+    ``shapes`` are (cx, cy, rx, ry, rgb) ellipses; each is shaded softly (lighter
+    towards its top-left) and gets a darker inner stripe; the background is a
+    blurred random texture of browns and greens with some fine noise.
+    """
+    rng = np.random.default_rng(seed)
+    h, w = size
+    tex = ndimage.gaussian_filter(rng.random((h, w, 3)), (3, 3, 0))
+    tex = (tex - tex.min()) / np.ptp(tex)
+    img = 0.25 + 0.35 * tex * np.array([0.9, 0.8, 0.5])
+    yy, xx = np.mgrid[0:h, 0:w]
+    masks = []
+    for cx, cy, rx, ry, rgb in shapes:
+        inside = ((xx - cx) / rx) ** 2 + ((yy - cy) / ry) ** 2 <= 1.0
+        shade = 1.0 + 0.15 * ((cx - xx) / rx + (cy - yy) / ry) / 2
+        obj = np.clip(np.array(rgb)[None, None, :] * shade[..., None], 0, 1)
+        stripe = inside & (np.abs(yy - cy) < ry * 0.12)
+        obj[stripe] *= 0.6
+        img[inside] = obj[inside]
+        masks.append(inside)
+    img = ndimage.gaussian_filter(img, (0.8, 0.8, 0)) + 0.01 * rng.standard_normal((h, w, 3))
+    return np.clip(img, 0, 1), masks
+
+
+def outline_distance(found: np.ndarray, truth: np.ndarray) -> float:
+    """Largest distance from the outline of ``found`` to that of ``truth``, px."""
+    edge_f = found & ~ndimage.binary_erosion(found)
+    edge_t = truth & ~ndimage.binary_erosion(truth)
+    return float(ndimage.distance_transform_edt(~edge_t)[edge_f].max())
+
+
+def test_auto_finds_the_silhouette_of_a_shaded_object_on_texture():
+    rgb, (truth,) = textured_photo([(170, 120, 80, 60, (0.95, 0.75, 0.2))])
+    subject = find_subject(load_image(rgb))
+    assert subject.method == "auto"
+    assert subject.mask is not None
+    assert outline_distance(subject.mask, truth) <= 3.0
+    assert "main object" in subject.description
+
+
+def test_auto_keeps_the_larger_of_two_objects():
+    rgb, (big, small) = textured_photo(
+        [(110, 120, 70, 70, (0.9, 0.2, 0.3)), (260, 110, 28, 28, (0.2, 0.4, 0.95))], size=(240, 340)
+    )
+    mask = find_subject(load_image(rgb)).mask
+    assert mask is not None
+    assert (mask & big).sum() > 0.95 * big.sum()
+    assert not (mask & small).any()
+
+
+def test_auto_keeps_the_whole_image_without_a_dominant_object():
+    # Pure texture: whatever GrabCut finds is not one object away from the frame.
+    rgb, _ = textured_photo([])
+    subject = find_subject(load_image(rgb))
+    assert subject.mask is None
+    assert subject.description.startswith("kept the whole image: no dominant object")
+
+
+def test_a_user_rectangle_seeds_the_object_inside_it():
+    rgb, (left, right) = textured_photo(
+        [(90, 120, 60, 60, (0.9, 0.2, 0.3)), (250, 120, 55, 55, (0.2, 0.4, 0.95))], size=(240, 340)
+    )
+    subject = find_subject(load_image(rgb), subject=(185, 55, 130, 130))
+    assert subject.method == "rectangle"
+    assert outline_distance(subject.mask, right) <= 3.0
+    assert not (subject.mask & left).any()
+    assert subject.description.startswith("kept the object in 185,55,130,130")
+
+
+def test_a_user_mask_and_none():
+    rgb, (truth,) = textured_photo([(170, 120, 80, 60, (0.95, 0.75, 0.2))])
+    img = load_image(rgb)
+    mask = np.zeros(truth.shape, bool)
+    mask[10:50, 10:60] = True
+    subject = find_subject(img, mask)
+    assert subject.method == "mask"
+    np.testing.assert_array_equal(subject.mask, mask)
+    assert find_subject(img, "none").mask is None
+
+
+def test_a_mask_file(tmp_path):
+    rgb, (truth,) = textured_photo([(170, 120, 80, 60, (0.95, 0.75, 0.2))])
+    path = tmp_path / "mask.png"
+    cv2.imwrite(str(path), truth.astype(np.uint8) * 255)
+    subject = find_subject(load_image(rgb), str(path))
+    np.testing.assert_array_equal(subject.mask, truth)
+
+
+def test_alpha_is_the_subject_of_a_transparent_image():
+    rgba = np.zeros((64, 64, 4))
+    rgba[16:48, 20:40] = (0.5, 0.2, 0.1, 1.0)
+    subject = find_subject(load_image(rgba))
+    assert subject.method == "alpha"
+    assert subject.mask.sum() == 32 * 20
+
+
+def test_bad_subject_options():
+    rgb, _ = textured_photo([(170, 120, 80, 60, (0.95, 0.75, 0.2))])
+    img = load_image(rgb)
+    with pytest.raises(InvalidParameterError, match="foreground must be one of auto, none, grabcut"):
+        find_subject(img, "magic")
+    with pytest.raises(InvalidParameterError, match=r"foreground mask must have the image's shape \(240, 320\)"):
+        find_subject(img, np.ones((10, 10), bool))
+    with pytest.raises(InvalidParameterError, match="foreground mask is empty"):
+        find_subject(img, np.zeros((240, 320), bool))
+    with pytest.raises(InvalidParameterError, match=r"subject \(a rectangle\) needs foreground auto or grabcut"):
+        find_subject(img, "none", subject=(10, 10, 50, 50))
+    with pytest.raises(InvalidParameterError, match="subject must be a rectangle X,Y,W,H of four numbers"):
+        parse_subject_rectangle("1,2,3", (240, 320))
+    with pytest.raises(InvalidParameterError, match="covers the whole 320x240 image"):
+        parse_subject_rectangle("0,0,320,240", (240, 320))
+    with pytest.raises(InvalidParameterError, match="must cover at least 4x4 px"):
+        parse_subject_rectangle((400, 10, 20, 20), (240, 320))
+    assert parse_subject_rectangle(" 5, 6 ,100,50", (240, 320)) == (5, 6, 100, 50)
