@@ -11,7 +11,7 @@ NB     ?= $(basename $(notdir $(wildcard notebooks/*.ipynb)))
 RUNS   := $(patsubst %,build/notebooks/%.ipynb,$(NB))
 
 .DELETE_ON_ERROR:
-.PHONY: install test lint format bench figures figures-smoke clean
+.PHONY: install test lint format bench quality figures figures-smoke clean
 
 install: $(STAMP)
 
@@ -35,6 +35,11 @@ format: $(STAMP)
 
 bench: $(STAMP)
 	$(BIN)/python benchmarks/bench.py
+
+# What the logos keep of the evaluation set's features (benchmarks/data/): a table,
+# build/quality/quality.csv and contact sheets. ARGS="--only 'clipart-*'" runs a part.
+quality: $(STAMP)
+	$(BIN)/python benchmarks/quality.py $(ARGS)
 
 # Every notebook is executed by papermill with its full parameters; its outputs
 # go to figures/<notebook>/, the executed copy to build/notebooks/. Only the

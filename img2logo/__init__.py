@@ -41,7 +41,11 @@ _LAZY = {
     "GoldenLadder": "golden_ladder",
     "FibonacciLadder": "golden_ladder",
     "run_batch": "batch",
+    "load_mask": "loading",
 }
+
+#: Submodules reachable as attributes, imported on first use.
+_SUBMODULES = ("quality",)
 
 __all__ = [
     "PHI",
@@ -67,6 +71,7 @@ __all__ = [
     "detect_kind",
     "extract_feature_lines",
     "load_image",
+    "load_mask",
     "optimize",
     "plot_abstraction",
     "plot_segment_graph",
@@ -80,6 +85,8 @@ __all__ = [
 
 
 def __getattr__(name: str) -> Any:
+    if name in _SUBMODULES:
+        return importlib.import_module(f".{name}", __name__)
     module = _LAZY.get(name)
     if module is None:
         raise AttributeError(f"module 'img2logo' has no attribute {name!r}")
@@ -105,6 +112,7 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the lazy names, eagerly
         detect_kind,
         extract_feature_lines,
         load_image,
+        load_mask,
     )
     from .progressive import Progression, optimize
     from .segment_graph import SegmentGraph, build_segment_graph

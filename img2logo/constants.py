@@ -193,3 +193,22 @@ LINE_MIN_ANGLE: float = 0.2617993877991494
 #: the connectivity-constrained fit handles it like any circle, and over a 500 px
 #: chord it is 0.03 px from straight. It is written as a true line, px.
 LINE_RADIUS: float = 1e6
+
+# --- Quality measures (quality.py, make quality) ------------------------------------
+#: Spacing of the points sampled along a logo's arcs to measure it, px: well under
+#: the 3 px of the finest recall measure.
+QUALITY_SAMPLE_STEP: float = 0.5
+#: sil6: an object outline pixel within this of the logo is kept, px.
+SILHOUETTE_DISTANCE: float = 6.0
+#: A logo point farther than this from the object mask is on the background, px:
+#: twice the silhouette distance, so a slightly loose outline does not count.
+OUTSIDE_DISTANCE: float = 12.0
+#: Two arcs meeting farther than this from all their end points cross, px: arcs
+#: that meet at a junction end there (to 1e-3 px); 1.5 px leaves room for the
+#: two nearby crossings of circles that touch at a shared junction.
+CROSSING_END_DISTANCE: float = 1.5
+#: An open arc end this close to another arc or closer is joined to it, px.
+GAP_MIN: float = 0.75
+#: An open arc end within GAP_MIN..GAP_MAX of another arc is a near-miss gap (the
+#: eye closes it, the logo does not); farther, it is a free end, px.
+GAP_MAX: float = 6.0

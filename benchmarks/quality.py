@@ -1,0 +1,155 @@
+"""`make quality`: what the logos keep of the evaluation set's features, and what they add.
+
+Runs the whole pipeline at the default options on every image of
+``benchmarks/data/`` (clip arts, line drawings and photo-like images with a
+ground truth; ``benchmarks/data/README.md`` says how the truth was made) and on
+the photos of ``data/`` (no truth: only arcs, crossings and gaps), then prints
+one row per image and the means per kind, writes them to
+``build/quality/quality.csv`` and draws one contact sheet per kind,
+``build/quality/contact-<kind>.png``: input | ground truth, the pixels farther
+than 10 px from the logo in red | logo.
+
+Columns: kind (true) and detected; arcs; r3, r6, r10 (fraction of the truth's
+feature pixels within 3, 6, 10 px of the logo's arcs and lines, sampled every
+0.5 px); sil6 (fraction of the object mask's outline within 6 px of the logo)
+and outside (fraction of the logo's points farther than 12 px from the mask),
+for photo-likes; crossings; gaps (near-miss gaps: open ends 0.75-6 px from
+another arc); seconds (the whole pipeline, one process per image at a time).
+
+A benchmark, not a test: it prints and never fails on a bad number. An image
+whose run fails is a row with its error.
+"""
+
+from __future__ import annotations
+
+import argparse
+import fnmatch
+import json
+import sys
+import time
+import warnings
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[1]
+EVAL = ROOT / "benchmarks" / "data"
+OUT = ROOT / "build" / "quality"
+COLUMNS = ("name", "kind", "detected", "arcs", "r3", "r6", "r10", "sil6", "outside", "crossings", "gaps", "seconds")
+
+
+def cases() -> list[dict]:
+    """The evaluation set's manifest entries, then the photos of data/ (no truth)."""
+    manifest = json.loads((EVAL / "manifest.json").read_text(encoding="utf-8"))
+    out = [dict(m, path=EVAL / m["file"]) for m in manifest]
+    for path in sorted((ROOT / "data").glob("photo-*.png")):
+        out.append({"name": f"data/{path.stem}", "kind": "photo", "path": path})
+    return out
+
+
+def run_case(case: dict) -> tuple[dict, object]:
+    from img2logo import Img2LogoError, abstract, load_mask, quality
+
+    row: dict = {"name": case["name"], "kind": case["kind"]}
+    start = time.perf_counter()
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            result = abstract(case["path"], progress=False)
+    except Img2LogoError as exc:
+        row.update(detected="-", error=str(exc), seconds=time.perf_counter() - start)
+        return row, None
+    row["seconds"] = time.perf_counter() - start
+    truth = load_mask(EVAL / case["gt"]) if "gt" in case else None
+    mask = load_mask(EVAL / case["mask"]) if "mask" in case else None
+    q = quality.measure(result.final, truth, mask)
+    row.update(
+        detected=result.lines.kind,
+        arcs=q.arcs,
+        r3=q.recall[0],
+        r6=q.recall[1],
+        r10=q.recall[2],
+        sil6=q.silhouette,
+        outside=q.outside,
+        crossings=q.crossings,
+        gaps=q.gaps,
+    )
+    return row, (result, truth)
+
+
+def contact_sheet(kind: str, runs: list[tuple[dict, object]], path: Path) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from img2logo import plot_abstraction, quality
+    from img2logo.writers import save_figure
+
+    fig, axes = plt.subplots(len(runs), 3, figsize=(9.0, 3.0 * len(runs)), squeeze=False)
+    for (row, run), ax_row in zip(runs, axes, strict=True):
+        for ax in ax_row:
+            ax.set_axis_off()
+        if run is None:
+            ax_row[0].set_title(f"{row['name']}: failed", fontsize=8)
+            ax_row[1].text(0.0, 0.5, row.get("error", "")[:200], fontsize=6, wrap=True)
+            continue
+        result, truth = run
+        ax_row[0].imshow(result.image.rgb)
+        ax_row[0].set_title(f"{row['name']} ({row['detected']})", fontsize=8)
+        if truth is not None:
+            missed = quality.missed_pixels(quality.logo_points(result.final), truth, 10.0)
+            shown = np.ones((*truth.shape, 3))
+            shown[truth] = (0.6, 0.6, 0.6)
+            shown[missed] = (0.9, 0.0, 0.0)
+            ax_row[1].imshow(shown, interpolation="nearest")
+            ax_row[1].set_title(f"truth, missed in red (r10 {row['r10']:.2f})", fontsize=8)
+        plot_abstraction(result.final, ax_row[2], linewidth=1.2)
+        ax_row[2].set_title(f"{row['arcs']} arcs, {row['crossings']} crossings, {row['gaps']} gaps", fontsize=8)
+    fig.tight_layout()
+    save_figure(fig, path, dpi=60)
+    plt.close(fig)
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--only", default="*", help="run the images whose name matches this glob (e.g. 'clipart-*')")
+    parser.add_argument("--no-sheets", action="store_true", help="skip the contact sheets")
+    parser.add_argument("--out", type=Path, default=OUT, help="output folder (default build/quality)")
+    args = parser.parse_args(argv)
+
+    import pandas as pd
+
+    selected = [c for c in cases() if fnmatch.fnmatch(c["name"], args.only)]
+    runs = []
+    for case in selected:
+        row, run = run_case(case)
+        runs.append((row, run))
+        status = f"failed: {row['error']}" if run is None else f"{row['arcs']} arcs, r10 {row['r10']:.2f}"
+        print(f"  {row['name']:28s} {row['seconds']:6.1f} s  {status}", file=sys.stderr, flush=True)
+    table = pd.DataFrame([r for r, _ in runs])
+    for col in COLUMNS:
+        if col not in table:
+            table[col] = np.nan
+    table = table[[*COLUMNS, *(["error"] if "error" in table else [])]]
+    args.out.mkdir(parents=True, exist_ok=True)
+    table.to_csv(args.out / "quality.csv", index=False, float_format="%.3f")
+    with pd.option_context("display.width", 200, "display.max_columns", 20, "display.max_colwidth", 60):
+        print(table.drop(columns=["error"], errors="ignore").to_string(index=False, float_format="%.2f"))
+        numeric = ["arcs", "r3", "r6", "r10", "sil6", "outside", "crossings", "gaps", "seconds"]
+        means = table.groupby("kind")[numeric].mean()
+        means["images"] = table.groupby("kind").size()
+        means["failed"] = table.groupby("kind")["detected"].apply(lambda s: int((s == "-").sum()))
+        means["kind right"] = (table["kind"] == table["detected"]).groupby(table["kind"]).sum()
+        print("\nMeans per kind")
+        print(means.to_string(float_format="%.2f"))
+    if not args.no_sheets:
+        for kind in sorted(table["kind"].unique()):
+            chosen = [(r, run) for r, run in runs if r["kind"] == kind]
+            contact_sheet(kind, chosen, args.out / f"contact-{kind}.png")
+    print(f"\nwrote {args.out / 'quality.csv'} and the contact sheets beside it")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

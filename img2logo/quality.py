@@ -1,0 +1,226 @@
+"""How well a logo keeps an image's features: measures against a ground truth.
+
+The measures of ``make quality`` (``benchmarks/quality.py``), also usable on any
+level of any run:
+
+* **recall** r_d: the fraction of ground-truth feature pixels within d px of the
+  logo (its arcs and lines, sampled every ``QUALITY_SAMPLE_STEP`` px);
+* **silhouette recall** sil6: the fraction of an object mask's outline pixels
+  within 6 px of the logo;
+* **outside**: the fraction of the logo's sample points farther than 12 px from
+  the object mask (a logo of the background);
+* **crossings**: points where two arcs meet farther than
+  ``CROSSING_END_DISTANCE`` from every end point of both (a redundant
+  intersection, Sec. 5.2, Fig. 12, judged on the drawing alone);
+* **near-miss gaps**: open arc ends that stop short of another arc, between
+  ``GAP_MIN`` and ``GAP_MAX`` px from it (a junction the eye sees but the logo
+  does not close, Fig. 6).
+
+Pixel (row i, column j) is the point (j + 0.5, i + 0.5), px, x to the right, y
+downwards, as everywhere in img2logo.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from .arc_extraction import _arc_point_distances, _prefilter_pairs, arc_intersections
+from .constants import (
+    CROSSING_END_DISTANCE,
+    GAP_MAX,
+    GAP_MIN,
+    OUTSIDE_DISTANCE,
+    QUALITY_SAMPLE_STEP,
+    SILHOUETTE_DISTANCE,
+)
+from .errors import InvalidParameterError
+from .geometry import Abstraction, Arc
+
+#: Distances of the recall measures r3, r6, r10, px.
+RECALL_DISTANCES: tuple[float, ...] = (3.0, 6.0, 10.0)
+
+
+@dataclass(frozen=True)
+class Quality:
+    """The quality measures of one logo.
+
+    Attributes
+    ----------
+    arcs : int
+        Number of arcs and lines.
+    recall : tuple of float
+        r_d for d in ``RECALL_DISTANCES`` (r3, r6, r10), or NaN without a truth.
+    silhouette : float
+        sil6, or NaN without a mask.
+    outside : float
+        Fraction of the logo farther than 12 px from the mask, or NaN without one.
+    crossings : int
+        Arcs crossing away from their ends.
+    gaps : int
+        Near-miss gaps: open ends 0.75-6 px from another arc.
+    """
+
+    arcs: int
+    recall: tuple[float, ...]
+    silhouette: float
+    outside: float
+    crossings: int
+    gaps: int
+
+
+def logo_points(arcs: Abstraction | Sequence[Arc], step: float = QUALITY_SAMPLE_STEP) -> np.ndarray:
+    """Points along every arc and line of a logo about ``step`` px apart: (N, 2), px."""
+    arcs = _arcs(arcs)
+    if not arcs:
+        return np.zeros((0, 2))
+    return np.vstack([a.sample(step) for a in arcs])
+
+
+def feature_recall(
+    points: np.ndarray, truth: np.ndarray, distances: Sequence[float] = RECALL_DISTANCES
+) -> tuple[float, ...]:
+    """Fraction of the ``truth`` pixels within each distance of ``points``.
+
+    Parameters
+    ----------
+    points : ndarray, shape (N, 2)
+        The logo's sample points (x, y), px.
+    truth : ndarray of bool, shape (H, W)
+        Ground-truth feature pixels.
+    distances : sequence of float
+        The distances d, px.
+
+    Returns
+    -------
+    tuple of float
+        One fraction in [0, 1] per distance; 1.0 for an empty truth.
+    """
+    truth = _check_map(truth, "truth")
+    rows, cols = np.nonzero(truth)
+    if len(rows) == 0:
+        return tuple(1.0 for _ in distances)
+    d = _nearest_distance(points, np.column_stack([cols + 0.5, rows + 0.5]))
+    return tuple(float(np.mean(d <= limit)) for limit in distances)
+
+
+def silhouette_recall(points: np.ndarray, mask: np.ndarray, distance: float = SILHOUETTE_DISTANCE) -> float:
+    """sil6: the fraction of the outline pixels of ``mask`` (H, W) within ``distance`` px of ``points``."""
+    from skimage.segmentation import find_boundaries
+
+    mask = _check_map(mask, "mask")
+    outline = find_boundaries(mask, mode="inner")
+    return feature_recall(points, outline, (distance,))[0]
+
+
+def outside_fraction(points: np.ndarray, mask: np.ndarray, distance: float = OUTSIDE_DISTANCE) -> float:
+    """Fraction of ``points`` (N, 2) farther than ``distance`` px from the object ``mask`` (H, W)."""
+    from scipy import ndimage
+
+    mask = _check_map(mask, "mask")
+    if len(points) == 0:
+        return 0.0
+    if not mask.any():
+        return 1.0
+    far = ndimage.distance_transform_edt(~mask)
+    h, w = mask.shape
+    j = np.clip(np.floor(points[:, 0]).astype(int), 0, w - 1)
+    i = np.clip(np.floor(points[:, 1]).astype(int), 0, h - 1)
+    return float(np.mean(far[i, j] > distance))
+
+
+def crossings(arcs: Abstraction | Sequence[Arc], end_distance: float = CROSSING_END_DISTANCE) -> np.ndarray:
+    """Points where two arcs meet farther than ``end_distance`` px from all four of their end points.
+
+    Returns
+    -------
+    ndarray, shape (K, 2)
+        The crossing points, px.
+    """
+    arcs = _arcs(arcs)
+    if len(arcs) < 2:
+        return np.zeros((0, 2))
+    found = []
+    for i, j in _prefilter_pairs(arcs, np.arange(len(arcs)), 1e-6):
+        a, b = arcs[i], arcs[j]
+        ends = np.array([a.start, a.end, b.start, b.end])
+        for p in arc_intersections(a, b):
+            if np.min(np.hypot(*(ends - p).T)) > end_distance:
+                found.append(p)
+    return np.array(found).reshape(-1, 2)
+
+
+def near_miss_gaps(arcs: Abstraction | Sequence[Arc], low: float = GAP_MIN, high: float = GAP_MAX) -> np.ndarray:
+    """Open arc ends that stop ``low`` to ``high`` px short of another arc.
+
+    An end is open when no other arc passes within ``low`` px of it (at a
+    junction, arcs meet to 1e-3 px). An open end farther than ``high`` from
+    every other arc is a free end (a whisker's tip), not a gap.
+
+    Returns
+    -------
+    ndarray, shape (K, 2)
+        The ends, px.
+    """
+    arcs = _arcs(arcs)
+    found = []
+    for i, arc in enumerate(arcs):
+        if arc.is_full_circle:
+            continue
+        ends = np.array([arc.start, arc.end])
+        nearest = np.full(2, np.inf)
+        for j, other in enumerate(arcs):
+            if j != i:
+                nearest = np.minimum(nearest, _arc_point_distances(other, ends))
+        found.extend(ends[(nearest >= low) & (nearest <= high)])
+    return np.array(found).reshape(-1, 2)
+
+
+def measure(
+    arcs: Abstraction | Sequence[Arc], truth: np.ndarray | None = None, mask: np.ndarray | None = None
+) -> Quality:
+    """Every measure of a logo against a feature truth and an object mask (both optional)."""
+    arcs = _arcs(arcs)
+    points = logo_points(arcs)
+    recall = feature_recall(points, truth) if truth is not None else tuple(np.nan for _ in RECALL_DISTANCES)
+    sil = silhouette_recall(points, mask) if mask is not None else np.nan
+    out = outside_fraction(points, mask) if mask is not None else np.nan
+    return Quality(len(arcs), recall, sil, out, len(crossings(arcs)), len(near_miss_gaps(arcs)))
+
+
+def missed_pixels(points: np.ndarray, truth: np.ndarray, distance: float) -> np.ndarray:
+    """The ``truth`` pixels farther than ``distance`` px from ``points``: (H, W) bool."""
+    truth = _check_map(truth, "truth")
+    rows, cols = np.nonzero(truth)
+    out = np.zeros_like(truth)
+    if len(rows):
+        d = _nearest_distance(points, np.column_stack([cols + 0.5, rows + 0.5]))
+        out[rows[d > distance], cols[d > distance]] = True
+    return out
+
+
+def _nearest_distance(points: np.ndarray, queries: np.ndarray) -> np.ndarray:
+    from scipy.spatial import cKDTree
+
+    if len(points) == 0:
+        return np.full(len(queries), np.inf)
+    return cKDTree(points).query(queries)[0]
+
+
+def _arcs(arcs: Abstraction | Sequence[Arc]) -> list[Arc]:
+    if isinstance(arcs, Abstraction):
+        return list(arcs.arcs)
+    out = list(arcs)
+    for a in out:
+        if not isinstance(a, Arc):
+            raise InvalidParameterError(f"arcs must be an Abstraction or a sequence of Arc, got {type(a).__name__}")
+    return out
+
+
+def _check_map(arr: np.ndarray, name: str) -> np.ndarray:
+    arr = np.asarray(arr)
+    if arr.ndim != 2:
+        raise InvalidParameterError(f"{name} must have shape (H, W), got {arr.shape}")
+    return arr.astype(bool)
