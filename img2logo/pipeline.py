@@ -15,7 +15,7 @@ from typing import Any
 
 import numpy as np
 
-from .constants import MIN_SEGMENT_LENGTH, RDP_TOLERANCE, TOLERANCE
+from .constants import MIN_SEGMENT_LENGTH, PHOTO_MAX_ARC_FACTOR, RDP_TOLERANCE, TOLERANCE
 from .geometry import Abstraction
 from .preprocessing import FeatureLines, LoadedImage, extract_feature_lines, load_image
 from .progressive import ProgressCallback, Progression, optimize
@@ -117,7 +117,9 @@ def abstract(
     **switches
         The ablation switches of :func:`img2logo.progressive.optimize`:
         ``connectivity``, ``inner_junctions``, ``merging``,
-        ``avoid_intersections``, ``localized``, ``simplify``, ``arc_selection``.
+        ``avoid_intersections``, ``localized``, ``simplify``, ``arc_selection``,
+        and ``max_arc_distance`` (photos: ``PHOTO_MAX_ARC_FACTOR * tolerance``
+        unless given; None for no bound).
 
     Returns
     -------
@@ -138,6 +140,9 @@ def abstract(
         "min_length": float(min_length),
         "scale": img.scale,
     }
+    if lines.kind == "photo" and "max_arc_distance" not in switches:
+        # A photo's logo is a few long arcs: no arc may stray far from its line.
+        switches = {**switches, "max_arc_distance": PHOTO_MAX_ARC_FACTOR * float(tolerance)}
     callback, bar = _progress(progress, tolerance)
     try:
         progression = optimize(

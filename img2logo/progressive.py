@@ -188,6 +188,7 @@ class _Optimizer:
             "global_solves": 0,
             "rejected_hopeless": 0,
             "rejected_intersections": 0,
+            "rejected_far_arc": 0,
         }
         self._circle_cache: dict[tuple[int, ...], tuple[np.ndarray, float]] = {}
         self.ladder: Ladder | None = None
@@ -444,6 +445,10 @@ class _Optimizer:
             if out is None:
                 return None
         fits, disp = out
+        cap = self.opt.get("max_arc_distance")
+        if cap is not None and fits[-1].arc.frechet > cap:
+            self.stats["rejected_far_arc"] += 1
+            return None
 
         old_nodes = set(self.node_groups())
         changed_nodes = set(disp) | {node}
@@ -541,6 +546,7 @@ def optimize(
     simplify: bool = True,
     lines: bool = False,
     arc_selection: str = "frechet",
+    max_arc_distance: float | None = None,
     lock_mask: np.ndarray | None = None,
     progress: ProgressCallback | None = None,
     params: dict[str, Any] | None = None,
@@ -594,6 +600,13 @@ def optimize(
         ladder, and the writers write them as lines, apart from the circles.
     arc_selection : {"frechet", "sum_of_squares"}
         How the arc is chosen among the candidates on a circle (Fig. 9).
+    max_arc_distance : float, optional
+        Beyond the paper: a merge whose new arc is farther than this (discrete
+        Fréchet distance) from the pixels it abstracts is rejected, px. E^s is
+        a mean over the arcs, so without it one arc may stray several T from
+        its line (across an ear of a photo's outline) while the mean stays
+        within T. Default None: no bound (the paper); photos use
+        ``PHOTO_MAX_ARC_FACTOR * tolerance`` (:func:`img2logo.abstract`).
     lock_mask : ndarray of bool, shape (H, W), optional
         Segments mostly inside it are never merged (Sec. 7, Fig. 16).
     progress : callable, optional
@@ -616,8 +629,11 @@ def optimize(
     ladder_exponents = None if exponents is None else tuple(int(k) for k in exponents)
     if ladder_exponents is not None and not ladder_exponents:
         raise InvalidParameterError("exponents must not be empty")
+    if max_arc_distance is not None:
+        max_arc_distance = check_positive(max_arc_distance, "max_arc_distance")
     options = {
         "tolerance": tolerance,
+        "max_arc_distance": max_arc_distance,
         "connectivity": bool(connectivity),
         "inner_junctions": bool(inner_junctions),
         "avoid_intersections": bool(avoid_intersections),
@@ -640,6 +656,7 @@ def optimize(
         "lines": bool(lines),
         "arc_selection": arc_selection,
         "locked_segments": int(locked.sum()),
+        **({} if max_arc_distance is None else {"max_arc_distance": max_arc_distance}),
         **(params or {}),
     }
 

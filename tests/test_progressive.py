@@ -351,3 +351,22 @@ def test_line_arc_is_straight_between_its_ends():
     # Its sagitta over 335 px is far below a pixel.
     mid = arc.circle.point_at(arc.theta0 + arc.sweep / 2)
     assert np.hypot(*(mid - [160.0, 95.0])) < 0.02
+
+
+def test_max_arc_distance_rejects_merges_that_stray_from_their_line():
+    # A square's outline: merging its sides into few arcs cuts the corners.
+    from img2logo.preprocessing import FeatureLines
+
+    lines = np.zeros((120, 120), bool)
+    lines[20, 20:100] = lines[99, 20:100] = True
+    lines[20:100, 20] = lines[20:100, 99] = True
+    graph = build_segment_graph(FeatureLines(lines, "drawing", "given"))
+    free = optimize(graph, tolerance=12.0)
+    capped = optimize(graph, tolerance=12.0, max_arc_distance=4.0)
+    assert capped.final.params["max_arc_distance"] == 4.0 and "max_arc_distance" not in free.final.params
+    assert capped.stats["rejected_far_arc"] > 0
+    assert len(capped.final.arcs) > len(free.final.arcs)
+    # Every arc's circle is within the bound of its pixels (a circle is nearer than its arc).
+    for arc, ids in zip(capped.final.arcs, capped.final.arc_segments, strict=True):
+        pts = np.concatenate([graph.segments[i] for i in ids])
+        assert np.max(np.abs(arc.circle.distance(pts))) <= 4.0 + 1e-6
