@@ -11,7 +11,8 @@ only (paper Fig. 1, 10). :func:`find_subject` finds it without user input
   refined at full size in a band around its boundary. The result is kept if
   it is one dominant object: between ``SUBJECT_MIN_AREA`` and
   ``SUBJECT_MAX_AREA`` of the image, touching at most ``SUBJECT_MAX_FRAME`` of
-  the frame; otherwise the whole image is kept (a scene, or a close-up that
+  the frame, with an outline that is an edge (:func:`outline_contrast` at
+  least ``SUBJECT_MIN_CONTRAST``); otherwise the whole image is kept (a scene, or a close-up that
   fills the frame), and :attr:`Subject.description` says why;
 * ``"grabcut"``: the same GrabCut, kept whatever it finds;
 * a rectangle ``subject=(x, y, w, h)``: GrabCut started from it (outside is
@@ -37,12 +38,14 @@ import numpy as np
 
 from ._validation import readonly
 from .constants import (
+    SUBJECT_CONTRAST_STEP,
     SUBJECT_FRAME_INSET,
     SUBJECT_GRABCUT_ITERATIONS,
     SUBJECT_MAX_AREA,
     SUBJECT_MAX_FRAME,
     SUBJECT_MAX_HOLE,
     SUBJECT_MIN_AREA,
+    SUBJECT_MIN_CONTRAST,
     SUBJECT_REFINE_BAND,
     SUBJECT_SMOOTH_SIGMA,
     SUBJECT_WORK_SIDE,
@@ -167,7 +170,7 @@ def find_subject(img: LoadedImage, foreground: object = "auto", subject: object 
             return Subject(
                 readonly(mask), "grabcut", f"kept the object found by GrabCut: {mask.mean():.0%} of the image"
             )
-        why = _not_dominant(mask)
+        why = _not_dominant(mask) or _weak_outline(img, mask)
         if why:
             return Subject(None, "auto", f"kept the whole image: no dominant object ({why})")
         return Subject(
@@ -195,6 +198,51 @@ def _not_dominant(mask: np.ndarray) -> str:
     touching = float(frame.mean())
     if touching > SUBJECT_MAX_FRAME:
         return f"the candidate touches {touching:.0%} of the image frame"
+    return ""
+
+
+def outline_contrast(img: LoadedImage, mask: np.ndarray, step: float = SUBJECT_CONTRAST_STEP) -> float:
+    """How sharply a mask's outline separates colours: across over along, unit-free.
+
+    At every outline pixel, the CIELAB difference between the points ``step``
+    px inside and outside along the outline's normal (across), and the larger of
+    the differences between the points ``step`` px either way along the
+    outline, inside and outside (along: the texture). Returns median(across) /
+    median(along). An object's outline follows an edge (several times the
+    texture); a cut through fur or gravel does not (about 2).
+    """
+    from scipy import ndimage
+    from skimage.color import rgb2lab
+
+    if not mask.any() or mask.all():
+        return 0.0
+    lab = rgb2lab(ndimage.gaussian_filter(img.rgb, (1.0, 1.0, 0.0)))
+    signed = ndimage.distance_transform_edt(mask) - ndimage.distance_transform_edt(~mask)
+    gy, gx = np.gradient(ndimage.gaussian_filter(signed, 2.0))
+    rows, cols = np.nonzero(mask & ~ndimage.binary_erosion(mask))
+    norm = np.hypot(gx[rows, cols], gy[rows, cols]) + 1e-12
+    nx, ny = gx[rows, cols] / norm, gy[rows, cols] / norm  # the inward normal, (x, y)
+    h, w = mask.shape
+
+    def at(dr: np.ndarray, dc: np.ndarray) -> np.ndarray:
+        rr = np.clip(np.round(rows + dr).astype(np.int64), 0, h - 1)
+        cc = np.clip(np.round(cols + dc).astype(np.int64), 0, w - 1)
+        return lab[rr, cc]
+
+    across = np.linalg.norm(at(step * ny, step * nx) - at(-step * ny, -step * nx), axis=1)
+    along = np.zeros_like(across)
+    for side in (1.0, -1.0):
+        r0, c0 = side * step * ny, side * step * nx
+        diff = at(r0 + step * nx, c0 - step * ny) - at(r0 - step * nx, c0 + step * ny)
+        along = np.maximum(along, np.linalg.norm(diff, axis=1))
+    return float(np.median(across) / (np.median(along) + 1e-9))
+
+
+def _weak_outline(img: LoadedImage, mask: np.ndarray) -> str:
+    """Why the outline of ``mask`` is no object's edge, or ``""`` if it is."""
+    ratio = outline_contrast(img, mask)
+    if ratio < SUBJECT_MIN_CONTRAST:
+        return f"the candidate's outline is no edge: colour step across it {ratio:.1f}x the texture's"
     return ""
 
 
