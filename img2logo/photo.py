@@ -28,14 +28,19 @@ import numpy as np
 from .constants import (
     BILATERAL_DIAMETER,
     BILATERAL_SIGMA_COLOR,
+    COARSE_EDGE_QUANTILE,
+    COARSE_EDGE_SIGMA,
     ETF_SIGMA,
     FDOG_RHO,
     FDOG_SIGMA_C,
     FDOG_SIGMA_M,
     FDOG_TAU,
     INNER_LINE_MARGIN,
+    INNER_MIN_LENGTH,
+    INNER_MIN_SPAN,
     LINE_JOIN_DISTANCE,
     OUTLINE_FRAME_MARGIN,
+    PHOTO_LINE_BUDGET,
 )
 from .loading import LoadedImage
 from .subject import Subject
@@ -57,12 +62,78 @@ def photo_feature_lines(img: LoadedImage, subject: Subject) -> np.ndarray:
 
     mask = subject.mask
     inner = photo_lines(img, None)
+    budget = PHOTO_LINE_BUDGET * (img.height + img.width)
     if mask is None:
-        return join_line_ends(skeletonize(inner))
+        return join_line_ends(salient_lines(skeletonize(inner | coarse_edges(img)), budget=budget))
     inside = ndimage.binary_erosion(mask, iterations=INNER_LINE_MARGIN)
     outline = subject_outline(mask)
-    lines = skeletonize(inner & inside) | outline
+    budget = max(0.0, budget - float(outline.sum()))
+    lines = salient_lines(skeletonize(inner & inside), budget=budget) | outline
     return join_line_ends(skeletonize(lines))
+
+
+def salient_lines(
+    skel: np.ndarray,
+    min_length: float = INNER_MIN_LENGTH,
+    min_span: float = INNER_MIN_SPAN,
+    budget: float = math.inf,
+) -> np.ndarray:
+    """The long lines of a 1-px line map, (H, W) bool, before any are joined.
+
+    A connected line is kept if it has at least ``min_length`` pixels and its
+    extent (the diagonal of its bounding box) is at least ``min_span`` px:
+    short strokes of texture and small tangles (a thinned blob of fur) go,
+    before joining could link them into a network. Of those, the longest are
+    kept while their pixels add up to at most ``budget``.
+    """
+    from scipy import ndimage
+
+    skel = np.asarray(skel, dtype=bool)
+    lab, n = ndimage.label(skel, structure=np.ones((3, 3)))
+    if n == 0:
+        return skel.copy()
+    sizes = np.bincount(lab.ravel(), minlength=n + 1)
+    keep = np.zeros(n + 1, bool)
+    for i, sl in enumerate(ndimage.find_objects(lab), start=1):
+        if sl is None:
+            continue
+        span = math.hypot(sl[0].stop - sl[0].start, sl[1].stop - sl[1].start)
+        keep[i] = sizes[i] >= min_length and span >= min_span
+    total = 0
+    for i in sorted(np.flatnonzero(keep), key=lambda i: (-sizes[i], i)):
+        total += int(sizes[i])
+        keep[i] = total <= budget
+    return keep[lab]
+
+
+def coarse_edges(img: LoadedImage) -> np.ndarray:
+    """The long colour boundaries of a scene, (H, W) bool: Canny on CIELAB at a coarse scale.
+
+    A photo without one dominant object has no outline from a mask; the
+    boundaries between its large regions (a head against an out-of-focus
+    background) are colour steps too wide and too soft for the DoG. Canny's
+    detector on each CIELAB channel, smoothed by ``COARSE_EDGE_SIGMA`` of the
+    longer side, keeps the strongest ``1 - COARSE_EDGE_QUANTILE`` of the
+    gradients.
+    """
+    from skimage.color import rgb2lab
+    from skimage.feature import canny
+
+    lab = rgb2lab(img.rgb)
+    sigma = COARSE_EDGE_SIGMA * max(img.height, img.width)
+    out = np.zeros((img.height, img.width), bool)
+    for ch in range(3):
+        chan = lab[..., ch]
+        if np.ptp(chan) < 1.0:  # a gray photo's a and b: no colour, no edge
+            continue
+        out |= canny(
+            chan,
+            sigma=sigma,
+            low_threshold=COARSE_EDGE_QUANTILE - 0.07,
+            high_threshold=COARSE_EDGE_QUANTILE,
+            use_quantiles=True,
+        )
+    return out
 
 
 def subject_outline(mask: np.ndarray, frame_margin: float = OUTLINE_FRAME_MARGIN) -> np.ndarray:

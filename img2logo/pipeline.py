@@ -118,8 +118,8 @@ def abstract(
         The ablation switches of :func:`img2logo.progressive.optimize`:
         ``connectivity``, ``inner_junctions``, ``merging``,
         ``avoid_intersections``, ``localized``, ``simplify``, ``arc_selection``,
-        and ``max_arc_distance`` (photos: ``PHOTO_MAX_ARC_FACTOR * tolerance``
-        unless given; None for no bound).
+        ``max_arc_distance`` and ``relax_connectivity`` (photos:
+        ``PHOTO_MAX_ARC_FACTOR * tolerance`` and True unless given).
 
     Returns
     -------
@@ -140,9 +140,14 @@ def abstract(
         "min_length": float(min_length),
         "scale": img.scale,
     }
-    if lines.kind == "photo" and "max_arc_distance" not in switches:
-        # A photo's logo is a few long arcs: no arc may stray far from its line.
-        switches = {**switches, "max_arc_distance": PHOTO_MAX_ARC_FACTOR * float(tolerance)}
+    if lines.kind == "photo":
+        # A photo's logo is a few long arcs: no arc may stray far from its line;
+        # its feature lines are not clean: unreliable junctions may be released.
+        switches = {
+            "max_arc_distance": PHOTO_MAX_ARC_FACTOR * float(tolerance),
+            "relax_connectivity": True,
+            **switches,
+        }
     callback, bar = _progress(progress, tolerance)
     try:
         progression = optimize(

@@ -189,8 +189,11 @@ class _Optimizer:
             "rejected_hopeless": 0,
             "rejected_intersections": 0,
             "rejected_far_arc": 0,
+            "released_parts": 0,
         }
         self._circle_cache: dict[tuple[int, ...], tuple[np.ndarray, float]] = {}
+        #: Segments of the parts whose junctions were released (relaxed connectivity).
+        self.released: set[int] = set()
         self.ladder: Ladder | None = None
 
     # ----------------------------------------------------------------- groups and nodes
@@ -298,7 +301,7 @@ class _Optimizer:
         pts = np.array([self.graph.junctions[n] + disp(n) for n in nodes])
         if group.closed:
             pts = np.vstack([pts, pts[:1]])
-        if not self.opt["connectivity"]:
+        if not self.opt["connectivity"] or group.segments[0] in self.released:
             # No constraint: the arc ends where the junctions project on its circle.
             pts = circle.point_at(circle.angle_of(pts))
         return extract_arc(circle, group.points, pts, method=self.opt["arc_selection"])
@@ -312,8 +315,14 @@ class _Optimizer:
         free_nodes: Sequence[int],
         n_groups_total: int,
         n_junctions_total: int,
+        connectivity: bool | None = None,
     ) -> tuple[dict[int, _Fit], dict[int, np.ndarray]] | None:
-        """Eqn. 13 over ``groups`` (the window), then their arcs; None if it fails."""
+        """Eqn. 13 over ``groups`` (the window), then their arcs; None if it fails.
+
+        ``connectivity=False`` releases the window's junctions (default: the
+        run's option).
+        """
+        connected = self.opt["connectivity"] if connectivity is None else connectivity
         gids = list(groups)
         node_list = sorted({n for g in groups.values() for n in self.constrained_nodes(g)})
         node_index = {n: i for i, n in enumerate(node_list)}
@@ -335,12 +344,12 @@ class _Optimizer:
             # a long segment's fit, and E^s (Fréchet + |d|) pays for it.
             segment_weight=1.0 / (max(n_groups_total, 1) * np.array([len(groups[g].points) for g in gids])),
             junction_weight=1.0 / max(n_junctions_total, 1),
-            connectivity=self.opt["connectivity"],
+            connectivity=connected,
         )
-        if self.opt["connectivity"] and not fit.converged:
+        if connected and not fit.converged:
             return None
         disp = {n: fit.displacements[node_index[n]].copy() for n in node_list}
-        if not self.opt["connectivity"]:
+        if not connected:
             disp = {n: np.zeros(2) for n in node_list}
         fits = {}
         moved = set(free_nodes)
@@ -351,6 +360,43 @@ class _Optimizer:
             _, r, k = seeds[gid]
             center = fit.centers[i].copy()
             fits[gid] = _Fit(center, r, k, self.arc_for(groups[gid], center, r, k, lambda n: disp[n]))
+        return fits, disp
+
+    def _solve_by_component(
+        self, seeds: dict[int, tuple[np.ndarray, float, int | None]], n_junctions_total: int
+    ) -> tuple[dict[int, _Fit], dict[int, np.ndarray]] | None:
+        """The initial fit solved separately on each connected part of the groups; None if one fails."""
+        parent = {g: g for g in self.groups}
+
+        def root(g: int) -> int:
+            while parent[g] != g:
+                parent[g] = parent[parent[g]]
+                g = parent[g]
+            return g
+
+        for gids in self.node_groups().values():
+            for g in gids[1:]:
+                parent[root(g)] = root(gids[0])
+        parts: dict[int, list[int]] = {}
+        for g in self.groups:
+            parts.setdefault(root(g), []).append(g)
+        fits: dict[int, _Fit] = {}
+        disp: dict[int, np.ndarray] = {}
+        for part in parts.values():
+            window = {g: self.groups[g] for g in part}
+            nodes = sorted({n for g in part for n in self.constrained_nodes(self.groups[g])})
+            out = self.solve(window, seeds, part, nodes, len(self.groups), n_junctions_total)
+            if out is None and self.opt["relax_connectivity"]:
+                # Relaxed connectivity (the paper's future work, Sec. 9): this
+                # part's junctions admit no golden circles through them (tangles
+                # of a photo's texture); they are released, its arcs fitted free.
+                self.stats["released_parts"] += 1
+                self.released.update(s for g in part for s in self.groups[g].segments)
+                out = self.solve(window, seeds, part, nodes, len(self.groups), n_junctions_total, connectivity=False)
+            if out is None:
+                return None
+            fits.update(out[0])
+            disp.update(out[1])
         return fits, disp
 
     def initial_fit(self) -> None:
@@ -366,6 +412,11 @@ class _Optimizer:
         nodes = sorted(self.node_groups())
         out = self.solve(dict(self.groups), seeds, list(self.groups), nodes, len(self.groups), len(nodes))
         self.stats["global_solves"] += 1
+        if out is None:
+            # The connected parts of the graph are independent problems, solved
+            # one by one when the joint solve fails: its one convergence test
+            # over all of them is harder to pass (a photo's many small parts).
+            out = self._solve_by_component(seeds, len(nodes))
         if out is None:  # cannot happen for a feasible problem; keep the seeds, say so
             raise InvalidParameterError("the connectivity-constrained fit of the initial segments did not converge")
         fits, disp = out
@@ -547,6 +598,7 @@ def optimize(
     lines: bool = False,
     arc_selection: str = "frechet",
     max_arc_distance: float | None = None,
+    relax_connectivity: bool = False,
     lock_mask: np.ndarray | None = None,
     progress: ProgressCallback | None = None,
     params: dict[str, Any] | None = None,
@@ -607,6 +659,13 @@ def optimize(
         its line (across an ear of a photo's outline) while the mean stays
         within T. Default None: no bound (the paper); photos use
         ``PHOTO_MAX_ARC_FACTOR * tolerance`` (:func:`img2logo.abstract`).
+    relax_connectivity : bool
+        Relaxed connectivity (the paper's future work, Sec. 9; photos turn it
+        on): when the joint initial fit fails, each connected part of the
+        graph is fitted alone, and a part whose junctions admit no golden
+        circles through them has its junctions released (its arcs are fitted
+        free, as with ``connectivity=False``). Without it such a graph is an
+        error. ``stats["released_parts"]`` counts them.
     lock_mask : ndarray of bool, shape (H, W), optional
         Segments mostly inside it are never merged (Sec. 7, Fig. 16).
     progress : callable, optional
@@ -634,6 +693,7 @@ def optimize(
     options = {
         "tolerance": tolerance,
         "max_arc_distance": max_arc_distance,
+        "relax_connectivity": bool(relax_connectivity),
         "connectivity": bool(connectivity),
         "inner_junctions": bool(inner_junctions),
         "avoid_intersections": bool(avoid_intersections),
@@ -657,6 +717,7 @@ def optimize(
         "arc_selection": arc_selection,
         "locked_segments": int(locked.sum()),
         **({} if max_arc_distance is None else {"max_arc_distance": max_arc_distance}),
+        **({"relax_connectivity": True} if relax_connectivity else {}),
         **(params or {}),
     }
 

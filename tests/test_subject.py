@@ -127,3 +127,14 @@ def test_bad_subject_options():
     with pytest.raises(InvalidParameterError, match="must cover at least 4x4 px"):
         parse_subject_rectangle((400, 10, 20, 20), (240, 320))
     assert parse_subject_rectangle(" 5, 6 ,100,50", (240, 320)) == (5, 6, 100, 50)
+
+
+def test_outline_contrast_tells_an_edge_from_a_cut_through_texture():
+    from img2logo.subject import outline_contrast
+
+    rgb, (truth,) = textured_photo([(170, 120, 80, 60, (0.95, 0.75, 0.2))])
+    img = load_image(rgb)
+    yy, xx = np.mgrid[0:240, 0:320]
+    cut = np.hypot(xx - 60, yy - 60) < 40  # a disc of background texture
+    assert outline_contrast(img, truth) > 5.0
+    assert outline_contrast(img, cut) < 2.0
