@@ -88,13 +88,6 @@ SUBJECT_CONTRAST_STEP: float = 4.0
 #: Photo outline: parts of the subject's outline within this of the image
 #: frame are the picture's edge, not the object's, px.
 OUTLINE_FRAME_MARGIN: float = 2.0
-#: Photo without a subject (a scene, a close-up): Canny's smoothing of the coarse
-#: colour boundaries, as a fraction of the longer image side (4.5 px for a
-#: 451 px photo: fur and grain are gone, a head's outline is not).
-COARSE_EDGE_SIGMA: float = 0.01
-#: ... its high threshold: the quantile of the gradient magnitudes (the strongest
-#: 3 %); the low threshold is 0.07 below.
-COARSE_EDGE_QUANTILE: float = 0.97
 #: Photo inner lines are kept this far inside the subject's outline, px (the
 #: outline is drawn from the mask; an edge line next to it would double it).
 INNER_LINE_MARGIN: int = 4

@@ -28,8 +28,6 @@ import numpy as np
 from .constants import (
     BILATERAL_DIAMETER,
     BILATERAL_SIGMA_COLOR,
-    COARSE_EDGE_QUANTILE,
-    COARSE_EDGE_SIGMA,
     ETF_SIGMA,
     FDOG_RHO,
     FDOG_SIGMA_C,
@@ -64,7 +62,7 @@ def photo_feature_lines(img: LoadedImage, subject: Subject) -> np.ndarray:
     inner = photo_lines(img, None)
     budget = PHOTO_LINE_BUDGET * (img.height + img.width)
     if mask is None:
-        return join_line_ends(salient_lines(skeletonize(inner | coarse_edges(img)), budget=budget))
+        return join_line_ends(salient_lines(skeletonize(inner), budget=budget))
     inside = ndimage.binary_erosion(mask, iterations=INNER_LINE_MARGIN)
     outline = subject_outline(mask)
     budget = max(0.0, budget - float(outline.sum()))
@@ -104,36 +102,6 @@ def salient_lines(
         total += int(sizes[i])
         keep[i] = total <= budget
     return keep[lab]
-
-
-def coarse_edges(img: LoadedImage) -> np.ndarray:
-    """The long colour boundaries of a scene, (H, W) bool: Canny on CIELAB at a coarse scale.
-
-    A photo without one dominant object has no outline from a mask; the
-    boundaries between its large regions (a head against an out-of-focus
-    background) are colour steps too wide and too soft for the DoG. Canny's
-    detector on each CIELAB channel, smoothed by ``COARSE_EDGE_SIGMA`` of the
-    longer side, keeps the strongest ``1 - COARSE_EDGE_QUANTILE`` of the
-    gradients.
-    """
-    from skimage.color import rgb2lab
-    from skimage.feature import canny
-
-    lab = rgb2lab(img.rgb)
-    sigma = COARSE_EDGE_SIGMA * max(img.height, img.width)
-    out = np.zeros((img.height, img.width), bool)
-    for ch in range(3):
-        chan = lab[..., ch]
-        if np.ptp(chan) < 1.0:  # a gray photo's a and b: no colour, no edge
-            continue
-        out |= canny(
-            chan,
-            sigma=sigma,
-            low_threshold=COARSE_EDGE_QUANTILE - 0.07,
-            high_threshold=COARSE_EDGE_QUANTILE,
-            use_quantiles=True,
-        )
-    return out
 
 
 def subject_outline(mask: np.ndarray, frame_margin: float = OUTLINE_FRAME_MARGIN) -> np.ndarray:
