@@ -40,6 +40,12 @@ FDOG_SIGMA_C: float = 1.0
 FDOG_SIGMA_M: float = 3.0
 FDOG_RHO: float = 0.99
 FDOG_TAU: float = 0.5
+#: Photo: side spurs shorter than this are pruned, px. A photo's side branches
+#: are texture or thinning's artefacts, and one up to about 3 x
+#: LINE_JOIN_DISTANCE long can run beside its sibling within near-miss distance
+#: (measured on 14 photos: near-miss gaps 4 -> 2, crossings 1 -> 0, at 12 -> 20 px;
+#: the photo-likes' logos unchanged).
+PHOTO_SPUR_LENGTH: float = 20.0
 #: Photo: isolated feature lines shorter than this are texture, not features, px.
 PHOTO_MIN_LINE_LENGTH: float = 40.0
 #: Photo: the bilateral filter applied before the FDoG (diameter px, colour sigma

@@ -138,11 +138,18 @@ def subject_outline(mask: np.ndarray, frame_margin: float = OUTLINE_FRAME_MARGIN
 def join_line_ends(skel: np.ndarray, distance: float = LINE_JOIN_DISTANCE) -> np.ndarray:
     """Link every end of a 1-px line map that stops near another line to it, (H, W) bool.
 
-    An end (a pixel with one 8-neighbour) whose nearest line pixel not on its
-    own stretch of line (the pixels within ``3 * distance`` steps along it) is
-    at most ``distance`` px away is joined to that pixel by a straight run of
-    pixels. Ends are taken in raster order; a new run is itself a line for
-    the ends after it.
+    For an end (a pixel with one 8-neighbour), the nearest line pixel at most
+    ``distance`` px away that is not on its own stretch of line (the pixels
+    within ``1.5 * distance`` steps along it):
+
+    * on another line, or far along its own: the end is joined to it by a
+      straight run of pixels (a junction; no near-miss gap);
+    * within ``3 * distance`` steps along the line (the other branch of a fork
+      just behind the end): the end's branch is a spur that would run beside
+      its sibling, and is removed back to the fork.
+
+    Ends are taken in raster order; a new run is itself a line for the ends
+    after it.
     """
     from scipy import ndimage
     from scipy.spatial import cKDTree
@@ -157,23 +164,55 @@ def join_line_ends(skel: np.ndarray, distance: float = LINE_JOIN_DISTANCE) -> np
         return out
     pixels = np.argwhere(out)
     tree = cKDTree(pixels)
-    reach = math.ceil(3.0 * distance)
+    near_steps, reach = math.ceil(1.5 * distance), math.ceil(3.0 * distance)
     h, w = out.shape
     for r, c in ends:
-        own = _walk(out, (int(r), int(c)), reach)
-        near = tree.query_ball_point((r, c), distance)
+        end = (int(r), int(c))
+        if not out[end]:
+            continue
+        own = _walk(out, end, near_steps)
         best, best_d = None, math.inf
-        for k in near:
-            pr, pc = pixels[k]
-            if (int(pr), int(pc)) in own or not out[pr, pc]:
+        for k in tree.query_ball_point((r, c), distance):
+            q = (int(pixels[k][0]), int(pixels[k][1]))
+            if q in own or not out[q]:
                 continue
-            d = math.hypot(pr - r, pc - c)
+            d = math.hypot(q[0] - r, q[1] - c)
             if d < best_d:
-                best, best_d = (int(pr), int(pc)), d
-        if best is not None and best_d > 1.5:
-            rr, cc = line(int(r), int(c), best[0], best[1])
+                best, best_d = q, d
+        if best is None or best_d <= 1.5:
+            continue
+        if best in _walk(out, end, reach):
+            spur = _branch(out, end)
+            if spur is not None and len(spur) <= reach:
+                for q in spur:
+                    out[q] = False
+        else:
+            rr, cc = line(end[0], end[1], best[0], best[1])
             out[np.clip(rr, 0, h - 1), np.clip(cc, 0, w - 1)] = True
     return out
+
+
+def _branch(skel: np.ndarray, end: tuple[int, int]) -> list[tuple[int, int]] | None:
+    """The pixels from ``end`` along ``skel`` up to (not including) the first fork; None without a fork."""
+    h, w = skel.shape
+    path = [end]
+    seen = {end}
+    cur = end
+    while True:
+        nbrs = [
+            (cur[0] + dr, cur[1] + dc)
+            for dr in (-1, 0, 1)
+            for dc in (-1, 0, 1)
+            if (dr or dc) and 0 <= cur[0] + dr < h and 0 <= cur[1] + dc < w and skel[cur[0] + dr, cur[1] + dc]
+        ]
+        if len(nbrs) > 2:
+            return path[:-1]
+        nxt = [q for q in nbrs if q not in seen]
+        if not nxt or (cur != end and len(nbrs) != 2):
+            return None
+        cur = nxt[0]
+        seen.add(cur)
+        path.append(cur)
 
 
 def _walk(skel: np.ndarray, start: tuple[int, int], steps: int) -> set[tuple[int, int]]:

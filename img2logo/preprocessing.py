@@ -28,6 +28,7 @@ from .constants import (
     JUNCTION_MERGE_DISTANCE,
     MIN_SPECK_AREA,
     PHOTO_MIN_LINE_LENGTH,
+    PHOTO_SPUR_LENGTH,
     SPUR_LENGTH,
 )
 from .loading import DownscaleWarning, LoadedImage, load_image, load_mask
@@ -128,7 +129,7 @@ def extract_feature_lines(
     *,
     foreground: object = "auto",
     subject: object = None,
-    spur_length: float = SPUR_LENGTH,
+    spur_length: float | None = None,
     min_line_length: float | None = None,
 ) -> FeatureLines:
     """Extract the object's feature lines as a 1-px-wide map (paper Sec. 4).
@@ -148,7 +149,8 @@ def extract_feature_lines(
     subject : (x, y, w, h) or "X,Y,W,H", optional
         Photos only: a rectangle around the object, px, that seeds GrabCut.
     spur_length : float, optional
-        Side spurs of the skeleton shorter than this are pruned, px.
+        Side spurs of the skeleton shorter than this are pruned, px (default
+        ``SPUR_LENGTH``; photos ``PHOTO_SPUR_LENGTH``).
     min_line_length : float, optional
         Isolated lines shorter than this are dropped, px (default:
         ``spur_length`` for drawings and clip art, a longer bound for photos,
@@ -160,13 +162,16 @@ def extract_feature_lines(
     """
     img = load_image(image)
     kind = check_choice(kind, "kind", ("auto", *KINDS))
-    spur_length = check_positive(spur_length, "spur_length", allow_zero=True)
+    if spur_length is not None:
+        spur_length = check_positive(spur_length, "spur_length", allow_zero=True)
     if kind == "auto":
         kind, reason = detect_kind(img)
     else:
         reason = "given"
     regions = None
     found = None
+    if spur_length is None:
+        spur_length = PHOTO_SPUR_LENGTH if kind == "photo" else SPUR_LENGTH
     if kind == "drawing":
         raw = _drawing_lines(img)
         min_len = spur_length if min_line_length is None else min_line_length

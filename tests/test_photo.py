@@ -75,3 +75,15 @@ def test_a_scene_draws_the_whole_image():
     from img2logo.photo import photo_feature_lines
 
     assert photo_feature_lines(img, whole).shape == (240, 320)
+
+
+def test_a_short_branch_beside_its_sibling_is_removed():
+    # A fork: a long line and a 10 px branch leaving it at a small angle, its
+    # end 3 px from the line. Joining it would make a sliver; it is a spur.
+    skel = np.zeros((30, 60), bool)
+    skel[20, 5:55] = True
+    for i in range(1, 11):
+        skel[20 - (i + 2) // 4, 20 + i] = True
+    out = join_line_ends(skel)
+    np.testing.assert_array_equal(out[20], skel[20])
+    assert out[:19].sum() <= 1  # the branch is gone (a stub of 1 px at most next to the fork)

@@ -370,3 +370,64 @@ def test_max_arc_distance_rejects_merges_that_stray_from_their_line():
     for arc, ids in zip(capped.final.arcs, capped.final.arc_segments, strict=True):
         pts = np.concatenate([graph.segments[i] for i in ids])
         assert np.max(np.abs(arc.circle.distance(pts))) <= 4.0 + 1e-6
+
+
+#: A loop with a tail, thinned from a photo's feature lines (a spoon's reflection
+#: in scikit-image's coffee): with bias 0.39 its golden circles cannot pass
+#: through its junctions (the constrained fit does not converge).
+TANGLE = (
+    ".......................",
+    ".......................",
+    "........#######........",
+    "......##.......##......",
+    ".....#...........#.....",
+    ".....#............#....",
+    "......#............#...",
+    "......#.............#..",
+    "......#.............#..",
+    "......#.............#..",
+    "......######........#..",
+    "......#.....##....##...",
+    "......#.......####.....",
+    "......#................",
+    "......#................",
+    "......#................",
+    ".....#.................",
+    ".....#.................",
+    ".....#.................",
+    ".....#.................",
+    ".....#.................",
+    ".....#.................",
+    "....#..................",
+    "....#..................",
+    "....#..................",
+    "....#..................",
+    "...#...................",
+    "...#...................",
+    "...#...................",
+    "..#....................",
+    "..#....................",
+    "..#....................",
+    "..#....................",
+    "..#....................",
+    ".......................",
+    ".......................",
+)
+
+
+def test_relaxed_connectivity_releases_a_part_that_admits_no_golden_circles():
+    from img2logo.preprocessing import FeatureLines
+
+    lines = np.array([[ch == "#" for ch in row] for row in TANGLE])
+    graph = build_segment_graph(FeatureLines(lines, "photo", "given"))
+    with pytest.raises(InvalidParameterError, match="did not converge"):
+        optimize(graph, bias=0.39, merging=False)
+    relaxed = optimize(graph, bias=0.39, merging=False, relax_connectivity=True)
+    assert relaxed.stats["released_parts"] == 1
+    assert relaxed.final.params["relax_connectivity"] is True
+    assert len(relaxed.final.arcs) >= 1
+    # A graph whose fit converges is not touched by the option.
+    fine = optimize(graph, bias=0.0, merging=False)
+    same = optimize(graph, bias=0.0, merging=False, relax_connectivity=True)
+    assert same.stats["released_parts"] == 0
+    assert [a.circle for a in same.final.arcs] == [a.circle for a in fine.final.arcs]
