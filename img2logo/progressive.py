@@ -337,7 +337,7 @@ class _Optimizer:
         """Extract the arc of ``group`` on its circle through its displaced junctions."""
         circle = Circle(float(center[0]), float(center[1]), float(radius), None if k is None else int(k))
         nodes = self.path_nodes(group)
-        pts = np.array([self.graph.junctions[n] + disp(n) for n in nodes])
+        pts = np.array([self.graph.junctions[n] + (self.disp[n] if n in self.released else disp(n)) for n in nodes])
         if group.closed:
             pts = np.vstack([pts, pts[:1]])
             nodes = (*nodes, nodes[0])
