@@ -11,9 +11,16 @@ level with ``--levels-dir``, and the segment graph with ``--segments-png``.
 ``OUTPUT_DIR/<stem>.svg``, ``.json``, ``.png`` and ``OUTPUT_DIR/summary.csv``; it
 goes on past a bad file, lists it at the end and then exits with status 1.
 
-Errors in the input or the options print one line, ``img2logo: error: ...``, and
-exit with status 2; nothing is written then. The same input and options give the
-same files, byte for byte.
+Every error is one line, ``img2logo: error: ...``, never a traceback. Exit
+statuses (:func:`main`): 2 for a bad input, option or output path, found before
+any work (nothing is written; an output that is an input, a folder, a device,
+shared by two options, or under a file or a read-only folder is one); 1 when an
+output cannot be written during the run (the outputs of a run are written as a
+set: none of them is left), when memory runs out, or when some images of a
+batch failed (the others are written, a failed image's old outputs removed);
+130 after Ctrl-C and 143 after SIGTERM (temporary files removed; a batch's
+workers end with it, also when it is killed). The same input and options give
+the same files, byte for byte.
 """
 
 from __future__ import annotations
@@ -375,7 +382,9 @@ def _ladder_text(prog) -> str:
 
 def _batch(args: argparse.Namespace, say) -> int:
     """``img2logo batch``: every image of a folder (:func:`img2logo.batch.run_batch`)."""
-    from .batch import find_images, run_batch
+    from pathlib import Path
+
+    from .batch import OUTPUT_FORMATS, _check_targets, _output_stems, find_images, run_batch
     from .fills import parse_fill_option
 
     options = _abstract_options(args)
@@ -383,6 +392,7 @@ def _batch(args: argparse.Namespace, say) -> int:
     if args.jobs is not None and args.jobs < 1:
         raise InvalidParameterError(f"--jobs must be >= 1, got {args.jobs}")
     paths = find_images(args.input_dir)
+    _check_targets(paths, Path(args.output_dir), _output_stems(paths), OUTPUT_FORMATS, True)  # before the count
     say(f"{args.input_dir}: {len(paths)} images")
     report = run_batch(
         paths,

@@ -336,7 +336,8 @@ def test_batch_into_its_own_input_folder_is_refused(tmp_path, capsys):
     before = {p.name: p.read_bytes() for p in folder.iterdir()}
     assert main(["batch", str(folder), str(folder)]) == EXIT_ERROR
     err = capsys.readouterr().err
-    assert err.splitlines()[-1].startswith("img2logo: error: output folder ") and "drawing-leaf.png is the input" in err
+    assert err.startswith("img2logo: error: output folder ") and err.count("\n") == 1
+    assert "drawing-leaf.png is the input" in err
     assert {p.name: p.read_bytes() for p in folder.iterdir()} == before
 
 
@@ -355,6 +356,19 @@ def test_a_write_error_is_one_line_exit_one_and_leaves_no_partial_set(tmp_path, 
     err = capsys.readouterr().err
     assert err.splitlines()[-1] == f"img2logo: error: cannot write {out / 'a.png'}: No space left on device"
     assert list(tmp_path.iterdir()) == []  # no JSON, no SVG, no temporary file, no folder
+
+
+def test_out_of_memory_is_one_line_exit_one(tmp_path, capsys, monkeypatch):
+    import img2logo.pipeline
+    from img2logo.cli import EXIT_FAILED
+
+    def no_memory(*args, **kwargs):
+        raise MemoryError
+
+    monkeypatch.setattr(img2logo.pipeline, "abstract", no_memory)
+    assert main([str(DATA / "drawing-leaf.png"), "-q", "--svg", str(tmp_path / "a.svg")]) == EXIT_FAILED
+    assert capsys.readouterr().err == "img2logo: error: out of memory; try a smaller image or fewer --jobs\n"
+    assert list(tmp_path.iterdir()) == []
 
 
 def test_a_run_removes_stale_temporary_files_of_its_targets(tmp_path):
