@@ -15,6 +15,10 @@ target's directory that is then renamed over the target (:func:`os.replace`), so
 file is written whole or not at all; missing parent directories are created; the
 same input always gives byte-identical files (sorted JSON keys, ``repr`` floats, SVG
 written by hand with fixed decimals, PNG without timestamp or software metadata).
+Inside :func:`output_set` the files of a run appear together at its end, or none
+of them. A path that cannot be written raises :class:`~img2logo.errors.OutputError`
+naming it; :func:`check_output_paths` finds most such paths, and outputs that
+are inputs, before any work.
 
 Coordinates are input-image pixels: x right, y down, angles from +x towards +y, so
 a positive sweep is clockwise on screen, SVG's ``sweep-flag = 1``.
