@@ -23,6 +23,13 @@ FORMAT_NAME: str = "img2logo.abstraction/1"
 MIN_IMAGE_SIDE: int = 16
 #: Images whose longer side exceeds this are downscaled (with a warning), px.
 MAX_IMAGE_SIDE: int = 2048
+#: Largest accepted input, pixels (width x height), read from the file's header before
+#: decoding: 8-bit RGBA at this size is 600 MB decoded; a larger file is refused as a
+#: likely decompression bomb (the largest camera sensors give about 100 Mpx).
+MAX_IMAGE_PIXELS: int = 150_000_000
+#: Rows composited over white at a time when a large image with alpha is downscaled:
+#: bounds the float32 temporaries to about 4 MB per 1000 px of width.
+DOWNSCALE_STRIP_ROWS: int = 256
 #: An image whose channel values span less than this (on a 0..1 scale) is "blank".
 BLANK_IMAGE_RANGE: float = 1.0 / 255.0
 
