@@ -1,26 +1,31 @@
 """Feature lines of clip art (paper Sec. 4): boundaries between flat-colour regions.
 
 A clip art is a few flat (or smoothly graded) colours with anti-aliased edges,
-possibly compressed. Its regions are found in four steps, each with its reason:
+possibly compressed. Its regions are found in steps, each with its reason:
 
-1. **Flat areas.** Neighbouring pixels (4-connected) whose CIELAB colours differ
-   by at most a *link* distance are joined; the connected components are the
-   flat areas. The link distance is ``CLIPART_LINK_DISTANCE`` (below one 8-bit
-   step's worth of visible change, so a smooth gradient stays one area while an
-   edge, even a subtle one, is a step) or, for a noisy image (JPEG), three times
-   the colour noise measured on the image (:func:`colour_noise`), so that
-   compression noise does not split a flat fill; a noisy image is first
-   mean-shift filtered, which flattens its fills and keeps its edges.
-2. **Seeds.** Areas of at least ``CLIPART_MIN_REGION_AREA`` px are regions; the
-   pixels of smaller areas (anti-aliased rims, JPEG ringing, specks) are given,
-   by growing the regions into them, to the adjacent region whose mean colour is
-   nearest to their own, so a rim falls to the side it resembles.
-3. **Contrast.** Adjacent regions whose mean colours differ by less than a just
-   noticeable difference (``CLIPART_MIN_CONTRAST``, CIELAB Delta E 2.3), or than
-   three times the noise, are one region: no visible boundary separates them.
-   Real but subtle boundaries (a near-white animal on white, Delta E 3-10) stay.
-4. **Small regions** left over are merged into the neighbour they share the
-   longest border with.
+1. **Noise.** :func:`colour_noise` tells a clean image (every fill pixel is
+   exactly flat or on a visible edge) from a compressed one (many sub-visible
+   differences). A compressed image is mean-shift filtered first
+   (:func:`_mean_shift`), which collapses each fill's noise to its colour and
+   keeps the edges where they are.
+2. **Flat areas.** A pixel is flat when its whole 3x3 neighbourhood is within
+   a *link* distance of it (``CLIPART_LINK_DISTANCE``, half a just noticeable
+   difference, or twice the noise of a compressed image); 4-adjacent flat
+   pixels are joined. A smooth gradient is one area; an edge, even a subtle
+   one, is not crossed, since its rim pixels are never flat.
+3. **Seeds and palette.** Flat areas of at least ``CLIPART_SEED_AREA`` px (a
+   compressed image: ``CLIPART_MIN_REGION_AREA``, a JPEG block) are seeds; in
+   a clean image, pixels that are no blend of the seeds near them are seeds
+   too (a 3 px anti-aliased line has no flat pixel). The seeds' mean colours,
+   no two closer than the just noticeable difference (``CLIPART_MIN_CONTRAST``,
+   CIELAB Delta E 2.3), are the palette: subtle but visible differences (a
+   near-white animal on white, Delta E 3-10) keep their own entries.
+4. **Assignment.** Every other pixel takes the nearest palette colour among
+   the seeds within ``CLIPART_RIM_RADIUS`` px: a rim falls to the side it
+   resembles, never to a third colour. The regions are the connected pieces of
+   one entry; pieces without a seed pixel (JPEG slivers along an edge) and
+   pieces under ``CLIPART_MIN_REGION_AREA`` px are merged into the neighbour
+   they share the longest border with.
 
 Region boundaries (the background included) are the feature lines; a *thin*
 region (a whisker, a mouth line, an outline stroke: at most
@@ -98,9 +103,7 @@ def clipart_regions(img: LoadedImage) -> np.ndarray:
     The background is the region covering most of the image border. See the
     module docstring for the four steps.
     """
-    from skimage.color import rgb2lab
-
-    lab = rgb2lab(img.rgb)
+    lab = img.lab
     noise, fraction = colour_noise(lab)
     # A clean clip art's fills are exactly flat: any flat 3x3 block is a fill. In a
     # compressed one, a flat patch smaller than a JPEG block (8 x 8 px) can be an
@@ -285,13 +288,15 @@ def _flat_areas(lab: np.ndarray, link: float) -> np.ndarray:
 
     h, w = lab.shape[:2]
     rad = CLIPART_FLAT_RADIUS
-    padded = np.pad(lab, ((rad, rad), (rad, rad), (0, 0)), mode="edge")
-    spread = np.zeros((h, w))
+    lab32 = lab.astype(np.float32)  # squared distances in float32: a third of the time
+    padded = np.pad(lab32, ((rad, rad), (rad, rad), (0, 0)), mode="edge")
+    spread = np.zeros((h, w), dtype=np.float32)
     for dr in range(-rad, rad + 1):
         for dc in range(-rad, rad + 1):
             if dr or dc:
-                other = padded[rad + dr : rad + dr + h, rad + dc : rad + dc + w]
-                np.maximum(spread, np.linalg.norm(other - lab, axis=2), out=spread)
+                diff = padded[rad + dr : rad + dr + h, rad + dc : rad + dc + w] - lab32
+                np.maximum(spread, np.einsum("ijk,ijk->ij", diff, diff), out=spread)
+    spread = np.sqrt(spread)
     flat = (spread <= link).ravel()
     index = np.arange(h * w).reshape(h, w)
     rows, cols = [], []
@@ -303,101 +308,6 @@ def _flat_areas(lab: np.ndarray, link: float) -> np.ndarray:
     graph = sparse.coo_matrix((np.ones(len(r), dtype=np.int8), (r, c)), shape=(h * w, h * w))
     _, labels = csgraph.connected_components(graph, directed=False)
     return labels.reshape(h, w)
-
-
-def _grow_seeds(areas: np.ndarray, lab: np.ndarray, min_area: int) -> np.ndarray:
-    """Areas of at least ``min_area`` px keep their label; the rest is grown into from them.
-
-    Each pass gives every unassigned pixel that touches assigned ones the label
-    (of its 4-neighbours') whose region mean colour is nearest to its own colour.
-    """
-    counts = np.bincount(areas.ravel())
-    seed = counts >= min_area
-    if not seed.any():  # nothing large: every area is a region
-        return _relabel(areas)
-    labels = np.where(seed[areas], areas, -1)
-    flat = lab.reshape(-1, 3)
-    sums = np.stack([np.bincount(areas.ravel(), weights=flat[:, c], minlength=len(counts)) for c in range(3)], 1)
-    means = sums / np.maximum(counts, 1)[:, None]
-    h, w = labels.shape
-    for _ in range(h + w):  # a pass reaches one pixel further; a region is reached well before
-        todo = labels < 0
-        if not todo.any():
-            break
-        best = np.full((h, w), np.inf)
-        choice = np.full((h, w), -1)
-        padded = np.pad(labels, 1, constant_values=-1)
-        for dr, dc in ((-1, 0), (1, 0), (0, -1), (0, 1)):
-            nb = padded[1 + dr : 1 + dr + h, 1 + dc : 1 + dc + w]
-            ok = todo & (nb >= 0)
-            if not ok.any():
-                continue
-            dist = np.full((h, w), np.inf)
-            dist[ok] = np.linalg.norm(lab[ok] - means[nb[ok]], axis=1)
-            better = dist < best
-            best[better], choice[better] = dist[better], nb[better]
-        if not (choice >= 0).any():
-            break
-        labels = np.where(choice >= 0, choice, labels)
-    labels[labels < 0] = areas[labels < 0] + len(counts)  # unreachable (never with a seed): own labels
-    return _relabel(labels)
-
-
-def _merge_similar(regions: np.ndarray, lab: np.ndarray, contrast: float) -> np.ndarray:
-    """Merge adjacent regions whose mean colours differ by less than ``contrast`` (Delta E).
-
-    Greedy, the most similar adjacent pair first, with the merged region's
-    area-weighted mean colour, until no adjacent pair is below ``contrast``.
-    """
-    n = int(regions.max()) + 1
-    flat = lab.reshape(-1, 3)
-    area = np.bincount(regions.ravel(), minlength=n).astype(np.float64)
-    sums = np.stack([np.bincount(regions.ravel(), weights=flat[:, c], minlength=n) for c in range(3)], 1)
-    edges = _adjacent_pairs(regions)
-    parent = np.arange(n)
-
-    def root(i: int) -> int:
-        while parent[i] != i:
-            parent[i] = parent[parent[i]]
-            i = parent[i]
-        return i
-
-    while True:
-        a = np.array([root(int(i)) for i in edges[:, 0]]) if len(edges) else np.zeros(0, int)
-        b = np.array([root(int(j)) for j in edges[:, 1]]) if len(edges) else np.zeros(0, int)
-        keep = a != b
-        edges = np.unique(np.sort(np.column_stack([a[keep], b[keep]]), axis=1), axis=0)
-        if not len(edges):
-            break
-        means = sums / np.maximum(area, 1.0)[:, None]
-        diff = np.linalg.norm(means[edges[:, 0]] - means[edges[:, 1]], axis=1)
-        i = int(np.argmin(diff))
-        if diff[i] >= contrast:
-            break
-        # Merge every pair below the contrast whose regions are untouched this round
-        # (the most similar first): far fewer rounds than one merge at a time.
-        touched: set[int] = set()
-        for k in np.argsort(diff, kind="stable"):
-            if diff[k] >= contrast:
-                break
-            p, q = int(edges[k, 0]), int(edges[k, 1])
-            if p in touched or q in touched:
-                continue
-            parent[q] = p
-            area[p] += area[q]
-            sums[p] += sums[q]
-            touched.update((p, q))
-    return _relabel(np.array([root(i) for i in range(n)])[regions])
-
-
-def _adjacent_pairs(regions: np.ndarray) -> np.ndarray:
-    """Distinct pairs (a, b), a < b, of 4-adjacent region labels: (E, 2)."""
-    pairs = []
-    for a, b in ((regions[:, :-1], regions[:, 1:]), (regions[:-1], regions[1:])):
-        diff = a != b
-        pairs.append(np.column_stack([a[diff], b[diff]]))
-    edges = np.vstack(pairs)
-    return np.unique(np.sort(edges, axis=1), axis=0)
 
 
 def _background_first(regions: np.ndarray) -> np.ndarray:
@@ -534,9 +444,9 @@ def _merge_small_regions(regions: np.ndarray, min_area: int, also: np.ndarray | 
 
 
 def _relabel(regions: np.ndarray) -> np.ndarray:
-    """Labels 0..n-1 in order of first appearance of the sorted unique values."""
-    _, inv = np.unique(regions, return_inverse=True)
-    return inv.reshape(regions.shape).astype(np.int64)
+    """Labels 0..n-1 in the order of the (non-negative) values: the used ones, packed."""
+    used = np.bincount(regions.ravel()) > 0
+    return (np.cumsum(used) - 1)[regions].astype(np.int64)
 
 
 def region_boundaries(regions: np.ndarray) -> np.ndarray:

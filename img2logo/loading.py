@@ -12,6 +12,7 @@ in px, x to the right, y downwards (``contract/README.md``).
 from __future__ import annotations
 
 import contextlib
+import functools
 import sys
 import warnings
 from dataclasses import dataclass
@@ -73,6 +74,14 @@ class LoadedImage:
     def gray(self) -> np.ndarray:
         """Luminance (Rec. 601), (H, W) float64 in [0, 1]."""
         return self.rgb @ np.array([0.299, 0.587, 0.114])
+
+    @functools.cached_property
+    def lab(self) -> np.ndarray:
+        """CIELAB colours (D65), (H, W, 3) float64, read-only; computed once (kind detection and
+        clip-art regions both need them)."""
+        from skimage.color import rgb2lab
+
+        return readonly(rgb2lab(self.rgb))
 
 
 # --------------------------------------------------------------------------- loading

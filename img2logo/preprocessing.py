@@ -112,10 +112,9 @@ def _detect(img: LoadedImage) -> tuple[str, str, np.ndarray | None]:
     if flat < SYNTHETIC_FLAT_FRACTION:
         return "photo", f"only {flat:.0%} of the pixels sit in flat fills (camera noise, texture): a photo", None
     regions = clipart_regions(img)
-    from skimage.color import rgb2lab
 
     n = int(regions.max()) + 1
-    lab = rgb2lab(img.rgb).reshape(-1, 3)
+    lab = img.lab.reshape(-1, 3)
     area = np.bincount(regions.ravel(), minlength=n).astype(np.float64)
     means = np.stack([np.bincount(regions.ravel(), weights=lab[:, c], minlength=n) for c in range(3)], 1)
     means /= np.maximum(area, 1.0)[:, None]

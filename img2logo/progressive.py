@@ -208,6 +208,7 @@ class _Optimizer:
             "rejected_hopeless": 0,
             "rejected_intersections": 0,
             "released_junctions": 0,
+            "rejected_crossing": 0,
         }
         self._circle_cache: dict[tuple[int, ...], tuple[np.ndarray, float]] = {}
         self.ladder: Ladder | None = None
@@ -523,6 +524,12 @@ class _Optimizer:
         """Merge ``pair`` tentatively, refit, and score it; None if infeasible."""
         self.stats["evaluated"] += 1
         a, b, node = pair
+        # Two arcs that both run on through one junction cross there (an X): one
+        # of them ends at the junction instead, so that arcs meet only at their
+        # ends or where one ends on the other (a T), and no crossing is left.
+        if any(node in g.nodes[1:-1] for gid, g in self.groups.items() if gid not in (a, b)):
+            self.stats["rejected_crossing"] += 1
+            return None
         merged = _merge_groups(self.groups[a], self.groups[b], node)
         after = {g: grp for g, grp in self.groups.items() if g not in (a, b)}
         after[-1] = merged
