@@ -11,7 +11,14 @@ import importlib
 from typing import TYPE_CHECKING, Any
 
 from .constants import PHI
-from .errors import FitError, ImageNotFoundError, Img2LogoError, InvalidImageError, InvalidParameterError
+from .errors import (
+    FitError,
+    ImageNotFoundError,
+    Img2LogoError,
+    InvalidImageError,
+    InvalidParameterError,
+    OutputError,
+)
 
 __version__ = "0.1.0"
 
@@ -22,6 +29,7 @@ _LAZY = {
     "LoadedImage": "loading",
     "FeatureLines": "preprocessing",
     "DownscaleWarning": "loading",
+    "PageWarning": "loading",
     "build_segment_graph": "segment_graph",
     "SegmentGraph": "segment_graph",
     "Circle": "geometry",
@@ -62,6 +70,8 @@ __all__ = [
     "InvalidImageError",
     "InvalidParameterError",
     "LoadedImage",
+    "OutputError",
+    "PageWarning",
     "Progression",
     "Result",
     "SegmentGraph",
@@ -103,6 +113,7 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the lazy names, eagerly
     from .batch import run_batch
     from .geometry import Abstraction, Arc, Circle
     from .golden_ladder import FibonacciLadder, GoldenLadder
+    from .loading import PageWarning
     from .pipeline import Result, abstract
     from .plotting import plot_abstraction, plot_segment_graph
     from .preprocessing import (

@@ -28,6 +28,7 @@ deterministically, the files are byte-identical, and rows are in input order.
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
 import os
 import sys
@@ -41,8 +42,9 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from ._validation import check_choice, check_positive
+from ._validation import check_choice
 from .errors import Img2LogoError, InvalidParameterError
+from .options import ABSTRACT_OPTIONS, check_abstract_options
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -71,30 +73,9 @@ SUMMARY_COLUMNS: tuple[str, ...] = ("image", "kind", "arcs", "levels", "similari
 #: Signature of a progress callback: (images done, images in all, name of the last one).
 BatchProgress = Callable[[int, int, str], None]
 
-#: Keyword arguments of :func:`img2logo.abstract` a batch passes on (not ``image``,
-#: ``progress``, nor ``lock_mask``, which belongs to one image).
-_ABSTRACT_OPTIONS: frozenset[str] = frozenset(
-    {
-        "tolerance",
-        "kind",
-        "rdp_tolerance",
-        "min_length",
-        "foreground",
-        "bias",
-        "exponents",
-        "ladder",
-        "unit",
-        "rounding",
-        "connectivity",
-        "inner_junctions",
-        "merging",
-        "avoid_intersections",
-        "localized",
-        "simplify",
-        "lines",
-        "arc_selection",
-    }
-)
+#: Keyword arguments of :func:`img2logo.abstract` a batch passes on (not ``progress``,
+#: nor ``lock_mask``, which belongs to one image).
+_ABSTRACT_OPTIONS: frozenset[str] = ABSTRACT_OPTIONS - {"progress", "lock_mask"}
 
 # matplotlib's style context (used by the PNG writer) is global state: within one
 # process, files are written one at a time (it matters for a ThreadPoolExecutor).
@@ -315,8 +296,21 @@ def _one_line(exc: BaseException) -> str:
     return text
 
 
-def _init_worker() -> None:
-    """Initializer of the default process pool: one thread per worker (the pool uses the cores)."""
+def _init_worker(parent: int | None = None) -> None:
+    """Initializer of the default process pool's workers.
+
+    One thread per worker (the pool uses the cores). A worker ends when its
+    parent ends, however it ends: on Linux by the parent-death signal
+    (``prctl(PR_SET_PDEATHSIG, SIGKILL)``), elsewhere by a thread that watches
+    the parent's process id. Ctrl-C reaches the whole process group: the
+    workers ignore it and the parent, which handles it, stops them.
+    """
+    import signal
+
+    if parent is not None:
+        _die_with_parent(parent)
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)  # not the command line's handler, inherited by fork
     for var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS", "NUMBA_NUM_THREADS"):
         os.environ.setdefault(var, "1")
     try:
@@ -325,6 +319,42 @@ def _init_worker() -> None:
         cv2.setNumThreads(1)
     except ImportError:  # pragma: no cover - a dependency
         pass
+
+
+def _die_with_parent(parent: int) -> None:
+    """End this process (SIGKILL) when process ``parent`` ends; it may have ended already."""
+    import signal
+
+    if sys.platform.startswith("linux"):
+        import ctypes
+
+        pr_set_pdeathsig = 1
+        try:
+            libc = ctypes.CDLL(None, use_errno=True)
+            armed = libc.prctl(pr_set_pdeathsig, int(signal.SIGKILL), 0, 0, 0) == 0
+        except (OSError, AttributeError):  # pragma: no cover - no prctl
+            armed = False
+        if os.getppid() != parent:  # the parent died before the signal was armed
+            os._exit(1)
+        if armed:
+            return
+
+    def watch() -> None:  # pragma: no cover - not Linux
+        while os.getppid() == parent:
+            time.sleep(1.0)
+        os._exit(1)
+
+    threading.Thread(target=watch, name="img2logo-parent-watch", daemon=True).start()
+
+
+def _stop_workers(pool: Executor) -> None:
+    """Kill the processes of a ProcessPoolExecutor made here (leaving on an error or an interrupt)."""
+    for proc in list((getattr(pool, "_processes", None) or {}).values()):
+        with contextlib.suppress(Exception):
+            proc.kill()
+    for proc in list((getattr(pool, "_processes", None) or {}).values()):
+        with contextlib.suppress(Exception):
+            proc.join(timeout=5)
 
 
 # --------------------------------------------------------------------------- running
@@ -425,19 +455,24 @@ def run_batch(
     _check_options(options, fill)
     out_dir = Path(output_dir)
     stems = _output_stems(inputs)
+    _check_targets(inputs, out_dir, stems, formats, summary)
     tasks = [(str(p), dict(options), formats, fill) for p in inputs]
 
     written: dict[int, tuple[str, ...]] = {}
 
     def write(i: int, result: dict[str, Any]) -> None:
-        from .writers import _atomic_write
+        from .writers import _atomic_write, output_set
 
         files = result.get("files") or {}
+        if "error" in result:  # an image that now fails keeps no result of an earlier run
+            _remove_old_outputs(out_dir, stems[i], formats)
+            return
         done = []
-        for fmt in formats:
-            if fmt in files:
-                data = files[fmt]
-                done.append(str(_atomic_write(out_dir / f"{stems[i]}.{fmt}", lambda f, d=data: f.write(d))))
+        with output_set():  # the files of an image appear together
+            for fmt in formats:
+                if fmt in files:
+                    data = files[fmt]
+                    done.append(str(_atomic_write(out_dir / f"{stems[i]}.{fmt}", lambda f, d=data: f.write(d))))
         written[i] = tuple(done)
 
     results = _run_tasks(tasks, executor, jobs, progress, on_result=write)
@@ -567,6 +602,7 @@ def _run_tasks(
             return [r for r in results if r is not None]
         own = executor is None
         pool = executor if executor is not None else _default_pool(workers)
+        finished = False
         try:
             futures: dict[Future[dict[str, Any]], int] = {
                 pool.submit(process_image, *task): i for i, task in enumerate(tasks)
@@ -581,9 +617,12 @@ def _run_tasks(
                     result = {"image": Path(tasks[i][0]).name, "path": tasks[i][0], "seconds": 0.0}
                     result["error"] = _one_line(exc)
                 finish(i, result, done)
+            finished = True
         finally:
             if own:
-                pool.shutdown(wait=True, cancel_futures=True)
+                if not finished:  # an error or an interrupt: do not wait for the images running
+                    _stop_workers(pool)
+                pool.shutdown(wait=finished, cancel_futures=True)
     finally:
         close()
     return [r for r in results if r is not None]
@@ -597,7 +636,7 @@ def _default_pool(workers: int) -> Executor:
     """
     from concurrent.futures import ProcessPoolExecutor
 
-    return ProcessPoolExecutor(max_workers=workers, initializer=_init_worker)
+    return ProcessPoolExecutor(max_workers=workers, initializer=_init_worker, initargs=(os.getpid(),))
 
 
 def _progress(progress: BatchProgress | bool | None, total: int) -> tuple[BatchProgress, Callable[[], None]]:
@@ -637,28 +676,39 @@ def _check_outputs(outputs: Sequence[str]) -> tuple[str, ...]:
 def _check_options(options: Mapping[str, Any], fill: str) -> None:
     """Check options before any work: a bad value should not fail every image one by one."""
     from .fills import parse_fill_option
-    from .golden_ladder import make_ladder
 
-    unknown = sorted(set(options) - _ABSTRACT_OPTIONS)
-    if unknown:
-        raise InvalidParameterError(
-            f"unknown option {unknown[0]!r}: expected keyword arguments of img2logo.abstract "
-            f"({', '.join(sorted(_ABSTRACT_OPTIONS))})"
-        )
-    for name in ("tolerance", "rdp_tolerance"):
-        if name in options:
-            check_positive(options[name], name)
-    if "kind" in options:
-        check_choice(options["kind"], "kind", ("auto", "photo", "clipart", "drawing"))
-    make_ladder(
-        options.get("ladder", "phi"),
-        1.0,  # a stand-in radius: only the values given are checked
-        bias=options.get("bias"),
-        unit=options.get("unit"),
-        exponents=options.get("exponents"),
-        rounding=options.get("rounding", "nearest"),
-    )
+    check_abstract_options(options, _ABSTRACT_OPTIONS)
     parse_fill_option(fill)
+
+
+def _check_targets(
+    inputs: Sequence[Path], out_dir: Path, stems: Sequence[str], formats: Sequence[str], summary: bool
+) -> None:
+    """Before any work: the output folder can be written and no file a run writes is one of the inputs."""
+    from .writers import check_output_paths
+
+    if out_dir.exists() and not out_dir.is_dir():
+        raise InvalidParameterError(f"output folder {out_dir} is a file, not a folder")
+    names = [f"{stem}.{fmt}" for stem in stems for fmt in formats] + (["summary.csv"] if summary else [])
+    targets = {str(out_dir / name): out_dir / name for name in names}
+    try:
+        check_output_paths(targets, inputs, {"output folder": out_dir})
+    except InvalidParameterError as exc:
+        raise InvalidParameterError(f"output folder {out_dir}: {exc}") from exc
+
+
+def _remove_old_outputs(out_dir: Path, stem: str, formats: Sequence[str]) -> None:
+    """Remove ``out_dir/<stem>.<fmt>`` of an earlier run (regular files only; never an input, checked before)."""
+    for fmt in formats:
+        old = out_dir / f"{stem}.{fmt}"
+        if old.is_file() and not old.is_symlink():
+            try:
+                old.unlink()
+            except OSError as exc:
+                from .errors import OutputError
+                from .writers import _os_message
+
+                raise OutputError(_os_message(old, exc)) from exc
 
 
 def _output_stems(paths: Sequence[Path]) -> list[str]:

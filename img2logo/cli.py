@@ -11,25 +11,36 @@ level with ``--levels-dir``, and the segment graph with ``--segments-png``.
 ``OUTPUT_DIR/<stem>.svg``, ``.json``, ``.png`` and ``OUTPUT_DIR/summary.csv``; it
 goes on past a bad file, lists it at the end and then exits with status 1.
 
-Errors in the input or the options print one line, ``img2logo: error: ...``, and
-exit with status 2; nothing is written then. The same input and options give the
-same files, byte for byte.
+Every error is one line, ``img2logo: error: ...``, never a traceback. Exit
+statuses (:func:`main`): 2 for a bad input, option or output path, found before
+any work (nothing is written; an output that is an input, a folder, a device,
+shared by two options, or under a file or a read-only folder is one); 1 when an
+output cannot be written during the run (the outputs of a run are written as a
+set: none of them is left), when memory runs out, or when some images of a
+batch failed (the others are written, a failed image's old outputs removed);
+130 after Ctrl-C and 143 after SIGTERM (temporary files removed; a batch's
+workers end with it, also when it is killed). The same input and options give
+the same files, byte for byte.
 """
 
 from __future__ import annotations
 
 import argparse
+import contextlib
 import sys
 import warnings
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 
 from . import __version__
 from .constants import MIN_SEGMENT_LENGTH, RDP_TOLERANCE, TOLERANCE
-from .errors import Img2LogoError, InvalidParameterError
+from .errors import Img2LogoError, InvalidParameterError, OutputError
 
 EXIT_ERROR = 2
-#: Exit status of ``img2logo batch`` when some images failed (the others were done).
+#: Exit status when an output could not be written, memory ran out, or (batch) some images failed.
 EXIT_FAILED = 1
+#: Exit status after Ctrl-C (128 + SIGINT) and after SIGTERM (128 + SIGTERM).
+EXIT_INTERRUPTED = 130
+EXIT_TERMINATED = 143
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -187,6 +198,13 @@ def main(argv: Sequence[str] | None = None) -> int:
 
     ``img2logo batch ...`` (the first argument ``batch``) runs a folder; to
     abstract an image file named ``batch``, write ``./batch``.
+
+    Exit statuses: 0 done; 2 a bad input or option, or an output path that
+    cannot be used (checked before any work; nothing written); 1 an output
+    that could not be written (nothing new is left), out of memory, or in a
+    batch some images failed (the others are written); 130 interrupted by
+    Ctrl-C, 143 by SIGTERM (the temporary files are removed). Every error is
+    one line on standard error, ``img2logo: error: ...``.
     """
     args_list = list(sys.argv[1:] if argv is None else argv)
     batch = bool(args_list) and args_list[0] == "batch"
@@ -195,16 +213,55 @@ def main(argv: Sequence[str] | None = None) -> int:
     else:
         args = _parser().parse_args(args_list)
     say = (lambda *a: None) if args.quiet else (lambda *a: print(*a, file=sys.stderr))
+
+    def show(message, category, filename, lineno, file=None, line=None) -> None:
+        say(f"img2logo: warning: {message}")
+
+    with _terminate_on_sigterm():
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("always")
+                warnings.showwarning = show  # as they come, not at the end
+                return _batch(args, say) if batch else _run(args, say)
+        except OutputError as exc:
+            print(f"img2logo: error: {exc}", file=sys.stderr)
+            return EXIT_FAILED
+        except Img2LogoError as exc:
+            print(f"img2logo: error: {exc}", file=sys.stderr)
+            return EXIT_ERROR
+        except MemoryError:
+            print("img2logo: error: out of memory; try a smaller image or fewer --jobs", file=sys.stderr)
+            return EXIT_FAILED
+        except KeyboardInterrupt:
+            print("img2logo: interrupted; nothing more written", file=sys.stderr)
+            return EXIT_INTERRUPTED
+        except _Terminated:
+            print("img2logo: terminated; nothing more written", file=sys.stderr)
+            return EXIT_TERMINATED
+
+
+class _Terminated(BaseException):
+    """Raised in the main thread on SIGTERM, so that ``finally`` blocks remove temporary files."""
+
+
+@contextlib.contextmanager
+def _terminate_on_sigterm() -> Iterator[None]:
+    """SIGTERM raises :class:`_Terminated` while the command runs (main thread only)."""
+    import signal
+    import threading
+
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+
+    def handler(signum, frame) -> None:
+        raise _Terminated
+
+    previous = signal.signal(signal.SIGTERM, handler)
     try:
-        with warnings.catch_warnings(record=True) as caught:
-            warnings.simplefilter("always")
-            status = _batch(args, say) if batch else _run(args, say)
-        for w in caught:
-            say(f"img2logo: warning: {w.message}")
-        return status
-    except Img2LogoError as exc:
-        print(f"img2logo: error: {exc}", file=sys.stderr)
-        return EXIT_ERROR
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)
 
 
 def _abstract_options(args: argparse.Namespace) -> dict:
@@ -212,14 +269,9 @@ def _abstract_options(args: argparse.Namespace) -> dict:
 
     Checked before the run: a bad value should not cost a run.
     """
-    from ._validation import check_positive
-    from .golden_ladder import make_ladder
+    from .options import check_abstract_options
 
     exponents = _parse_radii(args.radii)
-    check_positive(args.tolerance, "tolerance")
-    check_positive(args.rdp, "rdp_tolerance")
-    # 1.0: a stand-in for the longest segment's radius; only the values given are checked.
-    make_ladder(args.ladder, 1.0, bias=args.bias, unit=args.unit, exponents=exponents, rounding=args.rounding)
     options = {
         "tolerance": args.tolerance,
         "kind": args.kind,
@@ -239,7 +291,63 @@ def _abstract_options(args: argparse.Namespace) -> dict:
     }
     if args.ladder == "fibonacci":  # only then: a phi run's parameters stay as they were
         options.update(ladder=args.ladder, unit=args.unit)
+    elif args.unit is not None:
+        options["unit"] = args.unit  # refused by the check below, with the reason
+    check_abstract_options(options)
+    if getattr(args, "level", None) is not None and args.level < 0:
+        raise InvalidParameterError(f"--level must be >= 0, got {args.level}")
     return options
+
+
+def _check_outputs(args: argparse.Namespace) -> dict:
+    """Every output path of a single-image run, checked before any work (see :func:`writers.check_output_paths`).
+
+    None is an input (the image, the lock mask), none is a folder or a device,
+    no two share a file, every parent exists or can be created and is writable.
+    """
+    import re
+    from pathlib import Path
+
+    from .writers import check_output_paths
+
+    inputs = [args.input] + ([args.lock_mask] if args.lock_mask else [])
+    targets = {
+        flag: path
+        for flag, path in (
+            ("--segments-png", args.segments_png),
+            ("--json", args.json),
+            ("--svg", args.svg),
+            ("--png", args.png),
+        )
+        if path
+    }
+    folders = {"--levels-dir": args.levels_dir} if args.levels_dir else {}
+    checked = check_output_paths(targets, inputs, folders)
+    if args.levels_dir:
+        import os
+
+        folder = os.path.realpath(args.levels_dir)
+        for given in inputs:
+            real = Path(os.path.realpath(given))
+            if str(real.parent) == folder and re.fullmatch(r"level-\d{4,}\.(json|svg)", real.name):
+                raise InvalidParameterError(
+                    f"--levels-dir {args.levels_dir} holds the input {given}: refusing to write over an input"
+                )
+            for flag, target in checked.items():
+                t = Path(os.path.realpath(target))
+                if str(t.parent) == folder and re.fullmatch(r"level-\d{4,}\.(json|svg)", t.name):
+                    raise InvalidParameterError(f"{flag} {target} is inside --levels-dir and may be one of its files")
+    return checked
+
+
+def _naming(path: str, call, *a, **kw):
+    """``call(*a, **kw)``; an img2logo error that does not name ``path`` is raised again naming it."""
+    try:
+        return call(*a, **kw)
+    except Img2LogoError as exc:
+        if str(path) in str(exc) or isinstance(exc, OutputError):
+            raise
+        raise type(exc)(f"{path}: {exc}") from exc
 
 
 def _run(args: argparse.Namespace, say) -> int:
@@ -249,6 +357,7 @@ def _run(args: argparse.Namespace, say) -> int:
 
     options = _abstract_options(args)
     fill_spec = parse_fill_option(args.fill)
+    _check_outputs(args)
     image = load_image(args.input)
     lock_mask = None if not args.lock_mask else load_mask(args.lock_mask, (image.height, image.width))
     say(f"{args.input}: {image.width}x{image.height} px")
@@ -256,7 +365,8 @@ def _run(args: argparse.Namespace, say) -> int:
         from .subject import parse_subject_rectangle
 
         options["subject"] = parse_subject_rectangle(args.subject, (image.height, image.width))
-    result = abstract(image, lock_mask=lock_mask, progress=None if not args.quiet else False, **options)
+    progress = None if not args.quiet else False
+    result = _naming(args.input, abstract, image, lock_mask=lock_mask, progress=progress, **options)
     graph, prog = result.graph, result.progression
     say(f"kind {result.lines.kind} ({result.lines.reason})")
     if result.lines.subject is not None:
@@ -285,7 +395,9 @@ def _ladder_text(prog) -> str:
 
 def _batch(args: argparse.Namespace, say) -> int:
     """``img2logo batch``: every image of a folder (:func:`img2logo.batch.run_batch`)."""
-    from .batch import find_images, run_batch
+    from pathlib import Path
+
+    from .batch import OUTPUT_FORMATS, _check_targets, _output_stems, find_images, run_batch
     from .fills import parse_fill_option
 
     options = _abstract_options(args)
@@ -293,6 +405,7 @@ def _batch(args: argparse.Namespace, say) -> int:
     if args.jobs is not None and args.jobs < 1:
         raise InvalidParameterError(f"--jobs must be >= 1, got {args.jobs}")
     paths = find_images(args.input_dir)
+    _check_targets(paths, Path(args.output_dir), _output_stems(paths), OUTPUT_FORMATS, True)  # before the count
     say(f"{args.input_dir}: {len(paths)} images")
     report = run_batch(
         paths,
@@ -333,6 +446,7 @@ def _pick_level(result, n: int | None):
 
 
 def _write_outputs(result, level, args: argparse.Namespace, say, fill_spec) -> None:
+    """Write every output of the run together (:func:`writers.output_set`): all of them, or none."""
     from pathlib import Path
 
     from . import writers
@@ -341,20 +455,25 @@ def _write_outputs(result, level, args: argparse.Namespace, say, fill_spec) -> N
     if fills is not None:
         say(f"fills: {len(fills)} regions ({args.fill})")
 
-    if args.segments_png:
-        say(f"wrote {writers.write_segment_graph_png(result.graph, args.segments_png, image=result.image.rgb)}")
-    if args.json:
-        say(f"wrote {writers.write_json(level, args.json, fills=fills)}")
-    if args.svg:
-        say(f"wrote {writers.write_svg(level, args.svg, fills=fills)}")
-    if args.png:
-        say(f"wrote {writers.write_png(level, args.png, image=result.image.rgb, fills=fills)}")
+    done = []
+    with writers.output_set():
+        if args.segments_png:
+            done.append(writers.write_segment_graph_png(result.graph, args.segments_png, image=result.image.rgb))
+        if args.json:
+            done.append(writers.write_json(level, args.json, fills=fills))
+        if args.svg:
+            done.append(writers.write_svg(level, args.svg, fills=fills))
+        if args.png:
+            done.append(writers.write_png(level, args.png, image=result.image.rgb, fills=fills))
+        if args.levels_dir:
+            folder = Path(args.levels_dir)
+            for lv in result.levels:
+                writers.write_json(lv, folder / f"level-{lv.level:04d}.json")
+                writers.write_svg(lv, folder / f"level-{lv.level:04d}.svg")
+    for path in done:
+        say(f"wrote {path}")
     if args.levels_dir:
-        folder = Path(args.levels_dir)
-        for lv in result.levels:
-            writers.write_json(lv, folder / f"level-{lv.level:04d}.json")
-            writers.write_svg(lv, folder / f"level-{lv.level:04d}.svg")
-        say(f"wrote {len(result.levels)} levels to {folder}/")
+        say(f"wrote {len(result.levels)} levels to {args.levels_dir}/")
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -23,6 +23,13 @@ FORMAT_NAME: str = "img2logo.abstraction/1"
 MIN_IMAGE_SIDE: int = 16
 #: Images whose longer side exceeds this are downscaled (with a warning), px.
 MAX_IMAGE_SIDE: int = 2048
+#: Largest accepted input, pixels (width x height), read from the file's header before
+#: decoding: 8-bit RGBA at this size is 600 MB decoded; a larger file is refused as a
+#: likely decompression bomb (the largest camera sensors give about 100 Mpx).
+MAX_IMAGE_PIXELS: int = 150_000_000
+#: Rows composited over white at a time when a large image with alpha is downscaled:
+#: bounds the float32 temporaries to about 4 MB per 1000 px of width.
+DOWNSCALE_STRIP_ROWS: int = 256
 #: An image whose channel values span less than this (on a 0..1 scale) is "blank".
 BLANK_IMAGE_RANGE: float = 1.0 / 255.0
 
@@ -31,10 +38,69 @@ BLANK_IMAGE_RANGE: float = 1.0 / 255.0
 SPUR_LENGTH: float = 12.0
 #: Connected specks of line pixels smaller than this are dropped, px (area).
 MIN_SPECK_AREA: int = 24
-#: Clip art: colours closer than this (CIELAB Delta E 76) fall in one palette entry.
-CLIPART_COLOR_DISTANCE: float = 12.0
-#: Clip art: regions smaller than this are merged into a neighbour, px (area).
+#: Kind detection: an image is synthetic (a clip art or a drawing), not a photo, when
+#: at least this fraction of its pixels have four neighbours of exactly their 8-bit
+#: colour. Measured: clip arts and drawings 0.95-0.98 as PNG, 0.68-0.89 as JPEG of
+#: quality 60 (flat blocks stay flat); photos, gray or colour, at most 0.13 (camera
+#: noise and texture). The threshold sits between, with room on both sides.
+SYNTHETIC_FLAT_FRACTION: float = 0.4
+#: Kind detection: a synthetic image whose non-background regions all lie within this
+#: colour distance (CIELAB Delta E 76) of their mean colour has one ink: a line
+#: drawing if it is drawn in strokes. Twice the just noticeable difference, so
+#: anti-aliasing left in a region does not count as a second colour.
+INK_COLOUR_SPREAD: float = 4.6
+#: Kind detection: a one-ink image is a line drawing when its strokes (twice the
+#: median distance from the ink's medial axis to its edge) are at most this fraction
+#: of the shorter image side wide; wider, it is a flat silhouette (a clip art).
+DRAWING_MAX_STROKE_FRACTION: float = 0.08
+#: Clip art: regions smaller than this are merged into a neighbour, px (area); the
+#: pixels of smaller flat areas (anti-aliased rims, JPEG ringing) go to the region
+#: whose colour they are nearest.
 CLIPART_MIN_REGION_AREA: int = 64
+#: Clip art: two neighbouring pixels within this colour distance (CIELAB Delta E 76)
+#: belong to one flat area. Below half the just noticeable difference, so that a
+#: pixel of an anti-aliased rim of any visible edge is never flat, and above one
+#: 8-bit step of a smooth gradient (about 0.4).
+CLIPART_LINK_DISTANCE: float = 1.0
+#: Clip art: a pixel is flat when every pixel within this many px of it (a square
+#: window) is within the link distance: the pixel's 8 neighbours, so that a pixel
+#: of a diagonal anti-aliased rim is not flat either.
+CLIPART_FLAT_RADIUS: int = 1
+#: Clip art: a flat area of at least this many px seeds a region, px (area): a 3x3
+#: block, so that a thin or small feature of a noisy image, whose flat pieces are
+#: small, still has seeds; regions still smaller than CLIPART_MIN_REGION_AREA after
+#: merging by contrast are merged into a neighbour.
+CLIPART_SEED_AREA: int = 9
+#: Clip art: a pixel outside the flat seeds takes the colour of a seed within this
+#: distance, px: a rim or a JPEG-blurred edge is a blend of the two sides, not a
+#: third colour; the 4 px reach over chroma subsampling (2 px) and ringing.
+CLIPART_RIM_RADIUS: int = 4
+#: Clip art: the spatial radius of the mean shift filter that flattens the fills of a
+#: noisy (JPEG) clip art, px: the 8x8 blocks' noise averages out within it.
+CLIPART_SHIFT_RADIUS: int = 4
+#: Clip art: adjacent regions whose mean colours differ by less than this are one
+#: region, CIELAB Delta E 76: the just noticeable difference (Sharma, Digital Color
+#: Imaging Handbook, 2003): no visible boundary separates them.
+CLIPART_MIN_CONTRAST: float = 2.3
+#: Clip art: a noisy image (JPEG) links pixels, and keeps boundaries, only above this
+#: many times its fills' typical neighbour difference (``clipart.colour_noise``, a
+#: median): twice the median takes in the bulk of the noise of a fill.
+CLIPART_NOISE_FACTOR: float = 2.0
+#: Clip art: an image is noisy (compressed) when more than this fraction of its fill
+#: pixels differ from a neighbour by a sub-visible amount (above 0, at most the just
+#: noticeable difference); a clean fill is exactly flat and an edge is visible.
+#: Measured (``clipart.colour_noise``): clean clip arts at most 0.02, JPEGs of
+#: quality 70 at least 0.058; twice the clean maximum.
+CLIPART_NOISY_FRACTION: float = 0.04
+#: Clip art: a region at most this wide (twice the median distance from its medial
+#: axis to its edge) is a stroke, px: it gives its centreline, not two boundaries
+#: this close (less than the 6 px at which the segment graph merges junctions).
+CLIPART_STROKE_WIDTH: float = 6.0
+#: ... if its medial axis is at least this many times longer than its width (a
+#: stroke, not a dot) ...
+CLIPART_STROKE_ELONGATION: float = 3.0
+#: ... and no part of it is wider than this many times CLIPART_STROKE_WIDTH.
+CLIPART_STROKE_MAX_FACTOR: float = 2.0
 #: Photo: the flow-based difference of Gaussians [KD09] parameters.
 FDOG_SIGMA_C: float = 1.0
 FDOG_SIGMA_M: float = 3.0

@@ -28,3 +28,11 @@ class InvalidParameterError(Img2LogoError, ValueError):
 
 class FitError(Img2LogoError, ValueError):
     """A fit could not be computed (too few points, degenerate geometry)."""
+
+
+class OutputError(Img2LogoError, OSError):
+    """An output file could not be written (read-only file system, full disk, a folder in the way, ...)."""
+
+
+class UnknownOptionError(InvalidParameterError, TypeError):
+    """A keyword argument that the function does not take (a ``TypeError``, as Python's own)."""

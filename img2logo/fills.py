@@ -56,7 +56,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ._validation import check_choice, check_positive
-from .constants import ARC_SAMPLE_STEP, CLIPART_COLOR_DISTANCE, INTERSECTION_TOL, LINE_RADIUS, SVG_DECIMALS
+from .constants import ARC_SAMPLE_STEP, INTERSECTION_TOL, LINE_RADIUS, SVG_DECIMALS
 from .errors import InvalidParameterError
 from .geometry import TAU, Abstraction, Circle
 
@@ -96,9 +96,9 @@ FACE_MIN_AREA: float = 1.0
 #: px, so that anti-aliased boundary pixels and the neighbouring region (the arcs
 #: are within the tolerance T of the image's edges, not on them) do not bleed in.
 AUTO_FILL_INSET: float = 2.0
-#: :func:`fill_auto`: a face whose colour is within this CIELAB Delta E 76 of the
-#: image's background colour is background and is left empty.
-BACKGROUND_DISTANCE: float = CLIPART_COLOR_DISTANCE
+#: :func:`fill_auto` with a ``background`` colour: a face within this CIELAB Delta E
+#: 76 of it is left empty (a visible difference: five times the just noticeable one).
+BACKGROUND_DISTANCE: float = 12.0
 #: :func:`fill_auto`: width of the image border whose median colour is the
 #: background colour, px.
 BORDER_WIDTH: int = 2
@@ -1220,7 +1220,7 @@ def fill_auto(
     *,
     faces: Sequence[Face] | None = None,
     inset: float = AUTO_FILL_INSET,
-    background: Any = "auto",
+    background: Any = None,
     background_distance: float = BACKGROUND_DISTANCE,
 ) -> tuple[Fill, ...]:
     """Colours from the input image: the paper's future work (Sec. 9; Fig. 18 done automatically).
@@ -1231,10 +1231,10 @@ def fill_auto(
     that ignores a minority of other colours (the anti-aliased boundary, a bit
     of the neighbouring region where the arcs, within the tolerance T, leave
     the image's edges). A face is background, and gets no fill, when it reaches
-    the image border (within 1 px), or when its colour is within
-    ``background_distance`` (Delta E 76) of the background colour: by default
-    the median colour of the image's outer ``BORDER_WIDTH`` px. So a logo
-    drawn on white keeps its white regions unfilled (they show the page).
+    the image border (within 1 px), or when most of its pixels are transparent
+    in an input with an alpha channel: a face enclosed by the object keeps its
+    colour even when that is the background's (a penguin's white belly). On
+    request (``background``), faces of a given colour are left empty too.
 
     Parameters
     ----------
@@ -1246,12 +1246,13 @@ def fill_auto(
         The faces, if already computed.
     inset : float
         Shrink faces by this much before reading pixels, px (>= 0).
-    background : "auto", colour or None
-        The background colour: ``"auto"`` (the border's median), a colour
-        (``#rrggbb`` or RGB floats), or None to leave only the faces that reach
-        the border empty.
+    background : None, "auto" or colour
+        None (default): only faces that reach the border or the transparent
+        background are empty. A colour (``#rrggbb`` or RGB floats), or
+        ``"auto"`` for the median colour of the image's outer
+        ``BORDER_WIDTH`` px: faces of that colour are left empty too.
     background_distance : float
-        Delta E 76 below which a face is background.
+        Delta E 76 below which a face has the ``background`` colour.
 
     Returns
     -------
@@ -1272,6 +1273,7 @@ def fill_auto(
         raise InvalidParameterError("image must be an array of shape (H, W, 3), got None")
     rgb = _background_rgb(np.asarray(pixels), width, height, fade=0.0)
     lab = rgb2lab(rgb)
+    alpha = _alpha_of(image, width, height)
     if isinstance(background, str) and background == "auto":
         b = BORDER_WIDTH
         frame = np.ones((height, width), dtype=bool)
@@ -1294,12 +1296,25 @@ def fill_auto(
             samples = _pixels_inside(face.polygon, 0.0, width, height)
         if len(samples[0]) == 0:
             continue  # thinner than a pixel: nothing to read
+        if alpha is not None and float(np.median(alpha[samples])) < 0.5:
+            continue  # the transparent background
         colour_lab = np.median(lab[samples], axis=0)
         if back_lab is not None and float(np.linalg.norm(colour_lab - back_lab)) < background_distance:
             continue
         colour = lab2rgb(colour_lab[None, None, :])[0, 0]
         out.append(Fill(face.path, _rgb_to_hex(colour), face=k))
     return tuple(out)
+
+
+def _alpha_of(image: Any, width: int, height: int) -> np.ndarray | None:
+    """Opacity (H, W) in [0, 1] of an input with an alpha channel, else None."""
+    if getattr(image, "has_alpha", False):
+        return np.asarray(image.alpha)
+    arr = np.asarray(getattr(image, "rgb", image))
+    if arr.ndim == 3 and arr.shape[2] == 4 and arr.shape[:2] == (height, width):
+        a = arr[:, :, 3]
+        return a / 255.0 if arr.dtype == np.uint8 else a.astype(np.float64)
+    return None
 
 
 def _pixels_inside(polygon: Polygon, inset: float, width: int, height: int) -> tuple[np.ndarray, np.ndarray]:

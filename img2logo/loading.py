@@ -11,6 +11,9 @@ in px, x to the right, y downwards (``contract/README.md``).
 
 from __future__ import annotations
 
+import contextlib
+import functools
+import sys
 import warnings
 from dataclasses import dataclass
 from pathlib import Path
@@ -18,12 +21,16 @@ from pathlib import Path
 import numpy as np
 
 from ._validation import readonly
-from .constants import BLANK_IMAGE_RANGE, MAX_IMAGE_SIDE, MIN_IMAGE_SIDE
+from .constants import BLANK_IMAGE_RANGE, DOWNSCALE_STRIP_ROWS, MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, MIN_IMAGE_SIDE
 from .errors import ImageNotFoundError, InvalidImageError, InvalidParameterError
 
 
 class DownscaleWarning(UserWarning):
     """An input image larger than the size bound was downscaled."""
+
+
+class PageWarning(UserWarning):
+    """An input file holds several pages (a multi-page TIFF); only the first is used."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -68,10 +75,24 @@ class LoadedImage:
         """Luminance (Rec. 601), (H, W) float64 in [0, 1]."""
         return self.rgb @ np.array([0.299, 0.587, 0.114])
 
+    @functools.cached_property
+    def lab(self) -> np.ndarray:
+        """CIELAB colours (D65), (H, W, 3) float64, read-only; computed once (kind detection and
+        clip-art regions both need them)."""
+        from skimage.color import rgb2lab
+
+        return readonly(rgb2lab(self.rgb))
+
 
 # --------------------------------------------------------------------------- loading
-def load_image(source: object, *, max_side: int = MAX_IMAGE_SIDE) -> LoadedImage:
+def load_image(source: object, *, max_side: int = MAX_IMAGE_SIDE, max_pixels: int = MAX_IMAGE_PIXELS) -> LoadedImage:
     """Read and normalize an input image.
+
+    Memory follows the working size: a file larger than ``max_side`` is decoded
+    at a reduced size where the format allows it (JPEG: 1/2, 1/4 or 1/8 in the
+    decoder) and otherwise downscaled as 8- or 16-bit integers before the
+    float conversion, so a 10000 x 10000 px PNG needs about its decoded bytes
+    (300 MB), not the float64 copies (2.4 GB each).
 
     Parameters
     ----------
@@ -79,10 +100,15 @@ def load_image(source: object, *, max_side: int = MAX_IMAGE_SIDE) -> LoadedImage
         A file PNG, JPEG, TIFF, BMP, WebP, ... or an array of shape (H, W),
         (H, W, 1), (H, W, 2) (gray + alpha), (H, W, 3) (RGB) or (H, W, 4) (RGBA),
         of dtype uint8, uint16, bool or float in [0, 1]. The input is never
-        modified.
+        modified. A file of several pages (a multi-page TIFF) gives its first
+        page, with a :class:`PageWarning`.
     max_side : int, optional
         An image whose longer side exceeds this is downscaled to it (area
-        interpolation) with a :class:`DownscaleWarning`.
+        interpolation) with a :class:`DownscaleWarning`, issued as soon as the
+        size is known (before the work on the image).
+    max_pixels : int, optional
+        A file of more pixels (width x height, read from its header before
+        decoding) is refused: a guard against decompression bombs.
 
     Returns
     -------
@@ -91,38 +117,55 @@ def load_image(source: object, *, max_side: int = MAX_IMAGE_SIDE) -> LoadedImage
     Raises
     ------
     ImageNotFoundError
-        The path does not exist or is a directory.
+        The path does not exist, is a directory or is not a regular file.
     InvalidImageError
-        Not an image, empty, fewer than 16 px on a side, or blank (one colour).
+        Not an image, empty, more than ``max_pixels`` px, fewer than 16 px on a
+        side (after the downscale to ``max_side``), or blank (one colour).
     """
     if isinstance(source, LoadedImage):
         return source
+    max_side = int(max_side)
+    if max_side < MIN_IMAGE_SIDE:
+        raise InvalidParameterError(f"max_side must be >= {MIN_IMAGE_SIDE} px, got {max_side}")
     if isinstance(source, (str, Path)):
-        arr, name, bgr = _read_file(Path(source)), str(source), True
+        name = str(source)
+        arr, (w, h) = _read_file(Path(source), max_side=max_side, max_pixels=max_pixels)
+        bgr = True
     elif isinstance(source, np.ndarray):
         arr, name, bgr = source, "<array>", False
+        _check_layout(arr, name)
+        h, w = arr.shape[:2]
     else:
         raise InvalidImageError(f"image must be a file path or a numpy array, got {type(source).__name__}")
-    rgb, alpha, has_alpha = _normalize(arr, name, bgr=bgr)
-    h, w = alpha.shape
-    if min(h, w) < MIN_IMAGE_SIDE:
-        raise InvalidImageError(f"{name}: image is {w}x{h} px; at least {MIN_IMAGE_SIDE} px on each side is needed")
+    size = _working_size(w, h, max_side, name)
     scale = 1.0
-    if max(h, w) > max_side:
-        import cv2
-
+    if size != (w, h):
         scale = max_side / max(h, w)
-        size = (max(1, round(w * scale)), max(1, round(h * scale)))
-        rgb = np.clip(cv2.resize(rgb, size, interpolation=cv2.INTER_AREA), 0.0, 1.0)
-        alpha = np.clip(cv2.resize(alpha, size, interpolation=cv2.INTER_AREA), 0.0, 1.0)
         warnings.warn(
             f"{name}: image is {w}x{h} px, larger than {max_side} px; downscaled to {size[0]}x{size[1]} px",
             DownscaleWarning,
             stacklevel=2,
         )
+        rgb, alpha, has_alpha = _shrink(arr, size, name, bgr=bgr)
+    else:
+        rgb, alpha, has_alpha = _normalize(arr, name, bgr=bgr)
     if np.ptp(rgb) < BLANK_IMAGE_RANGE and np.ptp(alpha) < BLANK_IMAGE_RANGE:
         raise InvalidImageError(f"{name}: image is blank (every pixel has the same colour); nothing to trace")
     return LoadedImage(readonly(rgb), readonly(alpha), has_alpha, scale, name)
+
+
+def _working_size(w: int, h: int, max_side: int, name: str) -> tuple[int, int]:
+    """(width, height) after the downscale to ``max_side``; raise if a side is then below the minimum."""
+    size = (w, h)
+    if max(w, h) > max_side:
+        s = max_side / max(h, w)
+        size = (max(1, round(w * s)), max(1, round(h * s)))
+    if min(size) < MIN_IMAGE_SIDE:
+        shrunk = f" (downscaled to {size[0]}x{size[1]} px to fit {max_side} px)" if size != (w, h) else ""
+        raise InvalidImageError(
+            f"{name}: image is {w}x{h} px{shrunk}; at least {MIN_IMAGE_SIDE} px on each side is needed"
+        )
+    return size
 
 
 def load_mask(source: object, shape: tuple[int, int] | None = None) -> np.ndarray:
@@ -141,7 +184,8 @@ def load_mask(source: object, shape: tuple[int, int] | None = None) -> np.ndarra
     ndarray of bool, shape (H, W)
     """
     if isinstance(source, (str, Path)):
-        arr, name, bgr = _read_file(Path(source)), str(source), True
+        # A mask is never downscaled: it must have the (loaded) image's shape.
+        arr, name, bgr = _read_file(Path(source), max_side=sys.maxsize)[0], str(source), True
     else:
         arr, name, bgr = np.asarray(source), "<array>", False
     if arr.dtype == bool and arr.ndim == 2:
@@ -154,48 +198,175 @@ def load_mask(source: object, shape: tuple[int, int] | None = None) -> np.ndarra
     return mask
 
 
-def _read_file(path: Path) -> np.ndarray:
+def _read_file(path: Path, *, max_side: int = MAX_IMAGE_SIDE, max_pixels: int = MAX_IMAGE_PIXELS) -> tuple:
+    """Decode ``path``: (array as OpenCV gives it, BGR(A) or gray; (width, height) of the file).
+
+    The header is read first (Pillow, which decodes nothing on open): the pixel
+    limit and the minimum size after the downscale are checked before decoding,
+    a multi-page file is reported, and a JPEG larger than ``max_side`` is
+    decoded at 1/2, 1/4 or 1/8 of its size (never below ``max_side``).
+    OpenCV's own log lines are silenced: the errors raised here say it.
+    """
     import cv2
 
+    _quiet_opencv()
     if not path.exists():
         raise ImageNotFoundError(f"image file not found: {path}")
+    if path.is_dir():
+        raise ImageNotFoundError(f"{path} is a directory, not an image file")
     if not path.is_file():
-        raise ImageNotFoundError(f"not an image file (a directory?): {path}")
-    data = np.fromfile(path, dtype=np.uint8)  # imdecode: unicode-safe, unlike imread
+        raise ImageNotFoundError(f"{path} is not a regular file (a device, a pipe, ...), not an image file")
+    header = _probe(path, max_pixels)
+    flags = cv2.IMREAD_UNCHANGED
+    if header is not None:
+        w, h, pages, fmt = header
+        _working_size(w, h, max_side, str(path))
+        if pages > 1:
+            warnings.warn(f"{path}: the file has {pages} pages; only the first is used", PageWarning, stacklevel=3)
+        factor = max([f for f in (2, 4, 8) if max(w, h) / f >= max_side], default=1)
+        if fmt == "JPEG" and factor > 1:
+            reduced = {2: cv2.IMREAD_REDUCED_COLOR_2, 4: cv2.IMREAD_REDUCED_COLOR_4, 8: cv2.IMREAD_REDUCED_COLOR_8}
+            flags = reduced[factor] | cv2.IMREAD_IGNORE_ORIENTATION
+    try:
+        data = np.fromfile(path, dtype=np.uint8)  # imdecode: unicode-safe, unlike imread
+    except OSError as exc:
+        raise InvalidImageError(f"{path}: cannot read the file: {exc.strerror or exc}") from exc
     if data.size == 0:
         raise InvalidImageError(f"{path}: file is empty")
-    arr = cv2.imdecode(data, cv2.IMREAD_UNCHANGED)
+    try:
+        arr = cv2.imdecode(data, flags)
+    except cv2.error as exc:  # e.g. beyond OpenCV's own size limit
+        raise InvalidImageError(f"{path}: not a readable image: {' '.join(str(exc).split())[-200:]}") from exc
+    del data
     if arr is None or arr.size == 0:
         raise InvalidImageError(f"{path}: not a readable image (expected PNG, JPEG, TIFF, BMP, WebP, ...)")
-    return arr
+    if header is None:
+        h, w = arr.shape[:2]
+        if w * h > max_pixels:
+            raise InvalidImageError(_too_many_pixels(path, f"{w}x{h} px", max_pixels))
+    return arr, (w, h)
 
 
-def _normalize(arr: np.ndarray, name: str, *, bgr: bool) -> tuple[np.ndarray, np.ndarray, bool]:
-    """Array -> (rgb (H, W, 3) float64 over white, alpha (H, W), had alpha)."""
-    if arr.ndim == 2:
-        arr = arr[:, :, None]
-    if arr.ndim != 3 or arr.shape[2] not in (1, 2, 3, 4):
+def _probe(path: Path, max_pixels: int) -> tuple[int, int, int, str] | None:
+    """(width, height, pages, format) from the file's header, or None if Pillow cannot tell.
+
+    Raises InvalidImageError if the image has more than ``max_pixels`` pixels.
+    """
+    try:
+        from PIL import Image
+    except ImportError:  # pragma: no cover - a dependency of matplotlib and of img2logo
+        return None
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", Image.DecompressionBombWarning)
+        try:
+            with Image.open(path) as im:
+                w, h = im.size
+                pages = int(getattr(im, "n_frames", 1) or 1)
+                fmt = str(im.format or "")
+        except Image.DecompressionBombError as exc:  # more than twice Pillow's own limit
+            raise InvalidImageError(_too_many_pixels(path, "over 178 Mpx", max_pixels)) from exc
+        except Exception:  # not a format Pillow knows, or a damaged header: OpenCV decides
+            return None
+    if w * h > max_pixels:
+        raise InvalidImageError(_too_many_pixels(path, f"{w}x{h} px", max_pixels))
+    return w, h, pages, fmt
+
+
+def _too_many_pixels(path: Path, size: str, max_pixels: int) -> str:
+    return (
+        f"{path}: image is {size}, more than the limit of {max_pixels:,} px "
+        "(a guard against decompression bombs; downscale it first)"
+    )
+
+
+def _quiet_opencv() -> None:
+    """Silence OpenCV's log lines (``[ WARN:0@...] ...``) on standard error, once."""
+    import cv2
+
+    global _OPENCV_QUIET
+    if not _OPENCV_QUIET:
+        with contextlib.suppress(AttributeError, cv2.error):
+            cv2.utils.logging.setLogLevel(cv2.utils.logging.LOG_LEVEL_SILENT)
+        _OPENCV_QUIET = True
+
+
+_OPENCV_QUIET = False
+
+
+def _check_layout(arr: np.ndarray, name: str) -> None:
+    """Raise InvalidImageError unless ``arr`` is (H, W) or (H, W, C), C in 1..4, not empty."""
+    if arr.ndim not in (2, 3) or (arr.ndim == 3 and arr.shape[2] not in (1, 2, 3, 4)):
         raise InvalidImageError(
             f"{name}: image must have shape (H, W) or (H, W, C) with C in 1..4, got {tuple(np.shape(arr))}"
         )
     if arr.shape[0] == 0 or arr.shape[1] == 0:
-        raise InvalidImageError(f"{name}: image is empty (shape {arr.shape})")
+        shape = arr.shape if arr.ndim == 3 else (*arr.shape, 1)  # as (H, W, C)
+        raise InvalidImageError(f"{name}: image is empty (shape {shape})")
+
+
+def _shrink(arr: np.ndarray, size: tuple[int, int], name: str, *, bgr: bool) -> tuple[np.ndarray, np.ndarray, bool]:
+    """Downscale ``arr`` to ``size`` (width, height) in its own dtype, then normalize (see :func:`_normalize`).
+
+    Colour is composited over white strip by strip (``DOWNSCALE_STRIP_ROWS``
+    rows at a time, float32), so no full-size float copy is ever made; area
+    interpolation then works on 8/16-bit integers (float32 for float input).
+    """
+    import cv2
+
+    if arr.ndim == 2:
+        arr = arr[:, :, None]
     if arr.dtype == bool:
-        val = arr.astype(np.float64)
-    elif arr.dtype == np.uint8:
-        val = arr / 255.0
-    elif arr.dtype == np.uint16:
-        val = arr / 65535.0
+        arr = arr.astype(np.uint8) * np.uint8(255)
     elif np.issubdtype(arr.dtype, np.floating):
-        val = arr.astype(np.float64)
-        if not np.all(np.isfinite(val)):
-            raise InvalidImageError(f"{name}: image contains NaN or infinite values")
-        if val.min() < 0.0 or val.max() > 1.0:
-            raise InvalidImageError(
-                f"{name}: float images must have values in [0, 1], got [{val.min():g}, {val.max():g}]"
-            )
+        _to_unit(arr, name)  # the range and finiteness checks
+        arr = arr.astype(np.float32, copy=False)
+    elif arr.dtype not in (np.uint8, np.uint16):
+        _to_unit(arr, name)  # raises: unsupported dtype
+    channels = arr.shape[2]
+    has_alpha = channels in (2, 4)
+    full = 1.0 if np.issubdtype(arr.dtype, np.floating) else float(np.iinfo(arr.dtype).max)
+    if has_alpha:
+        colour = np.empty((*arr.shape[:2], channels - 1), dtype=arr.dtype)
+        for r in range(0, arr.shape[0], DOWNSCALE_STRIP_ROWS):
+            block = arr[r : r + DOWNSCALE_STRIP_ROWS]
+            a = block[:, :, -1:].astype(np.float32) / np.float32(full)
+            mixed = block[:, :, :-1] * a + (1.0 - a) * np.float32(full)
+            colour[r : r + DOWNSCALE_STRIP_ROWS] = mixed if full == 1.0 else np.rint(mixed)
+        alpha_small = cv2.resize(np.ascontiguousarray(arr[:, :, -1]), size, interpolation=cv2.INTER_AREA)
     else:
-        raise InvalidImageError(f"{name}: unsupported dtype {arr.dtype} (use uint8, uint16, bool or float in [0, 1])")
+        colour = arr
+        alpha_small = None
+    small = cv2.resize(np.ascontiguousarray(colour), size, interpolation=cv2.INTER_AREA)
+    rgb, _, _ = _normalize(small, name, bgr=bgr)
+    rgb = np.clip(rgb, 0.0, 1.0)
+    alpha = np.ones(rgb.shape[:2]) if alpha_small is None else np.clip(_to_unit(alpha_small, name), 0.0, 1.0)
+    return rgb, alpha, has_alpha
+
+
+def _to_unit(arr: np.ndarray, name: str) -> np.ndarray:
+    """Values as float64 in [0, 1] by dtype (uint8 / 255, uint16 / 65535, bool, float checked)."""
+    if arr.dtype == bool:
+        return arr.astype(np.float64)
+    if arr.dtype == np.uint8:
+        return arr / 255.0
+    if arr.dtype == np.uint16:
+        return arr / 65535.0
+    if np.issubdtype(arr.dtype, np.floating):
+        if not np.all(np.isfinite(arr)):
+            raise InvalidImageError(f"{name}: image contains NaN or infinite values")
+        lo, hi = float(arr.min()), float(arr.max())
+        if lo < 0.0 or hi > 1.0:
+            raise InvalidImageError(f"{name}: float images must have values in [0, 1], got [{lo:g}, {hi:g}]")
+        return arr.astype(np.float64)
+    raise InvalidImageError(f"{name}: unsupported dtype {arr.dtype} (use uint8, uint16, bool or float in [0, 1])")
+
+
+def _normalize(arr: np.ndarray, name: str, *, bgr: bool) -> tuple[np.ndarray, np.ndarray, bool]:
+    """Array -> (rgb (H, W, 3) float64 over white, alpha (H, W), had alpha)."""
+    _check_layout(arr, name)
+    if arr.ndim == 2:
+        arr = arr[:, :, None]
+    val = _to_unit(arr, name)
     channels = val.shape[2]
     has_alpha = channels in (2, 4)
     alpha = val[:, :, -1].copy() if has_alpha else np.ones(val.shape[:2])

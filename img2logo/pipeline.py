@@ -16,7 +16,9 @@ from typing import Any
 import numpy as np
 
 from .constants import MIN_SEGMENT_LENGTH, PHOTO_MAX_ARC_FACTOR, RDP_TOLERANCE, TOLERANCE
+from .errors import InvalidParameterError
 from .geometry import Abstraction
+from .options import check_abstract_options
 from .preprocessing import FeatureLines, LoadedImage, extract_feature_lines, load_image
 from .progressive import ProgressCallback, Progression, optimize
 from .segment_graph import SegmentGraph, build_segment_graph
@@ -64,7 +66,16 @@ class Result:
         return self.progression.bias
 
     def level(self, t: int) -> Abstraction:
-        """A^t; negative t counts from the end like a list index."""
+        """A^t; negative t counts from the end like a list index.
+
+        Raises
+        ------
+        InvalidParameterError
+            If ``t`` is not an integer in 0 .. len(levels) - 1 (or -len(levels) .. -1).
+        """
+        n = len(self.progression.levels)
+        if isinstance(t, bool) or not isinstance(t, int | np.integer) or not -n <= t < n:
+            raise InvalidParameterError(f"level must be an integer in 0..{n - 1} (or -{n}..-1 from the end), got {t!r}")
         return self.progression.levels[t]
 
 
@@ -118,13 +129,22 @@ def abstract(
         The ablation switches of :func:`img2logo.progressive.optimize`:
         ``connectivity``, ``inner_junctions``, ``merging``,
         ``avoid_intersections``, ``localized``, ``simplify``, ``arc_selection``,
-        ``max_arc_distance`` and ``relax_connectivity`` (photos:
-        ``PHOTO_MAX_ARC_FACTOR * tolerance`` and True unless given).
+        and ``max_arc_distance`` (photos: ``PHOTO_MAX_ARC_FACTOR * tolerance``
+        unless given; None for no bound).
 
     Returns
     -------
     Result
+
+    Raises
+    ------
+    InvalidParameterError
+        Before any work, if a keyword is unknown or a value out of range
+        (:func:`img2logo.options.check_abstract_options`).
     """
+    given = {"tolerance": tolerance, "kind": kind, "rdp_tolerance": rdp_tolerance, "min_length": min_length}
+    given.update(foreground=foreground, subject=subject, bias=bias, exponents=exponents, ladder=ladder, unit=unit)
+    check_abstract_options({**given, **switches})
     timings: dict[str, float] = {}
     start = time.perf_counter()
     img = load_image(image)
@@ -140,14 +160,9 @@ def abstract(
         "min_length": float(min_length),
         "scale": img.scale,
     }
-    if lines.kind == "photo":
-        # A photo's logo is a few long arcs: no arc may stray far from its line;
-        # its feature lines are not clean: unreliable junctions may be released.
-        switches = {
-            "max_arc_distance": PHOTO_MAX_ARC_FACTOR * float(tolerance),
-            "relax_connectivity": True,
-            **switches,
-        }
+    if lines.kind == "photo" and "max_arc_distance" not in switches:
+        # A photo's logo is a few long arcs: no arc may stray far from its line.
+        switches = {**switches, "max_arc_distance": PHOTO_MAX_ARC_FACTOR * float(tolerance)}
     callback, bar = _progress(progress, tolerance)
     try:
         progression = optimize(

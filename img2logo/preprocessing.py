@@ -22,14 +22,17 @@ import numpy as np
 
 from . import _skeleton
 from ._validation import check_choice, check_positive, readonly
-from .clipart import clipart_regions, region_boundaries
+from .clipart import clipart_lines, clipart_regions
 from .constants import (
     BLANK_IMAGE_RANGE,
+    DRAWING_MAX_STROKE_FRACTION,
+    INK_COLOUR_SPREAD,
     JUNCTION_MERGE_DISTANCE,
     MIN_SPECK_AREA,
     PHOTO_MIN_LINE_LENGTH,
     PHOTO_SPUR_LENGTH,
     SPUR_LENGTH,
+    SYNTHETIC_FLAT_FRACTION,
 )
 from .loading import DownscaleWarning, LoadedImage, load_image, load_mask
 from .photo import edge_tangent_flow, flow_dog, photo_feature_lines
@@ -82,35 +85,73 @@ class FeatureLines:
 
 
 # --------------------------------------------------------------------------- kinds
-def detect_kind(image: LoadedImage) -> tuple[str, str]:
-    """Guess the kind of an image: ``(kind, reason)``.
+def detect_kind(image: object) -> tuple[str, str]:
+    """Guess the kind of an image: ``(kind, reason)``, the reason one line of what was measured.
 
-    A *line drawing* is nearly gray where it is drawn, mostly light, with thin
-    dark strokes; a
-    *clip art* has few flat colours (a handful of palette entries cover almost
-    every pixel); anything else is a *photo*.
+    * A **photo** has camera noise and texture everywhere: few of its pixels
+      have four neighbours of exactly their colour. A clip art or a drawing is
+      made of flat fills, whose pixels do, even after JPEG compression (whose
+      flat blocks stay exactly flat): an image is synthetic when at least
+      ``SYNTHETIC_FLAT_FRACTION`` of its pixels are such.
+    * A synthetic image is a **line drawing** when, beside its background, it
+      has one colour only (the ink, any colour: its flat regions' colours are
+      within ``INK_COLOUR_SPREAD`` of their mean) drawn in strokes at most
+      ``DRAWING_MAX_STROKE_FRACTION`` of the image's shorter side wide;
+    * otherwise a **clip art**: several flat colours (a grey animal on white is
+      a clip art of greys, not a drawing).
     """
-    img = load_image(image)
-    rgb = img.rgb
-    sat = rgb.max(axis=2) - rgb.min(axis=2)
-    gray = img.gray
-    ink = gray < 0.5
-    ink_fraction = float(ink.mean())
-    quant = (np.round(rgb * 15).astype(np.int64) * np.array([256, 16, 1])).sum(axis=2)
-    counts = np.sort(np.bincount(quant.ravel()))[::-1]
-    coverage = float(counts[:12].sum() / quant.size)
-    # Saturation of the drawn pixels only: a white canvas would make any clip art gray.
-    drawn = (gray < 0.9) & img.foreground
-    drawn_sat = float(np.median(sat[drawn])) if drawn.any() else 0.0
-    looks_drawn = drawn_sat < 0.05 and 0.0 < ink_fraction < 0.35
-    stroke = _median_stroke_width(ink) if looks_drawn else 0.0  # the costly test last
-    if looks_drawn and stroke <= 0.05 * min(gray.shape):
-        return "drawing", (
-            f"nearly gray, {ink_fraction:.0%} dark pixels in strokes about {stroke:.0f} px wide: a line drawing"
-        )
-    if coverage > 0.9:
-        return "clipart", f"12 flat colours cover {coverage:.0%} of the pixels: a clip art"
-    return "photo", f"12 most common colours cover only {coverage:.0%} of the pixels: a photo"
+    kind, reason, _ = _detect(load_image(image))
+    return kind, reason
+
+
+def _detect(img: LoadedImage) -> tuple[str, str, np.ndarray | None]:
+    """(kind, reason, clip-art regions or None): the regions are reused for a clip art."""
+    v = np.round(img.rgb * 255.0).astype(np.int32)
+    key = (v[..., 0] << 16) | (v[..., 1] << 8) | v[..., 2]
+    same = np.ones(key.shape, dtype=bool)
+    eh, ev = key[:, 1:] == key[:, :-1], key[1:] == key[:-1]
+    same[:, 1:] &= eh
+    same[:, :-1] &= eh
+    same[1:] &= ev
+    same[:-1] &= ev
+    flat = float(same.mean())
+    if flat < SYNTHETIC_FLAT_FRACTION:
+        return "photo", f"only {flat:.0%} of the pixels sit in flat fills (camera noise, texture): a photo", None
+    regions = clipart_regions(img)
+
+    n = int(regions.max()) + 1
+    lab = img.lab.reshape(-1, 3)
+    area = np.bincount(regions.ravel(), minlength=n).astype(np.float64)
+    means = np.stack([np.bincount(regions.ravel(), weights=lab[:, c], minlength=n) for c in range(3)], 1)
+    means /= np.maximum(area, 1.0)[:, None]
+    # Paper: the background and the regions of its colour it encloses (inside a wheel).
+    paper = np.linalg.norm(means - means[0], axis=1) <= INK_COLOUR_SPREAD
+    if paper.all():
+        return "clipart", "one flat colour: a clip art", regions
+    ink_means, ink_area = means[~paper], area[~paper]
+    ink = np.average(ink_means, axis=0, weights=ink_area)
+    colours = 1 + len(_distinct(means[~paper]))
+    if np.max(np.linalg.norm(ink_means - ink, axis=1)) <= INK_COLOUR_SPREAD:
+        inked = ~paper[regions]
+        stroke = _median_stroke_width(inked)
+        if stroke <= DRAWING_MAX_STROKE_FRACTION * min(regions.shape):
+            return (
+                "drawing",
+                f"one ink colour on a plain background, {inked.mean():.0%} of the pixels, in strokes about "
+                f"{stroke:.0f} px wide: a line drawing",
+                None,
+            )
+        return "clipart", f"one flat colour on a plain background, in shapes {stroke:.0f} px wide: a clip art", regions
+    return "clipart", f"{flat:.0%} of the pixels sit in flat fills of {colours} colours: a clip art", regions
+
+
+def _distinct(colours: np.ndarray) -> list[np.ndarray]:
+    """Colours (N, 3) CIELAB, clustered greedily at ``INK_COLOUR_SPREAD``: one per visible colour."""
+    out: list[np.ndarray] = []
+    for c in colours:
+        if all(np.linalg.norm(c - o) > INK_COLOUR_SPREAD for o in out):
+            out.append(c)
+    return out
 
 
 def _median_stroke_width(ink: np.ndarray) -> float:
@@ -164,11 +205,11 @@ def extract_feature_lines(
     kind = check_choice(kind, "kind", ("auto", *KINDS))
     if spur_length is not None:
         spur_length = check_positive(spur_length, "spur_length", allow_zero=True)
+    regions = None
     if kind == "auto":
-        kind, reason = detect_kind(img)
+        kind, reason, regions = _detect(img)
     else:
         reason = "given"
-    regions = None
     found = None
     if spur_length is None:
         spur_length = PHOTO_SPUR_LENGTH if kind == "photo" else SPUR_LENGTH
@@ -176,8 +217,8 @@ def extract_feature_lines(
         raw = _drawing_lines(img)
         min_len = spur_length if min_line_length is None else min_line_length
     elif kind == "clipart":
-        regions = clipart_regions(img)
-        raw = region_boundaries(regions)
+        regions = clipart_regions(img) if regions is None else regions
+        raw = clipart_lines(regions)
         min_len = spur_length if min_line_length is None else min_line_length
     else:
         found = find_subject(img, foreground, subject)

@@ -172,6 +172,25 @@ class _Outcome:
     global_solve: bool
 
 
+class ConnectivityWarning(UserWarning):
+    """Some junctions of the initial fit were released: their arcs end apart there."""
+
+
+def _rung_reaching(ladder: Ladder, k: int, reach: float) -> tuple[int, float]:
+    """The smallest allowed rung above ``k`` whose radius is at least ``reach`` px: (k, r).
+
+    Without one (a user's subset of small radii), the largest allowed rung.
+    """
+    if ladder.exponents is not None:
+        allowed = sorted(ladder.exponents)
+        above = [j for j in allowed if ladder.radius(j) >= reach]
+        j = above[0] if above else allowed[-1]
+        return j, ladder.radius(j)
+    while ladder.radius(k) < reach:
+        k += 1
+    return k, ladder.radius(k)
+
+
 class _Optimizer:
     """The mutable state of one run of the progressive optimization (private)."""
 
@@ -189,12 +208,13 @@ class _Optimizer:
             "rejected_hopeless": 0,
             "rejected_intersections": 0,
             "rejected_far_arc": 0,
-            "released_parts": 0,
+            "released_junctions": 0,
+            "rejected_crossing": 0,
         }
         self._circle_cache: dict[tuple[int, ...], tuple[np.ndarray, float]] = {}
-        #: Segments of the parts whose junctions were released (relaxed connectivity).
-        self.released: set[int] = set()
         self.ladder: Ladder | None = None
+        #: Junctions whose connectivity constraint was given up (see recover).
+        self.released: set[int] = set()
 
     # ----------------------------------------------------------------- groups and nodes
     def add_group(self, group: _Group) -> int:
@@ -209,6 +229,10 @@ class _Optimizer:
         The two ends, and inner nodes where other segments meet (valence >= 3
         in the graph, Sec. 6.2) unless only the ends are constrained (Fig. 11d).
         """
+        return tuple(n for n in self.path_nodes(group) if n not in self.released)
+
+    def path_nodes(self, group: _Group) -> tuple[int, ...]:
+        """:meth:`constrained_nodes` with the released junctions (see :meth:`recover`), in path order."""
         if group.closed:
             head = (group.nodes[0],)
         else:
@@ -291,19 +315,42 @@ class _Optimizer:
             return arc.circle.center, arc.circle.r, None
         center, radius = self.free_circle(group)
         k, r = self.ladder.snap(radius)
+        reach = self.reach(group)
+        if r < reach:
+            k, r = _rung_reaching(self.ladder, k, reach)
         return center, r, k
+
+    def reach(self, group: _Group) -> float:
+        """Half the largest distance between the junctions ``group``'s circle must pass, px.
+
+        A circle passes through two points only if its diameter spans them: a
+        nearly semicircular segment whose fitted radius rounds down to a rung
+        cannot reach its own ends, and the constrained fit (Eqn. 13) would have
+        to drag them together. Its radius goes up to the first rung that reaches.
+        """
+        nodes = self.constrained_nodes(group)
+        if len(nodes) < 2:
+            return 0.0
+        pts = self.graph.junctions[list(nodes)]
+        return 0.5 * float(np.max(np.hypot(*(pts[:, None, :] - pts[None, :, :]).transpose(2, 0, 1))))
 
     # ----------------------------------------------------------------- arcs
     def arc_for(self, group: _Group, center: np.ndarray, radius: float, k: int, disp: Any) -> ArcFit:
         """Extract the arc of ``group`` on its circle through its displaced junctions."""
         circle = Circle(float(center[0]), float(center[1]), float(radius), None if k is None else int(k))
-        nodes = self.constrained_nodes(group)
-        pts = np.array([self.graph.junctions[n] + disp(n) for n in nodes])
+        nodes = self.path_nodes(group)
+        pts = np.array([self.graph.junctions[n] + (self.disp[n] if n in self.released else disp(n)) for n in nodes])
         if group.closed:
             pts = np.vstack([pts, pts[:1]])
-        if not self.opt["connectivity"] or group.segments[0] in self.released:
+            nodes = (*nodes, nodes[0])
+        if not self.opt["connectivity"]:
             # No constraint: the arc ends where the junctions project on its circle.
             pts = circle.point_at(circle.angle_of(pts))
+        elif self.released:
+            # A released junction is no constraint: the arc ends where it projects.
+            loose = np.array([n in self.released for n in nodes])
+            if loose.any():
+                pts[loose] = circle.point_at(circle.angle_of(pts[loose]))
         return extract_arc(circle, group.points, pts, method=self.opt["arc_selection"])
 
     # ----------------------------------------------------------------- the constrained fit
@@ -315,14 +362,8 @@ class _Optimizer:
         free_nodes: Sequence[int],
         n_groups_total: int,
         n_junctions_total: int,
-        connectivity: bool | None = None,
     ) -> tuple[dict[int, _Fit], dict[int, np.ndarray]] | None:
-        """Eqn. 13 over ``groups`` (the window), then their arcs; None if it fails.
-
-        ``connectivity=False`` releases the window's junctions (default: the
-        run's option).
-        """
-        connected = self.opt["connectivity"] if connectivity is None else connectivity
+        """Eqn. 13 over ``groups`` (the window), then their arcs; None if it fails."""
         gids = list(groups)
         node_list = sorted({n for g in groups.values() for n in self.constrained_nodes(g)})
         node_index = {n: i for i, n in enumerate(node_list)}
@@ -344,12 +385,12 @@ class _Optimizer:
             # a long segment's fit, and E^s (Fréchet + |d|) pays for it.
             segment_weight=1.0 / (max(n_groups_total, 1) * np.array([len(groups[g].points) for g in gids])),
             junction_weight=1.0 / max(n_junctions_total, 1),
-            connectivity=connected,
+            connectivity=self.opt["connectivity"],
         )
-        if connected and not fit.converged:
+        if self.opt["connectivity"] and not fit.converged:
             return None
         disp = {n: fit.displacements[node_index[n]].copy() for n in node_list}
-        if not connected:
+        if not self.opt["connectivity"]:
             disp = {n: np.zeros(2) for n in node_list}
         fits = {}
         moved = set(free_nodes)
@@ -362,43 +403,6 @@ class _Optimizer:
             fits[gid] = _Fit(center, r, k, self.arc_for(groups[gid], center, r, k, lambda n: disp[n]))
         return fits, disp
 
-    def _solve_by_component(
-        self, seeds: dict[int, tuple[np.ndarray, float, int | None]], n_junctions_total: int
-    ) -> tuple[dict[int, _Fit], dict[int, np.ndarray]] | None:
-        """The initial fit solved separately on each connected part of the groups; None if one fails."""
-        parent = {g: g for g in self.groups}
-
-        def root(g: int) -> int:
-            while parent[g] != g:
-                parent[g] = parent[parent[g]]
-                g = parent[g]
-            return g
-
-        for gids in self.node_groups().values():
-            for g in gids[1:]:
-                parent[root(g)] = root(gids[0])
-        parts: dict[int, list[int]] = {}
-        for g in self.groups:
-            parts.setdefault(root(g), []).append(g)
-        fits: dict[int, _Fit] = {}
-        disp: dict[int, np.ndarray] = {}
-        for part in parts.values():
-            window = {g: self.groups[g] for g in part}
-            nodes = sorted({n for g in part for n in self.constrained_nodes(self.groups[g])})
-            out = self.solve(window, seeds, part, nodes, len(self.groups), n_junctions_total)
-            if out is None and self.opt["relax_connectivity"]:
-                # Relaxed connectivity (the paper's future work, Sec. 9): this
-                # part's junctions admit no golden circles through them (tangles
-                # of a photo's texture); they are released, its arcs fitted free.
-                self.stats["released_parts"] += 1
-                self.released.update(s for g in part for s in self.groups[g].segments)
-                out = self.solve(window, seeds, part, nodes, len(self.groups), n_junctions_total, connectivity=False)
-            if out is None:
-                return None
-            fits.update(out[0])
-            disp.update(out[1])
-        return fits, disp
-
     def initial_fit(self) -> None:
         """A^0: golden circles for every group, fitted jointly (Sec. 5.3)."""
         # Longest groups first: a straight group is a line unless a line already
@@ -409,20 +413,91 @@ class _Optimizer:
             seeds[gid] = self.golden(self.groups[gid], held=held)
             if seeds[gid][2] is None:
                 _hold(held, self.groups[gid], self.constrained_nodes(self.groups[gid]))
+        self.check_reach(seeds)
         nodes = sorted(self.node_groups())
         out = self.solve(dict(self.groups), seeds, list(self.groups), nodes, len(self.groups), len(nodes))
         self.stats["global_solves"] += 1
         if out is None:
-            # The connected parts of the graph are independent problems, solved
-            # one by one when the joint solve fails: its one convergence test
-            # over all of them is harder to pass (a photo's many small parts).
-            out = self._solve_by_component(seeds, len(nodes))
-        if out is None:  # cannot happen for a feasible problem; keep the seeds, say so
-            raise InvalidParameterError("the connectivity-constrained fit of the initial segments did not converge")
+            out = self.recover(seeds)
         fits, disp = out
         self.fits = fits
         for n, d in disp.items():
             self.disp[n] = d
+
+    def check_reach(self, seeds: Mapping[int, tuple[np.ndarray, float, int | None]]) -> None:
+        """Raise when the user's radii are too small for the segments' junctions (see :meth:`reach`)."""
+        if self.ladder.exponents is None:
+            return
+        short = [g for g, (_, r, k) in seeds.items() if k is not None and r < self.reach(self.groups[g])]
+        if short:
+            ks = sorted(self.ladder.exponents)
+            widest = max(2.0 * self.reach(self.groups[g]) for g in short)
+            raise InvalidParameterError(
+                f"the chosen radii (k = {', '.join(map(str, ks))}: {self.ladder.radius(ks[0]):.3g} to "
+                f"{self.ladder.radius(ks[-1]):.3g} px) are too small: {len(short)} segments need a circle through "
+                f"junctions up to {widest:.0f} px apart; allow larger radii"
+            )
+
+    def recover(
+        self, seeds: dict[int, tuple[np.ndarray, float, int | None]]
+    ) -> tuple[dict[int, _Fit], dict[int, np.ndarray]]:
+        """A^0 when the joint fit fails: each connected part alone, releasing junctions as needed.
+
+        The parts of the drawing that share no junction are independent
+        problems, so a part that converges keeps its exact connectivity. In a
+        part that does not, the junction its golden circles miss most (the
+        largest distance from the junction to a circle through it, before the
+        fit) is released: its arcs end where it projects on their circles, like
+        a free end. This repeats until the part converges (a part with every
+        junction released always does); the count is reported.
+        """
+        fits: dict[int, _Fit] = {}
+        disp: dict[int, np.ndarray] = {}
+        n_total = len(self.groups)
+        for part in self.parts():
+            while True:
+                groups = {g: self.groups[g] for g in part}
+                nodes = sorted(self.node_groups(groups))
+                out = self.solve(groups, seeds, part, nodes, n_total, max(len(self.node_groups()), 1))
+                self.stats["global_solves"] += 1
+                if out is not None:
+                    fits.update(out[0])
+                    disp.update(out[1])
+                    break
+                miss = {
+                    n: max(abs(float(np.hypot(*(self.graph.junctions[n] - seeds[g][0]))) - seeds[g][1]) for g in gs)
+                    for n, gs in self.node_groups(groups).items()
+                }
+                self.released.add(max(miss, key=lambda n: (miss[n], -n)))
+        self.stats["released_junctions"] = len(self.released)
+        if self.released:
+            import warnings
+
+            warnings.warn(
+                f"the connectivity-constrained fit could not meet {len(self.released)} of "
+                f"{len(self.released) + len(self.node_groups())} junctions; their arcs end apart there",
+                ConnectivityWarning,
+                stacklevel=2,
+            )
+        return fits, disp
+
+    def parts(self) -> list[list[int]]:
+        """The groups in connected parts: groups sharing a constrained junction are in one part."""
+        parent = {g: g for g in self.groups}
+
+        def root(g: int) -> int:
+            while parent[g] != g:
+                parent[g] = parent[parent[g]]
+                g = parent[g]
+            return g
+
+        for gs in self.node_groups().values():
+            for g in gs[1:]:
+                parent[root(g)] = root(gs[0])
+        parts: dict[int, list[int]] = {}
+        for g in sorted(self.groups):
+            parts.setdefault(root(g), []).append(g)
+        return list(parts.values())
 
     # ----------------------------------------------------------------- errors
     def totals(self) -> tuple[float, float, int]:
@@ -450,6 +525,12 @@ class _Optimizer:
         """Merge ``pair`` tentatively, refit, and score it; None if infeasible."""
         self.stats["evaluated"] += 1
         a, b, node = pair
+        # Two arcs that both run on through one junction cross there (an X): one
+        # of them ends at the junction instead, so that arcs meet only at their
+        # ends or where one ends on the other (a T), and no crossing is left.
+        if any(node in g.nodes[1:-1] for gid, g in self.groups.items() if gid not in (a, b)):
+            self.stats["rejected_crossing"] += 1
+            return None
         merged = _merge_groups(self.groups[a], self.groups[b], node)
         after = {g: grp for g, grp in self.groups.items() if g not in (a, b)}
         after[-1] = merged
@@ -598,7 +679,6 @@ def optimize(
     lines: bool = False,
     arc_selection: str = "frechet",
     max_arc_distance: float | None = None,
-    relax_connectivity: bool = False,
     lock_mask: np.ndarray | None = None,
     progress: ProgressCallback | None = None,
     params: dict[str, Any] | None = None,
@@ -659,13 +739,6 @@ def optimize(
         its line (across an ear of a photo's outline) while the mean stays
         within T. Default None: no bound (the paper); photos use
         ``PHOTO_MAX_ARC_FACTOR * tolerance`` (:func:`img2logo.abstract`).
-    relax_connectivity : bool
-        Relaxed connectivity (the paper's future work, Sec. 9; photos turn it
-        on): when the joint initial fit fails, each connected part of the
-        graph is fitted alone, and a part whose junctions admit no golden
-        circles through them has its junctions released (its arcs are fitted
-        free, as with ``connectivity=False``). Without it such a graph is an
-        error. ``stats["released_parts"]`` counts them.
     lock_mask : ndarray of bool, shape (H, W), optional
         Segments mostly inside it are never merged (Sec. 7, Fig. 16).
     progress : callable, optional
@@ -693,7 +766,6 @@ def optimize(
     options = {
         "tolerance": tolerance,
         "max_arc_distance": max_arc_distance,
-        "relax_connectivity": bool(relax_connectivity),
         "connectivity": bool(connectivity),
         "inner_junctions": bool(inner_junctions),
         "avoid_intersections": bool(avoid_intersections),
@@ -717,7 +789,6 @@ def optimize(
         "arc_selection": arc_selection,
         "locked_segments": int(locked.sum()),
         **({} if max_arc_distance is None else {"max_arc_distance": max_arc_distance}),
-        **({"relax_connectivity": True} if relax_connectivity else {}),
         **(params or {}),
     }
 

@@ -82,14 +82,19 @@ class Subject:
         return 1.0 if self.mask is None else float(self.mask.mean())
 
 
-def parse_subject_rectangle(value: object, shape: tuple[int, int]) -> tuple[int, int, int, int]:
-    """Check a subject rectangle ``(x, y, w, h)`` (or the text ``"X,Y,W,H"``) against an image of ``shape``.
+def check_foreground_option(foreground: object) -> None:
+    """Check a ``foreground`` value without reading anything (see :func:`find_subject`)."""
+    if foreground is None or isinstance(foreground, (np.ndarray, Path)):
+        return
+    if isinstance(foreground, str) and (foreground in FOREGROUND_CHOICES or Path(foreground).suffix):
+        return
+    raise InvalidParameterError(
+        f"foreground must be one of {', '.join(FOREGROUND_CHOICES)}, a mask image or array, got {foreground!r}"
+    )
 
-    Returns
-    -------
-    (x, y, w, h) : tuple of int
-        Clipped to the image, px.
-    """
+
+def subject_rectangle_numbers(value: object) -> list[float]:
+    """The four numbers of a subject rectangle ``(x, y, w, h)`` or ``"X,Y,W,H"``, checked for form only."""
     if isinstance(value, str):
         parts = value.split(",")
         try:
@@ -103,7 +108,18 @@ def parse_subject_rectangle(value: object, shape: tuple[int, int]) -> tuple[int,
             nums = []
     if len(nums) != 4 or not all(np.isfinite(nums)):
         raise InvalidParameterError(f"subject must be a rectangle X,Y,W,H of four numbers in px, got {value!r}")
-    x, y, w, h = (round(v) for v in nums)
+    return nums
+
+
+def parse_subject_rectangle(value: object, shape: tuple[int, int]) -> tuple[int, int, int, int]:
+    """Check a subject rectangle ``(x, y, w, h)`` (or the text ``"X,Y,W,H"``) against an image of ``shape``.
+
+    Returns
+    -------
+    (x, y, w, h) : tuple of int
+        Clipped to the image, px.
+    """
+    x, y, w, h = (round(v) for v in subject_rectangle_numbers(value))
     height, width = shape
     x0, y0 = max(0, x), max(0, y)
     x1, y1 = min(width, x + w), min(height, y + h)
@@ -138,13 +154,10 @@ def find_subject(img: LoadedImage, foreground: object = "auto", subject: object 
     Subject
     """
     shape = (img.height, img.width)
+    check_foreground_option(foreground)
     if foreground is None:
         foreground = "auto"
     if isinstance(foreground, str) and foreground not in FOREGROUND_CHOICES:
-        if not Path(foreground).suffix:
-            raise InvalidParameterError(
-                f"foreground must be one of {', '.join(FOREGROUND_CHOICES)}, a mask image or array, got {foreground!r}"
-            )
         foreground = Path(foreground)
     if subject is not None:
         if not (isinstance(foreground, str) and foreground in ("auto", "grabcut")):

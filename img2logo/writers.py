@@ -15,6 +15,10 @@ target's directory that is then renamed over the target (:func:`os.replace`), so
 file is written whole or not at all; missing parent directories are created; the
 same input always gives byte-identical files (sorted JSON keys, ``repr`` floats, SVG
 written by hand with fixed decimals, PNG without timestamp or software metadata).
+Inside :func:`output_set` the files of a run appear together at its end, or none
+of them. A path that cannot be written raises :class:`~img2logo.errors.OutputError`
+naming it; :func:`check_output_paths` finds most such paths, and outputs that
+are inputs, before any work.
 
 Coordinates are input-image pixels: x right, y down, angles from +x towards +y, so
 a positive sweep is clockwise on screen, SVG's ``sweep-flag = 1``.
@@ -23,12 +27,16 @@ a positive sweep is clockwise on screen, SVG's ``sweep-flag = 1``.
 from __future__ import annotations
 
 import contextlib
+import contextvars
 import copy
+import errno
+import glob
 import json
 import math
 import os
+import re
 import secrets
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Callable, Iterator, Mapping, Sequence
 from enum import Enum
 from functools import lru_cache
 from importlib import resources
@@ -47,7 +55,7 @@ from .constants import (
     RADIUS_RELATIVE_TOLERANCE,
     SVG_DECIMALS,
 )
-from .errors import InvalidParameterError
+from .errors import InvalidParameterError, OutputError
 from .fills import Fill, check_fills, sample_path
 from .geometry import TAU, Abstraction, Arc, Circle, line_arc
 from .plotting import ARC_COLOR, CIRCLE_COLOR, default_stroke_width, plot_abstraction, plot_segment_graph
@@ -57,7 +65,9 @@ if TYPE_CHECKING:
 
 __all__ = [
     "SCHEMA_RESOURCE",
+    "check_output_paths",
     "from_document",
+    "output_set",
     "read_fills",
     "read_json",
     "to_document",
@@ -180,9 +190,14 @@ def to_document(
         for a in arcs
     ]
 
+    # Without the connectivity constraint (Fig. 11c) arcs need not meet at their
+    # junction: an arc whose end is not at the junction point gets its own
+    # junction at that end, so the document keeps the contract.
+    unconnected = merged.get("connectivity") is False
     junction_docs = []
     for j, (point, listed) in enumerate(zip(abstraction.junctions, abstraction.junction_arcs, strict=True)):
         kept: list[int] = []
+        loose: list[dict[str, Any]] = []
         for a in listed:
             ai = _int_at_least(a, f"junction_arcs[{j}] entry", 0)
             if ai >= len(abstraction.arcs):
@@ -192,10 +207,16 @@ def to_document(
             if ai not in arc_number:
                 continue  # a straight line: recorded in extra.lines
             ai = arc_number[ai]
-            if ai not in kept and not _passes_through(arcs[ai], point):
+            if ai in kept or any(ai in d["arcs"] for d in loose) or _passes_through(arcs[ai], point):
+                continue
+            end = _nearest_end(arc_docs[ai], circle_docs[arc_docs[ai]["circle"]], point)
+            if unconnected and math.hypot(end[0] - point[0], end[1] - point[1]) > JUNCTION_TOLERANCE / 2:
+                loose.append({"x": end[0], "y": end[1], "arcs": [ai]})
+            else:
                 kept.append(ai)
         if kept:
             junction_docs.append({"x": float(point[0]), "y": float(point[1]), "arcs": kept})
+        junction_docs.extend(loose)
 
     all_segments = [[_int_at_least(s, "arc_segments entry", 0) for s in segs] for segs in abstraction.arc_segments]
     arc_segments = [all_segments[i] for i in arc_number]
@@ -788,37 +809,265 @@ def write_table(table: Any, path: str | os.PathLike[str]) -> Path:
     return _atomic_write(path, lambda f: f.write(text.encode("utf-8")))
 
 
+def check_output_paths(
+    targets: Mapping[str, str | os.PathLike[str]],
+    inputs: Sequence[str | os.PathLike[str]] = (),
+    folders: Mapping[str, str | os.PathLike[str]] | None = None,
+) -> dict[str, Path]:
+    """Check, before any work, that every output can be written and that none is an input.
+
+    Links are resolved (symbolic links by :func:`os.path.realpath`, hard links
+    by the file's identity), so a target that is an input under another name is
+    found. Temporary files of the targets left by killed runs are removed.
+
+    Parameters
+    ----------
+    targets : mapping of str to path
+        What each output is called in a message (``"--svg"``) -> its file.
+    inputs : sequence of path
+        The files the run reads: no target may be one of them.
+    folders : mapping of str to path, optional
+        Output folders (``"--levels-dir"``) -> folder: each must be a folder or
+        creatable, and writable.
+
+    Returns
+    -------
+    dict of str to pathlib.Path
+
+    Raises
+    ------
+    InvalidParameterError
+        Naming the output and the path: a target that is an input, a folder or
+        not a regular file (a device such as /dev/null); two outputs on one
+        file; a parent that is a regular file, or a folder that cannot be
+        written (no permission, a read-only file system).
+    """
+    checked: dict[str, Path] = {}
+    seen: dict[str, str] = {}
+    real_inputs = {os.path.realpath(os.fspath(p)): Path(p) for p in inputs}
+    for name, path in targets.items():
+        target = _as_path(path)
+        label = name if name == str(target) else f"{name} {target}"
+        if target.is_dir():
+            raise InvalidParameterError(f"{label} is a folder; give a file name")
+        if target.exists() and not target.is_file():
+            raise InvalidParameterError(f"{label} is not a regular file (a device, a pipe, ...)")
+        real = os.path.realpath(target)
+        for real_input, given in real_inputs.items():
+            if real == real_input or (target.exists() and _same_file(target, given)):
+                raise InvalidParameterError(f"{label} is the input {given}: refusing to write over an input")
+        if real in seen:
+            raise InvalidParameterError(f"{seen[real]} and {name} name the same file {target}; give two files")
+        seen[real] = name
+        _check_writable_parent(label, target.parent)
+        _remove_stale_temporaries(target)
+        checked[name] = target
+    for name, path in (folders or {}).items():
+        folder = _as_path(path)
+        if folder.exists() and not folder.is_dir():
+            raise InvalidParameterError(f"{name} {folder} is a file, not a folder")
+        _check_writable_parent(f"{name} {folder}", folder)
+    return checked
+
+
+def _same_file(a: Path, b: Path) -> bool:
+    try:
+        return os.path.samefile(a, b)
+    except OSError:
+        return False
+
+
+def _check_writable_parent(label: str, folder: Path) -> None:
+    """Raise unless ``folder`` (or its first existing ancestor, where it would be created) is a writable folder."""
+    p = folder if str(folder) else Path(".")
+    while not p.exists() and not p.is_symlink() and p != p.parent:
+        p = p.parent
+    if not p.is_dir():
+        raise InvalidParameterError(f"{label}: {p} is not a folder")
+    if not os.access(p, os.W_OK | os.X_OK):
+        raise InvalidParameterError(f"{label}: cannot write in {p} (no permission, or a read-only file system)")
+
+
+class _Stage:
+    """The files of one :func:`output_set`: (temporary, target) pairs and the folders it created."""
+
+    def __init__(self) -> None:
+        self.files: list[tuple[Path, Path]] = []
+        self.folders: list[Path] = []
+
+    def discard(self) -> None:
+        """Remove the temporary files and the folders created (if left empty)."""
+        for tmp, _ in self.files:
+            with contextlib.suppress(OSError):
+                os.unlink(tmp)
+        for folder in reversed(self.folders):
+            with contextlib.suppress(OSError):
+                folder.rmdir()
+        self.files.clear()
+        self.folders.clear()
+
+    def commit(self) -> None:
+        """Move every temporary file over its target, with SIGINT and SIGTERM held off meanwhile."""
+        import signal
+        import threading
+
+        held = threading.current_thread() is threading.main_thread() and hasattr(signal, "pthread_sigmask")
+        if held:
+            old = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT, signal.SIGTERM})
+        try:
+            while self.files:
+                tmp, target = self.files[0]
+                try:
+                    os.replace(tmp, target)
+                except OSError as exc:
+                    self.discard()
+                    raise OutputError(_os_message(target, exc)) from exc
+                self.files.pop(0)
+        finally:
+            if held:
+                signal.pthread_sigmask(signal.SIG_SETMASK, old)
+
+
+_STAGE: contextvars.ContextVar[_Stage | None] = contextvars.ContextVar("img2logo_output_stage", default=None)
+
+
+@contextlib.contextmanager
+def output_set() -> Iterator[None]:
+    """Write every file of a run together: all of them appear at the end, or none.
+
+    Inside the ``with`` block every writer of this module writes its bytes to
+    a temporary file next to its target; when the block ends normally the
+    temporary files are renamed over their targets one after the other (signals
+    held off meanwhile); when it ends with an exception (an error, Ctrl-C, a
+    SIGTERM turned into an exception) they are removed, with the folders the
+    block created, and no target is touched.
+
+    Examples
+    --------
+    >>> with output_set():  # doctest: +SKIP
+    ...     write_json(level, "out/logo.json")
+    ...     write_svg(level, "out/logo.svg")
+    """
+    stage = _Stage()
+    token = _STAGE.set(stage)
+    try:
+        yield
+    except BaseException:
+        stage.discard()
+        raise
+    finally:
+        _STAGE.reset(token)
+    stage.commit()
+
+
 def _atomic_write(path: str | os.PathLike[str], write: Callable[[IO[bytes]], object]) -> Path:
     """Write a file whole or not at all: into a temporary sibling, then :func:`os.replace`.
 
     ``write`` gets the open binary temporary file. Parent directories are created.
-    On any error the temporary file is removed and an existing target is untouched.
-    The file gets the usual permissions (0o666 less the umask).
+    On any error the temporary file is removed and an existing target is untouched;
+    an operating-system error (a read-only file system, a full disk, a parent
+    that is a file, a target that is a folder) is raised as :class:`OutputError`
+    naming the path. Temporary files of the same target left by a process that
+    no longer runs (killed while writing) are removed first. Inside
+    :func:`output_set` the rename waits for the end of the set. The file gets
+    the usual permissions (0o666 less the umask).
     """
     target = _as_path(path)
-    parent = target.parent
-    parent.mkdir(parents=True, exist_ok=True)
-    flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_BINARY", 0)
-    for _ in range(100):
-        tmp = parent / f".{target.name}.{secrets.token_hex(6)}.tmp"
-        try:
-            fd = os.open(tmp, flags, 0o666)
-            break
-        except FileExistsError:
-            continue
-    else:  # pragma: no cover - 100 random name collisions
-        raise FileExistsError(f"could not create a temporary file next to {target}")
+    stage = _STAGE.get()
+    try:
+        if target.is_dir():
+            raise IsADirectoryError(errno.EISDIR, "is a directory", str(target))
+        _make_parents(target.parent, stage)
+        _remove_stale_temporaries(target)
+        fd, tmp = _open_temporary(target)
+    except OSError as exc:
+        raise OutputError(_os_message(target, exc)) from exc
     try:
         with os.fdopen(fd, "wb") as f:
             write(f)
             f.flush()
             os.fsync(f.fileno())
-        os.replace(tmp, target)
-    except BaseException:
+        if stage is not None:
+            stage.files.append((tmp, target))
+        else:
+            os.replace(tmp, target)
+    except BaseException as exc:
         with contextlib.suppress(OSError):
             os.unlink(tmp)
+        if isinstance(exc, OSError) and not isinstance(exc, OutputError):
+            raise OutputError(_os_message(target, exc)) from exc
         raise
     return target
+
+
+#: Temporary files: ``.<target name>.<pid>-<8 hex>.tmp`` next to the target.
+_TEMPORARY = re.compile(r"\.(?P<name>.+)\.(?P<pid>\d+)-[0-9a-f]{8}\.tmp")
+
+
+def _open_temporary(target: Path) -> tuple[int, Path]:
+    """Create and open a new temporary file next to ``target``: (file descriptor, path)."""
+    flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_BINARY", 0)
+    for _ in range(100):
+        tmp = target.parent / f".{target.name}.{os.getpid()}-{secrets.token_hex(4)}.tmp"
+        try:
+            return os.open(tmp, flags, 0o666), tmp
+        except FileExistsError:
+            continue
+    raise FileExistsError(errno.EEXIST, "could not create a temporary file next to it", str(target))  # pragma: no cover
+
+
+def _remove_stale_temporaries(target: Path) -> list[Path]:
+    """Remove ``target``'s temporary files whose writing process is gone; return them."""
+    removed = []
+    with contextlib.suppress(OSError):
+        for p in target.parent.glob(f".{glob.escape(target.name)}.*.tmp"):
+            m = _TEMPORARY.fullmatch(p.name)
+            if m is None or m["name"] != target.name or _process_alive(int(m["pid"])):
+                continue
+            with contextlib.suppress(FileNotFoundError):
+                p.unlink()
+                removed.append(p)
+    return removed
+
+
+def _process_alive(pid: int) -> bool:
+    """Whether a process ``pid`` exists (this one included)."""
+    if pid == os.getpid():
+        return True
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except (PermissionError, OverflowError, OSError):
+        return True
+    return True
+
+
+def _make_parents(folder: Path, stage: _Stage | None) -> None:
+    """Create ``folder`` and its missing parents; a stage records those it created."""
+    missing = []
+    p = folder
+    while not p.exists() and p != p.parent:
+        missing.append(p)
+        p = p.parent
+    for p in reversed(missing):
+        try:
+            p.mkdir()
+        except FileExistsError:
+            if not p.is_dir():
+                raise
+            continue
+        if stage is not None:
+            stage.folders.append(p)
+
+
+def _os_message(target: Path, exc: OSError) -> str:
+    """``cannot write <target>: <reason>``, naming the path that failed when it is not the target."""
+    reason = exc.strerror or str(exc) or type(exc).__name__
+    where = None if exc.filename is None else Path(os.fsdecode(exc.filename))
+    if where is not None and where != target and not where.name.startswith(f".{target.name}."):
+        reason = f"{reason} ({where})"
+    return f"cannot write {target}: {reason}"
 
 
 def _as_path(path: object) -> Path:
@@ -924,6 +1173,14 @@ def _fibonacci(k: int) -> int:
     for _ in range(k):
         a, b = b, a + b
     return a
+
+
+def _nearest_end(arc: Mapping[str, Any], circle: Mapping[str, Any], point: np.ndarray) -> tuple[float, float]:
+    """The end point of a document arc (as the contract computes it) nearest ``point``, px."""
+    cx, cy, r = float(circle["cx"]), float(circle["cy"]), float(circle["r"])
+    t0 = float(arc["theta0"])
+    ends = [(cx + r * math.cos(t), cy + r * math.sin(t)) for t in (t0, t0 + float(arc["sweep"]))]
+    return min(ends, key=lambda e: math.hypot(e[0] - float(point[0]), e[1] - float(point[1])))
 
 
 def _passes_through(arc: Arc, point: np.ndarray) -> bool:

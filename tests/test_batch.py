@@ -178,6 +178,8 @@ def test_process_image_returns_plain_values(folder):
         ({"fill": "palette:"}, "the palette is empty"),
         ({"outputs": ("svg", "pdf")}, "outputs entry must be one of 'svg', 'json', 'png', got 'pdf'"),
         ({"jobs": 0}, "jobs must be an integer >= 1, got 0"),
+        ({"min_length": -5}, r"min_length must be >= 0, got -5\.0"),
+        ({"connectvity": False}, "unknown option 'connectvity' \\(did you mean 'connectivity'\\?\\)"),
     ],
 )
 def test_bad_options_fail_before_any_work(folder, tmp_path, kwargs, message):
@@ -218,3 +220,48 @@ def test_sweep(folder):
     assert table.iloc[3:]["error"].str.contains("not a readable image").all()
     with pytest.raises(InvalidParameterError, match="parameter_grid must hold at least one set of parameters"):
         sweep([folder / GOOD[1]], [])
+
+
+class _CountingExecutor(Executor):
+    """Runs nothing: counts the tasks submitted."""
+
+    def __init__(self) -> None:
+        self.submitted = 0
+
+    def submit(self, fn, /, *args, **kwargs):
+        self.submitted += 1
+        raise AssertionError("no task should be submitted")
+
+
+def test_options_are_checked_once_before_the_workers_start(folder, tmp_path):
+    pool = _CountingExecutor()
+    with pytest.raises(InvalidParameterError, match="min_length must be >= 0"):
+        run_batch(find_images(folder), tmp_path / "out", executor=pool, min_length=-5)
+    assert pool.submitted == 0
+
+
+def test_outputs_never_overwrite_an_input(tmp_path):
+    shutil.copy(DATA / GOOD[0], tmp_path / GOOD[0])
+    before = (tmp_path / GOOD[0]).read_bytes()
+    with pytest.raises(
+        InvalidParameterError, match=r"drawing-leaf\.png is the input .*refusing to write over an input"
+    ):
+        run_batch(find_images(tmp_path), tmp_path, progress=False)
+    assert (tmp_path / GOOD[0]).read_bytes() == before and sorted(p.name for p in tmp_path.iterdir()) == [GOOD[0]]
+    (tmp_path / "out").write_text("a file")
+    with pytest.raises(InvalidParameterError, match=r"output folder .*out is a file, not a folder"):
+        run_batch(find_images(tmp_path), tmp_path / "out", progress=False)
+
+
+def test_an_image_that_now_fails_keeps_no_old_outputs(tmp_path):
+    src, out = tmp_path / "in", tmp_path / "out"
+    src.mkdir()
+    shutil.copy(DATA / GOOD[0], src / "a.png")
+    shutil.copy(DATA / GOOD[1], src / "b.png")
+    first = run_batch(find_images(src), out, jobs=1, progress=False)
+    assert first.ok and {p.name for p in out.iterdir()} >= {"a.svg", "a.json", "a.png", "b.svg"}
+    (src / "a.png").write_text("no longer an image")
+    second = run_batch(find_images(src), out, jobs=1, progress=False)
+    assert [f.image for f in second.failures] == ["a.png"]
+    assert sorted(p.name for p in out.iterdir()) == ["b.json", "b.png", "b.svg", "summary.csv"]
+    assert "not a readable image" in (out / "summary.csv").read_text().splitlines()[1]

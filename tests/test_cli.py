@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import os
+import re
 import subprocess
 import sys
 
@@ -313,3 +315,197 @@ def test_photo_subject_is_reported_and_can_be_chosen(tmp_path, capsys):
         err = capsys.readouterr().err
         assert err.strip().splitlines()[-1].startswith("img2logo: error: ") and message in err
         assert not out.exists()
+
+
+# --------------------------------------------------------------------------- never lose data
+def _copy(tmp_path, name="drawing-leaf.png"):
+    import shutil
+
+    return shutil.copy(DATA / name, tmp_path / "in.png")
+
+
+@pytest.mark.parametrize(
+    ("outputs", "message"),
+    [
+        (["--png", "{in}"], r"--png .*in\.png is the input .*in\.png: refusing to write over an input"),
+        (["--svg", "{dir}/link.svg"], r"link\.svg is the input"),
+        (["--svg", "{dir}/o.out", "--json", "{dir}/o.out"], r"--json and --svg name the same file .*o\.out"),
+        (["--svg", "{dir}/file/a.svg"], r"--svg .*a\.svg: .*file is not a folder"),
+        (["--svg", "{dir}/folder"], r"--svg .*folder is a folder"),
+        (["--svg", "/dev/null"], r"--svg /dev/null is not a regular file"),
+        (["--levels-dir", "{dir}/file"], r"--levels-dir .*file is a file, not a folder"),
+        (["--levels-dir", "{dir}", "--svg", "{dir}/level-0000.svg"], r"inside --levels-dir"),
+        (["--min-length", "-5"], r"min_length must be >= 0, got -5\.0"),
+    ],
+)
+def test_bad_outputs_are_refused_before_any_work(tmp_path, capsys, outputs, message):
+    src = _copy(tmp_path)
+    before = (tmp_path / "in.png").read_bytes()
+    (tmp_path / "link.svg").symlink_to(src)
+    (tmp_path / "file").write_text("x")
+    (tmp_path / "folder").mkdir()
+    names = sorted(p.name for p in tmp_path.iterdir())
+    args = [a.replace("{in}", str(src)).replace("{dir}", str(tmp_path)) for a in outputs]
+    assert main([str(src), *args]) == EXIT_ERROR
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and err.startswith("img2logo: error: ")
+    assert re.search(message, err), err
+    assert "kind" not in err  # refused before the run
+    assert (tmp_path / "in.png").read_bytes() == before and sorted(p.name for p in tmp_path.iterdir()) == names
+
+
+def test_batch_into_its_own_input_folder_is_refused(tmp_path, capsys):
+    folder = _batch_folder(tmp_path, bad=False)
+    before = {p.name: p.read_bytes() for p in folder.iterdir()}
+    assert main(["batch", str(folder), str(folder)]) == EXIT_ERROR
+    err = capsys.readouterr().err
+    assert err.startswith("img2logo: error: output folder ") and err.count("\n") == 1
+    assert "drawing-leaf.png is the input" in err
+    assert {p.name: p.read_bytes() for p in folder.iterdir()} == before
+
+
+def test_a_write_error_is_one_line_exit_one_and_leaves_no_partial_set(tmp_path, capsys, monkeypatch):
+    from img2logo import writers
+    from img2logo.cli import EXIT_FAILED
+    from img2logo.errors import OutputError
+
+    def full_disk(*args, **kwargs):
+        raise OutputError(f"cannot write {args[1]}: No space left on device")
+
+    monkeypatch.setattr(writers, "write_png", full_disk)  # after the JSON and the SVG
+    out = tmp_path / "new" / "deeper"
+    args = ["--json", str(out / "a.json"), "--svg", str(out / "a.svg"), "--png", str(out / "a.png")]
+    assert main([str(DATA / "drawing-leaf.png"), *args]) == EXIT_FAILED
+    err = capsys.readouterr().err
+    assert err.splitlines()[-1] == f"img2logo: error: cannot write {out / 'a.png'}: No space left on device"
+    assert list(tmp_path.iterdir()) == []  # no JSON, no SVG, no temporary file, no folder
+
+
+def test_out_of_memory_is_one_line_exit_one(tmp_path, capsys, monkeypatch):
+    import img2logo.pipeline
+    from img2logo.cli import EXIT_FAILED
+
+    def no_memory(*args, **kwargs):
+        raise MemoryError
+
+    monkeypatch.setattr(img2logo.pipeline, "abstract", no_memory)
+    assert main([str(DATA / "drawing-leaf.png"), "-q", "--svg", str(tmp_path / "a.svg")]) == EXIT_FAILED
+    assert capsys.readouterr().err == "img2logo: error: out of memory; try a smaller image or fewer --jobs\n"
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_a_run_removes_stale_temporary_files_of_its_targets(tmp_path):
+    dead = subprocess.Popen([sys.executable, "-c", "pass"])
+    dead.wait()
+    stale = tmp_path / f".a.svg.{dead.pid}-0123abcd.tmp"
+    stale.write_text("left by a killed run")
+    assert main([str(DATA / "drawing-leaf.png"), "-q", "--svg", str(tmp_path / "a.svg")]) == 0
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.svg"]
+
+
+def test_messages_name_the_input_and_carry_no_third_party_lines(tmp_path):
+    truncated = tmp_path / "cut.png"
+    truncated.write_bytes((DATA / "clipart-fish.png").read_bytes()[:3000])
+    done = subprocess.run(
+        [sys.executable, "-m", "img2logo.cli", str(truncated)], capture_output=True, text=True, check=False
+    )
+    assert done.returncode == EXIT_ERROR
+    assert (
+        done.stderr
+        == f"img2logo: error: {truncated}: not a readable image (expected PNG, JPEG, TIFF, BMP, WebP, ...)\n"
+    )
+
+
+def test_downscale_is_reported_before_the_run(tmp_path, capsys):
+    import cv2
+
+    big = tmp_path / "big.png"
+    cv2.imwrite(str(big), cv2.resize(cv2.imread(str(DATA / "drawing-leaf.png")), (2600, 2600)))
+    assert main([str(big)]) == 0
+    err = capsys.readouterr().err.splitlines()
+    assert err[0] == f"img2logo: warning: {big}: image is 2600x2600 px, larger than 2048 px; downscaled to 2048x2048 px"
+    assert err[1].startswith(f"{big}: 2048x2048 px")
+
+
+def _run_until(args, line_start: str, cwd):
+    """Start the command; return the process once it printed a line starting with ``line_start``."""
+    proc = subprocess.Popen([sys.executable, "-m", "img2logo.cli", *args], stderr=subprocess.PIPE, text=True, cwd=cwd)
+    for line in proc.stderr:
+        if line.startswith(line_start):
+            return proc
+    proc.wait()
+    raise AssertionError(f"the command ended before printing {line_start!r}")
+
+
+@pytest.mark.parametrize(("sig", "status", "word"), [("SIGINT", 130, "interrupted"), ("SIGTERM", 143, "terminated")])
+def test_interrupt_is_one_line_and_leaves_nothing(tmp_path, sig, status, word):
+    import signal
+
+    src = DATA / "photo-cat.png"
+    proc = _run_until([str(src), "--svg", "o/a.svg", "--json", "o/a.json"], f"{src}:", tmp_path)
+    try:
+        proc.send_signal(getattr(signal, sig))
+        rest = proc.stderr.read()
+        assert proc.wait(timeout=60) == status
+    finally:
+        proc.kill()
+        proc.wait()
+    assert rest.endswith(f"img2logo: {word}; nothing more written\n") and "Traceback" not in rest
+    assert list(tmp_path.iterdir()) == []
+
+
+def _children(pid: int) -> list[int]:
+    """Live (not zombie) processes whose parent is ``pid``, from /proc."""
+    from pathlib import Path
+
+    kids = []
+    for stat in Path("/proc").glob("[0-9]*/stat"):
+        try:
+            fields = stat.read_text().rsplit(")", 1)[1].split()
+        except OSError:
+            continue
+        if int(fields[1]) == pid and fields[0] != "Z":
+            kids.append(int(stat.parent.name))
+    return kids
+
+
+def _alive(pid: int) -> bool:
+    from pathlib import Path
+
+    try:
+        return Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0] != "Z"
+    except OSError:
+        return False
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc")
+@pytest.mark.parametrize("sig", ["SIGKILL", "SIGTERM"])
+def test_batch_workers_end_with_their_parent(tmp_path, sig):
+    import shutil
+    import signal
+    import time
+
+    folder = tmp_path / "in"
+    folder.mkdir()
+    for i in range(4):
+        shutil.copy(DATA / "photo-cat.png", folder / f"cat{i}.png")
+    proc = _run_until(["batch", str(folder), str(tmp_path / "out"), "--jobs", "2"], f"{folder}: 4 images", tmp_path)
+    workers: list[int] = []
+    try:
+        deadline = time.monotonic() + 60
+        while len(workers) < 2 and time.monotonic() < deadline:
+            workers = _children(proc.pid)
+            time.sleep(0.05)
+        assert len(workers) == 2
+        proc.send_signal(getattr(signal, sig))
+        proc.wait(timeout=60)
+        deadline = time.monotonic() + 20
+        while any(_alive(w) for w in workers) and time.monotonic() < deadline:
+            time.sleep(0.05)
+        assert not any(_alive(w) for w in workers)
+    finally:
+        proc.kill()
+        proc.wait()
+        for w in workers:  # never leave a worker behind, even when the test fails
+            if _alive(w):
+                os.kill(w, signal.SIGKILL)

@@ -385,7 +385,7 @@ def test_auto_colours_of_two_disc_clip_art(discs_result):
     assert [f.color for f in fills.fill_auto(a, two_discs())] == [f.color for f in auto]
 
 
-def test_auto_leaves_background_and_border_faces_empty():
+def test_auto_fills_enclosed_faces_of_the_background_colour_and_leaves_border_faces_empty():
     size = 200
     image = np.full((size, size, 3), 255, np.uint8)
     yy, xx = np.mgrid[0:size, 0:size] + 0.5
@@ -393,13 +393,28 @@ def test_auto_leaves_background_and_border_faces_empty():
     image[np.hypot(xx - c_red.cx, yy - c_red.cy) < c_red.r] = (200, 30, 60)
     a = make([full(c_red), full(c_white), full(c_edge)], width=size, height=size)
     auto = fills.fill_auto(a, image)
-    (only,) = auto  # the white disc is background; the circle crossing the border reaches outside
+    # The white disc is enclosed (a penguin's belly): it keeps its white; the circle
+    # crossing the border reaches outside and stays empty.
+    assert sorted(f.color for f in auto) == ["#c81e3c", "#ffffff"]
+    assert auto[0].face == 0 and fills.faces(a)[0].area == pytest.approx(math.pi * c_red.r**2)
+    # On request, faces of the border's colour are left empty.
+    (only,) = fills.fill_auto(a, image, background="auto")
     assert only.color == "#c81e3c"
-    assert only.face == 0 and fills.faces(a)[0].area == pytest.approx(math.pi * c_red.r**2)
-    # With no background colour, the white disc is a face like any other; the border one stays empty.
-    assert sorted(f.color for f in fills.fill_auto(a, image, background=None)) == ["#c81e3c", "#ffffff"]
-    # An explicit background colour.
     assert fills.fill_auto(a, image, background="#c81e3c", background_distance=5.0)[0].color == "#ffffff"
+
+
+def test_auto_leaves_transparent_faces_empty():
+    size = 200
+    rgba = np.zeros((size, size, 4), np.uint8)  # transparent black
+    yy, xx = np.mgrid[0:size, 0:size] + 0.5
+    c_body, c_belly, c_hole = golden(100.0, 100.0, 9), golden(80.0, 100.0, 6), golden(140.0, 100.0, 4)
+    body = np.hypot(xx - c_body.cx, yy - c_body.cy) < c_body.r
+    rgba[body] = (20, 20, 20, 255)
+    rgba[np.hypot(xx - c_belly.cx, yy - c_belly.cy) < c_belly.r] = (255, 255, 255, 255)
+    rgba[np.hypot(xx - c_hole.cx, yy - c_hole.cy) < c_hole.r] = (0, 0, 0, 0)  # a hole through the body
+    a = make([full(c_body), full(c_belly), full(c_hole)], width=size, height=size)
+    colours = sorted(f.color for f in fills.fill_auto(a, rgba))
+    assert colours == ["#141414", "#ffffff"]  # body and belly; the hole shows the page
 
 
 def test_auto_validation():

@@ -67,3 +67,21 @@ def test_public_names_resolve():
         assert getattr(img2logo, name) is not None
     with pytest.raises(AttributeError, match=r"no attribute 'nope'"):
         img2logo.nope  # noqa: B018
+
+
+def test_keywords_are_checked_before_any_work(tmp_path):
+    from img2logo.errors import UnknownOptionError
+
+    missing = tmp_path / "missing.png"  # never read: the keyword check comes first
+    with pytest.raises(UnknownOptionError, match=r"unknown option 'foo': expected keyword arguments"):
+        abstract(missing, foo=1)
+    with pytest.raises(InvalidParameterError, match=r"min_length must be >= 0, got -5"):
+        abstract(missing, min_length=-5)
+
+
+def test_level_out_of_range_names_the_range(result):
+    n = len(result.levels)
+    assert result.level(n - 1) is result.final and result.level(-n) is result.levels[0]
+    for bad in (n, -n - 1, 99, 1.0, True):
+        with pytest.raises(InvalidParameterError, match=rf"level must be an integer in 0\.\.{n - 1} \(or -{n}\.\.-1"):
+            result.level(bad)

@@ -673,3 +673,111 @@ def test_schema_is_read_from_the_package():
     schema = writers._schema()
     assert schema["$id"] == FORMAT_NAME
     assert not re.search(r"shared", writers.__file__)
+
+
+# --- arcs that do not meet (--no-connectivity) -------------------------------------------
+
+
+def _unconnected(connectivity: bool) -> Abstraction:
+    """make_abstraction with arc 1 turned by 0.05 rad: its start is ~0.4 px off the junction P."""
+    a = make_abstraction()
+    arcs = list(a.arcs)
+    arcs[1] = Arc(arcs[1].circle, arcs[1].theta0 - 0.05, arcs[1].sweep)
+    return make_abstraction(arcs=tuple(arcs), params={"connectivity": connectivity})
+
+
+def test_unconnected_arc_ends_are_their_own_junctions():
+    doc = writers.to_document(_unconnected(False))
+    writers.validate_document(doc)
+    p = make_abstraction().junctions[0]
+    start = _unconnected(False).arcs[1].start
+    assert doc["junctions"] == [
+        {"x": float(p[0]), "y": float(p[1]), "arcs": [0]},
+        {"x": pytest.approx(start[0], abs=1e-9), "y": pytest.approx(start[1], abs=1e-9), "arcs": [1]},
+    ]
+    # With the connectivity constraint on, an arc end off its junction is a bug: never written.
+    with pytest.raises(InvalidParameterError, match=r"junction 0: arc 1 has no end point"):
+        writers.to_document(_unconnected(True))
+
+
+def test_no_connectivity_result_is_a_valid_document(tmp_path):
+    from conftest import DATA
+
+    from img2logo import abstract
+
+    result = abstract(DATA / "clipart-fish.png", connectivity=False, progress=False)
+    for level in (result.levels[0], result.final):
+        writers.validate_document(json.loads(writers.write_json(level, tmp_path / "fish.json").read_text()))
+
+
+# --- output errors, output sets, stale temporary files ----------------------------------
+
+
+def test_writer_errors_name_the_path(tmp_path):
+    from img2logo.errors import OutputError
+
+    (tmp_path / "file").write_text("x")
+    with pytest.raises(OutputError, match=r"cannot write .*folder: is a directory"):
+        (tmp_path / "folder").mkdir()
+        writers.write_json(make_abstraction(), tmp_path / "folder")
+    with pytest.raises(OutputError, match=r"cannot write .*file/a\.svg: Not a directory"):
+        writers.write_svg(make_abstraction(), tmp_path / "file" / "a.svg")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["file", "folder"]
+
+
+def test_output_set_writes_all_or_nothing(tmp_path):
+    a = make_abstraction()
+    with pytest.raises(KeyboardInterrupt), writers.output_set():
+        writers.write_json(a, tmp_path / "new" / "deep" / "a.json")
+        writers.write_svg(a, tmp_path / "new" / "a.svg")
+        assert not (tmp_path / "new" / "a.svg").exists()  # not before the set ends
+        raise KeyboardInterrupt
+    assert list(tmp_path.iterdir()) == []  # no file, no temporary file, no folder it created
+    with writers.output_set():
+        writers.write_json(a, tmp_path / "a.json")
+        writers.write_svg(a, tmp_path / "a.svg")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.json", "a.svg"]
+
+
+def _dead_pid() -> int:
+    child = subprocess.Popen([sys.executable, "-c", "pass"])
+    child.wait()  # reaped: its process id is free
+    return child.pid
+
+
+def test_stale_temporary_files_of_a_target_are_removed(tmp_path):
+    dead, alive = _dead_pid(), os.getpid()
+    stale = tmp_path / f".a.json.{dead}-0123abcd.tmp"
+    running = tmp_path / f".a.json.{alive}-0123abcd.tmp"  # this process: still writing it
+    other = tmp_path / f".b.json.{dead}-0123abcd.tmp"  # another target's
+    for p in (stale, running, other):
+        p.write_text("partial")
+    writers.write_json(make_abstraction(), tmp_path / "a.json")
+    assert not stale.exists() and running.exists() and other.exists()
+
+
+def test_check_output_paths(tmp_path):
+    src = tmp_path / "in.png"
+    src.write_bytes(b"image")
+    (tmp_path / "link.png").symlink_to(src)
+    os.link(src, tmp_path / "hard.png")
+    (tmp_path / "file").write_text("x")
+    (tmp_path / "dir").mkdir()
+    check = writers.check_output_paths
+    ok = check({"--svg": tmp_path / "new" / "a.svg", "--json": tmp_path / "a.json"}, [src])
+    assert ok == {"--svg": tmp_path / "new" / "a.svg", "--json": tmp_path / "a.json"}
+    assert not (tmp_path / "new").exists()  # nothing created by a check
+    cases = [
+        ({"--png": src}, "is the input"),
+        ({"--png": tmp_path / "link.png"}, "link.png is the input .*in.png: refusing to write over an input"),
+        ({"--png": tmp_path / "hard.png"}, "hard.png is the input"),
+        ({"--svg": tmp_path / "o.out", "--json": tmp_path / "./o.out"}, "--svg and --json name the same file"),
+        ({"--svg": tmp_path / "dir"}, "--svg .*dir is a folder"),
+        ({"--svg": "/dev/null"}, "--svg /dev/null is not a regular file"),
+        ({"--svg": tmp_path / "file" / "sub" / "a.svg"}, r"--svg .*a\.svg: .*file is not a folder"),
+    ]
+    for targets, message in cases:
+        with pytest.raises(InvalidParameterError, match=message):
+            check(targets, [src])
+    with pytest.raises(InvalidParameterError, match=r"--levels-dir .*file is a file, not a folder"):
+        check({}, [src], {"--levels-dir": tmp_path / "file"})

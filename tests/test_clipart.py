@@ -1,0 +1,165 @@
+"""Tests of img2logo.clipart: flat-colour regions, subtle and noisy, strokes, and kind detection."""
+
+from __future__ import annotations
+
+import cv2
+import numpy as np
+import pytest
+from conftest import DATA, blank, two_discs
+
+from img2logo import build_segment_graph, detect_kind, extract_feature_lines, load_image
+from img2logo.clipart import clipart_regions, colour_noise, thin_regions
+
+EVAL = DATA.parent / "benchmarks" / "data"
+
+
+def _disc(fill: tuple[int, int, int], ground: tuple[int, int, int], size: int = 200) -> np.ndarray:
+    im = np.empty((size, size, 3), np.uint8)
+    im[:] = ground
+    cv2.circle(im, (100, 100), 60, fill, -1, lineType=cv2.LINE_AA)
+    return im
+
+
+def _jpeg(im: np.ndarray, quality: int) -> np.ndarray:
+    ok, data = cv2.imencode(".jpg", im[:, :, ::-1], [cv2.IMWRITE_JPEG_QUALITY, quality])
+    assert ok
+    return cv2.imdecode(data, cv2.IMREAD_COLOR)[:, :, ::-1]
+
+
+def _regions(im: np.ndarray) -> np.ndarray:
+    return clipart_regions(load_image(im))
+
+
+# --------------------------------------------------------------------------- known answers
+@pytest.mark.parametrize(
+    ("fill", "ground"),
+    [((225, 225, 225), (255, 255, 255)), ((255, 255, 255), (225, 225, 225))],
+    ids=["light-grey-on-white", "white-on-light-grey"],
+)
+def test_a_subtle_disc_is_one_region_with_one_boundary(fill, ground):
+    # Delta E about 5 between disc and ground: below the old palette's 12, visible to the eye.
+    regions = _regions(_disc(fill, ground))
+    assert len(np.unique(regions)) == 2
+    assert regions[100, 100] != regions[5, 5] == 0
+    graph = build_segment_graph(extract_feature_lines(_disc(fill, ground), kind="clipart"))
+    assert graph.n_segments >= 1
+    pts = np.vstack(graph.segments)
+    radius = np.hypot(pts[:, 0] - 100.5, pts[:, 1] - 100.5)
+    assert np.all(np.abs(radius - 60.0) < 2.0)  # only the disc's outline
+
+
+def test_a_smooth_gradient_is_one_region():
+    im = blank()
+    ramp = np.linspace(40, 220, 120).astype(np.uint8)
+    im[40:160, 40:160] = np.stack([ramp, np.full(120, 90, np.uint8), 255 - ramp], axis=1)[None, :, :]
+    regions = _regions(im)
+    assert len(np.unique(regions)) == 2  # the square and the white ground
+    lines = extract_feature_lines(im, kind="clipart").lines
+    assert not lines[50:150, 50:150].any()  # nothing inside the square: only its outline
+
+
+def test_noise_is_measured_on_the_fills():
+    clean = two_discs()
+    level, fraction = colour_noise(cv2.cvtColor(clean, cv2.COLOR_RGB2Lab).astype(float))
+    assert level == 0.0 and fraction < 0.04
+    _, noisy = colour_noise(cv2.cvtColor(_jpeg(clean, 60), cv2.COLOR_RGB2Lab).astype(float))
+    assert noisy > 0.04
+
+
+def test_jpeg_gives_the_same_regions_and_graph():
+    im = two_discs()
+    cv2.circle(im, (100, 150), 20, (250, 200, 40), -1, lineType=cv2.LINE_AA)
+    png = build_segment_graph(extract_feature_lines(im, kind="clipart"))
+    jpg_lines = extract_feature_lines(_jpeg(im, 60), kind="clipart")
+    assert len(np.unique(jpg_lines.regions)) == len(np.unique(_regions(im))) == 4  # white, red, blue, yellow
+    jpg = build_segment_graph(jpg_lines)
+    # The same junctions, and the same lines within 10 % of their length (the RDP
+    # split points of a slightly wavier edge differ).
+    assert sorted(jpg.valence[jpg.valence >= 3]) == sorted(png.valence[png.valence >= 3])
+
+    def length(g):
+        return sum(float(np.hypot(*np.diff(s, axis=0).T).sum()) for s in g.segments)
+
+    assert length(jpg) == pytest.approx(length(png), rel=0.1)
+
+
+def test_a_thin_stripe_becomes_one_stroke():
+    im = _disc((230, 120, 40), (255, 255, 255))
+    cv2.line(im, (55, 100), (145, 100), (60, 30, 20), 3)  # a 3 px dark stripe across the disc
+    regions = _regions(im)
+    stripe = regions[100, 100]
+    assert stripe in thin_regions(regions)
+    lines = extract_feature_lines(im, kind="clipart").lines
+    # One line across the stripe's width, not its two edges.
+    for x in (80, 100, 120):
+        assert lines[94:107, x].sum() == 1
+
+
+def test_a_thin_anti_aliased_line_has_a_region():
+    im = blank()
+    cv2.circle(im, (100, 100), 60, (30, 60, 200), 3, lineType=cv2.LINE_AA)  # no flat pixel in it
+    regions = _regions(im)
+    assert len(np.unique(regions)) == 3  # paper outside, the ring, paper inside
+    assert regions[100, 40] not in (regions[100, 100], regions[5, 5])
+
+
+def test_a_round_dot_is_not_a_stroke():
+    im = _disc((40, 40, 40), (255, 255, 255))
+    cv2.circle(im, (100, 100), 3, (250, 250, 250), -1)
+    regions = _regions(im)
+    assert len(thin_regions(regions)) == 0
+
+
+def test_rgba_with_black_hidden_pixels_equals_white():
+    im = two_discs()
+    rgba = np.dstack([im, np.full(im.shape[:2], 255, np.uint8)])
+    hidden = (im == 255).all(axis=2)
+    rgba[hidden] = 0  # transparent black
+    a = extract_feature_lines(im, kind="clipart").lines
+    b = extract_feature_lines(rgba, kind="clipart").lines
+    np.testing.assert_array_equal(a, b)
+
+
+def test_gray_one_channel_clip_art():
+    gray = np.full((200, 200), 255, np.uint8)
+    cv2.circle(gray, (100, 100), 70, 150, -1, lineType=cv2.LINE_AA)
+    cv2.circle(gray, (100, 100), 30, 60, -1, lineType=cv2.LINE_AA)
+    fl = extract_feature_lines(gray)
+    assert fl.kind == "clipart", fl.reason
+    assert len(np.unique(fl.regions)) == 3
+
+
+# --------------------------------------------------------------------------- kinds
+def test_kinds_of_synthetic_images():
+    greys = blank()
+    cv2.circle(greys, (100, 100), 70, (160, 160, 160), -1, lineType=cv2.LINE_AA)
+    cv2.circle(greys, (80, 90), 25, (210, 210, 210), -1, lineType=cv2.LINE_AA)
+    cv2.circle(greys, (125, 90), 8, (40, 40, 40), -1, lineType=cv2.LINE_AA)
+    assert detect_kind(greys)[0] == "clipart"  # greys, not a drawing
+    assert detect_kind(_disc((244, 244, 244), (255, 255, 255)))[0] == "clipart"  # near-white on white
+    thick = blank()
+    cv2.circle(thick, (100, 100), 60, (0, 0, 0), 12, lineType=cv2.LINE_AA)
+    cv2.line(thick, (40, 100), (160, 100), (0, 0, 0), 12, lineType=cv2.LINE_AA)
+    kind, reason = detect_kind(thick)
+    assert kind == "drawing", reason
+    blue = blank()
+    cv2.circle(blue, (100, 100), 60, (30, 60, 200), 3, lineType=cv2.LINE_AA)
+    assert detect_kind(blue)[0] == "drawing"  # one ink, any colour
+    assert detect_kind(_jpeg(blue, 70))[0] == "drawing"
+
+
+def test_a_gray_photo_is_a_photo():
+    rng = np.random.default_rng(3)
+    yy, xx = np.mgrid[0:160, 0:200]
+    scene = 0.5 + 0.3 * np.sin(xx / 17.0) * np.cos(yy / 23.0) + 0.02 * rng.standard_normal((160, 200))
+    kind, reason = detect_kind(np.clip(scene, 0.0, 1.0))
+    assert kind == "photo" and "photo" in reason
+
+
+@pytest.mark.parametrize(
+    "name",
+    ["clipart-polar-bear.png", "clipart-seal.png", "clipart-giraffe-jpeg.jpg", "clipart-sunflower-gray.png"],
+)
+def test_kind_of_evaluation_clip_arts(name):
+    kind, reason = detect_kind(EVAL / name)
+    assert kind == "clipart", reason

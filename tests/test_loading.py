@@ -1,0 +1,117 @@
+"""Loading input images: huge files at the working size, the pixel limit, pages, messages."""
+
+from __future__ import annotations
+
+import struct
+import warnings
+import zlib
+
+import cv2
+import numpy as np
+import pytest
+
+from img2logo.constants import MAX_IMAGE_SIDE
+from img2logo.errors import ImageNotFoundError, InvalidImageError
+from img2logo.loading import DownscaleWarning, PageWarning, _normalize, load_image
+
+
+def _shapes(h: int, w: int, alpha: bool) -> np.ndarray:
+    """A BGR(A) uint8 picture: a disc, a bar, a soft-edged transparent border when ``alpha``."""
+    img = np.full((h, w, 3), 255, np.uint8)
+    cv2.circle(img, (w // 2, h // 2), min(h, w) // 3, (20, 60, 200), max(2, w // 60))
+    cv2.rectangle(img, (w // 10, h // 10), (w // 3, h // 4), (0, 0, 0), -1)
+    if not alpha:
+        return img
+    a = np.full((h, w), 255, np.uint8)
+    a[: h // 8] = 0
+    a[h // 8 : h // 8 + 40] = np.linspace(0, 255, 40, dtype=np.uint8)[:, None]
+    return np.dstack([img, a])
+
+
+def _reference(arr: np.ndarray, size: tuple[int, int]) -> tuple[np.ndarray, np.ndarray]:
+    """What loading did before: float64 of the full image, composited, then area-resized."""
+    rgb, alpha, _ = _normalize(arr, "ref", bgr=True)
+    return cv2.resize(rgb, size, interpolation=cv2.INTER_AREA), cv2.resize(alpha, size, interpolation=cv2.INTER_AREA)
+
+
+@pytest.mark.parametrize("alpha", [False, True])
+def test_large_png_is_downscaled_in_integers_like_the_float_path(tmp_path, alpha):
+    arr = _shapes(2600, 3100, alpha)
+    path = tmp_path / "big.png"
+    cv2.imwrite(str(path), arr)
+    with pytest.warns(DownscaleWarning, match=r"big\.png: image is 3100x2600 px, .*downscaled to 2048x1718 px"):
+        img = load_image(path)
+    assert (img.width, img.height) == (2048, 1718)
+    assert img.has_alpha is alpha
+    rgb, a = _reference(arr, (2048, 1718))
+    # Compositing and resizing in 8 bits rounds each value by at most half a grey level.
+    assert np.abs(img.rgb - rgb).max() < 1.5 / 255
+    assert np.abs(img.alpha - a).max() < 1.5 / 255
+    assert img.scale == pytest.approx(2048 / 3100)
+
+
+def test_large_jpeg_is_decoded_at_a_reduced_size(tmp_path):
+    arr = _shapes(4400, 4200, False)
+    path = tmp_path / "big.jpg"
+    cv2.imwrite(str(path), arr, [cv2.IMWRITE_JPEG_QUALITY, 95])
+    with pytest.warns(DownscaleWarning):
+        img = load_image(path)
+    assert max(img.width, img.height) == MAX_IMAGE_SIDE
+    full = cv2.imread(str(path), cv2.IMREAD_COLOR)
+    rgb, _ = _reference(full, (img.width, img.height))
+    assert np.abs(img.rgb - rgb).mean() < 0.01  # the decoder's 1/2 scale, then the area resize
+
+
+def _png_header_only(path, width: int, height: int) -> None:
+    """A PNG that claims ``width`` x ``height`` px and holds no pixel data (a decompression bomb's header)."""
+
+    def chunk(kind: bytes, data: bytes) -> bytes:
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+
+    ihdr = struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0)
+    path.write_bytes(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", ihdr) + chunk(b"IEND", b""))
+
+
+@pytest.mark.parametrize("side", [13000, 60000])
+def test_pixel_limit_refuses_a_bomb_before_decoding(tmp_path, side):
+    path = tmp_path / "bomb.png"
+    _png_header_only(path, side, side)
+    with pytest.raises(InvalidImageError, match=r"bomb\.png: image is .*more than the limit of 150,000,000 px"):
+        load_image(path)
+
+
+def test_pixel_limit_is_a_parameter(tmp_path):
+    path = tmp_path / "a.png"
+    cv2.imwrite(str(path), _shapes(100, 100, False))
+    with pytest.raises(InvalidImageError, match=r"image is 100x100 px, more than the limit of 5,000 px"):
+        load_image(path, max_pixels=5000)
+
+
+def test_minimum_size_is_checked_after_the_downscale(tmp_path):
+    path = tmp_path / "wide.png"
+    cv2.imwrite(str(path), np.tile(np.linspace(0, 255, 40000).astype(np.uint8), (20, 1)))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # refused before any downscale warning
+        with pytest.raises(
+            InvalidImageError, match=r"wide\.png: image is 40000x20 px \(downscaled to 2048x1 px to fit 2048 px\)"
+        ):
+            load_image(path)
+    arr = np.tile(np.linspace(0, 1, 40000), (20, 1))
+    with pytest.raises(InvalidImageError, match=r"<array>: image is 40000x20 px \(downscaled to 2048x1 px"):
+        load_image(arr)
+
+
+def test_a_multi_page_file_says_it_uses_the_first_page(tmp_path):
+    path = tmp_path / "pages.tif"
+    first, second = _shapes(64, 64, False), np.zeros((64, 64, 3), np.uint8)
+    assert cv2.imwritemulti(str(path), [first, second])
+    with pytest.warns(PageWarning, match=r"pages\.tif: the file has 2 pages; only the first is used"):
+        img = load_image(path)
+    assert np.ptp(img.rgb) > 0.5  # the first page, not the black one
+
+
+def test_not_a_regular_file_is_named_as_such(tmp_path):
+    with pytest.raises(ImageNotFoundError, match=r"/dev/null is not a regular file"):
+        load_image("/dev/null")
+    with pytest.raises(ImageNotFoundError, match=r"is a directory, not an image file"):
+        load_image(tmp_path)
