@@ -354,22 +354,27 @@ def test_line_arc_is_straight_between_its_ends():
 
 
 def test_max_arc_distance_rejects_merges_that_stray_from_their_line():
-    # A square's outline: merging its sides into few arcs cuts the corners.
+    # A wave: at a large T its bumps merge into one or two arcs that cut across them.
+    from skimage.draw import line
+
     from img2logo.preprocessing import FeatureLines
 
-    lines = np.zeros((120, 120), bool)
-    lines[20, 20:100] = lines[99, 20:100] = True
-    lines[20:100, 20] = lines[20:100, 99] = True
+    lines = np.zeros((60, 200), bool)
+    xs = np.arange(10, 190)
+    ys = np.round(30 + 8 * np.sin(xs / 12.0)).astype(int)
+    for i in range(len(xs) - 1):
+        rr, cc = line(ys[i], xs[i], ys[i + 1], xs[i + 1])
+        lines[rr, cc] = True
     graph = build_segment_graph(FeatureLines(lines, "drawing", "given"))
     free = optimize(graph, tolerance=12.0)
-    capped = optimize(graph, tolerance=12.0, max_arc_distance=4.0)
-    assert capped.final.params["max_arc_distance"] == 4.0 and "max_arc_distance" not in free.final.params
+    capped = optimize(graph, tolerance=12.0, max_arc_distance=3.0)
+    assert capped.final.params["max_arc_distance"] == 3.0 and "max_arc_distance" not in free.final.params
     assert capped.stats["rejected_far_arc"] > 0
     assert len(capped.final.arcs) > len(free.final.arcs)
     # Every arc's circle is within the bound of its pixels (a circle is nearer than its arc).
     for arc, ids in zip(capped.final.arcs, capped.final.arc_segments, strict=True):
         pts = np.concatenate([graph.segments[i] for i in ids])
-        assert np.max(np.abs(arc.circle.distance(pts))) <= 4.0 + 1e-6
+        assert np.max(np.abs(arc.circle.distance(pts))) <= 3.0 + 1e-6
 
 
 # --------------------------------------------------------------------------- feasibility and recovery
