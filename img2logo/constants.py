@@ -249,9 +249,9 @@ SIMPLIFICATION_ERROR: float = 1.0
 #: Photos: a merge whose new arc lies farther than this many T (discrete Fréchet
 #: distance) from its pixels is rejected: T bounds every arc, not only their
 #: mean E^s. A photo's logo has few, long arcs, and without a bound the last
-#: merges cut across a teddy bear's ear and arm (that arc 13 px from its line at
-#: T = 5, the mean 4.9). Measured on the six photo-likes: sil6 0.92 mean (0.84
-#: least) at 2 T, 0.93 (0.85 least) at 1 T, 15-22 arcs.
+#: merges cut across a backpack's handle and side. Measured on the six
+#: photo-likes, sil6 least / mean: 0.76 / 0.90 unbounded, 0.79 / 0.91 at 2 T,
+#: 0.85 / 0.93 at 1 T (15-22 arcs).
 PHOTO_MAX_ARC_FACTOR: float = 1.0
 
 # --- Arc extraction and intersections (arc_extraction.py) --------------------------
