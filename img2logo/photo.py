@@ -7,13 +7,17 @@
   (the mask is smoothed; the parts on the image frame are left out);
 * its **inner lines**: an edge tangent flow from the smoothed structure tensor,
   a difference of Gaussians across the flow, smoothed along it, binarized
-  (:func:`flow_dog`), kept ``INNER_LINE_MARGIN`` px inside the outline;
+  (:func:`flow_dog`), kept ``INNER_LINE_MARGIN`` px inside the outline; only
+  the long ones, not tangles, the longest first within a length budget
+  (:func:`salient_lines`);
 * **joined**: a line end that stops within ``LINE_JOIN_DISTANCE`` of another
   line is linked to it by a straight run of pixels (:func:`join_line_ends`), so
-  that the segment graph has a junction there, not a near-miss gap.
+  that the segment graph has a junction there, not a near-miss gap; a short
+  branch beside the other branch of its fork is removed instead.
 
-Without a subject (a scene) the inner lines of the whole image are drawn and
-joined. The caller prunes spurs and short isolated lines.
+Without a subject (a scene) the salient lines of the whole image are drawn and
+joined. The caller prunes spurs (``PHOTO_SPUR_LENGTH``) and short isolated
+lines.
 
 Arrays are indexed (row, column); points are (x, y) = (column + 0.5, row + 0.5)
 in px, x to the right, y downwards (``contract/README.md``).

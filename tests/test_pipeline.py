@@ -85,3 +85,20 @@ def test_level_out_of_range_names_the_range(result):
     for bad in (n, -n - 1, 99, 1.0, True):
         with pytest.raises(InvalidParameterError, match=rf"level must be an integer in 0\.\.{n - 1} \(or -{n}\.\.-1"):
             result.level(bad)
+
+
+def test_a_photo_is_drawn_from_its_subject_with_every_arc_within_t():
+    from test_subject import textured_photo
+
+    from img2logo import abstract
+
+    rgb, (truth,) = textured_photo([(170, 120, 80, 60, (0.95, 0.75, 0.2))])
+    result = abstract(rgb, kind="photo", tolerance=4.0, progress=False)
+    assert result.lines.subject.method == "auto"
+    assert result.final.params["max_arc_distance"] == 4.0
+    from img2logo import quality
+
+    assert quality.outside_fraction(quality.logo_points(result.final), truth) == 0.0
+    assert quality.silhouette_recall(quality.logo_points(result.final), truth) > 0.95
+    none = abstract(rgb, kind="photo", foreground="none", max_arc_distance=None, progress=False)
+    assert none.lines.subject.mask is None and "max_arc_distance" not in none.final.params
