@@ -85,3 +85,14 @@ def test_level_out_of_range_names_the_range(result):
     for bad in (n, -n - 1, 99, 1.0, True):
         with pytest.raises(InvalidParameterError, match=rf"level must be an integer in 0\.\.{n - 1} \(or -{n}\.\.-1"):
             result.level(bad)
+
+
+@pytest.mark.parametrize("name", ["clipart-seal.png", "clipart-giraffe.png"])
+def test_images_whose_initial_fit_did_not_converge_give_a_logo(name):
+    # Both stopped with "the connectivity-constrained fit of the initial segments did
+    # not converge": golden radii rounded below half their junctions' distance.
+    res = abstract(DATA.parent / "benchmarks" / "data" / name, progress=False)
+    assert res.lines.kind == "clipart"
+    assert res.final.similarity <= res.final.tolerance
+    validate_document(to_document(res.final))
+    assert res.progression.stats["released_junctions"] == 0  # exact connectivity, nothing released
