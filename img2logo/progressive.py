@@ -215,6 +215,7 @@ class _Optimizer:
         self.ladder: Ladder | None = None
         #: Junctions whose connectivity constraint was given up (see recover).
         self.released: set[int] = set()
+        self._path_cache: dict[int, tuple[_Group, tuple[int, ...]]] = {}
 
     # ----------------------------------------------------------------- groups and nodes
     def add_group(self, group: _Group) -> int:
@@ -229,10 +230,21 @@ class _Optimizer:
         The two ends, and inner nodes where other segments meet (valence >= 3
         in the graph, Sec. 6.2) unless only the ends are constrained (Fig. 11d).
         """
-        return tuple(n for n in self.path_nodes(group) if n not in self.released)
+        nodes = self.path_nodes(group)
+        return tuple(n for n in nodes if n not in self.released) if self.released else nodes
 
     def path_nodes(self, group: _Group) -> tuple[int, ...]:
         """:meth:`constrained_nodes` with the released junctions (see :meth:`recover`), in path order."""
+        # Called for every group of every window of every candidate merge: cached per
+        # group (groups are immutable; the object is kept so that its id is not reused).
+        hit = self._path_cache.get(id(group))
+        if hit is not None and hit[0] is group:
+            return hit[1]
+        nodes = self._path_nodes(group)
+        self._path_cache[id(group)] = (group, nodes)
+        return nodes
+
+    def _path_nodes(self, group: _Group) -> tuple[int, ...]:
         if group.closed:
             head = (group.nodes[0],)
         else:

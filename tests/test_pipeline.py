@@ -102,3 +102,14 @@ def test_a_photo_is_drawn_from_its_subject_with_every_arc_within_t():
     assert quality.silhouette_recall(quality.logo_points(result.final), truth) > 0.95
     none = abstract(rgb, kind="photo", foreground="none", max_arc_distance=None, progress=False)
     assert none.lines.subject.mask is None and "max_arc_distance" not in none.final.params
+
+
+@pytest.mark.parametrize("name", ["clipart-seal.png", "clipart-giraffe.png"])
+def test_images_whose_initial_fit_did_not_converge_give_a_logo(name):
+    # Both stopped with "the connectivity-constrained fit of the initial segments did
+    # not converge": golden radii rounded below half their junctions' distance.
+    res = abstract(DATA.parent / "benchmarks" / "data" / name, progress=False)
+    assert res.lines.kind == "clipart"
+    assert res.final.similarity <= res.final.tolerance
+    validate_document(to_document(res.final))
+    assert res.progression.stats["released_junctions"] == 0  # exact connectivity, nothing released
