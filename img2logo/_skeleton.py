@@ -1,7 +1,9 @@
 """Tracing a 1-px skeleton into nodes and ordered pixel chains, and pruning it.
 
 Private to the package: :mod:`img2logo.preprocessing` prunes spurs with it and
-:mod:`img2logo.segment_graph` builds the segment graph from it.
+joins line ends that stop short of another line (:func:`join_line_ends`, for
+every kind of input), and :mod:`img2logo.segment_graph` builds the segment
+graph from it.
 
 A skeleton pixel is classified by its *crossing number*, the number of
 background-to-line transitions met walking once round its 8 neighbours. Counting
@@ -13,11 +15,14 @@ Touching node pixels are clustered into one node.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
 from scipy import ndimage, sparse
 from scipy.sparse import csgraph
+
+from .constants import LINE_JOIN_DISTANCE
 
 # The 8 neighbours in circular order: N, NE, E, SE, S, SW, W, NW (row, column).
 _RING = ((-1, 0), (-1, 1), (0, 1), (1, 1), (1, 0), (1, -1), (0, -1), (-1, -1))
@@ -358,3 +363,104 @@ def rasterize(graph: PixelGraph, shape: tuple[int, int]) -> np.ndarray:
         if len(pix):
             out[pix[:, 0], pix[:, 1]] = True
     return out
+
+
+# --------------------------------------------------------------------------- joining line ends
+def join_line_ends(skel: np.ndarray, distance: float = LINE_JOIN_DISTANCE) -> np.ndarray:
+    """Link every end of a 1-px line map that stops near another line to it, (H, W) bool.
+
+    For an end (a pixel with one 8-neighbour), the nearest line pixel at most
+    ``distance`` px away that is not on its own stretch of line (the pixels
+    within ``1.5 * distance`` steps along it):
+
+    * on another line, or far along its own: the end is joined to it by a
+      straight run of pixels (a junction; no near-miss gap);
+    * within ``3 * distance`` steps along the line (the other branch of a fork
+      just behind the end): the end's branch is a spur that would run beside
+      its sibling, and is removed back to the fork.
+
+    Ends are taken in raster order; a new run is itself a line for the ends
+    after it.
+    """
+    from scipy import ndimage
+    from scipy.spatial import cKDTree
+    from skimage.draw import line
+
+    out = np.asarray(skel, dtype=bool).copy()
+    if not out.any():
+        return out
+    neighbours = ndimage.convolve(out.astype(np.uint8), np.ones((3, 3), np.uint8), mode="constant") - 1
+    ends = np.argwhere(out & (neighbours == 1))
+    if len(ends) == 0:
+        return out
+    pixels = np.argwhere(out)
+    tree = cKDTree(pixels)
+    near_steps, reach = math.ceil(1.5 * distance), math.ceil(3.0 * distance)
+    h, w = out.shape
+    for r, c in ends:
+        end = (int(r), int(c))
+        if not out[end]:
+            continue
+        own = _walk(out, end, near_steps)
+        best, best_d = None, math.inf
+        for k in tree.query_ball_point((r, c), distance):
+            q = (int(pixels[k][0]), int(pixels[k][1]))
+            if q in own or not out[q]:
+                continue
+            d = math.hypot(q[0] - r, q[1] - c)
+            if d < best_d:
+                best, best_d = q, d
+        if best is None or best_d <= 1.5:
+            continue
+        if best in _walk(out, end, reach):
+            spur = _branch(out, end)
+            if spur is not None and len(spur) <= reach:
+                for q in spur:
+                    out[q] = False
+        else:
+            rr, cc = line(end[0], end[1], best[0], best[1])
+            out[np.clip(rr, 0, h - 1), np.clip(cc, 0, w - 1)] = True
+    return out
+
+
+def _branch(skel: np.ndarray, end: tuple[int, int]) -> list[tuple[int, int]] | None:
+    """The pixels from ``end`` along ``skel`` up to (not including) the first fork; None without a fork."""
+    h, w = skel.shape
+    path = [end]
+    seen = {end}
+    cur = end
+    while True:
+        nbrs = [
+            (cur[0] + dr, cur[1] + dc)
+            for dr in (-1, 0, 1)
+            for dc in (-1, 0, 1)
+            if (dr or dc) and 0 <= cur[0] + dr < h and 0 <= cur[1] + dc < w and skel[cur[0] + dr, cur[1] + dc]
+        ]
+        if len(nbrs) > 2:
+            return path[:-1]
+        nxt = [q for q in nbrs if q not in seen]
+        if not nxt or (cur != end and len(nbrs) != 2):
+            return None
+        cur = nxt[0]
+        seen.add(cur)
+        path.append(cur)
+
+
+def _walk(skel: np.ndarray, start: tuple[int, int], steps: int) -> set[tuple[int, int]]:
+    """Pixels of ``skel`` within ``steps`` 8-connected steps of ``start`` along it."""
+    h, w = skel.shape
+    seen = {start}
+    frontier = [start]
+    for _ in range(steps):
+        nxt = []
+        for r, c in frontier:
+            for dr in (-1, 0, 1):
+                for dc in (-1, 0, 1):
+                    q = (r + dr, c + dc)
+                    if 0 <= q[0] < h and 0 <= q[1] < w and skel[q] and q not in seen:
+                        seen.add(q)
+                        nxt.append(q)
+        if not nxt:
+            break
+        frontier = nxt
+    return seen

@@ -296,3 +296,17 @@ def test_no_runtime_warnings_on_examples():
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         extract_feature_lines(DATA / "clipart-bird.png")
+
+
+@pytest.mark.parametrize("kind", ["drawing", "clipart"])
+def test_a_stroke_that_stops_short_of_another_is_joined(kind):
+    # A T whose stem stops 4 px above the bar: the eye closes the gap, the lines must too
+    # (else the logo has an arc end a few px from another arc: a near-miss gap).
+    from scipy import ndimage
+
+    im = np.full((200, 200, 3), 255, np.uint8)
+    cv2.line(im, (30, 140), (170, 140), (0, 0, 0), 2)
+    cv2.line(im, (100, 40), (100, 135), (0, 0, 0), 2)
+    lines = extract_feature_lines(im, kind=kind).lines
+    _, n = ndimage.label(lines, structure=np.ones((3, 3)))
+    assert n == 1  # without the join: 2
