@@ -11,7 +11,7 @@ NB     ?= $(basename $(notdir $(wildcard notebooks/*.ipynb)))
 RUNS   := $(patsubst %,build/notebooks/%.ipynb,$(NB))
 
 .DELETE_ON_ERROR:
-.PHONY: install test lint format bench figures figures-smoke clean
+.PHONY: install test lint format bench figures figures-smoke clean FORCE
 
 install: $(STAMP)
 
@@ -40,22 +40,25 @@ bench: $(STAMP)
 # go to figures/<notebook>/, the executed copy to build/notebooks/. Only the
 # notebooks whose source, library or data changed run again. One alone:
 # make figures NB=00_segment_graphs
+# Other parameter values (a name the notebook does not have is refused):
+# make figures NB=04_tolerance_sweep PARAMS="-p images '[clipart-cat.png]'"
 figures: $(RUNS)
 
-build/notebooks/%.ipynb: notebooks/%.ipynb $(LIB) $(DATA) | $(STAMP)
+build/notebooks/%.ipynb: notebooks/%.ipynb $(LIB) $(DATA) $(if $(PARAMS),FORCE) | $(STAMP)
 	@mkdir -p $(dir $@)
-	@echo "== $< (full parameters)"
-	@$(BIN)/papermill --cwd notebooks --kernel python3 --no-progress-bar --stdout-file /dev/null $< $(@:.ipynb=.part.ipynb) \
-	  || { echo "make figures: notebook $< failed; the failing cell is shown above, the executed copy is $(@:.ipynb=.part.ipynb)"; exit 1; }
+	@echo "== $< $(if $(PARAMS),($(PARAMS)),(full parameters))"
+	@$(BIN)/python -m img2logo.experiments $< $(@:.ipynb=.part.ipynb) $(PARAMS) \
+	  || { echo "make figures: notebook $< failed; the executed copy is $(@:.ipynb=.part.ipynb)"; exit 1; }
 	@mv $(@:.ipynb=.part.ipynb) $@
 	@$(BIN)/python -c "from img2logo.experiments import write_provenance; write_provenance('$@')"
 
-# The same notebooks with smoke=True: small and fast, outputs in build/smoke/ (never over figures/).
+# The same notebooks with their smoke parameters (img2logo.experiments.runner.SMOKE): small and
+# fast, outputs in build/smoke/ (never over figures/).
 figures-smoke: $(STAMP)
 	@mkdir -p build/smoke/notebooks
 	@for nb in $(NB); do echo "== notebooks/$$nb.ipynb (smoke)"; \
-	  $(BIN)/papermill --cwd notebooks --kernel python3 --no-progress-bar -p smoke True \
-	    notebooks/$$nb.ipynb build/smoke/notebooks/$$nb.ipynb > /dev/null || exit 1; done
+	  $(BIN)/python -m img2logo.experiments notebooks/$$nb.ipynb build/smoke/notebooks/$$nb.ipynb --smoke $(PARAMS) \
+	    || exit 1; done
 
 clean:
 	rm -rf build .pytest_cache .ruff_cache

@@ -1291,11 +1291,12 @@ def rdp_sweep(
     """
     import time
 
-    from ..preprocessing import extract_feature_lines, load_image
+    from ..preprocessing import extract_feature_lines
+    from . import load_example
 
     runs = []
     for path in paths:
-        image = load_image(path)
+        image = load_example(path)
         lines: FeatureLines = extract_feature_lines(image, kind=kind)
         name = Path(str(getattr(path, "source", path))).stem
         for rdp in rdp_tolerances:

@@ -38,7 +38,7 @@ from ..geometry import Abstraction, Arc
 from ..pipeline import Result, abstract
 from ..progressive import Progression, optimize
 from ..segment_graph import SegmentGraph
-from . import preprocess
+from . import load_example, preprocess
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -158,7 +158,7 @@ def run_examples(
     runs = []
     for path in paths:
         start = time.perf_counter()
-        result = abstract(path, tolerance, kind, progress=False, **options)
+        result = abstract(load_example(path), tolerance, kind, progress=False, **options)
         runs.append(Run(Path(path).stem, result, time.perf_counter() - start))
     return runs
 
