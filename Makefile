@@ -5,13 +5,15 @@ PYTHON ?= python3
 VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
+LAB    := $(VENV)/.installed-lab
+BROWSER := $(VENV)/.installed-browser
 LIB    := $(wildcard img2logo/*.py img2logo/*/*.py) pyproject.toml
 DATA   := $(wildcard data/*.png)
 NB     ?= $(basename $(notdir $(wildcard notebooks/*.ipynb)))
 RUNS   := $(patsubst %,build/notebooks/%.ipynb,$(NB))
 
 .DELETE_ON_ERROR:
-.PHONY: install test lint format bench figures figures-smoke clean FORCE
+.PHONY: install test test-browser lab lint format bench figures figures-smoke clean FORCE
 
 install: $(STAMP)
 
@@ -22,7 +24,26 @@ $(STAMP): pyproject.toml
 	@touch $@
 
 test: $(STAMP)
-	$(BIN)/python -m pytest
+	$(BIN)/python -m pytest -m "not browser"
+
+# Optional extras, installed on first use: [lab] (JupyterLab) for make lab, [browser] (JupyterLab
+# and playwright) for make test-browser. Neither make test nor make figures needs them.
+$(LAB): pyproject.toml $(STAMP)
+	$(BIN)/python -m pip install --quiet -e '.[dev,lab]'
+	@touch $@
+
+$(BROWSER): pyproject.toml $(STAMP)
+	$(BIN)/python -m pip install --quiet -e '.[dev,browser]'
+	@touch $@
+
+# The level explorer (notebook 11) in JupyterLab, driven by Debian's chromium (apt-get install chromium)
+# through playwright; skipped, with the reason, where chromium is missing.
+test-browser: $(BROWSER)
+	$(BIN)/python -m pytest -m browser -rs tests/test_experiments_design_browser.py
+
+# JupyterLab on the notebooks; Ctrl-C stops it. Options: make lab LAB_ARGS="--no-browser --port 8890"
+lab: $(LAB)
+	$(BIN)/jupyter lab --notebook-dir=notebooks $(if $(filter 0,$(shell id -u)),--allow-root) $(LAB_ARGS)
 
 lint: $(STAMP)
 	$(BIN)/ruff check img2logo tests benchmarks
