@@ -55,3 +55,11 @@ def test_tables_are_shown_without_their_index(tmp_path):
     assert "<th>0</th>" not in html  # no index cells
     assert repr(shown).splitlines()[0].split() == ["t", "E^s", "(px)"]
     assert show_table(table).path is None
+
+
+def test_a_missing_integer_shows_empty_as_in_the_csv(tmp_path):
+    table = pd.DataFrame({"iteration": [0, 23], "arcs": pd.array([16, None], dtype="Int64")})
+    shown = save_table(table, tmp_path / "t.csv")
+    assert shown.path.read_text() == "iteration,arcs\n0,16\n23,\n"
+    html = shown._repr_html_()
+    assert "<td>16</td>" in html and "<td></td>" in html and "NA" not in html

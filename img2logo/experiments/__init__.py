@@ -133,10 +133,18 @@ class SavedTable:
     table: Any
 
     def _repr_html_(self) -> str:
-        return self.table.to_html(index=False, float_format=lambda v: f"{v:.6g}", na_rep="")
+        return self._shown().to_html(index=False, float_format=lambda v: f"{v:.6g}", na_rep="")
 
     def __repr__(self) -> str:
-        return self.table.to_string(index=False, float_format=lambda v: f"{v:.6g}", na_rep="")
+        return self._shown().to_string(index=False, float_format=lambda v: f"{v:.6g}", na_rep="")
+
+    def _shown(self) -> Any:
+        """The table with nullable integer columns as floats, so a missing value shows empty (as in the CSV)."""
+        import pandas as pd
+
+        nullable = [c for c, t in self.table.dtypes.items() if isinstance(t, pd.api.extensions.ExtensionDtype)]
+        nullable = [c for c in nullable if pd.api.types.is_integer_dtype(self.table[c].dtype)]
+        return self.table.astype({c: "float64" for c in nullable}) if nullable else self.table
 
 
 def save_figure(fig: Any, path: str | os.PathLike[str], *, dpi: float | None = None) -> SavedFigure:
