@@ -68,8 +68,8 @@ figures: $(RUNS)
 build/notebooks/%.ipynb: notebooks/%.ipynb $(LIB) $(DATA) $(if $(PARAMS),FORCE) | $(STAMP)
 	@mkdir -p $(dir $@)
 	@echo "== $< $(if $(PARAMS),($(PARAMS)),(full parameters))"
-	@$(BIN)/python -m img2logo.experiments $< $(@:.ipynb=.part.ipynb) $(PARAMS) \
-	  || { echo "make figures: notebook $< failed; the executed copy is $(@:.ipynb=.part.ipynb)"; exit 1; }
+	@# On failure the runner says why in one line (and where the executed copy with the traceback is).
+	@$(BIN)/python -m img2logo.experiments $< $(@:.ipynb=.part.ipynb) $(PARAMS)
 	@mv $(@:.ipynb=.part.ipynb) $@
 	@$(BIN)/python -c "from img2logo.experiments import write_provenance; write_provenance('$@')"
 
