@@ -5,6 +5,7 @@ from __future__ import annotations
 import ast
 import base64
 import json
+import re
 from pathlib import Path
 
 import pytest
@@ -98,6 +99,20 @@ def test_notebook_never_overwrites_a_parameter(path):
                 targets = [node.target]
             assigned = {n.id for t in targets for n in ast.walk(t) if isinstance(n, ast.Name)}
             assert not assigned & names, f"{path.name}: a cell assigns the parameter(s) {sorted(assigned & names)}"
+
+
+@pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda p: p.stem)
+def test_markdown_sets_the_paper_symbols_as_math(path):
+    # E^s, A^t, |A| are written $E^s$, $A^t$, $|A|$ (MathJax in Jupyter), never as plain text.
+    for cell in _load(path)["cells"]:
+        if cell["cell_type"] != "markdown":
+            continue
+        text = re.sub(r"`[^`]*`", "", _code(cell))  # code spans are code
+        assert "$$" not in text, f"{path.name}: display math or a doubled $: {text[:80]!r}"
+        assert text.count("$") % 2 == 0, f"{path.name}: unbalanced $ in {text[:80]!r}"
+        prose = re.sub(r"\$[^$]*\$", "", text)
+        bare = re.findall(r"E\^s|A\^\w|\|A\||S_i|p_k", prose)
+        assert not bare, f"{path.name}: {bare} outside math in {text[:80]!r}"
 
 
 @pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda p: p.stem)
