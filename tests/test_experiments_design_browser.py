@@ -62,6 +62,7 @@ def _requirements() -> str | None:
 @dataclass(frozen=True)
 class Lab:
     url: str
+    api: str
     folder: Path
     log: Path
 
@@ -126,7 +127,7 @@ def lab(tmp_path_factory):
                 if server.poll() is not None or time.monotonic() > deadline:
                     pytest.fail(f"JupyterLab did not start; its log: {(folder / 'lab.log').read_text()[-2000:]}")
                 time.sleep(0.25)
-        yield Lab(f"{url}/lab/tree/explore.ipynb?token={token}", folder, folder / "lab.log")
+        yield Lab(f"{url}/lab?token={token}", f"{url}/api/sessions?token={token}", folder, folder / "lab.log")
     finally:
         server.terminate()  # the server shuts its kernels down on SIGTERM
         try:
@@ -149,16 +150,22 @@ def page(lab):
             # JupyterLab may ask for the kernel when it opens the notebook (a race of its own): take Python 3.
             dialog = page.locator(".jp-Dialog", has_text="Select Kernel")
             page.add_locator_handler(dialog, lambda: _choose_kernel(dialog))
+            # Open the notebook from the file browser once the launcher lists the Python kernel: opened
+            # before the kernel specs are loaded, JupyterLab cannot match the notebook's kernel and asks.
             page.goto(lab.url)
+            page.locator(".jp-LauncherCard", has_text="Python 3").first.wait_for()
+            page.locator(".jp-DirListing-item", has_text="explore.ipynb").dblclick()
             page.wait_for_selector(".jp-Notebook")
             page.wait_for_selector(".jp-Notebook-ExecutionIndicator[data-status='idle']")
             try:
-                _run_all_cells(page)
+                _run_all_cells(page, lab)
                 page.wait_for_selector(".widget-image")
                 page.wait_for_selector(".jp-Notebook-ExecutionIndicator[data-status='idle']")
             except Exception:
-                shot = lab.folder / "failure.png"
+                shot = Path(os.environ.get("IMG2LOGO_BROWSER_FAILURES", lab.folder)) / "failure.png"
                 page.screenshot(path=str(shot), full_page=True)
+                if shot.parent != lab.folder:
+                    shutil.copy(lab.log, shot.parent / "lab.log")
                 pytest.fail(f"the explorer did not appear; the page is in {shot}, the server's log in {lab.log}")
             yield page
         finally:
@@ -166,21 +173,43 @@ def page(lab):
 
 
 def _choose_kernel(dialog) -> None:
-    """Press Select in JupyterLab's kernel dialog, unless it closed meanwhile."""
+    """Accept JupyterLab's kernel dialog (its choice is the notebook's Python 3), unless it closed meanwhile.
+
+    JupyterLab asks when a cell is run while the notebook's kernel is still being attached.
+    """
     try:
-        dialog.get_by_role("button", name="Select", exact=True).click(timeout=30_000)
+        dialog.locator("button.jp-mod-accept").click(force=True, timeout=10_000)
+        dialog.wait_for(state="hidden", timeout=5_000)
     except PlaywrightTimeoutError:
-        pass
+        if dialog.is_visible():
+            dialog.press("Enter")
 
 
-def _run_all_cells(page, attempts: int = 4) -> None:
-    """Run > Run All Cells, again if no cell started (JupyterLab can drop it while the kernel connects)."""
+def _kernel_ready(lab: Lab, timeout: float = 60.0) -> None:
+    """Wait until the notebook's kernel is idle with the page connected to it (the server's view)."""
+    import json
+
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        with urllib.request.urlopen(lab.api, timeout=5.0) as answer:
+            kernels = [s["kernel"] for s in json.load(answer) if s.get("kernel")]
+        if kernels and all(k["execution_state"] == "idle" and k["connections"] >= 1 for k in kernels):
+            return
+        time.sleep(0.25)
+    raise PlaywrightTimeoutError(f"the notebook's kernel was not ready within {timeout:g} s")
+
+
+def _run_all_cells(page, lab: Lab, attempts: int = 4) -> None:
+    """Run > Run All Cells once the kernel is ready; again if no cell started (JupyterLab can drop it)."""
     started = "() => [...document.querySelectorAll('.jp-InputPrompt')].some(p => /\\[(\\*|\\d+)\\]/.test(p.innerText))"
     for _ in range(attempts):
+        page.wait_for_selector(".jp-Notebook-ExecutionIndicator[data-status='idle']")
+        _kernel_ready(lab)
+        page.wait_for_timeout(500)
         page.get_by_role("menuitem", name="Run", exact=True).click()
         page.get_by_text("Run All Cells", exact=True).click()
         try:
-            page.wait_for_function(started, timeout=10_000)
+            page.wait_for_function(started, timeout=20_000)
             return
         except PlaywrightTimeoutError:
             continue
