@@ -190,8 +190,39 @@ def explorer(fish_result):
 def test_explorer_shows_the_final_level_first(explorer, fish_result):
     assert explorer.level == len(fish_result.levels) - 1
     assert f"level t = {explorer.level} of {explorer.level}" in explorer.title
-    assert explorer.figure.axes[0].get_title() == explorer.title
+    assert explorer.figure.axes[0].get_title() == ""  # one title: the widget's label
     assert explorer.controls == {}  # no widgets until asked for
+
+
+def test_explorer_drawing_has_a_fixed_crisp_size(explorer):
+    import io
+
+    from PIL import Image
+
+    width, height = explorer.screen_size
+    assert max(width, height) == design.EXPLORER_SIZE
+    with Image.open(io.BytesIO(explorer.png())) as png:
+        assert png.size == (2 * width, 2 * height)  # twice the screen size: crisp on a high-density screen
+    layout = explorer.widget().children[1].children[0].layout  # the drawing, left of the controls
+    assert (layout.width, layout.height) == (f"{width}px", f"{height}px")
+
+
+def test_levels_within_a_smaller_tolerance_are_those_of_a_run_with_it(fish_result):
+    levels = design.levels_within(fish_result, 3.0)
+    alone = abstract(DATA / "drawing-fish.png", tolerance=3.0, progress=False)
+    assert [len(a.arcs) for a in levels] == [len(a.arcs) for a in alone.levels]
+    assert levels[-1].similarity <= 3.0 < fish_result.levels[len(levels)].similarity
+    assert design.levels_within(fish_result) == fish_result.levels
+    with pytest.raises(InvalidParameterError, match="tolerance must be in"):
+        design.levels_within(fish_result, 6.0)
+
+
+def test_explorer_tolerance_below_the_largest_run_is_instant(explorer, fish_result):
+    assert explorer.on_tolerance_change(3.0) is False  # no new run
+    assert explorer.result is fish_result
+    assert explorer.levels == design.levels_within(fish_result, 3.0)
+    assert explorer.level == explorer.n_levels - 1 and "(T = 3)" in explorer.title
+    assert explorer.on_tolerance_change(5.0) is False and explorer.levels == fish_result.levels
 
 
 def test_explorer_level_change_redraws(explorer):
@@ -231,18 +262,24 @@ def test_explorer_widgets_drive_the_callbacks(explorer):
     assert c["level"].max == explorer.n_levels - 1 and c["level"].value == explorer.level
     drawing = c["drawing"].value
     c["level"].value = 1  # what dragging the slider does
-    assert explorer.level == 1 and c["title"].value == explorer.title and "level t = 1" in explorer.title
+    assert explorer.level == 1 and c["title"].value == explorer.title_html and "level t = 1" in explorer.title
     assert c["drawing"].value != drawing
     assert c["bias"].disabled
     c["bias_auto"].value = False
     assert not c["bias"].disabled
     c["bias_auto"].value = True
     n_before = explorer.n_levels
-    c["tolerance"].value = 9.0
+    first = explorer.result
+    c["tolerance"].value = 3.0  # below the run's T: no new run
+    assert explorer.result is first and explorer.n_levels < n_before and "(T = 3)" in c["title"].value
     fills = []
     c["progress"].observe(lambda change: fills.append(change["new"]), names="value")
-    c["run"].click()  # what pressing Run does
+    c["tolerance"].value = 9.0  # above it: a run, with the progress bar
+    assert explorer.result is not first
     assert len(fills) >= 3 and max(fills) <= 9.0  # the bar moved during the run
+    fills.clear()
+    c["run"].click()  # what pressing Run does
+    assert len(fills) >= 3 and max(fills) <= 9.0
     assert explorer.settings.tolerance == 9.0 and explorer.settings.bias is None
     assert explorer.n_levels != n_before
     assert c["level"].max == explorer.n_levels - 1 and c["level"].value == explorer.level

@@ -10,6 +10,7 @@ and tables back. Submodules group them by the paper's evaluation:
 
 from __future__ import annotations
 
+import dataclasses
 import os
 import time
 from collections.abc import Iterable
@@ -55,6 +56,31 @@ def data_path(name: str) -> Path:
     return path
 
 
+def repo_relative(path: str | os.PathLike[str]) -> str:
+    """``path`` relative to the repository root (``data/clipart-fish.png``), POSIX style.
+
+    A path outside the repository is returned absolute. Result documents name
+    their input this way, so a ``make figures`` in any checkout writes the same
+    bytes.
+    """
+    resolved = Path(path).resolve()
+    try:
+        return resolved.relative_to(project_root()).as_posix()
+    except ValueError:
+        return str(resolved)
+
+
+def load_example(path: Any) -> LoadedImage:
+    """:func:`img2logo.load_image`, with ``source`` relative to the repository (:func:`repo_relative`).
+
+    A path is loaded and its ``source`` made relative; a loaded image or an
+    array goes to :func:`img2logo.load_image` unchanged.
+    """
+    if not isinstance(path, str | os.PathLike):
+        return load_image(path)
+    return dataclasses.replace(load_image(path), source=repo_relative(path))
+
+
 def example_images(prefix: str = "") -> list[Path]:
     """The example images of ``data/`` whose names start with ``prefix``, sorted."""
     return sorted((project_root() / "data").glob(f"{prefix}*.png"))
@@ -70,6 +96,79 @@ def figure_dir(notebook: str, *, smoke: bool = False) -> Path:
     out = base / notebook
     out.mkdir(parents=True, exist_ok=True)
     return out
+
+
+# --------------------------------------------------------------------------- outputs shown
+@dataclass(frozen=True, eq=False)
+class SavedFigure:
+    """A figure file a notebook wrote; Jupyter displays the file itself.
+
+    The image shown in the notebook (an ``image/png`` or ``image/svg+xml``
+    output) is the bytes of ``path``: the same figure as in ``figures/``, not a
+    second rendering.
+    """
+
+    path: Path
+
+    def _repr_png_(self) -> bytes | None:
+        return self.path.read_bytes() if self.path.suffix.lower() == ".png" else None
+
+    def _repr_svg_(self) -> str | None:
+        return self.path.read_text(encoding="utf-8") if self.path.suffix.lower() == ".svg" else None
+
+    def __repr__(self) -> str:
+        return f"figure {repo_relative(self.path)}"
+
+
+@dataclass(frozen=True, eq=False)
+class SavedTable:
+    """A table (a pandas DataFrame) a notebook shows, and the CSV it wrote, if any.
+
+    Jupyter displays it without the index: the CSV has no index column, so
+    neither has the table shown (a row number beside a ``t`` or ``image``
+    column only repeats it). Floats are shown as in the CSV (6 significant digits).
+    """
+
+    path: Path | None
+    table: Any
+
+    def _repr_html_(self) -> str:
+        return self._shown().to_html(index=False, float_format=lambda v: f"{v:.6g}", na_rep="")
+
+    def __repr__(self) -> str:
+        return self._shown().to_string(index=False, float_format=lambda v: f"{v:.6g}", na_rep="")
+
+    def _shown(self) -> Any:
+        """The table with nullable integer columns as floats, so a missing value shows empty (as in the CSV)."""
+        import pandas as pd
+
+        nullable = [c for c, t in self.table.dtypes.items() if isinstance(t, pd.api.extensions.ExtensionDtype)]
+        nullable = [c for c in nullable if pd.api.types.is_integer_dtype(self.table[c].dtype)]
+        return self.table.astype({c: "float64" for c in nullable}) if nullable else self.table
+
+
+def save_figure(fig: Any, path: str | os.PathLike[str], *, dpi: float | None = None) -> SavedFigure:
+    """Write ``fig`` with :func:`img2logo.writers.save_figure` and return it for display.
+
+    The last expression of a notebook cell, it shows the written file inline.
+    ``dpi`` None is the writer's default.
+    """
+    from .. import writers
+
+    kwargs = {} if dpi is None else {"dpi": dpi}
+    return SavedFigure(Path(writers.save_figure(fig, path, **kwargs)))
+
+
+def save_table(table: Any, path: str | os.PathLike[str]) -> SavedTable:
+    """Write a pandas DataFrame as CSV (:func:`img2logo.writers.write_table`) and return it for display."""
+    from .. import writers
+
+    return SavedTable(Path(writers.write_table(table, path)), table)
+
+
+def show_table(table: Any) -> SavedTable:
+    """A pandas DataFrame for display without its index (a part of a table saved whole)."""
+    return SavedTable(None, table)
 
 
 # --------------------------------------------------------------------------- preprocessing
@@ -95,7 +194,7 @@ def preprocess(
     out = []
     for path in paths:
         start = time.perf_counter()
-        image = load_image(path)
+        image = load_example(path)
         lines = extract_feature_lines(image, kind=kind)
         graph = build_segment_graph(lines, rdp_tolerance=rdp_tolerance, min_length=min_length)
         out.append(Preprocessed(Path(path).stem, image, lines, graph, time.perf_counter() - start))
@@ -186,3 +285,6 @@ def write_provenance(executed: str | os.PathLike[str]) -> Path:
     target = figure_dir(path.stem) / "provenance.json"
     text = json.dumps(record, indent=2, sort_keys=True) + "\n"
     return _atomic_write(target, lambda f: f.write(text.encode("utf-8")))
+
+
+from .runner import check_parameters as check_parameters  # noqa: E402  (needs data_path above)

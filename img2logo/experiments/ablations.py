@@ -1080,7 +1080,8 @@ def plot_arc_selection(comparisons: Sequence[ArcSelectionComparison], *, panel_s
     n = max(1, len(comparisons))
     cols = min(n, 4)
     rows = math.ceil(n / cols)
-    fig = Figure(figsize=(cols * panel_size, rows * panel_size + 1.0), layout="constrained")
+    # At least two panels wide: the title and the legend need the width even for one image.
+    fig = Figure(figsize=(max(cols, 2) * panel_size, rows * panel_size + 1.0), layout="constrained")
     axes = fig.subplots(rows, cols, squeeze=False).ravel()
     for ax in axes:
         ax.set_axis_off()
@@ -1291,11 +1292,12 @@ def rdp_sweep(
     """
     import time
 
-    from ..preprocessing import extract_feature_lines, load_image
+    from ..preprocessing import extract_feature_lines
+    from . import load_example
 
     runs = []
     for path in paths:
-        image = load_image(path)
+        image = load_example(path)
         lines: FeatureLines = extract_feature_lines(image, kind=kind)
         name = Path(str(getattr(path, "source", path))).stem
         for rdp in rdp_tolerances:

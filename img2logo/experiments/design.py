@@ -51,8 +51,13 @@ if TYPE_CHECKING:
     from ..segment_graph import SegmentGraph
     from . import Preprocessed
 
+#: Longest side of the level explorer's drawing on screen, CSS px: beside its controls (about 400 px)
+#: it fits a 1440 x 900 laptop screen in JupyterLab, and it is the size a logo is judged at.
+EXPLORER_SIZE = 440
+
 __all__ = [
     "CELLS",
+    "EXPLORER_SIZE",
     "PAPER_TABLE3",
     "STAGES",
     "ExplorerSettings",
@@ -69,6 +74,7 @@ __all__ = [
     "first_lost",
     "level_title",
     "levels_table",
+    "levels_within",
     "lock_search",
     "lock_table",
     "most_used_exponents",
@@ -807,14 +813,47 @@ def plot_bias_sweep(
 
 
 # =========================================================================== level explorer
-def level_title(result: Result, t: int, name: str | None = None) -> str:
-    """The title of level ``t``: the level, |A|, E^s and T."""
+def levels_within(result: Result, tolerance: float | None = None) -> tuple[Abstraction, ...]:
+    """The levels a run with tolerance ``tolerance`` gives, taken from ``result``, a run with a T at least as large.
+
+    The merges do not depend on T: a run with T stops at the first level whose
+    E^s exceeds T (Sec. 5.2, step 2), so its levels are those of the larger run
+    before that one (A^0 always). Notebook 04 checks this rule against runs made
+    per T (``monotonicity.csv``, column ``first exceedance matches``).
+
+    Parameters
+    ----------
+    result : Result
+        A run with tolerance T_run.
+    tolerance : float, optional
+        T <= T_run, px; None: T_run (all the levels).
+
+    Raises
+    ------
+    InvalidParameterError
+        ``tolerance`` above T_run: that run's levels cannot tell a larger T's.
+    """
     levels = result.levels
+    run_tolerance = levels[0].tolerance
+    if tolerance is None:
+        return levels
+    if not tolerance > 0 or tolerance > run_tolerance:
+        raise InvalidParameterError(f"tolerance must be in (0, {run_tolerance:g}] px for this run, got {tolerance}")
+    for t in range(1, len(levels)):
+        if levels[t].similarity > tolerance:
+            return levels[:t]
+    return levels
+
+
+def level_title(result: Result, t: int, name: str | None = None, *, tolerance: float | None = None) -> str:
+    """The title of level ``t``: the level, |A|, E^s and T (of :func:`levels_within` ``tolerance``)."""
+    levels = levels_within(result, tolerance)
     a = levels[t]
     prefix = f"{name}: " if name else ""
+    shown = a.tolerance if tolerance is None else tolerance
     return (
         f"{prefix}level t = {a.level} of {len(levels) - 1}, |A| = {len(a.arcs)}, "
-        f"E^s = {a.similarity:.2f} px (T = {a.tolerance:g})"
+        f"E^s = {a.similarity:.2f} px (T = {shown:g})"
     )
 
 
@@ -893,11 +932,15 @@ class LevelExplorer:
     """Browse the levels A^0 ... A^final of a run, and re-run with other settings.
 
     The state and the callbacks work on plain values, so they run (and are
-    tested) without a browser; :meth:`widget` wraps them in ipywidgets: a level
-    slider (instant redraw: every level is precomputed), controls for T, the
-    bias (with an "auto" box), the RDP tolerance, the image and its kind, and a
-    Run button with a progress bar (E^s filling towards T) fed by
-    :func:`img2logo.abstract`'s progress callback.
+    tested) without a browser; :meth:`widget` wraps them in ipywidgets: the
+    drawing at a fixed size beside its controls, a level slider (instant
+    redraw: every level is precomputed), T, the bias (with an "auto" box), the
+    RDP tolerance, the image and its kind, and a Run button with a progress bar
+    (E^s filling towards T) fed by :func:`img2logo.abstract`'s progress callback.
+
+    Changing T is instant up to the largest T run so far with the same other
+    settings: that run holds the levels of every smaller T
+    (:func:`levels_within`); a larger T runs again, with the progress bar.
 
     Parameters
     ----------
@@ -905,21 +948,24 @@ class LevelExplorer:
         The first run's inputs; keyword arguments override its fields.
     result : Result, optional
         A precomputed run for ``settings``; computed now when None.
-    panel_size : float
-        Size of the drawing, inches.
+    size : int
+        Longest side of the drawing on screen, CSS px.
     dpi : float
-        Resolution of the drawing shown by the widget.
+        Resolution of the drawing's PNG; ``2 * 72`` pixels per inch of the
+        figure is twice the screen size, crisp on high-density screens.
 
     Attributes
     ----------
     settings : ExplorerSettings
-        The inputs of the run shown.
+        The inputs of the levels shown (``settings.tolerance`` is the T shown).
     result : Result
-        The run shown.
+        The run holding them: the largest T run so far with these settings.
+    levels : tuple of Abstraction
+        The levels of T (:func:`levels_within`).
     level : int
         The level shown.
     figure : matplotlib.figure.Figure
-        The drawing of that level.
+        The drawing of that level (no title: the widget shows :attr:`title`).
     title : str
         Its title (:func:`level_title`).
     progress_text : str
@@ -933,34 +979,51 @@ class LevelExplorer:
         settings: ExplorerSettings | None = None,
         *,
         result: Result | None = None,
-        panel_size: float = 5.0,
-        dpi: float = 80.0,
+        size: int = EXPLORER_SIZE,
+        dpi: float = 144.0,
         **overrides: Any,
     ) -> None:
         from matplotlib.figure import Figure
 
         self.settings = dataclasses.replace(settings or ExplorerSettings(), **overrides)
         self.dpi = float(dpi)
-        self.figure = Figure(figsize=(panel_size, panel_size), layout="constrained")
-        self._ax = self.figure.subplots()
+        self.size = int(size)
         self.controls: dict[str, Any] = {}
         self.progress_text = ""
         self.level = 0
         self.title = ""
         self._syncing = False
         self.result = result if result is not None else self._compute(self.settings)
-        self.on_level_change(len(self.result.levels) - 1)
+        self.levels = levels_within(self.result, self.settings.tolerance)
+        height, width = self.result.image.rgb.shape[:2]
+        scale = self.size / max(height, width)
+        self.figure = Figure(figsize=(width * scale / 72.0, height * scale / 72.0))
+        self._ax = self.figure.add_axes((0.0, 0.0, 1.0, 1.0))
+        self.on_level_change(len(self.levels) - 1)
 
     # ------------------------------------------------------------------ plain callbacks
     @property
     def n_levels(self) -> int:
-        """Number of levels of the run shown."""
-        return len(self.result.levels)
+        """Number of levels shown (those of T)."""
+        return len(self.levels)
 
     @property
     def name(self) -> str:
         """The image's name."""
         return Path(self.settings.image).stem
+
+    @property
+    def title_html(self) -> str:
+        """:attr:`title` as HTML, with E<sup>s</sup> and |<i>A</i>| set as in the paper."""
+        import html
+
+        return "<b>" + html.escape(self.title).replace("E^s", "E<sup>s</sup>").replace("|A|", "|<i>A</i>|") + "</b>"
+
+    @property
+    def screen_size(self) -> tuple[int, int]:
+        """Width and height of the drawing on screen, CSS px."""
+        w, h = self.figure.get_size_inches() * 72.0
+        return round(w), round(h)
 
     def on_level_change(self, t: int) -> Figure:
         """Show level ``t`` (negative counts from the end): redraw the figure and title."""
@@ -970,12 +1033,26 @@ class LevelExplorer:
         if not -self.n_levels <= t < self.n_levels:
             raise InvalidParameterError(f"level must be in [0, {self.n_levels - 1}], got {t}")
         self.level = t % self.n_levels
-        self.title = level_title(self.result, self.level, self.name)
+        self.title = level_title(self.result, self.level, self.name, tolerance=self.settings.tolerance)
         self._ax.clear()
-        plot_abstraction(self.result.level(self.level), self._ax, image=self.result.image.rgb)
-        self._ax.set_title(self.title, fontsize=9)
+        plot_abstraction(self.levels[self.level], self._ax, image=self.result.image.rgb)
+        self._ax.set_axis_off()
         self._sync_widgets()
         return self.figure
+
+    def on_tolerance_change(self, tolerance: float) -> bool:
+        """Show the result of T = ``tolerance``: at once when the run holds it, else run again.
+
+        Returns True when it needed a new run.
+        """
+        tolerance = float(tolerance)
+        if 0 < tolerance <= self.result.levels[0].tolerance:
+            self.settings = dataclasses.replace(self.settings, tolerance=tolerance)
+            self.levels = levels_within(self.result, tolerance)
+            self.on_level_change(self.n_levels - 1)
+            return False
+        self.on_run(tolerance=tolerance)
+        return True
 
     def on_run(self, **changes: Any) -> Result:
         """Re-run :func:`img2logo.abstract` with ``changes`` to the settings; show its final level.
@@ -988,6 +1065,7 @@ class LevelExplorer:
         settings = dataclasses.replace(self.settings, **changes)
         self.result = self._compute(settings)
         self.settings = settings
+        self.levels = self.result.levels
         self.on_level_change(self.n_levels - 1)
         return self.result
 
@@ -1005,14 +1083,14 @@ class LevelExplorer:
             self.controls["status"].value = self.progress_text
 
     def png(self) -> bytes:
-        """The current figure as PNG bytes."""
+        """The current drawing as PNG bytes, at :attr:`dpi`."""
         buf = io.BytesIO()
         self.figure.savefig(buf, format="png", dpi=self.dpi, facecolor="white", metadata={"Software": None})
         return buf.getvalue()
 
     def _compute(self, settings: ExplorerSettings) -> Result:
         from ..pipeline import abstract
-        from . import data_path
+        from . import data_path, load_example
 
         image = settings.image
         path = Path(image) if os.sep in image or Path(image).is_file() else data_path(image)
@@ -1022,8 +1100,9 @@ class LevelExplorer:
             bar.bar_style = ""
             bar.max = float(settings.tolerance)
             bar.value = 0.0
+            self.controls["status"].value = "running"
         result = abstract(
-            path,
+            load_example(path),
             tolerance=settings.tolerance,
             kind=settings.kind,
             rdp_tolerance=settings.rdp_tolerance,
@@ -1042,7 +1121,11 @@ class LevelExplorer:
 
     # ------------------------------------------------------------------ widgets
     def widget(self) -> Any:
-        """The ipywidgets interface (built once): controls, Run, progress, level slider, drawing."""
+        """The ipywidgets interface (built once): the drawing, and beside it the controls.
+
+        The drawing has a fixed size (:attr:`screen_size`; the PNG has twice its
+        pixels), so it stays crisp and the whole fits a laptop screen.
+        """
         import ipywidgets as w
 
         from . import example_images
@@ -1054,10 +1137,35 @@ class LevelExplorer:
         if s.image not in images:
             images.append(s.image)
         c = self.controls
-        c["image"] = w.Dropdown(options=images, value=s.image, description="image")
-        c["kind"] = w.Dropdown(options=["auto", "photo", "clipart", "drawing"], value=s.kind, description="kind")
-        c["tolerance"] = w.FloatSlider(value=s.tolerance, min=0.5, max=30.0, step=0.5, description="T (px)")
-        c["bias_auto"] = w.Checkbox(value=s.bias is None, description="auto bias")
+        style = {"description_width": "70px"}
+        wide = w.Layout(width="360px")
+        c["level"] = w.IntSlider(
+            value=self.level, min=0, max=self.n_levels - 1, description="level t", style=style, layout=wide
+        )
+        c["tolerance"] = w.FloatSlider(
+            value=s.tolerance,
+            min=0.5,
+            max=30.0,
+            step=0.5,
+            description="T (px)",
+            continuous_update=False,
+            style=style,
+            layout=wide,
+        )
+        c["image"] = w.Dropdown(options=images, value=s.image, description="image", style=style, layout=wide)
+        c["kind"] = w.Dropdown(
+            options=["auto", "photo", "clipart", "drawing"], value=s.kind, description="kind", style=style, layout=wide
+        )
+        c["rdp_tolerance"] = w.FloatSlider(
+            value=s.rdp_tolerance,
+            min=0.5,
+            max=8.0,
+            step=0.25,
+            description="RDP (px)",
+            continuous_update=False,
+            style=style,
+            layout=wide,
+        )
         c["bias"] = w.FloatSlider(
             value=self.result.bias if s.bias is None else s.bias,
             min=0.0,
@@ -1065,30 +1173,54 @@ class LevelExplorer:
             step=0.01,
             description="bias \u03c3",
             disabled=s.bias is None,
+            continuous_update=False,
+            style=style,
+            layout=w.Layout(width="250px"),
         )
-        c["rdp_tolerance"] = w.FloatSlider(value=s.rdp_tolerance, min=0.5, max=8.0, step=0.25, description="RDP (px)")
-        c["run"] = w.Button(description="Run", button_style="primary", icon="play")
+        c["bias_auto"] = w.Checkbox(
+            value=s.bias is None, description="auto", indent=False, layout=w.Layout(width="100px")
+        )
+        c["run"] = w.Button(description="Run", button_style="primary", icon="play", layout=w.Layout(width="90px"))
         c["progress"] = w.FloatProgress(
-            value=min(self.result.final.similarity, s.tolerance), min=0.0, max=s.tolerance, description="E^s \u2192 T"
+            value=min(self.result.final.similarity, s.tolerance),
+            min=0.0,
+            max=s.tolerance,
+            description="E\u02e2 \u2192 T",
+            style=style,
+            layout=w.Layout(width="260px"),
         )
-        c["status"] = w.Label(value=self.progress_text)
-        c["level"] = w.IntSlider(value=self.level, min=0, max=self.n_levels - 1, description="level t")
-        c["title"] = w.Label(value=self.title)
-        c["drawing"] = w.Image(value=self.png(), format="png")
+        c["status"] = w.Label(value=self.progress_text, layout=wide)
+        c["title"] = w.HTML(value=self.title_html)
+        width, height = self.screen_size
+        c["drawing"] = w.Image(
+            value=self.png(),
+            format="png",
+            layout=w.Layout(width=f"{width}px", height=f"{height}px", flex="0 0 auto", object_fit="contain"),
+        )
         c["level"].observe(self._level_widget_changed, names="value")
+        c["tolerance"].observe(self._tolerance_widget_changed, names="value")
         c["bias_auto"].observe(self._bias_auto_changed, names="value")
         c["run"].on_click(self._run_clicked)
-        c["box"] = w.VBox(
-            [
-                w.HBox([c["image"], c["kind"]]),
-                w.HBox([c["tolerance"], c["rdp_tolerance"]]),
-                w.HBox([c["bias"], c["bias_auto"]]),
-                w.HBox([c["run"], c["progress"], c["status"]]),
-                c["level"],
-                c["title"],
-                c["drawing"],
-            ]
+        note = w.HTML(
+            value="<small>T up to the largest T run so far is instant; a larger T, or new image, kind, "
+            "RDP or bias settings, run again (Run).</small>",
+            layout=wide,
         )
+        controls = w.VBox(
+            [
+                c["level"],
+                c["tolerance"],
+                c["image"],
+                c["kind"],
+                c["rdp_tolerance"],
+                w.HBox([c["bias"], c["bias_auto"]]),
+                w.HBox([c["run"], c["progress"]]),
+                c["status"],
+                note,
+            ],
+            layout=w.Layout(flex="0 0 auto", padding="0 0 0 12px"),
+        )
+        c["box"] = w.VBox([c["title"], w.HBox([c["drawing"], controls], layout=w.Layout(align_items="flex-start"))])
         return c["box"]
 
     def display(self) -> None:
@@ -1114,21 +1246,29 @@ class LevelExplorer:
         if not self._syncing:
             self.on_level_change(change["new"])
 
+    def _tolerance_widget_changed(self, change: dict[str, Any]) -> None:
+        if not self._syncing:
+            self._busy(lambda: self.on_tolerance_change(change["new"]))
+
     def _bias_auto_changed(self, change: dict[str, Any]) -> None:
         self.controls["bias"].disabled = bool(change["new"])
 
     def _run_clicked(self, _button: Any = None) -> None:
+        self._busy(lambda: self.on_run(**dataclasses.asdict(self.widget_settings())))
+
+    def _busy(self, action: Any) -> None:
+        """Run ``action`` with the Run button disabled."""
         button = self.controls.get("run")
         if button is not None:
             button.disabled = True
         try:
-            self.on_run(**dataclasses.asdict(self.widget_settings()))
+            action()
         finally:
             if button is not None:
                 button.disabled = False
 
     def _sync_widgets(self) -> None:
-        """Push the state (level, its range, title, drawing) to the widgets, without echo."""
+        """Push the state (level, its range, T, title, drawing) to the widgets, without echo."""
         c = self.controls
         if not c:
             return
@@ -1136,7 +1276,8 @@ class LevelExplorer:
         try:
             c["level"].max = self.n_levels - 1
             c["level"].value = self.level
-            c["title"].value = self.title
+            c["tolerance"].value = self.settings.tolerance
+            c["title"].value = self.title_html
             c["drawing"].value = self.png()
             if self.settings.bias is None:
                 c["bias"].value = round(self.result.bias, 2)

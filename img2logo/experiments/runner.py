@@ -1,0 +1,363 @@
+"""The notebooks' parameters: their checks, their smoke values, and the runner.
+
+A notebook's first code cell after its parameters calls :func:`check_parameters`
+with every parameter, so a bad value stops it at once with one line (a
+:class:`NotebookParameterError`, shown without a traceback) instead of failing
+deep inside a sweep. :func:`run_notebook` executes a notebook with papermill
+after refusing any parameter name the notebook does not have; ``make figures``
+and ``make figures-smoke`` call it through :func:`main`::
+
+    python -m img2logo.experiments notebooks/04_tolerance_sweep.ipynb out.ipynb -p tolerance 4
+    python -m img2logo.experiments notebooks/04_tolerance_sweep.ipynb out.ipynb --smoke
+
+:data:`SMOKE` holds each notebook's small parameters (CI, ``make test``): they
+are passed in like any other, a notebook never rewrites a parameter it was given.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import os
+import sys
+from collections.abc import Callable, Mapping, Sequence
+from pathlib import Path
+from typing import Any
+
+from ..errors import Img2LogoError, InvalidParameterError
+from . import data_path
+
+__all__ = [
+    "PARAMETER_RULES",
+    "SMOKE",
+    "NotebookError",
+    "NotebookParameterError",
+    "check_parameters",
+    "main",
+    "notebook_parameters",
+    "run_notebook",
+]
+
+
+class NotebookParameterError(InvalidParameterError):
+    """A notebook parameter has a bad value or an unknown name.
+
+    Jupyter shows it as its one-line message, without a traceback (IPython's
+    ``_render_traceback_`` hook).
+    """
+
+    def _render_traceback_(self) -> list[str]:
+        return [f"{type(self).__name__}: {self}"]
+
+
+class NotebookError(Img2LogoError, RuntimeError):
+    """A notebook failed while papermill executed it."""
+
+
+#: Each notebook's smoke parameters: small inputs, outputs in build/smoke/ (never over figures/).
+SMOKE: dict[str, dict[str, Any]] = {
+    "00_segment_graphs": {"smoke": True, "images": ["clipart-fish.png", "drawing-fish.png", "photo-cat.png"]},
+    "01_overview": {"smoke": True, "images": ["drawing-fish.png"]},
+    "02_visual_results": {"smoke": True, "images": ["drawing-fish.png", "drawing-bird.png"]},
+    "03_simplicity": {"smoke": True, "images": ["drawing-fish.png"]},
+    "04_tolerance_sweep": {
+        "smoke": True,
+        "images": ["drawing-bird.png"],
+        "table_tolerances": [4.0, 9.0],
+        "sweep_tolerances": [4.0, 9.0],
+    },
+    "05_connectivity_ablation": {"smoke": True, "images": ["drawing-bird.png"]},
+    "06_redundant_intersections": {
+        "smoke": True,
+        "images": ["clipart-dolphin.png", "drawing-bird.png"],
+        "tolerances": [5.0],
+    },
+    "07_arc_extraction": {"smoke": True, "images": ["drawing-bird.png"], "hook_angles": [0, 30, 60, 90]},
+    "08_rdp_robustness": {"smoke": True, "images": ["drawing-bird.png"], "rdp_tolerances": [2.0, 8.0]},
+    "09_timing": {"smoke": True, "images": ["drawing-leaf.png"], "repeats": 1},
+    "10_design_exploration": {
+        "smoke": True,
+        "fig15_image": "drawing-fish.png",
+        "bias_image": "drawing-fish.png",
+        "search_tolerances": [3.0, 8.0],
+        "biases": [None, 0.5],
+    },
+    "11_explore_levels": {"smoke": True, "image": "drawing-fish.png"},
+    "12_designer_features": {"smoke": True, "fill_images": ["clipart-fish.png"]},
+}
+
+
+# --------------------------------------------------------------------------- value checks
+def _fail(name: str, expected: str, value: Any) -> None:
+    raise NotebookParameterError(f"parameter {name}: expected {expected}, got {value!r}")
+
+
+def _is_number(value: Any) -> bool:
+    return isinstance(value, int | float) and not isinstance(value, bool) and math.isfinite(value)
+
+
+def _positive(name: str, value: Any, unit: str = "px") -> None:
+    if not (_is_number(value) and value > 0):
+        _fail(name, f"a positive number ({unit})", value)
+
+
+def _count(minimum: int) -> Callable[[str, Any], None]:
+    def check(name: str, value: Any) -> None:
+        if not (isinstance(value, int) and not isinstance(value, bool) and value >= minimum):
+            _fail(name, f"an integer >= {minimum}", value)
+
+    return check
+
+
+def _in_range(low: float, high: float, *, closed: bool = True) -> Callable[[str, Any], None]:
+    def check(name: str, value: Any) -> None:
+        ok = _is_number(value) and (low <= value <= high if closed else low <= value < high)
+        if not ok:
+            _fail(name, f"a number in [{low:g}, {high:g}{']' if closed else ')'}", value)
+
+    return check
+
+
+def _list_of(check_one: Callable[[str, Any], None], what: str) -> Callable[[str, Any], None]:
+    def check(name: str, value: Any) -> None:
+        if not isinstance(value, list | tuple) or not value:
+            _fail(name, f"a non-empty list of {what}", value)
+        for item in value:
+            try:
+                check_one(name, item)
+            except NotebookParameterError:
+                _fail(name, f"a non-empty list of {what}", value)
+
+    return check
+
+
+def _boolean(name: str, value: Any) -> None:
+    if not isinstance(value, bool):
+        _fail(name, "True or False", value)
+
+
+def _image(name: str, value: Any) -> None:
+    if not isinstance(value, str) or not value:
+        _fail(name, "a file name in data/", value)
+    try:
+        data_path(value)
+    except Img2LogoError as err:
+        raise NotebookParameterError(f"parameter {name}: {err}") from None
+
+
+def _images(name: str, value: Any) -> None:
+    if value == "all":
+        return
+    if not isinstance(value, list | tuple) or not value:
+        _fail(name, '"all" or a non-empty list of file names in data/', value)
+    for item in value:
+        _image(name, item)
+
+
+def _choice(*options: str) -> Callable[[str, Any], None]:
+    def check(name: str, value: Any) -> None:
+        if value not in options:
+            _fail(name, " or ".join(repr(o) for o in options), value)
+
+    return check
+
+
+def _bias(name: str, value: Any) -> None:
+    if value != "auto" and not (_is_number(value) and 0 <= value < 1):
+        _fail(name, '"auto" or a ladder bias in [0, 1)', value)
+
+
+def _biases(name: str, value: Any) -> None:
+    ok = isinstance(value, list | tuple) and value and all(b is None or (_is_number(b) and 0 <= b < 1) for b in value)
+    if not ok:
+        _fail(name, "a non-empty list of ladder biases in [0, 1) or None (automatic)", value)
+
+
+def _exponents(name: str, value: Any) -> None:
+    ok = value is None or (
+        isinstance(value, list | tuple) and value and all(isinstance(k, int) and not isinstance(k, bool) for k in value)
+    )
+    if not ok:
+        _fail(name, "None or a non-empty list of integer ladder exponents k", value)
+
+
+def _point(name: str, value: Any) -> None:
+    if not (isinstance(value, list | tuple) and len(value) == 2 and all(_is_number(v) for v in value)):
+        _fail(name, "a point (x, y) in px", value)
+
+
+def _finite(name: str, value: Any) -> None:
+    if not _is_number(value):
+        _fail(name, "a finite number", value)
+
+
+_positives = _list_of(_positive, "positive numbers (px)")
+
+#: How each notebook parameter is checked, by name (one meaning per name in every notebook).
+PARAMETER_RULES: dict[str, Callable[[str, Any], None]] = {
+    "smoke": _boolean,
+    "interactive": _boolean,
+    "images": _images,
+    "fill_images": _images,
+    "image": _image,
+    "edit_image": _image,
+    "fig15_image": _image,
+    "lock_image": _image,
+    "bias_image": _image,
+    "kind": _choice("auto", "photo", "clipart", "drawing"),
+    "lock_form": _choice("disc", "square"),
+    "tolerance": _positive,
+    "rdp_tolerance": _positive,
+    "min_length": _in_range(0.0, math.inf),
+    "zoom": _positive,
+    "threshold": _positive,
+    "lost_threshold": _positive,
+    "beak_radius": _positive,
+    "hook": _in_range(0.0, 180.0),
+    "fit_fraction": _in_range(0.0, 1.0),
+    "fractions": _list_of(_in_range(0.0, 1.0), "fractions in [0, 1]"),
+    "tolerances": _positives,
+    "table_tolerances": _positives,
+    "sweep_tolerances": _positives,
+    "search_tolerances": _positives,
+    "rdp_tolerances": _positives,
+    "hook_angles": _list_of(_in_range(0.0, 180.0), "angles in [0, 180] degrees"),
+    "levels": _count(1),
+    "columns": _count(1),
+    "zooms": _count(0),
+    "cases": _count(1),
+    "repeats": _count(1),
+    "n_exponents": _count(1),
+    "strip_levels": _count(2),
+    "user_exponents": _exponents,
+    "beak_center": _point,
+    "bias": _bias,
+    "biases": _biases,
+}
+
+
+def check_parameters(**parameters: Any) -> None:
+    """Check a notebook's parameters, each by the rule of its name (:data:`PARAMETER_RULES`).
+
+    Called once at the top of every notebook with all its parameters.
+
+    Raises
+    ------
+    NotebookParameterError
+        The first bad value, as one line naming the parameter, what was
+        expected and what came.
+    """
+    for name, value in parameters.items():
+        rule = PARAMETER_RULES.get(name)
+        if rule is None:
+            raise NotebookParameterError(f"parameter {name}: no check is defined for it (add one to PARAMETER_RULES)")
+        rule(name, value)
+
+
+# --------------------------------------------------------------------------- running
+def notebook_parameters(path: str | os.PathLike[str]) -> dict[str, Any]:
+    """The parameters of a notebook's cell tagged ``parameters``, by name (``papermill.inspect_notebook``)."""
+    import papermill
+
+    return dict(papermill.inspect_notebook(str(path)))
+
+
+def run_notebook(
+    path: str | os.PathLike[str],
+    output: str | os.PathLike[str],
+    parameters: Mapping[str, Any] | None = None,
+    *,
+    kernel_name: str = "python3",
+) -> Path:
+    """Execute a notebook with papermill, in its own folder, after checking the parameter names.
+
+    Parameters
+    ----------
+    path : path
+        The notebook.
+    output : path
+        Where the executed copy goes (written also when a cell fails).
+    parameters : mapping, optional
+        Values for names of the notebook's parameters cell.
+
+    Returns
+    -------
+    Path
+        ``output``.
+
+    Raises
+    ------
+    NotebookParameterError
+        A name the notebook does not have (before anything runs), or a value
+        its :func:`check_parameters` call refused.
+    NotebookError
+        Another error in a cell: its one-line message and the executed copy
+        holding the traceback.
+    """
+    import papermill
+    from papermill.exceptions import PapermillExecutionError
+
+    nb = Path(path)
+    parameters = dict(parameters or {})
+    known = notebook_parameters(nb)
+    unknown = sorted(set(parameters) - set(known))
+    if unknown:
+        raise NotebookParameterError(
+            f"{nb.name}: no parameter {', '.join(unknown)}; its parameters are {', '.join(known)}"
+        )
+    try:
+        papermill.execute_notebook(
+            str(nb),
+            str(output),
+            parameters=parameters,
+            kernel_name=kernel_name,
+            cwd=str(nb.resolve().parent),
+            progress_bar=False,
+            # The kernel's own log (a warning about its local TCP transport) is not ours to show.
+            extra_arguments=["--IPKernelApp.log_level=ERROR"],
+        )
+    except PapermillExecutionError as err:
+        message = f"{nb.name}: {err.ename}: {err.evalue}"
+        if err.ename == NotebookParameterError.__name__:
+            raise NotebookParameterError(message) from None
+        raise NotebookError(f"{message} (cell {err.exec_count}; the traceback is in {output})") from None
+    return Path(output)
+
+
+def _value(text: str) -> Any:
+    """A ``-p`` value as YAML: ``4`` is an int, ``4.5`` a float, ``[a.png, b.png]`` a list, ``null`` None."""
+    import yaml
+
+    try:
+        return yaml.safe_load(text)
+    except yaml.YAMLError:
+        return text
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """``python -m img2logo.experiments NOTEBOOK OUTPUT [--smoke] [-p NAME VALUE]...``.
+
+    Exit status 0 on success, 2 for a bad parameter (one line), 1 for a failed cell.
+    """
+    parser = argparse.ArgumentParser(
+        prog="python -m img2logo.experiments",
+        description="Run a notebook with papermill; refuse parameter names it does not have.",
+    )
+    parser.add_argument("notebook", type=Path)
+    parser.add_argument("output", type=Path)
+    parser.add_argument("--smoke", action="store_true", help="pass the notebook's smoke parameters (SMOKE)")
+    parser.add_argument(
+        "-p", "--parameter", nargs=2, action="append", default=[], metavar=("NAME", "VALUE"), help="a value, as YAML"
+    )
+    args = parser.parse_args(argv)
+    parameters = dict(SMOKE.get(args.notebook.stem, {"smoke": True})) if args.smoke else {}
+    parameters.update({name: _value(text) for name, text in args.parameter})
+    try:
+        run_notebook(args.notebook, args.output, parameters)
+    except NotebookParameterError as err:
+        print(f"error: {err}", file=sys.stderr)
+        return 2
+    except Img2LogoError as err:
+        print(f"error: {err}", file=sys.stderr)
+        return 1
+    return 0

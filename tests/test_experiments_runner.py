@@ -1,0 +1,72 @@
+"""img2logo.experiments.runner: the notebooks' parameter checks and smoke values."""
+
+from __future__ import annotations
+
+import pytest
+
+from img2logo import InvalidParameterError
+from img2logo.experiments import check_parameters
+from img2logo.experiments.runner import PARAMETER_RULES, SMOKE, NotebookParameterError
+
+
+@pytest.mark.parametrize(
+    ("name", "value", "expected"),
+    [
+        ("tolerance", -1, "parameter tolerance: expected a positive number (px), got -1"),
+        ("tolerance", "5", "parameter tolerance: expected a positive number (px), got '5'"),
+        ("tolerance", float("nan"), "parameter tolerance: expected a positive number (px), got nan"),
+        ("smoke", "yes", "parameter smoke: expected True or False, got 'yes'"),
+        ("repeats", 0, "parameter repeats: expected an integer >= 1, got 0"),
+        ("repeats", 2.0, "parameter repeats: expected an integer >= 1, got 2.0"),
+        ("kind", "sketch", "parameter kind: expected 'auto' or 'photo' or 'clipart' or 'drawing', got 'sketch'"),
+        ("bias", 1.0, 'parameter bias: expected "auto" or a ladder bias in [0, 1), got 1.0'),
+        ("images", [], 'parameter images: expected "all" or a non-empty list of file names in data/, got []'),
+        ("images", ["nope.png"], "parameter images: no example image 'nope.png' in data/; available: clipart-apple"),
+        ("sweep_tolerances", [4.0, -9.0], "expected a non-empty list of positive numbers (px), got [4.0, -9.0]"),
+        ("fractions", [0.0, 1.5], "expected a non-empty list of fractions in [0, 1], got [0.0, 1.5]"),
+        ("beak_center", (1.0,), "parameter beak_center: expected a point (x, y) in px, got (1.0,)"),
+        ("biases", [None, 2.0], "expected a non-empty list of ladder biases in [0, 1) or None (automatic)"),
+        ("user_exponents", [1.5], "expected None or a non-empty list of integer ladder exponents k, got [1.5]"),
+    ],
+)
+def test_a_bad_value_is_one_line_naming_the_parameter(name, value, expected):
+    with pytest.raises(NotebookParameterError) as caught:
+        check_parameters(**{name: value})
+    assert expected in str(caught.value)
+    assert "\n" not in str(caught.value)
+    assert isinstance(caught.value, InvalidParameterError)  # an img2logo error, a ValueError too
+
+
+def test_good_values_pass():
+    check_parameters(
+        images="all",
+        tolerance=5,
+        bias="auto",
+        biases=[None, 0.0, 0.5],
+        user_exponents=None,
+        beak_center=[375.0, 155.0],
+        hook_angles=list(range(0, 95, 5)),
+        zooms=0,
+        min_length=0.0,
+        smoke=True,
+    )
+
+
+def test_a_name_without_a_rule_is_refused():
+    with pytest.raises(NotebookParameterError, match="parameter colour: no check is defined"):
+        check_parameters(colour="red")
+
+
+def test_jupyter_shows_the_error_as_its_one_line():
+    err = NotebookParameterError("parameter tolerance: expected a positive number (px), got -1")
+    assert err._render_traceback_() == [
+        "NotebookParameterError: parameter tolerance: expected a positive number (px), got -1"
+    ]
+
+
+@pytest.mark.parametrize("notebook", sorted(SMOKE))
+def test_the_smoke_values_pass_their_checks(notebook):
+    values = SMOKE[notebook]
+    assert values["smoke"] is True  # smoke outputs go to build/smoke/, never over figures/
+    assert set(values) <= set(PARAMETER_RULES)
+    check_parameters(**values)
