@@ -216,12 +216,14 @@ class _Optimizer:
         #: Junctions whose connectivity constraint was given up (see recover).
         self.released: set[int] = set()
         self._path_cache: dict[int, tuple[_Group, tuple[int, ...]]] = {}
+        self._node_groups: dict[int, list[int]] | None = None
 
     # ----------------------------------------------------------------- groups and nodes
     def add_group(self, group: _Group) -> int:
         gid = self.next_id
         self.next_id += 1
         self.groups[gid] = group
+        self._node_groups = None
         return gid
 
     def constrained_nodes(self, group: _Group) -> tuple[int, ...]:
@@ -258,11 +260,38 @@ class _Optimizer:
         return (group.nodes[0], *inner, group.nodes[-1])
 
     def node_groups(self, groups: dict[int, _Group] | None = None) -> dict[int, list[int]]:
-        """For every node of J', the groups constrained there."""
+        """For every node of J', the groups constrained there (of ``groups``, default the current ones).
+
+        The current state's is cached until the groups or the released junctions
+        change; treat it as read-only.
+        """
+        if groups is None and self._node_groups is not None:
+            return self._node_groups
         out: dict[int, list[int]] = {}
         for gid, g in (self.groups if groups is None else groups).items():
             for n in set(self.constrained_nodes(g)):
                 out.setdefault(n, []).append(gid)
+        if groups is None:
+            self._node_groups = out
+        return out
+
+    def node_groups_after(self, a: int, b: int, merged: _Group) -> dict[int, list[int]]:
+        """:meth:`node_groups` after merging groups ``a`` and ``b`` into ``merged`` (id -1).
+
+        Only the nodes of the three groups change: the rest is the current state's.
+        """
+        now = self.node_groups()
+        out = dict(now)
+        touched = set(self.constrained_nodes(self.groups[a])) | set(self.constrained_nodes(self.groups[b]))
+        new = set(self.constrained_nodes(merged))
+        for n in touched | new:
+            gs = [g for g in now.get(n, ()) if g not in (a, b)]
+            if n in new:
+                gs.append(-1)
+            if gs:
+                out[n] = gs
+            else:
+                out.pop(n, None)
         return out
 
     def end_groups(self) -> dict[int, list[int]]:
@@ -481,6 +510,7 @@ class _Optimizer:
                     for n, gs in self.node_groups(groups).items()
                 }
                 self.released.add(max(miss, key=lambda n: (miss[n], -n)))
+                self._node_groups = None
         self.stats["released_junctions"] = len(self.released)
         if self.released:
             import warnings
@@ -547,7 +577,7 @@ class _Optimizer:
         after = {g: grp for g, grp in self.groups.items() if g not in (a, b)}
         after[-1] = merged
         n_groups = len(after)
-        node_groups_after = self.node_groups(after)
+        node_groups_after = self.node_groups_after(a, b, merged)
         nj_after = len(node_groups_after)
         seeds = {g: (self.fits[g].center, self.fits[g].radius, self.fits[g].k) for g in after if g != -1}
         held: dict[int, list[np.ndarray]] = {}
@@ -635,12 +665,13 @@ class _Optimizer:
         a, b, _ = outcome.pair
         after = {g: grp for g, grp in self.groups.items() if g not in (a, b)}
         after[-1] = outcome.merged
-        return self._redundant(after, outcome.fits, outcome.displacements, self.node_groups(after))
+        return self._redundant(after, outcome.fits, outcome.displacements, self.node_groups_after(a, b, outcome.merged))
 
     def apply(self, outcome: _Outcome) -> int:
         """Carry out a merge: the merged group replaces its two parts."""
         a, b, _ = outcome.pair
         del self.groups[a], self.groups[b]
+        self._node_groups = None
         self.fits.pop(a)
         self.fits.pop(b)
         gid = self.add_group(outcome.merged)
