@@ -41,6 +41,7 @@ from __future__ import annotations
 import numpy as np
 
 from .constants import (
+    CLIPART_EDGE_CONTRAST,
     CLIPART_FLAT_RADIUS,
     CLIPART_LINK_DISTANCE,
     CLIPART_MIN_CONTRAST,
@@ -74,8 +75,13 @@ def colour_noise(lab: np.ndarray) -> tuple[float, float]:
     Returns
     -------
     level : float
-        The median of those differences, Delta E: 0 for a clean clip art, about
-        3 for a JPEG of quality 70 with large fills.
+        The noise of a compressed image, Delta E: the larger of the median of
+        those differences and their median where they are neither 0 nor an edge
+        (above ``CLIPART_EDGE_CONTRAST``). The first is the level where noise
+        covers the fills; the second where JPEG keeps most 8x8 blocks exactly
+        flat and the noise sits between them. About 2-3 for JPEGs of quality
+        70. Meaningful for a noisy image only (see ``fraction``): in a clean one
+        the differences are edges.
     fraction : float
         The fraction of those pixels whose difference is above 0 but below the
         just noticeable difference: at most 0.02 on clean clip arts, at least
@@ -95,7 +101,9 @@ def colour_noise(lab: np.ndarray) -> tuple[float, float]:
     if not fill.any():
         return 0.0, 0.0
     v = np.sqrt(most[fill])
-    return float(np.median(v)), float(np.mean((v > 0) & (v <= CLIPART_MIN_CONTRAST)))
+    noisy = v[(v > 0) & (v <= CLIPART_EDGE_CONTRAST)]
+    level = max(float(np.median(v)), float(np.median(noisy)) if len(noisy) else 0.0)
+    return level, float(np.mean((v > 0) & (v <= CLIPART_MIN_CONTRAST)))
 
 
 def clipart_regions(img: LoadedImage) -> np.ndarray:

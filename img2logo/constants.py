@@ -82,6 +82,10 @@ CLIPART_SHIFT_RADIUS: int = 4
 #: region, CIELAB Delta E 76: the just noticeable difference (Sharma, Digital Color
 #: Imaging Handbook, 2003): no visible boundary separates them.
 CLIPART_MIN_CONTRAST: float = 2.3
+#: Clip art: a neighbour difference above this is an edge, not noise, when the noise
+#: level of a compressed image is measured (CIELAB Delta E 76: four just noticeable
+#: differences).
+CLIPART_EDGE_CONTRAST: float = 9.2
 #: Clip art: a noisy image (JPEG) links pixels, and keeps boundaries, only above this
 #: many times its fills' typical neighbour difference (``clipart.colour_noise``, a
 #: median): twice the median takes in the bulk of the noise of a fill.
