@@ -117,17 +117,17 @@ def clipart_regions(img: LoadedImage) -> np.ndarray:
     # A clean clip art's fills are exactly flat: any flat 3x3 block is a fill. In a
     # compressed one, a flat patch smaller than a JPEG block (8 x 8 px) can be an
     # artefact of one block, so seeds must be as large as a region.
-    seed_area = CLIPART_SEED_AREA
-    if fraction > CLIPART_NOISY_FRACTION:
+    clean = fraction <= CLIPART_NOISY_FRACTION
+    seed_area = CLIPART_SEED_AREA if clean else CLIPART_MIN_REGION_AREA
+    if clean:
+        noise = 0.0  # the differences measured are edges' (a drawing has little fill)
+    else:
         lab = _mean_shift(img.rgb, max(2 * CLIPART_MIN_CONTRAST, CLIPART_NOISE_FACTOR * noise))
         noise, _ = colour_noise(lab)
-        seed_area = CLIPART_MIN_REGION_AREA
-    else:
-        noise = 0.0  # clean: the median difference is an edge's (a drawing has little fill)
     link = max(CLIPART_LINK_DISTANCE, CLIPART_NOISE_FACTOR * noise)
     contrast = max(CLIPART_MIN_CONTRAST, CLIPART_NOISE_FACTOR * noise)
     areas = _flat_areas(lab, link)
-    regions, seeded = _palette_regions(areas, img.rgb, lab, seed_area, contrast, strokes=seed_area == CLIPART_SEED_AREA)
+    regions, seeded = _palette_regions(areas, img.rgb, lab, seed_area, contrast, strokes=clean)
     # A region without a single seed pixel is made of rims only: a sliver along an
     # edge (JPEG ringing), not a fill.
     rimmed = np.bincount(regions.ravel(), weights=seeded.ravel(), minlength=int(regions.max()) + 1) == 0
@@ -390,7 +390,6 @@ def clipart_lines(regions: np.ndarray) -> np.ndarray:
     if len(thin) == 0:
         return region_boundaries(regions)
     stroke = np.isin(regions, thin)
-    merged = regions.copy()
     n = int(regions.max()) + 1
     border = _border_lengths(regions, n)
     target = np.arange(n)
