@@ -42,7 +42,7 @@ from ._validation import check_choice, check_positive
 from .arc_extraction import ArcFit, extract_arc, redundant_intersections
 from .circle_fitting import fit_center, fit_circle, fit_constrained, mean_abs_error
 from .constants import LINE_END_SKIP, LINE_MIN_ANGLE, LINE_TOLERANCE, SIMPLIFICATION_ERROR, TOLERANCE
-from .errors import InvalidParameterError
+from .errors import FitError, InvalidParameterError
 from .geometry import Abstraction, Circle, line_arc
 from .golden_ladder import Ladder, make_ladder
 from .segment_graph import SegmentGraph
@@ -509,6 +509,8 @@ class _Optimizer:
                     n: max(abs(float(np.hypot(*(self.graph.junctions[n] - seeds[g][0]))) - seeds[g][1]) for g in gs)
                     for n, gs in self.node_groups(groups).items()
                 }
+                if not miss:  # no constraint left, yet no fit: a numerical failure, said as such
+                    raise FitError(f"the circles of {len(part)} segments could not be fitted, even unconstrained")
                 self.released.add(max(miss, key=lambda n: (miss[n], -n)))
                 self._node_groups = None
         self.stats["released_junctions"] = len(self.released)
