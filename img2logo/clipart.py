@@ -135,6 +135,19 @@ def clipart_regions(img: LoadedImage) -> np.ndarray:
     return _background_first(regions)
 
 
+def label_means(labels: np.ndarray, values: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Pixel count and mean value of every label: (n,) float64 and (n, C).
+
+    ``labels`` is (H, W) of non-negative ints, ``values`` (H, W, C); n is the
+    largest label + 1, and an unused label has count 0 and mean 0.
+    """
+    flat = labels.ravel()
+    counts = np.bincount(flat).astype(np.float64)
+    chans = values.reshape(len(flat), -1)
+    sums = np.stack([np.bincount(flat, weights=chans[:, c], minlength=len(counts)) for c in range(chans.shape[1])], 1)
+    return counts, sums / np.maximum(counts, 1.0)[:, None]
+
+
 def _palette_regions(
     areas: np.ndarray, rgb: np.ndarray, lab: np.ndarray, seed_area: int, contrast: float, *, strokes: bool
 ) -> tuple[np.ndarray, np.ndarray]:
@@ -157,35 +170,28 @@ def _palette_regions(
     """
     from skimage.measure import label
 
-    counts = np.bincount(areas.ravel())
-    flat = lab.reshape(-1, 3)
-    sums = np.stack([np.bincount(areas.ravel(), weights=flat[:, c], minlength=len(counts)) for c in range(3)], 1)
+    counts, lab_means = label_means(areas, lab)
     seeds = np.flatnonzero(counts >= seed_area)
     if len(seeds) == 0:
         seeds = np.array([int(np.argmax(counts))])
     seed_id = np.full(len(counts), -1, dtype=np.int64)
     seed_id[seeds] = np.arange(len(seeds))
     seed_of = seed_id[areas]
-    means = sums[seeds] / counts[seeds, None]
-    sizes = counts[seeds].astype(np.float64)
+    means = lab_means[seeds]
+    sizes = counts[seeds]
     if strokes:
-        rgb_flat = rgb.reshape(-1, 3)
-        rgb_sums = np.stack(
-            [np.bincount(areas.ravel(), weights=rgb_flat[:, c], minlength=len(counts)) for c in range(3)], 1
-        )
-        own = _unexplained(seed_of, rgb_sums[seeds] / counts[seeds, None], rgb, lab, contrast)
+        own = _unexplained(seed_of, label_means(areas, rgb)[1][seeds], rgb, lab, contrast)
         if own.any():
             groups = label(own, connectivity=2)
-            extra = np.bincount(groups.ravel())
+            extra, extra_means = label_means(groups, lab)
             keep = np.flatnonzero(extra >= seed_area)
             keep = keep[keep > 0]
             if len(keep):
-                gsum = np.stack([np.bincount(groups.ravel(), weights=flat[:, c]) for c in range(3)], 1)
                 new_id = np.full(len(extra), -1, dtype=np.int64)
                 new_id[keep] = len(means) + np.arange(len(keep))
                 seed_of = np.where(new_id[groups] >= 0, new_id[groups], seed_of)
-                means = np.vstack([means, gsum[keep] / extra[keep, None]])
-                sizes = np.concatenate([sizes, extra[keep].astype(np.float64)])
+                means = np.vstack([means, extra_means[keep]])
+                sizes = np.concatenate([sizes, extra[keep]])
     entry_of = np.empty(len(means), dtype=np.int64)
     palette: list[np.ndarray] = []
     for i in np.argsort(-sizes, kind="stable"):

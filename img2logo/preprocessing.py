@@ -22,7 +22,7 @@ import numpy as np
 
 from . import _skeleton
 from ._validation import check_choice, check_positive, readonly
-from .clipart import clipart_lines, clipart_regions
+from .clipart import clipart_lines, clipart_regions, label_means
 from .constants import (
     BLANK_IMAGE_RANGE,
     DRAWING_MAX_STROKE_FRACTION,
@@ -119,11 +119,7 @@ def _detect(img: LoadedImage) -> tuple[str, str, np.ndarray | None]:
         return "photo", f"only {flat:.0%} of the pixels sit in flat fills (camera noise, texture): a photo", None
     regions = clipart_regions(img)
 
-    n = int(regions.max()) + 1
-    lab = img.lab.reshape(-1, 3)
-    area = np.bincount(regions.ravel(), minlength=n).astype(np.float64)
-    means = np.stack([np.bincount(regions.ravel(), weights=lab[:, c], minlength=n) for c in range(3)], 1)
-    means /= np.maximum(area, 1.0)[:, None]
+    area, means = label_means(regions, img.lab)
     # Paper: the background and the regions of its colour it encloses (inside a wheel).
     paper = np.linalg.norm(means - means[0], axis=1) <= INK_COLOUR_SPREAD
     if paper.all():
