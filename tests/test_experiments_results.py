@@ -73,8 +73,8 @@ def test_final_level_rules_differ_when_similarity_is_not_monotone():
 # --------------------------------------------------------------------------- junction gaps
 def two_arcs(shift: float) -> Abstraction:
     """Two arcs that should meet at (10, 0): the second circle moved ``shift`` px to the right."""
-    a = Arc(Circle(0.0, 0.0, 10.0, 5), 0.0, math.pi / 2)
-    b = Arc(Circle(20.0 + shift, 0.0, 10.0, 5), math.pi, -1.0)
+    a = Arc(Circle(0.0, 0.0, 10.0, 4), 0.0, math.pi / 2)  # r = 10 is phi ** (4 + bias) with the bias below
+    b = Arc(Circle(20.0 + shift, 0.0, 10.0, 4), math.pi, -1.0)
     return Abstraction(
         level=0,
         arcs=(a, b),
@@ -82,10 +82,11 @@ def two_arcs(shift: float) -> Abstraction:
         junctions=np.array([[10.0, 0.0], [0.0, 10.0]]),
         junction_arcs=((0, 1), (0,)),
         similarity=0.0,
-        bias=0.0,
+        bias=math.log(10.0) / math.log((1.0 + math.sqrt(5.0)) / 2.0) - 4.0,
         tolerance=T,
         width=40,
         height=40,
+        connected=False,  # arcs that may not meet: what junction_gaps measures
     )
 
 

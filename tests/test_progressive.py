@@ -418,9 +418,9 @@ def test_a_junction_the_fit_cannot_meet_is_released(monkeypatch):
     stuck = 2  # pretend that no fit can meet junction 2 (where arcs 2 and 3 join)
     solve = progressive._Optimizer.solve
 
-    def failing(self, groups, seeds, free_groups, free_nodes, *rest):
+    def failing(self, groups, *args, **kwargs):
         nodes = {n for g in groups.values() for n in self.constrained_nodes(g)}
-        return None if stuck in nodes else solve(self, groups, seeds, free_groups, free_nodes, *rest)
+        return None if stuck in nodes else solve(self, groups, *args, **kwargs)
 
     monkeypatch.setattr(progressive._Optimizer, "solve", failing)
     with pytest.warns(progressive.ConnectivityWarning, match=r"could not meet [12] of 4 junctions"):

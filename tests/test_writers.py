@@ -129,9 +129,8 @@ def test_params_made_json_safe():
 
 def test_circle_without_k_cannot_be_written():
     c = Circle(50.0, 50.0, 10.0)
-    a = make_abstraction(arcs=(Arc(c, 0.0, 1.0),), arc_segments=((0,),), junctions=np.zeros((0, 2)), junction_arcs=())
     with pytest.raises(InvalidParameterError, match=r"circle 0 \(centre \(50, 50\), r=10\) has no ladder exponent k"):
-        writers.to_document(a)
+        make_abstraction(arcs=(Arc(c, 0.0, 1.0),), arc_segments=((0,),), junctions=np.zeros((0, 2)), junction_arcs=())
 
 
 @pytest.mark.parametrize(
@@ -190,14 +189,18 @@ def test_arc_passing_through_a_junction_is_not_listed():
 
 def test_listed_arc_off_its_junction_is_reported():
     a = make_abstraction()
-    b = make_abstraction(junctions=np.array([a.junctions[0] + [0.0, 0.5]]))
-    with pytest.raises(InvalidParameterError, match=r"junction 0: .* px off the circle 0 of arc 0"):
-        writers.to_document(b)
-    doc = writers.to_document(b, check=False)
-    with pytest.raises(InvalidParameterError, match=r"junction 0: .* off the circle"):
-        writers.validate_document(doc)
+    # The abstraction refuses it when it is made: such a document is never written.
+    with pytest.raises(InvalidParameterError, match=r"junction 0: .* px off the circle of arc 0"):
+        make_abstraction(junctions=np.array([a.junctions[0] + [0.0, 0.5]]))
     with pytest.raises(InvalidParameterError, match=r"junction 0: arc index 7 is out of range"):
-        writers.to_document(make_abstraction(junction_arcs=((0, 7),)))
+        make_abstraction(junction_arcs=((0, 7),))
+    # A reader checks a document that was written elsewhere.
+    doc = writers.to_document(a)
+    doc["junctions"][0]["y"] += 0.5
+    with pytest.raises(InvalidParameterError, match=r"junction 0: .* px off the circle 0 of arc 0"):
+        writers.validate_document(doc)
+    with pytest.raises(InvalidParameterError, match=r"junction 0: .* off the circle"):
+        writers.from_document(doc)
 
 
 def test_invariant_radius():
@@ -327,24 +330,23 @@ def test_without_jsonschema(monkeypatch):
 
 
 def test_fibonacci_ladder():
+    from img2logo.golden_ladder import FibonacciLadder
+
     unit = 3.0
     c1, c2 = Circle(50.0, 50.0, unit * 5, 5), Circle(50.0, 50.0, unit * 8, 6)
-    a = make_abstraction(
-        arcs=(Arc(c1, 0.0, 1.0), Arc(c2, 0.0, -1.0)),
-        arc_segments=((0,), (1,)),
-        junctions=np.zeros((0, 2)),
-        junction_arcs=(),
-        params={"ladder": "fibonacci", "unit": unit},
-    )
+    fields = dict(arc_segments=((0,), (1,)), junctions=np.zeros((0, 2)), junction_arcs=(), bias=0.0)
+    a = make_abstraction(arcs=(Arc(c1, 0.0, 1.0), Arc(c2, 0.0, -1.0)), ladder=FibonacciLadder(unit), **fields)
     doc = writers.to_document(a)
     assert doc["ladder"] == "fibonacci" and doc["unit"] == unit
     writers.validate_document(doc)
-    assert writers.to_document(writers.from_document(doc)) == doc
+    back = writers.from_document(doc)
+    assert back.ladder == FibonacciLadder(unit) and writers.to_document(back) == doc
     doc["circles"][1]["k"] = 7
     with pytest.raises(InvalidParameterError, match=r"^circle 1: r=24.0 is not unit\*F\(k\) = 39 \(k=7, unit=3.0\)"):
         writers.validate_document(doc)
-    with pytest.raises(InvalidParameterError, match="params\\['ladder'\\] must be 'phi' or 'fibonacci'"):
-        writers.to_document(a, {"ladder": "lucas"})
+    # The ladder is the abstraction's: a Fibonacci radius is no phi radius.
+    with pytest.raises(InvalidParameterError, match=r"^circle 0: r=15.0 is not phi\*\*\(k\+bias\)"):
+        make_abstraction(arcs=(Arc(c1, 0.0, 1.0), Arc(c2, 0.0, -1.0)), **fields)
 
 
 def test_write_json_deterministic_and_readable(tmp_path):
@@ -506,11 +508,15 @@ def test_svg_options_and_determinism(tmp_path):
         writers.to_svg(a, image_size=5)
 
 
-def test_svg_allows_circles_without_k():
-    c = Circle(50.0, 50.0, 10.0)
-    a = make_abstraction(arcs=(Arc(c, 0.0, 1.0),), arc_segments=((0,),), junctions=np.zeros((0, 2)), junction_arcs=())
-    root = ET.fromstring(writers.to_svg(a))
-    assert root.find(f".//{SVG}path").get("data-k") is None
+def test_svg_writes_a_line_without_k():
+    from img2logo.geometry import line_arc
+
+    a = make_abstraction(
+        arcs=(line_arc((10.0, 20.0), (90.0, 20.0)),), arc_segments=((0,),), junctions=np.zeros((0, 2)), junction_arcs=()
+    )
+    path = ET.fromstring(writers.to_svg(a)).find(f".//{SVG}path")
+    assert path.get("data-k") is None and path.get("data-line") == "true"
+    assert path.get("d") == "M 10 20 L 90 20"
 
 
 # --- PNG --------------------------------------------------------------------------------
@@ -652,10 +658,8 @@ def test_bad_path_rejected(bad):
 
 
 def test_invalid_document_is_not_written(tmp_path):
-    c = Circle(50.0, 50.0, 10.0)
-    a = make_abstraction(arcs=(Arc(c, 0.0, 1.0),), arc_segments=((0,),), junctions=np.zeros((0, 2)), junction_arcs=())
-    with pytest.raises(InvalidParameterError, match="has no ladder exponent k"):
-        writers.write_json(a, tmp_path / "a.json")
+    with pytest.raises(InvalidParameterError, match="must be JSON-safe"):
+        writers.write_json(make_abstraction(), tmp_path / "a.json", params={"obj": object()})
     assert leftovers(tmp_path) == []
 
 
@@ -683,7 +687,7 @@ def _unconnected(connectivity: bool) -> Abstraction:
     a = make_abstraction()
     arcs = list(a.arcs)
     arcs[1] = Arc(arcs[1].circle, arcs[1].theta0 - 0.05, arcs[1].sweep)
-    return make_abstraction(arcs=tuple(arcs), params={"connectivity": connectivity})
+    return make_abstraction(arcs=tuple(arcs), params={"connectivity": connectivity}, connected=connectivity)
 
 
 def test_unconnected_arc_ends_are_their_own_junctions():
@@ -695,9 +699,9 @@ def test_unconnected_arc_ends_are_their_own_junctions():
         {"x": float(p[0]), "y": float(p[1]), "arcs": [0]},
         {"x": pytest.approx(start[0], abs=1e-9), "y": pytest.approx(start[1], abs=1e-9), "arcs": [1]},
     ]
-    # With the connectivity constraint on, an arc end off its junction is a bug: never written.
-    with pytest.raises(InvalidParameterError, match=r"junction 0: arc 1 has no end point"):
-        writers.to_document(_unconnected(True))
+    # With the connectivity constraint on, an arc end off its junction is a bug: never made.
+    with pytest.raises(InvalidParameterError, match=r"junction 0.* arc 1"):
+        _unconnected(True)
 
 
 def test_no_connectivity_result_is_a_valid_document(tmp_path):
