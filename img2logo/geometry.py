@@ -464,7 +464,8 @@ class Abstraction:
     def _found_arc_junctions(self) -> tuple[ArcJunctions, ...]:
         """Each arc's junctions when none are given: the listed junction nearest each end, the others passed through.
 
-        Connected, an end has a junction only within ``JUNCTION_TOLERANCE``.
+        Connected, an end has a junction only within ``JUNCTION_TOLERANCE``;
+        unconnected (its gaps are the point), the nearest at any distance.
         """
         listed: list[list[int]] = [[] for _ in self.arcs]
         for k, entries in enumerate(self.junction_arcs):
@@ -478,6 +479,12 @@ class Abstraction:
                 best = int(np.argmin(d)) if d else -1
                 near = d and (d[best] <= JUNCTION_TOLERANCE or not self.connected)
                 ends.append(js[best] if near else None)
+            if not self.connected and ends[0] is not None and ends[0] == ends[1] and not arc.is_full_circle:
+                # One junction for both ends of an open arc: it is at the nearer end only.
+                near_start = math.dist(arc.start, self.junctions[ends[0]]) <= math.dist(
+                    arc.end, self.junctions[ends[0]]
+                )
+                ends[1 if near_start else 0] = None
             through = tuple(k for k in js if k not in ends)
             out.append(ArcJunctions(ends[0], ends[1], through))
         return tuple(out)

@@ -132,6 +132,14 @@ def test_unconnected_junctions_need_not_meet_their_arcs():
     assert not a.connected and a.arc_junctions[0].start == 0
 
 
+def test_an_unconnected_arc_with_one_junction_has_it_at_one_end():
+    c = golden(100.0, 100.0, 8)
+    arc = Arc(c, 0.0, 1.0)
+    near_end = np.add(arc.end, (2.0, 0.0))  # 2 px off the end: a gap of the connectivity ablation
+    a = Abstraction(0, (arc,), ((0,),), np.array([near_end]), ((0,),), 0.0, BIAS, 5.0, 200, 200, connected=False)
+    assert a.arc_junctions == (ArcJunctions(None, 0),)
+
+
 def test_every_circle_is_on_the_ladder():
     a = chain()
     assert a.ladder == GoldenLadder(BIAS)
