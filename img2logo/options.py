@@ -60,6 +60,26 @@ def _option(
     )
 
 
+def _px(default: float, flag: str, what: str, *more: str, stage: str = "optimize", note: str = "") -> Any:
+    """A length option in px with its default: ``--flag PX``."""
+    extra = f"; {note}" if note else ""
+    return _option(
+        default,
+        stage=stage,
+        flags=(flag, *more),
+        type=float,
+        metavar="PX",
+        help=f"{what}, px{extra} (default {default})",
+    )
+
+
+def _switch(flag: str, what: str, *, default: bool = True) -> Any:
+    """An on/off option: on by default, ``flag`` (``--no-...``) switches ``what`` off; or off, ``flag`` turns it on."""
+    if default:
+        return _option(True, flags=(flag,), action="store_false", help=f"switch off {what}")
+    return _option(False, flags=(flag,), action="store_true", help=what)
+
+
 def _parse_radii(text: str | None) -> tuple[int, ...] | None:
     """``--radii K1,K2,...`` as exponents."""
     if text is None:
@@ -133,21 +153,11 @@ class Options:
         choices=("auto", "photo", "clipart", "drawing"),
         help="kind of input (default: auto, chosen from the image and reported)",
     )
-    rdp_tolerance: float = _option(
-        RDP_TOLERANCE,
-        stage="input",
-        flags=("--rdp",),
-        type=float,
-        metavar="PX",
-        help=f"Ramer-Douglas-Peucker tolerance of the over-segmentation, px (default {RDP_TOLERANCE})",
+    rdp_tolerance: float = _px(
+        RDP_TOLERANCE, "--rdp", "Ramer-Douglas-Peucker tolerance of the over-segmentation", stage="input"
     )
-    min_length: float = _option(
-        MIN_SEGMENT_LENGTH,
-        stage="input",
-        flags=("--min-length",),
-        type=float,
-        metavar="PX",
-        help=f"drop free-hanging segments shorter than this, px (default {MIN_SEGMENT_LENGTH})",
+    min_length: float = _px(
+        MIN_SEGMENT_LENGTH, "--min-length", "drop free-hanging segments shorter than this", stage="input"
     )
     foreground: object = _option(
         "auto",
@@ -167,12 +177,8 @@ class Options:
         "it seeds the object's segmentation",
     )
     # ----------------------------------------------------------------- the optimization
-    tolerance: float = _option(
-        TOLERANCE,
-        flags=("--tolerance", "-T"),
-        type=float,
-        metavar="PX",
-        help=f"largest similarity error E^s, px; larger gives fewer arcs (default {TOLERANCE})",
+    tolerance: float = _px(
+        TOLERANCE, "--tolerance", "largest similarity error E^s", "-T", note="larger gives fewer arcs"
     )
     ladder: str = _option(
         "phi",
@@ -207,41 +213,18 @@ class Options:
     )
     arc_selection: str = _option("frechet")
     max_arc_distance: float | str | None = _option(AUTO)
-    connectivity: bool = _option(
-        True,
-        flags=("--no-connectivity",),
-        action="store_false",
-        help="switch off the connectivity constraint (Fig. 11c)",
+    connectivity: bool = _switch("--no-connectivity", "the connectivity constraint (Fig. 11c)")
+    inner_junctions: bool = _switch("--no-inner-junctions", "junctions inside merged arcs as constraints (Fig. 11d)")
+    merging: bool = _switch("--no-merging", "merging segments (Fig. 11e)")
+    avoid_intersections: bool = _switch(
+        "--no-intersection-avoidance", "rejecting merges that leave redundant intersections (Fig. 12)"
     )
-    inner_junctions: bool = _option(
-        True,
-        flags=("--no-inner-junctions",),
-        action="store_false",
-        help="switch off junctions inside merged arcs as constraints (Fig. 11d)",
-    )
-    merging: bool = _option(
-        True, flags=("--no-merging",), action="store_false", help="switch off merging segments (Fig. 11e)"
-    )
-    avoid_intersections: bool = _option(
-        True,
-        flags=("--no-intersection-avoidance",),
-        action="store_false",
-        help="switch off rejecting merges that leave redundant intersections (Fig. 12)",
-    )
-    localized: bool = _option(
-        True, flags=("--no-localized",), action="store_false", help="switch off localized fitting (Sec. 5.4)"
-    )
-    simplify: bool = _option(
-        True,
-        flags=("--no-simplify",),
-        action="store_false",
-        help="switch off line-segment simplification (Sec. 5.4)",
-    )
-    lines: bool = _option(
-        False,
-        flags=("--lines",),
-        action="store_true",
-        help="let nearly straight segments be straight lines, not arcs of huge circles (paper Sec. 9, Fig. 20b)",
+    localized: bool = _switch("--no-localized", "localized fitting (Sec. 5.4)")
+    simplify: bool = _switch("--no-simplify", "line-segment simplification (Sec. 5.4)")
+    lines: bool = _switch(
+        "--lines",
+        "let nearly straight segments be straight lines, not arcs of huge circles (paper Sec. 9, Fig. 20b)",
+        default=False,
     )
 
     def __post_init__(self) -> None:
