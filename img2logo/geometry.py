@@ -548,6 +548,10 @@ class Abstraction:
         """The golden ratio this abstraction was built on."""
         return PHI
 
+    def arc_nodes(self, arc: int) -> tuple[int | None, ...]:
+        """The graph nodes of an arc's junctions in order along it (start, passed through, end): J' on its path."""
+        return tuple(self.junction_nodes[j] for j in self.arc_junctions[arc].ordered)
+
     def arcs_at(self, junction: int) -> tuple[int, ...]:
         """The arcs with an end point at ``junction`` (those passing through it left out), in index order."""
         return tuple(i for i in self.junction_arcs[junction] if junction in self.arc_junctions[i].ends)

@@ -97,6 +97,7 @@ def test_topology_found_from_the_geometry_when_not_given():
 def test_topology_given_is_checked_against_the_junctions():
     a = chain(arc_junctions=(ArcJunctions(0, 2, (1,)), ArcJunctions(1), ArcJunctions(2)), junction_nodes=(4, 9, 11))
     assert a.junction_nodes == (4, 9, 11)
+    assert a.arc_nodes(0) == (4, 9, 11) and a.arc_nodes(1) == (9,)
     with pytest.raises(
         InvalidParameterError, match=r"junction 1 lists arcs \[0, 1\], but arc_junctions puts arcs \[1\]"
     ):
