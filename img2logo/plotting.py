@@ -25,7 +25,7 @@ from ._validation import check_positive
 from .constants import ARC_SAMPLE_STEP, IMAGE_FADE, MIN_STROKE_WIDTH, STROKE_WIDTH_FRACTION
 from .errors import InvalidParameterError
 from .fills import check_fills
-from .geometry import Abstraction, Circle
+from .geometry import Abstraction, Arc, Circle
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -41,10 +41,15 @@ __all__ = [
     "SEGMENT_COLORMAP",
     "SPLIT_POINT_COLOR",
     "default_stroke_width",
+    "draw_arcs",
     "draw_fills",
+    "frame_image",
+    "frame_window",
     "plot_abstraction",
     "plot_circles",
     "plot_segment_graph",
+    "ring",
+    "square_window",
 ]
 
 #: Colour of the arcs of an abstraction.
@@ -153,7 +158,7 @@ def plot_abstraction(
             zorder=3,
             label="junction",
         )
-    _frame(ax, width, height)
+    frame_image(ax, width, height)
     return ax
 
 
@@ -245,7 +250,7 @@ def plot_segment_graph(
                 zorder=3 + z,
                 label=label,
             )
-    _frame(ax, width, height)
+    frame_image(ax, width, height)
     return ax
 
 
@@ -310,7 +315,7 @@ def plot_circles(
         centres = np.array([[c.cx, c.cy] for c in items])
         ax.plot(centres[:, 0], centres[:, 1], linestyle="none", marker="+", color=color, zorder=1)
     if width is not None and height is not None:
-        _frame(ax, int(width), int(height))
+        frame_image(ax, int(width), int(height))
     elif fresh and items:
         lo = min(c.cx - c.r for c in items), min(c.cy - c.r for c in items)
         hi = max(c.cx + c.r for c in items), max(c.cy + c.r for c in items)
@@ -429,8 +434,8 @@ def _axes(ax: Axes | None, width: int, height: int) -> Axes:
     return new_ax
 
 
-def _frame(ax: Axes, width: int, height: int) -> None:
-    """Show exactly the image ``[0, width] x [0, height]``, y down, equal aspect, no axes."""
+def frame_image(ax: Axes, width: int, height: int) -> None:
+    """Show exactly the image ``[0, width] x [0, height]``, px, y down, equal aspect, no axes."""
     ax.set_xlim(0.0, float(width))
     ax.set_ylim(float(height), 0.0)
     ax.set_aspect("equal")
@@ -493,3 +498,73 @@ def _background_rgb(image: np.ndarray, width: int, height: int, fade: float = IM
     else:
         rgb = val
     return f + (1.0 - f) * rgb
+
+
+# --------------------------------------------------------------------------- figure layout
+def square_window(
+    center: Sequence[float], side: float, width: int, height: int, *, shrink: bool = False
+) -> tuple[float, float, float, float]:
+    """A square window (x0, y0, x1, y1) of side ``side`` px around ``center``, inside the image where it fits.
+
+    With ``shrink`` a window larger than the image is made small enough to fit.
+    """
+    half = side / 2.0
+    if shrink:
+        half = min(half, width / 2.0, height / 2.0)
+    x = min(max(float(center[0]), half), max(width - half, half))
+    y = min(max(float(center[1]), half), max(height - half, half))
+    return (x - half, y - half, x + half, y + half)
+
+
+def frame_window(
+    ax: Axes,
+    window: Sequence[float],
+    *,
+    color: str | None = None,
+    linewidth: float | None = None,
+    equal: bool = True,
+) -> None:
+    """Show the window (x0, y0, x1, y1), px, y down, framed without ticks (a zoomed inset).
+
+    ``color`` and ``linewidth`` style the frame (matplotlib's default when None);
+    ``equal`` keeps the aspect ratio 1.
+    """
+    x0, y0, x1, y1 = window
+    ax.set_xlim(x0, x1)
+    ax.set_ylim(y1, y0)
+    if equal:
+        ax.set_aspect("equal")
+    ax.set_axis_on()
+    ax.set_xticks([])
+    ax.set_yticks([])
+    for spine in ax.spines.values():
+        if color is not None:
+            spine.set_edgecolor(color)
+        if linewidth is not None:
+            spine.set_linewidth(linewidth)
+
+
+def draw_arcs(
+    ax: Axes,
+    arcs: Sequence[Arc],
+    *,
+    colors: Sequence[object] | str = ARC_COLOR,
+    linewidth: float = 1.5,
+    zorder: float = 2,
+) -> None:
+    """Draw arcs as polylines sampled every 0.25 px, one colour each or one for all (no autoscale)."""
+    from matplotlib.collections import LineCollection
+
+    if not arcs:
+        return
+    lines = [a.sample(step=0.25) for a in arcs]
+    ax.add_collection(
+        LineCollection(lines, colors=colors, linewidths=linewidth, capstyle="round", zorder=zorder), autolim=False
+    )
+
+
+def ring(ax: Axes, x: float, y: float, radius: float, color: str, linewidth: float = 1.2) -> None:
+    """An open circle of ``radius`` px around (x, y), px: marks a place on a figure."""
+    from matplotlib.patches import Circle as CirclePatch
+
+    ax.add_patch(CirclePatch((x, y), radius, fill=False, edgecolor=color, linewidth=linewidth, zorder=5))

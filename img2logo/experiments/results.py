@@ -23,22 +23,18 @@ committed figures and must be byte-identical from run to run.
 from __future__ import annotations
 
 import math
-import os
-import time
-from collections.abc import Iterable, Mapping, Sequence
-from dataclasses import dataclass
-from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from collections.abc import Mapping, Sequence
+from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..constants import TOLERANCE
 from ..errors import InvalidParameterError
-from ..geometry import Abstraction, Arc
-from ..pipeline import Result, abstract
-from ..progressive import Progression, optimize
+from ..geometry import Abstraction
+from ..plotting import frame_image, frame_window, plot_abstraction, plot_circles, plot_segment_graph, square_window
+from ..progressive import Progression
+from ..quality import junction_gaps
 from ..segment_graph import SegmentGraph
-from . import load_example, preprocess
+from . import Run, by_image, sweep
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -46,35 +42,6 @@ if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
     from ..preprocessing import LoadedImage
-
-__all__ = [
-    "PAPER_TABLE1",
-    "PAPER_TABLE2",
-    "CircleFittingStages",
-    "Run",
-    "ToleranceSweep",
-    "circle_fitting_stages",
-    "circle_fitting_table",
-    "final_level_index",
-    "junction_gaps",
-    "level_at_fraction",
-    "monotonicity_table",
-    "plot_arc_fitting",
-    "plot_circle_fitting",
-    "plot_overview",
-    "plot_progression",
-    "plot_results_grid",
-    "plot_simplicity_levels",
-    "plot_tolerance_curve",
-    "plot_tolerance_results",
-    "results_table",
-    "run_examples",
-    "sampled_levels",
-    "similarity_is_monotone",
-    "simplicity_table",
-    "tolerance_sweep",
-    "tolerance_table",
-]
 
 #: Table 1 of the paper (a fish): |A^t| by iteration t, as far as the text of
 #: the paper is legible. The extracted table reads "Iteration 0 | 23 | 28" with
@@ -105,64 +72,7 @@ _GROUP_COLORS = (
 _LIGHT = "#c8c8c8"
 
 
-# --------------------------------------------------------------------------- runs
-@dataclass(frozen=True, eq=False)
-class Run:
-    """One example image through the whole pipeline.
-
-    Attributes
-    ----------
-    name : str
-        The image's file name without suffix, e.g. ``"clipart-fish"``.
-    result : Result
-        What :func:`img2logo.abstract` returned.
-    seconds : float
-        Wall time of the run, s (for the notebook's text, never for a table).
-    """
-
-    name: str
-    result: Result
-    seconds: float
-
-    @property
-    def kind(self) -> str:
-        """``"photo"``, ``"clipart"`` or ``"drawing"``."""
-        return self.result.lines.kind
-
-
-def run_examples(
-    paths: Iterable[str | os.PathLike[str]],
-    *,
-    tolerance: float = TOLERANCE,
-    kind: str = "auto",
-    **options: Any,
-) -> list[Run]:
-    """Run :func:`img2logo.abstract` on each image, without a progress bar.
-
-    Parameters
-    ----------
-    paths : iterable of path
-        The images.
-    tolerance : float
-        T of Eqn. 1, px.
-    kind : str
-        The kind of input, or ``"auto"``.
-    **options
-        Any other keyword of :func:`img2logo.abstract` (ablation switches,
-        ``rdp_tolerance``, ``bias``...).
-
-    Returns
-    -------
-    list of Run
-    """
-    runs = []
-    for path in paths:
-        start = time.perf_counter()
-        result = abstract(load_example(path), tolerance, kind, progress=False, **options)
-        runs.append(Run(Path(path).stem, result, time.perf_counter() - start))
-    return runs
-
-
+# --------------------------------------------------------------------------- levels
 def sampled_levels(progression: Progression, count: int = 3, *, include_final: bool = False) -> list[int]:
     """Iterations t evenly spread over a run, e.g. first, a third, two thirds (Fig. 1, 4c).
 
@@ -247,14 +157,7 @@ def _draw_groups(
             lines.append(graph.segments[s])
             cols.append(color)
     ax.add_collection(LineCollection(lines, colors=cols, linewidths=linewidth, capstyle="round", zorder=2))
-    _frame(ax, graph.width, graph.height)
-
-
-def _frame(ax: Axes, width: int, height: int) -> None:
-    ax.set_xlim(0.0, float(width))
-    ax.set_ylim(float(height), 0.0)
-    ax.set_aspect("equal")
-    ax.set_axis_off()
+    frame_image(ax, graph.width, graph.height)
 
 
 def _level_title(a: Abstraction, prefix: str = "") -> str:
@@ -278,7 +181,7 @@ def plot_overview(runs: Sequence[Run], *, levels: int = 3, panel_size: float = 2
     Parameters
     ----------
     runs : sequence of Run
-        The examples (the paper shows a photo, a clip art and a line drawing).
+        Runs with their levels (the paper shows a photo, a clip art and a line drawing).
     levels : int
         How many intermediate levels to sample.
     panel_size : float
@@ -288,12 +191,10 @@ def plot_overview(runs: Sequence[Run], *, levels: int = 3, panel_size: float = 2
     -------
     matplotlib.figure.Figure
     """
-    from ..plotting import plot_abstraction, plot_segment_graph
-
     columns = 3 + levels + 1
     fig, axes = _figure(max(1, len(runs)), columns, panel_size)
     for row, run in zip(axes, runs, strict=False):
-        res = run.result
+        res = run
         _show_image(row[0], res.image)
         row[0].set_title(f"(a) {run.name} ({run.kind})", fontsize=8)
         _show_lines(row[1], res.lines.lines)
@@ -340,11 +241,9 @@ def plot_arc_fitting(runs: Sequence[Run], *, fraction: float = 0.5, panel_size: 
     -------
     matplotlib.figure.Figure
     """
-    from ..plotting import plot_abstraction, plot_circles
-
     fig, axes = _figure(max(1, len(runs)), 3, panel_size)
     for row, run in zip(axes, runs, strict=False):
-        res = run.result
+        res = run
         a = res.level(level_at_fraction(res.progression, fraction))
         colors = [_group_color(i) for i in range(len(a.arcs))]
         _draw_groups(row[0], res.graph, a.arc_segments, colors=colors)
@@ -352,7 +251,7 @@ def plot_arc_fitting(runs: Sequence[Run], *, fraction: float = 0.5, panel_size: 
         _draw_groups(row[1], res.graph, a.arc_segments, colors=[_LIGHT] * len(a.arcs), linewidth=1.0)
         for i, arc in enumerate(a.arcs):
             plot_circles([arc.circle], row[1], color=colors[i], linewidth=0.8)
-        _frame(row[1], a.width, a.height)
+        frame_image(row[1], a.width, a.height)
         row[1].set_title(f"(b) {len(a.circles)} golden circles (constrained fit)", fontsize=8)
         _draw_groups(row[2], res.graph, a.arc_segments, colors=[_LIGHT] * len(a.arcs), linewidth=1.0)
         plot_abstraction(a, row[2], show_junctions=True, linewidth=_stroke(panel_size))
@@ -362,80 +261,44 @@ def plot_arc_fitting(runs: Sequence[Run], *, fraction: float = 0.5, panel_size: 
 
 
 # --------------------------------------------------------------------------- Fig. 8
-@dataclass(frozen=True, eq=False)
-class CircleFittingStages:
-    """The two stages of golden circle fitting on one segment graph (paper Fig. 8).
-
-    Attributes
-    ----------
-    name : str
-        The example's name.
-    graph : SegmentGraph
-        Its segment graph.
-    independent : Abstraction
-        Stage 1: each segment group fitted alone, its radius snapped to the
-        ladder (Eqn. 12), its centre placed best for that radius; no
-        connectivity constraint, so circles need not meet at the junctions.
-    constrained : Abstraction
-        Stage 2: the same golden radii, centres and junction displacements
-        optimized under the connectivity constraint (Eqn. 13).
-    """
-
-    name: str
-    graph: SegmentGraph
-    independent: Abstraction
-    constrained: Abstraction
+#: The two stages of golden circle fitting (Fig. 8), as variants of a run without merging.
+CIRCLE_FITTING_STAGES: dict[str, dict[str, bool]] = {"independent": {"connectivity": False}, "constrained": {}}
 
 
-def circle_fitting_stages(run: Run) -> CircleFittingStages:
-    """Fit A^0 of ``run``'s segment graph without and with the connectivity constraint.
+def circle_fitting_stages(runs: Sequence[Run]) -> list[Run]:
+    """Fit A^0 of each run's segment graph without and with the connectivity constraint (Fig. 8).
 
-    Both fits use :func:`img2logo.progressive.optimize` with ``merging=False``
-    (only A^0) and the run's ladder bias, so they have the same segment groups
-    (after the line-segment simplification of Sec. 5.4) and the same golden
-    radii; only the centres and junctions differ.
-    """
-    graph = run.result.graph
-    stages = [optimize(graph, merging=False, connectivity=flag, bias=run.result.bias).final for flag in (False, True)]
-    if stages[0].arc_segments != stages[1].arc_segments or len(stages[0].junctions) != len(stages[1].junctions):
-        raise InvalidParameterError("the two stages have different segment groups")  # pragma: no cover
-    return CircleFittingStages(run.name, graph, stages[0], stages[1])
-
-
-def _closest_on_arc(arc: Arc, point: np.ndarray) -> np.ndarray:
-    """The point of ``arc`` nearest to ``point`` (both px)."""
-    theta = float(arc.circle.angle_of(point))
-    if bool(arc.contains_angle(theta)):
-        return arc.circle.point_at(theta)
-    ends = np.array([arc.start, arc.end])
-    return ends[int(np.argmin(np.hypot(*(ends - point).T)))]
-
-
-def junction_gaps(abstraction: Abstraction) -> np.ndarray:
-    """How far apart the arcs that should meet at each junction are (connectivity, Eqn. 4), px.
-
-    For junction k, the point of each of its arcs nearest to p_k + d_k is
-    taken; the gap is the largest distance between two of those points (0 at
-    a junction with one arc). The connectivity constraint makes every gap 0
-    (up to the solver tolerance); without it arcs end where the junctions
-    project on their circles and miss each other.
+    Stage 1 (``"independent"``): each segment group fitted alone, its radius
+    snapped to the ladder (Eqn. 12), its centre placed best for that radius,
+    so circles need not meet at the junctions. Stage 2 (``"constrained"``):
+    the same golden radii, centres and junction displacements optimized under
+    the connectivity constraint (Eqn. 13). Both without merging (only A^0) and
+    with the run's ladder bias: the same segment groups and radii.
 
     Returns
     -------
-    ndarray, shape (J,)
+    list of Run
+        Two per run, the stages in that order.
     """
-    gaps = np.zeros(len(abstraction.junctions))
-    for k, (p, arcs) in enumerate(zip(abstraction.junctions, abstraction.junction_arcs, strict=True)):
-        if len(arcs) < 2:
-            continue
-        pts = np.array([_closest_on_arc(abstraction.arcs[i], p) for i in arcs])
-        diff = pts[:, None, :] - pts[None, :, :]
-        gaps[k] = float(np.max(np.hypot(diff[..., 0], diff[..., 1])))
-    return gaps
+    out = []
+    for run in runs:
+        stages = sweep([run], variants=CIRCLE_FITTING_STAGES, merging=False, bias=run.bias)
+        if stages[0].final.arc_segments != stages[1].final.arc_segments:
+            raise InvalidParameterError("the two stages have different segment groups")  # pragma: no cover
+        out.extend(stages)
+    return out
 
 
-def circle_fitting_table(stages: Sequence[CircleFittingStages]) -> pd.DataFrame:
+def _gaps(a: Abstraction) -> np.ndarray:
+    """Per junction of J', how far apart its arcs pass (the spread of :func:`img2logo.quality.junction_gaps`), px."""
+    return junction_gaps(a.arcs, a.junctions, a.junction_arcs)[1]
+
+
+def circle_fitting_table(stages: Sequence[Run]) -> pd.DataFrame:
     """Per example: arcs of A^0, junctions of J', and the junction gaps of both stages (Fig. 8).
+
+    ``stages`` come from :func:`circle_fitting_stages`; a gap is how far apart
+    the arcs of a junction pass, px.
 
     Returns
     -------
@@ -446,13 +309,13 @@ def circle_fitting_table(stages: Sequence[CircleFittingStages]) -> pd.DataFrame:
     import pandas as pd
 
     rows = []
-    for st in stages:
-        free, con = junction_gaps(st.independent), junction_gaps(st.constrained)
+    for name, (ind, st) in by_image(stages).items():
+        free, con = _gaps(ind.final), _gaps(st.final)
         rows.append(
             {
-                "image": st.name,
-                "arcs": len(st.constrained.arcs),
-                "junctions": len(st.constrained.junctions),
+                "image": name,
+                "arcs": len(st.final.arcs),
+                "junctions": len(st.final.junctions),
                 "max gap independent (px)": round(float(free.max(initial=0.0)), 3),
                 "mean gap independent (px)": round(float(free.mean()) if len(free) else 0.0, 3),
                 "max gap constrained (px)": round(float(con.max(initial=0.0)), 3),
@@ -462,7 +325,7 @@ def circle_fitting_table(stages: Sequence[CircleFittingStages]) -> pd.DataFrame:
 
 
 def plot_circle_fitting(
-    stages: Sequence[CircleFittingStages],
+    stages: Sequence[Run],
     *,
     window: float = 60.0,
     max_circles: int = 4,
@@ -477,11 +340,11 @@ def plot_circle_fitting(
     (displaced) junction. Only the circles of the arcs at that junction are
     drawn (as in the paper, "for clarity we only show a few circles"); the
     other arcs are grey. Titles give the gap at the junction and the largest
-    gap over all junctions of the level (see :func:`junction_gaps`).
+    gap over all junctions of the level (:func:`img2logo.quality.junction_gaps`).
 
     Parameters
     ----------
-    stages : sequence of CircleFittingStages
+    stages : sequence of Run
         From :func:`circle_fitting_stages`.
     window : float
         Half the side of the zoomed square, px.
@@ -494,12 +357,11 @@ def plot_circle_fitting(
     -------
     matplotlib.figure.Figure
     """
-    from ..plotting import plot_abstraction, plot_circles
-
-    fig, axes = _figure(max(1, len(stages)), 3, panel_size)
-    for row, st in zip(axes, stages, strict=False):
-        free, con = st.independent, st.constrained
-        gaps_free, gaps_con = junction_gaps(free), junction_gaps(con)
+    pairs = by_image(stages)
+    fig, axes = _figure(max(1, len(pairs)), 3, panel_size)
+    for row, (name, (ind, st)) in zip(axes, pairs.items(), strict=False):
+        free, con = ind.final, st.final
+        gaps_free, gaps_con = _gaps(free), _gaps(con)
         k = int(np.argmax(gaps_free))
         focus = list(free.junction_arcs[k])[:max_circles]
         colors = [_LIGHT] * len(free.arcs)
@@ -508,7 +370,7 @@ def plot_circle_fitting(
         _draw_groups(row[0], st.graph, free.arc_segments, colors=colors, linewidth=2.0)
         p0 = st.graph.junctions[_nearest_node(st.graph, free.junctions[k])]
         row[0].plot(*p0, marker="o", color="black", markersize=5, linestyle="none", zorder=4)
-        row[0].set_title(f"(a) {st.name}: line segments", fontsize=8)
+        row[0].set_title(f"(a) {name}: line segments", fontsize=8)
         for ax, a, gaps, label in (
             (row[1], free, gaps_free, "(b) independent golden circles"),
             (row[2], con, gaps_con, "(c) connectivity optimized"),
@@ -520,26 +382,13 @@ def plot_circle_fitting(
             ax.plot(*a.junctions[k], marker="o", color="black", markersize=5, linestyle="none", zorder=4)
             ax.set_title(f"{label}\ngap {gaps[k]:.2f} px here, max {gaps.max():.2f} px", fontsize=8)
         for ax in row:
-            _zoom(ax, p0, window, st.graph.width, st.graph.height)
+            frame_window(ax, square_window(p0, 2.0 * window, st.graph.width, st.graph.height, shrink=True))
     fig.suptitle("Fig. 8: golden circles fitted per segment, then under the connectivity constraint", fontsize=10)
     return fig
 
 
 def _nearest_node(graph: SegmentGraph, point: np.ndarray) -> int:
     return int(np.argmin(np.hypot(*(graph.junctions - point).T)))
-
-
-def _zoom(ax: Axes, center: np.ndarray, half: float, width: int, height: int) -> None:
-    """Show the square of half side ``half`` around ``center``, kept inside the image when it fits."""
-    half = min(half, width / 2.0, height / 2.0)
-    cx = float(np.clip(center[0], half, width - half))
-    cy = float(np.clip(center[1], half, height - half))
-    ax.set_xlim(cx - half, cx + half)
-    ax.set_ylim(cy + half, cy - half)
-    ax.set_aspect("equal")
-    ax.set_axis_on()  # a frame around the zoomed window, no ticks
-    ax.set_xticks([])
-    ax.set_yticks([])
 
 
 # --------------------------------------------------------------------------- Fig. 10
@@ -557,12 +406,12 @@ def results_table(runs: Sequence[Run]) -> pd.DataFrame:
 
     rows = []
     for run in runs:
-        prog = run.result.progression
+        prog = run.progression
         rows.append(
             {
                 "image": run.name,
                 "kind": run.kind,
-                "segments": run.result.graph.n_segments,
+                "segments": run.graph.n_segments,
                 "arcs A^0": len(prog.levels[0].arcs),
                 "final arcs": len(prog.final.arcs),
                 "iterations": prog.final.level,
@@ -610,13 +459,11 @@ def plot_results_grid(
     -------
     matplotlib.figure.Figure
     """
-    from ..plotting import plot_abstraction
-
     rows = max(1, math.ceil(len(runs) / columns))
     fig, axes = _figure(rows, min(columns, max(1, len(runs))), panel_size)
     flat = axes.ravel()
     for ax, run in zip(flat, runs, strict=False):
-        a = run.result.final
+        a = run.final
         plot_abstraction(a, ax, linewidth=_stroke(panel_size))
         ax.set_title(
             f"{run.name} ({run.kind})\n|A| = {len(a.arcs)}, $E^s$ = {a.similarity:.2f} px",
@@ -624,7 +471,7 @@ def plot_results_grid(
         )
         x, y = _inset_corner(a, inset)
         sub = ax.inset_axes((x, y, inset, inset))
-        _show_image(sub, run.result.image)
+        _show_image(sub, run.image)
         sub.set_axis_on()
         sub.set_xticks([])
         sub.set_yticks([])
@@ -670,7 +517,7 @@ def simplicity_table(
     paper = PAPER_TABLE1 if paper is None else paper
     rows = []
     for run in runs:
-        prog = run.result.progression
+        prog = run.progression
         last = len(prog.levels) - 1
         shown = {level_at_fraction(prog, f) for f in fractions}
         for t in sorted(set(range(last + 1)) | {int(t) for t in paper}):
@@ -713,11 +560,9 @@ def plot_simplicity_levels(
     -------
     matplotlib.figure.Figure
     """
-    from ..plotting import plot_abstraction
-
     fig, axes = _figure(max(1, len(runs)), len(fractions), panel_size)
     for row, run in zip(axes, runs, strict=False):
-        prog = run.result.progression
+        prog = run.progression
         last = len(prog.levels) - 1
         for ax, f in zip(row, fractions, strict=True):
             a = prog.levels[level_at_fraction(prog, f)]
@@ -748,7 +593,7 @@ def plot_progression(
 
     fig, axes = _figure(1, max(1, len(runs)), panel_size, height_ratio=0.8)
     for ax, run in zip(axes[0], runs, strict=False):
-        prog = run.result.progression
+        prog = run.progression
         t = np.arange(len(prog.levels))
         arcs = np.array(prog.arc_counts)
         es = np.array(prog.similarities)
@@ -786,81 +631,27 @@ def plot_progression(
 
 
 # --------------------------------------------------------------------------- Table 2
-@dataclass(frozen=True, eq=False)
-class ToleranceSweep:
-    """One segment graph optimized once per tolerance T (paper Table 2).
+def _tolerance_sweeps(runs: Sequence[Run]) -> dict[str, list[Run]]:
+    """The runs of a sweep over T (``sweep(paths, {"tolerance": [...]})``) by image, T increasing.
 
-    Attributes
-    ----------
-    name : str
-        The example's name.
-    image : LoadedImage
-        The input.
-    graph : SegmentGraph
-        Its segment graph, shared by every run.
-    tolerances : tuple of float
-        T of each run, increasing, px.
-    progressions : tuple of Progression
-        The run for each tolerance.
+    A single run with the largest T would hold every level, but the final level
+    of a run with a smaller T' is the level before the first one whose E^s
+    exceeds T', the last level with E^s <= T' only if E^s grows monotonically
+    along the run -- it need not (:func:`monotonicity_table` checks both rules
+    against the runs made per T).
     """
-
-    name: str
-    image: LoadedImage
-    graph: SegmentGraph
-    tolerances: tuple[float, ...]
-    progressions: tuple[Progression, ...]
-
-    def at(self, tolerance: float) -> Progression:
-        """The run with tolerance ``tolerance``."""
-        for t, p in zip(self.tolerances, self.progressions, strict=True):
-            if math.isclose(t, tolerance):
-                return p
-        raise InvalidParameterError(f"no run with T = {tolerance} in the sweep {self.tolerances}")
-
-    @property
-    def longest(self) -> Progression:
-        """The run with the largest T: it holds the most levels."""
-        return self.progressions[-1]
+    return {name: sorted(mine, key=_tolerance) for name, mine in by_image(runs).items()}
 
 
-def tolerance_sweep(
-    path: str | os.PathLike[str],
-    tolerances: Iterable[float],
-    *,
-    kind: str = "auto",
-    **options: Any,
-) -> ToleranceSweep:
-    """Optimize one image's segment graph once per tolerance T (paper Table 2).
+def _tolerance(run: Run) -> float:
+    return float(run.final.tolerance)
 
-    The image is preprocessed once; :func:`img2logo.progressive.optimize` then
-    runs from scratch for every T. A single run with the largest T would hold
-    every level, but the final level of a run with a smaller T' is the level
-    before the first one whose E^s exceeds T', which is the last level with
-    E^s <= T' only if E^s grows monotonically along the run -- it need not
-    (:func:`monotonicity_table` checks both rules against the runs made here).
 
-    Parameters
-    ----------
-    path : path
-        The image.
-    tolerances : iterable of float
-        The values of T, px (sorted, repeats dropped).
-    kind : str
-        The kind of input, or ``"auto"``.
-    **options
-        Keywords of :func:`img2logo.progressive.optimize` (ablation switches,
-        ``bias``...).
-
-    Returns
-    -------
-    ToleranceSweep
-    """
-    ts = tuple(sorted({float(t) for t in tolerances}))
-    if not ts:
-        raise InvalidParameterError("tolerances must not be empty")
-    (ex,) = preprocess([path], kind=kind)
-    progs = tuple(optimize(ex.graph, tolerance=t, **options) for t in ts)
-    return ToleranceSweep(ex.name, ex.image, ex.graph, ts, progs)
+def _at(runs: Sequence[Run], tolerance: float) -> Progression:
+    for run in runs:
+        if math.isclose(_tolerance(run), tolerance):
+            return run.progression
+    raise InvalidParameterError(f"no run with T = {tolerance} in the sweep {[_tolerance(r) for r in runs]}")
 
 
 def similarity_is_monotone(progression: Progression) -> bool:
@@ -901,13 +692,13 @@ def final_level_index(progression: Progression, tolerance: float, *, rule: str =
     raise InvalidParameterError(f"rule must be 'first_exceedance' or 'last_within', got {rule!r}")
 
 
-def tolerance_table(sweeps: Sequence[ToleranceSweep], *, paper: Mapping[float, float] | None = None) -> pd.DataFrame:
+def tolerance_table(sweeps: Sequence[Run], *, paper: Mapping[float, float] | None = None) -> pd.DataFrame:
     """Final |A| and E^s per tolerance T for each sweep, beside the paper's Table 2.
 
     Parameters
     ----------
-    sweeps : sequence of ToleranceSweep
-        From :func:`tolerance_sweep`.
+    sweeps : sequence of Run
+        A sweep over T (:func:`_tolerance_sweeps`).
     paper : mapping of float to float, optional
         The paper's |A| by T (default :data:`PAPER_TABLE2`, a bird).
 
@@ -922,12 +713,12 @@ def tolerance_table(sweeps: Sequence[ToleranceSweep], *, paper: Mapping[float, f
 
     paper = PAPER_TABLE2 if paper is None else paper
     rows = []
-    for sw in sweeps:
-        ref = sw.longest
-        for t, prog in zip(sw.tolerances, sw.progressions, strict=True):
+    for name, mine in _tolerance_sweeps(sweeps).items():
+        ref = mine[-1].progression
+        for t, prog in ((_tolerance(r), r.progression) for r in mine):
             rows.append(
                 {
-                    "image": sw.name,
+                    "image": name,
                     "T": t,
                     "final arcs": len(prog.final.arcs),
                     "E^s (px)": round(prog.final.similarity, 4),
@@ -941,7 +732,7 @@ def tolerance_table(sweeps: Sequence[ToleranceSweep], *, paper: Mapping[float, f
     return pd.DataFrame(rows)
 
 
-def monotonicity_table(sweeps: Sequence[ToleranceSweep]) -> pd.DataFrame:
+def monotonicity_table(sweeps: Sequence[Run]) -> pd.DataFrame:
     """Is E^s monotone along the largest-T run, and which rule reproduces the per-T runs?
 
     Returns
@@ -955,18 +746,18 @@ def monotonicity_table(sweeps: Sequence[ToleranceSweep]) -> pd.DataFrame:
     import pandas as pd
 
     rows = []
-    for sw in sweeps:
-        ref = sw.longest
+    for name, mine in _tolerance_sweeps(sweeps).items():
+        ref = mine[-1].progression
         steps = np.diff(np.array(ref.similarities))
-        finals = [len(p.final.arcs) for p in sw.progressions]
+        finals = [len(r.final.arcs) for r in mine]
         by_rule = {
-            rule: [ref.arc_counts[final_level_index(ref, t, rule=rule)] for t in sw.tolerances]
+            rule: [ref.arc_counts[final_level_index(ref, _tolerance(r), rule=rule)] for r in mine]
             for rule in ("first_exceedance", "last_within")
         }
         rows.append(
             {
-                "image": sw.name,
-                "T max": sw.tolerances[-1],
+                "image": name,
+                "T max": _tolerance(mine[-1]),
                 "levels": len(ref.levels),
                 "E^s monotone": similarity_is_monotone(ref),
                 "E^s decreases": int(np.sum(steps < 0)),
@@ -979,7 +770,7 @@ def monotonicity_table(sweeps: Sequence[ToleranceSweep]) -> pd.DataFrame:
 
 
 def plot_tolerance_results(
-    sweeps: Sequence[ToleranceSweep],
+    sweeps: Sequence[Run],
     tolerances: Sequence[float] = (4.0, 5.0, 9.0),
     *,
     paper: Mapping[float, float] | None = None,
@@ -994,15 +785,15 @@ def plot_tolerance_results(
     -------
     matplotlib.figure.Figure
     """
-    from ..plotting import plot_abstraction, plot_segment_graph
-
     paper = PAPER_TABLE2 if paper is None else paper
-    fig, axes = _figure(max(1, len(sweeps)), 1 + len(tolerances), panel_size)
-    for row, sw in zip(axes, sweeps, strict=False):
-        plot_segment_graph(sw.graph, row[0], show_junctions=False, linewidth=1.0)
-        row[0].set_title(f"{sw.name}: |S| = {sw.graph.n_segments}", fontsize=8)
+    groups = _tolerance_sweeps(sweeps)
+    fig, axes = _figure(max(1, len(groups)), 1 + len(tolerances), panel_size)
+    for row, (name, mine) in zip(axes, groups.items(), strict=False):
+        graph = mine[0].graph
+        plot_segment_graph(graph, row[0], show_junctions=False, linewidth=1.0)
+        row[0].set_title(f"{name}: |S| = {graph.n_segments}", fontsize=8)
         for ax, t in zip(row[1:], tolerances, strict=True):
-            a = sw.at(t).final
+            a = _at(mine, t).final
             plot_abstraction(a, ax, linewidth=_stroke(panel_size))
             ref = next((v for k, v in paper.items() if math.isclose(k, t)), math.nan)
             ref_text = "" if math.isnan(ref) else f" (paper {ref:g})"
@@ -1012,7 +803,7 @@ def plot_tolerance_results(
 
 
 def plot_tolerance_curve(
-    sweeps: Sequence[ToleranceSweep], *, paper: Mapping[float, float] | None = None, panel_size: float = 3.6
+    sweeps: Sequence[Run], *, paper: Mapping[float, float] | None = None, panel_size: float = 3.6
 ) -> Figure:
     """Final |A| against T (left) and the final E^s against T (right), one line per sweep.
 
@@ -1026,12 +817,12 @@ def plot_tolerance_curve(
     paper = PAPER_TABLE2 if paper is None else paper
     fig, axes = _figure(1, 2, panel_size, height_ratio=0.8)
     left, right = axes[0]
-    for i, sw in enumerate(sweeps):
+    groups = _tolerance_sweeps(sweeps)
+    for i, (name, mine) in enumerate(groups.items()):
         color = _group_color(i)
-        arcs = [len(p.final.arcs) for p in sw.progressions]
-        es = [p.final.similarity for p in sw.progressions]
-        left.plot(sw.tolerances, arcs, marker="o", markersize=3, color=color, label=sw.name)
-        right.plot(sw.tolerances, es, marker="o", markersize=3, color=color, label=sw.name)
+        ts = [_tolerance(r) for r in mine]
+        left.plot(ts, [len(r.final.arcs) for r in mine], marker="o", markersize=3, color=color, label=name)
+        right.plot(ts, [r.final.similarity for r in mine], marker="o", markersize=3, color=color, label=name)
     known = [(t, v) for t, v in sorted(paper.items()) if not math.isnan(v)]
     if known:
         left.plot(
@@ -1042,7 +833,7 @@ def plot_tolerance_curve(
             color="black",
             label="paper (its bird)",
         )
-    all_t = [t for sw in sweeps for t in sw.tolerances]
+    all_t = [_tolerance(r) for mine in groups.values() for r in mine]
     if all_t:
         lo, hi = min(all_t), max(all_t)
         right.plot([lo, hi], [lo, hi], linestyle="--", color="#808080", linewidth=1.0, label="$E^s$ = T")
