@@ -42,7 +42,6 @@ def fake_progression(similarities: list[float]) -> SimpleNamespace:
 def test_sampled_levels_spread_before_the_final_level():
     prog = fake_progression([1.0] * 10)  # levels 0..9
     assert results.sampled_levels(prog, 3) == [0, 3, 6]
-    assert results.sampled_levels(prog, 3, include_final=True) == [0, 4, 9]
     assert results.sampled_levels(fake_progression([1.0]), 3) == [0]
     assert results.sampled_levels(fake_progression([1.0, 2.0]), 3) == [0]
     with pytest.raises(InvalidParameterError):

@@ -1,11 +1,15 @@
-"""Helpers for the notebooks: where data and figures live, sweeps and figure layouts.
+"""The notebook kit: paths, runs, the sweep, what a notebook shows, provenance.
 
-Notebooks communicate, the library computes: a notebook asks this package for
-paths (absolute, so a notebook runs from any working directory; it never
-writes ``../data`` itself), runs the sweeps it defines and gets the figures
-and tables back. Submodules group them by the paper's evaluation:
-``results`` (Fig. 1, 4, 7, 8, 10, Tables 1, 2), ``ablations`` (Fig. 6, 9, 11,
-12, 13), ``design`` (Table 3, Fig. 15, 16, the level explorer).
+A notebook is a parameters cell plus a few calls and plots: it asks this package
+for paths (absolute, so a notebook runs from any folder), runs its images with
+:func:`sweep` (one record type, :class:`Run`) and gets tables (pandas
+DataFrames) and figures (:class:`matplotlib.figure.Figure`, never pyplot, in the
+image pixel frame: x right, y down) back from ``results`` (Fig. 1, 4, 7, 8, 10,
+Tables 1, 2), ``ablations`` (Fig. 6, 9, 11, 12, 13), ``design`` (Table 3, Fig.
+15, 16, the level explorer) and ``features`` (Fig. 17, 18). Tables hold no
+timings unless they are about time: they are committed and must be the same
+bytes from run to run. papermill and ipywidgets (the extra ``[kit]``) are
+imported only by the functions that use them.
 """
 
 from __future__ import annotations
@@ -30,6 +34,25 @@ if TYPE_CHECKING:
 #: Environment variable naming the repository root, when it cannot be found.
 ROOT_ENV = "IMG2LOGO_ROOT"
 _MARKER = Path("data") / "ATTRIBUTION.md"
+
+
+def kit_module(name: str) -> Any:
+    """Import ``name``, one of the packages of the extra ``[kit]`` (papermill, ipywidgets, yaml).
+
+    Raises
+    ------
+    Img2LogoError
+        One line saying how to install the extra, when the package is missing.
+    """
+    import importlib
+
+    try:
+        return importlib.import_module(name)
+    except ImportError:
+        raise Img2LogoError(
+            f"{name} is missing: the notebook kit needs the extra [kit] "
+            "(pip install -e '.[kit]'; make test, make figures and make lab install it)"
+        ) from None
 
 
 def project_root() -> Path:

@@ -1,35 +1,16 @@
 """Ablations of the key components: Fig. 6, 9, 11, 12, 13 (paper Sec. 5.2, 5.3, 6.2).
 
-Runs, measurements, tables and figure layouts for four notebooks:
+Tables and figure layouts of ``05_connectivity_ablation`` (Fig. 6, 11: the
+junction gaps of each variant of the connectivity constraint, :func:`gap_table`),
+``06_redundant_intersections`` (Fig. 12), ``07_arc_extraction`` (Fig. 9: both
+arc-selection rules on the same circles, :func:`compare_arc_selection`, and a
+constructed "hook", :func:`hook_example`) and ``08_rdp_robustness`` (Fig. 13).
 
-* ``05_connectivity_ablation`` -- the connectivity constraint (Fig. 6, 11):
-  the segment graph (a), the result with the constraint (b), without it (c),
-  with constraints only at the start and end junctions of merged segments (d),
-  and (d) without merging (e); the *junction gaps* of each variant measured
-  (:func:`gap_table`) and circled.
-* ``06_redundant_intersections`` -- redundant-intersection avoidance (Fig. 12):
-  results with and without it, their redundant intersections counted
-  (:func:`img2logo.quality.level_redundant_intersections`) and circled.
-* ``07_arc_extraction`` -- Fréchet against sum-of-squares arc selection
-  (Fig. 9): both rules applied to the same circles and junctions
-  (:func:`compare_arc_selection`), whole runs with each rule, and a constructed
-  "hook" (:func:`hook_example`) where the sum of squares keeps a redundant part.
-* ``08_rdp_robustness`` -- robustness to the initial segmentation (Fig. 13):
-  several Ramer-Douglas-Peucker tolerances (a sweep over ``rdp_tolerance``).
-
-Every function computes through the library (:func:`img2logo.progressive.optimize`,
-:mod:`img2logo.arc_extraction`) and returns pandas DataFrames or
-:class:`matplotlib.figure.Figure` objects (never pyplot figures), drawn in the
-image pixel frame (x right, y down). Tables hold no timings: they are committed
-figures and must be byte-identical from run to run.
-
-A level :class:`~img2logo.geometry.Abstraction` records, for each arc, the
-segments of the graph it abstracts (``arc_segments``) and, for each junction of
-J', the arcs constrained there (``junction_arcs``); it does not record which node
-of the graph a junction is. :func:`arc_paths` and :func:`junction_nodes` recover
-that from the graph, the same way the optimizer builds J' (the two ends of an
-arc's path, and its inner nodes of valence >= 3 unless only the ends are
-constrained), and check the result against the level.
+A level records the segments of each arc and the arcs of each junction of J',
+not which graph node a junction is: :func:`arc_paths` and :func:`junction_nodes`
+recover that from the graph as the optimizer builds J' (the ends of each arc's
+path and, unless only the ends are constrained, its inner nodes of valence >= 3),
+and check the result against the level.
 """
 
 from __future__ import annotations
@@ -202,10 +183,6 @@ def gap_table(abstraction: Abstraction, graph: SegmentGraph) -> pd.DataFrame:
       (Fig. 11d) a merged arc misses the inner junctions of its path.
     * ``spread`` = max_{i,j} |q_i - q_j|: how far apart the arcs' closest
       approaches to the junction are (0 when they meet at c).
-
-    Returns
-    -------
-    pandas.DataFrame
         One row per junction of the result, in node order: ``node``, ``x``,
         ``y`` (the junction point c, px), ``in_J'`` (whether the level
         constrains it), ``valence`` (in the graph), ``arcs`` (how many arcs
@@ -463,8 +440,6 @@ def plot_connectivity_ablation(
         Inset rows per image.
     threshold : float
         Gaps above this are circled, px.
-    panel_size : float
-        Side of a panel, inches.
     title : str
         The figure's title; the colour key is appended.
     """

@@ -1,24 +1,12 @@
 """Timing (Table 3), design exploration (Fig. 15, 16) and the level explorer.
 
-Everything the notebooks ``09_timing``, ``10_design_exploration`` and
-``11_explore_levels`` compute or draw:
-
-* Table 3 (Sec. 6.4): the 2 x 2 of localized circle fitting x line-segment
-  simplification (Sec. 5.4), timed on the optimization alone
-  (:func:`timing_table`, :func:`plot_timing`), and the per-stage breakdown of a
-  full :func:`img2logo.abstract` run (:func:`stage_table`, :func:`plot_stages`).
-* Fig. 15 (Sec. 7): automated golden radii vs a user-chosen subset of ladder
-  exponents (:func:`compare_exponents`, :func:`plot_exponent_comparison`).
-* Fig. 16 (Sec. 7): a lock mask that keeps a salient detail from being merged
-  away (:func:`region_mask`, :func:`lock_variants`, :func:`plot_lock_comparison`),
-  and the effect of the ladder bias sigma (Eqn. 10, 14; :func:`bias_table`).
-* The interactive explorer of the levels A^0 ... A^final (:class:`LevelExplorer`):
-  the widgets and their callbacks live here, so they are tested without a
-  browser; ipywidgets is imported only when the widgets are built.
-
-Matplotlib figures are :class:`matplotlib.figure.Figure` objects (no pyplot);
-tables are pandas DataFrames. Timings are wall-clock seconds and change from run
-to run: the timing tables and charts are not byte-deterministic.
+Tables and figure layouts of ``09_timing`` (Table 3, Sec. 6.4: localized
+fitting x simplification, timed on the optimization alone, and the stages of a
+full run; not byte-deterministic), ``10_design_exploration`` (Fig. 15: a user's
+ladder exponents; Fig. 16: a lock mask; the ladder bias) and
+``11_explore_levels`` (:class:`LevelExplorer`: its callbacks work on plain
+values, tested without a browser; ipywidgets is imported only when the widgets
+are built).
 """
 
 from __future__ import annotations
@@ -41,7 +29,7 @@ from ..errors import InvalidParameterError
 from ..geometry import Abstraction
 from ..plotting import frame_window, plot_abstraction, plot_segment_graph
 from ..quality import detail_error
-from . import Run, sweep
+from . import Run, kit_module, sweep
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -660,16 +648,15 @@ def levels_within(result: Result, tolerance: float | None = None) -> tuple[Abstr
     InvalidParameterError
         ``tolerance`` above T_run: that run's levels cannot tell a larger T's.
     """
+    from .results import final_level_index
+
     levels = result.levels
     run_tolerance = levels[0].tolerance
     if tolerance is None:
         return levels
     if not tolerance > 0 or tolerance > run_tolerance:
         raise InvalidParameterError(f"tolerance must be in (0, {run_tolerance:g}] px for this run, got {tolerance}")
-    for t in range(1, len(levels)):
-        if levels[t].similarity > tolerance:
-            return levels[:t]
-    return levels
+    return levels[: final_level_index(result.progression, tolerance) + 1]
 
 
 def level_title(result: Result, t: int, name: str | None = None, *, tolerance: float | None = None) -> str:
@@ -951,7 +938,7 @@ class LevelExplorer:
         The drawing has a fixed size (:attr:`screen_size`; the PNG has twice its
         pixels), so it stays crisp and the whole fits a laptop screen.
         """
-        import ipywidgets as w
+        w = kit_module("ipywidgets")
 
         from . import example_images
 
@@ -964,55 +951,41 @@ class LevelExplorer:
         c = self.controls
         style = {"description_width": "70px"}
         wide = w.Layout(width="360px")
-        c["level"] = w.IntSlider(
-            value=self.level, min=0, max=self.n_levels - 1, description="level t", style=style, layout=wide
+
+        def slider(kind: Any, description: str, layout: Any = wide, **kwargs: Any) -> Any:
+            return kind(description=description, style=style, layout=layout, **kwargs)
+
+        c["level"] = slider(w.IntSlider, "level t", value=self.level, min=0, max=self.n_levels - 1)
+        c["tolerance"] = slider(
+            w.FloatSlider, "T (px)", value=s.tolerance, min=0.5, max=30.0, step=0.5, continuous_update=False
         )
-        c["tolerance"] = w.FloatSlider(
-            value=s.tolerance,
-            min=0.5,
-            max=30.0,
-            step=0.5,
-            description="T (px)",
-            continuous_update=False,
-            style=style,
-            layout=wide,
+        c["image"] = slider(w.Dropdown, "image", options=images, value=s.image)
+        c["kind"] = slider(w.Dropdown, "kind", options=["auto", "photo", "clipart", "drawing"], value=s.kind)
+        c["rdp_tolerance"] = slider(
+            w.FloatSlider, "RDP (px)", value=s.rdp_tolerance, min=0.5, max=8.0, step=0.25, continuous_update=False
         )
-        c["image"] = w.Dropdown(options=images, value=s.image, description="image", style=style, layout=wide)
-        c["kind"] = w.Dropdown(
-            options=["auto", "photo", "clipart", "drawing"], value=s.kind, description="kind", style=style, layout=wide
-        )
-        c["rdp_tolerance"] = w.FloatSlider(
-            value=s.rdp_tolerance,
-            min=0.5,
-            max=8.0,
-            step=0.25,
-            description="RDP (px)",
-            continuous_update=False,
-            style=style,
-            layout=wide,
-        )
-        c["bias"] = w.FloatSlider(
+        c["bias"] = slider(
+            w.FloatSlider,
+            "bias \u03c3",
+            w.Layout(width="250px"),
             value=self.result.bias if s.bias is None else s.bias,
             min=0.0,
             max=0.99,
             step=0.01,
-            description="bias \u03c3",
             disabled=s.bias is None,
             continuous_update=False,
-            style=style,
-            layout=w.Layout(width="250px"),
         )
         c["bias_auto"] = w.Checkbox(
             value=s.bias is None, description="auto", indent=False, layout=w.Layout(width="100px")
         )
         c["run"] = w.Button(description="Run", button_style="primary", icon="play", layout=w.Layout(width="90px"))
-        c["progress"] = w.FloatProgress(
+        c["progress"] = slider(
+            w.FloatProgress,
+            "E\u02e2 \u2192 T",
+            w.Layout(width="260px"),
             value=min(self.result.final.similarity, s.tolerance),
             min=0.0,
             max=s.tolerance,
-            description="E\u02e2 \u2192 T",
-            style=style,
-            layout=w.Layout(width="260px"),
         )
         c["status"] = w.Label(value=self.progress_text, layout=wide)
         c["title"] = w.HTML(value=self.title_html)

@@ -1,23 +1,9 @@
 """The paper's results: Fig. 1, 4, 7, 8, 10 and Tables 1, 2 (Sec. 5.3, 6.1, 6.2).
 
-Runs, tables and figure layouts for four notebooks:
-
-* ``01_overview`` -- the framework at a glance (Fig. 1, 4): input, feature
-  lines, segment graph, sampled levels, final result; one level's circles and
-  arcs (Fig. 7); the two stages of golden circle fitting (Fig. 8):
-  independent golden circles per segment vs the connectivity-optimized ones.
-* ``02_visual_results`` -- the final result of every example image with the
-  input as an inset (Fig. 10), and a per-image table.
-* ``03_simplicity`` -- levels of one run with their arc counts (Table 1), and
-  |A| and E^s along the iterations.
-* ``04_tolerance_sweep`` -- the final result for several tolerances T
-  (Table 2) and a finer sweep of the final arc count against T.
-
-Every function computes through the library (:func:`img2logo.abstract`,
-:func:`img2logo.progressive.optimize`) and returns pandas DataFrames or
-:class:`matplotlib.figure.Figure` objects (never pyplot figures), drawn in the
-image pixel frame (x right, y down). No timings go into tables: they are
-committed figures and must be byte-identical from run to run.
+Tables and figure layouts of ``01_overview`` (the framework at a glance, Fig. 1,
+4; a level's circles and arcs, Fig. 7; the two stages of golden circle fitting,
+Fig. 8), ``02_visual_results`` (Fig. 10), ``03_simplicity`` (Table 1) and
+``04_tolerance_sweep`` (Table 2).
 """
 
 from __future__ import annotations
@@ -57,52 +43,21 @@ PAPER_TABLE1: dict[int, float] = {0: 51.0, 23: 28.0, 28: math.nan}
 PAPER_TABLE2: dict[float, float] = {4.0: 31.0, 5.0: math.nan, 9.0: math.nan}
 
 #: Colours of the arc groups S_i in the figures that tell them apart.
-_GROUP_COLORS = (
-    "#1f77b4",
-    "#d62728",
-    "#2ca02c",
-    "#9467bd",
-    "#ff7f0e",
-    "#17becf",
-    "#8c564b",
-    "#e377c2",
-    "#bcbd22",
-    "#7f7f7f",
-)
+_GROUP_COLORS = tuple("#1f77b4 #d62728 #2ca02c #9467bd #ff7f0e #17becf #8c564b #e377c2 #bcbd22 #7f7f7f".split())
 _LIGHT = "#c8c8c8"
 
 
 # --------------------------------------------------------------------------- levels
-def sampled_levels(progression: Progression, count: int = 3, *, include_final: bool = False) -> list[int]:
-    """Iterations t evenly spread over a run, e.g. first, a third, two thirds (Fig. 1, 4c).
+def sampled_levels(progression: Progression, count: int = 3) -> list[int]:
+    """``count`` iterations t evenly spread over ``[0, final)`` of a run (fewer when it is shorter), increasing.
 
-    Parameters
-    ----------
-    progression : Progression
-        The run.
-    count : int
-        How many levels to sample (fewer when the run is shorter).
-    include_final : bool
-        False: ``count`` levels evenly spaced over ``[0, final)``, so that the
-        final level can be shown separately; True: over ``[0, final]``, both ends
-        included.
-
-    Returns
-    -------
-    list of int
-        Distinct iterations, increasing.
+    E.g. first, a third, two thirds (Fig. 1, 4c): the final level is shown apart.
     """
     if count < 1:
         raise InvalidParameterError(f"count must be >= 1, got {count}")
     last = len(progression.levels) - 1
-    if include_final:
-        ts = np.linspace(0, last, count) if count > 1 else np.array([last])
-    else:
-        ts = np.linspace(0, last, count + 1)[:-1]
-    out = sorted({round(float(t)) for t in ts})
-    if not include_final and last > 0:
-        out = [t for t in out if t < last] or [0]
-    return out
+    out = sorted({round(float(t)) for t in np.linspace(0, last, count + 1)[:-1]})
+    return [t for t in out if t < last] or [0] if last > 0 else out
 
 
 def level_at_fraction(progression: Progression, fraction: float) -> int:
@@ -184,12 +139,6 @@ def plot_overview(runs: Sequence[Run], *, levels: int = 3, panel_size: float = 2
         Runs with their levels (the paper shows a photo, a clip art and a line drawing).
     levels : int
         How many intermediate levels to sample.
-    panel_size : float
-        Size of one panel, inches.
-
-    Returns
-    -------
-    matplotlib.figure.Figure
     """
     columns = 3 + levels + 1
     fig, axes = _figure(max(1, len(runs)), columns, panel_size)
@@ -234,12 +183,6 @@ def plot_arc_fitting(runs: Sequence[Run], *, fraction: float = 0.5, panel_size: 
         The examples.
     fraction : float
         Which level: ``round(fraction * final)``.
-    panel_size : float
-        Size of one panel, inches.
-
-    Returns
-    -------
-    matplotlib.figure.Figure
     """
     fig, axes = _figure(max(1, len(runs)), 3, panel_size)
     for row, run in zip(axes, runs, strict=False):
@@ -350,12 +293,6 @@ def plot_circle_fitting(
         Half the side of the zoomed square, px.
     max_circles : int
         Most circles drawn per panel.
-    panel_size : float
-        Size of one panel, inches.
-
-    Returns
-    -------
-    matplotlib.figure.Figure
     """
     pairs = by_image(stages)
     fig, axes = _figure(max(1, len(pairs)), 3, panel_size)
@@ -394,13 +331,9 @@ def _nearest_node(graph: SegmentGraph, point: np.ndarray) -> int:
 # --------------------------------------------------------------------------- Fig. 10
 def results_table(runs: Sequence[Run]) -> pd.DataFrame:
     """Per image: kind, |S|, |A^0|, final |A|, iterations, E^s of the final level, bias (Fig. 10).
-
-    Returns
-    -------
-    pandas.DataFrame
-        Columns ``image``, ``kind``, ``segments``, ``arcs A^0``,
-        ``final arcs``, ``iterations``, ``E^s (px)``, ``bias``,
-        ``stopped because``.
+    Columns ``image``, ``kind``, ``segments``, ``arcs A^0``,
+    ``final arcs``, ``iterations``, ``E^s (px)``, ``bias``,
+    ``stopped because``.
     """
     import pandas as pd
 
@@ -450,14 +383,8 @@ def plot_results_grid(
         The examples, in the order of the grid (row by row).
     columns : int
         Panels per row.
-    panel_size : float
-        Size of one panel, inches.
     inset : float
         Side of the inset, as a fraction of the panel.
-
-    Returns
-    -------
-    matplotlib.figure.Figure
     """
     rows = max(1, math.ceil(len(runs) / columns))
     fig, axes = _figure(rows, min(columns, max(1, len(runs))), panel_size)
@@ -553,12 +480,6 @@ def plot_simplicity_levels(
         The runs.
     fractions : sequence of float
         Which levels, as fractions of the run in [0, 1] (1 is the final level).
-    panel_size : float
-        Size of one panel, inches.
-
-    Returns
-    -------
-    matplotlib.figure.Figure
     """
     fig, axes = _figure(max(1, len(runs)), len(fractions), panel_size)
     for row, run in zip(axes, runs, strict=False):
@@ -584,10 +505,6 @@ def plot_progression(
     The tolerance T of the run is drawn on the E^s axis (a dashed line); the
     levels at the fractions ``mark`` of the run (those of
     :func:`plot_simplicity_levels`) are marked.
-
-    Returns
-    -------
-    matplotlib.figure.Figure
     """
     from matplotlib.ticker import MaxNLocator
 
@@ -734,14 +651,10 @@ def tolerance_table(sweeps: Sequence[Run], *, paper: Mapping[float, float] | Non
 
 def monotonicity_table(sweeps: Sequence[Run]) -> pd.DataFrame:
     """Is E^s monotone along the largest-T run, and which rule reproduces the per-T runs?
-
-    Returns
-    -------
-    pandas.DataFrame
-        Per sweep: ``image``, ``T max``, ``levels``, ``E^s monotone``,
-        ``E^s decreases`` (how many steps lower E^s), ``largest decrease (px)``,
-        ``first exceedance matches`` and ``last E^s <= T matches`` (whether the
-        rule gives the final arc count of every per-T run).
+    Per sweep: ``image``, ``T max``, ``levels``, ``E^s monotone``,
+    ``E^s decreases`` (how many steps lower E^s), ``largest decrease (px)``,
+    ``first exceedance matches`` and ``last E^s <= T matches`` (whether the
+    rule gives the final arc count of every per-T run).
     """
     import pandas as pd
 
@@ -780,10 +693,6 @@ def plot_tolerance_results(
 
     The first column is the segment graph every run starts from; then one
     column per T with |A|, E^s and the paper's |A| where it gives one.
-
-    Returns
-    -------
-    matplotlib.figure.Figure
     """
     paper = PAPER_TABLE2 if paper is None else paper
     groups = _tolerance_sweeps(sweeps)
@@ -809,10 +718,6 @@ def plot_tolerance_curve(
 
     The paper's |A| values (a bird) are drawn as stars; on the right the line
     E^s = T bounds every final level.
-
-    Returns
-    -------
-    matplotlib.figure.Figure
     """
     paper = PAPER_TABLE2 if paper is None else paper
     fig, axes = _figure(1, 2, panel_size, height_ratio=0.8)
