@@ -323,14 +323,21 @@ def sweep(
         (a photo's arcs kept near its lines as on the command line; the feature
         lines found again for each run).
     kind : str
-        The kind of input, or ``"auto"``.
+        The kind of input, or ``"auto"`` (for images not yet preprocessed).
     **options
         Keywords shared by every run.
 
     Returns
     -------
     list of Run
-        Image-major, then the grid, then the variants in the order given.
+        Image-major, then the grid, then the variants in the order given;
+        ``settings`` holds each run's keywords.
+
+    Raises
+    ------
+    InvalidParameterError
+        ``repeats`` is not a positive integer; a keyword or value the run
+        refuses (:func:`img2logo.progressive.optimize`, :func:`img2logo.abstract`).
     """
     from itertools import product
 
@@ -349,7 +356,7 @@ def sweep(
 
     def run(ex: Any, settings: dict[str, Any]) -> Run:
         if pipeline:
-            r = abstract(load_example(ex), kind=kind, progress=False, **settings)
+            r = abstract(load_example(ex.image if isinstance(ex, Run) else ex), kind=kind, progress=False, **settings)
             return Run(Path(str(r.image.source)).stem, r.image, r.lines, r.graph, r.progression)
         shape = {k: settings.pop(k) for k in ("rdp_tolerance", "min_length") if k in settings}
         graph = build_segment_graph(ex.lines, **shape) if shape else ex.graph
