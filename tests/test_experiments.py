@@ -88,7 +88,7 @@ def test_a_sweep_runs_every_image_with_every_grid_point_and_variant():
         ("merged", 9.0),
         ("A^0 only", 9.0),
     ]
-    assert runs[1].settings == {"tolerance": 3.0, "merging": False} and len(runs[1].levels) == 1
+    assert dict(runs[1].settings) == {"tolerance": 3.0, "merging": False} and len(runs[1].levels) == 1
     assert len(runs[2].final.arcs) <= len(runs[0].final.arcs)  # a larger T merges at least as much
     same = optimize(leaf.graph, tolerance=9.0)
     assert [len(a.arcs) for a in runs[2].levels] == [len(a.arcs) for a in same.levels]
@@ -102,6 +102,10 @@ def test_a_sweep_over_the_rdp_tolerance_rebuilds_the_graph_and_times_each_repeat
     assert all(len(r.seconds) == 2 and min(r.seconds) > 0 for r in runs)
     with pytest.raises(InvalidParameterError, match="repeats"):
         sweep(runs, repeats=0)
+    with pytest.raises(InvalidParameterError, match=r"grid\['tolerance'\]: expected a non-empty list of values, got 5"):
+        sweep(runs, {"tolerance": 5})
+    with pytest.raises(TypeError):
+        runs[0].settings["tolerance"] = 1.0  # a run's settings are read-only
 
 
 def test_a_pipeline_sweep_is_abstract():

@@ -20,6 +20,7 @@ import time
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
+from types import MappingProxyType
 from typing import TYPE_CHECKING, Any
 
 from ..constants import MIN_SEGMENT_LENGTH, RDP_TOLERANCE
@@ -215,7 +216,7 @@ class Run:
         Every level A^0 ... A^final; None for an image only preprocessed (:func:`preprocess`).
     variant : str
         The label of the run's variant (:func:`sweep`), or ``""``.
-    settings : dict
+    settings : mapping (read-only)
         The keywords of :func:`img2logo.progressive.optimize` (or of
         :func:`img2logo.abstract`) the run was given, with the swept ones
         (``rdp_tolerance`` too when it was swept).
@@ -231,7 +232,7 @@ class Run:
     graph: SegmentGraph
     progression: Progression | None = None
     variant: str = ""
-    settings: dict[str, Any] = field(default_factory=dict)
+    settings: Mapping[str, Any] = field(default_factory=lambda: MappingProxyType({}))
     seconds: tuple[float, ...] = ()
 
     @property
@@ -347,6 +348,9 @@ def sweep(
     if isinstance(repeats, bool) or not isinstance(repeats, int) or repeats < 1:
         raise InvalidParameterError(f"repeats must be an integer >= 1, got {repeats!r}")
     grid = dict(grid or {})
+    for name, values in grid.items():
+        if not isinstance(values, list | tuple) or not values:
+            raise InvalidParameterError(f"grid[{name!r}]: expected a non-empty list of values, got {values!r}")
     points = [dict(zip(grid, values, strict=True)) for values in product(*grid.values())]
     jobs: list[tuple[Run, str, dict[str, Any]]] = []
     for ex in images if pipeline else _preprocessed(images, kind):
@@ -372,7 +376,7 @@ def sweep(
             start = time.perf_counter()
             result = run(ex, dict(settings))
             times.append(time.perf_counter() - start)
-            done.append(dataclasses.replace(result, variant=label, settings=settings))
+            done.append(dataclasses.replace(result, variant=label, settings=MappingProxyType(settings)))
     return [dataclasses.replace(r, seconds=tuple(t)) for r, t in zip(done, seconds, strict=True)]
 
 

@@ -143,24 +143,23 @@ def plot_overview(runs: Sequence[Run], *, levels: int = 3, panel_size: float = 2
     columns = 3 + levels + 1
     fig, axes = _figure(max(1, len(runs)), columns, panel_size)
     for row, run in zip(axes, runs, strict=False):
-        res = run
-        _show_image(row[0], res.image)
+        _show_image(row[0], run.image)
         row[0].set_title(f"(a) {run.name} ({run.kind})", fontsize=8)
-        _show_lines(row[1], res.lines.lines)
+        _show_lines(row[1], run.lines.lines)
         row[1].set_title("(b) feature lines", fontsize=8)
-        plot_segment_graph(res.graph, row[2], show_junctions=False, linewidth=1.0)
-        row[2].set_title(f"(b) segments |S| = {res.graph.n_segments}", fontsize=8)
-        ts = sampled_levels(res.progression, levels)
+        plot_segment_graph(run.graph, row[2], show_junctions=False, linewidth=1.0)
+        row[2].set_title(f"(b) segments |S| = {run.graph.n_segments}", fontsize=8)
+        ts = sampled_levels(run.progression, levels)
         lw = _stroke(panel_size)
         for j in range(levels):
             ax = row[3 + j]
             if j < len(ts):
-                plot_abstraction(res.level(ts[j]), ax, linewidth=lw)
-                ax.set_title(_level_title(res.level(ts[j]), "(c) "), fontsize=8)
+                plot_abstraction(run.level(ts[j]), ax, linewidth=lw)
+                ax.set_title(_level_title(run.level(ts[j]), "(c) "), fontsize=8)
             else:
                 ax.set_axis_off()
-        plot_abstraction(res.final, ax=row[-1], show_circles=True, linewidth=lw)
-        row[-1].set_title(_level_title(res.final, "(d) final "), fontsize=8)
+        plot_abstraction(run.final, ax=row[-1], show_circles=True, linewidth=lw)
+        row[-1].set_title(_level_title(run.final, "(d) final "), fontsize=8)
     fig.suptitle(
         "Fig. 1/4: input, feature lines, segments, progressive levels, final result with its golden circles",
         fontsize=10,
@@ -186,17 +185,16 @@ def plot_arc_fitting(runs: Sequence[Run], *, fraction: float = 0.5, panel_size: 
     """
     fig, axes = _figure(max(1, len(runs)), 3, panel_size)
     for row, run in zip(axes, runs, strict=False):
-        res = run
-        a = res.level(level_at_fraction(res.progression, fraction))
+        a = run.level(level_at_fraction(run.progression, fraction))
         colors = [_group_color(i) for i in range(len(a.arcs))]
-        _draw_groups(row[0], res.graph, a.arc_segments, colors=colors)
+        _draw_groups(row[0], run.graph, a.arc_segments, colors=colors)
         row[0].set_title(f"(a) {run.name}: {len(a.arcs)} segment groups $S_i$ at t = {a.level}", fontsize=8)
-        _draw_groups(row[1], res.graph, a.arc_segments, colors=[_LIGHT] * len(a.arcs), linewidth=1.0)
+        _draw_groups(row[1], run.graph, a.arc_segments, colors=[_LIGHT] * len(a.arcs), linewidth=1.0)
         for i, arc in enumerate(a.arcs):
             plot_circles([arc.circle], row[1], color=colors[i], linewidth=0.8)
         frame_image(row[1], a.width, a.height)
         row[1].set_title(f"(b) {len(a.circles)} golden circles (constrained fit)", fontsize=8)
-        _draw_groups(row[2], res.graph, a.arc_segments, colors=[_LIGHT] * len(a.arcs), linewidth=1.0)
+        _draw_groups(row[2], run.graph, a.arc_segments, colors=[_LIGHT] * len(a.arcs), linewidth=1.0)
         plot_abstraction(a, row[2], show_junctions=True, linewidth=_stroke(panel_size))
         row[2].set_title(f"(c) extracted arcs, $E^s$ = {a.similarity:.2f} px", fontsize=8)
     fig.suptitle("Fig. 7: a level's segments, its golden circles, its arcs", fontsize=10)
