@@ -53,7 +53,6 @@ __all__ = [
     "admissible_arcs",
     "arc_intersections",
     "arc_pairs_near",
-    "arc_point_distances",
     "candidate_arcs",
     "count_redundant_intersections",
     "extract_arc",
@@ -231,7 +230,7 @@ def extract_arc(
     kept, cap = admissible_arcs(circle, seg, junctions)
 
     if method == "sum_of_squares":
-        chosen = min(kept, key=lambda a: float(np.sum(arc_point_distances(a, seg) ** 2)))
+        chosen = min(kept, key=lambda a: float(np.sum(nearest_on_arc(a, seg)[0] ** 2)))
         kept = [chosen]
     return _best_by_frechet(kept, seg, cap)
 
@@ -318,15 +317,6 @@ def _best_by_frechet(arcs: Sequence[Arc], seg: np.ndarray, cap: float) -> ArcFit
         if value < best:
             best, best_arc = value, oriented
     return ArcFit(best_arc, best)
-
-
-def arc_point_distances(arc: Arc, points: np.ndarray) -> np.ndarray:
-    """Distance from each point (N, 2) to its nearest point of ``arc``, px."""
-    c = arc.circle
-    inside = arc.contains_angle(c.angle_of(points))
-    to_circle = np.abs(c.distance(points))
-    to_ends = np.minimum(np.hypot(*(points - arc.start).T), np.hypot(*(points - arc.end).T))
-    return np.where(inside, to_circle, to_ends)
 
 
 def nearest_on_arc(arc: Arc, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

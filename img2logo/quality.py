@@ -36,7 +36,6 @@ from .arc_extraction import (
     RedundantIntersection,
     arc_intersections,
     arc_pairs_near,
-    arc_point_distances,
     nearest_on_arc,
     redundant_intersections,
 )
@@ -186,7 +185,7 @@ def near_miss_gaps(arcs: Abstraction | Sequence[Arc], low: float = GAP_MIN, high
         nearest = np.full(2, np.inf)
         for j, other in enumerate(arcs):
             if j != i:
-                nearest = np.minimum(nearest, arc_point_distances(other, ends))
+                nearest = np.minimum(nearest, nearest_on_arc(other, ends)[0])
         found.extend(ends[(nearest >= low) & (nearest <= high)])
     return np.array(found).reshape(-1, 2)
 
