@@ -164,8 +164,8 @@ def output_set() -> Iterator[None]:
     Examples
     --------
     >>> with output_set():  # doctest: +SKIP
-    ...     write_json(level, "out/logo.json")
-    ...     write_svg(level, "out/logo.svg")
+    ...     writers.write_json(level, "out/logo.json")
+    ...     writers.write_svg(level, "out/logo.svg")
     """
     stage = _Stage()
     token = _STAGE.set(stage)
