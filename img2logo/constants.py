@@ -246,6 +246,10 @@ JUNCTION_TOLERANCE: float = 1e-3
 #: Decimal places of the coordinates written to SVG: 1e-6 px, far below
 #: ``JUNCTION_TOLERANCE``.
 SVG_DECIMALS: int = 6
+#: An SVG arc command whose |sweep| exceeds this, rad, is written as two commands (a full
+#: circle always is): near a full turn its two end points are so close that a renderer
+#: cannot place the centre reliably. Arcs and face outlines (``svg_path.py``) both use it.
+SVG_NEAR_FULL_SWEEP: float = 2.0 * math.pi - 1e-3
 #: Default stroke width of drawn arcs, as a fraction of the longer image side ...
 STROKE_WIDTH_FRACTION: float = 1.0 / 128.0
 #: ... but never thinner than this, px.

@@ -259,7 +259,7 @@ def write_provenance(executed: str | os.PathLike[str]) -> Path:
     import json
     import subprocess
 
-    from ..writers import _atomic_write
+    from .._io import atomic_write
 
     path = Path(executed)
     nb = json.loads(path.read_text(encoding="utf-8"))
@@ -284,7 +284,7 @@ def write_provenance(executed: str | os.PathLike[str]) -> Path:
     }
     target = figure_dir(path.stem) / "provenance.json"
     text = json.dumps(record, indent=2, sort_keys=True) + "\n"
-    return _atomic_write(target, lambda f: f.write(text.encode("utf-8")))
+    return atomic_write(target, lambda f: f.write(text.encode("utf-8")))
 
 
 from .runner import check_parameters as check_parameters  # noqa: E402  (needs data_path above)
