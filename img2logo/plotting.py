@@ -26,6 +26,7 @@ from .constants import ARC_SAMPLE_STEP, IMAGE_FADE, MIN_STROKE_WIDTH, STROKE_WID
 from .errors import InvalidParameterError
 from .fills import check_fills
 from .geometry import Abstraction, Arc, Circle
+from .loading import composite_on_white
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -98,7 +99,7 @@ def plot_abstraction(
         The result to draw.
     ax : matplotlib.axes.Axes, optional
         Axes to draw into; a new figure is made when None.
-    image : ndarray, shape (height, width) or (height, width, 3 or 4), optional
+    image : ndarray, shape (height, width) or (height, width, C), C in 1..4, optional
         The input image, drawn faded underneath (uint8, or float in [0, 1]).
     show_circles : bool
         Also draw the golden circles of the arcs as thin construction circles
@@ -187,7 +188,7 @@ def plot_segment_graph(
         The graph to draw.
     ax : matplotlib.axes.Axes, optional
         Axes to draw into; a new figure is made when None.
-    image : ndarray, shape (height, width) or (height, width, 3 or 4), optional
+    image : ndarray, shape (height, width) or (height, width, C), C in 1..4, optional
         The input image, drawn faded underneath.
     show_junctions : bool
         Mark the nodes by valence.
@@ -342,7 +343,7 @@ def draw_fills(
     """Draw coloured regions (paper Fig. 18; :mod:`img2logo.fills`) into image-pixel axes.
 
     Each fill's SVG path is sampled every ``ARC_SAMPLE_STEP`` px
-    (:func:`img2logo.fills.sample_path`) and drawn as one matplotlib
+    (:func:`img2logo.svg_path.sample_path`) and drawn as one matplotlib
     ``PathPatch`` without edge; its loops are oriented by nesting depth so that
     matplotlib's non-zero rule fills them as SVG's ``fill-rule="evenodd"``
     would (a loop inside another is a hole). A fill with a gradient is drawn as
@@ -453,9 +454,9 @@ def _background_rgb(image: np.ndarray, width: int, height: int, fade: float = IM
 
     Parameters
     ----------
-    image : array_like, shape (height, width), (height, width, 1), (height, width, 3) or (height, width, 4)
-        bool, unsigned 8- or 16-bit integers (full range), other integers read as
-        0..255, or floats read as 0..1 (clipped).
+    image : array_like, shape (height, width) or (height, width, C), C in 1..4
+        As :func:`img2logo.loading.composite_on_white` reads it: uint8,
+        uint16, bool, or floats in [0, 1].
     width, height : int
         The size the image must have, px.
     fade : float
@@ -468,35 +469,7 @@ def _background_rgb(image: np.ndarray, width: int, height: int, fade: float = IM
     f = float(fade)
     if not (math.isfinite(f) and 0.0 <= f <= 1.0):
         raise InvalidParameterError(f"image_fade must be in [0, 1], got {fade!r}")
-    arr = np.asarray(image)
-    if arr.ndim == 3 and arr.shape[2] == 1:
-        arr = arr[..., 0]
-    if not (arr.ndim == 2 or (arr.ndim == 3 and arr.shape[2] in (3, 4))):
-        raise InvalidParameterError(f"image must have shape (H, W), (H, W, 3) or (H, W, 4), got {arr.shape}")
-    if arr.shape[:2] != (height, width):
-        raise InvalidParameterError(
-            f"image must be {height} x {width} px (rows x columns) to match the drawing, got {arr.shape[:2]}"
-        )
-    if arr.dtype == np.bool_:
-        val = arr.astype(np.float64)
-    elif arr.dtype == np.uint16:
-        val = arr.astype(np.float64) / 65535.0
-    elif np.issubdtype(arr.dtype, np.integer):
-        val = arr.astype(np.float64) / 255.0
-    elif np.issubdtype(arr.dtype, np.floating):
-        val = arr.astype(np.float64)
-        if not np.all(np.isfinite(val)):
-            raise InvalidParameterError("image must be finite, got NaN or infinity")
-    else:
-        raise InvalidParameterError(f"image must hold numbers, got dtype {arr.dtype}")
-    val = np.clip(val, 0.0, 1.0)
-    if val.ndim == 2:
-        rgb = np.repeat(val[..., None], 3, axis=2)
-    elif val.shape[2] == 4:
-        alpha = val[..., 3:4]
-        rgb = val[..., :3] * alpha + (1.0 - alpha)
-    else:
-        rgb = val
+    rgb, _, _ = composite_on_white(image, "image", size=(width, height))
     return f + (1.0 - f) * rgb
 
 

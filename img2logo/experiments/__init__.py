@@ -453,7 +453,7 @@ def write_provenance(executed: str | os.PathLike[str]) -> Path:
     import json
     import subprocess
 
-    from ..writers import _atomic_write as atomic_write  # becomes public in the small I/O module (wt-modules)
+    from .._io import atomic_write
 
     path = Path(executed)
     nb = json.loads(path.read_text(encoding="utf-8"))
