@@ -13,10 +13,10 @@ from conftest import DATA
 import img2logo
 from img2logo import edits
 from img2logo.constants import PHI
+from img2logo.contract import to_document, validate_document
 from img2logo.errors import FitError, InvalidParameterError
 from img2logo.geometry import Abstraction, Arc, Circle, line_arc
 from img2logo.golden_ladder import FibonacciLadder, GoldenLadder
-from img2logo.writers import to_document, validate_document
 
 pytest.importorskip("jsonschema")
 
