@@ -59,6 +59,7 @@ from .errors import InvalidParameterError, OutputError
 from .fills import Fill, check_fills, sample_path
 from .geometry import TAU, Abstraction, Arc, Circle, line_arc
 from .plotting import ARC_COLOR, CIRCLE_COLOR, default_stroke_width, plot_abstraction, plot_segment_graph
+from .symmetry import axis_segment, symmetry_extra
 
 if TYPE_CHECKING:
     from .segment_graph import SegmentGraph
@@ -247,6 +248,9 @@ def to_document(
         "params": merged,
         "extra": {"arc_segments": arc_segments, **({"lines": line_docs} if line_docs else {})},
     }
+    symmetry = symmetry_extra(circles, merged)
+    if symmetry is not None:  # a symmetric logo: the axis, and the circles paired with their mirror images
+        doc["extra"]["symmetry"] = symmetry
     ladder = merged.get("ladder", "phi")
     if ladder == "fibonacci":
         unit = merged.get("unit")
@@ -523,6 +527,11 @@ def to_svg(
             if c.k is None and c.r >= 0.5 * LINE_RADIUS:
                 continue  # the circle of a straight line is no construction circle
             lines.append(f'    <circle id="circle-{i}"{_k_attr(c)} cx="{n(c.cx)}" cy="{n(c.cy)}" r="{n(c.r)}"/>')
+        guide = axis_segment(abstraction.params, width, height)
+        if guide is not None:  # a symmetric logo: its mirror axis as a guide line across the image
+            (x0, y0), (x1, y1) = guide
+            ends = f'x1="{n(x0)}" y1="{n(y0)}" x2="{n(x1)}" y2="{n(y1)}"'
+            lines.append(f'    <line id="mirror-axis" {ends} stroke-dasharray="4 2"/>')
         lines.append("  </g>")
     lines.append(
         f'  <g id="arcs" inkscape:groupmode="layer" inkscape:label="Arcs" fill="none" stroke="{ARC_COLOR}" '
