@@ -424,9 +424,9 @@ def half_graph(graph: SegmentGraph, axis: Axis) -> HalfGraph:
     a = float(axis.point[0])
     segs = [_turn(s, rotation, axis.point) for s in graph.segments]
     nodes = _turn(graph.junctions, rotation, axis.point)
-    # The half with more line length is kept; sign +1 keeps x <= a.
-    left = sum(_length(s[s[:, 0] <= a]) for s in segs)
-    right = sum(_length(s[s[:, 0] >= a]) for s in segs)
+    # The half with more line length off the axis is kept; sign +1 keeps x <= a.
+    left = sum(_length(s[s[:, 0] < a - SYMMETRY_SNAP_DISTANCE]) for s in segs)
+    right = sum(_length(s[s[:, 0] > a + SYMMETRY_SNAP_DISTANCE]) for s in segs)
     sign = 1.0 if left >= right else -1.0
 
     def side(p: np.ndarray) -> np.ndarray:

@@ -257,3 +257,17 @@ def test_cli_bad_symmetry_is_one_line_and_exit_two(tmp_path, capsys):
     assert main([str(src), "--symmetry", "sideways"]) == 2
     err = capsys.readouterr().err.strip()
     assert err.count("\n") == 0 and "symmetry must be" in err and "Traceback" not in err
+
+
+def test_a_batch_passes_symmetry_on(tmp_path):
+    from concurrent.futures import ThreadPoolExecutor
+
+    from img2logo.batch import run_batch
+
+    src = tmp_path / "gull.png"
+    cv2.imwrite(str(src), gull())
+    with ThreadPoolExecutor(1) as pool:
+        report = run_batch([src], tmp_path / "out", executor=pool, progress=False, symmetry="auto", kind="drawing")
+    assert not report.failures
+    doc = json.loads((tmp_path / "out" / "gull.json").read_text())
+    assert doc["params"]["symmetry"]["mode"] == "auto" and doc["extra"]["symmetry"]["on_axis"]

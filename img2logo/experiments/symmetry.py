@@ -113,11 +113,10 @@ def comparison_table(comparisons: Sequence[Comparison]) -> Any:
 
 def plot_comparison(comparisons: Sequence[Comparison], *, panel_size: float = 3.2) -> Any:
     """Input, free logo and symmetric logo (its mirror axis dashed) side by side, one row per image."""
-    import matplotlib.pyplot as plt
+    from matplotlib.figure import Figure
 
-    fig, axes = plt.subplots(
-        len(comparisons), 3, figsize=(3 * panel_size, panel_size * len(comparisons)), squeeze=False
-    )
+    fig = Figure(figsize=(3 * panel_size, panel_size * len(comparisons)), layout="constrained")
+    axes = fig.subplots(len(comparisons), 3, squeeze=False)
     for row, c in zip(axes, comparisons, strict=True):
         image = c.free.image
         row[0].imshow(image.rgb, extent=(0, image.width, image.height, 0))
@@ -139,5 +138,4 @@ def plot_comparison(comparisons: Sequence[Comparison], *, panel_size: float = 3.
             ax.set_ylim(image.height, 0)
             ax.set_aspect("equal")
             ax.axis("off")
-    fig.tight_layout()
     return fig
