@@ -111,9 +111,17 @@ def comparison_table(comparisons: Sequence[Comparison]) -> Any:
     return pd.DataFrame(rows)
 
 
-def plot_comparison(comparisons: Sequence[Comparison], *, panel_size: float = 3.2) -> Any:
-    """Input, free logo and symmetric logo (its mirror axis dashed) side by side, one row per image."""
+def plot_comparison(comparisons: Sequence[Comparison], *, panel_size: float = 3.2, every: bool = False) -> Any:
+    """Input, free logo and symmetric logo (its mirror axis dashed) side by side, one row per image.
+
+    Only the images ``auto`` made symmetric, unless ``every`` (then the others
+    show their best score and the free logo again).
+    """
     from matplotlib.figure import Figure
+
+    comparisons = [c for c in comparisons if every or c.made_symmetric]
+    if not comparisons:
+        raise Img2LogoError("no image was made symmetric: nothing to compare (every=True shows them all)")
 
     fig = Figure(figsize=(3 * panel_size, panel_size * len(comparisons)), layout="constrained")
     axes = fig.subplots(len(comparisons), 3, squeeze=False)
