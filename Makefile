@@ -5,6 +5,7 @@ PYTHON ?= python3
 VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
+KIT    := $(VENV)/.installed-kit
 LAB    := $(VENV)/.installed-lab
 BROWSER := $(VENV)/.installed-browser
 LIB    := $(wildcard img2logo/*.py img2logo/*/*.py) pyproject.toml
@@ -23,17 +24,22 @@ $(STAMP): pyproject.toml
 	$(BIN)/python -m pip install --quiet -e '.[dev]'
 	@touch $@
 
-test: $(STAMP)
+test: $(KIT)
 	$(BIN)/python -m pytest -m "not browser"
 
-# Optional extras, installed on first use: [lab] (JupyterLab) for make lab, [browser] (JupyterLab
-# and playwright) for make test-browser. Neither make test nor make figures needs them.
-$(LAB): pyproject.toml $(STAMP)
-	$(BIN)/python -m pip install --quiet -e '.[dev,lab]'
+# Optional extras, installed on first use: [kit] (papermill, ipywidgets: the notebooks) for make test,
+# make figures and make lab; [lab] (JupyterLab) for make lab; [browser] (JupyterLab and playwright) for
+# make test-browser. The library (make install, the img2logo command) needs none of them.
+$(KIT): pyproject.toml $(STAMP)
+	$(BIN)/python -m pip install --quiet -e '.[dev,kit]'
 	@touch $@
 
-$(BROWSER): pyproject.toml $(STAMP)
-	$(BIN)/python -m pip install --quiet -e '.[dev,browser]'
+$(LAB): pyproject.toml $(KIT)
+	$(BIN)/python -m pip install --quiet -e '.[dev,kit,lab]'
+	@touch $@
+
+$(BROWSER): pyproject.toml $(KIT)
+	$(BIN)/python -m pip install --quiet -e '.[dev,kit,browser]'
 	@touch $@
 
 # The level explorer (notebook 11) in JupyterLab, driven by Debian's chromium (apt-get install chromium)
@@ -70,7 +76,7 @@ quality: $(STAMP)
 # make figures NB=04_tolerance_sweep PARAMS="-p images '[clipart-cat.png]'"
 figures: $(RUNS)
 
-build/notebooks/%.ipynb: notebooks/%.ipynb $(LIB) $(DATA) $(if $(PARAMS),FORCE) | $(STAMP)
+build/notebooks/%.ipynb: notebooks/%.ipynb $(LIB) $(DATA) $(if $(PARAMS),FORCE) | $(KIT)
 	@mkdir -p $(dir $@)
 	@echo "== $< $(if $(PARAMS),($(PARAMS)),(full parameters))"
 	@# On failure the runner says why in one line (and where the executed copy with the traceback is).
@@ -80,7 +86,7 @@ build/notebooks/%.ipynb: notebooks/%.ipynb $(LIB) $(DATA) $(if $(PARAMS),FORCE) 
 
 # The same notebooks with their smoke parameters (img2logo.experiments.runner.SMOKE): small and
 # fast, outputs in build/smoke/ (never over figures/).
-figures-smoke: $(STAMP)
+figures-smoke: $(KIT)
 	@mkdir -p build/smoke/notebooks
 	@for nb in $(NB); do echo "== notebooks/$$nb.ipynb (smoke)"; \
 	  $(BIN)/python -m img2logo.experiments notebooks/$$nb.ipynb build/smoke/notebooks/$$nb.ipynb --smoke $(PARAMS) \

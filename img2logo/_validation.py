@@ -64,6 +64,16 @@ def check_choice(value: object, name: str, choices: Iterable[str]) -> str:
     return str(value)
 
 
+def check_integer(value: object, name: str, minimum: int) -> int:
+    """``value`` as an int >= ``minimum`` (Python or numpy integer, not bool)."""
+    if isinstance(value, bool | np.bool_) or not isinstance(value, int | np.integer):
+        raise InvalidParameterError(f"{name} must be an integer, got {value!r}")
+    v = int(value)
+    if v < minimum:
+        raise InvalidParameterError(f"{name} must be >= {minimum}, got {v}")
+    return v
+
+
 def readonly(arr: np.ndarray) -> np.ndarray:
     """Return ``arr`` marked read-only, so frozen values stay frozen."""
     arr.setflags(write=False)

@@ -50,10 +50,14 @@ from .geometry import TAU, Arc, Circle
 __all__ = [
     "ArcFit",
     "RedundantIntersection",
+    "admissible_arcs",
     "arc_intersections",
+    "arc_pairs_near",
+    "candidate_arcs",
     "count_redundant_intersections",
     "extract_arc",
     "frechet_distance",
+    "nearest_on_arc",
     "redundant_intersections",
     "select_arc_sum_of_squares",
 ]
@@ -223,15 +227,10 @@ def extract_arc(
             f"junction point {worst} is {off[worst]:.3g} px off the circle (tolerance {JUNCTION_TOLERANCE} px)"
         )
 
-    candidates = _candidate_arcs(circle, junctions)
-    seg_length = float(np.sum(np.hypot(*np.diff(seg, axis=0).T)))
-    cap = ARC_CANDIDATE_LENGTH_RATIO * seg_length + ARC_CANDIDATE_LENGTH_SLACK
-    kept = [a for a in candidates if a.length <= cap]
-    if not kept:
-        kept = [min(candidates, key=lambda a: a.length)]
+    kept, cap = admissible_arcs(circle, seg, junctions)
 
     if method == "sum_of_squares":
-        chosen = min(kept, key=lambda a: float(np.sum(_arc_point_distances(a, seg) ** 2)))
+        chosen = min(kept, key=lambda a: float(np.sum(nearest_on_arc(a, seg)[0] ** 2)))
         kept = [chosen]
     return _best_by_frechet(kept, seg, cap)
 
@@ -259,8 +258,8 @@ def _reversed(arc: Arc) -> Arc:
     return Arc(arc.circle, _wrap(arc.theta0 + arc.sweep), -arc.sweep)
 
 
-def _candidate_arcs(circle: Circle, junctions: np.ndarray) -> list[Arc]:
-    """The arcs between two junction points, both ways round, through all of them."""
+def candidate_arcs(circle: Circle, junctions: np.ndarray) -> list[Arc]:
+    """The arcs of ``circle`` between two of the ``junctions`` (m, 2), both ways round, through all of them."""
     theta = circle.angle_of(junctions)
     tol = JUNCTION_TOLERANCE / circle.r  # radians
     if np.hypot(*(junctions[0] - junctions[-1])) <= JUNCTION_TOLERANCE:
@@ -279,6 +278,20 @@ def _candidate_arcs(circle: Circle, junctions: np.ndarray) -> list[Arc]:
     if not out:  # cannot happen with two distinct points on the circle
         raise FitError("no candidate arc passes through all the junction points")
     return out
+
+
+def admissible_arcs(circle: Circle, segment_points: np.ndarray, junctions: np.ndarray) -> tuple[list[Arc], float]:
+    """The candidate arcs :func:`extract_arc` chooses among, and the length cap it applied, px.
+
+    The arcs of :func:`candidate_arcs` no longer than ``ARC_CANDIDATE_LENGTH_RATIO``
+    times the length of the pixel chain ``segment_points`` (N, 2) plus
+    ``ARC_CANDIDATE_LENGTH_SLACK`` px; the shortest candidate when every one is longer.
+    """
+    candidates = candidate_arcs(circle, junctions)
+    seg_length = float(np.sum(np.hypot(*np.diff(segment_points, axis=0).T)))
+    cap = ARC_CANDIDATE_LENGTH_RATIO * seg_length + ARC_CANDIDATE_LENGTH_SLACK
+    kept = [a for a in candidates if a.length <= cap]
+    return (kept or [min(candidates, key=lambda a: a.length)]), cap
 
 
 def _best_by_frechet(arcs: Sequence[Arc], seg: np.ndarray, cap: float) -> ArcFit:
@@ -306,13 +319,35 @@ def _best_by_frechet(arcs: Sequence[Arc], seg: np.ndarray, cap: float) -> ArcFit
     return ArcFit(best_arc, best)
 
 
-def _arc_point_distances(arc: Arc, points: np.ndarray) -> np.ndarray:
-    """Distance from each point (N, 2) to its nearest point of ``arc``, px."""
+def nearest_on_arc(arc: Arc, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The point of ``arc`` nearest to each of ``points`` and its distance, px.
+
+    The radial projection when it falls on the arc, else the nearer end (also for
+    the circle's centre itself).
+
+    Parameters
+    ----------
+    arc : Arc
+    points : array_like, shape (N, 2) or (2,)
+        Points (x, y), px.
+
+    Returns
+    -------
+    distances : ndarray, shape (N,)
+    nearest : ndarray, shape (N, 2)
+        For one point of shape (2,), shapes () and (2,).
+    """
+    p = np.asarray(points, dtype=np.float64)
+    single = p.ndim == 1
+    p = np.atleast_2d(p)
     c = arc.circle
-    inside = arc.contains_angle(c.angle_of(points))
-    to_circle = np.abs(c.distance(points))
-    to_ends = np.minimum(np.hypot(*(points - arc.start).T), np.hypot(*(points - arc.end).T))
-    return np.where(inside, to_circle, to_ends)
+    theta = c.angle_of(p)
+    on = arc.contains_angle(theta) & (np.hypot(*(p - c.center).T) > 0)
+    ends = np.array([arc.start, arc.end])
+    to_ends = np.hypot(*(p[:, None, :] - ends[None, :, :]).transpose(2, 0, 1))
+    q = np.where(on[:, None], c.point_at(theta), ends[np.argmin(to_ends, axis=1)])
+    d = np.hypot(*(q - p).T)
+    return (d[0], q[0]) if single else (d, q)
 
 
 # --------------------------------------------------------------------------- intersections
@@ -474,7 +509,7 @@ def redundant_intersections(
         return []
 
     out = []
-    for i, j in _prefilter_pairs(arcs, rows, INTERSECTION_TOL):
+    for i, j in arc_pairs_near(arcs, rows, INTERSECTION_TOL):
         shared = junctions[np.intersect1d(owned[i], owned[j])]
         for p in _intersections(arcs[i], arcs[j], INTERSECTION_TOL):
             if len(shared) and np.min(np.hypot(*(shared - p).T)) <= tol:
@@ -495,8 +530,11 @@ def count_redundant_intersections(
     return len(redundant_intersections(arcs, junction_points, arc_junctions, candidates=candidates, tol=tol))
 
 
-def _prefilter_pairs(arcs: Sequence[Arc], rows: np.ndarray, tol: float) -> list[tuple[int, int]]:
-    """Pairs (i, j), i < j, i or j in ``rows``, whose circles meet and bounding boxes overlap."""
+def arc_pairs_near(arcs: Sequence[Arc], rows: np.ndarray, tol: float) -> list[tuple[int, int]]:
+    """Pairs (i, j), i < j, i or j in ``rows``, whose circles meet and bounding boxes overlap (within ``tol`` px).
+
+    A cheap filter before :func:`arc_intersections`: only these pairs can meet.
+    """
     params = np.array([(a.circle.cx, a.circle.cy, a.circle.r, a.theta0, a.sweep) for a in arcs])
     centers, radii = params[:, :2], params[:, 2]
     boxes = _bounding_boxes(params)  # (n, 4): xmin, ymin, xmax, ymax

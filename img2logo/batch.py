@@ -461,7 +461,7 @@ def run_batch(
     written: dict[int, tuple[str, ...]] = {}
 
     def write(i: int, result: dict[str, Any]) -> None:
-        from .writers import _atomic_write, output_set
+        from ._io import atomic_write, output_set
 
         files = result.get("files") or {}
         if "error" in result:  # an image that now fails keeps no result of an earlier run
@@ -472,7 +472,7 @@ def run_batch(
             for fmt in formats:
                 if fmt in files:
                     data = files[fmt]
-                    done.append(str(_atomic_write(out_dir / f"{stems[i]}.{fmt}", lambda f, d=data: f.write(d))))
+                    done.append(str(atomic_write(out_dir / f"{stems[i]}.{fmt}", lambda f, d=data: f.write(d))))
         written[i] = tuple(done)
 
     results = _run_tasks(tasks, executor, jobs, progress, on_result=write)
@@ -705,10 +705,10 @@ def _remove_old_outputs(out_dir: Path, stem: str, formats: Sequence[str]) -> Non
             try:
                 old.unlink()
             except OSError as exc:
+                from ._io import os_message
                 from .errors import OutputError
-                from .writers import _os_message
 
-                raise OutputError(_os_message(old, exc)) from exc
+                raise OutputError(os_message(old, exc)) from exc
 
 
 def _output_stems(paths: Sequence[Path]) -> list[str]:

@@ -148,7 +148,7 @@ def load_image(source: object, *, max_side: int = MAX_IMAGE_SIDE, max_pixels: in
         )
         rgb, alpha, has_alpha = _shrink(arr, size, name, bgr=bgr)
     else:
-        rgb, alpha, has_alpha = _normalize(arr, name, bgr=bgr)
+        rgb, alpha, has_alpha = composite_on_white(arr, name, bgr=bgr)
     if np.ptp(rgb) < BLANK_IMAGE_RANGE and np.ptp(alpha) < BLANK_IMAGE_RANGE:
         raise InvalidImageError(f"{name}: image is blank (every pixel has the same colour); nothing to trace")
     return LoadedImage(readonly(rgb), readonly(alpha), has_alpha, scale, name)
@@ -191,7 +191,7 @@ def load_mask(source: object, shape: tuple[int, int] | None = None) -> np.ndarra
     if arr.dtype == bool and arr.ndim == 2:
         mask = arr.copy()
     else:
-        rgb, alpha, _ = _normalize(arr, name, bgr=bgr)
+        rgb, alpha, _ = composite_on_white(arr, name, bgr=bgr)
         mask = (rgb @ np.array([0.299, 0.587, 0.114]) >= 0.5) & (alpha >= 0.5)
     if shape is not None and mask.shape != tuple(shape):
         raise InvalidParameterError(f"{name}: mask must have the image's shape {tuple(shape)}, got {mask.shape}")
@@ -305,7 +305,7 @@ def _check_layout(arr: np.ndarray, name: str) -> None:
 
 
 def _shrink(arr: np.ndarray, size: tuple[int, int], name: str, *, bgr: bool) -> tuple[np.ndarray, np.ndarray, bool]:
-    """Downscale ``arr`` to ``size`` (width, height) in its own dtype, then normalize (see :func:`_normalize`).
+    """Downscale ``arr`` to ``size`` (width, height) in its own dtype, then normalize (see :func:`composite_on_white`).
 
     Colour is composited over white strip by strip (``DOWNSCALE_STRIP_ROWS``
     rows at a time, float32), so no full-size float copy is ever made; area
@@ -337,7 +337,7 @@ def _shrink(arr: np.ndarray, size: tuple[int, int], name: str, *, bgr: bool) -> 
         colour = arr
         alpha_small = None
     small = cv2.resize(np.ascontiguousarray(colour), size, interpolation=cv2.INTER_AREA)
-    rgb, _, _ = _normalize(small, name, bgr=bgr)
+    rgb, _, _ = composite_on_white(small, name, bgr=bgr)
     rgb = np.clip(rgb, 0.0, 1.0)
     alpha = np.ones(rgb.shape[:2]) if alpha_small is None else np.clip(_to_unit(alpha_small, name), 0.0, 1.0)
     return rgb, alpha, has_alpha
@@ -361,9 +361,48 @@ def _to_unit(arr: np.ndarray, name: str) -> np.ndarray:
     raise InvalidImageError(f"{name}: unsupported dtype {arr.dtype} (use uint8, uint16, bool or float in [0, 1])")
 
 
-def _normalize(arr: np.ndarray, name: str, *, bgr: bool) -> tuple[np.ndarray, np.ndarray, bool]:
-    """Array -> (rgb (H, W, 3) float64 over white, alpha (H, W), had alpha)."""
+def composite_on_white(
+    arr: object, name: str = "image", *, bgr: bool = False, size: tuple[int, int] | None = None
+) -> tuple[np.ndarray, np.ndarray, bool]:
+    """An image array as float RGB composited over white, and its opacity.
+
+    The one reading of pixel values in img2logo: input images (:func:`load_image`,
+    :func:`load_mask`), the image drawn under a plot (:mod:`img2logo.plotting`)
+    and the colours read by :func:`img2logo.fills.fill_auto`.
+
+    Parameters
+    ----------
+    arr : array_like, shape (H, W) or (H, W, C), C in 1..4
+        Grey (C = 1), grey + alpha (2), colour (3) or colour + alpha (4), of
+        dtype uint8 (0..255), uint16 (0..65535), bool, or float in [0, 1].
+    name : str
+        What to call the image in a message (a file name, ``"image"``).
+    bgr : bool
+        The colour channels are in OpenCV's order, blue first.
+    size : (int, int), optional
+        The (width, height) the image must have, px.
+
+    Returns
+    -------
+    rgb : ndarray, shape (H, W, 3), float64
+        In [0, 1], composited over white by the opacity.
+    alpha : ndarray, shape (H, W), float64
+        The opacity in [0, 1], all ones without an alpha channel.
+    has_alpha : bool
+        Whether the array had an alpha channel.
+
+    Raises
+    ------
+    InvalidImageError
+        On another shape or dtype, a float outside [0, 1] or not finite, or a
+        size other than ``size``, saying what was expected and what came.
+    """
+    arr = np.asarray(arr)
     _check_layout(arr, name)
+    if size is not None and arr.shape[:2] != (size[1], size[0]):
+        raise InvalidImageError(
+            f"{name}: image must be {size[1]} x {size[0]} px (rows x columns), got {arr.shape[0]} x {arr.shape[1]}"
+        )
     if arr.ndim == 2:
         arr = arr[:, :, None]
     val = _to_unit(arr, name)

@@ -25,7 +25,8 @@ from ._validation import check_positive
 from .constants import ARC_SAMPLE_STEP, IMAGE_FADE, MIN_STROKE_WIDTH, STROKE_WIDTH_FRACTION
 from .errors import InvalidParameterError
 from .fills import check_fills
-from .geometry import Abstraction, Circle
+from .geometry import Abstraction, Arc, Circle
+from .loading import composite_on_white
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -41,10 +42,15 @@ __all__ = [
     "SEGMENT_COLORMAP",
     "SPLIT_POINT_COLOR",
     "default_stroke_width",
+    "draw_arcs",
     "draw_fills",
+    "frame_image",
+    "frame_window",
     "plot_abstraction",
     "plot_circles",
     "plot_segment_graph",
+    "ring",
+    "square_window",
 ]
 
 #: Colour of the arcs of an abstraction.
@@ -93,7 +99,7 @@ def plot_abstraction(
         The result to draw.
     ax : matplotlib.axes.Axes, optional
         Axes to draw into; a new figure is made when None.
-    image : ndarray, shape (height, width) or (height, width, 3 or 4), optional
+    image : ndarray, shape (height, width) or (height, width, C), C in 1..4, optional
         The input image, drawn faded underneath (uint8, or float in [0, 1]).
     show_circles : bool
         Also draw the golden circles of the arcs as thin construction circles
@@ -153,7 +159,7 @@ def plot_abstraction(
             zorder=3,
             label="junction",
         )
-    _frame(ax, width, height)
+    frame_image(ax, width, height)
     return ax
 
 
@@ -182,7 +188,7 @@ def plot_segment_graph(
         The graph to draw.
     ax : matplotlib.axes.Axes, optional
         Axes to draw into; a new figure is made when None.
-    image : ndarray, shape (height, width) or (height, width, 3 or 4), optional
+    image : ndarray, shape (height, width) or (height, width, C), C in 1..4, optional
         The input image, drawn faded underneath.
     show_junctions : bool
         Mark the nodes by valence.
@@ -245,7 +251,7 @@ def plot_segment_graph(
                 zorder=3 + z,
                 label=label,
             )
-    _frame(ax, width, height)
+    frame_image(ax, width, height)
     return ax
 
 
@@ -310,7 +316,7 @@ def plot_circles(
         centres = np.array([[c.cx, c.cy] for c in items])
         ax.plot(centres[:, 0], centres[:, 1], linestyle="none", marker="+", color=color, zorder=1)
     if width is not None and height is not None:
-        _frame(ax, int(width), int(height))
+        frame_image(ax, int(width), int(height))
     elif fresh and items:
         lo = min(c.cx - c.r for c in items), min(c.cy - c.r for c in items)
         hi = max(c.cx + c.r for c in items), max(c.cy + c.r for c in items)
@@ -337,7 +343,7 @@ def draw_fills(
     """Draw coloured regions (paper Fig. 18; :mod:`img2logo.fills`) into image-pixel axes.
 
     Each fill's SVG path is sampled every ``ARC_SAMPLE_STEP`` px
-    (:func:`img2logo.fills.sample_path`) and drawn as one matplotlib
+    (:func:`img2logo.svg_path.sample_path`) and drawn as one matplotlib
     ``PathPatch`` without edge; its loops are oriented by nesting depth so that
     matplotlib's non-zero rule fills them as SVG's ``fill-rule="evenodd"``
     would (a loop inside another is a hole). A fill with a gradient is drawn as
@@ -429,8 +435,8 @@ def _axes(ax: Axes | None, width: int, height: int) -> Axes:
     return new_ax
 
 
-def _frame(ax: Axes, width: int, height: int) -> None:
-    """Show exactly the image ``[0, width] x [0, height]``, y down, equal aspect, no axes."""
+def frame_image(ax: Axes, width: int, height: int) -> None:
+    """Show exactly the image ``[0, width] x [0, height]``, px, y down, equal aspect, no axes."""
     ax.set_xlim(0.0, float(width))
     ax.set_ylim(float(height), 0.0)
     ax.set_aspect("equal")
@@ -448,9 +454,9 @@ def _background_rgb(image: np.ndarray, width: int, height: int, fade: float = IM
 
     Parameters
     ----------
-    image : array_like, shape (height, width), (height, width, 1), (height, width, 3) or (height, width, 4)
-        bool, unsigned 8- or 16-bit integers (full range), other integers read as
-        0..255, or floats read as 0..1 (clipped).
+    image : array_like, shape (height, width) or (height, width, C), C in 1..4
+        As :func:`img2logo.loading.composite_on_white` reads it: uint8,
+        uint16, bool, or floats in [0, 1].
     width, height : int
         The size the image must have, px.
     fade : float
@@ -463,33 +469,75 @@ def _background_rgb(image: np.ndarray, width: int, height: int, fade: float = IM
     f = float(fade)
     if not (math.isfinite(f) and 0.0 <= f <= 1.0):
         raise InvalidParameterError(f"image_fade must be in [0, 1], got {fade!r}")
-    arr = np.asarray(image)
-    if arr.ndim == 3 and arr.shape[2] == 1:
-        arr = arr[..., 0]
-    if not (arr.ndim == 2 or (arr.ndim == 3 and arr.shape[2] in (3, 4))):
-        raise InvalidParameterError(f"image must have shape (H, W), (H, W, 3) or (H, W, 4), got {arr.shape}")
-    if arr.shape[:2] != (height, width):
-        raise InvalidParameterError(
-            f"image must be {height} x {width} px (rows x columns) to match the drawing, got {arr.shape[:2]}"
-        )
-    if arr.dtype == np.bool_:
-        val = arr.astype(np.float64)
-    elif arr.dtype == np.uint16:
-        val = arr.astype(np.float64) / 65535.0
-    elif np.issubdtype(arr.dtype, np.integer):
-        val = arr.astype(np.float64) / 255.0
-    elif np.issubdtype(arr.dtype, np.floating):
-        val = arr.astype(np.float64)
-        if not np.all(np.isfinite(val)):
-            raise InvalidParameterError("image must be finite, got NaN or infinity")
-    else:
-        raise InvalidParameterError(f"image must hold numbers, got dtype {arr.dtype}")
-    val = np.clip(val, 0.0, 1.0)
-    if val.ndim == 2:
-        rgb = np.repeat(val[..., None], 3, axis=2)
-    elif val.shape[2] == 4:
-        alpha = val[..., 3:4]
-        rgb = val[..., :3] * alpha + (1.0 - alpha)
-    else:
-        rgb = val
+    rgb, _, _ = composite_on_white(image, "image", size=(width, height))
     return f + (1.0 - f) * rgb
+
+
+# --------------------------------------------------------------------------- figure layout
+def square_window(
+    center: Sequence[float], side: float, width: int, height: int, *, shrink: bool = False
+) -> tuple[float, float, float, float]:
+    """A square window (x0, y0, x1, y1) of side ``side`` px around ``center``, inside the image where it fits.
+
+    With ``shrink`` a window larger than the image is made small enough to fit.
+    """
+    half = side / 2.0
+    if shrink:
+        half = min(half, width / 2.0, height / 2.0)
+    x = min(max(float(center[0]), half), max(width - half, half))
+    y = min(max(float(center[1]), half), max(height - half, half))
+    return (x - half, y - half, x + half, y + half)
+
+
+def frame_window(
+    ax: Axes,
+    window: Sequence[float],
+    *,
+    color: str | None = None,
+    linewidth: float | None = None,
+    equal: bool = True,
+) -> None:
+    """Show the window (x0, y0, x1, y1), px, y down, framed without ticks (a zoomed inset).
+
+    ``color`` and ``linewidth`` style the frame (matplotlib's default when None);
+    ``equal`` keeps the aspect ratio 1.
+    """
+    x0, y0, x1, y1 = window
+    ax.set_xlim(x0, x1)
+    ax.set_ylim(y1, y0)
+    if equal:
+        ax.set_aspect("equal")
+    ax.set_axis_on()
+    ax.set_xticks([])
+    ax.set_yticks([])
+    for spine in ax.spines.values():
+        if color is not None:
+            spine.set_edgecolor(color)
+        if linewidth is not None:
+            spine.set_linewidth(linewidth)
+
+
+def draw_arcs(
+    ax: Axes,
+    arcs: Sequence[Arc],
+    *,
+    colors: Sequence[object] | str = ARC_COLOR,
+    linewidth: float = 1.5,
+    zorder: float = 2,
+) -> None:
+    """Draw arcs as polylines sampled every 0.25 px, one colour each or one for all (no autoscale)."""
+    from matplotlib.collections import LineCollection
+
+    if not arcs:
+        return
+    lines = [a.sample(step=0.25) for a in arcs]
+    ax.add_collection(
+        LineCollection(lines, colors=colors, linewidths=linewidth, capstyle="round", zorder=zorder), autolim=False
+    )
+
+
+def ring(ax: Axes, x: float, y: float, radius: float, color: str, linewidth: float = 1.2) -> None:
+    """An open circle of ``radius`` px around (x, y), px: marks a place on a figure."""
+    from matplotlib.patches import Circle as CirclePatch
+
+    ax.add_patch(CirclePatch((x, y), radius, fill=False, edgecolor=color, linewidth=linewidth, zorder=5))

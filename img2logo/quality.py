@@ -16,6 +16,11 @@ level of any run:
   ``GAP_MIN`` and ``GAP_MAX`` px from it (a junction the eye sees but the logo
   does not close, Fig. 6).
 
+And the measures of one level against what its optimization promised
+(the notebooks' ablations): :func:`junction_gaps` (how far the arcs that should
+meet at a junction are from meeting, Eqn. 4, Fig. 8, 11) and
+:func:`level_redundant_intersections` (Sec. 5.2, Fig. 12).
+
 Pixel (row i, column j) is the point (j + 0.5, i + 0.5), px, x to the right, y
 downwards, as everywhere in img2logo.
 """
@@ -27,7 +32,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .arc_extraction import _arc_point_distances, _prefilter_pairs, arc_intersections
+from .arc_extraction import (
+    RedundantIntersection,
+    arc_intersections,
+    arc_pairs_near,
+    nearest_on_arc,
+    redundant_intersections,
+)
 from .constants import (
     CROSSING_END_DISTANCE,
     GAP_MAX,
@@ -38,6 +49,7 @@ from .constants import (
 )
 from .errors import InvalidParameterError
 from .geometry import Abstraction, Arc
+from .segment_graph import SegmentGraph
 
 #: Distances of the recall measures r3, r6, r10, px.
 RECALL_DISTANCES: tuple[float, ...] = (3.0, 6.0, 10.0)
@@ -143,7 +155,7 @@ def crossings(arcs: Abstraction | Sequence[Arc], end_distance: float = CROSSING_
     if len(arcs) < 2:
         return np.zeros((0, 2))
     found = []
-    for i, j in _prefilter_pairs(arcs, np.arange(len(arcs)), 1e-6):
+    for i, j in arc_pairs_near(arcs, np.arange(len(arcs)), 1e-6):
         a, b = arcs[i], arcs[j]
         ends = np.array([a.start, a.end, b.start, b.end])
         for p in arc_intersections(a, b):
@@ -173,9 +185,81 @@ def near_miss_gaps(arcs: Abstraction | Sequence[Arc], low: float = GAP_MIN, high
         nearest = np.full(2, np.inf)
         for j, other in enumerate(arcs):
             if j != i:
-                nearest = np.minimum(nearest, _arc_point_distances(other, ends))
+                nearest = np.minimum(nearest, nearest_on_arc(other, ends)[0])
         found.extend(ends[(nearest >= low) & (nearest <= high)])
     return np.array(found).reshape(-1, 2)
+
+
+def junction_gaps(
+    arcs: Sequence[Arc], points: np.ndarray, arcs_at: Sequence[Sequence[int]]
+) -> tuple[np.ndarray, np.ndarray]:
+    """How far the arcs that should meet at each junction are from meeting (Eqn. 4, Fig. 8, 11), px.
+
+    For junction m with point c_m and arcs ``arcs_at[m]``, q_i is the point of
+    arc i nearest to c_m (the radial projection, or the nearer end of the arc).
+
+    Parameters
+    ----------
+    arcs : sequence of Arc
+    points : array_like, shape (M, 2)
+        The junction points c_m, px.
+    arcs_at : sequence of M sequences of int
+        The arcs that should pass through each junction.
+
+    Returns
+    -------
+    gap : ndarray, shape (M,)
+        max_i |q_i - c_m|: the farthest that an arc which should pass through
+        c_m stays from it (0 under the connectivity constraint).
+    spread : ndarray, shape (M,)
+        max_{i,j} |q_i - q_j|: how far apart the arcs' closest approaches are
+        (0 at a junction with fewer than two arcs).
+    """
+    points = np.asarray(points, dtype=np.float64).reshape(-1, 2)
+    if len(points) != len(arcs_at):
+        raise InvalidParameterError(f"{len(points)} junction points but {len(arcs_at)} lists of arcs")
+    gap, spread = np.zeros(len(points)), np.zeros(len(points))
+    for m, (c, listed) in enumerate(zip(points, arcs_at, strict=True)):
+        if not listed:
+            continue
+        near = [nearest_on_arc(arcs[i], c) for i in listed]
+        q = np.array([p for _, p in near])
+        diff = q[:, None, :] - q[None, :, :]
+        gap[m] = max(float(d) for d, _ in near)
+        spread[m] = float(np.max(np.hypot(diff[..., 0], diff[..., 1])))
+    return gap, spread
+
+
+def level_redundant_intersections(abstraction: Abstraction) -> list[RedundantIntersection]:
+    """The redundant intersections of a level (Sec. 5.2, Fig. 6c, 12).
+
+    :func:`~img2logo.arc_extraction.redundant_intersections` over all pairs of
+    its arcs, each arc owning the junctions that list it.
+    """
+    owned: list[list[int]] = [[] for _ in abstraction.arcs]
+    for k, listed in enumerate(abstraction.junction_arcs):
+        for i in listed:
+            owned[i].append(k)
+    return redundant_intersections(abstraction.arcs, abstraction.junctions, owned)
+
+
+def detail_error(abstraction: Abstraction, graph: SegmentGraph, mask: np.ndarray) -> float:
+    """How well ``abstraction`` keeps the detail under ``mask`` (H, W) bool, px (Sec. 7, Fig. 16).
+
+    The mean distance from the segment graph's pixels inside ``mask`` to the
+    nearest point of the arcs (sampled every 0.5 px); NaN when no pixel is
+    inside or there is no arc. A detail is *lost* when this grows beyond a
+    pixel or two: its strokes are no longer traced.
+    """
+    mask = _check_map(mask, "mask")
+    pts = np.vstack(list(graph.segments))
+    rows = np.clip((pts[:, 1] - 0.5).round().astype(int), 0, mask.shape[0] - 1)
+    cols = np.clip((pts[:, 0] - 0.5).round().astype(int), 0, mask.shape[1] - 1)
+    inside = pts[mask[rows, cols]]
+    if not len(inside) or not abstraction.arcs:
+        return np.nan
+    samples = np.vstack([a.sample(step=0.5) for a in abstraction.arcs])
+    return float(_nearest_distance(samples, inside).mean())
 
 
 def measure(

@@ -12,8 +12,15 @@ only (paper Fig. 1, 10). :func:`find_subject` finds it without user input
   it is one dominant object: between ``SUBJECT_MIN_AREA`` and
   ``SUBJECT_MAX_AREA`` of the image, touching at most ``SUBJECT_MAX_FRAME`` of
   the frame, with an outline that is an edge (:func:`outline_contrast` at
-  least ``SUBJECT_MIN_CONTRAST``); otherwise the whole image is kept (a scene, or a close-up that
-  fills the frame), and :attr:`Subject.description` says why;
+  least ``SUBJECT_MIN_CONTRAST``). If it is not, and the photo shows depth of
+  field (:func:`focus_seeds`: a close-up in focus that runs off the picture
+  in front of a blurred background), GrabCut starts again from the blurred
+  parts of the frame (background) and the sharp cores (object); that result is
+  kept if it covers between ``SUBJECT_MIN_AREA`` and ``SUBJECT_MAX_AREA``
+  (it may touch the frame) and its outline is a colour edge or a focus edge
+  (:func:`focus_step` at least ``FOCUS_MIN_STEP``). Otherwise the whole image
+  is kept (a scene, or a close-up that fills the frame), and
+  :attr:`Subject.description` says why;
 * ``"grabcut"``: the same GrabCut, kept whatever it finds;
 * a rectangle ``subject=(x, y, w, h)``: GrabCut started from it (outside is
   background);
@@ -38,6 +45,19 @@ import numpy as np
 
 from ._validation import readonly
 from .constants import (
+    FOCUS_BLURRED,
+    FOCUS_DETAIL_SIGMA,
+    FOCUS_MIN_BLURRED_FRAME,
+    FOCUS_MIN_SHARP_AREA,
+    FOCUS_MIN_SHARP_FRAME,
+    FOCUS_MIN_SOFT,
+    FOCUS_MIN_STEP,
+    FOCUS_SHARP,
+    FOCUS_SHARP_CORE,
+    FOCUS_SOFT_SIGMAS,
+    FOCUS_SOFT_WINDOW,
+    FOCUS_STEP,
+    FOCUS_WINDOW,
     SUBJECT_CONTRAST_STEP,
     SUBJECT_FRAME_INSET,
     SUBJECT_GRABCUT_ITERATIONS,
@@ -184,13 +204,18 @@ def find_subject(img: LoadedImage, foreground: object = "auto", subject: object 
                 readonly(mask), "grabcut", f"kept the object found by GrabCut: {mask.mean():.0%} of the image"
             )
         why = _not_dominant(mask) or _weak_outline(img, mask)
+        how = "found by GrabCut from the image frame"
+        seeds = focus_seeds(img) if why else None
+        if seeds is not None:  # a close-up in focus that runs off the picture: try depth of field
+            focused = _clean(_grabcut(img, seeds=seeds))
+            why_focus = _not_dominant(focused, frame=False) or _weak_focus_outline(img, seeds, focused)
+            if not why_focus:
+                mask, why, how = focused, "", "found by GrabCut from the sharp subject and the blurred background"
+            else:
+                why = f"{why}; from depth of field: {why_focus}"
         if why:
             return Subject(None, "auto", f"kept the whole image: no dominant object ({why})")
-        return Subject(
-            readonly(mask),
-            "auto",
-            f"kept the main object, {mask.mean():.0%} of the image (found by GrabCut from the image frame)",
-        )
+        return Subject(readonly(mask), "auto", f"kept the main object, {mask.mean():.0%} of the image ({how})")
     mask = load_mask(foreground, shape) if isinstance(foreground, Path) else np.asarray(foreground)
     if mask.shape != shape:
         raise InvalidParameterError(f"foreground mask must have the image's shape {shape}, got {mask.shape}")
@@ -200,16 +225,20 @@ def find_subject(img: LoadedImage, foreground: object = "auto", subject: object 
     return Subject(readonly(mask.copy()), "mask", f"kept the object of the given mask: {mask.mean():.0%} of the image")
 
 
-def _not_dominant(mask: np.ndarray) -> str:
-    """Why ``mask`` is not one dominant object, or ``""`` if it is."""
+def _not_dominant(mask: np.ndarray, frame: bool = True) -> str:
+    """Why ``mask`` is not one dominant object, or ``""`` if it is.
+
+    ``frame=False`` does not limit how much of the image frame it touches (a
+    close-up in focus runs off the picture).
+    """
     area = float(mask.mean())
     if area < SUBJECT_MIN_AREA:
         return f"the best candidate covers {area:.1%} of the image, under {SUBJECT_MIN_AREA:.0%}"
     if area > SUBJECT_MAX_AREA:
         return f"the candidate covers {area:.0%} of the image, over {SUBJECT_MAX_AREA:.0%}"
-    frame = np.concatenate([mask[0], mask[-1], mask[1:-1, 0], mask[1:-1, -1]])
-    touching = float(frame.mean())
-    if touching > SUBJECT_MAX_FRAME:
+    border = np.concatenate([mask[0], mask[-1], mask[1:-1, 0], mask[1:-1, -1]])
+    touching = float(border.mean())
+    if frame and touching > SUBJECT_MAX_FRAME:
         return f"the candidate touches {touching:.0%} of the image frame"
     return ""
 
@@ -259,8 +288,153 @@ def _weak_outline(img: LoadedImage, mask: np.ndarray) -> str:
     return ""
 
 
-def _grabcut(img: LoadedImage, rect: tuple[int, int, int, int] | None = None) -> np.ndarray:
-    """GrabCut from a rectangle (default: the frame inset by ``SUBJECT_FRAME_INSET``), (H, W) bool.
+def _working_copy(img: LoadedImage) -> tuple[np.ndarray, float]:
+    """The photo at the working scale (longer side ``SUBJECT_WORK_SIDE`` px at most): RGB (h, w, 3) float32, scale."""
+    import cv2
+
+    h, w = img.height, img.width
+    scale = min(1.0, SUBJECT_WORK_SIDE / max(h, w))
+    sw, sh = max(8, round(w * scale)), max(8, round(h * scale))
+    return cv2.resize(img.rgb.astype(np.float32), (sw, sh), interpolation=cv2.INTER_AREA), scale
+
+
+def _frame_strip(shape: tuple[int, int]) -> np.ndarray:
+    """The strip of ``SUBJECT_FRAME_INSET`` of each side along the frame, (h, w) bool."""
+    sh, sw = shape
+    x0, y0 = round(SUBJECT_FRAME_INSET * sw), round(SUBJECT_FRAME_INSET * sh)
+    strip = np.ones((sh, sw), bool)
+    strip[y0 : sh - y0, x0 : sw - x0] = False
+    return strip
+
+
+@dataclass(frozen=True, eq=False)
+class FocusSeeds:
+    """Where a photo is in focus and where it is blurred, at GrabCut's working scale.
+
+    Attributes
+    ----------
+    focus : ndarray of float, shape (h, w)
+        Fine detail (:func:`fine_detail`) over its 90th percentile over the
+        image, unit-free: about 1 in the sharpest parts, under
+        ``FOCUS_BLURRED`` where the image is out of focus (or flat).
+    label : ndarray of uint8, shape (h, w)
+        GrabCut's start labels: background where the frame is blurred,
+        probably background where the inside is blurred, object in the cores
+        of the sharp parts, probably object elsewhere.
+    """
+
+    focus: np.ndarray
+    label: np.ndarray
+
+
+def fine_detail(gray: np.ndarray) -> np.ndarray:
+    """Local energy of the finest detail of a gray image, (H, W) float, gray units.
+
+    The RMS, over a Gaussian window of ``FOCUS_WINDOW`` px, of the image minus
+    its Gaussian blur of ``FOCUS_DETAIL_SIGMA`` px: texture and edges in focus
+    give much, a defocused (or flat) part next to nothing, whatever its colour.
+    """
+    from scipy import ndimage
+
+    g = np.asarray(gray, dtype=np.float64)
+    hf = g - ndimage.gaussian_filter(g, FOCUS_DETAIL_SIGMA)
+    return np.sqrt(ndimage.gaussian_filter(hf * hf, FOCUS_WINDOW))
+
+
+def focus_seeds(img: LoadedImage) -> FocusSeeds | None:
+    """GrabCut's seeds from depth of field, or None when the photo shows none.
+
+    A photo whose subject is in focus in front of a blurred background (a
+    close-up: it may fill most of the frame and run off it) has two kinds of
+    frame: blurred where the background shows, sharp where the subject runs
+    off the picture. Then only the blurred parts of the frame are background
+    seeds, and the cores of the sharp parts (the sharp map eroded by
+    ``FOCUS_SHARP_CORE`` px: texture in focus, not a lone edge) object seeds.
+    Used only when the frame shows both (at least ``FOCUS_MIN_BLURRED_FRAME``
+    of the frame strip blurred, at least ``FOCUS_MIN_SHARP_FRAME`` in focus),
+    the blurred part of the frame is soft rather than flat (the median energy
+    of the band between Gaussians of ``FOCUS_SOFT_SIGMAS`` px there, over the
+    same 90th percentile, at least ``FOCUS_MIN_SOFT``: a defocused background
+    keeps its shapes, a clear sky or a plain wall has none and is no evidence
+    of depth of field) and the sharp cores cover at least
+    ``FOCUS_MIN_SHARP_AREA`` of the image. Otherwise None, and GrabCut starts
+    from the whole frame: a subject away from the frame (the photo-likes, a
+    flower in the middle of a blurred garden) is found that way.
+    """
+    import cv2
+    from scipy import ndimage
+
+    small, _ = _working_copy(img)
+    gray = small @ np.array([0.299, 0.587, 0.114], np.float32)
+    detail = fine_detail(gray)
+    top = float(np.percentile(detail, 90))
+    if top <= 1e-6:
+        return None
+    focus = detail / top
+    strip = _frame_strip(focus.shape)
+    blurred = focus < FOCUS_BLURRED
+    in_focus = focus > FOCUS_SHARP
+    if blurred[strip].mean() < FOCUS_MIN_BLURRED_FRAME or in_focus[strip].mean() < FOCUS_MIN_SHARP_FRAME:
+        return None
+    band = ndimage.gaussian_filter(gray, FOCUS_SOFT_SIGMAS[0]) - ndimage.gaussian_filter(gray, FOCUS_SOFT_SIGMAS[1])
+    soft = np.sqrt(ndimage.gaussian_filter(band * band, FOCUS_SOFT_WINDOW)) / top
+    if np.median(soft[strip & blurred]) < FOCUS_MIN_SOFT:
+        return None
+    sharp = ndimage.binary_erosion(in_focus, iterations=FOCUS_SHARP_CORE)
+    if sharp.mean() < FOCUS_MIN_SHARP_AREA:
+        return None
+    label = np.full(focus.shape, cv2.GC_PR_FGD, np.uint8)
+    label[blurred] = cv2.GC_PR_BGD
+    label[sharp] = cv2.GC_FGD
+    label[strip & blurred] = cv2.GC_BGD
+    return FocusSeeds(readonly(focus), readonly(label))
+
+
+def focus_step(seeds: FocusSeeds, mask: np.ndarray) -> float:
+    """How much sharper a mask is just inside its outline than just outside, unit-free.
+
+    The median focus (:attr:`FocusSeeds.focus`) ``FOCUS_STEP`` working px
+    inside the outline over the median ``FOCUS_STEP`` px outside, at the
+    working scale; the outline's parts on the image frame are left out. A
+    subject in focus against a blurred background gives several; a cut
+    through a scene in focus about 1.
+    """
+    import cv2
+    from scipy import ndimage
+
+    sh, sw = seeds.focus.shape
+    small = cv2.resize(mask.astype(np.float32), (sw, sh), interpolation=cv2.INTER_AREA) >= 0.5
+    if not small.any() or small.all():
+        return 0.0
+    inside = ndimage.distance_transform_edt(small)
+    outside = ndimage.distance_transform_edt(~small)
+    band = (inside > FOCUS_STEP - 1) & (inside <= FOCUS_STEP)
+    ring = (outside > FOCUS_STEP - 1) & (outside <= FOCUS_STEP)
+    away = ndimage.binary_erosion(np.ones((sh, sw), bool), iterations=FOCUS_STEP + 2, border_value=0)
+    band, ring = band & away, ring & away
+    if not band.any() or not ring.any():
+        return 0.0
+    return float(np.median(seeds.focus[band]) / max(float(np.median(seeds.focus[ring])), 1e-6))
+
+
+def _weak_focus_outline(img: LoadedImage, seeds: FocusSeeds, mask: np.ndarray) -> str:
+    """Why the outline of ``mask`` is neither a colour edge nor a focus edge, or ``""``."""
+    step = focus_step(seeds, mask)
+    if step >= FOCUS_MIN_STEP:
+        return ""
+    ratio = outline_contrast(img, mask)
+    if ratio >= SUBJECT_MIN_CONTRAST:
+        return ""
+    return (
+        f"the candidate's outline is no edge: colour step across it {ratio:.1f}x the texture's, "
+        f"sharpness inside {step:.1f}x outside"
+    )
+
+
+def _grabcut(
+    img: LoadedImage, rect: tuple[int, int, int, int] | None = None, seeds: FocusSeeds | None = None
+) -> np.ndarray:
+    """GrabCut from a rectangle (default: the frame inset by ``SUBJECT_FRAME_INSET``) or focus seeds, (H, W) bool.
 
     Run on a copy whose longer side is ``SUBJECT_WORK_SIDE`` px, then once more
     at full size, only in a band of ``SUBJECT_REFINE_BAND`` px (at the working
@@ -271,22 +445,25 @@ def _grabcut(img: LoadedImage, rect: tuple[int, int, int, int] | None = None) ->
     from scipy import ndimage
 
     h, w = img.height, img.width
-    scale = min(1.0, SUBJECT_WORK_SIDE / max(h, w))
-    sw, sh = max(8, round(w * scale)), max(8, round(h * scale))
+    small, scale = _working_copy(img)
+    sh, sw = small.shape[:2]
     sx, sy = sw / w, sh / h
-    small = cv2.resize(img.rgb.astype(np.float32), (sw, sh), interpolation=cv2.INTER_AREA)
-    if rect is None:
-        x0, y0 = round(SUBJECT_FRAME_INSET * sw), round(SUBJECT_FRAME_INSET * sh)
-        box = (x0, y0, sw - 2 * x0, sh - 2 * y0)
-    else:
-        x, y, rw, rh = rect
-        bx0, by0 = int(np.floor(x * sx)), int(np.floor(y * sy))
-        bx1, by1 = min(sw, int(np.ceil((x + rw) * sx))), min(sh, int(np.ceil((y + rh) * sy)))
-        box = (bx0, by0, max(2, bx1 - bx0), max(2, by1 - by0))
-    label = np.zeros((sh, sw), np.uint8)
     bgd, fgd = np.zeros((1, 65), np.float64), np.zeros((1, 65), np.float64)
     cv2.setRNGSeed(0)
-    cv2.grabCut(_bgr8(small), label, box, bgd, fgd, SUBJECT_GRABCUT_ITERATIONS, cv2.GC_INIT_WITH_RECT)
+    if seeds is not None:
+        label = seeds.label.copy()
+        cv2.grabCut(_bgr8(small), label, None, bgd, fgd, SUBJECT_GRABCUT_ITERATIONS, cv2.GC_INIT_WITH_MASK)
+    else:
+        if rect is None:
+            x0, y0 = round(SUBJECT_FRAME_INSET * sw), round(SUBJECT_FRAME_INSET * sh)
+            box = (x0, y0, sw - 2 * x0, sh - 2 * y0)
+        else:
+            x, y, rw, rh = rect
+            bx0, by0 = int(np.floor(x * sx)), int(np.floor(y * sy))
+            bx1, by1 = min(sw, int(np.ceil((x + rw) * sx))), min(sh, int(np.ceil((y + rh) * sy)))
+            box = (bx0, by0, max(2, bx1 - bx0), max(2, by1 - by0))
+        label = np.zeros((sh, sw), np.uint8)
+        cv2.grabCut(_bgr8(small), label, box, bgd, fgd, SUBJECT_GRABCUT_ITERATIONS, cv2.GC_INIT_WITH_RECT)
     fg = _largest((label == cv2.GC_FGD) | (label == cv2.GC_PR_FGD))
     if not fg.any():
         return np.zeros((h, w), bool)

@@ -2,11 +2,15 @@
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 import cv2
 import numpy as np
 import pytest
+
+from img2logo.constants import PHI
+from img2logo.geometry import TAU, Abstraction, Arc, Circle
 
 DATA = Path(__file__).resolve().parents[1] / "data"
 
@@ -69,3 +73,134 @@ def small_graph():
 @pytest.fixture
 def data_dir() -> Path:
     return DATA
+
+
+# --- abstractions built by hand: golden circles, arcs, junctions --------------------------
+
+BIAS = 0.3
+WIDTH, HEIGHT = 200, 160
+
+
+def golden(cx: float, cy: float, k: int, bias: float = BIAS) -> Circle:
+    return Circle(cx, cy, PHI ** (k + bias), k)
+
+
+def abstraction_of(arcs, junctions=(), junction_arcs=(), width=250, height=200) -> Abstraction:
+    """An abstraction of ``arcs`` (level 0, bias ``BIAS``) on a ``width`` x ``height`` px image."""
+    return Abstraction(
+        level=0,
+        arcs=tuple(arcs),
+        arc_segments=tuple(() for _ in arcs),
+        junctions=np.array(junctions, dtype=float).reshape(-1, 2),
+        junction_arcs=tuple(junction_arcs),
+        similarity=0.0,
+        bias=BIAS,
+        tolerance=5.0,
+        width=width,
+        height=height,
+    )
+
+
+def full(c: Circle, theta0: float = 0.0, sign: float = 1.0) -> Arc:
+    return Arc(c, theta0, sign * TAU)
+
+
+def crossings(a: Circle, b: Circle) -> np.ndarray:
+    d = math.hypot(b.cx - a.cx, b.cy - a.cy)
+    along = (a.r**2 - b.r**2 + d * d) / (2 * d)
+    h = math.sqrt(a.r**2 - along**2)
+    ux, uy = (b.cx - a.cx) / d, (b.cy - a.cy) / d
+    base = np.array([a.cx + along * ux, a.cy + along * uy])
+    return np.array([base + h * np.array([-uy, ux]), base - h * np.array([-uy, ux])])
+
+
+A, B = golden(90.0, 100.0, 8), golden(150.0, 100.0, 7)  # r = 54.27 and 33.54, d = 60: they cross
+
+
+def two_circles() -> Abstraction:
+    return abstraction_of([full(A), full(B, 1.0, -1.0)])
+
+
+def four_arcs() -> Abstraction:
+    """The same two circles as four arcs that end exactly on the two junctions where they cross."""
+    p, q = crossings(A, B)
+    arcs = []
+    for c in (A, B):
+        tp, tq = float(c.angle_of(p)), float(c.angle_of(q))
+        s = (tq - tp) % TAU
+        arcs += [Arc(c, tp, s), Arc(c, tq, TAU - s)]
+    return abstraction_of(arcs, [p, q], [(0, 1, 2, 3), (0, 1, 2, 3)])
+
+
+def intersection(a: Circle, b: Circle) -> np.ndarray:
+    """The intersection of two circles with the smaller y (the upper one on screen)."""
+    d = math.hypot(b.cx - a.cx, b.cy - a.cy)
+    along = (a.r**2 - b.r**2 + d * d) / (2 * d)
+    h = math.sqrt(a.r**2 - along**2)
+    ux, uy = (b.cx - a.cx) / d, (b.cy - a.cy) / d
+    p1 = np.array([a.cx + along * ux - h * uy, a.cy + along * uy + h * ux])
+    p2 = np.array([a.cx + along * ux + h * uy, a.cy + along * uy - h * ux])
+    return p1 if p1[1] < p2[1] else p2
+
+
+def make_abstraction(**overrides) -> Abstraction:
+    """Two golden circles (k = 8 and 7, bias 0.3) that intersect at P; arc 0 on the first ends at P
+    with a positive sweep, arc 1 on the second starts at P with a negative sweep; arc 2 a full circle;
+    arc 3 a 270 degree arc with a negative sweep; arc 4 a second arc on the first circle."""
+    a, b = golden(60.0, 80.0, 8), golden(130.0, 80.0, 7)
+    p = intersection(a, b)
+    ta, tb = float(a.angle_of(p)), float(b.angle_of(p))
+    arcs = (
+        Arc(a, ta - 2.0, 2.0),
+        Arc(b, tb, -1.5),
+        Arc(golden(170.0, 30.0, 4), 0.0, 2.0 * math.pi),
+        Arc(golden(40.0, 140.0, 5), 0.0, -1.5 * math.pi),
+        Arc(a, math.pi / 2 + 0.3, 0.8),
+    )
+    fields = dict(
+        level=2,
+        arcs=arcs,
+        arc_segments=((0, 1), (2,), (3,), (4, 5), (6,)),
+        junctions=np.array([p]),
+        junction_arcs=((0, 1),),
+        similarity=0.5,
+        bias=BIAS,
+        tolerance=2.0,
+        width=WIDTH,
+        height=HEIGHT,
+        params={"kind": "clipart", "rdp_tolerance": np.float32(1.5)},
+    )
+    fields.update(overrides)
+    return Abstraction(**fields)
+
+
+def svg_arc_center(x1, y1, r, large, sweep, x2, y2):
+    """Centre and signed angular extent of an SVG arc command (SVG 1.1 implementation notes F.6.5)."""
+    xp, yp = (x1 - x2) / 2, (y1 - y2) / 2
+    num = max(0.0, r * r - xp * xp - yp * yp)
+    coef = math.sqrt(num / (xp * xp + yp * yp)) * (1 if large != sweep else -1)
+    cxp, cyp = coef * yp, -coef * xp
+    cx, cy = cxp + (x1 + x2) / 2, cyp + (y1 + y2) / 2
+    t1 = math.atan2(yp - cyp, xp - cxp)
+    t2 = math.atan2(-yp - cyp, -xp - cxp)
+    dt = t2 - t1
+    if sweep == 0 and dt > 0:
+        dt -= 2 * math.pi
+    elif sweep == 1 and dt < 0:
+        dt += 2 * math.pi
+    return cx, cy, dt
+
+
+def palette_fills(a: Abstraction) -> tuple:
+    """Fills of ``a``'s faces from a three-colour palette."""
+    from img2logo import fills
+
+    return fills.fill_palette(a, ["#e63946", "#457b9d", "#f4a261"])
+
+
+@pytest.fixture(scope="module")
+def discs_result():
+    """The two-disc clip art (:func:`two_discs`) made into a logo, once per module."""
+    import img2logo
+
+    return img2logo.abstract(two_discs())

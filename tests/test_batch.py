@@ -112,7 +112,7 @@ def test_outputs_do_not_depend_on_the_executor(runs):
 def test_outputs_are_those_of_the_single_image_command(runs, tmp_path):
     pytest.importorskip("jsonschema")
     from img2logo.cli import main
-    from img2logo.writers import validate_document
+    from img2logo.contract import validate_document
 
     _, out = runs["processes"]
     single = tmp_path / "single.json"
@@ -146,8 +146,8 @@ def test_any_executor_and_its_failures(folder, tmp_path):
 
 def test_in_process_run_with_options(folder, tmp_path):
     pytest.importorskip("jsonschema")
+    from img2logo.contract import validate_document
     from img2logo.golden_ladder import fibonacci
-    from img2logo.writers import validate_document
 
     report = run_batch(
         [folder / GOOD[1]], tmp_path, jobs=1, progress=False, outputs=("json",), ladder="fibonacci", tolerance=7.0

@@ -92,7 +92,7 @@ def test_logo_outputs_are_written_and_valid(tmp_path, capsys):
     import json
     import xml.etree.ElementTree as ET
 
-    from img2logo.writers import validate_document
+    from img2logo.contract import validate_document
 
     out = tmp_path / "o"
     args = [str(DATA / "drawing-fish.png"), "--svg", str(out / "a.svg"), "--json", str(out / "a.json")]
@@ -184,8 +184,8 @@ def test_fibonacci_ladder_gives_a_valid_document_in_fibonacci_proportion(tmp_pat
     pytest.importorskip("jsonschema")
     import json
 
+    from img2logo.contract import validate_document
     from img2logo.golden_ladder import fibonacci
-    from img2logo.writers import validate_document
 
     out = tmp_path / "f.json"
     args = [str(DATA / "drawing-leaf.png"), "--ladder", "fibonacci", "--json", str(out)]

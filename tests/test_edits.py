@@ -13,9 +13,9 @@ from conftest import DATA
 import img2logo
 from img2logo import edits
 from img2logo.constants import PHI
+from img2logo.contract import to_document, validate_document
 from img2logo.errors import FitError, InvalidParameterError
 from img2logo.geometry import Abstraction, Arc, Circle
-from img2logo.writers import to_document, validate_document
 
 pytest.importorskip("jsonschema")
 

@@ -1,20 +1,29 @@
-"""img2logo.experiments: paths, repository-relative sources, and what a notebook shows."""
+"""img2logo.experiments: paths, repository-relative sources, what a notebook shows, the runs and the sweep."""
 
 from __future__ import annotations
 
+import subprocess
+import sys
+
 import pandas as pd
+import pytest
 from conftest import DATA
 from matplotlib.figure import Figure
 
 from img2logo import abstract, write_json
+from img2logo.errors import Img2LogoError, InvalidParameterError
 from img2logo.experiments import (
+    by_image,
     load_example,
+    preprocess,
     project_root,
     repo_relative,
     save_figure,
     save_table,
     show_table,
+    sweep,
 )
+from img2logo.progressive import optimize
 
 
 def test_repo_relative_names_data_files_from_the_repository_root(tmp_path):
@@ -63,3 +72,71 @@ def test_a_missing_integer_shows_empty_as_in_the_csv(tmp_path):
     assert shown.path.read_text() == "iteration,arcs\n0,16\n23,\n"
     html = shown._repr_html_()
     assert "<td>16</td>" in html and "<td></td>" in html and "NA" not in html
+
+
+# --------------------------------------------------------------------------- runs and the sweep
+def test_a_sweep_runs_every_image_with_every_grid_point_and_variant():
+    (leaf,) = preprocess([DATA / "drawing-leaf.png"])
+    assert leaf.name == "drawing-leaf" and leaf.progression is None and len(leaf.seconds) == 1
+    with pytest.raises(Img2LogoError, match="only preprocessed"):
+        leaf.final  # noqa: B018
+    variants = {"merged": {}, "A^0 only": {"merging": False}}
+    runs = sweep([leaf], {"tolerance": [3.0, 9.0]}, variants)
+    assert [(r.variant, r.final.tolerance) for r in runs] == [
+        ("merged", 3.0),
+        ("A^0 only", 3.0),
+        ("merged", 9.0),
+        ("A^0 only", 9.0),
+    ]
+    assert dict(runs[1].settings) == {"tolerance": 3.0, "merging": False} and len(runs[1].levels) == 1
+    assert len(runs[2].final.arcs) <= len(runs[0].final.arcs)  # a larger T merges at least as much
+    same = optimize(leaf.graph, tolerance=9.0)
+    assert [len(a.arcs) for a in runs[2].levels] == [len(a.arcs) for a in same.levels]
+    assert all(r.graph is leaf.graph for r in runs)  # the graph is built once
+
+
+def test_a_sweep_over_the_rdp_tolerance_rebuilds_the_graph_and_times_each_repeat():
+    runs = sweep([DATA / "drawing-leaf.png"], {"rdp_tolerance": [1.0, 8.0]}, repeats=2, merging=False)
+    assert [r.settings["rdp_tolerance"] for r in runs] == [1.0, 8.0]
+    assert runs[0].graph.n_segments > runs[1].graph.n_segments
+    assert all(len(r.seconds) == 2 and min(r.seconds) > 0 for r in runs)
+    with pytest.raises(InvalidParameterError, match="repeats"):
+        sweep(runs, repeats=0)
+    with pytest.raises(InvalidParameterError, match=r"grid\['tolerance'\]: expected a non-empty list of values, got 5"):
+        sweep(runs, {"tolerance": 5})
+    with pytest.raises(TypeError):
+        runs[0].settings["tolerance"] = 1.0  # a run's settings are read-only
+
+
+def test_a_pipeline_sweep_is_abstract():
+    (run,) = sweep([DATA / "drawing-leaf.png"], tolerance=4.0, pipeline=True)
+    result = abstract(load_example(DATA / "drawing-leaf.png"), tolerance=4.0, progress=False)
+    assert run.name == "drawing-leaf" and run.kind == result.lines.kind
+    assert [a.similarity for a in run.levels] == [a.similarity for a in result.levels]
+    assert by_image([run, run]) == {"drawing-leaf": [run, run]}
+
+
+def test_the_library_runs_without_the_kit_extras(tmp_path):
+    """papermill, ipywidgets and ipykernel are the kit's ([kit] extra): the library never imports them."""
+    code = f"""
+import importlib, importlib.abc, pkgutil, sys
+
+class Block(importlib.abc.MetaPathFinder):
+    def find_spec(self, name, path=None, target=None):
+        if name.split(".")[0] in ("papermill", "ipywidgets", "ipykernel"):
+            raise ImportError("blocked: " + name)
+
+sys.meta_path.insert(0, Block())
+import img2logo
+for m in pkgutil.iter_modules(img2logo.__path__):
+    importlib.import_module("img2logo." + m.name)
+from img2logo import experiments
+from img2logo.experiments import ablations, design, features, results
+from img2logo.cli import main
+status = main([{str(DATA / "drawing-leaf.png")!r}, "--svg", {str(tmp_path / "leaf.svg")!r}])
+print(status, sorted(m for m in ("papermill", "ipywidgets", "ipykernel") if m in sys.modules))
+"""
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=False)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.split() == ["0", "[]"]
+    assert (tmp_path / "leaf.svg").read_text().startswith("<?xml")

@@ -13,19 +13,18 @@ from matplotlib.figure import Figure
 from img2logo import experiments
 from img2logo.errors import InvalidParameterError
 from img2logo.experiments import ablations
-from img2logo.geometry import Arc, Circle
 from img2logo.progressive import optimize
 from img2logo.segment_graph import SegmentGraph
 
 
 @pytest.fixture(scope="module")
-def bird() -> experiments.Preprocessed:
+def bird() -> experiments.Run:
     return experiments.preprocess([experiments.data_path("drawing-bird.png")])[0]
 
 
 @pytest.fixture(scope="module")
-def connectivity_runs(bird) -> list[ablations.AblationRun]:
-    return ablations.run_variants([bird], ablations.CONNECTIVITY_VARIANTS)
+def connectivity_runs(bird) -> list[experiments.Run]:
+    return experiments.sweep([bird], variants=ablations.CONNECTIVITY_VARIANTS)
 
 
 def y_graph() -> SegmentGraph:
@@ -63,16 +62,6 @@ def test_junction_nodes_match_the_level(connectivity_runs) -> None:
             assert np.max(np.hypot(*(level.junctions - run.graph.junctions[nodes]).T)) < 20.0
 
 
-def test_nearest_on_arc_projects_inside_and_clamps_to_the_ends() -> None:
-    arc = Arc(Circle(0.0, 0.0, 10.0), 0.0, math.pi / 2)  # from (10, 0) to (0, 10)
-    d, q = ablations.nearest_on_arc(arc, np.array([20.0, 20.0]))
-    assert d == pytest.approx(math.hypot(20, 20) - 10)
-    np.testing.assert_allclose(q, [10 / math.sqrt(2), 10 / math.sqrt(2)])
-    d, q = ablations.nearest_on_arc(arc, np.array([12.0, -5.0]))
-    np.testing.assert_allclose(q, [10.0, 0.0], atol=1e-12)
-    assert d == pytest.approx(math.hypot(2, 5))
-
-
 # --------------------------------------------------------------------------- Fig. 11
 def test_connectivity_constraint_closes_every_gap(connectivity_runs) -> None:
     table = ablations.connectivity_table(connectivity_runs)
@@ -95,14 +84,14 @@ def test_end_junction_constraints_miss_an_inner_junction_of_a_synthetic_y() -> N
     # constrained it need not pass through node 0, where the arms end.
     g = y_graph()
     bent = optimize(g, tolerance=50.0, inner_junctions=False)
-    gaps = ablations.junction_gaps(bent.final, g)
+    gaps = ablations.gap_table(bent.final, g)
     assert set(gaps.columns) >= {"node", "x", "y", "gap", "spread", "arcs"}
     assert (gaps["arcs"] >= 2).all()
     assert bent.final.arc_segments == ((0,), (1, 2, 3))  # an arm and the stem through node 0
     inner = gaps.set_index("node").loc[0]
     assert inner["in_J'"] and inner["valence"] == 3
     assert inner["gap"] > 0.5  # the merged arc misses the junction the other arm ends at
-    full = ablations.junction_gaps(optimize(g, tolerance=50.0).final, g)
+    full = ablations.gap_table(optimize(g, tolerance=50.0).final, g)
     assert full["gap"].max() < 1e-3
 
 
@@ -119,21 +108,8 @@ def test_gap_table_and_figure(connectivity_runs) -> None:
 
 
 # --------------------------------------------------------------------------- Fig. 12
-def test_redundant_intersections_of_two_crossing_arcs() -> None:
-    from img2logo.geometry import Abstraction
-
-    a = Arc(Circle(0.0, 0.0, 10.0), 0.0, math.pi)
-    b = Arc(Circle(10.0, 0.0, 10.0), math.pi / 2, math.pi)
-    junctions = np.array([[10.0, 0.0], [-10.0, 0.0]])  # the ends of a; b owns none
-    level = Abstraction(0, (a, b), ((0,), (1,)), junctions, ((0,), (0,)), 1.0, 0.0, 5.0, 30, 30)
-    found = ablations.level_redundant_intersections(level)
-    assert len(found) == 1
-    np.testing.assert_allclose(found[0].point, [5.0, math.sqrt(75.0)])
-    assert ablations.arc_junction_lists(level) == [[0, 1], []]
-
-
 def test_redundant_table_and_selection(bird) -> None:
-    runs = ablations.run_variants([bird], ablations.AVOIDANCE_VARIANTS, tolerance=[5.0, 9.0])
+    runs = experiments.sweep([bird], {"tolerance": [5.0, 9.0]}, ablations.AVOIDANCE_VARIANTS)
     table = ablations.redundant_table(runs)
     assert len(table) == 4
     assert list(table["T"]) == [5.0, 5.0, 9.0, 9.0]
@@ -165,7 +141,7 @@ def test_hook_sum_of_squares_keeps_a_redundant_part() -> None:
 
 
 def test_compare_arc_selection_reproduces_the_levels(bird) -> None:
-    runs = ablations.run_variants([bird], ablations.ARC_SELECTION_VARIANTS)
+    runs = experiments.sweep([bird], variants=ablations.ARC_SELECTION_VARIANTS)
     comparisons = ablations.arc_selection_study(runs)
     assert len(comparisons) == len(runs[0].progression.levels)
     for comp in comparisons:
@@ -184,7 +160,7 @@ def test_compare_arc_selection_reproduces_the_levels(bird) -> None:
 def test_rdp_sweep_fewer_segments_for_larger_tolerances() -> None:
     from img2logo.preprocessing import load_image
 
-    runs = ablations.rdp_sweep([load_image(drawing("spiral", size=160))], [1.0, 4.0])
+    runs = experiments.sweep([load_image(drawing("spiral", size=160))], {"rdp_tolerance": [1.0, 4.0]})
     table = ablations.rdp_table(runs)
     assert list(table["rdp tolerance"]) == [1.0, 4.0]
     assert table["segments"].iloc[0] > table["segments"].iloc[1]

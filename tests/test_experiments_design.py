@@ -11,7 +11,7 @@ import pytest
 from conftest import DATA
 
 from img2logo import InvalidParameterError, abstract
-from img2logo.experiments import design, preprocess
+from img2logo.experiments import design, preprocess, sweep
 from img2logo.geometry import Abstraction, Arc, Circle
 
 #: The beak of drawing-bird.png (Fig. 16): centre (x, y) and radius, px.
@@ -47,9 +47,9 @@ def test_importing_the_experiments_does_not_import_ipywidgets():
 
 # --------------------------------------------------------------------------- Table 3
 def test_timing_table_has_the_four_cells_and_the_paper_beside(leaf):
-    runs = design.time_optimization([leaf], repeats=2, warmup=False)
-    assert [(r.localized, r.simplify) for r in runs] == list(design.CELLS)
-    assert all(len(r.seconds) == 2 and r.median > 0 for r in runs)
+    runs = sweep([leaf], variants=design.TIMING_VARIANTS, repeats=2)
+    assert [design._cell(r) for r in runs] == list(design.CELLS)
+    assert all(len(r.seconds) == 2 and design._median(r) > 0 for r in runs)
     table = design.timing_table(runs)
     assert len(table) == 4
     for column in ("median (s)", "ratio to Yes/Yes", "paper (s)", "paper ratio to Yes/Yes", "initial arcs"):
@@ -65,11 +65,6 @@ def test_timing_table_has_the_four_cells_and_the_paper_beside(leaf):
     assert (table[table["simplify"] == "No"]["initial arcs"] == leaf.graph.n_segments).all()
     fig = design.plot_timing(runs)
     assert len(fig.axes) == 2 and all(ax.get_yscale() == "log" for ax in fig.axes)
-
-
-def test_time_optimization_rejects_no_repeats(leaf):
-    with pytest.raises(InvalidParameterError):
-        design.time_optimization([leaf], repeats=0)
 
 
 def test_stage_table_sums_the_stages(fish_result):
@@ -99,25 +94,27 @@ def test_most_used_exponents_counts_arcs_and_breaks_ties_by_length():
 
 def test_user_exponents_restrict_the_radii(fish):
     comparison = design.compare_exponents(fish, n_exponents=2)
-    assert len(comparison.exponents) == 2
-    assert comparison.exponents == design.most_used_exponents(comparison.automated.final, 2)
-    assert {a.circle.k for a in comparison.user.final.arcs} <= set(comparison.exponents)
-    assert comparison.user.bias == pytest.approx(comparison.automated.bias)
+    auto, user = comparison
+    allowed = user.settings["exponents"]
+    assert len(allowed) == 2
+    assert allowed == design.most_used_exponents(auto.final, 2)
+    assert {a.circle.k for a in user.final.arcs} <= set(allowed)
+    assert user.bias == pytest.approx(auto.bias)
     table = design.exponent_table(comparison)
-    assert table["arcs, automated"].sum() == len(comparison.automated.final.arcs)
-    assert table["arcs, user-specified"].sum() == len(comparison.user.final.arcs)
+    assert table["arcs, automated"].sum() == len(auto.final.arcs)
+    assert table["arcs, user-specified"].sum() == len(user.final.arcs)
     assert table.loc[~table["allowed in user setting"], "arcs, user-specified"].sum() == 0
     summary = design.comparison_table(comparison)
     assert list(summary["setting"]) == ["automated", "user-specified"]
     assert summary.loc[1, "distinct radii"] <= 2
-    fig = design.plot_exponent_comparison(fish, comparison)
+    fig = design.plot_exponent_comparison(comparison)
     assert len(fig.axes) == 3
     assert [len(ax.child_axes) for ax in fig.axes] == [0, 1, 1]  # the ladder insets
 
 
 def test_explicit_exponents_are_used_as_given(fish):
     comparison = design.compare_exponents(fish, exponents=[9, 7, 9])
-    assert comparison.exponents == (7, 9)
+    assert comparison[1].settings["exponents"] == (7, 9)
 
 
 # --------------------------------------------------------------------------- Fig. 16
@@ -134,35 +131,26 @@ def test_region_mask_disc_and_square():
         design.region_mask((10, 10), (5, 5), 0.0)
 
 
-def test_detail_error_is_small_for_the_initial_fit(fish):
-    a0 = design.bias_sweep(fish, [None])[0].levels[0]
-    everything = np.ones((fish.graph.height, fish.graph.width), dtype=bool)
-    assert design.detail_error(a0, fish.graph, everything) < 1.5
-    nothing = np.zeros_like(everything)
-    assert math.isnan(design.detail_error(a0, fish.graph, nothing))
-
-
 def test_the_lock_keeps_the_beak_of_the_bird(bird):
     mask = design.region_mask(bird.image, *BEAK)
-    runs = design.lock_search(bird, mask, [3.0, 8.0])
-    table = design.lock_table(runs, threshold=2.0)
+    runs = sweep([bird], {"tolerance": [3.0, 8.0]}, design.lock_variants(mask))
+    table = design.lock_table(runs, mask, threshold=2.0)
     assert list(table["T"]) == [3.0, 8.0]
     assert (table["locked segments"] > 0).all()
     # Without the lock the beak is merged away at the larger T, with it every T keeps it.
     assert not table.loc[0, "lost without lock"] and table.loc[1, "lost without lock"]
     assert not table["lost with lock"].any()
-    assert design.first_lost(runs, 2.0).tolerance == 8.0
-    fig = design.plot_lock_comparison(bird, mask, runs[1], center=BEAK[0], radius=BEAK[1])
+    assert design.first_lost(runs, mask, 2.0) == 8.0
+    fig = design.plot_lock_comparison(runs, mask, 8.0, center=BEAK[0], radius=BEAK[1])
     assert len(fig.axes) == 6
 
 
 def test_bias_sweep_uses_the_given_bias(fish):
-    biases = [None, 0.0, 0.5]
-    progressions = design.bias_sweep(fish, biases)
-    assert [p.bias for p in progressions[1:]] == [0.0, 0.5]
-    table = design.bias_table(progressions, biases)
+    runs = sweep([fish], {"bias": [None, 0.0, 0.5]})
+    assert [r.bias for r in runs[1:]] == [0.0, 0.5]
+    table = design.bias_table(runs)
     assert list(table["bias"]) == ["auto (Eqn. 14)", "0", "0.5"]
-    assert len(design.plot_bias_sweep(fish, progressions, biases).axes) == 3
+    assert len(design.plot_bias_sweep(runs).axes) == 3
 
 
 # --------------------------------------------------------------------------- the explorer

@@ -16,21 +16,20 @@ from matplotlib.figure import Figure
 from img2logo import experiments
 from img2logo.errors import InvalidParameterError
 from img2logo.experiments import results
-from img2logo.geometry import Abstraction, Arc, Circle
 
 IMAGE = "drawing-bird.png"  # the smallest example: 43 segments, about 1 s a run
 T = 5.0
 
 
 @pytest.fixture(scope="module")
-def run() -> results.Run:
-    (r,) = results.run_examples([experiments.data_path(IMAGE)], tolerance=T)
+def run() -> experiments.Run:
+    (r,) = experiments.sweep([experiments.data_path(IMAGE)], tolerance=T, pipeline=True)
     return r
 
 
 @pytest.fixture(scope="module")
-def sweep() -> results.ToleranceSweep:
-    return results.tolerance_sweep(experiments.data_path(IMAGE), [12.0, 3.0, 6.0, 3.0])
+def sweep() -> list[experiments.Run]:
+    return experiments.sweep([experiments.data_path(IMAGE)], {"tolerance": [12.0, 3.0, 6.0]})
 
 
 def fake_progression(similarities: list[float]) -> SimpleNamespace:
@@ -43,7 +42,6 @@ def fake_progression(similarities: list[float]) -> SimpleNamespace:
 def test_sampled_levels_spread_before_the_final_level():
     prog = fake_progression([1.0] * 10)  # levels 0..9
     assert results.sampled_levels(prog, 3) == [0, 3, 6]
-    assert results.sampled_levels(prog, 3, include_final=True) == [0, 4, 9]
     assert results.sampled_levels(fake_progression([1.0]), 3) == [0]
     assert results.sampled_levels(fake_progression([1.0, 2.0]), 3) == [0]
     with pytest.raises(InvalidParameterError):
@@ -71,37 +69,15 @@ def test_final_level_rules_differ_when_similarity_is_not_monotone():
 
 
 # --------------------------------------------------------------------------- junction gaps
-def two_arcs(shift: float) -> Abstraction:
-    """Two arcs that should meet at (10, 0): the second circle moved ``shift`` px to the right."""
-    a = Arc(Circle(0.0, 0.0, 10.0, 5), 0.0, math.pi / 2)
-    b = Arc(Circle(20.0 + shift, 0.0, 10.0, 5), math.pi, -1.0)
-    return Abstraction(
-        level=0,
-        arcs=(a, b),
-        arc_segments=((0,), (1,)),
-        junctions=np.array([[10.0, 0.0], [0.0, 10.0]]),
-        junction_arcs=((0, 1), (0,)),
-        similarity=0.0,
-        bias=0.0,
-        tolerance=T,
-        width=40,
-        height=40,
-    )
-
-
-def test_junction_gaps_known_answer():
-    assert results.junction_gaps(two_arcs(0.0)) == pytest.approx([0.0, 0.0], abs=1e-12)
-    # The second arc's nearest point to (10, 0) is (13, 0): 3 px from the first arc's start.
-    assert results.junction_gaps(two_arcs(3.0)) == pytest.approx([3.0, 0.0])
-
-
 def test_circle_fitting_stages_meet_only_with_connectivity(run):
-    st = results.circle_fitting_stages(run)
-    assert st.independent.arc_segments == st.constrained.arc_segments
-    assert [a.circle.r for a in st.independent.arcs] == pytest.approx([a.circle.r for a in st.constrained.arcs])
-    assert results.junction_gaps(st.constrained).max() < 1e-3
-    assert results.junction_gaps(st.independent).max() > 0.5
-    table = results.circle_fitting_table([st])
+    stages = results.circle_fitting_stages([run])
+    free, con = (s.final for s in stages)
+    assert [s.variant for s in stages] == ["independent", "constrained"]
+    assert free.arc_segments == con.arc_segments
+    assert [a.circle.r for a in free.arcs] == pytest.approx([a.circle.r for a in con.arcs])
+    assert results._gaps(con).max() < 1e-3
+    assert results._gaps(free).max() > 0.5
+    table = results.circle_fitting_table(stages)
     assert list(table.columns) == [
         "image",
         "arcs",
@@ -111,7 +87,7 @@ def test_circle_fitting_stages_meet_only_with_connectivity(run):
         "max gap constrained (px)",
     ]
     assert table.loc[0, "max gap constrained (px)"] < table.loc[0, "max gap independent (px)"]
-    fig = results.plot_circle_fitting([st])
+    fig = results.plot_circle_fitting(stages)
     assert isinstance(fig, Figure)
     assert len(fig.axes) == 3
     assert "px here" in fig.axes[1].get_title()
@@ -156,7 +132,7 @@ def test_figures_have_their_panels(run):
 
 
 def test_inset_goes_where_the_arcs_are_not(run):
-    a = run.result.final
+    a = run.final
     x, y = results._inset_corner(a, 0.3)
     assert (x, y) in {(0.7, 0.0), (0.7, 0.7), (0.0, 0.0), (0.0, 0.7)}
 
@@ -165,7 +141,7 @@ def test_inset_goes_where_the_arcs_are_not(run):
 def test_simplicity_table(run):
     table = results.simplicity_table([run], fractions=(0.0, 1.0))
     ours = table[table["arcs"].notna()]
-    assert list(ours["iteration"]) == list(range(len(run.result.levels)))
+    assert list(ours["iteration"]) == list(range(len(run.levels)))
     assert np.all(np.diff(ours["arcs"].to_numpy(dtype=float)) == -1.0)
     assert ours["final"].sum() == 1 and bool(ours["final"].iloc[-1])
     assert ours["shown"].sum() == 2
@@ -181,31 +157,32 @@ def test_simplicity_table(run):
 
 # --------------------------------------------------------------------------- Table 2
 def test_tolerance_sweep_arc_counts_fall_with_tolerance(sweep):
-    assert sweep.tolerances == (3.0, 6.0, 12.0)
-    arcs = [len(p.final.arcs) for p in sweep.progressions]
+    (mine,) = results._tolerance_sweeps(sweep).values()
+    assert [r.final.tolerance for r in mine] == [3.0, 6.0, 12.0]
+    arcs = [len(r.final.arcs) for r in mine]
     assert arcs == sorted(arcs, reverse=True)
     assert arcs[0] > arcs[-1]
-    for t, p in zip(sweep.tolerances, sweep.progressions, strict=True):
-        assert p.final.similarity <= t
-    assert sweep.at(6.0) is sweep.progressions[1]
+    for r in mine:
+        assert r.final.similarity <= r.final.tolerance
+    assert results._at(mine, 6.0) is mine[1].progression
     with pytest.raises(InvalidParameterError):
-        sweep.at(4.0)
+        results._at(mine, 4.0)
 
 
 def test_tolerance_tables(sweep):
-    table = results.tolerance_table([sweep], paper={3.0: 99.0})
+    table = results.tolerance_table(sweep, paper={3.0: 99.0})
     assert list(table["T"]) == [3.0, 6.0, 12.0]
     assert table.loc[0, "paper |A|"] == 99.0
     assert table["paper |A|"].isna().sum() == 2
     # The merges do not depend on T: each run is a prefix of the largest-T run.
     assert list(table["arcs by first exceedance"]) == list(table["final arcs"])
-    mono = results.monotonicity_table([sweep])
+    mono = results.monotonicity_table(sweep)
     assert mono.loc[0, "first exceedance matches"]
-    assert mono.loc[0, "levels"] == len(sweep.longest.levels)
-    assert mono.loc[0, "E^s monotone"] == results.similarity_is_monotone(sweep.longest)
-    fig = results.plot_tolerance_results([sweep], (3.0, 12.0))
+    assert mono.loc[0, "levels"] == len(sweep[0].levels)  # T = 12, the longest run
+    assert mono.loc[0, "E^s monotone"] == results.similarity_is_monotone(sweep[0].progression)
+    fig = results.plot_tolerance_results(sweep, (3.0, 12.0))
     assert len(fig.axes) == 3
-    fig = results.plot_tolerance_curve([sweep])
+    fig = results.plot_tolerance_curve(sweep)
     assert len(fig.axes) == 2
 
 

@@ -2,11 +2,17 @@
 
 from __future__ import annotations
 
+import subprocess
+import sys
+from pathlib import Path
+
 import pytest
 
 from img2logo import InvalidParameterError
 from img2logo.experiments import check_parameters
 from img2logo.experiments.runner import PARAMETER_RULES, SMOKE, NotebookParameterError
+
+ROOT = Path(__file__).resolve().parents[1]
 
 
 @pytest.mark.parametrize(
@@ -70,3 +76,24 @@ def test_the_smoke_values_pass_their_checks(notebook):
     assert values["smoke"] is True  # smoke outputs go to build/smoke/, never over figures/
     assert set(values) <= set(PARAMETER_RULES)
     check_parameters(**values)
+
+
+def test_without_the_kit_extra_the_runner_says_so_in_one_line(tmp_path):
+    code = """
+import importlib.abc, sys
+
+class Block(importlib.abc.MetaPathFinder):
+    def find_spec(self, name, path=None, target=None):
+        if name.split(".")[0] == "papermill":
+            raise ImportError("blocked: " + name)
+
+sys.meta_path.insert(0, Block())
+from img2logo.experiments.runner import main
+sys.exit(main(sys.argv[1:]))
+"""
+    nb = ROOT / "notebooks" / "01_overview.ipynb"
+    done = subprocess.run(
+        [sys.executable, "-c", code, str(nb), str(tmp_path / "out.ipynb")], capture_output=True, text=True, check=False
+    )
+    assert done.returncode == 1
+    assert done.stderr.count("\n") == 1 and "papermill is missing" in done.stderr and "[kit]" in done.stderr

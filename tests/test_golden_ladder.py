@@ -397,7 +397,7 @@ def test_the_optimizer_on_the_fibonacci_ladder(unit):
     from conftest import drawing
 
     from img2logo import abstract
-    from img2logo.writers import from_document, to_document, validate_document
+    from img2logo.contract import from_document, to_document, validate_document
 
     result = abstract(drawing("spiral"), ladder="fibonacci", unit=unit, progress=False)
     ladder = result.progression.ladder

@@ -12,7 +12,7 @@ import pytest
 
 from img2logo.constants import MAX_IMAGE_SIDE
 from img2logo.errors import ImageNotFoundError, InvalidImageError
-from img2logo.loading import DownscaleWarning, PageWarning, _normalize, load_image
+from img2logo.loading import DownscaleWarning, PageWarning, composite_on_white, load_image
 
 
 def _shapes(h: int, w: int, alpha: bool) -> np.ndarray:
@@ -30,7 +30,7 @@ def _shapes(h: int, w: int, alpha: bool) -> np.ndarray:
 
 def _reference(arr: np.ndarray, size: tuple[int, int]) -> tuple[np.ndarray, np.ndarray]:
     """What loading did before: float64 of the full image, composited, then area-resized."""
-    rgb, alpha, _ = _normalize(arr, "ref", bgr=True)
+    rgb, alpha, _ = composite_on_white(arr, "ref", bgr=True)
     return cv2.resize(rgb, size, interpolation=cv2.INTER_AREA), cv2.resize(alpha, size, interpolation=cv2.INTER_AREA)
 
 

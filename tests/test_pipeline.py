@@ -9,7 +9,7 @@ from conftest import DATA, drawing
 
 import img2logo
 from img2logo import InvalidParameterError, abstract
-from img2logo.writers import to_document, validate_document
+from img2logo.contract import to_document, validate_document
 
 
 @pytest.fixture(scope="module", params=["clipart-fish", "drawing-bird", "photo-cat"])

@@ -19,7 +19,7 @@ from matplotlib.patches import Circle as CirclePatch
 
 from img2logo import plotting
 from img2logo.constants import MIN_STROKE_WIDTH, PHI
-from img2logo.errors import InvalidParameterError
+from img2logo.errors import InvalidImageError, InvalidParameterError
 from img2logo.geometry import Abstraction, Arc, Circle
 from img2logo.segment_graph import SegmentGraph
 
@@ -107,10 +107,10 @@ def test_plot_abstraction_rejects_bad_input():
         plotting.plot_abstraction("nope")
     with pytest.raises(InvalidParameterError, match="linewidth must be > 0"):
         plotting.plot_abstraction(a, linewidth=0)
-    with pytest.raises(InvalidParameterError, match=r"image must be 90 x 120 px"):
+    with pytest.raises(InvalidImageError, match=r"image must be 90 x 120 px"):
         plotting.plot_abstraction(a, image=np.zeros((W, H)))
-    with pytest.raises(InvalidParameterError, match=r"image must have shape \(H, W\)"):
-        plotting.plot_abstraction(a, image=np.zeros((H, W, 2)))
+    with pytest.raises(InvalidImageError, match=r"image must have shape \(H, W\) or \(H, W, C\) with C in 1..4"):
+        plotting.plot_abstraction(a, image=np.zeros((H, W, 5)))
     with pytest.raises(InvalidParameterError, match=r"image_fade must be in \[0, 1\]"):
         plotting.plot_abstraction(a, image=np.zeros((H, W)), image_fade=2.0)
 
@@ -125,8 +125,14 @@ def test_background_conversion():
     np.testing.assert_allclose(plotting._background_rgb(rgba, 3, 2, fade=0.0), 1.0)
     grey16 = np.full((2, 3), 65535, dtype=np.uint16)
     np.testing.assert_allclose(plotting._background_rgb(grey16, 3, 2, fade=0.0), 1.0)
-    with pytest.raises(InvalidParameterError, match="image must be finite"):
+    # Grey + alpha, read as an input image is (img2logo.loading.composite_on_white).
+    grey_alpha = np.zeros((2, 3, 2))
+    grey_alpha[0, :, 1] = 1.0  # top row opaque black, bottom row transparent -> white
+    np.testing.assert_allclose(plotting._background_rgb(grey_alpha, 3, 2, fade=0.0)[:, 0], [[0, 0, 0], [1, 1, 1]])
+    with pytest.raises(InvalidImageError, match="image contains NaN or infinite values"):
         plotting._background_rgb(np.full((2, 3), np.nan), 3, 2)
+    with pytest.raises(InvalidImageError, match=r"float images must have values in \[0, 1\], got \[2, 2\]"):
+        plotting._background_rgb(np.full((2, 3), 2.0), 3, 2)
 
 
 def test_plot_segment_graph():

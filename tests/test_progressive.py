@@ -321,7 +321,8 @@ def test_lines_are_written_apart_from_the_golden_circles(frame_and_disc, tmp_pat
     pytest.importorskip("jsonschema")
     import xml.etree.ElementTree as ET
 
-    from img2logo.writers import from_document, to_document, validate_document, write_svg
+    from img2logo.contract import from_document, to_document, validate_document
+    from img2logo.writers import write_svg
 
     final = optimize(frame_and_disc, tolerance=5.0, lines=True).final
     doc = to_document(final)

@@ -1,4 +1,4 @@
-"""Tests of img2logo.quality: recall, silhouette, outside, crossings, near-miss gaps."""
+"""Tests of img2logo.quality: recall, silhouette, outside, crossings, near-miss gaps, junction gaps."""
 
 from __future__ import annotations
 
@@ -9,7 +9,9 @@ import pytest
 from skimage.draw import circle_perimeter, disk
 
 from img2logo import InvalidParameterError, quality
-from img2logo.geometry import Arc, Circle, line_arc
+from img2logo.arc_extraction import nearest_on_arc
+from img2logo.geometry import Abstraction, Arc, Circle, line_arc
+from img2logo.quality import junction_gaps, level_redundant_intersections
 
 
 def _circle(cx: float, cy: float, r: float, theta0: float = 0.0, sweep: float = 2 * math.pi) -> Arc:
@@ -87,3 +89,49 @@ def test_bad_inputs_have_messages():
         quality.feature_recall(np.zeros((1, 2)), np.zeros(3, bool))
     with pytest.raises(InvalidParameterError, match="sequence of Arc, got str"):
         quality.crossings(["not an arc"])
+
+
+def test_nearest_on_arc_projects_inside_and_clamps_to_the_ends():
+    arc = Arc(Circle(0.0, 0.0, 10.0), 0.0, math.pi / 2)  # from (10, 0) to (0, 10)
+    d, q = nearest_on_arc(arc, np.array([20.0, 20.0]))
+    assert d == pytest.approx(math.hypot(20, 20) - 10)
+    np.testing.assert_allclose(q, [10 / math.sqrt(2), 10 / math.sqrt(2)])
+    d, q = nearest_on_arc(arc, np.array([12.0, -5.0]))
+    np.testing.assert_allclose(q, [10.0, 0.0], atol=1e-12)
+    assert d == pytest.approx(math.hypot(2, 5))
+    d, q = nearest_on_arc(arc, np.array([[0.0, 0.0], [20.0, 20.0]]))  # the centre: the nearer end
+    assert d.shape == (2,) and d[0] == pytest.approx(10.0)
+
+
+def test_redundant_intersections_of_two_crossing_arcs():
+    a = Arc(Circle(0.0, 0.0, 10.0), 0.0, math.pi)
+    b = Arc(Circle(10.0, 0.0, 10.0), math.pi / 2, math.pi)
+    junctions = np.array([[10.0, 0.0], [-10.0, 0.0]])  # the ends of a; b owns none
+    level = Abstraction(0, (a, b), ((0,), (1,)), junctions, ((0,), (0,)), 1.0, 0.0, 5.0, 30, 30)
+    found = level_redundant_intersections(level)
+    assert len(found) == 1
+    np.testing.assert_allclose(found[0].point, [5.0, math.sqrt(75.0)])
+
+
+def test_junction_gaps_known_answer():
+    a = Arc(Circle(0.0, 0.0, 10.0), 0.0, math.pi / 2)  # from (10, 0) to (0, 10)
+    b = Arc(Circle(13.0, 10.0, 10.0), math.pi / 2, math.pi / 2)  # from (13, 20) to (3, 10)
+    points = np.array([[0.0, 10.0], [10.0, 0.0]])
+    gap, spread = junction_gaps([a, b], points, [[0, 1], [0]])
+    assert gap == pytest.approx([3.0, 0.0]) and spread == pytest.approx([3.0, 0.0])
+    with pytest.raises(InvalidParameterError, match="2 junction points but 1"):
+        junction_gaps([a, b], points, [[0]])
+
+
+def test_detail_error_is_the_mean_distance_of_the_masked_pixels_to_the_arcs():
+    from img2logo.segment_graph import SegmentGraph
+
+    x = np.linspace(10.0, 50.0, 41)
+    graph = SegmentGraph(
+        (np.column_stack([x, 20.0 + 0 * x]),), np.array([[10.0, 20.0], [50.0, 20.0]]), np.array([[0, 1]]), 60, 40
+    )
+    arc = line_arc(np.array([10.0, 23.0]), np.array([50.0, 23.0]))  # 3 px below the stroke
+    level = Abstraction(0, (arc,), ((0,),), np.zeros((0, 2)), (), 3.0, 0.0, 5.0, 60, 40)
+    everything = np.ones((40, 60), bool)
+    assert quality.detail_error(level, graph, everything) == pytest.approx(3.0, abs=0.02)  # samples 0.5 px apart
+    assert math.isnan(quality.detail_error(level, graph, ~everything))

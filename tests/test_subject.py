@@ -138,3 +138,79 @@ def test_outline_contrast_tells_an_edge_from_a_cut_through_texture():
     cut = np.hypot(xx - 60, yy - 60) < 40  # a disc of background texture
     assert outline_contrast(img, truth) > 5.0
     assert outline_contrast(img, cut) < 2.0
+
+
+def close_up(size=(240, 320), seed=0, soft_background=True):
+    """A close-up in focus that runs off the picture: an RGB float image and its true mask.
+
+    A head (an ellipse with two ear triangles) touching the bottom and left
+    edges, filled with a sharp fine-grained fur-coloured texture, in front of a
+    defocused background of about the same colours (soft blobs, no fine
+    detail: only focus tells them apart, as for the cat in ``data/``) or, with
+    ``soft_background=False``, a flat one (a smooth sky-like gradient).
+    """
+    from skimage.draw import polygon
+
+    rng = np.random.default_rng(seed)
+    h, w = size
+    yy, xx = np.mgrid[0:h, 0:w]
+    cx, cy, rx, ry = 0.4 * w, 0.72 * h, 0.42 * w, 0.42 * h
+    mask = ((xx - cx) / rx) ** 2 + ((yy - cy) / ry) ** 2 <= 1.0
+    for side in (-1, 1):
+        rr, cc = polygon(
+            [cy - 0.5 * ry, cy - 1.45 * ry, cy - 0.8 * ry],
+            [cx + side * 0.25 * rx, cx + side * 0.7 * rx, cx + side * 0.95 * rx],
+            (h, w),
+        )
+        mask[rr, cc] = True
+    if soft_background:
+        blobs = ndimage.gaussian_filter(rng.standard_normal((h, w, 3)), (8, 8, 0))
+        blobs = blobs.mean(axis=2, keepdims=True) + 0.3 * blobs
+        back = np.array([0.68, 0.56, 0.44]) + 0.1 * blobs / blobs.std()  # about the fur's colours
+    else:
+        back = np.stack([0.45 + 0.2 * yy / h, 0.6 + 0.15 * yy / h, 0.9 + 0 * yy], -1)
+    fur = ndimage.gaussian_filter(rng.standard_normal((h, w)), 0.7)
+    fur = np.stack([0.6 + 0.12 * fur, 0.45 + 0.1 * fur, 0.3 + 0.08 * fur], -1)
+    alpha = ndimage.gaussian_filter(mask.astype(float), 0.8)[..., None]
+    img = back * (1 - alpha) + fur * alpha + 0.004 * rng.standard_normal((h, w, 3))
+    return np.clip(img, 0, 1), mask
+
+
+def test_auto_finds_a_close_up_in_focus_that_runs_off_the_picture_by_depth_of_field():
+    rgb, truth = close_up()
+    subject = find_subject(load_image(rgb))
+    assert subject.mask is not None
+    assert "blurred background" in subject.description
+    iou = (subject.mask & truth).sum() / (subject.mask | truth).sum()
+    assert iou > 0.95
+    # Away from the image frame, its outline is the head's, ears included.
+    edge_f = subject.mask & ~ndimage.binary_erosion(subject.mask, border_value=1)
+    edge_t = truth & ~ndimage.binary_erosion(truth, border_value=1)
+    assert edge_f.sum() > 0.9 * edge_t.sum()
+    off = ndimage.distance_transform_edt(~edge_t)[edge_f]
+    assert np.mean(off <= 3.0) > 0.95  # the smoothing rounds the corners under the ears a little
+    assert off.max() <= 6.0
+
+
+def test_depth_of_field_needs_a_blurred_background_not_a_flat_one():
+    from img2logo.subject import focus_seeds
+
+    rgb, _ = close_up()
+    assert focus_seeds(load_image(rgb)) is not None
+    # The same head under a clear sky: the flat part shows no defocus, no seeds from focus.
+    rgb, _ = close_up(soft_background=False)
+    assert focus_seeds(load_image(rgb)) is None
+    # Texture in focus everywhere (the photo-likes' backgrounds): none either.
+    rgb, _ = textured_photo([])
+    assert focus_seeds(load_image(rgb)) is None
+
+
+def test_focus_step_tells_a_sharp_subject_from_a_cut_through_it():
+    from img2logo.subject import focus_seeds, focus_step
+
+    rgb, truth = close_up()
+    seeds = focus_seeds(load_image(rgb))
+    xx = np.mgrid[0:240, 0:320][1]
+    cut = truth & (xx < 90)  # the head cut in two: in focus on both sides of the cut
+    assert focus_step(seeds, truth) > 3.0
+    assert focus_step(seeds, cut) < 1.5

@@ -17,6 +17,7 @@ from img2logo import InvalidParameterError
 from img2logo.circle_fitting import fit_constrained
 from img2logo.cli import main
 from img2logo.constants import SYMMETRY_THRESHOLD
+from img2logo.contract import to_document
 from img2logo.segment_graph import SegmentGraph
 from img2logo.symmetry import (
     Axis,
@@ -27,7 +28,7 @@ from img2logo.symmetry import (
     half_graph,
     is_symmetric,
 )
-from img2logo.writers import to_document, to_svg
+from img2logo.writers import to_svg
 
 BLACK = (0, 0, 0)
 

@@ -1,11 +1,15 @@
-"""Helpers for the notebooks: where data and figures live, sweeps and figure layouts.
+"""The notebook kit: paths, runs, the sweep, what a notebook shows, provenance.
 
-Notebooks communicate, the library computes: a notebook asks this package for
-paths (absolute, so a notebook runs from any working directory; it never
-writes ``../data`` itself), runs the sweeps it defines and gets the figures
-and tables back. Submodules group them by the paper's evaluation:
-``results`` (Fig. 1, 4, 7, 8, 10, Tables 1, 2), ``ablations`` (Fig. 6, 9, 11,
-12, 13), ``design`` (Table 3, Fig. 15, 16, the level explorer).
+A notebook is a parameters cell plus a few calls and plots: it asks this package
+for paths (absolute, so a notebook runs from any folder), runs its images with
+:func:`sweep` (one record type, :class:`Run`) and gets tables (pandas
+DataFrames) and figures (:class:`matplotlib.figure.Figure`, never pyplot, in the
+image pixel frame: x right, y down) back from ``results`` (Fig. 1, 4, 7, 8, 10,
+Tables 1, 2), ``ablations`` (Fig. 6, 9, 11, 12, 13), ``design`` (Table 3, Fig.
+15, 16, the level explorer) and ``features`` (Fig. 17, 18). Tables hold no
+timings unless they are about time: they are committed and must be the same
+bytes from run to run. papermill and ipywidgets (the extra ``[kit]``) are
+imported only by the functions that use them.
 """
 
 from __future__ import annotations
@@ -13,19 +17,43 @@ from __future__ import annotations
 import dataclasses
 import os
 import time
-from collections.abc import Iterable
-from dataclasses import dataclass
+from collections.abc import Iterable, Mapping, Sequence
+from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from types import MappingProxyType
+from typing import TYPE_CHECKING, Any
 
 from ..constants import MIN_SEGMENT_LENGTH, RDP_TOLERANCE
-from ..errors import Img2LogoError
+from ..errors import Img2LogoError, InvalidParameterError
 from ..preprocessing import FeatureLines, LoadedImage, extract_feature_lines, load_image
 from ..segment_graph import SegmentGraph, build_segment_graph
+
+if TYPE_CHECKING:
+    from ..geometry import Abstraction
+    from ..progressive import Progression
 
 #: Environment variable naming the repository root, when it cannot be found.
 ROOT_ENV = "IMG2LOGO_ROOT"
 _MARKER = Path("data") / "ATTRIBUTION.md"
+
+
+def kit_module(name: str) -> Any:
+    """Import ``name``, one of the packages of the extra ``[kit]`` (papermill, ipywidgets, yaml).
+
+    Raises
+    ------
+    Img2LogoError
+        One line saying how to install the extra, when the package is missing.
+    """
+    import importlib
+
+    try:
+        return importlib.import_module(name)
+    except ImportError:
+        raise Img2LogoError(
+            f"{name} is missing: the notebook kit needs the extra [kit] "
+            "(pip install -e '.[kit]'; make test, make figures and make lab install it)"
+        ) from None
 
 
 def project_root() -> Path:
@@ -171,37 +199,203 @@ def show_table(table: Any) -> SavedTable:
     return SavedTable(None, table)
 
 
-# --------------------------------------------------------------------------- preprocessing
+# --------------------------------------------------------------------------- runs
 @dataclass(frozen=True, eq=False)
-class Preprocessed:
-    """One example through preprocessing: image, feature lines, segment graph, time (s)."""
+class Run:
+    """One image through the pipeline with one setting: the notebooks' one run record.
+
+    Attributes
+    ----------
+    name : str
+        The image's file stem, e.g. ``"clipart-fish"``.
+    image : LoadedImage
+    lines : FeatureLines
+    graph : SegmentGraph
+        L = {S, J}, the input of the optimization.
+    progression : Progression or None
+        Every level A^0 ... A^final; None for an image only preprocessed (:func:`preprocess`).
+    variant : str
+        The label of the run's variant (:func:`sweep`), or ``""``.
+    settings : mapping (read-only)
+        The keywords of :func:`img2logo.progressive.optimize` (or of
+        :func:`img2logo.abstract`) the run was given, with the swept ones
+        (``rdp_tolerance`` too when it was swept).
+    seconds : tuple of float
+        Wall time of each repeat of the run (the optimization, or the whole
+        pipeline), s: for the notebook's text and the timing table, never for a
+        table that must stay byte for byte.
+    """
 
     name: str
     image: LoadedImage
     lines: FeatureLines
     graph: SegmentGraph
-    seconds: float
+    progression: Progression | None = None
+    variant: str = ""
+    settings: Mapping[str, Any] = field(default_factory=lambda: MappingProxyType({}))
+    seconds: tuple[float, ...] = ()
+
+    @property
+    def kind(self) -> str:
+        """``"photo"``, ``"clipart"`` or ``"drawing"``."""
+        return self.lines.kind
+
+    @property
+    def levels(self) -> tuple[Abstraction, ...]:
+        """A^0 ... A^final."""
+        return self._progression.levels
+
+    @property
+    def final(self) -> Abstraction:
+        """The result: the last level."""
+        return self._progression.final
+
+    @property
+    def bias(self) -> float:
+        """The ladder bias sigma the run used."""
+        return self._progression.bias
+
+    def level(self, t: int) -> Abstraction:
+        """A^t; negative t counts from the end."""
+        return self.levels[t]
+
+    @property
+    def _progression(self) -> Progression:
+        if self.progression is None:
+            raise Img2LogoError(f"{self.name} was only preprocessed: it has no levels")
+        return self.progression
 
 
 def preprocess(
-    paths: Iterable[str | os.PathLike[str]],
+    paths: Iterable[Any],
     *,
     kind: str = "auto",
     rdp_tolerance: float = RDP_TOLERANCE,
     min_length: float = MIN_SEGMENT_LENGTH,
-) -> list[Preprocessed]:
-    """Load each image, extract its feature lines and build its segment graph (Sec. 4)."""
+) -> list[Run]:
+    """Load each image (a path, or anything :func:`img2logo.load_image` takes), find its feature lines, build its graph.
+
+    Returns runs without levels (Sec. 4); ``seconds`` holds the time it took.
+    """
     out = []
     for path in paths:
         start = time.perf_counter()
         image = load_example(path)
         lines = extract_feature_lines(image, kind=kind)
         graph = build_segment_graph(lines, rdp_tolerance=rdp_tolerance, min_length=min_length)
-        out.append(Preprocessed(Path(path).stem, image, lines, graph, time.perf_counter() - start))
+        name = Path(str(getattr(path, "source", path))).stem
+        out.append(Run(name, image, lines, graph, seconds=(time.perf_counter() - start,)))
     return out
 
 
-def preprocessing_table(examples: Iterable[Preprocessed]) -> Any:
+def sweep(
+    images: Iterable[Any],
+    grid: Mapping[str, Sequence[Any]] | None = None,
+    variants: Mapping[str, Mapping[str, Any]] | None = None,
+    *,
+    repeats: int = 1,
+    pipeline: bool = False,
+    kind: str = "auto",
+    **options: Any,
+) -> list[Run]:
+    """Run every image with every combination of the ``grid`` and every variant: the notebooks' one sweep.
+
+    Parameters
+    ----------
+    images : iterable
+        Paths (or loaded images), or runs of :func:`preprocess` (their feature
+        lines and graph are used again).
+    grid : mapping of str to sequence, optional
+        Keyword -> the values it takes, e.g. ``{"tolerance": [4, 5, 9]}``: every
+        combination runs, the first keyword outermost. ``rdp_tolerance`` and
+        ``min_length`` rebuild the segment graph from the same feature lines.
+    variants : mapping of str to mapping, optional
+        Label -> keywords of the run (e.g. ablation switches); one unlabelled
+        variant when None.
+    repeats : int
+        How often each run is made and timed (>= 1): round robin over all runs,
+        so a burst of load from other processes spreads over them instead of
+        skewing one; with more than one, an untimed run comes first (the first
+        call in a process compiles the Fréchet kernel). The runs are
+        deterministic: the last one is kept.
+    pipeline : bool
+        False: every run is :func:`img2logo.progressive.optimize` on the
+        image's segment graph. True: every run is :func:`img2logo.abstract`
+        (a photo's arcs kept near its lines as on the command line; the feature
+        lines found again for each run).
+    kind : str
+        The kind of input, or ``"auto"`` (for images not yet preprocessed).
+    **options
+        Keywords shared by every run.
+
+    Returns
+    -------
+    list of Run
+        Image-major, then the grid, then the variants in the order given;
+        ``settings`` holds each run's keywords.
+
+    Raises
+    ------
+    InvalidParameterError
+        ``repeats`` is not a positive integer; a keyword or value the run
+        refuses (:func:`img2logo.progressive.optimize`, :func:`img2logo.abstract`).
+    """
+    from itertools import product
+
+    from ..pipeline import abstract
+    from ..progressive import optimize
+
+    if isinstance(repeats, bool) or not isinstance(repeats, int) or repeats < 1:
+        raise InvalidParameterError(f"repeats must be an integer >= 1, got {repeats!r}")
+    grid = dict(grid or {})
+    for name, values in grid.items():
+        if not isinstance(values, list | tuple) or not values:
+            raise InvalidParameterError(f"grid[{name!r}]: expected a non-empty list of values, got {values!r}")
+    points = [dict(zip(grid, values, strict=True)) for values in product(*grid.values())]
+    jobs: list[tuple[Run, str, dict[str, Any]]] = []
+    for ex in images if pipeline else _preprocessed(images, kind):
+        for point in points:
+            for label, switches in (variants or {"": {}}).items():
+                jobs.append((ex, label, {**options, **point, **switches}))
+
+    def run(ex: Any, settings: dict[str, Any]) -> Run:
+        if pipeline:
+            r = abstract(load_example(ex.image if isinstance(ex, Run) else ex), kind=kind, progress=False, **settings)
+            return Run(Path(str(r.image.source)).stem, r.image, r.lines, r.graph, r.progression)
+        shape = {k: settings.pop(k) for k in ("rdp_tolerance", "min_length") if k in settings}
+        graph = build_segment_graph(ex.lines, **shape) if shape else ex.graph
+        return dataclasses.replace(ex, graph=graph, progression=optimize(graph, **settings))
+
+    if repeats > 1 and jobs:
+        run(jobs[0][0], dict(jobs[0][2]))
+    seconds: list[list[float]] = [[] for _ in jobs]
+    done: list[Run] = []
+    for _ in range(repeats):
+        done = []
+        for (ex, label, settings), times in zip(jobs, seconds, strict=True):
+            start = time.perf_counter()
+            result = run(ex, dict(settings))
+            times.append(time.perf_counter() - start)
+            done.append(dataclasses.replace(result, variant=label, settings=MappingProxyType(settings)))
+    return [dataclasses.replace(r, seconds=tuple(t)) for r, t in zip(done, seconds, strict=True)]
+
+
+def by_image(runs: Iterable[Run]) -> dict[str, list[Run]]:
+    """The runs grouped by image name, images and runs in the order given."""
+    out: dict[str, list[Run]] = {}
+    for run in runs:
+        out.setdefault(run.name, []).append(run)
+    return out
+
+
+def _preprocessed(images: Iterable[Any], kind: str) -> list[Run]:
+    images = list(images)
+    if all(isinstance(i, Run) for i in images):
+        return images
+    return preprocess(images, kind=kind)
+
+
+def preprocessing_table(examples: Iterable[Run]) -> Any:
     """A pandas DataFrame: per example its kind, |S|, node counts by valence, components.
 
     No timings: the table is a committed figure and must not change from run to
@@ -226,7 +420,7 @@ def preprocessing_table(examples: Iterable[Preprocessed]) -> Any:
     return pd.DataFrame(rows)
 
 
-def plot_preprocessing(examples: list[Preprocessed], *, panel_size: float = 3.0) -> Any:
+def plot_preprocessing(examples: list[Run], *, panel_size: float = 3.0) -> Any:
     """A figure, one row per example: input | feature lines | segment graph (paper Fig. 4a, 4b)."""
     from matplotlib.figure import Figure
 
@@ -259,7 +453,7 @@ def write_provenance(executed: str | os.PathLike[str]) -> Path:
     import json
     import subprocess
 
-    from ..writers import _atomic_write
+    from .._io import atomic_write
 
     path = Path(executed)
     nb = json.loads(path.read_text(encoding="utf-8"))
@@ -284,7 +478,7 @@ def write_provenance(executed: str | os.PathLike[str]) -> Path:
     }
     target = figure_dir(path.stem) / "provenance.json"
     text = json.dumps(record, indent=2, sort_keys=True) + "\n"
-    return _atomic_write(target, lambda f: f.write(text.encode("utf-8")))
+    return atomic_write(target, lambda f: f.write(text.encode("utf-8")))
 
 
 from .runner import check_parameters as check_parameters  # noqa: E402  (needs data_path above)

@@ -1,108 +1,41 @@
 """Ablations of the key components: Fig. 6, 9, 11, 12, 13 (paper Sec. 5.2, 5.3, 6.2).
 
-Runs, measurements, tables and figure layouts for four notebooks:
+Tables and figure layouts of ``05_connectivity_ablation`` (Fig. 6, 11: the
+junction gaps of each variant of the connectivity constraint, :func:`gap_table`),
+``06_redundant_intersections`` (Fig. 12), ``07_arc_extraction`` (Fig. 9: both
+arc-selection rules on the same circles, :func:`compare_arc_selection`, and a
+constructed "hook", :func:`hook_example`) and ``08_rdp_robustness`` (Fig. 13).
 
-* ``05_connectivity_ablation`` -- the connectivity constraint (Fig. 6, 11):
-  the segment graph (a), the result with the constraint (b), without it (c),
-  with constraints only at the start and end junctions of merged segments (d),
-  and (d) without merging (e); the *junction gaps* of each variant measured
-  (:func:`junction_gaps`) and circled.
-* ``06_redundant_intersections`` -- redundant-intersection avoidance (Fig. 12):
-  results with and without it, their redundant intersections counted
-  (:func:`level_redundant_intersections`) and circled.
-* ``07_arc_extraction`` -- Fréchet against sum-of-squares arc selection
-  (Fig. 9): both rules applied to the same circles and junctions
-  (:func:`compare_arc_selection`), whole runs with each rule, and a constructed
-  "hook" (:func:`hook_example`) where the sum of squares keeps a redundant part.
-* ``08_rdp_robustness`` -- robustness to the initial segmentation (Fig. 13):
-  several Ramer-Douglas-Peucker tolerances (:func:`rdp_sweep`).
-
-Every function computes through the library (:func:`img2logo.progressive.optimize`,
-:mod:`img2logo.arc_extraction`) and returns pandas DataFrames or
-:class:`matplotlib.figure.Figure` objects (never pyplot figures), drawn in the
-image pixel frame (x right, y down). Tables hold no timings: they are committed
-figures and must be byte-identical from run to run.
-
-A level :class:`~img2logo.geometry.Abstraction` records, for each arc, the
-segments of the graph it abstracts (``arc_segments``) and, for each junction of
-J', the arcs constrained there (``junction_arcs``); it does not record which node
-of the graph a junction is. :func:`arc_paths` and :func:`junction_nodes` recover
-that from the graph, the same way the optimizer builds J' (the two ends of an
-arc's path, and its inner nodes of valence >= 3 unless only the ends are
-constrained), and check the result against the level.
+A level records the segments of each arc and the arcs of each junction of J',
+not which graph node a junction is: :func:`arc_paths` and :func:`junction_nodes`
+recover that from the graph as the optimizer builds J' (the ends of each arc's
+path and, unless only the ends are constrained, its inner nodes of valence >= 3),
+and check the result against the level.
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass
-from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ..arc_extraction import (
-    ArcFit,
-    RedundantIntersection,
-    _candidate_arcs,
-    extract_arc,
-    redundant_intersections,
-)
-from ..constants import ARC_CANDIDATE_LENGTH_RATIO, ARC_CANDIDATE_LENGTH_SLACK, MIN_SEGMENT_LENGTH, TOLERANCE
+from ..arc_extraction import ArcFit, RedundantIntersection, admissible_arcs, extract_arc
+from ..constants import TOLERANCE
 from ..errors import InvalidParameterError
 from ..geometry import Abstraction, Arc, Circle
-from ..progressive import Progression, optimize
-from ..segment_graph import SegmentGraph, build_segment_graph
-from . import Preprocessed
+from ..plotting import draw_arcs, frame_image, frame_window, plot_segment_graph, ring, square_window
+from ..progressive import Progression
+from ..quality import junction_gaps, level_redundant_intersections
+from ..segment_graph import SegmentGraph
+from . import Run
 
 if TYPE_CHECKING:
     import pandas as pd
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
-
-    from ..preprocessing import FeatureLines, LoadedImage
-
-__all__ = [
-    "ARC_SELECTION_VARIANTS",
-    "AVOIDANCE_VARIANTS",
-    "CONNECTIVITY_VARIANTS",
-    "DIFFERENCE_COLORS",
-    "GAP_COLOR",
-    "GAP_THRESHOLD",
-    "INTERSECTION_COLOR",
-    "PAPER_FIG11",
-    "AblationRun",
-    "ArcSelectionComparison",
-    "HookExample",
-    "arc_chain",
-    "arc_junction_lists",
-    "arc_paths",
-    "arc_selection_study",
-    "arc_selection_table",
-    "avoidance_effect",
-    "compare_arc_selection",
-    "connectivity_table",
-    "differing_arcs",
-    "gap_windows",
-    "hook_example",
-    "hook_table",
-    "junction_gap_table",
-    "junction_gaps",
-    "junction_nodes",
-    "level_redundant_intersections",
-    "nearest_on_arc",
-    "plot_arc_selection",
-    "plot_connectivity_ablation",
-    "plot_hook_example",
-    "plot_rdp_sweep",
-    "plot_redundant_intersections",
-    "rdp_sweep",
-    "rdp_table",
-    "redundant_table",
-    "run_variants",
-    "select_cases",
-]
 
 #: A junction whose gap exceeds this is counted and circled (Fig. 11), px.
 GAP_THRESHOLD: float = 0.5
@@ -229,119 +162,8 @@ def junction_nodes(abstraction: Abstraction, graph: SegmentGraph) -> np.ndarray:
     return np.array(nodes, dtype=np.int64)
 
 
-def arc_junction_lists(abstraction: Abstraction) -> list[list[int]]:
-    """For each arc, the indices of the junctions it belongs to (the inverse of ``junction_arcs``)."""
-    out: list[list[int]] = [[] for _ in abstraction.arcs]
-    for k, arcs in enumerate(abstraction.junction_arcs):
-        for i in arcs:
-            out[i].append(k)
-    return out
-
-
-def level_redundant_intersections(abstraction: Abstraction) -> list[RedundantIntersection]:
-    """Redundant intersections of a level (Sec. 5.2, Fig. 6c red box, Fig. 12).
-
-    :func:`~img2logo.arc_extraction.redundant_intersections` over all pairs of
-    the level's arcs, each arc owning the junctions that list it.
-    """
-    return redundant_intersections(abstraction.arcs, abstraction.junctions, arc_junction_lists(abstraction))
-
-
-def nearest_on_arc(arc: Arc, point: np.ndarray) -> tuple[float, np.ndarray]:
-    """The point of ``arc`` nearest to ``point`` and its distance, px.
-
-    The radial projection when it falls on the arc, else the nearer end.
-    """
-    p = np.asarray(point, dtype=np.float64)
-    c = arc.circle
-    theta = float(c.angle_of(p))
-    if math.hypot(*(p - c.center)) > 0 and bool(arc.contains_angle(theta)):
-        q = c.point_at(theta)
-    else:
-        q = min((arc.start, arc.end), key=lambda e: math.dist(e, p))
-    return math.dist(q, p), q
-
-
-# =========================================================================== runs
-@dataclass(frozen=True, eq=False)
-class AblationRun:
-    """One image through the optimization with one set of switches.
-
-    Attributes
-    ----------
-    name : str
-        The image's name (file stem).
-    variant : str
-        The variant's label, e.g. ``"(c) without connectivity"``.
-    switches : dict
-        The keyword arguments given to :func:`~img2logo.progressive.optimize`.
-    example : Preprocessed
-        The image, its feature lines and segment graph.
-    progression : Progression
-        Every level of the run.
-    """
-
-    name: str
-    variant: str
-    switches: dict[str, Any]
-    example: Preprocessed
-    progression: Progression
-
-    @property
-    def graph(self) -> SegmentGraph:
-        """The segment graph L = {S, J} the run started from."""
-        return self.example.graph
-
-    @property
-    def image(self) -> LoadedImage:
-        """The input image."""
-        return self.example.image
-
-    @property
-    def final(self) -> Abstraction:
-        """The result: the last level."""
-        return self.progression.final
-
-
-def run_variants(
-    examples: Iterable[Preprocessed],
-    variants: Mapping[str, Mapping[str, Any]],
-    *,
-    tolerance: float | Sequence[float] = TOLERANCE,
-    **common: Any,
-) -> list[AblationRun]:
-    """Run :func:`~img2logo.progressive.optimize` on every example with every variant.
-
-    Parameters
-    ----------
-    examples : iterable of Preprocessed
-        Images with their segment graphs (:func:`img2logo.experiments.preprocess`).
-    variants : mapping of str to mapping
-        Label -> switches of ``optimize`` (e.g. :data:`CONNECTIVITY_VARIANTS`).
-    tolerance : float or sequence of float
-        T (Eqn. 1), px; with several, every variant runs at each.
-    **common
-        Further keyword arguments of ``optimize`` shared by every run.
-
-    Returns
-    -------
-    list of AblationRun
-        Example-major, then tolerance, then variant in the order given. The
-        tolerance of a run is ``run.final.tolerance``.
-    """
-    tolerances = [float(tolerance)] if np.ndim(tolerance) == 0 else [float(t) for t in tolerance]
-    runs = []
-    for ex in examples:
-        for t in tolerances:
-            for label, switches in variants.items():
-                kwargs = {**common, **switches}
-                progression = optimize(ex.graph, tolerance=t, **kwargs)
-                runs.append(AblationRun(ex.name, label, dict(kwargs), ex, progression))
-    return runs
-
-
 # =========================================================================== Fig. 11: junction gaps
-def junction_gaps(abstraction: Abstraction, graph: SegmentGraph) -> pd.DataFrame:
+def gap_table(abstraction: Abstraction, graph: SegmentGraph) -> pd.DataFrame:
     """How far the arcs that should meet at each junction are from meeting (Fig. 11), px.
 
     A *junction of the result* is a node of the graph on the paths of two or
@@ -351,7 +173,7 @@ def junction_gaps(abstraction: Abstraction, graph: SegmentGraph) -> pd.DataFrame
     node is in J', else the node p_k itself (an inner node that a run with
     only start/end constraints, Fig. 11d, does not constrain). Then, with q_i
     the point of arc i nearest to c (the radial projection, or the nearer end
-    of the arc):
+    of the arc; :func:`img2logo.quality.junction_gaps`):
 
     * ``gap`` = max_i |q_i - c|: the largest distance from the junction point
       to an arc that should pass through it. With the connectivity constraint
@@ -361,10 +183,6 @@ def junction_gaps(abstraction: Abstraction, graph: SegmentGraph) -> pd.DataFrame
       (Fig. 11d) a merged arc misses the inner junctions of its path.
     * ``spread`` = max_{i,j} |q_i - q_j|: how far apart the arcs' closest
       approaches to the junction are (0 when they meet at c).
-
-    Returns
-    -------
-    pandas.DataFrame
         One row per junction of the result, in node order: ``node``, ``x``,
         ``y`` (the junction point c, px), ``in_J'`` (whether the level
         constrains it), ``valence`` (in the graph), ``arcs`` (how many arcs
@@ -379,36 +197,31 @@ def junction_gaps(abstraction: Abstraction, graph: SegmentGraph) -> pd.DataFrame
     for i, path in enumerate(paths):
         for n in path:
             on.setdefault(int(n), set()).add(i)
-    rows = []
-    for n in sorted(on):
-        arcs = sorted(on[n])
-        if len(arcs) < 2:
-            continue
-        c = point_of.get(n, graph.junctions[n])
-        near = [nearest_on_arc(abstraction.arcs[i], c) for i in arcs]
-        q = np.array([p for _, p in near])
-        diff = q[:, None, :] - q[None, :, :]
-        rows.append(
-            {
-                "node": n,
-                "x": float(c[0]),
-                "y": float(c[1]),
-                "in_J'": n in point_of,
-                "valence": int(graph.valence[n]),
-                "arcs": len(arcs),
-                "gap": max(d for d, _ in near),
-                "spread": float(np.max(np.hypot(diff[..., 0], diff[..., 1]))),
-            }
-        )
+    shared = [n for n in sorted(on) if len(on[n]) >= 2]
+    points = np.array([point_of.get(n, graph.junctions[n]) for n in shared]).reshape(-1, 2)
+    gap, spread = junction_gaps(abstraction.arcs, points, [sorted(on[n]) for n in shared])
+    rows = [
+        {
+            "node": n,
+            "x": float(c[0]),
+            "y": float(c[1]),
+            "in_J'": n in point_of,
+            "valence": int(graph.valence[n]),
+            "arcs": len(on[n]),
+            "gap": float(g),
+            "spread": float(d),
+        }
+        for n, c, g, d in zip(shared, points, gap, spread, strict=True)
+    ]
     columns = ["node", "x", "y", "in_J'", "valence", "arcs", "gap", "spread"]
     return pd.DataFrame(rows, columns=columns)
 
 
-def connectivity_table(runs: Sequence[AblationRun], *, threshold: float = GAP_THRESHOLD) -> pd.DataFrame:
+def connectivity_table(runs: Sequence[Run], *, threshold: float = GAP_THRESHOLD) -> pd.DataFrame:
     """The measured junction gaps of each variant (Fig. 11), one row per run.
 
     Columns: ``image``, ``variant``, ``arcs`` (|A| of the final level), ``E^s``
-    (px), ``junctions`` (of the result, see :func:`junction_gaps`), ``max gap``,
+    (px), ``junctions`` (of the result, see :func:`gap_table`), ``max gap``,
     ``mean gap`` (px), ``junctions with gap > {threshold} px``, ``max spread``
     (px), ``redundant intersections`` (Fig. 6c, red box) and ``paper`` (what
     Fig. 11 shows; it gives no numbers).
@@ -417,7 +230,7 @@ def connectivity_table(runs: Sequence[AblationRun], *, threshold: float = GAP_TH
 
     rows = []
     for run in runs:
-        gaps = junction_gaps(run.final, run.graph)
+        gaps = gap_table(run.final, run.graph)
         g = gaps["gap"].to_numpy()
         rows.append(
             {
@@ -437,17 +250,17 @@ def connectivity_table(runs: Sequence[AblationRun], *, threshold: float = GAP_TH
     return pd.DataFrame(rows)
 
 
-def junction_gap_table(runs: Sequence[AblationRun]) -> pd.DataFrame:
-    """Every junction of every run's final level with its gap (:func:`junction_gaps`).
+def junction_gap_table(runs: Sequence[Run]) -> pd.DataFrame:
+    """Every junction of every run's final level with its gap (:func:`gap_table`).
 
-    Columns: ``image``, ``variant`` and those of :func:`junction_gaps`, the
+    Columns: ``image``, ``variant`` and those of :func:`gap_table`, the
     coordinates and distances rounded to 1e-4 px.
     """
     import pandas as pd
 
     parts = []
     for run in runs:
-        g = junction_gaps(run.final, run.graph).round({"x": 4, "y": 4, "gap": 4, "spread": 4})
+        g = gap_table(run.final, run.graph).round({"x": 4, "y": 4, "gap": 4, "spread": 4})
         g.insert(0, "variant", run.variant)
         g.insert(0, "image", run.name)
         parts.append(g)
@@ -455,12 +268,12 @@ def junction_gap_table(runs: Sequence[AblationRun]) -> pd.DataFrame:
 
 
 # =========================================================================== Fig. 12: redundant intersections
-def redundant_table(runs: Sequence[AblationRun]) -> pd.DataFrame:
+def redundant_table(runs: Sequence[Run]) -> pd.DataFrame:
     """Redundant intersections of every run (Fig. 12), one row per run.
 
     Columns: ``image``, ``T`` (px), ``variant``, ``arcs`` (|A| of the final
     level), ``E^s`` (px), ``redundant intersections`` (of the final level,
-    :func:`level_redundant_intersections`), ``at A^0`` (of the initial fit,
+    :func:`img2logo.quality.level_redundant_intersections`), ``at A^0`` (of the initial fit,
     which no merge decision can change) and ``merges rejected`` (candidate
     merges the run turned down for leaving a redundant intersection).
     """
@@ -529,37 +342,12 @@ def select_cases(effect: pd.DataFrame, count: int = 4, *, prefer: float = TOLERA
 
 
 # =========================================================================== drawing helpers
-def _draw_arcs(
-    ax: Axes,
-    arcs: Sequence[Arc],
-    *,
-    colors: Sequence[Any] | str = "#000000",
-    linewidth: float = 1.5,
-    zorder: float = 2,
-) -> None:
-    """Draw arcs as polylines sampled every 0.25 px, one colour each or one for all."""
-    from matplotlib.collections import LineCollection
-
-    if not arcs:
-        return
-    lines = [a.sample(step=0.25) for a in arcs]
-    lc = LineCollection(lines, colors=colors, linewidths=linewidth, capstyle="round", zorder=zorder)
-    ax.add_collection(lc, autolim=False)
-
-
 def _arc_colors(n: int) -> list[Any]:
     """``n`` distinct colours cycled from tab10."""
     import matplotlib
 
     cmap = matplotlib.colormaps["tab10"]
     return [cmap(i % cmap.N) for i in range(n)]
-
-
-def _ring(ax: Axes, x: float, y: float, radius: float, color: str, linewidth: float = 1.2) -> None:
-    """An open circle around (x, y), px."""
-    from matplotlib.patches import Circle as CirclePatch
-
-    ax.add_patch(CirclePatch((x, y), radius, fill=False, edgecolor=color, linewidth=linewidth, zorder=5))
 
 
 def _box(ax: Axes, window: tuple[float, float, float, float], label: str, color: str = "#555555") -> None:
@@ -573,34 +361,8 @@ def _box(ax: Axes, window: tuple[float, float, float, float], label: str, color:
     ax.text(x0, y0, label, color=color, fontsize=7, ha="left", va="bottom", zorder=6)
 
 
-def _window(center: Sequence[float], size: float, width: int, height: int) -> tuple[float, float, float, float]:
-    """A square window of side ``size`` px around ``center``, kept inside the image where possible."""
-    half = size / 2.0
-    x = min(max(float(center[0]), half), max(width - half, half))
-    y = min(max(float(center[1]), half), max(height - half, half))
-    return (x - half, y - half, x + half, y + half)
-
-
 def _show_window(ax: Axes, window: tuple[float, float, float, float]) -> None:
-    """Limit ``ax`` to ``window`` (y down), with a thin frame."""
-    x0, y0, x1, y1 = window
-    ax.set_xlim(x0, x1)
-    ax.set_ylim(y1, y0)
-    ax.set_aspect("equal")
-    ax.set_axis_on()
-    ax.set_xticks([])
-    ax.set_yticks([])
-    for spine in ax.spines.values():
-        spine.set_edgecolor("#555555")
-        spine.set_linewidth(0.8)
-
-
-def _blank(ax: Axes, width: int, height: int) -> None:
-    """Frame ``ax`` as the image, axes off."""
-    ax.set_xlim(0.0, float(width))
-    ax.set_ylim(float(height), 0.0)
-    ax.set_aspect("equal")
-    ax.set_axis_off()
+    frame_window(ax, window, color="#555555", linewidth=0.8)
 
 
 def _faint_segments(ax: Axes, graph: SegmentGraph, color: str = "#c8c8c8", linewidth: float = 3.0) -> None:
@@ -613,7 +375,7 @@ def _faint_segments(ax: Axes, graph: SegmentGraph, color: str = "#c8c8c8", linew
 
 # =========================================================================== Fig. 11: figure
 def gap_windows(
-    runs: Sequence[AblationRun],
+    runs: Sequence[Run],
     *,
     variants: Sequence[str] = ("(c) without connectivity", "(d) start/end junctions only"),
     count: int = 2,
@@ -633,7 +395,7 @@ def gap_windows(
         if v not in by_variant:
             continue
         run = by_variant[v]
-        gaps = junction_gaps(run.final, run.graph)
+        gaps = gap_table(run.final, run.graph)
         gaps = gaps[gaps["gap"] > threshold].sort_values(["gap", "node"], ascending=[False, True])
         queues.append((v, run, list(gaps.itertuples(index=False))))
     out: list[tuple[str, tuple[float, float, float, float]]] = []
@@ -644,7 +406,7 @@ def gap_windows(
                 inside = any(w[0] <= row.x <= w[2] and w[1] <= row.y <= w[3] for _, w in out)
                 if not inside:
                     size = max(min_size, 4.0 * row.gap + 16.0)
-                    out.append((v, _window((row.x, row.y), size, run.image.width, run.image.height)))
+                    out.append((v, square_window((row.x, row.y), size, run.image.width, run.image.height)))
                     break
             if len(out) >= count:
                 break
@@ -652,7 +414,7 @@ def gap_windows(
 
 
 def plot_connectivity_ablation(
-    runs: Sequence[AblationRun],
+    runs: Sequence[Run],
     *,
     zooms: int = 2,
     threshold: float = GAP_THRESHOLD,
@@ -671,21 +433,17 @@ def plot_connectivity_ablation(
 
     Parameters
     ----------
-    runs : sequence of AblationRun
-        From :func:`run_variants` with :data:`CONNECTIVITY_VARIANTS` (any
-        subset, any number of images), example-major.
+    runs : sequence of Run
+        From :func:`img2logo.experiments.sweep` with :data:`CONNECTIVITY_VARIANTS`
+        (any subset, any number of images), image-major.
     zooms : int
         Inset rows per image.
     threshold : float
         Gaps above this are circled, px.
-    panel_size : float
-        Side of a panel, inches.
     title : str
         The figure's title; the colour key is appended.
     """
     from matplotlib.figure import Figure
-
-    from ..plotting import plot_segment_graph
 
     names = list(dict.fromkeys(r.name for r in runs))
     variants = list(dict.fromkeys(r.variant for r in runs))
@@ -699,7 +457,7 @@ def plot_connectivity_ablation(
         mine = {r.variant: r for r in runs if r.name == name}
         first = next(iter(mine.values()))
         graph, w, h = first.graph, first.image.width, first.image.height
-        gaps = {v: junction_gaps(r.final, r.graph) for v, r in mine.items()}
+        gaps = {v: gap_table(r.final, r.graph) for v, r in mine.items()}
         # full views
         ax = axes[row, 0]
         plot_segment_graph(graph, ax, linewidth=1.0, markersize=2.5)
@@ -709,17 +467,17 @@ def plot_connectivity_ablation(
         for col, v in enumerate(variants, start=1):
             ax = axes[row, col]
             if v not in mine:
-                _blank(ax, w, h)
+                frame_image(ax, w, h)
                 continue
             run = mine[v]
-            _blank(ax, w, h)
-            _draw_arcs(ax, run.final.arcs, linewidth=1.0)
+            frame_image(ax, w, h)
+            draw_arcs(ax, run.final.arcs, linewidth=1.0)
             g = gaps[v]
             big = g[g["gap"] > threshold]
             for x, y, gap in zip(big["x"], big["y"], big["gap"], strict=True):
-                _ring(ax, x, y, max(12.0, gap + 6.0), GAP_COLOR)
+                ring(ax, x, y, max(12.0, gap + 6.0), GAP_COLOR)
             for ri in level_redundant_intersections(run.final):
-                _ring(ax, float(ri.point[0]), float(ri.point[1]), 12.0, INTERSECTION_COLOR)
+                ring(ax, float(ri.point[0]), float(ri.point[1]), 12.0, INTERSECTION_COLOR)
             for j, (_, win) in enumerate(windows[name]):
                 _box(ax, win, str(j + 1))
             max_gap = float(g["gap"].max()) if len(g) else 0.0
@@ -737,17 +495,17 @@ def plot_connectivity_ablation(
             ax.set_title(f"inset {j + 1} (largest gap of {source[:3]})", fontsize=7)
             for col, v in enumerate(variants, start=1):
                 ax = axes[r, col]
-                _blank(ax, w, h)
+                frame_image(ax, w, h)
                 if v not in mine:
                     continue
                 run = mine[v]
                 _faint_segments(ax, graph, linewidth=6.0)
-                _draw_arcs(ax, run.final.arcs, colors=_arc_colors(len(run.final.arcs)), linewidth=1.6)
+                draw_arcs(ax, run.final.arcs, colors=_arc_colors(len(run.final.arcs)), linewidth=1.6)
                 g = gaps[v]
                 ax.plot(g["x"], g["y"], "o", color="#000000", markersize=3.0, zorder=4, linestyle="none")
                 big = g[g["gap"] > threshold]
                 for x, y, gap in zip(big["x"], big["y"], big["gap"], strict=True):
-                    _ring(ax, x, y, gap + 2.0, GAP_COLOR, linewidth=1.5)
+                    ring(ax, x, y, gap + 2.0, GAP_COLOR, linewidth=1.5)
                 _show_window(ax, win)
                 inside = g[(g["x"] >= win[0]) & (g["x"] <= win[2]) & (g["y"] >= win[1]) & (g["y"] <= win[3])]
                 worst = float(inside["gap"].max()) if len(inside) else 0.0
@@ -773,7 +531,7 @@ def _zoom_target(
 
 
 def plot_redundant_intersections(
-    runs: Sequence[AblationRun],
+    runs: Sequence[Run],
     cases: Sequence[tuple[str, float]] | None = None,
     *,
     with_label: str = "(b) with avoidance",
@@ -792,15 +550,13 @@ def plot_redundant_intersections(
 
     Parameters
     ----------
-    runs : sequence of AblationRun
-        From :func:`run_variants` with :data:`AVOIDANCE_VARIANTS`.
+    runs : sequence of Run
+        From :func:`img2logo.experiments.sweep` with :data:`AVOIDANCE_VARIANTS`.
     cases : sequence of (str, float), optional
         The (image, T) rows to show (:func:`select_cases`); when None or
         empty (avoidance changed nothing), every (image, T) of ``runs``.
     """
     from matplotlib.figure import Figure
-
-    from ..plotting import plot_segment_graph
 
     index = {(r.name, r.final.tolerance, r.variant): r for r in runs}
     cases = list(cases or [])
@@ -815,15 +571,15 @@ def plot_redundant_intersections(
         graph, w, h = pair[0].graph, pair[0].image.width, pair[0].image.height
         found = [level_redundant_intersections(r.final) for r in pair]
         target = _zoom_target(found[1], found[0], zoom / 2.0)
-        win = _window(target, zoom, w, h) if target is not None else None
+        win = square_window(target, zoom, w, h) if target is not None else None
         plot_segment_graph(graph, row[0], linewidth=1.0, markersize=2.5)
         row[0].set_title(f"{name}, T = {t:g} px\n(a) segments |S| = {graph.n_segments}", fontsize=8)
         for col, (run, points) in enumerate(zip(pair, found, strict=True), start=1):
             ax = row[col]
-            _blank(ax, w, h)
-            _draw_arcs(ax, run.final.arcs, linewidth=1.0)
+            frame_image(ax, w, h)
+            draw_arcs(ax, run.final.arcs, linewidth=1.0)
             for ri in points:
-                _ring(ax, float(ri.point[0]), float(ri.point[1]), 12.0, INTERSECTION_COLOR)
+                ring(ax, float(ri.point[0]), float(ri.point[1]), 12.0, INTERSECTION_COLOR)
             if win is not None:
                 _box(ax, win, "zoom")
             ax.set_title(
@@ -832,16 +588,16 @@ def plot_redundant_intersections(
                 fontsize=7,
             )
             zax = row[col + 2]
-            _blank(zax, w, h)
+            frame_image(zax, w, h)
             if win is None:
                 zax.set_title(f"{run.variant[:3]} zoom: no redundant intersection", fontsize=7)
                 continue
             _faint_segments(zax, graph, linewidth=5.0)
-            _draw_arcs(zax, run.final.arcs, colors=_arc_colors(len(run.final.arcs)), linewidth=1.6)
+            draw_arcs(zax, run.final.arcs, colors=_arc_colors(len(run.final.arcs)), linewidth=1.6)
             j = run.final.junctions
             zax.plot(j[:, 0], j[:, 1], "o", color="#000000", markersize=3.0, zorder=4, linestyle="none")
             for ri in points:
-                _ring(zax, float(ri.point[0]), float(ri.point[1]), zoom / 12.0, INTERSECTION_COLOR, linewidth=1.5)
+                ring(zax, float(ri.point[0]), float(ri.point[1]), zoom / 12.0, INTERSECTION_COLOR, linewidth=1.5)
             _show_window(zax, win)
             zax.set_title(f"{run.variant[:3]} zoomed", fontsize=7)
     fig.suptitle("Redundant intersection avoidance (Fig. 12): red circles = redundant intersections", fontsize=9)
@@ -906,19 +662,6 @@ class ArcSelectionComparison:
         return [int(i) for i in self.table.loc[self.table["differs"], "arc"]]
 
 
-def _admissible_candidates(circle: Circle, points: np.ndarray, junctions: np.ndarray) -> int:
-    """How many candidate arcs :func:`~img2logo.arc_extraction.extract_arc` chooses among.
-
-    The arcs between two junctions through all of them, without those longer
-    than the cap on the "long way round" (unless all are), counted once per
-    pair of end points (both orientations are one arc).
-    """
-    candidates = _candidate_arcs(circle, junctions)
-    length = float(np.sum(np.hypot(*np.diff(points, axis=0).T)))
-    cap = ARC_CANDIDATE_LENGTH_RATIO * length + ARC_CANDIDATE_LENGTH_SLACK
-    return max(1, sum(1 for a in candidates if a.length <= cap))
-
-
 def compare_arc_selection(abstraction: Abstraction, graph: SegmentGraph, name: str = "") -> ArcSelectionComparison:
     """Pick every arc of a level again with both rules, on the same circles (Fig. 9).
 
@@ -949,7 +692,7 @@ def compare_arc_selection(abstraction: Abstraction, graph: SegmentGraph, name: s
             pts = circle.point_at(circle.angle_of(pts))
         f = extract_arc(circle, points, pts, method="frechet")
         s = extract_arc(circle, points, pts, method="sum_of_squares")
-        choice = _admissible_candidates(circle, points, pts)
+        choice = len(admissible_arcs(circle, points, pts)[0])
         by_f.append(f)
         by_s.append(s)
         rows.append(
@@ -969,16 +712,16 @@ def compare_arc_selection(abstraction: Abstraction, graph: SegmentGraph, name: s
     return ArcSelectionComparison(name, abstraction, tuple(by_f), tuple(by_s), pd.DataFrame(rows))
 
 
-def arc_selection_study(runs: Sequence[AblationRun]) -> list[ArcSelectionComparison]:
+def arc_selection_study(runs: Sequence[Run]) -> list[ArcSelectionComparison]:
     """:func:`compare_arc_selection` on every level of every Fréchet run of ``runs``.
 
-    ``runs`` come from :func:`run_variants` with :data:`ARC_SELECTION_VARIANTS`;
+    ``runs`` come from :func:`img2logo.experiments.sweep` with :data:`ARC_SELECTION_VARIANTS`;
     the sum-of-squares runs are compared whole in :func:`arc_selection_table`.
     Returns the comparisons run-major, level by level.
     """
     out = []
     for run in runs:
-        if run.switches.get("arc_selection", "frechet") != "frechet":
+        if run.settings.get("arc_selection", "frechet") != "frechet":
             continue
         out.extend(compare_arc_selection(level, run.graph, run.name) for level in run.progression.levels)
     return out
@@ -1014,7 +757,7 @@ def _levels_equal(a: Progression, b: Progression) -> bool:
     return True
 
 
-def arc_selection_table(runs: Sequence[AblationRun], comparisons: Sequence[ArcSelectionComparison]) -> pd.DataFrame:
+def arc_selection_table(runs: Sequence[Run], comparisons: Sequence[ArcSelectionComparison]) -> pd.DataFrame:
     """Fréchet against sum of squares per image and T (Fig. 9), one row per pair of runs.
 
     Columns: ``image``, ``T``; over every level of the Fréchet run, the arcs
@@ -1027,9 +770,9 @@ def arc_selection_table(runs: Sequence[AblationRun], comparisons: Sequence[ArcSe
     import pandas as pd
 
     rows = []
-    pairs: dict[tuple[str, float], dict[str, AblationRun]] = {}
+    pairs: dict[tuple[str, float], dict[str, Run]] = {}
     for run in runs:
-        pairs.setdefault((run.name, run.final.tolerance), {})[run.switches.get("arc_selection", "frechet")] = run
+        pairs.setdefault((run.name, run.final.tolerance), {})[run.settings.get("arc_selection", "frechet")] = run
     for (name, t), both in pairs.items():
         f_run, s_run = both.get("frechet"), both.get("sum_of_squares")
         if f_run is None:
@@ -1087,12 +830,12 @@ def plot_arc_selection(comparisons: Sequence[ArcSelectionComparison], *, panel_s
         ax.set_axis_off()
     for ax, comp in zip(axes, comparisons, strict=False):
         lv = comp.level
-        _blank(ax, lv.width, lv.height)
+        frame_image(ax, lv.width, lv.height)
         differing, choice = set(comp.differing), set(comp.with_choice)
-        _draw_arcs(ax, [a for i, a in enumerate(lv.arcs) if i not in choice], linewidth=1.0)
-        _draw_arcs(ax, [a for i, a in enumerate(lv.arcs) if i in choice - differing], colors="#6baed6", linewidth=1.2)
-        _draw_arcs(ax, [comp.frechet[i].arc for i in sorted(differing)], colors=DIFFERENCE_COLORS[0], linewidth=3.5)
-        _draw_arcs(
+        draw_arcs(ax, [a for i, a in enumerate(lv.arcs) if i not in choice], linewidth=1.0)
+        draw_arcs(ax, [a for i, a in enumerate(lv.arcs) if i in choice - differing], colors="#6baed6", linewidth=1.2)
+        draw_arcs(ax, [comp.frechet[i].arc for i in sorted(differing)], colors=DIFFERENCE_COLORS[0], linewidth=3.5)
+        draw_arcs(
             ax, [comp.sum_of_squares[i].arc for i in sorted(differing)], colors=DIFFERENCE_COLORS[1], linewidth=2.0
         )
         ax.set_title(
@@ -1243,7 +986,7 @@ def plot_hook_example(example: HookExample, table: pd.DataFrame | None = None, *
         ax.plot(shown[:, 0], shown[:, 1], "-", color="#555555", lw=1.2, zorder=3)
         if fit is not None:
             color = DIFFERENCE_COLORS[0] if fit is example.frechet else DIFFERENCE_COLORS[1]
-            _draw_arcs(ax, [fit.arc], colors=color, linewidth=3.0)
+            draw_arcs(ax, [fit.arc], colors=color, linewidth=3.0)
             title += f": sweep {math.degrees(abs(fit.arc.sweep)):.0f}°, Fréchet {fit.frechet:.1f} px"
         j = example.junctions
         ax.plot(j[:, 0], j[:, 1], "o", color="#d62728", ms=5, zorder=5)
@@ -1266,55 +1009,8 @@ def plot_hook_example(example: HookExample, table: pd.DataFrame | None = None, *
 
 
 # =========================================================================== Fig. 13: RDP tolerance
-def rdp_sweep(
-    paths: Iterable[Any],
-    rdp_tolerances: Sequence[float],
-    *,
-    tolerance: float = TOLERANCE,
-    kind: str = "auto",
-    min_length: float = MIN_SEGMENT_LENGTH,
-    **switches: Any,
-) -> list[AblationRun]:
-    """Abstract each image from segment graphs of several RDP tolerances (Fig. 13).
-
-    ``paths`` are image files (or anything :func:`~img2logo.load_image`
-    takes); a run's name is the file stem of the image's source.
-
-    The feature lines are extracted once per image (Sec. 4); the segment graph
-    is rebuilt for every Ramer-Douglas-Peucker tolerance and optimized with
-    tolerance T.
-
-    Returns
-    -------
-    list of AblationRun
-        Image-major; the variant label is ``"RDP <tolerance> px"`` and
-        ``switches`` holds ``rdp_tolerance``.
-    """
-    import time
-
-    from ..preprocessing import extract_feature_lines
-    from . import load_example
-
-    runs = []
-    for path in paths:
-        image = load_example(path)
-        lines: FeatureLines = extract_feature_lines(image, kind=kind)
-        name = Path(str(getattr(path, "source", path))).stem
-        for rdp in rdp_tolerances:
-            start = time.perf_counter()
-            graph = build_segment_graph(lines, rdp_tolerance=float(rdp), min_length=min_length)
-            example = Preprocessed(name, image, lines, graph, time.perf_counter() - start)
-            progression = optimize(graph, tolerance=tolerance, **switches)
-            runs.append(
-                AblationRun(
-                    name, f"RDP {float(rdp):g} px", {"rdp_tolerance": float(rdp), **switches}, example, progression
-                )
-            )
-    return runs
-
-
-def rdp_table(runs: Sequence[AblationRun]) -> pd.DataFrame:
-    """One row per run of :func:`rdp_sweep` (Fig. 13).
+def rdp_table(runs: Sequence[Run]) -> pd.DataFrame:
+    """One row per run of a sweep over the RDP tolerance (Fig. 13): ``sweep(paths, {"rdp_tolerance": [...]})``.
 
     Columns: ``image``, ``rdp tolerance`` (px), ``segments`` (|S|), ``arcs at
     A^0`` (after the line-segment simplification of Sec. 5.4), ``final arcs``,
@@ -1327,7 +1023,7 @@ def rdp_table(runs: Sequence[AblationRun]) -> pd.DataFrame:
         rows.append(
             {
                 "image": run.name,
-                "rdp tolerance": run.switches.get("rdp_tolerance"),
+                "rdp tolerance": float(run.settings["rdp_tolerance"]),
                 "segments": run.graph.n_segments,
                 "arcs at A^0": len(run.progression.levels[0].arcs),
                 "final arcs": len(run.final.arcs),
@@ -1338,7 +1034,11 @@ def rdp_table(runs: Sequence[AblationRun]) -> pd.DataFrame:
     return pd.DataFrame(rows)
 
 
-def plot_rdp_sweep(runs: Sequence[AblationRun], *, panel_size: float = 3.0, inset: float = 0.6) -> Figure:
+def _rdp_label(run: Run) -> str:
+    return f"RDP {float(run.settings['rdp_tolerance']):g} px"
+
+
+def plot_rdp_sweep(runs: Sequence[Run], *, panel_size: float = 3.0, inset: float = 0.6) -> Figure:
     """Fig. 13: final results for several RDP tolerances, each beside its segments.
 
     One row per image; for each tolerance, a small panel (``inset`` of the
@@ -1347,14 +1047,12 @@ def plot_rdp_sweep(runs: Sequence[AblationRun], *, panel_size: float = 3.0, inse
     """
     from matplotlib.figure import Figure
 
-    from ..plotting import plot_segment_graph
-
     names = list(dict.fromkeys(r.name for r in runs))
-    labels = list(dict.fromkeys(r.variant for r in runs))
+    labels = list(dict.fromkeys(_rdp_label(r) for r in runs))
     n_cols = 2 * max(1, len(labels))
     fig = Figure(figsize=(len(labels) * (1 + inset) * panel_size, len(names) * panel_size + 0.4), layout="constrained")
     axes = fig.subplots(max(1, len(names)), n_cols, squeeze=False, width_ratios=[inset, 1.0] * max(1, len(labels)))
-    index = {(r.name, r.variant): r for r in runs}
+    index = {(r.name, _rdp_label(r)): r for r in runs}
     for row, name in zip(axes, names, strict=True):
         for j, label in enumerate(labels):
             seg_ax, ax = row[2 * j], row[2 * j + 1]
@@ -1366,8 +1064,8 @@ def plot_rdp_sweep(runs: Sequence[AblationRun], *, panel_size: float = 3.0, inse
             w, h = run.image.width, run.image.height
             plot_segment_graph(run.graph, seg_ax, show_junctions=False, linewidth=1.2)
             seg_ax.set_title(f"{label}\n|S| = {run.graph.n_segments}", fontsize=7)
-            _blank(ax, w, h)
-            _draw_arcs(ax, run.final.arcs, linewidth=1.2)
+            frame_image(ax, w, h)
+            draw_arcs(ax, run.final.arcs, linewidth=1.2)
             ax.set_title(
                 f"{name}: |A$^0$| = {len(run.progression.levels[0].arcs)}, "
                 f"|A| = {len(run.final.arcs)}\nE$^s$ = {run.final.similarity:.2f} px",

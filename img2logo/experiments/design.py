@@ -1,24 +1,12 @@
 """Timing (Table 3), design exploration (Fig. 15, 16) and the level explorer.
 
-Everything the notebooks ``09_timing``, ``10_design_exploration`` and
-``11_explore_levels`` compute or draw:
-
-* Table 3 (Sec. 6.4): the 2 x 2 of localized circle fitting x line-segment
-  simplification (Sec. 5.4), timed on the optimization alone
-  (:func:`timing_table`, :func:`plot_timing`), and the per-stage breakdown of a
-  full :func:`img2logo.abstract` run (:func:`stage_table`, :func:`plot_stages`).
-* Fig. 15 (Sec. 7): automated golden radii vs a user-chosen subset of ladder
-  exponents (:func:`compare_exponents`, :func:`plot_exponent_comparison`).
-* Fig. 16 (Sec. 7): a lock mask that keeps a salient detail from being merged
-  away (:func:`region_mask`, :func:`lock_search`, :func:`plot_lock_comparison`),
-  and the effect of the ladder bias sigma (Eqn. 10, 14; :func:`bias_sweep`).
-* The interactive explorer of the levels A^0 ... A^final (:class:`LevelExplorer`):
-  the widgets and their callbacks live here, so they are tested without a
-  browser; ipywidgets is imported only when the widgets are built.
-
-Matplotlib figures are :class:`matplotlib.figure.Figure` objects (no pyplot);
-tables are pandas DataFrames. Timings are wall-clock seconds and change from run
-to run: the timing tables and charts are not byte-deterministic.
+Tables and figure layouts of ``09_timing`` (Table 3, Sec. 6.4: localized
+fitting x simplification, timed on the optimization alone, and the stages of a
+full run; not byte-deterministic), ``10_design_exploration`` (Fig. 15: a user's
+ladder exponents; Fig. 16: a lock mask; the ladder bias) and
+``11_explore_levels`` (:class:`LevelExplorer`: its callbacks work on plain
+values, tested without a browser; ipywidgets is imported only when the widgets
+are built).
 """
 
 from __future__ import annotations
@@ -28,9 +16,8 @@ import io
 import math
 import os
 import statistics
-import time
 from collections import Counter
-from collections.abc import Iterable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -40,6 +27,9 @@ import numpy as np
 from ..constants import PHI, RDP_TOLERANCE, TOLERANCE
 from ..errors import InvalidParameterError
 from ..geometry import Abstraction
+from ..plotting import frame_window, plot_abstraction, plot_segment_graph
+from ..quality import detail_error
+from . import Run, kit_module, sweep
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -47,48 +37,11 @@ if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
     from ..pipeline import Result
-    from ..progressive import Progression
     from ..segment_graph import SegmentGraph
-    from . import Preprocessed
 
 #: Longest side of the level explorer's drawing on screen, CSS px: beside its controls (about 400 px)
 #: it fits a 1440 x 900 laptop screen in JupyterLab, and it is the size a logo is judged at.
 EXPLORER_SIZE = 440
-
-__all__ = [
-    "CELLS",
-    "EXPLORER_SIZE",
-    "PAPER_TABLE3",
-    "STAGES",
-    "ExplorerSettings",
-    "ExponentComparison",
-    "LevelExplorer",
-    "LockRun",
-    "TimingRun",
-    "bias_sweep",
-    "bias_table",
-    "compare_exponents",
-    "comparison_table",
-    "detail_error",
-    "exponent_table",
-    "first_lost",
-    "level_title",
-    "levels_table",
-    "levels_within",
-    "lock_search",
-    "lock_table",
-    "most_used_exponents",
-    "plot_bias_sweep",
-    "plot_exponent_comparison",
-    "plot_level_strip",
-    "plot_lock_comparison",
-    "plot_stages",
-    "plot_timing",
-    "region_mask",
-    "stage_table",
-    "time_optimization",
-    "timing_table",
-]
 
 
 # =========================================================================== Table 3
@@ -105,100 +58,30 @@ PAPER_TABLE3: dict[tuple[bool, bool], tuple[float, str]] = {
 CELLS: tuple[tuple[bool, bool], ...] = ((False, False), (True, False), (False, True), (True, True))
 
 
-@dataclass(frozen=True, eq=False)
-class TimingRun:
-    """One cell of Table 3 on one image: the repeated timings of :func:`img2logo.optimize`.
-
-    Attributes
-    ----------
-    image : str
-        Name of the example.
-    localized, simplify : bool
-        The two accelerations of Sec. 5.4.
-    seconds : tuple of float
-        Wall-clock time of every repeat, s.
-    progression : Progression
-        The output of the last repeat (the runs are deterministic).
-    segments : int
-        |S| of the segment graph.
-    """
-
-    image: str
-    localized: bool
-    simplify: bool
-    seconds: tuple[float, ...]
-    progression: Progression
-    segments: int
-
-    @property
-    def median(self) -> float:
-        """Median of the repeats, s."""
-        return float(statistics.median(self.seconds))
+#: The cells of Table 3 as variants of a sweep: label -> the two accelerations of Sec. 5.4.
+TIMING_VARIANTS: dict[str, dict[str, bool]] = {
+    f"localized {'Yes' if loc else 'No'}, simplify {'Yes' if simp else 'No'}": {"localized": loc, "simplify": simp}
+    for loc, simp in CELLS
+}
 
 
-def time_optimization(
-    examples: Iterable[Preprocessed],
-    *,
-    repeats: int = 3,
-    tolerance: float = TOLERANCE,
-    warmup: bool = True,
-) -> list[TimingRun]:
-    """Time the progressive optimization in the four settings of Table 3 (Sec. 6.4).
+def _cell(run: Run) -> tuple[bool, bool]:
+    return bool(run.settings.get("localized", True)), bool(run.settings.get("simplify", True))
 
-    Only :func:`img2logo.progressive.optimize` is timed, on each example's
-    segment graph, so preprocessing does not blur the comparison. The repeats
-    go round robin over all cells, so that a burst of load from other
-    processes spreads over the cells instead of skewing one.
 
-    Parameters
-    ----------
-    examples : iterable of Preprocessed
-        From :func:`img2logo.experiments.preprocess`.
-    repeats : int
-        Runs per cell (>= 1); the table reports their median.
-    tolerance : float
-        T, px.
-    warmup : bool
-        Run the optimization once, untimed, before the first measurement (the
-        first call in a process loads the compiled Fréchet kernel).
-
-    Returns
-    -------
-    list of TimingRun
-        One per (example, cell), cells in the paper's row order.
-    """
-    from ..progressive import optimize
-
-    if int(repeats) < 1:
-        raise InvalidParameterError(f"repeats must be >= 1, got {repeats!r}")
-    examples = list(examples)
-    if warmup and examples:
-        optimize(examples[0].graph, tolerance=tolerance)
-    # Round robin: every repeat runs all cells once, so a burst of load on a
-    # shared machine slows every cell a little rather than one cell a lot.
-    seconds: dict[tuple[int, bool, bool], list[float]] = {}
-    last: dict[tuple[int, bool, bool], Progression] = {}
-    for _ in range(int(repeats)):
-        for i, ex in enumerate(examples):
-            for localized, simplify in CELLS:
-                start = time.perf_counter()
-                progression = optimize(ex.graph, tolerance=tolerance, localized=localized, simplify=simplify)
-                seconds.setdefault((i, localized, simplify), []).append(time.perf_counter() - start)
-                last[(i, localized, simplify)] = progression
-    runs = [
-        TimingRun(ex.name, loc, simp, tuple(seconds[(i, loc, simp)]), last[(i, loc, simp)], ex.graph.n_segments)
-        for i, ex in enumerate(examples)
-        for loc, simp in CELLS
-    ]
-    return runs
+def _median(run: Run) -> float:
+    return float(statistics.median(run.seconds))
 
 
 def _yes_no(flag: bool) -> str:
     return "Yes" if flag else "No"
 
 
-def timing_table(runs: Sequence[TimingRun]) -> pd.DataFrame:
+def timing_table(runs: Sequence[Run]) -> pd.DataFrame:
     """Table 3: per image and cell, our median time and the paper's, and both as ratios to Yes/Yes.
+
+    ``runs`` come from ``sweep(examples, variants=TIMING_VARIANTS, repeats=...)``:
+    only the optimization is timed, so preprocessing does not blur the comparison.
 
     Columns: ``image``, ``localized``, ``simplify`` (Yes/No), ``segments`` (|S|),
     ``initial arcs`` (|A^0|: |S| after the simplification, when on), ``levels``,
@@ -210,27 +93,27 @@ def timing_table(runs: Sequence[TimingRun]) -> pd.DataFrame:
     import pandas as pd
 
     paper_base = PAPER_TABLE3[(True, True)][0]
-    base = {r.image: r.median for r in runs if r.localized and r.simplify}
+    base = {r.name: _median(r) for r in runs if _cell(r) == (True, True)}
     rows = []
     for r in runs:
         p = r.progression
-        paper_seconds, paper_text = PAPER_TABLE3[(r.localized, r.simplify)]
+        paper_seconds, paper_text = PAPER_TABLE3[_cell(r)]
         ratio = paper_seconds / paper_base
         rows.append(
             {
-                "image": r.image,
-                "localized": _yes_no(r.localized),
-                "simplify": _yes_no(r.simplify),
-                "segments": r.segments,
+                "image": r.name,
+                "localized": _yes_no(_cell(r)[0]),
+                "simplify": _yes_no(_cell(r)[1]),
+                "segments": r.graph.n_segments,
                 "initial arcs": len(p.levels[0].arcs),
                 "levels": len(p.levels),
                 "final arcs": len(p.final.arcs),
                 "final E^s (px)": round(p.final.similarity, 3),
                 "repeats": len(r.seconds),
-                "median (s)": r.median,
+                "median (s)": _median(r),
                 "min (s)": min(r.seconds),
                 "max (s)": max(r.seconds),
-                "ratio to Yes/Yes": r.median / base[r.image] if r.image in base else math.nan,
+                "ratio to Yes/Yes": _median(r) / base[r.name] if r.name in base else math.nan,
                 "paper (s)": paper_text,
                 "paper ratio to Yes/Yes": (">= " if paper_text.startswith(">=") else "") + f"{ratio:.2f}",
             }
@@ -254,7 +137,7 @@ def _fmt_ratio(v: float) -> str:
     return f"{v:.3g}\u00d7" if math.isfinite(v) else ""
 
 
-def plot_timing(runs: Sequence[TimingRun], *, figsize: tuple[float, float] = (12.0, 4.5)) -> Figure:
+def plot_timing(runs: Sequence[Run], *, figsize: tuple[float, float] = (12.0, 4.5)) -> Figure:
     """Table 3 as bars, log scale: seconds (left) and ratios to the Yes/Yes cell (right).
 
     The paper's bars (hatched) stand beside ours, one colour per image; the
@@ -262,8 +145,8 @@ def plot_timing(runs: Sequence[TimingRun], *, figsize: tuple[float, float] = (12
     """
     from matplotlib.figure import Figure
 
-    images = list(dict.fromkeys(r.image for r in runs))
-    by = {(r.image, r.localized, r.simplify): r for r in runs}
+    images = list(dict.fromkeys(r.name for r in runs))
+    by = {(r.name, *_cell(r)): r for r in runs}
     series = ["paper", *images]
     fig = Figure(figsize=figsize, layout="constrained")
     ax_s, ax_r = fig.subplots(1, 2)
@@ -278,8 +161,8 @@ def plot_timing(runs: Sequence[TimingRun], *, figsize: tuple[float, float] = (12
             ratios = secs / paper_base
             style = {"color": "0.85", "edgecolor": "0.3", "hatch": "//", "label": "paper (i9 3.6 GHz, its fish)"}
         else:
-            secs = np.array([by[(name, *c)].median if (name, *c) in by else np.nan for c in CELLS])
-            base = by[(name, True, True)].median if (name, True, True) in by else np.nan
+            secs = np.array([_median(by[(name, *c)]) if (name, *c) in by else np.nan for c in CELLS])
+            base = _median(by[(name, True, True)]) if (name, True, True) in by else np.nan
             ratios = secs / base
             style = {"color": colors[i - 1], "label": f"ours: {name}"}
         for ax, values, fmt in ((ax_s, secs, _fmt_seconds), (ax_r, ratios, _fmt_ratio)):
@@ -368,36 +251,15 @@ def most_used_exponents(abstraction: Abstraction, n: int = 3) -> tuple[int, ...]
     return tuple(sorted(ranked[: int(n)]))
 
 
-@dataclass(frozen=True, eq=False)
-class ExponentComparison:
-    """Fig. 15: the automated run and the run restricted to user-chosen exponents.
-
-    Attributes
-    ----------
-    automated, user : Progression
-        The two runs (same bias, same tolerance).
-    exponents : tuple of int
-        The allowed ladder exponents of the user run.
-    """
-
-    automated: Progression
-    user: Progression
-    exponents: tuple[int, ...]
-
-
 def compare_exponents(
-    example: Preprocessed,
-    *,
-    tolerance: float = TOLERANCE,
-    exponents: Sequence[int] | None = None,
-    n_exponents: int = 3,
-) -> ExponentComparison:
-    """Run the optimization automated and with a small set of ladder exponents (Sec. 7, Fig. 15).
+    example: Run, *, tolerance: float = TOLERANCE, exponents: Sequence[int] | None = None, n_exponents: int = 3
+) -> list[Run]:
+    """Run the optimization automated, then with a small set of ladder exponents (Sec. 7, Fig. 15).
 
     Parameters
     ----------
-    example : Preprocessed
-        The input segment graph.
+    example : Run
+        The input segment graph (:func:`img2logo.experiments.preprocess`).
     tolerance : float
         T, px, for both runs.
     exponents : sequence of int, optional
@@ -405,49 +267,60 @@ def compare_exponents(
         automated result (:func:`most_used_exponents`).
     n_exponents : int
         How many exponents to pick when ``exponents`` is None.
-    """
-    from ..progressive import optimize
 
-    auto = optimize(example.graph, tolerance=tolerance)
+    Returns
+    -------
+    list of Run
+        The automated run (variant ``"automated"``) and the run restricted to
+        the exponents, with the automated run's bias (``"user-specified"``).
+    """
+    (auto,) = sweep([example], variants={"automated": {}}, tolerance=tolerance)
     chosen = tuple(sorted({int(k) for k in exponents})) if exponents is not None else None
     if chosen is None:
         chosen = most_used_exponents(auto.final, n_exponents)
-    user = optimize(example.graph, tolerance=tolerance, bias=auto.bias, exponents=chosen)
-    return ExponentComparison(auto, user, chosen)
+    user = {"user-specified": {"bias": auto.bias, "exponents": chosen}}
+    return [auto, *sweep([example], variants=user, tolerance=tolerance)]
+
+
+def _allowed(run: Run) -> tuple[int, ...]:
+    return tuple(run.settings["exponents"])
 
 
 def _k_counts(abstraction: Abstraction) -> Counter[int]:
     return Counter(a.circle.k for a in abstraction.arcs if a.circle.k is not None)
 
 
-def exponent_table(comparison: ExponentComparison) -> pd.DataFrame:
-    """Per ladder exponent k: its radius and the arcs using it, automated and user-specified (Fig. 15)."""
+def exponent_table(comparison: Sequence[Run]) -> pd.DataFrame:
+    """Per ladder exponent k: its radius and the arcs using it, automated and user-specified (Fig. 15).
+
+    ``comparison`` is :func:`compare_exponents`.
+    """
     import pandas as pd
 
-    a, u = _k_counts(comparison.automated.final), _k_counts(comparison.user.final)
-    bias = comparison.automated.bias
+    auto, user = comparison
+    a, u = _k_counts(auto.final), _k_counts(user.final)
+    bias = auto.bias
     rows = [
         {
             "k": k,
             "radius (px)": round(PHI ** (k + bias), 3),
-            "allowed in user setting": k in comparison.exponents,
+            "allowed in user setting": k in _allowed(user),
             "arcs, automated": a.get(k, 0),
             "arcs, user-specified": u.get(k, 0),
         }
-        for k in sorted(set(a) | set(u) | set(comparison.exponents))
+        for k in sorted(set(a) | set(u) | set(_allowed(user)))
     ]
     return pd.DataFrame(rows)
 
 
-def comparison_table(comparison: ExponentComparison) -> pd.DataFrame:
-    """Fig. 15 in numbers: per setting, the allowed and used exponents, |A|, E^s and levels."""
+def comparison_table(comparison: Sequence[Run]) -> pd.DataFrame:
+    """Fig. 15 in numbers (:func:`compare_exponents`): per setting, the allowed and used exponents, |A|, E^s, levels."""
     import pandas as pd
 
     rows = []
-    for setting, prog, allowed in (
-        ("automated", comparison.automated, "all"),
-        ("user-specified", comparison.user, " ".join(map(str, comparison.exponents))),
-    ):
+    for run in comparison:
+        setting, prog = run.variant, run.progression
+        allowed = " ".join(map(str, _allowed(run))) if "exponents" in run.settings else "all"
         used = _k_counts(prog.final)
         rows.append(
             {
@@ -508,9 +381,7 @@ def _ladder_inset(ax: Axes, used: Counter[int], bias: float, ks: Sequence[int], 
     return inset
 
 
-def plot_exponent_comparison(
-    example: Preprocessed, comparison: ExponentComparison, *, panel_size: float = 4.0
-) -> Figure:
+def plot_exponent_comparison(comparison: Sequence[Run], *, panel_size: float = 4.0) -> Figure:
     """Fig. 15: (a) line segments, (b) automated radii, (c) user-specified radii.
 
     Beside each result, the golden ladder (scaled down, nested circles from the
@@ -519,21 +390,20 @@ def plot_exponent_comparison(
     """
     from matplotlib.figure import Figure
 
-    from ..plotting import plot_abstraction, plot_segment_graph
-
+    example, user_run = comparison
     margin = 0.28  # fraction of a result panel kept for the ladder
     fig = Figure(figsize=(panel_size * (1 + 2 / (1 - margin)), panel_size + 0.5))
     grid = fig.add_gridspec(1, 3, width_ratios=(1 - margin, 1, 1), left=0.01, right=0.99, bottom=0.02, top=0.86)
     axes = [fig.add_subplot(grid[0, i]) for i in range(3)]
     plot_segment_graph(example.graph, axes[0], show_junctions=False)
     axes[0].set_title(f"(a) line segments of {example.name}\n|S| = {example.graph.n_segments}", fontsize=9)
-    used = {"auto": _k_counts(comparison.automated.final), "user": _k_counts(comparison.user.final)}
+    used = {"auto": _k_counts(example.final), "user": _k_counts(user_run.final)}
     ks = sorted(set(used["auto"]) | set(used["user"]))
     ks = list(range(ks[0], ks[-1] + 1))
-    allowed = ", ".join(map(str, comparison.exponents))
+    allowed = ", ".join(map(str, _allowed(user_run)))
     for ax, key, prog, title in (
-        (axes[1], "auto", comparison.automated, "(b) automated setting"),
-        (axes[2], "user", comparison.user, f"(c) user-specified k \u2208 {{{allowed}}}"),
+        (axes[1], "auto", example.progression, "(b) automated setting"),
+        (axes[2], "user", user_run.progression, f"(c) user-specified k \u2208 {{{allowed}}}"),
     ):
         a = prog.final
         plot_abstraction(a, ax)
@@ -589,69 +459,32 @@ def region_mask(
     return (np.abs(x - cx) <= radius) & (np.abs(y - cy) <= radius)
 
 
-def detail_error(abstraction: Abstraction, graph: SegmentGraph, mask: np.ndarray) -> float:
-    """How well ``abstraction`` keeps the detail under ``mask``, px.
+#: The two runs of the Fig. 16 search, without and with the lock mask (pass ``lock_mask`` to the second).
+LOCK_VARIANTS = ("no lock", "lock")
 
-    The mean distance from the segment graph's pixels inside ``mask`` to the
-    nearest point of the arcs (sampled every 0.5 px). A detail is *lost* when
-    this grows beyond a pixel or two: its strokes are no longer traced.
+
+def lock_variants(mask: np.ndarray) -> dict[str, dict[str, Any]]:
+    """The variants of the Fig. 16 search: without and with ``mask`` locked (a sweep over T runs both)."""
+    return {LOCK_VARIANTS[0]: {}, LOCK_VARIANTS[1]: {"lock_mask": mask}}
+
+
+def _lock_pairs(runs: Sequence[Run], mask: np.ndarray) -> list[tuple[float, Run, Run, float, float]]:
+    """Per T of a lock search: T, the runs without and with the lock, and their detail errors (px).
+
+    The detail error (:func:`img2logo.quality.detail_error`) is the mean distance from the
+    segments' pixels under the mask to the arcs: a detail is lost when it grows beyond a pixel or two.
     """
-    from scipy.spatial import cKDTree
-
-    pts = np.vstack(list(graph.segments))
-    rows = np.clip((pts[:, 1] - 0.5).round().astype(int), 0, mask.shape[0] - 1)
-    cols = np.clip((pts[:, 0] - 0.5).round().astype(int), 0, mask.shape[1] - 1)
-    inside = pts[np.asarray(mask, dtype=bool)[rows, cols]]
-    if not len(inside) or not abstraction.arcs:
-        return math.nan
-    samples = np.vstack([a.sample(step=0.5) for a in abstraction.arcs])
-    distance, _ = cKDTree(samples).query(inside)
-    return float(distance.mean())
+    out = []
+    for free, locked in zip(runs[::2], runs[1::2], strict=True):
+        if (free.variant, locked.variant) != LOCK_VARIANTS:
+            raise InvalidParameterError(f"expected runs of the variants {LOCK_VARIANTS} in turn (lock_variants)")
+        errors = (detail_error(free.final, free.graph, mask), detail_error(locked.final, locked.graph, mask))
+        out.append((float(free.final.tolerance), free, locked, *errors))
+    return out
 
 
-@dataclass(frozen=True, eq=False)
-class LockRun:
-    """One tolerance of the Fig. 16 search: the runs without and with the lock mask.
-
-    Attributes
-    ----------
-    tolerance : float
-        T, px.
-    free, locked : Progression
-        Without and with the lock mask.
-    error_free, error_locked : float
-        :func:`detail_error` of the two results under the mask, px.
-    """
-
-    tolerance: float
-    free: Progression
-    locked: Progression
-    error_free: float
-    error_locked: float
-
-
-def lock_search(example: Preprocessed, mask: np.ndarray, tolerances: Iterable[float]) -> list[LockRun]:
-    """Run the optimization without and with ``mask`` locked at every tolerance (Fig. 16)."""
-    from ..progressive import optimize
-
-    runs = []
-    for t in tolerances:
-        free = optimize(example.graph, tolerance=float(t))
-        locked = optimize(example.graph, tolerance=float(t), lock_mask=mask)
-        runs.append(
-            LockRun(
-                float(t),
-                free,
-                locked,
-                detail_error(free.final, example.graph, mask),
-                detail_error(locked.final, example.graph, mask),
-            )
-        )
-    return runs
-
-
-def lock_table(runs: Sequence[LockRun], threshold: float) -> pd.DataFrame:
-    """The search of :func:`lock_search` as a table: per T, |A|, E^s and the detail error of both runs.
+def lock_table(runs: Sequence[Run], mask: np.ndarray, threshold: float) -> pd.DataFrame:
+    """A lock search (``sweep([ex], {"tolerance": ...}, lock_variants(mask))``): per T, |A|, E^s, detail error.
 
     ``lost without lock`` / ``lost with lock``: the detail error exceeds ``threshold`` px.
     """
@@ -660,33 +493,34 @@ def lock_table(runs: Sequence[LockRun], threshold: float) -> pd.DataFrame:
     return pd.DataFrame(
         [
             {
-                "T": r.tolerance,
-                "arcs, no lock": len(r.free.final.arcs),
-                "E^s, no lock (px)": round(r.free.final.similarity, 3),
-                "detail error, no lock (px)": round(r.error_free, 3),
-                "lost without lock": bool(r.error_free > threshold),
-                "locked segments": int(r.locked.final.params.get("locked_segments", 0)),
-                "arcs, lock": len(r.locked.final.arcs),
-                "E^s, lock (px)": round(r.locked.final.similarity, 3),
-                "detail error, lock (px)": round(r.error_locked, 3),
-                "lost with lock": bool(r.error_locked > threshold),
+                "T": t,
+                "arcs, no lock": len(free.final.arcs),
+                "E^s, no lock (px)": round(free.final.similarity, 3),
+                "detail error, no lock (px)": round(e_free, 3),
+                "lost without lock": bool(e_free > threshold),
+                "locked segments": int(locked.final.params.get("locked_segments", 0)),
+                "arcs, lock": len(locked.final.arcs),
+                "E^s, lock (px)": round(locked.final.similarity, 3),
+                "detail error, lock (px)": round(e_locked, 3),
+                "lost with lock": bool(e_locked > threshold),
             }
-            for r in runs
+            for t, free, locked, e_free, e_locked in _lock_pairs(runs, mask)
         ]
     )
 
 
-def first_lost(runs: Sequence[LockRun], threshold: float) -> LockRun:
-    """The run at the smallest T where the detail is lost without the lock and kept with it.
+def first_lost(runs: Sequence[Run], mask: np.ndarray, threshold: float) -> float:
+    """The smallest T of a lock search where the detail is lost without the lock and kept with it.
 
-    Falls back to the run where the detail errors differ the most when no T qualifies.
+    Falls back to the T where the detail errors differ the most when no T qualifies.
     """
-    if not runs:
+    pairs = sorted(_lock_pairs(runs, mask), key=lambda p: p[0])
+    if not pairs:
         raise InvalidParameterError("no runs to choose from")
-    for r in sorted(runs, key=lambda r: r.tolerance):
-        if r.error_free > threshold >= r.error_locked:
-            return r
-    return max(runs, key=lambda r: r.error_free - r.error_locked)
+    for t, _, _, e_free, e_locked in pairs:
+        if e_free > threshold >= e_locked:
+            return t
+    return max(pairs, key=lambda p: p[3] - p[4])[0]
 
 
 def _crop(ax: Axes, graph: SegmentGraph, pad: float = 0.08) -> None:
@@ -704,19 +538,14 @@ def _zoom(ax: Axes, center: Sequence[float], radius: float) -> None:
 
     ax.add_patch(CirclePatch(tuple(center), radius, fill=False, edgecolor="#1f77b4", linestyle="--", linewidth=0.8))
     pad = 1.5 * radius
-    ax.set_xlim(center[0] - pad, center[0] + pad)
-    ax.set_ylim(center[1] + pad, center[1] - pad)
-    ax.set_axis_on()
-    ax.set_xticks([])
-    ax.set_yticks([])
-    for spine in ax.spines.values():
-        spine.set_color("#1f77b4")
+    window = (center[0] - pad, center[1] - pad, center[0] + pad, center[1] + pad)
+    frame_window(ax, window, color="#1f77b4", equal=False)
 
 
 def plot_lock_comparison(
-    example: Preprocessed,
+    runs: Sequence[Run],
     mask: np.ndarray,
-    run: LockRun,
+    tolerance: float,
     *,
     center: Sequence[float],
     radius: float,
@@ -724,12 +553,14 @@ def plot_lock_comparison(
 ) -> Figure:
     """Fig. 16: (a) the user's region over the segments, (b) result without, (c) with the lock.
 
-    The bottom row zooms into the region (dashed), junctions marked on the results.
+    ``runs`` are a lock search (:func:`lock_table`), shown at T = ``tolerance``
+    (:func:`first_lost`). The bottom row zooms into the region (dashed),
+    junctions marked on the results.
     """
     from matplotlib.figure import Figure
 
-    from ..plotting import plot_abstraction, plot_segment_graph
-
+    t, free, locked, e_free, e_locked = next(p for p in _lock_pairs(runs, mask) if math.isclose(p[0], tolerance))
+    example = free
     fig = Figure(figsize=(3 * panel_size, 2 * panel_size + 0.6), layout="constrained")
     axes = fig.subplots(2, 3, height_ratios=(0.8, 1.0))
     rgb = example.image.rgb
@@ -738,16 +569,16 @@ def plot_lock_comparison(
     overlay = np.zeros((*mask.shape, 4))
     overlay[mask] = (0.12, 0.47, 0.71, 0.3)
     axes[0, 0].imshow(overlay, extent=(0, mask.shape[1], mask.shape[0], 0), zorder=4)
-    n_locked = int(run.locked.final.params.get("locked_segments", 0))
+    n_locked = int(locked.final.params.get("locked_segments", 0))
     axes[0, 0].set_title(f"(a) locked region of {example.name}\n{n_locked} segments locked", fontsize=9)
     for col, prog, err, title in (
-        (1, run.free, run.error_free, "(b) without the lock"),
-        (2, run.locked, run.error_locked, "(c) with the lock"),
+        (1, free.progression, e_free, "(b) without the lock"),
+        (2, locked.progression, e_locked, "(c) with the lock"),
     ):
         for ax in axes[:, col]:
             plot_abstraction(prog.final, ax, image=rgb, show_junctions=ax is axes[1, col])
         axes[0, col].set_title(
-            f"{title}, T = {run.tolerance:g}: |A| = {len(prog.final.arcs)}\n"
+            f"{title}, T = {t:g}: |A| = {len(prog.final.arcs)}\n"
             f"E^s = {prog.final.similarity:.2f} px, detail error = {err:.2f} px",
             fontsize=9,
         )
@@ -761,53 +592,37 @@ def plot_lock_comparison(
     return fig
 
 
-def bias_sweep(
-    example: Preprocessed, biases: Iterable[float | None], *, tolerance: float = TOLERANCE
-) -> list[Progression]:
-    """The optimization with every ladder bias sigma of ``biases`` (Eqn. 10; None: Eqn. 14)."""
-    from ..progressive import optimize
-
-    return [optimize(example.graph, tolerance=tolerance, bias=b) for b in biases]
-
-
-def bias_table(progressions: Sequence[Progression], biases: Sequence[float | None]) -> pd.DataFrame:
-    """Per bias: sigma used, |A|, distinct radii, E^s and levels of the result."""
+def bias_table(runs: Sequence[Run]) -> pd.DataFrame:
+    """Per bias of a sweep over it (``sweep([ex], {"bias": [None, 0.25, ...]})``): sigma, |A|, radii, E^s, levels."""
     import pandas as pd
 
     return pd.DataFrame(
         [
             {
-                "bias": "auto (Eqn. 14)" if b is None else f"{b:g}",
-                "sigma": round(p.bias, 4),
-                "arcs": len(p.final.arcs),
-                "distinct radii": len({a.circle.k for a in p.final.arcs}),
-                "E^s (px)": round(p.final.similarity, 3),
-                "levels": len(p.levels),
+                "bias": "auto (Eqn. 14)" if r.settings["bias"] is None else f"{r.settings['bias']:g}",
+                "sigma": round(r.bias, 4),
+                "arcs": len(r.final.arcs),
+                "distinct radii": len({a.circle.k for a in r.final.arcs}),
+                "E^s (px)": round(r.final.similarity, 3),
+                "levels": len(r.levels),
             }
-            for p, b in zip(progressions, biases, strict=True)
+            for r in runs
         ]
     )
 
 
-def plot_bias_sweep(
-    example: Preprocessed,
-    progressions: Sequence[Progression],
-    biases: Sequence[float | None],
-    *,
-    panel_size: float = 3.0,
-) -> Figure:
-    """One panel per bias: the result with its golden circles (the Fig. 8 look)."""
+def plot_bias_sweep(runs: Sequence[Run], *, panel_size: float = 3.0) -> Figure:
+    """One panel per bias of :func:`bias_table`'s sweep: the result with its golden circles (the Fig. 8 look)."""
     from matplotlib.figure import Figure
 
-    from ..plotting import plot_abstraction
-
-    n = len(progressions)
+    n = len(runs)
     fig = Figure(figsize=(n * panel_size, panel_size + 0.5), layout="constrained")
     axes = np.atleast_1d(fig.subplots(1, n))
-    for i, (ax, p, b) in enumerate(zip(axes, progressions, biases, strict=True)):
+    for i, (ax, r) in enumerate(zip(axes, runs, strict=True)):
+        p, b = r.progression, r.settings["bias"]
         plot_abstraction(p.final, ax, show_circles=True)
         label = f"auto \u03c3 = {p.bias:.3f} (Eqn. 14)" if b is None else f"\u03c3 = {p.bias:g}"
-        prefix = f"{example.name}: " if i == 0 else ""
+        prefix = f"{r.name}: " if i == 0 else ""
         ax.set_title(f"{prefix}{label}\n|A| = {len(p.final.arcs)}, E^s = {p.final.similarity:.2f} px", fontsize=9)
     return fig
 
@@ -833,16 +648,15 @@ def levels_within(result: Result, tolerance: float | None = None) -> tuple[Abstr
     InvalidParameterError
         ``tolerance`` above T_run: that run's levels cannot tell a larger T's.
     """
+    from .results import final_level_index
+
     levels = result.levels
     run_tolerance = levels[0].tolerance
     if tolerance is None:
         return levels
     if not tolerance > 0 or tolerance > run_tolerance:
         raise InvalidParameterError(f"tolerance must be in (0, {run_tolerance:g}] px for this run, got {tolerance}")
-    for t in range(1, len(levels)):
-        if levels[t].similarity > tolerance:
-            return levels[:t]
-    return levels
+    return levels[: final_level_index(result.progression, tolerance) + 1]
 
 
 def level_title(result: Result, t: int, name: str | None = None, *, tolerance: float | None = None) -> str:
@@ -883,8 +697,6 @@ def plot_level_strip(
     levels spread evenly from A^0 to the final one.
     """
     from matplotlib.figure import Figure
-
-    from ..plotting import plot_abstraction
 
     n_levels = len(result.levels)
     if isinstance(levels, int):
@@ -1126,7 +938,7 @@ class LevelExplorer:
         The drawing has a fixed size (:attr:`screen_size`; the PNG has twice its
         pixels), so it stays crisp and the whole fits a laptop screen.
         """
-        import ipywidgets as w
+        w = kit_module("ipywidgets")
 
         from . import example_images
 
@@ -1139,55 +951,41 @@ class LevelExplorer:
         c = self.controls
         style = {"description_width": "70px"}
         wide = w.Layout(width="360px")
-        c["level"] = w.IntSlider(
-            value=self.level, min=0, max=self.n_levels - 1, description="level t", style=style, layout=wide
+
+        def slider(kind: Any, description: str, layout: Any = wide, **kwargs: Any) -> Any:
+            return kind(description=description, style=style, layout=layout, **kwargs)
+
+        c["level"] = slider(w.IntSlider, "level t", value=self.level, min=0, max=self.n_levels - 1)
+        c["tolerance"] = slider(
+            w.FloatSlider, "T (px)", value=s.tolerance, min=0.5, max=30.0, step=0.5, continuous_update=False
         )
-        c["tolerance"] = w.FloatSlider(
-            value=s.tolerance,
-            min=0.5,
-            max=30.0,
-            step=0.5,
-            description="T (px)",
-            continuous_update=False,
-            style=style,
-            layout=wide,
+        c["image"] = slider(w.Dropdown, "image", options=images, value=s.image)
+        c["kind"] = slider(w.Dropdown, "kind", options=["auto", "photo", "clipart", "drawing"], value=s.kind)
+        c["rdp_tolerance"] = slider(
+            w.FloatSlider, "RDP (px)", value=s.rdp_tolerance, min=0.5, max=8.0, step=0.25, continuous_update=False
         )
-        c["image"] = w.Dropdown(options=images, value=s.image, description="image", style=style, layout=wide)
-        c["kind"] = w.Dropdown(
-            options=["auto", "photo", "clipart", "drawing"], value=s.kind, description="kind", style=style, layout=wide
-        )
-        c["rdp_tolerance"] = w.FloatSlider(
-            value=s.rdp_tolerance,
-            min=0.5,
-            max=8.0,
-            step=0.25,
-            description="RDP (px)",
-            continuous_update=False,
-            style=style,
-            layout=wide,
-        )
-        c["bias"] = w.FloatSlider(
+        c["bias"] = slider(
+            w.FloatSlider,
+            "bias \u03c3",
+            w.Layout(width="250px"),
             value=self.result.bias if s.bias is None else s.bias,
             min=0.0,
             max=0.99,
             step=0.01,
-            description="bias \u03c3",
             disabled=s.bias is None,
             continuous_update=False,
-            style=style,
-            layout=w.Layout(width="250px"),
         )
         c["bias_auto"] = w.Checkbox(
             value=s.bias is None, description="auto", indent=False, layout=w.Layout(width="100px")
         )
         c["run"] = w.Button(description="Run", button_style="primary", icon="play", layout=w.Layout(width="90px"))
-        c["progress"] = w.FloatProgress(
+        c["progress"] = slider(
+            w.FloatProgress,
+            "E\u02e2 \u2192 T",
+            w.Layout(width="260px"),
             value=min(self.result.final.similarity, s.tolerance),
             min=0.0,
             max=s.tolerance,
-            description="E\u02e2 \u2192 T",
-            style=style,
-            layout=w.Layout(width="260px"),
         )
         c["status"] = w.Label(value=self.progress_text, layout=wide)
         c["title"] = w.HTML(value=self.title_html)

@@ -13,7 +13,8 @@ from typing import Any
 
 import numpy as np
 
-from ..fills import Fill, faces, fill_auto, fill_gradient, fill_palette
+from ..arrangement import faces
+from ..fills import Fill, fill_auto, fill_gradient, fill_palette
 from ..geometry import Abstraction
 from ..plotting import plot_abstraction
 

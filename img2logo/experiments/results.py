@@ -1,44 +1,26 @@
 """The paper's results: Fig. 1, 4, 7, 8, 10 and Tables 1, 2 (Sec. 5.3, 6.1, 6.2).
 
-Runs, tables and figure layouts for four notebooks:
-
-* ``01_overview`` -- the framework at a glance (Fig. 1, 4): input, feature
-  lines, segment graph, sampled levels, final result; one level's circles and
-  arcs (Fig. 7); the two stages of golden circle fitting (Fig. 8):
-  independent golden circles per segment vs the connectivity-optimized ones.
-* ``02_visual_results`` -- the final result of every example image with the
-  input as an inset (Fig. 10), and a per-image table.
-* ``03_simplicity`` -- levels of one run with their arc counts (Table 1), and
-  |A| and E^s along the iterations.
-* ``04_tolerance_sweep`` -- the final result for several tolerances T
-  (Table 2) and a finer sweep of the final arc count against T.
-
-Every function computes through the library (:func:`img2logo.abstract`,
-:func:`img2logo.progressive.optimize`) and returns pandas DataFrames or
-:class:`matplotlib.figure.Figure` objects (never pyplot figures), drawn in the
-image pixel frame (x right, y down). No timings go into tables: they are
-committed figures and must be byte-identical from run to run.
+Tables and figure layouts of ``01_overview`` (the framework at a glance, Fig. 1,
+4; a level's circles and arcs, Fig. 7; the two stages of golden circle fitting,
+Fig. 8), ``02_visual_results`` (Fig. 10), ``03_simplicity`` (Table 1) and
+``04_tolerance_sweep`` (Table 2).
 """
 
 from __future__ import annotations
 
 import math
-import os
-import time
-from collections.abc import Iterable, Mapping, Sequence
-from dataclasses import dataclass
-from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from collections.abc import Mapping, Sequence
+from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..constants import TOLERANCE
 from ..errors import InvalidParameterError
-from ..geometry import Abstraction, Arc
-from ..pipeline import Result, abstract
-from ..progressive import Progression, optimize
+from ..geometry import Abstraction
+from ..plotting import frame_image, frame_window, plot_abstraction, plot_circles, plot_segment_graph, square_window
+from ..progressive import Progression
+from ..quality import junction_gaps
 from ..segment_graph import SegmentGraph
-from . import load_example, preprocess
+from . import Run, by_image, sweep
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -46,35 +28,6 @@ if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
     from ..preprocessing import LoadedImage
-
-__all__ = [
-    "PAPER_TABLE1",
-    "PAPER_TABLE2",
-    "CircleFittingStages",
-    "Run",
-    "ToleranceSweep",
-    "circle_fitting_stages",
-    "circle_fitting_table",
-    "final_level_index",
-    "junction_gaps",
-    "level_at_fraction",
-    "monotonicity_table",
-    "plot_arc_fitting",
-    "plot_circle_fitting",
-    "plot_overview",
-    "plot_progression",
-    "plot_results_grid",
-    "plot_simplicity_levels",
-    "plot_tolerance_curve",
-    "plot_tolerance_results",
-    "results_table",
-    "run_examples",
-    "sampled_levels",
-    "similarity_is_monotone",
-    "simplicity_table",
-    "tolerance_sweep",
-    "tolerance_table",
-]
 
 #: Table 1 of the paper (a fish): |A^t| by iteration t, as far as the text of
 #: the paper is legible. The extracted table reads "Iteration 0 | 23 | 28" with
@@ -90,109 +43,21 @@ PAPER_TABLE1: dict[int, float] = {0: 51.0, 23: 28.0, 28: math.nan}
 PAPER_TABLE2: dict[float, float] = {4.0: 31.0, 5.0: math.nan, 9.0: math.nan}
 
 #: Colours of the arc groups S_i in the figures that tell them apart.
-_GROUP_COLORS = (
-    "#1f77b4",
-    "#d62728",
-    "#2ca02c",
-    "#9467bd",
-    "#ff7f0e",
-    "#17becf",
-    "#8c564b",
-    "#e377c2",
-    "#bcbd22",
-    "#7f7f7f",
-)
+_GROUP_COLORS = tuple("#1f77b4 #d62728 #2ca02c #9467bd #ff7f0e #17becf #8c564b #e377c2 #bcbd22 #7f7f7f".split())
 _LIGHT = "#c8c8c8"
 
 
-# --------------------------------------------------------------------------- runs
-@dataclass(frozen=True, eq=False)
-class Run:
-    """One example image through the whole pipeline.
+# --------------------------------------------------------------------------- levels
+def sampled_levels(progression: Progression, count: int = 3) -> list[int]:
+    """``count`` iterations t evenly spread over ``[0, final)`` of a run (fewer when it is shorter), increasing.
 
-    Attributes
-    ----------
-    name : str
-        The image's file name without suffix, e.g. ``"clipart-fish"``.
-    result : Result
-        What :func:`img2logo.abstract` returned.
-    seconds : float
-        Wall time of the run, s (for the notebook's text, never for a table).
-    """
-
-    name: str
-    result: Result
-    seconds: float
-
-    @property
-    def kind(self) -> str:
-        """``"photo"``, ``"clipart"`` or ``"drawing"``."""
-        return self.result.lines.kind
-
-
-def run_examples(
-    paths: Iterable[str | os.PathLike[str]],
-    *,
-    tolerance: float = TOLERANCE,
-    kind: str = "auto",
-    **options: Any,
-) -> list[Run]:
-    """Run :func:`img2logo.abstract` on each image, without a progress bar.
-
-    Parameters
-    ----------
-    paths : iterable of path
-        The images.
-    tolerance : float
-        T of Eqn. 1, px.
-    kind : str
-        The kind of input, or ``"auto"``.
-    **options
-        Any other keyword of :func:`img2logo.abstract` (ablation switches,
-        ``rdp_tolerance``, ``bias``...).
-
-    Returns
-    -------
-    list of Run
-    """
-    runs = []
-    for path in paths:
-        start = time.perf_counter()
-        result = abstract(load_example(path), tolerance, kind, progress=False, **options)
-        runs.append(Run(Path(path).stem, result, time.perf_counter() - start))
-    return runs
-
-
-def sampled_levels(progression: Progression, count: int = 3, *, include_final: bool = False) -> list[int]:
-    """Iterations t evenly spread over a run, e.g. first, a third, two thirds (Fig. 1, 4c).
-
-    Parameters
-    ----------
-    progression : Progression
-        The run.
-    count : int
-        How many levels to sample (fewer when the run is shorter).
-    include_final : bool
-        False: ``count`` levels evenly spaced over ``[0, final)``, so that the
-        final level can be shown separately; True: over ``[0, final]``, both ends
-        included.
-
-    Returns
-    -------
-    list of int
-        Distinct iterations, increasing.
+    E.g. first, a third, two thirds (Fig. 1, 4c): the final level is shown apart.
     """
     if count < 1:
         raise InvalidParameterError(f"count must be >= 1, got {count}")
     last = len(progression.levels) - 1
-    if include_final:
-        ts = np.linspace(0, last, count) if count > 1 else np.array([last])
-    else:
-        ts = np.linspace(0, last, count + 1)[:-1]
-    out = sorted({round(float(t)) for t in ts})
-    if not include_final and last > 0:
-        out = [t for t in out if t < last] or [0]
-    return out
+    out = sorted({round(float(t)) for t in np.linspace(0, last, count + 1)[:-1]})
+    return [t for t in out if t < last] or [0] if last > 0 else out
 
 
 def level_at_fraction(progression: Progression, fraction: float) -> int:
@@ -247,14 +112,7 @@ def _draw_groups(
             lines.append(graph.segments[s])
             cols.append(color)
     ax.add_collection(LineCollection(lines, colors=cols, linewidths=linewidth, capstyle="round", zorder=2))
-    _frame(ax, graph.width, graph.height)
-
-
-def _frame(ax: Axes, width: int, height: int) -> None:
-    ax.set_xlim(0.0, float(width))
-    ax.set_ylim(float(height), 0.0)
-    ax.set_aspect("equal")
-    ax.set_axis_off()
+    frame_image(ax, graph.width, graph.height)
 
 
 def _level_title(a: Abstraction, prefix: str = "") -> str:
@@ -278,39 +136,30 @@ def plot_overview(runs: Sequence[Run], *, levels: int = 3, panel_size: float = 2
     Parameters
     ----------
     runs : sequence of Run
-        The examples (the paper shows a photo, a clip art and a line drawing).
+        Runs with their levels (the paper shows a photo, a clip art and a line drawing).
     levels : int
         How many intermediate levels to sample.
-    panel_size : float
-        Size of one panel, inches.
-
-    Returns
-    -------
-    matplotlib.figure.Figure
     """
-    from ..plotting import plot_abstraction, plot_segment_graph
-
     columns = 3 + levels + 1
     fig, axes = _figure(max(1, len(runs)), columns, panel_size)
     for row, run in zip(axes, runs, strict=False):
-        res = run.result
-        _show_image(row[0], res.image)
+        _show_image(row[0], run.image)
         row[0].set_title(f"(a) {run.name} ({run.kind})", fontsize=8)
-        _show_lines(row[1], res.lines.lines)
+        _show_lines(row[1], run.lines.lines)
         row[1].set_title("(b) feature lines", fontsize=8)
-        plot_segment_graph(res.graph, row[2], show_junctions=False, linewidth=1.0)
-        row[2].set_title(f"(b) segments |S| = {res.graph.n_segments}", fontsize=8)
-        ts = sampled_levels(res.progression, levels)
+        plot_segment_graph(run.graph, row[2], show_junctions=False, linewidth=1.0)
+        row[2].set_title(f"(b) segments |S| = {run.graph.n_segments}", fontsize=8)
+        ts = sampled_levels(run.progression, levels)
         lw = _stroke(panel_size)
         for j in range(levels):
             ax = row[3 + j]
             if j < len(ts):
-                plot_abstraction(res.level(ts[j]), ax, linewidth=lw)
-                ax.set_title(_level_title(res.level(ts[j]), "(c) "), fontsize=8)
+                plot_abstraction(run.level(ts[j]), ax, linewidth=lw)
+                ax.set_title(_level_title(run.level(ts[j]), "(c) "), fontsize=8)
             else:
                 ax.set_axis_off()
-        plot_abstraction(res.final, ax=row[-1], show_circles=True, linewidth=lw)
-        row[-1].set_title(_level_title(res.final, "(d) final "), fontsize=8)
+        plot_abstraction(run.final, ax=row[-1], show_circles=True, linewidth=lw)
+        row[-1].set_title(_level_title(run.final, "(d) final "), fontsize=8)
     fig.suptitle(
         "Fig. 1/4: input, feature lines, segments, progressive levels, final result with its golden circles",
         fontsize=10,
@@ -333,28 +182,19 @@ def plot_arc_fitting(runs: Sequence[Run], *, fraction: float = 0.5, panel_size: 
         The examples.
     fraction : float
         Which level: ``round(fraction * final)``.
-    panel_size : float
-        Size of one panel, inches.
-
-    Returns
-    -------
-    matplotlib.figure.Figure
     """
-    from ..plotting import plot_abstraction, plot_circles
-
     fig, axes = _figure(max(1, len(runs)), 3, panel_size)
     for row, run in zip(axes, runs, strict=False):
-        res = run.result
-        a = res.level(level_at_fraction(res.progression, fraction))
+        a = run.level(level_at_fraction(run.progression, fraction))
         colors = [_group_color(i) for i in range(len(a.arcs))]
-        _draw_groups(row[0], res.graph, a.arc_segments, colors=colors)
+        _draw_groups(row[0], run.graph, a.arc_segments, colors=colors)
         row[0].set_title(f"(a) {run.name}: {len(a.arcs)} segment groups $S_i$ at t = {a.level}", fontsize=8)
-        _draw_groups(row[1], res.graph, a.arc_segments, colors=[_LIGHT] * len(a.arcs), linewidth=1.0)
+        _draw_groups(row[1], run.graph, a.arc_segments, colors=[_LIGHT] * len(a.arcs), linewidth=1.0)
         for i, arc in enumerate(a.arcs):
             plot_circles([arc.circle], row[1], color=colors[i], linewidth=0.8)
-        _frame(row[1], a.width, a.height)
+        frame_image(row[1], a.width, a.height)
         row[1].set_title(f"(b) {len(a.circles)} golden circles (constrained fit)", fontsize=8)
-        _draw_groups(row[2], res.graph, a.arc_segments, colors=[_LIGHT] * len(a.arcs), linewidth=1.0)
+        _draw_groups(row[2], run.graph, a.arc_segments, colors=[_LIGHT] * len(a.arcs), linewidth=1.0)
         plot_abstraction(a, row[2], show_junctions=True, linewidth=_stroke(panel_size))
         row[2].set_title(f"(c) extracted arcs, $E^s$ = {a.similarity:.2f} px", fontsize=8)
     fig.suptitle("Fig. 7: a level's segments, its golden circles, its arcs", fontsize=10)
@@ -362,80 +202,44 @@ def plot_arc_fitting(runs: Sequence[Run], *, fraction: float = 0.5, panel_size: 
 
 
 # --------------------------------------------------------------------------- Fig. 8
-@dataclass(frozen=True, eq=False)
-class CircleFittingStages:
-    """The two stages of golden circle fitting on one segment graph (paper Fig. 8).
-
-    Attributes
-    ----------
-    name : str
-        The example's name.
-    graph : SegmentGraph
-        Its segment graph.
-    independent : Abstraction
-        Stage 1: each segment group fitted alone, its radius snapped to the
-        ladder (Eqn. 12), its centre placed best for that radius; no
-        connectivity constraint, so circles need not meet at the junctions.
-    constrained : Abstraction
-        Stage 2: the same golden radii, centres and junction displacements
-        optimized under the connectivity constraint (Eqn. 13).
-    """
-
-    name: str
-    graph: SegmentGraph
-    independent: Abstraction
-    constrained: Abstraction
+#: The two stages of golden circle fitting (Fig. 8), as variants of a run without merging.
+CIRCLE_FITTING_STAGES: dict[str, dict[str, bool]] = {"independent": {"connectivity": False}, "constrained": {}}
 
 
-def circle_fitting_stages(run: Run) -> CircleFittingStages:
-    """Fit A^0 of ``run``'s segment graph without and with the connectivity constraint.
+def circle_fitting_stages(runs: Sequence[Run]) -> list[Run]:
+    """Fit A^0 of each run's segment graph without and with the connectivity constraint (Fig. 8).
 
-    Both fits use :func:`img2logo.progressive.optimize` with ``merging=False``
-    (only A^0) and the run's ladder bias, so they have the same segment groups
-    (after the line-segment simplification of Sec. 5.4) and the same golden
-    radii; only the centres and junctions differ.
-    """
-    graph = run.result.graph
-    stages = [optimize(graph, merging=False, connectivity=flag, bias=run.result.bias).final for flag in (False, True)]
-    if stages[0].arc_segments != stages[1].arc_segments or len(stages[0].junctions) != len(stages[1].junctions):
-        raise InvalidParameterError("the two stages have different segment groups")  # pragma: no cover
-    return CircleFittingStages(run.name, graph, stages[0], stages[1])
-
-
-def _closest_on_arc(arc: Arc, point: np.ndarray) -> np.ndarray:
-    """The point of ``arc`` nearest to ``point`` (both px)."""
-    theta = float(arc.circle.angle_of(point))
-    if bool(arc.contains_angle(theta)):
-        return arc.circle.point_at(theta)
-    ends = np.array([arc.start, arc.end])
-    return ends[int(np.argmin(np.hypot(*(ends - point).T)))]
-
-
-def junction_gaps(abstraction: Abstraction) -> np.ndarray:
-    """How far apart the arcs that should meet at each junction are (connectivity, Eqn. 4), px.
-
-    For junction k, the point of each of its arcs nearest to p_k + d_k is
-    taken; the gap is the largest distance between two of those points (0 at
-    a junction with one arc). The connectivity constraint makes every gap 0
-    (up to the solver tolerance); without it arcs end where the junctions
-    project on their circles and miss each other.
+    Stage 1 (``"independent"``): each segment group fitted alone, its radius
+    snapped to the ladder (Eqn. 12), its centre placed best for that radius,
+    so circles need not meet at the junctions. Stage 2 (``"constrained"``):
+    the same golden radii, centres and junction displacements optimized under
+    the connectivity constraint (Eqn. 13). Both without merging (only A^0) and
+    with the run's ladder bias: the same segment groups and radii.
 
     Returns
     -------
-    ndarray, shape (J,)
+    list of Run
+        Two per run, the stages in that order.
     """
-    gaps = np.zeros(len(abstraction.junctions))
-    for k, (p, arcs) in enumerate(zip(abstraction.junctions, abstraction.junction_arcs, strict=True)):
-        if len(arcs) < 2:
-            continue
-        pts = np.array([_closest_on_arc(abstraction.arcs[i], p) for i in arcs])
-        diff = pts[:, None, :] - pts[None, :, :]
-        gaps[k] = float(np.max(np.hypot(diff[..., 0], diff[..., 1])))
-    return gaps
+    out = []
+    for run in runs:
+        stages = sweep([run], variants=CIRCLE_FITTING_STAGES, merging=False, bias=run.bias)
+        if stages[0].final.arc_segments != stages[1].final.arc_segments:
+            raise InvalidParameterError("the two stages have different segment groups")  # pragma: no cover
+        out.extend(stages)
+    return out
 
 
-def circle_fitting_table(stages: Sequence[CircleFittingStages]) -> pd.DataFrame:
+def _gaps(a: Abstraction) -> np.ndarray:
+    """Per junction of J', how far apart its arcs pass (the spread of :func:`img2logo.quality.junction_gaps`), px."""
+    return junction_gaps(a.arcs, a.junctions, a.junction_arcs)[1]
+
+
+def circle_fitting_table(stages: Sequence[Run]) -> pd.DataFrame:
     """Per example: arcs of A^0, junctions of J', and the junction gaps of both stages (Fig. 8).
+
+    ``stages`` come from :func:`circle_fitting_stages`; a gap is how far apart
+    the arcs of a junction pass, px.
 
     Returns
     -------
@@ -446,13 +250,13 @@ def circle_fitting_table(stages: Sequence[CircleFittingStages]) -> pd.DataFrame:
     import pandas as pd
 
     rows = []
-    for st in stages:
-        free, con = junction_gaps(st.independent), junction_gaps(st.constrained)
+    for name, (ind, st) in by_image(stages).items():
+        free, con = _gaps(ind.final), _gaps(st.final)
         rows.append(
             {
-                "image": st.name,
-                "arcs": len(st.constrained.arcs),
-                "junctions": len(st.constrained.junctions),
+                "image": name,
+                "arcs": len(st.final.arcs),
+                "junctions": len(st.final.junctions),
                 "max gap independent (px)": round(float(free.max(initial=0.0)), 3),
                 "mean gap independent (px)": round(float(free.mean()) if len(free) else 0.0, 3),
                 "max gap constrained (px)": round(float(con.max(initial=0.0)), 3),
@@ -462,7 +266,7 @@ def circle_fitting_table(stages: Sequence[CircleFittingStages]) -> pd.DataFrame:
 
 
 def plot_circle_fitting(
-    stages: Sequence[CircleFittingStages],
+    stages: Sequence[Run],
     *,
     window: float = 60.0,
     max_circles: int = 4,
@@ -477,29 +281,22 @@ def plot_circle_fitting(
     (displaced) junction. Only the circles of the arcs at that junction are
     drawn (as in the paper, "for clarity we only show a few circles"); the
     other arcs are grey. Titles give the gap at the junction and the largest
-    gap over all junctions of the level (see :func:`junction_gaps`).
+    gap over all junctions of the level (:func:`img2logo.quality.junction_gaps`).
 
     Parameters
     ----------
-    stages : sequence of CircleFittingStages
+    stages : sequence of Run
         From :func:`circle_fitting_stages`.
     window : float
         Half the side of the zoomed square, px.
     max_circles : int
         Most circles drawn per panel.
-    panel_size : float
-        Size of one panel, inches.
-
-    Returns
-    -------
-    matplotlib.figure.Figure
     """
-    from ..plotting import plot_abstraction, plot_circles
-
-    fig, axes = _figure(max(1, len(stages)), 3, panel_size)
-    for row, st in zip(axes, stages, strict=False):
-        free, con = st.independent, st.constrained
-        gaps_free, gaps_con = junction_gaps(free), junction_gaps(con)
+    pairs = by_image(stages)
+    fig, axes = _figure(max(1, len(pairs)), 3, panel_size)
+    for row, (name, (ind, st)) in zip(axes, pairs.items(), strict=False):
+        free, con = ind.final, st.final
+        gaps_free, gaps_con = _gaps(free), _gaps(con)
         k = int(np.argmax(gaps_free))
         focus = list(free.junction_arcs[k])[:max_circles]
         colors = [_LIGHT] * len(free.arcs)
@@ -508,7 +305,7 @@ def plot_circle_fitting(
         _draw_groups(row[0], st.graph, free.arc_segments, colors=colors, linewidth=2.0)
         p0 = st.graph.junctions[_nearest_node(st.graph, free.junctions[k])]
         row[0].plot(*p0, marker="o", color="black", markersize=5, linestyle="none", zorder=4)
-        row[0].set_title(f"(a) {st.name}: line segments", fontsize=8)
+        row[0].set_title(f"(a) {name}: line segments", fontsize=8)
         for ax, a, gaps, label in (
             (row[1], free, gaps_free, "(b) independent golden circles"),
             (row[2], con, gaps_con, "(c) connectivity optimized"),
@@ -520,7 +317,7 @@ def plot_circle_fitting(
             ax.plot(*a.junctions[k], marker="o", color="black", markersize=5, linestyle="none", zorder=4)
             ax.set_title(f"{label}\ngap {gaps[k]:.2f} px here, max {gaps.max():.2f} px", fontsize=8)
         for ax in row:
-            _zoom(ax, p0, window, st.graph.width, st.graph.height)
+            frame_window(ax, square_window(p0, 2.0 * window, st.graph.width, st.graph.height, shrink=True))
     fig.suptitle("Fig. 8: golden circles fitted per segment, then under the connectivity constraint", fontsize=10)
     return fig
 
@@ -529,40 +326,23 @@ def _nearest_node(graph: SegmentGraph, point: np.ndarray) -> int:
     return int(np.argmin(np.hypot(*(graph.junctions - point).T)))
 
 
-def _zoom(ax: Axes, center: np.ndarray, half: float, width: int, height: int) -> None:
-    """Show the square of half side ``half`` around ``center``, kept inside the image when it fits."""
-    half = min(half, width / 2.0, height / 2.0)
-    cx = float(np.clip(center[0], half, width - half))
-    cy = float(np.clip(center[1], half, height - half))
-    ax.set_xlim(cx - half, cx + half)
-    ax.set_ylim(cy + half, cy - half)
-    ax.set_aspect("equal")
-    ax.set_axis_on()  # a frame around the zoomed window, no ticks
-    ax.set_xticks([])
-    ax.set_yticks([])
-
-
 # --------------------------------------------------------------------------- Fig. 10
 def results_table(runs: Sequence[Run]) -> pd.DataFrame:
     """Per image: kind, |S|, |A^0|, final |A|, iterations, E^s of the final level, bias (Fig. 10).
-
-    Returns
-    -------
-    pandas.DataFrame
-        Columns ``image``, ``kind``, ``segments``, ``arcs A^0``,
-        ``final arcs``, ``iterations``, ``E^s (px)``, ``bias``,
-        ``stopped because``.
+    Columns ``image``, ``kind``, ``segments``, ``arcs A^0``,
+    ``final arcs``, ``iterations``, ``E^s (px)``, ``bias``,
+    ``stopped because``.
     """
     import pandas as pd
 
     rows = []
     for run in runs:
-        prog = run.result.progression
+        prog = run.progression
         rows.append(
             {
                 "image": run.name,
                 "kind": run.kind,
-                "segments": run.result.graph.n_segments,
+                "segments": run.graph.n_segments,
                 "arcs A^0": len(prog.levels[0].arcs),
                 "final arcs": len(prog.final.arcs),
                 "iterations": prog.final.level,
@@ -601,22 +381,14 @@ def plot_results_grid(
         The examples, in the order of the grid (row by row).
     columns : int
         Panels per row.
-    panel_size : float
-        Size of one panel, inches.
     inset : float
         Side of the inset, as a fraction of the panel.
-
-    Returns
-    -------
-    matplotlib.figure.Figure
     """
-    from ..plotting import plot_abstraction
-
     rows = max(1, math.ceil(len(runs) / columns))
     fig, axes = _figure(rows, min(columns, max(1, len(runs))), panel_size)
     flat = axes.ravel()
     for ax, run in zip(flat, runs, strict=False):
-        a = run.result.final
+        a = run.final
         plot_abstraction(a, ax, linewidth=_stroke(panel_size))
         ax.set_title(
             f"{run.name} ({run.kind})\n|A| = {len(a.arcs)}, $E^s$ = {a.similarity:.2f} px",
@@ -624,7 +396,7 @@ def plot_results_grid(
         )
         x, y = _inset_corner(a, inset)
         sub = ax.inset_axes((x, y, inset, inset))
-        _show_image(sub, run.result.image)
+        _show_image(sub, run.image)
         sub.set_axis_on()
         sub.set_xticks([])
         sub.set_yticks([])
@@ -670,7 +442,7 @@ def simplicity_table(
     paper = PAPER_TABLE1 if paper is None else paper
     rows = []
     for run in runs:
-        prog = run.result.progression
+        prog = run.progression
         last = len(prog.levels) - 1
         shown = {level_at_fraction(prog, f) for f in fractions}
         for t in sorted(set(range(last + 1)) | {int(t) for t in paper}):
@@ -706,18 +478,10 @@ def plot_simplicity_levels(
         The runs.
     fractions : sequence of float
         Which levels, as fractions of the run in [0, 1] (1 is the final level).
-    panel_size : float
-        Size of one panel, inches.
-
-    Returns
-    -------
-    matplotlib.figure.Figure
     """
-    from ..plotting import plot_abstraction
-
     fig, axes = _figure(max(1, len(runs)), len(fractions), panel_size)
     for row, run in zip(axes, runs, strict=False):
-        prog = run.result.progression
+        prog = run.progression
         last = len(prog.levels) - 1
         for ax, f in zip(row, fractions, strict=True):
             a = prog.levels[level_at_fraction(prog, f)]
@@ -739,16 +503,12 @@ def plot_progression(
     The tolerance T of the run is drawn on the E^s axis (a dashed line); the
     levels at the fractions ``mark`` of the run (those of
     :func:`plot_simplicity_levels`) are marked.
-
-    Returns
-    -------
-    matplotlib.figure.Figure
     """
     from matplotlib.ticker import MaxNLocator
 
     fig, axes = _figure(1, max(1, len(runs)), panel_size, height_ratio=0.8)
     for ax, run in zip(axes[0], runs, strict=False):
-        prog = run.result.progression
+        prog = run.progression
         t = np.arange(len(prog.levels))
         arcs = np.array(prog.arc_counts)
         es = np.array(prog.similarities)
@@ -786,81 +546,27 @@ def plot_progression(
 
 
 # --------------------------------------------------------------------------- Table 2
-@dataclass(frozen=True, eq=False)
-class ToleranceSweep:
-    """One segment graph optimized once per tolerance T (paper Table 2).
+def _tolerance_sweeps(runs: Sequence[Run]) -> dict[str, list[Run]]:
+    """The runs of a sweep over T (``sweep(paths, {"tolerance": [...]})``) by image, T increasing.
 
-    Attributes
-    ----------
-    name : str
-        The example's name.
-    image : LoadedImage
-        The input.
-    graph : SegmentGraph
-        Its segment graph, shared by every run.
-    tolerances : tuple of float
-        T of each run, increasing, px.
-    progressions : tuple of Progression
-        The run for each tolerance.
+    A single run with the largest T would hold every level, but the final level
+    of a run with a smaller T' is the level before the first one whose E^s
+    exceeds T', the last level with E^s <= T' only if E^s grows monotonically
+    along the run -- it need not (:func:`monotonicity_table` checks both rules
+    against the runs made per T).
     """
-
-    name: str
-    image: LoadedImage
-    graph: SegmentGraph
-    tolerances: tuple[float, ...]
-    progressions: tuple[Progression, ...]
-
-    def at(self, tolerance: float) -> Progression:
-        """The run with tolerance ``tolerance``."""
-        for t, p in zip(self.tolerances, self.progressions, strict=True):
-            if math.isclose(t, tolerance):
-                return p
-        raise InvalidParameterError(f"no run with T = {tolerance} in the sweep {self.tolerances}")
-
-    @property
-    def longest(self) -> Progression:
-        """The run with the largest T: it holds the most levels."""
-        return self.progressions[-1]
+    return {name: sorted(mine, key=_tolerance) for name, mine in by_image(runs).items()}
 
 
-def tolerance_sweep(
-    path: str | os.PathLike[str],
-    tolerances: Iterable[float],
-    *,
-    kind: str = "auto",
-    **options: Any,
-) -> ToleranceSweep:
-    """Optimize one image's segment graph once per tolerance T (paper Table 2).
+def _tolerance(run: Run) -> float:
+    return float(run.final.tolerance)
 
-    The image is preprocessed once; :func:`img2logo.progressive.optimize` then
-    runs from scratch for every T. A single run with the largest T would hold
-    every level, but the final level of a run with a smaller T' is the level
-    before the first one whose E^s exceeds T', which is the last level with
-    E^s <= T' only if E^s grows monotonically along the run -- it need not
-    (:func:`monotonicity_table` checks both rules against the runs made here).
 
-    Parameters
-    ----------
-    path : path
-        The image.
-    tolerances : iterable of float
-        The values of T, px (sorted, repeats dropped).
-    kind : str
-        The kind of input, or ``"auto"``.
-    **options
-        Keywords of :func:`img2logo.progressive.optimize` (ablation switches,
-        ``bias``...).
-
-    Returns
-    -------
-    ToleranceSweep
-    """
-    ts = tuple(sorted({float(t) for t in tolerances}))
-    if not ts:
-        raise InvalidParameterError("tolerances must not be empty")
-    (ex,) = preprocess([path], kind=kind)
-    progs = tuple(optimize(ex.graph, tolerance=t, **options) for t in ts)
-    return ToleranceSweep(ex.name, ex.image, ex.graph, ts, progs)
+def _at(runs: Sequence[Run], tolerance: float) -> Progression:
+    for run in runs:
+        if math.isclose(_tolerance(run), tolerance):
+            return run.progression
+    raise InvalidParameterError(f"no run with T = {tolerance} in the sweep {[_tolerance(r) for r in runs]}")
 
 
 def similarity_is_monotone(progression: Progression) -> bool:
@@ -901,13 +607,13 @@ def final_level_index(progression: Progression, tolerance: float, *, rule: str =
     raise InvalidParameterError(f"rule must be 'first_exceedance' or 'last_within', got {rule!r}")
 
 
-def tolerance_table(sweeps: Sequence[ToleranceSweep], *, paper: Mapping[float, float] | None = None) -> pd.DataFrame:
+def tolerance_table(sweeps: Sequence[Run], *, paper: Mapping[float, float] | None = None) -> pd.DataFrame:
     """Final |A| and E^s per tolerance T for each sweep, beside the paper's Table 2.
 
     Parameters
     ----------
-    sweeps : sequence of ToleranceSweep
-        From :func:`tolerance_sweep`.
+    sweeps : sequence of Run
+        A sweep over T (:func:`_tolerance_sweeps`).
     paper : mapping of float to float, optional
         The paper's |A| by T (default :data:`PAPER_TABLE2`, a bird).
 
@@ -922,12 +628,12 @@ def tolerance_table(sweeps: Sequence[ToleranceSweep], *, paper: Mapping[float, f
 
     paper = PAPER_TABLE2 if paper is None else paper
     rows = []
-    for sw in sweeps:
-        ref = sw.longest
-        for t, prog in zip(sw.tolerances, sw.progressions, strict=True):
+    for name, mine in _tolerance_sweeps(sweeps).items():
+        ref = mine[-1].progression
+        for t, prog in ((_tolerance(r), r.progression) for r in mine):
             rows.append(
                 {
-                    "image": sw.name,
+                    "image": name,
                     "T": t,
                     "final arcs": len(prog.final.arcs),
                     "E^s (px)": round(prog.final.similarity, 4),
@@ -941,32 +647,28 @@ def tolerance_table(sweeps: Sequence[ToleranceSweep], *, paper: Mapping[float, f
     return pd.DataFrame(rows)
 
 
-def monotonicity_table(sweeps: Sequence[ToleranceSweep]) -> pd.DataFrame:
+def monotonicity_table(sweeps: Sequence[Run]) -> pd.DataFrame:
     """Is E^s monotone along the largest-T run, and which rule reproduces the per-T runs?
-
-    Returns
-    -------
-    pandas.DataFrame
-        Per sweep: ``image``, ``T max``, ``levels``, ``E^s monotone``,
-        ``E^s decreases`` (how many steps lower E^s), ``largest decrease (px)``,
-        ``first exceedance matches`` and ``last E^s <= T matches`` (whether the
-        rule gives the final arc count of every per-T run).
+    Per sweep: ``image``, ``T max``, ``levels``, ``E^s monotone``,
+    ``E^s decreases`` (how many steps lower E^s), ``largest decrease (px)``,
+    ``first exceedance matches`` and ``last E^s <= T matches`` (whether the
+    rule gives the final arc count of every per-T run).
     """
     import pandas as pd
 
     rows = []
-    for sw in sweeps:
-        ref = sw.longest
+    for name, mine in _tolerance_sweeps(sweeps).items():
+        ref = mine[-1].progression
         steps = np.diff(np.array(ref.similarities))
-        finals = [len(p.final.arcs) for p in sw.progressions]
+        finals = [len(r.final.arcs) for r in mine]
         by_rule = {
-            rule: [ref.arc_counts[final_level_index(ref, t, rule=rule)] for t in sw.tolerances]
+            rule: [ref.arc_counts[final_level_index(ref, _tolerance(r), rule=rule)] for r in mine]
             for rule in ("first_exceedance", "last_within")
         }
         rows.append(
             {
-                "image": sw.name,
-                "T max": sw.tolerances[-1],
+                "image": name,
+                "T max": _tolerance(mine[-1]),
                 "levels": len(ref.levels),
                 "E^s monotone": similarity_is_monotone(ref),
                 "E^s decreases": int(np.sum(steps < 0)),
@@ -979,7 +681,7 @@ def monotonicity_table(sweeps: Sequence[ToleranceSweep]) -> pd.DataFrame:
 
 
 def plot_tolerance_results(
-    sweeps: Sequence[ToleranceSweep],
+    sweeps: Sequence[Run],
     tolerances: Sequence[float] = (4.0, 5.0, 9.0),
     *,
     paper: Mapping[float, float] | None = None,
@@ -989,20 +691,16 @@ def plot_tolerance_results(
 
     The first column is the segment graph every run starts from; then one
     column per T with |A|, E^s and the paper's |A| where it gives one.
-
-    Returns
-    -------
-    matplotlib.figure.Figure
     """
-    from ..plotting import plot_abstraction, plot_segment_graph
-
     paper = PAPER_TABLE2 if paper is None else paper
-    fig, axes = _figure(max(1, len(sweeps)), 1 + len(tolerances), panel_size)
-    for row, sw in zip(axes, sweeps, strict=False):
-        plot_segment_graph(sw.graph, row[0], show_junctions=False, linewidth=1.0)
-        row[0].set_title(f"{sw.name}: |S| = {sw.graph.n_segments}", fontsize=8)
+    groups = _tolerance_sweeps(sweeps)
+    fig, axes = _figure(max(1, len(groups)), 1 + len(tolerances), panel_size)
+    for row, (name, mine) in zip(axes, groups.items(), strict=False):
+        graph = mine[0].graph
+        plot_segment_graph(graph, row[0], show_junctions=False, linewidth=1.0)
+        row[0].set_title(f"{name}: |S| = {graph.n_segments}", fontsize=8)
         for ax, t in zip(row[1:], tolerances, strict=True):
-            a = sw.at(t).final
+            a = _at(mine, t).final
             plot_abstraction(a, ax, linewidth=_stroke(panel_size))
             ref = next((v for k, v in paper.items() if math.isclose(k, t)), math.nan)
             ref_text = "" if math.isnan(ref) else f" (paper {ref:g})"
@@ -1012,26 +710,22 @@ def plot_tolerance_results(
 
 
 def plot_tolerance_curve(
-    sweeps: Sequence[ToleranceSweep], *, paper: Mapping[float, float] | None = None, panel_size: float = 3.6
+    sweeps: Sequence[Run], *, paper: Mapping[float, float] | None = None, panel_size: float = 3.6
 ) -> Figure:
     """Final |A| against T (left) and the final E^s against T (right), one line per sweep.
 
     The paper's |A| values (a bird) are drawn as stars; on the right the line
     E^s = T bounds every final level.
-
-    Returns
-    -------
-    matplotlib.figure.Figure
     """
     paper = PAPER_TABLE2 if paper is None else paper
     fig, axes = _figure(1, 2, panel_size, height_ratio=0.8)
     left, right = axes[0]
-    for i, sw in enumerate(sweeps):
+    groups = _tolerance_sweeps(sweeps)
+    for i, (name, mine) in enumerate(groups.items()):
         color = _group_color(i)
-        arcs = [len(p.final.arcs) for p in sw.progressions]
-        es = [p.final.similarity for p in sw.progressions]
-        left.plot(sw.tolerances, arcs, marker="o", markersize=3, color=color, label=sw.name)
-        right.plot(sw.tolerances, es, marker="o", markersize=3, color=color, label=sw.name)
+        ts = [_tolerance(r) for r in mine]
+        left.plot(ts, [len(r.final.arcs) for r in mine], marker="o", markersize=3, color=color, label=name)
+        right.plot(ts, [r.final.similarity for r in mine], marker="o", markersize=3, color=color, label=name)
     known = [(t, v) for t, v in sorted(paper.items()) if not math.isnan(v)]
     if known:
         left.plot(
@@ -1042,7 +736,7 @@ def plot_tolerance_curve(
             color="black",
             label="paper (its bird)",
         )
-    all_t = [t for sw in sweeps for t in sw.tolerances]
+    all_t = [_tolerance(r) for mine in groups.values() for r in mine]
     if all_t:
         lo, hi = min(all_t), max(all_t)
         right.plot([lo, hi], [lo, hi], linestyle="--", color="#808080", linewidth=1.0, label="$E^s$ = T")

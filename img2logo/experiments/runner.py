@@ -25,18 +25,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import Img2LogoError, InvalidParameterError
-from . import data_path, project_root
-
-__all__ = [
-    "PARAMETER_RULES",
-    "SMOKE",
-    "NotebookError",
-    "NotebookParameterError",
-    "check_parameters",
-    "main",
-    "notebook_parameters",
-    "run_notebook",
-]
+from . import data_path, kit_module, project_root
 
 
 class NotebookParameterError(InvalidParameterError):
@@ -268,9 +257,7 @@ def check_parameters(**parameters: Any) -> None:
 # --------------------------------------------------------------------------- running
 def notebook_parameters(path: str | os.PathLike[str]) -> dict[str, Any]:
     """The parameters of a notebook's cell tagged ``parameters``, by name (``papermill.inspect_notebook``)."""
-    import papermill
-
-    return dict(papermill.inspect_notebook(str(path)))
+    return dict(kit_module("papermill").inspect_notebook(str(path)))
 
 
 def run_notebook(
@@ -305,7 +292,7 @@ def run_notebook(
         Another error in a cell: its one-line message and the executed copy
         holding the traceback.
     """
-    import papermill
+    papermill = kit_module("papermill")
     from papermill.exceptions import PapermillExecutionError
 
     nb = Path(path)
@@ -337,7 +324,7 @@ def run_notebook(
 
 def _value(text: str) -> Any:
     """A ``-p`` value as YAML: ``4`` is an int, ``4.5`` a float, ``[a.png, b.png]`` a list, ``null`` None."""
-    import yaml
+    yaml = kit_module("yaml")
 
     try:
         return yaml.safe_load(text)
@@ -362,8 +349,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     )
     args = parser.parse_args(argv)
     parameters = dict(SMOKE.get(args.notebook.stem, {"smoke": True})) if args.smoke else {}
-    parameters.update({name: _value(text) for name, text in args.parameter})
     try:
+        parameters.update({name: _value(text) for name, text in args.parameter})
         run_notebook(args.notebook, args.output, parameters)
     except NotebookParameterError as err:
         print(f"error: {err}", file=sys.stderr)

@@ -1,0 +1,155 @@
+"""Tests of img2logo._io: atomic writes, output sets, stale temporary files, output path checks."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+from conftest import make_abstraction
+
+from img2logo import _io, writers
+from img2logo.errors import InvalidParameterError
+
+
+def leftovers(directory: Path) -> list[str]:
+    return sorted(p.name for p in directory.iterdir())
+
+
+def _dead_pid() -> int:
+    child = subprocess.Popen([sys.executable, "-c", "pass"])
+    child.wait()  # reaped: its process id is free
+    return child.pid
+
+
+def test_parent_directories_created(tmp_path):
+    a = make_abstraction()
+    for name, write in (("a.json", writers.write_json), ("a.svg", writers.write_svg), ("a.png", writers.write_png)):
+        target = tmp_path / "deep" / "er" / name
+        assert write(a, str(target)) == target
+        assert target.is_file()
+    assert leftovers(tmp_path / "deep" / "er") == ["a.json", "a.png", "a.svg"]
+
+
+def test_written_file_has_usual_permissions(tmp_path):
+    umask = os.umask(0o022)
+    try:
+        p = writers.write_json(make_abstraction(), tmp_path / "a.json")
+    finally:
+        os.umask(umask)
+    assert p.stat().st_mode & 0o777 == 0o644
+
+
+def test_failed_replace_leaves_nothing(tmp_path, monkeypatch):
+    def fail(*args, **kwargs):
+        raise OSError("disk full")
+
+    monkeypatch.setattr(_io.os, "replace", fail)
+    with pytest.raises(OSError, match="disk full"):
+        writers.write_json(make_abstraction(), tmp_path / "out" / "a.json")
+    assert leftovers(tmp_path / "out") == []
+
+
+def test_failure_midway_keeps_the_old_file(tmp_path, monkeypatch):
+    from matplotlib.figure import Figure
+
+    target = tmp_path / "a.png"
+    target.write_bytes(b"old")
+
+    def half_then_fail(self, f, **kwargs):
+        f.write(b"\x89PNG half")
+        raise RuntimeError("renderer crashed")
+
+    monkeypatch.setattr(Figure, "savefig", half_then_fail)
+    with pytest.raises(RuntimeError, match="renderer crashed"):
+        writers.write_png(make_abstraction(), target)
+    assert target.read_bytes() == b"old"
+    assert leftovers(tmp_path) == ["a.png"]
+    with pytest.raises(RuntimeError, match="renderer crashed"):
+        writers.write_png(make_abstraction(), tmp_path / "new.png")
+    assert leftovers(tmp_path) == ["a.png"]
+
+
+def test_atomic_write_helper(tmp_path):
+    def boom(f):
+        f.write(b"partial")
+        raise ValueError("boom")
+
+    with pytest.raises(ValueError, match="boom"):
+        _io.atomic_write(tmp_path / "x.bin", boom)
+    assert leftovers(tmp_path) == []
+    _io.atomic_write(tmp_path / "x.bin", lambda f: f.write(b"whole"))
+    assert (tmp_path / "x.bin").read_bytes() == b"whole"
+    assert leftovers(tmp_path) == ["x.bin"]
+
+
+@pytest.mark.parametrize("bad", [None, 3, "", b"bytes.json"])
+def test_bad_path_rejected(bad):
+    with pytest.raises(InvalidParameterError, match="path must be a non-empty str or path-like"):
+        writers.write_json(make_abstraction(), bad)
+
+
+def test_writer_errors_name_the_path(tmp_path):
+    from img2logo.errors import OutputError
+
+    (tmp_path / "file").write_text("x")
+    with pytest.raises(OutputError, match=r"cannot write .*folder: is a directory"):
+        (tmp_path / "folder").mkdir()
+        writers.write_json(make_abstraction(), tmp_path / "folder")
+    with pytest.raises(OutputError, match=r"cannot write .*file/a\.svg: Not a directory"):
+        writers.write_svg(make_abstraction(), tmp_path / "file" / "a.svg")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["file", "folder"]
+
+
+def test_output_set_writes_all_or_nothing(tmp_path):
+    a = make_abstraction()
+    with pytest.raises(KeyboardInterrupt), _io.output_set():
+        writers.write_json(a, tmp_path / "new" / "deep" / "a.json")
+        writers.write_svg(a, tmp_path / "new" / "a.svg")
+        assert not (tmp_path / "new" / "a.svg").exists()  # not before the set ends
+        raise KeyboardInterrupt
+    assert list(tmp_path.iterdir()) == []  # no file, no temporary file, no folder it created
+    with _io.output_set():
+        writers.write_json(a, tmp_path / "a.json")
+        writers.write_svg(a, tmp_path / "a.svg")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.json", "a.svg"]
+
+
+def test_stale_temporary_files_of_a_target_are_removed(tmp_path):
+    dead, alive = _dead_pid(), os.getpid()
+    stale = tmp_path / f".a.json.{dead}-0123abcd.tmp"
+    running = tmp_path / f".a.json.{alive}-0123abcd.tmp"  # this process: still writing it
+    other = tmp_path / f".b.json.{dead}-0123abcd.tmp"  # another target's
+    for p in (stale, running, other):
+        p.write_text("partial")
+    writers.write_json(make_abstraction(), tmp_path / "a.json")
+    assert not stale.exists() and running.exists() and other.exists()
+
+
+def test_check_output_paths(tmp_path):
+    src = tmp_path / "in.png"
+    src.write_bytes(b"image")
+    (tmp_path / "link.png").symlink_to(src)
+    os.link(src, tmp_path / "hard.png")
+    (tmp_path / "file").write_text("x")
+    (tmp_path / "dir").mkdir()
+    check = _io.check_output_paths
+    ok = check({"--svg": tmp_path / "new" / "a.svg", "--json": tmp_path / "a.json"}, [src])
+    assert ok == {"--svg": tmp_path / "new" / "a.svg", "--json": tmp_path / "a.json"}
+    assert not (tmp_path / "new").exists()  # nothing created by a check
+    cases = [
+        ({"--png": src}, "is the input"),
+        ({"--png": tmp_path / "link.png"}, "link.png is the input .*in.png: refusing to write over an input"),
+        ({"--png": tmp_path / "hard.png"}, "hard.png is the input"),
+        ({"--svg": tmp_path / "o.out", "--json": tmp_path / "./o.out"}, "--svg and --json name the same file"),
+        ({"--svg": tmp_path / "dir"}, "--svg .*dir is a folder"),
+        ({"--svg": "/dev/null"}, "--svg /dev/null is not a regular file"),
+        ({"--svg": tmp_path / "file" / "sub" / "a.svg"}, r"--svg .*a\.svg: .*file is not a folder"),
+    ]
+    for targets, message in cases:
+        with pytest.raises(InvalidParameterError, match=message):
+            check(targets, [src])
+    with pytest.raises(InvalidParameterError, match=r"--levels-dir .*file is a file, not a folder"):
+        check({}, [src], {"--levels-dir": tmp_path / "file"})
