@@ -107,6 +107,7 @@ class Axis:
         d = d / float(np.hypot(*d))
         if d[1] < 0 or (d[1] == 0 and d[0] < 0):
             d = -d
+        d = d + 0.0  # no negative zero
         object.__setattr__(self, "direction", readonly(d))
         object.__setattr__(self, "point", readonly(np.asarray(self.point, dtype=np.float64).reshape(2).copy()))
 

@@ -249,7 +249,8 @@ def test_cli_symmetry_auto_says_so_and_writes_the_axis(tmp_path, capsys):
     err = capsys.readouterr().err
     assert len([line for line in err.splitlines() if line.startswith("symmetry: ")]) == 1
     doc = json.loads(out.read_text())
-    assert doc["extra"]["symmetry"]["direction"] == [0.0, 1.0]
+    direction = doc["extra"]["symmetry"]["direction"]
+    assert direction == [0.0, 1.0] and math.copysign(1.0, direction[0]) == 1.0  # no negative zero
 
 
 def test_cli_bad_symmetry_is_one_line_and_exit_two(tmp_path, capsys):
