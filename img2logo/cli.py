@@ -205,7 +205,7 @@ def _abstract_options(args: argparse.Namespace, *, batch: bool = False):
 
     Checked before the run: a bad value should not cost a run.
     """
-    from .options import Options, cli_fields
+    from .options import Options, check_lock_mask, cli_fields
 
     given = {}
     for _, f in cli_fields(batch=batch):
@@ -215,6 +215,7 @@ def _abstract_options(args: argparse.Namespace, *, batch: bool = False):
         parse = f.metadata["parse"]
         given[f.name] = value if parse is None else parse(value)
     options = Options.from_keywords(given)
+    check_lock_mask(options, getattr(args, "lock_mask", None))
     if getattr(args, "level", None) is not None and args.level < 0:
         raise InvalidParameterError(f"--level must be >= 0, got {args.level}")
     return options
@@ -295,6 +296,8 @@ def _run(args: argparse.Namespace, say) -> int:
     say(f"kind {result.lines.kind} ({result.lines.reason})")
     if result.lines.subject is not None:
         say(f"subject: {result.lines.subject.description}")
+    if result.symmetry is not None:
+        say(result.symmetry.description)
     say(
         f"segment graph: {graph.n_segments} segments, {graph.n_junctions} nodes "
         f"({int((graph.valence >= 3).sum())} junctions), {graph.n_components()} components"

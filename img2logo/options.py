@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import dataclasses
 import difflib
+import math
 from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass, field
 from typing import Any
@@ -27,7 +28,16 @@ from ._validation import check_choice, check_positive
 from .constants import MIN_SEGMENT_LENGTH, RDP_TOLERANCE, TOLERANCE
 from .errors import InvalidParameterError, UnknownOptionError
 
-__all__ = ["ABSTRACT_OPTIONS", "AUTO", "SWITCHES", "Options", "check_abstract_options", "cli_fields"]
+__all__ = [
+    "ABSTRACT_OPTIONS",
+    "AUTO",
+    "SWITCHES",
+    "Options",
+    "check_abstract_options",
+    "check_lock_mask",
+    "check_symmetry_option",
+    "cli_fields",
+]
 
 #: ``max_arc_distance``'s default: ``PHOTO_MAX_ARC_FACTOR * tolerance`` for a photo, no bound otherwise.
 AUTO: str = "auto"
@@ -113,6 +123,11 @@ class Options:
         Photos: the subject drawn (:func:`img2logo.subject.find_subject`).
     subject : (x, y, w, h), "X,Y,W,H" or None
         Photos: a rectangle around the object that seeds its segmentation, px.
+    symmetry : {"none", "auto", "vertical", "horizontal"} or float
+        A mirror-symmetric logo (:mod:`img2logo.symmetry`): ``auto`` keeps the
+        best mirror axis of the feature lines if it scores well enough; the
+        others force its direction (degrees from +x towards +y); ``none``: free.
+        Not with a lock mask (:func:`check_lock_mask`).
     tolerance : float
         T of Eqn. 1, px (> 0): merging stops before E^s would exceed it.
     ladder : {"phi", "fibonacci"}
@@ -175,6 +190,15 @@ class Options:
         metavar="X,Y,W,H",
         help="photos: a rectangle around the object, px (x, y of its top-left corner, width, height); "
         "it seeds the object's segmentation",
+    )
+    symmetry: object = _option(
+        "none",
+        stage="input",
+        flags=("--symmetry",),
+        metavar="auto|none|vertical|horizontal|DEGREES",
+        help="a mirror-symmetric logo: auto (the best mirror axis of the feature lines, kept if it scores at least "
+        "the threshold; said in one line), vertical, horizontal or the axis direction in degrees from +x towards "
+        "+y (forced); none (default): free",
     )
     # ----------------------------------------------------------------- the optimization
     tolerance: float = _px(
@@ -248,6 +272,7 @@ class Options:
             if not isinstance(value, bool | np.bool_):
                 raise InvalidParameterError(f"{name} must be True or False, got {value!r}")
             put(self, name, bool(value))
+        check_symmetry_option(self.symmetry)
         check_choice(self.arc_selection, "arc_selection", ("frechet", "sum_of_squares"))
         make_ladder(
             self.ladder,
@@ -397,9 +422,49 @@ def check_abstract_options(options: Mapping[str, Any], allowed: frozenset[str] =
     InvalidParameterError
         Naming the first value out of range: ``tolerance`` and ``rdp_tolerance`` > 0 px,
         ``min_length`` >= 0 px, ``kind``, ``foreground`` and ``subject``,
-        ``max_arc_distance`` > 0 px, the switches True or False,
+        ``max_arc_distance`` > 0 px, the switches True or False, ``symmetry``
+        (and not with ``lock_mask``),
         ``arc_selection``, the ladder's ``ladder``, ``bias``, ``unit``,
         ``exponents`` and ``rounding`` (as :func:`img2logo.golden_ladder.make_ladder`
         checks them).
     """
-    return Options.from_keywords(options, also=allowed - ABSTRACT_OPTIONS_FIELDS)
+    checked = Options.from_keywords(options, also=allowed - ABSTRACT_OPTIONS_FIELDS)
+    check_lock_mask(checked, options.get("lock_mask"))
+    return checked
+
+
+def check_lock_mask(options: Options, lock_mask: object) -> None:
+    """Raise if a lock mask is given with a symmetric run: the two cannot be combined."""
+    if lock_mask is not None and check_symmetry_option(options.symmetry) is not None:
+        raise InvalidParameterError("a lock mask cannot be combined with symmetry (use symmetry='none')")
+
+
+def check_symmetry_option(value: object) -> str | None:
+    """The ``symmetry`` option checked: None for ``"none"``, else its canonical text.
+
+    Accepts ``"none"``, ``"auto"``, ``"vertical"``, ``"horizontal"`` or an angle in
+    degrees (a number, or a string of one), the direction of the axis from +x
+    towards +y (90 is upright).
+
+    Raises
+    ------
+    InvalidParameterError
+        For anything else.
+    """
+    if value is None or (isinstance(value, str) and value.strip().lower() == "none"):
+        return None
+    if isinstance(value, str) and value.strip().lower() in ("auto", "vertical", "horizontal"):
+        return value.strip().lower()
+    if isinstance(value, bool):
+        raise InvalidParameterError(
+            f"symmetry must be auto, none, vertical, horizontal or an angle in degrees, got {value!r}"
+        )
+    try:
+        angle = float(value)  # type: ignore[arg-type]
+    except (TypeError, ValueError):
+        raise InvalidParameterError(
+            f"symmetry must be auto, none, vertical, horizontal or an angle in degrees, got {value!r}"
+        ) from None
+    if not math.isfinite(angle):
+        raise InvalidParameterError(f"symmetry angle must be a finite number of degrees, got {value!r}")
+    return f"{angle:g}"

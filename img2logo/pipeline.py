@@ -19,10 +19,11 @@ import numpy as np
 from .constants import PHOTO_MAX_ARC_FACTOR
 from .errors import InvalidParameterError
 from .geometry import Abstraction
-from .options import AUTO, Options
+from .options import AUTO, Options, check_lock_mask
 from .preprocessing import FeatureLines, LoadedImage, extract_feature_lines, load_image
 from .progressive import ProgressCallback, Progression, optimize
 from .segment_graph import SegmentGraph, build_segment_graph
+from .symmetry import SymmetryChoice, check_symmetry_option, choose_axis, optimize_symmetric
 
 #: ``abstract``'s ``tolerance`` and ``kind`` when not given: those of ``options`` (default 5 px, "auto").
 _DEFAULT: Any = type("Default", (), {"__repr__": lambda self: "<default>"})()
@@ -45,6 +46,10 @@ class Result:
         ``simplification``, ``initial_fit``, ``loop``.
     params : Mapping
         The parameters of the run (as recorded in every level: immutable).
+    symmetry : SymmetryChoice or None
+        What the ``symmetry`` option decided (None for ``"none"``); when it
+        kept an axis, ``graph`` is the symmetric segment graph and every level
+        is mirror-symmetric.
     """
 
     image: LoadedImage
@@ -53,6 +58,7 @@ class Result:
     progression: Progression
     timings: dict[str, float] = field(default_factory=dict)
     params: Mapping[str, Any] = field(default_factory=dict)
+    symmetry: SymmetryChoice | None = None
 
     @property
     def levels(self) -> tuple[Abstraction, ...]:
@@ -107,14 +113,17 @@ def abstract(
         Every setting and switch at once (:class:`~img2logo.options.Options`);
         ``tolerance``, ``kind`` and ``**settings`` given here replace its own.
     lock_mask : ndarray of bool, shape (H, W), optional
-        Segments mostly inside it are never merged (Sec. 7, Fig. 16).
+        Segments mostly inside it are never merged (Sec. 7, Fig. 16); not with symmetry.
     progress : callable, bool or None
         A callback ``progress(t, n_arcs, similarity)``; ``True`` shows a
         progress bar on the terminal; ``None`` (default) shows one only when
         standard error is a terminal.
     **settings
         Any other field of :class:`~img2logo.options.Options`: ``rdp_tolerance``,
-        ``min_length``, ``foreground``, ``subject``, the ladder (``ladder``,
+        ``min_length``, ``foreground``, ``subject``, ``symmetry`` (``"none"``,
+        ``"auto"``, ``"vertical"``, ``"horizontal"`` or degrees: a mirror-symmetric
+        logo, :mod:`img2logo.symmetry`; what was decided is ``Result.symmetry``),
+        the ladder (``ladder``,
         ``bias``, ``unit``, ``exponents``, ``rounding``), the switches
         (``connectivity``, ``inner_junctions``, ``merging``,
         ``avoid_intersections``, ``localized``, ``simplify``, ``lines``),
@@ -133,6 +142,7 @@ def abstract(
     """
     given = {name: value for name, value in (("tolerance", tolerance), ("kind", kind)) if value is not _DEFAULT}
     opts = Options.from_keywords({**given, **settings}, base=options)
+    check_lock_mask(opts, lock_mask)
     timings: dict[str, float] = {}
     start = time.perf_counter()
     img = load_image(image)
@@ -153,13 +163,24 @@ def abstract(
         bound = PHOTO_MAX_ARC_FACTOR * opts.tolerance if lines.kind == "photo" else None
         opts = dataclasses.replace(opts, max_arc_distance=bound)
     callback, bar = _progress(progress, opts.tolerance)
+    choice = None
+    mode = check_symmetry_option(opts.symmetry)
+    if mode is not None:
+        start = time.perf_counter()
+        choice = choose_axis(lines.lines, mode)
+        timings["symmetry"] = time.perf_counter() - start
     try:
-        progression = optimize(graph, opts, lock_mask=lock_mask, progress=callback, params=params)
+        if choice is not None and choice.axis is not None:
+            progression, graph, _ = optimize_symmetric(
+                graph, choice.axis, choice=choice, options=opts, progress=callback, params=params
+            )
+        else:
+            progression = optimize(graph, opts, lock_mask=lock_mask, progress=callback, params=params)
     finally:
         if bar is not None:
             bar.close()
     timings.update(progression.timings)
-    return Result(img, lines, graph, progression, timings, progression.levels[0].params)
+    return Result(img, lines, graph, progression, timings, progression.levels[0].params, choice)
 
 
 def _progress(progress: ProgressCallback | bool | None, tolerance: float) -> tuple[ProgressCallback | None, Any]:

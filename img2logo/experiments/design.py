@@ -731,6 +731,9 @@ class ExplorerSettings:
         Ramer-Douglas-Peucker tolerance, px.
     kind : str
         ``"auto"``, ``"photo"``, ``"clipart"`` or ``"drawing"``.
+    symmetry : str
+        ``"none"``, ``"auto"``, ``"vertical"``, ``"horizontal"`` or an angle in
+        degrees: a mirror-symmetric logo (:mod:`img2logo.symmetry`).
     """
 
     image: str = "clipart-fish.png"
@@ -738,6 +741,7 @@ class ExplorerSettings:
     bias: float | None = None
     rdp_tolerance: float = RDP_TOLERANCE
     kind: str = "auto"
+    symmetry: str = "none"
 
 
 class LevelExplorer:
@@ -919,6 +923,7 @@ class LevelExplorer:
             kind=settings.kind,
             rdp_tolerance=settings.rdp_tolerance,
             bias=settings.bias,
+            symmetry=settings.symmetry,
             progress=self.on_progress,
         )
         self.progress_text = (
@@ -961,6 +966,8 @@ class LevelExplorer:
         )
         c["image"] = slider(w.Dropdown, "image", options=images, value=s.image)
         c["kind"] = slider(w.Dropdown, "kind", options=["auto", "photo", "clipart", "drawing"], value=s.kind)
+        symmetries = list(dict.fromkeys(["none", "auto", "vertical", "horizontal", s.symmetry]))
+        c["symmetry"] = slider(w.Dropdown, "symmetry", options=symmetries, value=s.symmetry)
         c["rdp_tolerance"] = slider(
             w.FloatSlider, "RDP (px)", value=s.rdp_tolerance, min=0.5, max=8.0, step=0.25, continuous_update=False
         )
@@ -1001,7 +1008,7 @@ class LevelExplorer:
         c["run"].on_click(self._run_clicked)
         note = w.HTML(
             value="<small>T up to the largest T run so far is instant; a larger T, or new image, kind, "
-            "RDP or bias settings, run again (Run).</small>",
+            "symmetry, RDP or bias settings, run again (Run).</small>",
             layout=wide,
         )
         controls = w.VBox(
@@ -1010,6 +1017,7 @@ class LevelExplorer:
                 c["tolerance"],
                 c["image"],
                 c["kind"],
+                c["symmetry"],
                 c["rdp_tolerance"],
                 w.HBox([c["bias"], c["bias_auto"]]),
                 w.HBox([c["run"], c["progress"]]),
@@ -1038,6 +1046,7 @@ class LevelExplorer:
             bias=None if c["bias_auto"].value else float(c["bias"].value),
             rdp_tolerance=float(c["rdp_tolerance"].value),
             kind=c["kind"].value,
+            symmetry=c["symmetry"].value,
         )
 
     def _level_widget_changed(self, change: dict[str, Any]) -> None:

@@ -25,7 +25,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import Img2LogoError, InvalidParameterError
-from . import data_path, kit_module
+from . import data_path, kit_module, project_root
 
 
 class NotebookParameterError(InvalidParameterError):
@@ -73,6 +73,7 @@ SMOKE: dict[str, dict[str, Any]] = {
     },
     "11_explore_levels": {"smoke": True, "image": "drawing-fish.png"},
     "12_designer_features": {"smoke": True, "fill_images": ["clipart-fish.png"]},
+    "13_symmetry": {"smoke": True, "images": ["clipart-fox.png"], "eval_images": ["drawing-umbrella.png"]},
 }
 
 
@@ -143,6 +144,15 @@ def _images(name: str, value: Any) -> None:
         _image(name, item)
 
 
+def _eval_images(name: str, value: Any) -> None:
+    if not isinstance(value, list | tuple) or not value:
+        _fail(name, "a non-empty list of file names in benchmarks/data/", value)
+    folder = project_root() / "benchmarks" / "data"
+    for item in value:
+        if not isinstance(item, str) or not (folder / item).is_file():
+            _fail(name, "a non-empty list of file names in benchmarks/data/", value)
+
+
 def _choice(*options: str) -> Callable[[str, Any], None]:
     def check(name: str, value: Any) -> None:
         if value not in options:
@@ -188,6 +198,7 @@ PARAMETER_RULES: dict[str, Callable[[str, Any], None]] = {
     "interactive": _boolean,
     "images": _images,
     "fill_images": _images,
+    "eval_images": _eval_images,
     "image": _image,
     "edit_image": _image,
     "fig15_image": _image,
