@@ -263,7 +263,7 @@ IMAGE_FADE: float = 0.6
 #: Spacing of the sample points when an arc is drawn as a polyline in a raster, px.
 ARC_SAMPLE_STEP: float = 0.5
 
-# --- Golden ladder and circle fitting (golden_ladder.py, circle_fitting.py) --------
+# --- Golden ladder and circle fitting (golden_ladder.py, circle_fitting.py, constrained_fit.py) --------
 #: fit_circle: default cap on a fitted radius, as a multiple of the points' extent
 #: (the distance between their two extreme points along the principal axis). An
 #: arc of radius 20 x its chord c has a sagitta of c / 160: it is nearly straight.

@@ -20,7 +20,7 @@ and every junction lies on every arc listed at it (within ``EDIT_TOLERANCE`` =
 1e-6 px), at one of its end points or, for an arc passing through, inside it.
 Where the geometry changes the junctions are re-solved by the
 connectivity-constrained fit of Eqn. 13
-(:func:`~img2logo.circle_fitting.fit_constrained`) in a local window like the
+(:func:`~img2logo.constrained_fit.fit_constrained`) in a local window like the
 localized fitting of Sec. 5.4, and the changed arcs are re-extracted between
 their (moved) junctions.
 
@@ -47,8 +47,9 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from .circle_fitting import fit_center, fit_window
+from .circle_fitting import fit_center
 from .constants import JUNCTION_TOLERANCE, LOG_PHI
+from .constrained_fit import fit_window
 from .errors import FitError, InvalidParameterError
 from .geometry import TAU, Abstraction, Arc, ArcJunctions, Circle
 from .golden_ladder import GoldenLadder
@@ -618,7 +619,7 @@ def move_circle(abstraction: Abstraction, circle: int, new_center: Sequence[floa
     The circle keeps its radius and is fixed at ``new_center``. Its junctions
     are carried along with it and then re-solved together with the
     neighbouring circles (those of the other arcs at these junctions) by the
-    constrained fit of Eqn. 13 (:func:`~img2logo.circle_fitting.fit_constrained`):
+    constrained fit of Eqn. 13 (:func:`~img2logo.constrained_fit.fit_constrained`):
     every junction stays on all its circles, the neighbours keep radii and
     their other junctions, and stay as close as they can to their arcs' current
     points (sampled 1 px apart), the junctions to the carried-along points. If

@@ -24,12 +24,18 @@ the changing weights 1/|A| and 1/|J'| would otherwise distort. A candidate's
 score is cached with the set of arcs its refit touched, and recomputed from
 the current state whenever one of them changed.
 
+This module holds the entry point :func:`optimize` and the optimizer's state
+(groups, golden circles, arcs, the constrained fit of a window, the levels).
+The stages it runs are their own modules: the segment groups and the
+line-segment simplification (:mod:`img2logo.simplification`), the recovery of
+an initial fit that fails (:mod:`img2logo.recovery`), and the merge
+candidates, their evaluation and the loop (:mod:`img2logo.merging`).
+
 Coordinates: px, x right, y down (``contract/README.md``).
 """
 
 from __future__ import annotations
 
-import dataclasses
 import math
 import time
 from collections.abc import Callable, Mapping, Sequence
@@ -38,21 +44,23 @@ from typing import Any
 
 import numpy as np
 
-from .arc_extraction import ArcFit, extract_arc, redundant_intersections
-from .circle_fitting import WindowFit, fit_center, fit_circle, fit_window, mean_abs_error
+from .arc_extraction import ArcFit, extract_arc
+from .circle_fitting import fit_center, fit_circle, mean_abs_error
 from .constants import (
     JUNCTION_TOLERANCE,
-    LINE_END_SKIP,
     LINE_MIN_ANGLE,
-    LINE_TOLERANCE,
-    SIMPLIFICATION_ERROR,
     SYMMETRY_FIT_STALL,
 )
-from .errors import FitError, InvalidParameterError
+from .constrained_fit import WindowFit, fit_window
+from .errors import InvalidParameterError
 from .geometry import Abstraction, ArcJunctions, Circle, Line, line_arc
 from .golden_ladder import Ladder, make_ladder
+from .merging import MergeOutcome, merge_loop
 from .options import Options
+from .recovery import check_reach, recover
 from .segment_graph import SegmentGraph
+from .simplification import Group, hold_line, path_length, straight_line
+from .simplification import simplify as simplify_groups
 
 #: Signature of a progress callback: (level t, number of arcs, E^s in px).
 ProgressCallback = Callable[[int, int, float], None]
@@ -112,46 +120,6 @@ class Progression:
         return [a.similarity for a in self.levels]
 
 
-# --------------------------------------------------------------------------- groups
-@dataclass(frozen=True, eq=False)
-class _Group:
-    """Segments of the graph merged into one arc: a path through the graph (private).
-
-    ``nodes`` has one more entry than ``segments``; ``points`` is the ordered
-    pixel chain, (n, 2) px. A closed group starts and ends at the same node.
-    """
-
-    segments: tuple[int, ...]
-    nodes: tuple[int, ...]
-    points: np.ndarray
-    locked: bool
-
-    @property
-    def closed(self) -> bool:
-        return self.nodes[0] == self.nodes[-1]
-
-    @property
-    def ends(self) -> tuple[int, int]:
-        return self.nodes[0], self.nodes[-1]
-
-    def reversed(self) -> _Group:
-        return _Group(self.segments[::-1], self.nodes[::-1], self.points[::-1], self.locked)
-
-
-def _merge_groups(a: _Group, b: _Group, node: int) -> _Group:
-    """Join ``a`` and ``b`` at their common end ``node``; ``a``'s far end starts the result."""
-    if a.nodes[-1] != node:
-        a = a.reversed()
-    if b.nodes[0] != node:
-        b = b.reversed()
-    return _Group(
-        a.segments + b.segments,
-        a.nodes + b.nodes[1:],
-        np.vstack([a.points, b.points[1:]]),
-        a.locked or b.locked,
-    )
-
-
 # --------------------------------------------------------------------------- state
 @dataclass
 class _Fit:
@@ -161,22 +129,6 @@ class _Fit:
     radius: float
     k: int
     arc: ArcFit
-
-
-@dataclass
-class _Outcome:
-    """What merging one candidate pair would give (private)."""
-
-    pair: tuple[int, int, int]  # (group a, group b, shared node)
-    merged: _Group
-    fits: dict[int, _Fit]  # new fits of the changed groups; key -1 is the merged group
-    displacements: dict[int, np.ndarray]  # node -> new d_k
-    window: frozenset[int]  # groups whose state this outcome depends on
-    delta_f: float  # change of the sum of Fréchet distances
-    delta_d: float  # change of the sum of |d_k| over J'
-    delta_j: int  # change of |J'|
-    redundant: int  # redundant intersections the merge would leave
-    global_solve: bool
 
 
 class _Lazy(dict):
@@ -189,10 +141,6 @@ class _Lazy(dict):
     def __missing__(self, key: Any) -> Any:
         value = self[key] = self._value(key)
         return value
-
-
-class ConnectivityWarning(UserWarning):
-    """Some junctions of the initial fit were released: their arcs end apart there."""
 
 
 def _rung_reaching(ladder: Ladder, k: int, reach: float) -> tuple[int, float]:
@@ -218,7 +166,7 @@ class _Optimizer:
         self.options = options
         #: The mirror axis of a symmetric run (``img2logo.symmetry.HalfAxis``), or None.
         self.symmetry = symmetry
-        self.groups: dict[int, _Group] = {}
+        self.groups: dict[int, Group] = {}
         self.fits: dict[int, _Fit] = {}
         self.disp = np.zeros((graph.n_junctions, 2))
         self.next_id = 0
@@ -236,18 +184,23 @@ class _Optimizer:
         self.ladder: Ladder | None = None
         #: Junctions whose connectivity constraint was given up (see recover).
         self.released: set[int] = set()
-        self._path_cache: dict[int, tuple[_Group, tuple[int, ...]]] = {}
+        self._path_cache: dict[int, tuple[Group, tuple[int, ...]]] = {}
         self._node_groups: dict[int, list[int]] | None = None
 
     # ----------------------------------------------------------------- groups and nodes
-    def add_group(self, group: _Group) -> int:
+    def add_group(self, group: Group) -> int:
         gid = self.next_id
         self.next_id += 1
         self.groups[gid] = group
         self._node_groups = None
         return gid
 
-    def constrained_nodes(self, group: _Group) -> tuple[int, ...]:
+    def release(self, node: int) -> None:
+        """Give up the connectivity constraint at junction ``node`` (:func:`~img2logo.recovery.recover`)."""
+        self.released.add(node)
+        self._node_groups = None
+
+    def constrained_nodes(self, group: Group) -> tuple[int, ...]:
         """Nodes where ``group``'s arc must pass (its J' part), in path order.
 
         The two ends, and inner nodes where other segments meet (valence >= 3
@@ -256,7 +209,7 @@ class _Optimizer:
         nodes = self.path_nodes(group)
         return tuple(n for n in nodes if n not in self.released) if self.released else nodes
 
-    def path_nodes(self, group: _Group) -> tuple[int, ...]:
+    def path_nodes(self, group: Group) -> tuple[int, ...]:
         """:meth:`constrained_nodes` with the released junctions (see :meth:`recover`), in path order."""
         # Called for every group of every window of every candidate merge: cached per
         # group (groups are immutable; the object is kept so that its id is not reused).
@@ -267,7 +220,7 @@ class _Optimizer:
         self._path_cache[id(group)] = (group, nodes)
         return nodes
 
-    def _path_nodes(self, group: _Group) -> tuple[int, ...]:
+    def _path_nodes(self, group: Group) -> tuple[int, ...]:
         if group.closed:
             head = (group.nodes[0],)
         else:
@@ -280,7 +233,7 @@ class _Optimizer:
             return head + inner
         return (group.nodes[0], *inner, group.nodes[-1])
 
-    def node_groups(self, groups: dict[int, _Group] | None = None) -> dict[int, list[int]]:
+    def node_groups(self, groups: dict[int, Group] | None = None) -> dict[int, list[int]]:
         """For every node of J', the groups constrained there (of ``groups``, default the current ones).
 
         The current state's is cached until the groups or the released junctions
@@ -296,7 +249,7 @@ class _Optimizer:
             self._node_groups = out
         return out
 
-    def node_groups_after(self, a: int, b: int, merged: _Group) -> dict[int, list[int]]:
+    def node_groups_after(self, a: int, b: int, merged: Group) -> dict[int, list[int]]:
         """:meth:`node_groups` after merging groups ``a`` and ``b`` into ``merged`` (id -1).
 
         Only the nodes of the three groups change: the rest is the current state's.
@@ -324,7 +277,7 @@ class _Optimizer:
         return out
 
     # ----------------------------------------------------------------- circles
-    def on_axis(self, group: _Group) -> bool:
+    def on_axis(self, group: Group) -> bool:
         """Whether ``group``'s circle is centred on the mirror axis (symmetric runs, :mod:`img2logo.symmetry`).
 
         So it is when the group ends where a line crosses the axis square to it:
@@ -335,7 +288,7 @@ class _Optimizer:
             return False
         return (group.segments[0], group.nodes[0]) in sym.smooth or (group.segments[-1], group.nodes[-1]) in sym.smooth
 
-    def free_circle(self, group: _Group) -> tuple[np.ndarray, float]:
+    def free_circle(self, group: Group) -> tuple[np.ndarray, float]:
         """Unconstrained circle fit of a group (Sec. 5.3, first stage), cached.
 
         A circle on the mirror axis is fitted to the pixels and their mirror image.
@@ -351,12 +304,12 @@ class _Optimizer:
             self._circle_cache[key] = (np.asarray(fit.center, dtype=np.float64), float(fit.radius))
         return self._circle_cache[key]
 
-    def free_error(self, group: _Group) -> float:
+    def free_error(self, group: Group) -> float:
         """Mean distance of the group's pixels to its free circle, px."""
         center, radius = self.free_circle(group)
         return mean_abs_error(group.points, center, radius)
 
-    def golden_error(self, group: _Group) -> float:
+    def golden_error(self, group: Group) -> float:
         """Mean distance of the group's pixels to its golden circle, px.
 
         The free radius snapped to the ladder (Eqn. 12), the centre then placed
@@ -369,7 +322,7 @@ class _Optimizer:
         return mean_abs_error(pts, fit_center(pts, radius, center), radius)
 
     def golden(
-        self, group: _Group, *, held: Mapping[int, list[np.ndarray]] | None = None
+        self, group: Group, *, held: Mapping[int, list[np.ndarray]] | None = None
     ) -> tuple[np.ndarray, float, int | None]:
         """Free fit snapped to the ladder (Eqn. 12): (centre, radius, k).
 
@@ -383,7 +336,7 @@ class _Optimizer:
         pin it to their intersection (far away, or nowhere, for nearly parallel
         ones); otherwise the group stays an arc.
         """
-        line = _straight_line(group) if self.options.lines and not self.on_axis(group) else None
+        line = straight_line(group) if self.options.lines and not self.on_axis(group) else None
         if line is not None and held is not None:
             u = (line[1] - line[0]) / np.hypot(*(line[1] - line[0]))
             for n in self.constrained_nodes(group):
@@ -403,7 +356,7 @@ class _Optimizer:
             center = self.axis_seed(group, center, r)
         return center, r, k
 
-    def axis_seed(self, group: _Group, center: np.ndarray, radius: float) -> np.ndarray:
+    def axis_seed(self, group: Group, center: np.ndarray, radius: float) -> np.ndarray:
         """A circle centred on the mirror axis that passes through the group's end on it (the fit's start).
 
         On the axis, on the side of the free fit's centre: the snapped radius
@@ -418,7 +371,7 @@ class _Optimizer:
         y = float(self.graph.junctions[smooth[0], 1])
         return np.array([sym.x, y + math.copysign(radius, float(center[1]) - y)])
 
-    def reach(self, group: _Group) -> float:
+    def reach(self, group: Group) -> float:
         """Half the largest distance between the junctions ``group``'s circle must pass, px.
 
         A circle passes through two points only if its diameter spans them: a
@@ -433,7 +386,7 @@ class _Optimizer:
         return 0.5 * float(np.max(np.hypot(*(pts[:, None, :] - pts[None, :, :]).transpose(2, 0, 1))))
 
     # ----------------------------------------------------------------- arcs
-    def arc_for(self, group: _Group, center: np.ndarray, radius: float, k: int, disp: Any) -> ArcFit:
+    def arc_for(self, group: Group, center: np.ndarray, radius: float, k: int, disp: Any) -> ArcFit:
         """Extract the arc of ``group`` on its circle through its displaced junctions."""
         circle = Circle(float(center[0]), float(center[1]), float(radius), None if k is None else int(k))
         nodes = self.path_nodes(group)
@@ -455,7 +408,7 @@ class _Optimizer:
     # ----------------------------------------------------------------- the constrained fit
     def solve(
         self,
-        groups: dict[int, _Group],
+        groups: dict[int, Group],
         seeds: Mapping[int, tuple[np.ndarray, float, int | None]],
         node_groups: Mapping[int, Sequence[int]],
         *,
@@ -467,7 +420,7 @@ class _Optimizer:
         rings: int = 1,
         order: Callable[[int], Any] | None = None,
     ) -> tuple[dict[int, _Fit], dict[int, np.ndarray]] | None:
-        """Eqn. 13 over a window of ``groups`` (:func:`~img2logo.circle_fitting.fit_window`), then their arcs.
+        """Eqn. 13 over a window of ``groups`` (:func:`~img2logo.constrained_fit.fit_window`), then their arcs.
 
         The window is the ``changed`` groups and those through ``free_nodes``,
         grown by up to ``rings`` rings; the ``fixed`` groups keep their circles,
@@ -498,9 +451,9 @@ class _Optimizer:
         return self._fits(window, groups, seeds, fixed)
 
     def axis_constraints(
-        self, gids: Sequence[int], groups: Mapping[int, _Group], node_list: Sequence[int]
+        self, gids: Sequence[int], groups: Mapping[int, Group], node_list: Sequence[int]
     ) -> dict[str, Any]:
-        """The keywords of :func:`fit_constrained` that hold circles and junctions on the mirror axis."""
+        """Keywords of :func:`~img2logo.constrained_fit.fit_constrained`: circles and junctions held on the axis."""
         sym = self.symmetry
         if sym is None:
             return {}
@@ -514,7 +467,7 @@ class _Optimizer:
     def _fits(
         self,
         window: WindowFit,
-        groups: dict[int, _Group],
+        groups: dict[int, Group],
         seeds: Mapping[int, tuple[np.ndarray, float, int | None]],
         fixed: set[int],
     ) -> tuple[dict[int, _Fit], dict[int, np.ndarray]]:
@@ -539,11 +492,11 @@ class _Optimizer:
         # holds one of its junctions (see golden).
         seeds: dict[int, tuple[np.ndarray, float, int | None]] = {}
         held: dict[int, list[np.ndarray]] = {}
-        for gid in sorted(self.groups, key=lambda g: -_length(self.groups[g].points)):
+        for gid in sorted(self.groups, key=lambda g: -path_length(self.groups[g].points)):
             seeds[gid] = self.golden(self.groups[gid], held=held)
             if seeds[gid][2] is None:
-                _hold(held, self.groups[gid], self.constrained_nodes(self.groups[gid]))
-        self.check_reach(seeds)
+                hold_line(held, self.groups[gid], self.constrained_nodes(self.groups[gid]))
+        check_reach(self, seeds)
         nodes = sorted(self.node_groups())
         out = self.solve(
             dict(self.groups),
@@ -557,98 +510,11 @@ class _Optimizer:
         )
         self.stats["global_solves"] += 1
         if out is None:
-            out = self.recover(seeds)
+            out = recover(self, seeds)
         fits, disp = out
         self.fits = fits
         for n, d in disp.items():
             self.disp[n] = d
-
-    def check_reach(self, seeds: Mapping[int, tuple[np.ndarray, float, int | None]]) -> None:
-        """Raise when the user's radii are too small for the segments' junctions (see :meth:`reach`)."""
-        if self.ladder.exponents is None:
-            return
-        short = [g for g, (_, r, k) in seeds.items() if k is not None and r < self.reach(self.groups[g])]
-        if short:
-            ks = sorted(self.ladder.exponents)
-            widest = max(2.0 * self.reach(self.groups[g]) for g in short)
-            raise InvalidParameterError(
-                f"the chosen radii (k = {', '.join(map(str, ks))}: {self.ladder.radius(ks[0]):.3g} to "
-                f"{self.ladder.radius(ks[-1]):.3g} px) are too small: {len(short)} segments need a circle through "
-                f"junctions up to {widest:.0f} px apart; allow larger radii"
-            )
-
-    def recover(
-        self, seeds: dict[int, tuple[np.ndarray, float, int | None]]
-    ) -> tuple[dict[int, _Fit], dict[int, np.ndarray]]:
-        """A^0 when the joint fit fails: each connected part alone, releasing junctions as needed.
-
-        The parts of the drawing that share no junction are independent
-        problems, so a part that converges keeps its exact connectivity. In a
-        part that does not, the junction its golden circles miss most (the
-        largest distance from the junction to a circle through it, before the
-        fit) is released: its arcs end where it projects on their circles, like
-        a free end. This repeats until the part converges (a part with every
-        junction released always does); the count is reported.
-        """
-        fits: dict[int, _Fit] = {}
-        disp: dict[int, np.ndarray] = {}
-        n_total = len(self.groups)
-        for part in self.parts():
-            while True:
-                groups = {g: self.groups[g] for g in part}
-                at = self.node_groups(groups)
-                out = self.solve(
-                    groups,
-                    seeds,
-                    at,
-                    changed=part,
-                    free_nodes=sorted(at),
-                    fixed=set(),
-                    n_groups_total=n_total,
-                    n_junctions_total=max(len(self.node_groups()), 1),
-                )
-                self.stats["global_solves"] += 1
-                if out is not None:
-                    fits.update(out[0])
-                    disp.update(out[1])
-                    break
-                miss = {
-                    n: max(abs(float(np.hypot(*(self.graph.junctions[n] - seeds[g][0]))) - seeds[g][1]) for g in gs)
-                    for n, gs in self.node_groups(groups).items()
-                }
-                if not miss:  # no constraint left, yet no fit: a numerical failure, said as such
-                    raise FitError(f"the circles of {len(part)} segments could not be fitted, even unconstrained")
-                self.released.add(max(miss, key=lambda n: (miss[n], -n)))
-                self._node_groups = None
-        self.stats["released_junctions"] = len(self.released)
-        if self.released:
-            import warnings
-
-            warnings.warn(
-                f"the connectivity-constrained fit could not meet {len(self.released)} of "
-                f"{len(self.released) + len(self.node_groups())} junctions; their arcs end apart there",
-                ConnectivityWarning,
-                stacklevel=2,
-            )
-        return fits, disp
-
-    def parts(self) -> list[list[int]]:
-        """The groups in connected parts: groups sharing a constrained junction are in one part."""
-        parent = {g: g for g in self.groups}
-
-        def root(g: int) -> int:
-            while parent[g] != g:
-                parent[g] = parent[parent[g]]
-                g = parent[g]
-            return g
-
-        for gs in self.node_groups().values():
-            for g in gs[1:]:
-                parent[root(g)] = root(gs[0])
-        parts: dict[int, list[int]] = {}
-        for g in sorted(self.groups):
-            parts.setdefault(root(g), []).append(g)
-        return list(parts.values())
 
     # ----------------------------------------------------------------- errors
     def totals(self) -> tuple[float, float, int]:
@@ -663,137 +529,8 @@ class _Optimizer:
         f, d, nj = self.totals()
         return f / max(len(self.fits), 1) + (d / nj if nj else 0.0)
 
-    # ----------------------------------------------------------------- merging
-    def candidates(self) -> list[tuple[int, int, int]]:
-        """Mergeable pairs (a, b, node): two groups with a common end (Sec. 5.2)."""
-        out = []
-        sym = self.symmetry
-        for node, gids in sorted(self.end_groups().items()):
-            if sym is not None and node in sym.nodes:
-                continue  # an arc never runs on through the mirror axis: its mirror image would cross it
-            ok = [g for g in sorted(gids) if not self.groups[g].locked and not self.groups[g].closed]
-            out.extend((a, b, node) for i, a in enumerate(ok) for b in ok[i + 1 :])
-        return out
-
-    def evaluate(self, pair: tuple[int, int, int]) -> _Outcome | None:
-        """Merge ``pair`` tentatively, refit, and score it; None if infeasible."""
-        self.stats["evaluated"] += 1
-        a, b, node = pair
-        # Two arcs that both run on through one junction cross there (an X): one
-        # of them ends at the junction instead, so that arcs meet only at their
-        # ends or where one ends on the other (a T), and no crossing is left.
-        if any(node in g.nodes[1:-1] for gid, g in self.groups.items() if gid not in (a, b)):
-            self.stats["rejected_crossing"] += 1
-            return None
-        merged = _merge_groups(self.groups[a], self.groups[b], node)
-        after = {g: grp for g, grp in self.groups.items() if g not in (a, b)}
-        after[-1] = merged
-        n_groups = len(after)
-        node_groups_after = self.node_groups_after(a, b, merged)
-        nj_after = len(node_groups_after)
-        seeds = {g: (self.fits[g].center, self.fits[g].radius, self.fits[g].k) for g in after if g != -1}
-        held: dict[int, list[np.ndarray]] = {}
-        for g, f in self.fits.items():
-            if f.k is None and g not in (a, b):
-                _hold(held, self.groups[g], self.constrained_nodes(self.groups[g]))
-        seeds[-1] = self.golden(merged, held=held)
-
-        merged_nodes = set(self.constrained_nodes(merged))
-        global_solve = not self.options.localized
-        out = None
-        if not global_solve:
-            # The window: the new circle and its neighbours, with the new circle's
-            # junctions free (Sec. 5.4). If the fixed junctions leave no solution,
-            # a second ring (the neighbours' junctions and their circles) is freed
-            # before the global problem is solved. Without the connectivity
-            # constraint only the new circle moves.
-            out = self.solve(
-                after,
-                seeds,
-                node_groups_after,
-                changed=[-1],
-                free_nodes=sorted(merged_nodes),
-                fixed=set() if self.options.connectivity else set(after) - {-1},
-                n_groups_total=n_groups,
-                n_junctions_total=nj_after,
-                rings=2,
-                order=lambda g: (g != -1, g),
-            )
-            if out is None:
-                self.stats["local_failed"] += 1
-                # A merged segment whose pixels lie on average more than T from
-                # their own best golden circle, constraints aside, cannot give an
-                # arc within the tolerance: reject it without the costly global
-                # solve (measured: such windows fail globally too).
-                if self.golden_error(merged) > self.options.tolerance:
-                    self.stats["rejected_hopeless"] += 1
-                    return None
-                global_solve = True
-        if global_solve:
-            self.stats["global_solves"] += 1
-            out = self.solve(
-                after,
-                seeds,
-                node_groups_after,
-                changed=list(after),
-                free_nodes=sorted(node_groups_after),
-                fixed=set(),
-                n_groups_total=n_groups,
-                n_junctions_total=nj_after,
-                order=lambda g: (g == -1, g),  # the merged group last, as in ``after``
-            )
-            if out is None:
-                return None
-        fits, disp = out
-        cap = self.options.arc_bound
-        if cap is not None and fits[-1].arc.frechet > cap:
-            self.stats["rejected_far_arc"] += 1
-            return None
-
-        old_nodes = set(self.node_groups())
-        changed_nodes = set(disp) | {node}
-        delta_d = sum(float(np.linalg.norm(disp[n])) for n in changed_nodes if n in node_groups_after and n in disp)
-        delta_d -= sum(float(np.linalg.norm(self.disp[n])) for n in changed_nodes if n in old_nodes)
-        delta_f = sum(f.arc.frechet for f in fits.values())
-        delta_f -= sum(self.fits[g].arc.frechet for g in {a, b} | (set(fits) - {-1}))
-        window_ids = frozenset({a, b} | (set(fits) - {-1}))
-
-        redundant = 0
-        if self.options.avoid_intersections:
-            redundant = self._redundant(after, fits, disp, node_groups_after)
-        return _Outcome(
-            pair, merged, fits, disp, window_ids, delta_f, delta_d, nj_after - len(old_nodes), redundant, global_solve
-        )
-
-    def _redundant(
-        self,
-        after: dict[int, _Group],
-        fits: dict[int, _Fit],
-        disp: dict[int, np.ndarray],
-        node_groups_after: dict[int, list[int]],
-    ) -> int:
-        """Redundant intersections that involve the arcs a merge changed."""
-        gids = list(after)
-        arcs = [(fits[g] if g in fits else self.fits[g]).arc.arc for g in gids]
-        nodes = sorted(node_groups_after)
-        node_index = {n: i for i, n in enumerate(nodes)}
-        points = np.array([self.graph.junctions[n] + (disp[n] if n in disp else self.disp[n]) for n in nodes])
-        arc_junctions = [[node_index[n] for n in self.constrained_nodes(after[g])] for g in gids]
-        changed = [i for i, g in enumerate(gids) if g in fits]
-        return len(redundant_intersections(arcs, points, arc_junctions, candidates=changed))
-
-    def recheck_redundant(self, outcome: _Outcome) -> int:
-        """Redundant intersections a cached outcome would leave against the *current* arcs.
-
-        A cached count goes stale when any arc moves, not only the arcs of the
-        outcome's window: the chosen merge is checked again before it is made.
-        """
-        a, b, _ = outcome.pair
-        after = {g: grp for g, grp in self.groups.items() if g not in (a, b)}
-        after[-1] = outcome.merged
-        return self._redundant(after, outcome.fits, outcome.displacements, self.node_groups_after(a, b, outcome.merged))
-
-    def apply(self, outcome: _Outcome) -> int:
+    # ----------------------------------------------------------------- merging (chosen by img2logo.merging)
+    def apply(self, outcome: MergeOutcome) -> int:
         """Carry out a merge: the merged group replaces its two parts."""
         a, b, _ = outcome.pair
         del self.groups[a], self.groups[b]
@@ -924,10 +661,11 @@ def optimize(
     ladder, bias, unit, simplify = opts.ladder, opts.bias, opts.unit, opts.simplify
 
     opt = _Optimizer(graph, opts, symmetry)
+    axis_nodes = symmetry.nodes if symmetry is not None else frozenset()
     timings: dict[str, float] = {}
     start = time.perf_counter()
     groups = [
-        _Group((i,), tuple(int(n) for n in graph.ends[i]), seg, bool(locked[i])) for i, seg in enumerate(graph.segments)
+        Group((i,), tuple(int(n) for n in graph.ends[i]), seg, bool(locked[i])) for i, seg in enumerate(graph.segments)
     ]
     # The bias comes from the longest segment after simplification (Eqn. 14), by
     # free circles as in the paper. The simplification that the loop starts
@@ -936,11 +674,11 @@ def optimize(
     # Fibonacci ladder's unit comes from the same radius (unit_from_radius).
     longest = None
     if (unit if ladder == "fibonacci" else bias) is None:
-        probe = _simplify(opt, groups, opt.free_error) if simplify else groups
-        longest = opt.free_circle(max(probe, key=lambda g: _length(g.points)))[1]
+        probe = simplify_groups(groups, opt.free_error, graph.valence, axis_nodes) if simplify else groups
+        longest = opt.free_circle(max(probe, key=lambda g: path_length(g.points)))[1]
     opt.ladder = make_ladder(ladder, longest, bias=bias, unit=unit, exponents=opts.exponents, rounding=opts.rounding)
     if simplify:
-        groups = _simplify(opt, groups, opt.golden_error)
+        groups = simplify_groups(groups, opt.golden_error, graph.valence, axis_nodes)
     for g in sorted(groups, key=lambda g: min(g.segments)):
         opt.add_group(g)
     timings["simplification"] = time.perf_counter() - start
@@ -959,110 +697,9 @@ def optimize(
     start = time.perf_counter()
     stopped = "merging off"
     if opts.merging:
-        stopped = _loop(opt, levels, record, opts.tolerance, progress)
+        stopped = merge_loop(opt, levels, record, opts.tolerance, progress)
     timings["loop"] = time.perf_counter() - start
     return Progression(tuple(levels), float(opt.ladder.bias), simplified, stopped, dict(opt.stats), timings, opt.ladder)
-
-
-def _loop(
-    opt: _Optimizer,
-    levels: list[Abstraction],
-    record: dict[str, Any],
-    tolerance: float,
-    progress: ProgressCallback | None,
-) -> str:
-    """Merge the best pair until E^s would exceed ``tolerance`` (Sec. 5.2, steps 1-6).
-
-    Scores are kept between iterations. After a merge, the pairs with the new
-    segment are scored afresh; a pair whose refit window the merge changed
-    keeps its old score as an estimate (the paper keeps it as it was, step 5)
-    and is rescored from the current state when it comes out best: so the pair
-    merged is always scored exactly (lazy greedy).
-    """
-    cache: dict[tuple[int, int, int], _Outcome | None] = {}
-    stale: set[tuple[int, int, int]] = set()
-    while True:
-        pairs = opt.candidates()
-        if not pairs:
-            return "no mergeable pair"
-        f, d, nj = opt.totals()
-        n_arcs = len(opt.fits)
-        while True:
-            best, best_error = None, math.inf
-            for pair in pairs:
-                if pair not in cache or (pair in stale and cache[pair] is None):
-                    cache[pair] = opt.evaluate(pair)
-                    stale.discard(pair)
-                out = cache[pair]
-                if out is None or (out.redundant and pair not in stale):
-                    continue
-                nj_after = nj + out.delta_j
-                error = (f + out.delta_f) / max(n_arcs - 1, 1) + ((d + out.delta_d) / nj_after if nj_after else 0.0)
-                if error < best_error:
-                    best, best_error = pair, error
-            if best is None or best not in stale:
-                break
-            cache[best] = opt.evaluate(best)
-            stale.discard(best)
-        opt.stats["rejected_intersections"] = sum(1 for o in cache.values() if o is not None and o.redundant)
-        if best is None:
-            return "no mergeable pair"
-        if best_error > tolerance:
-            return "tolerance"
-        outcome = cache[best]
-        if opt.options.avoid_intersections:
-            now = opt.recheck_redundant(outcome)
-            if now:
-                cache[best] = dataclasses.replace(outcome, redundant=now)
-                continue
-        opt.apply(outcome)
-        changed = outcome.window | {outcome.pair[0], outcome.pair[1]}
-        cache = {p: o for p, o in cache.items() if p[0] in opt.groups and p[1] in opt.groups}
-        for p, o in cache.items():
-            if outcome.global_solve or o is None or (o.window & changed):
-                stale.add(p)
-        stale &= set(cache)
-        level = opt.abstraction(len(levels), record)
-        levels.append(level)
-        if progress:
-            progress(level.level, len(level.arcs), level.similarity)
-
-
-def _simplify(opt: _Optimizer, groups: list[_Group], error: Callable[[_Group], float]) -> list[_Group]:
-    """Line-segment simplification (Sec. 5.4): merge neighbours one arc fits within 1 px.
-
-    Greedy, the lowest ``error`` (mean absolute distance of the pixels to the
-    fitted circle, px) first, while it is below ``SIMPLIFICATION_ERROR``. Only
-    at split points (nodes of valence 2 in the graph): a real junction is left
-    to the progressive loop. Returns the simplified groups.
-    """
-    valence = opt.graph.valence
-    axis_nodes = opt.symmetry.nodes if opt.symmetry is not None else frozenset()
-    current = list(groups)
-    scores: dict[tuple[tuple[int, ...], tuple[int, ...]], tuple[float, _Group]] = {}
-    while True:
-        at: dict[int, list[int]] = {}
-        for i, g in enumerate(current):
-            for n in set(g.ends):
-                at.setdefault(n, []).append(i)
-        best, best_err = None, SIMPLIFICATION_ERROR
-        for node, idx in sorted(at.items()):
-            if valence[node] != 2 or len(idx) != 2 or node in axis_nodes:
-                continue
-            ga, gb = current[idx[0]], current[idx[1]]
-            if ga.locked or gb.locked or ga is gb:
-                continue
-            key = (ga.segments, gb.segments)
-            if key not in scores:
-                merged = _merge_groups(ga, gb, node)
-                scores[key] = (error(merged), merged)
-            err, merged = scores[key]
-            if err < best_err:
-                best, best_err = (idx[0], idx[1], merged), err
-        if best is None:
-            return current
-        i, j, merged = best
-        current = [g for k, g in enumerate(current) if k not in (i, j)] + [merged]
 
 
 def _locked_segments(graph: SegmentGraph, lock_mask: np.ndarray | None) -> np.ndarray:
@@ -1081,49 +718,3 @@ def _locked_segments(graph: SegmentGraph, lock_mask: np.ndarray | None) -> np.nd
         rows = np.clip((seg[:, 1] - 0.5).round().astype(int), 0, graph.height - 1)
         out[i] = mask[rows, cols].mean() > 0.5
     return out
-
-
-def _straight_line(group: _Group) -> tuple[np.ndarray, np.ndarray] | None:
-    """The end points of a straight group's line, or None if it is not straight.
-
-    The line is the pixels' total-least-squares line; its ends are the
-    projections of the group's end points on it.
-    """
-    if not _is_straight(group):
-        return None
-    pts = group.points
-    mean = pts.mean(axis=0)
-    direction = np.linalg.svd(pts - mean, full_matrices=False)[2][0]
-    ends = mean + np.outer((pts[[0, -1]] - mean) @ direction, direction)
-    return ends[0], ends[1]
-
-
-def _hold(held: dict[int, list[np.ndarray]], group: _Group, nodes: Sequence[int]) -> None:
-    """Record a line group's direction at each of its junctions (see ``golden``)."""
-    d = group.points[-1] - group.points[0]
-    u = d / max(float(np.hypot(*d)), 1e-12)
-    for n in set(nodes):
-        held.setdefault(n, []).append(u)
-
-
-def _is_straight(group: _Group) -> bool:
-    """Whether an open group is a straight stroke (the lines option).
-
-    Its pixels, but for ``LINE_END_SKIP`` px at each end (where thinning bevels
-    a thick stroke's corners towards the junction), all lie within
-    ``LINE_TOLERANCE`` of their total-least-squares line.
-    """
-    if group.closed:
-        return False
-    pts = group.points
-    arc_len = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(pts, axis=0).T))])
-    inner = pts[(arc_len >= LINE_END_SKIP) & (arc_len <= arc_len[-1] - LINE_END_SKIP)]
-    if len(inner) < 3:
-        return False
-    centred = inner - inner.mean(axis=0)
-    normal = np.linalg.svd(centred, full_matrices=False)[2][1]  # the direction of least spread
-    return float(np.max(np.abs(centred @ normal))) <= LINE_TOLERANCE
-
-
-def _length(points: np.ndarray) -> float:
-    return float(np.sum(np.hypot(*np.diff(points, axis=0).T)))

@@ -11,6 +11,7 @@ import pytest
 
 from img2logo.constants import PHI
 from img2logo.geometry import TAU, Abstraction, Arc, Circle
+from img2logo.segment_graph import SegmentGraph
 
 DATA = Path(__file__).resolve().parents[1] / "data"
 
@@ -204,3 +205,71 @@ def discs_result():
     import img2logo
 
     return img2logo.abstract(two_discs())
+
+
+def arc_points(center, radius, theta0, sweep, n):
+    """n points of the circle (center, radius) from angle theta0 over sweep (radians)."""
+    t = theta0 + sweep * np.linspace(0.0, 1.0, n)
+    return np.asarray(center, dtype=float) + radius * np.column_stack([np.cos(t), np.sin(t)])
+
+
+def arc_through(q0, q1, radius, side, n):
+    """Centre and n points of the minor arc of radius ``radius`` from q0 to q1."""
+    q0, q1 = np.asarray(q0, dtype=float), np.asarray(q1, dtype=float)
+    chord = np.linalg.norm(q1 - q0)
+    t = (q1 - q0) / chord
+    center = (q0 + q1) / 2 + side * math.sqrt(radius**2 - chord**2 / 4) * np.array([-t[1], t[0]])
+    a0, a1 = (math.atan2(*(q - center)[::-1]) for q in (q0, q1))
+    sweep = (a1 - a0 + math.pi) % (2 * math.pi) - math.pi
+    return center, arc_points(center, radius, a0, sweep, n)
+
+
+def golden_radius(k: int) -> float:
+    """The golden radius phi^(k + BIAS), px."""
+    return PHI ** (k + BIAS)
+
+
+def sampled_arc(center, radius, t0, t1, step=1.0, noise=0.0, rng=None):
+    """Points of the circle (center, radius) from angle t0 to t1, about ``step`` px apart; inner ones noisy."""
+    n = max(3, int(abs(t1 - t0) * radius / step) + 1)
+    t = np.linspace(t0, t1, n)
+    pts = np.column_stack([center[0] + radius * np.cos(t), center[1] + radius * np.sin(t)])
+    if noise:
+        pts[1:-1] += rng.normal(0.0, noise, (n - 2, 2))
+    return pts
+
+
+def golden_chain(noise: float = 0.0, seed: int = 0) -> tuple[SegmentGraph, list[tuple[np.ndarray, float]]]:
+    """Three golden arcs (k = 8, 9, 10) joined end to end at two junctions: an S-like stroke."""
+    rng = np.random.default_rng(seed)
+    r1, r2, r3 = golden_radius(8), golden_radius(9), golden_radius(10)
+    c1 = np.array([150.0, 150.0])
+    a1 = sampled_arc(c1, r1, np.pi, np.pi / 2, noise=noise, rng=rng)  # ends at the bottom of circle 1
+    j1 = a1[-1]
+    # Circle 2 touches circle 1 at j1 from outside, continuing the stroke.
+    c2 = j1 + np.array([0.0, r2])
+    a2 = sampled_arc(c2, r2, -np.pi / 2, -np.pi / 2 + 1.2, noise=noise, rng=rng)
+    j2 = a2[-1]
+    u = (j2 - c2) / r2
+    c3 = j2 - u * r3  # circle 3 is internally tangent at j2: the same side, larger
+    t3 = np.arctan2(u[1], u[0])
+    a3 = sampled_arc(c3, r3, t3, t3 + 0.8, noise=noise, rng=rng)
+    graph = SegmentGraph(
+        segments=(a1, a2, a3),
+        junctions=np.array([a1[0], j1, j2, a3[-1]]),
+        ends=np.array([[0, 1], [1, 2], [2, 3]]),
+        width=600,
+        height=600,
+    )
+    return graph, [(c1, r1), (c2, r2), (c3, r3)]
+
+
+def check_level(level: Abstraction, atol: float = 1e-6) -> None:
+    """Every junction lies on the circle of each arc listed there; arcs pass through it."""
+    for point, arcs in zip(level.junctions, level.junction_arcs, strict=True):
+        for i in arcs:
+            arc = level.arcs[i]
+            assert abs(arc.circle.distance(point[None])[0]) <= atol
+            assert arc.contains_angle(arc.circle.angle_of(point[None]), tol=1e-6)[0]
+    for arc in level.arcs:
+        assert abs(arc.circle.r - PHI ** (arc.circle.k + level.bias)) <= 1e-9 * arc.circle.r

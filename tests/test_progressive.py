@@ -8,64 +8,13 @@ import math
 import cv2
 import numpy as np
 import pytest
-from conftest import DATA, blank
+from conftest import BIAS, DATA, blank, check_level, golden_chain, sampled_arc
 
 from img2logo import InvalidParameterError, SegmentGraph, build_segment_graph, extract_feature_lines
 from img2logo.arc_extraction import redundant_intersections
 from img2logo.constants import PHI
 from img2logo.geometry import Abstraction
 from img2logo.progressive import optimize
-
-BIAS = 0.3
-
-
-def golden_radius(k: int) -> float:
-    return PHI ** (k + BIAS)
-
-
-def arc_points(center, radius, t0, t1, step=1.0, noise=0.0, rng=None):
-    n = max(3, int(abs(t1 - t0) * radius / step) + 1)
-    t = np.linspace(t0, t1, n)
-    pts = np.column_stack([center[0] + radius * np.cos(t), center[1] + radius * np.sin(t)])
-    if noise:
-        pts[1:-1] += rng.normal(0.0, noise, (n - 2, 2))
-    return pts
-
-
-def golden_chain(noise: float = 0.0, seed: int = 0) -> tuple[SegmentGraph, list[tuple[np.ndarray, float]]]:
-    """Three golden arcs (k = 8, 9, 10) joined end to end at two junctions: an S-like stroke."""
-    rng = np.random.default_rng(seed)
-    r1, r2, r3 = golden_radius(8), golden_radius(9), golden_radius(10)
-    c1 = np.array([150.0, 150.0])
-    a1 = arc_points(c1, r1, np.pi, np.pi / 2, noise=noise, rng=rng)  # ends at the bottom of circle 1
-    j1 = a1[-1]
-    # Circle 2 touches circle 1 at j1 from outside, continuing the stroke.
-    c2 = j1 + np.array([0.0, r2])
-    a2 = arc_points(c2, r2, -np.pi / 2, -np.pi / 2 + 1.2, noise=noise, rng=rng)
-    j2 = a2[-1]
-    u = (j2 - c2) / r2
-    c3 = j2 - u * r3  # circle 3 is internally tangent at j2: the same side, larger
-    t3 = np.arctan2(u[1], u[0])
-    a3 = arc_points(c3, r3, t3, t3 + 0.8, noise=noise, rng=rng)
-    graph = SegmentGraph(
-        segments=(a1, a2, a3),
-        junctions=np.array([a1[0], j1, j2, a3[-1]]),
-        ends=np.array([[0, 1], [1, 2], [2, 3]]),
-        width=600,
-        height=600,
-    )
-    return graph, [(c1, r1), (c2, r2), (c3, r3)]
-
-
-def check_level(level: Abstraction, atol: float = 1e-6) -> None:
-    """Every junction lies on the circle of each arc listed there; arcs pass through it."""
-    for point, arcs in zip(level.junctions, level.junction_arcs, strict=True):
-        for i in arcs:
-            arc = level.arcs[i]
-            assert abs(arc.circle.distance(point[None])[0]) <= atol
-            assert arc.contains_angle(arc.circle.angle_of(point[None]), tol=1e-6)[0]
-    for arc in level.arcs:
-        assert abs(arc.circle.r - PHI ** (arc.circle.k + level.bias)) <= 1e-9 * arc.circle.r
 
 
 # --------------------------------------------------------------------------- known answers
@@ -216,15 +165,6 @@ def _max_end_gap(level: Abstraction) -> float:
     return worst
 
 
-def test_simplification_reduces_the_initial_arcs():
-    graph = build_segment_graph(extract_feature_lines(DATA / "drawing-fish.png"))
-    plain = optimize(graph, simplify=False, merging=False)
-    simplified = optimize(graph, simplify=True, merging=False)
-    assert len(plain.levels[0].arcs) == graph.n_segments
-    assert len(simplified.levels[0].arcs) < 0.6 * graph.n_segments
-    assert len(simplified.simplified) == len(simplified.levels[0].arcs)
-
-
 def test_lock_mask_keeps_locked_segments_apart():
     graph = build_segment_graph(extract_feature_lines(DATA / "drawing-fish.png"))
     mask = np.zeros((graph.height, graph.width), bool)
@@ -292,19 +232,6 @@ def test_empty_graph_is_refused():
 def test_graph_must_be_a_segment_graph():
     with pytest.raises(InvalidParameterError, match="graph must be a SegmentGraph, got list"):
         optimize([])  # type: ignore[arg-type]
-
-
-def test_no_redundant_intersection_when_an_arc_outside_the_window_moved():
-    # Regression: on the clip-art fox at T = 12 a merge was cached with no crossing,
-    # then applied after another merge had moved an arc it crosses.
-    graph = build_segment_graph(extract_feature_lines(DATA / "clipart-fox.png"))
-    prog = optimize(graph, tolerance=12.0)
-    level = prog.final
-    arc_junctions = [[] for _ in level.arcs]
-    for k, arcs in enumerate(level.junction_arcs):
-        for i in arcs:
-            arc_junctions[i].append(k)
-    assert redundant_intersections(list(level.arcs), level.junctions, arc_junctions) == []
 
 
 # --------------------------------------------------------------------------- straight lines
@@ -386,36 +313,12 @@ def test_line_arc_is_straight_between_its_ends():
     assert np.hypot(*(mid - [160.0, 95.0])) < 0.02
 
 
-def test_max_arc_distance_rejects_merges_that_stray_from_their_line():
-    # A wave: at a large T its bumps merge into one or two arcs that cut across them.
-    from skimage.draw import line
-
-    from img2logo.preprocessing import FeatureLines
-
-    lines = np.zeros((60, 200), bool)
-    xs = np.arange(10, 190)
-    ys = np.round(30 + 8 * np.sin(xs / 12.0)).astype(int)
-    for i in range(len(xs) - 1):
-        rr, cc = line(ys[i], xs[i], ys[i + 1], xs[i + 1])
-        lines[rr, cc] = True
-    graph = build_segment_graph(FeatureLines(lines, "drawing", "given"))
-    free = optimize(graph, tolerance=12.0)
-    capped = optimize(graph, tolerance=12.0, max_arc_distance=3.0)
-    assert capped.final.params["max_arc_distance"] == 3.0 and "max_arc_distance" not in free.final.params
-    assert capped.stats["rejected_far_arc"] > 0
-    assert len(capped.final.arcs) > len(free.final.arcs)
-    # Every arc's circle is within the bound of its pixels (a circle is nearer than its arc).
-    for arc, ids in zip(capped.final.arcs, capped.final.arc_segments, strict=True):
-        pts = np.concatenate([graph.segments[i] for i in ids])
-        assert np.max(np.abs(arc.circle.distance(pts))) <= 3.0 + 1e-6
-
-
 # --------------------------------------------------------------------------- feasibility and recovery
 def _semicircle_graph(offset: float) -> SegmentGraph:
     """A long arc of radius 100 px (it sets the bias) and, apart, a semicircle of radius 100 phi^offset."""
-    big = arc_points((300.0, 300.0), 100.0, 0.0, 1.5 * np.pi)
+    big = sampled_arc((300.0, 300.0), 100.0, 0.0, 1.5 * np.pi)
     r = 100.0 * PHI**offset
-    half = arc_points((300.0, 300.0), r, 0.2 * np.pi, 0.2 * np.pi + np.pi)
+    half = sampled_arc((300.0, 300.0), r, 0.2 * np.pi, 0.2 * np.pi + np.pi)
     return SegmentGraph(
         segments=(big, half),
         junctions=np.array([big[0], big[-1], half[0], half[-1]]),
@@ -436,30 +339,3 @@ def test_a_semicircle_whose_radius_rounds_down_is_raised_to_reach_its_ends():
     chord = float(np.hypot(*(graph.junctions[2] - graph.junctions[3])))
     assert half.circle.r >= chord / 2
     assert half.circle.r == pytest.approx(100.0, rel=1e-6)
-
-
-def test_radii_too_small_for_the_junctions_are_named():
-    graph, _ = golden_chain()
-    with pytest.raises(InvalidParameterError, match=r"chosen radii \(k = 1, 2, 3: .* px\) are too small"):
-        optimize(graph, exponents=[1, 2, 3])
-
-
-def test_a_junction_the_fit_cannot_meet_is_released(monkeypatch):
-    from img2logo import progressive
-
-    graph, _ = golden_chain()
-    stuck = 2  # pretend that no fit can meet junction 2 (where arcs 2 and 3 join)
-    solve = progressive._Optimizer.solve
-
-    def failing(self, groups, *args, **kwargs):
-        nodes = {n for g in groups.values() for n in self.constrained_nodes(g)}
-        return None if stuck in nodes else solve(self, groups, *args, **kwargs)
-
-    monkeypatch.setattr(progressive._Optimizer, "solve", failing)
-    with pytest.warns(progressive.ConnectivityWarning, match=r"could not meet [12] of 4 junctions"):
-        progression = optimize(graph, merging=False, simplify=False)
-    assert 1 <= progression.stats["released_junctions"] <= 2
-    level = progression.levels[0]
-    check_level(level)  # the junctions it lists are met exactly
-    assert len(level.arcs) == 3
-    assert not any(np.allclose(j, graph.junctions[stuck], atol=1e-6) for j in level.junctions)

@@ -14,9 +14,9 @@ from conftest import blank
 
 import img2logo
 from img2logo import InvalidParameterError
-from img2logo.circle_fitting import fit_constrained
 from img2logo.cli import main
 from img2logo.constants import SYMMETRY_THRESHOLD
+from img2logo.constrained_fit import fit_constrained
 from img2logo.contract import to_document
 from img2logo.segment_graph import SegmentGraph
 from img2logo.symmetry import (

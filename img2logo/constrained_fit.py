@@ -1,0 +1,686 @@
+"""The connectivity-constrained circle fit (Sec. 5.3, Eqn. 13) and its local window (Sec. 5.4).
+
+* :func:`fit_constrained` solves Eqn. 13: with the (golden) radii fixed it moves
+  the circle centres o_i and junction displacements d_k to minimize E^l (Eqn. 7)
+  subject to every circle passing through its displaced junctions (Eqn. 8, 9).
+  Variables may be held fixed, which is the localized fitting of Sec. 5.4.
+* :func:`fit_window` is the refit of a local window, grown ring by ring when
+  it does not solve: the one used by the progressive optimization and the edits.
+
+The free fits of one circle (the first stage) are :mod:`img2logo.circle_fitting`.
+
+Coordinates are input-image pixels: x to the right, y downwards, the pixel in row
+i, column j has its centre at (j + 0.5, i + 0.5). Lengths are in px.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Container, Hashable, Iterable, Mapping, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+
+from ._validation import check_finite, check_points, check_positive, readonly
+from .constants import (
+    CONSTRAINED_FIT_FTOL,
+    CONSTRAINED_FIT_MAX_ITER,
+    CONSTRAINED_FIT_STALL,
+    CONSTRAINED_FIT_TOL,
+    KKT_DAMPING,
+    KKT_DENSE_MAX,
+)
+from .errors import InvalidParameterError
+
+__all__ = [
+    "ConstrainedFit",
+    "WindowFit",
+    "fit_constrained",
+    "fit_window",
+]
+
+
+# --------------------------------------------------------------------------------
+# Connectivity-constrained fit (Eqn. 13)
+# --------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True, eq=False)
+class ConstrainedFit:
+    """The result of :func:`fit_constrained`.
+
+    Attributes
+    ----------
+    centers : ndarray, shape (C, 2)
+        Circle centres o_i, px.
+    displacements : ndarray, shape (J, 2)
+        Junction displacements d_k, px; the displaced junctions are ``p_k + d_k``.
+    objective : float
+        E^l of Eqn. 7 at the result, px^2 (times the weights).
+    violation : float
+        Largest ``| |o_i - (p_k + d_k)| - r_i |`` over all incidences, px; 0 if
+        there are none. Incidences between fixed variables count too.
+    iterations : int
+        SQP steps taken.
+    converged : bool
+        Whether ``violation <= tol`` and the next step would be below ``tol`` px
+        or lower E^l by less than ``CONSTRAINED_FIT_FTOL`` of it (for
+        ``connectivity=False``, only the latter). False when ``max_iter`` ran
+        out, the constraints cannot be met, or the line search stalled while
+        infeasible.
+    """
+
+    centers: np.ndarray
+    displacements: np.ndarray
+    objective: float
+    violation: float
+    iterations: int
+    converged: bool
+
+
+def _index_array(values: object, name: str, size: int) -> np.ndarray:
+    arr = np.asarray(values)
+    if arr.size == 0:
+        return np.zeros(0, dtype=np.int64)
+    if arr.ndim != 1 or not np.issubdtype(arr.dtype, np.integer):
+        raise InvalidParameterError(f"{name} must be a 1-D array of integers, got shape {arr.shape}, {arr.dtype}")
+    if arr.min() < 0 or arr.max() >= size:
+        raise InvalidParameterError(f"{name} must index 0..{size - 1}, got values from {arr.min()} to {arr.max()}")
+    return np.unique(arr).astype(np.int64)
+
+
+def _as_points(values: object, name: str, count: int | None = None) -> np.ndarray:
+    if np.size(values) == 0 and count in (None, 0):
+        return np.zeros((0, 2))
+    arr = check_points(values, name)
+    if count is not None and len(arr) != count:
+        raise InvalidParameterError(f"{name} must have shape ({count}, 2), got {arr.shape}")
+    return arr
+
+
+def _norm(vx: np.ndarray, vy: np.ndarray) -> np.ndarray:
+    # sqrt(x^2 + y^2): pixel coordinates cannot overflow, and np.hypot is ~5x slower.
+    return np.sqrt(vx * vx + vy * vy)
+
+
+class _Problem:
+    """Eqn. 13 in terms of the free variables x = (free centres, free displacements)."""
+
+    def __init__(
+        self,
+        points: np.ndarray,
+        owner: np.ndarray,
+        radii: np.ndarray,
+        centers: np.ndarray,
+        junctions: np.ndarray,
+        disp: np.ndarray,
+        incidence: np.ndarray,
+        free_c: np.ndarray,
+        free_j: np.ndarray,
+        ws: np.ndarray,
+        wj: float,
+        connectivity: bool,
+    ) -> None:
+        self.radii, self.junctions, self.wj = radii, junctions, wj
+        self.centers, self.disp = centers.copy(), disp.copy()
+        self.free_c, self.free_j = free_c, free_j
+        nc, nj = len(free_c), len(free_j)
+        self.n = 2 * (nc + nj)
+        # Positions of circles / junctions among the free ones (-1: fixed).
+        pos_c = np.full(len(radii), -1)
+        pos_c[free_c] = np.arange(nc)
+        pos_j = np.full(len(junctions), -1)
+        pos_j[free_j] = np.arange(nj)
+        # Points of free circles vary (grouped by circle: every group is non-empty,
+        # so sums per circle are np.add.reduceat); those of fixed circles add a constant.
+        on_free = pos_c[owner] >= 0
+        self.px, self.py = points[on_free, 0].copy(), points[on_free, 1].copy()
+        self.counts = np.bincount(pos_c[owner[on_free]], minlength=nc)
+        self.starts = (np.cumsum(self.counts) - self.counts).astype(np.intp)
+        self.r_pts = np.repeat(radii[free_c], self.counts)
+        self.w_pts = np.repeat(ws[free_c], self.counts)  # the segment weight of each point
+        fixed_pts, fixed_own = points[~on_free], owner[~on_free]
+        e = _norm(*(fixed_pts - centers[fixed_own]).T) - radii[fixed_own]
+        fixed_j = np.ones(len(junctions), dtype=bool)
+        fixed_j[free_j] = False
+        self.f_const = float(np.sum(ws[fixed_own] * e * e)) + wj * float(np.sum(disp[fixed_j] ** 2))
+        # Incidences: all are evaluated; those with a free variable are constraints.
+        self.inc_i, self.inc_k = incidence[:, 0], incidence[:, 1]
+        ci, ck = pos_c[self.inc_i], pos_j[self.inc_k]
+        self.active = ((ci >= 0) | (ck >= 0)) if connectivity else np.zeros(len(incidence), dtype=bool)
+        self.m = int(self.active.sum())
+        ci, ck = ci[self.active], ck[self.active]
+        # Sparsity pattern of the KKT matrix [[H, A^T], [A, -delta I]]: the 2x2 blocks
+        # of H, the entries of A and A^T for free centres and displacements, the diagonal.
+        blk = np.repeat(np.arange(0, self.n, 2), 4)
+        blk_r, blk_c = blk + np.tile([0, 0, 1, 1], self.n // 2), blk + np.tile([0, 1, 0, 1], self.n // 2)
+        rows_a = np.arange(self.m)
+        self.a_mask_c, self.a_mask_k = ci >= 0, ck >= 0
+        a_rows = np.concatenate([np.repeat(rows_a[self.a_mask_c], 2), np.repeat(rows_a[self.a_mask_k], 2)])
+        a_cols = np.concatenate(
+            [(2 * ci[self.a_mask_c])[:, None] + [0, 1], (2 * (nc + ck[self.a_mask_k]))[:, None] + [0, 1]]
+        ).ravel()
+        # Second-order coupling blocks (o_i, d_k) of the constraint curvature, both free.
+        self.both = self.a_mask_c & self.a_mask_k
+        cb, kb = 2 * ci[self.both], 2 * (nc + ck[self.both])
+        cpl_r = np.concatenate([(cb[:, None] + [0, 0, 1, 1]).ravel(), (kb[:, None] + [0, 0, 1, 1]).ravel()])
+        cpl_c = np.concatenate([(kb[:, None] + [0, 1, 0, 1]).ravel(), (cb[:, None] + [0, 1, 0, 1]).ravel()])
+        # Block (of H) of the centre and of the displacement in each constraint; -1: fixed.
+        self.blk_ci = np.where(self.a_mask_c, ci, -1)
+        self.blk_ck = np.where(self.a_mask_k, nc + ck, -1)
+        diag_m = np.arange(self.n, self.n + self.m)
+        self.kkt_rows = np.concatenate([blk_r, self.n + a_rows, a_cols, cpl_r, diag_m])
+        self.kkt_cols = np.concatenate([blk_c, a_cols, self.n + a_rows, cpl_c, diag_m])
+        # No entry repeats, so a CSC matrix is the data in column-major order.
+        size = self.n + self.m
+        self.csc_order = np.lexsort((self.kkt_rows, self.kkt_cols))
+        self.csc_indptr = np.concatenate([[0], np.cumsum(np.bincount(self.kkt_cols, minlength=size))])
+
+    def set_x(self, x: np.ndarray) -> None:
+        nc = len(self.free_c)
+        self.centers[self.free_c] = x[: 2 * nc].reshape(-1, 2)
+        self.disp[self.free_j] = x[2 * nc :].reshape(-1, 2)
+
+    def get_x(self) -> np.ndarray:
+        return np.concatenate([self.centers[self.free_c].ravel(), self.disp[self.free_j].ravel()])
+
+    def constraints(self) -> tuple[np.ndarray, np.ndarray]:
+        """All incidence residuals ``|o_i - (p_k + d_k)| - r_i`` (M,) and vectors v (M, 2)."""
+        v = self.centers[self.inc_i] - self.junctions[self.inc_k] - self.disp[self.inc_k]
+        return _norm(v[:, 0], v[:, 1]) - self.radii[self.inc_i], v
+
+    def objective(self) -> tuple[float, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """E^l (Eqn. 7); point residuals, vectors o - p (x, y) and distances of free circles."""
+        cf = self.centers[self.free_c]
+        vx = np.repeat(cf[:, 0], self.counts) - self.px
+        vy = np.repeat(cf[:, 1], self.counts) - self.py
+        dist = _norm(vx, vy)
+        e = dist - self.r_pts
+        d = self.disp[self.free_j]
+        return self.f_const + float(np.sum(self.w_pts * e * e)) + self.wj * float(np.sum(d * d)), e, vx, vy, dist
+
+    def merit(self, nu: float) -> float:
+        """The L1 merit function E^l + nu * sum |c| over the constraints."""
+        return self.objective()[0] + nu * float(np.abs(self.constraints()[0][self.active]).sum())
+
+    def linearize(self) -> tuple[float, np.ndarray, np.ndarray, float]:
+        """E^l, its gradient g, active constraint values c, and the violation (max |c| over all).
+
+        Keeps the unit vectors and residuals that :meth:`matrix` needs.
+        """
+        nj = len(self.free_j)
+        f, e, vx, vy, dist = self.objective()
+        safe = np.where(dist > 0, dist, 1.0)
+        ux, uy = np.where(dist > 0, vx / safe, 1.0), vy / safe
+        self._pt = (ux, uy, e / safe)
+        g = np.concatenate(
+            [
+                np.column_stack([self._gsum(e * ux), self._gsum(e * uy)]).ravel(),
+                (2.0 * self.wj * self.disp[self.free_j]).ravel(),
+            ]
+        )
+        self._gn = np.concatenate(
+            [
+                np.column_stack([self._gsum(ux * ux), self._gsum(ux * uy), self._gsum(ux * uy), self._gsum(uy * uy)]),
+                np.tile([2.0 * self.wj, 0.0, 0.0, 2.0 * self.wj], (nj, 1)),
+            ]
+        )
+        c_all, vc = self.constraints()
+        c, vc = c_all[self.active], vc[self.active]
+        dc = _norm(vc[:, 0], vc[:, 1])
+        dsafe = np.where(dc > 0, dc, 1.0)
+        self._uc = np.column_stack([np.where(dc > 0, vc[:, 0] / dsafe, 1.0), vc[:, 1] / dsafe])
+        self._dc = dsafe
+        return f, g, c, float(np.max(np.abs(c_all), initial=0.0))
+
+    def _gsum(self, values: np.ndarray) -> np.ndarray:
+        """2 * the segment-weighted sum of ``values`` over each free circle's points."""
+        return 2.0 * np.add.reduceat(self.w_pts * values, self.starts) if len(self.starts) else np.zeros(0)
+
+    def matrix(self, lam: np.ndarray | None) -> tuple[sp.csc_matrix | np.ndarray, float]:
+        """The damped KKT matrix at the last :meth:`linearize`, and the damping delta.
+
+        ``lam=None`` gives the Gauss-Newton matrix J^T J; with multipliers it is the
+        Hessian of the Lagrangian E^l + lam^T c (residual and constraint curvature).
+        """
+        h = self._gn.copy()  # rows: the 2x2 blocks (xx, xy, yx, yy) of the free variables
+        scale = max(float(np.max(h, initial=0.0)), 1e-300)
+        h[:, 0] += KKT_DAMPING * scale
+        h[:, 3] += KKT_DAMPING * scale
+        cpl = np.zeros((int(self.both.sum()), 4))
+        if lam is not None:
+            # Residual curvature: 2 w sum (e / |o - p|) (I - u u^T) for each centre.
+            ux, uy, q = self._pt
+            qxy = self._gsum(q * ux * uy)
+            h[: len(self.starts)] += np.column_stack([self._gsum(q * uy * uy), -qxy, -qxy, self._gsum(q * ux * ux)])
+            # Constraint curvature: lam (I - u u^T) / |v| on o_i and d_k, minus it between them.
+            ux, uy = self._uc[:, 0], self._uc[:, 1]
+            s = lam / self._dc
+            k = np.column_stack([s * uy * uy, -s * ux * uy, -s * ux * uy, s * ux * ux])
+            for blk in (self.blk_ci, self.blk_ck):
+                on = blk >= 0
+                np.add.at(h, blk[on], k[on])
+            cpl = -k[self.both]
+        a_vals = np.concatenate([self._uc[self.a_mask_c].ravel(), -self._uc[self.a_mask_k].ravel()])
+        delta = KKT_DAMPING / scale
+        cpl = cpl.ravel()
+        data = np.concatenate([h.ravel(), a_vals, a_vals, cpl, cpl, np.full(self.m, -delta)])
+        size = self.n + self.m
+        if size <= KKT_DENSE_MAX:
+            mat = np.zeros((size, size))
+            mat[self.kkt_rows, self.kkt_cols] = data
+            return mat, delta
+        return sp.csc_matrix(
+            (data[self.csc_order], self.kkt_rows[self.csc_order], self.csc_indptr), (size, size)
+        ), delta
+
+
+def _solve(
+    mat: sp.csc_matrix | np.ndarray,
+    delta: float,
+    g: np.ndarray,
+    c: np.ndarray,
+    keep: np.ndarray | None = None,
+) -> tuple[np.ndarray, np.ndarray, float] | None:
+    """Solve the KKT system for (dx, lambda); also return the curvature dx^T W dx (None: failed).
+
+    ``keep`` (indices into the unknowns) solves the system reduced to them; the
+    others (coordinates held on a mirror axis) get a zero step.
+    """
+    rhs = np.concatenate([-g, -c])
+    if keep is not None:
+        mat = mat[np.ix_(keep, keep)] if isinstance(mat, np.ndarray) else mat[keep][:, keep].tocsc()
+    try:
+        part = rhs if keep is None else rhs[keep]
+        part = np.linalg.solve(mat, part) if isinstance(mat, np.ndarray) else spla.splu(mat).solve(part)
+    except (np.linalg.LinAlgError, RuntimeError):
+        return None
+    if not np.all(np.isfinite(part)):
+        return None
+    if keep is None:
+        sol = part
+    else:
+        sol = np.zeros(len(rhs))
+        sol[keep] = part
+    n = len(g)
+    dx, lam = sol[:n], sol[n:]
+    # From the first block row W dx = -g - A^T lam and A dx - delta lam = -c.
+    curvature = -float(np.sum(g * dx)) + float(np.sum(lam * c)) - delta * float(np.sum(lam * lam))
+    return dx, lam, curvature
+
+
+def fit_constrained(
+    point_sets: Sequence[object],
+    radii: object,
+    centers0: object,
+    junctions: object,
+    incidence: object,
+    *,
+    displacements0: object | None = None,
+    free_circles: object | None = None,
+    free_junctions: object | None = None,
+    segment_weight: float | np.ndarray | None = None,
+    junction_weight: float | None = None,
+    tol: float = CONSTRAINED_FIT_TOL,
+    max_iter: int = CONSTRAINED_FIT_MAX_ITER,
+    connectivity: bool = True,
+    axis: float | None = None,
+    axis_circles: object = (),
+    axis_junctions: object = (),
+    stall: int = CONSTRAINED_FIT_STALL,
+) -> ConstrainedFit:
+    """Connectivity-constrained least-squares fit of circles with fixed radii (Eqn. 13).
+
+    Minimizes E^l (Eqn. 7)::
+
+        segment_weight * sum_i sum_{p in S_i} (|p - o_i| - r_i)^2
+            + junction_weight * sum_k |d_k|^2
+
+    over the free centres o_i and free junction displacements d_k, subject to
+    ``|o_i - (p_k + d_k)| - r_i = 0`` for every incidence (i, k) (Eqn. 8, 9).
+
+    The solver is an SQP method with analytic derivatives: each step solves the
+    KKT system ``[[W + mu I, A^T], [A, -delta I]] [dx; lambda] = [-g; -c]``,
+    with g the gradient of E^l, A the Jacobian of the constraints c, and W the
+    Gauss-Newton matrix J^T J (block-diagonal with 2x2 blocks) in the first step;
+    afterwards W is the Hessian of the Lagrangian (adding the residual curvature
+    and the multiplier-weighted constraint curvature, which couples a centre
+    with its junctions), falling back to J^T J when that step lacks positive
+    curvature. ``mu`` and ``delta`` are ``KKT_DAMPING`` relative to the largest
+    entry of J^T J, so nearly singular systems (huge radii, redundant
+    constraints) stay solvable. The system is solved densely for a small
+    window and by a sparse LU above ``KKT_DENSE_MAX`` unknowns; a backtracking
+    line search on the L1 merit ``E^l + nu * sum |c|`` (``nu`` = 1.5 x the
+    largest multiplier seen) chooses the step length.
+
+    Parameters
+    ----------
+    point_sets : sequence of array_like, each of shape (n_i, 2)
+        The points of the segments S_i that circle i fits, px; n_i >= 1.
+    radii : array_like, shape (C,)
+        The fixed (golden) radii r_i, px, > 0.
+    centers0 : array_like, shape (C, 2)
+        Starting centres o_i, px; the final centres of the fixed circles.
+    junctions : array_like, shape (J, 2)
+        The undisplaced junctions p_k, px.
+    incidence : array_like of int, shape (M, 2)
+        Rows (i, k): circle i must pass through displaced junction k.
+    displacements0 : array_like, shape (J, 2), optional
+        Starting displacements d_k, px (default zeros); the final displacements
+        of the fixed junctions.
+    free_circles, free_junctions : array_like of int, optional
+        Indices of the circles / junctions that may move; None means all. The
+        others keep their given values exactly (the boundary conditions of the
+        localized fitting, Sec. 5.4).
+    segment_weight : float or array_like of shape (C,), optional
+        Weight of the fitting term, one for all circles or one per circle;
+        default ``1 / C`` (the paper's 1/|S|). ``1 / (C n_i)`` makes each
+        segment's term its mean squared error instead of its sum.
+    junction_weight : float, optional
+        Weight of the displacement term, default ``1 / J`` (the paper's 1/|J|).
+    tol : float
+        Tolerance on the constraints and on the last step, px.
+    max_iter : int
+        Most SQP steps.
+    connectivity : bool
+        False drops the constraints (the ablation of Fig. 11c): each free centre
+        moves to its best position for its fixed radius, and free displacements go
+        to zero.
+    axis : float, optional
+        A vertical mirror axis x = ``axis``, px (symmetric logos,
+        :mod:`img2logo.symmetry`): the centres of ``axis_circles`` and the
+        displaced junctions ``axis_junctions`` (indices) are held on it, their x
+        set to it and never moved, only their y (Eqn. 13 with the symmetry
+        constraints).
+    stall : int
+        Give up when the constraint violation has not halved over this many
+        steps (an infeasible problem, most likely).
+
+    Returns
+    -------
+    ConstrainedFit
+        With ``converged=False`` (never an exception) when the constraints could
+        not be met, e.g. when fixed junctions leave no feasible circle position.
+
+    Raises
+    ------
+    InvalidParameterError
+        On inputs of the wrong shape, out-of-range indices, or bad weights.
+    """
+    radii_arr = np.asarray(radii, dtype=np.float64)
+    if radii_arr.ndim != 1:
+        raise InvalidParameterError(f"radii must have shape (C,), got {radii_arr.shape}")
+    if not np.all(np.isfinite(radii_arr)) or np.any(radii_arr <= 0):
+        raise InvalidParameterError("radii must be finite and > 0")
+    n_c = len(radii_arr)
+    if len(point_sets) != n_c:
+        raise InvalidParameterError(f"point_sets must have one entry per radius ({n_c}), got {len(point_sets)}")
+    sets = [check_points(s, f"point_sets[{i}]") for i, s in enumerate(point_sets)]
+    centers = _as_points(centers0, "centers0", n_c)
+    junc = _as_points(junctions, "junctions")
+    n_j = len(junc)
+    disp = np.zeros((n_j, 2)) if displacements0 is None else _as_points(displacements0, "displacements0", n_j)
+    inc = np.asarray(incidence)
+    if inc.size == 0:
+        inc = np.zeros((0, 2), dtype=np.int64)
+    if inc.ndim != 2 or inc.shape[1] != 2 or not np.issubdtype(inc.dtype, np.integer):
+        raise InvalidParameterError(f"incidence must be an integer array of shape (M, 2), got {inc.shape}, {inc.dtype}")
+    _index_array(inc[:, 0], "incidence[:, 0]", n_c)
+    _index_array(inc[:, 1], "incidence[:, 1]", n_j)
+    inc = np.unique(inc.astype(np.int64), axis=0)
+    free_c = np.arange(n_c) if free_circles is None else _index_array(free_circles, "free_circles", n_c)
+    free_j = np.arange(n_j) if free_junctions is None else _index_array(free_junctions, "free_junctions", n_j)
+    if segment_weight is None:
+        ws = np.full(n_c, 1.0 / max(n_c, 1))
+    elif np.ndim(segment_weight) == 0:
+        ws = np.full(n_c, check_positive(segment_weight, "segment_weight", allow_zero=True))
+    else:
+        ws = np.asarray(segment_weight, dtype=np.float64)
+        if ws.shape != (n_c,):
+            raise InvalidParameterError(f"segment_weight must be a number or have shape ({n_c},), got {ws.shape}")
+        if not np.all(np.isfinite(ws)) or np.any(ws < 0):
+            raise InvalidParameterError("segment_weight must be finite and >= 0")
+    if junction_weight is None:
+        wj = 1.0 / n_j if n_j else 1.0
+    else:
+        wj = check_positive(junction_weight, "junction_weight", allow_zero=True)
+    tol = check_positive(tol, "tol")
+    if isinstance(max_iter, bool) or not isinstance(max_iter, int) or max_iter < 0:
+        raise InvalidParameterError(f"max_iter must be an integer >= 0, got {max_iter!r}")
+
+    on_c = _index_array(axis_circles, "axis_circles", n_c)
+    on_j = _index_array(axis_junctions, "axis_junctions", n_j)
+    if axis is not None:
+        axis = check_finite(axis, "axis")
+        centers = centers.copy()
+        disp = disp.copy()
+        centers[on_c, 0] = axis
+        disp[on_j, 0] = axis - junc[on_j, 0]
+    elif len(on_c) or len(on_j):
+        raise InvalidParameterError("axis_circles and axis_junctions need an axis")
+
+    owner = np.repeat(np.arange(n_c), [len(s) for s in sets])
+    points = np.concatenate(sets) if sets else np.zeros((0, 2))
+    prob = _Problem(points, owner, radii_arr, centers, junc, disp, inc, free_c, free_j, ws, wj, connectivity)
+    keep = None
+    if axis is not None:
+        # The x coordinates held on the axis: their unknowns leave the KKT system.
+        pos_c = {int(c): i for i, c in enumerate(free_c)}
+        pos_j = {int(k): i for i, k in enumerate(free_j)}
+        held = [2 * pos_c[int(c)] for c in on_c if int(c) in pos_c]
+        held += [2 * (len(free_c) + pos_j[int(k)]) for k in on_j if int(k) in pos_j]
+        if held:
+            keep = np.setdiff1d(np.arange(prob.n + prob.m), held)
+    iterations, converged, nu, lam = 0, False, 0.0, None
+    x = prob.get_x()
+    history: list[float] = []  # violations, to stop early on infeasible problems
+    while True:
+        f, g, c, violation = prob.linearize()
+        feasible = violation <= tol or not connectivity
+        if prob.n == 0 or iterations >= max_iter:
+            converged = feasible and prob.n == 0
+            break
+        history.append(violation)
+        if not feasible and len(history) > stall and violation > 0.5 * history[-1 - stall]:
+            break  # stalled: most likely the fixed variables leave no feasible solution
+        # A Newton step on the Lagrangian once multipliers are known; Gauss-Newton
+        # when there are none yet or the Newton step has no positive curvature.
+        sol = None
+        for multipliers in (lam, None) if lam is not None else (None,):
+            sol = _solve(*prob.matrix(multipliers), g, c, keep)
+            if sol is not None and sol[2] > 0:
+                break
+        if sol is None:
+            break
+        dx, lam, curvature = sol
+        nu = max(nu, 1.5 * float(np.max(np.abs(lam), initial=0.0)) + 1e-12)
+        phi0 = f + nu * float(np.abs(c).sum())
+        # Converged: feasible, and the step is below tol px or would lower E^l by a
+        # negligible fraction (ill-conditioned directions, e.g. huge radii, keep
+        # rounding-noise steps larger than tol).
+        if feasible and (np.max(np.abs(dx)) <= tol or abs(curvature) <= CONSTRAINED_FIT_FTOL * f):
+            converged = True
+            prob.set_x(x + dx)  # a last full step polishes the result, if it helps
+            new_violation = float(np.max(np.abs(prob.constraints()[0]), initial=0.0))
+            if prob.merit(nu) <= phi0 and (not connectivity or new_violation <= violation):
+                iterations += 1
+            else:
+                prob.set_x(x)
+            break
+        slope = float(np.sum(g * dx)) - nu * float(np.abs(c).sum())
+        alpha, accepted = 1.0, False
+        for _ in range(40):
+            prob.set_x(x + alpha * dx)
+            if prob.merit(nu) <= phi0 + 1e-4 * alpha * min(slope, 0.0):
+                accepted = True
+                break
+            alpha *= 0.5
+        if not accepted:
+            prob.set_x(x)
+            converged = feasible
+            break
+        x = x + alpha * dx
+        iterations += 1
+
+    c_all = prob.constraints()[0]
+    return ConstrainedFit(
+        centers=readonly(prob.centers.copy()),
+        displacements=readonly(prob.disp.copy()),
+        objective=prob.objective()[0],
+        violation=float(np.max(np.abs(c_all), initial=0.0)),
+        iterations=iterations,
+        converged=converged,
+    )
+
+
+# --------------------------------------------------------------------------------
+# A local window of the constrained fit (the localized fitting of Sec. 5.4)
+# --------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True, eq=False)
+class WindowFit:
+    """The result of :func:`fit_window`.
+
+    Attributes
+    ----------
+    ok : bool
+        Whether the last window solved (converged, within the violation asked).
+    circles : tuple
+        The circles of the last window, in the order of the fit.
+    junctions : tuple
+        Its junctions, sorted.
+    free_junctions : frozenset
+        The junctions that were free in it.
+    fit : ConstrainedFit or None
+        The fit of the last window (None when no junction touched the window:
+        nothing to solve, ``ok`` is True).
+    """
+
+    ok: bool
+    circles: tuple[Hashable, ...]
+    junctions: tuple[Hashable, ...]
+    free_junctions: frozenset[Hashable]
+    fit: ConstrainedFit | None
+
+    def center(self, circle: Hashable) -> np.ndarray:
+        """The fitted centre of a circle of the window, shape (2,), px."""
+        return self.fit.centers[self.circles.index(circle)].copy()  # type: ignore[union-attr]
+
+    def displacements(self) -> dict[Hashable, np.ndarray]:
+        """Junction -> its fitted displacement d_k, shape (2,), px."""
+        if self.fit is None:
+            return {}
+        return {n: self.fit.displacements[i].copy() for i, n in enumerate(self.junctions)}
+
+
+def fit_window(
+    points: Mapping[Hashable, np.ndarray],
+    radii: Mapping[Hashable, float],
+    centers: Mapping[Hashable, np.ndarray],
+    circle_junctions: Mapping[Hashable, Sequence[Hashable]],
+    junction_circles: Mapping[Hashable, Iterable[Hashable]],
+    junction_points: np.ndarray,
+    *,
+    changed: Iterable[Hashable] = (),
+    free_junctions: Iterable[Hashable] = (),
+    fixed: Container[Hashable] = frozenset(),
+    rings: int = 2,
+    order: Callable[[Hashable], Any] | None = None,
+    displacements0: np.ndarray | None = None,
+    n_circles: int | None = None,
+    n_junctions: int | None = None,
+    connectivity: bool = True,
+    tol: float = CONSTRAINED_FIT_TOL,
+    max_violation: float | None = None,
+    constraints: Callable[[tuple[Hashable, ...], tuple[Hashable, ...]], Mapping[str, Any]] | None = None,
+) -> WindowFit:
+    """The constrained fit of Eqn. 13 in a local window, grown ring by ring until it solves (Sec. 5.4).
+
+    The window is the ``changed`` circles and every circle through a free
+    junction; its junctions are all those of its circles, the free ones moving
+    and the others held where they are (the boundary conditions of the
+    localized fitting). When it does not solve, the junctions of its circles
+    are freed too (the next ring: their other circles join the window), up to
+    ``rings`` windows. Used by the progressive optimization after a merge and
+    by the user edits (:mod:`img2logo.edits`), with one weighting: each
+    circle's term is the mean squared distance of its points (``1 / (C n_i)``),
+    the displacements' term ``1 / J`` (Eqn. 7 with E^sqr a mean).
+
+    Parameters
+    ----------
+    points, radii, centers : mapping
+        Circle -> its points (n_i, 2) px, its fixed radius px, its starting centre (2,) px.
+    circle_junctions : mapping
+        Circle -> the junctions it must pass through (in the order the
+        constraints are written).
+    junction_circles : mapping
+        Junction -> the circles through it.
+    junction_points : ndarray, shape (N, 2)
+        The junctions p_k by index, px (the displacements are measured from them).
+    changed : iterable
+        Circles always in the window (the merged or edited one).
+    free_junctions : iterable
+        The junctions free in the first window.
+    fixed : container
+        Circles of the window that keep their centre (straight lines, a moved circle).
+    rings : int
+        Most windows tried.
+    order : callable, optional
+        Sort key of the window's circles (the order of the fit's unknowns).
+    displacements0 : ndarray, shape (N, 2), optional
+        Starting displacements by junction index (default zeros).
+    n_circles, n_junctions : int, optional
+        C and J of the weights; default the window's own counts.
+    connectivity : bool
+        False: no constraints (Fig. 11c); the window always "solves".
+    tol : float
+        Tolerance of :func:`fit_constrained`, px.
+    max_violation : float, optional
+        A converged fit must also keep every constraint within this, px.
+    constraints : callable, optional
+        ``constraints(circles, junctions)`` of a window (in the fit's order):
+        more keywords of :func:`fit_constrained` for it (a mirror axis).
+
+    Returns
+    -------
+    WindowFit
+    """
+    free_j = set(free_junctions)
+    seeds = set(changed)
+    last: WindowFit | None = None
+    for _ring in range(max(int(rings), 1)):
+        members = seeds | {c for n in free_j for c in junction_circles.get(n, ())}
+        window = tuple(sorted(members, key=order))
+        nodes = tuple(sorted({n for c in window for n in circle_junctions[c]} | free_j))
+        if not nodes:
+            return WindowFit(True, window, (), frozenset(free_j), None)
+        node_index = {n: i for i, n in enumerate(nodes)}
+        incidence = [(i, node_index[n]) for i, c in enumerate(window) for n in circle_junctions[c]]
+        fit = fit_constrained(
+            [points[c] for c in window],
+            np.array([radii[c] for c in window]),
+            np.array([centers[c] for c in window]),
+            junction_points[list(nodes)],
+            np.array(incidence, dtype=np.int64).reshape(-1, 2),
+            displacements0=None if displacements0 is None else displacements0[list(nodes)],
+            free_circles=[i for i, c in enumerate(window) if c not in fixed],
+            free_junctions=[node_index[n] for n in sorted(free_j)],
+            segment_weight=1.0 / (max(n_circles or len(window), 1) * np.array([len(points[c]) for c in window])),
+            junction_weight=1.0 / max(n_junctions or len(nodes), 1),
+            tol=tol,
+            connectivity=connectivity,
+            **({} if constraints is None else constraints(window, nodes)),
+        )
+        ok = not connectivity or (fit.converged and (max_violation is None or fit.violation <= max_violation))
+        last = WindowFit(ok, window, nodes, frozenset(free_j), fit)
+        if ok:
+            return last
+        grown = free_j | {n for c in window for n in circle_junctions[c]}
+        if grown == free_j:
+            break  # the next ring would be the same window
+        free_j = grown
+    assert last is not None
+    return last

@@ -1,0 +1,116 @@
+"""A^0 when the joint constrained fit fails: relaxed connectivity (paper Sec. 9, future work).
+
+The initial fit of the progressive optimization (:mod:`img2logo.progressive`)
+solves Eqn. 13 for every circle at once. When that does not converge, each
+connected part of the drawing is fitted alone, and in a part that still fails
+the junctions its circles miss most are released one at a time
+(:func:`recover`): "a logo for every valid image". :func:`check_reach` names
+the user's radii that are too small before any fit.
+
+Coordinates: px, x right, y down (``contract/README.md``).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from .errors import FitError, InvalidParameterError
+
+if TYPE_CHECKING:
+    from .progressive import _Fit, _Optimizer
+
+
+class ConnectivityWarning(UserWarning):
+    """Some junctions of the initial fit were released: their arcs end apart there."""
+
+
+def check_reach(opt: _Optimizer, seeds: Mapping[int, tuple[np.ndarray, float, int | None]]) -> None:
+    """Raise when the user's radii are too small for the segments' junctions (see ``_Optimizer.reach``)."""
+    if opt.ladder.exponents is None:
+        return
+    short = [g for g, (_, r, k) in seeds.items() if k is not None and r < opt.reach(opt.groups[g])]
+    if short:
+        ks = sorted(opt.ladder.exponents)
+        widest = max(2.0 * opt.reach(opt.groups[g]) for g in short)
+        raise InvalidParameterError(
+            f"the chosen radii (k = {', '.join(map(str, ks))}: {opt.ladder.radius(ks[0]):.3g} to "
+            f"{opt.ladder.radius(ks[-1]):.3g} px) are too small: {len(short)} segments need a circle through "
+            f"junctions up to {widest:.0f} px apart; allow larger radii"
+        )
+
+
+def recover(
+    opt: _Optimizer, seeds: dict[int, tuple[np.ndarray, float, int | None]]
+) -> tuple[dict[int, _Fit], dict[int, np.ndarray]]:
+    """A^0 when the joint fit fails: each connected part alone, releasing junctions as needed.
+
+    The parts of the drawing that share no junction are independent
+    problems, so a part that converges keeps its exact connectivity. In a
+    part that does not, the junction its golden circles miss most (the
+    largest distance from the junction to a circle through it, before the
+    fit) is released: its arcs end where it projects on their circles, like
+    a free end. This repeats until the part converges (a part with every
+    junction released always does); the count is reported.
+    """
+    fits: dict[int, _Fit] = {}
+    disp: dict[int, np.ndarray] = {}
+    n_total = len(opt.groups)
+    for part in parts(opt):
+        while True:
+            groups = {g: opt.groups[g] for g in part}
+            at = opt.node_groups(groups)
+            out = opt.solve(
+                groups,
+                seeds,
+                at,
+                changed=part,
+                free_nodes=sorted(at),
+                fixed=set(),
+                n_groups_total=n_total,
+                n_junctions_total=max(len(opt.node_groups()), 1),
+            )
+            opt.stats["global_solves"] += 1
+            if out is not None:
+                fits.update(out[0])
+                disp.update(out[1])
+                break
+            miss = {
+                n: max(abs(float(np.hypot(*(opt.graph.junctions[n] - seeds[g][0]))) - seeds[g][1]) for g in gs)
+                for n, gs in opt.node_groups(groups).items()
+            }
+            if not miss:  # no constraint left, yet no fit: a numerical failure, said as such
+                raise FitError(f"the circles of {len(part)} segments could not be fitted, even unconstrained")
+            opt.release(max(miss, key=lambda n: (miss[n], -n)))
+    opt.stats["released_junctions"] = len(opt.released)
+    if opt.released:
+        import warnings
+
+        warnings.warn(
+            f"the connectivity-constrained fit could not meet {len(opt.released)} of "
+            f"{len(opt.released) + len(opt.node_groups())} junctions; their arcs end apart there",
+            ConnectivityWarning,
+            stacklevel=2,
+        )
+    return fits, disp
+
+
+def parts(opt: _Optimizer) -> list[list[int]]:
+    """The groups in connected parts: groups sharing a constrained junction are in one part."""
+    parent = {g: g for g in opt.groups}
+
+    def root(g: int) -> int:
+        while parent[g] != g:
+            parent[g] = parent[parent[g]]
+            g = parent[g]
+        return g
+
+    for gs in opt.node_groups().values():
+        for g in gs[1:]:
+            parent[root(g)] = root(gs[0])
+    parts: dict[int, list[int]] = {}
+    for g in sorted(opt.groups):
+        parts.setdefault(root(g), []).append(g)
+    return list(parts.values())

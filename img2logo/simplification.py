@@ -1,0 +1,148 @@
+"""Segment groups and the line-segment simplification (Sec. 5.4).
+
+A *group* is a run of segments of the graph merged into one arc: a path through
+the graph. :func:`simplify` merges, before the progressive loop, neighbours at
+split points that one arc fits within ``SIMPLIFICATION_ERROR``; the merges of
+the loop (:mod:`img2logo.merging`) join groups the same way
+(:func:`merge_groups`). :func:`is_straight` and :func:`straight_line` tell a
+straight stroke for the lines option.
+
+Coordinates: px, x right, y down (``contract/README.md``).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Container, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from .constants import LINE_END_SKIP, LINE_TOLERANCE, SIMPLIFICATION_ERROR
+
+
+@dataclass(frozen=True, eq=False)
+class Group:
+    """Segments of the graph merged into one arc: a path through the graph.
+
+    ``nodes`` has one more entry than ``segments``; ``points`` is the ordered
+    pixel chain, (n, 2) px. A closed group starts and ends at the same node.
+    """
+
+    segments: tuple[int, ...]
+    nodes: tuple[int, ...]
+    points: np.ndarray
+    locked: bool
+
+    @property
+    def closed(self) -> bool:
+        return self.nodes[0] == self.nodes[-1]
+
+    @property
+    def ends(self) -> tuple[int, int]:
+        return self.nodes[0], self.nodes[-1]
+
+    def reversed(self) -> Group:
+        return Group(self.segments[::-1], self.nodes[::-1], self.points[::-1], self.locked)
+
+
+def merge_groups(a: Group, b: Group, node: int) -> Group:
+    """Join ``a`` and ``b`` at their common end ``node``; ``a``'s far end starts the result."""
+    if a.nodes[-1] != node:
+        a = a.reversed()
+    if b.nodes[0] != node:
+        b = b.reversed()
+    return Group(
+        a.segments + b.segments,
+        a.nodes + b.nodes[1:],
+        np.vstack([a.points, b.points[1:]]),
+        a.locked or b.locked,
+    )
+
+
+def simplify(
+    groups: list[Group],
+    error: Callable[[Group], float],
+    valence: np.ndarray,
+    axis_nodes: Container[int] = frozenset(),
+) -> list[Group]:
+    """Line-segment simplification (Sec. 5.4): merge neighbours one arc fits within 1 px.
+
+    Greedy, the lowest ``error`` (mean absolute distance of the pixels to the
+    fitted circle, px) first, while it is below ``SIMPLIFICATION_ERROR``. Only
+    at split points (nodes of valence 2 in the graph): a real junction is left
+    to the progressive loop; nor at ``axis_nodes`` (the junctions on the
+    mirror axis of a symmetric run). ``valence`` is the graph's node valence.
+    Returns the simplified groups.
+    """
+    current = list(groups)
+    scores: dict[tuple[tuple[int, ...], tuple[int, ...]], tuple[float, Group]] = {}
+    while True:
+        at: dict[int, list[int]] = {}
+        for i, g in enumerate(current):
+            for n in set(g.ends):
+                at.setdefault(n, []).append(i)
+        best, best_err = None, SIMPLIFICATION_ERROR
+        for node, idx in sorted(at.items()):
+            if valence[node] != 2 or len(idx) != 2 or node in axis_nodes:
+                continue
+            ga, gb = current[idx[0]], current[idx[1]]
+            if ga.locked or gb.locked or ga is gb:
+                continue
+            key = (ga.segments, gb.segments)
+            if key not in scores:
+                merged = merge_groups(ga, gb, node)
+                scores[key] = (error(merged), merged)
+            err, merged = scores[key]
+            if err < best_err:
+                best, best_err = (idx[0], idx[1], merged), err
+        if best is None:
+            return current
+        i, j, merged = best
+        current = [g for k, g in enumerate(current) if k not in (i, j)] + [merged]
+
+
+def straight_line(group: Group) -> tuple[np.ndarray, np.ndarray] | None:
+    """The end points of a straight group's line, or None if it is not straight.
+
+    The line is the pixels' total-least-squares line; its ends are the
+    projections of the group's end points on it.
+    """
+    if not is_straight(group):
+        return None
+    pts = group.points
+    mean = pts.mean(axis=0)
+    direction = np.linalg.svd(pts - mean, full_matrices=False)[2][0]
+    ends = mean + np.outer((pts[[0, -1]] - mean) @ direction, direction)
+    return ends[0], ends[1]
+
+
+def is_straight(group: Group) -> bool:
+    """Whether an open group is a straight stroke (the lines option).
+
+    Its pixels, but for ``LINE_END_SKIP`` px at each end (where thinning bevels
+    a thick stroke's corners towards the junction), all lie within
+    ``LINE_TOLERANCE`` of their total-least-squares line.
+    """
+    if group.closed:
+        return False
+    pts = group.points
+    arc_len = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(pts, axis=0).T))])
+    inner = pts[(arc_len >= LINE_END_SKIP) & (arc_len <= arc_len[-1] - LINE_END_SKIP)]
+    if len(inner) < 3:
+        return False
+    centred = inner - inner.mean(axis=0)
+    normal = np.linalg.svd(centred, full_matrices=False)[2][1]  # the direction of least spread
+    return float(np.max(np.abs(centred @ normal))) <= LINE_TOLERANCE
+
+
+def hold_line(held: dict[int, list[np.ndarray]], group: Group, nodes: Sequence[int]) -> None:
+    """Record a line group's direction at each of its junctions ``nodes`` in ``held`` (see ``_Optimizer.golden``)."""
+    d = group.points[-1] - group.points[0]
+    u = d / max(float(np.hypot(*d)), 1e-12)
+    for n in set(nodes):
+        held.setdefault(n, []).append(u)
+
+
+def path_length(points: np.ndarray) -> float:
+    """Length of a polyline, shape (n, 2), px."""
+    return float(np.sum(np.hypot(*np.diff(points, axis=0).T)))
