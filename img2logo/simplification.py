@@ -35,13 +35,16 @@ class Group:
 
     @property
     def closed(self) -> bool:
+        """Whether the path starts and ends at the same node (a loop)."""
         return self.nodes[0] == self.nodes[-1]
 
     @property
     def ends(self) -> tuple[int, int]:
+        """The first and last node of the path."""
         return self.nodes[0], self.nodes[-1]
 
     def reversed(self) -> Group:
+        """The same group traversed the other way."""
         return Group(self.segments[::-1], self.nodes[::-1], self.points[::-1], self.locked)
 
 
