@@ -25,7 +25,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import Img2LogoError, InvalidParameterError
-from . import data_path, kit_module
+from .paths import data_path, kit_module
 
 
 class NotebookParameterError(InvalidParameterError):
