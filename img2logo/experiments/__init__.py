@@ -328,14 +328,20 @@ def table(items: Iterable[Any], columns: Mapping[str, Callable[[Any], Any]]) -> 
     return pd.DataFrame(rows, columns=list(columns))
 
 
+#: The first columns of a table of runs (:func:`table`): the image, its kind, |S|.
+RUN_COLUMNS: dict[str, Callable[[Run], Any]] = {
+    "image": lambda r: r.name,
+    "kind": lambda r: r.kind,
+    "segments": lambda r: r.graph.n_segments,
+}
+
+
 def preprocessing_table(examples: Iterable[Run]) -> pd.DataFrame:
     """Per example: its kind, |S|, its nodes by valence and its components (no timings: ``make bench`` has them)."""
     return table(
         examples,
         {
-            "image": lambda r: r.name,
-            "kind": lambda r: r.kind,
-            "segments": lambda r: r.graph.n_segments,
+            **RUN_COLUMNS,
             "junctions (valence >= 3)": lambda r: int((r.graph.valence >= 3).sum()),
             "end points": lambda r: int((r.graph.valence == 1).sum()),
             "split points": lambda r: int((r.graph.valence == 2).sum()),

@@ -9,7 +9,7 @@ constructed hook, :func:`hook_example`) and ``08_rdp_robustness`` (Fig. 13).
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
@@ -152,53 +152,60 @@ def gap_table(abstraction: Abstraction, graph: SegmentGraph) -> pd.DataFrame:
         One row per junction, in node order: ``node``, ``x``, ``y`` (c, px),
         ``in_J'``, ``valence``, ``arcs``, ``gap``, ``spread`` (px).
     """
+    import pandas as pd
+
+    paths = arc_paths(abstraction, graph)
     nodes = junction_nodes(abstraction, graph)
     point_of = {int(n): abstraction.junctions[k] for k, n in enumerate(nodes)}
     on: dict[int, set[int]] = {}
-    for i, path in enumerate(arc_paths(abstraction, graph)):
+    for i, path in enumerate(paths):
         for n in path:
             on.setdefault(int(n), set()).add(i)
     shared = [n for n in sorted(on) if len(on[n]) >= 2]
     points = np.array([point_of.get(n, graph.junctions[n]) for n in shared]).reshape(-1, 2)
     gap, spread = junction_gaps(abstraction.arcs, points, [sorted(on[n]) for n in shared])
-    return table(
-        zip(shared, points, gap, spread, strict=True),
+    rows = [
         {
-            "node": lambda row: row[0],
-            "x": lambda row: float(row[1][0]),
-            "y": lambda row: float(row[1][1]),
-            "in_J'": lambda row: row[0] in point_of,
-            "valence": lambda row: int(graph.valence[row[0]]),
-            "arcs": lambda row: len(on[row[0]]),
-            "gap": lambda row: float(row[2]),
-            "spread": lambda row: float(row[3]),
-        },
-    )
+            "node": n,
+            "x": float(c[0]),
+            "y": float(c[1]),
+            "in_J'": n in point_of,
+            "valence": int(graph.valence[n]),
+            "arcs": len(on[n]),
+            "gap": float(g),
+            "spread": float(d),
+        }
+        for n, c, g, d in zip(shared, points, gap, spread, strict=True)
+    ]
+    columns = ["node", "x", "y", "in_J'", "valence", "arcs", "gap", "spread"]
+    return pd.DataFrame(rows, columns=columns)
 
 
 def connectivity_table(runs: Sequence[Run], *, threshold: float = GAP_THRESHOLD) -> pd.DataFrame:
     """Per run of :data:`CONNECTIVITY_VARIANTS`: |A|, E^s, the junctions of the result and their gaps
     (:func:`gap_table`, px), redundant intersections (Fig. 6c) and what the paper's Fig. 11 shows."""
+    import pandas as pd
 
-    def stat(column: str, how: str) -> Any:
-        return lambda item: round(float(getattr(item[1][column].to_numpy(), how)()), 4) if len(item[1]) else 0.0
-
-    return table(
-        [(run, gap_table(run.final, run.graph)) for run in runs],
-        {
-            "image": lambda item: item[0].name,
-            "variant": lambda item: item[0].variant,
-            "arcs": lambda item: len(item[0].final.arcs),
-            "E^s": lambda item: round(item[0].final.similarity, 4),
-            "junctions": lambda item: len(item[1]),
-            "max gap": stat("gap", "max"),
-            "mean gap": stat("gap", "mean"),
-            f"junctions with gap > {threshold:g} px": lambda item: int((item[1]["gap"].to_numpy() > threshold).sum()),
-            "max spread": stat("spread", "max"),
-            "redundant intersections": lambda item: len(level_redundant_intersections(item[0].final)),
-            "paper": lambda item: PAPER_FIG11.get(item[0].variant, ""),
-        },
-    )
+    rows = []
+    for run in runs:
+        gaps = gap_table(run.final, run.graph)
+        g = gaps["gap"].to_numpy()
+        rows.append(
+            {
+                "image": run.name,
+                "variant": run.variant,
+                "arcs": len(run.final.arcs),
+                "E^s": round(run.final.similarity, 4),
+                "junctions": len(gaps),
+                "max gap": round(float(g.max()), 4) if len(g) else 0.0,
+                "mean gap": round(float(g.mean()), 4) if len(g) else 0.0,
+                f"junctions with gap > {threshold:g} px": int((g > threshold).sum()),
+                "max spread": round(float(gaps["spread"].max()), 4) if len(g) else 0.0,
+                "redundant intersections": len(level_redundant_intersections(run.final)),
+                "paper": PAPER_FIG11.get(run.variant, ""),
+            }
+        )
+    return pd.DataFrame(rows)
 
 
 def junction_gap_table(runs: Sequence[Run]) -> pd.DataFrame:
@@ -272,6 +279,21 @@ def _zoomed_arcs(ax: Axes, graph: SegmentGraph, arcs: Sequence[Arc], band: float
     draw_arcs(ax, arcs, colors=[cmap(i % cmap.N) for i in range(len(arcs))], linewidth=1.6)
 
 
+def _ring_gaps(ax: Axes, gaps: pd.DataFrame, radius: Callable[[float], float], **style: float) -> None:
+    """Circle in green each junction of a :func:`gap_table` (x, y, gap): a ring of ``radius(gap)`` px."""
+    for x, y, gap in zip(gaps["x"], gaps["y"], gaps["gap"], strict=True):
+        ring(ax, x, y, radius(gap), GAP_COLOR, **style)
+
+
+def _panels(
+    row: Sequence[Axes], variants: Sequence[str], runs: dict[str, Run], gaps: dict[str, Any], width: int, height: int
+) -> list[tuple[Axes, str, Run, pd.DataFrame]]:
+    """The panels of a row, one per variant, all framed on the image; those with a run, with it and its gaps."""
+    for ax in row:
+        frame_image(ax, width, height)
+    return [(ax, v, runs[v], gaps[v]) for ax, v in zip(row, variants, strict=True) if v in runs]
+
+
 # =========================================================================== Fig. 11: figure
 def gap_windows(
     runs: Sequence[Run],
@@ -341,16 +363,10 @@ def plot_connectivity_ablation(
         ax.set_title(f"{name}\n(a) segments |S| = {graph.n_segments}", fontsize=8)
         for j, (_, win) in enumerate(windows[name]):
             mark_window(ax, win, str(j + 1))
-        for col, v in enumerate(variants, start=1):
-            ax = axes[row, col]
-            frame_image(ax, w, h)
-            if v not in mine:
-                continue
-            run, g = mine[v], gaps[v]
+        for ax, v, run, g in _panels(axes[row, 1:], variants, mine, gaps, w, h):
             draw_arcs(ax, run.final.arcs, linewidth=1.0)
             big = g[g["gap"] > threshold]
-            for x, y, gap in zip(big["x"], big["y"], big["gap"], strict=True):
-                ring(ax, x, y, max(12.0, gap + 6.0), GAP_COLOR)
+            _ring_gaps(ax, big, lambda gap: max(12.0, gap + 6.0))
             for ri in level_redundant_intersections(run.final):
                 ring(ax, float(ri.point[0]), float(ri.point[1]), 12.0, INTERSECTION_COLOR)
             for j, (_, win) in enumerate(windows[name]):
@@ -368,17 +384,10 @@ def plot_connectivity_ablation(
             plot_segment_graph(graph, ax, linewidth=2.0, markersize=5.0)
             frame_window(ax, win, **_WINDOW)
             ax.set_title(f"inset {j + 1} (largest gap of {source[:3]})", fontsize=7)
-            for col, v in enumerate(variants, start=1):
-                ax = axes[r, col]
-                frame_image(ax, w, h)
-                if v not in mine:
-                    continue
-                run, g = mine[v], gaps[v]
+            for ax, v, run, g in _panels(axes[r, 1:], variants, mine, gaps, w, h):
                 _zoomed_arcs(ax, graph, run.final.arcs, 6.0)
                 ax.plot(g["x"], g["y"], "o", color="#000000", markersize=3.0, zorder=4, linestyle="none")
-                big = g[g["gap"] > threshold]
-                for x, y, gap in zip(big["x"], big["y"], big["gap"], strict=True):
-                    ring(ax, x, y, gap + 2.0, GAP_COLOR, linewidth=1.5)
+                _ring_gaps(ax, g[g["gap"] > threshold], lambda gap: gap + 2.0, linewidth=1.5)
                 frame_window(ax, win, **_WINDOW)
                 inside = g[(g["x"] >= win[0]) & (g["x"] <= win[2]) & (g["y"] >= win[1]) & (g["y"] <= win[3])]
                 worst = float(inside["gap"].max()) if len(inside) else 0.0
@@ -522,13 +531,17 @@ def compare_arc_selection(abstraction: Abstraction, graph: SegmentGraph, name: s
     constraint, as the optimizer does) go to
     :func:`~img2logo.arc_extraction.extract_arc` with each ``method``.
     """
+    import pandas as pd
+
     inner = bool(abstraction.params.get("inner_junctions", True))
     project = not bool(abstraction.params.get("connectivity", True))
-    index = {int(n): k for k, n in enumerate(junction_nodes(abstraction, graph))}
-    rows = []
+    nodes = junction_nodes(abstraction, graph)
+    index = {int(n): k for k, n in enumerate(nodes)}
+    valence = graph.valence
+    by_f, by_s, rows = [], [], []
     for i, (arc, segs) in enumerate(zip(abstraction.arcs, abstraction.arc_segments, strict=True)):
         path, points = arc_chain(graph, segs)
-        constrained = list(_constrained(path, graph.valence, inner))
+        constrained = list(_constrained(path, valence, inner))
         if path[0] == path[-1]:
             constrained.append(path[0])
         pts = np.array([abstraction.junctions[index[n]] for n in constrained])
@@ -537,24 +550,24 @@ def compare_arc_selection(abstraction: Abstraction, graph: SegmentGraph, name: s
             pts = circle.point_at(circle.angle_of(pts))
         f = extract_arc(circle, points, pts, method="frechet")
         s = extract_arc(circle, points, pts, method="sum_of_squares")
-        rows.append((i, arc, segs, constrained, len(admissible_arcs(circle, points, pts)[0]), f, s))
-    out = table(
-        rows,
-        {
-            "arc": lambda r: r[0],
-            "segments": lambda r: len(r[2]),
-            "junctions": lambda r: len(set(r[3])),
-            "candidates": lambda r: r[4],
-            "sweep F": lambda r: round(math.degrees(abs(r[5].arc.sweep)), 3),
-            "sweep S": lambda r: round(math.degrees(abs(r[6].arc.sweep)), 3),
-            "Fréchet F": lambda r: round(r[5].frechet, 4),
-            "Fréchet S": lambda r: round(r[6].frechet, 4),
-            "differs": lambda r: not _same_arc(r[5].arc, r[6].arc),
-            "reproduces level": lambda r: _same_arc(r[5].arc, r[1]),
-        },
-    )
-    fits = tuple(r[5] for r in rows), tuple(r[6] for r in rows)
-    return ArcSelectionComparison(name, abstraction, *fits, out)
+        choice = len(admissible_arcs(circle, points, pts)[0])
+        by_f.append(f)
+        by_s.append(s)
+        rows.append(
+            {
+                "arc": i,
+                "segments": len(segs),
+                "junctions": len(set(constrained)),
+                "candidates": choice,
+                "sweep F": round(math.degrees(abs(f.arc.sweep)), 3),
+                "sweep S": round(math.degrees(abs(s.arc.sweep)), 3),
+                "Fréchet F": round(f.frechet, 4),
+                "Fréchet S": round(s.frechet, 4),
+                "differs": not _same_arc(f.arc, s.arc),
+                "reproduces level": _same_arc(f.arc, arc),
+            }
+        )
+    return ArcSelectionComparison(name, abstraction, tuple(by_f), tuple(by_s), pd.DataFrame(rows))
 
 
 def arc_selection_study(runs: Sequence[Run]) -> list[ArcSelectionComparison]:
@@ -597,40 +610,36 @@ def arc_selection_table(runs: Sequence[Run], comparisons: Sequence[ArcSelectionC
     """
     import pandas as pd
 
+    rows = []
     pairs: dict[tuple[str, float], dict[str, Run]] = {}
     for run in runs:
         pairs.setdefault((run.name, run.final.tolerance), {})[run.settings.get("arc_selection", "frechet")] = run
-    items = []
     for (name, t), both in pairs.items():
-        f, s = both.get("frechet"), both.get("sum_of_squares")
-        if f is not None:
-            tables = [c.table for c in comparisons if c.name == name and any(c.level is lv for lv in f.levels)]
-            compared = (
-                pd.concat(tables, ignore_index=True) if tables else pd.DataFrame(columns=["candidates", "differs"])
-            )
-            items.append((name, t, f, s, compared, compared[compared["differs"].astype(bool)]))
-
-    def distances(column: str) -> Any:
-        return lambda it: " ".join(f"{v:.2f}" for v in it[5].get(column, []))
-
-    return table(
-        items,
-        {
-            "image": lambda it: it[0],
-            "T": lambda it: it[1],
-            "levels": lambda it: len(it[2].levels),
-            "arcs compared": lambda it: len(it[4]),
-            "with a choice": lambda it: int((it[4]["candidates"] > 1).sum()),
-            "differ": lambda it: len(it[5]),
-            "Fréchet F": distances("Fréchet F"),
-            "Fréchet S": distances("Fréchet S"),
-            "final arcs F": lambda it: len(it[2].final.arcs),
-            "final arcs S": lambda it: len(it[3].final.arcs) if it[3] else None,
-            "E^s F": lambda it: round(it[2].final.similarity, 4),
-            "E^s S": lambda it: round(it[3].final.similarity, 4) if it[3] else None,
-            "runs identical": lambda it: _levels_equal(it[2].progression, it[3].progression) if it[3] else None,
-        },
-    )
+        f_run, s_run = both.get("frechet"), both.get("sum_of_squares")
+        if f_run is None:
+            continue
+        mine = [c for c in comparisons if c.name == name and any(c.level is lv for lv in f_run.progression.levels)]
+        tables = [c.table for c in mine]
+        table = pd.concat(tables, ignore_index=True) if tables else pd.DataFrame(columns=["candidates", "differs"])
+        diff = table[table["differs"].astype(bool)]
+        rows.append(
+            {
+                "image": name,
+                "T": t,
+                "levels": len(f_run.progression.levels),
+                "arcs compared": len(table),
+                "with a choice": int((table["candidates"] > 1).sum()),
+                "differ": len(diff),
+                "Fréchet F": " ".join(f"{v:.2f}" for v in diff.get("Fréchet F", [])),
+                "Fréchet S": " ".join(f"{v:.2f}" for v in diff.get("Fréchet S", [])),
+                "final arcs F": len(f_run.final.arcs),
+                "final arcs S": len(s_run.final.arcs) if s_run else None,
+                "E^s F": round(f_run.final.similarity, 4),
+                "E^s S": round(s_run.final.similarity, 4) if s_run else None,
+                "runs identical": _levels_equal(f_run.progression, s_run.progression) if s_run else None,
+            }
+        )
+    return pd.DataFrame(rows)
 
 
 def plot_arc_selection(comparisons: Sequence[ArcSelectionComparison], *, panel_size: float = 3.2) -> Figure:

@@ -19,7 +19,7 @@ from collections import Counter
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, NamedTuple
 
 import numpy as np
 
@@ -160,12 +160,17 @@ STAGES: tuple[str, ...] = ("feature_lines", "segment_graph", "simplification", "
 def stage_table(results: Sequence[Result], names: Sequence[str] | None = None) -> pd.DataFrame:
     """Per full :func:`img2logo.abstract` run: seconds per stage of :data:`STAGES` (``Result.timings``),
     ``total``, ``arcs`` (|A|). Not byte-deterministic."""
+    import pandas as pd
+
     names = list(names) if names is not None else [Path(str(r.params.get("source", "?"))).stem for r in results]
-    columns = {"image": lambda item: item[0]}
-    columns |= {s: (lambda item, s=s: float(item[1].timings.get(s, 0.0))) for s in STAGES}
-    columns["total"] = lambda item: sum(float(item[1].timings.get(s, 0.0)) for s in STAGES)
-    columns["arcs"] = lambda item: len(item[1].final.arcs)
-    return table(zip(names, results, strict=True), columns)
+    rows = []
+    for name, r in zip(names, results, strict=True):
+        row: dict[str, Any] = {"image": name}
+        row.update({s: float(r.timings.get(s, 0.0)) for s in STAGES})
+        row["total"] = sum(row[s] for s in STAGES)
+        row["arcs"] = len(r.final.arcs)
+        rows.append(row)
+    return pd.DataFrame(rows)
 
 
 def plot_stages(table: pd.DataFrame, *, figsize: tuple[float, float] = (8.0, 2.8)) -> Figure:
@@ -395,18 +400,24 @@ def lock_variants(mask: np.ndarray) -> dict[str, dict[str, Any]]:
     return {LOCK_VARIANTS[0]: {}, LOCK_VARIANTS[1]: {"lock_mask": mask}}
 
 
-def _lock_pairs(runs: Sequence[Run], mask: np.ndarray) -> list[tuple[float, Run, Run, float, float]]:
-    """Per T of a lock search: T, the runs without and with the lock, and their detail errors (px).
+class _LockPair(NamedTuple):
+    """One T of a lock search: the runs without and with the lock and their detail errors
+    (:func:`img2logo.quality.detail_error`, px: a detail is lost when it grows beyond a pixel or two)."""
 
-    The detail error (:func:`img2logo.quality.detail_error`) is the mean distance from the
-    segments' pixels under the mask to the arcs: a detail is lost when it grows beyond a pixel or two.
-    """
+    t: float
+    free: Run
+    locked: Run
+    error_free: float
+    error_locked: float
+
+
+def _lock_pairs(runs: Sequence[Run], mask: np.ndarray) -> list[_LockPair]:
     out = []
     for free, locked in zip(runs[::2], runs[1::2], strict=True):
         if (free.variant, locked.variant) != LOCK_VARIANTS:
             raise InvalidParameterError(f"expected runs of the variants {LOCK_VARIANTS} in turn (lock_variants)")
         errors = (detail_error(free.final, free.graph, mask), detail_error(locked.final, locked.graph, mask))
-        out.append((float(free.final.tolerance), free, locked, *errors))
+        out.append(_LockPair(float(free.final.tolerance), free, locked, *errors))
     return out
 
 
@@ -416,16 +427,16 @@ def lock_table(runs: Sequence[Run], mask: np.ndarray, threshold: float) -> pd.Da
     return table(
         _lock_pairs(runs, mask),
         {
-            "T": lambda p: p[0],
-            "arcs, no lock": lambda p: len(p[1].final.arcs),
-            "E^s, no lock (px)": lambda p: round(p[1].final.similarity, 3),
-            "detail error, no lock (px)": lambda p: round(p[3], 3),
-            "lost without lock": lambda p: bool(p[3] > threshold),
-            "locked segments": lambda p: int(p[2].final.params.get("locked_segments", 0)),
-            "arcs, lock": lambda p: len(p[2].final.arcs),
-            "E^s, lock (px)": lambda p: round(p[2].final.similarity, 3),
-            "detail error, lock (px)": lambda p: round(p[4], 3),
-            "lost with lock": lambda p: bool(p[4] > threshold),
+            "T": lambda p: p.t,
+            "arcs, no lock": lambda p: len(p.free.final.arcs),
+            "E^s, no lock (px)": lambda p: round(p.free.final.similarity, 3),
+            "detail error, no lock (px)": lambda p: round(p.error_free, 3),
+            "lost without lock": lambda p: bool(p.error_free > threshold),
+            "locked segments": lambda p: int(p.locked.final.params.get("locked_segments", 0)),
+            "arcs, lock": lambda p: len(p.locked.final.arcs),
+            "E^s, lock (px)": lambda p: round(p.locked.final.similarity, 3),
+            "detail error, lock (px)": lambda p: round(p.error_locked, 3),
+            "lost with lock": lambda p: bool(p.error_locked > threshold),
         },
     )
 
@@ -435,13 +446,13 @@ def first_lost(runs: Sequence[Run], mask: np.ndarray, threshold: float) -> float
 
     Falls back to the T where the detail errors differ the most when no T qualifies.
     """
-    pairs = sorted(_lock_pairs(runs, mask), key=lambda p: p[0])
+    pairs = sorted(_lock_pairs(runs, mask), key=lambda p: p.t)
     if not pairs:
         raise InvalidParameterError("no runs to choose from")
     for t, _, _, e_free, e_locked in pairs:
         if e_free > threshold >= e_locked:
             return t
-    return max(pairs, key=lambda p: p[3] - p[4])[0]
+    return max(pairs, key=lambda p: p.error_free - p.error_locked).t
 
 
 def _crop(ax: Axes, graph: Any) -> None:
@@ -474,7 +485,7 @@ def plot_lock_comparison(
     (:func:`first_lost`). The bottom row zooms into the region (dashed),
     junctions marked on the results.
     """
-    t, free, locked, e_free, e_locked = next(p for p in _lock_pairs(runs, mask) if math.isclose(p[0], tolerance))
+    t, free, locked, e_free, e_locked = next(p for p in _lock_pairs(runs, mask) if math.isclose(p.t, tolerance))
     example = free
     fig, axes = panel_grid(2, 3, panel_size, extra_height=0.6, height_ratios=(0.8, 1.0))
     rgb = example.image.rgb

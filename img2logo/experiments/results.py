@@ -7,7 +7,7 @@ For ``01_overview`` (Fig. 1, 4, 7, 8), ``02_visual_results`` (Fig. 10),
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -28,7 +28,7 @@ from ..plotting import (
 )
 from ..progressive import Progression
 from ..quality import junction_gaps
-from . import Run, by_image, sweep, table
+from . import RUN_COLUMNS, Run, by_image, sweep, table
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -154,22 +154,22 @@ def _gaps(a: Abstraction) -> np.ndarray:
 
 def circle_fitting_table(stages: Sequence[Run]) -> pd.DataFrame:
     """Per image of :func:`circle_fitting_stages`: |A^0|, |J'| and the junction gaps of both stages, px."""
+    import pandas as pd
 
-    def gaps(stage: int) -> Callable[[tuple[str, list[Run]]], np.ndarray]:
-        return lambda item: _gaps(item[1][stage].final)
-
-    free, con = gaps(0), gaps(1)
-    return table(
-        by_image(stages).items(),
-        {
-            "image": lambda item: item[0],
-            "arcs": lambda item: len(item[1][1].final.arcs),
-            "junctions": lambda item: len(item[1][1].final.junctions),
-            "max gap independent (px)": lambda item: round(float(free(item).max(initial=0.0)), 3),
-            "mean gap independent (px)": lambda item: round(float(free(item).mean()) if len(free(item)) else 0.0, 3),
-            "max gap constrained (px)": lambda item: round(float(con(item).max(initial=0.0)), 3),
-        },
-    )
+    rows = []
+    for name, (ind, st) in by_image(stages).items():
+        free, con = _gaps(ind.final), _gaps(st.final)
+        rows.append(
+            {
+                "image": name,
+                "arcs": len(st.final.arcs),
+                "junctions": len(st.final.junctions),
+                "max gap independent (px)": round(float(free.max(initial=0.0)), 3),
+                "mean gap independent (px)": round(float(free.mean()) if len(free) else 0.0, 3),
+                "max gap constrained (px)": round(float(con.max(initial=0.0)), 3),
+            }
+        )
+    return pd.DataFrame(rows)
 
 
 def plot_circle_fitting(
@@ -218,9 +218,7 @@ def results_table(runs: Sequence[Run]) -> pd.DataFrame:
     return table(
         runs,
         {
-            "image": lambda r: r.name,
-            "kind": lambda r: r.kind,
-            "segments": lambda r: r.graph.n_segments,
+            **RUN_COLUMNS,
             "arcs A^0": lambda r: len(r.levels[0].arcs),
             "final arcs": lambda r: len(r.final.arcs),
             "iterations": lambda r: r.final.level,
@@ -262,7 +260,10 @@ def plot_results_grid(runs: Sequence[Run], *, columns: int = 5, panel_size: floa
 
 # --------------------------------------------------------------------------- Table 1
 def simplicity_table(
-    runs: Sequence[Run], *, fractions: Sequence[float] = _SIMPLICITY_FRACTIONS, paper: Mapping[int, float] | None = None
+    runs: Sequence[Run],
+    *,
+    fractions: Sequence[float] = _SIMPLICITY_FRACTIONS,
+    paper: Mapping[int, float] | None = None,
 ) -> pd.DataFrame:
     """|A^t| and E^s(A^t) (px) at every iteration t of each run, beside the paper's |A^t| (Table 1).
 
@@ -270,28 +271,28 @@ def simplicity_table(
     ``final`` the result; an iteration of ``paper`` (default :data:`PAPER_TABLE1`)
     beyond the end of a run gets a row with our columns empty.
     """
+    import pandas as pd
+
     paper = PAPER_TABLE1 if paper is None else paper
-    rows = [
-        (run, t, {level_at_fraction(run.progression, f) for f in fractions})
-        for run in runs
-        for t in sorted(set(range(len(run.levels))) | {int(t) for t in paper})
-    ]
-
-    def ours(value: Callable[[Abstraction], float]) -> Callable[[tuple[Run, int, set[int]]], float]:
-        return lambda row: value(row[0].levels[row[1]]) if row[1] < len(row[0].levels) else math.nan
-
-    out = table(
-        rows,
-        {
-            "image": lambda row: row[0].name,
-            "iteration": lambda row: row[1],
-            "arcs": ours(lambda a: len(a.arcs)),
-            "E^s (px)": ours(lambda a: round(a.similarity, 4)),
-            "shown": lambda row: row[1] in row[2],
-            "final": lambda row: row[1] == len(row[0].levels) - 1,
-            "paper |A|": lambda row: paper.get(row[1], math.nan),
-        },
-    )
+    rows = []
+    for run in runs:
+        prog = run.progression
+        last = len(prog.levels) - 1
+        shown = {level_at_fraction(prog, f) for f in fractions}
+        for t in sorted(set(range(last + 1)) | {int(t) for t in paper}):
+            ours = t <= last
+            rows.append(
+                {
+                    "image": run.name,
+                    "iteration": t,
+                    "arcs": len(prog.levels[t].arcs) if ours else math.nan,
+                    "E^s (px)": round(prog.levels[t].similarity, 4) if ours else math.nan,
+                    "shown": t in shown,
+                    "final": t == last,
+                    "paper |A|": paper.get(t, math.nan),
+                }
+            )
+    out = pd.DataFrame(rows)
     if len(out):
         out["arcs"] = out["arcs"].astype("Int64")
     return out
@@ -405,57 +406,56 @@ def final_level_index(progression: Progression, tolerance: float, *, rule: str =
 def tolerance_table(sweeps: Sequence[Run], *, paper: Mapping[float, float] | None = None) -> pd.DataFrame:
     """Per run of a sweep over T: the final |A|, E^s (px), iterations, why it stopped; the |A| both rules of
     :func:`final_level_index` read off the image's largest-T run; the paper's |A| (default :data:`PAPER_TABLE2`)."""
+    import pandas as pd
+
     paper = PAPER_TABLE2 if paper is None else paper
-    rows = [(run, mine[-1].progression) for mine in _tolerance_sweeps(sweeps).values() for run in mine]
-    return table(
-        rows,
-        {
-            "image": lambda row: row[0].name,
-            "T": lambda row: _tolerance(row[0]),
-            "final arcs": lambda row: len(row[0].final.arcs),
-            "E^s (px)": lambda row: round(row[0].final.similarity, 4),
-            "iterations": lambda row: row[0].final.level,
-            "stopped because": lambda row: row[0].progression.stopped_because,
-            "arcs by first exceedance": lambda row: row[1].arc_counts[final_level_index(row[1], _tolerance(row[0]))],
-            "arcs by last E^s <= T": lambda row: row[1].arc_counts[
-                final_level_index(row[1], _tolerance(row[0]), rule="last_within")
-            ],
-            "paper |A|": lambda row: _paper(paper, _tolerance(row[0])),
-        },
-    )
+    rows = []
+    for name, mine in _tolerance_sweeps(sweeps).items():
+        ref = mine[-1].progression
+        for t, prog in ((_tolerance(r), r.progression) for r in mine):
+            rows.append(
+                {
+                    "image": name,
+                    "T": t,
+                    "final arcs": len(prog.final.arcs),
+                    "E^s (px)": round(prog.final.similarity, 4),
+                    "iterations": prog.final.level,
+                    "stopped because": prog.stopped_because,
+                    "arcs by first exceedance": ref.arc_counts[final_level_index(ref, t)],
+                    "arcs by last E^s <= T": ref.arc_counts[final_level_index(ref, t, rule="last_within")],
+                    "paper |A|": next((v for k, v in paper.items() if math.isclose(k, t)), math.nan),
+                }
+            )
+    return pd.DataFrame(rows)
 
 
 def monotonicity_table(sweeps: Sequence[Run]) -> pd.DataFrame:
     """Per image of a sweep over T: is E^s monotone along its largest-T run (how often and how much it
     decreases, px), and does each rule of :func:`final_level_index` give the final |A| of every per-T run?"""
+    import pandas as pd
 
-    def matches(rule: str) -> Callable[[list[Run]], bool]:
-        return lambda mine: (
-            [
-                mine[-1].progression.arc_counts[final_level_index(mine[-1].progression, _tolerance(r), rule=rule)]
-                for r in mine
-            ]
-            == [len(r.final.arcs) for r in mine]
+    rows = []
+    for name, mine in _tolerance_sweeps(sweeps).items():
+        ref = mine[-1].progression
+        steps = np.diff(np.array(ref.similarities))
+        finals = [len(r.final.arcs) for r in mine]
+        by_rule = {
+            rule: [ref.arc_counts[final_level_index(ref, _tolerance(r), rule=rule)] for r in mine]
+            for rule in ("first_exceedance", "last_within")
+        }
+        rows.append(
+            {
+                "image": name,
+                "T max": _tolerance(mine[-1]),
+                "levels": len(ref.levels),
+                "E^s monotone": similarity_is_monotone(ref),
+                "E^s decreases": int(np.sum(steps < 0)),
+                "largest decrease (px)": round(float(max(0.0, -steps.min())) if len(steps) else 0.0, 4),
+                "first exceedance matches": by_rule["first_exceedance"] == finals,
+                "last E^s <= T matches": by_rule["last_within"] == finals,
+            }
         )
-
-    def steps(mine: list[Run]) -> np.ndarray:
-        return np.diff(np.array(mine[-1].progression.similarities))
-
-    return table(
-        _tolerance_sweeps(sweeps).values(),
-        {
-            "image": lambda mine: mine[-1].name,
-            "T max": lambda mine: _tolerance(mine[-1]),
-            "levels": lambda mine: len(mine[-1].levels),
-            "E^s monotone": lambda mine: similarity_is_monotone(mine[-1].progression),
-            "E^s decreases": lambda mine: int(np.sum(steps(mine) < 0)),
-            "largest decrease (px)": lambda mine: round(
-                float(max(0.0, -steps(mine).min())) if len(steps(mine)) else 0.0, 4
-            ),
-            "first exceedance matches": matches("first_exceedance"),
-            "last E^s <= T matches": matches("last_within"),
-        },
-    )
+    return pd.DataFrame(rows)
 
 
 def plot_tolerance_results(
