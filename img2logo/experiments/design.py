@@ -546,24 +546,16 @@ def plot_bias_sweep(runs: Sequence[Run], *, panel_size: float = 3.0) -> Figure:
 
 # =========================================================================== level explorer
 def levels_within(result: Result, tolerance: float | None = None) -> tuple[Abstraction, ...]:
-    """The levels a run with tolerance ``tolerance`` gives, taken from ``result``, a run with a T at least as large.
+    """The levels a run with T = ``tolerance`` (px, at most the run's T; None: all) gives, read off ``result``.
 
-    The merges do not depend on T: a run with T stops at the first level whose
-    E^s exceeds T (Sec. 5.2, step 2), so its levels are those of the larger run
-    before that one (A^0 always). Notebook 04 checks this rule against runs made
-    per T (``monotonicity.csv``, column ``first exceedance matches``).
-
-    Parameters
-    ----------
-    result : Result
-        A run with tolerance T_run.
-    tolerance : float, optional
-        T <= T_run, px; None: T_run (all the levels).
+    The merges do not depend on T: a run stops before the first level whose E^s
+    exceeds T (Sec. 5.2, step 2; :func:`~img2logo.experiments.results.final_level_index`,
+    checked against runs made per T by notebook 04, ``monotonicity.csv``).
 
     Raises
     ------
     InvalidParameterError
-        ``tolerance`` above T_run: that run's levels cannot tell a larger T's.
+        ``tolerance`` above the run's T: its levels cannot tell a larger T's.
     """
     from .results import final_level_index
 
@@ -627,21 +619,8 @@ def plot_level_strip(
 
 @dataclass(frozen=True)
 class ExplorerSettings:
-    """The inputs of one :class:`LevelExplorer` run.
-
-    Attributes
-    ----------
-    image : str
-        A file name in ``data/`` or a path.
-    tolerance : float
-        T, px.
-    bias : float or None
-        The ladder bias sigma; None: automatic (Eqn. 14).
-    rdp_tolerance : float
-        Ramer-Douglas-Peucker tolerance, px.
-    kind : str
-        ``"auto"``, ``"photo"``, ``"clipart"`` or ``"drawing"``.
-    """
+    """The inputs of one :class:`LevelExplorer` run: an image (a file name in ``data/`` or a path), T (px),
+    the ladder bias (None: automatic, Eqn. 14), the RDP tolerance (px) and the kind of input."""
 
     image: str = "clipart-fish.png"
     tolerance: float = TOLERANCE
@@ -683,13 +662,8 @@ class LevelExplorer:
     result : Result
         The run holding them: the largest T run so far with these settings.
     levels : tuple of Abstraction
-        The levels of T (:func:`levels_within`).
-    level : int
-        The level shown.
-    figure : matplotlib.figure.Figure
-        The drawing of that level (no title: the widget shows :attr:`title`).
-    title : str
-        Its title (:func:`level_title`).
+        The levels of T (:func:`levels_within`); ``level`` is the one shown, drawn
+        in ``figure`` (its ``title`` shown by the widget).
     progress_text : str
         The last progress message of a run.
     controls : dict

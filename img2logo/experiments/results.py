@@ -423,7 +423,7 @@ def tolerance_table(sweeps: Sequence[Run], *, paper: Mapping[float, float] | Non
                     "stopped because": prog.stopped_because,
                     "arcs by first exceedance": ref.arc_counts[final_level_index(ref, t)],
                     "arcs by last E^s <= T": ref.arc_counts[final_level_index(ref, t, rule="last_within")],
-                    "paper |A|": next((v for k, v in paper.items() if math.isclose(k, t)), math.nan),
+                    "paper |A|": _paper(paper, t),
                 }
             )
     return pd.DataFrame(rows)
