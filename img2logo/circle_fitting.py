@@ -28,7 +28,7 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from ._validation import check_points, check_positive, readonly
+from ._validation import check_finite, check_points, check_positive, readonly
 from .constants import (
     CIRCLE_REFINE_MAX_ITER,
     CONSTRAINED_FIT_FTOL,
@@ -500,16 +500,32 @@ class _Problem:
 
 
 def _solve(
-    mat: sp.csc_matrix | np.ndarray, delta: float, g: np.ndarray, c: np.ndarray
+    mat: sp.csc_matrix | np.ndarray,
+    delta: float,
+    g: np.ndarray,
+    c: np.ndarray,
+    keep: np.ndarray | None = None,
 ) -> tuple[np.ndarray, np.ndarray, float] | None:
-    """Solve the KKT system for (dx, lambda); also return the curvature dx^T W dx (None: failed)."""
+    """Solve the KKT system for (dx, lambda); also return the curvature dx^T W dx (None: failed).
+
+    ``keep`` (indices into the unknowns) solves the system reduced to them; the
+    others (coordinates held on a mirror axis) get a zero step.
+    """
     rhs = np.concatenate([-g, -c])
+    if keep is not None:
+        mat = mat[np.ix_(keep, keep)] if isinstance(mat, np.ndarray) else mat[keep][:, keep].tocsc()
     try:
-        sol = np.linalg.solve(mat, rhs) if isinstance(mat, np.ndarray) else spla.splu(mat).solve(rhs)
+        part = rhs if keep is None else rhs[keep]
+        part = np.linalg.solve(mat, part) if isinstance(mat, np.ndarray) else spla.splu(mat).solve(part)
     except (np.linalg.LinAlgError, RuntimeError):
         return None
-    if not np.all(np.isfinite(sol)):
+    if not np.all(np.isfinite(part)):
         return None
+    if keep is None:
+        sol = part
+    else:
+        sol = np.zeros(len(rhs))
+        sol[keep] = part
     n = len(g)
     dx, lam = sol[:n], sol[n:]
     # From the first block row W dx = -g - A^T lam and A dx - delta lam = -c.
@@ -532,6 +548,10 @@ def fit_constrained(
     tol: float = CONSTRAINED_FIT_TOL,
     max_iter: int = CONSTRAINED_FIT_MAX_ITER,
     connectivity: bool = True,
+    axis: float | None = None,
+    axis_circles: object = (),
+    axis_junctions: object = (),
+    stall: int = CONSTRAINED_FIT_STALL,
 ) -> ConstrainedFit:
     """Connectivity-constrained least-squares fit of circles with fixed radii (Eqn. 13).
 
@@ -590,6 +610,15 @@ def fit_constrained(
         False drops the constraints (the ablation of Fig. 11c): each free centre
         moves to its best position for its fixed radius, and free displacements go
         to zero.
+    axis : float, optional
+        A vertical mirror axis x = ``axis``, px (symmetric logos,
+        :mod:`img2logo.symmetry`): the centres of ``axis_circles`` and the
+        displaced junctions ``axis_junctions`` (indices) are held on it, their x
+        set to it and never moved, only their y (Eqn. 13 with the symmetry
+        constraints).
+    stall : int
+        Give up when the constraint violation has not halved over this many
+        steps (an infeasible problem, most likely).
 
     Returns
     -------
@@ -643,9 +672,29 @@ def fit_constrained(
     if isinstance(max_iter, bool) or not isinstance(max_iter, int) or max_iter < 0:
         raise InvalidParameterError(f"max_iter must be an integer >= 0, got {max_iter!r}")
 
+    on_c = _index_array(axis_circles, "axis_circles", n_c)
+    on_j = _index_array(axis_junctions, "axis_junctions", n_j)
+    if axis is not None:
+        axis = check_finite(axis, "axis")
+        centers = centers.copy()
+        disp = disp.copy()
+        centers[on_c, 0] = axis
+        disp[on_j, 0] = axis - junc[on_j, 0]
+    elif len(on_c) or len(on_j):
+        raise InvalidParameterError("axis_circles and axis_junctions need an axis")
+
     owner = np.repeat(np.arange(n_c), [len(s) for s in sets])
     points = np.concatenate(sets) if sets else np.zeros((0, 2))
     prob = _Problem(points, owner, radii_arr, centers, junc, disp, inc, free_c, free_j, ws, wj, connectivity)
+    keep = None
+    if axis is not None:
+        # The x coordinates held on the axis: their unknowns leave the KKT system.
+        pos_c = {int(c): i for i, c in enumerate(free_c)}
+        pos_j = {int(k): i for i, k in enumerate(free_j)}
+        held = [2 * pos_c[int(c)] for c in on_c if int(c) in pos_c]
+        held += [2 * (len(free_c) + pos_j[int(k)]) for k in on_j if int(k) in pos_j]
+        if held:
+            keep = np.setdiff1d(np.arange(prob.n + prob.m), held)
     iterations, converged, nu, lam = 0, False, 0.0, None
     x = prob.get_x()
     history: list[float] = []  # violations, to stop early on infeasible problems
@@ -656,17 +705,13 @@ def fit_constrained(
             converged = feasible and prob.n == 0
             break
         history.append(violation)
-        if (
-            not feasible
-            and len(history) > CONSTRAINED_FIT_STALL
-            and violation > 0.5 * history[-1 - CONSTRAINED_FIT_STALL]
-        ):
+        if not feasible and len(history) > stall and violation > 0.5 * history[-1 - stall]:
             break  # stalled: most likely the fixed variables leave no feasible solution
         # A Newton step on the Lagrangian once multipliers are known; Gauss-Newton
         # when there are none yet or the Newton step has no positive curvature.
         sol = None
         for multipliers in (lam, None) if lam is not None else (None,):
-            sol = _solve(*prob.matrix(multipliers), g, c)
+            sol = _solve(*prob.matrix(multipliers), g, c, keep)
             if sol is not None and sol[2] > 0:
                 break
         if sol is None:

@@ -187,6 +187,14 @@ def _add_optimization_options(p: argparse.ArgumentParser, *, lock_mask: bool) ->
     ):
         opt.add_argument(f"--no-{flag}", action="store_true", help=f"switch off {what}")
     opt.add_argument(
+        "--symmetry",
+        default="none",
+        metavar="auto|none|vertical|horizontal|DEGREES",
+        help="a mirror-symmetric logo: auto (the best mirror axis of the feature lines, kept if it scores at least "
+        "the threshold; said in one line), vertical, horizontal or the axis direction in degrees from +x towards "
+        "+y (forced); none (default): free",
+    )
+    opt.add_argument(
         "--lines",
         action="store_true",
         help="let nearly straight segments be straight lines, not arcs of huge circles (paper Sec. 9, Fig. 20b)",
@@ -289,11 +297,13 @@ def _abstract_options(args: argparse.Namespace) -> dict:
         "simplify": not args.no_simplify,
         "lines": args.lines,
     }
+    if args.symmetry.strip().lower() != "none":  # only then: a free run's parameters stay as they were
+        options["symmetry"] = args.symmetry
     if args.ladder == "fibonacci":  # only then: a phi run's parameters stay as they were
         options.update(ladder=args.ladder, unit=args.unit)
     elif args.unit is not None:
         options["unit"] = args.unit  # refused by the check below, with the reason
-    check_abstract_options(options)
+    check_abstract_options({**options, **({"lock_mask": args.lock_mask} if getattr(args, "lock_mask", None) else {})})
     if getattr(args, "level", None) is not None and args.level < 0:
         raise InvalidParameterError(f"--level must be >= 0, got {args.level}")
     return options
@@ -371,6 +381,8 @@ def _run(args: argparse.Namespace, say) -> int:
     say(f"kind {result.lines.kind} ({result.lines.reason})")
     if result.lines.subject is not None:
         say(f"subject: {result.lines.subject.description}")
+    if result.symmetry is not None:
+        say(result.symmetry.description)
     say(
         f"segment graph: {graph.n_segments} segments, {graph.n_junctions} nodes "
         f"({int((graph.valence >= 3).sum())} junctions), {graph.n_components()} components"

@@ -366,3 +366,51 @@ GAP_MIN: float = 0.75
 #: An open arc end within GAP_MIN..GAP_MAX of another arc is a near-miss gap (the
 #: eye closes it, the logo does not); farther, it is a free end, px.
 GAP_MAX: float = 6.0
+
+# --- Symmetric logos (img2logo.symmetry) --------------------------------------------
+#: Mirror-axis detection: a feature-line pixel is matched when its mirror image lies
+#: within this distance of a feature-line pixel, px. Two 1-px lines drawn from the two
+#: halves of a symmetric shape sit up to 1 px apart after thinning, and the reflection
+#: of a pixel centre about an axis between pixels lands up to 0.5 px off a centre.
+SYMMETRY_MATCH_DISTANCE: float = 2.0
+#: Mirror-axis detection: the feature-line pixels sampled (evenly along the map) to
+#: score candidate axes; enough for the score to within about 1 % and fast.
+SYMMETRY_SAMPLE_POINTS: int = 2000
+#: Mirror-axis detection: angular step of the coarse search over axis directions, radians (2 degrees).
+SYMMETRY_ANGLE_STEP: float = math.radians(2.0)
+#: Mirror-axis detection: the coarse search tries axes this far on either side of the
+#: line pixels' centroid (a symmetric point set has its centroid on its axis), px.
+SYMMETRY_OFFSET_RANGE: float = 16.0
+#: Mirror-axis detection: offset step of the coarse search, px.
+SYMMETRY_OFFSET_STEP: float = 1.0
+#: ``symmetry="auto"`` keeps the best axis when its score (the fraction of feature-line
+#: pixels whose mirror image is a feature line within SYMMETRY_MATCH_DISTANCE) is at
+#: least this. Chosen from measured scores (README, notebook 13): symmetric
+#: fronts (faces, balloon, umbrella, bee) and their mirrored, rotated and cropped
+#: variants 0.74-0.98; side views (fish, birds, bike, kayak) and other asymmetric
+#: drawings at most 0.55; the threshold sits between.
+SYMMETRY_THRESHOLD: float = 0.72
+#: Symmetric segment graph: points within this distance of the axis are put on it, px
+#: (a line along the axis, a junction on it, the end of a line that stops at it).
+SYMMETRY_SNAP_DISTANCE: float = 1.0
+#: Symmetric segment graph: a line that meets the axis within this angle of square to it
+#: continues smoothly into its mirror image, so its circle is centred on the axis;
+#: steeper, the line and its mirror image meet at a corner there (a chin, a heart's top), radians.
+SYMMETRY_SMOOTH_ANGLE: float = math.radians(30.0)
+#: Symmetric segment graph: the direction of a line where it meets the axis is taken
+#: over this length of it, px (the last pixels are bent by thinning).
+SYMMETRY_TANGENT_LENGTH: float = 6.0
+#: Symmetric output: mirror-image circles are matched to within this distance, px.
+SYMMETRY_PAIR_TOLERANCE: float = 1e-6
+#: Symmetric runs: the constrained fit gives up when the violation has not halved over
+#: this many steps (CONSTRAINED_FIT_STALL elsewhere). A half graph's joint fit can
+#: climb out of a plateau more slowly: the clip-art cat's half stalled at 6e-4 px
+#: after 11 steps (and 3 junctions were released) but converged in 28.
+SYMMETRY_FIT_STALL: int = 20
+#: ``symmetry="auto"``: an axis found within this many degrees of upright (or level) is
+#: made exactly upright (level) when that costs at most SYMMETRY_SNAP_SCORE_LOSS of
+#: score: a designer's axis is upright, and the search's least squares leave it a few
+#: thousandths of a degree off (the clip-art cat: 89.994 deg), degrees.
+SYMMETRY_SNAP_ANGLE: float = 1.0
+#: See SYMMETRY_SNAP_ANGLE: the score an exactly upright axis may lose, as a fraction.
+SYMMETRY_SNAP_SCORE_LOSS: float = 0.01

@@ -34,6 +34,7 @@ from .fills import Fill, check_fills
 from .geometry import TAU, Abstraction, Arc, Circle, line_arc
 from .golden_ladder import fibonacci
 from .svg_path import sample_path
+from .symmetry import symmetry_extra
 
 __all__ = ["SCHEMA_RESOURCE", "from_document", "read_fills", "to_document", "validate_document"]
 
@@ -194,6 +195,9 @@ def to_document(
         "params": merged,
         "extra": {"arc_segments": arc_segments, **({"lines": line_docs} if line_docs else {})},
     }
+    symmetry = symmetry_extra(circles, merged)
+    if symmetry is not None:  # a symmetric logo: the axis, and the circles paired with their mirror images
+        doc["extra"]["symmetry"] = symmetry
     ladder = merged.get("ladder", "phi")
     if ladder == "fibonacci":
         unit = merged.get("unit")

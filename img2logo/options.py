@@ -48,6 +48,7 @@ ABSTRACT_OPTIONS: frozenset[str] = frozenset(
         "progress",
         "arc_selection",
         "max_arc_distance",
+        "symmetry",
         *SWITCHES,
     }
 )
@@ -71,7 +72,8 @@ def check_abstract_options(options: Mapping[str, Any], allowed: frozenset[str] =
     InvalidParameterError
         Naming the first value out of range: ``tolerance`` and ``rdp_tolerance`` > 0 px,
         ``min_length`` >= 0 px, ``kind``, ``foreground`` and ``subject``,
-        ``max_arc_distance`` > 0 px, the ladder's
+        ``max_arc_distance`` > 0 px, ``symmetry`` (auto, none, vertical,
+        horizontal or degrees; not with a lock mask), the ladder's
         ``ladder``, ``bias``, ``unit``, ``exponents`` and ``rounding`` (as
         :func:`img2logo.golden_ladder.make_ladder` checks them), the switches
         True or False, ``arc_selection``.
@@ -104,6 +106,12 @@ def check_abstract_options(options: Mapping[str, Any], allowed: frozenset[str] =
     for name in SWITCHES:
         if name in options and not isinstance(options[name], bool | np.bool_):
             raise InvalidParameterError(f"{name} must be True or False, got {options[name]!r}")
+    if "symmetry" in options:
+        from .symmetry import check_symmetry_option
+
+        check_symmetry_option(options["symmetry"])
+        if options.get("lock_mask") is not None and check_symmetry_option(options["symmetry"]) is not None:
+            raise InvalidParameterError("a lock mask cannot be combined with symmetry (use symmetry='none')")
     if "arc_selection" in options:
         check_choice(options["arc_selection"], "arc_selection", ("frechet", "sum_of_squares"))
     make_ladder(

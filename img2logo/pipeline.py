@@ -22,6 +22,7 @@ from .options import check_abstract_options
 from .preprocessing import FeatureLines, LoadedImage, extract_feature_lines, load_image
 from .progressive import ProgressCallback, Progression, optimize
 from .segment_graph import SegmentGraph, build_segment_graph
+from .symmetry import SymmetryChoice, check_symmetry_option, choose_axis, optimize_symmetric
 
 
 @dataclass(frozen=True, eq=False)
@@ -41,6 +42,10 @@ class Result:
         ``simplification``, ``initial_fit``, ``loop``.
     params : dict
         The parameters of the run (as recorded in every level).
+    symmetry : SymmetryChoice or None
+        What the ``symmetry`` option decided (None for ``"none"``); when it
+        kept an axis, ``graph`` is the symmetric segment graph and every level
+        is mirror-symmetric.
     """
 
     image: LoadedImage
@@ -49,6 +54,7 @@ class Result:
     progression: Progression
     timings: dict[str, float] = field(default_factory=dict)
     params: dict[str, Any] = field(default_factory=dict)
+    symmetry: SymmetryChoice | None = None
 
     @property
     def levels(self) -> tuple[Abstraction, ...]:
@@ -94,6 +100,7 @@ def abstract(
     unit: float | None = None,
     lock_mask: np.ndarray | None = None,
     progress: ProgressCallback | bool | None = None,
+    symmetry: object = "none",
     **switches: Any,
 ) -> Result:
     """Turn an image into a sequence of golden ratio logo abstractions.
@@ -121,6 +128,12 @@ def abstract(
         :func:`img2logo.progressive.optimize`).
     unit : float, optional
         The Fibonacci ladder's unit, px; default: chosen from the longest segment.
+    symmetry : {"none", "auto", "vertical", "horizontal"} or float
+        A symmetric logo (:mod:`img2logo.symmetry`): ``auto`` finds the best
+        mirror axis of the feature lines and keeps it if its score reaches
+        ``SYMMETRY_THRESHOLD``; ``vertical``, ``horizontal`` or an angle in
+        degrees (from +x towards +y) force its direction. ``none`` (default):
+        free, as in the paper. What was decided is ``Result.symmetry``.
     progress : callable, bool or None
         A callback ``progress(t, n_arcs, similarity)``; ``True`` shows a
         progress bar on the terminal; ``None`` (default) shows one only when
@@ -144,6 +157,7 @@ def abstract(
     """
     given = {"tolerance": tolerance, "kind": kind, "rdp_tolerance": rdp_tolerance, "min_length": min_length}
     given.update(foreground=foreground, subject=subject, bias=bias, exponents=exponents, ladder=ladder, unit=unit)
+    given.update(symmetry=symmetry, lock_mask=lock_mask)
     check_abstract_options({**given, **switches})
     timings: dict[str, float] = {}
     start = time.perf_counter()
@@ -164,24 +178,45 @@ def abstract(
         # A photo's logo is a few long arcs: no arc may stray far from its line.
         switches = {**switches, "max_arc_distance": PHOTO_MAX_ARC_FACTOR * float(tolerance)}
     callback, bar = _progress(progress, tolerance)
+    choice = None
+    mode = check_symmetry_option(symmetry)
+    if mode is not None:
+        start = time.perf_counter()
+        choice = choose_axis(lines.lines, mode)
+        timings["symmetry"] = time.perf_counter() - start
     try:
-        progression = optimize(
-            graph,
-            tolerance=tolerance,
-            bias=bias,
-            exponents=exponents,
-            ladder=ladder,
-            unit=unit,
-            lock_mask=lock_mask,
-            progress=callback,
-            params=params,
-            **switches,
-        )
+        if choice is not None and choice.axis is not None:
+            progression, graph, _ = optimize_symmetric(
+                graph,
+                choice.axis,
+                choice=choice,
+                tolerance=tolerance,
+                bias=bias,
+                exponents=exponents,
+                ladder=ladder,
+                unit=unit,
+                progress=callback,
+                params=params,
+                **switches,
+            )
+        else:
+            progression = optimize(
+                graph,
+                tolerance=tolerance,
+                bias=bias,
+                exponents=exponents,
+                ladder=ladder,
+                unit=unit,
+                lock_mask=lock_mask,
+                progress=callback,
+                params=params,
+                **switches,
+            )
     finally:
         if bar is not None:
             bar.close()
     timings.update(progression.timings)
-    return Result(img, lines, graph, progression, timings, dict(progression.levels[0].params))
+    return Result(img, lines, graph, progression, timings, dict(progression.levels[0].params), choice)
 
 
 def _progress(progress: ProgressCallback | bool | None, tolerance: float) -> tuple[ProgressCallback | None, Any]:

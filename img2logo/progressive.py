@@ -41,7 +41,14 @@ import numpy as np
 from ._validation import check_choice, check_positive
 from .arc_extraction import ArcFit, extract_arc, redundant_intersections
 from .circle_fitting import fit_center, fit_circle, fit_constrained, mean_abs_error
-from .constants import LINE_END_SKIP, LINE_MIN_ANGLE, LINE_TOLERANCE, SIMPLIFICATION_ERROR, TOLERANCE
+from .constants import (
+    LINE_END_SKIP,
+    LINE_MIN_ANGLE,
+    LINE_TOLERANCE,
+    SIMPLIFICATION_ERROR,
+    SYMMETRY_FIT_STALL,
+    TOLERANCE,
+)
 from .errors import FitError, InvalidParameterError
 from .geometry import Abstraction, Circle, line_arc
 from .golden_ladder import Ladder, make_ladder
@@ -303,11 +310,27 @@ class _Optimizer:
         return out
 
     # ----------------------------------------------------------------- circles
+    def on_axis(self, group: _Group) -> bool:
+        """Whether ``group``'s circle is centred on the mirror axis (symmetric runs, :mod:`img2logo.symmetry`).
+
+        So it is when the group ends where a line crosses the axis square to it:
+        the arc and its mirror image are then one arc through the axis.
+        """
+        sym = self.opt.get("symmetry")
+        if sym is None:
+            return False
+        return (group.segments[0], group.nodes[0]) in sym.smooth or (group.segments[-1], group.nodes[-1]) in sym.smooth
+
     def free_circle(self, group: _Group) -> tuple[np.ndarray, float]:
-        """Unconstrained circle fit of a group (Sec. 5.3, first stage), cached."""
+        """Unconstrained circle fit of a group (Sec. 5.3, first stage), cached.
+
+        A circle on the mirror axis is fitted to the pixels and their mirror image.
+        """
         key = group.segments
         if key not in self._circle_cache:
             pts = group.points
+            if self.on_axis(group):
+                pts = np.vstack([pts, self.opt["symmetry"].mirror(pts)])
             if len(pts) < 3:  # two pixels: a straight piece, capped like any
                 pts = np.linspace(pts[0], pts[-1], 3)
             fit = fit_circle(pts, refine=False)  # the centre is refitted after snapping
@@ -326,7 +349,10 @@ class _Optimizer:
         where it fits best for that fixed radius.
         """
         center, radius, _ = self.golden(group)
-        return mean_abs_error(group.points, fit_center(group.points, radius, center), radius)
+        pts = group.points
+        if self.on_axis(group):  # the arc runs on into its mirror image: fitted together
+            pts = np.vstack([pts, self.opt["symmetry"].mirror(pts)])
+        return mean_abs_error(pts, fit_center(pts, radius, center), radius)
 
     def golden(
         self, group: _Group, *, held: Mapping[int, list[np.ndarray]] | None = None
@@ -343,7 +369,7 @@ class _Optimizer:
         pin it to their intersection (far away, or nowhere, for nearly parallel
         ones); otherwise the group stays an arc.
         """
-        line = _straight_line(group) if self.opt["lines"] else None
+        line = _straight_line(group) if self.opt["lines"] and not self.on_axis(group) else None
         if line is not None and held is not None:
             u = (line[1] - line[0]) / np.hypot(*(line[1] - line[0]))
             for n in self.constrained_nodes(group):
@@ -359,7 +385,24 @@ class _Optimizer:
         reach = self.reach(group)
         if r < reach:
             k, r = _rung_reaching(self.ladder, k, reach)
+        if self.on_axis(group):
+            center = self.axis_seed(group, center, r)
         return center, r, k
+
+    def axis_seed(self, group: _Group, center: np.ndarray, radius: float) -> np.ndarray:
+        """A circle centred on the mirror axis that passes through the group's end on it (the fit's start).
+
+        On the axis, on the side of the free fit's centre: the snapped radius
+        would otherwise leave it far from its junction.
+        """
+        sym = self.opt["symmetry"]
+        smooth = [
+            n
+            for s, n in ((group.segments[0], group.nodes[0]), (group.segments[-1], group.nodes[-1]))
+            if (s, n) in sym.smooth
+        ]
+        y = float(self.graph.junctions[smooth[0], 1])
+        return np.array([sym.x, y + math.copysign(radius, float(center[1]) - y)])
 
     def reach(self, group: _Group) -> float:
         """Half the largest distance between the junctions ``group``'s circle must pass, px.
@@ -427,6 +470,7 @@ class _Optimizer:
             segment_weight=1.0 / (max(n_groups_total, 1) * np.array([len(groups[g].points) for g in gids])),
             junction_weight=1.0 / max(n_junctions_total, 1),
             connectivity=self.opt["connectivity"],
+            **self.axis_constraints(gids, groups, node_list),
         )
         if self.opt["connectivity"] and not fit.converged:
             return None
@@ -443,6 +487,20 @@ class _Optimizer:
             center = fit.centers[i].copy()
             fits[gid] = _Fit(center, r, k, self.arc_for(groups[gid], center, r, k, lambda n: disp[n]))
         return fits, disp
+
+    def axis_constraints(
+        self, gids: Sequence[int], groups: Mapping[int, _Group], node_list: Sequence[int]
+    ) -> dict[str, Any]:
+        """The keywords of :func:`fit_constrained` that hold circles and junctions on the mirror axis."""
+        sym = self.opt.get("symmetry")
+        if sym is None:
+            return {}
+        return {
+            "axis": sym.x,
+            "axis_circles": [i for i, g in enumerate(gids) if self.on_axis(groups[g])],
+            "axis_junctions": [i for i, n in enumerate(node_list) if n in sym.nodes],
+            "stall": SYMMETRY_FIT_STALL,
+        }
 
     def initial_fit(self) -> None:
         """A^0: golden circles for every group, fitted jointly (Sec. 5.3)."""
@@ -560,7 +618,10 @@ class _Optimizer:
     def candidates(self) -> list[tuple[int, int, int]]:
         """Mergeable pairs (a, b, node): two groups with a common end (Sec. 5.2)."""
         out = []
+        sym = self.opt.get("symmetry")
         for node, gids in sorted(self.end_groups().items()):
+            if sym is not None and node in sym.nodes:
+                continue  # an arc never runs on through the mirror axis: its mirror image would cross it
             ok = [g for g in sorted(gids) if not self.groups[g].locked and not self.groups[g].closed]
             out.extend((a, b, node) for i, a in enumerate(ok) for b in ok[i + 1 :])
         return out
@@ -727,6 +788,7 @@ def optimize(
     lock_mask: np.ndarray | None = None,
     progress: ProgressCallback | None = None,
     params: dict[str, Any] | None = None,
+    symmetry: Any = None,
 ) -> Progression:
     """Run the progressive optimization of Sec. 5.2 on a segment graph.
 
@@ -790,6 +852,12 @@ def optimize(
         Called as ``progress(t, n_arcs, similarity)`` after every level.
     params : dict, optional
         Extra entries recorded in every level's ``params``.
+    symmetry : img2logo.symmetry.HalfAxis, optional
+        For a symmetric run (:func:`img2logo.symmetry.optimize_symmetric`): the
+        graph is one half of a mirror-symmetric drawing in a frame whose axis is
+        the vertical line ``symmetry.x``; junctions ``symmetry.nodes`` stay on
+        it, circles ending square to it are centred on it, and no arc runs on
+        through it (Eqn. 13 with the symmetry constraints).
 
     Returns
     -------
@@ -817,6 +885,7 @@ def optimize(
         "localized": bool(localized),
         "lines": bool(lines),
         "arc_selection": arc_selection,
+        "symmetry": symmetry,
     }
     record = {
         "tolerance": tolerance,
@@ -951,6 +1020,7 @@ def _simplify(opt: _Optimizer, groups: list[_Group], error: Callable[[_Group], f
     to the progressive loop. Returns the simplified groups.
     """
     valence = opt.graph.valence
+    axis_nodes = opt.opt["symmetry"].nodes if opt.opt.get("symmetry") is not None else frozenset()
     current = list(groups)
     scores: dict[tuple[tuple[int, ...], tuple[int, ...]], tuple[float, _Group]] = {}
     while True:
@@ -960,7 +1030,7 @@ def _simplify(opt: _Optimizer, groups: list[_Group], error: Callable[[_Group], f
                 at.setdefault(n, []).append(i)
         best, best_err = None, SIMPLIFICATION_ERROR
         for node, idx in sorted(at.items()):
-            if valence[node] != 2 or len(idx) != 2:
+            if valence[node] != 2 or len(idx) != 2 or node in axis_nodes:
                 continue
             ga, gb = current[idx[0]], current[idx[1]]
             if ga.locked or gb.locked or ga is gb:

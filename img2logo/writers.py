@@ -43,6 +43,7 @@ from .fills import Fill, check_fills
 from .geometry import Abstraction, Circle
 from .plotting import ARC_COLOR, CIRCLE_COLOR, default_stroke_width, plot_abstraction, plot_segment_graph
 from .svg_path import arc_path, svg_number
+from .symmetry import axis_segment
 
 if TYPE_CHECKING:
     from .segment_graph import SegmentGraph
@@ -173,6 +174,11 @@ def to_svg(
             if c.k is None and c.r >= 0.5 * LINE_RADIUS:
                 continue  # the circle of a straight line is no construction circle
             lines.append(f'    <circle id="circle-{i}"{_k_attr(c)} cx="{n(c.cx)}" cy="{n(c.cy)}" r="{n(c.r)}"/>')
+        guide = axis_segment(abstraction.params, width, height)
+        if guide is not None:  # a symmetric logo: its mirror axis as a guide line across the image
+            (x0, y0), (x1, y1) = guide
+            ends = f'x1="{n(x0)}" y1="{n(y0)}" x2="{n(x1)}" y2="{n(y1)}"'
+            lines.append(f'    <line id="mirror-axis" {ends} stroke-dasharray="4 2"/>')
         lines.append("  </g>")
     lines.append(
         f'  <g id="arcs" inkscape:groupmode="layer" inkscape:label="Arcs" fill="none" stroke="{ARC_COLOR}" '

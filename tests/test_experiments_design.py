@@ -275,3 +275,20 @@ def test_explorer_widgets_drive_the_callbacks(explorer):
     assert c["progress"].value == pytest.approx(explorer.result.final.similarity)
     assert c["status"].value.startswith("done:")
     assert not c["run"].disabled
+
+
+def test_explorer_symmetry_toggle_runs_a_symmetric_logo():
+    pytest.importorskip("ipywidgets")
+    from img2logo.symmetry import is_symmetric
+
+    explorer = design.LevelExplorer(image="clipart-fox.png")
+    assert explorer.result.symmetry is None
+    explorer.widget()
+    c = explorer.controls
+    assert c["symmetry"].value == "none" and "auto" in c["symmetry"].options
+    c["symmetry"].value = "auto"  # what choosing it does; Run runs with it
+    assert explorer.widget_settings().symmetry == "auto"
+    c["run"].click()
+    assert explorer.settings.symmetry == "auto" and explorer.result.symmetry.axis is not None
+    record = explorer.result.final.params["symmetry"]
+    assert all(is_symmetric(level, record["point"], record["direction"]) for level in explorer.levels)

@@ -619,14 +619,31 @@ def plot_level_strip(
 
 @dataclass(frozen=True)
 class ExplorerSettings:
-    """The inputs of one :class:`LevelExplorer` run: an image (a file name in ``data/`` or a path), T (px),
-    the ladder bias (None: automatic, Eqn. 14), the RDP tolerance (px) and the kind of input."""
+    """The inputs of one :class:`LevelExplorer` run.
+
+    Attributes
+    ----------
+    image : str
+        A file name in ``data/`` or a path.
+    tolerance : float
+        T, px.
+    bias : float or None
+        The ladder bias sigma; None: automatic (Eqn. 14).
+    rdp_tolerance : float
+        Ramer-Douglas-Peucker tolerance, px.
+    kind : str
+        ``"auto"``, ``"photo"``, ``"clipart"`` or ``"drawing"``.
+    symmetry : str
+        ``"none"``, ``"auto"``, ``"vertical"``, ``"horizontal"`` or an angle in
+        degrees: a mirror-symmetric logo (:mod:`img2logo.symmetry`).
+    """
 
     image: str = "clipart-fish.png"
     tolerance: float = TOLERANCE
     bias: float | None = None
     rdp_tolerance: float = RDP_TOLERANCE
     kind: str = "auto"
+    symmetry: str = "none"
 
 
 class LevelExplorer:
@@ -803,6 +820,7 @@ class LevelExplorer:
             kind=settings.kind,
             rdp_tolerance=settings.rdp_tolerance,
             bias=settings.bias,
+            symmetry=settings.symmetry,
             progress=self.on_progress,
         )
         self.progress_text = (
@@ -845,6 +863,8 @@ class LevelExplorer:
         )
         c["image"] = slider(w.Dropdown, "image", options=images, value=s.image)
         c["kind"] = slider(w.Dropdown, "kind", options=["auto", "photo", "clipart", "drawing"], value=s.kind)
+        symmetries = list(dict.fromkeys(["none", "auto", "vertical", "horizontal", s.symmetry]))
+        c["symmetry"] = slider(w.Dropdown, "symmetry", options=symmetries, value=s.symmetry)
         c["rdp_tolerance"] = slider(
             w.FloatSlider, "RDP (px)", value=s.rdp_tolerance, min=0.5, max=8.0, step=0.25, continuous_update=False
         )
@@ -885,7 +905,7 @@ class LevelExplorer:
         c["run"].on_click(self._run_clicked)
         note = w.HTML(
             value="<small>T up to the largest T run so far is instant; a larger T, or new image, kind, "
-            "RDP or bias settings, run again (Run).</small>",
+            "symmetry, RDP or bias settings, run again (Run).</small>",
             layout=wide,
         )
         controls = w.VBox(
@@ -894,6 +914,7 @@ class LevelExplorer:
                 c["tolerance"],
                 c["image"],
                 c["kind"],
+                c["symmetry"],
                 c["rdp_tolerance"],
                 w.HBox([c["bias"], c["bias_auto"]]),
                 w.HBox([c["run"], c["progress"]]),
@@ -922,6 +943,7 @@ class LevelExplorer:
             bias=None if c["bias_auto"].value else float(c["bias"].value),
             rdp_tolerance=float(c["rdp_tolerance"].value),
             kind=c["kind"].value,
+            symmetry=c["symmetry"].value,
         )
 
     def _level_widget_changed(self, change: dict[str, Any]) -> None:

@@ -25,7 +25,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import Img2LogoError, InvalidParameterError
-from .paths import data_path, kit_module
+from .paths import data_path, kit_module, project_root
 
 
 class NotebookParameterError(InvalidParameterError):
@@ -73,6 +73,7 @@ SMOKE: dict[str, dict[str, Any]] = {
     },
     "11_explore_levels": {"smoke": True, "image": "drawing-fish.png"},
     "12_designer_features": {"smoke": True, "fill_images": ["clipart-fish.png"]},
+    "13_symmetry": {"smoke": True, "images": ["clipart-fox.png"], "eval_images": ["drawing-umbrella.png"]},
 }
 
 
@@ -130,6 +131,10 @@ def _choice(*options: str) -> Check:
     return _rule(lambda v: v in options, " or ".join(repr(o) for o in options))
 
 
+def _evaluation_image(v: Any) -> bool:
+    return isinstance(v, str) and (project_root() / "benchmarks" / "data" / v).is_file()
+
+
 def _positive(v: Any) -> bool:
     return _number()(v) and v > 0
 
@@ -140,6 +145,7 @@ _bias = _number(0.0, 1.0, closed=False)
 PARAMETER_RULES: dict[str, Check] = {
     **dict.fromkeys(("smoke", "interactive"), _rule(lambda v: isinstance(v, bool), "True or False")),
     **dict.fromkeys(("images", "fill_images"), _images),
+    "eval_images": _rule(_listed(_evaluation_image), "a non-empty list of file names in benchmarks/data/"),
     **dict.fromkeys(("image", "edit_image", "fig15_image", "lock_image", "bias_image"), _image),
     "kind": _choice("auto", "photo", "clipart", "drawing"),
     "lock_form": _choice("disc", "square"),
