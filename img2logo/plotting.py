@@ -47,6 +47,7 @@ __all__ = [
     "draw_arcs",
     "draw_fills",
     "draw_segment_groups",
+    "emptiest_corner",
     "frame_bounds",
     "frame_image",
     "frame_window",
@@ -631,3 +632,12 @@ def mark_window(ax: Axes, window: Sequence[float], label: str, color: str = "#55
         Rectangle((x0, y0), x1 - x0, y1 - y0, fill=False, edgecolor=color, linewidth=0.8, linestyle="--", zorder=6)
     )
     ax.text(x0, y0, label, color=color, fontsize=7, ha="left", va="bottom", zorder=6)
+
+
+def emptiest_corner(points: np.ndarray, width: int, height: int, size: float) -> tuple[float, float]:
+    """Where an inset goes: the origin (axes fraction) of the corner square of side ``size`` (axes fraction)
+    of the ``width`` x ``height`` px image frame holding the fewest of ``points``, shape (N, 2), px."""
+    fx, fy = points[:, 0] / width, 1.0 - points[:, 1] / height
+    corners = [(1.0 - size, 0.0), (1.0 - size, 1.0 - size), (0.0, 0.0), (0.0, 1.0 - size)]
+    counts = [int(np.sum((fx >= x) & (fx <= x + size) & (fy >= y) & (fy <= y + size))) for x, y in corners]
+    return corners[int(np.argmin(counts))]

@@ -17,6 +17,7 @@ from ..geometry import Abstraction
 from ..plotting import (
     GROUP_COLORS,
     draw_segment_groups,
+    emptiest_corner,
     frame_image,
     frame_window,
     panel_grid,
@@ -229,15 +230,6 @@ def results_table(runs: Sequence[Run]) -> pd.DataFrame:
     )
 
 
-def _inset_corner(a: Abstraction, size: float) -> tuple[float, float]:
-    """Axes-fraction origin of the corner square of side ``size`` holding the fewest arc points."""
-    pts = np.vstack([arc.sample(step=2.0) for arc in a.arcs]) if a.arcs else np.zeros((0, 2))
-    fx, fy = pts[:, 0] / a.width, 1.0 - pts[:, 1] / a.height
-    corners = [(1.0 - size, 0.0), (1.0 - size, 1.0 - size), (0.0, 0.0), (0.0, 1.0 - size)]
-    counts = [int(np.sum((fx >= x) & (fx <= x + size) & (fy >= y) & (fy <= y + size))) for x, y in corners]
-    return corners[int(np.argmin(counts))]
-
-
 def plot_results_grid(runs: Sequence[Run], *, columns: int = 5, panel_size: float = 3.0, inset: float = 0.27) -> Figure:
     """Final results, ``columns`` panels a row, each with its input as an inset (side ``inset`` of the panel) in the
     corner the arcs cross least (Fig. 10)."""
@@ -248,7 +240,8 @@ def plot_results_grid(runs: Sequence[Run], *, columns: int = 5, panel_size: floa
         a = run.final
         plot_abstraction(a, ax, linewidth=_stroke(panel_size))
         ax.set_title(f"{run.name} ({run.kind})\n|A| = {len(a.arcs)}, $E^s$ = {a.similarity:.2f} px", fontsize=9)
-        x, y = _inset_corner(a, inset)
+        points = np.vstack([arc.sample(step=2.0) for arc in a.arcs]) if a.arcs else np.zeros((0, 2))
+        x, y = emptiest_corner(points, a.width, a.height, inset)
         sub = ax.inset_axes((x, y, inset, inset))
         show_image(sub, run.image.rgb)
         frame_window(sub, (0, 0, a.width, a.height), color="#808080", linewidth=0.6, equal=False)
