@@ -1,8 +1,6 @@
-"""The ablations of Sec. 6.2 (Fig. 6, 9, 11, 12, 13): experiments.ablations."""
+"""The ablations of Sec. 6.2 (Fig. 6, 11, 12, 13): experiments.ablations."""
 
 from __future__ import annotations
-
-import math
 
 import numpy as np
 import pandas as pd
@@ -123,37 +121,6 @@ def test_redundant_table_and_selection(bird) -> None:
     assert len(fig.axes) == 5
     with pytest.raises(InvalidParameterError, match="no runs"):
         ablations.plot_redundant_intersections(runs, [("drawing-bird", 7.0)])
-
-
-# --------------------------------------------------------------------------- Fig. 9
-def test_hook_sum_of_squares_keeps_a_redundant_part() -> None:
-    ex = ablations.hook_example(60.0)
-    assert ex.differs
-    assert abs(ex.frechet.arc.sweep) == pytest.approx(math.pi / 2)
-    assert abs(ex.sum_of_squares.arc.sweep) == pytest.approx(1.5 * math.pi)
-    assert ex.sum_of_squares.frechet > ex.frechet.frechet + 40.0
-    table = ablations.hook_table([0.0, 60.0])
-    assert list(table["differs"]) == [False, True]
-    assert table.loc[0, "Fréchet F"] == pytest.approx(0.0, abs=1e-9)
-    assert isinstance(ablations.plot_hook_example(ex, table), Figure)
-    with pytest.raises(InvalidParameterError):
-        ablations.hook_example(200.0)
-
-
-def test_compare_arc_selection_reproduces_the_levels(bird) -> None:
-    runs = experiments.sweep([bird], variants=ablations.ARC_SELECTION_VARIANTS)
-    comparisons = ablations.arc_selection_study(runs)
-    assert len(comparisons) == len(runs[0].progression.levels)
-    for comp in comparisons:
-        assert comp.table["reproduces level"].all()
-        assert len(comp.table) == len(comp.level.arcs)
-        assert (comp.table["candidates"] >= 1).all()
-    table = ablations.arc_selection_table(runs, comparisons)
-    assert len(table) == 1
-    row = table.iloc[0]
-    assert row["arcs compared"] == sum(len(c.level.arcs) for c in comparisons)
-    assert row["differ"] == len(ablations.differing_arcs(comparisons))
-    assert isinstance(ablations.plot_arc_selection(comparisons), Figure)
 
 
 # --------------------------------------------------------------------------- Fig. 13
