@@ -36,7 +36,7 @@ import tempfile
 import threading
 import time
 import warnings
-from collections.abc import Callable, Iterable, Mapping, Sequence
+from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from concurrent.futures import Executor, Future, as_completed
 from dataclasses import dataclass
 from pathlib import Path
@@ -604,9 +604,13 @@ def _run_tasks(
         pool = executor if executor is not None else _default_pool(workers)
         finished = False
         try:
-            futures: dict[Future[dict[str, Any]], int] = {
-                pool.submit(process_image, *task): i for i, task in enumerate(tasks)
-            }
+            # A forked worker inherits OpenCV's thread pool without its threads: its
+            # cv2.setNumThreads(1) would wait for them forever. The workers are forked at the
+            # first submit, so OpenCV runs single-threaded here until all are submitted.
+            with _opencv_threads(1 if own else None):
+                futures: dict[Future[dict[str, Any]], int] = {
+                    pool.submit(process_image, *task): i for i, task in enumerate(tasks)
+                }
             # The bar (a thread) only now: a forked worker should not inherit threads.
             tick, close = _progress(progress, total)
             for done, future in enumerate(as_completed(futures), start=1):
@@ -626,6 +630,22 @@ def _run_tasks(
     finally:
         close()
     return [r for r in results if r is not None]
+
+
+@contextlib.contextmanager
+def _opencv_threads(n: int | None) -> Iterator[None]:
+    """Run the block with OpenCV on ``n`` threads (None: as it is), then restore its setting."""
+    if n is None:
+        yield
+        return
+    import cv2
+
+    before = cv2.getNumThreads()
+    cv2.setNumThreads(n)
+    try:
+        yield
+    finally:
+        cv2.setNumThreads(before)
 
 
 def _default_pool(workers: int) -> Executor:

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import json
 import shutil
+import subprocess
+import sys
 from concurrent.futures import Executor, Future, ProcessPoolExecutor, ThreadPoolExecutor
 from pathlib import Path
 
@@ -265,3 +267,29 @@ def test_an_image_that_now_fails_keeps_no_old_outputs(tmp_path):
     assert [f.image for f in second.failures] == ["a.png"]
     assert sorted(p.name for p in out.iterdir()) == ["b.json", "b.png", "b.svg", "summary.csv"]
     assert "not a readable image" in (out / "summary.csv").read_text().splitlines()[1]
+
+
+def test_workers_start_after_opencv_ran_multithreaded(folder, tmp_path):
+    """A forked worker used to hang in cv2.setNumThreads(1) when the parent's OpenCV pool was busy.
+
+    Run in a fresh interpreter, so that the parent's OpenCV has really started its threads. The
+    timeout is a hang detector, not a speed limit: the batch takes a few seconds.
+    """
+    script = (
+        "import sys, numpy as np, cv2\n"
+        "from img2logo.batch import find_images, run_batch\n"
+        "cv2.setNumThreads(2)\n"
+        "a = np.random.default_rng(0).random((1500, 1500)).astype(np.float32)\n"
+        "for _ in range(3): cv2.GaussianBlur(a, (31, 31), 5)\n"
+        "images = [p for p in find_images(sys.argv[1]) if p.name in sys.argv[3:]]\n"
+        "report = run_batch(images, sys.argv[2], jobs=2, progress=False)\n"
+        "print(len(report.rows), cv2.getNumThreads())\n"
+    )
+    done = subprocess.run(
+        [sys.executable, "-c", script, str(folder), str(tmp_path), *GOOD],
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.split() == ["2", "2"]  # both images, and the parent's OpenCV setting restored
