@@ -44,7 +44,7 @@ from typing import TYPE_CHECKING, Any
 
 from ._validation import check_choice
 from .errors import Img2LogoError, InvalidParameterError
-from .options import ABSTRACT_OPTIONS, check_abstract_options
+from .options import Options
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -72,10 +72,6 @@ SUMMARY_COLUMNS: tuple[str, ...] = ("image", "kind", "arcs", "levels", "similari
 
 #: Signature of a progress callback: (images done, images in all, name of the last one).
 BatchProgress = Callable[[int, int, str], None]
-
-#: Keyword arguments of :func:`img2logo.abstract` a batch passes on (not ``progress``,
-#: nor ``lock_mask``, which belongs to one image).
-_ABSTRACT_OPTIONS: frozenset[str] = ABSTRACT_OPTIONS - {"progress", "lock_mask"}
 
 # matplotlib's style context (used by the PNG writer) is global state: within one
 # process, files are written one at a time (it matters for a ThreadPoolExecutor).
@@ -210,7 +206,7 @@ class BatchReport:
 # --------------------------------------------------------------------------- the worker
 def process_image(
     path: str,
-    options: Mapping[str, Any] | None = None,
+    options: Options | Mapping[str, Any] | None = None,
     outputs: Sequence[str] = OUTPUT_FORMATS,
     fill: str = "none",
 ) -> dict[str, Any]:
@@ -224,9 +220,9 @@ def process_image(
     ----------
     path : str
         The input image.
-    options : mapping, optional
-        Keyword arguments of :func:`img2logo.abstract` (``tolerance``, ``kind``,
-        ``ladder``, ...).
+    options : Options or mapping, optional
+        The options of :func:`img2logo.abstract` (:class:`~img2logo.options.Options`,
+        or its keywords: ``tolerance``, ``kind``, ``ladder``, ...).
     outputs : sequence of {"svg", "json", "png"}
         The files to make, as :func:`img2logo.writers.write_svg`,
         :func:`~img2logo.writers.write_json` and :func:`~img2logo.writers.write_png`
@@ -249,22 +245,26 @@ def process_image(
         if record:  # warnings.catch_warnings is process-wide: only outside thread pools
             with warnings.catch_warnings(record=True) as caught:
                 warnings.simplefilter("always")
-                out = _process(path, dict(options or {}), tuple(outputs), fill)
+                out = _process(path, options, tuple(outputs), fill)
         else:
-            out = _process(path, dict(options or {}), tuple(outputs), fill)
+            out = _process(path, options, tuple(outputs), fill)
     except Exception as exc:  # a batch keeps going past a bad file
         out = {"error": _one_line(exc)}
     seen = dict.fromkeys(" ".join(str(w.message).split()) for w in caught)
     return {"image": name, "path": str(path), "seconds": time.perf_counter() - start, "warnings": list(seen), **out}
 
 
-def _process(path: str, options: dict[str, Any], outputs: tuple[str, ...], fill: str) -> dict[str, Any]:
+def _process(
+    path: str, options: Options | Mapping[str, Any] | None, outputs: tuple[str, ...], fill: str
+) -> dict[str, Any]:
     from . import writers
     from .fills import parse_fill_option
     from .pipeline import abstract
 
     spec = parse_fill_option(fill)
-    result = abstract(path, progress=False, **options)
+    if not isinstance(options, Options):
+        options = Options.from_keywords(options or {})
+    result = abstract(path, options=options, progress=False)
     final = result.final
     fills = None if spec.mode == "none" else spec.make(final, result.image)
     files: dict[str, bytes] = {}
@@ -388,7 +388,8 @@ def run_batch(
     outputs: Sequence[str] = OUTPUT_FORMATS,
     fill: str = "none",
     summary: bool = True,
-    **options: Any,
+    options: Options | None = None,
+    **settings: Any,
 ) -> BatchReport:
     """Abstract every image of ``paths``, writing ``output_dir/<stem>.svg``, ``.json``, ``.png``.
 
@@ -424,12 +425,11 @@ def run_batch(
         e.g. ``"auto"`` (:func:`img2logo.fills.parse_fill_option`).
     summary : bool
         Write ``output_dir/summary.csv`` (:meth:`BatchReport.to_frame`).
-    **options
-        Keyword arguments of :func:`img2logo.abstract`: ``tolerance``, ``kind``,
-        ``rdp_tolerance``, ``min_length``, ``foreground``, ``bias``,
-        ``exponents``, ``ladder``, ``unit``, ``rounding`` and the switches
-        ``connectivity``, ``inner_junctions``, ``merging``,
-        ``avoid_intersections``, ``localized``, ``simplify``, ``arc_selection``.
+    options : Options, optional
+        The options of every image (:class:`~img2logo.options.Options`).
+    **settings
+        Fields of :class:`~img2logo.options.Options` (``tolerance``, ``kind``,
+        ``ladder``, the switches, ...), replacing those of ``options``.
 
     Returns
     -------
@@ -452,11 +452,11 @@ def run_batch(
     if not inputs:
         raise InvalidParameterError("paths must name at least one image, got none")
     formats = _check_outputs(outputs)
-    _check_options(options, fill)
+    opts = _check_options(settings, fill, options)
     out_dir = Path(output_dir)
     stems = _output_stems(inputs)
     _check_targets(inputs, out_dir, stems, formats, summary)
-    tasks = [(str(p), dict(options), formats, fill) for p in inputs]
+    tasks = [(str(p), opts, formats, fill) for p in inputs]
 
     written: dict[int, tuple[str, ...]] = {}
 
@@ -545,13 +545,12 @@ def sweep(
         raise InvalidParameterError("paths must name at least one image, got none")
     if not grid:
         raise InvalidParameterError("parameter_grid must hold at least one set of parameters, got none")
-    for params in grid:
-        _check_options(params, "none")
+    checked = [_check_options(params, "none") for params in grid]
     keys = list(dict.fromkeys(k for g in grid for k in g))
-    tasks = [(str(p), params, (), "none") for p in inputs for params in grid]
+    tasks = [(str(p), opts, (), "none") for p in inputs for opts in checked]
     results = _run_tasks(tasks, executor, jobs, progress)
     records = []
-    for (_, params, _, _), res in zip(tasks, results, strict=True):
+    for params, res in zip([g for _ in inputs for g in grid], results, strict=True):
         records.append(
             {
                 "image": res["image"],
@@ -693,12 +692,13 @@ def _check_outputs(outputs: Sequence[str]) -> tuple[str, ...]:
     return formats
 
 
-def _check_options(options: Mapping[str, Any], fill: str) -> None:
-    """Check options before any work: a bad value should not fail every image one by one."""
+def _check_options(settings: Mapping[str, Any], fill: str, base: Options | None = None) -> Options:
+    """The options, checked before any work: a bad value should not fail every image one by one."""
     from .fills import parse_fill_option
 
-    check_abstract_options(options, _ABSTRACT_OPTIONS)
+    options = Options.from_keywords(settings, base=base)
     parse_fill_option(fill)
+    return options
 
 
 def _check_targets(

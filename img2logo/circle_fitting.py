@@ -21,8 +21,9 @@ i, column j has its centre at (j + 0.5, i + 0.5). Lengths are in px.
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Container, Hashable, Iterable, Mapping, Sequence
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 import scipy.sparse as sp
@@ -41,7 +42,16 @@ from .constants import (
 )
 from .errors import FitError, InvalidParameterError
 
-__all__ = ["CircleFit", "ConstrainedFit", "fit_center", "fit_circle", "fit_constrained", "mean_abs_error"]
+__all__ = [
+    "CircleFit",
+    "ConstrainedFit",
+    "WindowFit",
+    "fit_center",
+    "fit_circle",
+    "fit_constrained",
+    "fit_window",
+    "mean_abs_error",
+]
 
 
 # --------------------------------------------------------------------------------
@@ -755,3 +765,154 @@ def fit_constrained(
         iterations=iterations,
         converged=converged,
     )
+
+
+# --------------------------------------------------------------------------------
+# A local window of the constrained fit (the localized fitting of Sec. 5.4)
+# --------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True, eq=False)
+class WindowFit:
+    """The result of :func:`fit_window`.
+
+    Attributes
+    ----------
+    ok : bool
+        Whether the last window solved (converged, within the violation asked).
+    circles : tuple
+        The circles of the last window, in the order of the fit.
+    junctions : tuple
+        Its junctions, sorted.
+    free_junctions : frozenset
+        The junctions that were free in it.
+    fit : ConstrainedFit or None
+        The fit of the last window (None when no junction touched the window:
+        nothing to solve, ``ok`` is True).
+    """
+
+    ok: bool
+    circles: tuple[Hashable, ...]
+    junctions: tuple[Hashable, ...]
+    free_junctions: frozenset[Hashable]
+    fit: ConstrainedFit | None
+
+    def center(self, circle: Hashable) -> np.ndarray:
+        """The fitted centre of a circle of the window, shape (2,), px."""
+        return self.fit.centers[self.circles.index(circle)].copy()  # type: ignore[union-attr]
+
+    def displacements(self) -> dict[Hashable, np.ndarray]:
+        """Junction -> its fitted displacement d_k, shape (2,), px."""
+        if self.fit is None:
+            return {}
+        return {n: self.fit.displacements[i].copy() for i, n in enumerate(self.junctions)}
+
+
+def fit_window(
+    points: Mapping[Hashable, np.ndarray],
+    radii: Mapping[Hashable, float],
+    centers: Mapping[Hashable, np.ndarray],
+    circle_junctions: Mapping[Hashable, Sequence[Hashable]],
+    junction_circles: Mapping[Hashable, Iterable[Hashable]],
+    junction_points: np.ndarray,
+    *,
+    changed: Iterable[Hashable] = (),
+    free_junctions: Iterable[Hashable] = (),
+    fixed: Container[Hashable] = frozenset(),
+    rings: int = 2,
+    order: Callable[[Hashable], Any] | None = None,
+    displacements0: np.ndarray | None = None,
+    n_circles: int | None = None,
+    n_junctions: int | None = None,
+    connectivity: bool = True,
+    tol: float = CONSTRAINED_FIT_TOL,
+    max_violation: float | None = None,
+    constraints: Callable[[tuple[Hashable, ...], tuple[Hashable, ...]], Mapping[str, Any]] | None = None,
+) -> WindowFit:
+    """The constrained fit of Eqn. 13 in a local window, grown ring by ring until it solves (Sec. 5.4).
+
+    The window is the ``changed`` circles and every circle through a free
+    junction; its junctions are all those of its circles, the free ones moving
+    and the others held where they are (the boundary conditions of the
+    localized fitting). When it does not solve, the junctions of its circles
+    are freed too (the next ring: their other circles join the window), up to
+    ``rings`` windows. Used by the progressive optimization after a merge and
+    by the user edits (:mod:`img2logo.edits`), with one weighting: each
+    circle's term is the mean squared distance of its points (``1 / (C n_i)``),
+    the displacements' term ``1 / J`` (Eqn. 7 with E^sqr a mean).
+
+    Parameters
+    ----------
+    points, radii, centers : mapping
+        Circle -> its points (n_i, 2) px, its fixed radius px, its starting centre (2,) px.
+    circle_junctions : mapping
+        Circle -> the junctions it must pass through (in the order the
+        constraints are written).
+    junction_circles : mapping
+        Junction -> the circles through it.
+    junction_points : ndarray, shape (N, 2)
+        The junctions p_k by index, px (the displacements are measured from them).
+    changed : iterable
+        Circles always in the window (the merged or edited one).
+    free_junctions : iterable
+        The junctions free in the first window.
+    fixed : container
+        Circles of the window that keep their centre (straight lines, a moved circle).
+    rings : int
+        Most windows tried.
+    order : callable, optional
+        Sort key of the window's circles (the order of the fit's unknowns).
+    displacements0 : ndarray, shape (N, 2), optional
+        Starting displacements by junction index (default zeros).
+    n_circles, n_junctions : int, optional
+        C and J of the weights; default the window's own counts.
+    connectivity : bool
+        False: no constraints (Fig. 11c); the window always "solves".
+    tol : float
+        Tolerance of :func:`fit_constrained`, px.
+    max_violation : float, optional
+        A converged fit must also keep every constraint within this, px.
+    constraints : callable, optional
+        ``constraints(circles, junctions)`` of a window (in the fit's order):
+        more keywords of :func:`fit_constrained` for it (a mirror axis).
+
+    Returns
+    -------
+    WindowFit
+    """
+    free_j = set(free_junctions)
+    seeds = set(changed)
+    last: WindowFit | None = None
+    for _ring in range(max(int(rings), 1)):
+        members = seeds | {c for n in free_j for c in junction_circles.get(n, ())}
+        window = tuple(sorted(members, key=order))
+        nodes = tuple(sorted({n for c in window for n in circle_junctions[c]} | free_j))
+        if not nodes:
+            return WindowFit(True, window, (), frozenset(free_j), None)
+        node_index = {n: i for i, n in enumerate(nodes)}
+        incidence = [(i, node_index[n]) for i, c in enumerate(window) for n in circle_junctions[c]]
+        fit = fit_constrained(
+            [points[c] for c in window],
+            np.array([radii[c] for c in window]),
+            np.array([centers[c] for c in window]),
+            junction_points[list(nodes)],
+            np.array(incidence, dtype=np.int64).reshape(-1, 2),
+            displacements0=None if displacements0 is None else displacements0[list(nodes)],
+            free_circles=[i for i, c in enumerate(window) if c not in fixed],
+            free_junctions=[node_index[n] for n in sorted(free_j)],
+            segment_weight=1.0 / (max(n_circles or len(window), 1) * np.array([len(points[c]) for c in window])),
+            junction_weight=1.0 / max(n_junctions or len(nodes), 1),
+            tol=tol,
+            connectivity=connectivity,
+            **({} if constraints is None else constraints(window, nodes)),
+        )
+        ok = not connectivity or (fit.converged and (max_violation is None or fit.violation <= max_violation))
+        last = WindowFit(ok, window, nodes, frozenset(free_j), fit)
+        if ok:
+            return last
+        grown = free_j | {n for c in window for n in circle_junctions[c]}
+        if grown == free_j:
+            break  # the next ring would be the same window
+        free_j = grown
+    assert last is not None
+    return last

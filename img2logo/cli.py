@@ -32,7 +32,6 @@ import warnings
 from collections.abc import Iterator, Sequence
 
 from . import __version__
-from .constants import MIN_SEGMENT_LENGTH, RDP_TOLERANCE, TOLERANCE
 from .errors import Img2LogoError, InvalidParameterError, OutputError
 
 EXIT_ERROR = 2
@@ -52,13 +51,7 @@ def _parser() -> argparse.ArgumentParser:
         "with a summary table (see img2logo batch --help).",
     )
     p.add_argument("input", help="input image (PNG, JPEG, ...): a photo, a clip art or a line drawing")
-    _add_input_options(p)
-    p.add_argument(
-        "--subject",
-        metavar="X,Y,W,H",
-        help="photos: a rectangle around the object, px (x, y of its top-left corner, width, height); "
-        "it seeds the object's segmentation",
-    )
+    _add_input_options(p, batch=False)
     p.add_argument("--segments-png", metavar="OUT.png", help="draw the segment graph L = {S, J} to this PNG")
     out = p.add_argument_group("outputs (the final level, or --level N)")
     out.add_argument("--svg", metavar="OUT.svg", help="the logo as SVG: exact arcs, golden circles on a hidden layer")
@@ -69,7 +62,7 @@ def _parser() -> argparse.ArgumentParser:
     )
     out.add_argument("--levels-dir", metavar="DIR", help="write every level as DIR/level-0000.json and .svg, ...")
     _add_fill_option(out)
-    _add_optimization_options(p, lock_mask=True)
+    _add_optimization_options(p, batch=False)
     p.add_argument("-q", "--quiet", action="store_true", help="print nothing but errors")
     p.add_argument("--version", action="version", version=f"img2logo {__version__}")
     return p
@@ -85,10 +78,10 @@ def _batch_parser() -> argparse.ArgumentParser:
     )
     p.add_argument("input_dir", metavar="INPUT_DIR", help="folder of input images (not searched recursively)")
     p.add_argument("output_dir", metavar="OUTPUT_DIR", help="folder for the results (created if missing)")
-    _add_input_options(p)
+    _add_input_options(p, batch=True)
     out = p.add_argument_group("outputs")
     _add_fill_option(out)
-    _add_optimization_options(p, lock_mask=False)
+    _add_optimization_options(p, batch=True)
     p.add_argument(
         "--jobs",
         "-j",
@@ -100,35 +93,20 @@ def _batch_parser() -> argparse.ArgumentParser:
     return p
 
 
-def _add_input_options(p: argparse.ArgumentParser) -> None:
-    """--kind, --rdp, --min-length, --foreground: feature lines and the segment graph."""
-    p.add_argument(
-        "--kind",
-        choices=("auto", "photo", "clipart", "drawing"),
-        default="auto",
-        help="kind of input (default: auto, chosen from the image and reported)",
-    )
-    p.add_argument(
-        "--rdp",
-        type=float,
-        default=RDP_TOLERANCE,
-        metavar="PX",
-        help=f"Ramer-Douglas-Peucker tolerance of the over-segmentation, px (default {RDP_TOLERANCE})",
-    )
-    p.add_argument(
-        "--min-length",
-        type=float,
-        default=MIN_SEGMENT_LENGTH,
-        metavar="PX",
-        help=f"drop free-hanging segments shorter than this, px (default {MIN_SEGMENT_LENGTH})",
-    )
-    p.add_argument(
-        "--foreground",
-        default="auto",
-        metavar="auto|none|grabcut|MASK.png",
-        help="photos: the subject drawn: auto (default: the main object if there is one, else the whole image), "
-        "none (the whole image), grabcut (what GrabCut finds), or a mask image (white = object)",
-    )
+def _add_input_options(p: argparse.ArgumentParser, *, batch: bool) -> None:
+    """--kind, --rdp, --min-length, --foreground (--subject for one image), from :class:`~img2logo.options.Options`."""
+    _add_options(p, "input", batch=batch)
+
+
+def _add_options(p: argparse.ArgumentParser | argparse._ArgumentGroup, stage: str, *, batch: bool) -> None:
+    """The flags of the options of ``stage`` (:func:`img2logo.options.cli_fields`); each sets the option of its name."""
+    from .options import cli_fields
+
+    for field_stage, f in cli_fields(batch=batch):
+        if field_stage == stage:
+            kwargs = dict(f.metadata["cli"])
+            kwargs.setdefault("default", f.default)
+            p.add_argument(*f.metadata["flags"], dest=f.name, **kwargs)
 
 
 def _add_fill_option(out: argparse._ArgumentGroup) -> None:
@@ -141,64 +119,14 @@ def _add_fill_option(out: argparse._ArgumentGroup) -> None:
     )
 
 
-def _add_optimization_options(p: argparse.ArgumentParser, *, lock_mask: bool) -> None:
-    """The optimization's options (paper Sec. 5); ``--lock-mask`` only for a single image."""
+def _add_optimization_options(p: argparse.ArgumentParser, *, batch: bool) -> None:
+    """The optimization options (paper Sec. 5) of :class:`~img2logo.options.Options`; ``--lock-mask`` (one image)."""
     opt = p.add_argument_group("optimization (paper Sec. 5)")
-    opt.add_argument(
-        "--tolerance",
-        "-T",
-        type=float,
-        default=TOLERANCE,
-        metavar="PX",
-        help=f"largest similarity error E^s, px; larger gives fewer arcs (default {TOLERANCE})",
-    )
-    opt.add_argument(
-        "--ladder",
-        choices=("phi", "fibonacci"),
-        default="phi",
-        help="the radii: phi**(k + bias) (default, the paper) or unit * F(k), F(k) = 1, 1, 2, 3, 5, 8, ... the "
-        "Fibonacci grid designers draw (paper Fig. 2b)",
-    )
-    opt.add_argument("--bias", type=float, metavar="S", help="phi ladder bias sigma in [0, 1) (default: Eqn. 14)")
-    opt.add_argument(
-        "--unit",
-        type=float,
-        metavar="PX",
-        help="Fibonacci ladder unit, the smallest radius, px (default: the largest <= 1 px putting the longest "
-        "segment's radius on a rung)",
-    )
-    opt.add_argument(
-        "--radii", metavar="K1,K2,...", help="only these ladder exponents k: radii phi**(k + bias) (or unit * F(k))"
-    )
-    opt.add_argument(
-        "--rounding", choices=("nearest", "ceil"), default="nearest", help="radius snapping (ceil: the paper's Eqn. 12)"
-    )
-    if lock_mask:
+    _add_options(opt, "optimize", batch=batch)
+    if not batch:
         opt.add_argument(
             "--lock-mask", metavar="MASK.png", help="segments inside the mask's white pixels are never merged"
         )
-    for flag, what in (
-        ("connectivity", "the connectivity constraint (Fig. 11c)"),
-        ("inner-junctions", "junctions inside merged arcs as constraints (Fig. 11d)"),
-        ("merging", "merging segments (Fig. 11e)"),
-        ("intersection-avoidance", "rejecting merges that leave redundant intersections (Fig. 12)"),
-        ("localized", "localized fitting (Sec. 5.4)"),
-        ("simplify", "line-segment simplification (Sec. 5.4)"),
-    ):
-        opt.add_argument(f"--no-{flag}", action="store_true", help=f"switch off {what}")
-    opt.add_argument(
-        "--symmetry",
-        default="none",
-        metavar="auto|none|vertical|horizontal|DEGREES",
-        help="a mirror-symmetric logo: auto (the best mirror axis of the feature lines, kept if it scores at least "
-        "the threshold; said in one line), vertical, horizontal or the axis direction in degrees from +x towards "
-        "+y (forced); none (default): free",
-    )
-    opt.add_argument(
-        "--lines",
-        action="store_true",
-        help="let nearly straight segments be straight lines, not arcs of huge circles (paper Sec. 9, Fig. 20b)",
-    )
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -272,38 +200,22 @@ def _terminate_on_sigterm() -> Iterator[None]:
         signal.signal(signal.SIGTERM, previous)
 
 
-def _abstract_options(args: argparse.Namespace) -> dict:
-    """The keyword arguments of :func:`img2logo.abstract` the options ask for, checked.
+def _abstract_options(args: argparse.Namespace, *, batch: bool = False):
+    """The :class:`img2logo.options.Options` the flags ask for, checked (``--subject`` aside: it needs the image).
 
     Checked before the run: a bad value should not cost a run.
     """
-    from .options import check_abstract_options
+    from .options import Options, check_lock_mask, cli_fields
 
-    exponents = _parse_radii(args.radii)
-    options = {
-        "tolerance": args.tolerance,
-        "kind": args.kind,
-        "rdp_tolerance": args.rdp,
-        "min_length": args.min_length,
-        "foreground": args.foreground,
-        "bias": args.bias,
-        "exponents": exponents,
-        "rounding": args.rounding,
-        "connectivity": not args.no_connectivity,
-        "inner_junctions": not args.no_inner_junctions,
-        "merging": not args.no_merging,
-        "avoid_intersections": not args.no_intersection_avoidance,
-        "localized": not args.no_localized,
-        "simplify": not args.no_simplify,
-        "lines": args.lines,
-    }
-    if args.symmetry.strip().lower() != "none":  # only then: a free run's parameters stay as they were
-        options["symmetry"] = args.symmetry
-    if args.ladder == "fibonacci":  # only then: a phi run's parameters stay as they were
-        options.update(ladder=args.ladder, unit=args.unit)
-    elif args.unit is not None:
-        options["unit"] = args.unit  # refused by the check below, with the reason
-    check_abstract_options({**options, **({"lock_mask": args.lock_mask} if getattr(args, "lock_mask", None) else {})})
+    given = {}
+    for _, f in cli_fields(batch=batch):
+        if f.name == "subject":
+            continue
+        value = getattr(args, f.name)
+        parse = f.metadata["parse"]
+        given[f.name] = value if parse is None else parse(value)
+    options = Options.from_keywords(given)
+    check_lock_mask(options, getattr(args, "lock_mask", None))
     if getattr(args, "level", None) is not None and args.level < 0:
         raise InvalidParameterError(f"--level must be >= 0, got {args.level}")
     return options
@@ -372,11 +284,14 @@ def _run(args: argparse.Namespace, say) -> int:
     lock_mask = None if not args.lock_mask else load_mask(args.lock_mask, (image.height, image.width))
     say(f"{args.input}: {image.width}x{image.height} px")
     if args.subject is not None:
+        import dataclasses
+
         from .subject import parse_subject_rectangle
 
-        options["subject"] = parse_subject_rectangle(args.subject, (image.height, image.width))
+        subject = parse_subject_rectangle(args.subject, (image.height, image.width))
+        options = dataclasses.replace(options, subject=subject)
     progress = None if not args.quiet else False
-    result = _naming(args.input, abstract, image, lock_mask=lock_mask, progress=progress, **options)
+    result = _naming(args.input, abstract, image, options=options, lock_mask=lock_mask, progress=progress)
     graph, prog = result.graph, result.progression
     say(f"kind {result.lines.kind} ({result.lines.reason})")
     if result.lines.subject is not None:
@@ -412,7 +327,7 @@ def _batch(args: argparse.Namespace, say) -> int:
     from .batch import OUTPUT_FORMATS, _check_targets, _output_stems, find_images, run_batch
     from .fills import parse_fill_option
 
-    options = _abstract_options(args)
+    options = _abstract_options(args, batch=True)
     parse_fill_option(args.fill)
     if args.jobs is not None and args.jobs < 1:
         raise InvalidParameterError(f"--jobs must be >= 1, got {args.jobs}")
@@ -425,7 +340,7 @@ def _batch(args: argparse.Namespace, say) -> int:
         jobs=args.jobs,
         progress=None if not args.quiet else False,
         fill=args.fill,
-        **options,
+        options=options,
     )
     for w in report.warnings:
         say(f"img2logo: warning: {w}")
@@ -434,18 +349,6 @@ def _batch(args: argparse.Namespace, say) -> int:
     for f in report.failures:
         print(f"img2logo: error: {f.line}", file=sys.stderr)
     return EXIT_FAILED if report.failures else 0
-
-
-def _parse_radii(text: str | None) -> list[int] | None:
-    if text is None:
-        return None
-    try:
-        values = [int(v) for v in text.split(",") if v.strip()]
-    except ValueError as exc:
-        raise InvalidParameterError(f"--radii must be integers separated by commas, got {text!r}") from exc
-    if not values:
-        raise InvalidParameterError("--radii must list at least one exponent k")
-    return values
 
 
 def _pick_level(result, n: int | None):

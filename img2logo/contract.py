@@ -2,8 +2,9 @@
 
 The JSON document is the stable record of a result (``contract/README.md``, JSON
 Schema ``abstraction.schema.json`` shipped in this package): :func:`to_document`
-makes it (checking the contract's invariants, so a document that breaks the
-contract is never written), :func:`from_document` reads it back,
+makes it (the abstraction checked the contract's invariants when it was made, so
+a document that breaks the contract is never written), :func:`from_document`
+reads it back,
 :func:`validate_document` checks one against the schema and the invariants, and
 :func:`read_fills` reads its coloured regions. The files themselves are written
 and read by :func:`img2logo.writers.write_json` and
@@ -27,12 +28,11 @@ from typing import Any
 import numpy as np
 
 from ._io import as_path
-from ._validation import check_finite, check_integer, check_positive
 from .constants import FORMAT_NAME, JUNCTION_TOLERANCE, PHI, RADIUS_RELATIVE_TOLERANCE
 from .errors import InvalidParameterError
 from .fills import Fill, check_fills
 from .geometry import TAU, Abstraction, Arc, Circle, line_arc
-from .golden_ladder import fibonacci
+from .golden_ladder import FibonacciLadder, GoldenLadder, Ladder, fibonacci
 from .svg_path import sample_path
 from .symmetry import symmetry_extra
 
@@ -46,7 +46,7 @@ def to_document(
     abstraction: Abstraction,
     params: Mapping[str, Any] | None = None,
     *,
-    check: bool = True,
+    check: bool = False,
     fills: Sequence[Fill] | None = None,
 ) -> dict[str, Any]:
     """The ``img2logo.abstraction/1`` JSON document of an abstraction (``contract/README.md``).
@@ -62,19 +62,20 @@ def to_document(
     Parameters
     ----------
     abstraction : Abstraction
-        The result; every circle must have its ladder exponent ``k``.
+        The result (its ladder, topology and invariants were checked when it was made).
     params : mapping, optional
         Parameters to record besides ``abstraction.params`` (they win on equal
         keys). Values are made JSON-safe: numpy scalars and arrays become Python
         numbers and lists, tuples lists, paths strings, enums their values, and
         non-finite floats the strings ``"NaN"``, ``"Infinity"``, ``"-Infinity"``.
-        ``params["ladder"] == "fibonacci"`` (with ``params["unit"]``) writes the
-        contract's Fibonacci-ladder keys ``ladder`` and ``unit``.
+        The contract's ladder keys come from ``abstraction.ladder``: on the
+        Fibonacci ladder ``ladder`` and ``unit``.
     check : bool
-        Check the contract's invariants on the result (radii on the ladder,
-        junctions on their arcs' circles and at their end points) and raise if one
-        fails, so a file that breaks the contract is never written. The JSON
-        Schema itself is checked by :func:`validate_document` (needs jsonschema).
+        Also check the document against the contract's invariants, as a reader
+        does (:func:`validate_document` without the schema). Not needed: the
+        abstraction checked them when it was made (radii on its ladder,
+        junctions on their arcs' circles and at their end points); a self-test
+        of the writer.
     fills : sequence of img2logo.fills.Fill, optional
         Coloured regions (paper Fig. 18, :mod:`img2logo.fills`), written as the
         contract's optional ``fills`` key: a list of ``{"path", "color"}``, the
@@ -92,31 +93,15 @@ def to_document(
     Raises
     ------
     InvalidParameterError
-        If a circle has no ``k``, a field is out of the contract's range, a
-        parameter is not JSON-safe, a fill is not a Fill, or (with ``check``) an
-        invariant fails.
+        If a parameter is not JSON-safe, a fill is not a Fill, or (with
+        ``check``) an invariant fails.
     """
     if not isinstance(abstraction, Abstraction):
         raise InvalidParameterError(f"abstraction must be an Abstraction, got {type(abstraction).__name__}")
     fill_list = check_fills(fills)
     if params is not None and not isinstance(params, Mapping):
         raise InvalidParameterError(f"params must be a mapping, got {type(params).__name__}")
-    if not isinstance(abstraction.params, Mapping):
-        raise InvalidParameterError(f"abstraction.params must be a mapping, got {type(abstraction.params).__name__}")
     merged = _json_safe({**abstraction.params, **(params or {})}, "params")
-
-    width = check_integer(abstraction.width, "width", 1)
-    height = check_integer(abstraction.height, "height", 1)
-    level = check_integer(abstraction.level, "level", 0)
-    bias = check_finite(abstraction.bias, "bias")
-    if not 0.0 <= bias < 1.0:
-        raise InvalidParameterError(f"bias must be in [0, 1), got {bias!r}")
-    similarity = check_finite(abstraction.similarity, "similarity")
-    if similarity < 0.0:
-        raise InvalidParameterError(f"similarity must be >= 0, got {similarity!r}")
-    tolerance = check_finite(abstraction.tolerance, "tolerance")
-    if tolerance <= 0.0:
-        raise InvalidParameterError(f"tolerance must be > 0, got {tolerance!r}")
 
     # Straight lines (the lines option) are not arcs of the contract: they go to
     # extra.lines, so every circle of the document stays on the golden ladder.
@@ -124,14 +109,7 @@ def to_document(
     arc_number = {i: n for n, i in enumerate(i for i, a in enumerate(abstraction.arcs) if not a.is_line)}
     circles = tuple(dict.fromkeys(a.circle for a in arcs))
     index = {c: i for i, c in enumerate(circles)}
-    circle_docs = []
-    for i, c in enumerate(circles):
-        if c.k is None:
-            raise InvalidParameterError(
-                f"circle {i} (centre ({c.cx:.6g}, {c.cy:.6g}), r={c.r:.6g}) has no ladder exponent k: "
-                "only golden circles, r = phi**(k+bias), can be written"
-            )
-        circle_docs.append({"cx": float(c.cx), "cy": float(c.cy), "r": float(c.r), "k": int(c.k)})
+    circle_docs = [{"cx": float(c.cx), "cy": float(c.cy), "r": float(c.r), "k": int(c.k)} for c in circles]  # type: ignore[arg-type]
 
     arc_docs = [
         {"circle": index[a.circle], "theta0": float(a.theta0), "sweep": min(TAU, max(-TAU, float(a.sweep)))}
@@ -141,21 +119,16 @@ def to_document(
     # Without the connectivity constraint (Fig. 11c) arcs need not meet at their
     # junction: an arc whose end is not at the junction point gets its own
     # junction at that end, so the document keeps the contract.
-    unconnected = merged.get("connectivity") is False
+    unconnected = not abstraction.connected
     junction_docs = []
-    for j, (point, listed) in enumerate(zip(abstraction.junctions, abstraction.junction_arcs, strict=True)):
+    for j, point in enumerate(abstraction.junctions):
         kept: list[int] = []
         loose: list[dict[str, Any]] = []
-        for a in listed:
-            ai = check_integer(a, f"junction_arcs[{j}] entry", 0)
-            if ai >= len(abstraction.arcs):
-                raise InvalidParameterError(
-                    f"junction {j}: arc index {ai} is out of range (the abstraction has {len(abstraction.arcs)} arcs)"
-                )
+        for ai in abstraction.arcs_at(j):  # an arc passing through the junction is not listed
             if ai not in arc_number:
                 continue  # a straight line: recorded in extra.lines
             ai = arc_number[ai]
-            if ai in kept or any(ai in d["arcs"] for d in loose) or _passes_through(arcs[ai], point):
+            if ai in kept or any(ai in d["arcs"] for d in loose):
                 continue
             end = _nearest_end(arc_docs[ai], circle_docs[arc_docs[ai]["circle"]], point)
             if unconnected and math.hypot(end[0] - point[0], end[1] - point[1]) > JUNCTION_TOLERANCE / 2:
@@ -166,7 +139,7 @@ def to_document(
             junction_docs.append({"x": float(point[0]), "y": float(point[1]), "arcs": kept})
         junction_docs.extend(loose)
 
-    all_segments = [[check_integer(s, "arc_segments entry", 0) for s in segs] for segs in abstraction.arc_segments]
+    all_segments = [list(segs) for segs in abstraction.arc_segments]
     arc_segments = [all_segments[i] for i in arc_number]
     line_docs = [
         {
@@ -182,29 +155,25 @@ def to_document(
 
     doc: dict[str, Any] = {
         "format": FORMAT_NAME,
-        "width": width,
-        "height": height,
+        "width": abstraction.width,
+        "height": abstraction.height,
         "phi": PHI,
-        "bias": bias,
+        "bias": abstraction.bias,
         "circles": circle_docs,
         "arcs": arc_docs,
         "junctions": junction_docs,
-        "level": level,
-        "similarity": similarity,
-        "tolerance": tolerance,
+        "level": abstraction.level,
+        "similarity": abstraction.similarity,
+        "tolerance": abstraction.tolerance,
         "params": merged,
         "extra": {"arc_segments": arc_segments, **({"lines": line_docs} if line_docs else {})},
     }
     symmetry = symmetry_extra(circles, merged)
     if symmetry is not None:  # a symmetric logo: the axis, and the circles paired with their mirror images
         doc["extra"]["symmetry"] = symmetry
-    ladder = merged.get("ladder", "phi")
-    if ladder == "fibonacci":
-        unit = merged.get("unit")
+    if isinstance(abstraction.ladder, FibonacciLadder):
         doc["ladder"] = "fibonacci"
-        doc["unit"] = check_positive(unit, "params['unit'] (the Fibonacci ladder's unit)")
-    elif ladder != "phi":
-        raise InvalidParameterError(f"params['ladder'] must be 'phi' or 'fibonacci', got {ladder!r}")
+        doc["unit"] = float(abstraction.ladder.unit)
     if fill_list is not None:
         doc["fills"] = [f.to_json() for f in fill_list]
     if check:
@@ -218,10 +187,12 @@ def from_document(doc: Mapping[str, Any]) -> Abstraction:
     The document is validated first: against the packaged JSON Schema when
     jsonschema is installed, and always against the contract's invariants.
     Round trip: ``from_document(to_document(a))`` has the same circles, arcs,
-    ``arc_segments`` and parameters as ``a``, and its junctions are those of ``a``
-    that had an arc ending there, each listing those arcs. Top-level ``ladder`` and
-    ``unit`` go into ``params``; ``extra`` keys other than ``arc_segments`` are
-    not kept, and ``fills`` are read by :func:`read_fills`.
+    ``arc_segments``, parameters and ladder as ``a``, and its junctions are those of
+    ``a`` that had an arc ending there, each listing those arcs. The ladder is the
+    top-level ``ladder``, ``bias`` and ``unit`` (with the ``exponents`` and
+    ``rounding`` that ``params`` records); each arc's junctions are found at its
+    ends; ``extra`` keys other than ``arc_segments`` and ``lines`` are not kept,
+    and ``fills`` are read by :func:`read_fills`.
 
     Parameters
     ----------
@@ -262,9 +233,6 @@ def from_document(doc: Mapping[str, Any]) -> Abstraction:
         arcs += tuple(line_arc((ln["x0"], ln["y0"]), (ln["x1"], ln["y1"])) for ln in lines)
         arc_segments += tuple(tuple(int(s) for s in ln.get("segments", ())) for ln in lines)
         params = copy.deepcopy(dict(d["params"]))
-        if d.get("ladder") == "fibonacci":
-            params.setdefault("ladder", "fibonacci")
-            params.setdefault("unit", d["unit"])
         return Abstraction(
             level=int(d["level"]),
             arcs=arcs,
@@ -277,6 +245,7 @@ def from_document(doc: Mapping[str, Any]) -> Abstraction:
             width=int(d["width"]),
             height=int(d["height"]),
             params=params,
+            ladder=_document_ladder(d, params),
         )
     except InvalidParameterError:
         raise
@@ -464,19 +433,21 @@ def _nearest_end(arc: Mapping[str, Any], circle: Mapping[str, Any], point: np.nd
     return min(ends, key=lambda e: math.hypot(e[0] - float(point[0]), e[1] - float(point[1])))
 
 
-def _passes_through(arc: Arc, point: np.ndarray) -> bool:
-    """True when ``point`` lies on ``arc`` strictly inside it, not at one of its end points.
+def _document_ladder(doc: Mapping[str, Any], params: Mapping[str, Any]) -> Ladder:
+    """The ladder of a document: Fibonacci with its ``unit`` or phi with its ``bias``.
 
-    Within the contract's junction tolerance: such a junction must not list the arc.
+    The exponents and rounding a run recorded in ``params`` are kept when they
+    are valid (an edit may then use them); otherwise the whole ladder.
     """
-    p = np.asarray(point, dtype=np.float64)
-    tol = JUNCTION_TOLERANCE
-    if min(float(np.hypot(*(p - arc.start))), float(np.hypot(*(p - arc.end)))) <= tol:
-        return False
-    c = arc.circle
-    if abs(float(c.distance(p))) > tol:
-        return False
-    return bool(arc.contains_angle(float(c.angle_of(p)), tol=tol / c.r))
+    exponents = params.get("exponents")
+    if not (isinstance(exponents, list) and exponents and all(type(k) is int for k in exponents)):
+        exponents = None
+    rounding = params.get("rounding") if params.get("rounding") in ("nearest", "ceil") else "nearest"
+    if doc.get("ladder") == "fibonacci":
+        if exponents is not None and min(exponents) < 2:
+            exponents = None
+        return FibonacciLadder(float(doc["unit"]), exponents, rounding)  # type: ignore[arg-type]
+    return GoldenLadder(float(doc["bias"]), exponents, rounding)  # type: ignore[arg-type]
 
 
 def _json_safe(value: Any, where: str) -> Any:

@@ -40,19 +40,17 @@ towards +y (:mod:`img2logo.geometry`).
 
 from __future__ import annotations
 
-import copy
 import math
 import numbers
 import operator
-from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
+from collections.abc import Sequence
 
 import numpy as np
 
-from .circle_fitting import fit_center, fit_constrained
+from .circle_fitting import fit_center, fit_window
 from .constants import JUNCTION_TOLERANCE, LOG_PHI
 from .errors import FitError, InvalidParameterError
-from .geometry import TAU, Abstraction, Arc, Circle
+from .geometry import TAU, Abstraction, Arc, ArcJunctions, Circle
 from .golden_ladder import GoldenLadder
 
 __all__ = ["EDIT_TOLERANCE", "add_arc", "change_rung", "connect", "delete_arc", "move_circle"]
@@ -107,46 +105,16 @@ def _sign(value: object, name: str) -> int:
 
 
 def _phi_ladder(a: Abstraction, op: str) -> GoldenLadder:
-    ladder = a.params.get("ladder", "phi") if isinstance(a.params, Mapping) else "phi"
-    if ladder != "phi":
+    """The abstraction's phi ladder (the edits keep r = phi**(k+bias)); raise on the Fibonacci ladder."""
+    if not isinstance(a.ladder, GoldenLadder):
         raise InvalidParameterError(
-            f"{op} supports only the golden ratio ladder r = phi**(k+bias), got params['ladder'] = {ladder!r}"
+            f"{op} supports only the golden ratio ladder r = phi**(k+bias), got the Fibonacci ladder "
+            f"(unit {a.ladder.unit!r} px)"
         )
-    return GoldenLadder(a.bias)
+    return a.ladder
 
 
 # --------------------------------------------------------------------------- topology
-@dataclass(frozen=True)
-class _Ends:
-    """Where an arc meets its junctions: start / end junction (or None), inner ones."""
-
-    start: int | None
-    end: int | None
-    inner: tuple[int, ...]
-
-
-def _arc_ends(arcs: Sequence[Arc], junctions: np.ndarray, junction_arcs: Sequence[Sequence[int]]) -> list[_Ends]:
-    """For each arc, the listed junctions at its start, at its end, and the others.
-
-    A junction is at an end when it is within ``JUNCTION_TOLERANCE`` (1e-3 px) of
-    it; the nearest listed junction wins. A full circle has one junction at both ends.
-    """
-    listed: list[list[int]] = [[] for _ in arcs]
-    for j, entries in enumerate(junction_arcs):
-        for i in dict.fromkeys(int(x) for x in entries):
-            listed[i].append(j)
-    out = []
-    for arc, js in zip(arcs, listed, strict=True):
-        ends: list[int | None] = []
-        for point in (arc.start, arc.end):
-            d = [math.dist(point, junctions[j]) for j in js]
-            best = int(np.argmin(d)) if d else -1
-            ends.append(js[best] if d and d[best] <= JUNCTION_TOLERANCE else None)
-        start, end = ends
-        out.append(_Ends(start, end, tuple(j for j in js if j not in (start, end))))
-    return out
-
-
 def _distinct_circles(arcs: Sequence[Arc]) -> tuple[list[Circle], list[int]]:
     """The distinct circles (order of first use, as ``Abstraction.circles``) and each arc's index."""
     index: dict[Circle, int] = {}
@@ -170,7 +138,7 @@ def _incidence(
 
 
 # --------------------------------------------------------------------------- re-extraction
-def _reextract(old: Arc, circle: Circle, ends: _Ends, junctions: np.ndarray, edit: str) -> Arc:
+def _reextract(old: Arc, circle: Circle, ends: ArcJunctions, junctions: np.ndarray, edit: str) -> Arc:
     """The arc ``old`` on its changed ``circle``, running between its (moved) junctions.
 
     The start and end angles are those of the arc's junctions on the new circle
@@ -187,17 +155,18 @@ def _reextract(old: Arc, circle: Circle, ends: _Ends, junctions: np.ndarray, edi
         start and end junction have come together.
     """
     theta0 = float(circle.angle_of(junctions[ends.start])) if ends.start is not None else old.theta0
+    make = type(old)  # a line stays a line
     if old.is_full_circle:
-        return Arc(circle, theta0, old.sweep)
+        return make(circle, theta0, old.sweep)
     theta1 = float(circle.angle_of(junctions[ends.end])) if ends.end is not None else old.theta0 + old.sweep
     sense = math.copysign(1.0, old.sweep)
     same_way = sense * float(np.mod(sense * (theta1 - theta0), TAU))
-    inner = circle.angle_of(junctions[list(ends.inner)]) if ends.inner else np.zeros(0)
+    inner = circle.angle_of(junctions[list(ends.through)]) if ends.through else np.zeros(0)
     options = []
     for sweep in (same_way, same_way - sense * TAU):
         if abs(sweep) * circle.r <= EDIT_TOLERANCE or (TAU - abs(sweep)) * circle.r <= EDIT_TOLERANCE:
             continue  # the two ends coincide: no arc left between them
-        arc = Arc(circle, theta0, sweep)
+        arc = make(circle, theta0, sweep)
         if np.all(arc.contains_angle(inner, tol=EDIT_TOLERANCE / circle.r)):
             options.append(arc)
     if not options:
@@ -210,7 +179,7 @@ def _refit(
     arcs: Sequence[Arc],
     junctions: np.ndarray,
     junction_arcs: Sequence[Sequence[int]],
-    ends: Sequence[_Ends],
+    ends: Sequence[ArcJunctions],
     *,
     new_circles: dict[int, Circle],
     fixed: set[int],
@@ -224,7 +193,7 @@ def _refit(
     ----------
     arcs, junctions, junction_arcs, ends
         The state before the re-fit: arcs, (J, 2) junction points px, the arcs
-        listed at each junction, and :func:`_arc_ends` of the arcs.
+        listed at each junction, and the junctions of each arc (``Abstraction.arc_junctions``).
     new_circles : dict
         Distinct-circle index -> the user's new circle (moved, or a new radius):
         its start value in the fit.
@@ -256,54 +225,34 @@ def _refit(
     samples: list[list[np.ndarray]] = [[] for _ in circles]
     for arc, c in zip(arcs, arc_circle, strict=True):
         samples[c].append(arc.sample(_SAMPLE_STEP, min_points=3))
+    points = {c: np.concatenate(samples[c]) for c in range(len(circles))}
     ref = np.array(junctions, dtype=np.float64, copy=True).reshape(-1, 2)
     for j, p in references.items():
         ref[j] = p
-
-    free_j = set(free_junctions)
-    fit = None
-    solved = False
-    for _ring in range(_RINGS):
-        free_c = {c for j in free_j for c in junction_circles[j]} - fixed
-        window = sorted(free_c | set(new_circles))
-        nodes = sorted({j for c in window for j in circle_junctions[c]} | free_j)
-        if not nodes:
-            solved = True  # nothing connects the changed circles: they just change
-            break
-        c_pos = {c: i for i, c in enumerate(window)}
-        j_pos = {j: i for i, j in enumerate(nodes)}
-        incidence = [(c_pos[c], j_pos[j]) for c in window for j in sorted(circle_junctions[c])]
-        points = [np.concatenate(samples[c]) for c in window]
-        centers0 = []
-        for c in window:
-            center = start[c].center
-            if c in new_circles and c not in fixed and not math.isclose(start[c].r, circles[c].r):
-                # A new radius: start where that radius fits the arcs' points best.
-                center = fit_center(points[c_pos[c]], start[c].r, center)
-            centers0.append(center)
-        fit = fit_constrained(
-            points,
-            np.array([start[c].r for c in window]),
-            np.array(centers0),
-            ref[nodes],
-            np.array(incidence, dtype=np.int64).reshape(-1, 2),
-            free_circles=[c_pos[c] for c in window if c not in fixed],
-            free_junctions=[j_pos[j] for j in sorted(free_j)],
-            # The mean squared error of each circle's points (as the progressive
-            # optimization weighs E^sqr), so long arcs do not drag the junctions.
-            segment_weight=1.0 / (len(window) * np.array([len(p) for p in points])),
-            junction_weight=1.0 / len(nodes),
-            tol=EDIT_TOLERANCE / 10,
-        )
-        if fit.converged and fit.violation <= EDIT_TOLERANCE:
-            solved = True
-            break
-        grown = free_j | {j for c in free_c for j in circle_junctions[c]}
-        if grown == free_j:
-            break  # the next ring would be the same window
-        free_j = grown
-    if not solved:
-        violation = math.nan if fit is None else fit.violation
+    centers = {}
+    for c in range(len(circles)):
+        center = start[c].center
+        if c in new_circles and c not in fixed and not math.isclose(start[c].r, circles[c].r):
+            # A new radius: start where that radius fits the arcs' points best.
+            center = fit_center(points[c], start[c].r, center)
+        centers[c] = center
+    # The window of the localized fitting (Sec. 5.4), as the optimization solves it.
+    window = fit_window(
+        points,
+        {c: start[c].r for c in range(len(circles))},
+        centers,
+        {c: sorted(js) for c, js in enumerate(circle_junctions)},
+        {j: cs for j, cs in enumerate(junction_circles)},
+        ref,
+        changed=new_circles,
+        free_junctions=free_junctions,
+        fixed=fixed,
+        rings=_RINGS,
+        tol=EDIT_TOLERANCE / 10,
+        max_violation=EDIT_TOLERANCE,
+    )
+    if not window.ok:
+        violation = math.nan if window.fit is None else window.fit.violation
         raise FitError(
             f"{edit} cannot keep the junctions connected: the constrained fit (Eqn. 13) did not converge "
             f"(largest junction-circle gap {violation:.3g} px)"
@@ -311,12 +260,12 @@ def _refit(
 
     new = dict(start)
     out_junctions = np.array(junctions, dtype=np.float64, copy=True).reshape(-1, 2)
-    if fit is not None and nodes:
-        for c in window:
-            cx, cy = fit.centers[c_pos[c]]
+    if window.fit is not None:
+        for c in window.circles:
+            cx, cy = window.center(c)
             new[c] = Circle(float(cx), float(cy), start[c].r, start[c].k)
-        for j in nodes:
-            out_junctions[j] = ref[j] + fit.displacements[j_pos[j]]
+        for j, d in window.displacements().items():
+            out_junctions[j] = ref[j] + d
     changed = {c for c in range(len(circles)) if new[c] != circles[c]} | set(new_circles)
     out_arcs = tuple(
         _reextract(arc, new[c], e, out_junctions, edit) if c in changed else arc
@@ -334,45 +283,58 @@ def _edited(
     arc_segments: Sequence[Sequence[int]] | None = None,
     junctions: np.ndarray | None = None,
     junction_arcs: Sequence[Sequence[int]] | None = None,
+    arc_junctions: Sequence[ArcJunctions] | None = None,
+    junction_nodes: Sequence[int | None] | None = None,
     changed_arcs: Sequence[int] = (),
 ) -> Abstraction:
     """A copy of ``a`` with the given parts replaced and ``edit`` appended to ``params["edits"]``.
 
-    Checks that every junction that moved, and every junction of the arcs in
-    ``changed_arcs`` (new indices), lies on its arcs (at an end or inside)
-    within ``EDIT_TOLERANCE`` px, and raises FitError if not. The rest is as
-    connected as it was in ``a``.
+    Checks first that every junction that moved, and every junction of the
+    arcs in ``changed_arcs`` (new indices), lies on its arcs (at an end or
+    inside) within ``EDIT_TOLERANCE`` px, and raises FitError if not. The rest
+    is as connected as it was in ``a``. The ladder, the topology (unless
+    replaced) and the graph nodes of the junctions are ``a``'s.
     """
-    params = copy.deepcopy(dict(a.params))
-    params["edits"] = [*list(params.get("edits", [])), edit]
-    junction_arcs = a.junction_arcs if junction_arcs is None else junction_arcs
-    out = Abstraction(
+    arcs = tuple(a.arcs if arcs is None else arcs)
+    points = np.array(a.junctions if junctions is None else junctions, dtype=np.float64).reshape(-1, 2)
+    listed = tuple(tuple(int(i) for i in js) for js in (a.junction_arcs if junction_arcs is None else junction_arcs))
+    moved = set()
+    if junctions is not None and len(points) == len(a.junctions):
+        moved = set(np.flatnonzero(np.any(points != a.junctions, axis=1)).tolist())
+    _check_connected(arcs, points, listed, edit, set(changed_arcs), moved)
+    return Abstraction(
         level=a.level,
-        arcs=tuple(a.arcs if arcs is None else arcs),
+        arcs=arcs,
         arc_segments=tuple(tuple(s) for s in (a.arc_segments if arc_segments is None else arc_segments)),
-        junctions=np.array(a.junctions if junctions is None else junctions, dtype=np.float64).reshape(-1, 2),
-        junction_arcs=tuple(tuple(int(i) for i in js) for js in junction_arcs),
+        junctions=points,
+        junction_arcs=listed,
         similarity=a.similarity,
         bias=a.bias,
         tolerance=a.tolerance,
         width=a.width,
         height=a.height,
-        params=params,
+        params={**a.params, "edits": (*a.params.get("edits", ()), edit)},
+        ladder=a.ladder,
+        arc_junctions=tuple(a.arc_junctions if arc_junctions is None else arc_junctions),
+        junction_nodes=tuple(a.junction_nodes if junction_nodes is None else junction_nodes),
+        connected=a.connected,
     )
-    moved = set()
-    if junctions is not None and len(out.junctions) == len(a.junctions):
-        moved = set(np.flatnonzero(np.any(out.junctions != a.junctions, axis=1)).tolist())
-    _check_connected(out, edit, set(changed_arcs), moved)
-    return out
 
 
-def _check_connected(a: Abstraction, edit: str, arcs: set[int], junctions: set[int]) -> None:
-    """Raise FitError unless the junctions listed at ``arcs``, and ``junctions``, lie on their arcs."""
-    for j, (point, entries) in enumerate(zip(a.junctions, a.junction_arcs, strict=True)):
+def _check_connected(
+    arcs: Sequence[Arc],
+    points: np.ndarray,
+    junction_arcs: Sequence[Sequence[int]],
+    edit: str,
+    changed: set[int],
+    junctions: set[int],
+) -> None:
+    """Raise FitError unless the junctions listed at the ``changed`` arcs, and ``junctions``, lie on their arcs."""
+    for j, (point, entries) in enumerate(zip(points, junction_arcs, strict=True)):
         for i in entries:
-            if i not in arcs and j not in junctions:
+            if i not in changed and j not in junctions:
                 continue
-            arc = a.arcs[i]
+            arc = arcs[i]
             off = abs(float(arc.circle.distance(point)))
             at_end = min(math.dist(point, arc.start), math.dist(point, arc.end)) <= EDIT_TOLERANCE
             inside = bool(arc.contains_angle(float(arc.circle.angle_of(point)), tol=EDIT_TOLERANCE / arc.circle.r))
@@ -427,6 +389,7 @@ def delete_arc(abstraction: Abstraction, arc: int) -> Abstraction:
         if left:
             kept_j.append(j)
             junction_arcs.append(left)
+    new_index = {j: n for n, j in enumerate(kept_j)}
     return _edited(
         a,
         f"delete_arc({i})",
@@ -434,6 +397,8 @@ def delete_arc(abstraction: Abstraction, arc: int) -> Abstraction:
         arc_segments=a.arc_segments[:i] + a.arc_segments[i + 1 :],
         junctions=a.junctions[kept_j],
         junction_arcs=junction_arcs,
+        arc_junctions=[t.renumbered(new_index) for n, t in enumerate(a.arc_junctions) if n != i],
+        junction_nodes=[a.junction_nodes[j] for j in kept_j],
     )
 
 
@@ -502,7 +467,7 @@ def add_arc(abstraction: Abstraction, circle: int | Circle, j0: int, j1: int, *,
     if min(abs(sweep), TAU - abs(sweep)) * c.r <= JUNCTION_TOLERANCE:
         raise InvalidParameterError(f"junctions {j0} and {j1} coincide on circle {ci}: no arc runs between them")
     new_arc = Arc(c, float(theta[0]), sweep)
-    ends = _arc_ends(a.arcs, a.junctions, a.junction_arcs)
+    ends = a.arc_junctions
     for i, (arc, e) in enumerate(zip(a.arcs, ends, strict=True)):
         same = (e.start, e.end, math.copysign(1, arc.sweep)) in ((j0, j1, sign), (j1, j0, -sign))
         if arc.circle == c and same:
@@ -521,7 +486,7 @@ def add_arc(abstraction: Abstraction, circle: int | Circle, j0: int, j1: int, *,
             arcs,
             junctions,
             junction_arcs,
-            [*ends, _Ends(j0, j1, ())],
+            [*ends, ArcJunctions(j0, j1, ())],
             new_circles={},
             fixed=set(),
             free_junctions={j0, j1},
@@ -535,6 +500,7 @@ def add_arc(abstraction: Abstraction, circle: int | Circle, j0: int, j1: int, *,
         arc_segments=(*a.arc_segments, ()),
         junctions=junctions,
         junction_arcs=junction_arcs,
+        arc_junctions=(*a.arc_junctions, ArcJunctions(j0, j1)),
         changed_arcs=_changed(a.arcs, arcs),
     )
 
@@ -560,7 +526,7 @@ def connect(abstraction: Abstraction, j0: int, j1: int, *, k: int | None = None,
     k : int, optional
         Ladder exponent of the new circle. Default: the smallest rung whose
         circle passes through both points, ``2 r >= d`` with ``d`` their distance
-        in px (among ``params["exponents"]`` when the run restricted the ladder,
+        in px (among ``abstraction.ladder.exponents`` when the run restricted the ladder,
         Sec. 7, Fig. 15). Larger k gives a flatter arc.
     side : {+1, -1}
         Which of the two circles through the points (see above).
@@ -586,7 +552,7 @@ def connect(abstraction: Abstraction, j0: int, j1: int, *, k: int | None = None,
     s = _sign(side, "side")
     if j0 == j1:
         raise InvalidParameterError(f"connect needs two different junctions, got junction {j0} twice")
-    ends = _arc_ends(a.arcs, a.junctions, a.junction_arcs)
+    ends = a.arc_junctions
     for j in (j0, j1):
         listed = sorted(set(a.junction_arcs[j]))
         if len(listed) != 1 or j not in (ends[listed[0]].start, ends[listed[0]].end):
@@ -602,12 +568,12 @@ def connect(abstraction: Abstraction, j0: int, j1: int, *, k: int | None = None,
     while 2 * ladder.radius(k_min) < d:
         k_min += 1
     if k is None:
-        allowed = a.params.get("exponents")
+        allowed = a.ladder.exponents
         if allowed:
             big = sorted(int(e) for e in allowed if int(e) >= k_min)
             if not big:
                 raise InvalidParameterError(
-                    f"no rung among params['exponents'] {sorted(int(e) for e in allowed)} can connect junctions "
+                    f"no rung among the ladder's exponents {sorted(int(e) for e in allowed)} can connect junctions "
                     f"{j0} and {j1} ({d:.6g} px apart): it needs k >= {k_min}"
                 )
             k_used = big[0]
@@ -641,6 +607,7 @@ def connect(abstraction: Abstraction, j0: int, j1: int, *, k: int | None = None,
         arcs=(*a.arcs, new_arc),
         arc_segments=(*a.arc_segments, ()),
         junction_arcs=junction_arcs,
+        arc_junctions=(*a.arc_junctions, ArcJunctions(j0, j1)),
         changed_arcs=(n,),
     )
 
@@ -754,7 +721,7 @@ def _change_circle(a: Abstraction, ci: int, target: Circle, *, fixed: bool, carr
     _, arc_circle = _distinct_circles(a.arcs)
     circle_junctions, _ = _incidence(arc_circle, len(a.circles), a.junction_arcs)
     own = set(circle_junctions[ci])
-    ends = _arc_ends(a.arcs, a.junctions, a.junction_arcs)
+    ends = a.arc_junctions
     old = a.circles[ci]
     error: FitError | None = None
     n = 1

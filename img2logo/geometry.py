@@ -1,4 +1,4 @@
-"""Frozen geometry values passed between the stages: circles, arcs, abstractions.
+"""Frozen geometry values passed between the stages: circles, arcs, lines, abstractions.
 
 Coordinate convention (``contract/README.md``): input-image pixels, x to the
 right, y downwards, origin at the top-left corner of the image, so the pixel in
@@ -10,14 +10,16 @@ clockwise on screen, the same sense as SVG's ``sweep-flag=1``.
 from __future__ import annotations
 
 import math
+from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
-from ._validation import readonly
-from .constants import LINE_RADIUS, PHI
+from ._validation import check_finite, readonly
+from .constants import JUNCTION_TOLERANCE, LINE_RADIUS, PHI, RADIUS_RELATIVE_TOLERANCE
 from .errors import InvalidParameterError
+from .golden_ladder import FibonacciLadder, GoldenLadder, Ladder
 
 TAU = 2.0 * math.pi
 
@@ -94,12 +96,8 @@ class Arc:
 
     @property
     def is_line(self) -> bool:
-        """True for a straight line (the lines option): an arc of a ``LINE_RADIUS`` circle without k.
-
-        It is drawn and written as the straight segment from :attr:`start` to
-        :attr:`end`; its circle is not on the golden ladder.
-        """
-        return self.circle.k is None and self.circle.r >= 0.5 * LINE_RADIUS
+        """False: a circular arc. A straight line is a :class:`Line` (the lines option)."""
+        return False
 
     @property
     def is_full_circle(self) -> bool:
@@ -131,7 +129,35 @@ class Arc:
         return (offset <= abs(self.sweep) + tol) | (offset >= TAU - tol)
 
 
-def line_arc(p0: np.ndarray, p1: np.ndarray, side: float = 1.0) -> Arc:
+@dataclass(frozen=True)
+class Line(Arc):
+    """A straight line (the lines option, paper Sec. 9, Fig. 20b): its own marked primitive.
+
+    It is stored as the short arc of a ``LINE_RADIUS`` circle between its two
+    end points (0.03 px from straight over a 500 px chord), so the fit, the
+    arc extraction and the drawing handle it like any arc; its circle has no
+    ladder exponent (``k`` None) and is not on the ladder. Writers write it as
+    the straight segment from :attr:`start` to :attr:`end`, apart from the
+    golden circles. Build one with :func:`line_arc`.
+    """
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        if self.circle.k is not None:
+            raise InvalidParameterError(f"a line's circle has no ladder exponent, got k={self.circle.k}")
+
+    @property
+    def is_line(self) -> bool:
+        """True: a straight line."""
+        return True
+
+    @classmethod
+    def of(cls, arc: Arc) -> Line:
+        """The arc ``arc`` of a ``LINE_RADIUS`` circle, marked as a line."""
+        return cls(arc.circle, arc.theta0, arc.sweep)
+
+
+def line_arc(p0: np.ndarray, p1: np.ndarray, side: float = 1.0) -> Line:
     """The straight line from ``p0`` to ``p1`` (px) as an arc of a ``LINE_RADIUS`` circle.
 
     The circle's centre is on the perpendicular bisector, on the left of the
@@ -148,36 +174,190 @@ def line_arc(p0: np.ndarray, p1: np.ndarray, side: float = 1.0) -> Arc:
     circle = Circle(float(centre[0]), float(centre[1]), LINE_RADIUS, None)
     t0 = math.atan2(a[1] - centre[1], a[0] - centre[0])
     t1 = math.atan2(b[1] - centre[1], b[0] - centre[0])
-    return Arc(circle, t0, math.remainder(t1 - t0, TAU))
+    return Line(circle, t0, math.remainder(t1 - t0, TAU))
 
 
+def golden_circle(center: object, radius: float, ladder: Ladder) -> Circle:
+    """A circle at ``center`` (x, y; px) with ``radius`` snapped to ``ladder`` (Eqn. 12).
+
+    Returns
+    -------
+    Circle
+        With ``r = ladder.snap(radius)[1]`` and ``k`` the ladder exponent.
+    """
+    c = np.asarray(center, dtype=np.float64)
+    if c.shape != (2,):
+        raise InvalidParameterError(f"center must have shape (2,), got {c.shape}")
+    k, r = ladder.snap(radius)
+    return Circle(float(c[0]), float(c[1]), r, k)
+
+
+# --------------------------------------------------------------------------- parameters
+class Params(Mapping[str, Any]):
+    """An immutable mapping of the parameters of a run (``Abstraction.params``).
+
+    Built from any mapping: nested mappings become :class:`Params` and lists
+    tuples, so nothing inside can change. It compares equal to a mapping with
+    the same items (a tuple entry equals the same tuple, not a list), pickles
+    and copies like a dict, and :func:`img2logo.writers.to_document` writes it
+    as the JSON object it was built from.
+    """
+
+    __slots__ = ("_items",)
+
+    def __init__(self, items: Mapping[str, Any] | None = None) -> None:
+        if items is not None and not isinstance(items, Mapping):
+            raise InvalidParameterError(f"params must be a mapping, got {type(items).__name__}")
+        object.__setattr__(self, "_items", {key: _frozen(value) for key, value in (items or {}).items()})
+
+    def __getitem__(self, key: str) -> Any:
+        return self._items[key]
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._items)
+
+    def __len__(self) -> int:
+        return len(self._items)
+
+    def __setattr__(self, name: str, value: Any) -> None:
+        raise AttributeError("Params is immutable")
+
+    def __repr__(self) -> str:
+        return f"Params({self._items!r})"
+
+    def __reduce__(self) -> tuple[type[Params], tuple[dict[str, Any]]]:
+        return (Params, (self.to_dict(),))
+
+    def __deepcopy__(self, memo: dict[int, Any]) -> Params:
+        return self  # immutable all the way down
+
+    def to_dict(self) -> dict[str, Any]:
+        """A plain, mutable copy: nested Params become dicts (tuples stay tuples)."""
+        return {key: value.to_dict() if isinstance(value, Params) else value for key, value in self._items.items()}
+
+
+def _frozen(value: Any) -> Any:
+    """``value`` with mappings made :class:`Params` and lists (and tuples) tuples, recursively."""
+    if isinstance(value, Params):
+        return value
+    if isinstance(value, Mapping):
+        return Params(value)
+    if isinstance(value, list | tuple):
+        return tuple(_frozen(v) for v in value)
+    if isinstance(value, np.ndarray):
+        return readonly(value.copy())
+    return value
+
+
+# --------------------------------------------------------------------------- topology
+@dataclass(frozen=True)
+class ArcJunctions:
+    """Where one arc meets the junctions of its abstraction (indices into ``junctions``).
+
+    Attributes
+    ----------
+    start, end : int or None
+        The junction at the arc's start point (``theta0``) and at its end point
+        (``theta0 + sweep``); None for a free end. A closed arc (a whole circle)
+        starts and ends at one junction: ``start == end``.
+    through : tuple of int
+        The junctions the arc passes through inside (the progressive optimization
+        keeps junctions of valence >= 3 inside merged arcs, Sec. 6.2), in order
+        along the arc.
+    """
+
+    start: int | None = None
+    end: int | None = None
+    through: tuple[int, ...] = ()
+
+    def __post_init__(self) -> None:
+        for name in ("start", "end"):
+            value = getattr(self, name)
+            if value is not None:
+                object.__setattr__(self, name, _index(value, f"ArcJunctions.{name}"))
+        object.__setattr__(self, "through", tuple(_index(j, "ArcJunctions.through entry") for j in self.through))
+
+    @property
+    def ordered(self) -> tuple[int, ...]:
+        """The junctions in order along the arc: start, those passed through, end (free ends left out)."""
+        ends_at = () if self.end is None or self.end == self.start else (self.end,)
+        return (*(() if self.start is None else (self.start,)), *self.through, *ends_at)
+
+    @property
+    def ends(self) -> tuple[int, ...]:
+        """The junctions at an end point of the arc (each once)."""
+        return tuple(dict.fromkeys(j for j in (self.start, self.end) if j is not None))
+
+    def renumbered(self, mapping: Mapping[int, int]) -> ArcJunctions:
+        """The same with junction ``j`` renamed ``mapping[j]``; a junction not in it is dropped (a free end)."""
+        through = tuple(mapping[j] for j in self.through if j in mapping)
+        return ArcJunctions(mapping.get(self.start), mapping.get(self.end), through)  # type: ignore[arg-type]
+
+
+def _index(value: object, name: str) -> int:
+    if isinstance(value, bool | np.bool_) or not isinstance(value, int | np.integer):
+        raise InvalidParameterError(f"{name} must be an integer, got {value!r}")
+    if value < 0:
+        raise InvalidParameterError(f"{name} must be >= 0, got {value}")
+    return int(value)
+
+
+# --------------------------------------------------------------------------- the abstraction
 @dataclass(frozen=True, eq=False)
 class Abstraction:
     """One level A^t of the progressive optimization (Sec. 5.2): a golden ratio logo.
 
+    The value carries its ladder and its topology, and checks every invariant of
+    the result contract (``contract/README.md``) once, when it is made.
+
     Attributes
     ----------
     level : int
-        The iteration t that produced it (0 for the initial fit).
+        The iteration t that produced it (0 for the initial fit), >= 0.
     arcs : tuple of Arc
-        The arcs; ``arcs[i].circle`` is its golden circle.
+        The arcs; ``arcs[i].circle`` is its golden circle. Straight lines (the
+        lines option) are :class:`Line` arcs, off the ladder.
     arc_segments : tuple of tuple of int
         For each arc, the indices of the segments of the initial segment graph
         that it abstracts (the paper's S_i), in order along the arc.
     junctions : ndarray, shape (J, 2)
-        Displaced junction points p_k + d_k, px.
+        Displaced junction points p_k + d_k, px (read-only).
     junction_arcs : tuple of tuple of int
         For each junction, the indices of the arcs that end (or pass) there.
     similarity : float
-        E^s of this level (Eqn. 3), px.
+        E^s of this level (Eqn. 3), px, >= 0.
     bias : float
-        The ladder bias sigma in [0, 1) (Eqn. 10, 14).
+        The ladder bias sigma in [0, 1) (Eqn. 10, 14); 0.0 on the Fibonacci ladder.
     tolerance : float
-        The tolerance T the run used, px.
+        The tolerance T the run used, px, > 0.
     width, height : int
-        Size of the input image, px.
-    params : dict
-        Every other parameter of the run (kind, RDP tolerance, ...), for the record.
+        Size of the input image, px, >= 1.
+    params : Params
+        Every other parameter of the run (kind, RDP tolerance, the options, ...),
+        for the record: an immutable mapping (any mapping given is frozen).
+    ladder : GoldenLadder or FibonacciLadder
+        The radii: ``phi ** (k + bias)`` or ``unit * F(k)`` (with the exponents
+        the run allowed). Default: the phi ladder of ``bias``.
+    arc_junctions : tuple of ArcJunctions
+        For each arc, the junction at its start, those it passes through, and
+        the one at its end. Default: the junctions listing it, at the end they
+        lie at (within ``JUNCTION_TOLERANCE``), the others passed through.
+    junction_nodes : tuple of (int or None)
+        For each junction, the node of the segment graph it displaces (None
+        where it has none: a document read back, a junction an edit made).
+    connected : bool
+        False for a result of the connectivity ablation (Fig. 11c): its arcs end
+        where their junctions project on their circles, not at the junctions.
+
+    Raises
+    ------
+    InvalidParameterError
+        If a field is out of range or an invariant fails: a circle of an arc
+        (not a line) without ``k`` or off the ladder (relative
+        ``RADIUS_RELATIVE_TOLERANCE``), an index out of range, ``junction_arcs``
+        and ``arc_junctions`` disagreeing, or (when connected) a junction farther
+        than ``JUNCTION_TOLERANCE`` from its arcs' circles, end points, or from
+        inside the arcs that pass through it.
     """
 
     level: int
@@ -190,11 +370,40 @@ class Abstraction:
     tolerance: float
     width: int
     height: int
-    params: dict[str, Any] = field(default_factory=dict)
+    params: Mapping[str, Any] = field(default_factory=Params)
+    ladder: Ladder | None = None
+    arc_junctions: tuple[ArcJunctions, ...] | None = None
+    junction_nodes: tuple[int | None, ...] | None = None
+    connected: bool = True
 
     def __post_init__(self) -> None:
+        put = object.__setattr__
         j = np.asarray(self.junctions, dtype=np.float64).reshape(-1, 2)
-        object.__setattr__(self, "junctions", readonly(j.copy()))
+        put(self, "junctions", readonly(j.copy()))
+        put(self, "arcs", tuple(self.arcs))
+        for a in self.arcs:
+            if not isinstance(a, Arc):
+                raise InvalidParameterError(f"arcs must be Arc values, got {type(a).__name__}")
+        put(self, "level", _index(self.level, "level"))
+        put(self, "width", _at_least_one(self.width, "width"))
+        put(self, "height", _at_least_one(self.height, "height"))
+        similarity = check_finite(self.similarity, "similarity")
+        if similarity < 0.0:
+            raise InvalidParameterError(f"similarity must be >= 0, got {similarity!r}")
+        tolerance = check_finite(self.tolerance, "tolerance")
+        if tolerance <= 0.0:
+            raise InvalidParameterError(f"tolerance must be > 0, got {tolerance!r}")
+        bias = check_finite(self.bias, "bias")
+        if not 0.0 <= bias < 1.0:
+            raise InvalidParameterError(f"bias must be in [0, 1), got {bias!r}")
+        put(self, "similarity", similarity)
+        put(self, "tolerance", tolerance)
+        put(self, "bias", bias)
+        put(self, "params", Params(self.params))
+        put(self, "connected", bool(self.connected))
+        self._check_ladder()
+        put(self, "arc_segments", _int_tuples(self.arc_segments, "arc_segments"))
+        put(self, "junction_arcs", _int_tuples(self.junction_arcs, "junction_arcs"))
         if len(self.arc_segments) != len(self.arcs):
             raise InvalidParameterError(
                 f"arc_segments must have one entry per arc ({len(self.arcs)}), got {len(self.arc_segments)}"
@@ -203,7 +412,132 @@ class Abstraction:
             raise InvalidParameterError(
                 f"junction_arcs must have one entry per junction ({len(j)}), got {len(self.junction_arcs)}"
             )
+        for k, listed in enumerate(self.junction_arcs):
+            for i in listed:
+                if i >= len(self.arcs):
+                    raise InvalidParameterError(
+                        f"junction {k}: arc index {i} is out of range (the abstraction has {len(self.arcs)} arcs)"
+                    )
+        nodes = (None,) * len(j) if self.junction_nodes is None else tuple(self.junction_nodes)
+        if len(nodes) != len(j):
+            raise InvalidParameterError(f"junction_nodes must have one entry per junction ({len(j)}), got {len(nodes)}")
+        put(self, "junction_nodes", tuple(None if n is None else _index(n, "junction_nodes entry") for n in nodes))
+        if self.arc_junctions is None:
+            put(self, "arc_junctions", self._found_arc_junctions())
+        self._check_topology()
 
+    # ----------------------------------------------------------------- checks
+    def _check_ladder(self) -> None:
+        ladder = self.ladder
+        if ladder is None:
+            ladder = GoldenLadder(self.bias)
+            object.__setattr__(self, "ladder", ladder)
+        if not isinstance(ladder, GoldenLadder | FibonacciLadder):
+            raise InvalidParameterError(
+                f"ladder must be a GoldenLadder or FibonacciLadder, got {type(ladder).__name__}"
+            )
+        if ladder.bias != self.bias:
+            raise InvalidParameterError(f"bias {self.bias!r} is not the ladder's bias {ladder.bias!r}")
+        for i, c in enumerate(self.circles):
+            if c.k is None:
+                if all(a.is_line for a in self.arcs if a.circle == c):
+                    continue
+                raise InvalidParameterError(
+                    f"circle {i} (centre ({c.cx:.6g}, {c.cy:.6g}), r={c.r:.6g}) has no ladder exponent k: "
+                    "only golden circles, r = phi**(k+bias), can be written"
+                )
+            try:
+                expected = ladder.radius(c.k)
+            except InvalidParameterError as exc:
+                raise InvalidParameterError(f"circle {i}: {exc}") from exc
+            if not abs(c.r - expected) <= RADIUS_RELATIVE_TOLERANCE * c.r:
+                rule = (
+                    f"unit*F(k) = {expected:.10g} (k={c.k}, unit={ladder.unit!r})"
+                    if isinstance(ladder, FibonacciLadder)
+                    else f"phi**(k+bias) = {expected:.10g} (k={c.k}, bias={self.bias!r})"
+                )
+                raise InvalidParameterError(
+                    f"circle {i}: r={c.r!r} is not {rule}, "
+                    f"relative error {abs(c.r - expected) / c.r:.3g} > {RADIUS_RELATIVE_TOLERANCE:g}"
+                )
+
+    def _found_arc_junctions(self) -> tuple[ArcJunctions, ...]:
+        """Each arc's junctions when none are given: the listed junction nearest each end, the others passed through.
+
+        Connected, an end has a junction only within ``JUNCTION_TOLERANCE``;
+        unconnected (its gaps are the point), the nearest at any distance.
+        """
+        listed: list[list[int]] = [[] for _ in self.arcs]
+        for k, entries in enumerate(self.junction_arcs):
+            for i in dict.fromkeys(entries):
+                listed[i].append(k)
+        out = []
+        for arc, js in zip(self.arcs, listed, strict=True):
+            ends: list[int | None] = []
+            for point in (arc.start, arc.end):
+                d = [math.dist(point, self.junctions[k]) for k in js]
+                best = int(np.argmin(d)) if d else -1
+                near = d and (d[best] <= JUNCTION_TOLERANCE or not self.connected)
+                ends.append(js[best] if near else None)
+            if not self.connected and ends[0] is not None and ends[0] == ends[1] and not arc.is_full_circle:
+                # One junction for both ends of an open arc: it is at the nearer end only.
+                near_start = math.dist(arc.start, self.junctions[ends[0]]) <= math.dist(
+                    arc.end, self.junctions[ends[0]]
+                )
+                ends[1 if near_start else 0] = None
+            through = tuple(k for k in js if k not in ends)
+            out.append(ArcJunctions(ends[0], ends[1], through))
+        return tuple(out)
+
+    def _check_topology(self) -> None:
+        topology = tuple(self.arc_junctions or ())
+        if len(topology) != len(self.arcs):
+            raise InvalidParameterError(
+                f"arc_junctions must have one entry per arc ({len(self.arcs)}), got {len(topology)}"
+            )
+        for t in topology:
+            if not isinstance(t, ArcJunctions):
+                raise InvalidParameterError(f"arc_junctions entries must be ArcJunctions, got {type(t).__name__}")
+        object.__setattr__(self, "arc_junctions", topology)
+        n = len(self.junctions)
+        at: list[set[int]] = [set() for _ in range(n)]
+        for i, t in enumerate(topology):
+            for k in (*t.ends, *t.through):
+                if k >= n:
+                    raise InvalidParameterError(
+                        f"arc {i}: junction index {k} is out of range (the abstraction has {n} junctions)"
+                    )
+                at[k].add(i)
+        for k, listed in enumerate(self.junction_arcs):
+            if set(listed) != at[k]:
+                raise InvalidParameterError(
+                    f"junction {k} lists arcs {sorted(set(listed))}, but arc_junctions puts arcs {sorted(at[k])} there"
+                )
+        if not self.connected:
+            return
+        tol = JUNCTION_TOLERANCE
+        for i, (arc, t) in enumerate(zip(self.arcs, topology, strict=True)):
+            c = arc.circle
+            for k in (*t.ends, *t.through):
+                p = self.junctions[k]
+                off = abs(float(c.distance(p)))
+                if not off <= tol:
+                    raise InvalidParameterError(
+                        f"junction {k}: ({p[0]:.6g}, {p[1]:.6g}) is {off:.3g} px off the circle of arc {i}, "
+                        f"more than {tol:g} px"
+                    )
+            for k, end in ((t.start, arc.start), (t.end, arc.end)):
+                if k is not None and not math.dist(self.junctions[k], end) <= tol:
+                    raise InvalidParameterError(
+                        f"junction {k}: arc {i} has no end point at ({self.junctions[k][0]:.6g}, "
+                        f"{self.junctions[k][1]:.6g}): it is {math.dist(self.junctions[k], end):.3g} px from it, "
+                        f"more than {tol:g} px"
+                    )
+            for k in t.through:
+                if not bool(arc.contains_angle(float(c.angle_of(self.junctions[k])), tol=tol / c.r)):
+                    raise InvalidParameterError(f"junction {k} is on the circle of arc {i} but not on the arc")
+
+    # ----------------------------------------------------------------- derived values
     @property
     def circles(self) -> tuple[Circle, ...]:
         """The distinct circles of the arcs, in order of first use."""
@@ -213,3 +547,22 @@ class Abstraction:
     def phi(self) -> float:
         """The golden ratio this abstraction was built on."""
         return PHI
+
+    def arc_nodes(self, arc: int) -> tuple[int | None, ...]:
+        """The graph nodes of an arc's junctions in order along it (start, passed through, end): J' on its path."""
+        return tuple(self.junction_nodes[j] for j in self.arc_junctions[arc].ordered)
+
+    def arcs_at(self, junction: int) -> tuple[int, ...]:
+        """The arcs with an end point at ``junction`` (those passing through it left out), in index order."""
+        return tuple(i for i in self.junction_arcs[junction] if junction in self.arc_junctions[i].ends)
+
+
+def _at_least_one(value: object, name: str) -> int:
+    v = _index(value, name)
+    if v < 1:
+        raise InvalidParameterError(f"{name} must be >= 1, got {v}")
+    return v
+
+
+def _int_tuples(values: Sequence[Sequence[int]], name: str) -> tuple[tuple[int, ...], ...]:
+    return tuple(tuple(_index(v, f"{name} entry") for v in entry) for entry in values)

@@ -32,7 +32,6 @@ import numpy as np
 from ._validation import check_choice, check_positive
 from .constants import LADDER_SNAP_RTOL, LOG_PHI, PHI
 from .errors import InvalidParameterError
-from .geometry import Circle
 
 __all__ = [
     "FIBONACCI_MAX_UNIT",
@@ -40,7 +39,6 @@ __all__ = [
     "GoldenLadder",
     "bias_from_radius",
     "fibonacci",
-    "golden_circle",
     "make_ladder",
     "unit_from_radius",
 ]
@@ -192,21 +190,6 @@ def bias_from_radius(r: float) -> float:
     x = math.log(_check_radius(r)) / LOG_PHI
     sigma = x - math.floor(x)
     return sigma if sigma < 1.0 else 0.0
-
-
-def golden_circle(center: object, radius: float, ladder: Ladder) -> Circle:
-    """A circle at ``center`` (x, y; px) with ``radius`` snapped to ``ladder`` (Eqn. 12).
-
-    Returns
-    -------
-    Circle
-        With ``r = ladder.snap(radius)[1]`` and ``k`` the ladder exponent.
-    """
-    c = np.asarray(center, dtype=np.float64)
-    if c.shape != (2,):
-        raise InvalidParameterError(f"center must have shape (2,), got {c.shape}")
-    k, r = ladder.snap(radius)
-    return Circle(float(c[0]), float(c[1]), r, k)
 
 
 # --------------------------------------------------------------------------- the Fibonacci grid

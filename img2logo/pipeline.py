@@ -7,22 +7,26 @@ show any level without recomputing and a figure can show any stage.
 
 from __future__ import annotations
 
+import dataclasses
 import sys
 import time
-from collections.abc import Sequence
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
-from .constants import MIN_SEGMENT_LENGTH, PHOTO_MAX_ARC_FACTOR, RDP_TOLERANCE, TOLERANCE
+from .constants import PHOTO_MAX_ARC_FACTOR
 from .errors import InvalidParameterError
 from .geometry import Abstraction
-from .options import check_abstract_options
+from .options import AUTO, Options, check_lock_mask
 from .preprocessing import FeatureLines, LoadedImage, extract_feature_lines, load_image
 from .progressive import ProgressCallback, Progression, optimize
 from .segment_graph import SegmentGraph, build_segment_graph
 from .symmetry import SymmetryChoice, check_symmetry_option, choose_axis, optimize_symmetric
+
+#: ``abstract``'s ``tolerance`` and ``kind`` when not given: those of ``options`` (default 5 px, "auto").
+_DEFAULT: Any = type("Default", (), {"__repr__": lambda self: "<default>"})()
 
 
 @dataclass(frozen=True, eq=False)
@@ -40,8 +44,8 @@ class Result:
     timings : dict
         Seconds per stage: ``feature_lines``, ``segment_graph``,
         ``simplification``, ``initial_fit``, ``loop``.
-    params : dict
-        The parameters of the run (as recorded in every level).
+    params : Mapping
+        The parameters of the run (as recorded in every level: immutable).
     symmetry : SymmetryChoice or None
         What the ``symmetry`` option decided (None for ``"none"``); when it
         kept an axis, ``graph`` is the symmetric segment graph and every level
@@ -53,7 +57,7 @@ class Result:
     graph: SegmentGraph
     progression: Progression
     timings: dict[str, float] = field(default_factory=dict)
-    params: dict[str, Any] = field(default_factory=dict)
+    params: Mapping[str, Any] = field(default_factory=dict)
     symmetry: SymmetryChoice | None = None
 
     @property
@@ -87,21 +91,13 @@ class Result:
 
 def abstract(
     image: object,
-    tolerance: float = TOLERANCE,
-    kind: str = "auto",
+    tolerance: float = _DEFAULT,  # type: ignore[assignment]
+    kind: str = _DEFAULT,  # type: ignore[assignment]
     *,
-    rdp_tolerance: float = RDP_TOLERANCE,
-    min_length: float = MIN_SEGMENT_LENGTH,
-    foreground: object = "auto",
-    subject: object = None,
-    bias: float | None = None,
-    exponents: Sequence[int] | None = None,
-    ladder: str = "phi",
-    unit: float | None = None,
+    options: Options | None = None,
     lock_mask: np.ndarray | None = None,
     progress: ProgressCallback | bool | None = None,
-    symmetry: object = "none",
-    **switches: Any,
+    **settings: Any,
 ) -> Result:
     """Turn an image into a sequence of golden ratio logo abstractions.
 
@@ -110,40 +106,29 @@ def abstract(
     image : path, ndarray or LoadedImage
         The input (see :func:`img2logo.load_image`).
     tolerance : float
-        T, the largest similarity error E^s (Eqn. 1) accepted, px.
+        T, the largest similarity error E^s (Eqn. 1) accepted, px (default 5).
     kind : {"auto", "photo", "clipart", "drawing"}
         The kind of input (see :func:`img2logo.extract_feature_lines`).
-    rdp_tolerance, min_length : float
-        Segment-graph parameters (see :func:`img2logo.build_segment_graph`), px.
-    foreground : {"auto", "none", "grabcut"}, path or ndarray of bool
-        Photos: the subject drawn (see :func:`img2logo.extract_feature_lines`);
-        found automatically by default.
-    subject : (x, y, w, h) or "X,Y,W,H", optional
-        Photos: a rectangle around the object that seeds its segmentation, px.
-    bias, exponents, lock_mask
-        The ladder bias, a subset of ladder exponents, a lock mask (Sec. 7).
-    ladder : {"phi", "fibonacci"}
-        Radii ``phi ** (k + bias)`` (default, the paper) or ``unit * F(k)``,
-        the Fibonacci grid designers draw (Fig. 2b; see
-        :func:`img2logo.progressive.optimize`).
-    unit : float, optional
-        The Fibonacci ladder's unit, px; default: chosen from the longest segment.
-    symmetry : {"none", "auto", "vertical", "horizontal"} or float
-        A symmetric logo (:mod:`img2logo.symmetry`): ``auto`` finds the best
-        mirror axis of the feature lines and keeps it if its score reaches
-        ``SYMMETRY_THRESHOLD``; ``vertical``, ``horizontal`` or an angle in
-        degrees (from +x towards +y) force its direction. ``none`` (default):
-        free, as in the paper. What was decided is ``Result.symmetry``.
+    options : Options, optional
+        Every setting and switch at once (:class:`~img2logo.options.Options`);
+        ``tolerance``, ``kind`` and ``**settings`` given here replace its own.
+    lock_mask : ndarray of bool, shape (H, W), optional
+        Segments mostly inside it are never merged (Sec. 7, Fig. 16); not with symmetry.
     progress : callable, bool or None
         A callback ``progress(t, n_arcs, similarity)``; ``True`` shows a
         progress bar on the terminal; ``None`` (default) shows one only when
         standard error is a terminal.
-    **switches
-        The ablation switches of :func:`img2logo.progressive.optimize`:
-        ``connectivity``, ``inner_junctions``, ``merging``,
-        ``avoid_intersections``, ``localized``, ``simplify``, ``arc_selection``,
-        and ``max_arc_distance`` (photos: ``PHOTO_MAX_ARC_FACTOR * tolerance``
-        unless given; None for no bound).
+    **settings
+        Any other field of :class:`~img2logo.options.Options`: ``rdp_tolerance``,
+        ``min_length``, ``foreground``, ``subject``, ``symmetry`` (``"none"``,
+        ``"auto"``, ``"vertical"``, ``"horizontal"`` or degrees: a mirror-symmetric
+        logo, :mod:`img2logo.symmetry`; what was decided is ``Result.symmetry``),
+        the ladder (``ladder``,
+        ``bias``, ``unit``, ``exponents``, ``rounding``), the switches
+        (``connectivity``, ``inner_junctions``, ``merging``,
+        ``avoid_intersections``, ``localized``, ``simplify``, ``lines``),
+        ``arc_selection`` and ``max_arc_distance`` (photos:
+        ``PHOTO_MAX_ARC_FACTOR * tolerance`` unless given; None for no bound).
 
     Returns
     -------
@@ -153,33 +138,33 @@ def abstract(
     ------
     InvalidParameterError
         Before any work, if a keyword is unknown or a value out of range
-        (:func:`img2logo.options.check_abstract_options`).
+        (:class:`~img2logo.options.Options`).
     """
-    given = {"tolerance": tolerance, "kind": kind, "rdp_tolerance": rdp_tolerance, "min_length": min_length}
-    given.update(foreground=foreground, subject=subject, bias=bias, exponents=exponents, ladder=ladder, unit=unit)
-    given.update(symmetry=symmetry, lock_mask=lock_mask)
-    check_abstract_options({**given, **switches})
+    given = {name: value for name, value in (("tolerance", tolerance), ("kind", kind)) if value is not _DEFAULT}
+    opts = Options.from_keywords({**given, **settings}, base=options)
+    check_lock_mask(opts, lock_mask)
     timings: dict[str, float] = {}
     start = time.perf_counter()
     img = load_image(image)
-    lines = extract_feature_lines(img, kind=kind, foreground=foreground, subject=subject)
+    lines = extract_feature_lines(img, kind=opts.kind, foreground=opts.foreground, subject=opts.subject)
     timings["feature_lines"] = time.perf_counter() - start
     start = time.perf_counter()
-    graph = build_segment_graph(lines, rdp_tolerance=rdp_tolerance, min_length=min_length)
+    graph = build_segment_graph(lines, rdp_tolerance=opts.rdp_tolerance, min_length=opts.min_length)
     timings["segment_graph"] = time.perf_counter() - start
     params = {
         "source": img.source,
         "kind": lines.kind,
-        "rdp_tolerance": float(rdp_tolerance),
-        "min_length": float(min_length),
+        "rdp_tolerance": float(opts.rdp_tolerance),
+        "min_length": float(opts.min_length),
         "scale": img.scale,
     }
-    if lines.kind == "photo" and "max_arc_distance" not in switches:
+    if opts.max_arc_distance == AUTO:
         # A photo's logo is a few long arcs: no arc may stray far from its line.
-        switches = {**switches, "max_arc_distance": PHOTO_MAX_ARC_FACTOR * float(tolerance)}
-    callback, bar = _progress(progress, tolerance)
+        bound = PHOTO_MAX_ARC_FACTOR * opts.tolerance if lines.kind == "photo" else None
+        opts = dataclasses.replace(opts, max_arc_distance=bound)
+    callback, bar = _progress(progress, opts.tolerance)
     choice = None
-    mode = check_symmetry_option(symmetry)
+    mode = check_symmetry_option(opts.symmetry)
     if mode is not None:
         start = time.perf_counter()
         choice = choose_axis(lines.lines, mode)
@@ -187,36 +172,15 @@ def abstract(
     try:
         if choice is not None and choice.axis is not None:
             progression, graph, _ = optimize_symmetric(
-                graph,
-                choice.axis,
-                choice=choice,
-                tolerance=tolerance,
-                bias=bias,
-                exponents=exponents,
-                ladder=ladder,
-                unit=unit,
-                progress=callback,
-                params=params,
-                **switches,
+                graph, choice.axis, choice=choice, options=opts, progress=callback, params=params
             )
         else:
-            progression = optimize(
-                graph,
-                tolerance=tolerance,
-                bias=bias,
-                exponents=exponents,
-                ladder=ladder,
-                unit=unit,
-                lock_mask=lock_mask,
-                progress=callback,
-                params=params,
-                **switches,
-            )
+            progression = optimize(graph, opts, lock_mask=lock_mask, progress=callback, params=params)
     finally:
         if bar is not None:
             bar.close()
     timings.update(progression.timings)
-    return Result(img, lines, graph, progression, timings, dict(progression.levels[0].params), choice)
+    return Result(img, lines, graph, progression, timings, progression.levels[0].params, choice)
 
 
 def _progress(progress: ProgressCallback | bool | None, tolerance: float) -> tuple[ProgressCallback | None, Any]:

@@ -38,20 +38,20 @@ from typing import Any
 
 import numpy as np
 
-from ._validation import check_choice, check_positive
 from .arc_extraction import ArcFit, extract_arc, redundant_intersections
-from .circle_fitting import fit_center, fit_circle, fit_constrained, mean_abs_error
+from .circle_fitting import WindowFit, fit_center, fit_circle, fit_window, mean_abs_error
 from .constants import (
+    JUNCTION_TOLERANCE,
     LINE_END_SKIP,
     LINE_MIN_ANGLE,
     LINE_TOLERANCE,
     SIMPLIFICATION_ERROR,
     SYMMETRY_FIT_STALL,
-    TOLERANCE,
 )
 from .errors import FitError, InvalidParameterError
-from .geometry import Abstraction, Circle, line_arc
+from .geometry import Abstraction, ArcJunctions, Circle, Line, line_arc
 from .golden_ladder import Ladder, make_ladder
+from .options import Options
 from .segment_graph import SegmentGraph
 
 #: Signature of a progress callback: (level t, number of arcs, E^s in px).
@@ -179,6 +179,18 @@ class _Outcome:
     global_solve: bool
 
 
+class _Lazy(dict):
+    """A mapping whose values are computed on first access (only the window's are needed)."""
+
+    def __init__(self, value: Callable[[Any], Any]) -> None:
+        super().__init__()
+        self._value = value
+
+    def __missing__(self, key: Any) -> Any:
+        value = self[key] = self._value(key)
+        return value
+
+
 class ConnectivityWarning(UserWarning):
     """Some junctions of the initial fit were released: their arcs end apart there."""
 
@@ -201,9 +213,11 @@ def _rung_reaching(ladder: Ladder, k: int, reach: float) -> tuple[int, float]:
 class _Optimizer:
     """The mutable state of one run of the progressive optimization (private)."""
 
-    def __init__(self, graph: SegmentGraph, options: dict[str, Any]) -> None:
+    def __init__(self, graph: SegmentGraph, options: Options, symmetry: Any = None) -> None:
         self.graph = graph
-        self.opt = options
+        self.options = options
+        #: The mirror axis of a symmetric run (``img2logo.symmetry.HalfAxis``), or None.
+        self.symmetry = symmetry
         self.groups: dict[int, _Group] = {}
         self.fits: dict[int, _Fit] = {}
         self.disp = np.zeros((graph.n_junctions, 2))
@@ -259,7 +273,7 @@ class _Optimizer:
         else:
             head = ()
         inner = ()
-        if self.opt["inner_junctions"]:
+        if self.options.inner_junctions:
             valence = self.graph.valence
             inner = tuple(n for n in group.nodes[1:-1] if valence[n] >= 3)
         if group.closed:
@@ -316,7 +330,7 @@ class _Optimizer:
         So it is when the group ends where a line crosses the axis square to it:
         the arc and its mirror image are then one arc through the axis.
         """
-        sym = self.opt.get("symmetry")
+        sym = self.symmetry
         if sym is None:
             return False
         return (group.segments[0], group.nodes[0]) in sym.smooth or (group.segments[-1], group.nodes[-1]) in sym.smooth
@@ -330,7 +344,7 @@ class _Optimizer:
         if key not in self._circle_cache:
             pts = group.points
             if self.on_axis(group):
-                pts = np.vstack([pts, self.opt["symmetry"].mirror(pts)])
+                pts = np.vstack([pts, self.symmetry.mirror(pts)])
             if len(pts) < 3:  # two pixels: a straight piece, capped like any
                 pts = np.linspace(pts[0], pts[-1], 3)
             fit = fit_circle(pts, refine=False)  # the centre is refitted after snapping
@@ -351,7 +365,7 @@ class _Optimizer:
         center, radius, _ = self.golden(group)
         pts = group.points
         if self.on_axis(group):  # the arc runs on into its mirror image: fitted together
-            pts = np.vstack([pts, self.opt["symmetry"].mirror(pts)])
+            pts = np.vstack([pts, self.symmetry.mirror(pts)])
         return mean_abs_error(pts, fit_center(pts, radius, center), radius)
 
     def golden(
@@ -369,7 +383,7 @@ class _Optimizer:
         pin it to their intersection (far away, or nowhere, for nearly parallel
         ones); otherwise the group stays an arc.
         """
-        line = _straight_line(group) if self.opt["lines"] and not self.on_axis(group) else None
+        line = _straight_line(group) if self.options.lines and not self.on_axis(group) else None
         if line is not None and held is not None:
             u = (line[1] - line[0]) / np.hypot(*(line[1] - line[0]))
             for n in self.constrained_nodes(group):
@@ -395,7 +409,7 @@ class _Optimizer:
         On the axis, on the side of the free fit's centre: the snapped radius
         would otherwise leave it far from its junction.
         """
-        sym = self.opt["symmetry"]
+        sym = self.symmetry
         smooth = [
             n
             for s, n in ((group.segments[0], group.nodes[0]), (group.segments[-1], group.nodes[-1]))
@@ -427,7 +441,7 @@ class _Optimizer:
         if group.closed:
             pts = np.vstack([pts, pts[:1]])
             nodes = (*nodes, nodes[0])
-        if not self.opt["connectivity"]:
+        if not self.options.connectivity:
             # No constraint: the arc ends where the junctions project on its circle.
             pts = circle.point_at(circle.angle_of(pts))
         elif self.released:
@@ -435,64 +449,59 @@ class _Optimizer:
             loose = np.array([n in self.released for n in nodes])
             if loose.any():
                 pts[loose] = circle.point_at(circle.angle_of(pts[loose]))
-        return extract_arc(circle, group.points, pts, method=self.opt["arc_selection"])
+        fit = extract_arc(circle, group.points, pts, method=self.options.arc_selection)
+        return fit if k is not None else ArcFit(Line.of(fit.arc), fit.frechet)
 
     # ----------------------------------------------------------------- the constrained fit
     def solve(
         self,
         groups: dict[int, _Group],
-        seeds: dict[int, tuple[np.ndarray, float, int]],
-        free_groups: Sequence[int],
+        seeds: Mapping[int, tuple[np.ndarray, float, int | None]],
+        node_groups: Mapping[int, Sequence[int]],
+        *,
+        changed: Sequence[int],
         free_nodes: Sequence[int],
+        fixed: set[int],
         n_groups_total: int,
         n_junctions_total: int,
+        rings: int = 1,
+        order: Callable[[int], Any] | None = None,
     ) -> tuple[dict[int, _Fit], dict[int, np.ndarray]] | None:
-        """Eqn. 13 over ``groups`` (the window), then their arcs; None if it fails."""
-        gids = list(groups)
-        node_list = sorted({n for g in groups.values() for n in self.constrained_nodes(g)})
-        node_index = {n: i for i, n in enumerate(node_list)}
-        incidence = [(i, node_index[n]) for i, gid in enumerate(gids) for n in set(self.constrained_nodes(groups[gid]))]
-        # Straight lines stay where they are: a huge free circle is nearly
-        # singular along its chord. Their junctions slide onto them.
-        free_groups = [g for g in free_groups if seeds[g][2] is not None]
-        fit = fit_constrained(
-            [groups[g].points for g in gids],
-            np.array([seeds[g][1] for g in gids]),
-            np.array([seeds[g][0] for g in gids]),
-            self.graph.junctions[node_list],
-            np.array(incidence, dtype=np.int64).reshape(-1, 2),
-            displacements0=self.disp[node_list],
-            free_circles=[gids.index(g) for g in free_groups],
-            free_junctions=[node_index[n] for n in free_nodes if n in node_index],
-            # E^sqr of Eqn. 7 as the *mean* squared error of a segment: with the
-            # sum over its pixels, a junction moves px away to shave a little off
-            # a long segment's fit, and E^s (Fréchet + |d|) pays for it.
-            segment_weight=1.0 / (max(n_groups_total, 1) * np.array([len(groups[g].points) for g in gids])),
-            junction_weight=1.0 / max(n_junctions_total, 1),
-            connectivity=self.opt["connectivity"],
-            **self.axis_constraints(gids, groups, node_list),
+        """Eqn. 13 over a window of ``groups`` (:func:`~img2logo.circle_fitting.fit_window`), then their arcs.
+
+        The window is the ``changed`` groups and those through ``free_nodes``,
+        grown by up to ``rings`` rings; the ``fixed`` groups keep their circles,
+        and so do straight lines (a huge free circle is nearly singular along
+        its chord: their junctions slide onto them). None if it fails.
+        """
+        fixed = set(fixed) | {g for g in groups if seeds[g][2] is None}
+        window = fit_window(
+            _Lazy(lambda g: groups[g].points),
+            _Lazy(lambda g: seeds[g][1]),
+            _Lazy(lambda g: seeds[g][0]),
+            _Lazy(lambda g: tuple(set(self.constrained_nodes(groups[g])))),
+            node_groups,
+            self.graph.junctions,
+            changed=changed,
+            free_junctions=free_nodes,
+            fixed=fixed,
+            rings=rings,
+            order=order,
+            displacements0=self.disp,
+            n_circles=n_groups_total,
+            n_junctions=n_junctions_total,
+            connectivity=self.options.connectivity,
+            constraints=lambda circles, nodes: self.axis_constraints(circles, groups, nodes),
         )
-        if self.opt["connectivity"] and not fit.converged:
+        if not window.ok:
             return None
-        disp = {n: fit.displacements[node_index[n]].copy() for n in node_list}
-        if not self.opt["connectivity"]:
-            disp = {n: np.zeros(2) for n in node_list}
-        fits = {}
-        moved = set(free_nodes)
-        for i, gid in enumerate(gids):
-            line_moved = seeds[gid][2] is None and bool(moved & set(self.constrained_nodes(groups[gid])))
-            if gid not in free_groups and not line_moved:
-                continue
-            _, r, k = seeds[gid]
-            center = fit.centers[i].copy()
-            fits[gid] = _Fit(center, r, k, self.arc_for(groups[gid], center, r, k, lambda n: disp[n]))
-        return fits, disp
+        return self._fits(window, groups, seeds, fixed)
 
     def axis_constraints(
         self, gids: Sequence[int], groups: Mapping[int, _Group], node_list: Sequence[int]
     ) -> dict[str, Any]:
         """The keywords of :func:`fit_constrained` that hold circles and junctions on the mirror axis."""
-        sym = self.opt.get("symmetry")
+        sym = self.symmetry
         if sym is None:
             return {}
         return {
@@ -501,6 +510,28 @@ class _Optimizer:
             "axis_junctions": [i for i, n in enumerate(node_list) if n in sym.nodes],
             "stall": SYMMETRY_FIT_STALL,
         }
+
+    def _fits(
+        self,
+        window: WindowFit,
+        groups: dict[int, _Group],
+        seeds: Mapping[int, tuple[np.ndarray, float, int | None]],
+        fixed: set[int],
+    ) -> tuple[dict[int, _Fit], dict[int, np.ndarray]]:
+        """The new fits (the window's free groups, and lines whose junctions moved) and displacements."""
+        disp = window.displacements()
+        if not self.options.connectivity:
+            disp = {n: np.zeros(2) for n in window.junctions}
+        fits = {}
+        moved = window.free_junctions
+        for gid in window.circles:
+            line_moved = seeds[gid][2] is None and bool(moved & set(self.constrained_nodes(groups[gid])))
+            if gid in fixed and not line_moved:
+                continue
+            _, r, k = seeds[gid]
+            center = window.center(gid)
+            fits[gid] = _Fit(center, r, k, self.arc_for(groups[gid], center, r, k, lambda n: disp[n]))
+        return fits, disp
 
     def initial_fit(self) -> None:
         """A^0: golden circles for every group, fitted jointly (Sec. 5.3)."""
@@ -514,7 +545,16 @@ class _Optimizer:
                 _hold(held, self.groups[gid], self.constrained_nodes(self.groups[gid]))
         self.check_reach(seeds)
         nodes = sorted(self.node_groups())
-        out = self.solve(dict(self.groups), seeds, list(self.groups), nodes, len(self.groups), len(nodes))
+        out = self.solve(
+            dict(self.groups),
+            seeds,
+            self.node_groups(),
+            changed=list(self.groups),
+            free_nodes=nodes,
+            fixed=set(),
+            n_groups_total=len(self.groups),
+            n_junctions_total=len(nodes),
+        )
         self.stats["global_solves"] += 1
         if out is None:
             out = self.recover(seeds)
@@ -556,8 +596,17 @@ class _Optimizer:
         for part in self.parts():
             while True:
                 groups = {g: self.groups[g] for g in part}
-                nodes = sorted(self.node_groups(groups))
-                out = self.solve(groups, seeds, part, nodes, n_total, max(len(self.node_groups()), 1))
+                at = self.node_groups(groups)
+                out = self.solve(
+                    groups,
+                    seeds,
+                    at,
+                    changed=part,
+                    free_nodes=sorted(at),
+                    fixed=set(),
+                    n_groups_total=n_total,
+                    n_junctions_total=max(len(self.node_groups()), 1),
+                )
                 self.stats["global_solves"] += 1
                 if out is not None:
                     fits.update(out[0])
@@ -618,7 +667,7 @@ class _Optimizer:
     def candidates(self) -> list[tuple[int, int, int]]:
         """Mergeable pairs (a, b, node): two groups with a common end (Sec. 5.2)."""
         out = []
-        sym = self.opt.get("symmetry")
+        sym = self.symmetry
         for node, gids in sorted(self.end_groups().items()):
             if sym is not None and node in sym.nodes:
                 continue  # an arc never runs on through the mirror axis: its mirror image would cross it
@@ -650,39 +699,53 @@ class _Optimizer:
         seeds[-1] = self.golden(merged, held=held)
 
         merged_nodes = set(self.constrained_nodes(merged))
-        global_solve = not self.opt["localized"]
+        global_solve = not self.options.localized
         out = None
         if not global_solve:
             # The window: the new circle and its neighbours, with the new circle's
             # junctions free (Sec. 5.4). If the fixed junctions leave no solution,
             # a second ring (the neighbours' junctions and their circles) is freed
-            # before the global problem is solved.
-            free_nodes = set(merged_nodes)
-            for _ring in range(2):
-                free = sorted({g for n in free_nodes for g in node_groups_after.get(n, [])} - {-1})
-                window = {-1: merged, **{g: after[g] for g in free}}
-                movable = [-1, *free] if self.opt["connectivity"] else [-1]
-                out = self.solve(window, seeds, movable, sorted(free_nodes), n_groups, nj_after)
-                if out is not None:
-                    break
-                free_nodes |= {n for g in free for n in self.constrained_nodes(after[g])}
+            # before the global problem is solved. Without the connectivity
+            # constraint only the new circle moves.
+            out = self.solve(
+                after,
+                seeds,
+                node_groups_after,
+                changed=[-1],
+                free_nodes=sorted(merged_nodes),
+                fixed=set() if self.options.connectivity else set(after) - {-1},
+                n_groups_total=n_groups,
+                n_junctions_total=nj_after,
+                rings=2,
+                order=lambda g: (g != -1, g),
+            )
             if out is None:
                 self.stats["local_failed"] += 1
                 # A merged segment whose pixels lie on average more than T from
                 # their own best golden circle, constraints aside, cannot give an
                 # arc within the tolerance: reject it without the costly global
                 # solve (measured: such windows fail globally too).
-                if self.golden_error(merged) > self.opt["tolerance"]:
+                if self.golden_error(merged) > self.options.tolerance:
                     self.stats["rejected_hopeless"] += 1
                     return None
                 global_solve = True
         if global_solve:
             self.stats["global_solves"] += 1
-            out = self.solve(after, seeds, list(after), sorted(node_groups_after), n_groups, nj_after)
+            out = self.solve(
+                after,
+                seeds,
+                node_groups_after,
+                changed=list(after),
+                free_nodes=sorted(node_groups_after),
+                fixed=set(),
+                n_groups_total=n_groups,
+                n_junctions_total=nj_after,
+                order=lambda g: (g == -1, g),  # the merged group last, as in ``after``
+            )
             if out is None:
                 return None
         fits, disp = out
-        cap = self.opt.get("max_arc_distance")
+        cap = self.options.arc_bound
         if cap is not None and fits[-1].arc.frechet > cap:
             self.stats["rejected_far_arc"] += 1
             return None
@@ -696,7 +759,7 @@ class _Optimizer:
         window_ids = frozenset({a, b} | (set(fits) - {-1}))
 
         redundant = 0
-        if self.opt["avoid_intersections"]:
+        if self.options.avoid_intersections:
             redundant = self._redundant(after, fits, disp, node_groups_after)
         return _Outcome(
             pair, merged, fits, disp, window_ids, delta_f, delta_d, nj_after - len(old_nodes), redundant, global_solve
@@ -745,50 +808,68 @@ class _Optimizer:
         return gid
 
     # ----------------------------------------------------------------- levels
-    def abstraction(self, level: int, params: dict[str, Any]) -> Abstraction:
-        """The current state as a frozen :class:`Abstraction` A^t."""
+    def abstraction(self, level: int, params: Mapping[str, Any]) -> Abstraction:
+        """The current state as a frozen :class:`Abstraction` A^t, with its ladder and topology."""
         order = sorted(self.groups, key=lambda g: min(self.groups[g].segments))
         index = {g: i for i, g in enumerate(order)}
         node_groups = self.node_groups()
         nodes = sorted(node_groups)
+        junction = {n: i for i, n in enumerate(nodes)}
+        points = np.array([self.graph.junctions[n] + self.disp[n] for n in nodes]).reshape(-1, 2)
+        arcs = tuple(self.fits[g].arc.arc for g in order)
+        topology = tuple(
+            self.arc_junctions(arc, [junction[n] for n in self.constrained_nodes(self.groups[g])], points)
+            for g, arc in zip(order, arcs, strict=True)
+        )
         return Abstraction(
             level=level,
-            arcs=tuple(self.fits[g].arc.arc for g in order),
+            arcs=arcs,
             arc_segments=tuple(self.groups[g].segments for g in order),
-            junctions=np.array([self.graph.junctions[n] + self.disp[n] for n in nodes]).reshape(-1, 2),
+            junctions=points,
             junction_arcs=tuple(tuple(sorted(index[g] for g in node_groups[n])) for n in nodes),
             similarity=float(self.similarity()),
             bias=float(self.ladder.bias),
-            tolerance=float(self.opt["tolerance"]),
+            tolerance=float(self.options.tolerance),
             width=self.graph.width,
             height=self.graph.height,
             params=params,
+            ladder=self.ladder,
+            arc_junctions=topology,
+            junction_nodes=tuple(nodes),
+            connected=self.options.connectivity,
         )
+
+    @staticmethod
+    def arc_junctions(arc: Any, path: Sequence[int], points: np.ndarray) -> ArcJunctions:
+        """Which of a group's junctions (``path``: indices into ``points``, in path order) are at the arc's ends.
+
+        The arc was extracted between (the projections on its circle of) the
+        junctions of its path (:meth:`arc_for`): an end is at the junction whose
+        projection it is, to ``JUNCTION_TOLERANCE``; an end at none (a released
+        junction's projection) is free. The others are passed through, in path order.
+        """
+        c = arc.circle
+        ends: list[int | None] = []
+        for end in (arc.start, arc.end):
+            best, gap = None, math.inf
+            for j in path:
+                d = float(np.hypot(*(c.point_at(c.angle_of(points[j])) - end)))
+                if d <= JUNCTION_TOLERANCE and d < gap:
+                    best, gap = j, d
+            ends.append(best)
+        return ArcJunctions(ends[0], ends[1], tuple(j for j in path if j not in ends))
 
 
 # --------------------------------------------------------------------------- the entry point
 def optimize(
     graph: SegmentGraph,
+    options: Options | None = None,
     *,
-    tolerance: float = TOLERANCE,
-    bias: float | None = None,
-    exponents: Sequence[int] | None = None,
-    rounding: str = "nearest",
-    ladder: str = "phi",
-    unit: float | None = None,
-    connectivity: bool = True,
-    inner_junctions: bool = True,
-    merging: bool = True,
-    avoid_intersections: bool = True,
-    localized: bool = True,
-    simplify: bool = True,
-    lines: bool = False,
-    arc_selection: str = "frechet",
-    max_arc_distance: float | None = None,
     lock_mask: np.ndarray | None = None,
     progress: ProgressCallback | None = None,
-    params: dict[str, Any] | None = None,
+    params: Mapping[str, Any] | None = None,
     symmetry: Any = None,
+    **settings: Any,
 ) -> Progression:
     """Run the progressive optimization of Sec. 5.2 on a segment graph.
 
@@ -796,61 +877,16 @@ def optimize(
     ----------
     graph : SegmentGraph
         The line-segment graph L = {S, J}.
-    tolerance : float
-        T of Eqn. 1, px (> 0): merging stops before E^s would exceed it.
-    bias : float, optional
-        The ladder bias sigma in [0, 1) (Eqn. 10); default: Eqn. 14 on the
-        longest segment after simplification.
-    exponents : sequence of int, optional
-        Restrict the ladder exponents k to these (Sec. 7, Fig. 15).
-    rounding : {"nearest", "ceil"}
-        How a fitted radius is snapped to the ladder: to the nearest rung in
-        log space (default), or up as in the paper's Eqn. 12 (see
-        :class:`~img2logo.golden_ladder.GoldenLadder`).
-    ladder : {"phi", "fibonacci"}
-        The radii: ``phi ** (k + bias)`` (the paper, Eqn. 10) or ``unit * F(k)``
-        with F the Fibonacci numbers, the grid designers draw (Fig. 2b, 3a;
-        :class:`~img2logo.golden_ladder.FibonacciLadder`). A Fibonacci run
-        records ``ladder`` and ``unit`` in every level's ``params`` (the
-        contract's Fibonacci keys) and has bias 0.0.
-    unit : float, optional
-        The Fibonacci ladder's unit, px (only with ``ladder="fibonacci"``);
-        default: :func:`~img2logo.golden_ladder.unit_from_radius` on the longest
-        segment after simplification, the largest unit <= 1 px that puts its
-        radius on a rung (the analogue of Eqn. 14).
-    connectivity : bool
-        The connectivity constraint of Eqn. 13 (off: Fig. 11c).
-    inner_junctions : bool
-        Keep junctions of valence >= 3 inside merged segments as constraints
-        (off: only the start and end junctions are, Fig. 11d).
-    merging : bool
-        Merge segments at all (off: only A^0, Fig. 11e).
-    avoid_intersections : bool
-        Reject merges that leave a redundant intersection (off: Fig. 12c).
-    localized : bool
-        Refit only the merged circle and its neighbours (Sec. 5.4, Table 3).
-    simplify : bool
-        Line-segment simplification before the loop (Sec. 5.4, Table 3).
-    lines : bool
-        Let nearly straight segments be straight lines instead of arcs of huge
-        circles (the paper's future work, Sec. 9, Fig. 20b): a segment whose
-        pixels are all within ``LINE_TOLERANCE`` of its chord. Lines are arcs
-        with :attr:`~img2logo.geometry.Arc.is_line`; their circles are off the
-        ladder, and the writers write them as lines, apart from the circles.
-    arc_selection : {"frechet", "sum_of_squares"}
-        How the arc is chosen among the candidates on a circle (Fig. 9).
-    max_arc_distance : float, optional
-        Beyond the paper: a merge whose new arc is farther than this (discrete
-        Fréchet distance) from the pixels it abstracts is rejected, px. E^s is
-        a mean over the arcs, so without it one arc may stray several T from
-        its line (across an ear of a photo's outline) while the mean stays
-        within T. Default None: no bound (the paper); photos use
-        ``PHOTO_MAX_ARC_FACTOR * tolerance`` (:func:`img2logo.abstract`).
+    options : Options, optional
+        The settings and switches (:class:`~img2logo.options.Options`: the
+        tolerance T, the ladder, the ablations of Sec. 6, ...); default the
+        defaults. Its feature-line settings (``kind``, ``rdp_tolerance``, ...)
+        are not used here: the graph is made.
     lock_mask : ndarray of bool, shape (H, W), optional
         Segments mostly inside it are never merged (Sec. 7, Fig. 16).
     progress : callable, optional
         Called as ``progress(t, n_arcs, similarity)`` after every level.
-    params : dict, optional
+    params : mapping, optional
         Extra entries recorded in every level's ``params``.
     symmetry : img2logo.symmetry.HalfAxis, optional
         For a symmetric run (:func:`img2logo.symmetry.optimize_symmetric`): the
@@ -858,55 +894,36 @@ def optimize(
         the vertical line ``symmetry.x``; junctions ``symmetry.nodes`` stay on
         it, circles ending square to it are centred on it, and no arc runs on
         through it (Eqn. 13 with the symmetry constraints).
+    **settings
+        Fields of :class:`~img2logo.options.Options` (``tolerance=7.0``,
+        ``merging=False``, ...), replacing those of ``options``.
 
     Returns
     -------
     Progression
+        Every level records :meth:`Options.record` in its ``params`` (with
+        ``locked_segments``, ``params``, and the ``bias``, or Fibonacci ``unit``,
+        used), and carries its ladder: phi with the bias of Eqn. 14 (or the one
+        given), or the Fibonacci grid with its unit (bias 0.0).
+
+    Raises
+    ------
+    InvalidParameterError
+        On an unknown setting or a value out of range (before any work), an
+        empty graph, or a lock mask of the wrong shape.
     """
-    tolerance = check_positive(tolerance, "tolerance")
-    check_choice(arc_selection, "arc_selection", ("frechet", "sum_of_squares"))
-    check_choice(ladder, "ladder", ("phi", "fibonacci"))
+    opts = Options.from_keywords(settings, base=options) if settings or options is None else options
+    if not isinstance(opts, Options):
+        raise InvalidParameterError(f"options must be an Options value, got {type(opts).__name__}")
     if not isinstance(graph, SegmentGraph):
         raise InvalidParameterError(f"graph must be a SegmentGraph, got {type(graph).__name__}")
     if graph.n_segments == 0:
         raise InvalidParameterError("the segment graph has no segments: nothing to abstract (no feature lines found)")
     locked = _locked_segments(graph, lock_mask)
-    ladder_exponents = None if exponents is None else tuple(int(k) for k in exponents)
-    if ladder_exponents is not None and not ladder_exponents:
-        raise InvalidParameterError("exponents must not be empty")
-    if max_arc_distance is not None:
-        max_arc_distance = check_positive(max_arc_distance, "max_arc_distance")
-    options = {
-        "tolerance": tolerance,
-        "max_arc_distance": max_arc_distance,
-        "connectivity": bool(connectivity),
-        "inner_junctions": bool(inner_junctions),
-        "avoid_intersections": bool(avoid_intersections),
-        "localized": bool(localized),
-        "lines": bool(lines),
-        "arc_selection": arc_selection,
-        "symmetry": symmetry,
-    }
-    record = {
-        "tolerance": tolerance,
-        "bias_given": bias,
-        "exponents": list(ladder_exponents) if ladder_exponents else None,
-        "rounding": rounding,
-        **({"ladder": "fibonacci", "unit_given": unit} if ladder == "fibonacci" else {}),
-        "connectivity": bool(connectivity),
-        "inner_junctions": bool(inner_junctions),
-        "merging": bool(merging),
-        "avoid_intersections": bool(avoid_intersections),
-        "localized": bool(localized),
-        "simplify": bool(simplify),
-        "lines": bool(lines),
-        "arc_selection": arc_selection,
-        "locked_segments": int(locked.sum()),
-        **({} if max_arc_distance is None else {"max_arc_distance": max_arc_distance}),
-        **(params or {}),
-    }
+    record = {**opts.record(), "locked_segments": int(locked.sum()), **(params or {})}
+    ladder, bias, unit, simplify = opts.ladder, opts.bias, opts.unit, opts.simplify
 
-    opt = _Optimizer(graph, options)
+    opt = _Optimizer(graph, opts, symmetry)
     timings: dict[str, float] = {}
     start = time.perf_counter()
     groups = [
@@ -921,7 +938,7 @@ def optimize(
     if (unit if ladder == "fibonacci" else bias) is None:
         probe = _simplify(opt, groups, opt.free_error) if simplify else groups
         longest = opt.free_circle(max(probe, key=lambda g: _length(g.points)))[1]
-    opt.ladder = make_ladder(ladder, longest, bias=bias, unit=unit, exponents=ladder_exponents, rounding=rounding)
+    opt.ladder = make_ladder(ladder, longest, bias=bias, unit=unit, exponents=opts.exponents, rounding=opts.rounding)
     if simplify:
         groups = _simplify(opt, groups, opt.golden_error)
     for g in sorted(groups, key=lambda g: min(g.segments)):
@@ -941,8 +958,8 @@ def optimize(
 
     start = time.perf_counter()
     stopped = "merging off"
-    if merging:
-        stopped = _loop(opt, levels, record, tolerance, progress)
+    if opts.merging:
+        stopped = _loop(opt, levels, record, opts.tolerance, progress)
     timings["loop"] = time.perf_counter() - start
     return Progression(tuple(levels), float(opt.ladder.bias), simplified, stopped, dict(opt.stats), timings, opt.ladder)
 
@@ -993,7 +1010,7 @@ def _loop(
         if best_error > tolerance:
             return "tolerance"
         outcome = cache[best]
-        if opt.opt["avoid_intersections"]:
+        if opt.options.avoid_intersections:
             now = opt.recheck_redundant(outcome)
             if now:
                 cache[best] = dataclasses.replace(outcome, redundant=now)
@@ -1020,7 +1037,7 @@ def _simplify(opt: _Optimizer, groups: list[_Group], error: Callable[[_Group], f
     to the progressive loop. Returns the simplified groups.
     """
     valence = opt.graph.valence
-    axis_nodes = opt.opt["symmetry"].nodes if opt.opt.get("symmetry") is not None else frozenset()
+    axis_nodes = opt.symmetry.nodes if opt.symmetry is not None else frozenset()
     current = list(groups)
     scores: dict[tuple[tuple[int, ...], tuple[int, ...]], tuple[float, _Group]] = {}
     while True:

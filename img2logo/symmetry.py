@@ -56,6 +56,7 @@ from .constants import (
 )
 from .errors import InvalidParameterError
 from .geometry import TAU, Abstraction, Arc, Circle
+from .options import check_symmetry_option  # the option is checked with the others
 from .segment_graph import SegmentGraph
 
 __all__ = [
@@ -148,37 +149,6 @@ class SymmetryChoice:
     axis: Axis | None
     best: Axis
     description: str
-
-
-def check_symmetry_option(value: object) -> str | None:
-    """The ``symmetry`` option checked: None for ``"none"``, else its canonical text.
-
-    Accepts ``"none"``, ``"auto"``, ``"vertical"``, ``"horizontal"`` or an angle in
-    degrees (a number, or a string of one), the direction of the axis from +x
-    towards +y (90 is upright).
-
-    Raises
-    ------
-    InvalidParameterError
-        For anything else.
-    """
-    if value is None or (isinstance(value, str) and value.strip().lower() == "none"):
-        return None
-    if isinstance(value, str) and value.strip().lower() in ("auto", "vertical", "horizontal"):
-        return value.strip().lower()
-    if isinstance(value, bool):
-        raise InvalidParameterError(
-            f"symmetry must be auto, none, vertical, horizontal or an angle in degrees, got {value!r}"
-        )
-    try:
-        angle = float(value)  # type: ignore[arg-type]
-    except (TypeError, ValueError):
-        raise InvalidParameterError(
-            f"symmetry must be auto, none, vertical, horizontal or an angle in degrees, got {value!r}"
-        ) from None
-    if not math.isfinite(angle):
-        raise InvalidParameterError(f"symmetry angle must be a finite number of degrees, got {value!r}")
-    return f"{angle:g}"
 
 
 def _line_pixels(lines: np.ndarray) -> np.ndarray:
@@ -547,7 +517,7 @@ def _arc_to_image(arc: Arc, half: HalfGraph, mirrored: bool) -> Arc:
         cx, theta0, sweep = 2.0 * half.constraints.x - cx, math.pi - theta0, -sweep
     centre = half.to_image(np.array([cx, c.cy]))
     circle = Circle(float(centre[0]), float(centre[1]), c.r, c.k)
-    return Arc(circle, math.remainder(theta0 - half.rotation, TAU), sweep)
+    return type(arc)(circle, math.remainder(theta0 - half.rotation, TAU), sweep)  # a line stays a line
 
 
 def mirror_level(level: Abstraction, half: HalfGraph, record: Mapping[str, Any] | None = None) -> Abstraction:
@@ -623,6 +593,8 @@ def mirror_level(level: Abstraction, half: HalfGraph, record: Mapping[str, Any] 
         width=level.width,
         height=level.height,
         params=params,
+        ladder=level.ladder,
+        connected=level.connected,
     )
 
 

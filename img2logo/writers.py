@@ -41,6 +41,7 @@ from .contract import from_document, to_document
 from .errors import InvalidParameterError
 from .fills import Fill, check_fills
 from .geometry import Abstraction, Circle
+from .golden_ladder import FibonacciLadder
 from .plotting import ARC_COLOR, CIRCLE_COLOR, default_stroke_width, plot_abstraction, plot_segment_graph
 from .svg_path import arc_path, svg_number
 from .symmetry import axis_segment
@@ -92,7 +93,7 @@ def write_json(
     path: str | os.PathLike[str],
     params: Mapping[str, Any] | None = None,
     *,
-    check: bool = True,
+    check: bool = False,
     fills: Sequence[Fill] | None = None,
 ) -> Path:
     """Write the ``img2logo.abstraction/1`` document of ``abstraction`` (see :func:`img2logo.contract.to_document`).
@@ -144,8 +145,8 @@ def to_svg(
     circles = abstraction.circles
     index = {c: i for i, c in enumerate(circles)}
     n = svg_number
-    if abstraction.params.get("ladder") == "fibonacci":
-        grid = f"unit*F(k) (Fibonacci grid, unit={float(abstraction.params['unit']):.6g} px)"
+    if isinstance(abstraction.ladder, FibonacciLadder):
+        grid = f"unit*F(k) (Fibonacci grid, unit={float(abstraction.ladder.unit):.6g} px)"
     else:
         grid = f"phi**(k+bias); bias={float(abstraction.bias):.6g}"
     desc = (

@@ -150,7 +150,12 @@ def test_tangent_circles_inside_each_other():
 def test_dangling_and_bridging_arcs_bound_nothing():
     c, d = golden(100.0, 100.0, 8), golden(200.0, 100.0, 5)
     p, q = c.point_at(0.0), d.point_at(math.pi)  # c's rightmost and d's leftmost points
-    bridge = Arc(Circle(0.5 * (p[0] + q[0]), 100.0, 0.5 * (q[0] - p[0])), math.pi, math.pi)  # p to q, over the top
+    half = 0.5 * (q[0] - p[0])
+    k = math.ceil(math.log(half) / math.log(PHI) - BIAS)
+    r = PHI ** (k + BIAS)
+    o = Circle(0.5 * (p[0] + q[0]), 100.0 + math.sqrt(r * r - half * half), r, k)  # a golden circle through p, q
+    t0, t1 = float(o.angle_of(p)), float(o.angle_of(q))
+    bridge = Arc(o, t0, float(np.mod(t1 - t0, TAU)))  # p to q, over the top
     bottom = c.point_at(math.pi / 2)
     t = golden(bottom[0], bottom[1] + PHI ** (5 + BIAS), 5)
     tail = Arc(t, -math.pi / 2, 1.0)  # starts on c (tangent to it) and hangs outside

@@ -424,3 +424,49 @@ def test_unrefined_hyper_fit_is_close_on_pixel_arcs():
     a, b = fit_circle(pts), fit_circle(pts, refine=False)
     assert abs(a.radius - b.radius) < 0.5
     assert np.hypot(*(a.center - b.center)) < 0.5
+
+
+# --------------------------------------------------------------------------- the window of a local refit
+def _chain_of_three():
+    """Circles 0, 1, 2 in a row, r = 10; junction 0 joins circles 0 and 1, junction 1 circles 1 and 2.
+
+    Circle 0's points lie on a circle moved 1 px up: only the fit can say where it goes.
+    """
+    radii = {0: 10.0, 1: 10.0, 2: 10.0}
+    centers = {0: np.array([0.0, 0.0]), 1: np.array([20.0, 0.0]), 2: np.array([40.0, 0.0])}
+    t = np.linspace(-1.0, 1.0, 21)
+    points = {
+        0: np.stack([10 * np.cos(t + math.pi), 10 * np.sin(t + math.pi) - 1.0], axis=1),
+        1: np.stack([20 + 10 * np.cos(t - math.pi / 2), 10 * np.sin(t - math.pi / 2)], axis=1),
+        2: np.stack([40 + 10 * np.cos(t), 10 * np.sin(t)], axis=1),
+    }
+    circle_junctions = {0: (0,), 1: (0, 1), 2: (1,)}
+    junction_circles = {0: [0, 1], 1: [1, 2]}
+    junctions = np.array([[10.0, 0.0], [30.0, 0.0]])
+    return points, radii, centers, circle_junctions, junction_circles, junctions
+
+
+def test_window_holds_the_junctions_beyond_the_first_ring():
+    args = _chain_of_three()
+    w = cf.fit_window(*args, changed=[0], free_junctions=[0])
+    assert w.ok and w.circles == (0, 1) and w.junctions == (0, 1) and w.free_junctions == {0}
+    d = w.displacements()
+    np.testing.assert_array_equal(d[1], [0.0, 0.0])  # held: the boundary of the window (Sec. 5.4)
+    for c in w.circles:  # every circle still passes through its junctions
+        for n in args[3][c]:
+            assert math.dist(w.center(c), args[5][n] + d[n]) == pytest.approx(10.0, abs=1e-6)
+    assert w.center(0)[1] < -0.1  # circle 0 followed its points up
+
+
+def test_window_grows_by_a_ring_when_it_does_not_solve_and_keeps_fixed_circles():
+    args = _chain_of_three()
+    failed = cf.fit_window(*args, changed=[0], free_junctions=[0], max_violation=-1.0)  # never good enough
+    assert not failed.ok and failed.circles == (0, 1, 2) and failed.free_junctions == {0, 1}
+    one = cf.fit_window(*args, changed=[0], free_junctions=[0], max_violation=-1.0, rings=1)
+    assert one.circles == (0, 1)
+    fixed = cf.fit_window(*args, changed=[0], free_junctions=[0], fixed={1})
+    np.testing.assert_array_equal(fixed.center(1), [20.0, 0.0])
+    ordered = cf.fit_window(*args, changed=[0], free_junctions=[0], order=lambda c: -c)
+    assert ordered.circles == (1, 0)
+    empty = cf.fit_window(*args, changed=[], free_junctions=[])
+    assert empty.ok and empty.fit is None and empty.displacements() == {}

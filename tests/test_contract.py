@@ -72,9 +72,8 @@ def test_params_made_json_safe():
 
 def test_circle_without_k_cannot_be_written():
     c = Circle(50.0, 50.0, 10.0)
-    a = make_abstraction(arcs=(Arc(c, 0.0, 1.0),), arc_segments=((0,),), junctions=np.zeros((0, 2)), junction_arcs=())
     with pytest.raises(InvalidParameterError, match=r"circle 0 \(centre \(50, 50\), r=10\) has no ladder exponent k"):
-        contract.to_document(a)
+        make_abstraction(arcs=(Arc(c, 0.0, 1.0),), arc_segments=((0,),), junctions=np.zeros((0, 2)), junction_arcs=())
 
 
 @pytest.mark.parametrize(
@@ -133,14 +132,18 @@ def test_arc_passing_through_a_junction_is_not_listed():
 
 def test_listed_arc_off_its_junction_is_reported():
     a = make_abstraction()
-    b = make_abstraction(junctions=np.array([a.junctions[0] + [0.0, 0.5]]))
-    with pytest.raises(InvalidParameterError, match=r"junction 0: .* px off the circle 0 of arc 0"):
-        contract.to_document(b)
-    doc = contract.to_document(b, check=False)
-    with pytest.raises(InvalidParameterError, match=r"junction 0: .* off the circle"):
-        contract.validate_document(doc)
+    # The abstraction refuses it when it is made: such a document is never written.
+    with pytest.raises(InvalidParameterError, match=r"junction 0: .* px off the circle of arc 0"):
+        make_abstraction(junctions=np.array([a.junctions[0] + [0.0, 0.5]]))
     with pytest.raises(InvalidParameterError, match=r"junction 0: arc index 7 is out of range"):
-        contract.to_document(make_abstraction(junction_arcs=((0, 7),)))
+        make_abstraction(junction_arcs=((0, 7),))
+    # A reader checks a document that was written elsewhere.
+    doc = contract.to_document(a, check=True)
+    doc["junctions"][0]["y"] += 0.5
+    with pytest.raises(InvalidParameterError, match=r"junction 0: .* px off the circle 0 of arc 0"):
+        contract.validate_document(doc)
+    with pytest.raises(InvalidParameterError, match=r"junction 0: .* off the circle"):
+        contract.from_document(doc)
 
 
 def test_invariant_radius():
@@ -270,24 +273,23 @@ def test_without_jsonschema(monkeypatch):
 
 
 def test_fibonacci_ladder():
+    from img2logo.golden_ladder import FibonacciLadder
+
     unit = 3.0
     c1, c2 = Circle(50.0, 50.0, unit * 5, 5), Circle(50.0, 50.0, unit * 8, 6)
-    a = make_abstraction(
-        arcs=(Arc(c1, 0.0, 1.0), Arc(c2, 0.0, -1.0)),
-        arc_segments=((0,), (1,)),
-        junctions=np.zeros((0, 2)),
-        junction_arcs=(),
-        params={"ladder": "fibonacci", "unit": unit},
-    )
+    fields = dict(arc_segments=((0,), (1,)), junctions=np.zeros((0, 2)), junction_arcs=(), bias=0.0)
+    a = make_abstraction(arcs=(Arc(c1, 0.0, 1.0), Arc(c2, 0.0, -1.0)), ladder=FibonacciLadder(unit), **fields)
     doc = contract.to_document(a)
     assert doc["ladder"] == "fibonacci" and doc["unit"] == unit
     contract.validate_document(doc)
-    assert contract.to_document(contract.from_document(doc)) == doc
+    back = contract.from_document(doc)
+    assert back.ladder == FibonacciLadder(unit) and contract.to_document(back) == doc
     doc["circles"][1]["k"] = 7
     with pytest.raises(InvalidParameterError, match=r"^circle 1: r=24.0 is not unit\*F\(k\) = 39 \(k=7, unit=3.0\)"):
         contract.validate_document(doc)
-    with pytest.raises(InvalidParameterError, match="params\\['ladder'\\] must be 'phi' or 'fibonacci'"):
-        contract.to_document(a, {"ladder": "lucas"})
+    # The ladder is the abstraction's: a Fibonacci radius is no phi radius.
+    with pytest.raises(InvalidParameterError, match=r"^circle 0: r=15.0 is not phi\*\*\(k\+bias\)"):
+        make_abstraction(arcs=(Arc(c1, 0.0, 1.0), Arc(c2, 0.0, -1.0)), **fields)
 
 
 def test_schema_is_read_from_the_package():
@@ -304,7 +306,7 @@ def _unconnected(connectivity: bool) -> Abstraction:
     a = make_abstraction()
     arcs = list(a.arcs)
     arcs[1] = Arc(arcs[1].circle, arcs[1].theta0 - 0.05, arcs[1].sweep)
-    return make_abstraction(arcs=tuple(arcs), params={"connectivity": connectivity})
+    return make_abstraction(arcs=tuple(arcs), params={"connectivity": connectivity}, connected=connectivity)
 
 
 def test_unconnected_arc_ends_are_their_own_junctions():
@@ -316,9 +318,9 @@ def test_unconnected_arc_ends_are_their_own_junctions():
         {"x": float(p[0]), "y": float(p[1]), "arcs": [0]},
         {"x": pytest.approx(start[0], abs=1e-9), "y": pytest.approx(start[1], abs=1e-9), "arcs": [1]},
     ]
-    # With the connectivity constraint on, an arc end off its junction is a bug: never written.
-    with pytest.raises(InvalidParameterError, match=r"junction 0: arc 1 has no end point"):
-        contract.to_document(_unconnected(True))
+    # With the connectivity constraint on, an arc end off its junction is a bug: never made.
+    with pytest.raises(InvalidParameterError, match=r"junction 0.* arc 1"):
+        _unconnected(True)
 
 
 def test_no_connectivity_result_is_a_valid_document(tmp_path):

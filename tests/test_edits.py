@@ -15,7 +15,8 @@ from img2logo import edits
 from img2logo.constants import PHI
 from img2logo.contract import to_document, validate_document
 from img2logo.errors import FitError, InvalidParameterError
-from img2logo.geometry import Abstraction, Arc, Circle
+from img2logo.geometry import Abstraction, Arc, Circle, line_arc
+from img2logo.golden_ladder import FibonacciLadder, GoldenLadder
 
 pytest.importorskip("jsonschema")
 
@@ -168,7 +169,7 @@ def test_delete_arc_fish(fish: Abstraction) -> None:
     # Arc 4 shared its two junctions with arcs 3 and 5: both stay, now free ends.
     assert len(b.junctions) == len(fish.junctions)
     assert len(free_ends(b)) == len(free_ends(fish)) + 2
-    assert b.params["edits"] == [f"delete_arc({i})"]
+    assert b.params["edits"] == (f"delete_arc({i})",)
     assert "edits" not in fish.params
     assert_unchanged(fish, snap)
 
@@ -195,7 +196,10 @@ def test_delete_arc_renumbers(lens: Abstraction) -> None:
 
 def test_history_accumulates(lens: Abstraction) -> None:
     b = edits.change_rung(edits.delete_arc(lens, 1), 0, +1)
-    assert b.params["edits"] == ["delete_arc(1)", "change_rung(0, delta=1)"]
+    assert b.params["edits"] == (
+        "delete_arc(1)",
+        "change_rung(0, delta=1)",
+    )
     assert b.params["kind"] == "drawing"
     assert lens.params == {"kind": "drawing"}
     assert (b.level, b.similarity, b.tolerance, b.width, b.height) == (3, 1.5, 5.0, 260, 200)
@@ -217,7 +221,7 @@ def test_add_arc_other_side(lens: Abstraction) -> None:
     assert end_junctions(b, 2) == (0, 1)
     assert b.junction_arcs == ((0, 1, 2), (0, 1, 2))
     assert b.arc_segments[2] == ()
-    assert b.params["edits"] == ["add_arc(circle=0, j0=0, j1=1, sweep_sign=1)"]
+    assert b.params["edits"] == ("add_arc(circle=0, j0=0, j1=1, sweep_sign=1)",)
     assert_unchanged(lens, snap)
     # The same arc again, either way round, is refused.
     with pytest.raises(InvalidParameterError, match=r"^arc 0 already runs on circle 0 between junctions 0 and 1"):
@@ -296,7 +300,7 @@ def test_connect_gill(fish: Abstraction) -> None:
     assert abs(new.sweep) <= math.pi
     assert end_junctions(b, len(b.arcs) - 1) == (j0, j1)
     assert j0 not in free_ends(b) and j1 not in free_ends(b)
-    assert b.params["edits"] == [f"connect(j0={j0}, j1={j1}, k={c.k}, side=1)"]
+    assert b.params["edits"] == (f"connect(j0={j0}, j1={j1}, k={c.k}, side=1)",)
     np.testing.assert_array_equal(b.junctions, fish.junctions)
     assert_unchanged(fish, snap)
 
@@ -348,16 +352,16 @@ def test_connect_respects_exponents(lens: Abstraction) -> None:
     """With a restricted ladder (Sec. 7, Fig. 15) the default rung is the smallest allowed one that fits."""
     open_ = edits.delete_arc(lens, 1)
     d = math.dist(*open_.junctions)
-    b = edits.connect(dataclasses.replace(open_, params={"exponents": [3, 12]}), 0, 1)
+    b = edits.connect(dataclasses.replace(open_, ladder=GoldenLadder(BIAS, (3, 12))), 0, 1)
     check_invariants(b)
     assert b.arcs[-1].circle.k == 12
     k_min = edits.connect(open_, 0, 1).arcs[-1].circle.k
     with pytest.raises(
         InvalidParameterError,
-        match=rf"^no rung among params\['exponents'\] \[2, 3\] can connect junctions 0 and 1 \({d:.6g} px apart\): "
+        match=rf"^no rung among the ladder's exponents \[2, 3\] can connect junctions 0 and 1 \({d:.6g} px apart\): "
         rf"it needs k >= {k_min}$",
     ):
-        edits.connect(dataclasses.replace(open_, params={"exponents": [3, 2]}), 0, 1)
+        edits.connect(dataclasses.replace(open_, ladder=GoldenLadder(BIAS, (3, 2))), 0, 1)
 
 
 # --------------------------------------------------------------------------- move_circle
@@ -387,7 +391,7 @@ def test_move_circle_fish(fish: Abstraction) -> None:
         assert abs(x.sweep - y.sweep) < 1.0
     unchanged = sum(x is y for x, y in zip(b.arcs, fish.arcs, strict=True))
     assert unchanged >= len(fish.arcs) - 5
-    assert b.params["edits"] == [f"move_circle({ci}, ({target[0]!r}, {target[1]!r}))"]
+    assert b.params["edits"] == (f"move_circle({ci}, ({target[0]!r}, {target[1]!r}))",)
     assert_unchanged(fish, snap)
 
 
@@ -472,7 +476,7 @@ def test_change_rung_fish(fish: Abstraction, delta: int) -> None:
         new = b.circles[ci]
         assert new.k == old.k + delta
         assert new.r == pytest.approx(old.r * PHI**delta, rel=1e-12)
-        assert b.params["edits"] == [f"change_rung({ci}, delta={delta})"]
+        assert b.params["edits"] == (f"change_rung({ci}, delta={delta})",)
         assert [c.k for i, c in enumerate(b.circles) if i != ci] == [c.k for i, c in enumerate(fish.circles) if i != ci]
     assert_unchanged(fish, snap)
 
@@ -493,21 +497,12 @@ def test_change_rung_errors(lens: Abstraction) -> None:
     for delta in (0, 0.5, True):
         with pytest.raises(InvalidParameterError, match=rf"^delta must be a nonzero integer, got {delta!r}$"):
             edits.change_rung(lens, 0, delta)
-    no_k = Abstraction(
-        level=0,
-        arcs=(Arc(Circle(50.0, 50.0, 10.0), 0.0, 1.0),),
-        arc_segments=((),),
-        junctions=np.zeros((0, 2)),
-        junction_arcs=(),
-        similarity=0.0,
-        bias=BIAS,
-        tolerance=5.0,
-        width=100,
-        height=100,
-    )
+    fields = dict(arc_segments=((),), junctions=np.zeros((0, 2)), junction_arcs=(), similarity=0.0, tolerance=5.0)
+    line = Abstraction(0, (line_arc((10.0, 50.0), (90.0, 50.0)),), bias=BIAS, width=100, height=100, **fields)
     with pytest.raises(InvalidParameterError, match=r"^circle 0 has no ladder exponent k: change_rung needs a golden"):
-        edits.change_rung(no_k, 0, 1)
-    fib = dataclasses.replace(edits.delete_arc(lens, 1), params={"ladder": "fibonacci"})
+        edits.change_rung(line, 0, 1)
+    fib_arc = Arc(Circle(50.0, 50.0, 3.0 * 5, 5), 0.0, 1.0)
+    fib = Abstraction(0, (fib_arc,), bias=0.0, width=100, height=100, ladder=FibonacciLadder(3.0), **fields)
     with pytest.raises(InvalidParameterError, match=r"^change_rung supports only the golden ratio ladder"):
         edits.change_rung(fib, 0, 1)
 

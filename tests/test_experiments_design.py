@@ -81,7 +81,8 @@ def test_stage_table_sums_the_stages(fish_result):
 
 # --------------------------------------------------------------------------- Fig. 15
 def _abstraction(ks_and_lengths):
-    arcs = tuple(Arc(Circle(0.0, 0.0, 10.0, k), 0.0, length / 10.0) for k, length in ks_and_lengths)
+    golden = {k: ((1.0 + math.sqrt(5.0)) / 2.0) ** (k + 0.5) for k, _ in ks_and_lengths}  # radii on the ladder
+    arcs = tuple(Arc(Circle(0.0, 0.0, golden[k], k), 0.0, length / golden[k]) for k, length in ks_and_lengths)
     return Abstraction(0, arcs, tuple((i,) for i in range(len(arcs))), np.zeros((0, 2)), (), 1.0, 0.5, 5.0, 64, 64)
 
 

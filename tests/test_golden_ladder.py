@@ -11,14 +11,13 @@ from hypothesis import strategies as st
 
 from img2logo.constants import PHI
 from img2logo.errors import InvalidParameterError
-from img2logo.geometry import Circle
+from img2logo.geometry import Circle, golden_circle
 from img2logo.golden_ladder import (
     FIBONACCI_MAX_UNIT,
     FibonacciLadder,
     GoldenLadder,
     bias_from_radius,
     fibonacci,
-    golden_circle,
     make_ladder,
     unit_from_radius,
 )

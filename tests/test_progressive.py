@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import itertools
+import math
 
 import cv2
 import numpy as np
@@ -152,6 +153,37 @@ def test_no_redundant_intersection_in_any_level(fish_progression):
             for i in arcs:
                 arc_junctions[i].append(k)
         assert redundant_intersections(list(level.arcs), level.junctions, arc_junctions) == []
+
+
+def test_every_level_carries_its_topology_and_ladder(fish_progression):
+    graph, prog = fish_progression
+    valence = graph.valence
+    for level in prog.levels:
+        assert level.ladder is prog.ladder and level.connected
+        nodes = level.junction_nodes
+        assert list(nodes) == sorted(set(nodes))
+        # Junction k displaces graph node nodes[k] (by |d_k|, a few px at most).
+        assert np.max(np.hypot(*(level.junctions - graph.junctions[list(nodes)]).T)) < 5.0
+        for arc, segs, t in zip(level.arcs, level.arc_segments, level.arc_junctions, strict=True):
+            path = _path(graph, segs)  # its path through the graph, in order along it
+            on_path = [nodes[j] for j in t.ordered]
+            assert set(on_path) <= set(path)
+            assert {nodes[j] for j in t.through} <= {n for n in path[1:-1] if valence[n] >= 3}
+            for j, end in ((t.start, arc.start), (t.end, arc.end)):
+                assert j is not None and math.dist(level.junctions[j], end) < 1e-3
+                assert nodes[j] in (path[0], path[-1])
+
+
+def _path(graph: SegmentGraph, segs: tuple[int, ...]) -> list[int]:
+    """The nodes of the chain of segments ``segs``, in order (a closed chain starts and ends at one node)."""
+    a, b = (int(n) for n in graph.ends[segs[0]])
+    if len(segs) > 1 and a in graph.ends[segs[1]] and b not in graph.ends[segs[1]]:
+        a, b = b, a
+    path = [a, b]
+    for s in segs[1:]:
+        x, y = (int(n) for n in graph.ends[s])
+        path.append(y if x == path[-1] else x)
+    return path
 
 
 # --------------------------------------------------------------------------- switches
@@ -419,9 +451,9 @@ def test_a_junction_the_fit_cannot_meet_is_released(monkeypatch):
     stuck = 2  # pretend that no fit can meet junction 2 (where arcs 2 and 3 join)
     solve = progressive._Optimizer.solve
 
-    def failing(self, groups, seeds, free_groups, free_nodes, *rest):
+    def failing(self, groups, *args, **kwargs):
         nodes = {n for g in groups.values() for n in self.constrained_nodes(g)}
-        return None if stuck in nodes else solve(self, groups, seeds, free_groups, free_nodes, *rest)
+        return None if stuck in nodes else solve(self, groups, *args, **kwargs)
 
     monkeypatch.setattr(progressive._Optimizer, "solve", failing)
     with pytest.warns(progressive.ConnectivityWarning, match=r"could not meet [12] of 4 junctions"):

@@ -104,10 +104,11 @@ def test_nearest_on_arc_projects_inside_and_clamps_to_the_ends():
 
 
 def test_redundant_intersections_of_two_crossing_arcs():
-    a = Arc(Circle(0.0, 0.0, 10.0), 0.0, math.pi)
-    b = Arc(Circle(10.0, 0.0, 10.0), math.pi / 2, math.pi)
+    a = Arc(Circle(0.0, 0.0, 10.0, 4), 0.0, math.pi)
+    b = Arc(Circle(10.0, 0.0, 10.0, 4), math.pi / 2, math.pi)
     junctions = np.array([[10.0, 0.0], [-10.0, 0.0]])  # the ends of a; b owns none
-    level = Abstraction(0, (a, b), ((0,), (1,)), junctions, ((0,), (0,)), 1.0, 0.0, 5.0, 30, 30)
+    bias = math.log(10.0) / math.log((1.0 + math.sqrt(5.0)) / 2.0) - 4.0  # r = 10 on the ladder: phi ** (4 + bias)
+    level = Abstraction(0, (a, b), ((0,), (1,)), junctions, ((0,), (0,)), 1.0, bias, 5.0, 30, 30)
     found = level_redundant_intersections(level)
     assert len(found) == 1
     np.testing.assert_allclose(found[0].point, [5.0, math.sqrt(75.0)])

@@ -29,7 +29,7 @@ from conftest import (
 from img2logo import contract, fills, writers
 from img2logo.constants import FORMAT_NAME
 from img2logo.errors import InvalidImageError, InvalidParameterError
-from img2logo.geometry import Arc, Circle
+from img2logo.geometry import Arc
 
 SVG = "{http://www.w3.org/2000/svg}"
 INKSCAPE = "{http://www.inkscape.org/namespaces/inkscape}"
@@ -54,10 +54,8 @@ def test_write_json_deterministic_and_readable(tmp_path):
 
 
 def test_invalid_document_is_not_written(tmp_path):
-    c = Circle(50.0, 50.0, 10.0)
-    a = make_abstraction(arcs=(Arc(c, 0.0, 1.0),), arc_segments=((0,),), junctions=np.zeros((0, 2)), junction_arcs=())
-    with pytest.raises(InvalidParameterError, match="has no ladder exponent k"):
-        writers.write_json(a, tmp_path / "a.json")
+    with pytest.raises(InvalidParameterError, match="must be JSON-safe"):
+        writers.write_json(make_abstraction(), tmp_path / "a.json", params={"obj": object()})
     assert list(tmp_path.iterdir()) == []
 
 
@@ -185,11 +183,15 @@ def test_svg_options_and_determinism(tmp_path):
         writers.to_svg(a, image_size=5)
 
 
-def test_svg_allows_circles_without_k():
-    c = Circle(50.0, 50.0, 10.0)
-    a = make_abstraction(arcs=(Arc(c, 0.0, 1.0),), arc_segments=((0,),), junctions=np.zeros((0, 2)), junction_arcs=())
-    root = ET.fromstring(writers.to_svg(a))
-    assert root.find(f".//{SVG}path").get("data-k") is None
+def test_svg_writes_a_line_without_k():
+    from img2logo.geometry import line_arc
+
+    a = make_abstraction(
+        arcs=(line_arc((10.0, 20.0), (90.0, 20.0)),), arc_segments=((0,),), junctions=np.zeros((0, 2)), junction_arcs=()
+    )
+    path = ET.fromstring(writers.to_svg(a)).find(f".//{SVG}path")
+    assert path.get("data-k") is None and path.get("data-line") == "true"
+    assert path.get("d") == "M 10 20 L 90 20"
 
 
 # --- PNG --------------------------------------------------------------------------------
