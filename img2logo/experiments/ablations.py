@@ -108,32 +108,6 @@ def arc_paths(abstraction: Abstraction, graph: SegmentGraph) -> tuple[tuple[int,
     return tuple(arc_chain(graph, segs)[0] for segs in abstraction.arc_segments)
 
 
-def constrained_nodes(path: Sequence[int], valence: np.ndarray, inner_junctions: bool) -> tuple[int, ...]:
-    """The nodes of J' on a path: its ends and (optionally) inner nodes of valence >= 3, in path order."""
-    inner = tuple(n for n in path[1:-1] if valence[n] >= 3) if inner_junctions else ()
-    return (path[0], *inner) if path[0] == path[-1] else (path[0], *inner, path[-1])
-
-
-def junction_nodes(abstraction: Abstraction, graph: SegmentGraph) -> np.ndarray:
-    """The graph node behind each junction of a level, shape (J,), int: J' rebuilt from the arcs' paths.
-
-    Raises
-    ------
-    InvalidParameterError
-        If the rebuilt J' does not match the level (it was not built from this graph).
-    """
-    inner = bool(abstraction.params.get("inner_junctions", True))
-    at: dict[int, set[int]] = {}
-    for i, path in enumerate(arc_paths(abstraction, graph)):
-        for n in constrained_nodes(path, graph.valence, inner):
-            at.setdefault(n, set()).add(i)
-    nodes = sorted(at)
-    listed = [tuple(sorted(at[n])) for n in nodes]
-    if len(nodes) != len(abstraction.junctions) or listed != [tuple(sorted(a)) for a in abstraction.junction_arcs]:
-        raise InvalidParameterError("the level's junctions do not match its arcs' paths through this graph")
-    return np.array(nodes, dtype=np.int64)
-
-
 # =========================================================================== Fig. 11: junction gaps
 def gap_table(abstraction: Abstraction, graph: SegmentGraph) -> pd.DataFrame:
     """How far the arcs that should meet at each junction of the result are from meeting (Fig. 11, Eqn. 4), px.
@@ -151,8 +125,7 @@ def gap_table(abstraction: Abstraction, graph: SegmentGraph) -> pd.DataFrame:
     import pandas as pd
 
     paths = arc_paths(abstraction, graph)
-    nodes = junction_nodes(abstraction, graph)
-    point_of = {int(n): abstraction.junctions[k] for k, n in enumerate(nodes)}
+    point_of = {n: abstraction.junctions[k] for k, n in enumerate(abstraction.junction_nodes) if n is not None}
     on: dict[int, set[int]] = {}
     for i, path in enumerate(paths):
         for n in path:

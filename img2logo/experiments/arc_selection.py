@@ -21,7 +21,7 @@ from ..plotting import draw_arcs, frame_image, frame_window, panel_grid
 from ..progressive import Progression
 from ..segment_graph import SegmentGraph
 from . import Run, table
-from .ablations import WINDOW_FRAME, arc_chain, constrained_nodes, junction_nodes
+from .ablations import WINDOW_FRAME, arc_chain
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -88,27 +88,25 @@ class ArcSelectionComparison:
 def compare_arc_selection(abstraction: Abstraction, graph: SegmentGraph, name: str = "") -> ArcSelectionComparison:
     """Pick every arc of a level again with both rules on its circle (Fig. 9b Fréchet, 9c sum of squares).
 
-    Arc i's pixel chain (:func:`arc_chain`) and its junction points in path
-    order (projected on the circle for a run without the connectivity
-    constraint, as the optimizer does) go to
+    Arc i's pixel chain (:func:`~img2logo.experiments.ablations.arc_chain`) and
+    its junctions (the level's ``arc_nodes(i)``) in path order (projected on the
+    circle for a run without the connectivity constraint, as the optimizer
+    does) go to
     :func:`~img2logo.arc_extraction.extract_arc` with each ``method``.
     """
     import pandas as pd
 
-    inner = bool(abstraction.params.get("inner_junctions", True))
-    project = not bool(abstraction.params.get("connectivity", True))
-    nodes = junction_nodes(abstraction, graph)
-    index = {int(n): k for k, n in enumerate(nodes)}
-    valence = graph.valence
+    index = {n: k for k, n in enumerate(abstraction.junction_nodes) if n is not None}
     by_f, by_s, rows = [], [], []
     for i, (arc, segs) in enumerate(zip(abstraction.arcs, abstraction.arc_segments, strict=True)):
         path, points = arc_chain(graph, segs)
-        constrained = list(constrained_nodes(path, valence, inner))
-        if path[0] == path[-1]:
-            constrained.append(path[0])
+        # the arc's junctions (J' on its path, as the optimizer kept them) in path order;
+        # a closed path has its first node at both ends
+        mine = set(abstraction.arc_nodes(i))
+        constrained = [n for n in path if n in mine]
         pts = np.array([abstraction.junctions[index[n]] for n in constrained])
         circle = arc.circle
-        if project:
+        if not abstraction.connected:
             pts = circle.point_at(circle.angle_of(pts))
         f = extract_arc(circle, points, pts, method="frechet")
         s = extract_arc(circle, points, pts, method="sum_of_squares")
