@@ -45,7 +45,7 @@ $(BROWSER): pyproject.toml $(KIT)
 # The level explorer (notebook 11) in JupyterLab, driven by Debian's chromium (apt-get install chromium)
 # through playwright; skipped, with the reason, where chromium is missing.
 test-browser: $(BROWSER)
-	$(BIN)/python -m pytest -m browser -rs tests/test_experiments_design_browser.py
+	$(BIN)/python -m pytest -m browser -rs tests/test_experiments_explore_browser.py
 
 # JupyterLab on the notebooks; Ctrl-C stops it. Options: make lab LAB_ARGS="--no-browser --port 8890"
 lab: $(LAB)

@@ -78,15 +78,11 @@ def run_case(case: dict) -> tuple[dict, object]:
 
 
 def contact_sheet(kind: str, runs: list[tuple[dict, object]], path: Path) -> None:
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
     from img2logo import plot_abstraction, quality
+    from img2logo.plotting import panel_grid
     from img2logo.writers import save_figure
 
-    fig, axes = plt.subplots(len(runs), 3, figsize=(9.0, 3.0 * len(runs)), squeeze=False)
+    fig, axes = panel_grid(len(runs), 3, 3.0)
     for (row, run), ax_row in zip(runs, axes, strict=True):
         for ax in ax_row:
             ax.set_axis_off()
@@ -106,9 +102,7 @@ def contact_sheet(kind: str, runs: list[tuple[dict, object]], path: Path) -> Non
             ax_row[1].set_title(f"truth, missed in red (r10 {row['r10']:.2f})", fontsize=8)
         plot_abstraction(result.final, ax_row[2], linewidth=1.2)
         ax_row[2].set_title(f"{row['arcs']} arcs, {row['crossings']} crossings, {row['gaps']} gaps", fontsize=8)
-    fig.tight_layout()
     save_figure(fig, path, dpi=60)
-    plt.close(fig)
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -16,19 +16,37 @@ from __future__ import annotations
 import math
 import re
 from collections.abc import Sequence
-from typing import TYPE_CHECKING
+from typing import Protocol
 
 import numpy as np
 
 from ._validation import check_positive
 from .constants import ARC_SAMPLE_STEP, LINE_RADIUS, SVG_DECIMALS, SVG_NEAR_FULL_SWEEP
 from .errors import InvalidParameterError
-from .geometry import TAU, Arc
+from .geometry import TAU, Arc, Circle
 
-if TYPE_CHECKING:
-    from .arrangement import ArcPiece
+__all__ = ["LoopPiece", "arc_path", "loop_path", "sample_path", "svg_number"]
 
-__all__ = ["arc_path", "loop_path", "sample_path", "svg_number"]
+
+class LoopPiece(Protocol):
+    """What :func:`loop_path` reads of a piece of an arc along a loop (:class:`img2logo.arrangement.ArcPiece`).
+
+    Its ``circle``, the angles ``t0``, ``t1`` where it starts and ends (radians,
+    in the direction of the loop; ``sweep = t1 - t0``) and its end points, px.
+    """
+
+    @property
+    def circle(self) -> Circle: ...
+    @property
+    def t0(self) -> float: ...
+    @property
+    def t1(self) -> float: ...
+    @property
+    def start(self) -> tuple[float, float]: ...
+    @property
+    def end(self) -> tuple[float, float]: ...
+    @property
+    def sweep(self) -> float: ...
 
 
 def svg_number(v: float) -> str:
@@ -76,7 +94,7 @@ def arc_path(arc: Arc) -> str:
     return " ".join(parts)
 
 
-def _continues(a: ArcPiece, b: ArcPiece) -> bool:
+def _continues(a: LoopPiece, b: LoopPiece) -> bool:
     """True when ``b`` goes on along ``a``'s circle in the same sense: one arc command."""
     ca, cb = a.circle, b.circle
     if not (ca == cb or (abs(ca.cx - cb.cx) <= 1e-9 and abs(ca.cy - cb.cy) <= 1e-9 and abs(ca.r - cb.r) <= 1e-9)):
@@ -87,7 +105,7 @@ def _continues(a: ArcPiece, b: ArcPiece) -> bool:
     return abs(gap) * ca.r <= 1e-6
 
 
-def loop_path(loop: Sequence[ArcPiece]) -> str:
+def loop_path(loop: Sequence[LoopPiece]) -> str:
     """SVG subpath of one closed loop of pieces of arcs (see :attr:`img2logo.arrangement.Face.path`).
 
     ``M x y A ... Z``: consecutive pieces of one circle are joined into one
@@ -102,7 +120,7 @@ def loop_path(loop: Sequence[ArcPiece]) -> str:
         first = next(k for k in range(n) if not joins[k])
         pieces = pieces[first:] + pieces[:first]
         joins = joins[first:] + joins[:first]
-    runs: list[list[ArcPiece]] = []
+    runs: list[list[LoopPiece]] = []
     for k, piece in enumerate(pieces):
         if k == 0 or not joins[k]:
             runs.append([piece])

@@ -16,6 +16,7 @@ from matplotlib.figure import Figure
 from img2logo import experiments
 from img2logo.errors import InvalidParameterError
 from img2logo.experiments import results
+from img2logo.plotting import emptiest_corner
 
 IMAGE = "drawing-bird.png"  # the smallest example: 43 segments, about 1 s a run
 T = 5.0
@@ -133,7 +134,8 @@ def test_figures_have_their_panels(run):
 
 def test_inset_goes_where_the_arcs_are_not(run):
     a = run.final
-    x, y = results._inset_corner(a, 0.3)
+    points = np.vstack([arc.sample(step=2.0) for arc in a.arcs])
+    x, y = emptiest_corner(points, a.width, a.height, 0.3)
     assert (x, y) in {(0.7, 0.0), (0.7, 0.7), (0.0, 0.0), (0.0, 0.7)}
 
 

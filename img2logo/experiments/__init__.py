@@ -5,8 +5,9 @@ for paths (absolute, so a notebook runs from any folder), runs its images with
 :func:`sweep` (one record type, :class:`Run`) and gets tables (pandas
 DataFrames) and figures (:class:`matplotlib.figure.Figure`, never pyplot, in the
 image pixel frame: x right, y down) back from ``results`` (Fig. 1, 4, 7, 8, 10,
-Tables 1, 2), ``ablations`` (Fig. 6, 9, 11, 12, 13), ``design`` (Table 3, Fig.
-15, 16, the level explorer) and ``features`` (Fig. 17, 18). Tables hold no
+Tables 1, 2), ``ablations`` (Fig. 6, 11, 12, 13), ``arc_selection`` (Fig. 9),
+``design`` (Table 3, Fig. 15, 16), ``explore`` (the level explorer) and
+``features`` (Fig. 17, 18). Tables hold no
 timings unless they are about time: they are committed and must be the same
 bytes from run to run. papermill and ipywidgets (the extra ``[kit]``) are
 imported only by the functions that use them.
@@ -17,7 +18,7 @@ from __future__ import annotations
 import dataclasses
 import os
 import time
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from types import MappingProxyType
@@ -25,105 +26,25 @@ from typing import TYPE_CHECKING, Any
 
 from ..constants import MIN_SEGMENT_LENGTH, RDP_TOLERANCE
 from ..errors import Img2LogoError, InvalidParameterError
-from ..preprocessing import FeatureLines, LoadedImage, extract_feature_lines, load_image
+from ..preprocessing import FeatureLines, LoadedImage, extract_feature_lines
 from ..segment_graph import SegmentGraph, build_segment_graph
+from .paths import (  # noqa: F401  (re-exported)
+    ROOT_ENV,
+    data_path,
+    example_images,
+    figure_dir,
+    kit_module,
+    load_example,
+    project_root,
+    repo_relative,
+)
+from .runner import check_parameters as check_parameters
 
 if TYPE_CHECKING:
+    import pandas as pd
+
     from ..geometry import Abstraction
     from ..progressive import Progression
-
-#: Environment variable naming the repository root, when it cannot be found.
-ROOT_ENV = "IMG2LOGO_ROOT"
-_MARKER = Path("data") / "ATTRIBUTION.md"
-
-
-def kit_module(name: str) -> Any:
-    """Import ``name``, one of the packages of the extra ``[kit]`` (papermill, ipywidgets, yaml).
-
-    Raises
-    ------
-    Img2LogoError
-        One line saying how to install the extra, when the package is missing.
-    """
-    import importlib
-
-    try:
-        return importlib.import_module(name)
-    except ImportError:
-        raise Img2LogoError(
-            f"{name} is missing: the notebook kit needs the extra [kit] "
-            "(pip install -e '.[kit]'; make test, make figures and make lab install it)"
-        ) from None
-
-
-def project_root() -> Path:
-    """The repository root: the folder holding ``data/ATTRIBUTION.md``.
-
-    Looked up from ``$IMG2LOGO_ROOT``, then upwards from the working directory,
-    then upwards from this package (an editable install inside the repository).
-    """
-    env = os.environ.get(ROOT_ENV)
-    if env:
-        root = Path(env).resolve()
-        if not (root / _MARKER).is_file():
-            raise Img2LogoError(f"${ROOT_ENV}={env} does not hold {_MARKER}")
-        return root
-    for start in (Path.cwd(), Path(__file__).resolve().parent.parent):
-        for folder in (start, *start.parents):
-            if (folder / _MARKER).is_file():
-                return folder
-    raise Img2LogoError(f"cannot find the img2logo repository (a folder with {_MARKER}); set ${ROOT_ENV}")
-
-
-def data_path(name: str) -> Path:
-    """Absolute path of an example image in ``data/``, e.g. ``data_path("clipart-fish.png")``."""
-    path = project_root() / "data" / name
-    if not path.is_file():
-        available = ", ".join(sorted(p.name for p in (project_root() / "data").glob("*.png")))
-        raise Img2LogoError(f"no example image {name!r} in data/; available: {available}")
-    return path
-
-
-def repo_relative(path: str | os.PathLike[str]) -> str:
-    """``path`` relative to the repository root (``data/clipart-fish.png``), POSIX style.
-
-    A path outside the repository is returned absolute. Result documents name
-    their input this way, so a ``make figures`` in any checkout writes the same
-    bytes.
-    """
-    resolved = Path(path).resolve()
-    try:
-        return resolved.relative_to(project_root()).as_posix()
-    except ValueError:
-        return str(resolved)
-
-
-def load_example(path: Any) -> LoadedImage:
-    """:func:`img2logo.load_image`, with ``source`` relative to the repository (:func:`repo_relative`).
-
-    A path is loaded and its ``source`` made relative; a loaded image or an
-    array goes to :func:`img2logo.load_image` unchanged.
-    """
-    if not isinstance(path, str | os.PathLike):
-        return load_image(path)
-    return dataclasses.replace(load_image(path), source=repo_relative(path))
-
-
-def example_images(prefix: str = "") -> list[Path]:
-    """The example images of ``data/`` whose names start with ``prefix``, sorted."""
-    return sorted((project_root() / "data").glob(f"{prefix}*.png"))
-
-
-def figure_dir(notebook: str, *, smoke: bool = False) -> Path:
-    """The output folder of a notebook, created: ``figures/<notebook>/``.
-
-    Smoke runs (CI) write to ``build/smoke/<notebook>/`` instead, never over the
-    committed figures.
-    """
-    base = project_root() / ("build/smoke" if smoke else "figures")
-    out = base / notebook
-    out.mkdir(parents=True, exist_ok=True)
-    return out
 
 
 # --------------------------------------------------------------------------- outputs shown
@@ -395,48 +316,53 @@ def _preprocessed(images: Iterable[Any], kind: str) -> list[Run]:
     return preprocess(images, kind=kind)
 
 
-def preprocessing_table(examples: Iterable[Run]) -> Any:
-    """A pandas DataFrame: per example its kind, |S|, node counts by valence, components.
+def table(items: Iterable[Any], columns: Mapping[str, Callable[[Any], Any]]) -> pd.DataFrame:
+    """The kit's one table builder: a pandas DataFrame, a row per item, a column per ``columns`` entry.
 
-    No timings: the table is a committed figure and must not change from run to
-    run; ``make bench`` measures speed.
+    ``columns`` maps a column's name to the function giving an item's value,
+    e.g. ``table(runs, {"image": lambda r: r.name, "arcs": lambda r: len(r.final.arcs)})``;
+    an empty ``items`` gives the columns without rows.
     """
     import pandas as pd
 
-    rows = []
-    for ex in examples:
-        g = ex.graph
-        rows.append(
-            {
-                "image": ex.name,
-                "kind": ex.lines.kind,
-                "segments": g.n_segments,
-                "junctions (valence >= 3)": int((g.valence >= 3).sum()),
-                "end points": int((g.valence == 1).sum()),
-                "split points": int((g.valence == 2).sum()),
-                "components": g.n_components(),
-            }
-        )
-    return pd.DataFrame(rows)
+    rows = [{name: value(item) for name, value in columns.items()} for item in items]
+    return pd.DataFrame(rows, columns=list(columns))
 
 
-def plot_preprocessing(examples: list[Run], *, panel_size: float = 3.0) -> Any:
-    """A figure, one row per example: input | feature lines | segment graph (paper Fig. 4a, 4b)."""
-    from matplotlib.figure import Figure
+#: The first columns of a table of runs (:func:`table`): the image, its kind, |S|.
+RUN_COLUMNS: dict[str, Callable[[Run], Any]] = {
+    "image": lambda r: r.name,
+    "kind": lambda r: r.kind,
+    "segments": lambda r: r.graph.n_segments,
+}
 
-    from ..plotting import plot_segment_graph
 
-    fig = Figure(figsize=(3 * panel_size, panel_size * max(1, len(examples))), layout="constrained")
-    axes = fig.subplots(max(1, len(examples)), 3, squeeze=False)
+def preprocessing_table(examples: Iterable[Run]) -> pd.DataFrame:
+    """Per example: its kind, |S|, its nodes by valence and its components (no timings: ``make bench`` has them)."""
+    return table(
+        examples,
+        {
+            **RUN_COLUMNS,
+            "junctions (valence >= 3)": lambda r: int((r.graph.valence >= 3).sum()),
+            "end points": lambda r: int((r.graph.valence == 1).sum()),
+            "split points": lambda r: int((r.graph.valence == 2).sum()),
+            "components": lambda r: r.graph.n_components(),
+        },
+    )
+
+
+def plot_preprocessing(examples: Sequence[Run], *, panel_size: float = 3.0) -> Any:
+    """One row per example: input | feature lines | segment graph (paper Fig. 4a, 4b)."""
+    from ..plotting import panel_grid, plot_segment_graph, show_image
+
+    fig, axes = panel_grid(len(examples), 3, panel_size)
     for row, ex in zip(axes, examples, strict=False):
-        row[0].imshow(ex.image.rgb, extent=(0, ex.image.width, ex.image.height, 0))
-        row[0].set_title(f"{ex.name} ({ex.lines.kind})", fontsize=9)
-        row[1].imshow(~ex.lines.lines, cmap="gray", extent=(0, ex.image.width, ex.image.height, 0))
-        row[1].set_title("feature lines", fontsize=9)
+        show_image(row[0], ex.image.rgb)
+        show_image(row[1], ~ex.lines.lines, cmap="gray")
         plot_segment_graph(ex.graph, row[2])
-        row[2].set_title(f"segments |S| = {ex.graph.n_segments}", fontsize=9)
-        for ax in row:
-            ax.set_axis_off()
+        titles = (f"{ex.name} ({ex.lines.kind})", "feature lines", f"segments |S| = {ex.graph.n_segments}")
+        for ax, title in zip(row, titles, strict=True):
+            ax.set_title(title, fontsize=9)
     return fig
 
 
@@ -479,6 +405,3 @@ def write_provenance(executed: str | os.PathLike[str]) -> Path:
     target = figure_dir(path.stem) / "provenance.json"
     text = json.dumps(record, indent=2, sort_keys=True) + "\n"
     return atomic_write(target, lambda f: f.write(text.encode("utf-8")))
-
-
-from .runner import check_parameters as check_parameters  # noqa: E402  (needs data_path above)

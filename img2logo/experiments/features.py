@@ -1,9 +1,4 @@
-"""Figure layouts for the designer features (paper Sec. 7, Fig. 17, 18).
-
-Colour fills of the regions the arcs bound (Fig. 18, and the automatic colours
-the paper leaves to future work) and user edits of a result (Fig. 17), laid
-out for ``notebooks/12_designer_features.ipynb``.
-"""
+"""The designer features (paper Sec. 7) for ``12_designer_features``: colour fills (Fig. 18), edits (Fig. 17)."""
 
 from __future__ import annotations
 
@@ -16,7 +11,7 @@ import numpy as np
 from ..arrangement import faces
 from ..fills import Fill, fill_auto, fill_gradient, fill_palette
 from ..geometry import Abstraction
-from ..plotting import plot_abstraction
+from ..plotting import panel_grid, plot_abstraction, show_image
 
 #: A designer's palette for the palette panel (fills cycle through it, largest face first).
 DEFAULT_PALETTE = ("#264653", "#2a9d8f", "#e9c46a", "#f4a261", "#e76f51")
@@ -57,14 +52,10 @@ def plot_fill_variants(results: Sequence[tuple[str, Abstraction, np.ndarray]], *
     results : sequence of (name, abstraction, image)
         ``image`` is the input, (H, W, 3) float RGB.
     """
-    from matplotlib.figure import Figure
-
     rows = [(name, a, img, fill_variants(a, img)) for name, a, img in results]
-    n_cols = 2 + max((len(v) for *_, v in rows), default=0)
-    fig = Figure(figsize=(panel_size * n_cols, panel_size * max(1, len(rows))), layout="constrained")
-    axes = fig.subplots(max(1, len(rows)), n_cols, squeeze=False)
+    fig, axes = panel_grid(len(rows), 2 + max((len(v) for *_, v in rows), default=0), panel_size)
     for row, (name, a, img, variants) in zip(axes, rows, strict=False):
-        row[0].imshow(img, extent=(0, a.width, a.height, 0))
+        show_image(row[0], img)
         row[0].set_title(f"{name}: input", fontsize=9)
         plot_abstraction(a, row[1], linewidth=1.5)
         row[1].set_title(f"{len(a.arcs)} golden arcs", fontsize=9)
@@ -82,11 +73,9 @@ def plot_edit(automated: Abstraction, edited: Abstraction, *, panel_size: float 
     The automated arcs are drawn faintly under the variant, so what the edits
     changed shows; the titles list the edits from ``edited.params["edits"]``.
     """
-    from matplotlib.figure import Figure
-
-    fig = Figure(figsize=(2 * panel_size, panel_size + 0.8), layout="constrained")
+    fig, axes = panel_grid(1, 2, panel_size, extra_height=0.8)
     fig.get_layout_engine().set(h_pad=0.15)
-    ax_a, ax_b = fig.subplots(1, 2)
+    ax_a, ax_b = axes[0]
     plot_abstraction(automated, ax_a, show_junctions=True)
     ax_a.set_title(f"(a) automated result: {len(automated.arcs)} arcs", fontsize=9)
     plot_abstraction(automated, ax_b, color="0.85", linewidth=4.0)

@@ -25,7 +25,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import Img2LogoError, InvalidParameterError
-from . import data_path, kit_module, project_root
+from .paths import data_path, kit_module, project_root
 
 
 class NotebookParameterError(InvalidParameterError):
@@ -78,57 +78,42 @@ SMOKE: dict[str, dict[str, Any]] = {
 
 
 # --------------------------------------------------------------------------- value checks
-def _fail(name: str, expected: str, value: Any) -> None:
-    raise NotebookParameterError(f"parameter {name}: expected {expected}, got {value!r}")
+Check = Callable[[str, Any], None]
 
 
-def _is_number(value: Any) -> bool:
-    return isinstance(value, int | float) and not isinstance(value, bool) and math.isfinite(value)
+def _rule(ok: Callable[[Any], bool], expected: str) -> Check:
+    """A check refusing a value ``ok`` rejects, with one line saying what was ``expected`` and what came."""
 
-
-def _positive(name: str, value: Any, unit: str = "px") -> None:
-    if not (_is_number(value) and value > 0):
-        _fail(name, f"a positive number ({unit})", value)
-
-
-def _count(minimum: int) -> Callable[[str, Any], None]:
     def check(name: str, value: Any) -> None:
-        if not (isinstance(value, int) and not isinstance(value, bool) and value >= minimum):
-            _fail(name, f"an integer >= {minimum}", value)
+        if not ok(value):
+            raise NotebookParameterError(f"parameter {name}: expected {expected}, got {value!r}")
 
     return check
 
 
-def _in_range(low: float, high: float, *, closed: bool = True) -> Callable[[str, Any], None]:
-    def check(name: str, value: Any) -> None:
-        ok = _is_number(value) and (low <= value <= high if closed else low <= value < high)
-        if not ok:
-            _fail(name, f"a number in [{low:g}, {high:g}{']' if closed else ')'}", value)
-
-    return check
-
-
-def _list_of(check_one: Callable[[str, Any], None], what: str) -> Callable[[str, Any], None]:
-    def check(name: str, value: Any) -> None:
-        if not isinstance(value, list | tuple) or not value:
-            _fail(name, f"a non-empty list of {what}", value)
-        for item in value:
-            try:
-                check_one(name, item)
-            except NotebookParameterError:
-                _fail(name, f"a non-empty list of {what}", value)
-
-    return check
+def _number(low: float = -math.inf, high: float = math.inf, *, closed: bool = True) -> Callable[[Any], bool]:
+    """A finite number in [low, high] (``closed``) or [low, high)."""
+    return lambda v: (
+        isinstance(v, int | float)
+        and not isinstance(v, bool)
+        and math.isfinite(v)
+        and low <= v
+        and (v <= high if closed else v < high)
+    )
 
 
-def _boolean(name: str, value: Any) -> None:
-    if not isinstance(value, bool):
-        _fail(name, "True or False", value)
+def _integer(minimum: float) -> Callable[[Any], bool]:
+    return lambda v: isinstance(v, int) and not isinstance(v, bool) and v >= minimum
+
+
+def _listed(ok: Callable[[Any], bool]) -> Callable[[Any], bool]:
+    """A non-empty list (or tuple) of values ``ok`` accepts."""
+    return lambda v: isinstance(v, list | tuple) and bool(v) and all(ok(x) for x in v)
 
 
 def _image(name: str, value: Any) -> None:
     if not isinstance(value, str) or not value:
-        _fail(name, "a file name in data/", value)
+        raise NotebookParameterError(f"parameter {name}: expected a file name in data/, got {value!r}")
     try:
         data_path(value)
     except Img2LogoError as err:
@@ -136,103 +121,58 @@ def _image(name: str, value: Any) -> None:
 
 
 def _images(name: str, value: Any) -> None:
-    if value == "all":
-        return
-    if not isinstance(value, list | tuple) or not value:
-        _fail(name, '"all" or a non-empty list of file names in data/', value)
-    for item in value:
-        _image(name, item)
+    if value != "all":
+        _rule(_listed(lambda _: True), '"all" or a non-empty list of file names in data/')(name, value)
+        for item in value:
+            _image(name, item)
 
 
-def _eval_images(name: str, value: Any) -> None:
-    if not isinstance(value, list | tuple) or not value:
-        _fail(name, "a non-empty list of file names in benchmarks/data/", value)
-    folder = project_root() / "benchmarks" / "data"
-    for item in value:
-        if not isinstance(item, str) or not (folder / item).is_file():
-            _fail(name, "a non-empty list of file names in benchmarks/data/", value)
+def _choice(*options: str) -> Check:
+    return _rule(lambda v: v in options, " or ".join(repr(o) for o in options))
 
 
-def _choice(*options: str) -> Callable[[str, Any], None]:
-    def check(name: str, value: Any) -> None:
-        if value not in options:
-            _fail(name, " or ".join(repr(o) for o in options), value)
-
-    return check
+def _evaluation_image(v: Any) -> bool:
+    return isinstance(v, str) and (project_root() / "benchmarks" / "data" / v).is_file()
 
 
-def _bias(name: str, value: Any) -> None:
-    if value != "auto" and not (_is_number(value) and 0 <= value < 1):
-        _fail(name, '"auto" or a ladder bias in [0, 1)', value)
+def _positive(v: Any) -> bool:
+    return _number()(v) and v > 0
 
 
-def _biases(name: str, value: Any) -> None:
-    ok = isinstance(value, list | tuple) and value and all(b is None or (_is_number(b) and 0 <= b < 1) for b in value)
-    if not ok:
-        _fail(name, "a non-empty list of ladder biases in [0, 1) or None (automatic)", value)
-
-
-def _exponents(name: str, value: Any) -> None:
-    ok = value is None or (
-        isinstance(value, list | tuple) and value and all(isinstance(k, int) and not isinstance(k, bool) for k in value)
-    )
-    if not ok:
-        _fail(name, "None or a non-empty list of integer ladder exponents k", value)
-
-
-def _point(name: str, value: Any) -> None:
-    if not (isinstance(value, list | tuple) and len(value) == 2 and all(_is_number(v) for v in value)):
-        _fail(name, "a point (x, y) in px", value)
-
-
-def _finite(name: str, value: Any) -> None:
-    if not _is_number(value):
-        _fail(name, "a finite number", value)
-
-
-_positives = _list_of(_positive, "positive numbers (px)")
+_bias = _number(0.0, 1.0, closed=False)
 
 #: How each notebook parameter is checked, by name (one meaning per name in every notebook).
-PARAMETER_RULES: dict[str, Callable[[str, Any], None]] = {
-    "smoke": _boolean,
-    "interactive": _boolean,
-    "images": _images,
-    "fill_images": _images,
-    "eval_images": _eval_images,
-    "image": _image,
-    "edit_image": _image,
-    "fig15_image": _image,
-    "lock_image": _image,
-    "bias_image": _image,
+PARAMETER_RULES: dict[str, Check] = {
+    **dict.fromkeys(("smoke", "interactive"), _rule(lambda v: isinstance(v, bool), "True or False")),
+    **dict.fromkeys(("images", "fill_images"), _images),
+    "eval_images": _rule(_listed(_evaluation_image), "a non-empty list of file names in benchmarks/data/"),
+    **dict.fromkeys(("image", "edit_image", "fig15_image", "lock_image", "bias_image"), _image),
     "kind": _choice("auto", "photo", "clipart", "drawing"),
     "lock_form": _choice("disc", "square"),
-    "tolerance": _positive,
-    "rdp_tolerance": _positive,
-    "min_length": _in_range(0.0, math.inf),
-    "zoom": _positive,
-    "threshold": _positive,
-    "lost_threshold": _positive,
-    "beak_radius": _positive,
-    "hook": _in_range(0.0, 180.0),
-    "fit_fraction": _in_range(0.0, 1.0),
-    "fractions": _list_of(_in_range(0.0, 1.0), "fractions in [0, 1]"),
-    "tolerances": _positives,
-    "table_tolerances": _positives,
-    "sweep_tolerances": _positives,
-    "search_tolerances": _positives,
-    "rdp_tolerances": _positives,
-    "hook_angles": _list_of(_in_range(0.0, 180.0), "angles in [0, 180] degrees"),
-    "levels": _count(1),
-    "columns": _count(1),
-    "zooms": _count(0),
-    "cases": _count(1),
-    "repeats": _count(1),
-    "n_exponents": _count(1),
-    "strip_levels": _count(2),
-    "user_exponents": _exponents,
-    "beak_center": _point,
-    "bias": _bias,
-    "biases": _biases,
+    **dict.fromkeys(
+        ("tolerance", "rdp_tolerance", "zoom", "threshold", "lost_threshold", "beak_radius"),
+        _rule(_positive, "a positive number (px)"),
+    ),
+    "min_length": _rule(_number(0.0), "a number in [0, inf]"),
+    "hook": _rule(_number(0.0, 180.0), "a number in [0, 180]"),
+    "fit_fraction": _rule(_number(0.0, 1.0), "a number in [0, 1]"),
+    "fractions": _rule(_listed(_number(0.0, 1.0)), "a non-empty list of fractions in [0, 1]"),
+    **dict.fromkeys(
+        ("tolerances", "table_tolerances", "sweep_tolerances", "search_tolerances", "rdp_tolerances"),
+        _rule(_listed(_positive), "a non-empty list of positive numbers (px)"),
+    ),
+    "hook_angles": _rule(_listed(_number(0.0, 180.0)), "a non-empty list of angles in [0, 180] degrees"),
+    **dict.fromkeys(("levels", "columns", "cases", "repeats", "n_exponents"), _rule(_integer(1), "an integer >= 1")),
+    "zooms": _rule(_integer(0), "an integer >= 0"),
+    "strip_levels": _rule(_integer(2), "an integer >= 2"),
+    "user_exponents": _rule(
+        lambda v: v is None or _listed(_integer(-math.inf))(v), "None or a non-empty list of integer ladder exponents k"
+    ),
+    "beak_center": _rule(lambda v: _listed(_number())(v) and len(v) == 2, "a point (x, y) in px"),
+    "bias": _rule(lambda v: v == "auto" or _bias(v), '"auto" or a ladder bias in [0, 1)'),
+    "biases": _rule(
+        _listed(lambda b: b is None or _bias(b)), "a non-empty list of ladder biases in [0, 1) or None (automatic)"
+    ),
 }
 
 

@@ -221,7 +221,7 @@ def _title(page) -> str:
 
 
 def test_the_explorer_fits_a_laptop_screen_at_a_fixed_size(page):
-    from img2logo.experiments.design import EXPLORER_SIZE
+    from img2logo.experiments.explore import EXPLORER_SIZE
 
     drawing = page.locator(".widget-image").first
     drawing.scroll_into_view_if_needed()
