@@ -70,28 +70,6 @@ def test_params_made_json_safe():
         contract.to_document(make_abstraction(), {1: 2})
 
 
-def test_circle_without_k_cannot_be_written():
-    c = Circle(50.0, 50.0, 10.0)
-    with pytest.raises(InvalidParameterError, match=r"circle 0 \(centre \(50, 50\), r=10\) has no ladder exponent k"):
-        make_abstraction(arcs=(Arc(c, 0.0, 1.0),), arc_segments=((0,),), junctions=np.zeros((0, 2)), junction_arcs=())
-
-
-@pytest.mark.parametrize(
-    ("field", "value", "message"),
-    [
-        ("bias", 1.0, r"bias must be in \[0, 1\), got 1.0"),
-        ("similarity", -1.0, "similarity must be >= 0"),
-        ("tolerance", 0.0, "tolerance must be > 0"),
-        ("level", -1, "level must be >= 0"),
-        ("width", 0, "width must be >= 1"),
-        ("similarity", math.nan, "similarity must be finite"),
-    ],
-)
-def test_out_of_range_fields_rejected(field, value, message):
-    with pytest.raises(InvalidParameterError, match=message):
-        contract.to_document(make_abstraction(**{field: value}))
-
-
 def test_junction_without_arcs_is_omitted():
     a = make_abstraction()
     b = make_abstraction(

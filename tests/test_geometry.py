@@ -164,6 +164,7 @@ def test_every_circle_is_on_the_ladder():
         ("level", -1, "level must be >= 0"),
         ("width", 0, "width must be >= 1"),
         ("height", 2.5, "height must be an integer, got 2.5"),
+        ("similarity", math.nan, "similarity must be finite"),
         ("junction_arcs", ((0,), (0, 5), (0, 2)), r"junction 1: arc index 5 is out of range"),
         ("arc_segments", ((0,),), r"arc_segments must have one entry per arc \(3\), got 1"),
     ],
