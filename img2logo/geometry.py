@@ -199,7 +199,7 @@ class Params(Mapping[str, Any]):
     Built from any mapping: nested mappings become :class:`Params` and lists
     tuples, so nothing inside can change. It compares equal to a mapping with
     the same items (a tuple entry equals the same tuple, not a list), pickles
-    and copies like a dict, and :func:`img2logo.writers.to_document` writes it
+    and copies like a dict, and :func:`img2logo.contract.to_document` writes it
     as the JSON object it was built from.
     """
 
