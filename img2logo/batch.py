@@ -3,7 +3,7 @@
 :func:`run_batch` abstracts a list of images with :func:`img2logo.abstract` and
 writes, for each, ``OUTPUT_DIR/<stem>.svg``, ``.json`` and ``.png`` (the same files
 as ``img2logo INPUT --svg --json --png``), then ``OUTPUT_DIR/summary.csv``: one row
-per image (``image, kind, arcs, levels, similarity, seconds, error``). A file that
+per image (``image, kind, arcs, levels, similarity, symmetry, seconds, error``). A file that
 fails (unreadable, blank, ...) does not stop the others: it is reported in
 :attr:`BatchReport.failures` with its one-line error message. :func:`sweep` runs a
 grid of parameters over images and returns the table (for the notebooks).
@@ -68,7 +68,7 @@ IMAGE_SUFFIXES: tuple[str, ...] = (".png", ".jpg", ".jpeg", ".tif", ".tiff", ".b
 #: The files written per image, by suffix.
 OUTPUT_FORMATS: tuple[str, ...] = ("svg", "json", "png")
 #: Columns of ``summary.csv`` and of :meth:`BatchReport.to_frame`.
-SUMMARY_COLUMNS: tuple[str, ...] = ("image", "kind", "arcs", "levels", "similarity", "seconds", "error")
+SUMMARY_COLUMNS: tuple[str, ...] = ("image", "kind", "arcs", "levels", "similarity", "symmetry", "seconds", "error")
 
 #: Signature of a progress callback: (images done, images in all, name of the last one).
 BatchProgress = Callable[[int, int, str], None]
@@ -101,6 +101,10 @@ class BatchRow:
         Wall time for the image: loading, the abstraction and the files.
     outputs : tuple of str
         The files written.
+    symmetry : str
+        What ``symmetry=...`` decided: the mirror axis used and its score
+        (``"90.0 deg, score 0.99"``), ``"free, score 0.57"`` when ``auto``
+        found no axis good enough, or ``""`` when symmetry was not asked for.
     """
 
     image: str
@@ -111,6 +115,7 @@ class BatchRow:
     similarity: float
     seconds: float
     outputs: tuple[str, ...] = ()
+    symmetry: str = ""
 
 
 @dataclass(frozen=True)
@@ -171,6 +176,7 @@ class BatchReport:
                     "arcs": r.arcs,
                     "levels": r.levels,
                     "similarity": r.similarity,
+                    "symmetry": r.symmetry,
                     "seconds": r.seconds,
                     "error": "",
                 },
@@ -184,11 +190,19 @@ class BatchReport:
         return table.astype({"arcs": "Int64", "levels": "Int64"})
 
     def summary(self, *, failures: bool = True) -> str:
-        """The summary as a text table: image, kind, arcs, E^s, seconds; then the failures, unless not asked."""
-        head = ("image", "kind", "arcs", "E^s (px)", "seconds")
-        body = [(r.image, r.kind, str(r.arcs), f"{r.similarity:.2f}", f"{r.seconds:.1f}") for r in self.rows]
+        """The summary as a text table: image, kind, arcs, E^s, (symmetry,) seconds; then the failures.
+
+        The symmetry column is shown when some image was run with ``symmetry``;
+        the failures are left out when ``failures`` is False.
+        """
+        head = ("image", "kind", "arcs", "E^s (px)", "symmetry", "seconds")
+        body = [
+            (r.image, r.kind, str(r.arcs), f"{r.similarity:.2f}", r.symmetry, f"{r.seconds:.1f}") for r in self.rows
+        ]
+        align = ("<", "<", ">", ">", "<", ">")
+        if not any(r.symmetry for r in self.rows):
+            head, align, body = head[:4] + head[5:], align[:4] + align[5:], [row[:4] + row[5:] for row in body]
         widths = [max(len(row[i]) for row in [head, *body]) for i in range(len(head))]
-        align = ("<", "<", ">", ">", ">")
 
         def line(row: Sequence[str]) -> str:
             return "  ".join(f"{cell:{a}{w}}" for cell, a, w in zip(row, align, widths, strict=True)).rstrip()
@@ -284,8 +298,18 @@ def _process(
         "arcs": len(final.arcs),
         "levels": len(result.levels),
         "similarity": float(final.similarity),
+        "symmetry": _symmetry_cell(result.symmetry),
         "files": files,
     }
+
+
+def _symmetry_cell(choice: Any) -> str:
+    """The summary's symmetry cell of a :class:`~img2logo.symmetry.SymmetryChoice` (None: not asked for)."""
+    if choice is None:
+        return ""
+    if choice.axis is None:
+        return f"free, score {choice.best.score:.2f}"
+    return f"{choice.axis.angle:.1f} deg, score {choice.axis.score:.2f}"
 
 
 def _one_line(exc: BaseException) -> str:
@@ -492,6 +516,7 @@ def run_batch(
                     float(res["similarity"]),
                     float(res["seconds"]),
                     written.get(i, ()),
+                    res.get("symmetry", ""),
                 )
             )
     report = BatchReport(tuple(rows), tuple(failures), tuple(str(p) for p in inputs), tuple(warns))

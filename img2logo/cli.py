@@ -73,7 +73,7 @@ def _batch_parser() -> argparse.ArgumentParser:
         prog="img2logo batch",
         description="Turn every image of a folder (png, jpg, jpeg, tif, tiff, bmp, webp; sorted by name) into a "
         "golden ratio logo: OUTPUT_DIR/<stem>.svg, .json and .png, and OUTPUT_DIR/summary.csv (image, kind, "
-        "arcs, levels, E^s, seconds, error). A file that fails is reported at the end and the exit status is "
+        "arcs, levels, E^s, symmetry, seconds, error). A file that fails is reported at the end and the exit status is "
         "then 1; the other images are done.",
     )
     p.add_argument("input_dir", metavar="INPUT_DIR", help="folder of input images (not searched recursively)")

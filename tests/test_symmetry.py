@@ -273,3 +273,10 @@ def test_a_batch_passes_symmetry_on(tmp_path):
     assert not report.failures
     doc = json.loads((tmp_path / "out" / "gull.json").read_text())
     assert doc["params"]["symmetry"]["mode"] == "auto" and doc["extra"]["symmetry"]["on_axis"]
+    # The summary says what was decided, in the table and in the CSV.
+    assert report.rows[0].symmetry.startswith("90.0 deg, score ")
+    assert "symmetry" in report.summary().splitlines()[0]
+    assert report.to_frame()["symmetry"].tolist() == [report.rows[0].symmetry]
+    with ThreadPoolExecutor(1) as pool:
+        free = run_batch([src], tmp_path / "free", executor=pool, progress=False, kind="drawing")
+    assert free.rows[0].symmetry == "" and "symmetry" not in free.summary().splitlines()[0]
