@@ -31,6 +31,7 @@ from ..segment_graph import SegmentGraph, build_segment_graph
 from .paths import (  # noqa: F401  (re-exported)
     ROOT_ENV,
     data_path,
+    eval_path,
     example_images,
     figure_dir,
     kit_module,

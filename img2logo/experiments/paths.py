@@ -61,6 +61,14 @@ def data_path(name: str) -> Path:
     return path
 
 
+def eval_path(name: str) -> Path:
+    """Absolute path of an image of the evaluation set, ``benchmarks/data/<name>``."""
+    path = project_root() / "benchmarks" / "data" / name
+    if not path.is_file():
+        raise Img2LogoError(f"no image {name!r} in benchmarks/data/")
+    return path
+
+
 def example_images(prefix: str = "") -> list[Path]:
     """The example images of ``data/`` whose names start with ``prefix``, sorted."""
     return sorted((project_root() / "data").glob(f"{prefix}*.png"))

@@ -25,7 +25,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import Img2LogoError, InvalidParameterError
-from .paths import data_path, kit_module, project_root
+from .paths import data_path, eval_path, kit_module
 
 
 class NotebookParameterError(InvalidParameterError):
@@ -132,7 +132,13 @@ def _choice(*options: str) -> Check:
 
 
 def _evaluation_image(v: Any) -> bool:
-    return isinstance(v, str) and (project_root() / "benchmarks" / "data" / v).is_file()
+    if not isinstance(v, str):
+        return False
+    try:
+        eval_path(v)
+    except Img2LogoError:
+        return False
+    return True
 
 
 def _positive(v: Any) -> bool:

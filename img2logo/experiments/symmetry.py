@@ -23,18 +23,9 @@ from ..loading import load_mask
 from ..pipeline import Result, abstract
 from ..plotting import plot_abstraction
 from ..quality import measure
-from . import project_root, repo_relative
+from . import repo_relative
 
-__all__ = ["Comparison", "compare", "comparison_table", "eval_path", "plot_comparison"]
-
-
-def eval_path(name: str) -> Path:
-    """Absolute path of an image of the evaluation set, ``benchmarks/data/<name>``."""
-    folder = project_root() / "benchmarks" / "data"
-    path = folder / name
-    if not path.is_file():
-        raise Img2LogoError(f"no image {name!r} in benchmarks/data/")
-    return path
+__all__ = ["Comparison", "compare", "comparison_table", "plot_comparison"]
 
 
 @dataclass(frozen=True, eq=False)
