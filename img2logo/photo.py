@@ -63,7 +63,7 @@ def photo_feature_lines(img: LoadedImage, subject: Subject) -> np.ndarray:
     from skimage.morphology import skeletonize
 
     mask = subject.mask
-    inner = photo_lines(img, None)
+    inner = photo_lines(img)
     budget = PHOTO_LINE_BUDGET * (img.height + img.width)
     if mask is None:
         return join_line_ends(salient_lines(skeletonize(inner), budget=budget))
@@ -139,8 +139,8 @@ def subject_outline(mask: np.ndarray, frame_margin: float = OUTLINE_FRAME_MARGIN
     return out
 
 
-def photo_lines(img: LoadedImage, mask: np.ndarray | None) -> np.ndarray:
-    """Flow-based difference of Gaussians [KD09], binarized, on ``mask`` if given.
+def photo_lines(img: LoadedImage) -> np.ndarray:
+    """Flow-based difference of Gaussians [KD09] of the whole photo, binarized.
 
     The gray image is first smoothed by a bilateral filter (KD09 smooth with a
     flow-based bilateral filter): fur, grain and texture fade, edges stay.
@@ -148,13 +148,7 @@ def photo_lines(img: LoadedImage, mask: np.ndarray | None) -> np.ndarray:
     import cv2
 
     smooth = cv2.bilateralFilter(img.gray.astype(np.float32), BILATERAL_DIAMETER, BILATERAL_SIGMA_COLOR, 5.0)
-    lines = flow_dog(smooth)
-    if mask is not None:
-        from scipy import ndimage
-
-        # Keep the object's outline too: lines within a few px of the mask.
-        lines &= ndimage.binary_dilation(mask, iterations=3)
-    return lines
+    return flow_dog(smooth)
 
 
 def edge_tangent_flow(gray: np.ndarray, sigma: float = ETF_SIGMA) -> np.ndarray:

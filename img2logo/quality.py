@@ -110,11 +110,9 @@ def feature_recall(
     tuple of float
         One fraction in [0, 1] per distance; 1.0 for an empty truth.
     """
-    truth = _check_map(truth, "truth")
-    rows, cols = np.nonzero(truth)
-    if len(rows) == 0:
+    _, _, d = _truth_distances(points, truth)
+    if len(d) == 0:
         return tuple(1.0 for _ in distances)
-    d = _nearest_distance(points, np.column_stack([cols + 0.5, rows + 0.5]))
     return tuple(float(np.mean(d <= limit)) for limit in distances)
 
 
@@ -234,12 +232,9 @@ def level_redundant_intersections(abstraction: Abstraction) -> list[RedundantInt
     """The redundant intersections of a level (Sec. 5.2, Fig. 6c, 12).
 
     :func:`~img2logo.arc_extraction.redundant_intersections` over all pairs of
-    its arcs, each arc owning the junctions that list it.
+    its arcs, each arc owning the junctions it starts at, passes through and ends at.
     """
-    owned: list[list[int]] = [[] for _ in abstraction.arcs]
-    for k, listed in enumerate(abstraction.junction_arcs):
-        for i in listed:
-            owned[i].append(k)
+    owned = [list(t.ordered) for t in abstraction.arc_junctions]
     return redundant_intersections(abstraction.arcs, abstraction.junctions, owned)
 
 
@@ -258,8 +253,7 @@ def detail_error(abstraction: Abstraction, graph: SegmentGraph, mask: np.ndarray
     inside = pts[mask[rows, cols]]
     if not len(inside) or not abstraction.arcs:
         return np.nan
-    samples = np.vstack([a.sample(step=0.5) for a in abstraction.arcs])
-    return float(_nearest_distance(samples, inside).mean())
+    return float(_nearest_distance(logo_points(abstraction, 0.5), inside).mean())
 
 
 def measure(
@@ -276,13 +270,17 @@ def measure(
 
 def missed_pixels(points: np.ndarray, truth: np.ndarray, distance: float) -> np.ndarray:
     """The ``truth`` pixels farther than ``distance`` px from ``points``: (H, W) bool."""
+    rows, cols, d = _truth_distances(points, truth)
+    out = np.zeros(np.shape(truth), dtype=bool)
+    out[rows[d > distance], cols[d > distance]] = True
+    return out
+
+
+def _truth_distances(points: np.ndarray, truth: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The rows and columns of the ``truth`` pixels (H, W) and their distances to ``points``, px."""
     truth = _check_map(truth, "truth")
     rows, cols = np.nonzero(truth)
-    out = np.zeros_like(truth)
-    if len(rows):
-        d = _nearest_distance(points, np.column_stack([cols + 0.5, rows + 0.5]))
-        out[rows[d > distance], cols[d > distance]] = True
-    return out
+    return rows, cols, _nearest_distance(points, np.column_stack([cols + 0.5, rows + 0.5]))
 
 
 def _nearest_distance(points: np.ndarray, queries: np.ndarray) -> np.ndarray:

@@ -28,7 +28,7 @@ from ..plotting import (
     square_window,
 )
 from ..progressive import Progression
-from ..quality import junction_gaps
+from ..quality import junction_gaps, logo_points
 from . import RUN_COLUMNS, Run, by_image, sweep, table
 
 if TYPE_CHECKING:
@@ -240,7 +240,7 @@ def plot_results_grid(runs: Sequence[Run], *, columns: int = 5, panel_size: floa
         a = run.final
         plot_abstraction(a, ax, linewidth=_stroke(panel_size))
         ax.set_title(f"{run.name} ({run.kind})\n|A| = {len(a.arcs)}, $E^s$ = {a.similarity:.2f} px", fontsize=9)
-        points = np.vstack([arc.sample(step=2.0) for arc in a.arcs]) if a.arcs else np.zeros((0, 2))
+        points = logo_points(a, 2.0)
         x, y = emptiest_corner(points, a.width, a.height, inset)
         sub = ax.inset_axes((x, y, inset, inset))
         show_image(sub, run.image.rgb)
