@@ -35,7 +35,7 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -57,7 +57,9 @@ from .constants import (
 from .errors import InvalidParameterError
 from .geometry import TAU, Abstraction, Arc, Circle
 from .options import check_symmetry_option  # the option is checked with the others
-from .segment_graph import SegmentGraph
+
+if TYPE_CHECKING:
+    from .segment_graph import SegmentGraph
 
 __all__ = [
     "Axis",
@@ -460,6 +462,8 @@ def half_graph(graph: SegmentGraph, axis: Axis) -> HalfGraph:
     if not out_segs:
         raise InvalidParameterError("no line is left on either side of the mirror axis: nothing to make symmetric")
     junctions = np.array(new_nodes).reshape(-1, 2)
+    from .segment_graph import SegmentGraph  # lazily: it loads scipy, which the writers need not
+
     half = SegmentGraph(tuple(out_segs), junctions, np.array(out_ends), graph.width, graph.height)
     on_axis = frozenset(int(k) for k in np.flatnonzero(junctions[:, 0] == a))
     used = {int(k) for k in half.ends.ravel()}
@@ -618,6 +622,8 @@ def full_graph(half: HalfGraph) -> SegmentGraph:
     segs = [half.to_image(s) for s in g.segments]
     segs += [half.to_image(half.constraints.mirror(s)) for s in g.segments]
     ends = np.vstack([g.ends, np.vectorize(mirror_node.__getitem__)(g.ends).reshape(-1, 2)])
+    from .segment_graph import SegmentGraph  # lazily: it loads scipy, which the writers need not
+
     return SegmentGraph(tuple(segs), half.to_image(junctions), ends, g.width, g.height)
 
 

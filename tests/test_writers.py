@@ -333,10 +333,10 @@ def test_svg_renders_like_the_png(tmp_path, which, discs_result):
     assert np.mean(difference.max(axis=2) > 0.25) < 0.01  # differences only along anti-aliased edges
 
 
-def test_import_does_not_load_matplotlib_or_jsonschema():
+def test_import_does_not_load_matplotlib_jsonschema_or_scipy():
     code = (
         "import sys, img2logo.writers, img2logo.contract, img2logo.plotting; "
-        "print(sorted({'matplotlib', 'jsonschema'} & set(sys.modules)))"
+        "print(sorted({'matplotlib', 'jsonschema', 'scipy'} & set(sys.modules)))"
     )
     root = Path(__file__).resolve().parents[1]
     out = subprocess.run([sys.executable, "-c", code], cwd=root, capture_output=True, text=True, check=True)
