@@ -36,6 +36,7 @@ __all__ = [
     "check_abstract_options",
     "check_lock_mask",
     "check_symmetry_option",
+    "refuse_lock_mask",
     "cli_fields",
 ]
 
@@ -435,7 +436,13 @@ def check_abstract_options(options: Mapping[str, Any], allowed: frozenset[str] =
 
 def check_lock_mask(options: Options, lock_mask: object) -> None:
     """Raise if a lock mask is given with a symmetric run: the two cannot be combined."""
-    if lock_mask is not None and check_symmetry_option(options.symmetry) is not None:
+    if check_symmetry_option(options.symmetry) is not None:
+        refuse_lock_mask(lock_mask)
+
+
+def refuse_lock_mask(lock_mask: object) -> None:
+    """Raise if ``lock_mask`` is given: a symmetric optimization takes none."""
+    if lock_mask is not None:
         raise InvalidParameterError("a lock mask cannot be combined with symmetry (use symmetry='none')")
 
 

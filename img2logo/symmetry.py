@@ -56,7 +56,8 @@ from .constants import (
 )
 from .errors import InvalidParameterError
 from .geometry import TAU, Abstraction, Arc, Circle
-from .options import check_symmetry_option  # the option is checked with the others
+from .options import check_symmetry_option, refuse_lock_mask  # the options are checked with the others
+from .simplification import path_length
 
 if TYPE_CHECKING:
     from .segment_graph import SegmentGraph
@@ -398,8 +399,8 @@ def half_graph(graph: SegmentGraph, axis: Axis) -> HalfGraph:
     segs = [_turn(s, rotation, axis.point) for s in graph.segments]
     nodes = _turn(graph.junctions, rotation, axis.point)
     # The half with more line length off the axis is kept; sign +1 keeps x <= a.
-    left = sum(_length(s[s[:, 0] < a - SYMMETRY_SNAP_DISTANCE]) for s in segs)
-    right = sum(_length(s[s[:, 0] > a + SYMMETRY_SNAP_DISTANCE]) for s in segs)
+    left = sum(path_length(s[s[:, 0] < a - SYMMETRY_SNAP_DISTANCE]) for s in segs)
+    right = sum(path_length(s[s[:, 0] > a + SYMMETRY_SNAP_DISTANCE]) for s in segs)
     sign = 1.0 if left >= right else -1.0
 
     def side(p: np.ndarray) -> np.ndarray:
@@ -451,7 +452,7 @@ def half_graph(graph: SegmentGraph, axis: Axis) -> HalfGraph:
             keep = np.ones(len(piece), dtype=bool)
             keep[1:] = np.any(np.diff(piece, axis=0) != 0, axis=1)
             piece = piece[keep]
-            if len(piece) < 2 or _length(piece) < 1.0:
+            if len(piece) < 2 or path_length(piece) < 1.0:
                 continue
             head = fresh(piece[0]) if head is None else head
             tail = fresh(piece[-1]) if tail is None else tail
@@ -504,12 +505,6 @@ def _resample(points: np.ndarray, step: float = 1.0) -> np.ndarray:
     cum = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(points, axis=0).T))])
     t = np.linspace(0.0, cum[-1], max(2, math.ceil(cum[-1] / step) + 1))
     return np.column_stack([np.interp(t, cum, points[:, 0]), np.interp(t, cum, points[:, 1])])
-
-
-def _length(points: np.ndarray) -> float:
-    if len(points) < 2:
-        return 0.0
-    return float(np.sum(np.hypot(*np.diff(points, axis=0).T)))
 
 
 # --------------------------------------------------------------------------- mirroring
@@ -672,9 +667,7 @@ def optimize_symmetric(
 
     from .progressive import optimize
 
-    if options.get("lock_mask") is not None:
-        raise InvalidParameterError("a lock mask cannot be combined with symmetry (use symmetry='none')")
-    options.pop("lock_mask", None)
+    refuse_lock_mask(options.pop("lock_mask", None))
     half = half_graph(graph, axis)
     progression = optimize(half.graph, symmetry=half.constraints, **options)
     record = symmetry_record(half, choice)
