@@ -107,7 +107,7 @@ def to_document(
     # extra.lines, so every circle of the document stays on the golden ladder.
     arcs = tuple(a for a in abstraction.arcs if not a.is_line)
     arc_number = {i: n for n, i in enumerate(i for i, a in enumerate(abstraction.arcs) if not a.is_line)}
-    circles = tuple(dict.fromkeys(a.circle for a in arcs))
+    circles = abstraction.golden_circles
     index = {c: i for i, c in enumerate(circles)}
     circle_docs = [{"cx": float(c.cx), "cy": float(c.cy), "r": float(c.r), "k": int(c.k)} for c in circles]  # type: ignore[arg-type]
 

@@ -438,10 +438,11 @@ class Abstraction:
             )
         if ladder.bias != self.bias:
             raise InvalidParameterError(f"bias {self.bias!r} is not the ladder's bias {ladder.bias!r}")
+        golden = set(self.golden_circles)
         for i, c in enumerate(self.circles):
+            if c not in golden:
+                continue  # a straight line's circle (no k) is none of the document's
             if c.k is None:
-                if all(a.is_line for a in self.arcs if a.circle == c):
-                    continue
                 raise InvalidParameterError(
                     f"circle {i} (centre ({c.cx:.6g}, {c.cy:.6g}), r={c.r:.6g}) has no ladder exponent k: "
                     "only golden circles, r = phi**(k+bias), can be written"
@@ -542,6 +543,15 @@ class Abstraction:
     def circles(self) -> tuple[Circle, ...]:
         """The distinct circles of the arcs, in order of first use."""
         return tuple(dict.fromkeys(a.circle for a in self.arcs))
+
+    @property
+    def golden_circles(self) -> tuple[Circle, ...]:
+        """The distinct circles of the arcs that are not straight lines, in order of first use.
+
+        The circles of the result file, numbered as there (:mod:`img2logo.contract`):
+        a straight line's circle (``LINE_RADIUS``, no k) is none of them.
+        """
+        return tuple(dict.fromkeys(a.circle for a in self.arcs if not a.is_line))
 
     @property
     def phi(self) -> float:

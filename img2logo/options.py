@@ -36,8 +36,8 @@ __all__ = [
     "check_abstract_options",
     "check_lock_mask",
     "check_symmetry_option",
-    "refuse_lock_mask",
     "cli_fields",
+    "refuse_lock_mask",
 ]
 
 #: ``max_arc_distance``'s default: ``PHOTO_MAX_ARC_FACTOR * tolerance`` for a photo, no bound otherwise.

@@ -36,7 +36,7 @@ import numpy as np
 
 from ._io import as_path, atomic_write, check_output_paths, output_set
 from ._validation import check_integer, check_positive
-from .constants import FORMAT_NAME, LINE_RADIUS, PNG_DPI
+from .constants import FORMAT_NAME, PNG_DPI
 from .contract import from_document, to_document
 from .errors import InvalidParameterError
 from .fills import Fill, check_fills
@@ -142,7 +142,7 @@ def to_svg(
         shown_w = check_positive(shown_w, "image_size width")
         shown_h = check_positive(shown_h, "image_size height")
 
-    circles = abstraction.circles
+    circles = abstraction.golden_circles  # numbered as in the JSON document
     index = {c: i for i, c in enumerate(circles)}
     n = svg_number
     if isinstance(abstraction.ladder, FibonacciLadder):
@@ -172,8 +172,6 @@ def to_svg(
             f'{hidden} fill="none" stroke="{CIRCLE_COLOR}" stroke-width="{n(max(0.5, sw / 4.0))}">'
         )
         for i, c in enumerate(circles):
-            if c.k is None and c.r >= 0.5 * LINE_RADIUS:
-                continue  # the circle of a straight line is no construction circle
             lines.append(f'    <circle id="circle-{i}"{_k_attr(c)} cx="{n(c.cx)}" cy="{n(c.cy)}" r="{n(c.r)}"/>')
         guide = axis_segment(abstraction.params, width, height)
         if guide is not None:  # a symmetric logo: its mirror axis as a guide line across the image

@@ -14,6 +14,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 from conftest import (
+    DATA,
     HEIGHT,
     WIDTH,
     abstraction_of,
@@ -341,3 +342,19 @@ def test_import_does_not_load_matplotlib_jsonschema_or_scipy():
     root = Path(__file__).resolve().parents[1]
     out = subprocess.run([sys.executable, "-c", code], cwd=root, capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "[]"
+
+
+def test_svg_numbers_circles_as_the_json_does_with_straight_lines(tmp_path):
+    """A straight line's circle is no circle of the document: the SVG must not count it either.
+
+    On the whale with ``lines=True`` the line comes before some arcs, so counting its circle
+    shifted the SVG's ``data-circle`` of every later arc by one against the JSON.
+    """
+    import img2logo
+
+    a = img2logo.abstract(DATA / "drawing-whale.png", lines=True, progress=False).final
+    assert any(arc.is_line for arc in a.arcs)
+    doc = contract.to_document(a)
+    svg = writers.to_svg(a)
+    assert [int(c) for c in re.findall(r'data-circle="(\d+)"', svg)] == [arc["circle"] for arc in doc["arcs"]]
+    assert len(re.findall(r'<circle id="circle-', svg)) == len(doc["circles"]) == len(a.golden_circles)
