@@ -260,7 +260,11 @@ def find_axis(lines: np.ndarray, angle: float | None = None) -> Axis:
     if not arr.any():
         direction = (0.0, 1.0) if angle is None else (math.cos(math.radians(angle)), math.sin(math.radians(angle)))
         return Axis(np.array([arr.shape[1] / 2, arr.shape[0] / 2]), np.array(direction), 0.0)
-    sc = _Scorer(arr)
+    return _search(_Scorer(arr), angle)
+
+
+def _search(sc: _Scorer, angle: float | None) -> Axis:
+    """:func:`find_axis` on a line map's scorer (its distance map made once for several searches)."""
     if angle is None:
         thetas = np.arange(0.0, math.pi, SYMMETRY_ANGLE_STEP)
     else:
@@ -293,12 +297,18 @@ def choose_axis(lines: np.ndarray, mode: str) -> SymmetryChoice:
     ``SYMMETRY_THRESHOLD``; ``vertical``, ``horizontal`` or an angle force the
     direction and keep the best position whatever the score.
     """
+    arr = np.asarray(lines)
+    scorer = _Scorer(arr) if arr.ndim == 2 and arr.any() else None  # one distance map for every search
+
+    def axis(angle: float | None = None) -> Axis:
+        return find_axis(arr, angle) if scorer is None else _search(scorer, angle)
+
     if mode == "auto":
-        best = find_axis(lines)
+        best = axis()
         for upright in (0.0, 90.0, 180.0):
             # Nearly upright (or level) is made exactly so, unless that scores worse.
             if 0.0 < abs(best.angle - upright) <= SYMMETRY_SNAP_ANGLE:
-                snapped = find_axis(lines, upright % 180.0)
+                snapped = axis(upright % 180.0)
                 if snapped.score >= best.score - SYMMETRY_SNAP_SCORE_LOSS:
                     best = snapped
         if best.score >= SYMMETRY_THRESHOLD:
@@ -307,8 +317,8 @@ def choose_axis(lines: np.ndarray, mode: str) -> SymmetryChoice:
         text = f"symmetry: none (best {best.describe()} < {SYMMETRY_THRESHOLD:g}): the logo is made free"
         return SymmetryChoice(mode, None, best, text)
     angle = _FORCED.get(mode)
-    axis = find_axis(lines, float(mode) if angle is None else angle)
-    return SymmetryChoice(mode, axis, axis, f"symmetry: {axis.describe()} ({mode}, as asked)")
+    forced = axis(float(mode) if angle is None else angle)
+    return SymmetryChoice(mode, forced, forced, f"symmetry: {forced.describe()} ({mode}, as asked)")
 
 
 # --------------------------------------------------------------------------- the half graph
