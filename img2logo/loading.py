@@ -83,6 +83,15 @@ class LoadedImage:
 
         return readonly(rgb2lab(self.rgb))
 
+    @functools.cached_property
+    def smooth_lab(self) -> np.ndarray:
+        """CIELAB colours of the image smoothed by a 1 px Gaussian (pixel noise out), (H, W, 3) float64,
+        read-only; computed once (the subject's outline test may run for two candidates)."""
+        from scipy import ndimage
+        from skimage.color import rgb2lab
+
+        return readonly(rgb2lab(ndimage.gaussian_filter(self.rgb, (1.0, 1.0, 0.0))))
+
 
 # --------------------------------------------------------------------------- loading
 def load_image(source: object, *, max_side: int = MAX_IMAGE_SIDE, max_pixels: int = MAX_IMAGE_PIXELS) -> LoadedImage:

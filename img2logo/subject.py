@@ -254,11 +254,10 @@ def outline_contrast(img: LoadedImage, mask: np.ndarray, step: float = SUBJECT_C
     texture); a cut through fur or gravel does not (about 2).
     """
     from scipy import ndimage
-    from skimage.color import rgb2lab
 
     if not mask.any() or mask.all():
         return 0.0
-    lab = rgb2lab(ndimage.gaussian_filter(img.rgb, (1.0, 1.0, 0.0)))
+    lab = img.smooth_lab
     signed = ndimage.distance_transform_edt(mask) - ndimage.distance_transform_edt(~mask)
     gy, gx = np.gradient(ndimage.gaussian_filter(signed, 2.0))
     rows, cols = np.nonzero(mask & ~ndimage.binary_erosion(mask))
