@@ -8,6 +8,7 @@ r10 against the ground truth of the evaluation set's images).
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import os
 import warnings
@@ -22,7 +23,7 @@ from ..errors import Img2LogoError
 from ..loading import load_mask
 from ..pipeline import Result, abstract
 from ..plotting import plot_abstraction
-from ..quality import measure
+from ..quality import feature_recall, logo_points
 from . import repo_relative
 
 __all__ = ["Comparison", "compare", "comparison_table", "plot_comparison"]
@@ -63,8 +64,11 @@ def compare(paths: Sequence[str | os.PathLike[str]], *, tolerance: float) -> lis
         truth = load_mask(truth_file) if truth_file.is_file() else None
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")  # a released junction is counted in the runs' stats
-            free = abstract(p, tolerance=tolerance, progress=False)
             sym = abstract(p, tolerance=tolerance, progress=False, symmetry="auto")
+            if sym.symmetry is not None and sym.symmetry.axis is None:
+                free = dataclasses.replace(sym, symmetry=None)  # auto kept no axis: that run is the free one
+            else:
+                free = abstract(p, tolerance=tolerance, progress=False)
         out.append(Comparison(repo_relative(p), free, sym, truth))
     return out
 
@@ -83,7 +87,10 @@ def comparison_table(comparisons: Sequence[Comparison]) -> Any:
         choice = c.symmetric.symmetry
         best = choice.best
         record = c.symmetric.final.params.get("symmetry", {})
-        r10 = [measure(r.final, c.truth).recall[2] if c.truth is not None else math.nan for r in (c.free, c.symmetric)]
+        r10 = [
+            feature_recall(logo_points(r.final), c.truth)[2] if c.truth is not None else math.nan
+            for r in (c.free, c.symmetric)
+        ]
         rows.append(
             {
                 "image": c.name,
