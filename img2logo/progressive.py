@@ -184,7 +184,7 @@ class _Optimizer:
         self.ladder: Ladder | None = None
         #: Junctions whose connectivity constraint was given up (see recover).
         self.released: set[int] = set()
-        self._path_cache: dict[int, tuple[Group, tuple[int, ...]]] = {}
+        self._path_cache: dict[tuple[int, ...], tuple[int, ...]] = {}
         self._node_groups: dict[int, list[int]] | None = None
 
     # ----------------------------------------------------------------- groups and nodes
@@ -211,27 +211,20 @@ class _Optimizer:
 
     def path_nodes(self, group: Group) -> tuple[int, ...]:
         """:meth:`constrained_nodes` with the released junctions (see :meth:`recover`), in path order."""
-        # Called for every group of every window of every candidate merge: cached per
-        # group (groups are immutable; the object is kept so that its id is not reused).
-        hit = self._path_cache.get(id(group))
-        if hit is not None and hit[0] is group:
-            return hit[1]
-        nodes = self._path_nodes(group)
-        self._path_cache[id(group)] = (group, nodes)
-        return nodes
+        # Called for every group of every window of every candidate merge: cached by the
+        # group's node path, which is all the answer depends on.
+        hit = self._path_cache.get(group.nodes)
+        if hit is None:
+            hit = self._path_cache[group.nodes] = self._path_nodes(group)
+        return hit
 
     def _path_nodes(self, group: Group) -> tuple[int, ...]:
-        if group.closed:
-            head = (group.nodes[0],)
-        else:
-            head = ()
+        n = group.nodes
         inner = ()
         if self.options.inner_junctions:
             valence = self.graph.valence
-            inner = tuple(n for n in group.nodes[1:-1] if valence[n] >= 3)
-        if group.closed:
-            return head + inner
-        return (group.nodes[0], *inner, group.nodes[-1])
+            inner = tuple(m for m in n[1:-1] if valence[m] >= 3)
+        return (n[0], *inner) if group.closed else (n[0], *inner, n[-1])
 
     def node_groups(self, groups: dict[int, Group] | None = None) -> dict[int, list[int]]:
         """For every node of J', the groups constrained there (of ``groups``, default the current ones).
