@@ -16,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from ._validation import check_finite, readonly
+from ._validation import check_finite, check_integer, check_positive, readonly
 from .constants import JUNCTION_TOLERANCE, LINE_RADIUS, PHI, RADIUS_RELATIVE_TOLERANCE
 from .errors import InvalidParameterError
 from .golden_ladder import FibonacciLadder, GoldenLadder, Ladder
@@ -274,8 +274,10 @@ class ArcJunctions:
         for name in ("start", "end"):
             value = getattr(self, name)
             if value is not None:
-                object.__setattr__(self, name, _index(value, f"ArcJunctions.{name}"))
-        object.__setattr__(self, "through", tuple(_index(j, "ArcJunctions.through entry") for j in self.through))
+                object.__setattr__(self, name, check_integer(value, f"ArcJunctions.{name}", 0))
+        object.__setattr__(
+            self, "through", tuple(check_integer(j, "ArcJunctions.through entry", 0) for j in self.through)
+        )
 
     @property
     def ordered(self) -> tuple[int, ...]:
@@ -292,14 +294,6 @@ class ArcJunctions:
         """The same with junction ``j`` renamed ``mapping[j]``; a junction not in it is dropped (a free end)."""
         through = tuple(mapping[j] for j in self.through if j in mapping)
         return ArcJunctions(mapping.get(self.start), mapping.get(self.end), through)  # type: ignore[arg-type]
-
-
-def _index(value: object, name: str) -> int:
-    if isinstance(value, bool | np.bool_) or not isinstance(value, int | np.integer):
-        raise InvalidParameterError(f"{name} must be an integer, got {value!r}")
-    if value < 0:
-        raise InvalidParameterError(f"{name} must be >= 0, got {value}")
-    return int(value)
 
 
 # --------------------------------------------------------------------------- the abstraction
@@ -384,15 +378,11 @@ class Abstraction:
         for a in self.arcs:
             if not isinstance(a, Arc):
                 raise InvalidParameterError(f"arcs must be Arc values, got {type(a).__name__}")
-        put(self, "level", _index(self.level, "level"))
-        put(self, "width", _at_least_one(self.width, "width"))
-        put(self, "height", _at_least_one(self.height, "height"))
-        similarity = check_finite(self.similarity, "similarity")
-        if similarity < 0.0:
-            raise InvalidParameterError(f"similarity must be >= 0, got {similarity!r}")
-        tolerance = check_finite(self.tolerance, "tolerance")
-        if tolerance <= 0.0:
-            raise InvalidParameterError(f"tolerance must be > 0, got {tolerance!r}")
+        put(self, "level", check_integer(self.level, "level", 0))
+        put(self, "width", check_integer(self.width, "width", 1))
+        put(self, "height", check_integer(self.height, "height", 1))
+        similarity = check_positive(self.similarity, "similarity", allow_zero=True)
+        tolerance = check_positive(self.tolerance, "tolerance")
         bias = check_finite(self.bias, "bias")
         if not 0.0 <= bias < 1.0:
             raise InvalidParameterError(f"bias must be in [0, 1), got {bias!r}")
@@ -421,7 +411,11 @@ class Abstraction:
         nodes = (None,) * len(j) if self.junction_nodes is None else tuple(self.junction_nodes)
         if len(nodes) != len(j):
             raise InvalidParameterError(f"junction_nodes must have one entry per junction ({len(j)}), got {len(nodes)}")
-        put(self, "junction_nodes", tuple(None if n is None else _index(n, "junction_nodes entry") for n in nodes))
+        put(
+            self,
+            "junction_nodes",
+            tuple(None if n is None else check_integer(n, "junction_nodes entry", 0) for n in nodes),
+        )
         if self.arc_junctions is None:
             put(self, "arc_junctions", self._found_arc_junctions())
         self._check_topology()
@@ -567,12 +561,5 @@ class Abstraction:
         return tuple(i for i in self.junction_arcs[junction] if junction in self.arc_junctions[i].ends)
 
 
-def _at_least_one(value: object, name: str) -> int:
-    v = _index(value, name)
-    if v < 1:
-        raise InvalidParameterError(f"{name} must be >= 1, got {v}")
-    return v
-
-
 def _int_tuples(values: Sequence[Sequence[int]], name: str) -> tuple[tuple[int, ...], ...]:
-    return tuple(tuple(_index(v, f"{name} entry") for v in entry) for entry in values)
+    return tuple(tuple(check_integer(v, f"{name} entry", 0) for v in entry) for entry in values)
