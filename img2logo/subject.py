@@ -297,12 +297,18 @@ def _working_copy(img: LoadedImage) -> tuple[np.ndarray, float]:
     return cv2.resize(img.rgb.astype(np.float32), (sw, sh), interpolation=cv2.INTER_AREA), scale
 
 
-def _frame_strip(shape: tuple[int, int]) -> np.ndarray:
-    """The strip of ``SUBJECT_FRAME_INSET`` of each side along the frame, (h, w) bool."""
+def _frame_box(shape: tuple[int, int]) -> tuple[int, int, int, int]:
+    """The box (x, y, width, height) inside the frame strip of an (h, w) image, px."""
     sh, sw = shape
     x0, y0 = round(SUBJECT_FRAME_INSET * sw), round(SUBJECT_FRAME_INSET * sh)
-    strip = np.ones((sh, sw), bool)
-    strip[y0 : sh - y0, x0 : sw - x0] = False
+    return x0, y0, sw - 2 * x0, sh - 2 * y0
+
+
+def _frame_strip(shape: tuple[int, int]) -> np.ndarray:
+    """The strip of ``SUBJECT_FRAME_INSET`` of each side along the frame, (h, w) bool."""
+    x0, y0, bw, bh = _frame_box(shape)
+    strip = np.ones(shape, bool)
+    strip[y0 : y0 + bh, x0 : x0 + bw] = False
     return strip
 
 
@@ -454,8 +460,7 @@ def _grabcut(
         cv2.grabCut(_bgr8(small), label, None, bgd, fgd, SUBJECT_GRABCUT_ITERATIONS, cv2.GC_INIT_WITH_MASK)
     else:
         if rect is None:
-            x0, y0 = round(SUBJECT_FRAME_INSET * sw), round(SUBJECT_FRAME_INSET * sh)
-            box = (x0, y0, sw - 2 * x0, sh - 2 * y0)
+            box = _frame_box((sh, sw))
         else:
             x, y, rw, rh = rect
             bx0, by0 = int(np.floor(x * sx)), int(np.floor(y * sy))
