@@ -382,15 +382,13 @@ def join_line_ends(skel: np.ndarray, distance: float = LINE_JOIN_DISTANCE) -> np
     Ends are taken in raster order; a new run is itself a line for the ends
     after it.
     """
-    from scipy import ndimage
     from scipy.spatial import cKDTree
     from skimage.draw import line
 
     out = np.asarray(skel, dtype=bool).copy()
     if not out.any():
         return out
-    neighbours = ndimage.convolve(out.astype(np.uint8), np.ones((3, 3), np.uint8), mode="constant") - 1
-    ends = np.argwhere(out & (neighbours == 1))
+    ends = np.argwhere(out & (classify(out)[1] == 1))
     if len(ends) == 0:
         return out
     pixels = np.argwhere(out)
