@@ -414,10 +414,8 @@ def _check_invariants(doc: Mapping[str, Any]) -> None:
                     f"junction {j}: ({x:.6g}, {y:.6g}) is {off:.3g} px off the circle {ci} of arc {ai}, "
                     f"more than {tol:g} px"
                 )
-            t0 = float(a["theta0"])
-            t1 = t0 + float(a["sweep"])
-            ends = [(cx + r * math.cos(t), cy + r * math.sin(t)) for t in (t0, t1)]
-            gap = min(math.hypot(x - ex, y - ey) for ex, ey in ends)
+            ex, ey = _nearest_end(a, c, np.array([x, y]))
+            gap = math.hypot(x - ex, y - ey)
             if not gap <= tol:
                 raise InvalidParameterError(
                     f"junction {j}: arc {ai} has no end point at ({x:.6g}, {y:.6g}): its nearest end is "
