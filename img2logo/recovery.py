@@ -79,7 +79,7 @@ def recover(
                 break
             miss = {
                 n: max(abs(float(np.hypot(*(opt.graph.junctions[n] - seeds[g][0]))) - seeds[g][1]) for g in gs)
-                for n, gs in opt.node_groups(groups).items()
+                for n, gs in at.items()  # nothing has changed since the attempt
             }
             if not miss:  # no constraint left, yet no fit: a numerical failure, said as such
                 raise FitError(f"the circles of {len(part)} segments could not be fitted, even unconstrained")
