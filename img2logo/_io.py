@@ -64,6 +64,9 @@ def check_output_paths(
     checked: dict[str, Path] = {}
     seen: dict[str, str] = {}
     real_inputs = {os.path.realpath(os.fspath(p)): Path(p) for p in inputs}
+    # Each input's file identity, stat'ed once (not once per target): the targets x inputs
+    # comparisons of a large batch then cost no file system calls.
+    input_ids = {real: _file_id(given) for real, given in real_inputs.items()}
     for name, path in targets.items():
         target = as_path(path)
         label = name if name == str(target) else f"{name} {target}"
@@ -72,8 +75,9 @@ def check_output_paths(
         if target.exists() and not target.is_file():
             raise InvalidParameterError(f"{label} is not a regular file (a device, a pipe, ...)")
         real = os.path.realpath(target)
+        target_id = _file_id(target)
         for real_input, given in real_inputs.items():
-            if real == real_input or (target.exists() and _same_file(target, given)):
+            if real == real_input or (target_id is not None and target_id == input_ids[real_input]):
                 raise InvalidParameterError(f"{label} is the input {given}: refusing to write over an input")
         if real in seen:
             raise InvalidParameterError(f"{seen[real]} and {name} name the same file {target}; give two files")
@@ -89,11 +93,13 @@ def check_output_paths(
     return checked
 
 
-def _same_file(a: Path, b: Path) -> bool:
+def _file_id(path: Path) -> tuple[int, int] | None:
+    """The (device, inode) of an existing file, what :func:`os.path.samefile` compares; None if it cannot be stat'ed."""
     try:
-        return os.path.samefile(a, b)
+        st = os.stat(path)
     except OSError:
-        return False
+        return None
+    return st.st_dev, st.st_ino
 
 
 def _check_writable_parent(label: str, folder: Path) -> None:
