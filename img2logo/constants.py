@@ -15,6 +15,10 @@ PHI: float = (1.0 + math.sqrt(5.0)) / 2.0
 #: log(phi), used to move between radii and ladder exponents (Eqn. 12, 14).
 LOG_PHI: float = math.log(PHI)
 
+#: Weights of R, G, B in the gray value (ITU-R BT.601 luma), unit-free: the gray of
+#: the photo's line drawing, of a mask image and of the subject's focus measure.
+LUMA_WEIGHTS: tuple[float, float, float] = (0.299, 0.587, 0.114)
+
 #: Name of the result-file format (``contract/README.md``).
 FORMAT_NAME: str = "img2logo.abstraction/1"
 

@@ -21,7 +21,14 @@ from pathlib import Path
 import numpy as np
 
 from ._validation import readonly
-from .constants import BLANK_IMAGE_RANGE, DOWNSCALE_STRIP_ROWS, MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, MIN_IMAGE_SIDE
+from .constants import (
+    BLANK_IMAGE_RANGE,
+    DOWNSCALE_STRIP_ROWS,
+    LUMA_WEIGHTS,
+    MAX_IMAGE_PIXELS,
+    MAX_IMAGE_SIDE,
+    MIN_IMAGE_SIDE,
+)
 from .errors import ImageNotFoundError, InvalidImageError, InvalidParameterError
 
 
@@ -73,7 +80,7 @@ class LoadedImage:
     @property
     def gray(self) -> np.ndarray:
         """Luminance (Rec. 601), (H, W) float64 in [0, 1]."""
-        return self.rgb @ np.array([0.299, 0.587, 0.114])
+        return self.rgb @ np.array(LUMA_WEIGHTS)
 
     @functools.cached_property
     def lab(self) -> np.ndarray:
@@ -201,7 +208,7 @@ def load_mask(source: object, shape: tuple[int, int] | None = None) -> np.ndarra
         mask = arr.copy()
     else:
         rgb, alpha, _ = composite_on_white(arr, name, bgr=bgr)
-        mask = (rgb @ np.array([0.299, 0.587, 0.114]) >= 0.5) & (alpha >= 0.5)
+        mask = (rgb @ np.array(LUMA_WEIGHTS) >= 0.5) & (alpha >= 0.5)
     if shape is not None and mask.shape != tuple(shape):
         raise InvalidParameterError(f"{name}: mask must have the image's shape {tuple(shape)}, got {mask.shape}")
     return mask

@@ -58,6 +58,7 @@ from .constants import (
     FOCUS_SOFT_WINDOW,
     FOCUS_STEP,
     FOCUS_WINDOW,
+    LUMA_WEIGHTS,
     SUBJECT_CONTRAST_STEP,
     SUBJECT_FRAME_INSET,
     SUBJECT_GRABCUT_ITERATIONS,
@@ -370,7 +371,7 @@ def focus_seeds(img: LoadedImage) -> FocusSeeds | None:
     from scipy import ndimage
 
     small, _ = _working_copy(img)
-    gray = small @ np.array([0.299, 0.587, 0.114], np.float32)
+    gray = small @ np.array(LUMA_WEIGHTS, np.float32)
     detail = fine_detail(gray)
     top = float(np.percentile(detail, 90))
     if top <= 1e-6:
