@@ -141,6 +141,10 @@ def abstract(
         (:class:`~img2logo.options.Options`).
     """
     given = {name: value for name, value in (("tolerance", tolerance), ("kind", kind)) if value is not _DEFAULT}
+    if not (progress is None or isinstance(progress, bool) or callable(progress)):
+        raise InvalidParameterError(
+            f"progress must be a callable progress(t, n_arcs, similarity), True, False or None, got {progress!r}"
+        )
     opts = Options.from_keywords({**given, **settings}, base=options)
     check_lock_mask(opts, lock_mask)
     timings: dict[str, float] = {}

@@ -79,6 +79,18 @@ def test_keywords_are_checked_before_any_work(tmp_path):
         abstract(missing, min_length=-5)
 
 
+def test_tolerance_and_progress_of_the_wrong_type_are_refused_before_any_work(tmp_path):
+    # issue 20, item 21: '5', True and 'yes' were taken as 5.0, 1.0 and a progress bar.
+    missing = tmp_path / "missing.png"
+    for value in ("5", True):
+        with pytest.raises(InvalidParameterError, match=rf"^tolerance must be a number of px, got {value!r}$"):
+            abstract(missing, tolerance=value)
+    with pytest.raises(
+        InvalidParameterError, match=r"^progress must be a callable .*, True, False or None, got 'yes'$"
+    ):
+        abstract(missing, progress="yes")
+
+
 def test_level_out_of_range_names_the_range(result):
     n = len(result.levels)
     assert result.level(n - 1) is result.final and result.level(-n) is result.levels[0]

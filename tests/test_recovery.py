@@ -66,3 +66,14 @@ def test_one_huge_radius_on_a_real_drawing_gives_a_logo(data_dir):
     with pytest.warns(recovery.ConnectivityWarning):
         result = abstract(data_dir / "drawing-fish.png", exponents=[15], progress=False)
     assert result.final.arcs and {a.circle.k for a in result.final.arcs} == {15}
+
+
+def test_radii_too_large_for_the_image_are_named():
+    # The smallest radius allowed is over 20 x the longer side (600 px): a straight line to the fit.
+    graph, _ = golden_chain()
+    with pytest.raises(
+        InvalidParameterError, match=r"the smallest, 1\.5e\+04 px, is over 20 x .* \(600 px\), .*--unit"
+    ):
+        optimize(graph, ladder="fibonacci", unit=15000.0)
+    with pytest.raises(InvalidParameterError, match=r"choose smaller exponents \(--radii\)"):
+        optimize(graph, exponents=[24, 25], bias=0.0)  # phi**24 = 103682 px

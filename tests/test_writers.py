@@ -5,6 +5,7 @@ from __future__ import annotations
 import io
 import json
 import math
+import os
 import re
 import subprocess
 import sys
@@ -52,6 +53,23 @@ def test_write_json_deterministic_and_readable(tmp_path):
     (tmp_path / "bad.json").write_text("{not json")
     with pytest.raises(InvalidParameterError, match="is not JSON"):
         writers.read_json(tmp_path / "bad.json")
+
+
+def test_read_json_errors_are_img2logo_errors(tmp_path):
+    # issue 20, item 21: a missing file was a bare FileNotFoundError.
+    from img2logo.errors import Img2LogoError, InputNotFoundError
+
+    with pytest.raises(InputNotFoundError, match=r"^JSON file not found: .*nope\.json$") as info:
+        writers.read_json(tmp_path / "nope.json")
+    assert isinstance(info.value, Img2LogoError) and isinstance(info.value, FileNotFoundError)
+    with pytest.raises(InvalidParameterError, match=r"is a folder, not a JSON file"):
+        writers.read_json(tmp_path)
+    os.mkfifo(tmp_path / "pipe.json")  # read, it would block
+    with pytest.raises(InvalidParameterError, match=r"pipe\.json is not a regular file"):
+        writers.read_json(tmp_path / "pipe.json")
+    (tmp_path / "latin.json").write_bytes(b"\xff\xfe{")
+    with pytest.raises(InvalidParameterError, match=r"latin\.json is not JSON: not UTF-8 text"):
+        writers.read_json(tmp_path / "latin.json")
 
 
 def test_invalid_document_is_not_written(tmp_path):
