@@ -42,7 +42,7 @@ from .constants import ARC_SAMPLE_STEP
 from .errors import InvalidParameterError
 from .geometry import Abstraction
 from .loading import composite_on_white
-from .svg_path import sample_path, svg_number
+from .svg_path import check_path_data, sample_path, svg_number
 
 if TYPE_CHECKING:
     from shapely.geometry import Polygon
@@ -208,8 +208,7 @@ class Fill:
     face: int | None = None
 
     def __post_init__(self) -> None:
-        if not isinstance(self.path, str) or not self.path.strip().upper().startswith("M"):
-            raise InvalidParameterError(f"fill path must be SVG path data starting with 'M', got {self.path!r:.60}")
+        check_path_data(self.path)
         object.__setattr__(self, "color", parse_color(self.color, "fill color"))
         if self.gradient is not None and not isinstance(self.gradient, Gradient):
             raise InvalidParameterError(f"fill gradient must be a Gradient or None, got {type(self.gradient).__name__}")

@@ -412,7 +412,7 @@ def _svg_fill_layer(fills: Sequence[Fill]) -> list[str]:
     for i, f in enumerate(fills):
         paint = f.color if f.gradient is None else f"url(#{gradient_ids[f.gradient]})"
         face = "" if f.face is None else f' data-face="{int(f.face)}"'
-        lines.append(f'    <path id="fill-{i}"{face} fill="{paint}" fill-rule="evenodd" d="{_escape(f.path)}"/>')
+        lines.append(f'    <path id="fill-{i}"{face} fill="{_attr(paint)}" fill-rule="evenodd" d="{_attr(f.path)}"/>')
     lines.append("  </g>")
     return lines
 
@@ -477,6 +477,15 @@ def write_table(table: Any, path: str | os.PathLike[str]) -> Path:
 def _escape(text: str) -> str:
     """``text`` safe as XML character data (``xml.sax.saxutils.escape`` without its slow import)."""
     return text.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
+
+
+def _attr(text: str) -> str:
+    """``text`` safe inside a double-quoted XML attribute: ``&``, ``<``, ``>`` and ``"`` escaped.
+
+    Fill paths and colours are checked when made (:class:`~img2logo.fills.Fill`);
+    escaping them too means no value can end its attribute, whatever a caller built.
+    """
+    return _escape(text).replace('"', "&quot;")
 
 
 def _k_attr(circle: Circle) -> str:

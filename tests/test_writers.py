@@ -301,6 +301,21 @@ def test_svg_fill_layer_is_under_the_arcs(tmp_path):
     assert "Fills" not in writers.to_svg(a)
 
 
+def test_fill_path_that_is_not_path_data_is_refused_and_never_lands_unescaped(tmp_path):
+    # issue 20, item 14: a '"' in Fill.path ended the d attribute: onload="..." landed in the file.
+    evil = 'M 0 0 L 10 0 L 10 10 Z" onload="alert(1)'
+    with pytest.raises(InvalidParameterError, match=r"fill path is not SVG path data: '\"' at character 22"):
+        fills.Fill(evil, "#ff0000")
+    with pytest.raises(InvalidParameterError, match=r"fill path is not SVG path data: '<'"):
+        fills.Fill("M 0 0 <script/>", "#ff0000")
+    forged = fills.Fill("M 0 0 L 10 0 L 10 10 Z", "#ff0000")
+    object.__setattr__(forged, "path", evil)  # past the check: the writer escapes it still
+    a = four_arcs()
+    root = ET.parse(writers.write_svg(a, tmp_path / "x.svg", fills=[forged])).getroot()
+    path = root.find(f"{SVG}g[@id='fills']/{SVG}path")
+    assert path.get("d") == evil and path.get("onload") is None
+
+
 def test_svg_gradient_defs(tmp_path):
     a = four_arcs()
     fs = fills.fill_gradient(a, ["#ff0000", "#ffff00", "#0000ff"], kind="radial")
