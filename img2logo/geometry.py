@@ -17,7 +17,7 @@ from typing import Any
 import numpy as np
 
 from ._validation import check_finite, check_integer, check_positive, readonly
-from .constants import JUNCTION_TOLERANCE, LINE_RADIUS, PHI, RADIUS_RELATIVE_TOLERANCE
+from .constants import JUNCTION_TOLERANCE, LINE_RADIUS, MAX_IMAGE_PIXELS, PHI, RADIUS_RELATIVE_TOLERANCE
 from .errors import InvalidParameterError
 from .golden_ladder import FibonacciLadder, GoldenLadder, Ladder
 
@@ -325,7 +325,7 @@ class Abstraction:
     tolerance : float
         The tolerance T the run used, px, > 0.
     width, height : int
-        Size of the input image, px, >= 1.
+        Size of the input image, px, >= 1, at most ``MAX_IMAGE_PIXELS`` in all.
     params : Params
         Every other parameter of the run (kind, RDP tolerance, the options, ...),
         for the record: an immutable mapping (any mapping given is frozen).
@@ -381,6 +381,11 @@ class Abstraction:
         put(self, "level", check_integer(self.level, "level", 0))
         put(self, "width", check_integer(self.width, "width", 1))
         put(self, "height", check_integer(self.height, "height", 1))
+        if self.width * self.height > MAX_IMAGE_PIXELS:  # as load_image: a PNG of it would not fit in memory
+            raise InvalidParameterError(
+                f"width x height must be at most {MAX_IMAGE_PIXELS:,} px (the largest image img2logo reads), "
+                f"got {self.width:.3g} x {self.height:.3g}"
+            )
         similarity = check_positive(self.similarity, "similarity", allow_zero=True)
         tolerance = check_positive(self.tolerance, "tolerance")
         bias = check_finite(self.bias, "bias")

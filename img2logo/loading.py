@@ -165,9 +165,16 @@ def load_image(source: object, *, max_side: int = MAX_IMAGE_SIDE, max_pixels: in
         rgb, alpha, has_alpha = _shrink(arr, size, name, bgr=bgr)
     else:
         rgb, alpha, has_alpha = composite_on_white(arr, name, bgr=bgr)
-    if np.ptp(rgb) < BLANK_IMAGE_RANGE and np.ptp(alpha) < BLANK_IMAGE_RANGE:
-        raise InvalidImageError(f"{name}: image is blank (every pixel has the same colour); nothing to trace")
+    _check_not_blank(rgb, alpha, name)
     return LoadedImage(readonly(rgb), readonly(alpha), has_alpha, scale, name)
+
+
+def _check_not_blank(rgb: np.ndarray, alpha: np.ndarray, name: str) -> None:
+    """Raise if the image is one colour (any colour, and one opacity): each channel spans < ``BLANK_IMAGE_RANGE``."""
+    lo, hi = rgb.min(axis=(0, 1)), rgb.max(axis=(0, 1))
+    if np.all(hi - lo < BLANK_IMAGE_RANGE) and np.ptp(alpha) < BLANK_IMAGE_RANGE:
+        colour = "#" + "".join(f"{round(float(v) * 255):02x}" for v in (lo + hi) / 2)
+        raise InvalidImageError(f"{name}: image is blank (one colour, {colour}, in every pixel); nothing to trace")
 
 
 def _working_size(w: int, h: int, max_side: int, name: str) -> tuple[int, int]:

@@ -115,3 +115,20 @@ def test_not_a_regular_file_is_named_as_such(tmp_path):
         load_image("/dev/null")
     with pytest.raises(ImageNotFoundError, match=r"is a directory, not an image file"):
         load_image(tmp_path)
+
+
+@pytest.mark.parametrize(
+    ("bgr", "hex_colour"), [((0, 0, 255), "#ff0000"), ((200, 120, 30), "#1e78c8"), ((0, 0, 0), "#000000")]
+)
+def test_an_image_of_one_colour_is_blank_whatever_the_colour(tmp_path, bgr, hex_colour):
+    # issue 20, item 18: a red image passed the blank check (its channels differ) and failed later.
+    path = tmp_path / "one.png"
+    cv2.imwrite(str(path), np.full((64, 80, 3), bgr, np.uint8))
+    message = rf"one\.png: image is blank \(one colour, {hex_colour}, in every pixel\); nothing to trace"
+    with pytest.raises(InvalidImageError, match=message):
+        load_image(path)
+    rgb = np.full((64, 80, 3), bgr[::-1], np.uint8)
+    with pytest.raises(InvalidImageError, match=r"image is blank \(one colour"):
+        load_image(rgb)
+    rgb[10, 10] = 255 - rgb[10, 10]  # one pixel of another colour: an image
+    assert load_image(rgb).width == 80
