@@ -254,7 +254,7 @@ def from_document(doc: Mapping[str, Any]) -> Abstraction:
 
 
 def _whole(value: object, name: str) -> int:
-    """A document's integer field: an int, or a float with an integer value (``512.0``); not 1e308 turned into an int."""
+    """A document's integer field: an int or a float of integer value (``512.0``), not 1e308 made an int."""
     if isinstance(value, bool) or not isinstance(value, int | float):
         raise InvalidParameterError(f"{name} must be an integer, got {value!r}")
     if isinstance(value, float) and not (value.is_integer() and abs(value) <= 2**53):

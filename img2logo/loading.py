@@ -13,8 +13,12 @@ from __future__ import annotations
 
 import contextlib
 import functools
+import os
+import re
 import sys
+import tempfile
 import warnings
+from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -162,7 +166,7 @@ def load_image(source: object, *, max_side: int = MAX_IMAGE_SIDE, max_pixels: in
             DownscaleWarning,
             stacklevel=2,
         )
-        rgb, alpha, has_alpha = _shrink(arr, size, name, bgr=bgr)
+        rgb, alpha, has_alpha = _shrink(arr, size, name, bgr=bgr, owned=bgr)  # a decoded file is ours to overwrite
     else:
         rgb, alpha, has_alpha = composite_on_white(arr, name, bgr=bgr)
     _check_not_blank(rgb, alpha, name)
@@ -240,9 +244,10 @@ def _read_file(path: Path, *, max_side: int = MAX_IMAGE_SIDE, max_pixels: int = 
     if not path.is_file():
         raise ImageNotFoundError(f"{path} is not a regular file (a device, a pipe, ...), not an image file")
     header = _probe(path, max_pixels)
-    flags = cv2.IMREAD_UNCHANGED
+    flags = cv2.IMREAD_UNCHANGED  # the pixels as stored: EXIF orientation is applied below
+    orientation = 1
     if header is not None:
-        w, h, pages, fmt = header
+        w, h, pages, fmt, orientation = header
         _working_size(w, h, max_side, str(path))
         if pages > 1:
             warnings.warn(f"{path}: the file has {pages} pages; only the first is used", PageWarning, stacklevel=3)
@@ -257,7 +262,8 @@ def _read_file(path: Path, *, max_side: int = MAX_IMAGE_SIDE, max_pixels: int = 
     if data.size == 0:
         raise InvalidImageError(f"{path}: file is empty")
     try:
-        arr = cv2.imdecode(data, flags)
+        with _decoder_stderr():  # libpng's "libpng warning: iCCP: ..." lines and the like
+            arr = cv2.imdecode(data, flags)
     except cv2.error as exc:  # e.g. beyond OpenCV's own size limit
         raise InvalidImageError(f"{path}: not a readable image: {' '.join(str(exc).split())[-200:]}") from exc
     del data
@@ -267,12 +273,79 @@ def _read_file(path: Path, *, max_side: int = MAX_IMAGE_SIDE, max_pixels: int = 
         h, w = arr.shape[:2]
         if w * h > max_pixels:
             raise InvalidImageError(_too_many_pixels(path, f"{w}x{h} px", max_pixels))
+    arr = _upright(arr, orientation)
+    if orientation in (5, 6, 7, 8):  # a quarter turn: the stored width is the upright height
+        w, h = h, w
     return arr, (w, h)
 
 
-def _probe(path: Path, max_pixels: int) -> tuple[int, int, int, str] | None:
-    """(width, height, pages, format) from the file's header, or None if Pillow cannot tell.
+def _upright(arr: np.ndarray, orientation: int) -> np.ndarray:
+    """The image as every viewer shows it: EXIF ``Orientation`` (1..8) applied, as ``PIL.ImageOps.exif_transpose``.
 
+    A phone stores a portrait photo sideways with Orientation = 6 (turn 90 degrees
+    clockwise to view). The transposition is done on the decoded array (OpenCV
+    decodes the stored pixels), a view made contiguous only when it is not 1.
+    """
+    turns = {
+        2: lambda a: a[:, ::-1],  # mirrored left-right
+        3: lambda a: a[::-1, ::-1],  # upside down
+        4: lambda a: a[::-1],  # mirrored top-bottom
+        5: lambda a: a.swapaxes(0, 1),  # transposed
+        6: lambda a: np.rot90(a, -1),  # stored a quarter turn counter-clockwise
+        7: lambda a: a[::-1, ::-1].swapaxes(0, 1),  # transversed
+        8: lambda a: np.rot90(a, 1),  # stored a quarter turn clockwise
+    }
+    if orientation not in turns:
+        return arr
+    return np.ascontiguousarray(turns[orientation](arr))
+
+
+#: Lines a C image decoder writes to standard error itself (libpng, libjpeg, libtiff, OpenCV).
+_DECODER_LINE = re.compile(
+    rb"^(libpng (warning|error)|Corrupt JPEG data|Premature end of JPEG|Invalid JPEG|Warning: |TIFF\w*: |\[ ?WARN)"
+)
+
+
+@contextlib.contextmanager
+def _decoder_stderr() -> Iterator[None]:
+    """Hold standard error (file descriptor 2) in a temporary file while a C decoder runs.
+
+    libpng writes ``libpng warning: iCCP: known incorrect sRGB profile`` (and the
+    like) straight to file descriptor 2, which no Python setting silences; the
+    errors img2logo raises say what matters. Afterwards every held line that is
+    not a decoder's is written to standard error after all (another thread's
+    output is delayed, not lost).
+    """
+    with contextlib.suppress(Exception):
+        sys.stderr.flush()
+    try:
+        saved = os.dup(2)
+    except OSError:  # no standard error at all: nothing to hold
+        yield
+        return
+    hold = tempfile.TemporaryFile()
+    try:
+        os.dup2(hold.fileno(), 2)
+        try:
+            yield
+        finally:
+            os.dup2(saved, 2)
+            hold.seek(0)
+            rest = [line for line in hold.read().splitlines(keepends=True) if not _DECODER_LINE.match(line)]
+            if rest:
+                with contextlib.suppress(OSError):
+                    os.write(2, b"".join(rest))
+    finally:
+        os.close(saved)
+        hold.close()
+
+
+def _probe(path: Path, max_pixels: int) -> tuple[int, int, int, str, int] | None:
+    """(width, height, pages, format, EXIF orientation) from the file's header, or None if nothing can tell.
+
+    Width and height are as stored (before the orientation, 1 when there is none).
+    A PNG whose text chunks Pillow refuses (a zTXt of megabytes) still has its size
+    read from its IHDR chunk, so the pixel limit holds before decoding.
     Raises InvalidImageError if the image has more than ``max_pixels`` pixels.
     """
     try:
@@ -280,19 +353,38 @@ def _probe(path: Path, max_pixels: int) -> tuple[int, int, int, str] | None:
     except ImportError:  # pragma: no cover - a dependency of matplotlib and of img2logo
         return None
     with warnings.catch_warnings():
-        warnings.simplefilter("ignore", Image.DecompressionBombWarning)
+        warnings.simplefilter("ignore")  # DecompressionBombWarning, a damaged EXIF block
         try:
             with Image.open(path) as im:
                 w, h = im.size
                 pages = int(getattr(im, "n_frames", 1) or 1)
                 fmt = str(im.format or "")
+                try:
+                    orientation = int(im.getexif().get(0x0112, 1))
+                except Exception:  # a damaged EXIF block: as stored
+                    orientation = 1
         except Image.DecompressionBombError as exc:  # more than twice Pillow's own limit
             raise InvalidImageError(_too_many_pixels(path, "over 178 Mpx", max_pixels)) from exc
         except Exception:  # not a format Pillow knows, or a damaged header: OpenCV decides
-            return None
+            size = _png_size(path)
+            if size is None:
+                return None
+            (w, h), pages, fmt, orientation = size, 1, "PNG", 1
     if w * h > max_pixels:
         raise InvalidImageError(_too_many_pixels(path, f"{w}x{h} px", max_pixels))
-    return w, h, pages, fmt
+    return w, h, pages, fmt, orientation
+
+
+def _png_size(path: Path) -> tuple[int, int] | None:
+    """(width, height) from a PNG's IHDR chunk (the first, by the PNG specification), or None."""
+    try:
+        with open(path, "rb") as f:
+            head = f.read(24)
+    except OSError:
+        return None
+    if len(head) < 24 or head[:8] != b"\x89PNG\r\n\x1a\n" or head[12:16] != b"IHDR":
+        return None
+    return int.from_bytes(head[16:20], "big"), int.from_bytes(head[20:24], "big")
 
 
 def _too_many_pixels(path: Path, size: str, max_pixels: int) -> str:
@@ -327,12 +419,19 @@ def _check_layout(arr: np.ndarray, name: str) -> None:
         raise InvalidImageError(f"{name}: image is empty (shape {shape})")
 
 
-def _shrink(arr: np.ndarray, size: tuple[int, int], name: str, *, bgr: bool) -> tuple[np.ndarray, np.ndarray, bool]:
+def _shrink(
+    arr: np.ndarray, size: tuple[int, int], name: str, *, bgr: bool, owned: bool = False
+) -> tuple[np.ndarray, np.ndarray, bool]:
     """Downscale ``arr`` to ``size`` (width, height) in its own dtype, then normalize (see :func:`composite_on_white`).
 
     Colour is composited over white strip by strip (``DOWNSCALE_STRIP_ROWS``
     rows at a time, float32), so no full-size float copy is ever made; area
     interpolation then works on 8/16-bit integers (float32 for float input).
+    With ``owned`` (an array decoded from a file, nobody else's) the composited
+    colour overwrites the array's own colour channels and one resize takes
+    colour and alpha together (area interpolation is per channel: the same
+    values), so no second full-size array is made: a 12000 x 12000 16-bit RGBA
+    PNG needs its 1.15 GB decoded, not 2 GB more.
     """
     import cv2
 
@@ -348,6 +447,18 @@ def _shrink(arr: np.ndarray, size: tuple[int, int], name: str, *, bgr: bool) -> 
     channels = arr.shape[2]
     has_alpha = channels in (2, 4)
     full = 1.0 if np.issubdtype(arr.dtype, np.floating) else float(np.iinfo(arr.dtype).max)
+    if has_alpha and owned and arr.flags.writeable and arr.flags.c_contiguous:
+        for r in range(0, arr.shape[0], DOWNSCALE_STRIP_ROWS):
+            block = arr[r : r + DOWNSCALE_STRIP_ROWS]
+            a = block[:, :, -1:].astype(np.float32) / np.float32(full)
+            mixed = block[:, :, :-1] * a + (1.0 - a) * np.float32(full)
+            block[:, :, :-1] = mixed if full == 1.0 else np.rint(mixed)
+        small_all = cv2.resize(arr, size, interpolation=cv2.INTER_AREA)
+        if small_all.ndim == 2:  # cv2 drops a last axis of one
+            small_all = small_all[:, :, None]
+        rgb, _, _ = composite_on_white(np.ascontiguousarray(small_all[:, :, :-1]), name, bgr=bgr)
+        alpha = np.clip(_to_unit(np.ascontiguousarray(small_all[:, :, -1]), name), 0.0, 1.0)
+        return np.clip(rgb, 0.0, 1.0), alpha, has_alpha
     if has_alpha:
         colour = np.empty((*arr.shape[:2], channels - 1), dtype=arr.dtype)
         for r in range(0, arr.shape[0], DOWNSCALE_STRIP_ROWS):
