@@ -516,6 +516,21 @@ def fill_auto(
     """
     from skimage.color import lab2rgb, rgb2lab
 
+    if (
+        faces is None
+        and hasattr(image, "input_size")
+        and (image.width, image.height)
+        != (
+            abstraction.width,
+            abstraction.height,
+        )
+    ):
+        # A result in the pixels of an input over MAX_IMAGE_SIDE, its image the downscaled working one:
+        # colours are read at the working size, and the fills get the faces' paths in the input's pixels.
+        small = abstraction.scaled(image.width / abstraction.width, image.width, image.height)
+        face_list = _faces_of(abstraction, None)
+        found = fill_auto(small, image, inset=inset, background=background, background_distance=background_distance)
+        return tuple(Fill(face_list[f.face].path, f.color, face=f.face) for f in found)  # type: ignore[index]
     face_list = _faces_of(abstraction, faces)
     width, height = int(abstraction.width), int(abstraction.height)
     inset = check_positive(inset, "inset", allow_zero=True)

@@ -538,6 +538,62 @@ class Abstraction:
                     raise InvalidParameterError(f"junction {k} is on the circle of arc {i} but not on the arc")
 
     # ----------------------------------------------------------------- derived values
+    def scaled(self, factor: float, width: int, height: int) -> Abstraction:
+        """The same logo in a frame ``factor`` times larger, ``width`` x ``height`` px; still on a ladder.
+
+        How an input over ``MAX_IMAGE_SIDE`` gets its result in its own pixels: the
+        optimization works at the downscaled size, and its levels are scaled back
+        by ``factor = 1 / scale``. Centres, radii, junctions, line ends, E^s and T
+        are multiplied by ``factor``; angles, the topology and ``params`` stay.
+        The radii stay exactly on a ladder: phi ** (k + bias) * factor =
+        phi ** (k + n + bias') with bias' + n = bias + log_phi(factor), n an
+        integer, bias' in [0, 1) (so k becomes k + n, exponents given too); on
+        the Fibonacci grid the unit is multiplied by ``factor`` and k stays.
+        """
+        f = check_positive(factor, "factor")
+        ladder = self.ladder
+        if isinstance(ladder, FibonacciLadder):
+            shift, new_ladder = 0, FibonacciLadder(ladder.unit * f, ladder.exponents, ladder.rounding)
+        else:
+            t = ladder.bias + math.log(f) / math.log(PHI)
+            shift = math.floor(t)
+            bias = t - shift
+            if bias >= 1.0:  # rounding
+                shift, bias = shift + 1, 0.0
+            exps = None if ladder.exponents is None else tuple(k + shift for k in ladder.exponents)
+            new_ladder = GoldenLadder(bias, exps, ladder.rounding)
+        circles = {
+            c: Circle(c.cx * f, c.cy * f, new_ladder.radius(c.k + shift), c.k + shift)  # type: ignore[operator]
+            for c in self.golden_circles
+        }
+
+        def arc(a: Arc) -> Arc:
+            if not a.is_line:
+                return Arc(circles[a.circle], a.theta0, a.sweep)
+            mid = (a.start + a.end) / 2.0
+            chord = a.end - a.start
+            d = a.circle.center - mid
+            side = float(chord[0] * d[1] - chord[1] * d[0])  # the centre's side of the chord
+            return line_arc(a.start * f, a.end * f, side=1.0 if side >= 0 else -1.0)
+
+        return Abstraction(
+            level=self.level,
+            arcs=tuple(arc(a) for a in self.arcs),
+            arc_segments=self.arc_segments,
+            junctions=self.junctions * f,
+            junction_arcs=self.junction_arcs,
+            similarity=self.similarity * f,
+            bias=new_ladder.bias,
+            tolerance=self.tolerance * f,
+            width=width,
+            height=height,
+            params=self.params,
+            ladder=new_ladder,
+            arc_junctions=self.arc_junctions,
+            junction_nodes=self.junction_nodes,
+            connected=self.connected,
+        )
+
     @property
     def circles(self) -> tuple[Circle, ...]:
         """The distinct circles of the arcs, in order of first use."""

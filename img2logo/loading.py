@@ -60,6 +60,8 @@ class LoadedImage:
         Factor applied to the input's size (1.0 unless it was downscaled).
     source : str
         The path it was read from, or ``"<array>"``.
+    input_size : (int, int) or None
+        (width, height) of the input before the downscale, px; None: this size.
     """
 
     rgb: np.ndarray
@@ -67,6 +69,17 @@ class LoadedImage:
     has_alpha: bool = False
     scale: float = 1.0
     source: str = "<array>"
+    input_size: tuple[int, int] | None = None
+
+    @property
+    def input_width(self) -> int:
+        """Width of the input image, px (before any downscale): the frame of the results."""
+        return int(self.input_size[0]) if self.input_size is not None else self.width
+
+    @property
+    def input_height(self) -> int:
+        """Height of the input image, px (before any downscale)."""
+        return int(self.input_size[1]) if self.input_size is not None else self.height
 
     @property
     def height(self) -> int:
@@ -170,7 +183,33 @@ def load_image(source: object, *, max_side: int = MAX_IMAGE_SIDE, max_pixels: in
     else:
         rgb, alpha, has_alpha = composite_on_white(arr, name, bgr=bgr)
     _check_not_blank(rgb, alpha, name)
-    return LoadedImage(readonly(rgb), readonly(alpha), has_alpha, scale, name)
+    return LoadedImage(readonly(rgb), readonly(alpha), has_alpha, scale, name, (int(w), int(h)))
+
+
+def mask_to_working_size(mask: object, img: LoadedImage, name: str) -> np.ndarray | None:
+    """A mask given in the input's pixels (a path or an array, as :func:`load_mask`) at ``img``'s working size.
+
+    For an input over ``MAX_IMAGE_SIDE`` the work is done at the downscaled
+    size; a mask (``lock_mask``, a ``foreground`` mask) is given at the input's
+    size and shrunk the same way (area interpolation, then >= 50 %). None stays None.
+
+    Raises
+    ------
+    InvalidParameterError
+        If the mask does not have the input's shape, naming ``name``.
+    """
+    if mask is None:
+        return None
+    full = (img.input_height, img.input_width)
+    m = load_mask(mask)
+    if m.shape != full:
+        raise InvalidParameterError(f"{name}: mask must have the input image's shape {full}, got {m.shape}")
+    if img.input_size is None or full == (img.height, img.width):
+        return m
+    import cv2
+
+    small = cv2.resize(m.astype(np.uint8) * np.uint8(255), (img.width, img.height), interpolation=cv2.INTER_AREA)
+    return small >= 128
 
 
 def _check_not_blank(rgb: np.ndarray, alpha: np.ndarray, name: str) -> None:
@@ -255,6 +294,12 @@ def _read_file(path: Path, *, max_side: int = MAX_IMAGE_SIDE, max_pixels: int = 
         if fmt == "JPEG" and factor > 1:
             reduced = {2: cv2.IMREAD_REDUCED_COLOR_2, 4: cv2.IMREAD_REDUCED_COLOR_4, 8: cv2.IMREAD_REDUCED_COLOR_8}
             flags = reduced[factor] | cv2.IMREAD_IGNORE_ORIENTATION
+        if fmt == "PNG" and max(w, h) > max_side:
+            small = _read_png_reduced(path, max(1, max(w, h) // max_side))
+            if small is not None:
+                if orientation in (5, 6, 7, 8):
+                    w, h = h, w
+                return _upright(small, orientation), (w, h)
     try:
         data = np.fromfile(path, dtype=np.uint8)  # imdecode: unicode-safe, unlike imread
     except OSError as exc:
@@ -277,6 +322,34 @@ def _read_file(path: Path, *, max_side: int = MAX_IMAGE_SIDE, max_pixels: int = 
     if orientation in (5, 6, 7, 8):  # a quarter turn: the stored width is the upright height
         w, h = h, w
     return arr, (w, h)
+
+
+def _read_png_reduced(path: Path, factor: int) -> np.ndarray | None:
+    """A PNG that will be downscaled, decoded by Pillow and box-reduced by ``factor`` there; BGR(A), or None.
+
+    OpenCV decodes a 16-bit RGBA PNG through a second full-size buffer (12000 x
+    12000 px: 2.4 GB at its peak); Pillow decodes it once, in 8 bits per channel
+    (576 MB; 8 bits are plenty for a picture downscaled to 2048 px), and its
+    ``reduce`` averages colour premultiplied by alpha, as compositing over white
+    then averaging does. Only the modes L, LA, RGB and RGBA (others: None, and
+    OpenCV decodes the file); any failure gives None too (OpenCV then says why).
+    """
+    try:
+        from PIL import Image
+
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            with Image.open(path) as im:
+                if im.mode not in ("L", "LA", "RGB", "RGBA"):
+                    return None
+                im.load()
+                small = im.reduce(factor) if factor > 1 else im
+                arr = np.array(small)
+    except Exception:
+        return None
+    if arr.ndim == 3 and arr.shape[2] >= 3:  # OpenCV's channel order, as the rest of loading expects
+        arr = np.ascontiguousarray(arr[:, :, [2, 1, 0, *range(3, arr.shape[2])]])
+    return arr
 
 
 def _upright(arr: np.ndarray, orientation: int) -> np.ndarray:
