@@ -538,13 +538,14 @@ class Abstraction:
                     raise InvalidParameterError(f"junction {k} is on the circle of arc {i} but not on the arc")
 
     # ----------------------------------------------------------------- derived values
-    def scaled(self, factor: float, width: int, height: int) -> Abstraction:
+    def scaled(self, factor: float, width: int, height: int, *, params: Mapping[str, Any] | None = None) -> Abstraction:
         """The same logo in a frame ``factor`` times larger, ``width`` x ``height`` px; still on a ladder.
 
         How an input over ``MAX_IMAGE_SIDE`` gets its result in its own pixels: the
         optimization works at the downscaled size, and its levels are scaled back
         by ``factor = 1 / scale``. Centres, radii, junctions, line ends, E^s and T
-        are multiplied by ``factor``; angles, the topology and ``params`` stay.
+        are multiplied by ``factor``; angles, the topology and ``params`` stay
+        (unless ``params`` is given: the caller scales what in them is a length).
         The radii stay exactly on a ladder: phi ** (k + bias) * factor =
         phi ** (k + n + bias') with bias' + n = bias + log_phi(factor), n an
         integer, bias' in [0, 1) (so k becomes k + n, exponents given too); on
@@ -587,7 +588,7 @@ class Abstraction:
             tolerance=self.tolerance * f,
             width=width,
             height=height,
-            params=self.params,
+            params=self.params if params is None else params,
             ladder=new_ladder,
             arc_junctions=self.arc_junctions,
             junction_nodes=self.junction_nodes,

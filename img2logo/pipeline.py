@@ -208,7 +208,15 @@ def abstract(
 def _in_input_pixels(progression: Progression, img: LoadedImage) -> Progression:
     """Every level scaled from the working size back to the input's pixels (:meth:`Abstraction.scaled`)."""
     factor = max(img.input_width, img.input_height) / max(img.width, img.height)
-    levels = tuple(a.scaled(factor, img.input_width, img.input_height) for a in progression.levels)
+
+    def params(a: Abstraction) -> Mapping[str, Any]:
+        out = dict(a.params)
+        sym = out.get("symmetry")
+        if isinstance(sym, Mapping) and "point" in sym:  # the mirror axis's point is a length too
+            out["symmetry"] = {**sym, "point": [float(v) * factor for v in sym["point"]]}
+        return out
+
+    levels = tuple(a.scaled(factor, img.input_width, img.input_height, params=params(a)) for a in progression.levels)
     return dataclasses.replace(progression, levels=levels, bias=levels[0].bias, ladder=levels[0].ladder)
 
 

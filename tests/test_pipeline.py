@@ -175,3 +175,18 @@ def test_masks_of_a_downscaled_input_are_given_at_its_size():
     assert result.final.params["locked_segments"] > 0
     with pytest.raises(InvalidParameterError, match=r"lock_mask: mask must have the input image's shape \(512, 512\)"):
         abstract(img, progress=False, lock_mask=np.zeros((256, 256), bool))
+
+
+def test_a_symmetric_logo_of_a_downscaled_input_keeps_its_axis_in_its_pixels():
+    import warnings
+
+    from img2logo.loading import DownscaleWarning, load_image
+    from img2logo.symmetry import is_symmetric
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", DownscaleWarning)
+        img = load_image(drawing("Y", size=400), max_side=200)  # the Y is mirror-symmetric about x = 100
+    result = abstract(img, progress=False, symmetry="vertical")
+    record = result.final.params["symmetry"]
+    assert record["point"][0] == pytest.approx(100.5, abs=3.0)  # in the input's pixels, not the working 50
+    assert is_symmetric(result.final, record["point"], record["direction"])
