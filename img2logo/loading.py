@@ -340,8 +340,8 @@ def _read_png_reduced(path: Path, factor: int) -> np.ndarray | None:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             with Image.open(path) as im:
-                if im.mode not in ("L", "LA", "RGB", "RGBA"):
-                    return None
+                if im.mode not in ("L", "LA", "RGB", "RGBA") or "transparency" in im.info:
+                    return None  # a palette, 16-bit grey, a tRNS colour key: OpenCV reads them as they are
                 im.load()
                 small = im.reduce(factor) if factor > 1 else im
                 arr = np.array(small)

@@ -222,3 +222,16 @@ def test_a_phone_photo_stored_sideways_is_upright_when_downscaled(tmp_path):
         img = load_image(path)
     assert (img.width, img.height) == (1117, 2048)
     assert img.gray[50:150, 1000:1080].mean() < 0.2  # the bar, turned to the top right
+
+
+def test_a_large_16_bit_rgba_png_is_decoded_once_and_reduced_like_the_area_resize(tmp_path):
+    # issue 20, item 12: OpenCV decoded it through a second full-size buffer; Pillow reduces it in 8 bits.
+    arr = _shapes(2600, 4300, True).astype(np.uint16) * np.uint16(257)
+    path = tmp_path / "big16.png"
+    cv2.imwrite(str(path), arr)
+    with pytest.warns(DownscaleWarning, match=r"image is 4300x2600 px, .*downscaled to 2048x1238 px"):
+        img = load_image(path)
+    assert (img.width, img.height, img.has_alpha) == (2048, 1238, True)
+    rgb, a = _reference(arr, (2048, 1238))
+    assert np.abs(img.rgb - rgb).mean() < 0.005 and np.abs(img.alpha - a).mean() < 0.005
+    assert np.percentile(np.abs(img.rgb - rgb), 99) < 0.1  # only edges differ: a box reduce, then the area resize
