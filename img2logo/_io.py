@@ -19,6 +19,7 @@ import glob
 import os
 import re
 import secrets
+import stat
 from collections.abc import Callable, Iterator, Mapping, Sequence
 from pathlib import Path
 from typing import IO
@@ -140,6 +141,12 @@ class _Stage:
         if held:
             old = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT, signal.SIGTERM})
         try:
+            try:
+                for _, target in self.files:  # one may have appeared since the write: before any move
+                    refuse_special_file(target)
+            except OutputError:
+                self.discard()
+                raise
             while self.files:
                 tmp, target = self.files[0]
                 try:
@@ -195,10 +202,14 @@ def atomic_write(path: str | os.PathLike[str], write: Callable[[IO[bytes]], obje
     naming the path. Temporary files of the same target left by a process that
     no longer runs (killed while writing) are removed first. Inside
     :func:`output_set` the rename waits for the end of the set. The file gets
-    the usual permissions (0o666 less the umask).
+    the usual permissions (0o666 less the umask). A target that exists and is
+    not a regular file (a device such as ``/dev/full``, a FIFO, a socket, also
+    through a symbolic link) is refused with :class:`OutputError` before
+    anything is written: renaming over it would replace the device itself.
     """
     target = as_path(path)
     stage = _STAGE.get()
+    refuse_special_file(target)
     try:
         if target.is_dir():
             raise IsADirectoryError(errno.EISDIR, "is a directory", str(target))
@@ -215,6 +226,7 @@ def atomic_write(path: str | os.PathLike[str], write: Callable[[IO[bytes]], obje
         if stage is not None:
             stage.files.append((tmp, target))
         else:
+            refuse_special_file(target)  # one may have appeared while writing
             os.replace(tmp, target)
     except BaseException as exc:
         with contextlib.suppress(OSError):
@@ -223,6 +235,34 @@ def atomic_write(path: str | os.PathLike[str], write: Callable[[IO[bytes]], obje
             raise OutputError(os_message(target, exc)) from exc
         raise
     return target
+
+
+def special_file_kind(path: Path) -> str | None:
+    """What ``path`` is when it exists and is not a regular file (``"a device"``, ``"a FIFO"``, ...), else None.
+
+    Symbolic links are followed: a link to ``/dev/full`` is a device. A folder
+    is not reported here (its own message says so).
+    """
+    try:
+        mode = os.stat(path).st_mode
+    except (OSError, ValueError):  # missing, a dangling link, an unreadable parent: the write says
+        return None
+    if stat.S_ISREG(mode) or stat.S_ISDIR(mode):
+        return None
+    if stat.S_ISCHR(mode) or stat.S_ISBLK(mode):
+        return "a device"
+    if stat.S_ISFIFO(mode):
+        return "a FIFO (named pipe)"
+    if stat.S_ISSOCK(mode):
+        return "a socket"
+    return "not a regular file"  # pragma: no cover - no other kind on POSIX
+
+
+def refuse_special_file(target: Path) -> None:
+    """Raise :class:`OutputError` if ``target`` exists and is not a regular file (nor a folder)."""
+    kind = special_file_kind(target)
+    if kind is not None:
+        raise OutputError(f"cannot write {target}: it is {kind}, not a regular file; refusing to replace it")
 
 
 #: Temporary files: ``.<target name>.<pid>-<8 hex>.tmp`` next to the target.

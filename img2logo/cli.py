@@ -281,14 +281,15 @@ def _run(args: argparse.Namespace, say) -> int:
     fill_spec = parse_fill_option(args.fill)
     _check_outputs(args)
     image = load_image(args.input)
-    lock_mask = None if not args.lock_mask else load_mask(args.lock_mask, (image.height, image.width))
+    # Masks and the subject rectangle are in the input's pixels (abstract scales them to a downscaled input).
+    lock_mask = None if not args.lock_mask else load_mask(args.lock_mask, (image.input_height, image.input_width))
     say(f"{args.input}: {image.width}x{image.height} px")
     if args.subject is not None:
         import dataclasses
 
         from .subject import parse_subject_rectangle
 
-        subject = parse_subject_rectangle(args.subject, (image.height, image.width))
+        subject = parse_subject_rectangle(args.subject, (image.input_height, image.input_width))
         options = dataclasses.replace(options, subject=subject)
     progress = None if not args.quiet else False
     result = _naming(args.input, abstract, image, options=options, lock_mask=lock_mask, progress=progress)
@@ -304,7 +305,7 @@ def _run(args: argparse.Namespace, say) -> int:
     )
     say(
         f"levels: {len(prog.levels)}, arcs {prog.arc_counts[0]} -> {prog.arc_counts[-1]}, "
-        f"E^s {prog.final.similarity:.2f} px (T = {args.tolerance:g}), {_ladder_text(prog)}, "
+        f"E^s {prog.final.similarity:.2f} px (T = {prog.final.tolerance:g}), {_ladder_text(prog)}, "
         f"stopped: {prog.stopped_because}, {sum(result.timings.values()):.2f} s"
     )
     level = _pick_level(result, args.level)

@@ -157,6 +157,29 @@ def test_radii_option_restricts_the_circles(tmp_path):
     assert {c["k"] for c in json.loads(out.read_text())["circles"]} <= {9, 10, 11}
 
 
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [
+        (["--rdp", "1e308"], "rdp_tolerance must be at most 1e+07 px (longer than any image), got 1e+308"),
+        (["--rdp", "1e200"], "rdp_tolerance must be at most 1e+07 px"),
+        (["--ladder", "fibonacci", "--unit", "1e308"], "unit must be in 0.001..1e+07 px, got 1e+308"),
+        (["--radii", "99999"], "exponents (--radii) must be in -14..33"),
+        (["--radii=-1000000"], "exponents (--radii) must be in -14..33"),
+        (["--ladder", "fibonacci", "--unit", "1e5"], "the smallest, 1e+05 px, is over 20 x the image's longer side"),
+        (["--radii", "25"], "choose smaller exponents (--radii)"),
+    ],
+)
+def test_huge_lengths_and_radii_are_one_line_with_nothing_on_stdout(tmp_path, capfd, args, message):
+    # issue 20, items 5 and 22: a cv2.error, LAPACK lines on stdout, numpy overflow warnings before.
+    out = tmp_path / "x.json"
+    assert main([str(DATA / "drawing-leaf.png"), "-q", "--json", str(out), *args]) == EXIT_ERROR
+    captured = capfd.readouterr()
+    assert captured.out == ""
+    assert captured.err.startswith("img2logo: error: ") and captured.err.count("\n") == 1
+    assert message in captured.err and "Warning" not in captured.err
+    assert not out.exists()
+
+
 def test_lock_mask_of_the_wrong_size(tmp_path, capsys):
     import cv2
 

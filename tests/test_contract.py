@@ -363,3 +363,22 @@ def test_reading_a_document_loads_no_part_of_the_pipeline():
     pipeline = {"symmetry", "progressive", "constrained_fit", "merging", "segment_graph", "preprocessing", "pipeline"}
     assert not loaded & {f"img2logo.{m}" for m in pipeline}
     assert "img2logo.mirror" in loaded
+
+
+@pytest.mark.parametrize(
+    ("width", "message"),
+    [
+        (1e308, r"width must be an integer, got 1e\+308"),
+        (10**30, r"width x height must be at most 150,000,000 px \(the largest image img2logo reads\), got 1e\+30 x"),
+        (2_000_000, r"width x height must be at most 150,000,000 px"),
+    ],
+)
+def test_a_document_of_an_absurd_size_is_refused(tmp_path, width, message):
+    # issue 20, item 20: write_png then raised matplotlib's TypeError or asked for 40 GB.
+    doc = contract.to_document(make_abstraction())
+    doc["width"] = width
+    with pytest.raises(InvalidParameterError, match=message):
+        contract.from_document(doc)
+    (tmp_path / "big.json").write_text(json.dumps(doc))
+    with pytest.raises(InvalidParameterError, match=message):
+        writers.read_json(tmp_path / "big.json")
