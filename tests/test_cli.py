@@ -230,7 +230,7 @@ def test_batch_command_reports_a_bad_file_and_exits_one(tmp_path, capsys):
     assert "drawing-leaf.png" in err and "E^s (px)" in err and "2 of 3 images done" in err
     names = sorted(p.name for p in out.iterdir())
     logos = [f"drawing-{n}.{f}" for n in ("leaf", "snail") for f in ("svg", "json", "png")]
-    assert names == sorted(["summary.csv", *logos])
+    assert names == sorted([".img2logo-outputs", "summary.csv", *logos])
     summary = (out / "summary.csv").read_text().splitlines()
     assert summary[0] == "image,kind,arcs,levels,similarity,symmetry,seconds,error"
     assert [line.split(",")[0] for line in summary[1:]] == ["corrupt.png", "drawing-leaf.png", "drawing-snail.png"]
