@@ -165,13 +165,13 @@ class _Stage:
                     self.discard()
                     raise OutputError(os_message(target, exc)) from exc
                 self.files.pop(0)
-            for old in self.removals:
+            for gone in self.removals:
                 try:
-                    os.unlink(old)
+                    os.unlink(gone)
                 except FileNotFoundError:
                     continue
                 except OSError as exc:
-                    raise OutputError(f"cannot remove {old}: {exc.strerror or exc}") from exc
+                    raise OutputError(f"cannot remove {gone}: {exc.strerror or exc}") from exc
             self.removals.clear()
         finally:
             if held:

@@ -313,12 +313,11 @@ def _check_outputs(args: argparse.Namespace) -> dict:
                     f"--levels-dir {args.levels_dir} holds the input {given}: refusing to write over an input"
                 )
         if folder.is_dir():  # its level files (links too) are written or removed: none may be an input
-            level_files = {
-                f"--levels-dir {args.levels_dir}: {p.name}": p
-                for p in sorted(folder.iterdir())
-                if LEVEL_FILE.fullmatch(p.name)
-            }
-            check_output_paths(level_files, inputs)
+            level_files = {str(p): p for p in sorted(folder.iterdir()) if LEVEL_FILE.fullmatch(p.name)}
+            try:
+                check_output_paths(level_files, inputs)
+            except InvalidParameterError as exc:
+                raise InvalidParameterError(f"--levels-dir {args.levels_dir}: {exc}") from exc
         for flag, target in checked.items():
             t = Path(os.path.realpath(target))
             if str(t.parent) == real_folder and LEVEL_FILE.fullmatch(t.name):
@@ -354,7 +353,7 @@ def _check_suffix(flag: str, path: str) -> None:
     if suffix in _OTHER_FORMATS and suffix not in _SUFFIXES[flag]:
         wanted = " or ".join(_SUFFIXES[flag])
         raise InvalidParameterError(
-            f"{flag} {path}: {flag} writes {_SUFFIXES[flag][0][1:].upper()}, but {suffix} names another format; "
+            f"{flag} {path}: {suffix} names another format ({flag} writes {_SUFFIXES[flag][0][1:].upper()}); "
             f"give a file name ending in {wanted}"
         )
 

@@ -427,9 +427,22 @@ def test_downscale_is_reported_before_the_run(tmp_path, capsys):
     assert err[1].startswith(f"{big}: 2048x2048 px")
 
 
+def _default_signals() -> None:
+    """In the child: SIGINT as a terminal gives it, also when the suite runs with it ignored (``(make test &)``)."""
+    import signal
+
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 def _run_until(args, line_start: str, cwd):
     """Start the command; return the process once it printed a line starting with ``line_start``."""
-    proc = subprocess.Popen([sys.executable, "-m", "img2logo.cli", *args], stderr=subprocess.PIPE, text=True, cwd=cwd)
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "img2logo.cli", *args],
+        stderr=subprocess.PIPE,
+        text=True,
+        cwd=cwd,
+        preexec_fn=_default_signals,  # no thread starts between the fork and the exec
+    )
     for line in proc.stderr:
         if line.startswith(line_start):
             return proc
