@@ -40,7 +40,7 @@ from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from concurrent.futures import Executor, Future, as_completed
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, NoReturn
 
 from ._validation import check_choice
 from .errors import Img2LogoError, InvalidParameterError
@@ -974,13 +974,7 @@ def _batch_lock(out_dir: Path) -> Iterator[None]:
             try:
                 fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
             except OSError:
-                owner = os.pread(fd, 32, 0).decode("ascii", "replace").strip()
-                os.close(fd)
-                who = f" (process {owner})" if owner.isdigit() else ""
-                raise InvalidParameterError(
-                    f"output folder {out_dir} is being written by another img2logo batch{who}; "
-                    "wait for it to end or give another folder"
-                ) from None
+                _refuse_locked(out_dir, fd)
             try:
                 same = os.fstat(fd).st_ino == os.stat(lock).st_ino
             except FileNotFoundError:
@@ -1001,6 +995,34 @@ def _batch_lock(out_dir: Path) -> Iterator[None]:
         for folder in reversed(made.folders):
             with contextlib.suppress(OSError):
                 folder.rmdir()  # only if empty: nothing was written
+
+
+def _refuse_locked(out_dir: Path, fd: int) -> NoReturn:
+    """Close ``fd`` (the lock file another batch holds) and raise the error naming that batch's process."""
+    try:
+        owner = os.pread(fd, 32, 0).decode("ascii", "replace").strip()
+    finally:
+        os.close(fd)
+    who = f" (process {owner})" if owner.isdigit() else ""
+    raise InvalidParameterError(
+        f"output folder {out_dir} is being written by another img2logo batch{who}; "
+        "wait for it to end or give another folder"
+    )
+
+
+def _check_unlocked(out_dir: Path) -> None:
+    """Raise, without taking it, if another batch holds ``out_dir``'s lock (see :func:`_batch_lock`)."""
+    try:
+        import fcntl
+
+        fd = os.open(out_dir / LOCK_NAME, os.O_RDONLY)
+    except (ImportError, OSError):  # no lock file: no batch holds it
+        return
+    try:
+        fcntl.flock(fd, fcntl.LOCK_SH | fcntl.LOCK_NB)
+    except OSError:
+        _refuse_locked(out_dir, fd)
+    os.close(fd)  # closing releases the shared lock
 
 
 def _read_manifest(out_dir: Path) -> set[str]:

@@ -299,10 +299,10 @@ def _check_outputs(args: argparse.Namespace) -> dict:
         )
         if path
     }
-    for flag, path in targets.items():
-        _check_suffix(flag, path)
     folders = {"--levels-dir": args.levels_dir} if args.levels_dir else {}
     checked = check_output_paths(targets, inputs, folders)
+    for flag, path in targets.items():
+        _check_suffix(flag, path)
     if args.levels_dir:
         folder = Path(args.levels_dir)
         real_folder = os.path.realpath(folder)
@@ -431,6 +431,7 @@ def _batch(args: argparse.Namespace, say) -> int:
         _check_options,
         _check_output_folder,
         _check_targets,
+        _check_unlocked,
         _foreground_file,
         _output_stems,
         find_images,
@@ -444,7 +445,8 @@ def _batch(args: argparse.Namespace, say) -> int:
     out_dir = Path(args.output_dir)
     mask = _foreground_file(options.foreground)
     _check_targets([*paths, *([mask] if mask else [])], out_dir, _output_stems(paths), OUTPUT_FORMATS, True)
-    _check_output_folder(paths, out_dir)  # all before the count
+    _check_output_folder(paths, out_dir)
+    _check_unlocked(out_dir)  # all before the count
     say(f"{args.input_dir}: {len(paths)} images")
     report = run_batch(
         paths,
