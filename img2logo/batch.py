@@ -3,9 +3,15 @@
 :func:`run_batch` abstracts a list of images with :func:`img2logo.abstract` and
 writes, for each, ``OUTPUT_DIR/<stem>.svg``, ``.json`` and ``.png`` (the same files
 as ``img2logo INPUT --svg --json --png``), then ``OUTPUT_DIR/summary.csv``: one row
-per image (``image, kind, arcs, levels, similarity, symmetry, seconds, error``). A file that
+per image (``image, kind, arcs, levels, similarity, symmetry, seconds, error``; a text
+cell that a spreadsheet would run as a formula is quoted). A file that
 fails (unreadable, blank, ...) does not stop the others: it is reported in
-:attr:`BatchReport.failures` with its one-line error message. :func:`sweep` runs a
+:attr:`BatchReport.failures` with its one-line error message, and its outputs of an
+earlier run are removed if img2logo wrote them (``OUTPUT_DIR/.img2logo-outputs``
+lists the files it wrote). While a batch runs, it holds ``OUTPUT_DIR/.img2logo-batch.lock``:
+a second batch on the same folder is refused. A worker of the default pool that
+is killed (the out-of-memory killer) loses nothing: its pool's unfinished images
+run again in a fresh one. :func:`sweep` runs a
 grid of parameters over images and returns the table (for the notebooks).
 
 The work is done by :func:`process_image`, a module-level function that takes and

@@ -11,13 +11,18 @@ level with ``--levels-dir``, and the segment graph with ``--segments-png``.
 ``OUTPUT_DIR/<stem>.svg``, ``.json``, ``.png`` and ``OUTPUT_DIR/summary.csv``; it
 goes on past a bad file, lists it at the end and then exits with status 1.
 
-Every error is one line, ``img2logo: error: ...``, never a traceback. Exit
+Every error is one line, ``img2logo: error: ...``, never a traceback (argument
+errors too; a control character in a file name is printed escaped). Exit
 statuses (:func:`main`): 2 for a bad input, option or output path, found before
-any work (nothing is written; an output that is an input, a folder, a device,
-shared by two options, or under a file or a read-only folder is one); 1 when an
+any work (nothing is written; an output that is an input -- the image, a
+``--lock-mask`` or ``--foreground`` mask, a file of ``--levels-dir`` --, a folder,
+a device, shared by two options, under a file or a read-only folder, or with a
+suffix naming another format is one; so is a batch's output folder that is its
+input folder or that another batch is writing); 1 when an
 output cannot be written during the run (the outputs of a run are written as a
 set: none of them is left), when memory runs out, or when some images of a
-batch failed (the others are written, a failed image's old outputs removed);
+batch failed (the others are written, a failed image's old outputs removed
+when img2logo wrote them; a killed worker's images are run again);
 130 after Ctrl-C and 143 after SIGTERM (temporary files removed; a batch's
 workers end with it, also when it is killed). The same input and options give
 the same files, byte for byte.
