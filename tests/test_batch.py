@@ -450,3 +450,10 @@ def test_the_summary_text_escapes_control_characters(tmp_path):
     text = report.summary()
     assert "a\\nb.png" in text and "in/c\\rd.png: not a readable image" in text and "\r" not in text
     assert len(text.splitlines()) == 6
+
+
+def test_a_foreground_for_a_drawing_is_ignored_with_one_warning(tmp_path):
+    report = run_batch([DATA / GOOD[0]], tmp_path, jobs=1, progress=False, outputs=("json",), foreground="none")
+    assert report.ok and len(report.warnings) == 1
+    assert report.warnings[0].startswith(f"{GOOD[0]}: --foreground none is ignored: the image is drawing (")
+    assert report.warnings[0].endswith("and only a photo has a subject to find (give --kind photo to treat it as one)")
