@@ -166,12 +166,7 @@ class _Stage:
                     raise OutputError(os_message(target, exc)) from exc
                 self.files.pop(0)
             for gone in self.removals:
-                try:
-                    os.unlink(gone)
-                except FileNotFoundError:
-                    continue
-                except OSError as exc:
-                    raise OutputError(f"cannot remove {gone}: {exc.strerror or exc}") from exc
+                _unlink(gone)
             self.removals.clear()
         finally:
             if held:
@@ -226,7 +221,12 @@ def remove_file(path: str | os.PathLike[str]) -> None:
     stage = _STAGE.get()
     if stage is not None:
         stage.removals.append(target)
-        return
+    else:
+        _unlink(target)
+
+
+def _unlink(target: Path) -> None:
+    """Remove ``target`` (gone already: nothing to do); an operating-system error is an :class:`OutputError`."""
     try:
         os.unlink(target)
     except FileNotFoundError:

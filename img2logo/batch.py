@@ -1093,15 +1093,9 @@ def _remove_old_outputs(out_dir: Path, stem: str, formats: Sequence[str], manife
     for fmt in formats:
         old = out_dir / f"{stem}.{fmt}"
         if _written_by_img2logo(old, manifest):
-            try:
-                old.unlink()
-            except FileNotFoundError:
-                continue
-            except OSError as exc:
-                from ._io import os_message
-                from .errors import OutputError
+            from ._io import remove_file
 
-                raise OutputError(os_message(old, exc)) from exc
+            remove_file(old)
             removed.append(old.name)
     return removed
 

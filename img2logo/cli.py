@@ -62,7 +62,8 @@ class _Parser(argparse.ArgumentParser):
         return super().parse_args(self._given, namespace)
 
     def error(self, message: str) -> NoReturn:
-        unknown = self._unknown_option()
+        about_inputs = message.startswith(("the following arguments are required", "unrecognized arguments"))
+        unknown = self._unknown_option() if about_inputs else None  # not for an option's own bad value
         if unknown is not None:
             command = "img2logo batch" if self.prog.endswith("batch") else "img2logo"
             message = (
