@@ -976,7 +976,7 @@ def _batch_lock(out_dir: Path) -> Iterator[None]:
     try:
         _make_parents(out_dir, made)
         for _ in range(100):
-            fd = os.open(lock, os.O_RDWR | os.O_CREAT, 0o666)
+            fd = _open_lock(lock, os.O_RDWR | os.O_CREAT)
             try:
                 fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
             except OSError:
@@ -1003,6 +1003,33 @@ def _batch_lock(out_dir: Path) -> Iterator[None]:
                 folder.rmdir()  # only if empty: nothing was written
 
 
+def _open_lock(lock: Path, flags: int) -> int:
+    """Open the lock file: never through a link, never a FIFO or a device, never a file with other names.
+
+    A lock file planted as a link to (or a hard link of) a file of the user's would
+    otherwise be written over; such a folder is refused.
+    """
+    import stat
+
+    nofollow, nonblock = getattr(os, "O_NOFOLLOW", 0), getattr(os, "O_NONBLOCK", 0)
+    try:
+        fd = os.open(lock, flags | nofollow | nonblock, 0o666)
+    except FileNotFoundError:
+        raise
+    except OSError as exc:
+        if lock.is_symlink():
+            raise InvalidParameterError(f"output folder {lock.parent}: {lock.name} is a link; remove it") from exc
+        raise
+    st = os.fstat(fd)
+    if not stat.S_ISREG(st.st_mode) or st.st_nlink > 1:
+        os.close(fd)
+        raise InvalidParameterError(
+            f"output folder {lock.parent}: {lock.name} is not a lock file img2logo made "
+            "(not a regular file, or a file with other names); remove it"
+        )
+    return fd
+
+
 def _refuse_locked(out_dir: Path, fd: int) -> NoReturn:
     """Close ``fd`` (the lock file another batch holds) and raise the error naming that batch's process."""
     try:
@@ -1021,8 +1048,8 @@ def _check_unlocked(out_dir: Path) -> None:
     try:
         import fcntl
 
-        fd = os.open(out_dir / LOCK_NAME, os.O_RDONLY)
-    except (ImportError, OSError):  # no lock file: no batch holds it
+        fd = _open_lock(out_dir / LOCK_NAME, os.O_RDONLY)
+    except (ImportError, FileNotFoundError):  # no lock file: no batch holds it
         return
     try:
         fcntl.flock(fd, fcntl.LOCK_SH | fcntl.LOCK_NB)

@@ -457,3 +457,22 @@ def test_a_foreground_for_a_drawing_is_ignored_with_one_warning(tmp_path):
     assert report.ok and len(report.warnings) == 1
     assert report.warnings[0].startswith(f"{GOOD[0]}: --foreground none is ignored: the image is drawing (")
     assert report.warnings[0].endswith("and only a photo has a subject to find (give --kind photo to treat it as one)")
+
+
+@pytest.mark.parametrize("link", ["symbolic", "hard"])
+def test_a_planted_lock_file_never_writes_over_a_users_file(tmp_path, link):
+    import os
+
+    from img2logo.batch import LOCK_NAME
+
+    src, out = _two_images(tmp_path), tmp_path / "out"
+    out.mkdir()
+    mine = tmp_path / "mine.txt"
+    mine.write_text("my text\n")
+    if link == "symbolic":
+        (out / LOCK_NAME).symlink_to(mine)
+    else:
+        os.link(mine, out / LOCK_NAME)
+    with pytest.raises(InvalidParameterError, match=rf"output folder .*out: \{LOCK_NAME}"):
+        run_batch(find_images(src), out, jobs=1, progress=False)
+    assert mine.read_text() == "my text\n" and sorted(p.name for p in out.iterdir()) == [LOCK_NAME]
