@@ -117,44 +117,6 @@ def test_output_set_writes_all_or_nothing(tmp_path):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["a.json", "a.svg"]
 
 
-def test_stale_temporary_files_of_a_target_are_removed(tmp_path):
-    dead, alive = _dead_pid(), os.getpid()
-    stale = tmp_path / f".a.json.{dead}-0123abcd.tmp"
-    running = tmp_path / f".a.json.{alive}-0123abcd.tmp"  # this process: still writing it
-    other = tmp_path / f".b.json.{dead}-0123abcd.tmp"  # another target's
-    for p in (stale, running, other):
-        p.write_text("partial")
-    writers.write_json(make_abstraction(), tmp_path / "a.json")
-    assert not stale.exists() and running.exists() and other.exists()
-
-
-def test_check_output_paths(tmp_path):
-    src = tmp_path / "in.png"
-    src.write_bytes(b"image")
-    (tmp_path / "link.png").symlink_to(src)
-    os.link(src, tmp_path / "hard.png")
-    (tmp_path / "file").write_text("x")
-    (tmp_path / "dir").mkdir()
-    check = _io.check_output_paths
-    ok = check({"--svg": tmp_path / "new" / "a.svg", "--json": tmp_path / "a.json"}, [src])
-    assert ok == {"--svg": tmp_path / "new" / "a.svg", "--json": tmp_path / "a.json"}
-    assert not (tmp_path / "new").exists()  # nothing created by a check
-    cases = [
-        ({"--png": src}, "is the input"),
-        ({"--png": tmp_path / "link.png"}, "link.png is the input .*in.png: refusing to write over an input"),
-        ({"--png": tmp_path / "hard.png"}, "hard.png is the input"),
-        ({"--svg": tmp_path / "o.out", "--json": tmp_path / "./o.out"}, "--svg and --json name the same file"),
-        ({"--svg": tmp_path / "dir"}, "--svg .*dir is a folder"),
-        ({"--svg": "/dev/null"}, "--svg /dev/null is not a regular file"),
-        ({"--svg": tmp_path / "file" / "sub" / "a.svg"}, r"--svg .*a\.svg: .*file is not a folder"),
-    ]
-    for targets, message in cases:
-        with pytest.raises(InvalidParameterError, match=message):
-            check(targets, [src])
-    with pytest.raises(InvalidParameterError, match=r"--levels-dir .*file is a file, not a folder"):
-        check({}, [src], {"--levels-dir": tmp_path / "file"})
-
-
 # --------------------------------------------------------------------------- issue 20
 @pytest.mark.parametrize(
     ("text", "shown"),
@@ -195,3 +157,41 @@ def test_remove_file_in_a_set_waits_for_the_set_and_is_undone_with_it(tmp_path):
     new_copy.write_text("y")
     remove_file(new_copy)  # outside a set: at once
     assert not new_copy.exists()
+
+
+def test_stale_temporary_files_of_a_target_are_removed(tmp_path):
+    dead, alive = _dead_pid(), os.getpid()
+    stale = tmp_path / f".a.json.{dead}-0123abcd.tmp"
+    running = tmp_path / f".a.json.{alive}-0123abcd.tmp"  # this process: still writing it
+    other = tmp_path / f".b.json.{dead}-0123abcd.tmp"  # another target's
+    for p in (stale, running, other):
+        p.write_text("partial")
+    writers.write_json(make_abstraction(), tmp_path / "a.json")
+    assert not stale.exists() and running.exists() and other.exists()
+
+
+def test_check_output_paths(tmp_path):
+    src = tmp_path / "in.png"
+    src.write_bytes(b"image")
+    (tmp_path / "link.png").symlink_to(src)
+    os.link(src, tmp_path / "hard.png")
+    (tmp_path / "file").write_text("x")
+    (tmp_path / "dir").mkdir()
+    check = _io.check_output_paths
+    ok = check({"--svg": tmp_path / "new" / "a.svg", "--json": tmp_path / "a.json"}, [src])
+    assert ok == {"--svg": tmp_path / "new" / "a.svg", "--json": tmp_path / "a.json"}
+    assert not (tmp_path / "new").exists()  # nothing created by a check
+    cases = [
+        ({"--png": src}, "is the input"),
+        ({"--png": tmp_path / "link.png"}, "link.png is the input .*in.png: refusing to write over an input"),
+        ({"--png": tmp_path / "hard.png"}, "hard.png is the input"),
+        ({"--svg": tmp_path / "o.out", "--json": tmp_path / "./o.out"}, "--svg and --json name the same file"),
+        ({"--svg": tmp_path / "dir"}, "--svg .*dir is a folder"),
+        ({"--svg": "/dev/null"}, "--svg /dev/null is not a regular file"),
+        ({"--svg": tmp_path / "file" / "sub" / "a.svg"}, r"--svg .*a\.svg: .*file is not a folder"),
+    ]
+    for targets, message in cases:
+        with pytest.raises(InvalidParameterError, match=message):
+            check(targets, [src])
+    with pytest.raises(InvalidParameterError, match=r"--levels-dir .*file is a file, not a folder"):
+        check({}, [src], {"--levels-dir": tmp_path / "file"})
