@@ -26,7 +26,22 @@ from typing import IO
 
 from .errors import InvalidParameterError, OutputError
 
-__all__ = ["as_path", "atomic_write", "check_output_paths", "os_message", "output_set"]
+__all__ = ["as_path", "atomic_write", "check_output_paths", "os_message", "output_set", "printable", "remove_file"]
+
+
+def printable(text: object) -> str:
+    """``text`` safe to print as part of one line: every character that is not printable is escaped.
+
+    A newline, a carriage return, a terminal escape or any other control
+    character (and a byte of a file name that is no UTF-8, Python's surrogate
+    escape) becomes its Python escape (``\\n``, ``\\x1b``, ``\\udcff``), as
+    :func:`repr` writes it; so a file named ``"a\\nimg2logo: error: x.png"``
+    cannot forge a line of its own. Printable text, spaces included, is kept as it is.
+    """
+    s = str(text)
+    if s.isprintable():
+        return s
+    return "".join(ch if ch.isprintable() or ch == " " else repr(ch)[1:-1] for ch in s)
 
 
 def check_output_paths(
@@ -120,6 +135,7 @@ class _Stage:
     def __init__(self) -> None:
         self.files: list[tuple[Path, Path]] = []
         self.folders: list[Path] = []
+        self.removals: list[Path] = []
 
     def discard(self) -> None:
         """Remove the temporary files and the folders created (if left empty)."""
@@ -131,6 +147,7 @@ class _Stage:
                 folder.rmdir()
         self.files.clear()
         self.folders.clear()
+        self.removals.clear()
 
     def commit(self) -> None:
         """Move every temporary file over its target, with SIGINT and SIGTERM held off meanwhile."""
@@ -155,6 +172,9 @@ class _Stage:
                     self.discard()
                     raise OutputError(os_message(target, exc)) from exc
                 self.files.pop(0)
+            for gone in self.removals:
+                _unlink(gone)
+            self.removals.clear()
         finally:
             if held:
                 signal.pthread_sigmask(signal.SIG_SETMASK, old)
@@ -190,6 +210,36 @@ def output_set() -> Iterator[None]:
     finally:
         _STAGE.reset(token)
     stage.commit()
+
+
+def remove_file(path: str | os.PathLike[str]) -> None:
+    """Remove a file img2logo wrote; inside :func:`output_set`, at the end of the set, after its files are in place.
+
+    So a run that replaces a set of files by a smaller one (``--levels-dir``)
+    removes the files of the earlier set with the same all-or-nothing rule: if
+    the run fails, nothing is removed. A file already gone is no error.
+
+    Raises
+    ------
+    OutputError
+        If the file cannot be removed (outside a set: at once).
+    """
+    target = as_path(path)
+    stage = _STAGE.get()
+    if stage is not None:
+        stage.removals.append(target)
+    else:
+        _unlink(target)
+
+
+def _unlink(target: Path) -> None:
+    """Remove ``target`` (gone already: nothing to do); an operating-system error is an :class:`OutputError`."""
+    try:
+        os.unlink(target)
+    except FileNotFoundError:
+        return
+    except OSError as exc:
+        raise OutputError(f"cannot remove {target}: {exc.strerror or exc}") from exc
 
 
 def atomic_write(path: str | os.PathLike[str], write: Callable[[IO[bytes]], object]) -> Path:

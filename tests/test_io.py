@@ -117,6 +117,48 @@ def test_output_set_writes_all_or_nothing(tmp_path):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["a.json", "a.svg"]
 
 
+# --------------------------------------------------------------------------- issue 20
+@pytest.mark.parametrize(
+    ("text", "shown"),
+    [
+        ("plain name.png", "plain name.png"),
+        ("a\nimg2logo: error: x.png", "a\\nimg2logo: error: x.png"),
+        ("b\r\t\x1b[31mc", "b\\r\\t\\x1b[31mc"),
+        ("line\u2028sep\x85", "line\\u2028sep\\x85"),
+        ("bytes\udcff.png", "bytes\\udcff.png"),  # a name that is no UTF-8 (surrogate escape)
+        ("é ü 猫.png", "é ü 猫.png"),
+    ],
+)
+def test_printable_escapes_what_could_start_a_line(text, shown):
+    from img2logo._io import printable
+
+    assert printable(text) == shown
+    assert printable(text).isprintable()
+
+
+def test_remove_file_in_a_set_waits_for_the_set_and_is_undone_with_it(tmp_path):
+    from img2logo._io import atomic_write, output_set, remove_file
+
+    old, new = tmp_path / "old.json", tmp_path / "new.json"
+    old.write_text("earlier run")
+    with pytest.raises(RuntimeError), output_set():
+        atomic_write(new, lambda f: f.write(b"x"))
+        remove_file(old)
+        assert old.exists()  # not yet
+        raise RuntimeError("the run failed")
+    assert old.read_text() == "earlier run" and not new.exists()
+    with output_set():
+        atomic_write(new, lambda f: f.write(b"x"))
+        remove_file(old)
+        remove_file(tmp_path / "never-there.json")  # no error
+        assert old.exists()
+    assert not old.exists() and new.read_bytes() == b"x"
+    new_copy = tmp_path / "c"
+    new_copy.write_text("y")
+    remove_file(new_copy)  # outside a set: at once
+    assert not new_copy.exists()
+
+
 def test_stale_temporary_files_of_a_target_are_removed(tmp_path):
     dead, alive = _dead_pid(), os.getpid()
     stale = tmp_path / f".a.json.{dead}-0123abcd.tmp"
