@@ -355,7 +355,7 @@ def _copy(tmp_path, name="drawing-leaf.png"):
         (["--svg", "{dir}/o.out", "--json", "{dir}/o.out"], r"--json and --svg name the same file .*o\.out"),
         (["--svg", "{dir}/file/a.svg"], r"--svg .*a\.svg: .*file is not a folder"),
         (["--svg", "{dir}/folder"], r"--svg .*folder is a folder"),
-        (["--svg", "/dev/null"], r"--svg /dev/null is not a regular file"),
+        (["--svg", "{dir}/pipe.svg"], r"--svg .*pipe\.svg is not a regular file"),
         (["--levels-dir", "{dir}/file"], r"--levels-dir .*file is a file, not a folder"),
         (["--levels-dir", "{dir}", "--svg", "{dir}/level-0000.svg"], r"inside --levels-dir"),
         (["--min-length", "-5"], r"min_length must be >= 0, got -5\.0"),
@@ -382,6 +382,7 @@ def test_bad_outputs_are_refused_before_any_work(tmp_path, capsys, outputs, mess
     (tmp_path / "link.svg").symlink_to(src)
     (tmp_path / "file").write_text("x")
     (tmp_path / "folder").mkdir()
+    os.mkfifo(tmp_path / "pipe.svg")  # no regular file, like a device: never opened
     mask = shutil.copy(DATA / "drawing-leaf.png", tmp_path / "mask.png")  # 512 x 512 like the input
     (tmp_path / "mlink.svg").symlink_to(mask)
     (tmp_path / "lv").mkdir()

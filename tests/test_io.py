@@ -177,6 +177,7 @@ def test_check_output_paths(tmp_path):
     os.link(src, tmp_path / "hard.png")
     (tmp_path / "file").write_text("x")
     (tmp_path / "dir").mkdir()
+    os.mkfifo(tmp_path / "pipe.svg")  # no regular file, like a device
     check = _io.check_output_paths
     ok = check({"--svg": tmp_path / "new" / "a.svg", "--json": tmp_path / "a.json"}, [src])
     assert ok == {"--svg": tmp_path / "new" / "a.svg", "--json": tmp_path / "a.json"}
@@ -187,7 +188,7 @@ def test_check_output_paths(tmp_path):
         ({"--png": tmp_path / "hard.png"}, "hard.png is the input"),
         ({"--svg": tmp_path / "o.out", "--json": tmp_path / "./o.out"}, "--svg and --json name the same file"),
         ({"--svg": tmp_path / "dir"}, "--svg .*dir is a folder"),
-        ({"--svg": "/dev/null"}, "--svg /dev/null is not a regular file"),
+        ({"--svg": tmp_path / "pipe.svg"}, r"--svg .*pipe\.svg is not a regular file"),
         ({"--svg": tmp_path / "file" / "sub" / "a.svg"}, r"--svg .*a\.svg: .*file is not a folder"),
     ]
     for targets, message in cases:

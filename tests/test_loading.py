@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import struct
 import warnings
 import zlib
@@ -111,8 +112,9 @@ def test_a_multi_page_file_says_it_uses_the_first_page(tmp_path):
 
 
 def test_not_a_regular_file_is_named_as_such(tmp_path):
-    with pytest.raises(ImageNotFoundError, match=r"/dev/null is not a regular file"):
-        load_image("/dev/null")
+    os.mkfifo(tmp_path / "pipe.png")  # no regular file, like a device: never opened (it would block)
+    with pytest.raises(ImageNotFoundError, match=r"pipe\.png is not a regular file"):
+        load_image(tmp_path / "pipe.png")
     with pytest.raises(ImageNotFoundError, match=r"is a directory, not an image file"):
         load_image(tmp_path)
 
