@@ -56,7 +56,7 @@ test-browser: $(BROWSER)
 # The designer's studio (notebook 14) as a page, served by Voila on this machine only; Ctrl-C stops it.
 # Another port: make studio PORT=8870
 studio: $(STUDIO)
-	@$(BIN)/python -m img2logo.experiments.studio --port $(PORT)
+	@$(BIN)/python -m img2logo.experiments.studio_serve --port $(PORT)
 
 # JupyterLab on the notebooks; Ctrl-C stops it. Options: make lab LAB_ARGS="--no-browser --port 8890"
 lab: $(LAB)
