@@ -158,7 +158,7 @@ class StudioPage:
         c["canvas"] = self.canvas
 
         c["status"] = w.HTML(layout=w.Layout(width="100%")).add_class("studio-status")
-        c["title"] = w.HTML(layout=wide)
+        c["title"] = w.HTML(layout=wide).add_class("studio-title")
         c["tool"] = w.ToggleButtons(
             options=[("Select", "select"), ("Brush", "brush"), ("Eraser", "eraser"), ("Subject", "subject")],
             value="select",
