@@ -63,6 +63,7 @@ body[data-voila] { padding: 6px 12px; }
   border: 1px solid #1f6fd1; border-radius: 3px; color: #1f6fd1; text-decoration: none; font-size: 13px; }
 .img2logo-studio a.studio-download:hover { background: #e8f0fb; }
 .img2logo-studio .studio-status { font-size: 13px; }
+.img2logo-studio .studio-hint { font-size: 12px; line-height: 1.4; color: #444; }
 .img2logo-studio .studio-error { color: #b00020; font-weight: 600; }
 </style>
 """
@@ -269,8 +270,14 @@ class StudioPage:
         def section(text: str) -> Any:
             return w.HTML(f'<div class="studio-section">{html.escape(text)}</div>')
 
+        hint = w.HTML(
+            '<div class="studio-hint"><b>Select</b>: click an arc, a second one to connect them. <b>Brush</b> / '
+            "<b>Eraser</b>: paint where merges are forbidden, then Run. <b>Subject</b>: drag a rectangle around "
+            "a photo's subject, then Run (kind photo).</div>",
+            layout=w.Layout(width=f"{self.size}px"),
+        )
         tools = w.VBox(
-            [c["tool"], w.HBox([c["brush"], c["clear_mask"], c["clear_subject"]])],
+            [c["tool"], w.HBox([c["brush"], c["clear_mask"], c["clear_subject"]]), hint],
             layout=w.Layout(width=f"{self.size}px"),
         )
         left = w.VBox([self.canvas, tools], layout=w.Layout(flex="0 0 auto"))
