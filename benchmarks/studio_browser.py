@@ -7,7 +7,8 @@ playwright and times, from the key press or click to the drawing changed on the 
 (``wait_for_function`` polls every animation frame): a level change, a T change below the run's
 T (read off the run), an edit (delete an arc; undo), and a Run on a 512 px clip art (from the click
 on Run to its drawing). Prints the median and the range of each; with ``--shots`` saves a
-screenshot after each step. Timings depend on the machine's load: say what else was running.
+screenshot after each step (``8-studio.png`` is the README's ``docs/studio.png``).
+Timings depend on the machine's load: say what else was running.
 """
 
 from __future__ import annotations
@@ -172,6 +173,15 @@ def main() -> int:
                         _timed(page, run.click, f"a => {status}.startsWith('done:') && {status} !== a[1]", old)
                     )
                 shot("7-run")
+                # The README's screenshot: palette fills, the longest arc selected.
+                fills = page.locator(".img2logo-studio .widget-dropdown", has_text="fills").locator("select")
+                fills.select_option("palette")
+                page.wait_for_function(f"() => {status}.includes('regions')")
+                page.locator(".img2logo-studio .widget-toggle-button", has_text="Select").first.click()
+                page.mouse.click(*at(*pts[len(pts) // 2]))
+                page.wait_for_function(f"() => {status}.includes('selected')")
+                page.wait_for_timeout(800)
+                shot("8-studio")
                 browser.close()
         finally:
             server.terminate()
