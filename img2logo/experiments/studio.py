@@ -55,9 +55,6 @@ PICK_DISTANCE = 10.0
 #: through the kernel's websocket, whose messages Tornado caps at 10 MiB; 9 MB holds a 12-megapixel JPEG.
 MAX_UPLOAD_BYTES = 9_000_000
 
-#: The settings the page's Run takes (fields of :class:`~img2logo.options.Options`, plus ``fill``).
-FILL_MODES = ("none", "auto", "palette", "linear", "radial")
-
 
 @dataclass(frozen=True)
 class StudioSettings:
@@ -603,4 +600,4 @@ def free_ends(a: Abstraction, arc: int) -> list[int]:
     return out
 
 
-__all__ = ["FILL_MODES", "PICK_DISTANCE", "Studio", "StudioSettings", "free_ends", "front_end_live"]
+__all__ = ["MAX_UPLOAD_BYTES", "PICK_DISTANCE", "Studio", "StudioSettings", "free_ends", "front_end_live"]
