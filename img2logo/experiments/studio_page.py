@@ -63,6 +63,8 @@ body[data-voila] { padding: 6px 12px; }
   border: 1px solid #1f6fd1; border-radius: 3px; color: #1f6fd1; text-decoration: none; font-size: 13px; }
 .img2logo-studio a.studio-download:hover { background: #e8f0fb; }
 .img2logo-studio .studio-status { font-size: 13px; }
+.img2logo-studio .studio-title { padding-right: 12px; box-sizing: border-box; }
+.img2logo-studio .studio-title b { white-space: normal; }
 .img2logo-studio .studio-hint { font-size: 12px; line-height: 1.4; color: #444; }
 .img2logo-studio .studio-error { color: #b00020; font-weight: 600; }
 </style>
