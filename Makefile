@@ -8,13 +8,15 @@ STAMP  := $(VENV)/.installed
 KIT    := $(VENV)/.installed-kit
 LAB    := $(VENV)/.installed-lab
 BROWSER := $(VENV)/.installed-browser
+STUDIO := $(VENV)/.installed-studio
+PORT   ?= 8866
 LIB    := $(wildcard img2logo/*.py img2logo/*/*.py) pyproject.toml
 DATA   := $(wildcard data/*.png)
 NB     ?= $(basename $(notdir $(wildcard notebooks/*.ipynb)))
 RUNS   := $(patsubst %,build/notebooks/%.ipynb,$(NB))
 
 .DELETE_ON_ERROR:
-.PHONY: install test test-browser lab lint format bench quality figures figures-smoke clean FORCE
+.PHONY: install test test-browser lab studio lint format bench quality figures figures-smoke clean FORCE
 
 install: $(STAMP)
 
@@ -42,10 +44,19 @@ $(BROWSER): pyproject.toml $(KIT)
 	$(BIN)/python -m pip install --quiet -e '.[dev,kit,browser]'
 	@touch $@
 
-# The level explorer (notebook 11) in JupyterLab, driven by Debian's chromium (apt-get install chromium)
-# through playwright; skipped, with the reason, where chromium is missing.
+$(STUDIO): pyproject.toml $(KIT)
+	$(BIN)/python -m pip install --quiet -e '.[dev,kit,studio]'
+	@touch $@
+
+# The level explorer (notebook 11) in JupyterLab and the studio (notebook 14) in Voila, driven by Debian's
+# chromium (apt-get install chromium) through playwright; skipped, with the reason, where chromium is missing.
 test-browser: $(BROWSER)
-	$(BIN)/python -m pytest -m browser -rs tests/test_experiments_explore_browser.py
+	$(BIN)/python -m pytest -m browser -rs tests/test_experiments_explore_browser.py tests/test_experiments_studio_browser.py
+
+# The designer's studio (notebook 14) as a page, served by Voila on this machine only; Ctrl-C stops it.
+# Another port: make studio PORT=8870
+studio: $(STUDIO)
+	@$(BIN)/python -m img2logo.experiments.studio_serve --port $(PORT)
 
 # JupyterLab on the notebooks; Ctrl-C stops it. Options: make lab LAB_ARGS="--no-browser --port 8890"
 lab: $(LAB)

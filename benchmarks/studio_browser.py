@@ -1,0 +1,198 @@
+"""The studio's responsiveness, measured in the browser, and its screenshots at 1366 x 768.
+
+    .venv/bin/python benchmarks/studio_browser.py [--repeats 7] [--shots DIR]
+
+Serves notebook 14 as ``make studio`` does (Voila, a free port), drives Debian's chromium with
+playwright and times, from the key press or click to the drawing changed on the page
+(``wait_for_function`` polls every animation frame): a level change, a T change below the run's
+T (read off the run), an edit (delete an arc; undo), and a Run on a 512 px clip art (from the click
+on Run to its drawing). Prints the median and the range of each; with ``--shots`` saves a
+screenshot after each step (``8-studio.png`` is the README's ``docs/studio.png``).
+Timings depend on the machine's load: say what else was running.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import socket
+import statistics
+import subprocess
+import sys
+import time
+import urllib.error
+import urllib.request
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "tests"))
+
+from test_experiments_explore_browser import CHROMIUM, CHROMIUM_ARGS  # noqa: E402
+
+from img2logo.experiments.studio import Studio  # noqa: E402
+from img2logo.experiments.studio_serve import serve_command  # noqa: E402
+
+CANVAS = "document.querySelector('.img2logo-studio canvas').toDataURL()"
+
+
+def _serve(folder: Path) -> tuple[subprocess.Popen, str]:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        port = s.getsockname()[1]
+    env = dict(os.environ, JUPYTER_RUNTIME_DIR=str(folder / "rt"), IMG2LOGO_ROOT=str(ROOT))
+    log = (folder / "voila.log").open("w")
+    process = subprocess.Popen(serve_command(port, ROOT), env=env, stdout=log, stderr=subprocess.STDOUT)
+    url = f"http://127.0.0.1:{port}/"
+    for _ in range(240):
+        try:
+            urllib.request.urlopen(f"{url}voila/static/none", timeout=1.0).close()
+            break
+        except urllib.error.HTTPError:
+            break
+        except OSError:
+            time.sleep(0.25)
+    return process, url
+
+
+def _timed(page, action, condition: str, arg=None) -> float:
+    before = page.evaluate(f"() => {CANVAS}")
+    start = time.perf_counter()
+    action()
+    page.wait_for_function(condition, arg=[before, arg], polling="raf", timeout=120_000)
+    return time.perf_counter() - start
+
+
+def _changed(text: str | None = None) -> str:
+    """The drawing differs from args[0] (and the status or title shows args[1])."""
+    shown = (
+        " && (a[1] === null || [...document.querySelectorAll('.img2logo-studio .studio-status, "
+        ".img2logo-studio .studio-title')].some(e => e.innerText.includes(a[1])))"
+    )
+    return f"a => {CANVAS} !== a[0]" + shown
+
+
+def main() -> int:
+    import tempfile
+
+    from playwright.sync_api import sync_playwright
+
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("--repeats", type=int, default=7)
+    p.add_argument("--shots", type=Path, default=None, help="save a 1366x768 screenshot after each step here")
+    args = p.parse_args()
+    args.repeats += args.repeats % 2  # back and forth: the page ends where it began
+    fish = Studio("clipart-fish.png")
+    fish.run()
+    a = fish.shown
+    i = max(range(len(a.arcs)), key=lambda j: a.arcs[j].length)
+    pts = a.arcs[i].sample(step=1.0)
+    times: dict[str, list[float]] = {}
+    with tempfile.TemporaryDirectory() as tmp:
+        server, url = _serve(Path(tmp))
+        try:
+            with sync_playwright() as pw:
+                browser = pw.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_ARGS)
+                page = browser.new_page(viewport={"width": 1366, "height": 768})
+                page.set_default_timeout(120_000)
+                start = time.perf_counter()
+                page.goto(url)
+                page.wait_for_function(
+                    "() => { const s = document.querySelector('.img2logo-studio .studio-status');"
+                    " return s && s.innerText.includes('done:'); }",
+                    timeout=180_000,
+                )
+                page.wait_for_timeout(500)
+                print(f"page loaded and first Run shown: {time.perf_counter() - start:.1f} s")
+
+                def shot(name: str) -> None:
+                    if args.shots:
+                        args.shots.mkdir(parents=True, exist_ok=True)
+                        page.screenshot(path=str(args.shots / f"{name}.png"))
+
+                shot("1-loaded")
+                box = page.locator(".img2logo-studio canvas").first.bounding_box()
+                k = box["width"] / 512
+
+                def at(x: float, y: float) -> tuple[float, float]:
+                    return box["x"] + x * k, box["y"] + y * k
+
+                level = page.locator(".img2logo-studio .widget-slider", has_text="level t").locator(".noUi-handle")
+                for r in range(args.repeats):
+                    key = "ArrowLeft" if r % 2 == 0 else "ArrowRight"
+                    level.first.focus()
+                    times.setdefault("level change", []).append(
+                        _timed(page, lambda key=key: level.first.press(key), _changed())
+                    )
+                shot("2-level")
+                tol = page.locator(".img2logo-studio .widget-slider", has_text="T (px)").locator(".noUi-handle")
+                for r in range(args.repeats):
+                    key = "ArrowLeft" if r % 2 == 0 else "ArrowRight"
+                    tol.first.focus()
+                    want = "(T = 4.5)" if key == "ArrowLeft" else "(T = 5)"
+                    times.setdefault("T change (below the run's T)", []).append(
+                        _timed(
+                            page,
+                            lambda key=key: tol.first.press(key),
+                            "a => document.querySelector('.img2logo-studio .studio-title').innerText.includes(a[1])",
+                            want,
+                        )
+                    )
+                shot("3-tolerance")
+                page.locator(".img2logo-studio .widget-toggle-button", has_text="Select").first.click()
+                for _ in range(args.repeats):
+                    page.mouse.click(*at(*pts[len(pts) // 2]))
+                    page.wait_for_function(
+                        "t => document.querySelector('.img2logo-studio .studio-status').innerText.includes(t)",
+                        arg=f"arc {i} selected",
+                    )
+                    delete = page.locator(".img2logo-studio button", has_text="Delete arc").first
+                    times.setdefault("edit: delete arc", []).append(_timed(page, delete.click, _changed("deleted")))
+                    shot("4-deleted")
+                    undo = page.locator(".img2logo-studio button", has_text="Undo").first
+                    times.setdefault("edit: undo", []).append(_timed(page, undo.click, _changed("undone")))
+                page.locator(".img2logo-studio .widget-toggle-button", has_text="Brush").first.click()
+                stroke = a.arcs[i].sample(step=8.0)
+                page.mouse.move(*at(*stroke[0]))
+                page.mouse.down()
+                for q in stroke[1:]:
+                    page.mouse.move(*at(*q))
+                page.mouse.up()
+                page.wait_for_timeout(500)
+                shot("5-lock-stroke")
+                run = page.locator(".img2logo-studio button", has_text="Run").first
+                times.setdefault("Run, 512 px clip art, with a lock mask", []).append(
+                    _timed(page, run.click, _changed("segments locked"))
+                )
+                shot("6-run-with-lock")
+                page.locator(".img2logo-studio button", has_text="Clear mask").first.click()
+                page.wait_for_timeout(500)
+                status = "document.querySelector('.img2logo-studio .studio-status').innerText"
+                for _ in range(max(3, args.repeats // 2)):
+                    old = page.evaluate(f"() => {status}")
+                    times.setdefault("Run, 512 px clip art", []).append(
+                        _timed(page, run.click, f"a => {status}.startsWith('done:') && {status} !== a[1]", old)
+                    )
+                shot("7-run")
+                # The README's screenshot: palette fills, the longest arc selected.
+                fills = page.locator(".img2logo-studio .widget-dropdown", has_text="fills").locator("select")
+                fills.select_option("palette")
+                page.wait_for_function(f"() => {status}.includes('regions')")
+                page.locator(".img2logo-studio .widget-toggle-button", has_text="Select").first.click()
+                page.mouse.click(*at(*pts[len(pts) // 2]))
+                page.wait_for_function(f"() => {status}.includes('selected')")
+                page.wait_for_timeout(800)
+                shot("8-studio")
+                browser.close()
+        finally:
+            server.terminate()
+            server.wait(timeout=20)
+    for name, values in times.items():
+        print(
+            f"{name:42s} median {statistics.median(values):6.3f} s  "
+            f"(min {min(values):.3f}, max {max(values):.3f}, n = {len(values)})"
+        )
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
