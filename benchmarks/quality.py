@@ -39,7 +39,21 @@ EVAL = ROOT / "benchmarks" / "data"
 #: The second photo-like family (``benchmarks/make_photo2.py``), reported with its own means.
 PHOTO2 = EVAL / "photo2"
 OUT = ROOT / "build" / "quality"
-COLUMNS = ("name", "family", "kind", "detected", "arcs", "r3", "r6", "r10", "sil6", "outside", "crossings", "gaps", "seconds")
+COLUMNS = (
+    "name",
+    "family",
+    "kind",
+    "detected",
+    "arcs",
+    "r3",
+    "r6",
+    "r10",
+    "sil6",
+    "outside",
+    "crossings",
+    "gaps",
+    "seconds",
+)
 
 
 def cases() -> list[dict]:

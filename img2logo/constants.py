@@ -165,6 +165,15 @@ SUBJECT_MAX_FRAME: float = 0.25
 SUBJECT_MIN_CONTRAST: float = 2.8
 #: ... the distance of those points from the outline, px.
 SUBJECT_CONTRAST_STEP: float = 4.0
+#: Automatic subject, texture (subject.texture_colour_image): GrabCut also cuts
+#: on CIELAB plus the texture, this many L* units per decade of the local
+#: fine-detail energy: a smooth surface and grass or gravel differ by about a
+#: decade, which then weighs as a clear colour edge (about 20 dE) does, so an
+#: object of the background's own hue but another texture is told apart ...
+SUBJECT_TEXTURE_WEIGHT: float = 20.0
+#: ... and the energy floor added before the log, L* units: photo noise and
+#: JPEG grain (about 0.3 L* RMS) are no texture, flat surfaces all look alike.
+SUBJECT_TEXTURE_FLOOR: float = 0.3
 #: Automatic subject, depth of field (subject.focus_seeds): fine detail is the
 #: image minus its Gaussian blur of this sigma, px of the working copy ...
 FOCUS_DETAIL_SIGMA: float = 1.0
