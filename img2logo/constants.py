@@ -174,6 +174,26 @@ SUBJECT_TEXTURE_WEIGHT: float = 20.0
 #: ... and the energy floor added before the log, L* units: photo noise and
 #: JPEG grain (about 0.3 L* RMS) are no texture, flat surfaces all look alike.
 SUBJECT_TEXTURE_FLOOR: float = 0.3
+#: ... an automatic subject whose outline is no colour edge is still kept when
+#: its texture differs from that around it by at least this many decades of
+#: fine-detail energy (subject.texture_step): a factor of 3. A cut through one
+#: texture has the same on both sides (about 0); a flat body on grass-like
+#: texture of its own colour gives about 0.8 (tests/test_subject.py).
+SUBJECT_MIN_TEXTURE_STEP: float = 0.5
+#: Faces (subject.find_faces): a face smaller than this fraction of the
+#: shorter side is too small for its eyes and mouth to become arcs of their own ...
+FACE_MIN_SIDE: float = 0.08
+#: ... the cascade's windows grow by this factor from one scale to the next
+#: (the usual Viola-Jones step) ...
+FACE_SCALE_STEP: float = 1.1
+#: ... and a face is kept if at least this many overlapping windows found it:
+#: a face answers at many neighbouring positions and scales, a face-like patch
+#: of texture (fur, gravel, a crumpled suit) at a few.
+FACE_MIN_NEIGHBOURS: int = 12
+#: Inside a face, FDoG lines are kept down to this fraction of the face's side
+#: in length (an eye or a brow is about a fifth of the face), instead of the
+#: photo's INNER_MIN_LENGTH and PHOTO_MIN_LINE_LENGTH, which would drop them.
+FACE_MIN_LINE: float = 0.1
 #: Automatic subject, depth of field (subject.focus_seeds): fine detail is the
 #: image minus its Gaussian blur of this sigma, px of the working copy ...
 FOCUS_DETAIL_SIGMA: float = 1.0
