@@ -180,6 +180,14 @@ SUBJECT_TEXTURE_FLOOR: float = 0.3
 #: texture has the same on both sides (about 0); a flat body on grass-like
 #: texture of its own colour gives about 0.8 (tests/test_subject.py).
 SUBJECT_MIN_TEXTURE_STEP: float = 0.5
+#: Scenes (subject.dominant_part): a neck is thinner than a disc of this many
+#: times the square root of the candidate's area in radius (0.08: about 17 px
+#: for a 220x220 px object; a trunk or a strip of sky between a building and its
+#: trees is thinner, the body of an object wider) ...
+SUBJECT_NECK: float = 0.08
+#: ... and a part cut off by it counts if it holds this fraction of the area
+#: (smaller pieces are a tail or a leg, left to the outline).
+SUBJECT_MIN_PART: float = 0.15
 #: Faces (subject.find_faces): a face smaller than this fraction of the
 #: shorter side is too small for its eyes and mouth to become arcs of their own ...
 FACE_MIN_SIDE: float = 0.08

@@ -27,7 +27,9 @@ only (paper Fig. 1, 10). :func:`find_subject` finds it without user input
   (it may touch the frame) and its outline is a colour edge or a focus edge
   (:func:`focus_step` at least ``FOCUS_MIN_STEP``). Otherwise the whole image
   is kept (a scene, or a close-up that fills the frame), and
-  :attr:`Subject.description` says why;
+  :attr:`Subject.description` says why. A kept candidate made of parts of
+  different texture joined by a thin neck (a pagoda and the trees beside
+  it) keeps its dominant part (:func:`dominant_part`);
 * ``"grabcut"``: the same GrabCut, kept whatever it finds;
 * a rectangle ``subject=(x, y, w, h)``: GrabCut started from it (outside is
   background);
@@ -82,7 +84,9 @@ from .constants import (
     SUBJECT_MAX_HOLE,
     SUBJECT_MIN_AREA,
     SUBJECT_MIN_CONTRAST,
+    SUBJECT_MIN_PART,
     SUBJECT_MIN_TEXTURE_STEP,
+    SUBJECT_NECK,
     SUBJECT_REFINE_BAND,
     SUBJECT_SMOOTH_SIGMA,
     SUBJECT_TEXTURE_FLOOR,
@@ -261,6 +265,9 @@ def _find_subject(img: LoadedImage, foreground: object, subject: object) -> Subj
                 why = f"{why}; from depth of field: {why_focus}"
         if why:
             return Subject(None, "auto", f"kept the whole image: no dominant object ({why})")
+        kept = dominant_part(mask, texture)
+        if kept is not mask:
+            mask, how = kept, f"{how}; a part of another texture beyond a thin neck left out"
         return Subject(readonly(mask), "auto", f"kept the main object, {mask.mean():.0%} of the image ({how})")
     mask = load_mask(foreground, shape) if isinstance(foreground, Path) else np.asarray(foreground)
     if mask.shape != shape:
@@ -269,6 +276,41 @@ def _find_subject(img: LoadedImage, foreground: object, subject: object) -> Subj
     if not mask.any():
         raise InvalidParameterError("foreground mask is empty: no pixel is marked as the object")
     return Subject(readonly(mask.copy()), "mask", f"kept the object of the given mask: {mask.mean():.0%} of the image")
+
+
+def dominant_part(mask: np.ndarray, texture: np.ndarray | None) -> np.ndarray:
+    """The dominant part of a subject made of parts of different texture joined by a thin neck, (H, W) bool.
+
+    A candidate such as a pagoda and the trees beside it: opening the mask by
+    a disc of radius ``SUBJECT_NECK`` times the square root of its area cuts
+    its thin necks; if that leaves two or more parts of at least
+    ``SUBJECT_MIN_PART`` of the mask's area and the largest differs in texture
+    (median :func:`texture_map`) from another by at least
+    ``SUBJECT_MIN_TEXTURE_STEP`` decades, only the largest is kept, with the
+    mask's pixels within the disc's radius of it. Otherwise ``mask`` itself is
+    returned (a giraffe's neck joins parts of one texture: it stays).
+    """
+    import cv2
+    from scipy import ndimage
+
+    if texture is None or not mask.any():
+        return mask
+    radius = max(1, round(SUBJECT_NECK * float(np.sqrt(mask.sum()))))
+    disc = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (2 * radius + 1, 2 * radius + 1))
+    opened = cv2.morphologyEx(mask.astype(np.uint8), cv2.MORPH_OPEN, disc).astype(bool)
+    labels, n = ndimage.label(opened)
+    if n < 2:
+        return mask
+    sizes = np.bincount(labels.ravel())[1:]
+    parts = [i + 1 for i in np.argsort(-sizes) if sizes[i] >= SUBJECT_MIN_PART * mask.sum()]
+    if len(parts) < 2:
+        return mask
+    medians = [float(np.median(texture[labels == i])) for i in parts]
+    step = max(abs(m - medians[0]) for m in medians[1:]) / SUBJECT_TEXTURE_WEIGHT
+    if step < SUBJECT_MIN_TEXTURE_STEP:
+        return mask
+    near = cv2.dilate((labels == parts[0]).astype(np.uint8), disc).astype(bool)
+    return _largest(mask & near)
 
 
 def find_faces(img: LoadedImage, mask: np.ndarray | None = None) -> tuple[tuple[int, int, int, int], ...]:

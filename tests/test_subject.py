@@ -276,3 +276,20 @@ def test_faces_are_found_in_a_portrait_and_not_in_texture():
     rgb, _ = textured_photo([(170, 120, 80, 60, (0.95, 0.75, 0.2))])
     assert find_faces(load_image(rgb)) == ()
     assert find_subject(load_image(rgb)).faces == ()
+
+
+def test_dominant_part_leaves_out_a_part_of_another_texture_beyond_a_thin_neck():
+    from img2logo.subject import dominant_part
+
+    yy, xx = np.mgrid[0:240, 0:320]
+    tower = (xx >= 60) & (xx < 150) & (yy >= 40) & (yy < 200)
+    trees = np.hypot(xx - 240, yy - 140) < 50
+    neck = (xx >= 150) & (xx < 200) & (np.abs(yy - 140) <= 4)
+    mask = tower | trees | neck
+    texture = np.where(xx < 175, 0.0, 20.0)  # a decade more fine detail in the trees
+    kept = dominant_part(mask, texture)
+    assert (kept & tower).sum() == tower.sum()
+    assert not (kept & trees).any()
+    # The same shape in one texture (a giraffe's neck joins its head to its body): kept whole.
+    assert dominant_part(mask, np.zeros((240, 320))) is mask
+    assert dominant_part(tower, texture) is tower  # one part: nothing to choose
