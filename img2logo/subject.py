@@ -330,21 +330,29 @@ def find_faces(img: LoadedImage, mask: np.ndarray | None = None) -> tuple[tuple[
     small, scale = _working_copy(img)
     sh, sw = small.shape[:2]
     side = max(8, round(FACE_MIN_SIDE * min(sh, sw)))
-    if min(sh, sw) < side:
+    r0, c0 = 0, 0
+    if mask is not None:  # only the subject's box is searched: a face outside it is dropped anyway
+        rows, cols = np.nonzero(cv2.resize(mask.astype(np.uint8), (sw, sh), interpolation=cv2.INTER_NEAREST))
+        if rows.size == 0:
+            return ()
+        r0, c0 = int(rows.min()), int(cols.min())
+        small = small[r0 : int(rows.max()) + 1, c0 : int(cols.max()) + 1]
+    largest = min(small.shape[:2])
+    if largest < side:
         return ()
     cascade = Cascade(data.lbp_frontal_face_cascade_filename())
-    gray = cv2.cvtColor(np.clip(small, 0, 1), cv2.COLOR_RGB2GRAY)
+    gray = cv2.cvtColor(np.ascontiguousarray(np.clip(small, 0, 1)), cv2.COLOR_RGB2GRAY)
     found = cascade.detect_multi_scale(
         img=gray,
         scale_factor=FACE_SCALE_STEP,
         step_ratio=1,
         min_size=(side, side),
-        max_size=(min(sh, sw), min(sh, sw)),
+        max_size=(largest, largest),
         min_neighbor_number=FACE_MIN_NEIGHBOURS,
     )
     faces = []
     for f in sorted(found, key=lambda f: -f["width"] * f["height"]):
-        x, y = round(f["c"] / scale), round(f["r"] / scale)
+        x, y = round((f["c"] + c0) / scale), round((f["r"] + r0) / scale)
         w, h = round(f["width"] / scale), round(f["height"] / scale)
         cx, cy = min(img.width - 1, x + w // 2), min(img.height - 1, y + h // 2)
         if mask is None or mask[cy, cx]:
