@@ -2,11 +2,13 @@
 
 Runs the whole pipeline at the default options on every image of
 ``benchmarks/data/`` (clip arts, line drawings and photo-like images with a
-ground truth; ``benchmarks/data/README.md`` says how the truth was made) and on
-the photos of ``data/`` (no truth: only arcs, crossings and gaps), then prints
-one row per image and the means per kind, writes them to
-``build/quality/quality.csv`` and draws one contact sheet per kind,
-``build/quality/contact-<kind>.png``: input | ground truth, the pixels farther
+ground truth; ``benchmarks/data/README.md`` says how the truth was made), on
+the second photo-like family ``benchmarks/data/photo2/`` (built by
+``benchmarks/make_photo2.py`` the same way) and on the photos of ``data/`` (no
+truth: only arcs, crossings and gaps), then prints one row per image and the
+means per family (the kind; ``photo2``; ``data``), writes them to
+``build/quality/quality.csv`` and draws one contact sheet per family,
+``build/quality/contact-<family>.png``: input | ground truth, the pixels farther
 than 10 px from the logo in red | logo.
 
 Columns: kind (true) and detected; arcs; r3, r6, r10 (fraction of the truth's
@@ -34,23 +36,45 @@ import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
 EVAL = ROOT / "benchmarks" / "data"
+#: The second photo-like family (``benchmarks/make_photo2.py``), reported with its own means.
+PHOTO2 = EVAL / "photo2"
 OUT = ROOT / "build" / "quality"
-COLUMNS = ("name", "kind", "detected", "arcs", "r3", "r6", "r10", "sil6", "outside", "crossings", "gaps", "seconds")
+COLUMNS = (
+    "name",
+    "family",
+    "kind",
+    "detected",
+    "arcs",
+    "r3",
+    "r6",
+    "r10",
+    "sil6",
+    "outside",
+    "crossings",
+    "gaps",
+    "seconds",
+)
 
 
 def cases() -> list[dict]:
-    """The evaluation set's manifest entries, then the photos of data/ (no truth)."""
-    manifest = json.loads((EVAL / "manifest.json").read_text(encoding="utf-8"))
-    out = [dict(m, path=EVAL / m["file"]) for m in manifest]
+    """The evaluation set's manifest entries, the second photo-like family, then the photos of data/ (no truth).
+
+    ``family`` is the kind, except for the second photo-like family (``photo2``)
+    and the photos of ``data/`` (``data``): the means are per family.
+    """
+    out = []
+    for folder in (EVAL, PHOTO2):
+        manifest = json.loads((folder / "manifest.json").read_text(encoding="utf-8"))
+        out += [dict(m, family=m.get("family", m["kind"]), path=folder / m["file"], folder=folder) for m in manifest]
     for path in sorted((ROOT / "data").glob("photo-*.png")):
-        out.append({"name": f"data/{path.stem}", "kind": "photo", "path": path})
+        out.append({"name": f"data/{path.stem}", "kind": "photo", "family": "data", "path": path, "folder": EVAL})
     return out
 
 
 def run_case(case: dict) -> tuple[dict, object]:
     from img2logo import Img2LogoError, abstract, load_mask, quality
 
-    row: dict = {"name": case["name"], "kind": case["kind"]}
+    row: dict = {"name": case["name"], "family": case["family"], "kind": case["kind"]}
     start = time.perf_counter()
     try:
         with warnings.catch_warnings():
@@ -60,8 +84,8 @@ def run_case(case: dict) -> tuple[dict, object]:
         row.update(detected="-", error=str(exc), seconds=time.perf_counter() - start)
         return row, None
     row["seconds"] = time.perf_counter() - start
-    truth = load_mask(EVAL / case["gt"]) if "gt" in case else None
-    mask = load_mask(EVAL / case["mask"]) if "mask" in case else None
+    truth = load_mask(case["folder"] / case["gt"]) if "gt" in case else None
+    mask = load_mask(case["folder"] / case["mask"]) if "mask" in case else None
     q = quality.measure(result.final, truth, mask)
     row.update(
         detected=result.lines.kind,
@@ -131,15 +155,17 @@ def main(argv: list[str] | None = None) -> int:
     with pd.option_context("display.width", 200, "display.max_columns", 20, "display.max_colwidth", 60):
         print(table.drop(columns=["error"], errors="ignore").to_string(index=False, float_format="%.2f"))
         numeric = ["arcs", "r3", "r6", "r10", "sil6", "outside", "crossings", "gaps", "seconds"]
-        means = table.groupby("kind")[numeric].mean()
-        means["images"] = table.groupby("kind").size()
-        means["failed"] = table.groupby("kind")["detected"].apply(lambda s: int((s == "-").sum()))
-        means["kind right"] = (table["kind"] == table["detected"]).groupby(table["kind"]).sum()
-        print("\nMeans per kind")
+        by = table["family"]
+        means = table.groupby(by)[numeric].mean()
+        means["least sil6"] = table.groupby(by)["sil6"].min()
+        means["images"] = table.groupby(by).size()
+        means["failed"] = table.groupby(by)["detected"].apply(lambda s: int((s == "-").sum()))
+        means["kind right"] = (table["kind"] == table["detected"]).groupby(by).sum()
+        print("\nMeans per family (the kind, or photo2: the second photo-like family; data: the photos of data/)")
         print(means.to_string(float_format="%.2f"))
     if not args.no_sheets:
-        for kind in sorted(table["kind"].unique()):
-            chosen = [(r, run) for r, run in runs if r["kind"] == kind]
+        for kind in sorted(table["family"].unique()):
+            chosen = [(r, run) for r, run in runs if r["family"] == kind]
             contact_sheet(kind, chosen, args.out / f"contact-{kind}.png")
     print(f"\nwrote {args.out / 'quality.csv'} and the contact sheets beside it")
     return 0

@@ -175,6 +175,43 @@ SUBJECT_MAX_FRAME: float = 0.25
 SUBJECT_MIN_CONTRAST: float = 2.8
 #: ... the distance of those points from the outline, px.
 SUBJECT_CONTRAST_STEP: float = 4.0
+#: Automatic subject, texture (subject.texture_colour_image): GrabCut also cuts
+#: on CIELAB plus the texture, this many L* units per decade of the local
+#: fine-detail energy: a smooth surface and grass or gravel differ by about a
+#: decade, which then weighs as a clear colour edge (about 20 dE) does, so an
+#: object of the background's own hue but another texture is told apart ...
+SUBJECT_TEXTURE_WEIGHT: float = 20.0
+#: ... and the energy floor added before the log, L* units: photo noise and
+#: JPEG grain (about 0.3 L* RMS) are no texture, flat surfaces all look alike.
+SUBJECT_TEXTURE_FLOOR: float = 0.3
+#: ... an automatic subject whose outline is no colour edge is still kept when
+#: its texture differs from that around it by at least this many decades of
+#: fine-detail energy (subject.texture_step): a factor of 3. A cut through one
+#: texture has the same on both sides (about 0); a flat body on grass-like
+#: texture of its own colour gives about 0.8 (tests/test_subject.py).
+SUBJECT_MIN_TEXTURE_STEP: float = 0.5
+#: Scenes (subject.dominant_part): a neck is thinner than a disc of this many
+#: times the square root of the candidate's area in radius (0.08: about 17 px
+#: for a 220x220 px object; a trunk or a strip of sky between a building and its
+#: trees is thinner, the body of an object wider) ...
+SUBJECT_NECK: float = 0.08
+#: ... and a part cut off by it counts if it holds this fraction of the area
+#: (smaller pieces are a tail or a leg, left to the outline).
+SUBJECT_MIN_PART: float = 0.15
+#: Faces (subject.find_faces): a face smaller than this fraction of the
+#: shorter side is too small for its eyes and mouth to become arcs of their own ...
+FACE_MIN_SIDE: float = 0.08
+#: ... the cascade's windows grow by this factor from one scale to the next
+#: (the usual Viola-Jones step) ...
+FACE_SCALE_STEP: float = 1.1
+#: ... and a face is kept if at least this many overlapping windows found it:
+#: a face answers at many neighbouring positions and scales, a face-like patch
+#: of texture (fur, gravel, a crumpled suit) at a few.
+FACE_MIN_NEIGHBOURS: int = 12
+#: Inside a face, FDoG lines are kept down to this fraction of the face's side
+#: in length (an eye or a brow is about a fifth of the face), instead of the
+#: photo's INNER_MIN_LENGTH and PHOTO_MIN_LINE_LENGTH, which would drop them.
+FACE_MIN_LINE: float = 0.1
 #: Automatic subject, depth of field (subject.focus_seeds): fine detail is the
 #: image minus its Gaussian blur of this sigma, px of the working copy ...
 FOCUS_DETAIL_SIGMA: float = 1.0

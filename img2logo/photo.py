@@ -10,6 +10,9 @@
   (:func:`flow_dog`), kept ``INNER_LINE_MARGIN`` px inside the outline; only
   the long ones, not tangles, the longest first within a length budget
   (:func:`salient_lines`);
+* **faces** (:attr:`Subject.faces`): inside the ellipse of each face found,
+  the FDoG lines are kept down to ``FACE_MIN_LINE`` of the face's side, first
+  in the budget: eyes, brows, nose and mouth are inner lines of the subject;
 * **joined**: a line end that stops within ``LINE_JOIN_DISTANCE`` of another
   line is linked to it by a straight run of pixels (:func:`join_line_ends`), so
   that the segment graph has a junction there, not a near-miss gap; a short
@@ -34,6 +37,7 @@ from .constants import (
     BILATERAL_DIAMETER,
     BILATERAL_SIGMA_COLOR,
     ETF_SIGMA,
+    FACE_MIN_LINE,
     FDOG_RHO,
     FDOG_SIGMA_C,
     FDOG_SIGMA_M,
@@ -65,13 +69,35 @@ def photo_feature_lines(img: LoadedImage, subject: Subject) -> np.ndarray:
     mask = subject.mask
     inner = photo_lines(img)
     budget = PHOTO_LINE_BUDGET * (img.height + img.width)
+    faces = face_region((img.height, img.width), subject.faces)
+    length = face_line_length(subject.faces)
     if mask is None:
-        return join_line_ends(salient_lines(skeletonize(inner), budget=budget))
+        features = salient_lines(skeletonize(inner & faces), length, length)
+        rest = salient_lines(skeletonize(inner & ~faces), budget=max(0.0, budget - float(features.sum())))
+        return join_line_ends(features | rest)
     inside = ndimage.binary_erosion(mask, iterations=INNER_LINE_MARGIN)
     outline = subject_outline(mask)
     budget = max(0.0, budget - float(outline.sum()))
-    lines = salient_lines(skeletonize(inner & inside), budget=budget) | outline
+    features = salient_lines(skeletonize(inner & inside & faces), length, length)
+    budget = max(0.0, budget - float(features.sum()))
+    lines = features | salient_lines(skeletonize(inner & inside & ~faces), budget=budget) | outline
     return join_line_ends(skeletonize(lines))
+
+
+def face_region(shape: tuple[int, int], faces: tuple[tuple[int, int, int, int], ...]) -> np.ndarray:
+    """The ellipses inscribed in face boxes (x, y, w, h), px, as an (H, W) bool map."""
+    from skimage.draw import ellipse
+
+    out = np.zeros(shape, bool)
+    for x, y, w, h in faces:
+        rr, cc = ellipse(y + h / 2.0, x + w / 2.0, h / 2.0, w / 2.0, shape=shape)
+        out[rr, cc] = True
+    return out
+
+
+def face_line_length(faces: tuple[tuple[int, int, int, int], ...]) -> float:
+    """The shortest line kept inside the faces, px: ``FACE_MIN_LINE`` of the smallest face's side."""
+    return FACE_MIN_LINE * min((min(w, h) for _, _, w, h in faces), default=0.0)
 
 
 def salient_lines(

@@ -35,7 +35,7 @@ from .constants import (
     SYNTHETIC_FLAT_FRACTION,
 )
 from .loading import DownscaleWarning, LoadedImage, load_image, load_mask
-from .photo import edge_tangent_flow, flow_dog, photo_feature_lines
+from .photo import edge_tangent_flow, face_line_length, face_region, flow_dog, photo_feature_lines
 from .subject import Subject, find_subject
 
 __all__ = [
@@ -222,6 +222,10 @@ def extract_feature_lines(
         min_len = PHOTO_MIN_LINE_LENGTH if min_line_length is None else min_line_length
     min_len = check_positive(min_len, "min_line_length", allow_zero=True)
     lines = _clean_skeleton(raw, spur_length=spur_length, min_length=min_len)
+    if found is not None and found.faces:  # a face's eyes and mouth are shorter than a photo's shortest line
+        short = face_line_length(found.faces)
+        near_face = face_region(raw.shape, found.faces)
+        lines |= _clean_skeleton(raw & near_face, spur_length=min(spur_length, short / 2), min_length=short)
     return FeatureLines(readonly(lines), kind, reason, None if regions is None else readonly(regions), found)
 
 

@@ -8,11 +8,18 @@ only (paper Fig. 1, 10). :func:`find_subject` finds it without user input
 * ``"auto"``: OpenCV's GrabCut [RKB04] started from the frame of the image (a
   strip of ``SUBJECT_FRAME_INSET`` of each side is background, the rest maybe
   object), run on a copy whose longer side is ``SUBJECT_WORK_SIDE`` px, then
-  refined at full size in a band around its boundary. The result is kept if
+  refined at full size in a band around its boundary. GrabCut runs twice:
+  on the colours, and on colour and texture (:func:`texture_colour_image`:
+  the local energy of fine detail beside CIELAB, so that an object of the
+  background's own hue but another texture, a smooth body on grass or
+  gravel, is told apart); the candidate whose outline is the sharper edge
+  (:func:`outline_contrast`) is taken. The result is kept if
   it is one dominant object: between ``SUBJECT_MIN_AREA`` and
   ``SUBJECT_MAX_AREA`` of the image, touching at most ``SUBJECT_MAX_FRAME`` of
   the frame, with an outline that is an edge (:func:`outline_contrast` at
-  least ``SUBJECT_MIN_CONTRAST``). If it is not, and the photo shows depth of
+  least ``SUBJECT_MIN_CONTRAST``; or, in a photo without depth of field, a
+  texture edge: :func:`texture_step` at least ``SUBJECT_MIN_TEXTURE_STEP``).
+  If it is not, and the photo shows depth of
   field (:func:`focus_seeds`: a close-up in focus that runs off the picture
   in front of a blurred background), GrabCut starts again from the blurred
   parts of the frame (background) and the sharp cores (object); that result is
@@ -20,12 +27,18 @@ only (paper Fig. 1, 10). :func:`find_subject` finds it without user input
   (it may touch the frame) and its outline is a colour edge or a focus edge
   (:func:`focus_step` at least ``FOCUS_MIN_STEP``). Otherwise the whole image
   is kept (a scene, or a close-up that fills the frame), and
-  :attr:`Subject.description` says why;
+  :attr:`Subject.description` says why. A kept candidate made of parts of
+  different texture joined by a thin neck (a pagoda and the trees beside
+  it) keeps its dominant part (:func:`dominant_part`);
 * ``"grabcut"``: the same GrabCut, kept whatever it finds;
 * a rectangle ``subject=(x, y, w, h)``: GrabCut started from it (outside is
   background);
 * a mask (an array, or a file read by :func:`img2logo.load_mask`);
 * ``"none"``: the whole image.
+
+Whatever found the subject, the frontal faces in it are found too
+(:func:`find_faces`, :attr:`Subject.faces`): a portrait's eyes, brows, nose and
+mouth are kept as inner lines (:mod:`img2logo.photo`).
 
 The mask is cleaned the same way whatever found it: its largest connected
 piece, holes under ``SUBJECT_MAX_HOLE`` of its area filled (a handle's loop
@@ -38,6 +51,7 @@ column and y the row of its top-left corner.
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -45,6 +59,9 @@ import numpy as np
 
 from ._validation import readonly
 from .constants import (
+    FACE_MIN_NEIGHBOURS,
+    FACE_MIN_SIDE,
+    FACE_SCALE_STEP,
     FOCUS_BLURRED,
     FOCUS_DETAIL_SIGMA,
     FOCUS_MIN_BLURRED_FRAME,
@@ -67,8 +84,13 @@ from .constants import (
     SUBJECT_MAX_HOLE,
     SUBJECT_MIN_AREA,
     SUBJECT_MIN_CONTRAST,
+    SUBJECT_MIN_PART,
+    SUBJECT_MIN_TEXTURE_STEP,
+    SUBJECT_NECK,
     SUBJECT_REFINE_BAND,
     SUBJECT_SMOOTH_SIGMA,
+    SUBJECT_TEXTURE_FLOOR,
+    SUBJECT_TEXTURE_WEIGHT,
     SUBJECT_WORK_SIDE,
 )
 from .errors import InvalidParameterError
@@ -91,11 +113,15 @@ class Subject:
         ``"rectangle"``, ``"mask"`` or ``"none"``.
     description : str
         One line for the user: what was kept and how it was found.
+    faces : tuple of (x, y, w, h)
+        The faces found in it (:func:`find_faces`), px; their inner lines
+        (eyes, brows, nose, mouth) are kept as features of the subject.
     """
 
     mask: np.ndarray | None
     method: str
     description: str
+    faces: tuple[tuple[int, int, int, int], ...] = ()
 
     @property
     def area_fraction(self) -> float:
@@ -157,7 +183,7 @@ def parse_subject_rectangle(value: object, shape: tuple[int, int]) -> tuple[int,
 
 
 def find_subject(img: LoadedImage, foreground: object = "auto", subject: object = None) -> Subject:
-    """Find the subject of a photo.
+    """Find the subject of a photo, and the faces in it (:func:`find_faces`).
 
     Parameters
     ----------
@@ -174,6 +200,15 @@ def find_subject(img: LoadedImage, foreground: object = "auto", subject: object 
     -------
     Subject
     """
+    found = _find_subject(img, foreground, subject)
+    faces = find_faces(img, found.mask)
+    if not faces:
+        return found
+    note = f"; {len(faces)} face(s) kept with their features"
+    return dataclasses.replace(found, faces=faces, description=found.description + note)
+
+
+def _find_subject(img: LoadedImage, foreground: object, subject: object) -> Subject:
     shape = (img.height, img.width)
     check_foreground_option(foreground)
     if foreground is None:
@@ -198,6 +233,14 @@ def find_subject(img: LoadedImage, foreground: object = "auto", subject: object 
             mask = img.foreground
             return Subject(readonly(mask.copy()), "alpha", f"kept the opaque pixels (alpha): {mask.mean():.0%}")
         mask = _clean(_grabcut(img))
+        texture = None
+        if foreground == "auto":  # the same cut with texture: take the candidate whose outline is the sharper edge
+            texture = texture_map(img.rgb, _work_scale(img))
+            textured = _clean(_grabcut(img, texture=texture))
+            if textured.any() and outline_contrast(img, textured, texture=texture) > outline_contrast(
+                img, mask, texture=texture
+            ):
+                mask = textured
         if foreground == "grabcut":
             if not mask.any():
                 return Subject(None, "grabcut", "GrabCut found no object: kept the whole image")
@@ -207,6 +250,12 @@ def find_subject(img: LoadedImage, foreground: object = "auto", subject: object 
         why = _not_dominant(mask) or _weak_outline(img, mask)
         how = "found by GrabCut from the image frame"
         seeds = focus_seeds(img) if why else None
+        if why and seeds is None and not _not_dominant(mask):  # no colour edge, no depth of field: a texture edge?
+            step = texture_step(img, texture, mask)
+            if step >= SUBJECT_MIN_TEXTURE_STEP:
+                why, how = "", f"found by GrabCut from the image frame, by its texture: {step:.1f} decades"
+            else:
+                why = f"{why}, texture step {step:.2f} decades"
         if seeds is not None:  # a close-up in focus that runs off the picture: try depth of field
             focused = _clean(_grabcut(img, seeds=seeds))
             why_focus = _not_dominant(focused, frame=False) or _weak_focus_outline(img, seeds, focused)
@@ -216,6 +265,9 @@ def find_subject(img: LoadedImage, foreground: object = "auto", subject: object 
                 why = f"{why}; from depth of field: {why_focus}"
         if why:
             return Subject(None, "auto", f"kept the whole image: no dominant object ({why})")
+        kept = dominant_part(mask, texture)
+        if kept is not mask:
+            mask, how = kept, f"{how}; a part of another texture beyond a thin neck left out"
         return Subject(readonly(mask), "auto", f"kept the main object, {mask.mean():.0%} of the image ({how})")
     mask = load_mask(foreground, shape) if isinstance(foreground, Path) else np.asarray(foreground)
     if mask.shape != shape:
@@ -224,6 +276,88 @@ def find_subject(img: LoadedImage, foreground: object = "auto", subject: object 
     if not mask.any():
         raise InvalidParameterError("foreground mask is empty: no pixel is marked as the object")
     return Subject(readonly(mask.copy()), "mask", f"kept the object of the given mask: {mask.mean():.0%} of the image")
+
+
+def dominant_part(mask: np.ndarray, texture: np.ndarray | None) -> np.ndarray:
+    """The dominant part of a subject made of parts of different texture joined by a thin neck, (H, W) bool.
+
+    A candidate such as a pagoda and the trees beside it: opening the mask by
+    a disc of radius ``SUBJECT_NECK`` times the square root of its area cuts
+    its thin necks; if that leaves two or more parts of at least
+    ``SUBJECT_MIN_PART`` of the mask's area and the largest differs in texture
+    (median :func:`texture_map`) from another by at least
+    ``SUBJECT_MIN_TEXTURE_STEP`` decades, only the largest is kept, with the
+    mask's pixels within the disc's radius of it. Otherwise ``mask`` itself is
+    returned (a giraffe's neck joins parts of one texture: it stays).
+    """
+    import cv2
+    from scipy import ndimage
+
+    if texture is None or not mask.any():
+        return mask
+    radius = max(1, round(SUBJECT_NECK * float(np.sqrt(mask.sum()))))
+    disc = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (2 * radius + 1, 2 * radius + 1))
+    opened = cv2.morphologyEx(mask.astype(np.uint8), cv2.MORPH_OPEN, disc).astype(bool)
+    labels, n = ndimage.label(opened)
+    if n < 2:
+        return mask
+    sizes = np.bincount(labels.ravel())[1:]
+    parts = [i + 1 for i in np.argsort(-sizes) if sizes[i] >= SUBJECT_MIN_PART * mask.sum()]
+    if len(parts) < 2:
+        return mask
+    medians = [float(np.median(texture[labels == i])) for i in parts]
+    step = max(abs(m - medians[0]) for m in medians[1:]) / SUBJECT_TEXTURE_WEIGHT
+    if step < SUBJECT_MIN_TEXTURE_STEP:
+        return mask
+    near = cv2.dilate((labels == parts[0]).astype(np.uint8), disc).astype(bool)
+    return _largest(mask & near)
+
+
+def find_faces(img: LoadedImage, mask: np.ndarray | None = None) -> tuple[tuple[int, int, int, int], ...]:
+    """Frontal faces in a photo, as boxes (x, y, w, h) in px, largest first.
+
+    scikit-image's LBP frontal-face cascade (OpenCV's ``lbpcascade_frontalface``,
+    shipped inside scikit-image: nothing is downloaded) run on the working copy
+    (longer side ``SUBJECT_WORK_SIDE`` px); a face at least ``FACE_MIN_SIDE`` of
+    the shorter side, found at ``FACE_MIN_NEIGHBOURS`` neighbouring windows or
+    more (a face answers at many positions and scales, a face-like patch of
+    texture at a few), and with its centre in ``mask`` when one is given.
+    """
+    import cv2
+    from skimage import data
+    from skimage.feature import Cascade
+
+    small, scale = _working_copy(img)
+    sh, sw = small.shape[:2]
+    side = max(8, round(FACE_MIN_SIDE * min(sh, sw)))
+    r0, c0 = 0, 0
+    if mask is not None:  # only the subject's box is searched: a face outside it is dropped anyway
+        rows, cols = np.nonzero(cv2.resize(mask.astype(np.uint8), (sw, sh), interpolation=cv2.INTER_NEAREST))
+        if rows.size == 0:
+            return ()
+        r0, c0 = int(rows.min()), int(cols.min())
+        small = small[r0 : int(rows.max()) + 1, c0 : int(cols.max()) + 1]
+    largest = min(small.shape[:2])
+    if largest < side:
+        return ()
+    cascade = Cascade(data.lbp_frontal_face_cascade_filename())
+    gray = cv2.cvtColor(np.ascontiguousarray(np.clip(small, 0, 1)), cv2.COLOR_RGB2GRAY)
+    found = cascade.detect_multi_scale(
+        img=gray,
+        scale_factor=FACE_SCALE_STEP,
+        step_ratio=1,
+        min_size=(side, side),
+        max_size=(largest, largest),
+        min_neighbor_number=FACE_MIN_NEIGHBOURS,
+    )
+    faces = []
+    for f in sorted(found, key=lambda f: -f["width"] * f["height"]):
+        x, y = round((f["c"] + c0) / scale), round((f["r"] + r0) / scale)
+        w, h = round(f["width"] / scale), round(f["height"] / scale)
+        cx, cy = min(img.width - 1, x + w // 2), min(img.height - 1, y + h // 2)
+        if mask is None or mask[cy, cx]:
+            faces.append((x, y, w, h))
+    return tuple(faces)
 
 
 def _not_dominant(mask: np.ndarray, frame: bool = True) -> str:
@@ -244,8 +378,10 @@ def _not_dominant(mask: np.ndarray, frame: bool = True) -> str:
     return ""
 
 
-def outline_contrast(img: LoadedImage, mask: np.ndarray, step: float = SUBJECT_CONTRAST_STEP) -> float:
-    """How sharply a mask's outline separates colours: across over along, unit-free.
+def outline_contrast(
+    img: LoadedImage, mask: np.ndarray, step: float = SUBJECT_CONTRAST_STEP, texture: np.ndarray | None = None
+) -> float:
+    """How sharply a mask's outline separates colours (and textures): across over along, unit-free.
 
     At every outline pixel, the CIELAB difference between the points ``step``
     px inside and outside along the outline's normal (across), and the larger of
@@ -258,7 +394,11 @@ def outline_contrast(img: LoadedImage, mask: np.ndarray, step: float = SUBJECT_C
 
     if not mask.any() or mask.all():
         return 0.0
-    lab = img.smooth_lab
+    if texture is None:
+        lab = img.smooth_lab
+    else:  # colour averaged over the texture's window: the grass's blades are no step, its mean colour is
+        window = FOCUS_WINDOW / _work_scale(img)
+        lab = np.dstack([ndimage.gaussian_filter(img.smooth_lab, (window, window, 0)), texture])
     signed = ndimage.distance_transform_edt(mask) - ndimage.distance_transform_edt(~mask)
     gy, gx = np.gradient(ndimage.gaussian_filter(signed, 2.0))
     rows, cols = np.nonzero(mask & ~ndimage.binary_erosion(mask))
@@ -280,6 +420,32 @@ def outline_contrast(img: LoadedImage, mask: np.ndarray, step: float = SUBJECT_C
     return float(np.median(across) / (np.median(along) + 1e-9))
 
 
+def texture_step(img: LoadedImage, texture: np.ndarray, mask: np.ndarray) -> float:
+    """How much a mask's texture differs from that around it, decades of fine-detail energy.
+
+    The difference of the medians of :func:`texture_map` ``texture`` (H, W) in
+    a band inside the outline and in a ring outside it, each between two and
+    four texture windows (``FOCUS_WINDOW`` working px) from it, where the
+    window no longer straddles the outline; the parts on the image frame are
+    left out. An object of another texture than its background (a smooth body
+    on grass) gives most of a decade or more; a cut through one texture about 0.
+    """
+    from scipy import ndimage
+
+    if not mask.any() or mask.all():
+        return 0.0
+    window = FOCUS_WINDOW / _work_scale(img)
+    inside = ndimage.distance_transform_edt(mask)
+    outside = ndimage.distance_transform_edt(~mask)
+    near, far = 2.0 * window, 4.0 * window
+    away = ndimage.distance_transform_edt(np.pad(np.ones(mask.shape, bool), 1, constant_values=False))[1:-1, 1:-1] > far
+    band = (inside > near) & (inside <= far) & away
+    ring = (outside > near) & (outside <= far) & away
+    if not band.any() or not ring.any():
+        return 0.0
+    return abs(float(np.median(texture[band]) - np.median(texture[ring]))) / SUBJECT_TEXTURE_WEIGHT
+
+
 def _weak_outline(img: LoadedImage, mask: np.ndarray) -> str:
     """Why the outline of ``mask`` is no object's edge, or ``""`` if it is."""
     ratio = outline_contrast(img, mask)
@@ -293,9 +459,14 @@ def _working_copy(img: LoadedImage) -> tuple[np.ndarray, float]:
     import cv2
 
     h, w = img.height, img.width
-    scale = min(1.0, SUBJECT_WORK_SIDE / max(h, w))
+    scale = _work_scale(img)
     sw, sh = max(8, round(w * scale)), max(8, round(h * scale))
     return cv2.resize(img.rgb.astype(np.float32), (sw, sh), interpolation=cv2.INTER_AREA), scale
+
+
+def _work_scale(img: LoadedImage) -> float:
+    """The working copy's size over the photo's: its longer side is ``SUBJECT_WORK_SIDE`` px at most."""
+    return min(1.0, SUBJECT_WORK_SIDE / max(img.height, img.width))
 
 
 def _frame_box(shape: tuple[int, int]) -> tuple[int, int, int, int]:
@@ -437,15 +608,55 @@ def _weak_focus_outline(img: LoadedImage, seeds: FocusSeeds, mask: np.ndarray) -
     )
 
 
+def texture_map(rgb: np.ndarray, scale: float = 1.0) -> np.ndarray:
+    """The texture of a photo in CIELAB-like units, (H, W) float.
+
+    ``SUBJECT_TEXTURE_WEIGHT * log10(SUBJECT_TEXTURE_FLOOR + e)``, with ``e``
+    the local energy of the finest detail of L* (as :func:`fine_detail`, its
+    sigmas taken at the working scale: ``scale`` is the working copy's size
+    over this image's), so one decade of texture energy (smooth skin against
+    grass, a flat body against gravel) weighs as a clear colour step.
+    """
+    from scipy import ndimage
+    from skimage.color import rgb2lab
+
+    light = rgb2lab(np.clip(rgb, 0.0, 1.0))[..., 0]
+    k = 1.0 / scale  # this image's px per working px
+    detail = light - ndimage.gaussian_filter(light, FOCUS_DETAIL_SIGMA * k)
+    energy = np.sqrt(ndimage.gaussian_filter(detail * detail, FOCUS_WINDOW * k))
+    return SUBJECT_TEXTURE_WEIGHT * np.log10(SUBJECT_TEXTURE_FLOOR + energy)
+
+
+def texture_colour_image(lab: np.ndarray, texture: np.ndarray) -> np.ndarray:
+    """Colour and texture in three 8-bit channels, for GrabCut: (h, w, 3) uint8.
+
+    The four features at every pixel, CIELAB ``lab`` (h, w, 3) and
+    :func:`texture_map` ``texture`` (h, w), are projected on their three
+    principal axes (over the image), each stretched to 0-255 between its 0.5th
+    and 99.5th percentiles (GrabCut takes three 8-bit channels). Deterministic.
+    """
+    features = np.dstack([lab, texture]).reshape(-1, 4)
+    features = features - features.mean(axis=0)
+    _, _, axes = np.linalg.svd(features[:: max(1, features.shape[0] // 20000)], full_matrices=False)
+    proj = features @ axes[:3].T
+    lo, hi = np.percentile(proj, 0.5, axis=0), np.percentile(proj, 99.5, axis=0)
+    proj = np.clip((proj - lo) / np.maximum(hi - lo, 1e-9), 0.0, 1.0)
+    return np.ascontiguousarray((proj * 255).round().astype(np.uint8).reshape(*lab.shape[:2], 3))
+
+
 def _grabcut(
-    img: LoadedImage, rect: tuple[int, int, int, int] | None = None, seeds: FocusSeeds | None = None
+    img: LoadedImage,
+    rect: tuple[int, int, int, int] | None = None,
+    seeds: FocusSeeds | None = None,
+    texture: np.ndarray | None = None,
 ) -> np.ndarray:
     """GrabCut from a rectangle (default: the frame inset by ``SUBJECT_FRAME_INSET``) or focus seeds, (H, W) bool.
 
     Run on a copy whose longer side is ``SUBJECT_WORK_SIDE`` px, then once more
     at full size, only in a band of ``SUBJECT_REFINE_BAND`` px (at the working
     scale) around the boundary found, with the colour models of the first run.
-    Deterministic (OpenCV's random generator is seeded).
+    Given the photo's :func:`texture_map` ``texture``, it cuts on
+    :func:`texture_colour_image` instead of the colours alone. Deterministic (OpenCV's random generator is seeded).
     """
     import cv2
     from scipy import ndimage
@@ -456,9 +667,13 @@ def _grabcut(
     sx, sy = sw / w, sh / h
     bgd, fgd = np.zeros((1, 65), np.float64), np.zeros((1, 65), np.float64)
     cv2.setRNGSeed(0)
+    # one feature image at full size, shrunk for the first run: the refinement reuses its models
+    textured = texture is not None
+    full8 = texture_colour_image(img.smooth_lab, texture) if textured else _bgr8(img.rgb)
+    small8 = cv2.resize(full8, (sw, sh), interpolation=cv2.INTER_AREA) if textured else _bgr8(small)
     if seeds is not None:
         label = seeds.label.copy()
-        cv2.grabCut(_bgr8(small), label, None, bgd, fgd, SUBJECT_GRABCUT_ITERATIONS, cv2.GC_INIT_WITH_MASK)
+        cv2.grabCut(small8, label, None, bgd, fgd, SUBJECT_GRABCUT_ITERATIONS, cv2.GC_INIT_WITH_MASK)
     else:
         if rect is None:
             box = _frame_box((sh, sw))
@@ -468,7 +683,7 @@ def _grabcut(
             bx1, by1 = min(sw, int(np.ceil((x + rw) * sx))), min(sh, int(np.ceil((y + rh) * sy)))
             box = (bx0, by0, max(2, bx1 - bx0), max(2, by1 - by0))
         label = np.zeros((sh, sw), np.uint8)
-        cv2.grabCut(_bgr8(small), label, box, bgd, fgd, SUBJECT_GRABCUT_ITERATIONS, cv2.GC_INIT_WITH_RECT)
+        cv2.grabCut(small8, label, box, bgd, fgd, SUBJECT_GRABCUT_ITERATIONS, cv2.GC_INIT_WITH_RECT)
     fg = _largest((label == cv2.GC_FGD) | (label == cv2.GC_PR_FGD))
     if not fg.any():
         return np.zeros((h, w), bool)
@@ -486,7 +701,7 @@ def _grabcut(
         outside = np.ones((h, w), bool)
         outside[y : y + rh, x : x + rw] = False
         full[outside] = cv2.GC_BGD
-    cv2.grabCut(_bgr8(img.rgb), full, None, bgd, fgd, 1, cv2.GC_INIT_WITH_MASK)
+    cv2.grabCut(full8, full, None, bgd, fgd, 1, cv2.GC_INIT_WITH_MASK)
     return (full == cv2.GC_FGD) | (full == cv2.GC_PR_FGD)
 
 

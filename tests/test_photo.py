@@ -7,7 +7,7 @@ from scipy import ndimage
 from test_subject import textured_photo
 
 from img2logo import extract_feature_lines, load_image
-from img2logo.photo import join_line_ends, subject_outline
+from img2logo.photo import join_line_ends, photo_feature_lines, subject_outline
 from img2logo.subject import Subject
 
 
@@ -87,3 +87,23 @@ def test_a_short_branch_beside_its_sibling_is_removed():
     out = join_line_ends(skel)
     np.testing.assert_array_equal(out[20], skel[20])
     assert out[:19].sum() <= 1  # the branch is gone (a stub of 1 px at most next to the fork)
+
+
+def test_a_portrait_keeps_the_eyes_and_mouth_inside_the_face():
+    from skimage import data
+
+    from img2logo.photo import face_region
+
+    rgb = data.astronaut()  # ships with scikit-image
+    fl = extract_feature_lines(rgb, kind="photo")
+    faces = fl.subject.faces
+    assert len(faces) == 1
+    face = face_region(fl.lines.shape, faces)
+    dist = ndimage.distance_transform_edt(~fl.lines)
+    # eyes at about (205, 100) and (248, 100), the mouth at about (232, 132): (x, y) px
+    for x, y in ((205, 100), (248, 100), (232, 132)):
+        assert dist[y, x] <= 6, (x, y)
+    # Drawn without its face, the photo loses them: they are shorter than a photo's shortest line.
+    img = load_image(rgb)
+    bare = photo_feature_lines(img, Subject(fl.subject.mask, "mask", "the same mask, no face"))
+    assert (photo_feature_lines(img, fl.subject) & face).sum() > 2 * (bare & face).sum()

@@ -214,3 +214,83 @@ def test_focus_step_tells_a_sharp_subject_from_a_cut_through_it():
     cut = truth & (xx < 90)  # the head cut in two: in focus on both sides of the cut
     assert focus_step(seeds, truth) > 3.0
     assert focus_step(seeds, cut) < 1.5
+
+
+def same_hue_photo(size=(240, 320), seed=0):
+    """A flat green ellipse on grass-like texture of the same mean green: RGB float image, true mask.
+
+    Only texture tells them apart (the crocodile on grass of issue 23): the
+    background is green modulated by fine blurred noise (blades), the object
+    the same green, softly shaded.
+    """
+    rng = np.random.default_rng(seed)
+    h, w = size
+    green = np.array([0.35, 0.6, 0.2])
+    blades = ndimage.gaussian_filter(rng.standard_normal((h, w)), 0.7)
+    img = green * (1.0 + 0.35 * blades / blades.std())[..., None]
+    yy, xx = np.mgrid[0:h, 0:w]
+    inside = ((xx - 170) / 80) ** 2 + ((yy - 120) / 60) ** 2 <= 1.0
+    shade = 1.0 + 0.08 * ((170 - xx) / 80 + (120 - yy) / 60) / 2
+    img[inside] = (green * shade[..., None])[inside]
+    img = ndimage.gaussian_filter(img, (0.6, 0.6, 0)) + 0.01 * rng.standard_normal((h, w, 3))
+    return np.clip(img, 0, 1), inside
+
+
+def test_auto_finds_an_object_of_the_backgrounds_own_hue_by_its_texture():
+    from img2logo.subject import _grabcut
+
+    rgb, truth = same_hue_photo()
+    img = load_image(rgb)
+    assert not _grabcut(img).any()  # colour alone finds nothing (the code before issue 23 kept the whole image)
+    subject = find_subject(img)
+    assert subject.mask is not None, subject.description
+    assert (subject.mask & truth).sum() / (subject.mask | truth).sum() > 0.9
+
+
+def test_texture_step_tells_another_texture_from_a_cut_through_one():
+    from img2logo.subject import texture_map, texture_step
+
+    rgb, truth = same_hue_photo()
+    img = load_image(rgb)
+    texture = texture_map(img.rgb, 0.8)  # 320 px -> the working copy's 256
+    yy, xx = np.mgrid[0:240, 0:320]
+    cut = np.hypot(xx - 50, yy - 60) < 35  # a disc of grass
+    assert texture_step(img, texture, truth) > 0.5
+    assert texture_step(img, texture, cut) < 0.1
+    assert texture_step(img, texture, np.zeros((240, 320), bool)) == 0.0
+
+
+def test_faces_are_found_in_a_portrait_and_not_in_texture():
+    from skimage import data
+
+    from img2logo.subject import find_faces
+
+    img = load_image(data.astronaut())  # ships with scikit-image, as does the cascade
+    faces = find_faces(img)
+    assert len(faces) == 1
+    x, y, w, h = faces[0]
+    assert 150 < x + w / 2 < 280 and 60 < y + h / 2 < 170  # the face, not the patch or the helmet
+    subject = find_subject(img)
+    assert len(subject.faces) == 1  # searched in the subject's box only: the same face, to a few px
+    assert np.abs(np.subtract(subject.faces[0], faces[0])).max() <= 6
+    assert "1 face(s) kept with their features" in subject.description
+    rgb, _ = textured_photo([(170, 120, 80, 60, (0.95, 0.75, 0.2))])
+    assert find_faces(load_image(rgb)) == ()
+    assert find_subject(load_image(rgb)).faces == ()
+
+
+def test_dominant_part_leaves_out_a_part_of_another_texture_beyond_a_thin_neck():
+    from img2logo.subject import dominant_part
+
+    yy, xx = np.mgrid[0:240, 0:320]
+    tower = (xx >= 60) & (xx < 150) & (yy >= 40) & (yy < 200)
+    trees = np.hypot(xx - 240, yy - 140) < 50
+    neck = (xx >= 150) & (xx < 200) & (np.abs(yy - 140) <= 4)
+    mask = tower | trees | neck
+    texture = np.where(xx < 175, 0.0, 20.0)  # a decade more fine detail in the trees
+    kept = dominant_part(mask, texture)
+    assert (kept & tower).sum() == tower.sum()
+    assert not (kept & trees).any()
+    # The same shape in one texture (a giraffe's neck joins its head to its body): kept whole.
+    assert dominant_part(mask, np.zeros((240, 320))) is mask
+    assert dominant_part(tower, texture) is tower  # one part: nothing to choose
