@@ -704,6 +704,7 @@ def fit_window(
     tol: float = CONSTRAINED_FIT_TOL,
     max_violation: float | None = None,
     constraints: Callable[[tuple[Hashable, ...], tuple[Hashable, ...]], Mapping[str, Any]] | None = None,
+    tangencies: Mapping[Hashable, tuple[Hashable, Hashable]] | None = None,
 ) -> WindowFit:
     """The constrained fit of Eqn. 13 in a local window, grown ring by ring until it solves (Sec. 5.4).
 
@@ -751,6 +752,10 @@ def fit_window(
     constraints : callable, optional
         ``constraints(circles, junctions)`` of a window (in the fit's order):
         more keywords of :func:`fit_constrained` for it (a mirror axis).
+    tangencies : mapping, optional
+        Junction -> the two circles that touch there (``tangents`` of
+        :func:`fit_constrained`), enforced in a window that holds the junction
+        and both circles, unless both are ``fixed``.
 
     Returns
     -------
@@ -759,6 +764,7 @@ def fit_window(
     free_j = set(free_junctions)
     seeds = set(changed)
     last: WindowFit | None = None
+    touching = {} if tangencies is None else tangencies
     for _ring in range(max(int(rings), 1)):
         members = seeds | {c for n in free_j for c in junction_circles.get(n, ())}
         window = tuple(sorted(members, key=order))
@@ -767,6 +773,16 @@ def fit_window(
             return WindowFit(True, window, (), frozenset(free_j), None)
         node_index = {n: i for i, n in enumerate(nodes)}
         incidence = [(i, node_index[n]) for i, c in enumerate(window) for n in circle_junctions[c]]
+        tangents = []
+        if touching:
+            circle_index = {c: i for i, c in enumerate(window)}
+            for n in nodes:
+                pair = touching.get(n)
+                if pair is None or pair[0] not in circle_index or pair[1] not in circle_index:
+                    continue
+                if pair[0] in fixed and pair[1] in fixed:
+                    continue  # only the junction could move: two fixed circles touch or they do not
+                tangents.append((circle_index[pair[0]], circle_index[pair[1]], node_index[n]))
         fit = fit_constrained(
             [points[c] for c in window],
             np.array([radii[c] for c in window]),
@@ -780,6 +796,7 @@ def fit_window(
             junction_weight=1.0 / max(n_junctions or len(nodes), 1),
             tol=tol,
             connectivity=connectivity,
+            tangents=np.array(tangents, dtype=np.int64).reshape(-1, 3),
             **({} if constraints is None else constraints(window, nodes)),
         )
         ok = not connectivity or (fit.converged and (max_violation is None or fit.violation <= max_violation))

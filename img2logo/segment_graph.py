@@ -224,8 +224,8 @@ def end_tangent(points: np.ndarray, at_start: bool, length: float = SMOOTH_TANGE
     :func:`img2logo.circle_fitting.fit_circle`) to the segment's pixels within
     ``length`` px of arc length of that end: a circle follows the line's
     curvature, and over that length the 0.5 px steps of a raster line tilt it
-    little (see ``SMOOTH_TANGENT_LENGTH``). A segment of fewer than 3 distinct
-    points gives its chord.
+    little (see ``SMOOTH_TANGENT_LENGTH``). A straight one (its circle capped)
+    and one of fewer than 3 distinct points give their chord.
 
     Parameters
     ----------
@@ -242,10 +242,12 @@ def end_tangent(points: np.ndarray, at_start: bool, length: float = SMOOTH_TANGE
     near = pts[: max(int(np.searchsorted(cum, length, side="right")), 2)]
     chord = near[-1] - near[0]
     try:
-        center = fit_circle(near, refine=False).center
+        fit = fit_circle(near, refine=False)
     except FitError:
+        fit = None
+    if fit is None or fit.capped:  # (nearly) straight: the chord, not the capped circle's bow
         return chord / max(float(np.hypot(*chord)), 1e-300)
-    radial = near[0] - center
+    radial = near[0] - fit.center
     t = np.array([-radial[1], radial[0]])
     if np.dot(t, chord) < 0:
         t = -t

@@ -74,6 +74,7 @@ SMOKE: dict[str, dict[str, Any]] = {
     "11_explore_levels": {"smoke": True, "image": "drawing-fish.png"},
     "12_designer_features": {"smoke": True, "fill_images": ["clipart-fish.png"]},
     "13_symmetry": {"smoke": True, "images": ["clipart-fox.png"], "eval_images": ["drawing-umbrella.png"]},
+    "15_tangency": {"smoke": True, "images": ["drawing-bird.png"]},
 }
 
 
