@@ -101,7 +101,6 @@ def evaluate(opt: _Optimizer, pair: tuple[int, int, int]) -> MergeOutcome | None
             n_junctions_total=nj_after,
             rings=2,
             order=lambda g: (g != -1, g),
-            tangent=True,
         )
         if out is None:
             opt.stats["local_failed"] += 1
@@ -125,7 +124,6 @@ def evaluate(opt: _Optimizer, pair: tuple[int, int, int]) -> MergeOutcome | None
             n_groups_total=n_groups,
             n_junctions_total=nj_after,
             order=lambda g: (g == -1, g),  # the merged group last, as in ``after``
-            tangent=True,
         )
         if out is None:
             return None

@@ -157,6 +157,16 @@ def test_radii_option_restricts_the_circles(tmp_path):
     assert {c["k"] for c in json.loads(out.read_text())["circles"]} <= {9, 10, 11}
 
 
+def test_no_tangency_is_recorded_in_the_params(tmp_path):
+    import json
+
+    on, off = tmp_path / "on.json", tmp_path / "off.json"
+    assert main([str(DATA / "drawing-leaf.png"), "-q", "--json", str(on)]) == 0
+    assert main([str(DATA / "drawing-leaf.png"), "-q", "--no-tangency", "--json", str(off)]) == 0
+    assert json.loads(on.read_text())["params"]["tangency"] is True
+    assert json.loads(off.read_text())["params"]["tangency"] is False
+
+
 def test_lock_mask_of_the_wrong_size(tmp_path, capsys):
     import cv2
 
