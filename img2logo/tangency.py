@@ -47,7 +47,6 @@ def tangent_joins(opt: _Optimizer, tolerance: float) -> bool:
     ``opt.stats["tangent_joins"]`` and ``["released_tangencies"]``.
     """
     seeds = {g: (f.center, f.radius, f.k) for g, f in opt.fits.items()}
-    _touching_seeds(opt, seeds)
     bound = max(float(tolerance), opt.similarity())
     groups = dict(opt.groups)
     node_groups = opt.node_groups()
@@ -82,48 +81,6 @@ def tangent_joins(opt: _Optimizer, tolerance: float) -> bool:
     opt.stats["tangent_joins"] = len(opt.tangencies(groups, seeds)) if changed else 0
     opt.stats["released_tangencies"] = len(opt.loose)
     return changed
-
-
-def _touching_seeds(opt: _Optimizer, seeds: dict) -> None:
-    """Start the tangent fit from golden circles that already touch their neighbour at each join.
-
-    The rung chosen for a kinked join need not suit a tangent one: for each
-    join, one of its two circles (the one whose pixels it fits better) is
-    replaced by the golden circle tangent to the other at the junction,
-    either side, on the rung (its own or the two on either side, none below
-    the reach of its junctions) that fits its pixels best. A circle is
-    replaced once; straight lines never.
-    """
-    ladder = opt.ladder
-    done: set[int] = set()
-    for node, pair in sorted(opt.tangencies(opt.groups, seeds).items()):
-        q = opt.graph.junctions[node] + opt.disp[node]
-        best = None
-        for mine, other in (pair, pair[::-1]):
-            center, _, k = seeds[mine]
-            if k is None or mine in done:
-                continue
-            u = seeds[other][0] - q
-            norm = float(np.hypot(*u))
-            if not norm > 0:
-                continue
-            u = u / norm
-            pts = opt.groups[mine].points
-            reach = opt.reach(opt.groups[mine])
-            now = float(np.mean((np.hypot(*(pts - center).T) - seeds[mine][1]) ** 2))
-            rungs = [j for j in range(k - 1, k + 2) if ladder.exponents is None or j in ladder.exponents]
-            for j in rungs:
-                r = ladder.radius(j)
-                if r < reach:
-                    continue
-                for side in (1.0, -1.0):
-                    c = q + side * r * u
-                    cost = float(np.mean((np.hypot(*(pts - c).T) - r) ** 2)) - now
-                    if best is None or cost < best[0]:
-                        best = (cost, mine, (c, r, j))
-        if best is not None:
-            seeds[best[1]] = best[2]
-            done.add(best[1])
 
 
 def _apart(opt: _Optimizer, seeds: dict, node: int, pair: tuple[int, int]) -> float:
