@@ -92,7 +92,7 @@ class Progression:
         golden circle is off by more than T, candidates rejected for redundant
         intersections.
     timings : dict
-        Seconds spent in simplification, the initial fit and the loop.
+        Seconds spent in simplification, the initial fit, the loop and the tangent joins' refit.
     ladder : GoldenLadder or FibonacciLadder or None
         The ladder the radii were snapped to.
     """
