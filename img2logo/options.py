@@ -168,6 +168,10 @@ class Options:
         line-segment simplification (Sec. 5.4, Table 3).
     lines : bool
         Nearly straight segments become straight lines (Sec. 9, Fig. 20b).
+    tangency : bool
+        Tangent joins (beyond the paper): where two arcs end at a node where the
+        input's line runs on smoothly, their circles touch there (an equality of
+        the constrained fit, Eqn. 13). Off: the paper's kinks.
 
     Raises
     ------
@@ -264,6 +268,9 @@ class Options:
         "--lines",
         "let nearly straight segments be straight lines, not arcs of huge circles (paper Sec. 9, Fig. 20b)",
         default=False,
+    )
+    tangency: bool = _switch(
+        "--no-tangency", "tangent joins: circles that touch where the input's line runs on smoothly (beyond the paper)"
     )
 
     def __post_init__(self) -> None:

@@ -46,7 +46,7 @@ class Result:
         Every level A^0 ... A^final, the bias, stats.
     timings : dict
         Seconds per stage: ``feature_lines``, ``segment_graph``,
-        ``simplification``, ``initial_fit``, ``loop``.
+        ``simplification``, ``initial_fit``, ``loop``, ``tangency`` (the refit of the tangent joins).
     params : Mapping
         The parameters of the run (as recorded in every level: immutable).
     symmetry : SymmetryChoice or None

@@ -61,6 +61,7 @@ from .recovery import check_reach, check_span, recover
 from .segment_graph import SegmentGraph
 from .simplification import Group, hold_line, path_length, straight_line
 from .simplification import simplify as simplify_groups
+from .tangency import tangent_joins
 
 #: Signature of a progress callback: (level t, number of arcs, E^s in px).
 ProgressCallback = Callable[[int, int, float], None]
@@ -91,7 +92,7 @@ class Progression:
         golden circle is off by more than T, candidates rejected for redundant
         intersections.
     timings : dict
-        Seconds spent in simplification, the initial fit and the loop.
+        Seconds spent in simplification, the initial fit, the loop and the tangent joins' refit.
     ladder : GoldenLadder or FibonacciLadder or None
         The ladder the radii were snapped to.
     """
@@ -178,6 +179,8 @@ class _Optimizer:
             "rejected_intersections": 0,
             "rejected_far_arc": 0,
             "released_junctions": 0,
+            "tangent_joins": 0,
+            "released_tangencies": 0,
             "rejected_crossing": 0,
         }
         self._circle_cache: dict[tuple[int, ...], tuple[np.ndarray, float]] = {}
@@ -186,6 +189,11 @@ class _Optimizer:
         self.released: set[int] = set()
         self._path_cache: dict[tuple[int, ...], tuple[int, ...]] = {}
         self._node_groups: dict[int, list[int]] | None = None
+        #: Nodes where two groups ending there must touch (tangent joins, beyond the
+        #: paper): where the input's line runs on smoothly (SegmentGraph.smooth_nodes).
+        self.smooth: frozenset[int] = graph.smooth_nodes() if options.tangency and options.connectivity else frozenset()
+        #: Smooth nodes whose tangency was given up (img2logo.tangency): a kink is left there.
+        self.loose: set[int] = set()
 
     # ----------------------------------------------------------------- groups and nodes
     def add_group(self, group: Group) -> int:
@@ -199,6 +207,34 @@ class _Optimizer:
         """Give up the connectivity constraint at junction ``node`` (:func:`~img2logo.recovery.recover`)."""
         self.released.add(node)
         self._node_groups = None
+
+    def tangencies(
+        self, groups: Mapping[int, Group], seeds: Mapping[int, tuple[np.ndarray, float, int | None]]
+    ) -> dict[int, tuple[int, int]]:
+        """Smooth node -> the two groups of ``groups`` that end there, whose circles must touch at it.
+
+        A tangent join (beyond the paper): at a node of valence 2 where the
+        input's line turns by less than ``SMOOTH_JOIN_ANGLE``
+        (:meth:`SegmentGraph.smooth_nodes`), two different groups end, and the
+        constrained fit makes their circles touch there (``tangents`` of
+        :func:`~img2logo.constrained_fit.fit_constrained`). Not at a released
+        junction or tangency, nor between two straight lines (both fixed).
+        """
+        if not self.smooth:
+            return {}
+        at: dict[int, list[int]] = {}
+        for gid, g in groups.items():
+            for n in set(g.ends):
+                if n in self.smooth:
+                    at.setdefault(n, []).append(gid)
+        out = {}
+        for n, gids in at.items():
+            if len(gids) != 2 or n in self.loose or n in self.released:
+                continue
+            if seeds[gids[0]][2] is None and seeds[gids[1]][2] is None:
+                continue
+            out[n] = (gids[0], gids[1])
+        return out
 
     def constrained_nodes(self, group: Group) -> tuple[int, ...]:
         """Nodes where ``group``'s arc must pass (its J' part), in path order.
@@ -412,13 +448,15 @@ class _Optimizer:
         n_junctions_total: int,
         rings: int = 1,
         order: Callable[[int], Any] | None = None,
+        tangent: bool = False,
     ) -> tuple[dict[int, _Fit], dict[int, np.ndarray]] | None:
         """Eqn. 13 over a window of ``groups`` (:func:`~img2logo.constrained_fit.fit_window`), then their arcs.
 
         The window is the ``changed`` groups and those through ``free_nodes``,
         grown by up to ``rings`` rings; the ``fixed`` groups keep their circles,
         and so do straight lines (a huge free circle is nearly singular along
-        its chord: their junctions slide onto them). None if it fails.
+        its chord: their junctions slide onto them). With ``tangent``, the
+        circles of :meth:`tangencies` touch at their junctions too. None if it fails.
         """
         fixed = set(fixed) | {g for g in groups if seeds[g][2] is None}
         window = fit_window(
@@ -438,6 +476,7 @@ class _Optimizer:
             n_junctions=n_junctions_total,
             connectivity=self.options.connectivity,
             constraints=lambda circles, nodes: self.axis_constraints(circles, groups, nodes),
+            tangencies=self.tangencies(groups, seeds) if tangent else None,
         )
         if not window.ok:
             return None
@@ -693,6 +732,11 @@ def optimize(
     if opts.merging:
         stopped = merge_loop(opt, levels, record, opts.tolerance, progress)
     timings["loop"] = time.perf_counter() - start
+    start = time.perf_counter()
+    if opt.smooth and tangent_joins(opt, opts.tolerance):
+        # The result, its circles touching at the smooth joins (beyond the paper).
+        levels[-1] = opt.abstraction(levels[-1].level, record)
+    timings["tangency"] = time.perf_counter() - start
     return Progression(tuple(levels), float(opt.ladder.bias), simplified, stopped, dict(opt.stats), timings, opt.ladder)
 
 

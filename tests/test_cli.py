@@ -180,6 +180,16 @@ def test_huge_lengths_and_radii_are_one_line_with_nothing_on_stdout(tmp_path, ca
     assert not out.exists()
 
 
+def test_no_tangency_is_recorded_in_the_params(tmp_path):
+    import json
+
+    on, off = tmp_path / "on.json", tmp_path / "off.json"
+    assert main([str(DATA / "drawing-leaf.png"), "-q", "--json", str(on)]) == 0
+    assert main([str(DATA / "drawing-leaf.png"), "-q", "--no-tangency", "--json", str(off)]) == 0
+    assert json.loads(on.read_text())["params"]["tangency"] is True
+    assert json.loads(off.read_text())["params"]["tangency"] is False
+
+
 def test_lock_mask_of_the_wrong_size(tmp_path, capsys):
     import cv2
 

@@ -229,6 +229,10 @@ def test_no_incidences_is_the_unconstrained_fit(chain):
         ({"segment_weight": -1.0}, InvalidParameterError, "segment_weight must be >= 0, got -1.0"),
         ({"tol": 0.0}, InvalidParameterError, "tol must be > 0, got 0.0"),
         ({"max_iter": 2.5}, InvalidParameterError, "max_iter must be an integer >= 0, got 2.5"),
+        ({"tangents": [[0, 1]]}, InvalidParameterError, r"tangents must be an integer array of shape \(T, 3\)"),
+        ({"tangents": [[0, 7, 1]]}, InvalidParameterError, r"tangents\[:, :2\] must index 0..2, got values"),
+        ({"tangents": [[0, 1, 9]]}, InvalidParameterError, r"tangents\[:, 2\] must index 0..3, got values"),
+        ({"tangents": [[1, 1, 1]]}, InvalidParameterError, "tangents must name two different circles in each row"),
     ],
 )
 def test_bad_constrained_input(chain, change, exc, message):
@@ -237,6 +241,82 @@ def test_bad_constrained_input(chain, change, exc, message):
     positional = (sets, kwargs.pop("radii"), kwargs.pop("centers0"), junctions, kwargs.pop("incidence"))
     with pytest.raises(exc, match=message):
         fit_constrained(*positional, **kwargs)
+
+
+# --- fit_constrained: tangency (tangent joins, beyond the paper) ---------------------
+
+
+def _smooth_pair(r0, r1, side1, kink):
+    """Two arcs meeting at q = (0, 0): arc 0 (radius r0, centre (0, -r0)) ends there heading +x, arc 1
+    (radius r1) leaves it ``kink`` rad off +x, curving the same way (side1 = 1) or the other (-1).
+
+    Returns the fit's inputs: points, radii, centres (the true ones, nudged), junctions, incidence.
+    """
+    c0 = np.array([0.0, -r0])
+    t0 = np.linspace(math.pi / 2 + 0.8, math.pi / 2, 60)  # towards q, clockwise on screen
+    p0 = c0 + r0 * np.column_stack([np.cos(t0), np.sin(t0)])
+    heading = np.array([math.cos(kink), math.sin(kink)])
+    normal = side1 * np.array([heading[1], -heading[0]])  # towards the centre
+    c1 = r1 * normal
+    a = math.atan2(-c1[1], -c1[0])
+    t1 = a + np.linspace(0.0, 0.8, 60)
+    p1 = c1 + r1 * np.column_stack([np.cos(t1), np.sin(t1)])
+    if np.dot(p1[5] - p1[0], heading) < 0:  # the arc leaves q along the heading
+        t1 = a - (t1 - a)
+        p1 = c1 + r1 * np.column_stack([np.cos(t1), np.sin(t1)])
+    junctions = np.array([[0.0, 0.0], p0[0], p1[-1]])
+    incidence = np.array([[0, 0], [1, 0], [0, 1], [1, 2]])
+    start = np.array([c0 + np.array([0.7, 0.4]), c1 - np.array([0.5, 0.6])])
+    return [p0, p1], np.array([r0, r1]), start, junctions, incidence
+
+
+@pytest.mark.parametrize("side1", [1, -1], ids=["internal", "external"])
+def test_tangency_makes_the_circles_touch_at_the_junction(side1):
+    r0, r1 = PHI ** (8 + 0.3), PHI ** (9 + 0.3)
+    # Arc 1 leaves the junction 6 degrees off arc 0's tangent: the pixels kink a little.
+    sets, radii, centers, junctions, incidence = _smooth_pair(r0, r1, side1, math.radians(6.0))
+    free = fit_constrained(sets, radii, centers, junctions, incidence)
+    fit = fit_constrained(sets, radii, centers, junctions, incidence, tangents=[[0, 1, 0]])
+    assert free.converged and fit.converged and fit.violation <= 1e-6
+    q = junctions[0] + fit.displacements[0]
+    o0, o1 = fit.centers
+    touching = abs(r0 - r1) if side1 > 0 else r0 + r1
+    # The circles touch: centre distance |r0 - r1| (same side) or r0 + r1, to 1e-6 px ...
+    assert abs(np.linalg.norm(o0 - o1) - touching) <= 1e-6
+    # ... at the junction: on both circles and on the line of centres.
+    assert abs(np.linalg.norm(o0 - q) - r0) <= 1e-6 and abs(np.linalg.norm(o1 - q) - r1) <= 1e-6
+    u = (o1 - o0) / np.linalg.norm(o1 - o0)
+    assert abs(u[0] * (q - o0)[1] - u[1] * (q - o0)[0]) <= 1e-6
+    # Without it the circles cross at the junction: the paper's kink.
+    free_gap = abs(np.linalg.norm(free.centers[0] - free.centers[1]) - touching)
+    assert free_gap > 0.1
+
+
+def test_tangency_between_fixed_variables_is_evaluated_not_enforced():
+    r0, r1 = PHI ** (8 + 0.3), PHI ** (9 + 0.3)
+    sets, radii, centers, junctions, incidence = _smooth_pair(r0, r1, 1, math.radians(20.0))
+    fit = fit_constrained(
+        sets, radii, centers, junctions, incidence, tangents=[[0, 1, 0]], free_circles=[], free_junctions=[]
+    )
+    assert fit.iterations == 0 and fit.violation > 1.0
+
+
+def test_tangency_is_dropped_without_connectivity():
+    r0, r1 = PHI ** (8 + 0.3), PHI ** (9 + 0.3)
+    sets, radii, centers, junctions, incidence = _smooth_pair(r0, r1, 1, math.radians(6.0))
+    plain = fit_constrained(sets, radii, centers, junctions, incidence, connectivity=False)
+    fit = fit_constrained(sets, radii, centers, junctions, incidence, connectivity=False, tangents=[[0, 1, 0]])
+    assert fit.centers == pytest.approx(plain.centers, abs=1e-9)
+
+
+def test_tangency_with_the_sparse_solver(monkeypatch):
+    r0, r1 = PHI ** (8 + 0.3), PHI ** (9 + 0.3)
+    args = _smooth_pair(r0, r1, -1, math.radians(6.0))
+    dense = fit_constrained(*args, tangents=[[0, 1, 0]])
+    monkeypatch.setattr(cfit, "KKT_DENSE_MAX", 0)
+    sparse = fit_constrained(*args, tangents=[[0, 1, 0]])
+    assert sparse.converged and sparse.violation <= 1e-6
+    assert sparse.centers == pytest.approx(dense.centers, abs=1e-6)
 
 
 def test_bad_point_set(chain):

@@ -47,6 +47,7 @@ def test_switches_are_the_boolean_options():
         "localized",
         "simplify",
         "lines",
+        "tangency",
     )
     assert ABSTRACT_OPTIONS == {f.name for f in dataclasses.fields(Options)} | {"lock_mask", "progress"}
 

@@ -23,7 +23,14 @@ def test_result_holds_every_stage(result):
     assert result.levels[0].level == 0 and result.final is result.levels[-1]
     assert result.level(-1) is result.final
     assert 0.0 <= result.bias < 1.0
-    assert set(result.timings) == {"feature_lines", "segment_graph", "simplification", "initial_fit", "loop"}
+    assert set(result.timings) == {
+        "feature_lines",
+        "segment_graph",
+        "simplification",
+        "initial_fit",
+        "loop",
+        "tangency",
+    }
     assert result.params["kind"] == result.lines.kind
 
 

@@ -10,8 +10,10 @@ from skimage.draw import circle_perimeter, disk
 
 from img2logo import InvalidParameterError, quality
 from img2logo.arc_extraction import nearest_on_arc
+from img2logo.constants import PHI
 from img2logo.geometry import Abstraction, Arc, Circle, line_arc
 from img2logo.quality import junction_gaps, level_redundant_intersections
+from img2logo.segment_graph import SegmentGraph
 
 
 def _circle(cx: float, cy: float, r: float, theta0: float = 0.0, sweep: float = 2 * math.pi) -> Arc:
@@ -136,3 +138,66 @@ def test_detail_error_is_the_mean_distance_of_the_masked_pixels_to_the_arcs():
     everything = np.ones((40, 60), bool)
     assert quality.detail_error(level, graph, everything) == pytest.approx(3.0, abs=0.02)  # samples 0.5 px apart
     assert math.isnan(quality.detail_error(level, graph, ~everything))
+
+
+# --- joins on smooth input (tangent joins, beyond the paper) --------------------------
+
+
+def _kinked_pair(kink: float) -> tuple[Abstraction, SegmentGraph]:
+    """Two golden arcs meeting at q = (100, 100), the second leaving ``kink`` rad off the first's
+    tangent, over a straight segment graph (smooth at q) with a right-angle corner at the second's end."""
+    q = np.array([100.0, 100.0])
+    r = PHI**8
+    # Arc 0 arrives at q heading +x: centre below q (y down), from -pi/2 - 0.5 to -pi/2.
+    a0 = Arc(Circle(q[0], q[1] + r, r, 8), -math.pi / 2 - 0.5, 0.5)
+    # Arc 1 leaves q heading (cos kink, sin kink): its start angle t0 has (-sin t0, cos t0) = heading.
+    t0 = kink - math.pi / 2
+    c1 = q - r * np.array([math.cos(t0), math.sin(t0)])
+    a1 = Arc(Circle(c1[0], c1[1], r, 8), t0, 0.5)
+    corner = a1.end
+    line = np.column_stack([np.arange(40.0, 100.5, 1.0), np.full(61, 100.0)])
+    after = np.column_stack([np.arange(100.0, 140.5, 1.0), np.full(41, 100.0)])
+    down = np.column_stack([np.full(41, 140.0), np.arange(100.0, 140.5, 1.0)])
+    nodes = np.array([[40.0, 100.0], q, [140.0, 100.0], [140.0, 140.0]])
+    graph = SegmentGraph((line, after, down), nodes, [[0, 1], [1, 2], [2, 3]], 200, 200)
+    level = Abstraction(
+        level=0,
+        arcs=(a0, a1),
+        arc_segments=((0,), (1,)),
+        junctions=np.array([q, corner]),
+        junction_arcs=((0, 1), (1,)),
+        similarity=0.0,
+        bias=0.0,
+        tolerance=5.0,
+        width=200,
+        height=200,
+        junction_nodes=(1, 2),
+    )
+    return level, graph
+
+
+@pytest.mark.parametrize("kink_deg", [0.0, 1.0, 30.0])
+def test_joins_measure_the_kink_at_a_smooth_junction_only(kink_deg):
+    level, graph = _kinked_pair(math.radians(kink_deg))
+    found = quality.joins(level, graph)
+    # Junction 1 is at a right-angle corner of the input: not a join on smooth input.
+    assert graph.turns[2] == pytest.approx(math.pi / 2, abs=0.05)
+    assert found.junctions.tolist() == [0] and found.count == 1
+    assert math.degrees(found.kinks[0]) == pytest.approx(kink_deg, abs=1e-9)
+    assert found.tangent_fraction() == (1.0 if kink_deg < 2.0 else 0.0)
+    assert math.degrees(found.median_kink) == pytest.approx(kink_deg, abs=1e-9)
+
+
+def test_joins_none_gives_nan_fraction_and_kink():
+    level, graph = _kinked_pair(0.0)
+    corner_only = SegmentGraph(graph.segments, graph.junctions, graph.ends, 200, 200)
+    found = quality.joins(level, corner_only, max_turn=0.0)
+    assert found.count == 0 and math.isnan(found.tangent_fraction()) and math.isnan(found.median_kink)
+
+
+def test_joins_check_their_input():
+    level, graph = _kinked_pair(0.0)
+    with pytest.raises(InvalidParameterError, match="graph must be a SegmentGraph, got str"):
+        quality.joins(level, "graph")
+    with pytest.raises(InvalidParameterError, match="abstraction must be an Abstraction, got list"):
+        quality.joins([], graph)

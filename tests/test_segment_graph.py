@@ -214,3 +214,47 @@ def test_outline_is_one_connected_component(name):
     _, labels = connected_components(coo_matrix((np.ones(g.n_segments), (g.ends[:, 0], g.ends[:, 1])), shape=(n, n)))
     per_comp = np.bincount(labels[g.ends[:, 0]], weights=g.lengths)
     assert per_comp.max() > 0.75 * per_comp.sum()
+
+
+# --- the turn at a node (tangent joins) ----------------------------------------------
+
+
+def test_turns_are_small_on_a_circle_and_a_right_angle_at_a_square_corner():
+    import cv2
+
+    ring = np.zeros((300, 300), np.uint8)
+    cv2.circle(ring, (150, 150), 100, 255, 1)
+    g = build_segment_graph(ring > 0)
+    turns = np.degrees(g.turns[np.isfinite(g.turns)])
+    assert len(turns) == g.n_junctions  # every node of a loop has valence 2
+    # A 1-px raster circle: its 0.5 px steps tilt a tangent by a few degrees.
+    assert np.median(turns) < 4.0 and np.mean(turns < 10.0) >= 0.9
+    assert len(g.smooth_nodes()) == int(np.sum(turns < 10.0))
+    square = np.zeros((200, 200), bool)
+    square[40, 40:161] = square[160, 40:161] = square[40:161, 40] = square[40:161, 160] = True
+    sq = build_segment_graph(square)
+    corners = [k for k, p in enumerate(sq.junctions) if np.min(np.abs(p - 40.5)) < 3 and np.min(np.abs(p - 160.5)) < 3]
+    corners += [k for k, p in enumerate(sq.junctions) if np.all(np.abs(p - 40.5) < 3) or np.all(np.abs(p - 160.5) < 3)]
+    assert corners
+    for k in corners:
+        assert np.degrees(sq.turns[k]) == pytest.approx(90.0, abs=5.0)
+        assert k not in sq.smooth_nodes()
+
+
+def test_turns_are_nan_off_valence_two():
+    g = SegmentGraph(
+        [[[0.0, 0.0], [10.0, 0.0]], [[10.0, 0.0], [20.0, 0.0]], [[10.0, 0.0], [10.0, 10.0]]],
+        [[0.0, 0.0], [10.0, 0.0], [20.0, 0.0], [10.0, 10.0]],
+        [[0, 1], [1, 2], [1, 3]],
+        30,
+        30,
+    )
+    assert np.isnan(g.turns).all() and g.smooth_nodes() == frozenset()
+    straight = SegmentGraph(
+        [[[0.0, 0.0], [5.0, 0.0], [10.0, 0.0]], [[10.0, 0.0], [15.0, 0.0], [20.0, 0.0]]],
+        [[0.0, 0.0], [10.0, 0.0], [20.0, 0.0]],
+        [[0, 1], [1, 2]],
+        30,
+        30,
+    )
+    assert straight.turns[1] == pytest.approx(0.0, abs=1e-9) and straight.smooth_nodes() == {1}

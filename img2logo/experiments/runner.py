@@ -76,6 +76,7 @@ SMOKE: dict[str, dict[str, Any]] = {
     "12_designer_features": {"smoke": True, "fill_images": ["clipart-fish.png"]},
     "13_symmetry": {"smoke": True, "images": ["clipart-fox.png"], "eval_images": ["drawing-umbrella.png"]},
     "14_studio": {"smoke": True, "image": "drawing-fish.png"},
+    "15_tangency": {"smoke": True, "images": ["drawing-bird.png"]},
 }
 
 
