@@ -14,7 +14,10 @@ feature pixels within 3, 6, 10 px of the logo's arcs and lines, sampled every
 0.5 px); sil6 (fraction of the object mask's outline within 6 px of the logo)
 and outside (fraction of the logo's points farther than 12 px from the mask),
 for photo-likes; crossings; gaps (near-miss gaps: open ends 0.75-6 px from
-another arc); seconds (the whole pipeline, one process per image at a time).
+another arc); ink lost (dark parts of the input of at least 30 px with no logo
+point within 3 px, for clip arts and drawings: an eye the skeleton truth hides
+from r10); stroke ratio (the logo's stroke width over the input's median stroke
+width, for drawings); seconds (the whole pipeline, one process per image at a time).
 
 A benchmark, not a test: it prints and never fails on a bad number. An image
 whose run fails is a row with its error.
@@ -36,6 +39,8 @@ ROOT = Path(__file__).resolve().parents[1]
 EVAL = ROOT / "benchmarks" / "data"
 OUT = ROOT / "build" / "quality"
 COLUMNS = ("name", "kind", "detected", "arcs", "r3", "r6", "r10", "sil6", "outside", "crossings", "gaps", "seconds")
+#: The columns of what a designer sees beside the features (:func:`ink_columns`).
+INK_COLUMNS = ("ink lost", "stroke ratio")
 
 
 def cases() -> list[dict]:
@@ -74,7 +79,24 @@ def run_case(case: dict) -> tuple[dict, object]:
         crossings=q.crossings,
         gaps=q.gaps,
     )
+    row.update(ink_columns(case, result))
     return row, (result, truth)
+
+
+def ink_columns(case: dict, result) -> dict:
+    """Ink parts lost (clip arts, drawings) and the stroke width ratio (drawings) of one run."""
+    from img2logo import quality
+    from img2logo.constants import INK_PART_GRAY
+    from img2logo.plotting import level_stroke_width
+
+    out = dict.fromkeys(INK_COLUMNS, np.nan)
+    if case["kind"] in ("clipart", "drawing"):
+        points = quality.logo_points(result.final)
+        out["ink lost"] = len(quality.lost_ink_parts(points, result.image.gray))
+    if case["kind"] == "drawing":
+        ink = result.image.gray < INK_PART_GRAY
+        out["stroke ratio"] = quality.stroke_width_ratio(level_stroke_width(result.final), ink)
+    return out
 
 
 def contact_sheet(kind: str, runs: list[tuple[dict, object]], path: Path) -> None:
@@ -122,15 +144,15 @@ def main(argv: list[str] | None = None) -> int:
         status = f"failed: {row['error']}" if run is None else f"{row['arcs']} arcs, r10 {row['r10']:.2f}"
         print(f"  {row['name']:28s} {row['seconds']:6.1f} s  {status}", file=sys.stderr, flush=True)
     table = pd.DataFrame([r for r, _ in runs])
-    for col in COLUMNS:
+    for col in (*COLUMNS, *INK_COLUMNS):
         if col not in table:
             table[col] = np.nan
-    table = table[[*COLUMNS, *(["error"] if "error" in table else [])]]
+    table = table[[*COLUMNS, *INK_COLUMNS, *(["error"] if "error" in table else [])]]
     args.out.mkdir(parents=True, exist_ok=True)
     table.to_csv(args.out / "quality.csv", index=False, float_format="%.3f")
     with pd.option_context("display.width", 200, "display.max_columns", 20, "display.max_colwidth", 60):
         print(table.drop(columns=["error"], errors="ignore").to_string(index=False, float_format="%.2f"))
-        numeric = ["arcs", "r3", "r6", "r10", "sil6", "outside", "crossings", "gaps", "seconds"]
+        numeric = ["arcs", "r3", "r6", "r10", "sil6", "outside", "crossings", "gaps", "seconds", *INK_COLUMNS]
         means = table.groupby("kind")[numeric].mean()
         means["images"] = table.groupby("kind").size()
         means["failed"] = table.groupby("kind")["detected"].apply(lambda s: int((s == "-").sum()))
