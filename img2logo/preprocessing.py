@@ -134,12 +134,12 @@ def _detect(img: LoadedImage) -> tuple[str, str, np.ndarray | None]:
     paper = np.linalg.norm(means - means[0], axis=1) <= INK_COLOUR_SPREAD
     if paper.all():
         return "clipart", "one flat colour: a clip art", regions
-    rim = _rim_regions(regions, img.rgb, means, paper)
-    solid = ~paper & ~rim
-    ink_means, ink_area = means[solid], area[solid]
-    ink = np.average(ink_means, axis=0, weights=ink_area)
+    solid = ~paper
+    if not _one_ink(means[solid], area[solid]):
+        # Only then: a stroke's rim may be what makes a second colour.
+        solid &= ~_rim_regions(regions, img.rgb, means, paper)
     colours = 1 + len(_distinct(means[solid]))
-    if np.max(np.linalg.norm(ink_means - ink, axis=1)) <= INK_COLOUR_SPREAD:
+    if _one_ink(means[solid], area[solid]):
         inked = solid[regions]
         stroke = median_stroke_width(inked)
         if stroke <= DRAWING_MAX_STROKE_FRACTION * min(regions.shape):
@@ -151,6 +151,12 @@ def _detect(img: LoadedImage) -> tuple[str, str, np.ndarray | None]:
             )
         return "clipart", f"one flat colour on a plain background, in shapes {stroke:.0f} px wide: a clip art", regions
     return "clipart", f"{flat:.0%} of the pixels sit in flat fills of {colours} colours: a clip art", regions
+
+
+def _one_ink(means: np.ndarray, area: np.ndarray) -> bool:
+    """Whether the regions' colours (n, 3) CIELAB all lie within ``INK_COLOUR_SPREAD`` of their mean."""
+    ink = np.average(means, axis=0, weights=area)
+    return bool(np.max(np.linalg.norm(means - ink, axis=1)) <= INK_COLOUR_SPREAD)
 
 
 def _rim_regions(regions: np.ndarray, rgb: np.ndarray, means: np.ndarray, paper: np.ndarray) -> np.ndarray:
