@@ -160,66 +160,59 @@ def _one_ink(means: np.ndarray, area: np.ndarray) -> bool:
 
 
 def _rim_regions(regions: np.ndarray, rgb: np.ndarray, means: np.ndarray, paper: np.ndarray) -> np.ndarray:
-    """Which regions are an anti-aliased rim between ink and paper, not a colour: (n,) bool.
+    """Which regions are an anti-aliased rim of the ink, not a colour: (n,) bool.
 
     A narrow strip of paper between two strokes, or between a stroke and the
     paper it encloses, is all rim: its pixels blend the ink and the paper and
     none is far from either, so the clip-art regions make it a region of a grey
     of its own (a 9 px erosion of ``data/drawing-bird.png`` has one of 691 px
     at L* 81 between the wing and the body, and is no clip art of 3 colours).
-    Such a region is a rim when
+    The ink is the largest region that is not paper and the regions of its
+    colour (within ``INK_COLOUR_SPREAD``); another region is a rim when
 
-    * it touches the ink (a region that is neither paper nor narrow): it is
-      the edge of a stroke, or a gap between two strokes pinched shut (a 13 px
-      erosion of the bird has one of 155 px at L* 48 enclosed by ink);
-    * none of its pixels is farther than ``CLIPART_RIM_RADIUS`` px from another
-      region (a rim is a few px wide; a grey fill has an inside);
     * its mean colour is within ``INK_COLOUR_SPREAD`` of a blend (in sRGB, as
-      anti-aliasing mixes) of the paper's colour and the ink's.
+      anti-aliasing mixes) of the paper's colour and the ink's;
+    * none of its pixels is farther than ``CLIPART_RIM_RADIUS`` px from its
+      edge (a rim is a few px wide; a grey fill has an inside);
+    * it touches the ink: it is the edge of a stroke, or a gap between two
+      strokes pinched shut (a 13 px erosion of the bird has one of 155 px at
+      L* 48 enclosed by ink).
 
-    The ink's colour is the mean of the regions that are neither paper nor
-    narrow. A grey fill of a clip art is wide; a grey line on the paper touches
-    no ink: both stay colours of their own.
+    A grey fill of a clip art is wide; a grey line on the paper touches no ink:
+    both stay colours of their own. As soon as one region is neither ink nor
+    such a rim the image has a second colour and the rest is not looked at.
     """
     from scipy import ndimage
     from skimage.color import rgb2lab
 
     n = len(means)
     out = np.zeros(n, dtype=bool)
-    if n < 3:
+    labels = regions.ravel()
+    area = np.bincount(labels, minlength=n).astype(np.float64)
+    inked = np.flatnonzero(~paper)
+    if len(inked) < 2:
         return out
-    padded = np.pad(regions, 1, mode="edge")
-    edge = np.zeros(padded.shape, dtype=bool)
-    for a, b in ((padded[:, :-1], padded[:, 1:]), (padded[:-1], padded[1:])):
-        diff = a != b
-        if a.shape[1] != padded.shape[1]:
-            edge[:, :-1] |= diff
-            edge[:, 1:] |= diff
-        else:
-            edge[:-1] |= diff
-            edge[1:] |= diff
-    depth = ndimage.distance_transform_edt(~edge)[1:-1, 1:-1]
-    deepest = ndimage.maximum(depth, regions, np.arange(n))
-    narrow = ~paper & (np.asarray(deepest) <= CLIPART_RIM_RADIUS)
-    solid = ~paper & ~narrow
-    if not solid.any():
-        return out
-    area = np.bincount(regions.ravel(), minlength=n).astype(np.float64)
-    rgb_sum = np.stack([np.bincount(regions.ravel(), weights=rgb[..., c].ravel(), minlength=n) for c in range(3)], 1)
-    rgb_means = rgb_sum / np.maximum(area, 1.0)[:, None]
-    ink_rgb = np.average(rgb_means[solid], axis=0, weights=area[solid])
+    largest = inked[np.argmax(area[inked])]
+    ink = ~paper & (np.linalg.norm(means - means[largest], axis=1) <= INK_COLOUR_SPREAD)
+    others = np.flatnonzero(~paper & ~ink)
+    rgb_means = np.stack([np.bincount(labels, weights=rgb[..., c].ravel(), minlength=n) for c in range(3)], 1)
+    rgb_means /= np.maximum(area, 1.0)[:, None]
+    ink_rgb = np.average(rgb_means[ink], axis=0, weights=area[ink])
     paper_rgb = np.average(rgb_means[paper], axis=0, weights=area[paper])
     t = np.linspace(0.0, 1.0, 65)
     blends = rgb2lab((paper_rgb[None] + t[:, None] * (ink_rgb - paper_rgb)[None])[:, None, :])[:, 0, :]
+    if any(np.min(np.linalg.norm(blends - means[r], axis=1)) > INK_COLOUR_SPREAD for r in others):
+        return out  # a colour of its own: no rim makes this one ink
     slices = ndimage.find_objects(regions + 1)
-    for r in np.flatnonzero(narrow):
-        if np.min(np.linalg.norm(blends - means[r], axis=1)) > INK_COLOUR_SPREAD or slices[r] is None:
-            continue
+    eight = np.ones((3, 3), dtype=bool)
+    for r in others:
         sl = tuple(slice(max(0, s.start - 1), s.stop + 1) for s in slices[r])
         own = regions[sl] == r
-        around = regions[sl][ndimage.binary_dilation(own, structure=np.ones((3, 3), dtype=bool)) & ~own]
-        if solid[around].any():
-            out[r] = True
+        if ndimage.distance_transform_edt(np.pad(own, 1)).max() > CLIPART_RIM_RADIUS + 0.5:
+            return out
+        if not ink[regions[sl][ndimage.binary_dilation(own, structure=eight) & ~own]].any():
+            return out
+        out[r] = True
     return out
 
 
