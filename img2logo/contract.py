@@ -33,8 +33,8 @@ from .errors import InvalidParameterError
 from .fills import Fill, check_fills
 from .geometry import TAU, Abstraction, Arc, Circle, line_arc
 from .golden_ladder import FibonacciLadder, GoldenLadder, Ladder, fibonacci
+from .mirror import symmetry_extra
 from .svg_path import sample_path
-from .symmetry import symmetry_extra
 
 __all__ = ["SCHEMA_RESOURCE", "from_document", "read_fills", "to_document", "validate_document"]
 

@@ -42,6 +42,7 @@ from .errors import InvalidParameterError
 from .fills import Fill, check_fills
 from .geometry import Abstraction, Circle
 from .golden_ladder import FibonacciLadder
+from .mirror import axis_segment
 from .plotting import (
     ARC_COLOR,
     CIRCLE_COLOR,
@@ -51,7 +52,6 @@ from .plotting import (
     plot_segment_graph,
 )
 from .svg_path import arc_path, svg_number
-from .symmetry import axis_segment
 
 if TYPE_CHECKING:
     from .segment_graph import SegmentGraph

@@ -71,6 +71,19 @@ def test_public_names_resolve():
         img2logo.nope  # noqa: B018
 
 
+def test_the_options_value_and_its_errors_are_public():
+    # The README passes options=img2logo.Options(...); the error and warning a caller catches
+    # are reachable from the top level too.
+    from img2logo.errors import UnknownOptionError
+    from img2logo.options import Options
+    from img2logo.recovery import ConnectivityWarning
+
+    assert img2logo.Options is Options
+    assert img2logo.UnknownOptionError is UnknownOptionError
+    assert img2logo.ConnectivityWarning is ConnectivityWarning
+    assert abstract(drawing("Y"), options=img2logo.Options(tolerance=7.0), progress=False).final.tolerance == 7.0
+
+
 def test_keywords_are_checked_before_any_work(tmp_path):
     from img2logo.errors import UnknownOptionError
 
