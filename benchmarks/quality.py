@@ -5,7 +5,9 @@ Runs the whole pipeline at the default options on every image of
 ground truth; ``benchmarks/data/README.md`` says how the truth was made), on
 the second photo-like family ``benchmarks/data/photo2/`` (built by
 ``benchmarks/make_photo2.py`` the same way) and on the photos of ``data/`` (no
-truth: only arcs, crossings and gaps), then prints one row per image and the
+truth: only arcs, crossings and gaps) and on thick versions of the drawings of
+``data/`` (kind "thick drawing": strokes widened by 9 and 13 px; the truth is
+the thin original's feature lines), then prints one row per image and the
 means per family (the kind; ``photo2``; ``data``), writes them to
 ``build/quality/quality.csv`` and draws one contact sheet per family,
 ``build/quality/contact-<family>.png``: input | ground truth, the pixels farther
@@ -19,7 +21,10 @@ for photo-likes; crossings; gaps (near-miss gaps: open ends 0.75-6 px from
 another arc); joins (junctions where exactly two arcs end and the input's
 feature line turns by less than 10 degrees), tangent (the fraction of them where
 the two arcs kink by less than 2 degrees) and kink (their median kink, degrees);
-seconds (the whole pipeline, one process per image at a time). Below the means
+ink lost (dark parts of the input of at least 30 px with no logo
+point within 3 px, for clip arts and drawings: an eye the skeleton truth hides
+from r10); stroke ratio (the logo's stroke width over the input's median stroke
+width, for drawings); seconds (the whole pipeline, one process per image at a time). Below the means
 per kind, the joins of all the clip arts and drawings pooled.
 
 A benchmark, not a test: it prints and never fails on a bad number. An image
@@ -61,6 +66,8 @@ COLUMNS = (
     "kink",
     "seconds",
 )
+#: The columns of what a designer sees beside the features (:func:`ink_columns`).
+INK_COLUMNS = ("ink lost", "stroke ratio")
 
 
 def cases() -> list[dict]:
@@ -75,7 +82,36 @@ def cases() -> list[dict]:
         out += [dict(m, family=m.get("family", m["kind"]), path=folder / m["file"], folder=folder) for m in manifest]
     for path in sorted((ROOT / "data").glob("photo-*.png")):
         out.append({"name": f"data/{path.stem}", "kind": "photo", "family": "data", "path": path, "folder": EVAL})
+    for path in sorted((ROOT / "data").glob("drawing-*.png")):
+        for kernel in THICK_KERNELS:
+            out.append(
+                {
+                    "name": f"thick/{path.stem}-{kernel}",
+                    "kind": THICK,
+                    "family": THICK,
+                    "original": path,
+                    "kernel": kernel,
+                }
+            )
     return out
+
+
+#: Kind of the thick versions of data/'s drawings: their strokes widened by eroding the paper
+#: with elliptical kernels of these sizes, px (13 px strokes become 20 and 24 px). They must be
+#: read as drawings; their truth is the feature lines of the thin original (its centre lines).
+THICK = "thick drawing"
+THICK_KERNELS = (9, 13)
+
+
+def thick_case(case: dict):
+    """The image and truth of a thick version of a drawing: (RGB uint8 array, (H, W) bool)."""
+    import cv2
+
+    from img2logo import extract_feature_lines
+
+    image = cv2.imread(str(case["original"]))[:, :, ::-1]
+    kernel = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (case["kernel"], case["kernel"]))
+    return np.ascontiguousarray(cv2.erode(image, kernel)), extract_feature_lines(case["original"]).lines
 
 
 def run_case(case: dict) -> tuple[dict, object]:
@@ -86,12 +122,13 @@ def run_case(case: dict) -> tuple[dict, object]:
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
-            result = abstract(case["path"], progress=False)
+            image, thin = thick_case(case) if case["kind"] == THICK else (case["path"], None)
+            result = abstract(image, progress=False)
     except Img2LogoError as exc:
         row.update(detected="-", error=str(exc), seconds=time.perf_counter() - start)
         return row, None
     row["seconds"] = time.perf_counter() - start
-    truth = load_mask(case["folder"] / case["gt"]) if "gt" in case else None
+    truth = load_mask(case["folder"] / case["gt"]) if "gt" in case else thin
     mask = load_mask(case["folder"] / case["mask"]) if "mask" in case else None
     q = quality.measure(result.final, truth, mask)
     found = quality.joins(result.final, result.graph)
@@ -110,7 +147,24 @@ def run_case(case: dict) -> tuple[dict, object]:
         kink=np.degrees(found.median_kink),
         kinks=np.degrees(found.kinks),
     )
+    row.update(ink_columns(case, result))
     return row, (result, truth)
+
+
+def ink_columns(case: dict, result) -> dict:
+    """Ink parts lost (clip arts, drawings) and the stroke width ratio (drawings) of one run."""
+    from img2logo import quality
+    from img2logo.constants import INK_PART_GRAY
+    from img2logo.plotting import level_stroke_width
+
+    out = dict.fromkeys(INK_COLUMNS, np.nan)
+    if case["kind"] in ("clipart", "drawing", THICK):
+        points = quality.logo_points(result.final)
+        out["ink lost"] = len(quality.lost_ink_parts(points, result.image.gray))
+    if case["kind"] in ("drawing", THICK):
+        ink = result.image.gray < INK_PART_GRAY
+        out["stroke ratio"] = quality.stroke_width_ratio(level_stroke_width(result.final), ink)
+    return out
 
 
 def contact_sheet(kind: str, runs: list[tuple[dict, object]], path: Path) -> None:
@@ -158,10 +212,10 @@ def main(argv: list[str] | None = None) -> int:
         status = f"failed: {row['error']}" if run is None else f"{row['arcs']} arcs, r10 {row['r10']:.2f}"
         print(f"  {row['name']:28s} {row['seconds']:6.1f} s  {status}", file=sys.stderr, flush=True)
     table = pd.DataFrame([{k: v for k, v in r.items() if k != "kinks"} for r, _ in runs])
-    for col in COLUMNS:
+    for col in (*COLUMNS, *INK_COLUMNS):
         if col not in table:
             table[col] = np.nan
-    table = table[[*COLUMNS, *(["error"] if "error" in table else [])]]
+    table = table[[*COLUMNS, *INK_COLUMNS, *(["error"] if "error" in table else [])]]
     args.out.mkdir(parents=True, exist_ok=True)
     table.to_csv(args.out / "quality.csv", index=False, float_format="%.3f")
     with pd.option_context("display.width", 200, "display.max_columns", 20, "display.max_colwidth", 60):
@@ -179,13 +233,15 @@ def main(argv: list[str] | None = None) -> int:
             "tangent",
             "kink",
             "seconds",
+            *INK_COLUMNS,
         ]
         by = table["family"]
         means = table.groupby(by)[numeric].mean()
         means["least sil6"] = table.groupby(by)["sil6"].min()
         means["images"] = table.groupby(by).size()
         means["failed"] = table.groupby(by)["detected"].apply(lambda s: int((s == "-").sum()))
-        means["kind right"] = (table["kind"] == table["detected"]).groupby(by).sum()
+        expected = table["kind"].replace({THICK: "drawing"})
+        means["kind right"] = (expected == table["detected"]).groupby(by).sum()
         print("\nMeans per family (the kind, or photo2: the second photo-like family; data: the photos of data/)")
         print(means.to_string(float_format="%.2f"))
     kinks = np.concatenate(
@@ -199,7 +255,7 @@ def main(argv: list[str] | None = None) -> int:
     if not args.no_sheets:
         for kind in sorted(table["family"].unique()):
             chosen = [(r, run) for r, run in runs if r["family"] == kind]
-            contact_sheet(kind, chosen, args.out / f"contact-{kind}.png")
+            contact_sheet(kind, chosen, args.out / f"contact-{kind.replace(' ', '-')}.png")
     print(f"\nwrote {args.out / 'quality.csv'} and the contact sheets beside it")
     return 0
 

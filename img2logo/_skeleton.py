@@ -234,12 +234,26 @@ def _trace_component(
         graph.ends.append((centre, node))
 
 
-def prune(graph: PixelGraph, *, spur_length: float, min_length: float, junction_merge: float) -> list[np.ndarray]:
+def prune(
+    graph: PixelGraph,
+    *,
+    spur_length: float,
+    min_length: float,
+    junction_merge: float,
+    radius: np.ndarray | None = None,
+) -> list[np.ndarray]:
     """Clean a traced graph in place; return the (row, col) pixels of removed chains.
 
     Repeats until nothing changes: drops side spurs shorter than ``spur_length``
     (a chain from a free end to a junction; at a fork where every branch but one
-    is a spur the longest spur stays, so a line end is not eaten away), isolated
+    is a spur the longest spur stays, so a line end is not eaten away). With
+    ``radius`` (an (H, W) map of the stroke's half width, px: the ink's distance
+    transform) a spur is judged by the ink it adds: the medial axis of a thick
+    stroke grows a branch towards every corner and square end, whose tip is a
+    small disc inside the junction's large one. A branch of length L whose tip
+    has half width r_tip reaches L + r_tip from a junction of half width r_j, so
+    it sticks out of the stroke by L + r_tip - r_j, and it is a spur when that is
+    below ``spur_length`` (for a thin line, r_tip = r_j: the same test). Isolated
     chains and closed loops shorter than ``min_length``, loops hanging on a line
     shorter than ``spur_length``; contracts chains shorter than ``junction_merge`` between two
     junctions into one junction (a thick "X" thins to two "Y"s and a bridge);
@@ -251,6 +265,7 @@ def prune(graph: PixelGraph, *, spur_length: float, min_length: float, junction_
         changed = False
         val = graph.valence()
         lengths = [graph.length(c) for c in range(len(graph.chains))]
+        limit = _half_widths(graph, radius)
         drop: set[int] = set()
         spurs_at: dict[int, list[int]] = {}
         for c, (a, b) in enumerate(graph.ends):
@@ -261,9 +276,9 @@ def prune(graph: PixelGraph, *, spur_length: float, min_length: float, junction_
                 continue
             if val[a] == 1 and val[b] == 1 and lengths[c] < min_length:
                 drop.add(c)
-            elif val[a] == 1 and val[b] >= 3 and lengths[c] < spur_length:
+            elif val[a] == 1 and val[b] >= 3 and lengths[c] < spur_length + max(0.0, limit[b] - limit[a]):
                 spurs_at.setdefault(b, []).append(c)
-            elif val[b] == 1 and val[a] >= 3 and lengths[c] < spur_length:
+            elif val[b] == 1 and val[a] >= 3 and lengths[c] < spur_length + max(0.0, limit[a] - limit[b]):
                 spurs_at.setdefault(a, []).append(c)
         for node, spurs in spurs_at.items():
             spurs.sort(key=lambda c: lengths[c])
@@ -281,6 +296,17 @@ def prune(graph: PixelGraph, *, spur_length: float, min_length: float, junction_
             changed = True
     _drop_unused_nodes(graph)
     return removed
+
+
+def _half_widths(graph: PixelGraph, radius: np.ndarray | None) -> np.ndarray:
+    """The stroke's half width at each node, px (``radius`` there; zeros without it)."""
+    if radius is None or not len(graph.nodes):
+        return np.zeros(len(graph.nodes))
+    xy = np.array(graph.nodes)
+    h, w = radius.shape
+    rows = np.clip(np.floor(xy[:, 1]).astype(int), 0, h - 1)
+    cols = np.clip(np.floor(xy[:, 0]).astype(int), 0, w - 1)
+    return radius[rows, cols].astype(np.float64)
 
 
 def _remove_chains(graph: PixelGraph, drop: set[int]) -> None:

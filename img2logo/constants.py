@@ -67,6 +67,17 @@ INK_COLOUR_SPREAD: float = 4.6
 #: median distance from the ink's medial axis to its edge) are at most this fraction
 #: of the shorter image side wide; wider, it is a flat silhouette (a clip art).
 DRAWING_MAX_STROKE_FRACTION: float = 0.08
+#: Drawing: an ink part of at least MIN_SPECK_AREA px (a disc this wide, px) that thinning
+#: and the length filters leave without a feature line (a filled dot, an animal's eye, a
+#: ring too small for its loop to pass SPUR_LENGTH) is content, not noise: it becomes a
+#: closed line (a full golden circle) at its centre. Smaller ink is removed as a speck
+#: before thinning, so this is the speck filter's own bound, written as a diameter.
+DOT_MIN_DIAMETER: float = 2.0 * math.sqrt(MIN_SPECK_AREA / math.pi)
+#: ... the circle drawn for it is the one whose stroke (the drawing's median stroke
+#: width w) covers the part: radius (d - w) / 2 for a part of diameter d, but at least
+#: this, px: a 1-px ring of radius 2 is 13 px round, the smallest closed line the
+#: SPUR_LENGTH filter keeps and the segment graph can split into two segments.
+DOT_MIN_RADIUS: float = 2.0
 #: Clip art: regions smaller than this are merged into a neighbour, px (area); the
 #: pixels of smaller flat areas (anti-aliased rims, JPEG ringing) go to the region
 #: whose colour they are nearest.
@@ -420,6 +431,16 @@ LINE_RADIUS: float = 1e6
 #: Spacing of the points sampled along a logo's arcs to measure it, px: well under
 #: the 3 px of the finest recall measure.
 QUALITY_SAMPLE_STEP: float = 0.5
+#: Ink parts lost (``quality.lost_ink_parts``): a pixel of the input darker than this
+#: gray (0..1, mid-grey) is ink: the black or coloured strokes, outlines and dots of a
+#: drawing or a clip art, not its light fills nor the paper.
+INK_PART_GRAY: float = 0.5
+#: ... an 8-connected part of ink of at least this many px is content (an eye of a
+#: 6 px dot has 28 px); smaller ones are specks of anti-aliasing or JPEG ringing ...
+INK_PART_MIN_AREA: int = 30
+#: ... and it is lost when no logo point is within this of any of its pixels, px:
+#: the finest recall distance (r3).
+INK_PART_DISTANCE: float = 3.0
 #: sil6: an object outline pixel within this of the logo is kept, px.
 SILHOUETTE_DISTANCE: float = 6.0
 #: A logo point farther than this from the object mask is on the background, px:

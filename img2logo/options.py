@@ -138,6 +138,12 @@ class Options:
         Photos: the subject drawn (:func:`img2logo.subject.find_subject`).
     subject : (x, y, w, h), "X,Y,W,H" or None
         Photos: a rectangle around the object that seeds its segmentation, px.
+    stroke_width : float or None
+        Width of the logo's strokes in the SVG and PNG, px (> 0), recorded in
+        ``params``; None: a line drawing's measured median stroke width
+        (:attr:`img2logo.preprocessing.FeatureLines.stroke_width`), for the
+        other kinds the writers' default
+        (:func:`img2logo.plotting.default_stroke_width`).
     symmetry : {"none", "auto", "vertical", "horizontal"} or float
         A mirror-symmetric logo (:mod:`img2logo.symmetry`): ``auto`` keeps the
         best mirror axis of the feature lines if it scores well enough; the
@@ -219,6 +225,15 @@ class Options:
         "the threshold; said in one line), vertical, horizontal or the axis direction in degrees from +x towards "
         "+y (forced); none (default): free",
     )
+    stroke_width: float | None = _option(
+        None,
+        stage="input",
+        flags=("--stroke-width",),
+        type=float,
+        metavar="PX",
+        help="width of the logo's strokes in the SVG and PNG, px (default: a line drawing's own median stroke "
+        "width, measured; clip arts and photos 1/128 of the longer image side)",
+    )
     # ----------------------------------------------------------------- the optimization
     tolerance: float = _px(
         TOLERANCE, "--tolerance", "largest similarity error E^s", "-T", note="larger gives fewer arcs"
@@ -281,6 +296,8 @@ class Options:
         put(self, "tolerance", _check_length(self.tolerance, "tolerance"))
         put(self, "rdp_tolerance", _check_length(self.rdp_tolerance, "rdp_tolerance"))
         put(self, "min_length", _check_length(self.min_length, "min_length", allow_zero=True))
+        if self.stroke_width is not None:
+            put(self, "stroke_width", _check_length(self.stroke_width, "stroke_width"))
         check_choice(self.kind, "kind", ("auto", "photo", "clipart", "drawing"))
         check_foreground_option(self.foreground)
         if self.subject is not None:

@@ -17,7 +17,7 @@ from typing import Any
 
 import numpy as np
 
-from .constants import PHOTO_MAX_ARC_FACTOR
+from .constants import MIN_STROKE_WIDTH, PHOTO_MAX_ARC_FACTOR
 from .errors import InvalidParameterError
 from .geometry import Abstraction
 from .loading import mask_to_working_size
@@ -178,6 +178,11 @@ def abstract(
         "min_length": float(opts.min_length),
         "scale": img.scale,
     }
+    # The logo's stroke weight: the one asked for, else a drawing's own (clip arts and
+    # photos are drawn with the writers' default, which is not recorded).
+    stroke = opts.stroke_width if opts.stroke_width is not None else lines.stroke_width
+    if stroke:
+        params["stroke_width"] = max(MIN_STROKE_WIDTH, float(stroke))
     if opts.max_arc_distance == AUTO:
         # A photo's logo is a few long arcs: no arc may stray far from its line.
         bound = PHOTO_MAX_ARC_FACTOR * opts.tolerance if lines.kind == "photo" else None

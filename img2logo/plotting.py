@@ -51,6 +51,7 @@ __all__ = [
     "frame_bounds",
     "frame_image",
     "frame_window",
+    "level_stroke_width",
     "mark_window",
     "panel_grid",
     "plot_abstraction",
@@ -87,6 +88,20 @@ def default_stroke_width(width: int, height: int) -> float:
     (both in :mod:`img2logo.constants`).
     """
     return max(MIN_STROKE_WIDTH, STROKE_WIDTH_FRACTION * max(int(width), int(height)))
+
+
+def level_stroke_width(abstraction: Abstraction) -> float:
+    """The stroke width a level is drawn with, px: the run's ``stroke_width`` param, else the default.
+
+    :func:`img2logo.abstract` records ``stroke_width`` in ``params``: a line
+    drawing's measured median stroke width, the ``stroke_width`` option when
+    given, :func:`default_stroke_width` otherwise. A level without it (made by
+    hand, or read from an older file) gets :func:`default_stroke_width`.
+    """
+    value = abstraction.params.get("stroke_width")
+    if isinstance(value, int | float) and not isinstance(value, bool) and value > 0:
+        return float(value)
+    return default_stroke_width(abstraction.width, abstraction.height)
 
 
 def plot_abstraction(

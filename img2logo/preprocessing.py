@@ -25,6 +25,9 @@ from ._validation import check_choice, check_positive, readonly
 from .clipart import clipart_lines, clipart_regions, label_means
 from .constants import (
     BLANK_IMAGE_RANGE,
+    CLIPART_RIM_RADIUS,
+    DOT_MIN_DIAMETER,
+    DOT_MIN_RADIUS,
     DRAWING_MAX_STROKE_FRACTION,
     INK_COLOUR_SPREAD,
     JUNCTION_MERGE_DISTANCE,
@@ -47,8 +50,10 @@ __all__ = [
     "edge_tangent_flow",
     "extract_feature_lines",
     "flow_dog",
+    "keep_dots",
     "load_image",
     "load_mask",
+    "median_stroke_width",
 ]
 
 KINDS = ("photo", "clipart", "drawing")
@@ -71,6 +76,10 @@ class FeatureLines:
     subject : Subject or None
         For photos, the part of the image drawn and how it was found
         (:func:`img2logo.subject.find_subject`).
+    stroke_width : float or None
+        For a line drawing, its median stroke width, px: twice the median
+        distance from the ink's skeleton to the paper
+        (:func:`median_stroke_width`); None for the other kinds.
     """
 
     lines: np.ndarray
@@ -78,6 +87,7 @@ class FeatureLines:
     reason: str
     regions: np.ndarray | None = None
     subject: Subject | None = None
+    stroke_width: float | None = None
 
     @property
     def shape(self) -> tuple[int, int]:
@@ -124,12 +134,14 @@ def _detect(img: LoadedImage) -> tuple[str, str, np.ndarray | None]:
     paper = np.linalg.norm(means - means[0], axis=1) <= INK_COLOUR_SPREAD
     if paper.all():
         return "clipart", "one flat colour: a clip art", regions
-    ink_means, ink_area = means[~paper], area[~paper]
-    ink = np.average(ink_means, axis=0, weights=ink_area)
-    colours = 1 + len(_distinct(means[~paper]))
-    if np.max(np.linalg.norm(ink_means - ink, axis=1)) <= INK_COLOUR_SPREAD:
-        inked = ~paper[regions]
-        stroke = _median_stroke_width(inked)
+    solid = ~paper
+    if not _one_ink(means[solid], area[solid]):
+        # Only then: a stroke's rim may be what makes a second colour.
+        solid &= ~_rim_regions(regions, img.rgb, means, paper)
+    colours = 1 + len(_distinct(means[solid]))
+    if _one_ink(means[solid], area[solid]):
+        inked = solid[regions]
+        stroke = median_stroke_width(inked)
         if stroke <= DRAWING_MAX_STROKE_FRACTION * min(regions.shape):
             return (
                 "drawing",
@@ -141,6 +153,69 @@ def _detect(img: LoadedImage) -> tuple[str, str, np.ndarray | None]:
     return "clipart", f"{flat:.0%} of the pixels sit in flat fills of {colours} colours: a clip art", regions
 
 
+def _one_ink(means: np.ndarray, area: np.ndarray) -> bool:
+    """Whether the regions' colours (n, 3) CIELAB all lie within ``INK_COLOUR_SPREAD`` of their mean."""
+    ink = np.average(means, axis=0, weights=area)
+    return bool(np.max(np.linalg.norm(means - ink, axis=1)) <= INK_COLOUR_SPREAD)
+
+
+def _rim_regions(regions: np.ndarray, rgb: np.ndarray, means: np.ndarray, paper: np.ndarray) -> np.ndarray:
+    """Which regions are an anti-aliased rim of the ink, not a colour: (n,) bool.
+
+    A narrow strip of paper between two strokes, or between a stroke and the
+    paper it encloses, is all rim: its pixels blend the ink and the paper and
+    none is far from either, so the clip-art regions make it a region of a grey
+    of its own (a 9 px erosion of ``data/drawing-bird.png`` has one of 691 px
+    at L* 81 between the wing and the body, and is no clip art of 3 colours).
+    The ink is the largest region that is not paper and the regions of its
+    colour (within ``INK_COLOUR_SPREAD``); another region is a rim when
+
+    * its mean colour is within ``INK_COLOUR_SPREAD`` of a blend (in sRGB, as
+      anti-aliasing mixes) of the paper's colour and the ink's;
+    * none of its pixels is farther than ``CLIPART_RIM_RADIUS`` px from its
+      edge (a rim is a few px wide; a grey fill has an inside);
+    * it touches the ink: it is the edge of a stroke, or a gap between two
+      strokes pinched shut (a 13 px erosion of the bird has one of 155 px at
+      L* 48 enclosed by ink).
+
+    A grey fill of a clip art is wide; a grey line on the paper touches no ink:
+    both stay colours of their own. As soon as one region is neither ink nor
+    such a rim the image has a second colour and the rest is not looked at.
+    """
+    from scipy import ndimage
+    from skimage.color import rgb2lab
+
+    n = len(means)
+    out = np.zeros(n, dtype=bool)
+    labels = regions.ravel()
+    area = np.bincount(labels, minlength=n).astype(np.float64)
+    inked = np.flatnonzero(~paper)
+    if len(inked) < 2:
+        return out
+    largest = inked[np.argmax(area[inked])]
+    ink = ~paper & (np.linalg.norm(means - means[largest], axis=1) <= INK_COLOUR_SPREAD)
+    others = np.flatnonzero(~paper & ~ink)
+    rgb_means = np.stack([np.bincount(labels, weights=rgb[..., c].ravel(), minlength=n) for c in range(3)], 1)
+    rgb_means /= np.maximum(area, 1.0)[:, None]
+    ink_rgb = np.average(rgb_means[ink], axis=0, weights=area[ink])
+    paper_rgb = np.average(rgb_means[paper], axis=0, weights=area[paper])
+    t = np.linspace(0.0, 1.0, 65)
+    blends = rgb2lab((paper_rgb[None] + t[:, None] * (ink_rgb - paper_rgb)[None])[:, None, :])[:, 0, :]
+    if any(np.min(np.linalg.norm(blends - means[r], axis=1)) > INK_COLOUR_SPREAD for r in others):
+        return out  # a colour of its own: no rim makes this one ink
+    slices = ndimage.find_objects(regions + 1)
+    eight = np.ones((3, 3), dtype=bool)
+    for r in others:
+        sl = tuple(slice(max(0, s.start - 1), s.stop + 1) for s in slices[r])
+        own = regions[sl] == r
+        if ndimage.distance_transform_edt(np.pad(own, 1)).max() > CLIPART_RIM_RADIUS + 0.5:
+            return out
+        if not ink[regions[sl][ndimage.binary_dilation(own, structure=eight) & ~own]].any():
+            return out
+        out[r] = True
+    return out
+
+
 def _distinct(colours: np.ndarray) -> list[np.ndarray]:
     """Colours (N, 3) CIELAB, clustered greedily at ``INK_COLOUR_SPREAD``: one per visible colour."""
     out: list[np.ndarray] = []
@@ -150,7 +225,13 @@ def _distinct(colours: np.ndarray) -> list[np.ndarray]:
     return out
 
 
-def _median_stroke_width(ink: np.ndarray) -> float:
+def median_stroke_width(ink: np.ndarray) -> float:
+    """The typical width of the strokes of ``ink`` (H, W) bool, px; 0 without ink.
+
+    Twice the median, over the ink's skeleton (its medial axis), of the distance
+    to the nearest pixel that is not ink: a stroke w px wide has its axis w / 2
+    from both edges (to within half a pixel).
+    """
     from scipy import ndimage
     from skimage.morphology import skeletonize
 
@@ -209,8 +290,15 @@ def extract_feature_lines(
     found = None
     if spur_length is None:
         spur_length = PHOTO_SPUR_LENGTH if kind == "photo" else SPUR_LENGTH
+    radius = stroke = None
     if kind == "drawing":
-        raw = _join(_drawing_lines(img))
+        from skimage.morphology import skeletonize
+
+        ink = _drawing_lines(img)
+        radius = _half_width(ink)
+        axis = skeletonize(ink)
+        stroke = float(2.0 * np.median(radius[axis])) if axis.any() else 0.0
+        raw = _skeleton.join_line_ends(axis)
         min_len = spur_length if min_line_length is None else min_line_length
     elif kind == "clipart":
         regions = clipart_regions(img) if regions is None else regions
@@ -221,12 +309,57 @@ def extract_feature_lines(
         raw = photo_feature_lines(img, found)
         min_len = PHOTO_MIN_LINE_LENGTH if min_line_length is None else min_line_length
     min_len = check_positive(min_len, "min_line_length", allow_zero=True)
-    lines = _clean_skeleton(raw, spur_length=spur_length, min_length=min_len)
+    lines = _clean_skeleton(raw, spur_length=spur_length, min_length=min_len, radius=radius)
     if found is not None and found.faces:  # a face's eyes and mouth are shorter than a photo's shortest line
         short = face_line_length(found.faces)
         near_face = face_region(raw.shape, found.faces)
         lines |= _clean_skeleton(raw & near_face, spur_length=min(spur_length, short / 2), min_length=short)
-    return FeatureLines(readonly(lines), kind, reason, None if regions is None else readonly(regions), found)
+    if kind == "drawing":
+        lines = keep_dots(lines, ink, stroke)
+    return FeatureLines(
+        readonly(lines), kind, reason, None if regions is None else readonly(regions), found, stroke_width=stroke
+    )
+
+
+def keep_dots(lines: np.ndarray, ink: np.ndarray, stroke_width: float) -> np.ndarray:
+    """Give every ink part left without a feature line a closed line at its centre: (H, W) bool.
+
+    A filled dot (an animal's eye) thins to a point or a stub, and a small ring
+    to a loop shorter than the length filters keep: both would vanish from the
+    logo. An 8-connected part of ``ink`` with no pixel of ``lines`` and a
+    diameter (that of the disc of its area) of at least ``DOT_MIN_DIAMETER``
+    (the speck filter's bound: smaller ink is noise) gets a 1-px circle at its
+    centroid, of the radius whose stroke covers it: (d - ``stroke_width``) / 2,
+    at least ``DOT_MIN_RADIUS``. The optimization fits it with one full golden
+    circle.
+
+    Parameters
+    ----------
+    lines : ndarray of bool, shape (H, W)
+        The cleaned feature lines.
+    ink : ndarray of bool, shape (H, W)
+        The drawing's ink.
+    stroke_width : float
+        The drawing's median stroke width, px.
+    """
+    from scipy import ndimage
+    from skimage.draw import circle_perimeter
+
+    labels, n = ndimage.label(ink, structure=np.ones((3, 3), dtype=bool))
+    if n == 0:
+        return lines
+    lined = np.bincount(labels[lines], minlength=n + 1) > 0
+    area = np.bincount(labels.ravel(), minlength=n + 1)
+    diameter = 2.0 * np.sqrt(area / np.pi)
+    bare = [k for k in range(1, n + 1) if not lined[k] and diameter[k] >= DOT_MIN_DIAMETER]
+    if not bare:
+        return lines
+    out = lines.copy()
+    for k, (r, c) in zip(bare, ndimage.center_of_mass(ink, labels, bare), strict=True):
+        radius = max(DOT_MIN_RADIUS, (diameter[k] - stroke_width) / 2.0)
+        rr, cc = circle_perimeter(round(r), round(c), round(radius), shape=out.shape)
+        out[rr, cc] = True
+    return out
 
 
 def _join(raw: np.ndarray) -> np.ndarray:
@@ -242,14 +375,38 @@ def _join(raw: np.ndarray) -> np.ndarray:
     return _skeleton.join_line_ends(skeletonize(raw))
 
 
-def _clean_skeleton(mask: np.ndarray, *, spur_length: float, min_length: float) -> np.ndarray:
-    """Thin ``mask`` to 1 px and prune spurs, specks and tiny loops."""
+def _clean_skeleton(
+    mask: np.ndarray, *, spur_length: float, min_length: float, radius: np.ndarray | None = None
+) -> np.ndarray:
+    """Thin ``mask`` to 1 px and prune spurs, specks and tiny loops.
+
+    ``radius`` (H, W), px: a drawing's stroke half width, which lengthens the
+    spurs pruned at a junction by the stroke's half width there
+    (:func:`_skeleton.prune`).
+    """
     from skimage.morphology import skeletonize
 
     skel = skeletonize(mask)
     graph = _skeleton.trace(skel)
-    _skeleton.prune(graph, spur_length=spur_length, min_length=min_length, junction_merge=JUNCTION_MERGE_DISTANCE)
+    _skeleton.prune(
+        graph,
+        spur_length=spur_length,
+        min_length=min_length,
+        junction_merge=JUNCTION_MERGE_DISTANCE,
+        radius=radius,
+    )
     return _skeleton.rasterize(graph, skel.shape)
+
+
+def _half_width(ink: np.ndarray) -> np.ndarray:
+    """The half width of a drawing's strokes at every pixel, px: the ink's distance to the paper.
+
+    Measured on the skeleton, where it is the radius of the stroke's inscribed
+    disc; 0 on the paper.
+    """
+    from scipy import ndimage
+
+    return ndimage.distance_transform_edt(ink).astype(np.float32)
 
 
 def _drawing_lines(img: LoadedImage) -> np.ndarray:

@@ -19,6 +19,11 @@ level of any run:
   where exactly two arcs end and the input's feature line runs on smoothly
   (:meth:`~img2logo.segment_graph.SegmentGraph.smooth_nodes`), the kink between
   the two arcs' tangents; a join is tangent below ``TANGENT_JOIN_ANGLE``.
+* **ink parts lost** (:func:`lost_ink_parts`): dark parts of the input (an eye, a
+  dot, a stroke) of at least ``INK_PART_MIN_AREA`` px with no logo point within
+  ``INK_PART_DISTANCE`` px: what a ground truth of 1-px skeletons hides from r10;
+* **stroke width ratio** (:func:`stroke_width_ratio`): the logo's stroke width
+  over the input's median stroke width.
 
 And the measures of one level against what its optimization promised
 (the notebooks' ablations): :func:`junction_gaps` (how far the arcs that should
@@ -48,6 +53,9 @@ from .constants import (
     CROSSING_END_DISTANCE,
     GAP_MAX,
     GAP_MIN,
+    INK_PART_DISTANCE,
+    INK_PART_GRAY,
+    INK_PART_MIN_AREA,
     OUTSIDE_DISTANCE,
     QUALITY_SAMPLE_STEP,
     SILHOUETTE_DISTANCE,
@@ -352,6 +360,61 @@ def measure(
     sil = silhouette_recall(points, mask) if mask is not None else np.nan
     out = outside_fraction(points, mask) if mask is not None else np.nan
     return Quality(len(arcs), recall, sil, out, len(crossings(arcs)), len(near_miss_gaps(arcs)))
+
+
+def lost_ink_parts(
+    points: np.ndarray,
+    gray: np.ndarray,
+    *,
+    level: float = INK_PART_GRAY,
+    min_area: int = INK_PART_MIN_AREA,
+    distance: float = INK_PART_DISTANCE,
+) -> np.ndarray:
+    """The ink parts of an image that a logo lost: their centroids, (K, 2) px.
+
+    An ink part is an 8-connected group of at least ``min_area`` pixels of
+    ``gray`` below ``level`` (a stroke, an outline, an eye); it is lost when no
+    point of ``points`` lies within ``distance`` px of any of its pixels.
+
+    Parameters
+    ----------
+    points : ndarray, shape (N, 2)
+        The logo's sample points (x, y), px (:func:`logo_points`).
+    gray : ndarray, shape (H, W)
+        The input's gray values, 0 (black) to 1 (white).
+    """
+    from scipy import ndimage
+
+    gray = np.asarray(gray, dtype=np.float64)
+    if gray.ndim != 2:
+        raise InvalidParameterError(f"gray must have shape (H, W), got {gray.shape}")
+    labels, n = ndimage.label(gray < level, structure=np.ones((3, 3), dtype=bool))
+    if n == 0:
+        return np.zeros((0, 2))
+    area = np.bincount(labels.ravel(), minlength=n + 1)
+    rows, cols = np.nonzero(labels)
+    lab = labels[rows, cols]
+    big = area[lab] >= min_area
+    rows, cols, lab = rows[big], cols[big], lab[big]
+    near = _nearest_distance(points, np.column_stack([cols + 0.5, rows + 0.5])) <= distance
+    kept = np.bincount(lab[near], minlength=n + 1) > 0
+    lost = [k for k in np.unique(lab) if not kept[k]]
+    if not lost:
+        return np.zeros((0, 2))
+    centres = ndimage.center_of_mass(np.ones_like(gray), labels, lost)
+    return np.array([(c + 0.5, r + 0.5) for r, c in centres]).reshape(-1, 2)
+
+
+def stroke_width_ratio(logo_width: float, ink: np.ndarray) -> float:
+    """The logo's stroke width over the input's median stroke width; NaN without ink.
+
+    The input's width is :func:`img2logo.preprocessing.median_stroke_width` of
+    ``ink`` (H, W) bool: twice the median distance from the ink's medial axis to its edge.
+    """
+    from .preprocessing import median_stroke_width
+
+    width = median_stroke_width(_check_map(ink, "ink"))
+    return float(logo_width) / width if width > 0 else float("nan")
 
 
 def missed_pixels(points: np.ndarray, truth: np.ndarray, distance: float) -> np.ndarray:

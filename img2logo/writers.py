@@ -43,7 +43,14 @@ from .fills import Fill, check_fills
 from .geometry import Abstraction, Circle
 from .golden_ladder import FibonacciLadder
 from .mirror import axis_segment
-from .plotting import ARC_COLOR, CIRCLE_COLOR, default_stroke_width, plot_abstraction, plot_segment_graph
+from .plotting import (
+    ARC_COLOR,
+    CIRCLE_COLOR,
+    default_stroke_width,
+    level_stroke_width,
+    plot_abstraction,
+    plot_segment_graph,
+)
 from .svg_path import arc_path, svg_number
 
 if TYPE_CHECKING:
@@ -143,7 +150,7 @@ def to_svg(
     fill_list = check_fills(fills) or []
     width = check_integer(abstraction.width, "width", 1)
     height = check_integer(abstraction.height, "height", 1)
-    sw = default_stroke_width(width, height) if stroke_width is None else check_positive(stroke_width, "stroke_width")
+    sw = level_stroke_width(abstraction) if stroke_width is None else check_positive(stroke_width, "stroke_width")
     if image_size is None:
         shown_w, shown_h = float(width), float(height)
     else:
@@ -248,7 +255,8 @@ def write_svg(
     show_construction_circles : bool
         Make that layer visible instead of hidden.
     stroke_width : float, optional
-        Width of the arcs, px; default :func:`img2logo.plotting.default_stroke_width`.
+        Width of the arcs, px; default :func:`img2logo.plotting.level_stroke_width` (the run's
+        ``stroke_width`` param: a drawing's own stroke width).
     image_size : (float, float), optional
         Displayed size (width, height) in px of the SVG; default the input size.
         The viewBox stays the input frame, so the drawing scales.
@@ -307,7 +315,8 @@ def write_png(
     show_junctions, show_circles : bool
         Mark the junctions; draw the golden circles.
     stroke_width : float, optional
-        Width of the arcs, px; default :func:`img2logo.plotting.default_stroke_width`.
+        Width of the arcs, px; default :func:`img2logo.plotting.level_stroke_width` (the run's
+        ``stroke_width`` param: a drawing's own stroke width).
     fills : sequence of img2logo.fills.Fill, optional
         Coloured regions (paper Fig. 18), drawn under the arcs
         (:func:`img2logo.plotting.draw_fills`).
@@ -323,7 +332,7 @@ def write_png(
     width = check_integer(abstraction.width, "width", 1)
     height = check_integer(abstraction.height, "height", 1)
     d = check_positive(dpi, "dpi")
-    sw = default_stroke_width(width, height) if stroke_width is None else check_positive(stroke_width, "stroke_width")
+    sw = level_stroke_width(abstraction) if stroke_width is None else check_positive(stroke_width, "stroke_width")
 
     def draw(ax: Any) -> None:
         plot_abstraction(

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import math
 
 import numpy as np
 import pytest
@@ -10,6 +11,7 @@ from conftest import DATA, drawing
 
 import img2logo
 from img2logo import InvalidParameterError, abstract
+from img2logo.constants import PHI
 from img2logo.contract import to_document, validate_document
 
 
@@ -210,3 +212,40 @@ def test_a_symmetric_logo_of_a_downscaled_input_keeps_its_axis_in_its_pixels():
     record = result.final.params["symmetry"]
     assert record["point"][0] == pytest.approx(100.5, abs=3.0)  # in the input's pixels, not the working 50
     assert is_symmetric(result.final, record["point"], record["direction"])
+def _ring_and_dot(ring: bool, dot: bool):
+    import cv2
+    import numpy as np
+
+    im = drawing("Y") if dot else np.full((200, 200, 3), 255, np.uint8)
+    if ring:
+        cv2.circle(im, (100, 100), 50, (0, 0, 0), 12)
+    if dot:
+        cv2.circle(im, (150, 150), 4, (0, 0, 0), -1)  # a 9 px filled dot (an eye)
+    return im
+
+
+def test_a_12_px_black_ring_is_one_circle_stroked_12_px():
+    result = abstract(_ring_and_dot(ring=True, dot=False), progress=False)
+    assert result.lines.kind == "drawing"
+    assert len(result.final.arcs) == 1 and result.final.arcs[0].is_full_circle
+    circle = result.final.arcs[0].circle
+    assert abs(circle.cx - 100.5) <= 1.0 and abs(circle.cy - 100.5) <= 1.0 and abs(circle.r - 50.0) <= 2.0
+    assert abs(result.params["stroke_width"] - 12.0) <= 2.0
+    assert result.final.params["stroke_width"] == result.params["stroke_width"]
+
+
+def test_a_9_px_dot_becomes_one_full_golden_circle_at_the_dot():
+    result = abstract(_ring_and_dot(ring=False, dot=True), progress=False)
+    full = [a for a in result.final.arcs if a.is_full_circle]
+    assert len(full) == 1
+    c = full[0].circle
+    assert math.hypot(c.cx - 150.5, c.cy - 150.5) <= 1.0 and c.r <= 4.5
+    assert c.r == pytest.approx(PHI ** (c.k + result.bias), rel=1e-6)  # on the ladder
+
+
+def test_stroke_width_option_overrides_and_is_checked():
+    result = abstract(_ring_and_dot(ring=True, dot=False), progress=False, stroke_width=3.0)
+    assert result.params["stroke_width"] == 3.0
+    assert "stroke_width" not in abstract(DATA / "clipart-fish.png", progress=False).params  # the default
+    with pytest.raises(InvalidParameterError, match="stroke_width must be > 0, got -1"):
+        abstract(_ring_and_dot(ring=True, dot=False), stroke_width=-1)

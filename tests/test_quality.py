@@ -201,3 +201,22 @@ def test_joins_check_their_input():
         quality.joins(level, "graph")
     with pytest.raises(InvalidParameterError, match="abstraction must be an Abstraction, got list"):
         quality.joins([], graph)
+def test_lost_ink_parts_are_the_dark_parts_no_logo_point_reaches():
+    gray = np.ones((100, 100))
+    gray[disk((30, 30), 5)] = 0.0  # an eye of 81 px: kept by a circle through it
+    gray[disk((70, 70), 5)] = 0.0  # another, far from the logo: lost
+    gray[10:14, 80:84] = 0.0  # 16 px: a speck, not counted
+    points = quality.logo_points([_circle(30.5, 30.5, 2.0)])
+    lost = quality.lost_ink_parts(points, gray)
+    np.testing.assert_allclose(lost, [[70.5, 70.5]], atol=1e-9)
+    assert len(quality.lost_ink_parts(np.zeros((0, 2)), gray)) == 2
+    assert len(quality.lost_ink_parts(points, np.ones((20, 20)))) == 0
+    with pytest.raises(InvalidParameterError, match=r"gray must have shape \(H, W\), got \(3,\)"):
+        quality.lost_ink_parts(points, np.ones(3))
+
+
+def test_stroke_width_ratio_of_a_12_px_bar():
+    ink = np.zeros((100, 100), bool)
+    ink[44:56, 10:90] = True
+    assert quality.stroke_width_ratio(6.0, ink) == pytest.approx(0.5, abs=0.05)
+    assert math.isnan(quality.stroke_width_ratio(6.0, np.zeros((10, 10), bool)))

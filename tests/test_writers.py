@@ -202,6 +202,22 @@ def test_svg_options_and_determinism(tmp_path):
         writers.to_svg(a, image_size=5)
 
 
+def test_the_runs_stroke_width_param_strokes_svg_and_png(tmp_path):
+    """A drawing's measured stroke width (params["stroke_width"]) is the default; an argument wins."""
+    import cv2
+
+    bold = make_abstraction(params={"kind": "drawing", "stroke_width": 12.5})
+    assert ET.fromstring(writers.to_svg(bold)).find(f"{SVG}g[@id='arcs']").get("stroke-width") == "12.5"
+    assert ET.fromstring(writers.to_svg(bold, stroke_width=2)).find(f"{SVG}g[@id='arcs']").get("stroke-width") == "2"
+    plain = make_abstraction()  # no stroke_width param: the default, 1/128 of the longer side
+    got = float(ET.fromstring(writers.to_svg(plain)).find(f"{SVG}g[@id='arcs']").get("stroke-width"))
+    assert got == pytest.approx(max(1.0, max(plain.width, plain.height) / 128.0))
+    # The PNG draws the full circle (arc 2, r = phi**(4 + 0.3) = 7.9 px) with the same width.
+    thin = cv2.imread(str(writers.write_png(plain, tmp_path / "thin.png")), cv2.IMREAD_GRAYSCALE)
+    thick = cv2.imread(str(writers.write_png(bold, tmp_path / "bold.png")), cv2.IMREAD_GRAYSCALE)
+    assert (thick < 128).sum() > 3 * (thin < 128).sum()
+
+
 def test_svg_writes_a_line_without_k():
     from img2logo.geometry import line_arc
 
