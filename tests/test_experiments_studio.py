@@ -60,7 +60,7 @@ def test_a_blank_upload_says_so(ran, tmp_path):
     Image.new("RGB", (64, 64), "white").save(tmp_path / "white.png")
     s = fresh(ran)
     assert not s.load_upload("white.png", (tmp_path / "white.png").read_bytes())
-    assert s.message == "error: white.png: image is blank (every pixel has the same colour); nothing to trace"
+    assert s.message == "error: white.png: image is blank (one colour, #ffffff, in every pixel); nothing to trace"
     assert s.shown is not None
 
 
