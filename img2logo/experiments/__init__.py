@@ -76,17 +76,18 @@ class SavedTable:
 
     Jupyter displays it without the index: the CSV has no index column, so
     neither has the table shown (a row number beside a ``t`` or ``image``
-    column only repeats it). Floats are shown as in the CSV (6 significant digits).
+    column only repeats it). Floats are shown with ``TABLE_DIGITS`` significant
+    digits (:func:`rounded`); the CSV keeps 6.
     """
 
     path: Path | None
     table: Any
 
     def _repr_html_(self) -> str:
-        return self._shown().to_html(index=False, float_format=lambda v: f"{v:.6g}", na_rep="")
+        return self._shown().to_html(index=False, float_format=rounded, na_rep="")
 
     def __repr__(self) -> str:
-        return self._shown().to_string(index=False, float_format=lambda v: f"{v:.6g}", na_rep="")
+        return self._shown().to_string(index=False, float_format=rounded, na_rep="")
 
     def _shown(self) -> Any:
         """The table with nullable integer columns as floats, so a missing value shows empty (as in the CSV)."""
@@ -97,16 +98,69 @@ class SavedTable:
         return self.table.astype({c: "float64" for c in nullable}) if nullable else self.table
 
 
+# --------------------------------------------------------------------------- the kit's figure style
+# Figure size, font size and dpi are set together here, for every notebook: what a
+# reader sees is pt * dpi / 72 * shrink px, where JupyterLab shrinks a figure wider
+# than its output area to that width.
+#: Resolution of the kit's figures, dots per inch (the PNG writer's).
+FIGURE_DPI: float = 100.0
+#: Width of a notebook's output area in JupyterLab 4 in a 1366 x 768 browser window with
+#: the file browser open, px (measured by tests/test_experiments_explore_browser.py's
+#: JupyterLab set-up; wider windows shrink figures less).
+NOTEBOOK_WIDTH_PX: float = 1000.0
+#: Smallest text a figure shows on screen at that width, px (about 7.5 pt at 1:1: the
+#: smallest size set for reading, not only for recognising, on a screen).
+MIN_TEXT_PX: float = 10.0
+#: Significant digits of the floats a notebook's table shows (a timing to 1 ms of a second,
+#: an error to 0.01 px of ~1 px); the CSV files keep 6.
+TABLE_DIGITS: int = 3
+
+
+def rounded(value: float) -> str:
+    """``value`` with ``TABLE_DIGITS`` significant digits, positional, trailing zeros dropped (12.0 -> "12")."""
+    import math
+
+    import numpy as np
+
+    v = float(value)
+    if not math.isfinite(v):
+        return str(v)
+    if v != 0.0 and not 1e-4 <= abs(v) < 1e7:
+        return np.format_float_scientific(v, precision=TABLE_DIGITS - 1, unique=False, trim="-")
+    return np.format_float_positional(v, precision=TABLE_DIGITS, unique=False, fractional=False, trim="-")
+
+
+def make_legible(fig: Any, *, dpi: float = FIGURE_DPI) -> Any:
+    """Raise every text of ``fig`` to at least ``MIN_TEXT_PX`` on screen in a notebook; return ``fig``.
+
+    A figure ``w`` inches wide saved at ``dpi`` is shown ``min(1, NOTEBOOK_WIDTH_PX /
+    (w * dpi))`` times its pixel size, so a text needs at least ``MIN_TEXT_PX * 72 /
+    (dpi * that)`` points. Texts already larger are left alone; constrained layout
+    (the kit's figures use it) makes room for the larger ones when the figure is saved.
+    """
+    from matplotlib.text import Text
+
+    shown = min(1.0, NOTEBOOK_WIDTH_PX / (fig.get_figwidth() * dpi))
+    least = MIN_TEXT_PX * 72.0 / (dpi * shown)
+    for text in fig.findobj(Text):
+        if text.get_text() and text.get_fontsize() < least:
+            text.set_fontsize(least)
+    return fig
+
+
 def save_figure(fig: Any, path: str | os.PathLike[str], *, dpi: float | None = None) -> SavedFigure:
     """Write ``fig`` with :func:`img2logo.writers.save_figure` and return it for display.
 
     The last expression of a notebook cell, it shows the written file inline.
-    ``dpi`` None is the writer's default.
+    ``dpi`` None is ``FIGURE_DPI``. The figure's texts are first raised to a
+    legible size (:func:`make_legible`).
     """
     from .. import writers
 
-    kwargs = {} if dpi is None else {"dpi": dpi}
-    return SavedFigure(Path(writers.save_figure(fig, path, **kwargs)))
+    d = FIGURE_DPI if dpi is None else dpi
+    # A browser shows an SVG's points at 96 / 72 px each, whatever the dpi.
+    make_legible(fig, dpi=d if Path(path).suffix.lower() != ".svg" else 96.0)
+    return SavedFigure(Path(writers.save_figure(fig, path, dpi=d)))
 
 
 def save_table(table: Any, path: str | os.PathLike[str]) -> SavedTable:
@@ -374,7 +428,9 @@ def write_provenance(executed: str | os.PathLike[str]) -> Path:
     It records the git commit of the repository (and whether the work tree had
     uncommitted changes), the parameters papermill injected and the defaults of
     the notebook's parameters cell, and the date of the run (UTC): what a
-    reader needs to know where a committed figure came from.
+    reader needs to know where a committed figure came from; and the
+    :func:`environment` it ran in (Python, the numerical packages, the
+    platform), what explains a figure that differs in its last digits elsewhere.
     """
     import datetime
     import json
@@ -402,7 +458,59 @@ def write_provenance(executed: str | os.PathLike[str]) -> Path:
         "parameters_cell": defaults,
         "date_utc": datetime.datetime.now(datetime.UTC).strftime("%Y-%m-%dT%H:%M:%SZ"),
         "duration_s": round(float(meta.get("duration") or 0.0), 1),
+        **environment(),
     }
     target = figure_dir(path.stem) / "provenance.json"
     text = json.dumps(record, indent=2, sort_keys=True) + "\n"
     return atomic_write(target, lambda f: f.write(text.encode("utf-8")))
+
+
+#: The distributions whose versions :func:`environment` records: those that compute the figures.
+PROVENANCE_PACKAGES: tuple[str, ...] = (
+    "numpy",
+    "scipy",
+    "opencv-contrib-python-headless",
+    "scikit-image",
+    "matplotlib",
+    "numba",
+    "shapely",
+    "pandas",
+    "pillow",
+)
+
+
+def environment() -> dict[str, Any]:
+    """What a run depended on besides the code: ``python``, ``packages`` and ``platform``.
+
+    ``packages`` maps each distribution of :data:`PROVENANCE_PACKAGES` to its
+    installed version (``None`` when it is not installed), and ``opencv`` to
+    the version OpenCV itself reports (the wheel's name varies); ``platform``
+    holds the machine, the system and its release, and the CPU count.
+    """
+    import importlib.metadata
+    import platform
+
+    packages: dict[str, str | None] = {}
+    for name in PROVENANCE_PACKAGES:
+        try:
+            packages[name] = importlib.metadata.version(name)
+        except importlib.metadata.PackageNotFoundError:
+            packages[name] = None
+    try:
+        import cv2
+
+        packages["opencv"] = str(cv2.__version__)
+    except ImportError:  # pragma: no cover - a dependency
+        packages["opencv"] = None
+    return {
+        "python": platform.python_version(),
+        "python_implementation": platform.python_implementation(),
+        "packages": packages,
+        "platform": {
+            "system": platform.system(),
+            "release": platform.release(),
+            "machine": platform.machine(),
+            "platform": platform.platform(),
+            "cpu_count": os.cpu_count(),
+        },
+    }
