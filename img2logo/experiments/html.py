@@ -27,17 +27,18 @@ MATHJAX_DIR = "mathjax"
 # TeX in, SVG out: MathJax's SVG output draws the glyphs from its own JavaScript font
 # data, so nothing is fetched as a web font (a file:// page may not load one).
 _MATHJAX_CONFIG = "TeX-AMS-MML_HTMLorMML-full,Safe"
-_SVG_OUTPUT = (
+_FONT_CONFIG = (
     '<script type="text/x-mathjax-config">'
-    'MathJax.Hub.Config({jax: ["input/TeX", "output/SVG"], menuSettings: {renderer: "SVG"}, '
-    'SVG: {font: "TeX"}, showMathMenu: false, messageStyle: "none"});'
+    'MathJax.Hub.Config({"HTML-CSS": {availableFonts: [], preferredFont: null, webFont: "STIX-Web", '
+    'imageFont: null}, showMathMenu: false, messageStyle: "none"});'
     "</script>"
 )
 _EXTERNAL = re.compile(r"""(?:src|href)\s*=\s*["'](?:https?:)?//[^"']+["']|@import\s+url\(\s*["']?(?:https?:)?//""")
 
 
 def external_references(html: str) -> list[str]:
-    """The network references of a page: ``src``/``href`` to http(s) or ``//`` URLs, CSS ``@import`` of one.
+    """The network references of a page: ``src``/``href`` to http(s) or ``//`` URLs, CSS ``@import`` of
+    one, and URL strings in scripts.
 
     Links a reader clicks (``<a href>``) are not loads and are not listed.
     """
@@ -47,6 +48,8 @@ def external_references(html: str) -> list[str]:
         if html[start : start + 2].lower() == "<a":
             continue
         found.append(m.group(0))
+    for script in re.findall(r"<script\b[^>]*>(.*?)</script>", html, flags=re.S | re.I):
+        found.extend(re.findall(r"""["'](?:https?:)?//[^"']+["']""", script))  # a URL a script may load
     return found
 
 
@@ -97,7 +100,7 @@ def export_html(notebook: str | os.PathLike[str], output_dir: str | os.PathLike[
     nb.metadata.get("widgets", {}).pop("application/vnd.jupyter.widget-state+json", None)
     body, _ = exporter.from_notebook_node(nb)
     body = _strip_network_scripts(body)
-    body = body.replace("<head>", "<head>\n" + _SVG_OUTPUT, 1)
+    body = body.replace("<head>", "<head>\n" + _FONT_CONFIG, 1)
     left = external_references(body)
     if left:
         raise InvalidParameterError(f"{source.name}: the page would still load from the network: {left[0]}")
@@ -108,6 +111,31 @@ def _strip_network_scripts(html: str) -> str:
     """Remove ``<script src>`` tags the settings left empty or on a CDN, and the widget state and manager."""
     html = re.sub(r"<script[^>]*\bsrc\s*=\s*[\"'][\"'][^>]*>\s*</script>", "", html)
     html = re.sub(r"<script[^>]*\bsrc\s*=\s*[\"'](?:https?:)?//[^\"']+[\"'][^>]*>\s*</script>", "", html)
-    return re.sub(
-        r'<script type="application/vnd\.jupyter\.widget-state\+json">.*?</script>', "", html, flags=re.S
-    )
+    # The template's mermaid loader imports its library from a CDN when a diagram is on the
+    # page; the notebooks have none.
+    html = re.sub(r'<script type="module">(?:(?!</script>).)*mermaid(?:(?!</script>).)*</script>', "", html, flags=re.S)
+    return re.sub(r'<script type="application/vnd\.jupyter\.widget-state\+json">.*?</script>', "", html, flags=re.S)
+
+
+def main(argv: list[str] | None = None) -> int:
+    """``python -m img2logo.experiments.html NOTEBOOK.ipynb OUTPUT_DIR`` (``make html``); errors in one line."""
+    import sys
+
+    args = sys.argv[1:] if argv is None else argv
+    if len(args) != 2:
+        print("usage: python -m img2logo.experiments.html NOTEBOOK.ipynb OUTPUT_DIR", file=sys.stderr)
+        return 2
+    try:
+        path = export_html(args[0], args[1])
+    except ImportError as exc:
+        print(f"html: error: {exc.name} is missing: install the extra [html] (make html does)", file=sys.stderr)
+        return 2
+    except InvalidParameterError as exc:
+        print(f"html: error: {exc}", file=sys.stderr)
+        return 2
+    print(f"wrote {path}")
+    return 0
+
+
+if __name__ == "__main__":  # pragma: no cover
+    raise SystemExit(main())
