@@ -357,7 +357,7 @@ def _run(args: argparse.Namespace, say) -> int:
         say(result.symmetry.description)
     say(
         f"segment graph: {graph.n_segments} segments, {graph.n_junctions} nodes "
-        f"({int((graph.valence >= 3).sum())} junctions), {graph.n_components()} components"
+        f"({_count(int((graph.valence >= 3).sum()), 'junction')}), {_count(graph.n_components(), 'component')}"
     )
     say(
         f"levels: {len(prog.levels)}, arcs {prog.arc_counts[0]} -> {prog.arc_counts[-1]}, "
@@ -367,6 +367,11 @@ def _run(args: argparse.Namespace, say) -> int:
     level = _pick_level(result, args.level)
     _write_outputs(result, level, args, say, fill_spec)
     return 0
+
+
+def _count(n: int, noun: str) -> str:
+    """``"1 junction"``, ``"3 junctions"``."""
+    return f"{n} {noun}" if n == 1 else f"{n} {noun}s"
 
 
 def _ladder_text(prog) -> str:

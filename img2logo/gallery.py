@@ -90,9 +90,9 @@ def gallery_html(report: BatchReport, output_dir: str | os.PathLike[str], *, tit
                 f'<td class="pic">{logo}</td><td class="num">{r.arcs}</td><td class="num">{r.similarity:.2f}</td>'
                 f'<td class="num">{r.levels}</td><td class="num">{r.seconds:.1f}</td><td>{files}</td>'
             )
-        elif path in failures:
+        elif path in failures:  # its input may not be an image at all: named, not shown
             cells = (
-                f'<td>{name}</td><td class="pic">{source}</td>'
+                f'<td>{name}</td><td class="pic">{name}</td>'
                 f'<td class="error" colspan="6">failed: {esc(failures[path].message)}</td>'
             )
         else:

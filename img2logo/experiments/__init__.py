@@ -117,7 +117,7 @@ TABLE_DIGITS: int = 3
 
 
 def rounded(value: float) -> str:
-    """``value`` with ``TABLE_DIGITS`` significant digits, positional, trailing zeros dropped (12.0 -> "12")."""
+    """``value`` with ``TABLE_DIGITS`` significant digits (but all its units), trailing zeros dropped (12.0 -> "12")."""
     import math
 
     import numpy as np
@@ -127,6 +127,8 @@ def rounded(value: float) -> str:
         return str(v)
     if v != 0.0 and not 1e-4 <= abs(v) < 1e7:
         return np.format_float_scientific(v, precision=TABLE_DIGITS - 1, unique=False, trim="-")
+    if abs(v) >= 10 ** (TABLE_DIGITS - 1):  # never round the units away (1234.5 -> "1234", not "1230")
+        return f"{v:.0f}"
     return np.format_float_positional(v, precision=TABLE_DIGITS, unique=False, fractional=False, trim="-")
 
 
@@ -142,6 +144,11 @@ def make_legible(fig: Any, *, dpi: float = FIGURE_DPI) -> Any:
 
     shown = min(1.0, NOTEBOOK_WIDTH_PX / (fig.get_figwidth() * dpi))
     least = MIN_TEXT_PX * 72.0 / (dpi * shown)
+    for ax in fig.axes:  # tick labels made when the figure is drawn take the axis' tick label size
+        for axis in (ax.xaxis, ax.yaxis):
+            ticks = axis.get_major_ticks()
+            if ticks and ticks[0].label1.get_fontsize() < least:
+                axis.set_tick_params(which="both", labelsize=least)
     for text in fig.findobj(Text):
         if text.get_text() and text.get_fontsize() < least:
             text.set_fontsize(least)
@@ -272,6 +279,7 @@ def sweep(
     repeats: int = 1,
     pipeline: bool = False,
     kind: str = "auto",
+    progress: bool | None = None,
     **options: Any,
 ) -> list[Run]:
     """Run every image with every combination of the ``grid`` and every variant: the notebooks' one sweep.
@@ -301,6 +309,11 @@ def sweep(
         lines found again for each run).
     kind : str
         The kind of input, or ``"auto"`` (for images not yet preprocessed).
+    progress : bool, optional
+        Show a bar of the runs done (``tqdm.auto``: a widget in Jupyter, text
+        elsewhere), removed when the sweep ends. None (default): shown unless
+        the environment variable ``IMG2LOGO_PROGRESS`` is ``"0"`` (papermill's
+        runs for ``make figures``: no bar in the executed notebooks).
     **options
         Keywords shared by every run.
 
@@ -342,17 +355,33 @@ def sweep(
         graph = build_segment_graph(ex.lines, **shape) if shape else ex.graph
         return dataclasses.replace(ex, graph=graph, progression=optimize(graph, **settings))
 
-    if repeats > 1 and jobs:
-        run(jobs[0][0], dict(jobs[0][2]))
-    seconds: list[list[float]] = [[] for _ in jobs]
-    done: list[Run] = []
-    for _ in range(repeats):
-        done = []
-        for (ex, label, settings), times in zip(jobs, seconds, strict=True):
-            start = time.perf_counter()
-            result = run(ex, dict(settings))
-            times.append(time.perf_counter() - start)
-            done.append(dataclasses.replace(result, variant=label, settings=MappingProxyType(settings)))
+    if progress is None:
+        from .runner import PROGRESS_ENV
+
+        progress = os.environ.get(PROGRESS_ENV, "1") != "0"
+    bar = None
+    if progress and jobs:
+        from tqdm.auto import tqdm
+
+        bar = tqdm(total=len(jobs) * repeats, desc="runs", unit="run", leave=False)
+    try:
+        if repeats > 1 and jobs:
+            run(jobs[0][0], dict(jobs[0][2]))
+        seconds: list[list[float]] = [[] for _ in jobs]
+        done: list[Run] = []
+        for _ in range(repeats):
+            done = []
+            for (ex, label, settings), times in zip(jobs, seconds, strict=True):
+                start = time.perf_counter()
+                result = run(ex, dict(settings))
+                times.append(time.perf_counter() - start)
+                done.append(dataclasses.replace(result, variant=label, settings=MappingProxyType(settings)))
+                if bar is not None:
+                    bar.set_postfix_str(ex.name if isinstance(ex, Run) else Path(str(ex)).name, refresh=False)
+                    bar.update(1)
+    finally:
+        if bar is not None:
+            bar.close()
     return [dataclasses.replace(r, seconds=tuple(t)) for r, t in zip(done, seconds, strict=True)]
 
 

@@ -27,6 +27,9 @@ from typing import Any
 from ..errors import Img2LogoError, InvalidParameterError
 from .paths import data_path, eval_path, kit_module
 
+#: Environment variable: "0" turns off the kit's progress bars (set while papermill runs a notebook).
+PROGRESS_ENV = "IMG2LOGO_PROGRESS"
+
 
 class NotebookParameterError(InvalidParameterError):
     """A notebook parameter has a bad value or an unknown name.
@@ -249,6 +252,9 @@ def run_notebook(
         raise NotebookParameterError(
             f"{nb.name}: no parameter {', '.join(unknown)}; its parameters are {', '.join(known)}"
         )
+    # A run for the record draws no progress bar into the executed notebook (sweep(progress=None)).
+    previous = os.environ.get(PROGRESS_ENV)
+    os.environ[PROGRESS_ENV] = "0"
     try:
         papermill.execute_notebook(
             str(nb),
@@ -265,6 +271,11 @@ def run_notebook(
         if err.ename == NotebookParameterError.__name__:
             raise NotebookParameterError(message) from None
         raise NotebookError(f"{message} (cell {err.exec_count}; the traceback is in {output})") from None
+    finally:
+        if previous is None:
+            os.environ.pop(PROGRESS_ENV, None)
+        else:
+            os.environ[PROGRESS_ENV] = previous
     return Path(output)
 
 
