@@ -9,13 +9,14 @@ KIT    := $(VENV)/.installed-kit
 LAB    := $(VENV)/.installed-lab
 BROWSER := $(VENV)/.installed-browser
 HTMLKIT := $(VENV)/.installed-html
+DOCSKIT := $(VENV)/.installed-docs
 LIB    := $(wildcard img2logo/*.py img2logo/*/*.py) pyproject.toml
 DATA   := $(wildcard data/*.png)
 NB     ?= $(basename $(notdir $(wildcard notebooks/*.ipynb)))
 RUNS   := $(patsubst %,build/notebooks/%.ipynb,$(NB))
 
 .DELETE_ON_ERROR:
-.PHONY: install test test-browser lab lint format bench quality figures figures-smoke html clean FORCE
+.PHONY: install test test-browser lab lint format bench quality figures figures-smoke html docs clean FORCE
 
 install: $(STAMP)
 
@@ -46,6 +47,10 @@ $(LAB): pyproject.toml $(KIT)
 
 $(HTMLKIT): pyproject.toml $(KIT)
 	$(BIN)/python -m pip install --quiet -e '.[dev,kit,html]'
+	@touch $@
+
+$(DOCSKIT): pyproject.toml $(KIT)
+	$(BIN)/python -m pip install --quiet -e '.[dev,kit,docs]'
 	@touch $@
 
 $(BROWSER): pyproject.toml $(KIT)
@@ -103,6 +108,12 @@ html: $(patsubst %,build/html/%.html,$(NB))
 build/html/%.html: build/notebooks/%.ipynb | $(HTMLKIT)
 	@mkdir -p $(dir $@)
 	@$(BIN)/python -m img2logo.experiments.html $< $(dir $@)
+
+# The docs site in build/docs/ (Sphinx, numpydoc, myst-parser: the extra [docs]): the README as the
+# guide, the API reference from the docstrings, and the pages of make html when they exist.
+docs: | $(DOCSKIT)
+	$(BIN)/sphinx-build -q -b html docs build/docs
+	@echo "wrote build/docs/index.html"
 
 # The same notebooks with their smoke parameters (img2logo.experiments.runner.SMOKE): small and
 # fast, outputs in build/smoke/ (never over figures/).

@@ -1,14 +1,16 @@
-"""Result files: the ``img2logo.abstraction/1`` JSON document, SVG and PNG.
+"""Result files: the ``img2logo.abstraction/1`` JSON document, SVG, PNG and PDF.
 
 The JSON document is the stable record of a result (its contract, made and
 checked by :mod:`img2logo.contract`). The SVG is for designers: one exact
 elliptical-arc ``<path>`` per arc in an "Arcs" layer (path data by
-:mod:`img2logo.svg_path`), and the golden circles in a hidden "Golden circles"
-construction layer that Inkscape and Illustrator show as a layer to toggle, and,
+:mod:`img2logo.svg_path`), and the golden circles in a hidden, locked and clipped
+"Golden circles" construction layer that Inkscape shows as a layer to toggle, and,
 when given, the coloured regions of :mod:`img2logo.fills` (paper Fig. 18) in a
 "Fills" layer under everything else (also the document's ``fills`` key and the
-PNG). The PNGs are quick looks, drawn with :mod:`img2logo.plotting` on
-matplotlib's Agg canvas, exactly ``width`` x ``height`` px of the input image.
+PNG). The PNGs are drawn with :mod:`img2logo.plotting` on matplotlib's Agg
+canvas, ``width`` x ``height`` px of the input image (times a scale), over the
+faded input, on white or transparent; the PDF is vector, drawn by matplotlib's
+PDF backend, 1 px = 1 pt.
 
 Every writer is atomic and deterministic: the bytes go to a temporary file in the
 target's directory that is then renamed over the target (:func:`os.replace`), so a

@@ -59,7 +59,7 @@ def test_tables_are_shown_without_their_index(tmp_path):
     shown = save_table(table, tmp_path / "t.csv")
     assert shown.path.read_text() == "t,E^s (px)\n0,2.9164\n1,3.18123\n"
     html = shown._repr_html_()
-    assert "<th>t</th>" in html and "3.18123" in html
+    assert "<th>t</th>" in html and "<td>3.18</td>" in html  # shown to 3 digits, the CSV keeps 6
     assert html.count("<tr") == 3  # header and two rows, no index column header row
     assert "<th>0</th>" not in html  # no index cells
     assert repr(shown).splitlines()[0].split() == ["t", "E^s", "(px)"]
