@@ -12,7 +12,7 @@ import img2logo  # noqa: E402
 
 project = "img2logo"
 author = "The img2logo developers"
-copyright = "2026, The img2logo developers"  # noqa: A001
+copyright = "2026, The img2logo developers"
 release = img2logo.__version__
 version = release
 
