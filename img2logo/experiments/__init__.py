@@ -104,9 +104,9 @@ class SavedTable:
 # than its output area to that width.
 #: Resolution of the kit's figures, dots per inch (the PNG writer's).
 FIGURE_DPI: float = 100.0
-#: Width of a notebook's output area assumed for a 1366 x 768 browser window, px: a make html
-#: page there has 1244 px (measured in chromium); JupyterLab's side bar takes more of it.
-NOTEBOOK_WIDTH_PX: float = 1000.0
+#: Width of a notebook's output area in JupyterLab 4 in a 1366 x 768 browser window with its
+#: file browser open, px (measured in chromium; a make html page there has 1244 px).
+NOTEBOOK_WIDTH_PX: float = 934.0
 #: Smallest text a figure shows on screen at that width, px (about 7.5 pt at 1:1: the
 #: smallest size set for reading, not only for recognising, on a screen).
 MIN_TEXT_PX: float = 10.0

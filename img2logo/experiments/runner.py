@@ -230,7 +230,8 @@ def run_notebook(
     Returns
     -------
     Path
-        ``output``.
+        ``output``, its kernelspec's display name the kernel's (so JupyterLab
+        does not open it marked modified).
 
     Raises
     ------
@@ -276,7 +277,29 @@ def run_notebook(
             os.environ.pop(PROGRESS_ENV, None)
         else:
             os.environ[PROGRESS_ENV] = previous
+    _name_the_kernel(Path(output), kernel_name)
     return Path(output)
+
+
+def _name_the_kernel(executed: Path, kernel_name: str | None) -> None:
+    """Give the executed copy the kernelspec's display name, as JupyterLab does when it opens it.
+
+    papermill keeps the source's ``"display_name"``; JupyterLab sets the running
+    kernel's on opening, and a notebook whose metadata changed opens marked
+    modified.
+    """
+    import nbformat
+    from jupyter_client.kernelspec import KernelSpecManager, NoSuchKernel
+
+    nb = nbformat.read(executed, as_version=4)
+    spec = nb.metadata.setdefault("kernelspec", {})
+    try:
+        shown = KernelSpecManager().get_kernel_spec(kernel_name or spec.get("name") or "python3").display_name
+    except NoSuchKernel:
+        return
+    if spec.get("display_name") != shown:
+        spec["display_name"] = shown
+        nbformat.write(nb, executed)
 
 
 def _value(text: str) -> Any:
