@@ -344,13 +344,8 @@ def write_png(
     pathlib.Path
         The path written.
     """
-    if not isinstance(abstraction, Abstraction):
-        raise InvalidParameterError(f"abstraction must be an Abstraction, got {type(abstraction).__name__}")
-    fill_list = check_fills(fills)
-    width = check_integer(abstraction.width, "width", 1)
-    height = check_integer(abstraction.height, "height", 1)
+    fill_list, width, height, sw = _drawing(abstraction, fills, stroke_width)
     d = check_positive(dpi, "dpi")
-    sw = default_stroke_width(width, height) if stroke_width is None else check_positive(stroke_width, "stroke_width")
     if background is None:
         background = "white" if image is None else "input"
     check_choice(background, "background", PNG_BACKGROUNDS)
@@ -421,12 +416,7 @@ def write_pdf(
 
     from .plotting import draw_fills, frame_image
 
-    if not isinstance(abstraction, Abstraction):
-        raise InvalidParameterError(f"abstraction must be an Abstraction, got {type(abstraction).__name__}")
-    fill_list = check_fills(fills) or []
-    width = check_integer(abstraction.width, "width", 1)
-    height = check_integer(abstraction.height, "height", 1)
-    sw = default_stroke_width(width, height) if stroke_width is None else check_positive(stroke_width, "stroke_width")
+    fill_list, width, height, sw = _drawing(abstraction, fills, stroke_width)
     target = as_path(path)
     with matplotlib.style.context("default"):
         fig = Figure(figsize=(width / 72.0, height / 72.0), dpi=72.0, facecolor="white")
@@ -509,6 +499,19 @@ def write_segment_graph_png(
 
 
 # --- helpers -----------------------------------------------------------------------
+
+
+def _drawing(
+    abstraction: Abstraction, fills: Sequence[Fill] | None, stroke_width: float | None
+) -> tuple[list[Fill], int, int, float]:
+    """The checked inputs of a drawn file: the fills (a list), width and height (px), the stroke width (px)."""
+    if not isinstance(abstraction, Abstraction):
+        raise InvalidParameterError(f"abstraction must be an Abstraction, got {type(abstraction).__name__}")
+    fill_list = check_fills(fills) or []
+    width = check_integer(abstraction.width, "width", 1)
+    height = check_integer(abstraction.height, "height", 1)
+    sw = default_stroke_width(width, height) if stroke_width is None else check_positive(stroke_width, "stroke_width")
+    return fill_list, width, height, sw
 
 
 def _svg_fill_layer(fills: Sequence[Fill]) -> list[str]:
