@@ -47,7 +47,7 @@ EXAMPLES = """\
 examples:
   img2logo cat.png --svg cat.svg
       the logo as SVG, to open in Inkscape or Illustrator: the arcs on layer "Arcs",
-      the golden circles they lie on on a hidden, locked layer "Golden circles"
+      and the golden circles they come from on a hidden, locked layer "Golden circles"
   img2logo cat.png --png cat-logo.png --png-background transparent --png-scale 4
       a clean logo (no photo under it) four times the image's size, for a layout
   img2logo cat.png --pdf cat.pdf
