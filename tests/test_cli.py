@@ -270,11 +270,13 @@ def test_batch_command_errors_exit_two(tmp_path, capsys, make, args, message):
 def test_no_output_is_refused_before_any_work(tmp_path, capsys, monkeypatch):
     """Without an output flag nothing would be written: one line, exit 2, before the image is even read."""
     import img2logo.loading
+    import img2logo.pipeline  # imported first: it binds load_image when it is imported
 
     def never(*a, **k):
         raise AssertionError("the image was loaded")
 
     monkeypatch.setattr(img2logo.loading, "load_image", never)
+    monkeypatch.setattr(img2logo.pipeline, "abstract", never)
     assert main([str(DATA / "drawing-fish.png")]) == EXIT_ERROR
     err = capsys.readouterr().err
     assert err == (
