@@ -675,7 +675,7 @@ def test_a_control_character_in_a_name_cannot_forge_a_line(tmp_path, capsys):
     import shutil
 
     forged = tmp_path / "a\nimg2logo: error: forged.png"
-    assert main([str(forged)]) == EXIT_ERROR
+    assert main([str(forged), "--json", str(tmp_path / "f.json")]) == EXIT_ERROR
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "a\\nimg2logo: error: forged.png" in err
     named = tmp_path / "b\r\x1b[2Kc.png"
@@ -686,14 +686,15 @@ def test_a_control_character_in_a_name_cannot_forge_a_line(tmp_path, capsys):
 
 
 def test_subject_options_on_a_drawing_are_ignored_with_one_warning(tmp_path, capsys):
-    assert main([str(DATA / "drawing-leaf.png"), "--subject", "10,10,100,100", "--foreground", "none"]) == 0
+    out = ["--json", str(tmp_path / "leaf.json")]
+    assert main([str(DATA / "drawing-leaf.png"), "--subject", "10,10,100,100", "--foreground", "none", *out]) == 0
     warned = [line for line in capsys.readouterr().err.splitlines() if line.startswith("img2logo: warning: ")]
     assert warned == [
         "img2logo: warning: --subject 10,10,100,100 and --foreground none are ignored: the image is drawing "
         f"({warned[0].split('drawing (', 1)[1].split('), and')[0]}), and only a photo has a subject to find "
         "(give --kind photo to treat it as one)"
     ]
-    assert main([str(DATA / "drawing-leaf.png")]) == 0
+    assert main([str(DATA / "drawing-leaf.png"), *out]) == 0
     assert "warning" not in capsys.readouterr().err  # not given: nothing to say
 
 
