@@ -10,13 +10,15 @@ LAB    := $(VENV)/.installed-lab
 BROWSER := $(VENV)/.installed-browser
 STUDIO := $(VENV)/.installed-studio
 PORT   ?= 8866
+HTMLKIT := $(VENV)/.installed-html
+DOCSKIT := $(VENV)/.installed-docs
 LIB    := $(wildcard img2logo/*.py img2logo/*/*.py) pyproject.toml
 DATA   := $(wildcard data/*.png)
 NB     ?= $(basename $(notdir $(wildcard notebooks/*.ipynb)))
 RUNS   := $(patsubst %,build/notebooks/%.ipynb,$(NB))
 
 .DELETE_ON_ERROR:
-.PHONY: install test test-browser lab studio lint format bench quality figures figures-smoke clean FORCE
+.PHONY: install test test-browser lab studio lint format bench quality figures figures-smoke html docs clean FORCE
 
 install: $(STAMP)
 
@@ -36,8 +38,21 @@ $(KIT): pyproject.toml $(STAMP)
 	$(BIN)/python -m pip install --quiet -e '.[dev,kit]'
 	@touch $@
 
+# JupyterLab's settings for make lab (its app settings, inside .venv/): no news pop-up, no update check.
+LAB_OVERRIDES := $(VENV)/share/jupyter/lab/settings/overrides.json
+
 $(LAB): pyproject.toml $(KIT)
 	$(BIN)/python -m pip install --quiet -e '.[dev,kit,lab]'
+	@mkdir -p $(dir $(LAB_OVERRIDES))
+	@echo '{"@jupyterlab/apputils-extension:notification": {"fetchNews": "false", "checkForUpdates": false}}' > $(LAB_OVERRIDES)
+	@touch $@
+
+$(HTMLKIT): pyproject.toml $(KIT)
+	$(BIN)/python -m pip install --quiet -e '.[dev,kit,html]'
+	@touch $@
+
+$(DOCSKIT): pyproject.toml $(KIT)
+	$(BIN)/python -m pip install --quiet -e '.[dev,kit,docs]'
 	@touch $@
 
 $(BROWSER): pyproject.toml $(KIT)
@@ -60,7 +75,8 @@ studio: $(STUDIO)
 
 # JupyterLab on the notebooks; Ctrl-C stops it. Options: make lab LAB_ARGS="--no-browser --port 8890"
 lab: $(LAB)
-	$(BIN)/jupyter lab --notebook-dir=notebooks $(if $(filter 0,$(shell id -u)),--allow-root) $(LAB_ARGS)
+	$(BIN)/jupyter lab --notebook-dir=notebooks $(if $(filter 0,$(shell id -u)),--allow-root) \
+	  --LabApp.news_url= --LabApp.check_for_updates_class=jupyterlab.NeverCheckForUpdate $(LAB_ARGS)
 
 lint: $(STAMP)
 	$(BIN)/ruff check img2logo tests benchmarks
@@ -94,6 +110,21 @@ build/notebooks/%.ipynb: notebooks/%.ipynb $(LIB) $(DATA) $(if $(PARAMS),FORCE) 
 	@$(BIN)/python -m img2logo.experiments $< $(@:.ipynb=.part.ipynb) $(PARAMS)
 	@mv $(@:.ipynb=.part.ipynb) $@
 	@$(BIN)/python -c "from img2logo.experiments import write_provenance; write_provenance('$@')"
+
+# The executed notebooks as HTML pages that read offline (figures embedded, math by a local
+# MathJax, nothing loaded from the network): build/html/<notebook>.html. One alone:
+# make html NB=01_overview (it runs the notebook first if make figures would).
+html: $(patsubst %,build/html/%.html,$(NB))
+
+build/html/%.html: build/notebooks/%.ipynb | $(HTMLKIT)
+	@mkdir -p $(dir $@)
+	@$(BIN)/python -m img2logo.experiments.html $< $(dir $@)
+
+# The docs site in build/docs/ (Sphinx, numpydoc, myst-parser: the extra [docs]): the README as the
+# guide, the API reference from the docstrings, and the pages of make html when they exist.
+docs: | $(DOCSKIT)
+	$(BIN)/sphinx-build -q -b html docs build/docs
+	@echo "wrote build/docs/index.html"
 
 # The same notebooks with their smoke parameters (img2logo.experiments.runner.SMOKE): small and
 # fast, outputs in build/smoke/ (never over figures/).

@@ -2,8 +2,9 @@
 
 :func:`run_batch` abstracts a list of images with :func:`img2logo.abstract` and
 writes, for each, ``OUTPUT_DIR/<stem>.svg``, ``.json`` and ``.png`` (the same files
-as ``img2logo INPUT --svg --json --png``), then ``OUTPUT_DIR/summary.csv``: one row
-per image (``image, kind, arcs, levels, similarity, symmetry, seconds, error``; a text
+as ``img2logo INPUT --svg --json --png``), then ``OUTPUT_DIR/index.html`` (a gallery,
+:mod:`img2logo.gallery`) and ``OUTPUT_DIR/summary.csv``: one row per image
+(``image, kind, arcs, levels, similarity, symmetry, seconds, error``; a text
 cell that a spreadsheet would run as a formula is quoted). A file that
 fails (unreadable, blank, ...) does not stop the others: it is reported in
 :attr:`BatchReport.failures` with its one-line error message, and its outputs of an
@@ -529,7 +530,8 @@ def run_batch(
         Colour the regions (paper Fig. 18): the ``--fill`` option's syntax,
         e.g. ``"auto"`` (:func:`img2logo.fills.parse_fill_option`).
     summary : bool
-        Write ``output_dir/summary.csv`` (:meth:`BatchReport.to_frame`).
+        Write ``output_dir/summary.csv`` (:meth:`BatchReport.to_frame`) and
+        ``output_dir/index.html``, the gallery of inputs and logos (:mod:`img2logo.gallery`).
     options : Options, optional
         The options of every image (:class:`~img2logo.options.Options`).
     **settings
@@ -591,11 +593,15 @@ def run_batch(
         try:
             results = _run_tasks(tasks, executor, jobs, progress, on_result=write, notes=notes)
             report = _report(inputs, results, written, notes)
-            if summary:
+            if summary:  # the table and the gallery (img2logo.gallery) appear together, or neither
+                from ._io import output_set
+                from .gallery import write_gallery
                 from .writers import write_table
 
-                path = write_table(_csv_safe(report.to_frame()), out_dir / "summary.csv")
-                manifest.add(path.name)
+                with output_set():
+                    path = write_table(_csv_safe(report.to_frame()), out_dir / "summary.csv")
+                    gallery = write_gallery(report, out_dir)
+                manifest.update((path.name, gallery.name))
                 report = dataclasses.replace(report, summary_path=str(path))
         finally:
             _write_manifest(out_dir, manifest)  # also after an interrupt: what this run wrote is recorded
@@ -917,7 +923,7 @@ def _check_targets(
 
     if out_dir.exists() and not out_dir.is_dir():
         raise InvalidParameterError(f"output folder {out_dir} is a file, not a folder")
-    names = [f"{stem}.{fmt}" for stem in stems for fmt in formats] + (["summary.csv"] if summary else [])
+    names = [f"{stem}.{fmt}" for stem in stems for fmt in formats] + (["summary.csv", "index.html"] if summary else [])
     targets = {str(out_dir / name): out_dir / name for name in names}
     try:
         check_output_paths(targets, inputs, {"output folder": out_dir})

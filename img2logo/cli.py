@@ -1,6 +1,6 @@
 """The ``img2logo`` command line.
 
-``img2logo INPUT [--svg OUT.svg] [--json OUT.json] [--png OUT.png]
+``img2logo INPUT [--svg OUT.svg] [--json OUT.json] [--png OUT.png] [--pdf OUT.pdf]
 [--segments-png OUT.png] [--levels-dir DIR] [options]`` turns INPUT into a
 golden ratio logo: feature lines, the segment graph L = {S, J}, then the
 progressive optimization; it writes the final level (or ``--level N``), every
@@ -48,6 +48,34 @@ EXIT_FAILED = 1
 #: Exit status after Ctrl-C (128 + SIGINT) and after SIGTERM (128 + SIGTERM).
 EXIT_INTERRUPTED = 130
 EXIT_TERMINATED = 143
+
+
+#: The examples at the end of ``img2logo --help``, in a designer's words.
+EXAMPLES = """\
+examples:
+  img2logo cat.png --svg cat.svg
+      the logo as SVG, to open in Inkscape or Illustrator: the arcs on layer "Arcs",
+      and the golden circles they come from on a hidden, locked layer "Golden circles"
+  img2logo cat.png --png cat-logo.png --png-background transparent --png-scale 4
+      a clean logo (no photo under it) four times the image's size, for a layout
+  img2logo cat.png --pdf cat.pdf
+      a vector PDF for print (1 px of the image = 1 pt)
+  img2logo cat.png --png preview.png
+      the logo drawn over the faded image, to check it against the original
+  img2logo cat.png --svg simpler.svg --tolerance 9
+      fewer, larger arcs: a larger tolerance T lets the logo stray further (px)
+  img2logo cat.png --levels-dir levels/
+      every level of simplification, from the first fit to the simplest logo
+  img2logo cat.png --svg cat.svg --fill auto
+      the regions between the arcs coloured like the image
+  img2logo batch photos/ logos/
+      a whole folder; logos/index.html shows every image beside its logo
+
+img2logo batch INPUT_DIR OUTPUT_DIR [options]: every image of a folder, on all cores, with a summary
+table and a gallery page (see img2logo batch --help)."""
+
+#: The output flags of one image; without any of them there is nothing to do.
+_OUTPUT_FLAGS = ("--svg", "--json", "--png", "--pdf", "--segments-png", "--levels-dir")
 
 
 class _Parser(argparse.ArgumentParser):
@@ -99,8 +127,8 @@ def _parser() -> argparse.ArgumentParser:
         prog="img2logo",
         usage="%(prog)s INPUT [options]\n       %(prog)s batch INPUT_DIR OUTPUT_DIR [options]",
         description="Turn an image into a golden ratio logo: circular arcs on a phi circle grid.",
-        epilog="img2logo batch INPUT_DIR OUTPUT_DIR [options]: every image of a folder, on all cores, "
-        "with a summary table (see img2logo batch --help).",
+        epilog=EXAMPLES,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     p.add_argument("input", help="input image (PNG, JPEG, ...): a photo, a clip art or a line drawing")
     _add_input_options(p, batch=False)
@@ -108,7 +136,21 @@ def _parser() -> argparse.ArgumentParser:
     out = p.add_argument_group("outputs (the final level, or --level N)")
     out.add_argument("--svg", metavar="OUT.svg", help="the logo as SVG: exact arcs, golden circles on a hidden layer")
     out.add_argument("--json", metavar="OUT.json", help="the logo as a document of the img2logo.abstraction/1 contract")
-    out.add_argument("--png", metavar="OUT.png", help="the logo drawn over the faded input")
+    out.add_argument("--png", metavar="OUT.png", help="the logo as PNG (over the faded input unless --png-background)")
+    out.add_argument(
+        "--png-background",
+        choices=("input", "white", "transparent"),
+        default="input",
+        help="under the logo in the PNG: the faded input (default), white, or transparent",
+    )
+    out.add_argument(
+        "--png-scale",
+        type=float,
+        default=1.0,
+        metavar="S",
+        help="size of the PNG relative to the input image (default 1; 4 = four times as wide and high)",
+    )
+    out.add_argument("--pdf", metavar="OUT.pdf", help="the logo as a vector PDF (arcs as Bezier curves, 1 px = 1 pt)")
     out.add_argument(
         "--level", type=int, metavar="N", help="write level N (0 = the initial fit) instead of the final one"
     )
@@ -124,7 +166,8 @@ def _batch_parser() -> argparse.ArgumentParser:
     p = _Parser(
         prog="img2logo batch",
         description="Turn every image of a folder (png, jpg, jpeg, tif, tiff, bmp, webp; sorted by name) into a "
-        "golden ratio logo: OUTPUT_DIR/<stem>.svg, .json and .png, and OUTPUT_DIR/summary.csv (image, kind, "
+        "golden ratio logo: OUTPUT_DIR/<stem>.svg, .json and .png, OUTPUT_DIR/index.html (a gallery of every input "
+        "beside its logo, to open in a browser) and OUTPUT_DIR/summary.csv (image, kind, "
         "arcs, levels, E^s, symmetry, seconds, error). A file that fails is reported at the end and the exit status is "
         "then 1; the other images are done.",
     )
@@ -302,6 +345,7 @@ def _check_outputs(args: argparse.Namespace) -> dict:
             ("--json", args.json),
             ("--svg", args.svg),
             ("--png", args.png),
+            ("--pdf", args.pdf),
         )
         if path
     }
@@ -339,6 +383,7 @@ _SUFFIXES: dict[str, tuple[str, ...]] = {
     "--svg": (".svg",),
     "--json": (".json",),
     "--png": (".png",),
+    "--pdf": (".pdf",),
     "--segments-png": (".png",),
 }
 _OTHER_FORMATS: frozenset[str] = frozenset(
@@ -382,11 +427,24 @@ def _run(args: argparse.Namespace, say) -> int:
 
     options = _abstract_options(args)
     fill_spec = parse_fill_option(args.fill)
+    if not any(getattr(args, flag[2:].replace("-", "_")) for flag in _OUTPUT_FLAGS):  # before any work
+        raise InvalidParameterError(f"nothing to write: give {', '.join(_OUTPUT_FLAGS[:-1])} or {_OUTPUT_FLAGS[-1]}")
+    if not args.png_scale > 0:
+        raise InvalidParameterError(f"--png-scale must be > 0, got {args.png_scale:g}")
     _check_outputs(args)
     image = load_image(args.input)
     # Masks and the subject rectangle are in the input's pixels (abstract scales them to a downscaled input).
     lock_mask = None if not args.lock_mask else load_mask(args.lock_mask, (image.input_height, image.input_width))
     say(f"{args.input}: {image.width}x{image.height} px")
+    if args.png:
+        from .constants import MAX_PNG_SIDE
+
+        side = round(max(image.width, image.height) * args.png_scale)
+        if not 1 <= side <= MAX_PNG_SIDE:
+            raise InvalidParameterError(
+                f"--png-scale {args.png_scale:g} makes the PNG {side} px on its longer side; "
+                f"it must be 1..{MAX_PNG_SIDE}"
+            )
     if args.subject is not None:
         import dataclasses
 
@@ -409,7 +467,7 @@ def _run(args: argparse.Namespace, say) -> int:
         say(result.symmetry.description)
     say(
         f"segment graph: {graph.n_segments} segments, {graph.n_junctions} nodes "
-        f"({int((graph.valence >= 3).sum())} junctions), {graph.n_components()} components"
+        f"({_count(int((graph.valence >= 3).sum()), 'junction')}), {_count(graph.n_components(), 'component')}"
     )
     say(
         f"levels: {len(prog.levels)}, arcs {prog.arc_counts[0]} -> {prog.arc_counts[-1]}, "
@@ -418,9 +476,12 @@ def _run(args: argparse.Namespace, say) -> int:
     )
     level = _pick_level(result, args.level)
     _write_outputs(result, level, args, say, fill_spec)
-    if not any((args.svg, args.json, args.png, args.segments_png, args.levels_dir)):
-        say("nothing written: give --svg, --json, --png, --segments-png or --levels-dir")
     return 0
+
+
+def _count(n: int, noun: str) -> str:
+    """``"1 junction"``, ``"3 junctions"``."""
+    return f"{n} {noun}" if n == 1 else f"{n} {noun}s"
 
 
 def _ladder_text(prog) -> str:
@@ -467,7 +528,10 @@ def _batch(args: argparse.Namespace, say) -> int:
         say(f"img2logo: warning: {w}")
     for line in report.summary(failures=False).splitlines():  # the names in it are escaped
         say(line)
-    say(f"wrote {len(report.rows)} logos (.svg, .json, .png) to {args.output_dir}/ and {report.summary_path}")
+    say(
+        f"wrote {len(report.rows)} logos (.svg, .json, .png) to {args.output_dir}/, {report.summary_path} "
+        f"and the gallery {Path(args.output_dir) / 'index.html'}"
+    )
     for f in report.failures:
         print(f"img2logo: error: {printable(f.line)}", file=sys.stderr)
     return EXIT_FAILED if report.failures else 0
@@ -502,7 +566,18 @@ def _write_outputs(result, level, args: argparse.Namespace, say, fill_spec) -> N
         if args.svg:
             done.append(writers.write_svg(level, args.svg, fills=fills))
         if args.png:
-            done.append(writers.write_png(level, args.png, image=result.image.rgb, fills=fills))
+            done.append(
+                writers.write_png(
+                    level,
+                    args.png,
+                    image=result.image.rgb,
+                    fills=fills,
+                    background=args.png_background,
+                    scale=args.png_scale,
+                )
+            )
+        if args.pdf:
+            done.append(writers.write_pdf(level, args.pdf, fills=fills))
         if args.levels_dir:
             folder = Path(args.levels_dir)
             names = set()

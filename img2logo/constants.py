@@ -336,11 +336,18 @@ MIN_STROKE_WIDTH: float = 1.0
 #: Resolution of PNG figures, dots per inch. It only converts px to matplotlib
 #: points: a PNG is always exactly width x height px of the input.
 PNG_DPI: float = 100.0
+#: Largest side of a PNG written with ``scale`` (``--png-scale``), px: 16384 x 16384 RGBA
+#: is 1 GiB in memory while it is drawn; larger is a slip of the keyboard, or a job for the PDF.
+MAX_PNG_SIDE: int = 16384
 #: How far a background image is faded towards white under a drawing
 #: (0 = as it is, 1 = white).
 IMAGE_FADE: float = 0.6
 #: Spacing of the sample points when an arc is drawn as a polyline in a raster, px.
 ARC_SAMPLE_STEP: float = 0.5
+#: The SVG's "Golden circles" layer is clipped to the image plus this fraction of its
+#: longer side on every side: enough of a circle that runs out of the image to read its
+#: curvature, while a radius of the ladder (up to ~14 x the image) cannot fill the artboard.
+CONSTRUCTION_MARGIN: float = 0.5
 
 # --- Golden ladder and circle fitting (golden_ladder.py, circle_fitting.py, constrained_fit.py) --------
 #: fit_circle: default cap on a fitted radius, as a multiple of the points' extent

@@ -126,7 +126,15 @@ def _detect(img: LoadedImage) -> tuple[str, str, np.ndarray | None]:
     same[:-1] &= ev
     flat = float(same.mean())
     if flat < SYNTHETIC_FLAT_FRACTION:
-        return "photo", f"only {flat:.0%} of the pixels sit in flat fills (camera noise, texture): a photo", None
+        # A share under 1% would read "only 0%": said as it is.
+        share = (
+            "no pixel sits"
+            if flat == 0.0
+            else "under 1% of the pixels sit"
+            if flat < 0.01
+            else f"only {flat:.0%} of the pixels sit"
+        )
+        return "photo", f"{share} in flat fills (camera noise, texture): a photo", None
     regions = clipart_regions(img)
 
     area, means = label_means(regions, img.lab)

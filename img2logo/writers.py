@@ -1,14 +1,16 @@
-"""Result files: the ``img2logo.abstraction/1`` JSON document, SVG and PNG.
+"""Result files: the ``img2logo.abstraction/1`` JSON document, SVG, PNG and PDF.
 
 The JSON document is the stable record of a result (its contract, made and
 checked by :mod:`img2logo.contract`). The SVG is for designers: one exact
 elliptical-arc ``<path>`` per arc in an "Arcs" layer (path data by
-:mod:`img2logo.svg_path`), and the golden circles in a hidden "Golden circles"
-construction layer that Inkscape and Illustrator show as a layer to toggle, and,
+:mod:`img2logo.svg_path`), and the golden circles in a hidden, locked and clipped
+"Golden circles" construction layer that Inkscape shows as a layer to toggle, and,
 when given, the coloured regions of :mod:`img2logo.fills` (paper Fig. 18) in a
 "Fills" layer under everything else (also the document's ``fills`` key and the
-PNG). The PNGs are quick looks, drawn with :mod:`img2logo.plotting` on
-matplotlib's Agg canvas, exactly ``width`` x ``height`` px of the input image.
+PNG). The PNGs are drawn with :mod:`img2logo.plotting` on matplotlib's Agg
+canvas, ``width`` x ``height`` px of the input image (times a scale), over the
+faded input, on white or transparent; the PDF is vector, drawn by matplotlib's
+PDF backend, 1 px = 1 pt.
 
 Every writer is atomic and deterministic: the bytes go to a temporary file in the
 target's directory that is then renamed over the target (:func:`os.replace`), so a
@@ -27,6 +29,7 @@ a positive sweep is clockwise on screen, SVG's ``sweep-flag = 1``.
 from __future__ import annotations
 
 import json
+import math
 import os
 from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
@@ -35,8 +38,8 @@ from typing import IO, TYPE_CHECKING, Any
 import numpy as np
 
 from ._io import as_path, atomic_write, check_output_paths, output_set
-from ._validation import check_integer, check_positive
-from .constants import FORMAT_NAME, PNG_DPI
+from ._validation import check_choice, check_integer, check_positive
+from .constants import CONSTRUCTION_MARGIN, FORMAT_NAME, MAX_PNG_SIDE, PNG_DPI
 from .contract import from_document, to_document
 from .errors import InputNotFoundError, InvalidParameterError
 from .fills import Fill, check_fills
@@ -57,12 +60,15 @@ if TYPE_CHECKING:
     from .segment_graph import SegmentGraph
 
 __all__ = [
+    "PNG_BACKGROUNDS",
+    "SVG_METADATA_NS",
     "check_output_paths",
     "output_set",
     "read_json",
     "save_figure",
     "to_svg",
     "write_json",
+    "write_pdf",
     "write_png",
     "write_segment_graph_png",
     "write_svg",
@@ -71,6 +77,13 @@ __all__ = [
 
 _SVG_NS = "http://www.w3.org/2000/svg"
 _INKSCAPE_NS = "http://www.inkscape.org/namespaces/inkscape"
+_SODIPODI_NS = "http://sodipodi.sourceforge.net/DTD/sodipodi-0.dtd"
+#: The namespace of img2logo's own attributes in an SVG (``img2logo:k``, ``img2logo:circle``,
+#: ``img2logo:face``, ``img2logo:line``): SVG 1.1 allows attributes of foreign namespaces, not
+#: undeclared ``data-*`` ones. A URN: a name, not an address to fetch.
+SVG_METADATA_NS = "urn:img2logo:svg:1"
+#: What ``--png-background`` offers (:func:`write_png`).
+PNG_BACKGROUNDS: tuple[str, ...] = ("input", "white", "transparent")
 
 
 # --- JSON --------------------------------------------------------------------------
@@ -177,7 +190,8 @@ def to_svg(
     )
     lines = [
         '<?xml version="1.0" encoding="UTF-8" standalone="no"?>',
-        f'<svg xmlns="{_SVG_NS}" xmlns:inkscape="{_INKSCAPE_NS}" version="1.1" '
+        f'<svg xmlns="{_SVG_NS}" xmlns:inkscape="{_INKSCAPE_NS}" xmlns:sodipodi="{_SODIPODI_NS}" '
+        f'xmlns:img2logo="{SVG_METADATA_NS}" version="1.1" '
         f'width="{n(shown_w)}" height="{n(shown_h)}" viewBox="0 0 {width} {height}">',
         f"  <title>{_escape(f'Golden ratio logo (level {int(abstraction.level)})')}</title>",
         f"  <desc>{_escape(desc)}</desc>",
@@ -186,9 +200,15 @@ def to_svg(
         lines.extend(_svg_fill_layer(fill_list))
     if construction_circles:
         hidden = "" if show_construction_circles else ' style="display:none"'
+        m = CONSTRUCTION_MARGIN * max(width, height)
         lines.append(
-            '  <g id="golden-circles" inkscape:groupmode="layer" inkscape:label="Golden circles"'
-            f'{hidden} fill="none" stroke="{CIRCLE_COLOR}" stroke-width="{n(max(0.5, sw / 4.0))}">'
+            f'  <clipPath id="golden-circles-clip"><rect x="{n(-m)}" y="{n(-m)}" '
+            f'width="{n(width + 2 * m)}" height="{n(height + 2 * m)}"/></clipPath>'
+        )
+        lines.append(
+            '  <g id="golden-circles" inkscape:groupmode="layer" inkscape:label="Golden circles" '
+            f'sodipodi:insensitive="true" clip-path="url(#golden-circles-clip)"{hidden} '
+            f'fill="none" stroke="{CIRCLE_COLOR}" stroke-width="{n(max(0.5, sw / 4.0))}">'
         )
         for i, c in enumerate(circles):
             lines.append(f'    <circle id="circle-{i}"{_k_attr(c)} cx="{n(c.cx)}" cy="{n(c.cy)}" r="{n(c.r)}"/>')
@@ -205,9 +225,11 @@ def to_svg(
     for i, a in enumerate(abstraction.arcs):
         if a.is_line:
             d = f"M {n(a.start[0])} {n(a.start[1])} L {n(a.end[0])} {n(a.end[1])}"
-            lines.append(f'    <path id="line-{i}" data-line="true" d="{d}"/>')
+            lines.append(f'    <path id="line-{i}" img2logo:line="true" d="{d}"/>')
             continue
-        lines.append(f'    <path id="arc-{i}" data-circle="{index[a.circle]}"{_k_attr(a.circle)} d="{arc_path(a)}"/>')
+        lines.append(
+            f'    <path id="arc-{i}" img2logo:circle="{index[a.circle]}"{_k_attr(a.circle)} d="{arc_path(a)}"/>'
+        )
     lines.append("  </g>")
     lines.append("</svg>")
     return "\n".join(lines) + "\n"
@@ -226,15 +248,21 @@ def write_svg(
     """Write an abstraction as SVG for designers: exact arcs, construction circles as a layer.
 
     The drawing's user units are input-image pixels: ``viewBox="0 0 W H"`` with W x H
-    the input size. Each arc is one ``<path id="arc-i" data-circle="c" data-k="k">``
+    the input size. Each arc is one ``<path id="arc-i" img2logo:circle="c" img2logo:k="k">``
     made of SVG elliptical-arc commands ``A r r 0 large-arc sweep x y`` (exact, not
     polylines): ``large-arc = |sweep| > pi``, ``sweep-flag = 1`` for a positive
     sweep (clockwise with y down). A full circle is two half arcs closed with
     ``Z``; an arc within 1e-3 rad of a full turn is also split in two. Arcs sit in
     an Inkscape layer "Arcs" (black stroke, no fill, round caps and joins); the
     circles, numbered as in the JSON document, in a layer "Golden circles" hidden
-    by default (``style="display:none"``). Coordinates carry ``SVG_DECIMALS``
-    decimals. Atomic and deterministic.
+    by default (``style="display:none"``), locked (``sodipodi:insensitive``: a
+    click on the drawing selects an arc, not a circle) and clipped to the image
+    plus ``CONSTRUCTION_MARGIN`` x its longer side on every side (a circle of the
+    ladder can be many times the image: unhidden, it would fill the artboard).
+    img2logo's own attributes (``img2logo:circle``, ``img2logo:k``,
+    ``img2logo:line``, ``img2logo:face``) are in the namespace
+    :data:`SVG_METADATA_NS`, so the file is valid SVG 1.1. Coordinates carry
+    ``SVG_DECIMALS`` decimals. Atomic and deterministic.
 
     With ``fills`` (paper Fig. 18, :mod:`img2logo.fills`) the coloured regions
     come first, so they lie under everything else: an Inkscape layer "Fills"
@@ -293,13 +321,15 @@ def write_png(
     show_circles: bool = False,
     stroke_width: float | None = None,
     fills: Sequence[Fill] | None = None,
+    background: str | None = None,
+    scale: float = 1.0,
 ) -> Path:
-    """Render an abstraction to a PNG of exactly the input image's size.
+    """Render an abstraction to a PNG of the input image's size (times ``scale``).
 
     Drawn with :func:`img2logo.plotting.plot_abstraction` on matplotlib's Agg
     canvas with matplotlib's default style (a user's matplotlibrc does not change
-    the file), on white, without metadata that could vary: the same input gives
-    the same bytes. Atomic.
+    the file), without metadata that could vary: the same input gives the same
+    bytes. Atomic.
 
     Parameters
     ----------
@@ -308,44 +338,129 @@ def write_png(
     path : str or path-like
         Target file; parent directories are created.
     image : ndarray, shape (height, width) or (height, width, C), C in 1..4, optional
-        The input image, drawn faded underneath.
+        The input image, drawn faded underneath with ``background="input"``.
     dpi : float
         Figure resolution; it only converts px to points, the PNG is always
-        ``width`` x ``height`` px.
+        ``round(width * scale)`` x ``round(height * scale)`` px.
     show_junctions, show_circles : bool
         Mark the junctions; draw the golden circles.
     stroke_width : float, optional
-        Width of the arcs, px; default :func:`img2logo.plotting.level_stroke_width` (the run's
-        ``stroke_width`` param: a drawing's own stroke width).
+        Width of the arcs, px of the input; default :func:`img2logo.plotting.level_stroke_width`
+        (the run's ``stroke_width`` param: a drawing's own stroke width). It scales with ``scale``.
     fills : sequence of img2logo.fills.Fill, optional
         Coloured regions (paper Fig. 18), drawn under the arcs
         (:func:`img2logo.plotting.draw_fills`).
+    background : {"input", "white", "transparent"}, optional
+        Under the logo: the faded input (``image`` is then needed), white, or
+        nothing (an RGBA PNG, alpha 0 off the strokes and fills: the clean logo
+        to place on a layout). Default ``"input"`` when ``image`` is given,
+        else ``"white"``.
+    scale : float
+        Size of the PNG relative to the input, > 0 (2.0: twice the width and
+        height, strokes as thick in proportion). At most ``MAX_PNG_SIDE`` px a side.
 
     Returns
     -------
     pathlib.Path
         The path written.
     """
-    if not isinstance(abstraction, Abstraction):
-        raise InvalidParameterError(f"abstraction must be an Abstraction, got {type(abstraction).__name__}")
-    fill_list = check_fills(fills)
-    width = check_integer(abstraction.width, "width", 1)
-    height = check_integer(abstraction.height, "height", 1)
+    fill_list, width, height, sw = _drawing(abstraction, fills, stroke_width)
     d = check_positive(dpi, "dpi")
-    sw = level_stroke_width(abstraction) if stroke_width is None else check_positive(stroke_width, "stroke_width")
+    if background is None:
+        background = "white" if image is None else "input"
+    check_choice(background, "background", PNG_BACKGROUNDS)
+    if background == "input" and image is None:
+        raise InvalidParameterError('background "input" needs the input image (image=...), got none')
+    s = check_positive(scale, "scale")
+    size = (round(width * s), round(height * s))
+    if min(size) < 1 or max(size) > MAX_PNG_SIDE:
+        raise InvalidParameterError(
+            f"scale {s:g} makes a {size[0]} x {size[1]} px PNG; each side must be in 1..{MAX_PNG_SIDE} px"
+        )
 
     def draw(ax: Any) -> None:
         plot_abstraction(
             abstraction,
             ax,
-            image=image,
+            image=image if background == "input" else None,
             show_circles=show_circles,
             show_junctions=show_junctions,
             linewidth=sw * 72.0 / d,
             fills=fill_list,
         )
 
-    return _write_figure_png(path, width, height, d, draw)
+    return _write_figure_png(path, width, height, d, draw, size=size, transparent=background == "transparent")
+
+
+def write_pdf(
+    abstraction: Abstraction,
+    path: str | os.PathLike[str],
+    *,
+    stroke_width: float | None = None,
+    fills: Sequence[Fill] | None = None,
+) -> Path:
+    """Write an abstraction as a vector PDF of one page, 1 px of the input = 1 pt (1/72 in).
+
+    For print and for editors that read PDF (Illustrator, Affinity, Inkscape).
+    Drawn by matplotlib's PDF backend: each arc is a path of cubic Bezier
+    curves (:meth:`matplotlib.path.Path.arc`, the standard approximation of
+    L. Maisonobe: 2 ** ceil(sweep / 90 deg) pieces, each at most 90 degrees, whose
+    radial error is below 2.7e-4 x r, far below a stroke), a line a straight
+    segment, black, round caps and joins, on a white page of ``width`` x
+    ``height`` pt. ``fills`` are drawn underneath as polygons (their arcs
+    sampled every ``ARC_SAMPLE_STEP`` px, as in the PNG).
+    No date or software tag: the same input gives the same bytes. Atomic.
+
+    Parameters
+    ----------
+    abstraction : Abstraction
+        The result to write.
+    path : str or path-like
+        Target file; parent directories are created.
+    stroke_width : float, optional
+        Width of the arcs, px (= pt); default :func:`img2logo.plotting.level_stroke_width`.
+    fills : sequence of img2logo.fills.Fill, optional
+        Coloured regions (paper Fig. 18), drawn under the arcs.
+
+    Returns
+    -------
+    pathlib.Path
+        The path written.
+    """
+    import matplotlib.style
+    from matplotlib.backends.backend_pdf import FigureCanvasPdf
+    from matplotlib.figure import Figure
+    from matplotlib.patches import PathPatch
+    from matplotlib.path import Path as MplPath
+    from matplotlib.transforms import Affine2D
+
+    from .plotting import draw_fills, frame_image
+
+    fill_list, width, height, sw = _drawing(abstraction, fills, stroke_width)
+    target = as_path(path)
+    with matplotlib.style.context("default"):
+        fig = Figure(figsize=(width / 72.0, height / 72.0), dpi=72.0, facecolor="white")
+        FigureCanvasPdf(fig)
+        ax = fig.add_axes((0.0, 0.0, 1.0, 1.0))
+        frame_image(ax, width, height)
+        if fill_list:
+            draw_fills(fill_list, ax, width=width, height=height)
+        style = {"fill": False, "edgecolor": ARC_COLOR, "linewidth": sw, "capstyle": "round", "joinstyle": "round"}
+        for a in abstraction.arcs:
+            if a.is_line:
+                shape = MplPath([a.start, a.end])
+            else:
+                lo = math.degrees(min(a.theta0, a.theta0 + a.sweep))
+                unit = MplPath.arc(lo, lo + math.degrees(abs(a.sweep)))
+                shape = Affine2D().scale(a.circle.r).translate(a.circle.cx, a.circle.cy).transform_path(unit)
+            ax.add_patch(PathPatch(shape, zorder=3, **style))
+
+        def save(f: IO[bytes]) -> None:
+            fig.savefig(
+                f, format="pdf", facecolor="white", metadata={"Creator": None, "Producer": None, "CreationDate": None}
+            )
+
+        return atomic_write(target, save)
 
 
 def write_segment_graph_png(
@@ -406,6 +521,19 @@ def write_segment_graph_png(
 # --- helpers -----------------------------------------------------------------------
 
 
+def _drawing(
+    abstraction: Abstraction, fills: Sequence[Fill] | None, stroke_width: float | None
+) -> tuple[list[Fill], int, int, float]:
+    """The checked inputs of a drawn file: the fills (a list), width and height (px), the stroke width (px)."""
+    if not isinstance(abstraction, Abstraction):
+        raise InvalidParameterError(f"abstraction must be an Abstraction, got {type(abstraction).__name__}")
+    fill_list = check_fills(fills) or []
+    width = check_integer(abstraction.width, "width", 1)
+    height = check_integer(abstraction.height, "height", 1)
+    sw = level_stroke_width(abstraction) if stroke_width is None else check_positive(stroke_width, "stroke_width")
+    return fill_list, width, height, sw
+
+
 def _svg_fill_layer(fills: Sequence[Fill]) -> list[str]:
     """The ``<defs>`` of the gradients and the "Fills" layer (see :func:`write_svg`)."""
     gradient_ids: dict[Any, str] = {}
@@ -420,35 +548,52 @@ def _svg_fill_layer(fills: Sequence[Fill]) -> list[str]:
     lines.append('  <g id="fills" inkscape:groupmode="layer" inkscape:label="Fills" stroke="none">')
     for i, f in enumerate(fills):
         paint = f.color if f.gradient is None else f"url(#{gradient_ids[f.gradient]})"
-        face = "" if f.face is None else f' data-face="{int(f.face)}"'
+        face = "" if f.face is None else f' img2logo:face="{int(f.face)}"'
         lines.append(f'    <path id="fill-{i}"{face} fill="{_attr(paint)}" fill-rule="evenodd" d="{_attr(f.path)}"/>')
     lines.append("  </g>")
     return lines
 
 
 def _write_figure_png(
-    path: str | os.PathLike[str], width: int, height: int, dpi: float, draw: Callable[[Any], None]
+    path: str | os.PathLike[str],
+    width: int,
+    height: int,
+    dpi: float,
+    draw: Callable[[Any], None],
+    *,
+    size: tuple[int, int] | None = None,
+    transparent: bool = False,
 ) -> Path:
-    """Draw on full-figure axes of a ``width`` x ``height`` px Agg figure and save it atomically."""
+    """Draw on full-figure axes of a ``width`` x ``height`` px Agg figure and save it atomically.
+
+    ``size`` (px) resamples the figure to another pixel size: the figure keeps its
+    size in points and is saved at ``dpi`` times the scale, so strokes scale with it.
+    """
     import matplotlib.style
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
 
     target = as_path(path)
+    out_w, out_h = (width, height) if size is None else size
+    save_dpi = dpi * out_w / width
+    paper = "none" if transparent else "white"
     with matplotlib.style.context("default"):
-        fig = Figure(figsize=(width / dpi, height / dpi), dpi=dpi, facecolor="white")
+        # The figure is out_w x out_h px at save_dpi, in inches of the input's size at dpi.
+        fig = Figure(figsize=(out_w / save_dpi, out_h / save_dpi), dpi=dpi, facecolor=paper)
         FigureCanvasAgg(fig)
         ax = fig.add_axes((0.0, 0.0, 1.0, 1.0))
         draw(ax)
+        if transparent:
+            ax.patch.set_alpha(0.0)
 
         def save(f: IO[bytes]) -> None:
             fig.savefig(
                 f,
                 format="png",
-                dpi=dpi,
-                facecolor="white",
-                edgecolor="white",
-                transparent=False,
+                dpi=save_dpi,
+                facecolor=paper,
+                edgecolor=paper,
+                transparent=transparent,
                 metadata={"Software": None},
             )
 
@@ -498,5 +643,5 @@ def _attr(text: str) -> str:
 
 
 def _k_attr(circle: Circle) -> str:
-    """The ``data-k`` attribute of a circle, or nothing when it has no k."""
-    return "" if circle.k is None else f' data-k="{int(circle.k)}"'
+    """The ``img2logo:k`` attribute of a circle, or nothing when it has no k."""
+    return "" if circle.k is None else f' img2logo:k="{int(circle.k)}"'

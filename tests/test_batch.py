@@ -78,7 +78,12 @@ def test_batch_goes_past_a_bad_file(runs, label):
         stem = Path(row.image).stem
         assert row.outputs == tuple(str(out / f"{stem}.{fmt}") for fmt in ("svg", "json", "png"))
     assert sorted(p.name for p in out.iterdir()) == sorted(
-        [MANIFEST_NAME, "summary.csv", *(f"{Path(n).stem}.{fmt}" for n in GOOD for fmt in ("svg", "json", "png"))]
+        [
+            MANIFEST_NAME,
+            "index.html",
+            "summary.csv",
+            *(f"{Path(n).stem}.{fmt}" for n in GOOD for fmt in ("svg", "json", "png")),
+        ]
     )
 
 
@@ -160,7 +165,12 @@ def test_in_process_run_with_options(folder, tmp_path):
     validate_document(doc)
     assert doc["ladder"] == "fibonacci" and doc["tolerance"] == 7.0
     assert all(c["r"] / doc["unit"] == pytest.approx(fibonacci(c["k"]), rel=1e-9) for c in doc["circles"])
-    assert sorted(p.name for p in tmp_path.iterdir()) == [MANIFEST_NAME, "drawing-snail.json", "summary.csv"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == [
+        MANIFEST_NAME,
+        "drawing-snail.json",
+        "index.html",
+        "summary.csv",
+    ]
 
 
 def test_process_image_returns_plain_values(folder):
@@ -266,7 +276,14 @@ def test_an_image_that_now_fails_keeps_no_old_outputs(tmp_path):
     (src / "a.png").write_text("no longer an image")
     second = run_batch(find_images(src), out, jobs=1, progress=False)
     assert [f.image for f in second.failures] == ["a.png"]
-    assert sorted(p.name for p in out.iterdir()) == [MANIFEST_NAME, "b.json", "b.png", "b.svg", "summary.csv"]
+    assert sorted(p.name for p in out.iterdir()) == [
+        MANIFEST_NAME,
+        "b.json",
+        "b.png",
+        "b.svg",
+        "index.html",
+        "summary.csv",
+    ]
     assert "not a readable image" in (out / "summary.csv").read_text().splitlines()[1]
 
 

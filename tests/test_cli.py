@@ -25,9 +25,10 @@ def test_segments_png_is_written(tmp_path, capsys):
 
 
 def test_kind_and_rdp_options_change_the_graph(tmp_path, capsys):
-    assert main([str(DATA / "drawing-fish.png"), "--rdp", "1"]) == 0
+    out = ["--json", str(tmp_path / "fish.json")]
+    assert main([str(DATA / "drawing-fish.png"), "--rdp", "1", *out]) == 0
     fine = capsys.readouterr().err
-    assert main([str(DATA / "drawing-fish.png"), "--rdp", "8", "--kind", "drawing"]) == 0
+    assert main([str(DATA / "drawing-fish.png"), "--rdp", "8", "--kind", "drawing", *out]) == 0
     coarse = capsys.readouterr().err
 
     def segments(text: str) -> int:
@@ -63,7 +64,7 @@ def test_blank_image_message(tmp_path, capsys):
 
     path = tmp_path / "white.png"
     cv2.imwrite(str(path), np.full((64, 64, 3), 255, np.uint8))
-    assert main([str(path)]) == EXIT_ERROR
+    assert main([str(path), "--json", str(tmp_path / "white.json")]) == EXIT_ERROR
     assert "image is blank" in capsys.readouterr().err
 
 
@@ -195,7 +196,7 @@ def test_lock_mask_of_the_wrong_size(tmp_path, capsys):
 
     mask = tmp_path / "mask.png"
     cv2.imwrite(str(mask), np.full((40, 40), 255, np.uint8))
-    assert main([str(DATA / "drawing-leaf.png"), "--lock-mask", str(mask)]) == EXIT_ERROR
+    assert main([str(DATA / "drawing-leaf.png"), "--lock-mask", str(mask), "--json", str(tmp_path / "l.json")]) == 2
     assert "mask must have the image's shape (512, 512), got (40, 40)" in capsys.readouterr().err
 
 
@@ -263,7 +264,7 @@ def test_batch_command_reports_a_bad_file_and_exits_one(tmp_path, capsys):
     assert "drawing-leaf.png" in err and "E^s (px)" in err and "2 of 3 images done" in err
     names = sorted(p.name for p in out.iterdir())
     logos = [f"drawing-{n}.{f}" for n in ("leaf", "snail") for f in ("svg", "json", "png")]
-    assert names == sorted([".img2logo-outputs", "summary.csv", *logos])
+    assert names == sorted([".img2logo-outputs", "index.html", "summary.csv", *logos])
     summary = (out / "summary.csv").read_text().splitlines()
     assert summary[0] == "image,kind,arcs,levels,similarity,symmetry,seconds,error"
     assert [line.split(",")[0] for line in summary[1:]] == ["corrupt.png", "drawing-leaf.png", "drawing-snail.png"]
@@ -297,6 +298,57 @@ def test_batch_command_errors_exit_two(tmp_path, capsys, make, args, message):
     err = capsys.readouterr().err
     assert err.startswith("img2logo: error: ") and message in err and err.count("\n") == 1
     assert not (tmp_path / "out").exists()
+
+
+def test_no_output_is_refused_before_any_work(tmp_path, capsys, monkeypatch):
+    """Without an output flag nothing would be written: one line, exit 2, before the image is even read."""
+    import img2logo.loading
+    import img2logo.pipeline  # imported first: it binds load_image when it is imported
+
+    def never(*a, **k):
+        raise AssertionError("the image was loaded")
+
+    monkeypatch.setattr(img2logo.loading, "load_image", never)
+    monkeypatch.setattr(img2logo.pipeline, "abstract", never)
+    assert main([str(DATA / "drawing-fish.png")]) == EXIT_ERROR
+    err = capsys.readouterr().err
+    assert err == (
+        "img2logo: error: nothing to write: give --svg, --json, --png, --pdf, --segments-png or --levels-dir\n"
+    )
+
+
+def test_clean_png_and_pdf_outputs(tmp_path, capsys):
+    import matplotlib.image
+
+    out = tmp_path / "o"
+    args = [str(DATA / "drawing-leaf.png"), "--png", str(out / "leaf.png"), "--pdf", str(out / "leaf.pdf")]
+    assert main([*args, "--png-background", "transparent", "--png-scale", "0.5"]) == 0
+    png = matplotlib.image.imread(out / "leaf.png")
+    assert png.shape == (256, 256, 4) and png[0, 0, 3] == 0.0 and png[..., 3].max() > 0.5
+    assert (out / "leaf.pdf").read_bytes().startswith(b"%PDF-")
+    err = capsys.readouterr().err
+    assert f"wrote {out / 'leaf.png'}" in err and f"wrote {out / 'leaf.pdf'}" in err
+    assert main([*args, "--png-scale", "0"]) == EXIT_ERROR
+    assert capsys.readouterr().err == "img2logo: error: --png-scale must be > 0, got 0\n"
+    assert main([*args, "--png-scale", "100"]) == EXIT_ERROR
+    assert "makes the PNG 51200 px on its longer side; it must be 1..16384" in capsys.readouterr().err
+    with pytest.raises(SystemExit):
+        main([*args, "--png-background", "black"])
+    assert "invalid choice: 'black'" in capsys.readouterr().err
+
+
+def test_help_has_examples_for_designers(capsys):
+    with pytest.raises(SystemExit):
+        main(["--help"])
+    text = capsys.readouterr().out
+    examples = text.split("examples:\n", 1)[1]
+    for line in ("img2logo cat.png --svg cat.svg", "--png-background transparent", "--pdf cat.pdf", "img2logo batch"):
+        assert line in examples
+    # Each example is a command the parser accepts.
+    from img2logo.cli import _parser
+
+    for command in re.findall(r"^  (img2logo (?!batch).*)$", examples, re.M):
+        _parser().parse_args(command.split()[1:])
 
 
 def test_help_mentions_batch(capsys):
@@ -334,9 +386,10 @@ def test_photo_subject_is_reported_and_can_be_chosen(tmp_path, capsys):
     rgb, _ = textured_photo([(90, 120, 60, 60, (0.9, 0.2, 0.3)), (250, 120, 55, 55, (0.2, 0.4, 0.95))], size=(240, 340))
     path = tmp_path / "two.png"
     cv2.imwrite(str(path), (rgb[:, :, ::-1] * 255).round().astype(np.uint8))
-    assert main([str(path), "--kind", "photo", "--subject", "185,55,130,130"]) == 0
+    out = ["--json", str(tmp_path / "two.json")]
+    assert main([str(path), "--kind", "photo", "--subject", "185,55,130,130", *out]) == 0
     assert "subject: kept the object in 185,55,130,130 (GrabCut)" in capsys.readouterr().err
-    assert main([str(path), "--kind", "photo", "--foreground", "none"]) == 0
+    assert main([str(path), "--kind", "photo", "--foreground", "none", *out]) == 0
     assert "subject: kept the whole image (foreground none)" in capsys.readouterr().err
     out = tmp_path / "x.json"
     for args, message in [
@@ -464,7 +517,10 @@ def test_messages_name_the_input_and_carry_no_third_party_lines(tmp_path):
     truncated = tmp_path / "cut.png"
     truncated.write_bytes((DATA / "clipart-fish.png").read_bytes()[:3000])
     done = subprocess.run(
-        [sys.executable, "-m", "img2logo.cli", str(truncated)], capture_output=True, text=True, check=False
+        [sys.executable, "-m", "img2logo.cli", str(truncated), "--json", str(tmp_path / "cut.json")],
+        capture_output=True,
+        text=True,
+        check=False,
     )
     assert done.returncode == EXIT_ERROR
     assert (
@@ -478,7 +534,7 @@ def test_downscale_is_reported_before_the_run(tmp_path, capsys):
 
     big = tmp_path / "big.png"
     cv2.imwrite(str(big), cv2.resize(cv2.imread(str(DATA / "drawing-leaf.png")), (2600, 2600)))
-    assert main([str(big)]) == 0
+    assert main([str(big), "--json", str(tmp_path / "big.json")]) == 0
     err = capsys.readouterr().err.splitlines()
     assert err[0] == f"img2logo: warning: {big}: image is 2600x2600 px, larger than 2048 px; downscaled to 2048x2048 px"
     assert err[1].startswith(f"{big}: 2048x2048 px")
@@ -630,7 +686,7 @@ def test_a_control_character_in_a_name_cannot_forge_a_line(tmp_path, capsys):
     import shutil
 
     forged = tmp_path / "a\nimg2logo: error: forged.png"
-    assert main([str(forged)]) == EXIT_ERROR
+    assert main([str(forged), "--json", str(tmp_path / "f.json")]) == EXIT_ERROR
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "a\\nimg2logo: error: forged.png" in err
     named = tmp_path / "b\r\x1b[2Kc.png"
@@ -641,14 +697,15 @@ def test_a_control_character_in_a_name_cannot_forge_a_line(tmp_path, capsys):
 
 
 def test_subject_options_on_a_drawing_are_ignored_with_one_warning(tmp_path, capsys):
-    assert main([str(DATA / "drawing-leaf.png"), "--subject", "10,10,100,100", "--foreground", "none"]) == 0
+    out = ["--json", str(tmp_path / "leaf.json")]
+    assert main([str(DATA / "drawing-leaf.png"), "--subject", "10,10,100,100", "--foreground", "none", *out]) == 0
     warned = [line for line in capsys.readouterr().err.splitlines() if line.startswith("img2logo: warning: ")]
     assert warned == [
         "img2logo: warning: --subject 10,10,100,100 and --foreground none are ignored: the image is drawing "
         f"({warned[0].split('drawing (', 1)[1].split('), and')[0]}), and only a photo has a subject to find "
         "(give --kind photo to treat it as one)"
     ]
-    assert main([str(DATA / "drawing-leaf.png")]) == 0
+    assert main([str(DATA / "drawing-leaf.png"), *out]) == 0
     assert "warning" not in capsys.readouterr().err  # not given: nothing to say
 
 
@@ -783,7 +840,7 @@ def test_a_killed_batch_worker_loses_no_output(tmp_path):
     assert "4 of 4 images done" in rest and "Traceback" not in rest
     now = {p.name: p.read_bytes() for p in out.iterdir() if not p.name.startswith(".")}
     assert set(now) == set(earlier)  # every output is there
-    assert all(now[n] == earlier[n] for n in now if n != "summary.csv")  # and the same bytes: deterministic
+    assert all(now[n] == earlier[n] for n in now if n not in ("summary.csv", "index.html"))  # seconds aside: the same
 
 
 @pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc")

@@ -59,7 +59,7 @@ def test_tables_are_shown_without_their_index(tmp_path):
     shown = save_table(table, tmp_path / "t.csv")
     assert shown.path.read_text() == "t,E^s (px)\n0,2.9164\n1,3.18123\n"
     html = shown._repr_html_()
-    assert "<th>t</th>" in html and "3.18123" in html
+    assert "<th>t</th>" in html and "<td>3.18</td>" in html  # shown to 3 digits, the CSV keeps 6
     assert html.count("<tr") == 3  # header and two rows, no index column header row
     assert "<th>0</th>" not in html  # no index cells
     assert repr(shown).splitlines()[0].split() == ["t", "E^s", "(px)"]
@@ -140,3 +140,66 @@ print(status, sorted(m for m in ("papermill", "ipywidgets", "ipykernel") if m in
     assert done.returncode == 0, done.stderr
     assert done.stdout.split() == ["0", "[]"]
     assert (tmp_path / "leaf.svg").read_text().startswith("<?xml")
+
+
+# --------------------------------------------------------------------------- legibility, provenance, progress
+def test_rounded_shows_meaningful_digits():
+    from img2logo.experiments import rounded
+
+    assert [rounded(v) for v in (2.918273, 12.0, 0.004567, 1234.56, 0.0, 1.5e-7, float("nan"))] == [
+        "2.92",
+        "12",
+        "0.00457",
+        "1235",
+        "0",
+        "1.5e-07",
+        "nan",
+    ]
+
+
+def test_make_legible_raises_small_text_to_the_screen_minimum():
+    from matplotlib.figure import Figure
+
+    from img2logo.experiments import MIN_TEXT_PX, NOTEBOOK_WIDTH_PX, make_legible
+
+    fig = Figure(figsize=(16.0, 3.0))  # 1600 px at dpi 100: shown at NOTEBOOK_WIDTH_PX
+    ax = fig.add_subplot()
+    small = ax.set_title("small", fontsize=6)
+    big = fig.suptitle("big", fontsize=30)
+    make_legible(fig, dpi=100.0)
+    shown = NOTEBOOK_WIDTH_PX / 1600.0
+    assert small.get_fontsize() * 100.0 / 72.0 * shown == pytest.approx(MIN_TEXT_PX)
+    assert big.get_fontsize() == 30  # larger text is left alone
+    for label in ax.get_xticklabels():
+        if label.get_text():
+            assert label.get_fontsize() * 100.0 / 72.0 * shown >= MIN_TEXT_PX - 1e-9
+
+
+def test_environment_records_python_packages_and_platform():
+    import platform
+
+    from img2logo.experiments import PROVENANCE_PACKAGES, environment
+
+    env = environment()
+    assert env["python"] == platform.python_version()
+    packages = env["packages"]
+    for name in ("numpy", "scipy", "scikit-image", "matplotlib", "numba", "opencv-contrib-python-headless"):
+        assert name in PROVENANCE_PACKAGES and packages[name], name
+    import numpy
+
+    assert packages["numpy"] == numpy.__version__ and packages["opencv"]
+    assert env["platform"]["machine"] == platform.machine() and env["platform"]["cpu_count"] >= 1
+
+
+def test_sweep_shows_progress_unless_papermill_runs_it(monkeypatch, capsys):
+    from img2logo import experiments
+    from img2logo.experiments.runner import PROGRESS_ENV
+
+    monkeypatch.delenv(PROGRESS_ENV, raising=False)
+    leaf = experiments.data_path("drawing-leaf.png")
+    runs = experiments.sweep([leaf], {"tolerance": [6.0, 9.0]})
+    assert len(runs) == 2
+    assert "runs" in capsys.readouterr().err  # tqdm's bar, on standard error outside Jupyter
+    monkeypatch.setenv(PROGRESS_ENV, "0")
+    experiments.sweep(runs[:1], {"tolerance": [9.0]})
+    assert capsys.readouterr().err == ""

@@ -99,6 +99,22 @@ sys.exit(main(sys.argv[1:]))
     assert done.stderr.count("\n") == 1 and "papermill is missing" in done.stderr and "[kit]" in done.stderr
 
 
+def test_executed_notebook_names_its_kernel_as_jupyterlab_does(tmp_path):
+    """JupyterLab opens a notebook whose kernelspec display name differs from the kernel's marked modified."""
+    nbformat = pytest.importorskip("nbformat")
+    pytest.importorskip("jupyter_client")
+    from jupyter_client.kernelspec import KernelSpecManager
+
+    from img2logo.experiments.runner import _name_the_kernel
+
+    nb = nbformat.v4.new_notebook(metadata={"kernelspec": {"name": "python3", "display_name": "Python 3"}})
+    path = tmp_path / "run.ipynb"
+    nbformat.write(nb, path)
+    _name_the_kernel(path, "python3")
+    shown = KernelSpecManager().get_kernel_spec("python3").display_name
+    assert nbformat.read(path, as_version=4).metadata.kernelspec.display_name == shown
+
+
 @pytest.mark.parametrize(
     ("notebook", "output", "message"),
     [

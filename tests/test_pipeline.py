@@ -212,6 +212,8 @@ def test_a_symmetric_logo_of_a_downscaled_input_keeps_its_axis_in_its_pixels():
     record = result.final.params["symmetry"]
     assert record["point"][0] == pytest.approx(100.5, abs=3.0)  # in the input's pixels, not the working 50
     assert is_symmetric(result.final, record["point"], record["direction"])
+
+
 def _ring_and_dot(ring: bool, dot: bool):
     import cv2
     import numpy as np

@@ -295,7 +295,7 @@ def test_lines_are_written_apart_from_the_golden_circles(frame_and_disc, tmp_pat
     assert sum(a.is_line for a in back.arcs) == 4
     write_svg(final, tmp_path / "f.svg")
     paths = [e for e in ET.parse(tmp_path / "f.svg").getroot().iter() if e.tag.endswith("path")]
-    line_paths = [p for p in paths if p.get("data-line") == "true"]
+    line_paths = [p for p in paths if p.get("{urn:img2logo:svg:1}line") == "true"]
     assert len(line_paths) == 4 and all(" L " in p.get("d") for p in line_paths)
     circles = [e for e in ET.parse(tmp_path / "f.svg").getroot().iter() if e.tag.endswith("circle")]
     assert len(circles) == len(doc["circles"])  # no construction circle for a line

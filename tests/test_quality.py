@@ -201,6 +201,8 @@ def test_joins_check_their_input():
         quality.joins(level, "graph")
     with pytest.raises(InvalidParameterError, match="abstraction must be an Abstraction, got list"):
         quality.joins([], graph)
+
+
 def test_lost_ink_parts_are_the_dark_parts_no_logo_point_reaches():
     gray = np.ones((100, 100))
     gray[disk((30, 30), 5)] = 0.0  # an eye of 81 px: kept by a circle through it

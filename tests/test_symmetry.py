@@ -256,7 +256,7 @@ def test_cli_symmetry_auto_says_so_and_writes_the_axis(tmp_path, capsys):
 def test_cli_bad_symmetry_is_one_line_and_exit_two(tmp_path, capsys):
     src = tmp_path / "gull.png"
     cv2.imwrite(str(src), gull())
-    assert main([str(src), "--symmetry", "sideways"]) == 2
+    assert main([str(src), "--symmetry", "sideways", "--json", str(tmp_path / "gull.json")]) == 2
     err = capsys.readouterr().err.strip()
     assert err.count("\n") == 0 and "symmetry must be" in err and "Traceback" not in err
 

@@ -35,6 +35,8 @@ from img2logo.geometry import Arc
 
 SVG = "{http://www.w3.org/2000/svg}"
 INKSCAPE = "{http://www.inkscape.org/namespaces/inkscape}"
+SODIPODI = "{http://sodipodi.sourceforge.net/DTD/sodipodi-0.dtd}"
+OWN = "{urn:img2logo:svg:1}"
 
 
 def test_write_json_deterministic_and_readable(tmp_path):
@@ -109,8 +111,8 @@ def test_svg_structure_and_exact_arcs(tmp_path):
         assert fragment in desc.text
     paths = root.findall(f".//{SVG}path")
     assert [p.get("id") for p in paths] == [f"arc-{i}" for i in range(5)]
-    assert [p.get("data-circle") for p in paths] == ["0", "1", "2", "3", "0"]
-    assert [p.get("data-k") for p in paths] == ["8", "7", "4", "5", "8"]
+    assert [p.get(f"{OWN}circle") for p in paths] == ["0", "1", "2", "3", "0"]
+    assert [p.get(f"{OWN}k") for p in paths] == ["8", "7", "4", "5", "8"]
     arcs_layer = root.find(f"{SVG}g[@id='arcs']")
     assert arcs_layer.get(f"{INKSCAPE}groupmode") == "layer"
     assert arcs_layer.get(f"{INKSCAPE}label") == "Arcs"
@@ -172,9 +174,15 @@ def test_svg_construction_layer():
     assert layer.get(f"{INKSCAPE}groupmode") == "layer"
     assert layer.get(f"{INKSCAPE}label") == "Golden circles"
     assert layer.get("style") == "display:none"
+    assert layer.get(f"{SODIPODI}insensitive") == "true"  # locked: a click selects an arc, not a circle
+    # Clipped to the image plus CONSTRUCTION_MARGIN x its longer side (200 px) on every side.
+    clip = root.find(f"{SVG}clipPath[@id='golden-circles-clip']")
+    assert layer.get("clip-path") == "url(#golden-circles-clip)"
+    rect = clip.find(f"{SVG}rect")
+    assert [float(rect.get(k)) for k in ("x", "y", "width", "height")] == [-100.0, -100.0, 400.0, 360.0]
     circles = layer.findall(f"{SVG}circle")
     assert [c.get("id") for c in circles] == ["circle-0", "circle-1", "circle-2", "circle-3"]
-    assert [c.get("data-k") for c in circles] == ["8", "7", "4", "5"]
+    assert [c.get(f"{OWN}k") for c in circles] == ["8", "7", "4", "5"]
     for element, circle in zip(circles, a.circles, strict=True):
         got = [float(element.get(key)) for key in ("cx", "cy", "r")]
         np.testing.assert_allclose(got, [circle.cx, circle.cy, circle.r], atol=1e-6)
@@ -225,7 +233,7 @@ def test_svg_writes_a_line_without_k():
         arcs=(line_arc((10.0, 20.0), (90.0, 20.0)),), arc_segments=((0,),), junctions=np.zeros((0, 2)), junction_arcs=()
     )
     path = ET.fromstring(writers.to_svg(a)).find(f".//{SVG}path")
-    assert path.get("data-k") is None and path.get("data-line") == "true"
+    assert path.get(f"{OWN}k") is None and path.get(f"{OWN}line") == "true"
     assert path.get("d") == "M 10 20 L 90 20"
 
 
@@ -397,7 +405,7 @@ def test_svg_numbers_circles_as_the_json_does_with_straight_lines(tmp_path):
     """A straight line's circle is no circle of the document: the SVG must not count it either.
 
     On the whale with ``lines=True`` the line comes before some arcs, so counting its circle
-    shifted the SVG's ``data-circle`` of every later arc by one against the JSON.
+    shifted the SVG's ``img2logo:circle`` of every later arc by one against the JSON.
     """
     import img2logo
 
@@ -405,5 +413,133 @@ def test_svg_numbers_circles_as_the_json_does_with_straight_lines(tmp_path):
     assert any(arc.is_line for arc in a.arcs)
     doc = contract.to_document(a)
     svg = writers.to_svg(a)
-    assert [int(c) for c in re.findall(r'data-circle="(\d+)"', svg)] == [arc["circle"] for arc in doc["arcs"]]
+    assert [int(c) for c in re.findall(r'img2logo:circle="(\d+)"', svg)] == [arc["circle"] for arc in doc["arcs"]]
     assert len(re.findall(r'<circle id="circle-', svg)) == len(doc["circles"]) == len(a.golden_circles)
+
+
+# --- SVG 1.1 validity, clean PNGs, PDF, Inkscape ------------------------------------------
+
+
+def test_svg_own_attributes_are_namespaced(tmp_path):
+    """No undeclared ``data-*`` attribute (not SVG 1.1): img2logo's own are in its namespace, declared."""
+    a = make_abstraction()
+    text = writers.to_svg(a, fills=palette_fills(abstraction_of([full(golden(120.0, 100.0, 9))])))
+    assert "data-" not in text
+    assert f'xmlns:img2logo="{writers.SVG_METADATA_NS}"' in text
+    root = ET.fromstring(text)  # namespaces well-formed (an undeclared prefix would not parse)
+    for element in root.iter():
+        for key in element.attrib:
+            assert not key.startswith("{") or key.split("}")[0][1:] in (
+                writers.SVG_METADATA_NS,
+                "http://www.inkscape.org/namespaces/inkscape",
+                "http://sodipodi.sourceforge.net/DTD/sodipodi-0.dtd",
+            ), key
+
+
+def test_png_clean_backgrounds_and_scale(tmp_path):
+    a = make_abstraction()
+    image = np.zeros((HEIGHT, WIDTH, 3), dtype=np.uint8)  # black: faded, it would be grey
+    white = read_png(writers.write_png(a, tmp_path / "w.png", image=image, background="white"))
+    assert white.shape == (HEIGHT, WIDTH, 4) or white.shape == (HEIGHT, WIDTH, 3)
+    assert darkness(white, (5.5, 5.5)) < 0.02  # no input under the logo
+    assert darkness(white, a.arcs[0].circle.point_at(a.arcs[0].theta0 + 0.5 * a.arcs[0].sweep)) > 0.5
+    clear = read_png(writers.write_png(a, tmp_path / "t.png", image=image, background="transparent"))
+    assert clear.shape == (HEIGHT, WIDTH, 4)
+    assert clear[5, 5, 3] == 0.0  # off the strokes: fully transparent
+    mid = a.arcs[0].circle.point_at(a.arcs[0].theta0 + 0.5 * a.arcs[0].sweep)
+    assert clear[int(mid[1]), int(mid[0]), 3] > 0.5 and clear[int(mid[1]), int(mid[0]), :3].max() < 0.1
+    big = read_png(writers.write_png(a, tmp_path / "x3.png", background="white", scale=3.0))
+    assert big.shape[:2] == (3 * HEIGHT, 3 * WIDTH)
+    assert darkness(big, 3.0 * mid) > 0.5  # the same drawing, three times larger
+    odd = read_png(writers.write_png(a, tmp_path / "odd.png", scale=0.37))
+    assert odd.shape[:2] == (round(0.37 * HEIGHT), round(0.37 * WIDTH))
+    # The default is today's look (over the input) when the image is given, white without.
+    default = writers.write_png(a, tmp_path / "d.png", image=image).read_bytes()
+    assert default == writers.write_png(a, tmp_path / "i.png", image=image, background="input").read_bytes()
+    with pytest.raises(InvalidParameterError, match="background must be one of 'input', 'white', 'transparent'"):
+        writers.write_png(a, tmp_path / "bad.png", background="black")
+    with pytest.raises(InvalidParameterError, match='background "input" needs the input image'):
+        writers.write_png(a, tmp_path / "bad.png", background="input")
+    with pytest.raises(InvalidParameterError, match="scale must be > 0"):
+        writers.write_png(a, tmp_path / "bad.png", scale=0)
+    with pytest.raises(InvalidParameterError, match=r"each side must be in 1..16384 px"):
+        writers.write_png(a, tmp_path / "bad.png", scale=1000)
+    assert not (tmp_path / "bad.png").exists()
+
+
+def test_pdf_is_vector_deterministic_and_renders_like_the_png(tmp_path):
+    a = make_abstraction()
+    p1 = writers.write_pdf(a, tmp_path / "a.pdf")
+    data = p1.read_bytes()
+    assert data.startswith(b"%PDF-") and data == writers.write_pdf(make_abstraction(), tmp_path / "b.pdf").read_bytes()
+    assert b"CreationDate" not in data
+    # 1 px = 1 pt: the page is the image's size.
+    assert re.search(rb"/MediaBox \[\s*0 0 200 160\s*\]", data)
+    pdftoppm = __import__("shutil").which("pdftoppm")
+    if pdftoppm is None:
+        pytest.skip("pdftoppm (poppler-utils) is not installed: the PDF is not rendered")
+    subprocess.run([pdftoppm, "-png", "-r", "72", "-singlefile", str(p1), str(tmp_path / "r")], check=True)
+    rendered = read_png(tmp_path / "r.png")[..., :3]
+    drawn = read_png(writers.write_png(a, tmp_path / "a.png"))[..., :3]
+    assert rendered.shape == drawn.shape == (HEIGHT, WIDTH, 3)
+    ink_r, ink_d = rendered.mean(axis=2) < 0.5, drawn.mean(axis=2) < 0.5
+    assert ink_d.sum() > 200
+    assert (ink_r & ink_d).sum() / (ink_r | ink_d).sum() > 0.85  # the same strokes, by another renderer
+    with pytest.raises(InvalidParameterError, match="stroke_width must be > 0"):
+        writers.write_pdf(a, tmp_path / "bad.pdf", stroke_width=-1)
+    assert not (tmp_path / "bad.pdf").exists()
+
+
+def test_pdf_arcs_are_bezier_curves_not_polylines(tmp_path):
+    import zlib
+
+    a = make_abstraction()
+    data = writers.write_pdf(a, tmp_path / "a.pdf").read_bytes()
+    streams = [zlib.decompress(m) for m in re.findall(rb"stream\r?\n(.*?)endstream", data, re.S) if m[:1] == b"x"]
+    content = b"\n".join(streams)
+    curves = len(re.findall(rb" c\n", content))
+    # matplotlib's Path.arc: 2 ** ceil(sweep / 90 deg) cubic pieces per arc (a polyline would have none).
+    pieces = sum(2 ** math.ceil(abs(arc.sweep) / (math.pi / 2) - 1e-9) for arc in a.arcs)
+    assert len(a.arcs) <= curves <= pieces
+
+
+def test_inkscape_opens_the_svg_and_renders_it_like_resvg(tmp_path, discs_result):
+    """A real result opened by Inkscape from the command line, exported to PNG, against resvg."""
+    import shutil
+
+    inkscape = shutil.which("inkscape")
+    if inkscape is None:
+        pytest.skip("inkscape is not installed (apt-get install inkscape): the SVG is not opened in Inkscape")
+    resvg_py = pytest.importorskip("resvg_py")
+    a = discs_result.final
+    svg = writers.write_svg(a, tmp_path / "logo.svg")
+    out = tmp_path / "inkscape.png"
+    done = subprocess.run(
+        [
+            inkscape,
+            str(svg),
+            "--export-type=png",
+            f"--export-filename={out}",
+            "--export-background=#ffffff",
+            "--export-background-opacity=1",
+            "--export-area-page",
+        ],
+        capture_output=True,
+        text=True,
+        timeout=300,
+        env={"HOME": str(tmp_path), "PATH": "/usr/bin:/bin"},
+    )
+    assert done.returncode == 0, done.stderr[-2000:]
+    drawn = read_png(out)[..., :3]
+    rendered = read_png_bytes(bytes(resvg_py.svg_to_bytes(svg_string=svg.read_text(), background="#ffffff")))
+    assert drawn.shape == rendered.shape == (a.height, a.width, 3)
+    assert np.abs(drawn - rendered).mean() < 0.01  # the hidden, clipped construction layer stays hidden
+    # Inkscape reads the layers: the construction layer is locked and hidden.
+    query = subprocess.run(
+        [inkscape, str(svg), "--query-id=golden-circles", "--query-all"],
+        capture_output=True,
+        text=True,
+        timeout=300,
+        env={"HOME": str(tmp_path), "PATH": "/usr/bin:/bin"},
+    )
+    assert query.returncode == 0 and "arc-0" in query.stdout

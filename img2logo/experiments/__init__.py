@@ -76,17 +76,18 @@ class SavedTable:
 
     Jupyter displays it without the index: the CSV has no index column, so
     neither has the table shown (a row number beside a ``t`` or ``image``
-    column only repeats it). Floats are shown as in the CSV (6 significant digits).
+    column only repeats it). Floats are shown with ``TABLE_DIGITS`` significant
+    digits (:func:`rounded`); the CSV keeps 6.
     """
 
     path: Path | None
     table: Any
 
     def _repr_html_(self) -> str:
-        return self._shown().to_html(index=False, float_format=lambda v: f"{v:.6g}", na_rep="")
+        return self._shown().to_html(index=False, float_format=rounded, na_rep="")
 
     def __repr__(self) -> str:
-        return self._shown().to_string(index=False, float_format=lambda v: f"{v:.6g}", na_rep="")
+        return self._shown().to_string(index=False, float_format=rounded, na_rep="")
 
     def _shown(self) -> Any:
         """The table with nullable integer columns as floats, so a missing value shows empty (as in the CSV)."""
@@ -97,16 +98,75 @@ class SavedTable:
         return self.table.astype({c: "float64" for c in nullable}) if nullable else self.table
 
 
+# --------------------------------------------------------------------------- the kit's figure style
+# Figure size, font size and dpi are set together here, for every notebook: what a
+# reader sees is pt * dpi / 72 * shrink px, where JupyterLab shrinks a figure wider
+# than its output area to that width.
+#: Resolution of the kit's figures, dots per inch (the PNG writer's).
+FIGURE_DPI: float = 100.0
+#: Width of a notebook's output area in JupyterLab 4 in a 1366 x 768 browser window with its
+#: file browser open, px (measured in chromium; a make html page there has 1244 px).
+NOTEBOOK_WIDTH_PX: float = 934.0
+#: Smallest text a figure shows on screen at that width, px (about 7.5 pt at 1:1: the
+#: smallest size set for reading, not only for recognising, on a screen).
+MIN_TEXT_PX: float = 10.0
+#: Significant digits of the floats a notebook's table shows (a timing to 1 ms of a second,
+#: an error to 0.01 px of ~1 px); the CSV files keep 6.
+TABLE_DIGITS: int = 3
+
+
+def rounded(value: float) -> str:
+    """``value`` with ``TABLE_DIGITS`` significant digits (but all its units), trailing zeros dropped (12.0 -> "12")."""
+    import math
+
+    import numpy as np
+
+    v = float(value)
+    if not math.isfinite(v):
+        return str(v)
+    if v != 0.0 and not 1e-4 <= abs(v) < 1e7:
+        return np.format_float_scientific(v, precision=TABLE_DIGITS - 1, unique=False, trim="-")
+    if abs(v) >= 10 ** (TABLE_DIGITS - 1):  # never round the units away (1234.5 -> "1234", not "1230")
+        return f"{v:.0f}"
+    return np.format_float_positional(v, precision=TABLE_DIGITS, unique=False, fractional=False, trim="-")
+
+
+def make_legible(fig: Any, *, dpi: float = FIGURE_DPI) -> Any:
+    """Raise every text of ``fig`` to at least ``MIN_TEXT_PX`` on screen in a notebook; return ``fig``.
+
+    A figure ``w`` inches wide saved at ``dpi`` is shown ``min(1, NOTEBOOK_WIDTH_PX /
+    (w * dpi))`` times its pixel size, so a text needs at least ``MIN_TEXT_PX * 72 /
+    (dpi * that)`` points. Texts already larger are left alone; constrained layout
+    (the kit's figures use it) makes room for the larger ones when the figure is saved.
+    """
+    from matplotlib.text import Text
+
+    shown = min(1.0, NOTEBOOK_WIDTH_PX / (fig.get_figwidth() * dpi))
+    least = MIN_TEXT_PX * 72.0 / (dpi * shown)
+    for ax in fig.axes:  # tick labels made when the figure is drawn take the axis' tick label size
+        for axis in (ax.xaxis, ax.yaxis):
+            ticks = axis.get_major_ticks()
+            if ticks and ticks[0].label1.get_fontsize() < least:
+                axis.set_tick_params(which="both", labelsize=least)
+    for text in fig.findobj(Text):
+        if text.get_text() and text.get_fontsize() < least:
+            text.set_fontsize(least)
+    return fig
+
+
 def save_figure(fig: Any, path: str | os.PathLike[str], *, dpi: float | None = None) -> SavedFigure:
     """Write ``fig`` with :func:`img2logo.writers.save_figure` and return it for display.
 
     The last expression of a notebook cell, it shows the written file inline.
-    ``dpi`` None is the writer's default.
+    ``dpi`` None is ``FIGURE_DPI``. The figure's texts are first raised to a
+    legible size (:func:`make_legible`).
     """
     from .. import writers
 
-    kwargs = {} if dpi is None else {"dpi": dpi}
-    return SavedFigure(Path(writers.save_figure(fig, path, **kwargs)))
+    d = FIGURE_DPI if dpi is None else dpi
+    # A browser shows an SVG's points at 96 / 72 px each, whatever the dpi.
+    make_legible(fig, dpi=d if Path(path).suffix.lower() != ".svg" else 96.0)
+    return SavedFigure(Path(writers.save_figure(fig, path, dpi=d)))
 
 
 def save_table(table: Any, path: str | os.PathLike[str]) -> SavedTable:
@@ -218,6 +278,7 @@ def sweep(
     repeats: int = 1,
     pipeline: bool = False,
     kind: str = "auto",
+    progress: bool | None = None,
     **options: Any,
 ) -> list[Run]:
     """Run every image with every combination of the ``grid`` and every variant: the notebooks' one sweep.
@@ -247,6 +308,11 @@ def sweep(
         lines found again for each run).
     kind : str
         The kind of input, or ``"auto"`` (for images not yet preprocessed).
+    progress : bool, optional
+        Show a bar of the runs done (``tqdm.auto``: a widget in Jupyter, text
+        elsewhere), removed when the sweep ends. None (default): shown unless
+        the environment variable ``IMG2LOGO_PROGRESS`` is ``"0"`` (papermill's
+        runs for ``make figures``: no bar in the executed notebooks).
     **options
         Keywords shared by every run.
 
@@ -288,17 +354,33 @@ def sweep(
         graph = build_segment_graph(ex.lines, **shape) if shape else ex.graph
         return dataclasses.replace(ex, graph=graph, progression=optimize(graph, **settings))
 
-    if repeats > 1 and jobs:
-        run(jobs[0][0], dict(jobs[0][2]))
-    seconds: list[list[float]] = [[] for _ in jobs]
-    done: list[Run] = []
-    for _ in range(repeats):
-        done = []
-        for (ex, label, settings), times in zip(jobs, seconds, strict=True):
-            start = time.perf_counter()
-            result = run(ex, dict(settings))
-            times.append(time.perf_counter() - start)
-            done.append(dataclasses.replace(result, variant=label, settings=MappingProxyType(settings)))
+    if progress is None:
+        from .runner import PROGRESS_ENV
+
+        progress = os.environ.get(PROGRESS_ENV, "1") != "0"
+    bar = None
+    if progress and jobs:
+        from tqdm.auto import tqdm
+
+        bar = tqdm(total=len(jobs) * repeats, desc="runs", unit="run", leave=False)
+    try:
+        if repeats > 1 and jobs:
+            run(jobs[0][0], dict(jobs[0][2]))
+        seconds: list[list[float]] = [[] for _ in jobs]
+        done: list[Run] = []
+        for _ in range(repeats):
+            done = []
+            for (ex, label, settings), times in zip(jobs, seconds, strict=True):
+                start = time.perf_counter()
+                result = run(ex, dict(settings))
+                times.append(time.perf_counter() - start)
+                done.append(dataclasses.replace(result, variant=label, settings=MappingProxyType(settings)))
+                if bar is not None:
+                    bar.set_postfix_str(ex.name if isinstance(ex, Run) else Path(str(ex)).name, refresh=False)
+                    bar.update(1)
+    finally:
+        if bar is not None:
+            bar.close()
     return [dataclasses.replace(r, seconds=tuple(t)) for r, t in zip(done, seconds, strict=True)]
 
 
@@ -374,7 +456,9 @@ def write_provenance(executed: str | os.PathLike[str]) -> Path:
     It records the git commit of the repository (and whether the work tree had
     uncommitted changes), the parameters papermill injected and the defaults of
     the notebook's parameters cell, and the date of the run (UTC): what a
-    reader needs to know where a committed figure came from.
+    reader needs to know where a committed figure came from; and the
+    :func:`environment` it ran in (Python, the numerical packages, the
+    platform), what explains a figure that differs in its last digits elsewhere.
     """
     import datetime
     import json
@@ -402,7 +486,59 @@ def write_provenance(executed: str | os.PathLike[str]) -> Path:
         "parameters_cell": defaults,
         "date_utc": datetime.datetime.now(datetime.UTC).strftime("%Y-%m-%dT%H:%M:%SZ"),
         "duration_s": round(float(meta.get("duration") or 0.0), 1),
+        **environment(),
     }
     target = figure_dir(path.stem) / "provenance.json"
     text = json.dumps(record, indent=2, sort_keys=True) + "\n"
     return atomic_write(target, lambda f: f.write(text.encode("utf-8")))
+
+
+#: The distributions whose versions :func:`environment` records: those that compute the figures.
+PROVENANCE_PACKAGES: tuple[str, ...] = (
+    "numpy",
+    "scipy",
+    "opencv-contrib-python-headless",
+    "scikit-image",
+    "matplotlib",
+    "numba",
+    "shapely",
+    "pandas",
+    "pillow",
+)
+
+
+def environment() -> dict[str, Any]:
+    """What a run depended on besides the code: ``python``, ``packages`` and ``platform``.
+
+    ``packages`` maps each distribution of :data:`PROVENANCE_PACKAGES` to its
+    installed version (``None`` when it is not installed), and ``opencv`` to
+    the version OpenCV itself reports (the wheel's name varies); ``platform``
+    holds the machine, the system and its release, and the CPU count.
+    """
+    import importlib.metadata
+    import platform
+
+    packages: dict[str, str | None] = {}
+    for name in PROVENANCE_PACKAGES:
+        try:
+            packages[name] = importlib.metadata.version(name)
+        except importlib.metadata.PackageNotFoundError:
+            packages[name] = None
+    try:
+        import cv2
+
+        packages["opencv"] = str(cv2.__version__)
+    except ImportError:  # pragma: no cover - a dependency
+        packages["opencv"] = None
+    return {
+        "python": platform.python_version(),
+        "python_implementation": platform.python_implementation(),
+        "packages": packages,
+        "platform": {
+            "system": platform.system(),
+            "release": platform.release(),
+            "machine": platform.machine(),
+            "platform": platform.platform(),
+            "cpu_count": os.cpu_count(),
+        },
+    }

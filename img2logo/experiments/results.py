@@ -64,7 +64,8 @@ def level_at_fraction(progression: Progression, fraction: float) -> int:
 
 
 def _level_title(a: Abstraction, prefix: str = "") -> str:
-    return f"{prefix}$A^{{{a.level}}}$: |A| = {len(a.arcs)}, $E^s$ = {a.similarity:.2f} px"
+    """A level's panel title on two lines: a narrow panel holds them at a legible size."""
+    return f"{prefix}$A^{{{a.level}}}$\n|A| = {len(a.arcs)}, $E^s$ = {a.similarity:.2f} px"
 
 
 def _stroke(panel: float) -> float:

@@ -28,6 +28,9 @@ from .._io import printable
 from ..errors import Img2LogoError, InvalidParameterError
 from .paths import data_path, eval_path, kit_module
 
+#: Environment variable: "0" turns off the kit's progress bars (set while papermill runs a notebook).
+PROGRESS_ENV = "IMG2LOGO_PROGRESS"
+
 
 class NotebookParameterError(InvalidParameterError):
     """A notebook parameter has a bad value or an unknown name.
@@ -230,7 +233,8 @@ def run_notebook(
     Returns
     -------
     Path
-        ``output``.
+        ``output``, its kernelspec's display name the kernel's (so JupyterLab
+        does not open it marked modified).
 
     Raises
     ------
@@ -257,6 +261,9 @@ def run_notebook(
         raise NotebookParameterError(
             f"{nb.name}: no parameter {', '.join(unknown)}; its parameters are {', '.join(known)}"
         )
+    # A run for the record draws no progress bar into the executed notebook (sweep(progress=None)).
+    previous = os.environ.get(PROGRESS_ENV)
+    os.environ[PROGRESS_ENV] = "0"
     try:
         papermill.execute_notebook(
             str(nb),
@@ -273,7 +280,34 @@ def run_notebook(
         if err.ename == NotebookParameterError.__name__:
             raise NotebookParameterError(message) from None
         raise NotebookError(f"{message} (cell {err.exec_count}; the traceback is in {output})") from None
+    finally:
+        if previous is None:
+            os.environ.pop(PROGRESS_ENV, None)
+        else:
+            os.environ[PROGRESS_ENV] = previous
+    _name_the_kernel(Path(output), kernel_name)
     return Path(output)
+
+
+def _name_the_kernel(executed: Path, kernel_name: str | None) -> None:
+    """Give the executed copy the kernelspec's display name, as JupyterLab does when it opens it.
+
+    papermill keeps the source's ``"display_name"``; JupyterLab sets the running
+    kernel's on opening, and a notebook whose metadata changed opens marked
+    modified.
+    """
+    import nbformat
+    from jupyter_client.kernelspec import KernelSpecManager, NoSuchKernel
+
+    nb = nbformat.read(executed, as_version=4)
+    spec = nb.metadata.setdefault("kernelspec", {})
+    try:
+        shown = KernelSpecManager().get_kernel_spec(kernel_name or spec.get("name") or "python3").display_name
+    except NoSuchKernel:
+        return
+    if spec.get("display_name") != shown:
+        spec["display_name"] = shown
+        nbformat.write(nb, executed)
 
 
 def _check_paths(nb: Path, output: Path) -> None:
