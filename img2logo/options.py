@@ -22,8 +22,6 @@ from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
-import numpy as np
-
 from ._validation import check_choice, check_positive
 from .constants import MIN_SEGMENT_LENGTH, RDP_TOLERANCE, TOLERANCE
 from .errors import InvalidParameterError, UnknownOptionError
@@ -253,6 +251,8 @@ class Options:
     )
 
     def __post_init__(self) -> None:
+        import numpy as np
+
         from .golden_ladder import make_ladder
         from .subject import check_foreground_option, subject_rectangle_numbers
 
@@ -370,6 +370,8 @@ class Options:
 
 
 def _differs(a: Any, b: Any) -> bool:
+    import numpy as np
+
     if isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
         return True
     return type(a) is not type(b) or a != b

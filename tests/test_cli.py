@@ -509,3 +509,18 @@ def test_batch_workers_end_with_their_parent(tmp_path, sig):
         for w in workers:  # never leave a worker behind, even when the test fails
             if _alive(w):
                 os.kill(w, signal.SIGKILL)
+
+
+def test_version_and_help_load_no_numeric_library():
+    # Start-up: `img2logo --version` and `--help` only parse flags; numpy, scipy, OpenCV, numba
+    # and pillow are loaded by the run that needs them (issue 19).
+    code = (
+        "import sys, contextlib, io\n"
+        "from img2logo.cli import main\n"
+        "for argv in (['--version'], ['--help'], ['batch', '--help']):\n"
+        "    with contextlib.redirect_stdout(io.StringIO()), contextlib.suppress(SystemExit):\n"
+        "        main(argv)\n"
+        "print(sorted(m for m in ('numpy', 'scipy', 'cv2', 'numba', 'PIL') if m in sys.modules))\n"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert out.strip() == "[]"
