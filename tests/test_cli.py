@@ -524,3 +524,20 @@ def test_version_and_help_load_no_numeric_library():
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
     assert out.strip() == "[]"
+
+
+def test_same_files_whatever_the_thread_counts(tmp_path):
+    # Byte-identical outputs on a busy or an idle machine, with one core or many: the BLAS libraries
+    # (numpy's and scipy's OpenBLAS) and OpenCV run on 1 thread in one run and on 4 in the other.
+    outputs = []
+    for threads in ("1", "4"):
+        env = dict(os.environ)
+        for var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS", "OPENCV_FOR_THREADS_NUM"):
+            env[var] = threads
+        out = tmp_path / threads
+        out.mkdir()
+        cmd = [sys.executable, "-m", "img2logo.cli", str(DATA / "clipart-fish.png"), "-q", "--fill", "auto"]
+        cmd += ["--json", str(out / "fish.json"), "--png", str(out / "fish.png")]
+        subprocess.run(cmd, env=env, check=True)
+        outputs.append([(out / name).read_bytes() for name in ("fish.json", "fish.png")])
+    assert outputs[0] == outputs[1]
