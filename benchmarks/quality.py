@@ -14,7 +14,11 @@ feature pixels within 3, 6, 10 px of the logo's arcs and lines, sampled every
 0.5 px); sil6 (fraction of the object mask's outline within 6 px of the logo)
 and outside (fraction of the logo's points farther than 12 px from the mask),
 for photo-likes; crossings; gaps (near-miss gaps: open ends 0.75-6 px from
-another arc); seconds (the whole pipeline, one process per image at a time).
+another arc); joins (junctions where exactly two arcs end and the input's
+feature line turns by less than 10 degrees), tangent (the fraction of them where
+the two arcs kink by less than 2 degrees) and kink (their median kink, degrees);
+seconds (the whole pipeline, one process per image at a time). Below the means
+per kind, the joins of all the clip arts and drawings pooled.
 
 A benchmark, not a test: it prints and never fails on a bad number. An image
 whose run fails is a row with its error.
@@ -35,7 +39,23 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 EVAL = ROOT / "benchmarks" / "data"
 OUT = ROOT / "build" / "quality"
-COLUMNS = ("name", "kind", "detected", "arcs", "r3", "r6", "r10", "sil6", "outside", "crossings", "gaps", "seconds")
+COLUMNS = (
+    "name",
+    "kind",
+    "detected",
+    "arcs",
+    "r3",
+    "r6",
+    "r10",
+    "sil6",
+    "outside",
+    "crossings",
+    "gaps",
+    "joins",
+    "tangent",
+    "kink",
+    "seconds",
+)
 
 
 def cases() -> list[dict]:
@@ -63,6 +83,7 @@ def run_case(case: dict) -> tuple[dict, object]:
     truth = load_mask(EVAL / case["gt"]) if "gt" in case else None
     mask = load_mask(EVAL / case["mask"]) if "mask" in case else None
     q = quality.measure(result.final, truth, mask)
+    found = quality.joins(result.final, result.graph)
     row.update(
         detected=result.lines.kind,
         arcs=q.arcs,
@@ -73,6 +94,10 @@ def run_case(case: dict) -> tuple[dict, object]:
         outside=q.outside,
         crossings=q.crossings,
         gaps=q.gaps,
+        joins=found.count,
+        tangent=found.tangent_fraction(),
+        kink=np.degrees(found.median_kink),
+        kinks=np.degrees(found.kinks),
     )
     return row, (result, truth)
 
@@ -121,7 +146,7 @@ def main(argv: list[str] | None = None) -> int:
         runs.append((row, run))
         status = f"failed: {row['error']}" if run is None else f"{row['arcs']} arcs, r10 {row['r10']:.2f}"
         print(f"  {row['name']:28s} {row['seconds']:6.1f} s  {status}", file=sys.stderr, flush=True)
-    table = pd.DataFrame([r for r, _ in runs])
+    table = pd.DataFrame([{k: v for k, v in r.items() if k != "kinks"} for r, _ in runs])
     for col in COLUMNS:
         if col not in table:
             table[col] = np.nan
@@ -130,13 +155,22 @@ def main(argv: list[str] | None = None) -> int:
     table.to_csv(args.out / "quality.csv", index=False, float_format="%.3f")
     with pd.option_context("display.width", 200, "display.max_columns", 20, "display.max_colwidth", 60):
         print(table.drop(columns=["error"], errors="ignore").to_string(index=False, float_format="%.2f"))
-        numeric = ["arcs", "r3", "r6", "r10", "sil6", "outside", "crossings", "gaps", "seconds"]
+        numeric = ["arcs", "r3", "r6", "r10", "sil6", "outside", "crossings", "gaps", "joins", "tangent", "kink"]
+        numeric.append("seconds")
         means = table.groupby("kind")[numeric].mean()
         means["images"] = table.groupby("kind").size()
         means["failed"] = table.groupby("kind")["detected"].apply(lambda s: int((s == "-").sum()))
         means["kind right"] = (table["kind"] == table["detected"]).groupby(table["kind"]).sum()
         print("\nMeans per kind")
         print(means.to_string(float_format="%.2f"))
+    kinks = np.concatenate(
+        [r["kinks"] for r, _ in runs if r["kind"] in ("clipart", "drawing") and "kinks" in r] or [np.zeros(0)]
+    )
+    if len(kinks):
+        print(
+            f"\nJoins on smooth input, clip arts and drawings pooled: {len(kinks)} joins, "
+            f"{100 * np.mean(kinks < 2.0):.0f} % tangent (< 2 degrees), median kink {np.median(kinks):.1f} degrees"
+        )
     if not args.no_sheets:
         for kind in sorted(table["kind"].unique()):
             chosen = [(r, run) for r, run in runs if r["kind"] == kind]

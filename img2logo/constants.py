@@ -239,6 +239,23 @@ MIN_SEGMENT_LENGTH: float = 6.0
 #: Two junctions joined by a chain shorter than this are one junction, px (a
 #: thick "X" thins to two "Y"s and a short bridge).
 JUNCTION_MERGE_DISTANCE: float = 6.0
+#: Tangent joins (beyond the paper): the feature line runs on smoothly through a node of
+#: valence 2 when the two segments' end tangents turn by less than this, rad. Ten degrees:
+#: the tangent of a 1-px raster line is known to about +-4 degrees (SMOOTH_TANGENT_LENGTH),
+#: so two such estimates differ by up to ~8 degrees on a smooth line, while the corners a
+#: designer draws turn by 20 degrees or more (issue 17). There the constrained fit makes
+#: the two circles touch (TANGENCY), and ``make quality`` counts the join.
+SMOOTH_JOIN_ANGLE: float = math.radians(10.0)
+#: A segment's end tangent is that of the circle fitted to its pixels within this
+#: arc length of the node, px. Longer than "a few px" on purpose: a line through the
+#: last 6 px of a 1-px skeleton is off by up to 15 degrees (its staircase steps are
+#: 0.5 px), a circle over 30 px by about 4 (measured on rasterized circles of radius
+#: 15-150 px and polygons), and a circle, unlike a line, is not biased by the curvature.
+SMOOTH_TANGENT_LENGTH: float = 30.0
+#: ``make quality``: a join on smooth input is tangent when the logo's two arcs kink
+#: there by less than this, rad (issue 17's target: >= 90 % of the joins); two
+#: degrees is below what the eye sees at a stroke's join.
+TANGENT_JOIN_ANGLE: float = math.radians(2.0)
 
 # --- Result files and figures (writers, plotting) ---------------------------------
 #: Contract invariant: a circle's radius is phi ** (k + bias) within this fraction

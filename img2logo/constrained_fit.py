@@ -60,8 +60,9 @@ class ConstrainedFit:
     objective : float
         E^l of Eqn. 7 at the result, px^2 (times the weights).
     violation : float
-        Largest ``| |o_i - (p_k + d_k)| - r_i |`` over all incidences, px; 0 if
-        there are none. Incidences between fixed variables count too.
+        Largest ``| |o_i - (p_k + d_k)| - r_i |`` over all incidences and largest
+        tangency residual (see ``tangents`` of :func:`fit_constrained`), px; 0 if
+        there are none. Those between fixed variables count too.
     iterations : int
         SQP steps taken.
     converged : bool
@@ -122,6 +123,7 @@ class _Problem:
         ws: np.ndarray,
         wj: float,
         connectivity: bool,
+        tangents: np.ndarray | None = None,
     ) -> None:
         self.radii, self.junctions, self.wj = radii, junctions, wj
         self.centers, self.disp = centers.copy(), disp.copy()
@@ -150,18 +152,51 @@ class _Problem:
         self.inc_i, self.inc_k = incidence[:, 0], incidence[:, 1]
         ci, ck = pos_c[self.inc_i], pos_j[self.inc_k]
         self.active = ((ci >= 0) | (ck >= 0)) if connectivity else np.zeros(len(incidence), dtype=bool)
-        self.m = int(self.active.sum())
+        self.m_inc = int(self.active.sum())
         ci, ck = ci[self.active], ck[self.active]
+        # Tangencies (circle a, circle b, junction k): all are evaluated; those with a
+        # free variable are constraints, written after the incidences.
+        tan = np.zeros((0, 3), dtype=np.int64) if tangents is None else tangents
+        self.tan_a, self.tan_b, self.tan_k = tan[:, 0], tan[:, 1], tan[:, 2]
+        # Scaled by 1 / max(r_a, r_b): cross(o_a - q, o_b - q) / max(r) = min(r) sin(angle
+        # between the radii to q), px, like the incidences' residuals (see _tangency).
+        self.tan_s = 1.0 / np.maximum(radii[self.tan_a], radii[self.tan_b]) if len(tan) else np.zeros(0)
+        ta, tb, tk = pos_c[self.tan_a], pos_c[self.tan_b], pos_j[self.tan_k]
+        self.tan_active = ((ta >= 0) | (tb >= 0) | (tk >= 0)) if connectivity else np.zeros(len(tan), dtype=bool)
+        self.m_tan = int(self.tan_active.sum())
+        self.m = self.m_inc + self.m_tan
+        ta, tb, tk = ta[self.tan_active], tb[self.tan_active], tk[self.tan_active]
         # Sparsity pattern of the KKT matrix [[H, A^T], [A, -delta I]]: the 2x2 blocks
         # of H, the entries of A and A^T for free centres and displacements, the diagonal.
         blk = np.repeat(np.arange(0, self.n, 2), 4)
         blk_r, blk_c = blk + np.tile([0, 0, 1, 1], self.n // 2), blk + np.tile([0, 1, 0, 1], self.n // 2)
-        rows_a = np.arange(self.m)
+        rows_a = np.arange(self.m_inc)
         self.a_mask_c, self.a_mask_k = ci >= 0, ck >= 0
         a_rows = np.concatenate([np.repeat(rows_a[self.a_mask_c], 2), np.repeat(rows_a[self.a_mask_k], 2)])
         a_cols = np.concatenate(
             [(2 * ci[self.a_mask_c])[:, None] + [0, 1], (2 * (nc + ck[self.a_mask_k]))[:, None] + [0, 1]]
         ).ravel()
+        # The tangency rows of A: entries for o_a, o_b and d_k where free (their
+        # second-order blocks may repeat the incidences' entries: summed apart, see matrix).
+        rows_t = self.m_inc + np.arange(self.m_tan)
+        self.t_mask = (ta >= 0, tb >= 0, tk >= 0)
+        t_blocks = (2 * ta, 2 * tb, 2 * (nc + tk))
+        a_rows = np.concatenate([a_rows, *(np.repeat(rows_t[on], 2) for on in self.t_mask)])
+        a_cols = np.concatenate(
+            [a_cols, *((b[on][:, None] + [0, 1]).ravel() for b, on in zip(t_blocks, self.t_mask, strict=True))]
+        )
+        # (row block, column block, sign of J) of the Hessian of lam * cross(o_a - q, o_b - q):
+        # J on (o_a, o_b) and (o_b, q), -J on (o_a, q), and their transposes (J^T = -J).
+        pairs = []
+        for (r, rm), (c, cm), sign in (
+            ((t_blocks[0], self.t_mask[0]), (t_blocks[1], self.t_mask[1]), 1.0),
+            ((t_blocks[0], self.t_mask[0]), (t_blocks[2], self.t_mask[2]), -1.0),
+            ((t_blocks[1], self.t_mask[1]), (t_blocks[2], self.t_mask[2]), 1.0),
+        ):
+            on = rm & cm
+            pairs.append((r[on], c[on], sign, on))
+            pairs.append((c[on], r[on], -sign, on))
+        self.t_hess = pairs
         # Second-order coupling blocks (o_i, d_k) of the constraint curvature, both free.
         self.both = self.a_mask_c & self.a_mask_k
         cb, kb = 2 * ci[self.both], 2 * (nc + ck[self.both])
@@ -191,6 +226,29 @@ class _Problem:
         v = self.centers[self.inc_i] - self.junctions[self.inc_k] - self.disp[self.inc_k]
         return _norm(v[:, 0], v[:, 1]) - self.radii[self.inc_i], v
 
+    def tangency(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """All tangency residuals (T,), px, and the vectors a = o_a - q, b = o_b - q (T, 2).
+
+        The residual is ``cross(a, b) / max(r_a, r_b)``: with q on both circles
+        (the incidences) it is ``min(r) sin(theta)``, theta the angle between the
+        radii to q, zero exactly when q is on the line of centres, i.e. when the
+        circles touch at q (centre distance |r_a - r_b| or r_a + r_b). Bilinear in
+        the unknowns (a constant Hessian), well scaled in px for any radii, and
+        regular where the two circles coincide (same radius, same side), unlike
+        the distance of q from the line of centres.
+        """
+        q = self.junctions[self.tan_k] + self.disp[self.tan_k]
+        a = self.centers[self.tan_a] - q
+        b = self.centers[self.tan_b] - q
+        return (a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]) * self.tan_s, a, b
+
+    def violation(self) -> float:
+        """The largest |residual| of every incidence and tangency, px."""
+        return max(
+            float(np.max(np.abs(self.constraints()[0]), initial=0.0)),
+            float(np.max(np.abs(self.tangency()[0]), initial=0.0)),
+        )
+
     def objective(self) -> tuple[float, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """E^l (Eqn. 7); point residuals, vectors o - p (x, y) and distances of free circles."""
         cf = self.centers[self.free_c]
@@ -203,7 +261,10 @@ class _Problem:
 
     def merit(self, nu: float) -> float:
         """The L1 merit function E^l + nu * sum |c| over the constraints."""
-        return self.objective()[0] + nu * float(np.abs(self.constraints()[0][self.active]).sum())
+        out = self.objective()[0] + nu * float(np.abs(self.constraints()[0][self.active]).sum())
+        if self.m_tan:
+            out += nu * float(np.abs(self.tangency()[0][self.tan_active]).sum())
+        return out
 
     def linearize(self) -> tuple[float, np.ndarray, np.ndarray, float]:
         """E^l, its gradient g, active constraint values c, and the violation (max |c| over all).
@@ -233,7 +294,17 @@ class _Problem:
         dsafe = np.where(dc > 0, dc, 1.0)
         self._uc = np.column_stack([np.where(dc > 0, vc[:, 0] / dsafe, 1.0), vc[:, 1] / dsafe])
         self._dc = dsafe
-        return f, g, c, float(np.max(np.abs(c_all), initial=0.0))
+        violation = float(np.max(np.abs(c_all), initial=0.0))
+        if len(self.tan_s):
+            t_all, ta, tb = self.tangency()
+            violation = max(violation, float(np.max(np.abs(t_all))))
+            on, s = self.tan_active, self.tan_s[self.tan_active, None]
+            # d c / d o_a = s J b, d c / d o_b = s J^T a, d c / d d_k = -(both); J = [[0, 1], [-1, 0]].
+            ga = s * np.column_stack([tb[on, 1], -tb[on, 0]])
+            gb = s * np.column_stack([-ta[on, 1], ta[on, 0]])
+            self._ta = (ga, gb, -(ga + gb))
+            c = np.concatenate([c, t_all[on]])
+        return f, g, c, violation
 
     def _gsum(self, values: np.ndarray) -> np.ndarray:
         """2 * the segment-weighted sum of ``values`` over each free circle's points."""
@@ -257,24 +328,42 @@ class _Problem:
             h[: len(self.starts)] += np.column_stack([self._gsum(q * uy * uy), -qxy, -qxy, self._gsum(q * ux * ux)])
             # Constraint curvature: lam (I - u u^T) / |v| on o_i and d_k, minus it between them.
             ux, uy = self._uc[:, 0], self._uc[:, 1]
-            s = lam / self._dc
+            s = lam[: self.m_inc] / self._dc
             k = np.column_stack([s * uy * uy, -s * ux * uy, -s * ux * uy, s * ux * ux])
             for blk in (self.blk_ci, self.blk_ck):
                 on = blk >= 0
                 np.add.at(h, blk[on], k[on])
             cpl = -k[self.both]
         a_vals = np.concatenate([self._uc[self.a_mask_c].ravel(), -self._uc[self.a_mask_k].ravel()])
+        if self.m_tan:
+            a_vals = np.concatenate([a_vals, *(v[on].ravel() for v, on in zip(self._ta, self.t_mask, strict=True))])
         delta = KKT_DAMPING / scale
         cpl = cpl.ravel()
         data = np.concatenate([h.ravel(), a_vals, a_vals, cpl, cpl, np.full(self.m, -delta)])
         size = self.n + self.m
+        extra = self._tangency_curvature(lam) if lam is not None and self.m_tan else None
         if size <= KKT_DENSE_MAX:
             mat = np.zeros((size, size))
             mat[self.kkt_rows, self.kkt_cols] = data
+            if extra is not None:
+                np.add.at(mat, (extra[1], extra[2]), extra[0])
             return mat, delta
-        return sp.csc_matrix(
-            (data[self.csc_order], self.kkt_rows[self.csc_order], self.csc_indptr), (size, size)
-        ), delta
+        mat = sp.csc_matrix((data[self.csc_order], self.kkt_rows[self.csc_order], self.csc_indptr), (size, size))
+        if extra is not None:
+            mat = (mat + sp.csc_matrix((extra[0], (extra[1], extra[2])), (size, size))).tocsc()
+        return mat, delta
+
+    def _tangency_curvature(self, lam: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The entries (values, rows, columns) of sum_t lam_t s_t Hess(cross): +-J blocks between the variables."""
+        lt = lam[self.m_inc :] * self.tan_s[self.tan_active]
+        vals, rows, cols = [], [], []
+        for r, c, sign, on in self.t_hess:
+            w = sign * lt[on]
+            # J = [[0, 1], [-1, 0]]: entries (x, y) = +w and (y, x) = -w of the 2x2 block.
+            vals += [w, -w]
+            rows += [r, r + 1]
+            cols += [c + 1, c]
+        return np.concatenate(vals), np.concatenate(rows), np.concatenate(cols)
 
 
 def _solve(
@@ -330,6 +419,7 @@ def fit_constrained(
     axis_circles: object = (),
     axis_junctions: object = (),
     stall: int = CONSTRAINED_FIT_STALL,
+    tangents: object = (),
 ) -> ConstrainedFit:
     """Connectivity-constrained least-squares fit of circles with fixed radii (Eqn. 13).
 
@@ -397,6 +487,15 @@ def fit_constrained(
     stall : int
         Give up when the constraint violation has not halved over this many
         steps (an infeasible problem, most likely).
+    tangents : array_like of int, shape (T, 3), optional
+        Rows (a, b, k): circles a and b touch at displaced junction k (both
+        should also pass through it by ``incidence``, or the residual is only the
+        collinearity of o_a, o_b and q_k). The residual
+        ``cross(o_a - q_k, o_b - q_k) / max(r_a, r_b)`` is ``min(r) sin(theta)``,
+        px, theta the angle between the two radii to q_k: exact tangency at
+        ``tol``, either internal (same side) or external, whichever is nearer the
+        start. Rows between fixed variables only are evaluated, not enforced;
+        none are with ``connectivity=False``.
 
     Returns
     -------
@@ -463,7 +562,17 @@ def fit_constrained(
 
     owner = np.repeat(np.arange(n_c), [len(s) for s in sets])
     points = np.concatenate(sets) if sets else np.zeros((0, 2))
-    prob = _Problem(points, owner, radii_arr, centers, junc, disp, inc, free_c, free_j, ws, wj, connectivity)
+    tan = np.asarray(tangents)
+    if tan.size == 0:
+        tan = np.zeros((0, 3), dtype=np.int64)
+    if tan.ndim != 2 or tan.shape[1] != 3 or not np.issubdtype(tan.dtype, np.integer):
+        raise InvalidParameterError(f"tangents must be an integer array of shape (T, 3), got {tan.shape}, {tan.dtype}")
+    _index_array(tan[:, :2].ravel(), "tangents[:, :2]", n_c)
+    _index_array(tan[:, 2], "tangents[:, 2]", n_j)
+    tan = np.unique(tan.astype(np.int64), axis=0)
+    if np.any(tan[:, 0] == tan[:, 1]):
+        raise InvalidParameterError("tangents must name two different circles in each row")
+    prob = _Problem(points, owner, radii_arr, centers, junc, disp, inc, free_c, free_j, ws, wj, connectivity, tan)
     keep = None
     if axis is not None:
         # The x coordinates held on the axis: their unknowns leave the KKT system.
@@ -503,7 +612,7 @@ def fit_constrained(
         if feasible and (np.max(np.abs(dx)) <= tol or abs(curvature) <= CONSTRAINED_FIT_FTOL * f):
             converged = True
             prob.set_x(x + dx)  # a last full step polishes the result, if it helps
-            new_violation = float(np.max(np.abs(prob.constraints()[0]), initial=0.0))
+            new_violation = prob.violation()
             if prob.merit(nu) <= phi0 and (not connectivity or new_violation <= violation):
                 iterations += 1
             else:
@@ -524,12 +633,11 @@ def fit_constrained(
         x = x + alpha * dx
         iterations += 1
 
-    c_all = prob.constraints()[0]
     return ConstrainedFit(
         centers=readonly(prob.centers.copy()),
         displacements=readonly(prob.disp.copy()),
         objective=prob.objective()[0],
-        violation=float(np.max(np.abs(c_all), initial=0.0)),
+        violation=prob.violation(),
         iterations=iterations,
         converged=converged,
     )

@@ -14,7 +14,11 @@ level of any run:
   intersection, Sec. 5.2, Fig. 12, judged on the drawing alone);
 * **near-miss gaps**: open arc ends that stop short of another arc, between
   ``GAP_MIN`` and ``GAP_MAX`` px from it (a junction the eye sees but the logo
-  does not close, Fig. 6).
+  does not close, Fig. 6);
+* **joins on smooth input** (:func:`joins`, beyond the paper): at every junction
+  where exactly two arcs end and the input's feature line runs on smoothly
+  (:meth:`~img2logo.segment_graph.SegmentGraph.smooth_nodes`), the kink between
+  the two arcs' tangents; a join is tangent below ``TANGENT_JOIN_ANGLE``.
 
 And the measures of one level against what its optimization promised
 (the notebooks' ablations): :func:`junction_gaps` (how far the arcs that should
@@ -27,6 +31,7 @@ downwards, as everywhere in img2logo.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 
@@ -46,6 +51,8 @@ from .constants import (
     OUTSIDE_DISTANCE,
     QUALITY_SAMPLE_STEP,
     SILHOUETTE_DISTANCE,
+    SMOOTH_JOIN_ANGLE,
+    TANGENT_JOIN_ANGLE,
 )
 from .errors import InvalidParameterError
 from .geometry import Abstraction, Arc
@@ -81,6 +88,85 @@ class Quality:
     outside: float
     crossings: int
     gaps: int
+
+
+@dataclass(frozen=True, eq=False)
+class Joins:
+    """The joins of a logo on smooth input (:func:`joins`).
+
+    Attributes
+    ----------
+    junctions : ndarray of int, shape (N,)
+        The abstraction's junctions where exactly two arcs end (none passing
+        through) at a node where the input's line turns by less than the
+        smoothness threshold.
+    kinks : ndarray, shape (N,)
+        The angle between the two arcs' tangents there, rad in [0, pi]: 0 where
+        one arc flows into the other.
+    """
+
+    junctions: np.ndarray
+    kinks: np.ndarray
+
+    @property
+    def count(self) -> int:
+        """Number of joins on smooth input."""
+        return len(self.kinks)
+
+    def tangent_fraction(self, angle: float = TANGENT_JOIN_ANGLE) -> float:
+        """Fraction of the joins whose kink is below ``angle`` rad; NaN without joins."""
+        return float(np.mean(self.kinks < angle)) if len(self.kinks) else np.nan
+
+    @property
+    def median_kink(self) -> float:
+        """Median kink, rad; NaN without joins."""
+        return float(np.median(self.kinks)) if len(self.kinks) else np.nan
+
+
+def arc_direction(arc: Arc, at_start: bool) -> np.ndarray:
+    """The unit direction in which ``arc`` leaves its start (or its end) point, into the arc: shape (2,)."""
+    t = arc.theta0 if at_start else arc.theta0 + arc.sweep
+    sense = math.copysign(1.0, arc.sweep) * (1.0 if at_start else -1.0)
+    return sense * np.array([-math.sin(t), math.cos(t)])
+
+
+def joins(abstraction: Abstraction, graph: SegmentGraph, max_turn: float = SMOOTH_JOIN_ANGLE) -> Joins:
+    """The joins of ``abstraction`` on smooth input and their kinks (issue 17, beyond the paper).
+
+    A join is a junction of the level where exactly two arcs end and none
+    passes through, at a node of ``graph`` (the segment graph the level was
+    made from, through ``abstraction.junction_nodes``) where the feature line
+    turns by less than ``max_turn`` rad (:meth:`SegmentGraph.smooth_nodes`).
+    Its kink is the angle between the two arcs' tangents at the junction:
+    ``arccos(-u . v)`` with u, v the directions in which they leave it.
+
+    Returns
+    -------
+    Joins
+    """
+    if not isinstance(abstraction, Abstraction):
+        raise InvalidParameterError(f"abstraction must be an Abstraction, got {type(abstraction).__name__}")
+    if not isinstance(graph, SegmentGraph):
+        raise InvalidParameterError(f"graph must be a SegmentGraph, got {type(graph).__name__}")
+    smooth = graph.smooth_nodes(max_turn)
+    found, kinks = [], []
+    for j, node in enumerate(abstraction.junction_nodes):
+        if node is None or node not in smooth:
+            continue
+        ending = abstraction.arcs_at(j)
+        if len(ending) != 2 or set(abstraction.junction_arcs[j]) != set(ending):
+            continue
+        leave = []
+        for i in ending:
+            t = abstraction.arc_junctions[i]
+            if t.start == t.end:
+                break  # a closed arc: no join of two arcs
+            leave.append(arc_direction(abstraction.arcs[i], t.start == j))
+        if len(leave) != 2:
+            continue
+        found.append(j)
+        kinks.append(float(np.arccos(np.clip(-np.dot(leave[0], leave[1]), -1.0, 1.0))))
+    return Joins(np.array(found, dtype=np.int64), np.array(kinks, dtype=np.float64))
 
 
 def logo_points(arcs: Abstraction | Sequence[Arc], step: float = QUALITY_SAMPLE_STEP) -> np.ndarray:

@@ -18,8 +18,15 @@ import numpy as np
 
 from . import _skeleton
 from ._validation import check_positive, readonly
-from .constants import JUNCTION_MERGE_DISTANCE, MIN_SEGMENT_LENGTH, RDP_TOLERANCE
-from .errors import InvalidParameterError
+from .circle_fitting import fit_circle
+from .constants import (
+    JUNCTION_MERGE_DISTANCE,
+    MIN_SEGMENT_LENGTH,
+    RDP_TOLERANCE,
+    SMOOTH_JOIN_ANGLE,
+    SMOOTH_TANGENT_LENGTH,
+)
+from .errors import FitError, InvalidParameterError
 
 
 @dataclass(frozen=True, eq=False)
@@ -81,6 +88,36 @@ class SegmentGraph:
     def lengths(self) -> np.ndarray:
         """Polyline length of each segment, shape (S,), px."""
         return readonly(np.array([np.sum(np.hypot(*np.diff(s, axis=0).T)) for s in self.segments]))
+
+    @cached_property
+    def turns(self) -> np.ndarray:
+        """How much the feature line turns at each node of valence 2, shape (J,), rad in [0, pi].
+
+        The angle between the two segments' end tangents there (:func:`end_tangent`;
+        0 where the line runs straight on, pi where it folds back); NaN at end
+        points, junctions of valence >= 3, and a node where one segment ends twice.
+        """
+        out = np.full(self.n_junctions, np.nan)
+        at: dict[int, list[tuple[int, int]]] = {}
+        for i, (a, b) in enumerate(self.ends):
+            at.setdefault(int(a), []).append((i, 0))
+            at.setdefault(int(b), []).append((i, 1))
+        for k, ends in at.items():
+            if len(ends) != 2 or ends[0][0] == ends[1][0]:
+                continue
+            t0, t1 = (end_tangent(self.segments[i], e == 0) for i, e in ends)
+            out[k] = float(np.arccos(np.clip(-np.dot(t0, t1), -1.0, 1.0)))
+        return readonly(out)
+
+    def smooth_nodes(self, max_turn: float = SMOOTH_JOIN_ANGLE) -> frozenset[int]:
+        """The nodes of valence 2 where the feature line turns by less than ``max_turn`` rad (:attr:`turns`).
+
+        Where two arcs end at such a node the logo should not kink: the tangent
+        joins of the constrained fit (:mod:`img2logo.constrained_fit`) and of
+        ``make quality`` (:func:`img2logo.quality.joins`).
+        """
+        turns = self.turns
+        return frozenset(int(k) for k in np.flatnonzero(turns < max_turn))
 
     def segments_at(self, k: int) -> tuple[int, ...]:
         """Indices of the segments with an end at node ``k`` (the paper's Omega(p_k))."""
@@ -178,6 +215,41 @@ def build_segment_graph(
         width=w,
         height=h,
     )
+
+
+def end_tangent(points: np.ndarray, at_start: bool, length: float = SMOOTH_TANGENT_LENGTH) -> np.ndarray:
+    """The unit tangent of a segment at one of its ends, pointing into the segment: shape (2,).
+
+    The tangent at the end point of the circle fitted (algebraically,
+    :func:`img2logo.circle_fitting.fit_circle`) to the segment's pixels within
+    ``length`` px of arc length of that end: a circle follows the line's
+    curvature, and over that length the 0.5 px steps of a raster line tilt it
+    little (see ``SMOOTH_TANGENT_LENGTH``). A segment of fewer than 3 distinct
+    points gives its chord.
+
+    Parameters
+    ----------
+    points : ndarray, shape (n, 2)
+        The segment's ordered pixels, px; n >= 2.
+    at_start : bool
+        The end: ``points[0]`` (True) or ``points[-1]``.
+    length : float
+        Arc length of the pixels used, px.
+    """
+    pts = np.asarray(points, dtype=np.float64)
+    pts = pts if at_start else pts[::-1]
+    cum = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(pts, axis=0).T))])
+    near = pts[: max(int(np.searchsorted(cum, length, side="right")), 2)]
+    chord = near[-1] - near[0]
+    try:
+        center = fit_circle(near, refine=False).center
+    except FitError:
+        return chord / max(float(np.hypot(*chord)), 1e-300)
+    radial = near[0] - center
+    t = np.array([-radial[1], radial[0]])
+    if np.dot(t, chord) < 0:
+        t = -t
+    return t / max(float(np.hypot(*t)), 1e-300)
 
 
 def _index_at_half_length(poly: np.ndarray) -> int:
