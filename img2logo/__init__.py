@@ -15,9 +15,11 @@ from .errors import (
     FitError,
     ImageNotFoundError,
     Img2LogoError,
+    InputNotFoundError,
     InvalidImageError,
     InvalidParameterError,
     OutputError,
+    UnknownOptionError,
 )
 
 __version__ = "0.1.0"
@@ -50,6 +52,8 @@ _LAZY = {
     "FibonacciLadder": "golden_ladder",
     "run_batch": "batch",
     "load_mask": "loading",
+    "Options": "options",
+    "ConnectivityWarning": "recovery",
 }
 
 #: Submodules reachable as attributes, imported on first use.
@@ -60,6 +64,7 @@ __all__ = [
     "Abstraction",
     "Arc",
     "Circle",
+    "ConnectivityWarning",
     "DownscaleWarning",
     "FeatureLines",
     "FibonacciLadder",
@@ -67,14 +72,17 @@ __all__ = [
     "GoldenLadder",
     "ImageNotFoundError",
     "Img2LogoError",
+    "InputNotFoundError",
     "InvalidImageError",
     "InvalidParameterError",
     "LoadedImage",
+    "Options",
     "OutputError",
     "PageWarning",
     "Progression",
     "Result",
     "SegmentGraph",
+    "UnknownOptionError",
     "__version__",
     "abstract",
     "build_segment_graph",
@@ -114,6 +122,7 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the lazy names, eagerly
     from .geometry import Abstraction, Arc, Circle
     from .golden_ladder import FibonacciLadder, GoldenLadder
     from .loading import PageWarning
+    from .options import Options
     from .pipeline import Result, abstract
     from .plotting import plot_abstraction, plot_segment_graph
     from .preprocessing import (
@@ -126,5 +135,6 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the lazy names, eagerly
         load_mask,
     )
     from .progressive import Progression, optimize
+    from .recovery import ConnectivityWarning
     from .segment_graph import SegmentGraph, build_segment_graph
     from .writers import read_json, write_json, write_png, write_segment_graph_png, write_svg

@@ -19,13 +19,29 @@ import glob
 import os
 import re
 import secrets
+import stat
 from collections.abc import Callable, Iterator, Mapping, Sequence
 from pathlib import Path
 from typing import IO
 
 from .errors import InvalidParameterError, OutputError
 
-__all__ = ["as_path", "atomic_write", "check_output_paths", "os_message", "output_set"]
+__all__ = ["as_path", "atomic_write", "check_output_paths", "os_message", "output_set", "printable", "remove_file"]
+
+
+def printable(text: object) -> str:
+    """``text`` safe to print as part of one line: every character that is not printable is escaped.
+
+    A newline, a carriage return, a terminal escape or any other control
+    character (and a byte of a file name that is no UTF-8, Python's surrogate
+    escape) becomes its Python escape (``\\n``, ``\\x1b``, ``\\udcff``), as
+    :func:`repr` writes it; so a file named ``"a\\nimg2logo: error: x.png"``
+    cannot forge a line of its own. Printable text, spaces included, is kept as it is.
+    """
+    s = str(text)
+    if s.isprintable():
+        return s
+    return "".join(ch if ch.isprintable() or ch == " " else repr(ch)[1:-1] for ch in s)
 
 
 def check_output_paths(
@@ -119,6 +135,7 @@ class _Stage:
     def __init__(self) -> None:
         self.files: list[tuple[Path, Path]] = []
         self.folders: list[Path] = []
+        self.removals: list[Path] = []
 
     def discard(self) -> None:
         """Remove the temporary files and the folders created (if left empty)."""
@@ -130,6 +147,7 @@ class _Stage:
                 folder.rmdir()
         self.files.clear()
         self.folders.clear()
+        self.removals.clear()
 
     def commit(self) -> None:
         """Move every temporary file over its target, with SIGINT and SIGTERM held off meanwhile."""
@@ -140,6 +158,12 @@ class _Stage:
         if held:
             old = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT, signal.SIGTERM})
         try:
+            try:
+                for _, target in self.files:  # one may have appeared since the write: before any move
+                    refuse_special_file(target)
+            except OutputError:
+                self.discard()
+                raise
             while self.files:
                 tmp, target = self.files[0]
                 try:
@@ -148,6 +172,9 @@ class _Stage:
                     self.discard()
                     raise OutputError(os_message(target, exc)) from exc
                 self.files.pop(0)
+            for gone in self.removals:
+                _unlink(gone)
+            self.removals.clear()
         finally:
             if held:
                 signal.pthread_sigmask(signal.SIG_SETMASK, old)
@@ -185,6 +212,36 @@ def output_set() -> Iterator[None]:
     stage.commit()
 
 
+def remove_file(path: str | os.PathLike[str]) -> None:
+    """Remove a file img2logo wrote; inside :func:`output_set`, at the end of the set, after its files are in place.
+
+    So a run that replaces a set of files by a smaller one (``--levels-dir``)
+    removes the files of the earlier set with the same all-or-nothing rule: if
+    the run fails, nothing is removed. A file already gone is no error.
+
+    Raises
+    ------
+    OutputError
+        If the file cannot be removed (outside a set: at once).
+    """
+    target = as_path(path)
+    stage = _STAGE.get()
+    if stage is not None:
+        stage.removals.append(target)
+    else:
+        _unlink(target)
+
+
+def _unlink(target: Path) -> None:
+    """Remove ``target`` (gone already: nothing to do); an operating-system error is an :class:`OutputError`."""
+    try:
+        os.unlink(target)
+    except FileNotFoundError:
+        return
+    except OSError as exc:
+        raise OutputError(f"cannot remove {target}: {exc.strerror or exc}") from exc
+
+
 def atomic_write(path: str | os.PathLike[str], write: Callable[[IO[bytes]], object]) -> Path:
     """Write a file whole or not at all: into a temporary sibling, then :func:`os.replace`.
 
@@ -195,10 +252,14 @@ def atomic_write(path: str | os.PathLike[str], write: Callable[[IO[bytes]], obje
     naming the path. Temporary files of the same target left by a process that
     no longer runs (killed while writing) are removed first. Inside
     :func:`output_set` the rename waits for the end of the set. The file gets
-    the usual permissions (0o666 less the umask).
+    the usual permissions (0o666 less the umask). A target that exists and is
+    not a regular file (a device such as ``/dev/full``, a FIFO, a socket, also
+    through a symbolic link) is refused with :class:`OutputError` before
+    anything is written: renaming over it would replace the device itself.
     """
     target = as_path(path)
     stage = _STAGE.get()
+    refuse_special_file(target)
     try:
         if target.is_dir():
             raise IsADirectoryError(errno.EISDIR, "is a directory", str(target))
@@ -215,6 +276,7 @@ def atomic_write(path: str | os.PathLike[str], write: Callable[[IO[bytes]], obje
         if stage is not None:
             stage.files.append((tmp, target))
         else:
+            refuse_special_file(target)  # one may have appeared while writing
             os.replace(tmp, target)
     except BaseException as exc:
         with contextlib.suppress(OSError):
@@ -223,6 +285,34 @@ def atomic_write(path: str | os.PathLike[str], write: Callable[[IO[bytes]], obje
             raise OutputError(os_message(target, exc)) from exc
         raise
     return target
+
+
+def special_file_kind(path: Path) -> str | None:
+    """What ``path`` is when it exists and is not a regular file (``"a device"``, ``"a FIFO"``, ...), else None.
+
+    Symbolic links are followed: a link to ``/dev/full`` is a device. A folder
+    is not reported here (its own message says so).
+    """
+    try:
+        mode = os.stat(path).st_mode
+    except (OSError, ValueError):  # missing, a dangling link, an unreadable parent: the write says
+        return None
+    if stat.S_ISREG(mode) or stat.S_ISDIR(mode):
+        return None
+    if stat.S_ISCHR(mode) or stat.S_ISBLK(mode):
+        return "a device"
+    if stat.S_ISFIFO(mode):
+        return "a FIFO (named pipe)"
+    if stat.S_ISSOCK(mode):
+        return "a socket"
+    return "not a regular file"  # pragma: no cover - no other kind on POSIX
+
+
+def refuse_special_file(target: Path) -> None:
+    """Raise :class:`OutputError` if ``target`` exists and is not a regular file (nor a folder)."""
+    kind = special_file_kind(target)
+    if kind is not None:
+        raise OutputError(f"cannot write {target}: it is {kind}, not a regular file; refusing to replace it")
 
 
 #: Temporary files: ``.<target name>.<pid>-<8 hex>.tmp`` next to the target.

@@ -3,9 +3,15 @@
 :func:`run_batch` abstracts a list of images with :func:`img2logo.abstract` and
 writes, for each, ``OUTPUT_DIR/<stem>.svg``, ``.json`` and ``.png`` (the same files
 as ``img2logo INPUT --svg --json --png``), then ``OUTPUT_DIR/summary.csv``: one row
-per image (``image, kind, arcs, levels, similarity, symmetry, seconds, error``). A file that
+per image (``image, kind, arcs, levels, similarity, symmetry, seconds, error``; a text
+cell that a spreadsheet would run as a formula is quoted). A file that
 fails (unreadable, blank, ...) does not stop the others: it is reported in
-:attr:`BatchReport.failures` with its one-line error message. :func:`sweep` runs a
+:attr:`BatchReport.failures` with its one-line error message, and its outputs of an
+earlier run are removed if img2logo wrote them (``OUTPUT_DIR/.img2logo-outputs``
+lists the files it wrote). While a batch runs, it holds ``OUTPUT_DIR/.img2logo-batch.lock``:
+a second batch on the same folder is refused. A worker of the default pool that
+is killed (the out-of-memory killer) loses nothing: its pool's unfinished images
+run again in a fresh one. :func:`sweep` runs a
 grid of parameters over images and returns the table (for the notebooks).
 
 The work is done by :func:`process_image`, a module-level function that takes and
@@ -40,7 +46,7 @@ from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from concurrent.futures import Executor, Future, as_completed
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, NoReturn
 
 from ._validation import check_choice
 from .errors import Img2LogoError, InvalidParameterError
@@ -57,7 +63,9 @@ __all__ = [
     "BatchProgress",
     "BatchReport",
     "BatchRow",
+    "SkippedEntryWarning",
     "find_images",
+    "ignored_subject_options",
     "process_image",
     "run_batch",
     "sweep",
@@ -196,8 +204,11 @@ class BatchReport:
         the failures are left out when ``failures`` is False.
         """
         head = ("image", "kind", "arcs", "E^s (px)", "symmetry", "seconds")
+        from ._io import printable
+
         body = [
-            (r.image, r.kind, str(r.arcs), f"{r.similarity:.2f}", r.symmetry, f"{r.seconds:.1f}") for r in self.rows
+            (printable(r.image), r.kind, str(r.arcs), f"{r.similarity:.2f}", r.symmetry, f"{r.seconds:.1f}")
+            for r in self.rows
         ]
         align = ("<", "<", ">", ">", "<", ">")
         if not any(r.symmetry for r in self.rows):
@@ -213,7 +224,7 @@ class BatchReport:
         lines.append(f"{len(self.rows)} of {total} images done, {seconds:.1f} s of work")
         if self.failures and failures:
             lines.append(f"{len(self.failures)} failed:")
-            lines.extend(f"  {f.line}" for f in self.failures)
+            lines.extend(f"  {printable(f.line)}" for f in self.failures)
         return "\n".join(lines)
 
 
@@ -280,6 +291,13 @@ def _process(
         options = Options.from_keywords(options or {})
     result = abstract(path, options=options, progress=False)
     final = result.final
+    fg = options.foreground
+    given = (
+        [] if isinstance(fg, str) and fg == "auto" else [f"--foreground {fg if isinstance(fg, str | Path) else 'MASK'}"]
+    )
+    ignored = ignored_subject_options(result.lines, given)
+    if ignored:
+        warnings.warn(ignored, UserWarning, stacklevel=2)
     fills = None if spec.mode == "none" else spec.make(final, result.image)
     files: dict[str, bytes] = {}
     if outputs:
@@ -301,6 +319,23 @@ def _process(
         "symmetry": _symmetry_cell(result.symmetry),
         "files": files,
     }
+
+
+def ignored_subject_options(lines: Any, given: Sequence[str]) -> str | None:
+    """The warning that the subject options ``given`` (``"--subject 1,2,3,4"``) are ignored, or None.
+
+    Only a photo has a subject to find (:mod:`img2logo.subject`); for clip art
+    and drawings every line is drawn, so ``foreground`` and ``subject`` do nothing.
+    ``lines`` is the run's :class:`~img2logo.preprocessing.FeatureLines`.
+    """
+    if not given or lines.kind == "photo":
+        return None
+    which = " and ".join(given)
+    verb = "is" if len(given) == 1 else "are"
+    return (
+        f"{which} {verb} ignored: the image is {lines.kind} ({lines.reason}), and only a photo has a subject "
+        "to find (give --kind photo to treat it as one)"
+    )
 
 
 def _symmetry_cell(choice: Any) -> str:
@@ -385,6 +420,11 @@ def _stop_workers(pool: Executor) -> None:
 def find_images(folder: str | os.PathLike[str]) -> list[Path]:
     """The images directly in ``folder`` (suffixes ``IMAGE_SUFFIXES``, any case), sorted by name.
 
+    An entry named like an image that is no regular file (a dangling link, a
+    FIFO, a socket, a device, a folder) is skipped and reported in one
+    :class:`SkippedEntryWarning` that counts and names them; it is never
+    opened (a FIFO would block).
+
     Raises
     ------
     InvalidParameterError
@@ -393,13 +433,54 @@ def find_images(folder: str | os.PathLike[str]) -> list[Path]:
     root = Path(folder)
     if not root.is_dir():
         raise InvalidParameterError(f"input folder not found: {root}")
-    found = sorted(
-        (p for p in root.iterdir() if p.is_file() and p.suffix.lower() in IMAGE_SUFFIXES), key=lambda p: p.name
-    )
+    found, skipped = [], []
+    with os.scandir(root) as entries:
+        for entry in entries:
+            if Path(entry.name).suffix.lower() not in IMAGE_SUFFIXES:
+                continue
+            if entry.is_file():  # stat only (links followed): nothing is opened
+                found.append(root / entry.name)
+            else:
+                skipped.append((entry.name, _entry_kind(entry)))
+    if skipped:
+        from ._io import printable
+
+        names = ", ".join(f"'{printable(name)}' ({kind})" for name, kind in sorted(skipped))
+        warnings.warn(
+            f"{root}: skipped {len(skipped)} {'entry' if len(skipped) == 1 else 'entries'} named like images "
+            f"that are no regular files: {names}",
+            SkippedEntryWarning,
+            stacklevel=2,
+        )
+    found.sort(key=lambda p: p.name)
     if not found:
         kinds = ", ".join(s.lstrip(".") for s in IMAGE_SUFFIXES)
         raise InvalidParameterError(f"no images ({kinds}) in {root}")
     return found
+
+
+class SkippedEntryWarning(UserWarning):
+    """:func:`find_images` skipped entries named like images that are no regular files."""
+
+
+def _entry_kind(entry: os.DirEntry[str]) -> str:
+    """What a directory entry that is no regular file is: a dangling link, a FIFO, a folder, ..."""
+    import stat
+
+    try:
+        mode = entry.stat().st_mode
+    except OSError:
+        return "a dangling link" if entry.is_symlink() else "unreadable"
+    for test, kind in (
+        (stat.S_ISDIR, "a folder"),
+        (stat.S_ISFIFO, "a FIFO"),
+        (stat.S_ISSOCK, "a socket"),
+        (stat.S_ISCHR, "a character device"),
+        (stat.S_ISBLK, "a block device"),
+    ):
+        if test(mode):
+            return kind
+    return "not a regular file"  # pragma: no cover
 
 
 def run_batch(
@@ -479,28 +560,53 @@ def run_batch(
     opts = _check_options(settings, fill, options)
     out_dir = Path(output_dir)
     stems = _output_stems(inputs)
-    _check_targets(inputs, out_dir, stems, formats, summary)
+    mask = _foreground_file(opts.foreground)
+    _check_targets([*inputs, *([mask] if mask else [])], out_dir, stems, formats, summary)
+    _check_output_folder(inputs, out_dir)
     tasks = [(str(p), opts, formats, fill) for p in inputs]
 
-    written: dict[int, tuple[str, ...]] = {}
+    with _batch_lock(out_dir):
+        manifest = _read_manifest(out_dir)
+        written: dict[int, tuple[str, ...]] = {}
+        notes: list[str] = []
 
-    def write(i: int, result: dict[str, Any]) -> None:
-        from ._io import atomic_write, output_set
+        def write(i: int, result: dict[str, Any]) -> None:
+            from ._io import atomic_write, output_set
 
-        files = result.get("files") or {}
-        if "error" in result:  # an image that now fails keeps no result of an earlier run
-            _remove_old_outputs(out_dir, stems[i], formats)
-            return
-        done = []
-        with output_set():  # the files of an image appear together
-            for fmt in formats:
-                if fmt in files:
-                    data = files[fmt]
-                    done.append(str(atomic_write(out_dir / f"{stems[i]}.{fmt}", lambda f, d=data: f.write(d))))
-        written[i] = tuple(done)
+            files = result.get("files") or {}
+            if "error" in result:
+                if not result.get("lost"):  # an image that now fails keeps no result of an earlier run
+                    for name in _remove_old_outputs(out_dir, stems[i], formats, manifest):
+                        manifest.discard(name)
+                return  # a lost worker is no fault of the image: its earlier outputs are kept
+            done = []
+            with output_set():  # the files of an image appear together
+                for fmt in formats:
+                    if fmt in files:
+                        data = files[fmt]
+                        done.append(str(atomic_write(out_dir / f"{stems[i]}.{fmt}", lambda f, d=data: f.write(d))))
+            written[i] = tuple(done)
+            manifest.update(Path(d).name for d in done)
 
-    results = _run_tasks(tasks, executor, jobs, progress, on_result=write)
-    rows, failures, warns = [], [], []
+        try:
+            results = _run_tasks(tasks, executor, jobs, progress, on_result=write, notes=notes)
+            report = _report(inputs, results, written, notes)
+            if summary:
+                from .writers import write_table
+
+                path = write_table(_csv_safe(report.to_frame()), out_dir / "summary.csv")
+                manifest.add(path.name)
+                report = dataclasses.replace(report, summary_path=str(path))
+        finally:
+            _write_manifest(out_dir, manifest)  # also after an interrupt: what this run wrote is recorded
+    return report
+
+
+def _report(
+    inputs: Sequence[Path], results: list[dict[str, Any]], written: Mapping[int, tuple[str, ...]], notes: list[str]
+) -> BatchReport:
+    """The :class:`BatchReport` of the results of :func:`process_image`, in input order."""
+    rows, failures, warns = [], [], list(notes)
     for i, res in enumerate(results):
         warns.extend(f"{res['image']}: {w}" for w in res.get("warnings", ()))
         if "error" in res:
@@ -519,13 +625,7 @@ def run_batch(
                     res.get("symmetry", ""),
                 )
             )
-    report = BatchReport(tuple(rows), tuple(failures), tuple(str(p) for p in inputs), tuple(warns))
-    if summary:
-        from .writers import write_table
-
-        path = write_table(report.to_frame(), out_dir / "summary.csv")
-        report = dataclasses.replace(report, summary_path=str(path))
-    return report
+    return BatchReport(tuple(rows), tuple(failures), tuple(str(p) for p in inputs), tuple(warns))
 
 
 def sweep(
@@ -598,62 +698,131 @@ def _run_tasks(
     jobs: int | None,
     progress: BatchProgress | bool | None,
     on_result: Callable[[int, dict[str, Any]], None] | None = None,
+    notes: list[str] | None = None,
 ) -> list[dict[str, Any]]:
     """Run ``process_image(*task)`` for every task; results in task order.
 
     ``on_result(i, result)`` is called here, in the calling thread, as each
-    task finishes. An executor failure (a crashed worker) becomes that task's error.
+    task finishes. An executor failure (a crashed worker) becomes that task's
+    error, marked ``lost``: no fault of the image. When a worker of the default
+    pool dies (killed by a signal, e.g. by the out-of-memory killer) the pool is
+    broken: the unfinished tasks run again in a fresh pool; after a second break
+    each runs alone in a pool of its own, so that only a task that kills its
+    own worker fails. ``notes`` gets one line per break.
     """
     if jobs is not None:
         if isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1:
             raise InvalidParameterError(f"jobs must be an integer >= 1, got {jobs!r}")
     total = len(tasks)
-    tick, close = _silent, _nothing
     results: list[dict[str, Any] | None] = [None] * total
+    bar: list[Any] = [_silent, _nothing, False, 0]  # tick, close, started, images done
 
-    def finish(i: int, result: dict[str, Any], done: int) -> None:
+    def start_bar() -> None:
+        if not bar[2]:
+            bar[0], bar[1] = _progress(progress, total)
+            bar[2] = True
+
+    def finish(i: int, result: dict[str, Any]) -> None:
         results[i] = result
         if on_result is not None:
             on_result(i, result)
-        tick(done, total, result["image"])
+        bar[3] += 1
+        bar[0](bar[3], total, result["image"])
 
     try:
         workers = min(jobs or os.cpu_count() or 1, total)
         if executor is None and workers <= 1:
-            tick, close = _progress(progress, total)
+            start_bar()
             for i, task in enumerate(tasks):
-                finish(i, process_image(*task), i + 1)
-            return [r for r in results if r is not None]
-        own = executor is None
-        pool = executor if executor is not None else _default_pool(workers)
-        finished = False
-        try:
-            # A forked worker inherits OpenCV's thread pool without its threads: its
-            # cv2.setNumThreads(1) would wait for them forever. The workers are forked at the
-            # first submit, so OpenCV runs single-threaded here until all are submitted.
-            with _opencv_threads(1 if own else None):
-                futures: dict[Future[dict[str, Any]], int] = {
-                    pool.submit(process_image, *task): i for i, task in enumerate(tasks)
-                }
-            # The bar (a thread) only now: a forked worker should not inherit threads.
-            tick, close = _progress(progress, total)
-            for done, future in enumerate(as_completed(futures), start=1):
-                i = futures[future]
-                try:
-                    result = future.result()
-                except Exception as exc:  # the executor failed, not the image (a worker died)
-                    result = {"image": Path(tasks[i][0]).name, "path": tasks[i][0], "seconds": 0.0}
-                    result["error"] = _one_line(exc)
-                finish(i, result, done)
-            finished = True
-        finally:
-            if own:
-                if not finished:  # an error or an interrupt: do not wait for the images running
-                    _stop_workers(pool)
-                pool.shutdown(wait=finished, cancel_futures=True)
+                finish(i, process_image(*task))
+        elif executor is not None:
+            _run_on(executor, tasks, list(range(total)), finish, start_bar, own=False)
+        else:
+            pending, breaks = list(range(total)), 0
+            while pending:
+                alone = breaks >= _POOL_BREAKS_BEFORE_ALONE
+                broken: list[int] = []
+                for chunk in [[i] for i in pending] if alone else [pending]:
+                    pool = _default_pool(min(workers, len(chunk)))
+                    lost = _run_on(pool, tasks, chunk, finish, start_bar, own=True)
+                    if alone and lost:  # this task, alone in its pool, killed its worker
+                        finish(lost[0], _lost(tasks[lost[0]], _WORKER_DIED))
+                    else:
+                        broken.extend(lost)
+                pending = sorted(broken)
+                if pending:
+                    breaks += 1
+                    if notes is not None:
+                        again = "each alone" if breaks >= _POOL_BREAKS_BEFORE_ALONE else "in a fresh pool"
+                        notes.append(
+                            f"a worker process died ({_WORKER_DIED}); "
+                            f"{len(pending)} unfinished images run again {again}"
+                        )
     finally:
-        close()
+        bar[1]()
     return [r for r in results if r is not None]
+
+
+#: Breaks of the default pool after which the unfinished images run one at a time, each in a pool of its own.
+_POOL_BREAKS_BEFORE_ALONE = 2
+_WORKER_DIED = "killed by a signal, e.g. by the out-of-memory killer"
+
+
+def _lost(task: tuple[Any, ...], why: str) -> dict[str, Any]:
+    """The result of a task whose worker was lost: an error that is no fault of the image (``lost``)."""
+    return {
+        "image": Path(task[0]).name,
+        "path": task[0],
+        "seconds": 0.0,
+        "error": f"the worker process running it was lost ({why}); its earlier outputs are kept",
+        "lost": True,
+    }
+
+
+def _run_on(
+    pool: Executor,
+    tasks: list[tuple[Any, ...]],
+    indices: list[int],
+    finish: Callable[[int, dict[str, Any]], None],
+    start_bar: Callable[[], None],
+    *,
+    own: bool,
+) -> list[int]:
+    """Run the tasks ``indices`` on ``pool``, calling ``finish(i, result)`` as each ends.
+
+    With ``own`` (a pool made here) the pool is shut down at the end, and the
+    tasks whose pool broke (a worker died) are returned, not finished; with
+    another executor, its failure is the task's (lost) error.
+    """
+    from concurrent.futures import BrokenExecutor
+
+    broken: list[int] = []
+    finished = False
+    try:
+        # A forked worker inherits OpenCV's thread pool without its threads: its
+        # cv2.setNumThreads(1) would wait for them forever. The workers are forked at the
+        # first submit, so OpenCV runs single-threaded here until all are submitted.
+        with _opencv_threads(1 if own else None):
+            futures: dict[Future[dict[str, Any]], int] = {pool.submit(process_image, *tasks[i]): i for i in indices}
+        start_bar()  # a thread: only now, so that a forked worker does not inherit it
+        for future in as_completed(futures):
+            i = futures[future]
+            try:
+                result = future.result()
+            except Exception as exc:  # the executor failed, not the image (a worker died)
+                if own and isinstance(exc, BrokenExecutor):
+                    broken.append(i)
+                    continue
+                result = _lost(tasks[i], _one_line(exc))
+                result["error"] = _one_line(exc)
+            finish(i, result)
+        finished = True
+    finally:
+        if own:
+            if not finished:  # an error or an interrupt: do not wait for the images running
+                _stop_workers(pool)
+            pool.shutdown(wait=finished, cancel_futures=True)
+    return broken
 
 
 @contextlib.contextmanager
@@ -723,7 +892,21 @@ def _check_options(settings: Mapping[str, Any], fill: str, base: Options | None 
 
     options = Options.from_keywords(settings, base=base)
     parse_fill_option(fill)
+    mask = _foreground_file(options.foreground)
+    if mask is not None:  # read once here: a missing or unreadable mask would fail every image
+        from .loading import load_mask
+
+        load_mask(mask)
     return options
+
+
+def _foreground_file(foreground: object) -> Path | None:
+    """The mask file a ``foreground`` option names (``--foreground MASK.png``), or None (a choice or an array)."""
+    from .subject import FOREGROUND_CHOICES
+
+    if isinstance(foreground, Path) or (isinstance(foreground, str) and foreground not in FOREGROUND_CHOICES):
+        return Path(foreground)
+    return None
 
 
 def _check_targets(
@@ -742,18 +925,222 @@ def _check_targets(
         raise InvalidParameterError(f"output folder {out_dir}: {exc}") from exc
 
 
-def _remove_old_outputs(out_dir: Path, stem: str, formats: Sequence[str]) -> None:
-    """Remove ``out_dir/<stem>.<fmt>`` of an earlier run (regular files only; never an input, checked before)."""
+def _check_output_folder(inputs: Sequence[Path], out_dir: Path) -> None:
+    """Refuse an output folder that holds an input (``img2logo batch in in``, also through a link).
+
+    Its outputs (``<stem>.png``) would be taken as inputs by the next run of the same folder.
+    """
+    if not out_dir.is_dir():
+        return
+    for p in inputs:
+        with contextlib.suppress(OSError):
+            if os.path.samefile(p.parent if str(p.parent) else ".", out_dir):
+                raise InvalidParameterError(
+                    f"output folder {out_dir} is the folder of the input {p}: the next run would take its "
+                    "outputs as inputs; give another folder"
+                )
+
+
+#: In the output folder: the lock of the batch writing it, and the list of the files img2logo wrote there.
+LOCK_NAME = ".img2logo-batch.lock"
+MANIFEST_NAME = ".img2logo-outputs"
+_MANIFEST_HEADER = "# img2logo batch outputs/1: the files img2logo wrote in this folder, one a line\n"
+
+
+@contextlib.contextmanager
+def _batch_lock(out_dir: Path) -> Iterator[None]:
+    """Hold ``out_dir``'s batch lock while the block runs: a second batch on the same folder is refused.
+
+    The lock is ``out_dir/.img2logo-batch.lock`` with :func:`fcntl.flock`, which
+    the system releases when its process ends, however it ends: a lock file
+    left by a killed batch is stale and taken over. The file is removed at the
+    end (while still locked, and a batch that took a removed file tries again).
+    The folder is created if missing, and removed again if the block leaves it empty.
+    Where ``fcntl`` is missing (Windows) no lock is taken.
+
+    Raises
+    ------
+    InvalidParameterError
+        If another batch holds the lock: its process id is named.
+    """
+    try:
+        import fcntl
+    except ImportError:  # pragma: no cover - not POSIX
+        yield
+        return
+    from ._io import _make_parents, _Stage, os_message
+    from .errors import OutputError
+
+    made = _Stage()  # records the folders created
+    lock = out_dir / LOCK_NAME
+    try:
+        _make_parents(out_dir, made)
+        for _ in range(100):
+            fd = _open_lock(lock, os.O_RDWR | os.O_CREAT)
+            try:
+                fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            except OSError:
+                _refuse_locked(out_dir, fd)
+            try:
+                same = os.fstat(fd).st_ino == os.stat(lock).st_ino
+            except FileNotFoundError:
+                same = False
+            if same:
+                break
+            os.close(fd)  # the holder removed that file as we took it: take the new one
+        os.ftruncate(fd, 0)
+        os.pwrite(fd, f"{os.getpid()}\n".encode(), 0)
+    except OSError as exc:
+        raise OutputError(os_message(lock, exc)) from exc
+    try:
+        yield
+    finally:
+        with contextlib.suppress(OSError):
+            os.unlink(lock)
+        os.close(fd)
+        for folder in reversed(made.folders):
+            with contextlib.suppress(OSError):
+                folder.rmdir()  # only if empty: nothing was written
+
+
+def _open_lock(lock: Path, flags: int) -> int:
+    """Open the lock file: never through a link, never a FIFO or a device, never a file with other names.
+
+    A lock file planted as a link to (or a hard link of) a file of the user's would
+    otherwise be written over; such a folder is refused.
+    """
+    import stat
+
+    nofollow, nonblock = getattr(os, "O_NOFOLLOW", 0), getattr(os, "O_NONBLOCK", 0)
+    try:
+        fd = os.open(lock, flags | nofollow | nonblock, 0o666)
+    except FileNotFoundError:
+        raise
+    except OSError as exc:
+        if lock.is_symlink():
+            raise InvalidParameterError(f"output folder {lock.parent}: {lock.name} is a link; remove it") from exc
+        raise
+    st = os.fstat(fd)
+    if not stat.S_ISREG(st.st_mode) or st.st_nlink > 1:
+        os.close(fd)
+        raise InvalidParameterError(
+            f"output folder {lock.parent}: {lock.name} is not a lock file img2logo made "
+            "(not a regular file, or a file with other names); remove it"
+        )
+    return fd
+
+
+def _refuse_locked(out_dir: Path, fd: int) -> NoReturn:
+    """Close ``fd`` (the lock file another batch holds) and raise the error naming that batch's process."""
+    try:
+        owner = os.pread(fd, 32, 0).decode("ascii", "replace").strip()
+    finally:
+        os.close(fd)
+    who = f" (process {owner})" if owner.isdigit() else ""
+    raise InvalidParameterError(
+        f"output folder {out_dir} is being written by another img2logo batch{who}; "
+        "wait for it to end or give another folder"
+    )
+
+
+def _check_unlocked(out_dir: Path) -> None:
+    """Raise, without taking it, if another batch holds ``out_dir``'s lock (see :func:`_batch_lock`)."""
+    try:
+        import fcntl
+
+        fd = _open_lock(out_dir / LOCK_NAME, os.O_RDONLY)
+    except (ImportError, FileNotFoundError):  # no lock file: no batch holds it
+        return
+    try:
+        fcntl.flock(fd, fcntl.LOCK_SH | fcntl.LOCK_NB)
+    except OSError:
+        _refuse_locked(out_dir, fd)
+    os.close(fd)  # closing releases the shared lock
+
+
+def _read_manifest(out_dir: Path) -> set[str]:
+    """The names of the files earlier img2logo batches wrote in ``out_dir`` (:data:`MANIFEST_NAME`)."""
+    try:
+        text = (out_dir / MANIFEST_NAME).read_text(encoding="utf-8", errors="surrogateescape")
+    except (OSError, ValueError):
+        return set()
+    if not text.startswith(_MANIFEST_HEADER):
+        return set()
+    return {line for line in text[len(_MANIFEST_HEADER) :].split("\n") if line and "/" not in line}
+
+
+def _write_manifest(out_dir: Path, names: Iterable[str]) -> None:
+    """Record the files img2logo wrote in ``out_dir`` (those still there), whole or not at all."""
+    from ._io import atomic_write
+
+    if not out_dir.is_dir():
+        return
+    kept = sorted(n for n in names if (out_dir / n).is_file() and "\n" not in n)
+    if not kept and not (out_dir / MANIFEST_NAME).exists():
+        return
+    text = _MANIFEST_HEADER + "".join(f"{n}\n" for n in kept)
+    atomic_write(out_dir / MANIFEST_NAME, lambda f: f.write(text.encode("utf-8", "surrogateescape")))
+
+
+def _written_by_img2logo(path: Path, manifest: set[str]) -> bool:
+    """Whether ``path`` is a regular file an img2logo run wrote.
+
+    It is when the folder's manifest lists it; a JSON file also when it is an
+    ``img2logo.abstraction/1`` document, an SVG when its description says img2logo
+    wrote it (outputs of runs before the manifest). A file of the user's
+    (``notes.json``), a link or anything else is not.
+    """
+    if path.is_symlink() or not path.is_file():
+        return False
+    if path.name in manifest:
+        return True
+    try:
+        if path.suffix == ".json" and path.stat().st_size <= 256 * 2**20:
+            import json
+
+            from .constants import FORMAT_NAME
+
+            doc = json.loads(path.read_bytes())
+            return isinstance(doc, dict) and doc.get("format") == FORMAT_NAME
+        if path.suffix == ".svg":
+            with path.open("rb") as f:
+                return b"golden ratio logo by img2logo" in f.read(4096)
+    except (OSError, ValueError):
+        return False
+    return False
+
+
+def _remove_old_outputs(out_dir: Path, stem: str, formats: Sequence[str], manifest: set[str]) -> list[str]:
+    """Remove ``out_dir/<stem>.<fmt>`` that an earlier img2logo run wrote (never an input, checked before).
+
+    Returns the names removed. A file img2logo did not write (see
+    :func:`_written_by_img2logo`) is left alone.
+    """
+    removed = []
     for fmt in formats:
         old = out_dir / f"{stem}.{fmt}"
-        if old.is_file() and not old.is_symlink():
-            try:
-                old.unlink()
-            except OSError as exc:
-                from ._io import os_message
-                from .errors import OutputError
+        if _written_by_img2logo(old, manifest):
+            from ._io import remove_file
 
-                raise OutputError(os_message(old, exc)) from exc
+            remove_file(old)
+            removed.append(old.name)
+    return removed
+
+
+#: First characters that make a spreadsheet read a CSV cell as a formula (CSV injection, OWASP).
+_FORMULA_STARTS: tuple[str, ...] = ("=", "+", "-", "@", "\t", "\r")
+
+
+def _csv_safe(table: pd.DataFrame) -> pd.DataFrame:
+    """``table`` with every text cell that a spreadsheet would run as a formula quoted by a leading ``'``.
+
+    An image named ``=HYPERLINK(...).png`` (or an error message naming it) is then
+    shown as text when ``summary.csv`` is opened in a spreadsheet. Numbers are untouched.
+    """
+    safe = table.copy()
+    for column in ("image", "kind", "symmetry", "error"):
+        safe[column] = [f"'{v}" if isinstance(v, str) and v.startswith(_FORMULA_STARTS) else v for v in safe[column]]
+    return safe
 
 
 def _output_stems(paths: Sequence[Path]) -> list[str]:

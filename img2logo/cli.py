@@ -11,13 +11,18 @@ level with ``--levels-dir``, and the segment graph with ``--segments-png``.
 ``OUTPUT_DIR/<stem>.svg``, ``.json``, ``.png`` and ``OUTPUT_DIR/summary.csv``; it
 goes on past a bad file, lists it at the end and then exits with status 1.
 
-Every error is one line, ``img2logo: error: ...``, never a traceback. Exit
+Every error is one line, ``img2logo: error: ...``, never a traceback (argument
+errors too; a control character in a file name is printed escaped). Exit
 statuses (:func:`main`): 2 for a bad input, option or output path, found before
-any work (nothing is written; an output that is an input, a folder, a device,
-shared by two options, or under a file or a read-only folder is one); 1 when an
+any work (nothing is written; an output that is an input -- the image, a
+``--lock-mask`` or ``--foreground`` mask, a file of ``--levels-dir`` --, a folder,
+a device, shared by two options, under a file or a read-only folder, or with a
+suffix naming another format is one; so is a batch's output folder that is its
+input folder or that another batch is writing); 1 when an
 output cannot be written during the run (the outputs of a run are written as a
 set: none of them is left), when memory runs out, or when some images of a
-batch failed (the others are written, a failed image's old outputs removed);
+batch failed (the others are written, a failed image's old outputs removed
+when img2logo wrote them; a killed worker's images are run again);
 130 after Ctrl-C and 143 after SIGTERM (temporary files removed; a batch's
 workers end with it, also when it is killed). The same input and options give
 the same files, byte for byte.
@@ -27,11 +32,14 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import re
 import sys
 import warnings
 from collections.abc import Iterator, Sequence
+from typing import NoReturn
 
 from . import __version__
+from ._io import printable
 from .errors import Img2LogoError, InvalidParameterError, OutputError
 
 EXIT_ERROR = 2
@@ -42,8 +50,52 @@ EXIT_INTERRUPTED = 130
 EXIT_TERMINATED = 143
 
 
+class _Parser(argparse.ArgumentParser):
+    """An argument parser whose errors are one line, ``img2logo: error: ...`` (exit status 2), not usage + error.
+
+    An argument that starts with ``-`` and is no option (``-x.png``) is named, with
+    the way to give a file of that name (``img2logo -- -x.png``).
+    """
+
+    def parse_args(self, args=None, namespace=None):  # type: ignore[override]
+        self._given = list(sys.argv[1:] if args is None else args)
+        return super().parse_args(self._given, namespace)
+
+    def error(self, message: str) -> NoReturn:
+        about_inputs = message.startswith(("the following arguments are required", "unrecognized arguments"))
+        unknown = self._unknown_option() if about_inputs else None  # not for an option's own bad value
+        if unknown is not None:
+            command = "img2logo batch" if self.prog.endswith("batch") else "img2logo"
+            message = (
+                f"unknown option {printable(unknown)} (for a file whose name starts with '-', "
+                f"write: {command} -- {printable(unknown)})"
+            )
+        self.exit(EXIT_ERROR, f"img2logo: error: {printable(message)}\n")
+
+    def _unknown_option(self) -> str | None:
+        """The first argument before ``--`` that looks like an option but is none (nor a negative number)."""
+        for arg in getattr(self, "_given", []):
+            if arg == "--":
+                return None
+            if not arg.startswith("-") or arg == "-" or _NUMBER.fullmatch(arg):
+                continue
+            name = arg.split("=", 1)[0] if arg.startswith("--") else arg
+            if name in self._option_string_actions:
+                continue
+            if not arg.startswith("--") and arg[:2] in self._option_string_actions:
+                continue  # a short option with its value attached: -j2
+            if arg.startswith("--") and any(o.startswith(name) for o in self._option_string_actions):
+                continue  # an abbreviation argparse accepts or calls ambiguous itself
+            return arg
+        return None
+
+
+#: An argument that is a number (a negative option value such as ``-5``), not an option.
+_NUMBER = re.compile(r"-\d+(\.\d*)?([eE][-+]?\d+)?|-\.\d+([eE][-+]?\d+)?|-inf|-nan", re.IGNORECASE)
+
+
 def _parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(
+    p = _Parser(
         prog="img2logo",
         usage="%(prog)s INPUT [options]\n       %(prog)s batch INPUT_DIR OUTPUT_DIR [options]",
         description="Turn an image into a golden ratio logo: circular arcs on a phi circle grid.",
@@ -69,7 +121,7 @@ def _parser() -> argparse.ArgumentParser:
 
 
 def _batch_parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(
+    p = _Parser(
         prog="img2logo batch",
         description="Turn every image of a folder (png, jpg, jpeg, tif, tiff, bmp, webp; sorted by name) into a "
         "golden ratio logo: OUTPUT_DIR/<stem>.svg, .json and .png, and OUTPUT_DIR/summary.csv (image, kind, "
@@ -148,10 +200,14 @@ def main(argv: Sequence[str] | None = None) -> int:
         args = _batch_parser().parse_args(args_list[1:])
     else:
         args = _parser().parse_args(args_list)
-    say = (lambda *a: None) if args.quiet else (lambda *a: print(*a, file=sys.stderr))
+
+    def say(text: object) -> None:
+        """Print one line on standard error; a control character in a name cannot start another one."""
+        if not args.quiet:
+            print(printable(text), file=sys.stderr)
 
     def show(message, category, filename, lineno, file=None, line=None) -> None:
-        say(f"img2logo: warning: {message}")
+        say(f"img2logo: warning: {printable(message)}")
 
     with _terminate_on_sigterm():
         try:
@@ -160,10 +216,10 @@ def main(argv: Sequence[str] | None = None) -> int:
                 warnings.showwarning = show  # as they come, not at the end
                 return _batch(args, say) if batch else _run(args, say)
         except OutputError as exc:
-            print(f"img2logo: error: {exc}", file=sys.stderr)
+            print(f"img2logo: error: {printable(exc)}", file=sys.stderr)
             return EXIT_FAILED
         except Img2LogoError as exc:
-            print(f"img2logo: error: {exc}", file=sys.stderr)
+            print(f"img2logo: error: {printable(exc)}", file=sys.stderr)
             return EXIT_ERROR
         except MemoryError:
             print("img2logo: error: out of memory; try a smaller image or fewer --jobs", file=sys.stderr)
@@ -224,15 +280,21 @@ def _abstract_options(args: argparse.Namespace, *, batch: bool = False):
 def _check_outputs(args: argparse.Namespace) -> dict:
     """Every output path of a single-image run, checked before any work (see :func:`writers.check_output_paths`).
 
-    None is an input (the image, the lock mask), none is a folder or a device,
-    no two share a file, every parent exists or can be created and is writable.
+    None is an input (the image, the lock mask, the ``--foreground`` mask), none
+    is a folder or a device, no two share a file, every parent exists or can be
+    created and is writable, and every suffix names the format written. A file
+    of ``--levels-dir`` that this run writes or removes (``level-NNNN.json``,
+    ``.svg``) is none of the inputs either, also through a link, and no other
+    output is one of them.
     """
-    import re
+    import os
     from pathlib import Path
 
+    from .batch import _foreground_file
     from .writers import check_output_paths
 
-    inputs = [args.input] + ([args.lock_mask] if args.lock_mask else [])
+    mask = _foreground_file(args.foreground)
+    inputs = [args.input] + ([args.lock_mask] if args.lock_mask else []) + ([mask] if mask else [])
     targets = {
         flag: path
         for flag, path in (
@@ -245,21 +307,61 @@ def _check_outputs(args: argparse.Namespace) -> dict:
     }
     folders = {"--levels-dir": args.levels_dir} if args.levels_dir else {}
     checked = check_output_paths(targets, inputs, folders)
+    for flag, path in targets.items():
+        _check_suffix(flag, path)
     if args.levels_dir:
-        import os
-
-        folder = os.path.realpath(args.levels_dir)
+        folder = Path(args.levels_dir)
+        real_folder = os.path.realpath(folder)
         for given in inputs:
             real = Path(os.path.realpath(given))
-            if str(real.parent) == folder and re.fullmatch(r"level-\d{4,}\.(json|svg)", real.name):
+            if str(real.parent) == real_folder and LEVEL_FILE.fullmatch(real.name):
                 raise InvalidParameterError(
                     f"--levels-dir {args.levels_dir} holds the input {given}: refusing to write over an input"
                 )
-            for flag, target in checked.items():
-                t = Path(os.path.realpath(target))
-                if str(t.parent) == folder and re.fullmatch(r"level-\d{4,}\.(json|svg)", t.name):
-                    raise InvalidParameterError(f"{flag} {target} is inside --levels-dir and may be one of its files")
+        if folder.is_dir():  # its level files (links too) are written or removed: none may be an input
+            level_files = {str(p): p for p in sorted(folder.iterdir()) if LEVEL_FILE.fullmatch(p.name)}
+            try:
+                check_output_paths(level_files, inputs)
+            except InvalidParameterError as exc:
+                raise InvalidParameterError(f"--levels-dir {args.levels_dir}: {exc}") from exc
+        for flag, target in checked.items():
+            t = Path(os.path.realpath(target))
+            if str(t.parent) == real_folder and LEVEL_FILE.fullmatch(t.name):
+                raise InvalidParameterError(f"{flag} {target} is inside --levels-dir and may be one of its files")
     return checked
+
+
+#: The files of ``--levels-dir``: ``level-0000.json``, ``level-0000.svg``, ... (more digits past 9999).
+LEVEL_FILE = re.compile(r"level-\d{4,}\.(json|svg)")
+
+#: The suffixes each output option accepts (lower case), and suffixes that name another format.
+_SUFFIXES: dict[str, tuple[str, ...]] = {
+    "--svg": (".svg",),
+    "--json": (".json",),
+    "--png": (".png",),
+    "--segments-png": (".png",),
+}
+_OTHER_FORMATS: frozenset[str] = frozenset(
+    ".svg .svgz .json .png .apng .jpg .jpeg .jpe .jfif .jp2 .gif .webp .avif .heic .heif .tif .tiff .bmp .ico "
+    ".pdf .eps .ps .ai .emf .wmf .psd .xcf .exr .hdr .pbm .pgm .ppm .pnm .csv .txt .html .htm .xml .yaml".split()
+)
+
+
+def _check_suffix(flag: str, path: str) -> None:
+    """Refuse an output whose suffix names another format (``--svg out.pdf``): the file would lie about its content.
+
+    A suffix that names no known format (``logo.out``, none at all) is accepted:
+    the name is the user's.
+    """
+    import os
+
+    suffix = os.path.splitext(path)[1].lower()
+    if suffix in _OTHER_FORMATS and suffix not in _SUFFIXES[flag]:
+        wanted = " or ".join(_SUFFIXES[flag])
+        raise InvalidParameterError(
+            f"{flag} {path}: {suffix} names another format ({flag} writes {_SUFFIXES[flag][0][1:].upper()}); "
+            f"give a file name ending in {wanted}"
+        )
 
 
 def _naming(path: str, call, *a, **kw):
@@ -273,6 +375,7 @@ def _naming(path: str, call, *a, **kw):
 
 
 def _run(args: argparse.Namespace, say) -> int:
+    from .batch import ignored_subject_options
     from .fills import parse_fill_option
     from .loading import load_image, load_mask
     from .pipeline import abstract
@@ -281,19 +384,25 @@ def _run(args: argparse.Namespace, say) -> int:
     fill_spec = parse_fill_option(args.fill)
     _check_outputs(args)
     image = load_image(args.input)
-    lock_mask = None if not args.lock_mask else load_mask(args.lock_mask, (image.height, image.width))
+    # Masks and the subject rectangle are in the input's pixels (abstract scales them to a downscaled input).
+    lock_mask = None if not args.lock_mask else load_mask(args.lock_mask, (image.input_height, image.input_width))
     say(f"{args.input}: {image.width}x{image.height} px")
     if args.subject is not None:
         import dataclasses
 
         from .subject import parse_subject_rectangle
 
-        subject = parse_subject_rectangle(args.subject, (image.height, image.width))
+        subject = parse_subject_rectangle(args.subject, (image.input_height, image.input_width))
         options = dataclasses.replace(options, subject=subject)
     progress = None if not args.quiet else False
     result = _naming(args.input, abstract, image, options=options, lock_mask=lock_mask, progress=progress)
     graph, prog = result.graph, result.progression
     say(f"kind {result.lines.kind} ({result.lines.reason})")
+    given = [f"--subject {args.subject}"] if args.subject is not None else []
+    given += [f"--foreground {args.foreground}"] if args.foreground != "auto" else []
+    ignored = ignored_subject_options(result.lines, given)
+    if ignored:
+        say(f"img2logo: warning: {ignored}")
     if result.lines.subject is not None:
         say(f"subject: {result.lines.subject.description}")
     if result.symmetry is not None:
@@ -304,7 +413,7 @@ def _run(args: argparse.Namespace, say) -> int:
     )
     say(
         f"levels: {len(prog.levels)}, arcs {prog.arc_counts[0]} -> {prog.arc_counts[-1]}, "
-        f"E^s {prog.final.similarity:.2f} px (T = {args.tolerance:g}), {_ladder_text(prog)}, "
+        f"E^s {prog.final.similarity:.2f} px (T = {prog.final.tolerance:g}), {_ladder_text(prog)}, "
         f"stopped: {prog.stopped_because}, {sum(result.timings.values()):.2f} s"
     )
     level = _pick_level(result, args.level)
@@ -324,15 +433,27 @@ def _batch(args: argparse.Namespace, say) -> int:
     """``img2logo batch``: every image of a folder (:func:`img2logo.batch.run_batch`)."""
     from pathlib import Path
 
-    from .batch import OUTPUT_FORMATS, _check_targets, _output_stems, find_images, run_batch
-    from .fills import parse_fill_option
+    from .batch import (
+        OUTPUT_FORMATS,
+        _check_options,
+        _check_output_folder,
+        _check_targets,
+        _check_unlocked,
+        _foreground_file,
+        _output_stems,
+        find_images,
+        run_batch,
+    )
 
-    options = _abstract_options(args, batch=True)
-    parse_fill_option(args.fill)
+    options = _check_options({}, args.fill, _abstract_options(args, batch=True))  # the --foreground mask read
     if args.jobs is not None and args.jobs < 1:
         raise InvalidParameterError(f"--jobs must be >= 1, got {args.jobs}")
     paths = find_images(args.input_dir)
-    _check_targets(paths, Path(args.output_dir), _output_stems(paths), OUTPUT_FORMATS, True)  # before the count
+    out_dir = Path(args.output_dir)
+    mask = _foreground_file(options.foreground)
+    _check_targets([*paths, *([mask] if mask else [])], out_dir, _output_stems(paths), OUTPUT_FORMATS, True)
+    _check_output_folder(paths, out_dir)
+    _check_unlocked(out_dir)  # all before the count
     say(f"{args.input_dir}: {len(paths)} images")
     report = run_batch(
         paths,
@@ -344,10 +465,11 @@ def _batch(args: argparse.Namespace, say) -> int:
     )
     for w in report.warnings:
         say(f"img2logo: warning: {w}")
-    say(report.summary(failures=False))
+    for line in report.summary(failures=False).splitlines():  # the names in it are escaped
+        say(line)
     say(f"wrote {len(report.rows)} logos (.svg, .json, .png) to {args.output_dir}/ and {report.summary_path}")
     for f in report.failures:
-        print(f"img2logo: error: {f.line}", file=sys.stderr)
+        print(f"img2logo: error: {printable(f.line)}", file=sys.stderr)
     return EXIT_FAILED if report.failures else 0
 
 
@@ -365,12 +487,13 @@ def _write_outputs(result, level, args: argparse.Namespace, say, fill_spec) -> N
     from pathlib import Path
 
     from . import writers
+    from ._io import remove_file
 
     fills = None if fill_spec.mode == "none" else fill_spec.make(level, result.image)
     if fills is not None:
         say(f"fills: {len(fills)} regions ({args.fill})")
 
-    done = []
+    done, stale = [], []
     with writers.output_set():
         if args.segments_png:
             done.append(writers.write_segment_graph_png(result.graph, args.segments_png, image=result.image.rgb))
@@ -382,13 +505,36 @@ def _write_outputs(result, level, args: argparse.Namespace, say, fill_spec) -> N
             done.append(writers.write_png(level, args.png, image=result.image.rgb, fills=fills))
         if args.levels_dir:
             folder = Path(args.levels_dir)
+            names = set()
             for lv in result.levels:
-                writers.write_json(lv, folder / f"level-{lv.level:04d}.json")
-                writers.write_svg(lv, folder / f"level-{lv.level:04d}.svg")
+                for fmt, write in (("json", writers.write_json), ("svg", writers.write_svg)):
+                    names.add(write(lv, folder / f"level-{lv.level:04d}.{fmt}").name)
+            stale = _stale_level_files(folder, names)
+            for path in stale:  # an earlier run's levels past this run's last: removed with the set
+                remove_file(path)
     for path in done:
         say(f"wrote {path}")
     if args.levels_dir:
-        say(f"wrote {len(result.levels)} levels to {args.levels_dir}/")
+        gone = f" (removed {len(stale)} files of an earlier run's other levels)" if stale else ""
+        say(f"wrote {len(result.levels)} levels to {args.levels_dir}/{gone}")
+
+
+def _stale_level_files(folder, keep: set[str]) -> list:
+    """The level files of an earlier run in ``folder`` that this run does not write: img2logo's own only.
+
+    A file is img2logo's when its name is one of :data:`LEVEL_FILE` and, a regular
+    file (no link), its content says so (an ``img2logo.abstraction/1`` JSON
+    document, an SVG that img2logo describes as its own): never a file of the user's.
+    """
+    from .batch import _written_by_img2logo
+
+    if not folder.is_dir():
+        return []
+    return sorted(
+        p
+        for p in folder.iterdir()
+        if LEVEL_FILE.fullmatch(p.name) and p.name not in keep and _written_by_img2logo(p, set())
+    )
 
 
 if __name__ == "__main__":  # pragma: no cover

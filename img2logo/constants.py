@@ -31,6 +31,16 @@ MAX_IMAGE_SIDE: int = 2048
 #: decoding: 8-bit RGBA at this size is 600 MB decoded; a larger file is refused as a
 #: likely decompression bomb (the largest camera sensors give about 100 Mpx).
 MAX_IMAGE_PIXELS: int = 150_000_000
+#: The largest length an option takes (``tolerance``, ``rdp_tolerance``,
+#: ``min_length``, ``max_arc_distance``, the Fibonacci ``unit``) and the largest
+#: radius a ladder may offer, px: longer than any accepted image (MAX_IMAGE_PIXELS
+#: in MIN_IMAGE_SIDE rows is 9.4e6 px long). Beyond it values only overflow
+#: (``--rdp 1e200``: OpenCV refuses the epsilon; ``--unit 1e308``: LAPACK fails).
+MAX_LENGTH: float = 1e7
+#: The smallest radius a ladder may offer (``exponents``, ``--radii``; the Fibonacci
+#: ``unit``), px: a thousandth of a pixel, a circle no drawing can show; below it
+#: phi ** k only heads for underflow (``--radii=-1000000``).
+MIN_LADDER_RADIUS: float = 1e-3
 #: Rows composited over white at a time when a large image with alpha is downscaled:
 #: bounds the float32 temporaries to about 4 MB per 1000 px of width.
 DOWNSCALE_STRIP_ROWS: int = 256

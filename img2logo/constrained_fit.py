@@ -665,8 +665,11 @@ class WindowFit:
     free_junctions : frozenset
         The junctions that were free in it.
     fit : ConstrainedFit or None
-        The fit of the last window (None when no junction touched the window:
-        nothing to solve, ``ok`` is True).
+        The fit of the last window (None only for an empty window: no circle
+        and no junction, nothing to solve, ``ok`` is True). A window of circles
+        that no junction touches (every junction released, a closed curve
+        alone) is still fitted: each free centre moves to its best position
+        for its fixed radius.
     """
 
     ok: bool
@@ -765,7 +768,7 @@ def fit_window(
         members = seeds | {c for n in free_j for c in junction_circles.get(n, ())}
         window = tuple(sorted(members, key=order))
         nodes = tuple(sorted({n for c in window for n in circle_junctions[c]} | free_j))
-        if not nodes:
+        if not window and not nodes:
             return WindowFit(True, window, (), frozenset(free_j), None)
         node_index = {n: i for i, n in enumerate(nodes)}
         incidence = [(i, node_index[n]) for i, c in enumerate(window) for n in circle_junctions[c]]

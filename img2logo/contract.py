@@ -33,8 +33,8 @@ from .errors import InvalidParameterError
 from .fills import Fill, check_fills
 from .geometry import TAU, Abstraction, Arc, Circle, line_arc
 from .golden_ladder import FibonacciLadder, GoldenLadder, Ladder, fibonacci
+from .mirror import symmetry_extra
 from .svg_path import sample_path
-from .symmetry import symmetry_extra
 
 __all__ = ["SCHEMA_RESOURCE", "from_document", "read_fills", "to_document", "validate_document"]
 
@@ -242,8 +242,8 @@ def from_document(doc: Mapping[str, Any]) -> Abstraction:
             similarity=float(d["similarity"]),
             bias=float(d["bias"]),
             tolerance=float(d["tolerance"]),
-            width=int(d["width"]),
-            height=int(d["height"]),
+            width=_whole(d["width"], "width"),
+            height=_whole(d["height"], "height"),
             params=params,
             ladder=_document_ladder(d, params),
         )
@@ -251,6 +251,15 @@ def from_document(doc: Mapping[str, Any]) -> Abstraction:
         raise
     except (KeyError, TypeError, ValueError, IndexError, AttributeError) as exc:
         raise InvalidParameterError(f"not a valid {FORMAT_NAME} document: {type(exc).__name__}: {exc}") from exc
+
+
+def _whole(value: object, name: str) -> int:
+    """A document's integer field: an int or a float of integer value (``512.0``), not 1e308 made an int."""
+    if isinstance(value, bool) or not isinstance(value, int | float):
+        raise InvalidParameterError(f"{name} must be an integer, got {value!r}")
+    if isinstance(value, float) and not (value.is_integer() and abs(value) <= 2**53):
+        raise InvalidParameterError(f"{name} must be an integer, got {value!r}")
+    return int(value)
 
 
 def validate_document(doc: Mapping[str, Any]) -> None:

@@ -14,7 +14,11 @@ class Img2LogoError(Exception):
     """Base class of every error img2logo raises deliberately."""
 
 
-class ImageNotFoundError(Img2LogoError, FileNotFoundError):
+class InputNotFoundError(Img2LogoError, FileNotFoundError):
+    """An input file (an image, a JSON document) does not exist or is not a file."""
+
+
+class ImageNotFoundError(InputNotFoundError):
     """The input image path does not exist or is not a file."""
 
 

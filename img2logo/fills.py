@@ -42,7 +42,7 @@ from .constants import ARC_SAMPLE_STEP
 from .errors import InvalidParameterError
 from .geometry import Abstraction
 from .loading import composite_on_white
-from .svg_path import sample_path, svg_number
+from .svg_path import check_path_data, sample_path, svg_number
 
 if TYPE_CHECKING:
     from shapely.geometry import Polygon
@@ -208,8 +208,7 @@ class Fill:
     face: int | None = None
 
     def __post_init__(self) -> None:
-        if not isinstance(self.path, str) or not self.path.strip().upper().startswith("M"):
-            raise InvalidParameterError(f"fill path must be SVG path data starting with 'M', got {self.path!r:.60}")
+        check_path_data(self.path)
         object.__setattr__(self, "color", parse_color(self.color, "fill color"))
         if self.gradient is not None and not isinstance(self.gradient, Gradient):
             raise InvalidParameterError(f"fill gradient must be a Gradient or None, got {type(self.gradient).__name__}")
@@ -517,6 +516,21 @@ def fill_auto(
     """
     from skimage.color import lab2rgb, rgb2lab
 
+    if (
+        faces is None
+        and hasattr(image, "input_size")
+        and (image.width, image.height)
+        != (
+            abstraction.width,
+            abstraction.height,
+        )
+    ):
+        # A result in the pixels of an input over MAX_IMAGE_SIDE, its image the downscaled working one:
+        # colours are read at the working size, and the fills get the faces' paths in the input's pixels.
+        small = abstraction.scaled(image.width / abstraction.width, image.width, image.height)
+        face_list = _faces_of(abstraction, None)
+        found = fill_auto(small, image, inset=inset, background=background, background_distance=background_distance)
+        return tuple(Fill(face_list[f.face].path, f.color, face=f.face) for f in found)  # type: ignore[index]
     face_list = _faces_of(abstraction, faces)
     width, height = int(abstraction.width), int(abstraction.height)
     inset = check_positive(inset, "inset", allow_zero=True)

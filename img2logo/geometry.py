@@ -17,7 +17,7 @@ from typing import Any
 import numpy as np
 
 from ._validation import check_finite, check_integer, check_positive, readonly
-from .constants import JUNCTION_TOLERANCE, LINE_RADIUS, PHI, RADIUS_RELATIVE_TOLERANCE
+from .constants import JUNCTION_TOLERANCE, LINE_RADIUS, MAX_IMAGE_PIXELS, PHI, RADIUS_RELATIVE_TOLERANCE
 from .errors import InvalidParameterError
 from .golden_ladder import FibonacciLadder, GoldenLadder, Ladder
 
@@ -325,7 +325,7 @@ class Abstraction:
     tolerance : float
         The tolerance T the run used, px, > 0.
     width, height : int
-        Size of the input image, px, >= 1.
+        Size of the input image, px, >= 1, at most ``MAX_IMAGE_PIXELS`` in all.
     params : Params
         Every other parameter of the run (kind, RDP tolerance, the options, ...),
         for the record: an immutable mapping (any mapping given is frozen).
@@ -381,6 +381,11 @@ class Abstraction:
         put(self, "level", check_integer(self.level, "level", 0))
         put(self, "width", check_integer(self.width, "width", 1))
         put(self, "height", check_integer(self.height, "height", 1))
+        if self.width * self.height > MAX_IMAGE_PIXELS:  # as load_image: a PNG of it would not fit in memory
+            raise InvalidParameterError(
+                f"width x height must be at most {MAX_IMAGE_PIXELS:,} px (the largest image img2logo reads), "
+                f"got {self.width:.3g} x {self.height:.3g}"
+            )
         similarity = check_positive(self.similarity, "similarity", allow_zero=True)
         tolerance = check_positive(self.tolerance, "tolerance")
         bias = check_finite(self.bias, "bias")
@@ -538,6 +543,63 @@ class Abstraction:
                     raise InvalidParameterError(f"junction {k} is on the circle of arc {i} but not on the arc")
 
     # ----------------------------------------------------------------- derived values
+    def scaled(self, factor: float, width: int, height: int, *, params: Mapping[str, Any] | None = None) -> Abstraction:
+        """The same logo in a frame ``factor`` times larger, ``width`` x ``height`` px; still on a ladder.
+
+        How an input over ``MAX_IMAGE_SIDE`` gets its result in its own pixels: the
+        optimization works at the downscaled size, and its levels are scaled back
+        by ``factor = 1 / scale``. Centres, radii, junctions, line ends, E^s and T
+        are multiplied by ``factor``; angles, the topology and ``params`` stay
+        (unless ``params`` is given: the caller scales what in them is a length).
+        The radii stay exactly on a ladder: phi ** (k + bias) * factor =
+        phi ** (k + n + bias') with bias' + n = bias + log_phi(factor), n an
+        integer, bias' in [0, 1) (so k becomes k + n, exponents given too); on
+        the Fibonacci grid the unit is multiplied by ``factor`` and k stays.
+        """
+        f = check_positive(factor, "factor")
+        ladder = self.ladder
+        if isinstance(ladder, FibonacciLadder):
+            shift, new_ladder = 0, FibonacciLadder(ladder.unit * f, ladder.exponents, ladder.rounding)
+        else:
+            t = ladder.bias + math.log(f) / math.log(PHI)
+            shift = math.floor(t)
+            bias = t - shift
+            if bias >= 1.0:  # rounding
+                shift, bias = shift + 1, 0.0
+            exps = None if ladder.exponents is None else tuple(k + shift for k in ladder.exponents)
+            new_ladder = GoldenLadder(bias, exps, ladder.rounding)
+        circles = {
+            c: Circle(c.cx * f, c.cy * f, new_ladder.radius(c.k + shift), c.k + shift)  # type: ignore[operator]
+            for c in self.golden_circles
+        }
+
+        def arc(a: Arc) -> Arc:
+            if not a.is_line:
+                return Arc(circles[a.circle], a.theta0, a.sweep)
+            mid = (a.start + a.end) / 2.0
+            chord = a.end - a.start
+            d = a.circle.center - mid
+            side = float(chord[0] * d[1] - chord[1] * d[0])  # the centre's side of the chord
+            return line_arc(a.start * f, a.end * f, side=1.0 if side >= 0 else -1.0)
+
+        return Abstraction(
+            level=self.level,
+            arcs=tuple(arc(a) for a in self.arcs),
+            arc_segments=self.arc_segments,
+            junctions=self.junctions * f,
+            junction_arcs=self.junction_arcs,
+            similarity=self.similarity * f,
+            bias=new_ladder.bias,
+            tolerance=self.tolerance * f,
+            width=width,
+            height=height,
+            params=self.params if params is None else params,
+            ladder=new_ladder,
+            arc_junctions=self.arc_junctions,
+            junction_nodes=self.junction_nodes,
+            connected=self.connected,
+        )
+
     @property
     def circles(self) -> tuple[Circle, ...]:
         """The distinct circles of the arcs, in order of first use."""

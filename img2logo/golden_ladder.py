@@ -30,7 +30,7 @@ from functools import lru_cache
 import numpy as np
 
 from ._validation import check_choice, check_positive
-from .constants import LADDER_SNAP_RTOL, LOG_PHI, PHI
+from .constants import LADDER_SNAP_RTOL, LOG_PHI, MAX_LENGTH, MIN_LADDER_RADIUS, PHI
 from .errors import InvalidParameterError
 
 __all__ = [
@@ -113,7 +113,17 @@ class GoldenLadder:
             raise InvalidParameterError(f"bias must be in [0, 1), got {bias}")
         object.__setattr__(self, "bias", bias)
         if self.exponents is not None:
-            object.__setattr__(self, "exponents", _check_exponents(self.exponents))
+            values = _check_exponents(self.exponents)
+            # Compared in log space, so that no phi ** k overflows (k = 99999) or underflows.
+            lo = math.ceil(math.log(MIN_LADDER_RADIUS) / LOG_PHI - bias)
+            hi = math.floor(math.log(MAX_LENGTH) / LOG_PHI - bias)
+            if values[0] < lo or values[-1] > hi:
+                bad = values[0] if values[0] < lo else values[-1]
+                raise InvalidParameterError(
+                    f"exponents (--radii) must be in {lo}..{hi} (radii phi**(k + bias) from {MIN_LADDER_RADIUS:g} "
+                    f"to {MAX_LENGTH:g} px), got k = {bad}"
+                )
+            object.__setattr__(self, "exponents", values)
 
     def radius(self, k: int) -> float:
         """The ladder radius ``phi ** (k + bias)`` of exponent ``k``, px (Eqn. 10).
@@ -276,7 +286,8 @@ class FibonacciLadder:
 
     def __post_init__(self) -> None:
         check_choice(self.rounding, "rounding", ("nearest", "ceil"))
-        object.__setattr__(self, "unit", check_positive(self.unit, "unit"))
+        unit = check_positive(self.unit, "unit")
+        object.__setattr__(self, "unit", unit)
         if self.exponents is not None:
             values = _check_exponents(self.exponents)
             if values[0] < 2:
@@ -284,9 +295,12 @@ class FibonacciLadder:
                     "exponents of the Fibonacci ladder must be >= 2 (F(1) = F(2) = 1: k = 2 is the unit), "
                     f"got {values[0]}"
                 )
-            if values[-1] > _FIBONACCI_MAX_INDEX:
+            table = _fibonacci_table()
+            top = int(np.searchsorted(table, MAX_LENGTH / unit, side="right")) - 1  # unit * F(top) <= MAX_LENGTH
+            if values[-1] > top:
                 raise InvalidParameterError(
-                    f"exponents of the Fibonacci ladder must be <= {_FIBONACCI_MAX_INDEX}, got {values[-1]}"
+                    f"exponents (--radii) of the Fibonacci ladder of unit {unit:g} px must be <= {top}, radii "
+                    f"unit * F(k) up to {MAX_LENGTH:g} px, got {values[-1]}"
                 )
             object.__setattr__(self, "exponents", values)
 

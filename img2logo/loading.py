@@ -13,8 +13,12 @@ from __future__ import annotations
 
 import contextlib
 import functools
+import os
+import re
 import sys
+import tempfile
 import warnings
+from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -56,6 +60,8 @@ class LoadedImage:
         Factor applied to the input's size (1.0 unless it was downscaled).
     source : str
         The path it was read from, or ``"<array>"``.
+    input_size : (int, int) or None
+        (width, height) of the input before the downscale, px; None: this size.
     """
 
     rgb: np.ndarray
@@ -63,6 +69,17 @@ class LoadedImage:
     has_alpha: bool = False
     scale: float = 1.0
     source: str = "<array>"
+    input_size: tuple[int, int] | None = None
+
+    @property
+    def input_width(self) -> int:
+        """Width of the input image, px (before any downscale): the frame of the results."""
+        return int(self.input_size[0]) if self.input_size is not None else self.width
+
+    @property
+    def input_height(self) -> int:
+        """Height of the input image, px (before any downscale)."""
+        return int(self.input_size[1]) if self.input_size is not None else self.height
 
     @property
     def height(self) -> int:
@@ -162,12 +179,45 @@ def load_image(source: object, *, max_side: int = MAX_IMAGE_SIDE, max_pixels: in
             DownscaleWarning,
             stacklevel=2,
         )
-        rgb, alpha, has_alpha = _shrink(arr, size, name, bgr=bgr)
+        rgb, alpha, has_alpha = _shrink(arr, size, name, bgr=bgr, owned=bgr)  # a decoded file is ours to overwrite
     else:
         rgb, alpha, has_alpha = composite_on_white(arr, name, bgr=bgr)
-    if np.ptp(rgb) < BLANK_IMAGE_RANGE and np.ptp(alpha) < BLANK_IMAGE_RANGE:
-        raise InvalidImageError(f"{name}: image is blank (every pixel has the same colour); nothing to trace")
-    return LoadedImage(readonly(rgb), readonly(alpha), has_alpha, scale, name)
+    _check_not_blank(rgb, alpha, name)
+    return LoadedImage(readonly(rgb), readonly(alpha), has_alpha, scale, name, (int(w), int(h)))
+
+
+def mask_to_working_size(mask: object, img: LoadedImage, name: str) -> np.ndarray | None:
+    """A mask given in the input's pixels (a path or an array, as :func:`load_mask`) at ``img``'s working size.
+
+    For an input over ``MAX_IMAGE_SIDE`` the work is done at the downscaled
+    size; a mask (``lock_mask``, a ``foreground`` mask) is given at the input's
+    size and shrunk the same way (area interpolation, then >= 50 %). None stays None.
+
+    Raises
+    ------
+    InvalidParameterError
+        If the mask does not have the input's shape, naming ``name``.
+    """
+    if mask is None:
+        return None
+    full = (img.input_height, img.input_width)
+    m = load_mask(mask)
+    if m.shape != full:
+        raise InvalidParameterError(f"{name}: mask must have the input image's shape {full}, got {m.shape}")
+    if img.input_size is None or full == (img.height, img.width):
+        return m
+    import cv2
+
+    small = cv2.resize(m.astype(np.uint8) * np.uint8(255), (img.width, img.height), interpolation=cv2.INTER_AREA)
+    return small >= 128
+
+
+def _check_not_blank(rgb: np.ndarray, alpha: np.ndarray, name: str) -> None:
+    """Raise if the image is one colour (any colour, and one opacity): each channel spans < ``BLANK_IMAGE_RANGE``."""
+    lo, hi = rgb.min(axis=(0, 1)), rgb.max(axis=(0, 1))
+    if np.all(hi - lo < BLANK_IMAGE_RANGE) and np.ptp(alpha) < BLANK_IMAGE_RANGE:
+        colour = "#" + "".join(f"{round(float(v) * 255):02x}" for v in (lo + hi) / 2)
+        raise InvalidImageError(f"{name}: image is blank (one colour, {colour}, in every pixel); nothing to trace")
 
 
 def _working_size(w: int, h: int, max_side: int, name: str) -> tuple[int, int]:
@@ -233,9 +283,10 @@ def _read_file(path: Path, *, max_side: int = MAX_IMAGE_SIDE, max_pixels: int = 
     if not path.is_file():
         raise ImageNotFoundError(f"{path} is not a regular file (a device, a pipe, ...), not an image file")
     header = _probe(path, max_pixels)
-    flags = cv2.IMREAD_UNCHANGED
+    flags = cv2.IMREAD_UNCHANGED  # the pixels as stored: EXIF orientation is applied below
+    orientation = 1
     if header is not None:
-        w, h, pages, fmt = header
+        w, h, pages, fmt, orientation = header
         _working_size(w, h, max_side, str(path))
         if pages > 1:
             warnings.warn(f"{path}: the file has {pages} pages; only the first is used", PageWarning, stacklevel=3)
@@ -243,6 +294,12 @@ def _read_file(path: Path, *, max_side: int = MAX_IMAGE_SIDE, max_pixels: int = 
         if fmt == "JPEG" and factor > 1:
             reduced = {2: cv2.IMREAD_REDUCED_COLOR_2, 4: cv2.IMREAD_REDUCED_COLOR_4, 8: cv2.IMREAD_REDUCED_COLOR_8}
             flags = reduced[factor] | cv2.IMREAD_IGNORE_ORIENTATION
+        if fmt == "PNG" and max(w, h) > max_side:
+            small = _read_png_reduced(path, max(1, max(w, h) // max_side))
+            if small is not None:
+                if orientation in (5, 6, 7, 8):
+                    w, h = h, w
+                return _upright(small, orientation), (w, h)
     try:
         data = np.fromfile(path, dtype=np.uint8)  # imdecode: unicode-safe, unlike imread
     except OSError as exc:
@@ -250,7 +307,8 @@ def _read_file(path: Path, *, max_side: int = MAX_IMAGE_SIDE, max_pixels: int = 
     if data.size == 0:
         raise InvalidImageError(f"{path}: file is empty")
     try:
-        arr = cv2.imdecode(data, flags)
+        with _decoder_stderr():  # libpng's "libpng warning: iCCP: ..." lines and the like
+            arr = cv2.imdecode(data, flags)
     except cv2.error as exc:  # e.g. beyond OpenCV's own size limit
         raise InvalidImageError(f"{path}: not a readable image: {' '.join(str(exc).split())[-200:]}") from exc
     del data
@@ -260,12 +318,107 @@ def _read_file(path: Path, *, max_side: int = MAX_IMAGE_SIDE, max_pixels: int = 
         h, w = arr.shape[:2]
         if w * h > max_pixels:
             raise InvalidImageError(_too_many_pixels(path, f"{w}x{h} px", max_pixels))
+    arr = _upright(arr, orientation)
+    if orientation in (5, 6, 7, 8):  # a quarter turn: the stored width is the upright height
+        w, h = h, w
     return arr, (w, h)
 
 
-def _probe(path: Path, max_pixels: int) -> tuple[int, int, int, str] | None:
-    """(width, height, pages, format) from the file's header, or None if Pillow cannot tell.
+def _read_png_reduced(path: Path, factor: int) -> np.ndarray | None:
+    """A PNG that will be downscaled, decoded by Pillow and box-reduced by ``factor`` there; BGR(A), or None.
 
+    OpenCV decodes a 16-bit RGBA PNG through a second full-size buffer (12000 x
+    12000 px: 2.4 GB at its peak); Pillow decodes it once, in 8 bits per channel
+    (576 MB; 8 bits are plenty for a picture downscaled to 2048 px), and its
+    ``reduce`` averages colour premultiplied by alpha, as compositing over white
+    then averaging does. Only the modes L, LA, RGB and RGBA (others: None, and
+    OpenCV decodes the file); any failure gives None too (OpenCV then says why).
+    """
+    try:
+        from PIL import Image
+
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            with Image.open(path) as im:
+                if im.mode not in ("L", "LA", "RGB", "RGBA") or "transparency" in im.info:
+                    return None  # a palette, 16-bit grey, a tRNS colour key: OpenCV reads them as they are
+                im.load()
+                small = im.reduce(factor) if factor > 1 else im
+                arr = np.array(small)
+    except Exception:
+        return None
+    if arr.ndim == 3 and arr.shape[2] >= 3:  # OpenCV's channel order, as the rest of loading expects
+        arr = np.ascontiguousarray(arr[:, :, [2, 1, 0, *range(3, arr.shape[2])]])
+    return arr
+
+
+def _upright(arr: np.ndarray, orientation: int) -> np.ndarray:
+    """The image as every viewer shows it: EXIF ``Orientation`` (1..8) applied, as ``PIL.ImageOps.exif_transpose``.
+
+    A phone stores a portrait photo sideways with Orientation = 6 (turn 90 degrees
+    clockwise to view). The transposition is done on the decoded array (OpenCV
+    decodes the stored pixels), a view made contiguous only when it is not 1.
+    """
+    turns = {
+        2: lambda a: a[:, ::-1],  # mirrored left-right
+        3: lambda a: a[::-1, ::-1],  # upside down
+        4: lambda a: a[::-1],  # mirrored top-bottom
+        5: lambda a: a.swapaxes(0, 1),  # transposed
+        6: lambda a: np.rot90(a, -1),  # stored a quarter turn counter-clockwise
+        7: lambda a: a[::-1, ::-1].swapaxes(0, 1),  # transversed
+        8: lambda a: np.rot90(a, 1),  # stored a quarter turn clockwise
+    }
+    if orientation not in turns:
+        return arr
+    return np.ascontiguousarray(turns[orientation](arr))
+
+
+#: Lines a C image decoder writes to standard error itself (libpng, libjpeg, libtiff, OpenCV).
+_DECODER_LINE = re.compile(
+    rb"^(libpng (warning|error)|Corrupt JPEG data|Premature end of JPEG|Invalid JPEG|Warning: |TIFF\w*: |\[ ?WARN)"
+)
+
+
+@contextlib.contextmanager
+def _decoder_stderr() -> Iterator[None]:
+    """Hold standard error (file descriptor 2) in a temporary file while a C decoder runs.
+
+    libpng writes ``libpng warning: iCCP: known incorrect sRGB profile`` (and the
+    like) straight to file descriptor 2, which no Python setting silences; the
+    errors img2logo raises say what matters. Afterwards every held line that is
+    not a decoder's is written to standard error after all (another thread's
+    output is delayed, not lost).
+    """
+    with contextlib.suppress(Exception):
+        sys.stderr.flush()
+    try:
+        saved = os.dup(2)
+    except OSError:  # no standard error at all: nothing to hold
+        yield
+        return
+    hold = tempfile.TemporaryFile()
+    try:
+        os.dup2(hold.fileno(), 2)
+        try:
+            yield
+        finally:
+            os.dup2(saved, 2)
+            hold.seek(0)
+            rest = [line for line in hold.read().splitlines(keepends=True) if not _DECODER_LINE.match(line)]
+            if rest:
+                with contextlib.suppress(OSError):
+                    os.write(2, b"".join(rest))
+    finally:
+        os.close(saved)
+        hold.close()
+
+
+def _probe(path: Path, max_pixels: int) -> tuple[int, int, int, str, int] | None:
+    """(width, height, pages, format, EXIF orientation) from the file's header, or None if nothing can tell.
+
+    Width and height are as stored (before the orientation, 1 when there is none).
+    A PNG whose text chunks Pillow refuses (a zTXt of megabytes) still has its size
+    read from its IHDR chunk, so the pixel limit holds before decoding.
     Raises InvalidImageError if the image has more than ``max_pixels`` pixels.
     """
     try:
@@ -273,19 +426,38 @@ def _probe(path: Path, max_pixels: int) -> tuple[int, int, int, str] | None:
     except ImportError:  # pragma: no cover - a dependency of matplotlib and of img2logo
         return None
     with warnings.catch_warnings():
-        warnings.simplefilter("ignore", Image.DecompressionBombWarning)
+        warnings.simplefilter("ignore")  # DecompressionBombWarning, a damaged EXIF block
         try:
             with Image.open(path) as im:
                 w, h = im.size
                 pages = int(getattr(im, "n_frames", 1) or 1)
                 fmt = str(im.format or "")
+                try:
+                    orientation = int(im.getexif().get(0x0112, 1))
+                except Exception:  # a damaged EXIF block: as stored
+                    orientation = 1
         except Image.DecompressionBombError as exc:  # more than twice Pillow's own limit
             raise InvalidImageError(_too_many_pixels(path, "over 178 Mpx", max_pixels)) from exc
         except Exception:  # not a format Pillow knows, or a damaged header: OpenCV decides
-            return None
+            size = _png_size(path)
+            if size is None:
+                return None
+            (w, h), pages, fmt, orientation = size, 1, "PNG", 1
     if w * h > max_pixels:
         raise InvalidImageError(_too_many_pixels(path, f"{w}x{h} px", max_pixels))
-    return w, h, pages, fmt
+    return w, h, pages, fmt, orientation
+
+
+def _png_size(path: Path) -> tuple[int, int] | None:
+    """(width, height) from a PNG's IHDR chunk (the first, by the PNG specification), or None."""
+    try:
+        with open(path, "rb") as f:
+            head = f.read(24)
+    except OSError:
+        return None
+    if len(head) < 24 or head[:8] != b"\x89PNG\r\n\x1a\n" or head[12:16] != b"IHDR":
+        return None
+    return int.from_bytes(head[16:20], "big"), int.from_bytes(head[20:24], "big")
 
 
 def _too_many_pixels(path: Path, size: str, max_pixels: int) -> str:
@@ -320,12 +492,19 @@ def _check_layout(arr: np.ndarray, name: str) -> None:
         raise InvalidImageError(f"{name}: image is empty (shape {shape})")
 
 
-def _shrink(arr: np.ndarray, size: tuple[int, int], name: str, *, bgr: bool) -> tuple[np.ndarray, np.ndarray, bool]:
+def _shrink(
+    arr: np.ndarray, size: tuple[int, int], name: str, *, bgr: bool, owned: bool = False
+) -> tuple[np.ndarray, np.ndarray, bool]:
     """Downscale ``arr`` to ``size`` (width, height) in its own dtype, then normalize (see :func:`composite_on_white`).
 
     Colour is composited over white strip by strip (``DOWNSCALE_STRIP_ROWS``
     rows at a time, float32), so no full-size float copy is ever made; area
     interpolation then works on 8/16-bit integers (float32 for float input).
+    With ``owned`` (an array decoded from a file, nobody else's) the composited
+    colour overwrites the array's own colour channels and one resize takes
+    colour and alpha together (area interpolation is per channel: the same
+    values), so no second full-size array is made: a 12000 x 12000 16-bit RGBA
+    PNG needs its 1.15 GB decoded, not 2 GB more.
     """
     import cv2
 
@@ -341,6 +520,18 @@ def _shrink(arr: np.ndarray, size: tuple[int, int], name: str, *, bgr: bool) -> 
     channels = arr.shape[2]
     has_alpha = channels in (2, 4)
     full = 1.0 if np.issubdtype(arr.dtype, np.floating) else float(np.iinfo(arr.dtype).max)
+    if has_alpha and owned and arr.flags.writeable and arr.flags.c_contiguous:
+        for r in range(0, arr.shape[0], DOWNSCALE_STRIP_ROWS):
+            block = arr[r : r + DOWNSCALE_STRIP_ROWS]
+            a = block[:, :, -1:].astype(np.float32) / np.float32(full)
+            mixed = block[:, :, :-1] * a + (1.0 - a) * np.float32(full)
+            block[:, :, :-1] = mixed if full == 1.0 else np.rint(mixed)
+        small_all = cv2.resize(arr, size, interpolation=cv2.INTER_AREA)
+        if small_all.ndim == 2:  # cv2 drops a last axis of one
+            small_all = small_all[:, :, None]
+        rgb, _, _ = composite_on_white(np.ascontiguousarray(small_all[:, :, :-1]), name, bgr=bgr)
+        alpha = np.clip(_to_unit(np.ascontiguousarray(small_all[:, :, -1]), name), 0.0, 1.0)
+        return np.clip(rgb, 0.0, 1.0), alpha, has_alpha
     if has_alpha:
         colour = np.empty((*arr.shape[:2], channels - 1), dtype=arr.dtype)
         for r in range(0, arr.shape[0], DOWNSCALE_STRIP_ROWS):

@@ -161,7 +161,7 @@ def _redundant(
     arcs = [(fits[g] if g in fits else opt.fits[g]).arc.arc for g in gids]
     nodes = sorted(node_groups_after)
     node_index = {n: i for i, n in enumerate(nodes)}
-    points = np.array([opt.graph.junctions[n] + (disp[n] if n in disp else opt.disp[n]) for n in nodes])
+    points = np.array([opt.graph.junctions[n] + (disp[n] if n in disp else opt.disp[n]) for n in nodes]).reshape(-1, 2)
     arc_junctions = [[node_index[n] for n in opt.constrained_nodes(after[g])] for g in gids]
     changed = [i for i, g in enumerate(gids) if g in fits]
     return len(redundant_intersections(arcs, points, arc_junctions, candidates=changed))

@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from ._validation import check_choice, check_positive
-from .constants import MIN_SEGMENT_LENGTH, RDP_TOLERANCE, TOLERANCE
+from .constants import MAX_LENGTH, MIN_LADDER_RADIUS, MIN_SEGMENT_LENGTH, RDP_TOLERANCE, TOLERANCE
 from .errors import InvalidParameterError, UnknownOptionError
 
 __all__ = [
@@ -89,6 +89,20 @@ def _switch(flag: str, what: str, *, default: bool = True) -> Any:
     return _option(False, flags=(flag,), action="store_true", help=what)
 
 
+def _check_length(value: object, name: str, *, allow_zero: bool = False, low: float = 0.0) -> float:
+    """A length option, px: a finite number > 0 (or >= 0), at least ``low``, at most ``MAX_LENGTH``."""
+    import numpy as np
+
+    if isinstance(value, bool | np.bool_) or isinstance(value, str):
+        raise InvalidParameterError(f"{name} must be a number of px, got {value!r}")
+    v = check_positive(value, name, allow_zero=allow_zero)
+    if low and not low <= v <= MAX_LENGTH:
+        raise InvalidParameterError(f"{name} must be in {low:g}..{MAX_LENGTH:g} px, got {v:g}")
+    if v > MAX_LENGTH:
+        raise InvalidParameterError(f"{name} must be at most {MAX_LENGTH:g} px (longer than any image), got {v:g}")
+    return v
+
+
 def _parse_radii(text: str | None) -> tuple[int, ...] | None:
     """``--radii K1,K2,...`` as exponents."""
     if text is None:
@@ -108,7 +122,9 @@ class Options:
 
     ``Options(tolerance=7.0, ladder="fibonacci")`` or
     ``Options.from_keywords({...})``; change one with :func:`dataclasses.replace`
-    (checked again). Lengths are in px of the input image.
+    (checked again). Lengths are in px of the working image: the input, or for an
+    input over ``MAX_IMAGE_SIDE`` its downscale, whose results
+    :func:`img2logo.abstract` scales back to the input's pixels (T and E^s with them).
 
     Attributes
     ----------
@@ -257,9 +273,9 @@ class Options:
         from .subject import check_foreground_option, subject_rectangle_numbers
 
         put = object.__setattr__
-        put(self, "tolerance", check_positive(self.tolerance, "tolerance"))
-        put(self, "rdp_tolerance", check_positive(self.rdp_tolerance, "rdp_tolerance"))
-        put(self, "min_length", check_positive(self.min_length, "min_length", allow_zero=True))
+        put(self, "tolerance", _check_length(self.tolerance, "tolerance"))
+        put(self, "rdp_tolerance", _check_length(self.rdp_tolerance, "rdp_tolerance"))
+        put(self, "min_length", _check_length(self.min_length, "min_length", allow_zero=True))
         check_choice(self.kind, "kind", ("auto", "photo", "clipart", "drawing"))
         check_foreground_option(self.foreground)
         if self.subject is not None:
@@ -267,7 +283,11 @@ class Options:
         if self.max_arc_distance is not None and not (
             isinstance(self.max_arc_distance, str) and self.max_arc_distance == AUTO
         ):
-            put(self, "max_arc_distance", check_positive(self.max_arc_distance, "max_arc_distance"))
+            put(self, "max_arc_distance", _check_length(self.max_arc_distance, "max_arc_distance"))
+        if self.unit is not None:
+            put(self, "unit", _check_length(self.unit, "unit", low=MIN_LADDER_RADIUS))
+        if isinstance(self.bias, bool | np.bool_ | str):
+            raise InvalidParameterError(f"bias must be a number in [0, 1), got {self.bias!r}")
         for name in SWITCHES:
             value = getattr(self, name)
             if not isinstance(value, bool | np.bool_):

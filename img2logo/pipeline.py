@@ -12,6 +12,7 @@ import sys
 import time
 from collections.abc import Mapping
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -19,10 +20,12 @@ import numpy as np
 from .constants import PHOTO_MAX_ARC_FACTOR
 from .errors import InvalidParameterError
 from .geometry import Abstraction
+from .loading import mask_to_working_size
 from .options import AUTO, Options, check_lock_mask
 from .preprocessing import FeatureLines, LoadedImage, extract_feature_lines, load_image
 from .progressive import ProgressCallback, Progression, optimize
 from .segment_graph import SegmentGraph, build_segment_graph
+from .subject import FOREGROUND_CHOICES, subject_rectangle_numbers
 from .symmetry import SymmetryChoice, check_symmetry_option, choose_axis, optimize_symmetric
 
 #: ``abstract``'s ``tolerance`` and ``kind`` when not given: those of ``options`` (default 5 px, "auto").
@@ -141,11 +144,28 @@ def abstract(
         (:class:`~img2logo.options.Options`).
     """
     given = {name: value for name, value in (("tolerance", tolerance), ("kind", kind)) if value is not _DEFAULT}
+    if not (progress is None or isinstance(progress, bool) or callable(progress)):
+        raise InvalidParameterError(
+            f"progress must be a callable progress(t, n_arcs, similarity), True, False or None, got {progress!r}"
+        )
     opts = Options.from_keywords({**given, **settings}, base=options)
     check_lock_mask(opts, lock_mask)
     timings: dict[str, float] = {}
     start = time.perf_counter()
     img = load_image(image)
+    if img.scale != 1.0:
+        # The work is done at the downscaled size: masks and the rectangle, given in the input's
+        # pixels, are scaled in here, and every level is scaled back to the input's pixels below.
+        lock_mask = mask_to_working_size(lock_mask, img, "lock_mask")
+        foreground = opts.foreground
+        if isinstance(foreground, np.ndarray | Path) or (
+            isinstance(foreground, str) and foreground not in FOREGROUND_CHOICES
+        ):
+            foreground = mask_to_working_size(foreground, img, "foreground")
+        subject = opts.subject
+        if subject is not None:
+            subject = tuple(v * img.scale for v in subject_rectangle_numbers(subject))
+        opts = dataclasses.replace(opts, foreground=foreground, subject=subject)
     lines = extract_feature_lines(img, kind=opts.kind, foreground=opts.foreground, subject=opts.subject)
     timings["feature_lines"] = time.perf_counter() - start
     start = time.perf_counter()
@@ -179,8 +199,25 @@ def abstract(
     finally:
         if bar is not None:
             bar.close()
+    if img.scale != 1.0:
+        progression = _in_input_pixels(progression, img)
     timings.update(progression.timings)
     return Result(img, lines, graph, progression, timings, progression.levels[0].params, choice)
+
+
+def _in_input_pixels(progression: Progression, img: LoadedImage) -> Progression:
+    """Every level scaled from the working size back to the input's pixels (:meth:`Abstraction.scaled`)."""
+    factor = max(img.input_width, img.input_height) / max(img.width, img.height)
+
+    def params(a: Abstraction) -> Mapping[str, Any]:
+        out = dict(a.params)
+        sym = out.get("symmetry")
+        if isinstance(sym, Mapping) and "point" in sym:  # the mirror axis's point is a length too
+            out["symmetry"] = {**sym, "point": [float(v) * factor for v in sym["point"]]}
+        return out
+
+    levels = tuple(a.scaled(factor, img.input_width, img.input_height, params=params(a)) for a in progression.levels)
+    return dataclasses.replace(progression, levels=levels, bias=levels[0].bias, ladder=levels[0].ladder)
 
 
 def _progress(progress: ProgressCallback | bool | None, tolerance: float) -> tuple[ProgressCallback | None, Any]:

@@ -456,7 +456,21 @@ def frame_image(ax: Axes, width: int, height: int) -> None:
 
 
 def _draw_image(ax: Axes, image: np.ndarray, width: int, height: int, fade: float) -> None:
-    """Draw ``image`` faded towards white, each pixel covering its unit square."""
+    """Draw ``image`` faded towards white, each pixel covering its unit square.
+
+    An image of the same proportions but another size (the downscaled working
+    image of an input over ``MAX_IMAGE_SIDE``, under a result in the input's
+    pixels) is stretched over the frame.
+    """
+    shape = np.shape(image)
+    if len(shape) >= 2 and (shape[1], shape[0]) != (width, height):
+        h_img, w_img = shape[0], shape[1]
+        if abs(w_img * height - h_img * width) <= max(width, height):  # the same aspect, to a pixel's rounding
+            width_img, height_img = w_img, h_img
+            # In 8 bits: matplotlib resamples to the output size, a float64 copy there would be 8x larger.
+            rgb = np.rint(_background_rgb(image, width_img, height_img, fade) * 255.0).astype(np.uint8)
+            ax.imshow(rgb, extent=(0.0, float(width), float(height), 0.0), origin="upper", zorder=0)
+            return
     rgb = _background_rgb(image, width, height, fade)
     ax.imshow(rgb, extent=(0.0, float(width), float(height), 0.0), origin="upper", interpolation="nearest", zorder=0)
 

@@ -57,7 +57,7 @@ from .geometry import Abstraction, ArcJunctions, Circle, Line, line_arc
 from .golden_ladder import Ladder, make_ladder
 from .merging import MergeOutcome, merge_loop
 from .options import Options
-from .recovery import check_reach, recover
+from .recovery import check_reach, check_span, recover
 from .segment_graph import SegmentGraph
 from .simplification import Group, hold_line, path_length, straight_line
 from .simplification import simplify as simplify_groups
@@ -670,6 +670,7 @@ def optimize(
         probe = simplify_groups(groups, opt.free_error, graph.valence, axis_nodes) if simplify else groups
         longest = opt.free_circle(max(probe, key=lambda g: path_length(g.points)))[1]
     opt.ladder = make_ladder(ladder, longest, bias=bias, unit=unit, exponents=opts.exponents, rounding=opts.rounding)
+    check_span(opt.ladder, graph.width, graph.height)
     if simplify:
         groups = simplify_groups(groups, opt.golden_error, graph.valence, axis_nodes)
     for g in sorted(groups, key=lambda g: min(g.segments)):

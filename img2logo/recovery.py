@@ -17,9 +17,11 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from .constants import MAX_RADIUS_FACTOR
 from .errors import FitError, InvalidParameterError
 
 if TYPE_CHECKING:
+    from .golden_ladder import Ladder
     from .progressive import _Fit, _Optimizer
 
 
@@ -39,6 +41,30 @@ def check_reach(opt: _Optimizer, seeds: Mapping[int, tuple[np.ndarray, float, in
             f"the chosen radii (k = {', '.join(map(str, ks))}: {opt.ladder.radius(ks[0]):.3g} to "
             f"{opt.ladder.radius(ks[-1]):.3g} px) are too small: {len(short)} segments need a circle through "
             f"junctions up to {widest:.0f} px apart; allow larger radii"
+        )
+
+
+def check_span(ladder: Ladder, width: int, height: int) -> None:
+    """Raise when the smallest radius the user's ladder allows is too large for the image.
+
+    A free circle fit caps its radius at ``MAX_RADIUS_FACTOR`` (20) times the
+    extent of its points; a circle larger than that many times the image's longer
+    side is a straight line to every segment in it, and the fit of its centre
+    (Eqn. 13) is ill-posed along the chord: ``--unit 1e5`` on a 512 px drawing.
+    """
+    from .golden_ladder import FibonacciLadder
+
+    fibonacci = isinstance(ladder, FibonacciLadder)
+    if ladder.exponents is None and not fibonacci:
+        return  # the full phi ladder has rungs of every size
+    smallest = ladder.radius(min(ladder.exponents) if ladder.exponents else 2)
+    bound = MAX_RADIUS_FACTOR * max(width, height)
+    if smallest > bound:
+        what = "a smaller unit (--unit)" if fibonacci and not ladder.exponents else "smaller exponents (--radii)"
+        raise InvalidParameterError(
+            f"the chosen radii are too large for the image: the smallest, {smallest:.4g} px, is over "
+            f"{MAX_RADIUS_FACTOR:g} x the image's longer side ({max(width, height)} px), where a circle is a straight "
+            f"line; choose {what}"
         )
 
 

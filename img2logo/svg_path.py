@@ -146,6 +146,27 @@ def loop_path(loop: Sequence[LoopPiece]) -> str:
 _TOKEN = re.compile(r"[A-Za-z]|[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
 
 
+def check_path_data(path: object, name: str = "fill path") -> str:
+    """``path`` if it is SVG path data: command letters, numbers, spaces and commas only, starting with ``M``.
+
+    Anything else (a ``"`` that would end the ``d`` attribute, markup) is refused,
+    so path data is always safe to write into an SVG attribute.
+
+    Raises
+    ------
+    InvalidParameterError
+        Naming the first character that is not path data.
+    """
+    if not isinstance(path, str) or not path.strip().upper().startswith("M"):
+        raise InvalidParameterError(f"{name} must be SVG path data starting with 'M', got {path!r:.60}")
+    bad = re.search(r"[^MmZzLlHhVvCcSsQqTtAa0-9eE.+\-,\s]", path)
+    if bad is not None:
+        raise InvalidParameterError(
+            f"{name} is not SVG path data: {bad.group()!r} at character {bad.start()} of {path!r:.60}"
+        )
+    return path
+
+
 def sample_path(path: str, step: float = ARC_SAMPLE_STEP) -> list[np.ndarray]:
     """The closed loops of SVG path data, sampled: for drawing fills and reading them back.
 

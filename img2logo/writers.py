@@ -38,13 +38,13 @@ from ._io import as_path, atomic_write, check_output_paths, output_set
 from ._validation import check_integer, check_positive
 from .constants import FORMAT_NAME, PNG_DPI
 from .contract import from_document, to_document
-from .errors import InvalidParameterError
+from .errors import InputNotFoundError, InvalidParameterError
 from .fills import Fill, check_fills
 from .geometry import Abstraction, Circle
 from .golden_ladder import FibonacciLadder
+from .mirror import axis_segment
 from .plotting import ARC_COLOR, CIRCLE_COLOR, default_stroke_width, plot_abstraction, plot_segment_graph
 from .svg_path import arc_path, svg_number
-from .symmetry import axis_segment
 
 if TYPE_CHECKING:
     from .segment_graph import SegmentGraph
@@ -74,13 +74,25 @@ def read_json(path: str | os.PathLike[str]) -> Abstraction:
 
     Raises
     ------
-    FileNotFoundError
-        If there is no such file.
+    InputNotFoundError
+        If there is no such file (an Img2LogoError and a FileNotFoundError).
     InvalidParameterError
-        If it is not JSON or not a valid document (see :func:`img2logo.contract.from_document`).
+        If it is a folder, cannot be read, is not UTF-8 JSON or not a valid document
+        (see :func:`img2logo.contract.from_document`).
     """
     p = as_path(path)
-    text = p.read_text(encoding="utf-8")
+    if not p.exists():
+        raise InputNotFoundError(f"JSON file not found: {p}")
+    if p.is_dir():
+        raise InvalidParameterError(f"{p} is a folder, not a JSON file")
+    if not p.is_file():  # a FIFO would block the read
+        raise InvalidParameterError(f"{p} is not a regular file (a device, a pipe, ...), not a JSON file")
+    try:
+        text = p.read_text(encoding="utf-8")
+    except UnicodeDecodeError as exc:
+        raise InvalidParameterError(f"{p} is not JSON: not UTF-8 text ({exc.reason} at byte {exc.start})") from exc
+    except OSError as exc:
+        raise InvalidParameterError(f"{p}: cannot read the file: {exc.strerror or exc}") from exc
     try:
         doc = json.loads(text)
     except json.JSONDecodeError as exc:
@@ -400,7 +412,7 @@ def _svg_fill_layer(fills: Sequence[Fill]) -> list[str]:
     for i, f in enumerate(fills):
         paint = f.color if f.gradient is None else f"url(#{gradient_ids[f.gradient]})"
         face = "" if f.face is None else f' data-face="{int(f.face)}"'
-        lines.append(f'    <path id="fill-{i}"{face} fill="{paint}" fill-rule="evenodd" d="{_escape(f.path)}"/>')
+        lines.append(f'    <path id="fill-{i}"{face} fill="{_attr(paint)}" fill-rule="evenodd" d="{_attr(f.path)}"/>')
     lines.append("  </g>")
     return lines
 
@@ -465,6 +477,15 @@ def write_table(table: Any, path: str | os.PathLike[str]) -> Path:
 def _escape(text: str) -> str:
     """``text`` safe as XML character data (``xml.sax.saxutils.escape`` without its slow import)."""
     return text.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
+
+
+def _attr(text: str) -> str:
+    """``text`` safe inside a double-quoted XML attribute: ``&``, ``<``, ``>`` and ``"`` escaped.
+
+    Fill paths and colours are checked when made (:class:`~img2logo.fills.Fill`);
+    escaping them too means no value can end its attribute, whatever a caller built.
+    """
+    return _escape(text).replace('"', "&quot;")
 
 
 def _k_attr(circle: Circle) -> str:

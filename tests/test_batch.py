@@ -14,6 +14,7 @@ import pytest
 from conftest import DATA
 
 from img2logo.batch import (
+    MANIFEST_NAME,
     SUMMARY_COLUMNS,
     BatchReport,
     _output_stems,
@@ -77,7 +78,7 @@ def test_batch_goes_past_a_bad_file(runs, label):
         stem = Path(row.image).stem
         assert row.outputs == tuple(str(out / f"{stem}.{fmt}") for fmt in ("svg", "json", "png"))
     assert sorted(p.name for p in out.iterdir()) == sorted(
-        ["summary.csv", *(f"{Path(n).stem}.{fmt}" for n in GOOD for fmt in ("svg", "json", "png"))]
+        [MANIFEST_NAME, "summary.csv", *(f"{Path(n).stem}.{fmt}" for n in GOOD for fmt in ("svg", "json", "png"))]
     )
 
 
@@ -159,7 +160,7 @@ def test_in_process_run_with_options(folder, tmp_path):
     validate_document(doc)
     assert doc["ladder"] == "fibonacci" and doc["tolerance"] == 7.0
     assert all(c["r"] / doc["unit"] == pytest.approx(fibonacci(c["k"]), rel=1e-9) for c in doc["circles"])
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["drawing-snail.json", "summary.csv"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == [MANIFEST_NAME, "drawing-snail.json", "summary.csv"]
 
 
 def test_process_image_returns_plain_values(folder):
@@ -265,7 +266,7 @@ def test_an_image_that_now_fails_keeps_no_old_outputs(tmp_path):
     (src / "a.png").write_text("no longer an image")
     second = run_batch(find_images(src), out, jobs=1, progress=False)
     assert [f.image for f in second.failures] == ["a.png"]
-    assert sorted(p.name for p in out.iterdir()) == ["b.json", "b.png", "b.svg", "summary.csv"]
+    assert sorted(p.name for p in out.iterdir()) == [MANIFEST_NAME, "b.json", "b.png", "b.svg", "summary.csv"]
     assert "not a readable image" in (out / "summary.csv").read_text().splitlines()[1]
 
 
@@ -293,3 +294,185 @@ def test_workers_start_after_opencv_ran_multithreaded(folder, tmp_path):
     )
     assert done.returncode == 0, done.stderr
     assert done.stdout.split() == ["2", "2"]  # both images, and the parent's OpenCV setting restored
+
+
+# --------------------------------------------------------------------------- issue 20: batches never lose data
+def _two_images(tmp_path: Path, names=("a.png", "b.png")) -> Path:
+    src = tmp_path / "in"
+    src.mkdir()
+    for name, good in zip(names, GOOD, strict=False):
+        shutil.copy(DATA / good, src / name)
+    return src
+
+
+def test_summary_csv_cells_that_a_spreadsheet_would_run_are_quoted(tmp_path):
+    src = tmp_path / "in"
+    src.mkdir()
+    shutil.copy(DATA / GOOD[0], src / "=HYPERLINK(1).png")
+    (src / "@bad.png").write_text("not an image")
+    report = run_batch(find_images(src), tmp_path / "out", jobs=1, progress=False)
+    table = pd.read_csv(tmp_path / "out" / "summary.csv", keep_default_na=False)
+    assert table["image"].tolist() == ["'=HYPERLINK(1).png", "'@bad.png"]
+    assert table["error"].iloc[1].startswith(str(src))  # a path: not a formula
+    assert report.to_frame()["image"].tolist() == ["=HYPERLINK(1).png", "@bad.png"]  # the data itself unchanged
+
+
+def test_a_failing_image_never_removes_a_file_img2logo_did_not_write(tmp_path):
+    src, out = _two_images(tmp_path, ("notes.png", "b.png")), tmp_path / "out"
+    out.mkdir()
+    (out / "notes.json").write_text('{"my": "notes"}\n')  # the user's, named like an output
+    (out / "notes.png").write_bytes((DATA / GOOD[0]).read_bytes())  # a picture of the user's
+    (src / "notes.png").write_text("no image")
+    report = run_batch(find_images(src), out, jobs=1, progress=False)
+    assert [f.image for f in report.failures] == ["notes.png"]
+    assert (out / "notes.json").read_text() == '{"my": "notes"}\n' and (out / "notes.png").is_file()
+    assert "notes.json" not in (out / MANIFEST_NAME).read_text()
+
+
+def test_old_outputs_are_recognised_without_a_manifest(tmp_path):
+    src, out = _two_images(tmp_path), tmp_path / "out"
+    assert run_batch(find_images(src), out, jobs=1, progress=False).ok
+    (out / MANIFEST_NAME).unlink()  # outputs of a version that wrote none
+    (src / "a.png").write_text("no image")
+    run_batch(find_images(src), out, jobs=1, progress=False)
+    # the JSON (its format marker) and the SVG (its description) are img2logo's; the PNG cannot be told
+    assert sorted(p.name for p in out.iterdir() if p.name.startswith("a.")) == ["a.png"]
+
+
+class _LostWorkers(Executor):
+    """Runs the tasks here, except that the worker of ``lost`` dies (its future fails)."""
+
+    def __init__(self, lost: str) -> None:
+        self.lost = lost
+
+    def submit(self, fn, /, *args, **kwargs):
+        from concurrent.futures.process import BrokenProcessPool
+
+        future: Future = Future()
+        if Path(args[0]).name == self.lost:
+            future.set_exception(BrokenProcessPool("A child process terminated abruptly"))
+        else:
+            future.set_result(fn(*args, **kwargs))
+        return future
+
+
+def test_a_lost_worker_keeps_the_earlier_outputs_of_its_image(tmp_path):
+    src, out = _two_images(tmp_path), tmp_path / "out"
+    assert run_batch(find_images(src), out, jobs=1, progress=False).ok
+    before = {p.name: p.read_bytes() for p in out.iterdir() if p.name.startswith("a.")}
+    report = run_batch(find_images(src), out, executor=_LostWorkers("a.png"), progress=False)
+    assert [f.image for f in report.failures] == ["a.png"]
+    assert "BrokenProcessPool" in report.failures[0].message
+    assert {p.name: p.read_bytes() for p in out.iterdir() if p.name.startswith("a.")} == before
+
+
+def _kill_own_worker_on_b(path, *args, **kwargs):
+    """process_image, except that the worker given ``b.png`` is killed (as by the out-of-memory killer)."""
+    import os
+    import signal
+
+    if Path(path).name == "b.png":
+        os.kill(os.getpid(), signal.SIGKILL)
+    return _REAL_PROCESS_IMAGE(path, *args, **kwargs)
+
+
+_REAL_PROCESS_IMAGE = process_image
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="forked workers see the test's patch")
+def test_an_image_that_kills_its_worker_fails_alone_and_keeps_its_outputs(tmp_path, monkeypatch):
+    import multiprocessing
+
+    if multiprocessing.get_start_method() != "fork":
+        pytest.skip("forked workers see the test's patch")
+    import img2logo.batch
+
+    src, out = _two_images(tmp_path, ("a.png", "b.png")), tmp_path / "out"
+    shutil.copy(DATA / GOOD[1], src / "c.png")
+    assert run_batch(find_images(src), out, jobs=1, progress=False).ok
+    before = {p.name: p.read_bytes() for p in out.iterdir() if p.name[:2] in ("a.", "b.", "c.")}
+    monkeypatch.setattr(img2logo.batch, "process_image", _kill_own_worker_on_b)
+    report = run_batch(find_images(src), out, jobs=2, progress=False)
+    assert [r.image for r in report.rows] == ["a.png", "c.png"]  # the others are done
+    assert [f.image for f in report.failures] == ["b.png"]
+    assert report.failures[0].message == (
+        "the worker process running it was lost (killed by a signal, e.g. by the out-of-memory killer); "
+        "its earlier outputs are kept"
+    )
+    assert report.warnings[:2] == (
+        "a worker process died (killed by a signal, e.g. by the out-of-memory killer); "
+        f"{report.warnings[0].split('; ')[1]}",
+        "a worker process died (killed by a signal, e.g. by the out-of-memory killer); "
+        f"{report.warnings[1].split('; ')[1]}",
+    )
+    assert report.warnings[0].endswith("run again in a fresh pool") and report.warnings[1].endswith("each alone")
+    assert {p.name: p.read_bytes() for p in out.iterdir() if p.name[:2] in ("a.", "b.", "c.")} == before
+
+
+def test_a_second_batch_on_a_locked_folder_is_refused_and_a_stale_lock_taken_over(tmp_path):
+    from img2logo.batch import LOCK_NAME, _batch_lock
+
+    src, out = _two_images(tmp_path), tmp_path / "out"
+    with _batch_lock(out):  # a batch running (a lock is per open file: this one conflicts too)
+        with pytest.raises(InvalidParameterError, match=r"output folder .*out is being written by another img2logo"):
+            run_batch(find_images(src), out, jobs=1, progress=False)
+        assert sorted(p.name for p in out.iterdir()) == [LOCK_NAME]
+    assert not out.exists()  # the lock made the folder and, left empty, it is removed
+    out.mkdir()
+    (out / LOCK_NAME).write_text("999999999\n")  # left by a killed batch: nobody holds it
+    assert run_batch(find_images(src), out, jobs=1, progress=False).ok
+    assert not (out / LOCK_NAME).exists()
+
+
+def test_find_images_reports_what_it_skips(tmp_path):
+    import os
+
+    shutil.copy(DATA / GOOD[0], tmp_path / "a.png")
+    os.mkfifo(tmp_path / "b.png")
+    (tmp_path / "c.tif").symlink_to(tmp_path / "gone.tif")
+    from img2logo.batch import SkippedEntryWarning
+
+    with pytest.warns(SkippedEntryWarning) as caught:
+        assert [p.name for p in find_images(tmp_path)] == ["a.png"]
+    assert str(caught[0].message) == (
+        f"{tmp_path}: skipped 2 entries named like images that are no regular files: "
+        "'b.png' (a FIFO), 'c.tif' (a dangling link)"
+    )
+
+
+def test_the_summary_text_escapes_control_characters(tmp_path):
+    from img2logo.batch import BatchFailure, BatchRow
+
+    report = BatchReport(
+        (BatchRow("a\nb.png", "in/a\nb.png", "drawing", 3, 1, 1.0, 0.1),),
+        (BatchFailure("c\rd.png", "in/c\rd.png", "not a readable image"),),
+    )
+    text = report.summary()
+    assert "a\\nb.png" in text and "in/c\\rd.png: not a readable image" in text and "\r" not in text
+    assert len(text.splitlines()) == 6
+
+
+def test_a_foreground_for_a_drawing_is_ignored_with_one_warning(tmp_path):
+    report = run_batch([DATA / GOOD[0]], tmp_path, jobs=1, progress=False, outputs=("json",), foreground="none")
+    assert report.ok and len(report.warnings) == 1
+    assert report.warnings[0].startswith(f"{GOOD[0]}: --foreground none is ignored: the image is drawing (")
+    assert report.warnings[0].endswith("and only a photo has a subject to find (give --kind photo to treat it as one)")
+
+
+@pytest.mark.parametrize("link", ["symbolic", "hard"])
+def test_a_planted_lock_file_never_writes_over_a_users_file(tmp_path, link):
+    import os
+
+    from img2logo.batch import LOCK_NAME
+
+    src, out = _two_images(tmp_path), tmp_path / "out"
+    out.mkdir()
+    mine = tmp_path / "mine.txt"
+    mine.write_text("my text\n")
+    if link == "symbolic":
+        (out / LOCK_NAME).symlink_to(mine)
+    else:
+        os.link(mine, out / LOCK_NAME)
+    with pytest.raises(InvalidParameterError, match=rf"output folder .*out: \{LOCK_NAME}"):
+        run_batch(find_images(src), out, jobs=1, progress=False)
+    assert mine.read_text() == "my text\n" and sorted(p.name for p in out.iterdir()) == [LOCK_NAME]

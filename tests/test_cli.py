@@ -157,6 +157,29 @@ def test_radii_option_restricts_the_circles(tmp_path):
     assert {c["k"] for c in json.loads(out.read_text())["circles"]} <= {9, 10, 11}
 
 
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [
+        (["--rdp", "1e308"], "rdp_tolerance must be at most 1e+07 px (longer than any image), got 1e+308"),
+        (["--rdp", "1e200"], "rdp_tolerance must be at most 1e+07 px"),
+        (["--ladder", "fibonacci", "--unit", "1e308"], "unit must be in 0.001..1e+07 px, got 1e+308"),
+        (["--radii", "99999"], "exponents (--radii) must be in -14..33"),
+        (["--radii=-1000000"], "exponents (--radii) must be in -14..33"),
+        (["--ladder", "fibonacci", "--unit", "1e5"], "the smallest, 1e+05 px, is over 20 x the image's longer side"),
+        (["--radii", "25"], "choose smaller exponents (--radii)"),
+    ],
+)
+def test_huge_lengths_and_radii_are_one_line_with_nothing_on_stdout(tmp_path, capfd, args, message):
+    # issue 20, items 5 and 22: a cv2.error, LAPACK lines on stdout, numpy overflow warnings before.
+    out = tmp_path / "x.json"
+    assert main([str(DATA / "drawing-leaf.png"), "-q", "--json", str(out), *args]) == EXIT_ERROR
+    captured = capfd.readouterr()
+    assert captured.out == ""
+    assert captured.err.startswith("img2logo: error: ") and captured.err.count("\n") == 1
+    assert message in captured.err and "Warning" not in captured.err
+    assert not out.exists()
+
+
 def test_lock_mask_of_the_wrong_size(tmp_path, capsys):
     import cv2
 
@@ -230,7 +253,7 @@ def test_batch_command_reports_a_bad_file_and_exits_one(tmp_path, capsys):
     assert "drawing-leaf.png" in err and "E^s (px)" in err and "2 of 3 images done" in err
     names = sorted(p.name for p in out.iterdir())
     logos = [f"drawing-{n}.{f}" for n in ("leaf", "snail") for f in ("svg", "json", "png")]
-    assert names == sorted(["summary.csv", *logos])
+    assert names == sorted([".img2logo-outputs", "summary.csv", *logos])
     summary = (out / "summary.csv").read_text().splitlines()
     assert summary[0] == "image,kind,arcs,levels,similarity,symmetry,seconds,error"
     assert [line.split(",")[0] for line in summary[1:]] == ["corrupt.png", "drawing-leaf.png", "drawing-snail.png"]
@@ -336,14 +359,36 @@ def _copy(tmp_path, name="drawing-leaf.png"):
         (["--levels-dir", "{dir}/file"], r"--levels-dir .*file is a file, not a folder"),
         (["--levels-dir", "{dir}", "--svg", "{dir}/level-0000.svg"], r"inside --levels-dir"),
         (["--min-length", "-5"], r"min_length must be >= 0, got -5\.0"),
+        (["--foreground", "{dir}/mask.png", "--png", "{dir}/mask.png"], r"--png .*mask\.png is the input .*mask\.png"),
+        (["--foreground", "{dir}/mask.png", "--svg", "{dir}/mlink.svg"], r"mlink\.svg is the input .*mask\.png"),
+        (["--lock-mask", "{dir}/mask.png", "--json", "{dir}/mask.png"], r"--json .*mask\.png is the input .*mask\.png"),
+        (["--levels-dir", "{dir}/lv"], r"--levels-dir .*lv: .*level-0003\.json is the input .*in\.png"),
+        (["--lock-mask", "{dir}/mask.png", "--levels-dir", "{dir}/lv2"], r"level-0001\.svg is the input .*mask\.png"),
+        (["--svg", "{dir}/o.pdf"], r"--svg .*o\.pdf: \.pdf names another format \(--svg writes SVG\)"),
+        (["--svg", "{dir}/o.svgz"], r"\.svgz names another format"),
+        (
+            ["--png", "{dir}/o.jpg"],
+            r"--png .*o\.jpg: \.jpg names another format \(--png writes PNG\); .*ending in \.png",
+        ),
+        (["--json", "{dir}/o.svg"], r"--json .*o\.svg: \.svg names another format"),
+        (["--segments-png", "{dir}/o.tiff"], r"\.tiff names another format"),
     ],
 )
 def test_bad_outputs_are_refused_before_any_work(tmp_path, capsys, outputs, message):
+    import shutil
+
     src = _copy(tmp_path)
     before = (tmp_path / "in.png").read_bytes()
     (tmp_path / "link.svg").symlink_to(src)
     (tmp_path / "file").write_text("x")
     (tmp_path / "folder").mkdir()
+    mask = shutil.copy(DATA / "drawing-leaf.png", tmp_path / "mask.png")  # 512 x 512 like the input
+    (tmp_path / "mlink.svg").symlink_to(mask)
+    (tmp_path / "lv").mkdir()
+    (tmp_path / "lv" / "level-0003.json").symlink_to(src)  # a level file of the folder that is the input
+    (tmp_path / "lv2").mkdir()
+    os.link(mask, tmp_path / "lv2" / "level-0001.svg")  # a hard link: the same file under a level's name
+    masked = mask.read_bytes()
     names = sorted(p.name for p in tmp_path.iterdir())
     args = [a.replace("{in}", str(src)).replace("{dir}", str(tmp_path)) for a in outputs]
     assert main([str(src), *args]) == EXIT_ERROR
@@ -352,6 +397,7 @@ def test_bad_outputs_are_refused_before_any_work(tmp_path, capsys, outputs, mess
     assert re.search(message, err), err
     assert "kind" not in err  # refused before the run
     assert (tmp_path / "in.png").read_bytes() == before and sorted(p.name for p in tmp_path.iterdir()) == names
+    assert mask.read_bytes() == masked and sorted(p.name for p in (tmp_path / "lv").iterdir()) == ["level-0003.json"]
 
 
 def test_batch_into_its_own_input_folder_is_refused(tmp_path, capsys):
@@ -427,9 +473,22 @@ def test_downscale_is_reported_before_the_run(tmp_path, capsys):
     assert err[1].startswith(f"{big}: 2048x2048 px")
 
 
+def _default_signals() -> None:
+    """In the child: SIGINT as a terminal gives it, also when the suite runs with it ignored (``(make test &)``)."""
+    import signal
+
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 def _run_until(args, line_start: str, cwd):
     """Start the command; return the process once it printed a line starting with ``line_start``."""
-    proc = subprocess.Popen([sys.executable, "-m", "img2logo.cli", *args], stderr=subprocess.PIPE, text=True, cwd=cwd)
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "img2logo.cli", *args],
+        stderr=subprocess.PIPE,
+        text=True,
+        cwd=cwd,
+        preexec_fn=_default_signals,  # no thread starts between the fork and the exec
+    )
     for line in proc.stderr:
         if line.startswith(line_start):
             return proc
@@ -509,6 +568,245 @@ def test_batch_workers_end_with_their_parent(tmp_path, sig):
         for w in workers:  # never leave a worker behind, even when the test fails
             if _alive(w):
                 os.kill(w, signal.SIGKILL)
+
+
+# --------------------------------------------------------------------------- issue 20: the command line
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [
+        ([], "the following arguments are required: input"),
+        (["in.png", "--kind", "painting"], "argument --kind: invalid choice: 'painting'"),
+        (["in.png", "--tolerance"], "argument --tolerance/-T: expected one argument"),
+        (["batch"], "the following arguments are required: INPUT_DIR, OUTPUT_DIR"),
+        (["batch", "a", "b", "--jobs", "x"], "argument --jobs/-j: invalid int value: 'x'"),
+        (["-x.png"], "unknown option -x.png (for a file whose name starts with '-', write: img2logo -- -x.png)"),
+        (["in.png", "--svg", "o.svg", "-x.png"], "unknown option -x.png (for a file whose name starts with '-'"),
+        (
+            ["batch", "-in", "out"],
+            "unknown option -in (for a file whose name starts with '-', write: img2logo batch --",
+        ),
+    ],
+)
+def test_argument_errors_are_one_line(capsys, args, message):
+    with pytest.raises(SystemExit) as exc:
+        main(args)
+    assert exc.value.code == EXIT_ERROR
+    err = capsys.readouterr().err
+    assert err.startswith("img2logo: error: ") and err.count("\n") == 1 and "usage:" not in err
+    assert message in err, err
+
+
+def test_negative_numbers_are_option_values_not_unknown_options(capsys):
+    assert main([str(DATA / "drawing-leaf.png"), "--min-length", "-5"]) == EXIT_ERROR
+    assert capsys.readouterr().err == "img2logo: error: min_length must be >= 0, got -5.0\n"
+
+
+def test_a_file_whose_name_starts_with_a_dash_after_two_dashes(tmp_path, monkeypatch, capsys):
+    import shutil
+
+    shutil.copy(DATA / "drawing-leaf.png", tmp_path / "-x.png")
+    monkeypatch.chdir(tmp_path)
+    assert main(["-q", "--svg", "o.svg", "--", "-x.png"]) == 0
+    assert (tmp_path / "o.svg").is_file()
+
+
+def test_python_dash_m_img2logo_runs():
+    done = subprocess.run([sys.executable, "-m", "img2logo", "--version"], capture_output=True, text=True, check=False)
+    assert done.returncode == 0 and done.stdout.startswith("img2logo ")
+
+
+def test_a_control_character_in_a_name_cannot_forge_a_line(tmp_path, capsys):
+    import shutil
+
+    forged = tmp_path / "a\nimg2logo: error: forged.png"
+    assert main([str(forged)]) == EXIT_ERROR
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "a\\nimg2logo: error: forged.png" in err
+    named = tmp_path / "b\r\x1b[2Kc.png"
+    shutil.copy(DATA / "drawing-leaf.png", named)
+    assert main([str(named), "--svg", str(tmp_path / "o.svg")]) == 0
+    err = capsys.readouterr().err
+    assert "\r" not in err and "\x1b" not in err and "b\\r\\x1b[2Kc.png: 512x512 px" in err
+
+
+def test_subject_options_on_a_drawing_are_ignored_with_one_warning(tmp_path, capsys):
+    assert main([str(DATA / "drawing-leaf.png"), "--subject", "10,10,100,100", "--foreground", "none"]) == 0
+    warned = [line for line in capsys.readouterr().err.splitlines() if line.startswith("img2logo: warning: ")]
+    assert warned == [
+        "img2logo: warning: --subject 10,10,100,100 and --foreground none are ignored: the image is drawing "
+        f"({warned[0].split('drawing (', 1)[1].split('), and')[0]}), and only a photo has a subject to find "
+        "(give --kind photo to treat it as one)"
+    ]
+    assert main([str(DATA / "drawing-leaf.png")]) == 0
+    assert "warning" not in capsys.readouterr().err  # not given: nothing to say
+
+
+def test_levels_dir_removes_the_level_files_of_an_earlier_run_only(tmp_path, capsys, monkeypatch):
+    import json
+
+    from img2logo import writers
+    from img2logo.cli import EXIT_FAILED
+    from img2logo.errors import OutputError
+
+    lv = tmp_path / "lv"
+    src = str(DATA / "drawing-fish.png")
+    assert main([src, "-q", "--levels-dir", str(lv), "-T", "9"]) == 0
+    many = sorted(p.name for p in lv.iterdir())
+    assert len(many) >= 6  # three levels or more
+    (lv / "level-0099.json").write_text('{"mine": true}\n')  # named like a level, not img2logo's
+    (lv / "level-0098.svg").write_text("<svg/>\n")
+    (tmp_path / "keep.svg").write_text("x")
+    (lv / "level-0097.svg").symlink_to(tmp_path / "keep.svg")
+    (lv / "notes.txt").write_text("mine\n")
+    foreign = ["level-0097.svg", "level-0098.svg", "level-0099.json", "notes.txt"]
+
+    def full_disk(*args, **kwargs):
+        raise OutputError(f"cannot write {args[1]}: No space left on device")
+
+    with monkeypatch.context() as m:  # a run that fails removes nothing: the set is all or nothing
+        m.setattr(writers, "write_png", full_disk)
+        assert main([src, "-q", "--levels-dir", str(lv), "-T", "3", "--png", str(tmp_path / "o.png")]) == EXIT_FAILED
+    assert sorted(p.name for p in lv.iterdir()) == sorted([*many, *foreign])
+    capsys.readouterr()
+    assert main([src, "--levels-dir", str(lv), "-T", "3"]) == 0
+    assert f"(removed {len(many) - 2} files of an earlier run's other levels)" in capsys.readouterr().err
+    assert sorted(p.name for p in lv.iterdir()) == sorted(["level-0000.json", "level-0000.svg", *foreign])
+    assert json.loads((lv / "level-0000.json").read_text())["tolerance"] == 3.0
+    assert (tmp_path / "keep.svg").read_text() == "x"
+
+
+def test_batch_into_its_own_folder_of_jpegs_is_refused_also_through_a_link(tmp_path, capsys):
+    import cv2
+
+    folder = tmp_path / "in"
+    folder.mkdir()
+    cv2.imwrite(str(folder / "leaf.jpg"), cv2.imread(str(DATA / "drawing-leaf.png")))
+    (tmp_path / "link").symlink_to(folder)
+    for out in (folder, tmp_path / "link", folder / "."):
+        assert main(["batch", str(folder), str(out)]) == EXIT_ERROR
+        err = capsys.readouterr().err
+        assert (
+            err.startswith(f"img2logo: error: output folder {out} is the folder of the input ") and err.count("\n") == 1
+        )
+    assert sorted(p.name for p in folder.iterdir()) == ["leaf.jpg"]
+
+
+def test_batch_checks_the_foreground_mask_before_the_workers_start(tmp_path, capsys):
+    folder, out = _batch_folder(tmp_path, bad=False), tmp_path / "out"
+    assert main(["batch", str(folder), str(out), "--foreground", str(tmp_path / "missing.png")]) == EXIT_ERROR
+    err = capsys.readouterr().err
+    assert err == f"img2logo: error: image file not found: {tmp_path / 'missing.png'}\n"
+    (tmp_path / "text.png").write_text("no image")
+    assert main(["batch", str(folder), str(out), "--foreground", str(tmp_path / "text.png")]) == EXIT_ERROR
+    assert "not a readable image" in capsys.readouterr().err
+    assert not out.exists()
+
+
+def test_batch_refuses_an_output_that_is_its_foreground_mask(tmp_path, capsys):
+    import shutil
+
+    folder, out = _batch_folder(tmp_path, names=("drawing-leaf.png",), bad=False), tmp_path / "out"
+    out.mkdir()
+    mask = shutil.copy(DATA / "drawing-leaf.png", out / "drawing-leaf.png")  # the name of an output
+    assert main(["batch", str(folder), str(out), "--foreground", str(mask)]) == EXIT_ERROR
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "drawing-leaf.png is the input" in err
+    assert sorted(p.name for p in out.iterdir()) == ["drawing-leaf.png"]
+    assert mask.read_bytes() == (DATA / "drawing-leaf.png").read_bytes()
+
+
+def test_batch_counts_and_names_the_entries_it_skips(tmp_path, capsys):
+    folder, out = _batch_folder(tmp_path, names=("drawing-leaf.png",), bad=False), tmp_path / "out"
+    os.mkfifo(folder / "pipe.png")  # never opened: it would block
+    (folder / "dead.jpg").symlink_to(tmp_path / "nowhere.jpg")
+    (folder / "dir.png").mkdir()
+    assert main(["batch", str(folder), str(out)]) == 0
+    err = capsys.readouterr().err.splitlines()
+    assert err[0] == (
+        f"img2logo: warning: {folder}: skipped 3 entries named like images that are no regular files: "
+        "'dead.jpg' (a dangling link), 'dir.png' (a folder), 'pipe.png' (a FIFO)"
+    )
+    assert err[1] == f"{folder}: 1 images"
+
+
+def _wait_for_workers(proc, count: int) -> list[int]:
+    import time
+
+    workers: list[int] = []
+    deadline = time.monotonic() + 120
+    while len(workers) < count and time.monotonic() < deadline:
+        workers = _children(proc.pid)
+        time.sleep(0.05)
+    assert len(workers) == count
+    return workers
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc")
+def test_a_killed_batch_worker_loses_no_output(tmp_path):
+    """kill -9 of one worker (the out-of-memory killer): the unfinished images run again, nothing is lost."""
+    import shutil
+    import signal
+
+    folder, out = tmp_path / "in", tmp_path / "out"
+    folder.mkdir()
+    for name in ("drawing-fish.png", "drawing-bird.png", "drawing-leaf.png", "drawing-snail.png"):
+        shutil.copy(DATA / name, folder / name)
+    assert main(["batch", str(folder), str(out), "-q", "--jobs", "1"]) == 0  # the earlier run's outputs
+    earlier = {p.name: p.read_bytes() for p in out.iterdir() if not p.name.startswith(".")}
+    proc = _run_until(["batch", str(folder), str(out), "--jobs", "2"], f"{folder}: 4 images", tmp_path)
+    workers: list[int] = []
+    try:
+        workers = _wait_for_workers(proc, 2)
+        os.kill(workers[0], signal.SIGKILL)
+        rest = proc.stderr.read()
+        assert proc.wait(timeout=600) == 0, rest
+    finally:
+        proc.kill()
+        proc.wait()
+        for w in _children(proc.pid) + workers:
+            if _alive(w):
+                os.kill(w, signal.SIGKILL)
+    assert (
+        "img2logo: warning: a worker process died (killed by a signal" in rest and "run again in a fresh pool" in rest
+    )
+    assert "4 of 4 images done" in rest and "Traceback" not in rest
+    now = {p.name: p.read_bytes() for p in out.iterdir() if not p.name.startswith(".")}
+    assert set(now) == set(earlier)  # every output is there
+    assert all(now[n] == earlier[n] for n in now if n != "summary.csv")  # and the same bytes: deterministic
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc")
+def test_a_second_batch_on_the_same_output_folder_is_refused(tmp_path, capsys):
+    import shutil
+    import signal
+    import time
+
+    folder, out = tmp_path / "in", tmp_path / "out"
+    folder.mkdir()
+    for i in range(2):
+        shutil.copy(DATA / "photo-cat.png", folder / f"cat{i}.png")
+    proc = _run_until(["batch", str(folder), str(out), "--jobs", "1"], f"{folder}: 2 images", tmp_path)
+    try:
+        deadline = time.monotonic() + 60
+        lock = out / ".img2logo-batch.lock"
+        while time.monotonic() < deadline and not (lock.exists() and lock.read_text().strip() == str(proc.pid)):
+            time.sleep(0.02)
+        assert main(["batch", str(folder), str(out)]) == EXIT_ERROR
+        err = capsys.readouterr().err
+        assert err == (
+            f"img2logo: error: output folder {out} is being written by another img2logo batch (process {proc.pid}); "
+            "wait for it to end or give another folder\n"
+        )
+        proc.send_signal(signal.SIGKILL)  # a killed batch leaves its lock file: stale, taken over
+        proc.wait(timeout=60)
+    finally:
+        proc.kill()
+        proc.wait()
+    assert (out / ".img2logo-batch.lock").exists()
+    (tmp_path / "small").mkdir()
+    small = _batch_folder(tmp_path / "small", names=("drawing-leaf.png",), bad=False)
+    assert main(["batch", str(small), str(out), "-q"]) == 0
+    assert not (out / ".img2logo-batch.lock").exists() and (out / "drawing-leaf.svg").is_file()
 
 
 def test_version_and_help_load_no_numeric_library():

@@ -297,3 +297,15 @@ def test_window_grows_by_a_ring_when_it_does_not_solve_and_keeps_fixed_circles()
     assert ordered.circles == (1, 0)
     empty = cfit.fit_window(*args, changed=[], free_junctions=[])
     assert empty.ok and empty.fit is None and empty.displacements() == {}
+
+
+def test_window_that_no_junction_touches_is_still_fitted():
+    # Every junction released (or a closed curve alone): the circles have no constraint, yet
+    # their centres still go where their points are (issue 20, item 1: this window had no fit).
+    points, radii, centers, _, _, junctions = _chain_of_three()
+    alone = {c: () for c in points}
+    w = cfit.fit_window(points, radii, centers, alone, {}, junctions, changed=[0, 1, 2], free_junctions=[])
+    assert w.ok and w.circles == (0, 1, 2) and w.junctions == () and w.fit is not None
+    np.testing.assert_allclose(w.center(0), [0.0, -1.0], atol=1e-6)  # its points' circle, 1 px up
+    np.testing.assert_allclose(w.center(2), [40.0, 0.0], atol=1e-6)
+    assert w.displacements() == {}

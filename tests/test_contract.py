@@ -345,3 +345,40 @@ def test_json_fills_validation():
     with pytest.raises(InvalidParameterError, match=r"fills\[0\] must be an object with 'path' and 'color'"):
         contract.read_fills({"fills": [{"path": "M 0 0 Z"}]})
     assert contract.read_fills({"format": "x"}) == ()
+
+
+def test_reading_a_document_loads_no_part_of_the_pipeline():
+    # The file format is a reader's business: reading or writing a (symmetric) document must not
+    # load the axis search, the segment graph or the optimizer (the axis helpers are in mirror).
+    import ast
+    import subprocess
+
+    code = (
+        "import sys, img2logo.contract, img2logo.writers; "
+        "print(sorted(m for m in sys.modules if m.startswith('img2logo.')))"
+    )
+    root = Path(__file__).resolve().parents[1]
+    out = subprocess.run([sys.executable, "-c", code], cwd=root, capture_output=True, text=True, check=True)
+    loaded = set(ast.literal_eval(out.stdout))
+    pipeline = {"symmetry", "progressive", "constrained_fit", "merging", "segment_graph", "preprocessing", "pipeline"}
+    assert not loaded & {f"img2logo.{m}" for m in pipeline}
+    assert "img2logo.mirror" in loaded
+
+
+@pytest.mark.parametrize(
+    ("width", "message"),
+    [
+        (1e308, r"width must be an integer, got 1e\+308"),
+        (10**30, r"width x height must be at most 150,000,000 px \(the largest image img2logo reads\), got 1e\+30 x"),
+        (2_000_000, r"width x height must be at most 150,000,000 px"),
+    ],
+)
+def test_a_document_of_an_absurd_size_is_refused(tmp_path, width, message):
+    # issue 20, item 20: write_png then raised matplotlib's TypeError or asked for 40 GB.
+    doc = contract.to_document(make_abstraction())
+    doc["width"] = width
+    with pytest.raises(InvalidParameterError, match=message):
+        contract.from_document(doc)
+    (tmp_path / "big.json").write_text(json.dumps(doc))
+    with pytest.raises(InvalidParameterError, match=message):
+        writers.read_json(tmp_path / "big.json")

@@ -45,6 +45,7 @@ def test_explorer_shows_the_final_level_first(explorer, fish_result):
 
 
 def test_explorer_drawing_has_a_fixed_crisp_size(explorer):
+    pytest.importorskip("ipywidgets", reason="the explorer's widgets need the extra [kit]")
     import io
 
     from PIL import Image
@@ -106,6 +107,7 @@ def test_explorer_run_with_another_tolerance_changes_the_levels(explorer):
 
 
 def test_explorer_widgets_drive_the_callbacks(explorer):
+    pytest.importorskip("ipywidgets", reason="the explorer's widgets need the extra [kit]")
     box = explorer.widget()
     assert explorer.widget() is box
     c = explorer.controls

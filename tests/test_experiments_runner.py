@@ -97,3 +97,41 @@ sys.exit(main(sys.argv[1:]))
     )
     assert done.returncode == 1
     assert done.stderr.count("\n") == 1 and "papermill is missing" in done.stderr and "[kit]" in done.stderr
+
+
+@pytest.mark.parametrize(
+    ("notebook", "output", "message"),
+    [
+        ("{tmp}/missing.ipynb", "{tmp}/out.ipynb", "error: notebook not found: {tmp}/missing.ipynb"),
+        ("{tmp}", "{tmp}/out.ipynb", "error: notebook {tmp} is not a file"),
+        (
+            "{nb}",
+            "{tmp}/no/such/out.ipynb",
+            "error: output folder not found: {tmp}/no/such (for {tmp}/no/such/out.ipynb)",
+        ),
+        ("{nb}", "{tmp}", "error: output {tmp} is a folder; give a notebook file name"),
+        ("{tmp}/copy.ipynb", "{tmp}/copy.ipynb", "error: output {tmp}/copy.ipynb is the notebook {tmp}/copy.ipynb"),
+        ("{tmp}/copy.ipynb", "{tmp}/link.ipynb", "error: output {tmp}/link.ipynb is the notebook {tmp}/copy.ipynb"),
+        ("{tmp}/copy.ipynb", "{tmp}/hard.ipynb", "error: output {tmp}/hard.ipynb is the notebook {tmp}/copy.ipynb"),
+    ],
+)
+def test_bad_notebook_or_output_paths_are_one_line_exit_two(tmp_path, capsys, notebook, output, message):
+    import os
+    import shutil
+
+    from img2logo.experiments.runner import main
+
+    nb = ROOT / "notebooks" / "01_overview.ipynb"
+    shutil.copy(nb, tmp_path / "copy.ipynb")
+    (tmp_path / "link.ipynb").symlink_to(tmp_path / "copy.ipynb")
+    os.link(tmp_path / "copy.ipynb", tmp_path / "hard.ipynb")
+    before = (tmp_path / "copy.ipynb").read_bytes()
+    names = sorted(p.name for p in tmp_path.iterdir())
+
+    def fill(text: str) -> str:
+        return text.replace("{tmp}", str(tmp_path)).replace("{nb}", str(nb))
+
+    assert main([fill(notebook), fill(output)]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(fill(message)) and err.count("\n") == 1
+    assert (tmp_path / "copy.ipynb").read_bytes() == before and sorted(p.name for p in tmp_path.iterdir()) == names

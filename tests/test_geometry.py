@@ -179,3 +179,28 @@ def test_replace_checks_again():
     with pytest.raises(InvalidParameterError, match="tolerance must be > 0"):
         dataclasses.replace(a, tolerance=-1.0)
     assert dataclasses.replace(a, level=4).arc_junctions == a.arc_junctions
+
+
+def test_scaled_abstraction_stays_on_the_ladder_and_scales_back():
+    # issue 20, item 10: a result of a downscaled input is written in the input's pixels.
+    from conftest import make_abstraction
+
+    from img2logo.constants import LOG_PHI
+
+    a = make_abstraction()
+    b = a.scaled(2.0, 2 * a.width, 2 * a.height)
+    assert (b.width, b.height) == (2 * a.width, 2 * a.height)
+    t = a.bias + math.log(2.0) / LOG_PHI
+    assert b.bias == pytest.approx(t - math.floor(t), abs=1e-12)
+    for ca, cb in zip(a.golden_circles, b.golden_circles, strict=True):
+        assert cb.k == ca.k + math.floor(t) and cb.r == pytest.approx(2.0 * ca.r, rel=1e-12)
+        assert (cb.cx, cb.cy) == pytest.approx((2.0 * ca.cx, 2.0 * ca.cy), rel=1e-12)
+        assert cb.r == b.ladder.radius(cb.k)  # exactly a rung of the new ladder
+    np.testing.assert_allclose(b.junctions, 2.0 * a.junctions, rtol=1e-12)
+    assert (b.similarity, b.tolerance) == pytest.approx((2.0 * a.similarity, 2.0 * a.tolerance))
+    back = b.scaled(0.5, a.width, a.height)
+    assert back.bias == pytest.approx(a.bias, abs=1e-12)
+    assert [c.k for c in back.golden_circles] == [c.k for c in a.golden_circles]
+    np.testing.assert_allclose(back.junctions, a.junctions, atol=1e-9)
+    fib = a.scaled(1.0, a.width, a.height)  # nothing changes at factor 1
+    assert [c.r for c in fib.golden_circles] == pytest.approx([c.r for c in a.golden_circles], rel=1e-12)

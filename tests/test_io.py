@@ -11,7 +11,7 @@ import pytest
 from conftest import make_abstraction
 
 from img2logo import _io, writers
-from img2logo.errors import InvalidParameterError
+from img2logo.errors import InvalidParameterError, OutputError
 
 
 def leftovers(directory: Path) -> list[str]:
@@ -117,6 +117,48 @@ def test_output_set_writes_all_or_nothing(tmp_path):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["a.json", "a.svg"]
 
 
+# --------------------------------------------------------------------------- issue 20
+@pytest.mark.parametrize(
+    ("text", "shown"),
+    [
+        ("plain name.png", "plain name.png"),
+        ("a\nimg2logo: error: x.png", "a\\nimg2logo: error: x.png"),
+        ("b\r\t\x1b[31mc", "b\\r\\t\\x1b[31mc"),
+        ("line\u2028sep\x85", "line\\u2028sep\\x85"),
+        ("bytes\udcff.png", "bytes\\udcff.png"),  # a name that is no UTF-8 (surrogate escape)
+        ("é ü 猫.png", "é ü 猫.png"),
+    ],
+)
+def test_printable_escapes_what_could_start_a_line(text, shown):
+    from img2logo._io import printable
+
+    assert printable(text) == shown
+    assert printable(text).isprintable()
+
+
+def test_remove_file_in_a_set_waits_for_the_set_and_is_undone_with_it(tmp_path):
+    from img2logo._io import atomic_write, output_set, remove_file
+
+    old, new = tmp_path / "old.json", tmp_path / "new.json"
+    old.write_text("earlier run")
+    with pytest.raises(RuntimeError), output_set():
+        atomic_write(new, lambda f: f.write(b"x"))
+        remove_file(old)
+        assert old.exists()  # not yet
+        raise RuntimeError("the run failed")
+    assert old.read_text() == "earlier run" and not new.exists()
+    with output_set():
+        atomic_write(new, lambda f: f.write(b"x"))
+        remove_file(old)
+        remove_file(tmp_path / "never-there.json")  # no error
+        assert old.exists()
+    assert not old.exists() and new.read_bytes() == b"x"
+    new_copy = tmp_path / "c"
+    new_copy.write_text("y")
+    remove_file(new_copy)  # outside a set: at once
+    assert not new_copy.exists()
+
+
 def test_stale_temporary_files_of_a_target_are_removed(tmp_path):
     dead, alive = _dead_pid(), os.getpid()
     stale = tmp_path / f".a.json.{dead}-0123abcd.tmp"
@@ -153,3 +195,59 @@ def test_check_output_paths(tmp_path):
             check(targets, [src])
     with pytest.raises(InvalidParameterError, match=r"--levels-dir .*file is a file, not a folder"):
         check({}, [src], {"--levels-dir": tmp_path / "file"})
+
+
+# --- a target that is no regular file: a FIFO, a device (issue 20, item 4) -------------------
+def _special_targets(tmp_path):
+    fifo = tmp_path / "pipe.json"
+    os.mkfifo(fifo)
+    link = tmp_path / "link.svg"
+    link.symlink_to(fifo)
+    return fifo, link
+
+
+@pytest.mark.parametrize(
+    "write",
+    [writers.write_json, writers.write_svg, writers.write_png, lambda a, p: _io.atomic_write(p, lambda f: None)],
+    ids=["json", "svg", "png", "atomic_write"],
+)
+def test_a_fifo_at_the_target_is_refused_and_kept(tmp_path, write):
+    fifo, link = _special_targets(tmp_path)
+    for target in (fifo, link):
+        with pytest.raises(OutputError, match=r"cannot write .*: it is a FIFO \(named pipe\), not a regular file"):
+            write(make_abstraction(), target)
+    import stat
+
+    assert stat.S_ISFIFO(os.stat(fifo).st_mode) and link.is_symlink()  # nothing replaced
+    assert leftovers(tmp_path) == ["link.svg", "pipe.json"]  # no temporary file left
+
+
+def test_a_device_at_the_target_is_refused(tmp_path, monkeypatch):
+    # A fake character device (no test may touch /dev): os.stat reports one for this path.
+    import stat
+
+    device = tmp_path / "full"
+    device.write_text("device")
+    real_stat = os.stat
+
+    def fake_stat(path, *args, **kwargs):
+        st = real_stat(path, *args, **kwargs)
+        if os.fspath(path) == os.fspath(device):
+            return os.stat_result((stat.S_IFCHR | 0o666, *tuple(st)[1:]))
+        return st
+
+    monkeypatch.setattr(_io.os, "stat", fake_stat)
+    for write in (writers.write_json, writers.write_svg):
+        with pytest.raises(OutputError, match=r"cannot write .*full: it is a device, not a regular file"):
+            write(make_abstraction(), device)
+    assert device.read_text() == "device" and leftovers(tmp_path) == ["full"]
+
+
+def test_a_fifo_appearing_inside_an_output_set_moves_nothing(tmp_path):
+    a = make_abstraction()
+    with pytest.raises(OutputError, match="it is a FIFO"):
+        with _io.output_set():
+            writers.write_json(a, tmp_path / "a.json")
+            writers.write_svg(a, tmp_path / "b.svg")
+            os.mkfifo(tmp_path / "b.svg")  # after its write, before the set moves the files
+    assert leftovers(tmp_path) == ["b.svg"]  # a.json not moved either: the set is whole or nothing

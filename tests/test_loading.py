@@ -115,3 +115,123 @@ def test_not_a_regular_file_is_named_as_such(tmp_path):
         load_image("/dev/null")
     with pytest.raises(ImageNotFoundError, match=r"is a directory, not an image file"):
         load_image(tmp_path)
+
+
+@pytest.mark.parametrize(
+    ("bgr", "hex_colour"), [((0, 0, 255), "#ff0000"), ((200, 120, 30), "#1e78c8"), ((0, 0, 0), "#000000")]
+)
+def test_an_image_of_one_colour_is_blank_whatever_the_colour(tmp_path, bgr, hex_colour):
+    # issue 20, item 18: a red image passed the blank check (its channels differ) and failed later.
+    path = tmp_path / "one.png"
+    cv2.imwrite(str(path), np.full((64, 80, 3), bgr, np.uint8))
+    message = rf"one\.png: image is blank \(one colour, {hex_colour}, in every pixel\); nothing to trace"
+    with pytest.raises(InvalidImageError, match=message):
+        load_image(path)
+    rgb = np.full((64, 80, 3), bgr[::-1], np.uint8)
+    with pytest.raises(InvalidImageError, match=r"image is blank \(one colour"):
+        load_image(rgb)
+    rgb[10, 10] = 255 - rgb[10, 10]  # one pixel of another colour: an image
+    assert load_image(rgb).width == 80
+
+
+# --- third-party lines and EXIF orientation (issue 20, items 6 and 7) ------------------------
+def _png_with(tmp_path, name: str, *chunks: tuple[bytes, bytes]):
+    """A 64 x 64 px line drawing as a PNG with extra chunks (kind, data) after its IHDR."""
+
+    def chunk(kind: bytes, data: bytes) -> bytes:
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+
+    img = np.full((64, 64, 3), 255, np.uint8)
+    cv2.circle(img, (32, 32), 20, (0, 0, 0), 3)
+    png = cv2.imencode(".png", img)[1].tobytes()
+    path = tmp_path / name
+    path.write_bytes(png[:33] + b"".join(chunk(k, d) for k, d in chunks) + png[33:])
+    return path
+
+
+@pytest.mark.parametrize(
+    "chunks",
+    [
+        [(b"iCCP", b"bogus\x00\x00" + zlib.compress(b"not a profile" * 10))],
+        [
+            (b"tEXt", b"Comment\x00" + b"x" * 2_000_000),
+            (b"zTXt", b"Comment\x00\x00" + zlib.compress(b"y" * 20_000_000)),
+        ],
+    ],
+    ids=["bogus-iccp", "huge-text"],
+)
+def test_no_libpng_line_reaches_standard_error(tmp_path, capfd, chunks):
+    path = _png_with(tmp_path, "odd.png", *chunks)
+    img = load_image(path)
+    assert (img.width, img.height) == (64, 64)
+    captured = capfd.readouterr()
+    assert captured.err == "" and captured.out == ""
+
+
+def test_other_lines_written_during_a_decode_still_reach_standard_error(tmp_path, capfd, monkeypatch):
+    import os
+
+    from img2logo import loading
+
+    decode = cv2.imdecode
+
+    def chatty(*args):
+        os.write(2, b"libpng warning: iCCP: known incorrect sRGB profile\nsomeone else's line\n")
+        return decode(*args)
+
+    monkeypatch.setattr(cv2, "imdecode", chatty)
+    loading.load_image(_png_with(tmp_path, "a.png"))
+    assert capfd.readouterr().err == "someone else's line\n"
+
+
+def test_a_huge_text_chunk_does_not_hide_the_size_from_the_pixel_limit(tmp_path):
+    # Pillow refuses the header (MAX_TEXT_CHUNK): the IHDR is read directly, before decoding.
+    path = _png_with(tmp_path, "t.png", (b"zTXt", b"Comment\x00\x00" + zlib.compress(b"y" * 20_000_000)))
+    with pytest.raises(InvalidImageError, match=r"image is 64x64 px, more than the limit of 1,000 px"):
+        load_image(path, max_pixels=1000)
+
+
+@pytest.mark.parametrize("orientation", range(1, 9))
+def test_exif_orientation_is_applied_as_every_viewer_does(tmp_path, orientation):
+    from PIL import Image, ImageOps
+
+    # An asymmetric picture: a black bar at the top left, a blue disc lower right.
+    arr = np.full((60, 90, 3), 255, np.uint8)
+    arr[5:15, 5:40] = 0
+    cv2.circle(arr, (65, 40), 12, (30, 60, 220), -1)
+    exif = Image.Exif()
+    exif[0x0112] = orientation
+    path = tmp_path / f"o{orientation}.jpg"
+    Image.fromarray(arr).save(path, quality=95, exif=exif.tobytes())
+    expected = np.asarray(ImageOps.exif_transpose(Image.open(path)).convert("RGB")) / 255.0
+    img = load_image(path)
+    assert img.rgb.shape == expected.shape  # 5..8: a quarter turn, 90 x 60 becomes 60 x 90
+    assert np.abs(img.rgb - expected).mean() < 0.01  # two JPEG decoders, the same picture
+
+
+def test_a_phone_photo_stored_sideways_is_upright_when_downscaled(tmp_path):
+    from PIL import Image
+
+    arr = np.full((2400, 4400, 3), 255, np.uint8)  # stored landscape, viewed portrait
+    arr[100:400, 100:1200] = 0
+    exif = Image.Exif()
+    exif[0x0112] = 6
+    path = tmp_path / "phone.jpg"
+    Image.fromarray(arr).save(path, quality=90, exif=exif.tobytes())
+    with pytest.warns(DownscaleWarning, match=r"image is 2400x4400 px, .*downscaled to 1117x2048 px"):
+        img = load_image(path)
+    assert (img.width, img.height) == (1117, 2048)
+    assert img.gray[50:150, 1000:1080].mean() < 0.2  # the bar, turned to the top right
+
+
+def test_a_large_16_bit_rgba_png_is_decoded_once_and_reduced_like_the_area_resize(tmp_path):
+    # issue 20, item 12: OpenCV decoded it through a second full-size buffer; Pillow reduces it in 8 bits.
+    arr = _shapes(2600, 4300, True).astype(np.uint16) * np.uint16(257)
+    path = tmp_path / "big16.png"
+    cv2.imwrite(str(path), arr)
+    with pytest.warns(DownscaleWarning, match=r"image is 4300x2600 px, .*downscaled to 2048x1238 px"):
+        img = load_image(path)
+    assert (img.width, img.height, img.has_alpha) == (2048, 1238, True)
+    rgb, a = _reference(arr, (2048, 1238))
+    assert np.abs(img.rgb - rgb).mean() < 0.005 and np.abs(img.alpha - a).mean() < 0.005
+    assert np.percentile(np.abs(img.rgb - rgb), 99) < 0.1  # only edges differ: a box reduce, then the area resize

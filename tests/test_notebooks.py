@@ -135,6 +135,7 @@ def test_a_figure_cell_ends_by_showing_the_saved_figure(path):
 
 
 def test_an_unknown_parameter_name_is_refused_before_anything_runs(tmp_path):
+    pytest.importorskip("papermill", reason="the notebook runner needs the extra [kit]")
     out = tmp_path / "out.ipynb"
     with pytest.raises(NotebookParameterError, match=r"no parameter smok; its parameters are .*smoke"):
         run_notebook(ROOT / "notebooks" / "11_explore_levels.ipynb", out, {"smok": True})
@@ -142,6 +143,7 @@ def test_an_unknown_parameter_name_is_refused_before_anything_runs(tmp_path):
 
 
 def test_the_runner_command_refuses_an_unknown_name_with_one_line(tmp_path, capsys):
+    pytest.importorskip("papermill", reason="the notebook runner needs the extra [kit]")
     nb = ROOT / "notebooks" / "04_tolerance_sweep.ipynb"
     assert main([str(nb), str(tmp_path / "out.ipynb"), "--smoke", "-p", "tolerance", "3"]) == 2
     err = capsys.readouterr().err
@@ -151,6 +153,7 @@ def test_the_runner_command_refuses_an_unknown_name_with_one_line(tmp_path, caps
 
 @pytest.mark.notebook
 def test_a_bad_parameter_value_stops_the_notebook_with_one_line(tmp_path):
+    pytest.importorskip("papermill", reason="the notebook runner needs the extra [kit]")
     out = tmp_path / "out.ipynb"
     with pytest.raises(NotebookParameterError) as caught:
         run_notebook(

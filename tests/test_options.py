@@ -113,3 +113,41 @@ def test_the_command_line_flags_come_from_the_fields():
         "arc_selection",
         "max_arc_distance",
     }
+
+
+# --- bounds and types at the boundary (issue 20, items 5, 21, 22) ------------------------------
+@pytest.mark.parametrize(
+    ("keywords", "message"),
+    [
+        ({"rdp_tolerance": 1e308}, r"^rdp_tolerance must be at most 1e\+07 px \(longer than any image\), got 1e\+308$"),
+        ({"rdp_tolerance": 1e200}, r"^rdp_tolerance must be at most 1e\+07 px"),
+        ({"tolerance": 1e300}, r"^tolerance must be at most 1e\+07 px"),
+        ({"min_length": 1e30}, r"^min_length must be at most 1e\+07 px"),
+        ({"max_arc_distance": 1e30}, r"^max_arc_distance must be at most 1e\+07 px"),
+        ({"ladder": "fibonacci", "unit": 1e308}, r"^unit must be in 0\.001\.\.1e\+07 px, got 1e\+308$"),
+        ({"ladder": "fibonacci", "unit": 1e-9}, r"^unit must be in 0\.001\.\.1e\+07 px, got 1e-09$"),
+        (
+            {"exponents": [99999]},
+            r"^exponents \(--radii\) must be in -14\.\.33 \(radii phi\*\*\(k \+ bias\) .* got k = 99999$",
+        ),
+        ({"exponents": [3, -1000000]}, r"^exponents \(--radii\) must be in -14\.\.33 .* got k = -1000000$"),
+        ({"ladder": "fibonacci", "exponents": [2, 99999]}, r"^exponents \(--radii\) of the Fibonacci ladder of unit"),
+        ({"tolerance": "5"}, r"^tolerance must be a number of px, got '5'$"),
+        ({"tolerance": True}, r"^tolerance must be a number of px, got True$"),
+        ({"rdp_tolerance": "2"}, r"^rdp_tolerance must be a number of px, got '2'$"),
+        ({"bias": "0.5"}, r"^bias must be a number in \[0, 1\), got '0\.5'$"),
+    ],
+)
+def test_out_of_range_lengths_and_radii_are_refused_without_numpy_warnings(keywords, message):
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # an overflow RuntimeWarning would fail here
+        with pytest.raises(InvalidParameterError, match=message):
+            Options(**keywords)
+
+
+def test_the_largest_lengths_and_radii_are_accepted():
+    o = Options(tolerance=1e7, rdp_tolerance=1e7, exponents=[-14, 33])
+    assert (o.tolerance, o.exponents) == (1e7, (-14, 33))
+    assert Options(ladder="fibonacci", unit=1e-3).unit == 1e-3

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 
+import numpy as np
 import pytest
 from conftest import DATA, drawing
 
@@ -69,6 +70,19 @@ def test_public_names_resolve():
         img2logo.nope  # noqa: B018
 
 
+def test_the_options_value_and_its_errors_are_public():
+    # The README passes options=img2logo.Options(...); the error and warning a caller catches
+    # are reachable from the top level too.
+    from img2logo.errors import UnknownOptionError
+    from img2logo.options import Options
+    from img2logo.recovery import ConnectivityWarning
+
+    assert img2logo.Options is Options
+    assert img2logo.UnknownOptionError is UnknownOptionError
+    assert img2logo.ConnectivityWarning is ConnectivityWarning
+    assert abstract(drawing("Y"), options=img2logo.Options(tolerance=7.0), progress=False).final.tolerance == 7.0
+
+
 def test_keywords_are_checked_before_any_work(tmp_path):
     from img2logo.errors import UnknownOptionError
 
@@ -77,6 +91,18 @@ def test_keywords_are_checked_before_any_work(tmp_path):
         abstract(missing, foo=1)
     with pytest.raises(InvalidParameterError, match=r"min_length must be >= 0, got -5"):
         abstract(missing, min_length=-5)
+
+
+def test_tolerance_and_progress_of_the_wrong_type_are_refused_before_any_work(tmp_path):
+    # issue 20, item 21: '5', True and 'yes' were taken as 5.0, 1.0 and a progress bar.
+    missing = tmp_path / "missing.png"
+    for value in ("5", True):
+        with pytest.raises(InvalidParameterError, match=rf"^tolerance must be a number of px, got {value!r}$"):
+            abstract(missing, tolerance=value)
+    with pytest.raises(
+        InvalidParameterError, match=r"^progress must be a callable .*, True, False or None, got 'yes'$"
+    ):
+        abstract(missing, progress="yes")
 
 
 def test_level_out_of_range_names_the_range(result):
@@ -113,3 +139,67 @@ def test_images_whose_initial_fit_did_not_converge_give_a_logo(name):
     assert res.final.similarity <= res.final.tolerance
     validate_document(to_document(res.final))
     assert res.progression.stats["released_junctions"] == 0  # exact connectivity, nothing released
+
+
+# --- an input over the size bound: results in its pixels (issue 20, item 10) --------------------
+def _downscaled_fish():
+    """drawing-fish.png (512 px) loaded with a 256 px bound: the work at half size, as a 4096 px input at 2048."""
+    import warnings
+
+    from img2logo.loading import DownscaleWarning, load_image
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", DownscaleWarning)
+        return load_image(DATA / "drawing-fish.png", max_side=256)
+
+
+def test_a_downscaled_input_gets_its_result_in_its_own_pixels(tmp_path):
+    import cv2
+    from scipy import ndimage
+
+    from img2logo import contract, writers
+
+    img = _downscaled_fish()
+    assert (img.width, img.scale, img.input_width, img.input_height) == (256, 0.5, 512, 512)
+    result = abstract(img, progress=False)
+    final = result.final
+    assert (final.width, final.height) == (512, 512)
+    contract.to_document(final, check=True)  # every radius exactly on its ladder, junctions on their arcs
+    assert result.bias == final.bias and final.tolerance == pytest.approx(10.0)  # T = 5 px of the working image
+    # The arcs lie on the fish's ink at full size: the distance from their samples to a stroke pixel.
+    ink = cv2.imread(str(DATA / "drawing-fish.png"), cv2.IMREAD_GRAYSCALE) < 128
+    distance = ndimage.distance_transform_edt(~ink)
+    pts = np.concatenate([a.circle.point_at(np.linspace(a.theta0, a.theta0 + a.sweep, 50)) for a in final.arcs])
+    inside = (pts >= 0).all(axis=1) & (pts < 512).all(axis=1)
+    assert inside.mean() > 0.99
+    d = distance[pts[inside, 1].astype(int), pts[inside, 0].astype(int)]
+    assert np.median(d) < 3.0
+    svg = writers.to_svg(final)
+    assert 'viewBox="0 0 512 512"' in svg
+    writers.write_png(final, tmp_path / "f.png", image=img.rgb)  # the working image stretched under it
+    assert cv2.imread(str(tmp_path / "f.png")).shape[:2] == (512, 512)
+
+
+def test_masks_of_a_downscaled_input_are_given_at_its_size():
+    img = _downscaled_fish()
+    full = np.zeros((512, 512), bool)
+    full[:, :256] = True  # the left half: its segments are never merged
+    result = abstract(img, progress=False, lock_mask=full, merging=False)
+    assert result.final.params["locked_segments"] > 0
+    with pytest.raises(InvalidParameterError, match=r"lock_mask: mask must have the input image's shape \(512, 512\)"):
+        abstract(img, progress=False, lock_mask=np.zeros((256, 256), bool))
+
+
+def test_a_symmetric_logo_of_a_downscaled_input_keeps_its_axis_in_its_pixels():
+    import warnings
+
+    from img2logo.loading import DownscaleWarning, load_image
+    from img2logo.symmetry import is_symmetric
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", DownscaleWarning)
+        img = load_image(drawing("Y", size=400), max_side=200)  # the Y is mirror-symmetric about x = 100
+    result = abstract(img, progress=False, symmetry="vertical")
+    record = result.final.params["symmetry"]
+    assert record["point"][0] == pytest.approx(100.5, abs=3.0)  # in the input's pixels, not the working 50
+    assert is_symmetric(result.final, record["point"], record["direction"])

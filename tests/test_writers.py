@@ -5,6 +5,7 @@ from __future__ import annotations
 import io
 import json
 import math
+import os
 import re
 import subprocess
 import sys
@@ -52,6 +53,23 @@ def test_write_json_deterministic_and_readable(tmp_path):
     (tmp_path / "bad.json").write_text("{not json")
     with pytest.raises(InvalidParameterError, match="is not JSON"):
         writers.read_json(tmp_path / "bad.json")
+
+
+def test_read_json_errors_are_img2logo_errors(tmp_path):
+    # issue 20, item 21: a missing file was a bare FileNotFoundError.
+    from img2logo.errors import Img2LogoError, InputNotFoundError
+
+    with pytest.raises(InputNotFoundError, match=r"^JSON file not found: .*nope\.json$") as info:
+        writers.read_json(tmp_path / "nope.json")
+    assert isinstance(info.value, Img2LogoError) and isinstance(info.value, FileNotFoundError)
+    with pytest.raises(InvalidParameterError, match=r"is a folder, not a JSON file"):
+        writers.read_json(tmp_path)
+    os.mkfifo(tmp_path / "pipe.json")  # read, it would block
+    with pytest.raises(InvalidParameterError, match=r"pipe\.json is not a regular file"):
+        writers.read_json(tmp_path / "pipe.json")
+    (tmp_path / "latin.json").write_bytes(b"\xff\xfe{")
+    with pytest.raises(InvalidParameterError, match=r"latin\.json is not JSON: not UTF-8 text"):
+        writers.read_json(tmp_path / "latin.json")
 
 
 def test_invalid_document_is_not_written(tmp_path):
@@ -281,6 +299,21 @@ def test_svg_fill_layer_is_under_the_arcs(tmp_path):
     # Without fills the SVG has no fill layer and is unchanged.
     assert writers.to_svg(a) == writers.to_svg(a, fills=None)
     assert "Fills" not in writers.to_svg(a)
+
+
+def test_fill_path_that_is_not_path_data_is_refused_and_never_lands_unescaped(tmp_path):
+    # issue 20, item 14: a '"' in Fill.path ended the d attribute: onload="..." landed in the file.
+    evil = 'M 0 0 L 10 0 L 10 10 Z" onload="alert(1)'
+    with pytest.raises(InvalidParameterError, match=r"fill path is not SVG path data: '\"' at character 22"):
+        fills.Fill(evil, "#ff0000")
+    with pytest.raises(InvalidParameterError, match=r"fill path is not SVG path data: '<'"):
+        fills.Fill("M 0 0 <script/>", "#ff0000")
+    forged = fills.Fill("M 0 0 L 10 0 L 10 10 Z", "#ff0000")
+    object.__setattr__(forged, "path", evil)  # past the check: the writer escapes it still
+    a = four_arcs()
+    root = ET.parse(writers.write_svg(a, tmp_path / "x.svg", fills=[forged])).getroot()
+    path = root.find(f"{SVG}g[@id='fills']/{SVG}path")
+    assert path.get("d") == evil and path.get("onload") is None
 
 
 def test_svg_gradient_defs(tmp_path):

@@ -24,6 +24,7 @@ from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
+from .._io import printable
 from ..errors import Img2LogoError, InvalidParameterError
 from .paths import data_path, eval_path, kit_module
 
@@ -231,6 +232,10 @@ def run_notebook(
 
     Raises
     ------
+    InvalidParameterError
+        Before anything runs: the notebook is missing or no file, the output's
+        folder is missing, or the output is the notebook itself (also through a
+        link) or a folder.
     NotebookParameterError
         A name the notebook does not have (before anything runs), or a value
         its :func:`check_parameters` call refused.
@@ -238,10 +243,11 @@ def run_notebook(
         Another error in a cell: its one-line message and the executed copy
         holding the traceback.
     """
+    nb = Path(path)
+    _check_paths(nb, Path(output))
     papermill = kit_module("papermill")
     from papermill.exceptions import PapermillExecutionError
 
-    nb = Path(path)
     parameters = dict(parameters or {})
     known = notebook_parameters(nb)
     unknown = sorted(set(parameters) - set(known))
@@ -268,6 +274,27 @@ def run_notebook(
     return Path(output)
 
 
+def _check_paths(nb: Path, output: Path) -> None:
+    """Refuse, before anything runs, a notebook that is not there and an output that cannot be written or is it."""
+    if not nb.is_file():
+        raise InvalidParameterError(f"notebook not found: {nb}" if not nb.exists() else f"notebook {nb} is not a file")
+    if output.is_dir():
+        raise InvalidParameterError(f"output {output} is a folder; give a notebook file name")
+    folder = output.parent if str(output.parent) else Path(".")
+    if not folder.is_dir():
+        raise InvalidParameterError(f"output folder not found: {folder} (for {output})")
+    same = os.path.realpath(output) == os.path.realpath(nb)
+    if not same and output.exists():
+        try:
+            same = os.path.samefile(output, nb)
+        except OSError:
+            same = False
+    if same:
+        raise InvalidParameterError(
+            f"output {output} is the notebook {nb}: refusing to write over it; give another file"
+        )
+
+
 def _value(text: str) -> Any:
     """A ``-p`` value as YAML: ``4`` is an int, ``4.5`` a float, ``[a.png, b.png]`` a list, ``null`` None."""
     yaml = kit_module("yaml")
@@ -281,7 +308,8 @@ def _value(text: str) -> Any:
 def main(argv: Sequence[str] | None = None) -> int:
     """``python -m img2logo.experiments NOTEBOOK OUTPUT [--smoke] [-p NAME VALUE]...``.
 
-    Exit status 0 on success, 2 for a bad parameter (one line), 1 for a failed cell.
+    Exit status 0 on success; 2 for a bad parameter, a missing notebook or output folder, or an
+    output that is the notebook (one line, nothing run); 1 for a failed cell.
     """
     parser = argparse.ArgumentParser(
         prog="python -m img2logo.experiments",
@@ -298,10 +326,10 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         parameters.update({name: _value(text) for name, text in args.parameter})
         run_notebook(args.notebook, args.output, parameters)
-    except NotebookParameterError as err:
-        print(f"error: {err}", file=sys.stderr)
+    except InvalidParameterError as err:  # a bad parameter, notebook or output: nothing ran
+        print(f"error: {printable(err)}", file=sys.stderr)
         return 2
     except Img2LogoError as err:
-        print(f"error: {err}", file=sys.stderr)
+        print(f"error: {printable(err)}", file=sys.stderr)
         return 1
     return 0
