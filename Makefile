@@ -12,6 +12,7 @@ STUDIO := $(VENV)/.installed-studio
 PORT   ?= 8866
 HTMLKIT := $(VENV)/.installed-html
 DOCSKIT := $(VENV)/.installed-docs
+BENCH  := $(VENV)/.installed-bench
 LIB    := $(wildcard img2logo/*.py img2logo/*/*.py) pyproject.toml
 DATA   := $(wildcard data/*.png)
 NB     ?= $(basename $(notdir $(wildcard notebooks/*.ipynb)))
@@ -87,7 +88,12 @@ format: $(STAMP)
 	$(BIN)/ruff format img2logo tests benchmarks
 	$(BIN)/ruff check --fix img2logo tests benchmarks
 
-bench: $(STAMP)
+# [bench] (vtracer, the plain vectorizer the command line is timed against), installed on first use.
+$(BENCH): pyproject.toml $(STAMP)
+	$(BIN)/python -m pip install --quiet -e '.[dev,bench]'
+	@touch $@
+
+bench: $(BENCH)
 	$(BIN)/python benchmarks/bench.py
 
 # What the logos keep of the evaluation set's features (benchmarks/data/): a table,

@@ -1,17 +1,22 @@
 """`make bench`: medians of the pipeline's stages on the example images, and ratios.
 
-Speed is measured here, never asserted in the tests. Each figure is the median
-of ``--repeat`` runs after one warm-up run (imports and caches excluded), on one
-core of whatever machine runs it; the ratio column compares a median with its
-budget (below 1 is within budget).
+Speed is measured here, never asserted in the tests. Each in-process figure is
+the median of ``--repeat`` runs after one warm-up run (imports and caches
+excluded), on one core of whatever machine runs it; the ratio column compares a
+median with its budget (below 1 is within budget). The command line is timed
+as whole processes (start-up, imports and numba's cached kernels included)
+against vtracer, a plain vectorizer (the ``bench`` extra), the two alternated
+run by run so that a machine's load falls on both alike (issue 19).
 """
 
 from __future__ import annotations
 
 import argparse
+import os
 import statistics
 import subprocess
 import sys
+import tempfile
 import time
 from pathlib import Path
 
@@ -25,10 +30,23 @@ DATA = ROOT / "data"
 PREPROCESS_BUDGET = 1.0
 #: Budget for the command line's start-up (import), s.
 STARTUP_BUDGET = 0.5
+#: Issue 19's budget for ``import img2logo`` and ``img2logo --version`` as whole processes, s.
+VERSION_BUDGET = 0.15
 #: Budget for the whole pipeline on the 512 px clip-art fish (issue: under 2 s), s.
 PIPELINE_BUDGET = 2.0
 #: Budget for the whole pipeline on a 512 px photo (issue 9: at most 5 s), s.
 PHOTO_PIPELINE_BUDGET = 5.0
+#: Issue 19's in-process budgets: the clip-art fish, and a clip art of about 56 arcs (the giraffe), s.
+FISH_BUDGET = 0.15
+MANY_ARCS_BUDGET = 0.4
+#: Issue 19: the command line on a 512 px clip art or drawing at most this many times vtracer's time (goal 5).
+VTRACER_RATIO_BUDGET = 10.0
+#: The command line against vtracer: 512 px clip arts and drawings (the giraffe: about 56 arcs).
+VTRACER_IMAGES = (
+    DATA / "clipart-fish.png",
+    ROOT / "benchmarks" / "data" / "clipart-giraffe.png",
+    DATA / "drawing-rabbit.png",
+)
 #: The paper's Table 3 (its fish, Python, i9 3.6 GHz), s; None where it says ">= 2 hrs".
 PAPER_TABLE3 = {(False, False): None, (True, False): 257.47, (False, True): 338.87, (True, True): 65.37}
 
@@ -72,7 +90,7 @@ def bench_pipeline(name: str, repeat: int, path: Path | None = None, budget: flo
     stages = {k: statistics.median(r.timings[k] for _, r in runs) for k in runs[0][1].timings}
     result = runs[0][1]
     ratio = total / budget
-    print(f"\nWhole pipeline on {name} (median of {repeat}): {total:.2f} s, ratio {ratio:.2f} of {budget:.0f} s")
+    print(f"\nWhole pipeline on {name} (median of {repeat}): {total:.2f} s, ratio {ratio:.2f} of {budget:g} s")
     print("  " + ", ".join(f"{k} {v * 1e3:.0f} ms" for k, v in stages.items()))
     prog = result.progression
     print(f"  arcs {prog.arc_counts[0]} -> {prog.arc_counts[-1]} over {len(prog.levels)} levels; stats {prog.stats}")
@@ -98,16 +116,52 @@ def bench_table3(name: str, repeat: int) -> None:
 
 
 def bench_startup(repeat: int) -> None:
-    times = []
-    for _ in range(repeat):
-        start = time.perf_counter()
-        subprocess.run([sys.executable, "-c", "import img2logo.cli"], check=True)
-        times.append(time.perf_counter() - start)
-    med = statistics.median(times)
+    """Start-up as whole processes: ``import img2logo.cli``, ``import img2logo`` and ``img2logo --version``."""
+    for label, cmd, budget in (
+        ("python -c 'import img2logo.cli'", [sys.executable, "-c", "import img2logo.cli"], STARTUP_BUDGET),
+        ("python -c 'import img2logo'", [sys.executable, "-c", "import img2logo"], VERSION_BUDGET),
+        ("img2logo --version", [sys.executable, "-m", "img2logo.cli", "--version"], VERSION_BUDGET),
+    ):
+        med = statistics.median(_process_seconds(cmd) for _ in range(repeat))
+        print(
+            f"\nCommand start-up ({label}, median of {repeat}): "
+            f"{med * 1e3:.0f} ms, ratio {med / budget:.2f} of {budget:g} s"
+        )
+
+
+def _process_seconds(cmd: list[str]) -> float:
+    start = time.perf_counter()
+    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    return time.perf_counter() - start
+
+
+def bench_cli_vs_vtracer(repeat: int) -> None:
+    """The ``img2logo`` command and vtracer (spline mode) on the same images, as whole processes, alternated."""
+    try:
+        import vtracer  # noqa: F401
+    except ImportError:
+        print("\nvtracer is not installed (pip install -e '.[bench]'): the command-line comparison is skipped")
+        return
     print(
-        f"\nCommand start-up (python -c 'import img2logo.cli', median of {repeat}): "
-        f"{med * 1e3:.0f} ms, ratio {med / STARTUP_BUDGET:.2f} of {STARTUP_BUDGET:.1f} s"
+        f"\nThe command line against vtracer (whole processes, alternated, median of {repeat}), "
+        f"budget {VTRACER_RATIO_BUDGET:.0f}x"
     )
+    head = ("image", "img2logo", "vtracer", "ratio", "of budget")
+    print(f"{head[0]:16s} " + " ".join(f"{h:>10s}" for h in head[1:]))
+    with tempfile.TemporaryDirectory() as tmp:
+        for path in VTRACER_IMAGES:
+            ours_cmd = [sys.executable, "-m", "img2logo.cli", str(path), "-q", "--svg", os.path.join(tmp, "ours.svg")]
+            code = "import sys, vtracer; vtracer.convert_image_to_svg_py(sys.argv[1], sys.argv[2], mode='spline')"
+            theirs_cmd = [sys.executable, "-c", code, str(path), os.path.join(tmp, "vtracer.svg")]
+            _process_seconds(ours_cmd)  # warm-up: numba's on-disk cache, the file system's
+            _process_seconds(theirs_cmd)
+            ours, theirs = [], []
+            for _ in range(repeat):
+                ours.append(_process_seconds(ours_cmd))
+                theirs.append(_process_seconds(theirs_cmd))
+            t_ours, t_theirs = statistics.median(ours), statistics.median(theirs)
+            ratio = t_ours / t_theirs
+            print(f"{path.stem:16s} {t_ours:9.2f}s {t_theirs:9.3f}s {ratio:9.0f}x {ratio / VTRACER_RATIO_BUDGET:10.1f}")
 
 
 def main() -> None:
@@ -115,11 +169,14 @@ def main() -> None:
     parser.add_argument("--repeat", type=int, default=5)
     args = parser.parse_args()
     bench_preprocessing(["clipart-fish", "clipart-cat", "drawing-fish", "drawing-rabbit", "photo-cat"], args.repeat)
-    bench_pipeline("clipart-fish", args.repeat)
+    bench_pipeline("clipart-fish", args.repeat, budget=FISH_BUDGET)
+    giraffe = ROOT / "benchmarks" / "data" / "clipart-giraffe.png"
+    bench_pipeline(giraffe.stem, args.repeat, giraffe, MANY_ARCS_BUDGET)
     for photo in (ROOT / "benchmarks" / "data" / "photo-teddy-bear.png", DATA / "photo-flower.png"):
         bench_pipeline(photo.stem, args.repeat, photo, PHOTO_PIPELINE_BUDGET)
     bench_table3("clipart-fish", max(1, args.repeat // 2))
     bench_startup(args.repeat)
+    bench_cli_vs_vtracer(args.repeat)
 
 
 if __name__ == "__main__":

@@ -9,10 +9,15 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable
-
-import numpy as np
+from typing import TYPE_CHECKING
 
 from .errors import InvalidParameterError
+
+if TYPE_CHECKING:
+    import numpy as np
+
+# numpy is imported by the helpers that need it, not here: the command line's
+# option parsing uses this module, and ``img2logo --version`` should not load numpy.
 
 
 def check_points(points: object, name: str = "points", min_count: int = 1) -> np.ndarray:
@@ -23,6 +28,8 @@ def check_points(points: object, name: str = "points", min_count: int = 1) -> np
     InvalidParameterError
         If the shape is not (N, 2), N is too small, or a value is not finite.
     """
+    import numpy as np
+
     try:
         arr = np.asarray(points, dtype=np.float64)
     except (TypeError, ValueError) as exc:
@@ -66,6 +73,8 @@ def check_choice(value: object, name: str, choices: Iterable[str]) -> str:
 
 def check_integer(value: object, name: str, minimum: int) -> int:
     """``value`` as an int >= ``minimum`` (Python or numpy integer, not bool)."""
+    import numpy as np
+
     if isinstance(value, bool | np.bool_) or not isinstance(value, int | np.integer):
         raise InvalidParameterError(f"{name} must be an integer, got {value!r}")
     v = int(value)

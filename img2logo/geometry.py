@@ -518,10 +518,13 @@ class Abstraction:
         tol = JUNCTION_TOLERANCE
         for i, (arc, t) in enumerate(zip(self.arcs, topology, strict=True)):
             c = arc.circle
-            for k in (*t.ends, *t.through):
-                p = self.junctions[k]
-                off = abs(float(c.distance(p)))
-                if not off <= tol:
+            # Each arc's junctions checked at once; the messages name the first that fails.
+            ks = (*t.ends, *t.through)
+            if ks:
+                offs = np.abs(c.distance(self.junctions[list(ks)]))
+                if not np.all(offs <= tol):
+                    bad = int(np.argmin(offs <= tol))
+                    k, p, off = ks[bad], self.junctions[ks[bad]], float(offs[bad])
                     raise InvalidParameterError(
                         f"junction {k}: ({p[0]:.6g}, {p[1]:.6g}) is {off:.3g} px off the circle of arc {i}, "
                         f"more than {tol:g} px"
@@ -533,8 +536,10 @@ class Abstraction:
                         f"{self.junctions[k][1]:.6g}): it is {math.dist(self.junctions[k], end):.3g} px from it, "
                         f"more than {tol:g} px"
                     )
-            for k in t.through:
-                if not bool(arc.contains_angle(float(c.angle_of(self.junctions[k])), tol=tol / c.r)):
+            if t.through:
+                on = arc.contains_angle(c.angle_of(self.junctions[list(t.through)]), tol=tol / c.r)
+                if not np.all(on):
+                    k = t.through[int(np.argmin(on))]
                     raise InvalidParameterError(f"junction {k} is on the circle of arc {i} but not on the arc")
 
     # ----------------------------------------------------------------- derived values

@@ -22,8 +22,6 @@ from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
-import numpy as np
-
 from ._validation import check_choice, check_positive
 from .constants import MAX_LENGTH, MIN_LADDER_RADIUS, MIN_SEGMENT_LENGTH, RDP_TOLERANCE, TOLERANCE
 from .errors import InvalidParameterError, UnknownOptionError
@@ -93,6 +91,8 @@ def _switch(flag: str, what: str, *, default: bool = True) -> Any:
 
 def _check_length(value: object, name: str, *, allow_zero: bool = False, low: float = 0.0) -> float:
     """A length option, px: a finite number > 0 (or >= 0), at least ``low``, at most ``MAX_LENGTH``."""
+    import numpy as np
+
     if isinstance(value, bool | np.bool_) or isinstance(value, str):
         raise InvalidParameterError(f"{name} must be a number of px, got {value!r}")
     v = check_positive(value, name, allow_zero=allow_zero)
@@ -289,6 +289,8 @@ class Options:
     )
 
     def __post_init__(self) -> None:
+        import numpy as np
+
         from .golden_ladder import make_ladder
         from .subject import check_foreground_option, subject_rectangle_numbers
 
@@ -412,6 +414,8 @@ class Options:
 
 
 def _differs(a: Any, b: Any) -> bool:
+    import numpy as np
+
     if isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
         return True
     return type(a) is not type(b) or a != b

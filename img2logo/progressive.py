@@ -619,13 +619,13 @@ class _Optimizer:
         """
         c = arc.circle
         ends: list[int | None] = []
+        # The projections of all the path's junctions at once (the same values as one at a time).
+        proj = c.point_at(c.angle_of(points[np.asarray(path, dtype=np.intp)])).reshape(-1, 2)
         for end in (arc.start, arc.end):
-            best, gap = None, math.inf
-            for j in path:
-                d = float(np.hypot(*(c.point_at(c.angle_of(points[j])) - end)))
-                if d <= JUNCTION_TOLERANCE and d < gap:
-                    best, gap = j, d
-            ends.append(best)
+            d = np.hypot(proj[:, 0] - end[0], proj[:, 1] - end[1])
+            near = d <= JUNCTION_TOLERANCE
+            # The nearest within the tolerance; on a tie the first in path order.
+            ends.append(path[int(np.argmin(np.where(near, d, np.inf)))] if near.any() else None)
         return ArcJunctions(ends[0], ends[1], tuple(j for j in path if j not in ends))
 
 

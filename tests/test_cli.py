@@ -875,3 +875,35 @@ def test_a_second_batch_on_the_same_output_folder_is_refused(tmp_path, capsys):
     small = _batch_folder(tmp_path / "small", names=("drawing-leaf.png",), bad=False)
     assert main(["batch", str(small), str(out), "-q"]) == 0
     assert not (out / ".img2logo-batch.lock").exists() and (out / "drawing-leaf.svg").is_file()
+
+
+def test_version_and_help_load_no_numeric_library():
+    # Start-up: `img2logo --version` and `--help` only parse flags; numpy, scipy, OpenCV, numba
+    # and pillow are loaded by the run that needs them (issue 19).
+    code = (
+        "import sys, contextlib, io\n"
+        "from img2logo.cli import main\n"
+        "for argv in (['--version'], ['--help'], ['batch', '--help']):\n"
+        "    with contextlib.redirect_stdout(io.StringIO()), contextlib.suppress(SystemExit):\n"
+        "        main(argv)\n"
+        "print(sorted(m for m in ('numpy', 'scipy', 'cv2', 'numba', 'PIL') if m in sys.modules))\n"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert out.strip() == "[]"
+
+
+def test_same_files_whatever_the_thread_counts(tmp_path):
+    # Byte-identical outputs on a busy or an idle machine, with one core or many: the BLAS libraries
+    # (numpy's and scipy's OpenBLAS) and OpenCV run on 1 thread in one run and on 4 in the other.
+    outputs = []
+    for threads in ("1", "4"):
+        env = dict(os.environ)
+        for var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS", "OPENCV_FOR_THREADS_NUM"):
+            env[var] = threads
+        out = tmp_path / threads
+        out.mkdir()
+        cmd = [sys.executable, "-m", "img2logo.cli", str(DATA / "clipart-fish.png"), "-q", "--fill", "auto"]
+        cmd += ["--json", str(out / "fish.json"), "--png", str(out / "fish.png")]
+        subprocess.run(cmd, env=env, check=True)
+        outputs.append([(out / name).read_bytes() for name in ("fish.json", "fish.png")])
+    assert outputs[0] == outputs[1]
