@@ -220,21 +220,7 @@ def main(argv: list[str] | None = None) -> int:
     table.to_csv(args.out / "quality.csv", index=False, float_format="%.3f")
     with pd.option_context("display.width", 200, "display.max_columns", 20, "display.max_colwidth", 60):
         print(table.drop(columns=["error"], errors="ignore").to_string(index=False, float_format="%.2f"))
-        numeric = [
-            "arcs",
-            "r3",
-            "r6",
-            "r10",
-            "sil6",
-            "outside",
-            "crossings",
-            "gaps",
-            "joins",
-            "tangent",
-            "kink",
-            "seconds",
-            *INK_COLUMNS,
-        ]
+        numeric = [*COLUMNS[COLUMNS.index("arcs") :], *INK_COLUMNS]  # every measured column
         by = table["family"]
         means = table.groupby(by)[numeric].mean()
         means["least sil6"] = table.groupby(by)["sil6"].min()
