@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 import sys
 from pathlib import Path
 
@@ -58,3 +59,22 @@ import jupyter_server_mathjax  # noqa: E402
 html_static_path = [str(Path(jupyter_server_mathjax.__file__).parent / "static")]
 mathjax_path = "MathJax.js?config=TeX-AMS-MML_HTMLorMML-full"
 mathjax2_config = {"HTML-CSS": {"availableFonts": [], "preferredFont": None, "webFont": "STIX-Web"}}
+
+
+# The docstrings write sizes and norms as in the paper, |S|, |r1 - r2|: in reStructuredText a word
+# between bars is a substitution, which the docstrings never mean. Bars outside inline literals
+# are escaped, so they show as written (a grid table or line block, a bar and a space, is left alone).
+_BARS = re.compile(r"\|([^|`\n]+)\|")
+
+
+def _literal_bars(app, what, name, obj, options, lines) -> None:
+    for i, line in enumerate(lines):
+        if line.lstrip().startswith(("| ", "+-", "+=")):  # a line block or a grid table's row
+            continue
+        parts = re.split(r"(``[^`]*``|`[^`]*`)", line)
+        lines[i] = "".join(p if p.startswith("`") else _BARS.sub(r"\\|\1\\|", p) for p in parts)
+
+
+def setup(app) -> None:
+    # Before numpydoc (priority 500) turns the sections into reStructuredText.
+    app.connect("autodoc-process-docstring", _literal_bars, priority=400)
