@@ -23,6 +23,7 @@ from scipy import ndimage, sparse
 from scipy.sparse import csgraph
 
 from .constants import LINE_JOIN_DISTANCE
+from .geometry import polyline_length
 
 # The 8 neighbours in circular order: N, NE, E, SE, S, SW, W, NW (row, column).
 _RING = ((-1, 0), (-1, 1), (0, 1), (1, 1), (1, 0), (1, -1), (0, -1), (-1, -1))
@@ -65,8 +66,7 @@ class PixelGraph:
         return np.vstack([self.nodes[a][None], inner, self.nodes[b][None]])
 
     def length(self, c: int) -> float:
-        p = self.polyline(c)
-        return float(np.sum(np.hypot(*np.diff(p, axis=0).T)))
+        return polyline_length(self.polyline(c))
 
 
 def classify(skel: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -87,3 +87,10 @@ def readonly(arr: np.ndarray) -> np.ndarray:
     """Return ``arr`` marked read-only, so frozen values stay frozen."""
     arr.setflags(write=False)
     return arr
+
+
+def check_instance(value: object, cls: type, name: str) -> None:
+    """Raise unless ``value`` is a ``cls``: ``abstraction must be an Abstraction, got dict``."""
+    if not isinstance(value, cls):
+        article = "an" if cls.__name__[:1].lower() in "aeiou" else "a"
+        raise InvalidParameterError(f"{name} must be {article} {cls.__name__}, got {type(value).__name__}")

@@ -45,7 +45,7 @@ from .constants import (
     REDUNDANT_INTERSECTION_TOL,
 )
 from .errors import FitError, InvalidParameterError
-from .geometry import TAU, Arc, Circle
+from .geometry import TAU, Arc, Circle, polyline_length
 
 __all__ = [
     "ArcFit",
@@ -288,7 +288,7 @@ def admissible_arcs(circle: Circle, segment_points: np.ndarray, junctions: np.nd
     ``ARC_CANDIDATE_LENGTH_SLACK`` px; the shortest candidate when every one is longer.
     """
     candidates = candidate_arcs(circle, junctions)
-    seg_length = float(np.sum(np.hypot(*np.diff(segment_points, axis=0).T)))
+    seg_length = polyline_length(segment_points)
     cap = ARC_CANDIDATE_LENGTH_RATIO * seg_length + ARC_CANDIDATE_LENGTH_SLACK
     kept = [a for a in candidates if a.length <= cap]
     return (kept or [min(candidates, key=lambda a: a.length)]), cap

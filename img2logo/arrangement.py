@@ -38,9 +38,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ._validation import check_positive
+from ._validation import check_instance, check_positive
 from .constants import ARC_SAMPLE_STEP, INTERSECTION_TOL
-from .errors import InvalidParameterError
 from .geometry import TAU, Abstraction, Circle
 from .svg_path import loop_path
 
@@ -210,8 +209,7 @@ def faces(
         Faces do not overlap; a face inside another's hole is listed too.
         Empty when the arcs bound no region (e.g. open strokes only).
     """
-    if not isinstance(abstraction, Abstraction):
-        raise InvalidParameterError(f"abstraction must be an Abstraction, got {type(abstraction).__name__}")
+    check_instance(abstraction, Abstraction, "abstraction")
     snap = check_positive(snap, "snap")
     min_area = check_positive(min_area, "min_area", allow_zero=True)
     step = check_positive(step, "step")

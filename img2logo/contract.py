@@ -28,6 +28,7 @@ from typing import Any
 import numpy as np
 
 from ._io import as_path
+from ._validation import check_instance
 from .constants import FORMAT_NAME, JUNCTION_TOLERANCE, PHI, RADIUS_RELATIVE_TOLERANCE
 from .errors import InvalidParameterError
 from .fills import Fill, check_fills
@@ -96,8 +97,7 @@ def to_document(
         If a parameter is not JSON-safe, a fill is not a Fill, or (with
         ``check``) an invariant fails.
     """
-    if not isinstance(abstraction, Abstraction):
-        raise InvalidParameterError(f"abstraction must be an Abstraction, got {type(abstraction).__name__}")
+    check_instance(abstraction, Abstraction, "abstraction")
     fill_list = check_fills(fills)
     if params is not None and not isinstance(params, Mapping):
         raise InvalidParameterError(f"params must be a mapping, got {type(params).__name__}")

@@ -47,6 +47,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
+from ._validation import check_instance
 from .circle_fitting import fit_center
 from .constants import JUNCTION_TOLERANCE, LOG_PHI
 from .constrained_fit import fit_window
@@ -77,8 +78,7 @@ _CONTINUATION_STEPS: int = 8
 
 # --------------------------------------------------------------------------- validation
 def _check_abstraction(a: object) -> Abstraction:
-    if not isinstance(a, Abstraction):
-        raise InvalidParameterError(f"abstraction must be an Abstraction, got {type(a).__name__}")
+    check_instance(a, Abstraction, "abstraction")
     return a
 
 

@@ -36,7 +36,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ._validation import check_choice, check_positive
+from ._validation import check_choice, check_instance, check_positive
 from .arrangement import Face, face_adjacency, faces
 from .constants import ARC_SAMPLE_STEP
 from .errors import InvalidParameterError
@@ -320,8 +320,7 @@ def _hex_to_rgb(color: str) -> np.ndarray:
 
 
 def _faces_of(abstraction: Abstraction, face_list: Sequence[Face] | None) -> tuple[Face, ...]:
-    if not isinstance(abstraction, Abstraction):
-        raise InvalidParameterError(f"abstraction must be an Abstraction, got {type(abstraction).__name__}")
+    check_instance(abstraction, Abstraction, "abstraction")
     if face_list is None:
         return faces(abstraction)
     out = tuple(face_list)

@@ -24,6 +24,19 @@ from .golden_ladder import FibonacciLadder, GoldenLadder, Ladder
 TAU = 2.0 * math.pi
 
 
+def cumulative_length(points: np.ndarray) -> np.ndarray:
+    """Length along a polyline at each of its points, shape (n,), px; 0 at the first.
+
+    ``points`` has shape (n, 2), px (n >= 1).
+    """
+    return np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(points, axis=0).T))])
+
+
+def polyline_length(points: np.ndarray) -> float:
+    """Length of a polyline of shape (n, 2), px (0 for one point)."""
+    return float(np.sum(np.hypot(*np.diff(points, axis=0).T)))
+
+
 @dataclass(frozen=True)
 class Circle:
     """A circle of the golden circle grid.

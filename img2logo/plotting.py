@@ -21,7 +21,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ._validation import check_positive
+from ._validation import check_instance, check_positive
 from .constants import ARC_SAMPLE_STEP, IMAGE_FADE, MIN_STROKE_WIDTH, STROKE_WIDTH_FRACTION
 from .errors import InvalidParameterError
 from .fills import check_fills
@@ -154,8 +154,7 @@ def plot_abstraction(
     """
     from matplotlib.collections import LineCollection
 
-    if not isinstance(abstraction, Abstraction):
-        raise InvalidParameterError(f"abstraction must be an Abstraction, got {type(abstraction).__name__}")
+    check_instance(abstraction, Abstraction, "abstraction")
     lw = check_positive(linewidth, "linewidth")
     width, height = int(abstraction.width), int(abstraction.height)
     fill_list = check_fills(fills) or []

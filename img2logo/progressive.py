@@ -53,13 +53,13 @@ from .constants import (
 )
 from .constrained_fit import WindowFit, fit_window
 from .errors import InvalidParameterError
-from .geometry import Abstraction, ArcJunctions, Circle, Line, line_arc
+from .geometry import Abstraction, ArcJunctions, Circle, Line, line_arc, polyline_length
 from .golden_ladder import Ladder, make_ladder
 from .merging import MergeOutcome, merge_loop
 from .options import Options
 from .recovery import check_reach, check_span, recover
 from .segment_graph import SegmentGraph
-from .simplification import Group, hold_line, path_length, straight_line
+from .simplification import Group, hold_line, straight_line
 from .simplification import simplify as simplify_groups
 from .tangency import tangent_joins
 
@@ -524,7 +524,7 @@ class _Optimizer:
         # holds one of its junctions (see golden).
         seeds: dict[int, tuple[np.ndarray, float, int | None]] = {}
         held: dict[int, list[np.ndarray]] = {}
-        for gid in sorted(self.groups, key=lambda g: -path_length(self.groups[g].points)):
+        for gid in sorted(self.groups, key=lambda g: -polyline_length(self.groups[g].points)):
             seeds[gid] = self.golden(self.groups[gid], held=held)
             if seeds[gid][2] is None:
                 hold_line(held, self.groups[gid], self.constrained_nodes(self.groups[gid]))
@@ -707,7 +707,7 @@ def optimize(
     longest = None
     if (unit if ladder == "fibonacci" else bias) is None:
         probe = simplify_groups(groups, opt.free_error, graph.valence, axis_nodes) if simplify else groups
-        longest = opt.free_circle(max(probe, key=lambda g: path_length(g.points)))[1]
+        longest = opt.free_circle(max(probe, key=lambda g: polyline_length(g.points)))[1]
     opt.ladder = make_ladder(ladder, longest, bias=bias, unit=unit, exponents=opts.exponents, rounding=opts.rounding)
     check_span(opt.ladder, graph.width, graph.height)
     if simplify:

@@ -42,6 +42,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ._validation import check_instance
 from .arc_extraction import (
     RedundantIntersection,
     arc_intersections,
@@ -152,8 +153,7 @@ def joins(abstraction: Abstraction, graph: SegmentGraph, max_turn: float = SMOOT
     -------
     Joins
     """
-    if not isinstance(abstraction, Abstraction):
-        raise InvalidParameterError(f"abstraction must be an Abstraction, got {type(abstraction).__name__}")
+    check_instance(abstraction, Abstraction, "abstraction")
     if not isinstance(graph, SegmentGraph):
         raise InvalidParameterError(f"graph must be a SegmentGraph, got {type(graph).__name__}")
     smooth = graph.smooth_nodes(max_turn)

@@ -27,6 +27,7 @@ from .constants import (
     SMOOTH_TANGENT_LENGTH,
 )
 from .errors import FitError, InvalidParameterError
+from .geometry import cumulative_length, polyline_length
 
 
 @dataclass(frozen=True, eq=False)
@@ -87,7 +88,7 @@ class SegmentGraph:
     @cached_property
     def lengths(self) -> np.ndarray:
         """Polyline length of each segment, shape (S,), px."""
-        return readonly(np.array([np.sum(np.hypot(*np.diff(s, axis=0).T)) for s in self.segments]))
+        return readonly(np.array([polyline_length(s) for s in self.segments]))
 
     @cached_property
     def turns(self) -> np.ndarray:
@@ -238,7 +239,7 @@ def end_tangent(points: np.ndarray, at_start: bool, length: float = SMOOTH_TANGE
     """
     pts = np.asarray(points, dtype=np.float64)
     pts = pts if at_start else pts[::-1]
-    cum = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(pts, axis=0).T))])
+    cum = cumulative_length(pts)
     near = pts[: max(int(np.searchsorted(cum, length, side="right")), 2)]
     chord = near[-1] - near[0]
     try:
@@ -255,7 +256,7 @@ def end_tangent(points: np.ndarray, at_start: bool, length: float = SMOOTH_TANGE
 
 
 def _index_at_half_length(poly: np.ndarray) -> int:
-    cum = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(poly, axis=0).T))])
+    cum = cumulative_length(poly)
     mid = int(np.searchsorted(cum, cum[-1] / 2.0))
     return min(max(mid, 1), len(poly) - 2)
 

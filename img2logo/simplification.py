@@ -18,6 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .constants import LINE_END_SKIP, LINE_TOLERANCE, SIMPLIFICATION_ERROR
+from .geometry import cumulative_length
 
 
 @dataclass(frozen=True, eq=False)
@@ -129,7 +130,7 @@ def is_straight(group: Group) -> bool:
     if group.closed:
         return False
     pts = group.points
-    arc_len = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(pts, axis=0).T))])
+    arc_len = cumulative_length(pts)
     inner = pts[(arc_len >= LINE_END_SKIP) & (arc_len <= arc_len[-1] - LINE_END_SKIP)]
     if len(inner) < 3:
         return False
@@ -144,8 +145,3 @@ def hold_line(held: dict[int, list[np.ndarray]], group: Group, nodes: Sequence[i
     u = d / max(float(np.hypot(*d)), 1e-12)
     for n in set(nodes):
         held.setdefault(n, []).append(u)
-
-
-def path_length(points: np.ndarray) -> float:
-    """Length of a polyline, shape (n, 2), px."""
-    return float(np.sum(np.hypot(*np.diff(points, axis=0).T)))

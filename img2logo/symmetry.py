@@ -54,10 +54,9 @@ from .constants import (
     SYMMETRY_THRESHOLD,
 )
 from .errors import InvalidParameterError
-from .geometry import TAU, Abstraction, Arc, Circle
+from .geometry import TAU, Abstraction, Arc, Circle, cumulative_length, polyline_length
 from .mirror import Axis, axis_segment, circle_pairs, is_symmetric, symmetry_extra
 from .options import check_symmetry_option, refuse_lock_mask  # the options are checked with the others
-from .simplification import path_length
 
 if TYPE_CHECKING:
     from .segment_graph import SegmentGraph
@@ -361,8 +360,8 @@ def half_graph(graph: SegmentGraph, axis: Axis) -> HalfGraph:
     segs = [_turn(s, rotation, axis.point) for s in graph.segments]
     nodes = _turn(graph.junctions, rotation, axis.point)
     # The half with more line length off the axis is kept; sign +1 keeps x <= a.
-    left = sum(path_length(s[s[:, 0] < a - SYMMETRY_SNAP_DISTANCE]) for s in segs)
-    right = sum(path_length(s[s[:, 0] > a + SYMMETRY_SNAP_DISTANCE]) for s in segs)
+    left = sum(polyline_length(s[s[:, 0] < a - SYMMETRY_SNAP_DISTANCE]) for s in segs)
+    right = sum(polyline_length(s[s[:, 0] > a + SYMMETRY_SNAP_DISTANCE]) for s in segs)
     sign = 1.0 if left >= right else -1.0
 
     def side(p: np.ndarray) -> np.ndarray:
@@ -414,7 +413,7 @@ def half_graph(graph: SegmentGraph, axis: Axis) -> HalfGraph:
             keep = np.ones(len(piece), dtype=bool)
             keep[1:] = np.any(np.diff(piece, axis=0) != 0, axis=1)
             piece = piece[keep]
-            if len(piece) < 2 or path_length(piece) < 1.0:
+            if len(piece) < 2 or polyline_length(piece) < 1.0:
                 continue
             head = fresh(piece[0]) if head is None else head
             tail = fresh(piece[-1]) if tail is None else tail
@@ -447,7 +446,7 @@ def _crossing(p: np.ndarray, q: np.ndarray, a: float) -> np.ndarray:
 
 def _square_to_axis(pts: np.ndarray) -> bool:
     """Whether the line leaving the axis at ``pts[0]`` does so within SYMMETRY_SMOOTH_ANGLE of square."""
-    cum = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(pts, axis=0).T))])
+    cum = cumulative_length(pts)
     far = pts[min(int(np.searchsorted(cum, SYMMETRY_TANGENT_LENGTH)), len(pts) - 1)]
     d = far - pts[0]
     norm = float(np.hypot(*d))
@@ -464,7 +463,7 @@ def _paired_fraction(graph: SegmentGraph, axis: Axis) -> float:
 
 
 def _resample(points: np.ndarray, step: float = 1.0) -> np.ndarray:
-    cum = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(points, axis=0).T))])
+    cum = cumulative_length(points)
     t = np.linspace(0.0, cum[-1], max(2, math.ceil(cum[-1] / step) + 1))
     return np.column_stack([np.interp(t, cum, points[:, 0]), np.interp(t, cum, points[:, 1])])
 

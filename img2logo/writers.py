@@ -38,7 +38,7 @@ from typing import IO, TYPE_CHECKING, Any
 import numpy as np
 
 from ._io import as_path, atomic_write, check_output_paths, output_set
-from ._validation import check_choice, check_integer, check_positive
+from ._validation import check_choice, check_instance, check_integer, check_positive
 from .constants import CONSTRUCTION_MARGIN, FORMAT_NAME, MAX_PNG_SIDE, PNG_DPI
 from .contract import from_document, to_document
 from .errors import InputNotFoundError, InvalidParameterError
@@ -158,8 +158,7 @@ def to_svg(
     fills: Sequence[Fill] | None = None,
 ) -> str:
     """The SVG text of an abstraction (see :func:`write_svg` for the layout)."""
-    if not isinstance(abstraction, Abstraction):
-        raise InvalidParameterError(f"abstraction must be an Abstraction, got {type(abstraction).__name__}")
+    check_instance(abstraction, Abstraction, "abstraction")
     fill_list = check_fills(fills) or []
     width = check_integer(abstraction.width, "width", 1)
     height = check_integer(abstraction.height, "height", 1)
@@ -525,8 +524,7 @@ def _drawing(
     abstraction: Abstraction, fills: Sequence[Fill] | None, stroke_width: float | None
 ) -> tuple[list[Fill], int, int, float]:
     """The checked inputs of a drawn file: the fills (a list), width and height (px), the stroke width (px)."""
-    if not isinstance(abstraction, Abstraction):
-        raise InvalidParameterError(f"abstraction must be an Abstraction, got {type(abstraction).__name__}")
+    check_instance(abstraction, Abstraction, "abstraction")
     fill_list = check_fills(fills) or []
     width = check_integer(abstraction.width, "width", 1)
     height = check_integer(abstraction.height, "height", 1)

@@ -204,3 +204,13 @@ def test_scaled_abstraction_stays_on_the_ladder_and_scales_back():
     np.testing.assert_allclose(back.junctions, a.junctions, atol=1e-9)
     fib = a.scaled(1.0, a.width, a.height)  # nothing changes at factor 1
     assert [c.r for c in fib.golden_circles] == pytest.approx([c.r for c in a.golden_circles], rel=1e-12)
+
+
+def test_polyline_lengths_are_known_answers():
+    from img2logo.geometry import cumulative_length, polyline_length
+
+    pts = np.array([[0.0, 0.0], [3.0, 4.0], [3.0, 5.0]])  # a 3-4-5 triangle's hypotenuse, then 1 px
+    assert polyline_length(pts) == 6.0
+    np.testing.assert_array_equal(cumulative_length(pts), [0.0, 5.0, 6.0])
+    assert polyline_length(pts[:1]) == 0.0
+    np.testing.assert_array_equal(cumulative_length(pts[:1]), [0.0])

@@ -8,7 +8,7 @@ from conftest import DATA
 from img2logo import build_segment_graph, extract_feature_lines
 from img2logo.constants import SIMPLIFICATION_ERROR
 from img2logo.progressive import optimize
-from img2logo.simplification import Group, is_straight, merge_groups, path_length, simplify, straight_line
+from img2logo.simplification import Group, is_straight, merge_groups, simplify, straight_line
 
 
 def test_simplification_reduces_the_initial_arcs():
@@ -56,4 +56,3 @@ def test_a_straight_stroke_is_told_from_an_arc():
     assert not is_straight(Group((0,), (0, 1), _arc(0.0, 1.5), False))
     assert straight_line(Group((0,), (0, 1), _arc(0.0, 1.5), False)) is None
     assert not is_straight(Group((0,), (0, 0), stroke.points, False))  # a closed group is never a line
-    assert path_length(np.array([[0.0, 0.0], [3.0, 4.0], [3.0, 5.0]])) == 6.0
