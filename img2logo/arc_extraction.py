@@ -54,12 +54,10 @@ __all__ = [
     "arc_intersections",
     "arc_pairs_near",
     "candidate_arcs",
-    "count_redundant_intersections",
     "extract_arc",
     "frechet_distance",
     "nearest_on_arc",
     "redundant_intersections",
-    "select_arc_sum_of_squares",
 ]
 
 
@@ -233,19 +231,6 @@ def extract_arc(
         chosen = min(kept, key=lambda a: float(np.sum(nearest_on_arc(a, seg)[0] ** 2)))
         kept = [chosen]
     return _best_by_frechet(kept, seg, cap)
-
-
-def select_arc_sum_of_squares(circle: Circle, segment_points: np.ndarray, junction_points: np.ndarray) -> ArcFit:
-    """The sum-of-squares baseline of Fig. 9c: ``extract_arc(..., method="sum_of_squares")``.
-
-    Among the same candidates as :func:`extract_arc`, the arc with the smallest
-    sum of squared distances from the pixels to their nearest point of the arc
-    (not of the circle), px². Every pixel near *some* part of the arc costs
-    little, in any order, so a redundant extra part of the arc is never
-    penalized. The returned ``frechet`` is still the Fréchet distance of the
-    chosen arc, for comparison.
-    """
-    return extract_arc(circle, segment_points, junction_points, method="sum_of_squares")
 
 
 def _wrap(theta: float) -> float:
@@ -516,18 +501,6 @@ def redundant_intersections(
                 continue
             out.append(RedundantIntersection(int(i), int(j), readonly(p.copy())))
     return out
-
-
-def count_redundant_intersections(
-    arcs: Sequence[Arc],
-    junction_points: np.ndarray,
-    arc_junctions: Sequence[Sequence[int]],
-    *,
-    candidates: Sequence[int] | None = None,
-    tol: float = REDUNDANT_INTERSECTION_TOL,
-) -> int:
-    """Number of redundant intersections: ``len(redundant_intersections(...))``."""
-    return len(redundant_intersections(arcs, junction_points, arc_junctions, candidates=candidates, tol=tol))
 
 
 def arc_pairs_near(arcs: Sequence[Arc], rows: np.ndarray, tol: float) -> list[tuple[int, int]]:

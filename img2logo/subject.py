@@ -123,11 +123,6 @@ class Subject:
     description: str
     faces: tuple[tuple[int, int, int, int], ...] = ()
 
-    @property
-    def area_fraction(self) -> float:
-        """Fraction of the image the subject covers (1.0 for the whole image)."""
-        return 1.0 if self.mask is None else float(self.mask.mean())
-
 
 def check_foreground_option(foreground: object) -> None:
     """Check a ``foreground`` value without reading anything (see :func:`find_subject`)."""
