@@ -113,14 +113,10 @@ def evaluate(opt: _Optimizer, pair: tuple[int, int, int]) -> MergeOutcome | None
                 return None
             global_solve = True
     if global_solve:
-        opt.stats["global_solves"] += 1
-        out = opt.solve(
+        out = opt.solve_whole(
             after,
             seeds,
             node_groups_after,
-            changed=list(after),
-            free_nodes=sorted(node_groups_after),
-            fixed=set(),
             n_groups_total=n_groups,
             n_junctions_total=nj_after,
             order=lambda g: (g == -1, g),  # the merged group last, as in ``after``

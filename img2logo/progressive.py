@@ -482,6 +482,36 @@ class _Optimizer:
             return None
         return self._fits(window, groups, seeds, fixed)
 
+    def solve_whole(
+        self,
+        groups: dict[int, Group],
+        seeds: Mapping[int, tuple[np.ndarray, float, int | None]],
+        node_groups: Mapping[int, Sequence[int]],
+        *,
+        n_groups_total: int,
+        n_junctions_total: int,
+        order: Callable[[int], Any] | None = None,
+        tangent: bool = False,
+    ) -> tuple[dict[int, _Fit], dict[int, np.ndarray]] | None:
+        """:meth:`solve` over all of ``groups`` at once, every junction free (a global solve, counted).
+
+        The initial fit of A^0, a connected part in :func:`~img2logo.recovery.recover`, a merge
+        whose local windows failed, the tangent refit: none of them holds a circle fixed.
+        """
+        self.stats["global_solves"] += 1
+        return self.solve(
+            groups,
+            seeds,
+            node_groups,
+            changed=list(groups),
+            free_nodes=sorted(node_groups),
+            fixed=set(),
+            n_groups_total=n_groups_total,
+            n_junctions_total=n_junctions_total,
+            order=order,
+            tangent=tangent,
+        )
+
     def axis_constraints(
         self, gids: Sequence[int], groups: Mapping[int, Group], node_list: Sequence[int]
     ) -> dict[str, Any]:
@@ -529,18 +559,10 @@ class _Optimizer:
             if seeds[gid][2] is None:
                 hold_line(held, self.groups[gid], self.constrained_nodes(self.groups[gid]))
         check_reach(self, seeds)
-        nodes = sorted(self.node_groups())
-        out = self.solve(
-            dict(self.groups),
-            seeds,
-            self.node_groups(),
-            changed=list(self.groups),
-            free_nodes=nodes,
-            fixed=set(),
-            n_groups_total=len(self.groups),
-            n_junctions_total=len(nodes),
+        node_groups = self.node_groups()
+        out = self.solve_whole(
+            dict(self.groups), seeds, node_groups, n_groups_total=len(self.groups), n_junctions_total=len(node_groups)
         )
-        self.stats["global_solves"] += 1
         if out is None:
             out = recover(self, seeds)
         fits, disp = out

@@ -88,17 +88,9 @@ def recover(
         while True:
             groups = {g: opt.groups[g] for g in part}
             at = opt.node_groups(groups)
-            out = opt.solve(
-                groups,
-                seeds,
-                at,
-                changed=part,
-                free_nodes=sorted(at),
-                fixed=set(),
-                n_groups_total=n_total,
-                n_junctions_total=max(len(opt.node_groups()), 1),
+            out = opt.solve_whole(
+                groups, seeds, at, n_groups_total=n_total, n_junctions_total=max(len(opt.node_groups()), 1)
             )
-            opt.stats["global_solves"] += 1
             if out is not None:
                 fits.update(out[0])
                 disp.update(out[1])

@@ -60,18 +60,9 @@ def tangent_joins(opt: _Optimizer, tolerance: float) -> bool:
         touching = opt.tangencies(groups, seeds)
         if not touching:
             break
-        out = opt.solve(
-            groups,
-            seeds,
-            node_groups,
-            changed=list(groups),
-            free_nodes=sorted(node_groups),
-            fixed=set(),
-            n_groups_total=len(groups),
-            n_junctions_total=len(node_groups),
-            tangent=True,
+        out = opt.solve_whole(
+            groups, seeds, node_groups, n_groups_total=len(groups), n_junctions_total=len(node_groups), tangent=True
         )
-        opt.stats["global_solves"] += 1
         if out is not None:
             fits, disp = out
             opt.fits.update(fits)
