@@ -15,19 +15,16 @@ from __future__ import annotations
 
 import argparse
 import os
-import socket
 import statistics
 import subprocess
 import sys
 import time
-import urllib.error
-import urllib.request
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tests"))
 
-from test_experiments_explore_browser import CHROMIUM, CHROMIUM_ARGS  # noqa: E402
+from test_experiments_explore_browser import CHROMIUM, CHROMIUM_ARGS, free_port, wait_until_up  # noqa: E402
 
 from img2logo.experiments.studio import Studio  # noqa: E402
 from img2logo.experiments.studio_serve import serve_command  # noqa: E402
@@ -36,21 +33,12 @@ CANVAS = "document.querySelector('.img2logo-studio canvas').toDataURL()"
 
 
 def _serve(folder: Path) -> tuple[subprocess.Popen, str]:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        port = s.getsockname()[1]
+    port = free_port()
     env = dict(os.environ, JUPYTER_RUNTIME_DIR=str(folder / "rt"), IMG2LOGO_ROOT=str(ROOT))
     log = (folder / "voila.log").open("w")
     process = subprocess.Popen(serve_command(port, ROOT), env=env, stdout=log, stderr=subprocess.STDOUT)
     url = f"http://127.0.0.1:{port}/"
-    for _ in range(240):
-        try:
-            urllib.request.urlopen(f"{url}voila/static/none", timeout=1.0).close()
-            break
-        except urllib.error.HTTPError:
-            break
-        except OSError:
-            time.sleep(0.25)
+    wait_until_up(f"{url}voila/static/none", process, 60.0, any_answer=True)  # the steps say it if not
     return process, url
 
 

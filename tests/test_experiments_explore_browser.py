@@ -17,6 +17,7 @@ import socket
 import subprocess
 import sys
 import time
+import urllib.error
 import urllib.request
 from dataclasses import dataclass
 from pathlib import Path
@@ -24,6 +25,35 @@ from pathlib import Path
 import pytest
 
 pytestmark = pytest.mark.browser
+
+
+def free_port() -> int:
+    """A TCP port on 127.0.0.1 that nothing listens on now (for a server the test starts)."""
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def wait_until_up(url: str, process: subprocess.Popen, timeout: float, *, any_answer: bool = False) -> bool:
+    """Poll ``url`` until the server answers: True; False once ``process`` ended or ``timeout`` s passed.
+
+    An answer is a 200, or with ``any_answer`` any HTTP status (a 404 of a probe that must not start a
+    kernel); a refused connection means not yet.
+    """
+    deadline = time.monotonic() + timeout
+    while True:
+        try:
+            urllib.request.urlopen(url, timeout=1.0).close()
+            return True
+        except urllib.error.HTTPError:
+            if any_answer:
+                return True
+        except OSError:
+            pass
+        if process.poll() is not None or time.monotonic() > deadline:
+            return False
+        time.sleep(0.25)
+
 
 ROOT = Path(__file__).resolve().parents[1]
 CHROMIUM = os.environ.get("IMG2LOGO_CHROMIUM") or shutil.which("chromium") or "/usr/bin/chromium"
@@ -88,9 +118,7 @@ def lab(tmp_path_factory):
     settings = folder / ".settings" / "@jupyterlab" / "apputils-extension"
     settings.mkdir(parents=True)
     (settings / "notification.jupyterlab-settings").write_text('{"fetchNews": "false"}')
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        port = s.getsockname()[1]
+    port = free_port()
     token = secrets.token_hex(16)
     env = dict(
         os.environ,
@@ -118,15 +146,8 @@ def lab(tmp_path_factory):
     server = subprocess.Popen(command, env=env, stdout=log, stderr=subprocess.STDOUT)
     try:
         url = f"http://127.0.0.1:{port}"
-        deadline = time.monotonic() + START_TIMEOUT
-        while True:
-            try:
-                urllib.request.urlopen(f"{url}/api/status?token={token}", timeout=1.0).close()
-                break
-            except OSError:
-                if server.poll() is not None or time.monotonic() > deadline:
-                    pytest.fail(f"JupyterLab did not start; its log: {(folder / 'lab.log').read_text()[-2000:]}")
-                time.sleep(0.25)
+        if not wait_until_up(f"{url}/api/status?token={token}", server, START_TIMEOUT):
+            pytest.fail(f"JupyterLab did not start; its log: {(folder / 'lab.log').read_text()[-2000:]}")
         yield Lab(f"{url}/lab?token={token}", f"{url}/api/sessions?token={token}", folder, folder / "lab.log")
     finally:
         server.terminate()  # the server shuts its kernels down on SIGTERM

@@ -13,15 +13,11 @@ from __future__ import annotations
 import json
 import os
 import shutil
-import socket
 import subprocess
-import time
-import urllib.error
-import urllib.request
 from pathlib import Path
 
 import pytest
-from test_experiments_explore_browser import CHROMIUM, CHROMIUM_ARGS
+from test_experiments_explore_browser import CHROMIUM, CHROMIUM_ARGS, free_port, wait_until_up
 
 pytestmark = pytest.mark.browser
 
@@ -53,9 +49,7 @@ def server(tmp_path_factory):
     from img2logo.experiments.studio_serve import serve_command
 
     folder = tmp_path_factory.mktemp("studio")
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        port = s.getsockname()[1]
+    port = free_port()
     env = dict(
         os.environ,
         JUPYTER_RUNTIME_DIR=str(folder / ".runtime"),
@@ -68,17 +62,9 @@ def server(tmp_path_factory):
     process = subprocess.Popen(serve_command(port, ROOT), env=env, stdout=log, stderr=subprocess.STDOUT, cwd=folder)
     try:
         url = f"http://127.0.0.1:{port}/"
-        deadline = time.monotonic() + START_TIMEOUT
-        while True:
-            try:  # any answer will do: / would start a kernel and run the notebook
-                urllib.request.urlopen(f"{url}voila/static/none", timeout=1.0).close()
-                break
-            except urllib.error.HTTPError:
-                break
-            except OSError:
-                if process.poll() is not None or time.monotonic() > deadline:
-                    pytest.fail(f"Voila did not start; its log: {log_path.read_text()[-2000:]}")
-                time.sleep(0.25)
+        # Any answer will do: / would start a kernel and run the notebook.
+        if not wait_until_up(f"{url}voila/static/none", process, START_TIMEOUT, any_answer=True):
+            pytest.fail(f"Voila did not start; its log: {log_path.read_text()[-2000:]}")
         yield url, folder, log_path
     finally:
         process.terminate()
