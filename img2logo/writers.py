@@ -158,11 +158,7 @@ def to_svg(
     fills: Sequence[Fill] | None = None,
 ) -> str:
     """The SVG text of an abstraction (see :func:`write_svg` for the layout)."""
-    check_instance(abstraction, Abstraction, "abstraction")
-    fill_list = check_fills(fills) or []
-    width = check_integer(abstraction.width, "width", 1)
-    height = check_integer(abstraction.height, "height", 1)
-    sw = level_stroke_width(abstraction) if stroke_width is None else check_positive(stroke_width, "stroke_width")
+    fill_list, width, height, sw = _drawing(abstraction, fills, stroke_width)
     if image_size is None:
         shown_w, shown_h = float(width), float(height)
     else:
