@@ -1,6 +1,7 @@
 """A^0 when the joint constrained fit fails: relaxed connectivity (paper Sec. 9, future work).
 
-The initial fit of the progressive optimization (:mod:`img2logo.progressive`)
+The initial fit of the progressive optimization (:mod:`img2logo.progressive`,
+on a :class:`~img2logo.fit_state.FitState`)
 solves Eqn. 13 for every circle at once. When that does not converge, each
 connected part of the drawing is fitted alone, and in a part that still fails
 the junctions its circles miss most are released one at a time
@@ -21,25 +22,25 @@ from .constants import MAX_RADIUS_FACTOR
 from .errors import FitError, InvalidParameterError
 
 if TYPE_CHECKING:
+    from .fit_state import FitState, GroupFit, Seed, Solution
     from .golden_ladder import Ladder
-    from .progressive import _Fit, _Optimizer
 
 
 class ConnectivityWarning(UserWarning):
     """Some junctions of the initial fit were released: their arcs end apart there."""
 
 
-def check_reach(opt: _Optimizer, seeds: Mapping[int, tuple[np.ndarray, float, int | None]]) -> None:
-    """Raise when the user's radii are too small for the segments' junctions (see ``_Optimizer.reach``)."""
-    if opt.ladder.exponents is None:
+def check_reach(state: FitState, seeds: Mapping[int, Seed]) -> None:
+    """Raise when the user's radii are too small for the segments' junctions (see :meth:`FitState.reach`)."""
+    if state.ladder.exponents is None:
         return
-    short = [g for g, (_, r, k) in seeds.items() if k is not None and r < opt.reach(opt.groups[g])]
+    short = [g for g, (_, r, k) in seeds.items() if k is not None and r < state.reach(state.groups[g])]
     if short:
-        ks = sorted(opt.ladder.exponents)
-        widest = max(2.0 * opt.reach(opt.groups[g]) for g in short)
+        ks = sorted(state.ladder.exponents)
+        widest = max(2.0 * state.reach(state.groups[g]) for g in short)
         raise InvalidParameterError(
-            f"the chosen radii (k = {', '.join(map(str, ks))}: {opt.ladder.radius(ks[0]):.3g} to "
-            f"{opt.ladder.radius(ks[-1]):.3g} px) are too small: {len(short)} segments need a circle through "
+            f"the chosen radii (k = {', '.join(map(str, ks))}: {state.ladder.radius(ks[0]):.3g} to "
+            f"{state.ladder.radius(ks[-1]):.3g} px) are too small: {len(short)} segments need a circle through "
             f"junctions up to {widest:.0f} px apart; allow larger radii"
         )
 
@@ -68,9 +69,7 @@ def check_span(ladder: Ladder, width: int, height: int) -> None:
         )
 
 
-def recover(
-    opt: _Optimizer, seeds: dict[int, tuple[np.ndarray, float, int | None]]
-) -> tuple[dict[int, _Fit], dict[int, np.ndarray]]:
+def recover(state: FitState, seeds: Mapping[int, Seed]) -> Solution:
     """A^0 when the joint fit fails: each connected part alone, releasing junctions as needed.
 
     The parts of the drawing that share no junction are independent
@@ -81,43 +80,45 @@ def recover(
     a free end. This repeats until the part converges (a part with every
     junction released always does); the count is reported.
     """
-    fits: dict[int, _Fit] = {}
+    fits: dict[int, GroupFit] = {}
     disp: dict[int, np.ndarray] = {}
-    n_total = len(opt.groups)
-    for part in parts(opt):
+    n_total = len(state.groups)
+    for part in parts(state):
         while True:
-            groups = {g: opt.groups[g] for g in part}
-            at = opt.node_groups(groups)
-            out = opt.solve_whole(
-                groups, seeds, at, n_groups_total=n_total, n_junctions_total=max(len(opt.node_groups()), 1)
+            groups = {g: state.groups[g] for g in part}
+            at = state.node_groups(groups)
+            out = state.solve_whole(
+                groups, seeds, at, n_groups_total=n_total, n_junctions_total=max(len(state.node_groups()), 1)
             )
             if out is not None:
                 fits.update(out[0])
                 disp.update(out[1])
                 break
             miss = {
-                n: max(abs(float(np.hypot(*(opt.graph.junctions[n] - seeds[g][0]))) - seeds[g][1]) for g in gs)
+                n: max(
+                    abs(float(np.hypot(*(state.graph.junctions[n] - seeds[g].center))) - seeds[g].radius) for g in gs
+                )
                 for n, gs in at.items()  # nothing has changed since the attempt
             }
             if not miss:  # no constraint left, yet no fit: a numerical failure, said as such
                 raise FitError(f"the circles of {len(part)} segments could not be fitted, even unconstrained")
-            opt.release(max(miss, key=lambda n: (miss[n], -n)))
-    opt.stats["released_junctions"] = len(opt.released)
-    if opt.released:
+            state.release(max(miss, key=lambda n: (miss[n], -n)))
+    state.stats.released_junctions = len(state.released)
+    if state.released:
         import warnings
 
         warnings.warn(
-            f"the connectivity-constrained fit could not meet {len(opt.released)} of "
-            f"{len(opt.released) + len(opt.node_groups())} junctions; their arcs end apart there",
+            f"the connectivity-constrained fit could not meet {len(state.released)} of "
+            f"{len(state.released) + len(state.node_groups())} junctions; their arcs end apart there",
             ConnectivityWarning,
             stacklevel=2,
         )
     return fits, disp
 
 
-def parts(opt: _Optimizer) -> list[list[int]]:
+def parts(state: FitState) -> list[list[int]]:
     """The groups in connected parts: groups sharing a constrained junction are in one part."""
-    parent = {g: g for g in opt.groups}
+    parent = {g: g for g in state.groups}
 
     def root(g: int) -> int:
         while parent[g] != g:
@@ -125,10 +126,10 @@ def parts(opt: _Optimizer) -> list[list[int]]:
             g = parent[g]
         return g
 
-    for gs in opt.node_groups().values():
+    for gs in state.node_groups().values():
         for g in gs[1:]:
             parent[root(g)] = root(gs[0])
     parts: dict[int, list[int]] = {}
-    for g in sorted(opt.groups):
+    for g in sorted(state.groups):
         parts.setdefault(root(g), []).append(g)
     return list(parts.values())

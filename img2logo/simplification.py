@@ -140,7 +140,7 @@ def is_straight(group: Group) -> bool:
 
 
 def hold_line(held: dict[int, list[np.ndarray]], group: Group, nodes: Sequence[int]) -> None:
-    """Record a line group's direction at each of its junctions ``nodes`` in ``held`` (see ``_Optimizer.golden``)."""
+    """Record a line group's direction at each of its junctions ``nodes`` in ``held`` (see ``FitState.golden``)."""
     d = group.points[-1] - group.points[0]
     u = d / max(float(np.hypot(*d)), 1e-12)
     for n in set(nodes):

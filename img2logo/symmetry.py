@@ -59,6 +59,7 @@ from .mirror import Axis, axis_segment, circle_pairs, is_symmetric, symmetry_ext
 from .options import check_symmetry_option, refuse_lock_mask  # the options are checked with the others
 
 if TYPE_CHECKING:
+    from .progressive import Progression
     from .segment_graph import SegmentGraph
 
 __all__ = [
@@ -276,6 +277,8 @@ def choose_axis(lines: np.ndarray, mode: str) -> SymmetryChoice:
 @dataclass(frozen=True, eq=False)
 class HalfAxis:
     """The symmetry constraints of the half graph, for :func:`img2logo.progressive.optimize`.
+
+    The optimizer's state reads them as an :class:`img2logo.fit_state.AxisConstraints`.
 
     Attributes
     ----------
@@ -567,7 +570,7 @@ def full_graph(half: HalfGraph) -> SegmentGraph:
     a = half.constraints.x
     n_j = g.n_junctions
     mirror_node = {}
-    extra = []
+    extra: list[np.ndarray] = []
     for k in range(n_j):
         if k in half.constraints.nodes or g.junctions[k, 0] == a:
             mirror_node[k] = k
@@ -603,7 +606,7 @@ def optimize_symmetric(
     *,
     choice: SymmetryChoice | None = None,
     **options: Any,
-) -> tuple[Any, SegmentGraph, HalfGraph]:
+) -> tuple[Progression, SegmentGraph, HalfGraph]:
     """The progressive optimization of a symmetric logo (see the module docstring).
 
     Parameters

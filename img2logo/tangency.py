@@ -37,10 +37,10 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 if TYPE_CHECKING:
-    from .progressive import _Optimizer
+    from .fit_state import FitState
 
 
-def tangent_joins(opt: _Optimizer, tolerance: float) -> bool:
+def tangent_joins(opt: FitState, tolerance: float) -> bool:
     """Make the circles of the current state touch at its smooth joins; whether the state changed.
 
     The whole problem is refitted (every circle and junction free, straight
@@ -48,9 +48,9 @@ def tangent_joins(opt: _Optimizer, tolerance: float) -> bool:
     fails or its E^s (Eqn. 3) exceeds ``max(tolerance, E^s now)``, the join
     whose circles are farthest from touching now is released
     (``opt.loose``) and the fit tried again. Counts go to
-    ``opt.stats["tangent_joins"]`` and ``["released_tangencies"]``.
+    ``opt.stats.tangent_joins`` and ``.released_tangencies``.
     """
-    seeds = {g: (f.center, f.radius, f.k) for g, f in opt.fits.items()}
+    seeds = {g: f.seed for g, f in opt.fits.items()}
     bound = max(float(tolerance), opt.similarity())
     groups = dict(opt.groups)
     node_groups = opt.node_groups()
@@ -73,12 +73,12 @@ def tangent_joins(opt: _Optimizer, tolerance: float) -> bool:
                 break
             opt.fits, opt.disp = dict(before[0]), before[1].copy()
         opt.loose.add(max(touching, key=lambda n: (_apart(opt, seeds, n, touching[n]), -n)))
-    opt.stats["tangent_joins"] = len(opt.tangencies(groups, seeds)) if changed else 0
-    opt.stats["released_tangencies"] = len(opt.loose)
+    opt.stats.tangent_joins = len(opt.tangencies(groups, seeds)) if changed else 0
+    opt.stats.released_tangencies = len(opt.loose)
     return changed
 
 
-def _apart(opt: _Optimizer, seeds: dict, node: int, pair: tuple[int, int]) -> float:
+def _apart(opt: FitState, seeds: dict, node: int, pair: tuple[int, int]) -> float:
     """|sin| of the angle between two circles' radii to a junction: 0 where they touch there."""
     p = opt.graph.junctions[node] + opt.disp[node]
     a, b = seeds[pair[0]][0] - p, seeds[pair[1]][0] - p

@@ -17,17 +17,17 @@ def test_radii_too_small_for_the_junctions_are_named():
 
 
 def test_a_junction_the_fit_cannot_meet_is_released(monkeypatch):
-    from img2logo import progressive, recovery
+    from img2logo import fit_state, recovery
 
     graph, _ = golden_chain()
     stuck = 2  # pretend that no fit can meet junction 2 (where arcs 2 and 3 join)
-    solve = progressive._Optimizer.solve
+    solve = fit_state.FitState.solve
 
     def failing(self, groups, *args, **kwargs):
         nodes = {n for g in groups.values() for n in self.constrained_nodes(g)}
         return None if stuck in nodes else solve(self, groups, *args, **kwargs)
 
-    monkeypatch.setattr(progressive._Optimizer, "solve", failing)
+    monkeypatch.setattr(fit_state.FitState, "solve", failing)
     with pytest.warns(recovery.ConnectivityWarning, match=r"could not meet [12] of 4 junctions"):
         progression = optimize(graph, merging=False, simplify=False)
     assert 1 <= progression.stats["released_junctions"] <= 2
@@ -40,16 +40,16 @@ def test_a_junction_the_fit_cannot_meet_is_released(monkeypatch):
 def test_a_part_with_every_junction_released_still_gets_its_arcs(monkeypatch):
     # No fit with any constraint succeeds: recovery releases every junction, and the last
     # solve (a window no junction touches) fits each circle alone (issue 20, item 1).
-    from img2logo import progressive, recovery
+    from img2logo import fit_state, recovery
 
     graph, truth = golden_chain()
-    solve = progressive._Optimizer.solve
+    solve = fit_state.FitState.solve
 
     def failing(self, groups, *args, **kwargs):
         constrained = any(self.constrained_nodes(g) for g in groups.values())
         return None if constrained else solve(self, groups, *args, **kwargs)
 
-    monkeypatch.setattr(progressive._Optimizer, "solve", failing)
+    monkeypatch.setattr(fit_state.FitState, "solve", failing)
     with pytest.warns(recovery.ConnectivityWarning, match=r"could not meet 4 of 4 junctions"):
         progression = optimize(graph, merging=False, simplify=False)
     level = progression.levels[0]

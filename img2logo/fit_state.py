@@ -1,0 +1,708 @@
+"""The state of one run of the progressive optimization (paper Sec. 5.2-5.4), as a public value.
+
+:class:`FitState` holds what the stages of :func:`img2logo.progressive.optimize`
+read and change: the segment groups (:class:`~img2logo.simplification.Group`),
+the golden circle and arc of each (:class:`GroupFit`), the junction
+displacements d_k, the ladder, the released junctions and tangencies, and the
+counts of :class:`Stats`. It fits circles (the free fit and its snapping to the
+ladder, Eqn. 12, as a :class:`Seed`), solves the connectivity-constrained fit of
+Eqn. 13 over a window of groups, extracts arcs and measures E^s (Eqn. 3). The
+stages that drive it are their own modules and import this one, never the other
+way: the merge loop (:mod:`img2logo.merging`), the recovery of an initial fit
+that fails (:mod:`img2logo.recovery`) and the tangent joins
+(:mod:`img2logo.tangency`). A symmetric run hands it the mirror axis as an
+:class:`AxisConstraints` (:class:`img2logo.symmetry.HalfAxis` is one).
+
+Coordinates: px, x right, y down (``contract/README.md``).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Callable, Hashable, Mapping, Sequence
+from dataclasses import dataclass
+from typing import Any, NamedTuple, Protocol, cast
+
+import numpy as np
+
+from .arc_extraction import ArcFit, extract_arc
+from .circle_fitting import fit_center, fit_circle, mean_abs_error
+from .constants import JUNCTION_TOLERANCE, LINE_MIN_ANGLE, SYMMETRY_FIT_STALL
+from .constrained_fit import WindowFit, fit_window
+from .geometry import Abstraction, ArcJunctions, Circle, Line, line_arc
+from .golden_ladder import Ladder
+from .options import Options
+from .segment_graph import SegmentGraph
+from .simplification import Group, straight_line
+
+__all__ = ["AxisConstraints", "FitState", "FreeCircles", "GroupFit", "Seed", "Stats"]
+
+
+# --------------------------------------------------------------------------- values
+class Seed(NamedTuple):
+    """A group's circle before the constrained fit: its centre, its radius on the ladder, its rung.
+
+    Attributes
+    ----------
+    center : ndarray, shape (2,)
+        The starting centre, px.
+    radius : float
+        The fixed radius, px: ``ladder.radius(k)`` (Eqn. 12), or ``LINE_RADIUS``
+        for a straight line.
+    k : int or None
+        The ladder exponent; None for a straight line (held fixed in the fit).
+    """
+
+    center: np.ndarray
+    radius: float
+    k: int | None
+
+
+@dataclass(frozen=True, eq=False)
+class GroupFit:
+    """A group's golden circle after the constrained fit (Eqn. 13) and its arc.
+
+    Attributes
+    ----------
+    center : ndarray, shape (2,)
+        The fitted centre, px.
+    radius : float
+        The radius, px (the seed's: radii stay on their rungs).
+    k : int or None
+        The ladder exponent; None for a straight line.
+    arc : ArcFit
+        The arc extracted on the circle and its discrete Fréchet distance to the group's pixels, px.
+    """
+
+    center: np.ndarray
+    radius: float
+    k: int | None
+    arc: ArcFit
+
+    @property
+    def seed(self) -> Seed:
+        """This circle as the start of the next fit."""
+        return Seed(self.center, self.radius, self.k)
+
+
+@dataclass
+class Stats:
+    """Counts of one run, reported in :attr:`img2logo.progressive.Progression.stats` (as a dict, in this order).
+
+    Attributes
+    ----------
+    evaluated : int
+        Merge candidates evaluated (:func:`img2logo.merging.evaluate`).
+    local_failed : int
+        Local windows (Sec. 5.4) that did not solve.
+    global_solves : int
+        Solves of the whole problem (:meth:`FitState.solve_whole`).
+    rejected_hopeless : int
+        Candidates rejected without a global solve: their own golden circle is off by more than T.
+    rejected_intersections : int
+        Candidates left with redundant intersections (Fig. 12) when the loop stopped.
+    rejected_far_arc : int
+        Candidates whose arc strays farther than ``max_arc_distance``.
+    released_junctions : int
+        Junctions whose connectivity constraint was given up (:func:`img2logo.recovery.recover`).
+    tangent_joins : int
+        Smooth joins whose circles touch in the result (:mod:`img2logo.tangency`).
+    released_tangencies : int
+        Smooth joins whose tangency was given up.
+    rejected_crossing : int
+        Candidates rejected because another arc runs on through their junction (an X).
+    """
+
+    evaluated: int = 0
+    local_failed: int = 0
+    global_solves: int = 0
+    rejected_hopeless: int = 0
+    rejected_intersections: int = 0
+    rejected_far_arc: int = 0
+    released_junctions: int = 0
+    tangent_joins: int = 0
+    released_tangencies: int = 0
+    rejected_crossing: int = 0
+
+    def as_dict(self) -> dict[str, int]:
+        """The counts by name, in the order of the fields."""
+        return dataclasses.asdict(self)
+
+
+class AxisConstraints(Protocol):
+    """The mirror axis of a symmetric run, as the state reads it (:class:`img2logo.symmetry.HalfAxis`).
+
+    The graph is one half of a mirror-symmetric drawing, in a frame where the
+    axis is the vertical line x = ``x`` px; junctions ``nodes`` stay on it, and
+    a group whose end (segment, node) is in ``smooth`` has its circle centred on it.
+    """
+
+    @property
+    def x(self) -> float: ...
+
+    @property
+    def nodes(self) -> frozenset[int]: ...
+
+    @property
+    def smooth(self) -> frozenset[tuple[int, int]]: ...
+
+    def mirror(self, points: np.ndarray) -> np.ndarray:
+        """Mirror images of frame points (N, 2), px."""
+        ...
+
+
+#: The result of a constrained fit over a window: the new fits by group, the displacements d_k by node.
+Solution = tuple[dict[int, GroupFit], dict[int, np.ndarray]]
+
+
+def on_axis(symmetry: AxisConstraints | None, group: Group) -> bool:
+    """Whether ``group``'s circle is centred on the mirror axis (symmetric runs, :mod:`img2logo.symmetry`).
+
+    So it is when the group ends where a line crosses the axis square to it:
+    the arc and its mirror image are then one arc through the axis.
+    """
+    if symmetry is None:
+        return False
+    ends = ((group.segments[0], group.nodes[0]), (group.segments[-1], group.nodes[-1]))
+    return ends[0] in symmetry.smooth or ends[1] in symmetry.smooth
+
+
+class FreeCircles:
+    """The unconstrained circle fits of groups (Sec. 5.3, first stage), cached by their segments.
+
+    Made before the ladder (the bias of Eqn. 14 comes from the longest
+    segment's free circle), then handed to the :class:`FitState`.
+    """
+
+    def __init__(self, symmetry: AxisConstraints | None = None) -> None:
+        self.symmetry = symmetry
+        self._cache: dict[tuple[int, ...], tuple[np.ndarray, float]] = {}
+
+    def circle(self, group: Group) -> tuple[np.ndarray, float]:
+        """(centre px, radius px) of the group's free fit.
+
+        A circle on the mirror axis is fitted to the pixels and their mirror image.
+        """
+        key = group.segments
+        if key not in self._cache:
+            pts = group.points
+            if self.symmetry is not None and on_axis(self.symmetry, group):
+                pts = np.vstack([pts, self.symmetry.mirror(pts)])
+            if len(pts) < 3:  # two pixels: a straight piece, capped like any
+                pts = np.linspace(pts[0], pts[-1], 3)
+            fit = fit_circle(pts, refine=False)  # the centre is refitted after snapping
+            self._cache[key] = (np.asarray(fit.center, dtype=np.float64), float(fit.radius))
+        return self._cache[key]
+
+    def error(self, group: Group) -> float:
+        """Mean distance of the group's pixels to its free circle, px."""
+        center, radius = self.circle(group)
+        return mean_abs_error(group.points, center, radius)
+
+
+class _Lazy(dict):
+    """A mapping whose values are computed on first access (only the window's are needed)."""
+
+    def __init__(self, value: Callable[[Any], Any]) -> None:
+        super().__init__()
+        self._value = value
+
+    def __missing__(self, key: Any) -> Any:
+        value = self[key] = self._value(key)
+        return value
+
+
+def _rung_reaching(ladder: Ladder, k: int, reach: float) -> tuple[int, float]:
+    """The smallest allowed rung above ``k`` whose radius is at least ``reach`` px: (k, r).
+
+    Without one (a user's subset of small radii), the largest allowed rung.
+    """
+    if ladder.exponents is not None:
+        allowed = sorted(ladder.exponents)
+        above = [j for j in allowed if ladder.radius(j) >= reach]
+        j = above[0] if above else allowed[-1]
+        return j, ladder.radius(j)
+    while ladder.radius(k) < reach:
+        k += 1
+    return k, ladder.radius(k)
+
+
+# --------------------------------------------------------------------------- the state
+class FitState:
+    """The state of one run of the progressive optimization: groups, their fits, the displacements.
+
+    Parameters
+    ----------
+    graph : SegmentGraph
+        The line-segment graph L = {S, J} (for a symmetric run, the half graph).
+    options : Options
+        The settings and switches of the run.
+    ladder : GoldenLadder or FibonacciLadder
+        The ladder the radii are snapped to (Eqn. 12).
+    symmetry : AxisConstraints, optional
+        The mirror axis of a symmetric run.
+    circles : FreeCircles, optional
+        The free circle fits made so far (with the same ``symmetry``); default none.
+
+    Attributes
+    ----------
+    groups : dict of int to Group
+        The current groups by id (ids are never reused).
+    fits : dict of int to GroupFit
+        Each group's golden circle and arc.
+    disp : ndarray, shape (J, 2)
+        The displacement d_k of every node of the graph, px.
+    released : set of int
+        Junctions whose connectivity constraint was given up (:func:`img2logo.recovery.recover`).
+    smooth : frozenset of int
+        Nodes where two groups ending there must touch (tangent joins, beyond the
+        paper): where the input's line runs on smoothly (:meth:`SegmentGraph.smooth_nodes`).
+    loose : set of int
+        Smooth nodes whose tangency was given up (:mod:`img2logo.tangency`): a kink is left there.
+    stats : Stats
+        The counts of the run.
+    """
+
+    def __init__(
+        self,
+        graph: SegmentGraph,
+        options: Options,
+        ladder: Ladder,
+        symmetry: AxisConstraints | None = None,
+        *,
+        circles: FreeCircles | None = None,
+    ) -> None:
+        self.graph = graph
+        self.options = options
+        self.ladder = ladder
+        self.symmetry = symmetry
+        self.circles = FreeCircles(symmetry) if circles is None else circles
+        self.groups: dict[int, Group] = {}
+        self.fits: dict[int, GroupFit] = {}
+        self.disp = np.zeros((graph.n_junctions, 2))
+        self.next_id = 0
+        self.stats = Stats()
+        self.released: set[int] = set()
+        self._path_cache: dict[tuple[int, ...], tuple[int, ...]] = {}
+        self._node_groups: dict[int, list[int]] | None = None
+        self.smooth: frozenset[int] = graph.smooth_nodes() if options.tangency and options.connectivity else frozenset()
+        self.loose: set[int] = set()
+
+    # ----------------------------------------------------------------- groups and nodes
+    def add_group(self, group: Group) -> int:
+        """Add ``group`` (without a fit yet); its new id."""
+        gid = self.next_id
+        self.next_id += 1
+        self.groups[gid] = group
+        self._node_groups = None
+        return gid
+
+    def merge(
+        self, a: int, b: int, merged: Group, fits: Mapping[int, GroupFit], displacements: Mapping[int, np.ndarray]
+    ) -> int:
+        """Carry out a merge: ``merged`` replaces groups ``a`` and ``b``; its new id.
+
+        ``fits`` are the new fits of the changed groups (key -1: the merged
+        group), ``displacements`` the new d_k by node (:func:`img2logo.merging.evaluate`).
+        """
+        del self.groups[a], self.groups[b]
+        self._node_groups = None
+        self.fits.pop(a)
+        self.fits.pop(b)
+        gid = self.add_group(merged)
+        for g, fit in fits.items():
+            self.fits[gid if g == -1 else g] = fit
+        for n, d in displacements.items():
+            self.disp[n] = d
+        return gid
+
+    def release(self, node: int) -> None:
+        """Give up the connectivity constraint at junction ``node`` (:func:`~img2logo.recovery.recover`)."""
+        self.released.add(node)
+        self._node_groups = None
+
+    def tangencies(self, groups: Mapping[int, Group], seeds: Mapping[int, Seed]) -> dict[int, tuple[int, int]]:
+        """Smooth node -> the two groups of ``groups`` that end there, whose circles must touch at it.
+
+        A tangent join (beyond the paper): at a node of valence 2 where the
+        input's line turns by less than ``SMOOTH_JOIN_ANGLE``
+        (:meth:`SegmentGraph.smooth_nodes`), two different groups end, and the
+        constrained fit makes their circles touch there (``tangents`` of
+        :func:`~img2logo.constrained_fit.fit_constrained`). Not at a released
+        junction or tangency, nor between two straight lines (both fixed).
+        """
+        if not self.smooth:
+            return {}
+        at: dict[int, list[int]] = {}
+        for gid, g in groups.items():
+            for n in set(g.ends):
+                if n in self.smooth:
+                    at.setdefault(n, []).append(gid)
+        out = {}
+        for n, gids in at.items():
+            if len(gids) != 2 or n in self.loose or n in self.released:
+                continue
+            if seeds[gids[0]].k is None and seeds[gids[1]].k is None:
+                continue
+            out[n] = (gids[0], gids[1])
+        return out
+
+    def constrained_nodes(self, group: Group) -> tuple[int, ...]:
+        """Nodes where ``group``'s arc must pass (its J' part), in path order.
+
+        The two ends, and inner nodes where other segments meet (valence >= 3
+        in the graph, Sec. 6.2) unless only the ends are constrained (Fig. 11d).
+        """
+        nodes = self.path_nodes(group)
+        return tuple(n for n in nodes if n not in self.released) if self.released else nodes
+
+    def path_nodes(self, group: Group) -> tuple[int, ...]:
+        """:meth:`constrained_nodes` with the released junctions (see :meth:`release`), in path order."""
+        # Called for every group of every window of every candidate merge: cached by the
+        # group's node path, which is all the answer depends on.
+        hit = self._path_cache.get(group.nodes)
+        if hit is None:
+            hit = self._path_cache[group.nodes] = self._path_nodes(group)
+        return hit
+
+    def _path_nodes(self, group: Group) -> tuple[int, ...]:
+        n = group.nodes
+        inner: tuple[int, ...] = ()
+        if self.options.inner_junctions:
+            valence = self.graph.valence
+            inner = tuple(m for m in n[1:-1] if valence[m] >= 3)
+        return (n[0], *inner) if group.closed else (n[0], *inner, n[-1])
+
+    def node_groups(self, groups: Mapping[int, Group] | None = None) -> dict[int, list[int]]:
+        """For every node of J', the groups constrained there (of ``groups``, default the current ones).
+
+        The current state's is cached until the groups or the released junctions
+        change; treat it as read-only.
+        """
+        if groups is None and self._node_groups is not None:
+            return self._node_groups
+        out: dict[int, list[int]] = {}
+        for gid, g in (self.groups if groups is None else groups).items():
+            for n in set(self.constrained_nodes(g)):
+                out.setdefault(n, []).append(gid)
+        if groups is None:
+            self._node_groups = out
+        return out
+
+    def node_groups_after(self, a: int, b: int, merged: Group) -> dict[int, list[int]]:
+        """:meth:`node_groups` after merging groups ``a`` and ``b`` into ``merged`` (id -1).
+
+        Only the nodes of the three groups change: the rest is the current state's.
+        """
+        now = self.node_groups()
+        out = dict(now)
+        touched = set(self.constrained_nodes(self.groups[a])) | set(self.constrained_nodes(self.groups[b]))
+        new = set(self.constrained_nodes(merged))
+        for n in touched | new:
+            gs = [g for g in now.get(n, ()) if g not in (a, b)]
+            if n in new:
+                gs.append(-1)
+            if gs:
+                out[n] = gs
+            else:
+                out.pop(n, None)
+        return out
+
+    def end_groups(self) -> dict[int, list[int]]:
+        """For every node, the groups with an end there (each group once)."""
+        out: dict[int, list[int]] = {}
+        for gid, g in self.groups.items():
+            for n in set(g.ends):
+                out.setdefault(n, []).append(gid)
+        return out
+
+    # ----------------------------------------------------------------- circles
+    def on_axis(self, group: Group) -> bool:
+        """Whether ``group``'s circle is centred on the mirror axis (see :func:`on_axis`)."""
+        return on_axis(self.symmetry, group)
+
+    def free_circle(self, group: Group) -> tuple[np.ndarray, float]:
+        """Unconstrained circle fit of a group (Sec. 5.3, first stage), cached (:class:`FreeCircles`)."""
+        return self.circles.circle(group)
+
+    def free_error(self, group: Group) -> float:
+        """Mean distance of the group's pixels to its free circle, px."""
+        return self.circles.error(group)
+
+    def golden_error(self, group: Group) -> float:
+        """Mean distance of the group's pixels to its golden circle, px.
+
+        The free radius snapped to the ladder (Eqn. 12), the centre then placed
+        where it fits best for that fixed radius.
+        """
+        center, radius, _ = self.golden(group)
+        pts = group.points
+        if self.symmetry is not None and self.on_axis(group):  # the arc runs on into its mirror image
+            pts = np.vstack([pts, self.symmetry.mirror(pts)])
+        return mean_abs_error(pts, fit_center(pts, radius, center), radius)
+
+    def golden(self, group: Group, *, held: Mapping[int, list[np.ndarray]] | None = None) -> Seed:
+        """Free fit snapped to the ladder (Eqn. 12): the group's :class:`Seed`.
+
+        With the lines option, a group whose pixels all lie within
+        ``LINE_TOLERANCE`` of the chord between its ends is a straight line
+        instead: a circle of ``LINE_RADIUS`` with k None (see :func:`line_arc`),
+        placed on the pixels' total-least-squares line; it stays fixed in the
+        constrained fit, where its junctions slide onto it. ``held`` maps a
+        junction to the directions of the lines already there: a junction takes
+        at most two lines, at least ``LINE_MIN_ANGLE`` apart, since fixed lines
+        pin it to their intersection (far away, or nowhere, for nearly parallel
+        ones); otherwise the group stays an arc.
+        """
+        line = straight_line(group) if self.options.lines and not self.on_axis(group) else None
+        if line is not None and held is not None:
+            u = (line[1] - line[0]) / np.hypot(*(line[1] - line[0]))
+            for n in self.constrained_nodes(group):
+                others = held.get(n, [])
+                if len(others) >= 2 or any(abs(float(u @ v)) > math.cos(LINE_MIN_ANGLE) for v in others):
+                    line = None
+                    break
+        if line is not None:
+            arc = line_arc(line[0], line[1])
+            return Seed(arc.circle.center, arc.circle.r, None)
+        center, radius = self.free_circle(group)
+        k, r = self.ladder.snap(radius)
+        reach = self.reach(group)
+        if r < reach:
+            k, r = _rung_reaching(self.ladder, k, reach)
+        if self.on_axis(group):
+            center = self.axis_seed(group, center, r)
+        return Seed(center, r, k)
+
+    def axis_seed(self, group: Group, center: np.ndarray, radius: float) -> np.ndarray:
+        """A circle centred on the mirror axis that passes through the group's end on it (the fit's start).
+
+        On the axis, on the side of the free fit's centre: the snapped radius
+        would otherwise leave it far from its junction.
+        """
+        sym = cast(AxisConstraints, self.symmetry)  # called only for a group on the axis
+        smooth = [
+            n
+            for s, n in ((group.segments[0], group.nodes[0]), (group.segments[-1], group.nodes[-1]))
+            if (s, n) in sym.smooth
+        ]
+        y = float(self.graph.junctions[smooth[0], 1])
+        return np.array([sym.x, y + math.copysign(radius, float(center[1]) - y)])
+
+    def reach(self, group: Group) -> float:
+        """Half the largest distance between the junctions ``group``'s circle must pass, px.
+
+        A circle passes through two points only if its diameter spans them: a
+        nearly semicircular segment whose fitted radius rounds down to a rung
+        cannot reach its own ends, and the constrained fit (Eqn. 13) would have
+        to drag them together. Its radius goes up to the first rung that reaches.
+        """
+        nodes = self.constrained_nodes(group)
+        if len(nodes) < 2:
+            return 0.0
+        pts = self.graph.junctions[list(nodes)]
+        return 0.5 * float(np.max(np.hypot(*(pts[:, None, :] - pts[None, :, :]).transpose(2, 0, 1))))
+
+    # ----------------------------------------------------------------- arcs
+    def arc_for(self, group: Group, center: np.ndarray, radius: float, k: int | None, disp: Any) -> ArcFit:
+        """Extract the arc of ``group`` on its circle through its displaced junctions."""
+        circle = Circle(float(center[0]), float(center[1]), float(radius), None if k is None else int(k))
+        nodes = self.path_nodes(group)
+        pts = np.array([self.graph.junctions[n] + (self.disp[n] if n in self.released else disp(n)) for n in nodes])
+        if group.closed:
+            pts = np.vstack([pts, pts[:1]])
+            nodes = (*nodes, nodes[0])
+        if not self.options.connectivity:
+            # No constraint: the arc ends where the junctions project on its circle.
+            pts = circle.point_at(circle.angle_of(pts))
+        elif self.released:
+            # A released junction is no constraint: the arc ends where it projects.
+            loose = np.array([n in self.released for n in nodes])
+            if loose.any():
+                pts[loose] = circle.point_at(circle.angle_of(pts[loose]))
+        fit = extract_arc(circle, group.points, pts, method=cast(Any, self.options.arc_selection))
+        return fit if k is not None else ArcFit(Line.of(fit.arc), fit.frechet)
+
+    # ----------------------------------------------------------------- the constrained fit
+    def solve(
+        self,
+        groups: Mapping[int, Group],
+        seeds: Mapping[int, Seed],
+        node_groups: Mapping[int, Sequence[int]],
+        *,
+        changed: Sequence[int],
+        free_nodes: Sequence[int],
+        fixed: set[int],
+        n_groups_total: int,
+        n_junctions_total: int,
+        rings: int = 1,
+        order: Callable[[int], Any] | None = None,
+        tangent: bool = False,
+    ) -> Solution | None:
+        """Eqn. 13 over a window of ``groups`` (:func:`~img2logo.constrained_fit.fit_window`), then their arcs.
+
+        The window is the ``changed`` groups and those through ``free_nodes``,
+        grown by up to ``rings`` rings; the ``fixed`` groups keep their circles,
+        and so do straight lines (a huge free circle is nearly singular along
+        its chord: their junctions slide onto them). With ``tangent``, the
+        circles of :meth:`tangencies` touch at their junctions too. None if it fails.
+        """
+        fixed = set(fixed) | {g for g in groups if seeds[g].k is None}
+        window = fit_window(
+            _Lazy(lambda g: groups[g].points),
+            _Lazy(lambda g: seeds[g].radius),
+            _Lazy(lambda g: seeds[g].center),
+            _Lazy(lambda g: tuple(set(self.constrained_nodes(groups[g])))),
+            cast(Mapping[Hashable, Sequence[Hashable]], node_groups),
+            self.graph.junctions,
+            changed=changed,
+            free_junctions=free_nodes,
+            fixed=fixed,
+            rings=rings,
+            order=cast(Callable[[Hashable], Any] | None, order),
+            displacements0=self.disp,
+            n_circles=n_groups_total,
+            n_junctions=n_junctions_total,
+            connectivity=self.options.connectivity,
+            constraints=lambda circles, nodes: self.axis_constraints(
+                cast(Sequence[int], circles), groups, cast(Sequence[int], nodes)
+            ),
+            tangencies=cast(Mapping[Hashable, tuple[Hashable, Hashable]], self.tangencies(groups, seeds))
+            if tangent
+            else None,
+        )
+        if not window.ok:
+            return None
+        return self._fits(window, groups, seeds, fixed)
+
+    def solve_whole(
+        self,
+        groups: Mapping[int, Group],
+        seeds: Mapping[int, Seed],
+        node_groups: Mapping[int, Sequence[int]],
+        *,
+        n_groups_total: int,
+        n_junctions_total: int,
+        order: Callable[[int], Any] | None = None,
+        tangent: bool = False,
+    ) -> Solution | None:
+        """:meth:`solve` over all of ``groups`` at once, every junction free (a global solve, counted).
+
+        The initial fit of A^0, a connected part in :func:`~img2logo.recovery.recover`, a merge
+        whose local windows failed, the tangent refit: none of them holds a circle fixed.
+        """
+        self.stats.global_solves += 1
+        return self.solve(
+            groups,
+            seeds,
+            node_groups,
+            changed=list(groups),
+            free_nodes=sorted(node_groups),
+            fixed=set(),
+            n_groups_total=n_groups_total,
+            n_junctions_total=n_junctions_total,
+            order=order,
+            tangent=tangent,
+        )
+
+    def axis_constraints(
+        self, gids: Sequence[int], groups: Mapping[int, Group], node_list: Sequence[int]
+    ) -> dict[str, Any]:
+        """Keywords of :func:`~img2logo.constrained_fit.fit_constrained`: circles and junctions held on the axis."""
+        sym = self.symmetry
+        if sym is None:
+            return {}
+        return {
+            "axis": sym.x,
+            "axis_circles": [i for i, g in enumerate(gids) if self.on_axis(groups[g])],
+            "axis_junctions": [i for i, n in enumerate(node_list) if n in sym.nodes],
+            "stall": SYMMETRY_FIT_STALL,
+        }
+
+    def _fits(
+        self,
+        window: WindowFit,
+        groups: Mapping[int, Group],
+        seeds: Mapping[int, Seed],
+        fixed: set[int],
+    ) -> Solution:
+        """The new fits (the window's free groups, and lines whose junctions moved) and displacements."""
+        disp = cast(dict[int, np.ndarray], window.displacements())
+        if not self.options.connectivity:
+            disp = {cast(int, n): np.zeros(2) for n in window.junctions}
+        fits = {}
+        moved = window.free_junctions
+        for gid in cast(Sequence[int], window.circles):
+            line_moved = seeds[gid].k is None and bool(moved & set(self.constrained_nodes(groups[gid])))
+            if gid in fixed and not line_moved:
+                continue
+            _, r, k = seeds[gid]
+            center = window.center(gid)
+            fits[gid] = GroupFit(center, r, k, self.arc_for(groups[gid], center, r, k, lambda n: disp[n]))
+        return fits, disp
+
+    # ----------------------------------------------------------------- errors
+    def totals(self) -> tuple[float, float, int]:
+        """(sum of Fréchet distances, sum of |d_k| over J', |J'|)."""
+        nodes = list(self.node_groups())
+        f = sum(fit.arc.frechet for fit in self.fits.values())
+        d = float(np.sum(np.linalg.norm(self.disp[nodes], axis=1))) if nodes else 0.0
+        return f, d, len(nodes)
+
+    def similarity(self) -> float:
+        """E^s (Eqn. 3): mean Fréchet distance of the arcs plus mean junction displacement."""
+        f, d, nj = self.totals()
+        return f / max(len(self.fits), 1) + (d / nj if nj else 0.0)
+
+    # ----------------------------------------------------------------- levels
+    def abstraction(self, level: int, params: Mapping[str, Any]) -> Abstraction:
+        """The current state as a frozen :class:`Abstraction` A^t, with its ladder and topology."""
+        order = sorted(self.groups, key=lambda g: min(self.groups[g].segments))
+        index = {g: i for i, g in enumerate(order)}
+        node_groups = self.node_groups()
+        nodes = sorted(node_groups)
+        junction = {n: i for i, n in enumerate(nodes)}
+        points = np.array([self.graph.junctions[n] + self.disp[n] for n in nodes]).reshape(-1, 2)
+        arcs = tuple(self.fits[g].arc.arc for g in order)
+        topology = tuple(
+            self.arc_junctions(arc, [junction[n] for n in self.constrained_nodes(self.groups[g])], points)
+            for g, arc in zip(order, arcs, strict=True)
+        )
+        return Abstraction(
+            level=level,
+            arcs=arcs,
+            arc_segments=tuple(self.groups[g].segments for g in order),
+            junctions=points,
+            junction_arcs=tuple(tuple(sorted(index[g] for g in node_groups[n])) for n in nodes),
+            similarity=float(self.similarity()),
+            bias=float(self.ladder.bias),
+            tolerance=float(self.options.tolerance),
+            width=self.graph.width,
+            height=self.graph.height,
+            params=params,
+            ladder=self.ladder,
+            arc_junctions=topology,
+            junction_nodes=tuple(nodes),
+            connected=self.options.connectivity,
+        )
+
+    @staticmethod
+    def arc_junctions(arc: Any, path: Sequence[int], points: np.ndarray) -> ArcJunctions:
+        """Which of a group's junctions (``path``: indices into ``points``, in path order) are at the arc's ends.
+
+        The arc was extracted between (the projections on its circle of) the
+        junctions of its path (:meth:`arc_for`): an end is at the junction whose
+        projection it is, to ``JUNCTION_TOLERANCE``; an end at none (a released
+        junction's projection) is free. The others are passed through, in path order.
+        """
+        c = arc.circle
+        ends: list[int | None] = []
+        # The projections of all the path's junctions at once (the same values as one at a time).
+        proj = c.point_at(c.angle_of(points[np.asarray(path, dtype=np.intp)])).reshape(-1, 2)
+        for end in (arc.start, arc.end):
+            d = np.hypot(proj[:, 0] - end[0], proj[:, 1] - end[1])
+            near = d <= JUNCTION_TOLERANCE
+            # The nearest within the tolerance; on a tie the first in path order.
+            ends.append(path[int(np.argmin(np.where(near, d, np.inf)))] if near.any() else None)
+        return ArcJunctions(ends[0], ends[1], tuple(j for j in path if j not in ends))
