@@ -264,6 +264,23 @@ def golden_chain(noise: float = 0.0, seed: int = 0) -> tuple[SegmentGraph, list[
     return graph, [(c1, r1), (c2, r2), (c3, r3)]
 
 
+def hand_built_state(graph: SegmentGraph, state_class: type | None = None, **settings):
+    """A :class:`~img2logo.fit_state.FitState` of ``graph`` on the ladder of ``BIAS``, one group per segment, unfitted.
+
+    ``state_class`` is FitState or a subclass of it (default FitState); ``settings`` are fields
+    of :class:`~img2logo.options.Options` (``tolerance=0.5``, ...).
+    """
+    from img2logo.fit_state import FitState
+    from img2logo.golden_ladder import make_ladder
+    from img2logo.options import Options
+    from img2logo.simplification import Group
+
+    state = (state_class or FitState)(graph, Options.from_keywords(settings), make_ladder("phi", None, bias=BIAS))
+    for i, seg in enumerate(graph.segments):
+        state.add_group(Group((i,), (int(graph.ends[i, 0]), int(graph.ends[i, 1])), seg, False))
+    return state
+
+
 def check_level(level: Abstraction, atol: float = 1e-6) -> None:
     """Every junction lies on the circle of each arc listed there; arcs pass through it."""
     for point, arcs in zip(level.junctions, level.junction_arcs, strict=True):

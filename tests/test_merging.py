@@ -2,12 +2,160 @@
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
-from conftest import DATA
+import pytest
+from conftest import DATA, golden_chain, golden_radius, hand_built_state, sampled_arc
 
 from img2logo import build_segment_graph, extract_feature_lines
 from img2logo.arc_extraction import redundant_intersections
-from img2logo.progressive import optimize
+from img2logo.fit_state import FitState
+from img2logo.merging import candidates, evaluate, merge_loop
+from img2logo.progressive import initial_fit, optimize
+from img2logo.segment_graph import SegmentGraph
+from img2logo.simplification import Group, merge_groups
+from img2logo.symmetry import HalfAxis
+
+
+class _Unsolvable(FitState):
+    """A state whose constrained fits (Eqn. 13) fail once ``failing`` is set: the rules after a failed window."""
+
+    failing = False
+
+    def solve(self, *args, **kwargs):
+        return None if self.failing else super().solve(*args, **kwargs)
+
+
+def _fitted_chain(cls=FitState, **settings):
+    """The golden chain (three arcs k = 8, 9, 10 in an S) as a fitted state, one group per segment."""
+    graph, _ = golden_chain()
+    state = hand_built_state(graph, cls, **settings)
+    initial_fit(state)
+    return state
+
+
+def _plus():
+    """Four straight segments from a centre node 0 to nodes 1 (east), 2 (south), 3 (west), 4 (north)."""
+    o = np.array([50.5, 50.5])
+    ends = [o + 30 * np.array(d) for d in ((1, 0), (0, 1), (-1, 0), (0, -1))]
+    segments = tuple(np.linspace(o, e, 31) for e in ends)
+    return SegmentGraph(segments, np.array([o, *ends]), np.array([[0, 1], [0, 2], [0, 3], [0, 4]]), 100, 100)
+
+
+# --------------------------------------------------------------------------- candidates
+def test_candidates_are_the_pairs_of_groups_with_a_common_end():
+    graph, _ = golden_chain()
+    assert candidates(hand_built_state(graph)) == [(0, 1, 1), (1, 2, 2)]
+    plus = hand_built_state(_plus())
+    assert candidates(plus) == [(0, 1, 0), (0, 2, 0), (0, 3, 0), (1, 2, 0), (1, 3, 0), (2, 3, 0)]
+
+
+def test_locked_and_closed_groups_and_the_mirror_axis_are_never_merged():
+    graph, _ = golden_chain()
+    state = hand_built_state(graph)
+    state.groups[1] = dataclasses.replace(state.groups[1], locked=True)  # Sec. 7, Fig. 16
+    assert candidates(state) == []
+    state = hand_built_state(graph)
+    loop = Group((0, 1), (1, 0, 1), np.vstack([graph.segments[0][::-1], graph.segments[0]]), False)
+    state.groups[0] = loop  # a closed group: it has no free end to join
+    assert loop.closed and candidates(state) == [(1, 2, 2)]
+    axis = HalfAxis(0.0, frozenset({1}), frozenset())
+    mirrored = FitState(graph, state.options, state.ladder, axis)
+    for g in hand_built_state(graph).groups.values():
+        mirrored.add_group(g)
+    assert candidates(mirrored) == [(1, 2, 2)]  # no arc runs on through the axis at node 1
+
+
+# --------------------------------------------------------------------------- evaluate, rule by rule
+def test_an_exact_merge_is_scored_by_its_change_of_es():
+    state = _fitted_chain()
+    before = state.totals()
+    out = evaluate(state, (0, 1, 1))
+    assert out is not None and out.pair == (0, 1, 1) and not out.global_solve and out.redundant == 0
+    assert out.merged.segments == (0, 1) and -1 in out.fits
+    assert out.delta_j == -1  # node 1 leaves J'
+    assert out.delta_f == pytest.approx(
+        sum(f.arc.frechet for f in out.fits.values())
+        - sum(state.fits[g].arc.frechet for g in {0, 1} | (set(out.fits) - {-1}))
+    )
+    assert state.totals() == before and sorted(state.groups) == [0, 1, 2]  # tentative: the state is unchanged
+    assert state.stats.evaluated == 1 and state.stats.local_failed == 0
+
+
+def test_a_merge_through_a_junction_another_arc_runs_on_through_is_rejected():
+    # Groups 0 (east) and 2 (west) ending at the centre, where north-south runs on: merging them makes an X.
+    state = hand_built_state(_plus())
+    south, north = state.groups.pop(1), state.groups.pop(3)
+    state.add_group(merge_groups(south, north, 0))
+    assert evaluate(state, (0, 2, 0)) is None
+    assert state.stats.rejected_crossing == 1 and state.stats.global_solves == 0
+
+
+def test_a_hopeless_merge_is_rejected_without_a_global_solve():
+    # The S of arcs 8 and 9 is 6.2 px from its best golden circle: above T = 0.5 once its window fails.
+    state = _fitted_chain(_Unsolvable, tolerance=0.5)
+    solves = state.stats.global_solves
+    assert state.golden_error(merge_groups(state.groups[0], state.groups[1], 1)) > 0.5
+    state.failing = True
+    assert evaluate(state, (0, 1, 1)) is None
+    assert state.stats.local_failed == 1 and state.stats.rejected_hopeless == 1
+    assert state.stats.global_solves == solves
+
+
+def test_a_merge_whose_global_problem_fails_is_rejected():
+    state = _fitted_chain(_Unsolvable, tolerance=100.0)
+    solves = state.stats.global_solves
+    state.failing = True
+    assert evaluate(state, (0, 1, 1)) is None
+    assert state.stats.local_failed == 1 and state.stats.rejected_hopeless == 0
+    assert state.stats.global_solves == solves + 1
+    # Without localized fitting the global problem is the only one solved.
+    state = _fitted_chain(_Unsolvable, localized=False)
+    state.failing = True
+    assert evaluate(state, (0, 1, 1)) is None and state.stats.local_failed == 0
+
+
+def test_a_merged_arc_farther_than_the_bound_is_rejected():
+    free = evaluate(_fitted_chain(), (0, 1, 1))
+    assert free is not None and free.fits[-1].arc.frechet > 10.0  # one arc for the S: far from its pixels
+    state = _fitted_chain(max_arc_distance=10.0)
+    assert evaluate(state, (0, 1, 1)) is None and state.stats.rejected_far_arc == 1
+
+
+def _arc_and_a_stroke_across_it():
+    """Two arcs of one golden circle (k = 9) end to end, and a 16 px straight stroke across the first."""
+    c, r = np.array([150.0, 150.0]), golden_radius(9)
+    a, b = sampled_arc(c, r, 0.0, 1.0), sampled_arc(c, r, 1.0, 2.0)
+    u = np.array([np.cos(0.5), np.sin(0.5)])
+    stroke = np.linspace(c + (r - 8) * u, c + (r + 8) * u, 17)
+    junctions = np.array([a[0], a[-1], b[-1], stroke[0], stroke[-1]])
+    return SegmentGraph((a, b, stroke), junctions, np.array([[0, 1], [1, 2], [3, 4]]), 300, 300)
+
+
+def test_a_merge_that_leaves_a_redundant_intersection_is_counted_and_not_made():
+    state = hand_built_state(_arc_and_a_stroke_across_it())
+    initial_fit(state)
+    out = evaluate(state, (0, 1, 1))
+    assert out is not None and out.redundant == 1 and out.fits[-1].arc.frechet < 1.0  # a good arc, but it crosses
+    assert merge_loop(state, 5.0) == "no mergeable pair"
+    assert state.stats.rejected_intersections == 1 and sorted(state.groups) == [0, 1, 2]
+    # Without the avoidance (Fig. 12) the crossing is not looked for, and the two arcs merge.
+    state = hand_built_state(_arc_and_a_stroke_across_it(), avoid_intersections=False)
+    initial_fit(state)
+    assert evaluate(state, (0, 1, 1)).redundant == 0
+    assert merge_loop(state, 5.0) == "no mergeable pair" and len(state.groups) == 2
+
+
+# --------------------------------------------------------------------------- the loop
+def test_the_loop_reports_every_merge_through_its_callback():
+    state = _fitted_chain()
+    seen = []
+    stopped = merge_loop(state, 50.0, lambda s: seen.append((len(s.groups), s.similarity())))
+    assert stopped == "no mergeable pair" and [n for n, _ in seen] == [2, 1] and len(state.groups) == 1
+    assert seen[-1][1] == pytest.approx(state.similarity())
+    state = _fitted_chain()
+    assert merge_loop(state, 0.0) == "tolerance" and len(state.groups) == 3  # no merge is within T = 0
 
 
 def test_no_redundant_intersection_when_an_arc_outside_the_window_moved():

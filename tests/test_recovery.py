@@ -2,12 +2,81 @@
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 import pytest
-from conftest import check_level, golden_chain
+from conftest import check_level, golden_chain, golden_radius, hand_built_state, sampled_arc
 
 from img2logo import InvalidParameterError
+from img2logo.fit_state import Seed
+from img2logo.geometry import line_arc
 from img2logo.progressive import optimize
+from img2logo.recovery import ConnectivityWarning, parts, recover
+from img2logo.segment_graph import SegmentGraph
+
+
+def _three_lines_and_an_arc():
+    """Three straight 60 px segments from node 0 (nodes 1, 2, 3 at their far ends), and apart an arc (nodes 4, 5).
+
+    The seeds: the lines on their pixels, except the third turned about its far end to miss
+    node 0 by 2.28 px (three fixed lines through one junction: Eqn. 13 has no solution), and the
+    arc on its own golden circle (k = 8).
+    """
+    o = np.array([100.0, 100.0])
+    ends = [o + 60.0 * np.array([np.cos(t), np.sin(t)]) for t in (0.0, 2.1, 4.2)]
+    center = np.array([300.0, 300.0])
+    arc = sampled_arc(center, golden_radius(8), 0.0, 1.5)
+    graph = SegmentGraph(
+        (*(np.linspace(o, e, 61) for e in ends), arc),
+        np.array([o, *ends, arc[0], arc[-1]]),
+        np.array([[0, 1], [0, 2], [0, 3], [4, 5]]),
+        400,
+        400,
+    )
+    seeds = {}
+    for i, end in enumerate(ends):
+        circle = line_arc(o if i < 2 else o + np.array([0.0, 5.0]), end).circle
+        seeds[i] = Seed(circle.center, circle.r, None)
+    seeds[3] = Seed(center, golden_radius(8), 8)
+    return graph, seeds
+
+
+def test_recover_releases_the_junction_the_circles_miss_most_and_keeps_the_rest():
+    graph, seeds = _three_lines_and_an_arc()
+    state = hand_built_state(graph)
+    assert parts(state) == [[0, 1, 2], [3]]
+    whole = state.solve_whole(dict(state.groups), seeds, state.node_groups(), n_groups_total=4, n_junctions_total=6)
+    assert whole is None  # the joint fit fails: recovery's case
+    with pytest.warns(ConnectivityWarning, match=r"could not meet 1 of 6 junctions"):
+        fits, disp = recover(state, seeds)
+    assert state.released == {0} and state.stats.released_junctions == 1
+    assert parts(state) == [[0], [1], [2], [3]]  # released, node 0 joins nothing
+    assert sorted(fits) == [0, 1, 2, 3] and [fits[g].k for g in range(4)] == [None, None, None, 8]
+    # The arc's part converged alone with its exact connectivity; the lines pass their far ends.
+    np.testing.assert_allclose(fits[3].center, [300.0, 300.0], atol=1e-6)
+    assert sorted(disp) == [1, 2, 3, 4, 5]
+    np.testing.assert_allclose(np.array(list(disp.values())), 0.0, atol=1e-6)
+    # A line's arc ends where the released junction projects on it: its nearest point to node 0.
+    miss = abs(float(np.hypot(*(graph.junctions[0] - seeds[2].center))) - seeds[2].radius)
+    assert miss == pytest.approx(2.28, abs=0.01)
+    arc = fits[2].arc.arc
+    near = min(float(np.hypot(*(p - graph.junctions[0]))) for p in (arc.start, arc.end))
+    assert near == pytest.approx(miss, abs=1e-6)
+
+
+def test_recover_meets_every_junction_it_can():
+    # The third line through node 0 as well: each part converges at once, nothing is released.
+    graph, seeds = _three_lines_and_an_arc()
+    circle = line_arc(graph.junctions[0], graph.junctions[3]).circle
+    seeds[2] = Seed(circle.center, circle.r, None)
+    state = hand_built_state(graph)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        fits, disp = recover(state, seeds)
+    assert not state.released and state.stats.released_junctions == 0 and sorted(fits) == [0, 1, 2, 3]
+    assert state.stats.global_solves == 2  # one per connected part
+    np.testing.assert_allclose(np.array(list(disp.values())), 0.0, atol=1e-6)
 
 
 def test_radii_too_small_for_the_junctions_are_named():
