@@ -15,16 +15,52 @@ from __future__ import annotations
 
 import html
 import os
+from collections.abc import Sequence
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import Protocol
 from urllib.parse import quote
 
 from ._io import atomic_write
 
-if TYPE_CHECKING:
-    from .batch import BatchReport
+__all__ = ["GALLERY_NAME", "GalleryReport", "gallery_html", "write_gallery"]
 
-__all__ = ["GALLERY_NAME", "gallery_html", "write_gallery"]
+
+# What the page reads of a :class:`~img2logo.batch.BatchReport` (which :mod:`img2logo.batch`
+# hands it): the gallery, imported by the batch, does not import the batch back.
+class _Row(Protocol):
+    @property
+    def path(self) -> str: ...
+    @property
+    def kind(self) -> str: ...
+    @property
+    def arcs(self) -> int: ...
+    @property
+    def similarity(self) -> float: ...
+    @property
+    def levels(self) -> int: ...
+    @property
+    def seconds(self) -> float: ...
+    @property
+    def outputs(self) -> tuple[str, ...]: ...
+
+
+class _Failure(Protocol):
+    @property
+    def path(self) -> str: ...
+    @property
+    def message(self) -> str: ...
+
+
+class GalleryReport(Protocol):
+    """A batch run as the gallery reads it: :class:`img2logo.batch.BatchReport` is one."""
+
+    @property
+    def rows(self) -> Sequence[_Row]: ...
+    @property
+    def failures(self) -> Sequence[_Failure]: ...
+    @property
+    def inputs(self) -> Sequence[str]: ...
+
 
 #: The gallery's file name in the output folder.
 GALLERY_NAME = "index.html"
@@ -50,7 +86,7 @@ def _link(target: str | os.PathLike[str], folder: Path) -> str:
     return quote(Path(rel).as_posix())
 
 
-def gallery_html(report: BatchReport, output_dir: str | os.PathLike[str], *, title: str | None = None) -> str:
+def gallery_html(report: GalleryReport, output_dir: str | os.PathLike[str], *, title: str | None = None) -> str:
     """The gallery page of ``report`` whose files are in ``output_dir`` (see the module docstring).
 
     Parameters
@@ -127,7 +163,7 @@ def gallery_html(report: BatchReport, output_dir: str | os.PathLike[str], *, tit
     )
 
 
-def write_gallery(report: BatchReport, output_dir: str | os.PathLike[str], *, title: str | None = None) -> Path:
+def write_gallery(report: GalleryReport, output_dir: str | os.PathLike[str], *, title: str | None = None) -> Path:
     """Write :func:`gallery_html` to ``output_dir/index.html``, whole or not at all; return its path."""
     data = gallery_html(report, output_dir, title=title).encode("utf-8")
     return atomic_write(Path(output_dir) / GALLERY_NAME, lambda f: f.write(data))
