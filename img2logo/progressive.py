@@ -79,11 +79,11 @@ class Progression:
         (Sec. 5.4), in the order of A^0's arcs.
     stopped_because : str
         Why the loop stopped: ``"tolerance"``, ``"no mergeable pair"`` or ``"merging off"``.
-    stats : dict
-        Counts: merge candidates evaluated, local windows that failed, global
-        solves, candidates rejected without a global solve because their own
-        golden circle is off by more than T, candidates rejected for redundant
-        intersections.
+    stats : dict of str to int
+        The counts of :class:`~img2logo.fit_state.Stats` by name, in its order:
+        merge candidates evaluated, local windows that failed, global solves,
+        candidates rejected (hopeless, redundant intersections, an arc too far,
+        a crossing), released junctions and tangencies, tangent joins.
     timings : dict
         Seconds spent in simplification, the initial fit, the loop and the tangent joins' refit.
     ladder : GoldenLadder or FibonacciLadder or None
