@@ -763,10 +763,11 @@ def test_batch_checks_the_foreground_mask_before_the_workers_start(tmp_path, cap
     folder, out = _batch_folder(tmp_path, bad=False), tmp_path / "out"
     assert main(["batch", str(folder), str(out), "--foreground", str(tmp_path / "missing.png")]) == EXIT_ERROR
     err = capsys.readouterr().err
-    assert err == f"img2logo: error: image file not found: {tmp_path / 'missing.png'}\n"
+    assert err == f"img2logo: error: --foreground: image file not found: {tmp_path / 'missing.png'}\n"
     (tmp_path / "text.png").write_text("no image")
     assert main(["batch", str(folder), str(out), "--foreground", str(tmp_path / "text.png")]) == EXIT_ERROR
-    assert "not a readable image" in capsys.readouterr().err
+    err = capsys.readouterr().err
+    assert err.startswith("img2logo: error: --foreground: ") and "not a readable image" in err and err.count("\n") == 1
     assert not out.exists()
 
 
