@@ -24,7 +24,7 @@ import numpy as np
 from ._validation import check_instance, check_positive
 from .constants import ARC_SAMPLE_STEP, IMAGE_FADE, MIN_STROKE_WIDTH, STROKE_WIDTH_FRACTION
 from .errors import InvalidParameterError
-from .fills import check_fills
+from .fill_values import check_fills
 from .geometry import Abstraction, Arc, Circle
 from .loading import composite_on_white
 
@@ -32,7 +32,7 @@ if TYPE_CHECKING:
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
-    from .fills import Fill
+    from .fill_values import Fill
     from .segment_graph import SegmentGraph
 
 __all__ = [
