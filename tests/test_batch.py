@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pandas as pd
 import pytest
-from conftest import DATA
+from helpers import DATA
 
 from img2logo.batch import (
     MANIFEST_NAME,

@@ -9,7 +9,7 @@ import sys
 
 import numpy as np
 import pytest
-from conftest import DATA
+from helpers import DATA
 
 from img2logo.cli import EXIT_ERROR, main
 
@@ -381,7 +381,7 @@ def test_lines_option(tmp_path):
 
 def test_photo_subject_is_reported_and_can_be_chosen(tmp_path, capsys):
     import cv2
-    from test_subject import textured_photo
+    from helpers import textured_photo
 
     rgb, _ = textured_photo([(90, 120, 60, 60, (0.9, 0.2, 0.3)), (250, 120, 55, 55, (0.2, 0.4, 0.95))], size=(240, 340))
     path = tmp_path / "two.png"

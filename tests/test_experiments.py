@@ -7,7 +7,7 @@ import sys
 
 import pandas as pd
 import pytest
-from conftest import DATA
+from helpers import DATA
 from matplotlib.figure import Figure
 
 from img2logo import abstract, write_json

@@ -10,7 +10,7 @@ import matplotlib.colors as mcolors
 import matplotlib.pyplot as plt
 import numpy as np
 import pytest
-from conftest import small_graph
+from helpers import small_graph
 from matplotlib.collections import LineCollection
 
 from img2logo.experiments import layout

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from conftest import check_level, golden_chain
+from helpers import check_level, golden_chain
 
 from img2logo import InvalidParameterError
 from img2logo.progressive import optimize
