@@ -37,10 +37,10 @@ from __future__ import annotations
 import dataclasses
 import os
 import warnings
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from concurrent.futures import Executor
 from pathlib import Path
-from typing import Any
+from typing import IO, Any
 
 from ._validation import check_choice
 from .batch_folder import (
@@ -254,8 +254,7 @@ def run_batch(
             with output_set():  # the files of an image appear together
                 for fmt in formats:
                     if fmt in files:
-                        data = files[fmt]
-                        done.append(str(atomic_write(out_dir / f"{stems[i]}.{fmt}", lambda f, d=data: f.write(d))))
+                        done.append(str(atomic_write(out_dir / f"{stems[i]}.{fmt}", _writer(files[fmt]))))
             written[i] = tuple(done)
             manifest.update(Path(d).name for d in done)
 
@@ -275,6 +274,11 @@ def run_batch(
         finally:
             write_manifest(out_dir, manifest)  # also after an interrupt: what this run wrote is recorded
     return report
+
+
+def _writer(data: bytes) -> Callable[[IO[bytes]], object]:
+    """What :func:`~img2logo._io.atomic_write` calls to write ``data`` into its temporary file."""
+    return lambda f: f.write(data)
 
 
 def _check_outputs(outputs: Sequence[str]) -> tuple[str, ...]:

@@ -139,14 +139,14 @@ class BatchReport:
         The symmetry column is shown when some image was run with ``symmetry``;
         the failures are left out when ``failures`` is False.
         """
-        head = ("image", "kind", "arcs", "E^s (px)", "symmetry", "seconds")
+        head: tuple[str, ...] = ("image", "kind", "arcs", "E^s (px)", "symmetry", "seconds")
         from ._io import printable
 
-        body = [
+        body: list[tuple[str, ...]] = [
             (printable(r.image), r.kind, str(r.arcs), f"{r.similarity:.2f}", r.symmetry, f"{r.seconds:.1f}")
             for r in self.rows
         ]
-        align = ("<", "<", ">", ">", "<", ">")
+        align: tuple[str, ...] = ("<", "<", ">", ">", "<", ">")
         if not any(r.symmetry for r in self.rows):
             head, align, body = head[:4] + head[5:], align[:4] + align[5:], [row[:4] + row[5:] for row in body]
         widths = [max(len(row[i]) for row in [head, *body]) for i in range(len(head))]

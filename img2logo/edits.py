@@ -72,8 +72,7 @@ _CONTINUATION_STEPS: int = 8
 
 # --------------------------------------------------------------------------- validation
 def _check_abstraction(a: object) -> Abstraction:
-    check_instance(a, Abstraction, "abstraction")
-    return a
+    return check_instance(a, Abstraction, "abstraction")
 
 
 def _index(value: object, what: str, size: int) -> int:
@@ -96,7 +95,7 @@ def _index(value: object, what: str, size: int) -> int:
 def _sign(value: object, name: str) -> int:
     if isinstance(value, bool | np.bool_) or not isinstance(value, numbers.Real) or value not in (1, -1):
         raise InvalidParameterError(f"{name} must be +1 or -1, got {value!r}")
-    return int(value)
+    return 1 if value == 1 else -1
 
 
 def _phi_ladder(a: Abstraction, op: str) -> GoldenLadder:
@@ -104,7 +103,7 @@ def _phi_ladder(a: Abstraction, op: str) -> GoldenLadder:
     if not isinstance(a.ladder, GoldenLadder):
         raise InvalidParameterError(
             f"{op} supports only the golden ratio ladder r = phi**(k+bias), got the Fibonacci ladder "
-            f"(unit {a.ladder.unit!r} px)"
+            f"(unit {getattr(a.ladder, 'unit', None)!r} px)"
         )
     return a.ladder
 

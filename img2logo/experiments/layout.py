@@ -11,7 +11,7 @@ layout. Line widths are matplotlib points. Matplotlib is imported inside the fun
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -121,7 +121,7 @@ def panel_grid(
     height_ratio: float = 1.0,
     extra_height: float = 0.0,
     width: float | None = None,
-    **subplots: object,
+    **subplots: Any,
 ) -> tuple[Figure, np.ndarray]:
     """A grid of panels: a figure (not pyplot's, constrained layout) and its axes, shape (rows, columns).
 
