@@ -7,7 +7,7 @@ DataFrames) and figures (:class:`matplotlib.figure.Figure`, never pyplot, in the
 image pixel frame: x right, y down) back from ``results`` (Fig. 1, 4, 7, 8, 10,
 Tables 1, 2), ``ablations`` (Fig. 6, 11, 12, 13), ``arc_selection`` (Fig. 9),
 ``design`` (Table 3, Fig. 15, 16), ``explore`` (the level explorer) and
-``features`` (Fig. 17, 18). Tables hold no
+``features`` (Fig. 17, 18), laid out with ``layout`` (panel grids, windows). Tables hold no
 timings unless they are about time: they are committed and must be the same
 bytes from run to run. papermill and ipywidgets (the extra ``[kit]``) are
 imported only by the functions that use them.
