@@ -79,14 +79,17 @@ lab: $(LAB)
 	$(BIN)/jupyter lab --notebook-dir=notebooks $(if $(filter 0,$(shell id -u)),--allow-root) \
 	  --LabApp.news_url= --LabApp.check_for_updates_class=jupyterlab.NeverCheckForUpdate $(LAB_ARGS)
 
+# mypy (the [tool.mypy] settings of pyproject.toml) fails when a file has more errors than
+# tools/mypy-baseline.txt allows; fewer pass, with "lower the baseline to N" (tools/mypy_baseline.py --write).
 lint: $(STAMP)
-	$(BIN)/ruff check img2logo tests benchmarks
-	$(BIN)/ruff format --check img2logo tests benchmarks
+	$(BIN)/ruff check img2logo tests benchmarks tools
+	$(BIN)/ruff format --check img2logo tests benchmarks tools
+	$(BIN)/python tools/mypy_baseline.py
 	$(BIN)/python -m pytest -q tests/test_notebooks.py -m "not notebook"
 
 format: $(STAMP)
-	$(BIN)/ruff format img2logo tests benchmarks
-	$(BIN)/ruff check --fix img2logo tests benchmarks
+	$(BIN)/ruff format img2logo tests benchmarks tools
+	$(BIN)/ruff check --fix img2logo tests benchmarks tools
 
 # [bench] (vtracer, the plain vectorizer the command line is timed against), installed on first use.
 $(BENCH): pyproject.toml $(STAMP)

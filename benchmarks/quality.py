@@ -169,7 +169,7 @@ def ink_columns(case: dict, result) -> dict:
 
 def contact_sheet(kind: str, runs: list[tuple[dict, object]], path: Path) -> None:
     from img2logo import plot_abstraction, quality
-    from img2logo.plotting import panel_grid
+    from img2logo.experiments.layout import panel_grid
     from img2logo.writers import save_figure
 
     fig, axes = panel_grid(len(runs), 3, 3.0)

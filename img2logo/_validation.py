@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, TypeVar
 
 from .errors import InvalidParameterError
 
@@ -18,6 +18,8 @@ if TYPE_CHECKING:
 
 # numpy is imported by the helpers that need it, not here: the command line's
 # option parsing uses this module, and ``img2logo --version`` should not load numpy.
+
+_T = TypeVar("_T")
 
 
 def check_points(points: object, name: str = "points", min_count: int = 1) -> np.ndarray:
@@ -89,8 +91,9 @@ def readonly(arr: np.ndarray) -> np.ndarray:
     return arr
 
 
-def check_instance(value: object, cls: type, name: str) -> None:
-    """Raise unless ``value`` is a ``cls``: ``abstraction must be an Abstraction, got dict``."""
+def check_instance(value: object, cls: type[_T], name: str) -> _T:
+    """``value``, known to be a ``cls``; else raise ``abstraction must be an Abstraction, got dict``."""
     if not isinstance(value, cls):
         article = "an" if cls.__name__[:1].lower() in "aeiou" else "a"
         raise InvalidParameterError(f"{name} must be {article} {cls.__name__}, got {type(value).__name__}")
+    return value

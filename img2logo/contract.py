@@ -31,7 +31,7 @@ from ._io import as_path
 from ._validation import check_instance
 from .constants import FORMAT_NAME, JUNCTION_TOLERANCE, PHI, RADIUS_RELATIVE_TOLERANCE
 from .errors import InvalidParameterError
-from .fills import Fill, check_fills
+from .fill_values import Fill, check_fills
 from .geometry import TAU, Abstraction, Arc, Circle, line_arc
 from .golden_ladder import FibonacciLadder, GoldenLadder, Ladder, fibonacci
 from .mirror import symmetry_extra

@@ -42,7 +42,7 @@ from ._validation import check_choice, check_instance, check_integer, check_posi
 from .constants import CONSTRUCTION_MARGIN, FORMAT_NAME, MAX_PNG_SIDE, PNG_DPI
 from .contract import from_document, to_document
 from .errors import InputNotFoundError, InvalidParameterError
-from .fills import Fill, check_fills
+from .fill_values import Fill, check_fills
 from .geometry import Abstraction, Circle
 from .golden_ladder import FibonacciLadder
 from .mirror import axis_segment

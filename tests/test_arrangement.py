@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 import pytest
-from conftest import BIAS, A, B, abstraction_of, four_arcs, full, golden, svg_arc_center, two_circles
+from helpers import BIAS, A, B, abstraction_of, four_arcs, full, golden, svg_arc_center, two_circles
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import re
 import shutil
 import subprocess
 import sys
@@ -11,7 +12,7 @@ from pathlib import Path
 
 import pandas as pd
 import pytest
-from conftest import DATA
+from helpers import DATA
 
 from img2logo.batch import (
     MANIFEST_NAME,
@@ -21,9 +22,8 @@ from img2logo.batch import (
     find_images,
     process_image,
     run_batch,
-    sweep,
 )
-from img2logo.errors import InvalidParameterError
+from img2logo.errors import ImageNotFoundError, InvalidParameterError
 
 GOOD = ("drawing-leaf.png", "drawing-snail.png")  # fast: about 1 s each
 
@@ -211,28 +211,12 @@ def test_output_stems_never_collide():
     assert _output_stems(paths) == ["a-png", "a-jpg", "b", "a-png-2"]
 
 
-def test_sweep(folder):
-    grid = [{"tolerance": 3.0}, {"tolerance": 9.0}, {"tolerance": 9.0, "ladder": "fibonacci"}]
-    with ThreadPoolExecutor(2) as executor:
-        table = sweep([folder / GOOD[1], folder / "broken.png"], grid, executor=executor, progress=False)
-    assert table.columns.tolist() == [
-        "image",
-        "tolerance",
-        "ladder",
-        "kind",
-        "arcs",
-        "levels",
-        "similarity",
-        "seconds",
-        "error",
-    ]
-    assert table["image"].tolist() == [GOOD[1]] * 3 + ["broken.png"] * 3
-    snail = table.iloc[:3]
-    assert (snail["error"] == "").all() and snail["arcs"].iloc[0] >= snail["arcs"].iloc[1]  # fewer arcs at larger T
-    assert snail["ladder"].tolist()[2] == "fibonacci" and (snail["similarity"] <= snail["tolerance"]).all()
-    assert table.iloc[3:]["error"].str.contains("not a readable image").all()
-    with pytest.raises(InvalidParameterError, match="parameter_grid must hold at least one set of parameters"):
-        sweep([folder / GOOD[1]], [])
+def test_a_missing_foreground_mask_is_refused_before_any_worker_starts(tmp_path):
+    counting = _CountingExecutor()
+    missing = tmp_path / "missing.png"
+    with pytest.raises(ImageNotFoundError, match=f"^--foreground: image file not found: {re.escape(str(missing))}$"):
+        run_batch([DATA / GOOD[0]], tmp_path / "out", executor=counting, foreground=str(missing))
+    assert counting.submitted == 0 and not (tmp_path / "out").exists()
 
 
 class _CountingExecutor(Executor):
@@ -402,13 +386,13 @@ def test_an_image_that_kills_its_worker_fails_alone_and_keeps_its_outputs(tmp_pa
 
     if multiprocessing.get_start_method() != "fork":
         pytest.skip("forked workers see the test's patch")
-    import img2logo.batch
+    import img2logo.batch_pool
 
     src, out = _two_images(tmp_path, ("a.png", "b.png")), tmp_path / "out"
     shutil.copy(DATA / GOOD[1], src / "c.png")
     assert run_batch(find_images(src), out, jobs=1, progress=False).ok
     before = {p.name: p.read_bytes() for p in out.iterdir() if p.name[:2] in ("a.", "b.", "c.")}
-    monkeypatch.setattr(img2logo.batch, "process_image", _kill_own_worker_on_b)
+    monkeypatch.setattr(img2logo.batch_pool, "process_image", _kill_own_worker_on_b)
     report = run_batch(find_images(src), out, jobs=2, progress=False)
     assert [r.image for r in report.rows] == ["a.png", "c.png"]  # the others are done
     assert [f.image for f in report.failures] == ["b.png"]
@@ -427,10 +411,10 @@ def test_an_image_that_kills_its_worker_fails_alone_and_keeps_its_outputs(tmp_pa
 
 
 def test_a_second_batch_on_a_locked_folder_is_refused_and_a_stale_lock_taken_over(tmp_path):
-    from img2logo.batch import LOCK_NAME, _batch_lock
+    from img2logo.batch_folder import LOCK_NAME, batch_lock
 
     src, out = _two_images(tmp_path), tmp_path / "out"
-    with _batch_lock(out):  # a batch running (a lock is per open file: this one conflicts too)
+    with batch_lock(out):  # a batch running (a lock is per open file: this one conflicts too)
         with pytest.raises(InvalidParameterError, match=r"output folder .*out is being written by another img2logo"):
             run_batch(find_images(src), out, jobs=1, progress=False)
         assert sorted(p.name for p in out.iterdir()) == [LOCK_NAME]

@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 import pytest
-from conftest import arc_points
+from helpers import arc_points
 
 from img2logo.circle_fitting import fit_center, fit_circle, mean_abs_error
 from img2logo.constants import MAX_RADIUS_FACTOR

@@ -9,7 +9,7 @@ import sys
 
 import numpy as np
 import pytest
-from conftest import DATA
+from helpers import DATA
 
 from img2logo.cli import EXIT_ERROR, main
 
@@ -381,7 +381,7 @@ def test_lines_option(tmp_path):
 
 def test_photo_subject_is_reported_and_can_be_chosen(tmp_path, capsys):
     import cv2
-    from test_subject import textured_photo
+    from helpers import textured_photo
 
     rgb, _ = textured_photo([(90, 120, 60, 60, (0.9, 0.2, 0.3)), (250, 120, 55, 55, (0.2, 0.4, 0.95))], size=(240, 340))
     path = tmp_path / "two.png"
@@ -763,10 +763,11 @@ def test_batch_checks_the_foreground_mask_before_the_workers_start(tmp_path, cap
     folder, out = _batch_folder(tmp_path, bad=False), tmp_path / "out"
     assert main(["batch", str(folder), str(out), "--foreground", str(tmp_path / "missing.png")]) == EXIT_ERROR
     err = capsys.readouterr().err
-    assert err == f"img2logo: error: image file not found: {tmp_path / 'missing.png'}\n"
+    assert err == f"img2logo: error: --foreground: image file not found: {tmp_path / 'missing.png'}\n"
     (tmp_path / "text.png").write_text("no image")
     assert main(["batch", str(folder), str(out), "--foreground", str(tmp_path / "text.png")]) == EXIT_ERROR
-    assert "not a readable image" in capsys.readouterr().err
+    err = capsys.readouterr().err
+    assert err.startswith("img2logo: error: --foreground: ") and "not a readable image" in err and err.count("\n") == 1
     assert not out.exists()
 
 

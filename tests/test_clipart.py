@@ -5,7 +5,7 @@ from __future__ import annotations
 import cv2
 import numpy as np
 import pytest
-from conftest import DATA, blank, two_discs
+from helpers import DATA, blank, two_discs
 
 from img2logo import build_segment_graph, detect_kind, extract_feature_lines, load_image
 from img2logo.clipart import clipart_regions, colour_noise, thin_regions

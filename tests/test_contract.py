@@ -11,7 +11,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from conftest import BIAS, HEIGHT, WIDTH, four_arcs, make_abstraction, palette_fills
+from helpers import BIAS, HEIGHT, WIDTH, four_arcs, make_abstraction, palette_fills
 
 from img2logo import contract, fills, writers
 from img2logo.constants import FORMAT_NAME, PHI
@@ -302,7 +302,7 @@ def test_unconnected_arc_ends_are_their_own_junctions():
 
 
 def test_no_connectivity_result_is_a_valid_document(tmp_path):
-    from conftest import DATA
+    from helpers import DATA
 
     from img2logo import abstract
 

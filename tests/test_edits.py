@@ -8,7 +8,7 @@ import math
 
 import numpy as np
 import pytest
-from conftest import DATA
+from helpers import DATA
 
 import img2logo
 from img2logo import edits

@@ -7,7 +7,7 @@ import sys
 
 import pandas as pd
 import pytest
-from conftest import DATA
+from helpers import DATA
 from matplotlib.figure import Figure
 
 from img2logo import abstract, write_json
@@ -23,6 +23,7 @@ from img2logo.experiments import (
     show_table,
     sweep,
 )
+from img2logo.pipeline import Result
 from img2logo.progressive import optimize
 
 
@@ -114,6 +115,20 @@ def test_a_pipeline_sweep_is_abstract():
     assert run.name == "drawing-leaf" and run.kind == result.lines.kind
     assert [a.similarity for a in run.levels] == [a.similarity for a in result.levels]
     assert by_image([run, run]) == {"drawing-leaf": [run, run]}
+    # the run holds abstract's Result (its timings and params too), not copies of its levels
+    assert isinstance(run.result, Result) and run.result.timings.keys() == result.timings.keys()
+    assert run.levels is run.result.levels and run.final is run.result.final and run.bias == run.result.bias
+    assert run.result.graph is run.graph and run.result.params == result.params
+
+
+def test_an_optimize_sweep_holds_a_result_and_a_preprocessed_run_none():
+    (pre,) = preprocess([DATA / "drawing-leaf.png"])
+    (run,) = sweep([pre], tolerance=6.0)
+    assert pre.result is None and pre.progression is None
+    with pytest.raises(Img2LogoError, match="drawing-leaf was only preprocessed: it has no levels"):
+        _ = pre.final
+    assert isinstance(run.result, Result) and run.result.graph is run.graph and run.result.image is pre.image
+    assert run.progression is run.result.progression and run.final is run.result.final
 
 
 def test_the_library_runs_without_the_kit_extras(tmp_path):

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 import pytest
-from conftest import drawing
+from helpers import drawing
 from matplotlib.figure import Figure
 
 from img2logo import experiments

@@ -8,7 +8,7 @@ import sys
 
 import numpy as np
 import pytest
-from conftest import DATA
+from helpers import DATA
 
 from img2logo import InvalidParameterError, abstract
 from img2logo.experiments import design, preprocess, sweep

@@ -16,7 +16,7 @@ from matplotlib.figure import Figure
 from img2logo import experiments
 from img2logo.errors import InvalidParameterError
 from img2logo.experiments import results
-from img2logo.plotting import emptiest_corner
+from img2logo.experiments.layout import emptiest_corner
 
 IMAGE = "drawing-bird.png"  # the smallest example: 43 segments, about 1 s a run
 T = 5.0

@@ -7,7 +7,7 @@ import shutil
 
 import numpy as np
 import pytest
-from conftest import DATA
+from helpers import DATA
 
 from img2logo import InvalidParameterError, cli
 from img2logo.contract import from_document

@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 import pytest
-from conftest import A, B, abstraction_of, full, golden, two_circles, two_discs
+from helpers import A, B, abstraction_of, full, golden, two_circles, two_discs
 
 from img2logo import arrangement, fills
 from img2logo.arrangement import Face

@@ -6,7 +6,7 @@ import dataclasses
 
 import numpy as np
 import pytest
-from conftest import golden_chain, golden_radius, hand_built_state
+from helpers import golden_chain, golden_radius, hand_built_state
 
 from img2logo.fit_state import FitState, FreeCircles, GroupFit, Seed, Stats, on_axis
 from img2logo.progressive import initial_fit, optimize

@@ -9,7 +9,7 @@ from pathlib import Path
 from urllib.parse import unquote
 
 import pytest
-from conftest import DATA
+from helpers import DATA
 
 from img2logo.batch import BatchFailure, BatchReport, BatchRow, run_batch
 from img2logo.gallery import GALLERY_NAME, gallery_html, write_gallery

@@ -393,7 +393,7 @@ def test_golden_circle_on_the_fibonacci_ladder():
 @pytest.mark.parametrize("unit", [None, 3.0])
 def test_the_optimizer_on_the_fibonacci_ladder(unit):
     pytest.importorskip("jsonschema")
-    from conftest import drawing
+    from helpers import drawing
 
     from img2logo import abstract
     from img2logo.contract import from_document, to_document, validate_document
@@ -418,7 +418,7 @@ def test_the_optimizer_on_the_fibonacci_ladder(unit):
 
 
 def test_the_optimizer_refuses_mixed_ladder_parameters():
-    from conftest import drawing
+    from helpers import drawing
 
     from img2logo import abstract
 

@@ -8,6 +8,8 @@ The notebook kit (``img2logo/experiments``) is covered with the library.
 from __future__ import annotations
 
 import ast
+import subprocess
+import sys
 from pathlib import Path
 
 PACKAGE = Path(__file__).resolve().parents[1] / "img2logo"
@@ -76,7 +78,7 @@ def _cycle(graph: dict[str, set[str]]) -> list[str] | None:
 def test_no_import_cycle():
     graph = _imports()
     assert {"fills", "plotting", "writers", "contract", "arrangement", "svg_path"} <= set(graph)
-    assert "plotting" in graph["writers"] and "fills" in graph["plotting"]  # the graph is read
+    assert "plotting" in graph["writers"] and "fill_values" in graph["plotting"]  # the graph is read
     assert _cycle(graph) is None, " -> ".join(_cycle(graph) or [])
 
 
@@ -97,3 +99,28 @@ def test_the_optimizers_stages_import_its_state_not_each_other():
 def test_a_cycle_is_found():
     assert _cycle({"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": set()}) == ["a", "b", "c", "a"]
     assert _cycle({"a": {"b"}, "b": set()}) is None
+
+
+#: What the file format needs to read and write an ``img2logo.abstraction/1`` document: the values
+#: (geometry, its ladders, fills, the mirror axis), their checks, the SVG path data and atomic writes.
+CONTRACT_MODULES = {
+    "img2logo",
+    "img2logo._io",
+    "img2logo._validation",
+    "img2logo.constants",
+    "img2logo.contract",
+    "img2logo.errors",
+    "img2logo.fill_values",
+    "img2logo.geometry",
+    "img2logo.golden_ladder",
+    "img2logo.mirror",
+    "img2logo.svg_path",
+}
+
+
+def test_the_file_format_loads_only_what_it_needs():
+    code = "import sys, img2logo.contract; print(sorted(m for m in sys.modules if m.startswith('img2logo')))"
+    out = subprocess.run([sys.executable, "-c", code], cwd=PACKAGE.parent, capture_output=True, text=True, check=True)
+    loaded = set(ast.literal_eval(out.stdout))
+    assert loaded <= CONTRACT_MODULES, sorted(loaded - CONTRACT_MODULES)
+    assert "img2logo.contract" in loaded and "img2logo.fill_values" in loaded  # the list is read

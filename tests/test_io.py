@@ -8,7 +8,7 @@ import sys
 from pathlib import Path
 
 import pytest
-from conftest import make_abstraction
+from helpers import make_abstraction
 
 from img2logo import _io, writers
 from img2logo.errors import InvalidParameterError, OutputError

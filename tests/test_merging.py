@@ -6,7 +6,7 @@ import dataclasses
 
 import numpy as np
 import pytest
-from conftest import DATA, golden_chain, golden_radius, hand_built_state, sampled_arc
+from helpers import DATA, golden_chain, golden_radius, hand_built_state, sampled_arc
 
 from img2logo import build_segment_graph, extract_feature_lines
 from img2logo.arc_extraction import redundant_intersections

@@ -3,8 +3,8 @@
 from __future__ import annotations
 
 import numpy as np
+from helpers import textured_photo
 from scipy import ndimage
-from test_subject import textured_photo
 
 from img2logo import extract_feature_lines, load_image
 from img2logo.photo import join_line_ends, photo_feature_lines, subject_outline

@@ -7,7 +7,7 @@ import math
 
 import numpy as np
 import pytest
-from conftest import DATA, drawing
+from helpers import DATA, drawing
 
 import img2logo
 from img2logo import InvalidParameterError, abstract
@@ -123,7 +123,7 @@ def test_level_out_of_range_names_the_range(result):
 
 
 def test_a_photo_is_drawn_from_its_subject_with_every_arc_within_t():
-    from test_subject import textured_photo
+    from helpers import textured_photo
 
     from img2logo import abstract
 

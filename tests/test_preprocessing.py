@@ -7,7 +7,7 @@ import warnings
 import cv2
 import numpy as np
 import pytest
-from conftest import DATA, drawing, two_discs
+from helpers import DATA, drawing, two_discs
 
 from img2logo import (
     DownscaleWarning,

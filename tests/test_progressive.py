@@ -8,7 +8,7 @@ import math
 import cv2
 import numpy as np
 import pytest
-from conftest import BIAS, DATA, blank, check_level, golden_chain, sampled_arc
+from helpers import BIAS, DATA, blank, check_level, golden_chain, sampled_arc
 
 from img2logo import InvalidParameterError, SegmentGraph, build_segment_graph, extract_feature_lines
 from img2logo.arc_extraction import redundant_intersections

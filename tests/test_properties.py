@@ -11,7 +11,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from conftest import abstraction_of, golden, svg_arc_center
+from helpers import abstraction_of, golden, svg_arc_center
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 

@@ -6,7 +6,7 @@ import warnings
 
 import numpy as np
 import pytest
-from conftest import check_level, golden_chain, golden_radius, hand_built_state, sampled_arc
+from helpers import check_level, golden_chain, golden_radius, hand_built_state, sampled_arc
 
 from img2logo import InvalidParameterError
 from img2logo.fit_state import Seed

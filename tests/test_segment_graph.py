@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from conftest import DATA, drawing, two_discs
+from helpers import DATA, drawing, two_discs
 
 from img2logo import InvalidParameterError, SegmentGraph, build_segment_graph, extract_feature_lines
 

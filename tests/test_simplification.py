@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
-from conftest import DATA
+from helpers import DATA
 
 from img2logo import build_segment_graph, extract_feature_lines
 from img2logo.constants import SIMPLIFICATION_ERROR

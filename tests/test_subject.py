@@ -5,36 +5,11 @@ from __future__ import annotations
 import cv2
 import numpy as np
 import pytest
+from helpers import textured_photo
 from scipy import ndimage
 
 from img2logo import InvalidParameterError, load_image
 from img2logo.subject import find_subject, parse_subject_rectangle
-
-
-def textured_photo(shapes, size=(240, 320), seed=0):
-    """Objects on a noise-texture background: an RGB float image and each object's true mask.
-
-    ``shapes`` are (cx, cy, rx, ry, rgb) ellipses; each is shaded softly (lighter
-    towards its top-left) and gets a darker inner stripe; the background is a
-    blurred random texture of browns and greens with some fine noise.
-    """
-    rng = np.random.default_rng(seed)
-    h, w = size
-    tex = ndimage.gaussian_filter(rng.random((h, w, 3)), (3, 3, 0))
-    tex = (tex - tex.min()) / np.ptp(tex)
-    img = 0.25 + 0.35 * tex * np.array([0.9, 0.8, 0.5])
-    yy, xx = np.mgrid[0:h, 0:w]
-    masks = []
-    for cx, cy, rx, ry, rgb in shapes:
-        inside = ((xx - cx) / rx) ** 2 + ((yy - cy) / ry) ** 2 <= 1.0
-        shade = 1.0 + 0.15 * ((cx - xx) / rx + (cy - yy) / ry) / 2
-        obj = np.clip(np.array(rgb)[None, None, :] * shade[..., None], 0, 1)
-        stripe = inside & (np.abs(yy - cy) < ry * 0.12)
-        obj[stripe] *= 0.6
-        img[inside] = obj[inside]
-        masks.append(inside)
-    img = ndimage.gaussian_filter(img, (0.8, 0.8, 0)) + 0.01 * rng.standard_normal((h, w, 3))
-    return np.clip(img, 0, 1), masks
 
 
 def outline_distance(found: np.ndarray, truth: np.ndarray) -> float:

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from conftest import A, B, abstraction_of, full, golden
+from helpers import A, B, abstraction_of, full, golden
 
 from img2logo import arrangement, svg_path
 from img2logo.errors import InvalidParameterError

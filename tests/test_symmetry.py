@@ -10,7 +10,7 @@ import warnings
 import cv2
 import numpy as np
 import pytest
-from conftest import blank
+from helpers import blank
 
 import img2logo
 from img2logo import InvalidParameterError
@@ -186,7 +186,7 @@ def test_every_level_of_a_symmetric_run_is_symmetric(symmetric_run):
 
 
 def test_every_level_of_a_real_symmetric_run_is_symmetric():
-    from conftest import DATA
+    from helpers import DATA
 
     with warnings.catch_warnings():
         warnings.simplefilter("error")  # no junction released

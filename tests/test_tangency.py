@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 import pytest
-from conftest import DATA
+from helpers import DATA
 
 from img2logo import abstract, quality
 from img2logo.quality import arc_direction

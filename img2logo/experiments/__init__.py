@@ -7,7 +7,7 @@ DataFrames) and figures (:class:`matplotlib.figure.Figure`, never pyplot, in the
 image pixel frame: x right, y down) back from ``results`` (Fig. 1, 4, 7, 8, 10,
 Tables 1, 2), ``ablations`` (Fig. 6, 11, 12, 13), ``arc_selection`` (Fig. 9),
 ``design`` (Table 3, Fig. 15, 16), ``explore`` (the level explorer) and
-``features`` (Fig. 17, 18). Tables hold no
+``features`` (Fig. 17, 18), laid out with ``layout`` (panel grids, windows). Tables hold no
 timings unless they are about time: they are committed and must be the same
 bytes from run to run. papermill and ipywidgets (the extra ``[kit]``) are
 imported only by the functions that use them.
@@ -45,6 +45,7 @@ if TYPE_CHECKING:
     import pandas as pd
 
     from ..geometry import Abstraction
+    from ..pipeline import Result
     from ..progressive import Progression
 
 
@@ -194,8 +195,12 @@ class Run:
     lines : FeatureLines
     graph : SegmentGraph
         L = {S, J}, the input of the optimization.
-    progression : Progression or None
-        Every level A^0 ... A^final; None for an image only preprocessed (:func:`preprocess`).
+    result : Result or None
+        The run: a :class:`img2logo.pipeline.Result` (its ``progression``, every level
+        A^0 ... A^final; with ``pipeline=True`` also its ``timings``, ``params`` and
+        ``symmetry``, from :func:`img2logo.abstract`; an optimize run's has empty ``timings``
+        and ``params``). Its ``image``, ``lines`` and ``graph`` are the run's. None for an
+        image only preprocessed (:func:`preprocess`).
     variant : str
         The label of the run's variant (:func:`sweep`), or ``""``.
     settings : mapping (read-only)
@@ -212,7 +217,7 @@ class Run:
     image: LoadedImage
     lines: FeatureLines
     graph: SegmentGraph
-    progression: Progression | None = None
+    result: Result | None = None
     variant: str = ""
     settings: Mapping[str, Any] = field(default_factory=lambda: MappingProxyType({}))
     seconds: tuple[float, ...] = ()
@@ -221,6 +226,11 @@ class Run:
     def kind(self) -> str:
         """``"photo"``, ``"clipart"`` or ``"drawing"``."""
         return self.lines.kind
+
+    @property
+    def progression(self) -> Progression | None:
+        """Every level A^0 ... A^final, the bias and stats (the result's); None for an image only preprocessed."""
+        return None if self.result is None else self.result.progression
 
     @property
     def levels(self) -> tuple[Abstraction, ...]:
@@ -243,9 +253,9 @@ class Run:
 
     @property
     def _progression(self) -> Progression:
-        if self.progression is None:
+        if self.result is None:
             raise Img2LogoError(f"{self.name} was only preprocessed: it has no levels")
-        return self.progression
+        return self.result.progression
 
 
 def preprocess(
@@ -330,7 +340,7 @@ def sweep(
     """
     from itertools import product
 
-    from ..pipeline import abstract
+    from ..pipeline import Result, abstract
     from ..progressive import optimize
 
     if isinstance(repeats, bool) or not isinstance(repeats, int) or repeats < 1:
@@ -349,10 +359,12 @@ def sweep(
     def run(ex: Any, settings: dict[str, Any]) -> Run:
         if pipeline:
             r = abstract(load_example(ex.image if isinstance(ex, Run) else ex), kind=kind, progress=False, **settings)
-            return Run(Path(str(r.image.source)).stem, r.image, r.lines, r.graph, r.progression)
+            return Run(Path(str(r.image.source)).stem, r.image, r.lines, r.graph, r)
         shape = {k: settings.pop(k) for k in ("rdp_tolerance", "min_length") if k in settings}
         graph = build_segment_graph(ex.lines, **shape) if shape else ex.graph
-        return dataclasses.replace(ex, graph=graph, progression=optimize(graph, **settings))
+        return dataclasses.replace(
+            ex, graph=graph, result=Result(ex.image, ex.lines, graph, optimize(graph, **settings))
+        )
 
     if progress is None:
         from .runner import PROGRESS_ENV
@@ -436,7 +448,8 @@ def preprocessing_table(examples: Iterable[Run]) -> pd.DataFrame:
 
 def plot_preprocessing(examples: Sequence[Run], *, panel_size: float = 3.0) -> Any:
     """One row per example: input | feature lines | segment graph (paper Fig. 4a, 4b)."""
-    from ..plotting import panel_grid, plot_segment_graph, show_image
+    from ..plotting import plot_segment_graph
+    from .layout import panel_grid, show_image
 
     fig, axes = panel_grid(len(examples), 3, panel_size)
     for row, ex in zip(axes, examples, strict=False):

@@ -17,19 +17,11 @@ from ..arc_extraction import RedundantIntersection
 from ..constants import TOLERANCE
 from ..errors import InvalidParameterError
 from ..geometry import Abstraction, Arc
-from ..plotting import (
-    draw_arcs,
-    frame_image,
-    frame_window,
-    mark_window,
-    panel_grid,
-    plot_segment_graph,
-    ring,
-    square_window,
-)
+from ..plotting import frame_image, plot_segment_graph
 from ..quality import junction_gaps, level_redundant_intersections
 from ..segment_graph import SegmentGraph
 from . import Run, table
+from .layout import draw_arcs, frame_window, mark_window, panel_grid, ring, square_window
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -42,7 +34,7 @@ GAP_THRESHOLD: float = 0.5
 GAP_COLOR: str = "#2ca02c"
 #: Colour of the circles around redundant intersections: the red box of Fig. 6c, 12.
 INTERSECTION_COLOR: str = "#d62728"
-#: The frame of a zoomed window (:func:`img2logo.plotting.frame_window` keywords).
+#: The frame of a zoomed window (:func:`img2logo.experiments.layout.frame_window` keywords).
 WINDOW_FRAME: dict[str, Any] = {"color": "#555555", "linewidth": 0.8}
 
 #: The variants of Fig. 11 (b)-(e): a label and the switches of

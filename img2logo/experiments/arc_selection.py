@@ -17,11 +17,12 @@ import numpy as np
 from ..arc_extraction import ArcFit, admissible_arcs, extract_arc
 from ..errors import InvalidParameterError
 from ..geometry import Abstraction, Arc, Circle
-from ..plotting import draw_arcs, frame_image, frame_window, panel_grid
+from ..plotting import frame_image
 from ..progressive import Progression
 from ..segment_graph import SegmentGraph
 from . import Run, table
 from .ablations import WINDOW_FRAME, arc_chain
+from .layout import draw_arcs, frame_window, panel_grid
 
 if TYPE_CHECKING:
     import pandas as pd

@@ -20,9 +20,10 @@ import numpy as np
 from ..constants import PHI, TOLERANCE
 from ..errors import InvalidParameterError
 from ..geometry import Abstraction
-from ..plotting import frame_bounds, frame_window, panel_grid, plot_abstraction, plot_segment_graph
+from ..plotting import plot_abstraction, plot_segment_graph
 from ..quality import detail_error
 from . import Run, sweep, table
+from .layout import frame_bounds, frame_window, panel_grid
 
 if TYPE_CHECKING:
     import pandas as pd

@@ -21,8 +21,9 @@ import numpy as np
 from ..constants import RDP_TOLERANCE, TOLERANCE
 from ..errors import InvalidParameterError
 from ..geometry import Abstraction
-from ..plotting import frame_bounds, panel_grid, plot_abstraction
+from ..plotting import plot_abstraction
 from . import table
+from .layout import frame_bounds, panel_grid
 from .paths import data_path, example_images, kit_module, load_example
 from .results import final_level_index
 

@@ -11,7 +11,8 @@ import numpy as np
 from ..arrangement import faces
 from ..fills import Fill, fill_auto, fill_gradient, fill_palette
 from ..geometry import Abstraction
-from ..plotting import panel_grid, plot_abstraction, show_image
+from ..plotting import plot_abstraction
+from .layout import panel_grid, show_image
 
 #: A designer's palette for the palette panel (fills cycle through it, largest face first).
 DEFAULT_PALETTE = ("#264653", "#2a9d8f", "#e9c46a", "#f4a261", "#e76f51")

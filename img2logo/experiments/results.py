@@ -14,22 +14,19 @@ import numpy as np
 
 from ..errors import InvalidParameterError
 from ..geometry import Abstraction
-from ..plotting import (
-    GROUP_COLORS,
-    draw_segment_groups,
-    emptiest_corner,
-    frame_image,
-    frame_window,
-    panel_grid,
-    plot_abstraction,
-    plot_circles,
-    plot_segment_graph,
-    show_image,
-    square_window,
-)
+from ..plotting import frame_image, plot_abstraction, plot_circles, plot_segment_graph
 from ..progressive import Progression
 from ..quality import junction_gaps, logo_points
 from . import RUN_COLUMNS, Run, by_image, sweep, table
+from .layout import (
+    GROUP_COLORS,
+    draw_segment_groups,
+    emptiest_corner,
+    frame_window,
+    panel_grid,
+    show_image,
+    square_window,
+)
 
 if TYPE_CHECKING:
     import pandas as pd

@@ -97,7 +97,8 @@ def scripted_session(
 
 def plot_session(session: Session, *, panel_size: float = 3.2) -> Any:
     """The steps of a :class:`Session` side by side: each logo over the faded input, the lock mask in red."""
-    from ..plotting import panel_grid, plot_abstraction
+    from ..plotting import plot_abstraction
+    from .layout import panel_grid
 
     fig, axes = panel_grid(1, len(session.steps), panel_size, extra_height=0.5)
     for ax, (caption, a, mask) in zip(axes[0], session.steps, strict=True):

@@ -17,18 +17,10 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ..constants import TANGENT_JOIN_ANGLE
-from ..plotting import (
-    draw_arcs,
-    frame_image,
-    frame_window,
-    mark_window,
-    panel_grid,
-    plot_segment_graph,
-    ring,
-    square_window,
-)
+from ..plotting import frame_image, plot_segment_graph
 from ..quality import Joins, joins
 from . import Run, table
+from .layout import draw_arcs, frame_window, mark_window, panel_grid, ring, square_window
 
 if TYPE_CHECKING:
     import pandas as pd
