@@ -465,8 +465,10 @@ def redundant_intersections(
     Notes
     -----
     Pairs whose circles cannot meet or whose bounding boxes are disjoint are
-    discarded by a vectorized prefilter; only the rest get the exact test of
-    :func:`arc_intersections`.
+    discarded by a prefilter (:func:`arc_pairs_near`); only the rest get the
+    exact test of :func:`arc_intersections`. Both run compiled
+    (:func:`img2logo.kernels.redundant_kernel`, the same arithmetic as the
+    Python reference ``_redundant_reference``).
     """
     arcs = list(arcs)
     for i, arc in enumerate(arcs):
@@ -493,8 +495,21 @@ def redundant_intersections(
     if n < 2 or len(rows) == 0:
         return []
 
+    from . import kernels  # numba loads on the first check, not at import
+
+    ptr = np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)
+    pairs, points = kernels.redundant_kernel(
+        _arc_params(arcs), rows, junctions, ptr, flat.astype(np.int64), INTERSECTION_TOL, tol
+    )
+    return [RedundantIntersection(i, j, readonly(p.copy())) for (i, j), p in zip(pairs.tolist(), points, strict=True)]
+
+
+def _redundant_reference(
+    arcs: Sequence[Arc], junctions: np.ndarray, owned: Sequence[np.ndarray], rows: np.ndarray, tol: float
+) -> list[RedundantIntersection]:
+    """The test of :func:`redundant_intersections` in Python (the reference of its compiled kernel)."""
     out = []
-    for i, j in arc_pairs_near(arcs, rows, INTERSECTION_TOL):
+    for i, j in _arc_pairs_reference(arcs, rows, INTERSECTION_TOL):
         shared = junctions[np.intersect1d(owned[i], owned[j])]
         for p in _intersections(arcs[i], arcs[j], INTERSECTION_TOL):
             if len(shared) and np.min(np.hypot(*(shared - p).T)) <= tol:
@@ -503,12 +518,28 @@ def redundant_intersections(
     return out
 
 
+def _arc_params(arcs: Sequence[Arc]) -> np.ndarray:
+    """Arcs as rows (cx, cy, r, theta0, sweep), shape (n, 5)."""
+    return np.array(
+        [(a.circle.cx, a.circle.cy, a.circle.r, a.theta0, a.sweep) for a in arcs], dtype=np.float64
+    ).reshape(-1, 5)
+
+
 def arc_pairs_near(arcs: Sequence[Arc], rows: np.ndarray, tol: float) -> list[tuple[int, int]]:
     """Pairs (i, j), i < j, i or j in ``rows``, whose circles meet and bounding boxes overlap (within ``tol`` px).
 
     A cheap filter before :func:`arc_intersections`: only these pairs can meet.
+    Sorted by (i, j).
     """
-    params = np.array([(a.circle.cx, a.circle.cy, a.circle.r, a.theta0, a.sweep) for a in arcs])
+    from . import kernels
+
+    rows = np.unique(np.asarray(rows, dtype=np.int64))
+    return [(i, j) for i, j in kernels.arc_pairs_kernel(_arc_params(arcs), rows, float(tol)).tolist()]
+
+
+def _arc_pairs_reference(arcs: Sequence[Arc], rows: np.ndarray, tol: float) -> list[tuple[int, int]]:
+    """:func:`arc_pairs_near` in numpy (the reference of its compiled kernel)."""
+    params = _arc_params(arcs)
     centers, radii = params[:, :2], params[:, 2]
     boxes = _bounding_boxes(params)  # (n, 4): xmin, ymin, xmax, ymax
     n = len(arcs)

@@ -546,3 +546,184 @@ def sqp_dense(
         _tangency(centers, disp, junctions, tan_a, tan_b, tan_k, tan_s_all, t_all, tab)
         violation = max(violation, _max_abs(t_all))
     return iterations, converged, f, violation
+
+
+# --------------------------------------------------------------------------------
+# Arc-arc intersections (Sec. 5.2, Fig. 6, 12): arcs as rows (cx, cy, r, theta0, sweep)
+# --------------------------------------------------------------------------------
+
+TAU = 2.0 * math.pi
+FULL_CIRCLE_SLACK = 1e-9  # |sweep| >= 2 pi - this is a whole circle (geometry.Arc.is_full_circle)
+
+
+@_jit
+def _mod_tau(value):  # pragma: no cover - compiled
+    """``np.mod(value, 2 pi)``: the remainder with the sign of the divisor, as numpy computes it."""
+    return value % TAU  # numba's float % is CPython's: fmod, then + 2 pi when negative (numpy's npy_divmod)
+
+
+@_jit
+def _contains_angle(arc, theta, tol):  # pragma: no cover - compiled
+    """``Arc.contains_angle`` for one angle (radians), within ``tol`` radians."""
+    sweep = arc[4]
+    if abs(sweep) >= TAU - FULL_CIRCLE_SLACK:
+        return True
+    offset = _mod_tau((theta - arc[3]) * math.copysign(1.0, sweep))
+    return offset <= abs(sweep) + tol or offset >= TAU - tol
+
+
+@_jit
+def _on_arc(arc, x, y, tol):  # pragma: no cover - compiled
+    """Whether the point (x, y) of the arc's circle is within ``tol`` px of the arc's angle range."""
+    return _contains_angle(arc, math.atan2(y - arc[1], x - arc[0]), tol / arc[2])
+
+
+@_jit
+def arc_intersections_kernel(a, b, tol, out):  # pragma: no cover - compiled
+    """Points where two arcs meet (``arc_extraction.arc_intersections``): written to ``out`` (4, 2), count returned.
+
+    Circle-circle intersection, then the angle ranges; arcs of one circle (centres and
+    radii within ``tol``) meet at the end points of their overlap.
+    """
+    r1, r2 = a[2], b[2]
+    dx, dy = b[0] - a[0], b[1] - a[1]
+    d = math.hypot(dx, dy)
+    if d <= tol:
+        if abs(r1 - r2) > tol:
+            return 0
+        full_a = abs(a[4]) >= TAU - FULL_CIRCLE_SLACK
+        full_b = abs(b[4]) >= TAU - FULL_CIRCLE_SLACK
+        if full_a and full_b:
+            out[0, 0], out[0, 1] = a[0] + a[2] * math.cos(a[3]), a[1] + a[2] * math.sin(a[3])
+            return 1
+        k = 0
+        for side in range(2):
+            arc, other = (a, b) if side == 0 else (b, a)
+            if abs(arc[4]) >= TAU - FULL_CIRCLE_SLACK:
+                continue
+            for end in range(2):
+                t = arc[3] + (arc[4] if end else 0.0)
+                px, py = arc[0] + arc[2] * math.cos(t), arc[1] + arc[2] * math.sin(t)
+                if not _on_arc(other, px, py, tol):
+                    continue
+                new = True
+                for q in range(k):
+                    if math.hypot(px - out[q, 0], py - out[q, 1]) <= tol:
+                        new = False
+                if new:
+                    out[k, 0], out[k, 1] = px, py
+                    k += 1
+        return k
+    outside, inside = d - (r1 + r2), abs(r1 - r2) - d  # > 0: apart, one inside the other
+    if outside > tol or inside > tol:
+        return 0
+    x = (d * d + r1 * r1 - r2 * r2) / (2.0 * d)  # along the centre line, from a's centre
+    ux, uy = dx / d, dy / d
+    bx, by = a[0] + x * ux, a[1] + x * uy
+    n = 0
+    if abs(outside) <= tol or abs(inside) <= tol:  # tangent
+        out[0, 0], out[0, 1] = bx, by
+        n = 1
+    else:
+        # Half the chord, by a product of differences of the inputs (no cancellation).
+        h2 = -outside * (d + r1 - r2) * (d - r1 + r2) * (d + r1 + r2) / (4.0 * d * d)
+        h = math.sqrt(max(h2, 0.0))
+        out[0, 0], out[0, 1] = bx + h * -uy, by + h * ux
+        out[1, 0], out[1, 1] = bx - h * -uy, by - h * ux
+        n = 2
+    k = 0
+    for q in range(n):
+        px, py = out[q, 0], out[q, 1]
+        if _on_arc(a, px, py, tol) and _on_arc(b, px, py, tol):
+            out[k, 0], out[k, 1] = px, py
+            k += 1
+    return k
+
+
+@_jit
+def bounding_boxes(params):  # pragma: no cover - compiled
+    """Bounding boxes (n, 4) of arcs (n, 5): xmin, ymin, xmax, ymax, px.
+
+    The extremes of the end points and of the points at angles 0, pi/2, pi, 3 pi/2 on the arc.
+    """
+    n = params.shape[0]
+    out = np.empty((n, 4))
+    for i in range(n):
+        cx, cy, r, t0, sw = params[i, 0], params[i, 1], params[i, 2], params[i, 3], params[i, 4]
+        full = abs(sw) >= TAU - FULL_CIRCLE_SLACK
+        xmin, ymin, xmax, ymax = np.inf, np.inf, -np.inf, -np.inf
+        for u in range(6):
+            if u == 0:
+                ang = t0
+            elif u == 1:
+                ang = t0 + sw
+            else:
+                ang = (u - 2) * (math.pi / 2)
+                if not full and _mod_tau((ang - t0) * np.sign(sw)) > abs(sw):
+                    continue
+            x, y = cx + r * math.cos(ang), cy + r * math.sin(ang)
+            xmin, ymin, xmax, ymax = min(xmin, x), min(ymin, y), max(xmax, x), max(ymax, y)
+        out[i, 0], out[i, 1], out[i, 2], out[i, 3] = xmin, ymin, xmax, ymax
+    return out
+
+
+@_jit
+def arc_pairs_kernel(params, rows, tol):  # pragma: no cover - compiled
+    """Pairs (K, 2) i < j, i or j in ``rows`` (sorted, unique), whose circles meet and boxes overlap within ``tol``.
+
+    Sorted by (i, j) (``arc_extraction.arc_pairs_near``).
+    """
+    n = params.shape[0]
+    boxes = bounding_boxes(params)
+    in_rows = np.zeros(n, np.bool_)
+    for i in rows:
+        in_rows[i] = True
+    pairs = np.empty((n * len(rows), 2), np.int64)
+    k = 0
+    for i in range(n):
+        for j in range(i + 1, n):
+            if not (in_rows[i] or in_rows[j]):
+                continue
+            d = math.hypot(params[i, 0] - params[j, 0], params[i, 1] - params[j, 1])
+            ri, rj = params[i, 2], params[j, 2]
+            if not (d <= ri + rj + tol and d >= abs(ri - rj) - tol):
+                continue
+            bi, bj = boxes[i], boxes[j]
+            if bi[0] <= bj[2] + tol and bj[0] <= bi[2] + tol and bi[1] <= bj[3] + tol and bj[1] <= bi[3] + tol:
+                pairs[k, 0], pairs[k, 1] = i, j
+                k += 1
+    return pairs[:k]
+
+
+@_jit
+def redundant_kernel(params, rows, junctions, owned_ptr, owned_idx, inter_tol, tol):  # pragma: no cover - compiled
+    """Redundant intersections (``arc_extraction.redundant_intersections``): pairs (K, 2) and points (K, 2).
+
+    Of the pairs of :func:`arc_pairs_kernel`, every meeting point (within
+    ``inter_tol``) farther than ``tol`` px from all the junctions both arcs own
+    (arc i owns ``owned_idx[owned_ptr[i]:owned_ptr[i + 1]]``).
+    """
+    pairs = arc_pairs_kernel(params, rows, inter_tol)
+    out_pairs = np.empty((4 * pairs.shape[0], 2), np.int64)
+    out_pts = np.empty((4 * pairs.shape[0], 2))
+    pts = np.empty((4, 2))
+    k = 0
+    for q in range(pairs.shape[0]):
+        i, j = pairs[q, 0], pairs[q, 1]
+        n_pts = arc_intersections_kernel(params[i], params[j], inter_tol, pts)
+        for u in range(n_pts):
+            px, py = pts[u, 0], pts[u, 1]
+            near = False
+            for a in range(owned_ptr[i], owned_ptr[i + 1]):
+                ka = owned_idx[a]
+                shared = False
+                for b in range(owned_ptr[j], owned_ptr[j + 1]):
+                    if owned_idx[b] == ka:
+                        shared = True
+                if shared and math.hypot(junctions[ka, 0] - px, junctions[ka, 1] - py) <= tol:
+                    near = True
+            if not near:
+                out_pairs[k, 0], out_pairs[k, 1] = i, j
+                out_pts[k, 0], out_pts[k, 1] = px, py
+                k += 1
+    return out_pairs[:k], out_pts[:k]

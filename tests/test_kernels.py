@@ -10,8 +10,17 @@ import pytest
 from conftest import arc_through
 
 import img2logo.constrained_fit as cfit
-from img2logo.constants import CONSTRAINED_FIT_MAX_ITER, CONSTRAINED_FIT_TOL, PHI
+from img2logo.arc_extraction import (
+    _arc_pairs_reference,
+    _arc_params,
+    _redundant_reference,
+    arc_intersections,
+    arc_pairs_near,
+    redundant_intersections,
+)
+from img2logo.constants import CONSTRAINED_FIT_MAX_ITER, CONSTRAINED_FIT_TOL, INTERSECTION_TOL, PHI
 from img2logo.constrained_fit import fit_constrained
+from img2logo.geometry import TAU, Arc, Circle
 
 
 def _loop(n_arcs: int, seed: int, noise: float = 0.5, jitter: float = 2.0):
@@ -149,3 +158,72 @@ def test_large_systems_stay_on_the_sparse_reference(monkeypatch):
     monkeypatch.setattr(kernels, "sqp_dense", lambda *a: calls.append(a))
     fit = fit_constrained(*_loop(12, 5))
     assert fit.converged and not calls
+
+
+# --- Redundant intersections -----------------------------------------------------
+
+
+def _random_arcs(seed: int, n: int = 40):
+    """Random arcs in a 200 px square, with repeats of circles (overlaps), tangent circles and whole circles."""
+    rng = np.random.default_rng(seed)
+    arcs = []
+    for i in range(n):
+        if i >= 4 and i % 7 == 0:  # another arc of an earlier circle
+            circle = arcs[i - 3].circle
+        elif i >= 4 and i % 11 == 0:  # a circle tangent (outside) to an earlier one
+            c = arcs[i - 2].circle
+            r = float(rng.uniform(5, 60))
+            t = float(rng.uniform(-math.pi, math.pi))
+            circle = Circle(c.cx + (c.r + r) * math.cos(t), c.cy + (c.r + r) * math.sin(t), r)
+        else:
+            circle = Circle(*rng.uniform(0, 200, 2), float(rng.uniform(5, 80)))
+        sweep = TAU if i % 13 == 5 else float(rng.uniform(0.2, 6.0)) * (1 if rng.random() < 0.5 else -1)
+        arcs.append(Arc(circle, float(rng.uniform(-math.pi, math.pi)), sweep))
+    junctions = rng.uniform(0, 200, (30, 2))
+    owned = [rng.choice(30, size=int(rng.integers(0, 4)), replace=False) for _ in range(n)]
+    # Some junctions on both arcs of a meeting pair, exactly where they meet.
+    for i, j in _arc_pairs_reference(arcs, np.arange(n), INTERSECTION_TOL)[::3]:
+        pts = arc_intersections(arcs[i], arcs[j])
+        if len(pts):
+            k = len(junctions)
+            junctions = np.vstack([junctions, pts[:1]])
+            owned[i], owned[j] = np.append(owned[i], k), np.append(owned[j], k)
+    return arcs, junctions, [list(map(int, o)) for o in owned]
+
+
+@pytest.mark.parametrize("seed", range(5))
+def test_arc_pairs_near_matches_the_reference(seed):
+    arcs, _, _ = _random_arcs(seed)
+    for rows in (np.arange(len(arcs)), np.array([0, 5, 7]), np.array([len(arcs) - 1])):
+        assert arc_pairs_near(arcs, rows, INTERSECTION_TOL) == _arc_pairs_reference(arcs, rows, INTERSECTION_TOL)
+
+
+@pytest.mark.parametrize("seed", range(5))
+def test_redundant_intersections_match_the_reference(seed):
+    arcs, junctions, owned = _random_arcs(seed)
+    for candidates in (None, [3, 14, 21]):
+        rows = np.arange(len(arcs)) if candidates is None else np.array(candidates)
+        got = redundant_intersections(arcs, junctions, owned, candidates=candidates)
+        want = _redundant_reference(arcs, junctions, [np.array(o, dtype=np.int64) for o in owned], rows, 1.0)
+        assert [(r.arc_a, r.arc_b) for r in got] == [(r.arc_a, r.arc_b) for r in want]
+        assert len(got) > 0
+        for r, w in zip(got, want, strict=True):
+            assert r.point == pytest.approx(w.point, abs=1e-9)
+            assert not r.point.flags.writeable
+
+
+def test_intersection_kernel_matches_arc_intersections():
+    import img2logo.kernels as kernels
+
+    arcs, _, _ = _random_arcs(9, 60)
+    out = np.empty((4, 2))
+    pairs = 0
+    for i in range(len(arcs)):
+        for j in range(len(arcs)):
+            want = arc_intersections(arcs[i], arcs[j])
+            k = kernels.arc_intersections_kernel(
+                _arc_params([arcs[i]])[0], _arc_params([arcs[j]])[0], INTERSECTION_TOL, out
+            )
+            assert out[:k] == pytest.approx(want, abs=1e-9), (i, j)
+            pairs += k > 0
+    assert pairs > 100
