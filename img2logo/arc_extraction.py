@@ -30,7 +30,6 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
-from functools import lru_cache
 from typing import Literal
 
 import numpy as np
@@ -98,50 +97,15 @@ def _frechet(p: np.ndarray, q: np.ndarray, bound: float = math.inf) -> float:
     return float(kernel(np.ascontiguousarray(p, dtype=np.float64), np.ascontiguousarray(q, dtype=np.float64), bound))
 
 
-@lru_cache(maxsize=1)
 def _frechet_kernel():
-    """The compiled dynamic program of [EM94], built on first use.
+    """The compiled dynamic program of [EM94] (:func:`img2logo.kernels.frechet`).
 
-    numba is imported here, not at module import, so that the command line
-    starts fast; the compiled code is cached on disk (``cache=True``), so only
-    the first run on a machine pays for compiling.
-
-    The coupling table c[i, j] = max(|p_i - q_j|^2, min(c[i-1, j], c[i-1, j-1],
-    c[i, j-1])) is filled row by row keeping one row; squared distances give the
-    same coupling (the square root is monotone). Every coupling crosses every
-    row, so a row whose smallest entry is >= bound^2 ends the computation.
+    numba is imported here, on first use, not at module import, so that the
+    command line starts fast; the compiled code is cached on disk.
     """
-    from numba import njit
+    from . import kernels
 
-    @njit(cache=True, nogil=True)
-    def kernel(p, q, bound):  # pragma: no cover - compiled
-        n, m = p.shape[0], q.shape[0]
-        bound2 = bound * bound
-        row = np.empty(m)
-        acc = -1.0
-        for j in range(m):
-            dx, dy = p[0, 0] - q[j, 0], p[0, 1] - q[j, 1]
-            acc = max(acc, dx * dx + dy * dy)
-            row[j] = acc
-        if n > 1 and row.min() >= bound2:
-            return math.inf
-        for i in range(1, n):
-            dx, dy = p[i, 0] - q[0, 0], p[i, 1] - q[0, 1]
-            diag = row[0]
-            row[0] = max(row[0], dx * dx + dy * dy)
-            low = row[0]
-            for j in range(1, m):
-                dx, dy = p[i, 0] - q[j, 0], p[i, 1] - q[j, 1]
-                up = row[j]
-                best = min(up, diag, row[j - 1])
-                row[j] = max(best, dx * dx + dy * dy)
-                diag = up
-                low = min(low, row[j])
-            if i < n - 1 and low >= bound2:
-                return math.inf
-        return math.sqrt(row[m - 1])
-
-    return kernel
+    return kernels.frechet
 
 
 # --------------------------------------------------------------------------- arc extraction
@@ -225,11 +189,33 @@ def extract_arc(
             f"junction point {worst} is {off[worst]:.3g} px off the circle (tolerance {JUNCTION_TOLERANCE} px)"
         )
 
-    kept, cap = admissible_arcs(circle, seg, junctions)
-
     if method == "sum_of_squares":
+        kept, cap = admissible_arcs(circle, seg, junctions)
         chosen = min(kept, key=lambda a: float(np.sum(nearest_on_arc(a, seg)[0] ** 2)))
-        kept = [chosen]
+        return _best_by_frechet([chosen], seg, cap)
+    from . import kernels  # numba loads on the first extraction, not at import
+
+    found, theta0, sweep, reverse, frechet = kernels.extract_arc_kernel(
+        circle.cx,
+        circle.cy,
+        circle.r,
+        seg,
+        junctions,
+        circle.angle_of(junctions),
+        JUNCTION_TOLERANCE,
+        ARC_CANDIDATE_LENGTH_RATIO,
+        ARC_CANDIDATE_LENGTH_SLACK,
+        FRECHET_SAMPLE_STEP,
+    )
+    if not found:  # cannot happen with two distinct points on the circle
+        raise FitError("no candidate arc passes through all the junction points")
+    arc = Arc(circle, float(theta0), float(sweep))
+    return ArcFit(_reversed(arc) if reverse else arc, float(frechet))
+
+
+def _extract_reference(circle: Circle, seg: np.ndarray, junctions: np.ndarray) -> ArcFit:
+    """:func:`extract_arc` (method "frechet") in Python, the reference of its compiled kernel."""
+    kept, cap = admissible_arcs(circle, seg, junctions)
     return _best_by_frechet(kept, seg, cap)
 
 

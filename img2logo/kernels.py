@@ -727,3 +727,145 @@ def redundant_kernel(params, rows, junctions, owned_ptr, owned_idx, inter_tol, t
                 out_pts[k, 0], out_pts[k, 1] = px, py
                 k += 1
     return out_pairs[:k], out_pts[:k]
+
+
+# --------------------------------------------------------------------------------
+# Arc extraction (Sec. 5.3, Fig. 9): the discrete Fréchet distance and the candidates
+# --------------------------------------------------------------------------------
+
+
+@_jit
+def frechet(p, q, bound):  # pragma: no cover - compiled
+    """Exact discrete Fréchet distance [EM94] of (N, 2) and (M, 2) polylines; ``inf`` once known >= ``bound``.
+
+    The coupling table c[i, j] = max(|p_i - q_j|^2, min(c[i-1, j], c[i-1, j-1],
+    c[i, j-1])) is filled row by row keeping one row; squared distances give the
+    same coupling (the square root is monotone). Every coupling crosses every
+    row, so a row whose smallest entry is >= bound^2 ends the computation.
+    """
+    n, m = p.shape[0], q.shape[0]
+    bound2 = bound * bound
+    row = np.empty(m)
+    acc = -1.0
+    for j in range(m):
+        dx, dy = p[0, 0] - q[j, 0], p[0, 1] - q[j, 1]
+        acc = max(acc, dx * dx + dy * dy)
+        row[j] = acc
+    if n > 1 and row.min() >= bound2:
+        return math.inf
+    for i in range(1, n):
+        dx, dy = p[i, 0] - q[0, 0], p[i, 1] - q[0, 1]
+        diag = row[0]
+        row[0] = max(row[0], dx * dx + dy * dy)
+        low = row[0]
+        for j in range(1, m):
+            dx, dy = p[i, 0] - q[j, 0], p[i, 1] - q[j, 1]
+            up = row[j]
+            best = min(up, diag, row[j - 1])
+            row[j] = max(best, dx * dx + dy * dy)
+            diag = up
+            low = min(low, row[j])
+        if i < n - 1 and low >= bound2:
+            return math.inf
+    return math.sqrt(row[m - 1])
+
+
+@_jit
+def _arc_samples(cx, cy, r, theta0, sweep, step, reverse):  # pragma: no cover - compiled
+    """``Arc.sample(step)`` (ends included, at least 2 points), walked backwards if ``reverse``."""
+    n = max(2, math.ceil(abs(sweep) * r / step) + 1)
+    out = np.empty((n, 2))
+    dt = 1.0 / (n - 1)
+    for i in range(n):
+        t = i * dt if i < n - 1 else 1.0  # np.linspace(0, 1, n)
+        theta = theta0 + sweep * t
+        k = n - 1 - i if reverse else i
+        out[k, 0], out[k, 1] = cx + r * math.cos(theta), cy + r * math.sin(theta)
+    return out
+
+
+@_jit
+def extract_arc_kernel(cx, cy, r, seg, junctions, theta, junction_tol, ratio, slack, step):  # pragma: no cover
+    """The arc of ``arc_extraction.extract_arc`` (method "frechet") on arrays.
+
+    Candidates between every two junctions (m, 2), at polar angles ``theta`` (m,)
+    (numpy's ``arctan2``, which rounds unlike libm's), both ways round that contain
+    all of them, those no longer than ``ratio`` x the chain's length + ``slack``
+    px (else the shortest), both orientations, tried by increasing lower bound
+    with the Fréchet computation cut at the best so far.
+
+    Returns
+    -------
+    (found, theta0, sweep, reverse, frechet)
+        The chosen candidate (theta0, sweep) and whether it is walked the other
+        way; ``found`` is False when no candidate passes through all the junctions.
+    """
+    m = junctions.shape[0]
+    tol = junction_tol / r  # radians
+    cand = np.empty((max(1, m * (m - 1)), 2))
+    n_cand = 0
+    if math.hypot(junctions[0, 0] - junctions[m - 1, 0], junctions[0, 1] - junctions[m - 1, 1]) <= junction_tol:
+        cand[0, 0], cand[0, 1] = theta[0], TAU  # a closed loop: the whole circle from the loop's node
+        n_cand = 1
+    else:
+        arc = np.empty(5)
+        arc[0], arc[1], arc[2] = cx, cy, r
+        for a in range(m):
+            for b in range(a + 1, m):
+                sweep = _mod_tau(theta[b] - theta[a])
+                if sweep <= tol or sweep >= TAU - tol:  # coincident junctions bound no arc
+                    continue
+                for side in range(2):
+                    arc[3], arc[4] = theta[a], sweep if side == 0 else sweep - TAU
+                    ok = True
+                    for u in range(m):
+                        if not _contains_angle(arc, theta[u], tol):
+                            ok = False
+                            break
+                    if ok:
+                        cand[n_cand, 0], cand[n_cand, 1] = arc[3], arc[4]
+                        n_cand += 1
+    if n_cand == 0:
+        return False, 0.0, 0.0, False, math.inf
+    seg_length = 0.0
+    for i in range(seg.shape[0] - 1):
+        seg_length += math.hypot(seg[i + 1, 0] - seg[i, 0], seg[i + 1, 1] - seg[i, 1])
+    cap = ratio * seg_length + slack
+    kept = np.empty(n_cand, np.int64)
+    n_kept = 0
+    shortest = 0
+    for c in range(n_cand):
+        length = abs(cand[c, 1]) * r
+        if length <= cap:
+            kept[n_kept] = c
+            n_kept += 1
+        if length < abs(cand[shortest, 1]) * r:
+            shortest = c
+    if n_kept == 0:
+        kept[0] = shortest
+        n_kept = 1
+    # Both orientations of each kept arc, by increasing lower bound (the coupled end points' distance).
+    n_opt = 2 * n_kept
+    lower = np.empty(n_opt)
+    last = seg.shape[0] - 1
+    for o in range(n_opt):
+        c = kept[o // 2]
+        t0, sw = cand[c, 0], cand[c, 1]
+        sx, sy = cx + r * math.cos(t0 + sw * 0.0), cy + r * math.sin(t0 + sw * 0.0)
+        ex, ey = cx + r * math.cos(t0 + sw * 1.0), cy + r * math.sin(t0 + sw * 1.0)
+        if o % 2:
+            sx, sy, ex, ey = ex, ey, sx, sy
+        lower[o] = max(math.hypot(seg[0, 0] - sx, seg[0, 1] - sy), math.hypot(seg[last, 0] - ex, seg[last, 1] - ey))
+    order = np.argsort(lower, kind="mergesort")  # stable: ties keep the candidates' order
+    best, best_opt = math.inf, order[0]
+    for o in order:
+        if lower[o] >= best:
+            break
+        c = kept[o // 2]
+        length = abs(cand[c, 1]) * r
+        pts = _arc_samples(cx, cy, r, cand[c, 0], cand[c, 1], step * max(1.0, length / cap), o % 2 == 1)
+        value = frechet(seg, pts, best)
+        if value < best:
+            best, best_opt = value, o
+    c = kept[best_opt // 2]
+    return True, cand[c, 0], cand[c, 1], best_opt % 2 == 1, best

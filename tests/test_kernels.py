@@ -13,9 +13,11 @@ import img2logo.constrained_fit as cfit
 from img2logo.arc_extraction import (
     _arc_pairs_reference,
     _arc_params,
+    _extract_reference,
     _redundant_reference,
     arc_intersections,
     arc_pairs_near,
+    extract_arc,
     redundant_intersections,
 )
 from img2logo.constants import CONSTRAINED_FIT_MAX_ITER, CONSTRAINED_FIT_TOL, INTERSECTION_TOL, PHI
@@ -227,3 +229,35 @@ def test_intersection_kernel_matches_arc_intersections():
             assert out[:k] == pytest.approx(want, abs=1e-9), (i, j)
             pairs += k > 0
     assert pairs > 100
+
+
+# --- Arc extraction --------------------------------------------------------------
+
+
+@pytest.mark.parametrize("seed", range(8))
+def test_extract_arc_matches_the_reference(seed):
+    # A noisy pixel chain along an arc of a circle, its junctions on the circle (2 to 4, a closed loop for seed 0).
+    rng = np.random.default_rng(seed)
+    for _ in range(20):
+        circle = Circle(*rng.uniform(50, 250, 2), float(PHI ** rng.uniform(2, 14)))
+        t0, sweep = rng.uniform(-math.pi, math.pi), rng.uniform(0.1, 2 * math.pi) * rng.choice([-1, 1])
+        if seed == 0:
+            sweep = TAU
+        t = t0 + sweep * np.linspace(0.0, 1.0, int(rng.integers(3, 200)))
+        seg = circle.point_at(t) + rng.normal(0.0, rng.uniform(0.0, 2.0), (len(t), 2))
+        inner = np.sort(rng.uniform(0.0, 1.0, int(rng.integers(0, 3))))
+        junctions = circle.point_at(t0 + sweep * np.concatenate([[0.0], inner, [1.0]]))
+        got = extract_arc(circle, seg, junctions)
+        want = _extract_reference(circle, seg, junctions)
+        assert (got.arc.theta0, got.arc.sweep, got.frechet) == (want.arc.theta0, want.arc.sweep, want.frechet)
+
+
+def test_extract_arc_when_every_candidate_is_too_long_matches_the_reference():
+    # A 1 px chain between junctions a quarter circle apart: both candidates exceed the cap
+    # (3 x 1 + 10 px), the shortest is kept and sampled as if it were cap long.
+    circle = Circle(0.0, 0.0, 100.0)
+    seg = np.array([[100.0, 0.0], [100.0, 1.0]])
+    junctions = circle.point_at(np.array([0.0, math.pi / 2]))
+    got, want = extract_arc(circle, seg, junctions), _extract_reference(circle, seg, junctions)
+    assert (got.arc.theta0, got.arc.sweep, got.frechet) == (want.arc.theta0, want.arc.sweep, want.frechet)
+    assert got.arc.sweep == pytest.approx(math.pi / 2)
