@@ -195,6 +195,8 @@ def extract_arc(
         return _best_by_frechet([chosen], seg, cap)
     from . import kernels  # numba loads on the first extraction, not at import
 
+    if not kernels.usable():
+        return _extract_reference(circle, seg, junctions)
     found, theta0, sweep, reverse, frechet = kernels.extract_arc_kernel(
         circle.cx,
         circle.cy,
@@ -483,6 +485,8 @@ def redundant_intersections(
 
     from . import kernels  # numba loads on the first check, not at import
 
+    if not kernels.usable():
+        return _redundant_reference(arcs, junctions, owned, rows, tol)
     ptr = np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)
     pairs, points = kernels.redundant_kernel(
         _arc_params(arcs), rows, junctions, ptr, flat.astype(np.int64), INTERSECTION_TOL, tol
@@ -520,6 +524,8 @@ def arc_pairs_near(arcs: Sequence[Arc], rows: np.ndarray, tol: float) -> list[tu
     from . import kernels
 
     rows = np.unique(np.asarray(rows, dtype=np.int64))
+    if not kernels.usable():
+        return _arc_pairs_reference(arcs, rows, tol)
     return [(i, j) for i, j in kernels.arc_pairs_kernel(_arc_params(arcs), rows, float(tol)).tolist()]
 
 

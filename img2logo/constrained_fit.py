@@ -663,12 +663,14 @@ def _fit(
     window) is solved by the compiled kernel :func:`img2logo.kernels.sqp_dense`,
     the same method step for step; larger ones (a global solve) by the Python
     reference :func:`_fit_reference` with a sparse LU. ``compiled=False`` always
-    runs the reference (the tests compare the two).
+    runs the reference (the tests compare the two), as does an install where
+    numba cannot cache the kernel (:data:`img2logo.kernels.CACHED`).
     """
-    n_c, n_j = len(radii), len(junctions)
-    if compiled and _kkt_size(n_c, n_j, incidence, free_c, free_j, connectivity, tangents) <= KKT_DENSE_MAX:
-        from . import kernels  # numba loads on the first fit, not at import
+    from . import kernels  # numba loads on the first fit, not at import
 
+    n_c, n_j = len(radii), len(junctions)
+    size = _kkt_size(n_c, n_j, incidence, free_c, free_j, connectivity, tangents)
+    if compiled and kernels.usable() and size <= KKT_DENSE_MAX:
         centers, disp = np.array(centers, dtype=np.float64), np.array(disp, dtype=np.float64)
         held_mask = np.zeros(2 * (len(free_c) + len(free_j)), dtype=bool)
         held_mask[np.asarray(held, dtype=np.intp)] = True

@@ -12,10 +12,11 @@ documents the method, kept beside its public function) in compiled loops:
 
 This module imports numba, so it is imported by its callers only when a fit runs
 (``import img2logo`` and ``img2logo --version`` load no numba). Every kernel is
-compiled on first use and cached on disk by numba (``cache=True``), next to
-this file or, when that is read-only, in numba's user cache directory; where no
-cache can be written at all the kernels are compiled in memory each run, with
-the same results.
+compiled on first use (once per install: seconds) and cached on disk by numba
+(``cache=True``), next to this file or, when that is read-only, in numba's user
+cache directory; a later process loads it from there. Where no cache can be
+written at all (:data:`CACHED` False) the callers run their Python reference
+instead of compiling in every process.
 
 Coordinates follow :mod:`img2logo.geometry`: px, x right, y down.
 """
@@ -27,13 +28,26 @@ import math
 import numpy as np
 from numba import njit
 
+#: Whether numba can cache the kernels on disk. When it cannot (a read-only
+#: install and no writable user cache directory), every process would compile
+#: them again (seconds, more than the whole run): the callers then take their
+#: Python reference path instead, with the same results to the solver's tolerance.
+CACHED = True
+
 
 def _jit(fn):
-    """``numba.njit(cache=True)``, or uncached where no cache directory can be written (a read-only install)."""
+    """``numba.njit(cache=True)``, or uncached (and ``CACHED`` False) where no cache directory can be written."""
+    global CACHED
     try:
         return njit(cache=True, nogil=True)(fn)
-    except RuntimeError:  # numba: "cannot cache function ...: no locator available"
+    except RuntimeError:  # numba: "cannot cache function ...: no locator available for file ..."
+        CACHED = False
         return njit(cache=False, nogil=True)(fn)
+
+
+def usable() -> bool:
+    """Whether the compiled kernels should be used: they load from numba's disk cache."""
+    return CACHED
 
 
 # --------------------------------------------------------------------------------
@@ -208,10 +222,10 @@ def sqp_dense(
     n_c, n_j = radii.shape[0], junctions.shape[0]
     nc, nj = free_c.shape[0], free_j.shape[0]
     n = 2 * (nc + nj)
-    pos_c = np.full(n_c, -1, np.int64)
+    pos_c = -np.ones(n_c, np.int64)
     for i in range(nc):
         pos_c[free_c[i]] = i
-    pos_j = np.full(n_j, -1, np.int64)
+    pos_j = -np.ones(n_j, np.int64)
     for j in range(nj):
         pos_j[free_j[j]] = j
     # Points of free circles vary; those of fixed circles add a constant.
@@ -242,7 +256,9 @@ def sqp_dense(
     f_const = f_fixed + wj * d_fixed
     # Incidences: all are evaluated; those with a free variable are constraints.
     m_all = incidence.shape[0]
-    inc_i, inc_k = incidence[:, 0].copy(), incidence[:, 1].copy()
+    inc_i, inc_k = np.empty(m_all, np.int64), np.empty(m_all, np.int64)
+    for r in range(m_all):
+        inc_i[r], inc_k[r] = incidence[r, 0], incidence[r, 1]
     inc_p, inc_r = np.empty((m_all, 2)), np.empty(m_all)
     active = np.zeros(m_all, np.bool_)
     m_inc = 0
@@ -260,7 +276,9 @@ def sqp_dense(
             q += 1
     # Tangencies (a, b, k): all evaluated; those with a free variable are constraints, after the incidences.
     t_n = tangents.shape[0]
-    tan_a, tan_b, tan_k = tangents[:, 0].copy(), tangents[:, 1].copy(), tangents[:, 2].copy()
+    tan_a, tan_b, tan_k = np.empty(t_n, np.int64), np.empty(t_n, np.int64), np.empty(t_n, np.int64)
+    for t in range(t_n):
+        tan_a[t], tan_b[t], tan_k[t] = tangents[t, 0], tangents[t, 1], tangents[t, 2]
     tan_active = np.zeros(t_n, np.bool_)
     m_tan = 0
     for t in range(t_n):
@@ -314,9 +332,9 @@ def sqp_dense(
     while True:
         # --- linearize: E^l, its gradient, the active constraints, the violation
         f = _objective(centers, disp, free_j, px, py, pt_circle, r_pts, w_pts, f_const, wj, e, vx, vy, dist)
-        g[:] = 0.0
-        gn[:] = 0.0
-        hq[:] = 0.0
+        g.fill(0.0)
+        gn.fill(0.0)
+        hq.fill(0.0)
         for p in range(n_pts):
             safe = dist[p] if dist[p] > 0 else 1.0
             ux = vx[p] / safe if dist[p] > 0 else 1.0
@@ -389,7 +407,7 @@ def sqp_dense(
             newton = attempt == 0 and have_lam
             if attempt == 0 and not have_lam:
                 continue
-            mat[:, :] = 0.0
+            mat.fill(0.0)
             for b in range(nc + nj):
                 h0 = gn[b, 0] + damping * scale
                 h1, h2 = gn[b, 1], gn[b, 2]
@@ -466,7 +484,7 @@ def sqp_dense(
             if not ok:
                 found = False
                 continue
-            sol[:] = 0.0
+            sol.fill(0.0)
             for a in range(n_keep):
                 sol[keep[a]] = rhs[a]
             gdx, lc, ll = 0.0, 0.0, 0.0
@@ -856,7 +874,16 @@ def extract_arc_kernel(cx, cy, r, seg, junctions, theta, junction_tol, ratio, sl
         if o % 2:
             sx, sy, ex, ey = ex, ey, sx, sy
         lower[o] = max(math.hypot(seg[0, 0] - sx, seg[0, 1] - sy), math.hypot(seg[last, 0] - ex, seg[last, 1] - ey))
-    order = np.argsort(lower, kind="mergesort")  # stable: ties keep the candidates' order
+    # A stable insertion sort (ties keep the candidates' order): a few options, and
+    # numba's np.argsort costs seconds of compilation.
+    order = np.arange(n_opt)
+    for o in range(1, n_opt):
+        v = order[o]
+        u = o - 1
+        while u >= 0 and lower[order[u]] > lower[v]:
+            order[u + 1] = order[u]
+            u -= 1
+        order[u + 1] = v
     best, best_opt = math.inf, order[0]
     for o in order:
         if lower[o] >= best:

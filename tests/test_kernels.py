@@ -261,3 +261,26 @@ def test_extract_arc_when_every_candidate_is_too_long_matches_the_reference():
     got, want = extract_arc(circle, seg, junctions), _extract_reference(circle, seg, junctions)
     assert (got.arc.theta0, got.arc.sweep, got.frechet) == (want.arc.theta0, want.arc.sweep, want.frechet)
     assert got.arc.sweep == pytest.approx(math.pi / 2)
+
+
+def test_without_a_disk_cache_the_python_reference_runs(monkeypatch):
+    # A read-only install (numba cannot cache): no kernel is called, the results are the reference's.
+    import img2logo.kernels as kernels
+
+    def refuse(*args):
+        raise AssertionError("a kernel ran without a disk cache")
+
+    monkeypatch.setattr(kernels, "CACHED", False)
+    for name in ("sqp_dense", "extract_arc_kernel", "redundant_kernel", "arc_pairs_kernel"):
+        monkeypatch.setattr(kernels, name, refuse)
+    sets, radii, start, junctions, incidence = _loop(4, 21)
+    fit = fit_constrained(sets, radii, start, junctions, incidence)
+    assert fit.converged
+    arcs, junction_points, owned = _random_arcs(2)
+    assert redundant_intersections(arcs, junction_points, owned)
+    assert arc_pairs_near(arcs, np.arange(3), INTERSECTION_TOL) == _arc_pairs_reference(
+        arcs, np.arange(3), INTERSECTION_TOL
+    )
+    circle = Circle(0.0, 0.0, 100.0)
+    got = extract_arc(circle, circle.point_at(np.linspace(0.0, 1.0, 50)), circle.point_at(np.array([0.0, 1.0])))
+    assert got.arc.sweep == pytest.approx(1.0)
