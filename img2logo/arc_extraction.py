@@ -30,7 +30,6 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
-from functools import lru_cache
 from typing import Literal
 
 import numpy as np
@@ -98,50 +97,15 @@ def _frechet(p: np.ndarray, q: np.ndarray, bound: float = math.inf) -> float:
     return float(kernel(np.ascontiguousarray(p, dtype=np.float64), np.ascontiguousarray(q, dtype=np.float64), bound))
 
 
-@lru_cache(maxsize=1)
 def _frechet_kernel():
-    """The compiled dynamic program of [EM94], built on first use.
+    """The compiled dynamic program of [EM94] (:func:`img2logo.kernels.frechet`).
 
-    numba is imported here, not at module import, so that the command line
-    starts fast; the compiled code is cached on disk (``cache=True``), so only
-    the first run on a machine pays for compiling.
-
-    The coupling table c[i, j] = max(|p_i - q_j|^2, min(c[i-1, j], c[i-1, j-1],
-    c[i, j-1])) is filled row by row keeping one row; squared distances give the
-    same coupling (the square root is monotone). Every coupling crosses every
-    row, so a row whose smallest entry is >= bound^2 ends the computation.
+    numba is imported here, on first use, not at module import, so that the
+    command line starts fast; the compiled code is cached on disk.
     """
-    from numba import njit
+    from . import kernels
 
-    @njit(cache=True, nogil=True)
-    def kernel(p, q, bound):  # pragma: no cover - compiled
-        n, m = p.shape[0], q.shape[0]
-        bound2 = bound * bound
-        row = np.empty(m)
-        acc = -1.0
-        for j in range(m):
-            dx, dy = p[0, 0] - q[j, 0], p[0, 1] - q[j, 1]
-            acc = max(acc, dx * dx + dy * dy)
-            row[j] = acc
-        if n > 1 and row.min() >= bound2:
-            return math.inf
-        for i in range(1, n):
-            dx, dy = p[i, 0] - q[0, 0], p[i, 1] - q[0, 1]
-            diag = row[0]
-            row[0] = max(row[0], dx * dx + dy * dy)
-            low = row[0]
-            for j in range(1, m):
-                dx, dy = p[i, 0] - q[j, 0], p[i, 1] - q[j, 1]
-                up = row[j]
-                best = min(up, diag, row[j - 1])
-                row[j] = max(best, dx * dx + dy * dy)
-                diag = up
-                low = min(low, row[j])
-            if i < n - 1 and low >= bound2:
-                return math.inf
-        return math.sqrt(row[m - 1])
-
-    return kernel
+    return kernels.frechet
 
 
 # --------------------------------------------------------------------------- arc extraction
@@ -225,11 +189,35 @@ def extract_arc(
             f"junction point {worst} is {off[worst]:.3g} px off the circle (tolerance {JUNCTION_TOLERANCE} px)"
         )
 
-    kept, cap = admissible_arcs(circle, seg, junctions)
-
     if method == "sum_of_squares":
+        kept, cap = admissible_arcs(circle, seg, junctions)
         chosen = min(kept, key=lambda a: float(np.sum(nearest_on_arc(a, seg)[0] ** 2)))
-        kept = [chosen]
+        return _best_by_frechet([chosen], seg, cap)
+    from . import kernels  # numba loads on the first extraction, not at import
+
+    if not kernels.usable():
+        return _extract_reference(circle, seg, junctions)
+    found, theta0, sweep, reverse, frechet = kernels.extract_arc_kernel(
+        circle.cx,
+        circle.cy,
+        circle.r,
+        seg,
+        junctions,
+        circle.angle_of(junctions),
+        JUNCTION_TOLERANCE,
+        ARC_CANDIDATE_LENGTH_RATIO,
+        ARC_CANDIDATE_LENGTH_SLACK,
+        FRECHET_SAMPLE_STEP,
+    )
+    if not found:  # cannot happen with two distinct points on the circle
+        raise FitError("no candidate arc passes through all the junction points")
+    arc = Arc(circle, float(theta0), float(sweep))
+    return ArcFit(_reversed(arc) if reverse else arc, float(frechet))
+
+
+def _extract_reference(circle: Circle, seg: np.ndarray, junctions: np.ndarray) -> ArcFit:
+    """:func:`extract_arc` (method "frechet") in Python, the reference of its compiled kernel."""
+    kept, cap = admissible_arcs(circle, seg, junctions)
     return _best_by_frechet(kept, seg, cap)
 
 
@@ -465,8 +453,10 @@ def redundant_intersections(
     Notes
     -----
     Pairs whose circles cannot meet or whose bounding boxes are disjoint are
-    discarded by a vectorized prefilter; only the rest get the exact test of
-    :func:`arc_intersections`.
+    discarded by a prefilter (:func:`arc_pairs_near`); only the rest get the
+    exact test of :func:`arc_intersections`. Both run compiled
+    (:func:`img2logo.kernels.redundant_kernel`, the same arithmetic as the
+    Python reference ``_redundant_reference``).
     """
     arcs = list(arcs)
     for i, arc in enumerate(arcs):
@@ -493,8 +483,23 @@ def redundant_intersections(
     if n < 2 or len(rows) == 0:
         return []
 
+    from . import kernels  # numba loads on the first check, not at import
+
+    if not kernels.usable():
+        return _redundant_reference(arcs, junctions, owned, rows, tol)
+    ptr = np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)
+    pairs, points = kernels.redundant_kernel(
+        _arc_params(arcs), rows, junctions, ptr, flat.astype(np.int64), INTERSECTION_TOL, tol
+    )
+    return [RedundantIntersection(i, j, readonly(p.copy())) for (i, j), p in zip(pairs.tolist(), points, strict=True)]
+
+
+def _redundant_reference(
+    arcs: Sequence[Arc], junctions: np.ndarray, owned: Sequence[np.ndarray], rows: np.ndarray, tol: float
+) -> list[RedundantIntersection]:
+    """The test of :func:`redundant_intersections` in Python (the reference of its compiled kernel)."""
     out = []
-    for i, j in arc_pairs_near(arcs, rows, INTERSECTION_TOL):
+    for i, j in _arc_pairs_reference(arcs, rows, INTERSECTION_TOL):
         shared = junctions[np.intersect1d(owned[i], owned[j])]
         for p in _intersections(arcs[i], arcs[j], INTERSECTION_TOL):
             if len(shared) and np.min(np.hypot(*(shared - p).T)) <= tol:
@@ -503,12 +508,30 @@ def redundant_intersections(
     return out
 
 
+def _arc_params(arcs: Sequence[Arc]) -> np.ndarray:
+    """Arcs as rows (cx, cy, r, theta0, sweep), shape (n, 5)."""
+    return np.array(
+        [(a.circle.cx, a.circle.cy, a.circle.r, a.theta0, a.sweep) for a in arcs], dtype=np.float64
+    ).reshape(-1, 5)
+
+
 def arc_pairs_near(arcs: Sequence[Arc], rows: np.ndarray, tol: float) -> list[tuple[int, int]]:
     """Pairs (i, j), i < j, i or j in ``rows``, whose circles meet and bounding boxes overlap (within ``tol`` px).
 
     A cheap filter before :func:`arc_intersections`: only these pairs can meet.
+    Sorted by (i, j).
     """
-    params = np.array([(a.circle.cx, a.circle.cy, a.circle.r, a.theta0, a.sweep) for a in arcs])
+    from . import kernels
+
+    rows = np.unique(np.asarray(rows, dtype=np.int64))
+    if not kernels.usable():
+        return _arc_pairs_reference(arcs, rows, tol)
+    return [(i, j) for i, j in kernels.arc_pairs_kernel(_arc_params(arcs), rows, float(tol)).tolist()]
+
+
+def _arc_pairs_reference(arcs: Sequence[Arc], rows: np.ndarray, tol: float) -> list[tuple[int, int]]:
+    """:func:`arc_pairs_near` in numpy (the reference of its compiled kernel)."""
+    params = _arc_params(arcs)
     centers, radii = params[:, :2], params[:, 2]
     boxes = _bounding_boxes(params)  # (n, 4): xmin, ymin, xmax, ymax
     n = len(arcs)

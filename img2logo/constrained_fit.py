@@ -92,6 +92,21 @@ def _index_array(values: object, name: str, size: int) -> np.ndarray:
     return np.unique(arr).astype(np.int64)
 
 
+def _unique_rows(arr: np.ndarray) -> np.ndarray:
+    """``np.unique(arr, axis=0)`` of an integer array (R, K) as int64: the distinct rows, sorted.
+
+    By a lexsort: np.unique with an axis sorts a structured view, ~10x slower on
+    the few rows of a window (this runs for every fit).
+    """
+    arr = arr.astype(np.int64)
+    if len(arr) < 2:
+        return arr
+    rows = arr[np.lexsort(arr.T[::-1])]
+    keep = np.ones(len(rows), dtype=bool)
+    keep[1:] = (rows[1:] != rows[:-1]).any(axis=1)
+    return rows[keep]
+
+
 def _as_points(values: object, name: str, count: int | None = None) -> np.ndarray:
     if np.size(values) == 0 and count in (None, 0):
         return np.zeros((0, 2))
@@ -530,7 +545,7 @@ def fit_constrained(
         raise InvalidParameterError(f"incidence must be an integer array of shape (M, 2), got {inc.shape}, {inc.dtype}")
     _index_array(inc[:, 0], "incidence[:, 0]", n_c)
     _index_array(inc[:, 1], "incidence[:, 1]", n_j)
-    inc = np.unique(inc.astype(np.int64), axis=0)
+    inc = _unique_rows(inc)
     free_c = np.arange(n_c) if free_circles is None else _index_array(free_circles, "free_circles", n_c)
     free_j = np.arange(n_j) if free_junctions is None else _index_array(free_junctions, "free_junctions", n_j)
     if segment_weight is None:
@@ -571,19 +586,136 @@ def fit_constrained(
         raise InvalidParameterError(f"tangents must be an integer array of shape (T, 3), got {tan.shape}, {tan.dtype}")
     _index_array(tan[:, :2].ravel(), "tangents[:, :2]", n_c)
     _index_array(tan[:, 2], "tangents[:, 2]", n_j)
-    tan = np.unique(tan.astype(np.int64), axis=0)
+    tan = _unique_rows(tan)
     if np.any(tan[:, 0] == tan[:, 1]):
         raise InvalidParameterError("tangents must name two different circles in each row")
-    prob = _Problem(points, owner, radii_arr, centers, junc, disp, inc, free_c, free_j, ws, wj, connectivity, tan)
-    keep = None
+    held: list[int] = []
     if axis is not None:
         # The x coordinates held on the axis: their unknowns leave the KKT system.
         pos_c = {int(c): i for i, c in enumerate(free_c)}
         pos_j = {int(k): i for i, k in enumerate(free_j)}
         held = [2 * pos_c[int(c)] for c in on_c if int(c) in pos_c]
         held += [2 * (len(free_c) + pos_j[int(k)]) for k in on_j if int(k) in pos_j]
-        if held:
-            keep = np.setdiff1d(np.arange(prob.n + prob.m), held)
+    return _fit(
+        points,
+        owner,
+        radii_arr,
+        centers,
+        junc,
+        disp,
+        inc,
+        free_c,
+        free_j,
+        ws,
+        wj,
+        connectivity,
+        tan,
+        held,
+        tol,
+        max_iter,
+        stall,
+    )
+
+
+def _kkt_size(
+    n_c: int,
+    n_j: int,
+    incidence: np.ndarray,
+    free_c: np.ndarray,
+    free_j: np.ndarray,
+    connectivity: bool,
+    tangents: np.ndarray,
+) -> int:
+    """Unknowns plus multipliers of the KKT system of :class:`_Problem` (without building it)."""
+    n = 2 * (len(free_c) + len(free_j))
+    if not connectivity:
+        return n
+    on_c, on_j = np.zeros(n_c, dtype=bool), np.zeros(n_j, dtype=bool)
+    on_c[free_c], on_j[free_j] = True, True
+    m = int(np.count_nonzero(on_c[incidence[:, 0]] | on_j[incidence[:, 1]]))
+    m += int(np.count_nonzero(on_c[tangents[:, 0]] | on_c[tangents[:, 1]] | on_j[tangents[:, 2]]))
+    return n + m
+
+
+def _fit(
+    points: np.ndarray,
+    owner: np.ndarray,
+    radii: np.ndarray,
+    centers: np.ndarray,
+    junctions: np.ndarray,
+    disp: np.ndarray,
+    incidence: np.ndarray,
+    free_c: np.ndarray,
+    free_j: np.ndarray,
+    ws: np.ndarray,
+    wj: float,
+    connectivity: bool,
+    tangents: np.ndarray,
+    held: list[int],
+    tol: float,
+    max_iter: int,
+    stall: int,
+    compiled: bool = True,
+) -> ConstrainedFit:
+    """The SQP solve of :func:`fit_constrained` on its checked arrays.
+
+    A KKT system of at most ``KKT_DENSE_MAX`` unknowns and multipliers (a local
+    window) is solved by the compiled kernel :func:`img2logo.kernels.sqp_dense`,
+    the same method step for step; larger ones (a global solve) by the Python
+    reference :func:`_fit_reference` with a sparse LU. ``compiled=False`` always
+    runs the reference (the tests compare the two), as does an install where
+    numba cannot cache the kernel (:data:`img2logo.kernels.CACHED`).
+    """
+    from . import kernels  # numba loads on the first fit, not at import
+
+    n_c, n_j = len(radii), len(junctions)
+    size = _kkt_size(n_c, n_j, incidence, free_c, free_j, connectivity, tangents)
+    if compiled and kernels.usable() and size <= KKT_DENSE_MAX:
+        centers, disp = np.array(centers, dtype=np.float64), np.array(disp, dtype=np.float64)
+        held_mask = np.zeros(2 * (len(free_c) + len(free_j)), dtype=bool)
+        held_mask[np.asarray(held, dtype=np.intp)] = True
+        tan_s = 1.0 / np.maximum(radii[tangents[:, 0]], radii[tangents[:, 1]])
+        iterations, converged, objective, violation = kernels.sqp_dense(
+            np.ascontiguousarray(points, dtype=np.float64).reshape(-1, 2),
+            np.ascontiguousarray(owner, dtype=np.int64),
+            np.ascontiguousarray(radii, dtype=np.float64),
+            centers,
+            np.ascontiguousarray(junctions, dtype=np.float64).reshape(-1, 2),
+            disp.reshape(-1, 2),
+            np.ascontiguousarray(incidence, dtype=np.int64).reshape(-1, 2),
+            np.ascontiguousarray(free_c, dtype=np.int64),
+            np.ascontiguousarray(free_j, dtype=np.int64),
+            np.ascontiguousarray(ws, dtype=np.float64),
+            float(wj),
+            bool(connectivity),
+            np.ascontiguousarray(tangents, dtype=np.int64).reshape(-1, 3),
+            tan_s,
+            held_mask,
+            float(tol),
+            int(max_iter),
+            int(stall),
+            CONSTRAINED_FIT_FTOL,
+            KKT_DAMPING,
+        )
+        return ConstrainedFit(
+            centers=readonly(centers),
+            displacements=readonly(disp),
+            objective=float(objective),
+            violation=float(violation),
+            iterations=int(iterations),
+            converged=bool(converged),
+        )
+    prob = _Problem(
+        points, owner, radii, centers, junctions, disp, incidence, free_c, free_j, ws, wj, connectivity, tangents
+    )
+    keep = np.setdiff1d(np.arange(prob.n + prob.m), held) if held else None
+    return _fit_reference(prob, keep, connectivity, tol, max_iter, stall)
+
+
+def _fit_reference(
+    prob: _Problem, keep: np.ndarray | None, connectivity: bool, tol: float, max_iter: int, stall: int
+) -> ConstrainedFit:
+    """The SQP loop of :func:`fit_constrained` in Python (the reference of :func:`img2logo.kernels.sqp_dense`)."""
     iterations, converged, nu, lam = 0, False, 0.0, None
     x = prob.get_x()
     history: list[float] = []  # violations, to stop early on infeasible problems

@@ -389,3 +389,12 @@ def test_window_that_no_junction_touches_is_still_fitted():
     np.testing.assert_allclose(w.center(0), [0.0, -1.0], atol=1e-6)  # its points' circle, 1 px up
     np.testing.assert_allclose(w.center(2), [40.0, 0.0], atol=1e-6)
     assert w.displacements() == {}
+
+
+def test_unique_rows_is_numpys_unique_along_rows():
+    rng = np.random.default_rng(3)
+    for _ in range(300):
+        rows = rng.integers(0, 5, (int(rng.integers(0, 12)), int(rng.integers(2, 4))))
+        got = cfit._unique_rows(rows)
+        want = np.unique(rows.astype(np.int64), axis=0)
+        assert got.dtype == np.int64 and got.shape == want.shape and (got == want).all()
