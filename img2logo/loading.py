@@ -347,13 +347,28 @@ def _read_png_reduced(path: Path, factor: int) -> np.ndarray | None:
                 if im.mode not in ("L", "LA", "RGB", "RGBA") or "transparency" in im.info:
                     return None  # a palette, 16-bit grey, a tRNS colour key: OpenCV reads them as they are
                 im.load()
-                small = im.reduce(factor) if factor > 1 else im
-                arr = np.array(small)
+                arr = _reduce_by_strips(im, factor)
     except Exception:
         return None
     if arr.ndim == 3 and arr.shape[2] >= 3:  # OpenCV's channel order, as the rest of loading expects
         arr = np.ascontiguousarray(arr[:, :, [2, 1, 0, *range(3, arr.shape[2])]])
     return arr
+
+
+def _reduce_by_strips(im: Image.Image, factor: int) -> np.ndarray:
+    """``np.array(im.reduce(factor))``, one strip of rows at a time: no second full-size image.
+
+    Pillow's ``reduce`` of an RGBA image first converts all of it to premultiplied
+    alpha (a copy as large as the decoded image: 576 MB at 12000 x 12000 px);
+    a strip of ``factor`` x k rows cropped and reduced gives the same pixels, the
+    copy a strip's size.
+    """
+    if factor <= 1:
+        return np.array(im)
+    w, h = im.size
+    rows = factor * max(1, DOWNSCALE_STRIP_ROWS // factor)
+    strips = [np.array(im.crop((0, y, w, min(h, y + rows))).reduce(factor)) for y in range(0, h, rows)]
+    return np.concatenate(strips, axis=0)
 
 
 def _upright(arr: np.ndarray, orientation: int) -> np.ndarray:
