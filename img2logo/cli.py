@@ -146,9 +146,12 @@ def _parser() -> argparse.ArgumentParser:
     out.add_argument(
         "--png-scale",
         type=float,
-        default=1.0,
+        default=None,
         metavar="S",
-        help="size of the PNG relative to the input image (default 1; 4 = four times as wide and high)",
+        help=(
+            "size of the PNG relative to the input image (default 1, at most the 2048 px working size; "
+            "4 = four times as wide and high)"
+        ),
     )
     out.add_argument("--pdf", metavar="OUT.pdf", help="the logo as a vector PDF (arcs as Bezier curves, 1 px = 1 pt)")
     out.add_argument(
@@ -429,22 +432,31 @@ def _run(args: argparse.Namespace, say) -> int:
     fill_spec = parse_fill_option(args.fill)
     if not any(getattr(args, flag[2:].replace("-", "_")) for flag in _OUTPUT_FLAGS):  # before any work
         raise InvalidParameterError(f"nothing to write: give {', '.join(_OUTPUT_FLAGS[:-1])} or {_OUTPUT_FLAGS[-1]}")
-    if not args.png_scale > 0:
+    if args.png_scale is not None and not args.png_scale > 0:
         raise InvalidParameterError(f"--png-scale must be > 0, got {args.png_scale:g}")
     _check_outputs(args)
     image = load_image(args.input)
     # Masks and the subject rectangle are in the input's pixels (abstract scales them to a downscaled input).
     lock_mask = None if not args.lock_mask else load_mask(args.lock_mask, (image.input_height, image.input_width))
     say(f"{args.input}: {image.width}x{image.height} px")
-    if args.png:
-        from .constants import MAX_PNG_SIDE
+    if args.png:  # the PNG's size is checked before the work, in the input's pixels as write_png draws it
+        from .constants import MAX_PNG_IMAGE_SIDE, MAX_PNG_SIDE
+        from .writers import png_size
 
-        side = round(max(image.width, image.height) * args.png_scale)
-        if not 1 <= side <= MAX_PNG_SIDE:
+        try:
+            png_size(image.input_width, image.input_height, args.png_scale, args.png_background)
+        except InvalidParameterError:
+            side = round(max(image.input_width, image.input_height) * args.png_scale)
+            over = args.png_background == "input"
             raise InvalidParameterError(
-                f"--png-scale {args.png_scale:g} makes the PNG {side} px on its longer side; "
-                f"it must be 1..{MAX_PNG_SIDE}"
-            )
+                f"--png-scale {args.png_scale:g} makes the PNG {side} px on its longer side; it must be "
+                + (
+                    f"1..{MAX_PNG_IMAGE_SIDE} over the faded input (--png-background white or transparent: "
+                    f"1..{MAX_PNG_SIDE})"
+                    if over
+                    else f"1..{MAX_PNG_SIDE}"
+                )
+            ) from None
     if args.subject is not None:
         import dataclasses
 
@@ -587,11 +599,17 @@ def _write_outputs(result, level, args: argparse.Namespace, say, fill_spec) -> N
             stale = _stale_level_files(folder, names)
             for path in stale:  # an earlier run's levels past this run's last: removed with the set
                 remove_file(path)
+    image = result.image
+    if args.png and args.png_scale is None and (image.width, image.height) != (image.input_width, image.input_height):
+        say(
+            f"png: drawn at {image.width}x{image.height} px, the working size (the input is "
+            f"{image.input_width}x{image.input_height} px; --png-scale S draws S times that)"
+        )
     for path in done:
         say(f"wrote {path}")
     if args.levels_dir:
-        gone = f" (removed {len(stale)} files of an earlier run's other levels)" if stale else ""
-        say(f"wrote {len(result.levels)} levels to {args.levels_dir}/{gone}")
+        gone = f" (removed {_count(len(stale), 'file')} of an earlier run's other levels)" if stale else ""
+        say(f"wrote {_count(len(result.levels), 'level')} to {args.levels_dir}/{gone}")
 
 
 def _stale_level_files(folder, keep: set[str]) -> list:

@@ -339,6 +339,11 @@ PNG_DPI: float = 100.0
 #: Largest side of a PNG written with ``scale`` (``--png-scale``), px: 16384 x 16384 RGBA
 #: is 1 GiB in memory while it is drawn; larger is a slip of the keyboard, or a job for the PDF.
 MAX_PNG_SIDE: int = 16384
+#: Largest side of a PNG drawn over the faded input (``background="input"``), px: matplotlib
+#: resamples the image under the logo in floating point, about 85 bytes per output pixel
+#: (measured: 3.1 GB peak for 6000 x 6000 px, 0.2 GB without the image), so 4096 x 4096 px
+#: is about 1.4 GB; a white or transparent background goes to ``MAX_PNG_SIDE``.
+MAX_PNG_IMAGE_SIDE: int = 4096
 #: How far a background image is faded towards white under a drawing
 #: (0 = as it is, 1 = white).
 IMAGE_FADE: float = 0.6

@@ -21,6 +21,7 @@ import warnings
 from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -34,6 +35,9 @@ from .constants import (
     MIN_IMAGE_SIDE,
 )
 from .errors import ImageNotFoundError, InvalidImageError, InvalidParameterError
+
+if TYPE_CHECKING:
+    from PIL import Image
 
 
 class DownscaleWarning(UserWarning):
@@ -343,13 +347,28 @@ def _read_png_reduced(path: Path, factor: int) -> np.ndarray | None:
                 if im.mode not in ("L", "LA", "RGB", "RGBA") or "transparency" in im.info:
                     return None  # a palette, 16-bit grey, a tRNS colour key: OpenCV reads them as they are
                 im.load()
-                small = im.reduce(factor) if factor > 1 else im
-                arr = np.array(small)
+                arr = _reduce_by_strips(im, factor)
     except Exception:
         return None
     if arr.ndim == 3 and arr.shape[2] >= 3:  # OpenCV's channel order, as the rest of loading expects
         arr = np.ascontiguousarray(arr[:, :, [2, 1, 0, *range(3, arr.shape[2])]])
     return arr
+
+
+def _reduce_by_strips(im: Image.Image, factor: int) -> np.ndarray:
+    """``np.array(im.reduce(factor))``, one strip of rows at a time: no second full-size image.
+
+    Pillow's ``reduce`` of an RGBA image first converts all of it to premultiplied
+    alpha (a copy as large as the decoded image: 576 MB at 12000 x 12000 px);
+    a strip of ``factor`` x k rows cropped and reduced gives the same pixels, the
+    copy a strip's size.
+    """
+    if factor <= 1:
+        return np.array(im)
+    w, h = im.size
+    rows = factor * max(1, DOWNSCALE_STRIP_ROWS // factor)
+    strips = [np.array(im.crop((0, y, w, min(h, y + rows))).reduce(factor)) for y in range(0, h, rows)]
+    return np.concatenate(strips, axis=0)
 
 
 def _upright(arr: np.ndarray, orientation: int) -> np.ndarray:
@@ -433,7 +452,10 @@ def _probe(path: Path, max_pixels: int) -> tuple[int, int, int, str, int] | None
                 pages = int(getattr(im, "n_frames", 1) or 1)
                 fmt = str(im.format or "")
                 try:
-                    orientation = int(im.getexif().get(0x0112, 1))
+                    # A PNG's getexif() decodes the whole image to look for an eXIf chunk after the
+                    # pixels (4 s for 144 Mpx); the chunk is found by walking the chunk headers.
+                    exif = im.getexif() if fmt != "PNG" else _png_exif(path)
+                    orientation = int(exif.get(0x0112, 1))
                 except Exception:  # a damaged EXIF block: as stored
                     orientation = 1
         except Image.DecompressionBombError as exc:  # more than twice Pillow's own limit
@@ -446,6 +468,29 @@ def _probe(path: Path, max_pixels: int) -> tuple[int, int, int, str, int] | None
     if w * h > max_pixels:
         raise InvalidImageError(_too_many_pixels(path, f"{w}x{h} px", max_pixels))
     return w, h, pages, fmt, orientation
+
+
+def _png_exif(path: Path) -> Image.Exif:
+    """The EXIF of a PNG's eXIf chunk, before or after the pixels (empty without one), decoding nothing.
+
+    The chunks are walked by their length fields (PNG specification, Sec. 5.3): a
+    seek over each chunk's data, so a 1 GB file costs its chunk headers only.
+    """
+    from PIL import Image
+
+    exif = Image.Exif()
+    with open(path, "rb") as f:
+        if f.read(8) != b"\x89PNG\r\n\x1a\n":
+            return exif
+        while len(head := f.read(8)) == 8:
+            length, kind = int.from_bytes(head[:4], "big"), head[4:]
+            if kind == b"eXIf":
+                exif.load(f.read(length))
+                return exif
+            if kind == b"IEND":
+                break
+            f.seek(length + 4, os.SEEK_CUR)  # the data and the CRC
+    return exif
 
 
 def _png_size(path: Path) -> tuple[int, int] | None:

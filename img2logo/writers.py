@@ -39,7 +39,7 @@ import numpy as np
 
 from ._io import as_path, atomic_write, check_output_paths, output_set
 from ._validation import check_choice, check_instance, check_integer, check_positive
-from .constants import CONSTRUCTION_MARGIN, FORMAT_NAME, MAX_PNG_SIDE, PNG_DPI
+from .constants import CONSTRUCTION_MARGIN, FORMAT_NAME, MAX_IMAGE_SIDE, MAX_PNG_IMAGE_SIDE, MAX_PNG_SIDE, PNG_DPI
 from .contract import from_document, to_document
 from .errors import InputNotFoundError, InvalidParameterError
 from .fill_values import Fill, check_fills
@@ -317,9 +317,9 @@ def write_png(
     stroke_width: float | None = None,
     fills: Sequence[Fill] | None = None,
     background: str | None = None,
-    scale: float = 1.0,
+    scale: float | None = None,
 ) -> Path:
-    """Render an abstraction to a PNG of the input image's size (times ``scale``).
+    """Render an abstraction to a PNG of the input image's size (times ``scale``), see :func:`png_size`.
 
     Drawn with :func:`img2logo.plotting.plot_abstraction` on matplotlib's Agg
     canvas with matplotlib's default style (a user's matplotlibrc does not change
@@ -350,9 +350,12 @@ def write_png(
         nothing (an RGBA PNG, alpha 0 off the strokes and fills: the clean logo
         to place on a layout). Default ``"input"`` when ``image`` is given,
         else ``"white"``.
-    scale : float
+    scale : float, optional
         Size of the PNG relative to the input, > 0 (2.0: twice the width and
-        height, strokes as thick in proportion). At most ``MAX_PNG_SIDE`` px a side.
+        height, strokes as thick in proportion). Default 1, but at most the
+        working size ``MAX_IMAGE_SIDE`` on the longer side (an input over it is
+        drawn at the size it was worked at). At most ``MAX_PNG_SIDE`` px a side,
+        ``MAX_PNG_IMAGE_SIDE`` over the faded input.
 
     Returns
     -------
@@ -366,12 +369,7 @@ def write_png(
     check_choice(background, "background", PNG_BACKGROUNDS)
     if background == "input" and image is None:
         raise InvalidParameterError('background "input" needs the input image (image=...), got none')
-    s = check_positive(scale, "scale")
-    size = (round(width * s), round(height * s))
-    if min(size) < 1 or max(size) > MAX_PNG_SIDE:
-        raise InvalidParameterError(
-            f"scale {s:g} makes a {size[0]} x {size[1]} px PNG; each side must be in 1..{MAX_PNG_SIDE} px"
-        )
+    size = png_size(width, height, scale, background)
 
     def draw(ax: Any) -> None:
         plot_abstraction(
@@ -385,6 +383,36 @@ def write_png(
         )
 
     return _write_figure_png(path, width, height, d, draw, size=size, transparent=background == "transparent")
+
+
+def png_size(width: float, height: float, scale: float | None = None, background: str = "white") -> tuple[int, int]:
+    """(width, height) of the PNG :func:`write_png` draws of a ``width`` x ``height`` px input, px.
+
+    ``round(width * scale)`` x ``round(height * scale)``. Without ``scale``, the
+    input's size, or for an input over ``MAX_IMAGE_SIDE`` its working size (the
+    longer side ``MAX_IMAGE_SIDE`` px): the image under the logo has no more
+    pixels, and drawing it at 12000 x 12000 px took 12 GB and minutes.
+
+    Raises
+    ------
+    InvalidParameterError
+        If ``scale`` is not > 0, or a side would be under 1 px or over
+        ``MAX_PNG_SIDE`` (over ``MAX_PNG_IMAGE_SIDE`` with ``background="input"``).
+    """
+    if scale is None:
+        s = min(1.0, MAX_IMAGE_SIDE / max(float(width), float(height)))
+    elif isinstance(scale, str | bytes | bool | np.bool_):  # float("2") and float(True) would pass
+        raise InvalidParameterError(f"scale must be a number, got {scale!r}")
+    else:
+        s = check_positive(scale, "scale")
+    size = (round(width * s), round(height * s))
+    bound = MAX_PNG_IMAGE_SIDE if background == "input" else MAX_PNG_SIDE
+    if min(size) < 1 or max(size) > bound:
+        over = f" over the faded input (white or transparent: up to {MAX_PNG_SIDE} px)" if bound != MAX_PNG_SIDE else ""
+        raise InvalidParameterError(
+            f"scale {s:g} makes a {size[0]} x {size[1]} px PNG; each side must be in 1..{bound} px{over}"
+        )
+    return size
 
 
 def write_pdf(

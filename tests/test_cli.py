@@ -331,7 +331,12 @@ def test_clean_png_and_pdf_outputs(tmp_path, capsys):
     assert main([*args, "--png-scale", "0"]) == EXIT_ERROR
     assert capsys.readouterr().err == "img2logo: error: --png-scale must be > 0, got 0\n"
     assert main([*args, "--png-scale", "100"]) == EXIT_ERROR
-    assert "makes the PNG 51200 px on its longer side; it must be 1..16384" in capsys.readouterr().err
+    assert capsys.readouterr().err.endswith(
+        "\nimg2logo: error: --png-scale 100 makes the PNG 51200 px on its longer side; it must be 1..4096 "
+        "over the faded input (--png-background white or transparent: 1..16384)\n"
+    )
+    assert main([*args, "--png-scale", "100", "--png-background", "white"]) == EXIT_ERROR
+    assert "makes the PNG 51200 px on its longer side; it must be 1..16384\n" in capsys.readouterr().err
     with pytest.raises(SystemExit):
         main([*args, "--png-background", "black"])
     assert "invalid choice: 'black'" in capsys.readouterr().err
@@ -540,6 +545,30 @@ def test_downscale_is_reported_before_the_run(tmp_path, capsys):
     assert err[1].startswith(f"{big}: 2048x2048 px")
 
 
+def test_png_of_an_input_over_the_working_size_is_drawn_at_the_working_size(tmp_path, capsys):
+    """A 12000 px input's PNG at its full size took 12 GB and minutes (issue 20): by default it is 2048 px."""
+    import json
+
+    import cv2
+
+    big = tmp_path / "big.png"
+    cv2.imwrite(str(big), cv2.resize(cv2.imread(str(DATA / "drawing-leaf.png")), (2600, 2080)))
+    png, json_path = tmp_path / "big-logo.png", tmp_path / "big.json"
+    assert main([str(big), "--png", str(png), "--json", str(json_path)]) == 0
+    err = capsys.readouterr().err
+    line = "png: drawn at 2048x1638 px, the working size (the input is 2600x2080 px; --png-scale S draws S times that)"
+    assert line in err.splitlines()
+    assert cv2.imread(str(png)).shape[:2] == (1638, 2048)
+    assert json.loads(json_path.read_text())["width"] == 2600  # the document stays in the input's pixels
+    # An explicit scale is the input's times it, checked before the work (one line, nothing written).
+    assert main([str(big), "--png", str(tmp_path / "x2.png"), "--png-scale", "2"]) == EXIT_ERROR
+    err = capsys.readouterr().err
+    assert "--png-scale 2 makes the PNG 5200 px on its longer side; it must be 1..4096" in err
+    assert not (tmp_path / "x2.png").exists() and "levels:" not in err
+    assert main([str(big), "-q", "--png", str(tmp_path / "s.png"), "--png-scale", "0.1"]) == 0
+    assert cv2.imread(str(tmp_path / "s.png")).shape[:2] == (208, 260)
+
+
 def _default_signals() -> None:
     """In the child: SIGINT as a terminal gives it, also when the suite runs with it ignored (``(make test &)``)."""
     import signal
@@ -737,7 +766,8 @@ def test_levels_dir_removes_the_level_files_of_an_earlier_run_only(tmp_path, cap
     assert sorted(p.name for p in lv.iterdir()) == sorted([*many, *foreign])
     capsys.readouterr()
     assert main([src, "--levels-dir", str(lv), "-T", "3"]) == 0
-    assert f"(removed {len(many) - 2} files of an earlier run's other levels)" in capsys.readouterr().err
+    err = capsys.readouterr().err
+    assert f"wrote 1 level to {lv}/ (removed {len(many) - 2} files of an earlier run's other levels)" in err
     assert sorted(p.name for p in lv.iterdir()) == sorted(["level-0000.json", "level-0000.svg", *foreign])
     assert json.loads((lv / "level-0000.json").read_text())["tolerance"] == 3.0
     assert (tmp_path / "keep.svg").read_text() == "x"

@@ -151,3 +151,21 @@ def test_bad_notebook_or_output_paths_are_one_line_exit_two(tmp_path, capsys, no
     err = capsys.readouterr().err
     assert err.startswith(fill(message)) and err.count("\n") == 1
     assert (tmp_path / "copy.ipynb").read_bytes() == before and sorted(p.name for p in tmp_path.iterdir()) == names
+
+
+@pytest.mark.parametrize(
+    ("argv", "message"),
+    [
+        ([], "error: the following arguments are required: notebook, output"),
+        (["a.ipynb", "b.ipynb", "--bogus"], "error: unrecognized arguments: --bogus"),
+        (["a.ipynb", "b.ipynb", "-p", "levels"], "error: argument -p/--parameter: expected 2 arguments"),
+    ],
+)
+def test_the_runners_own_argument_errors_are_one_line_exit_two(capsys, argv, message):
+    from img2logo.experiments.runner import main
+
+    with pytest.raises(SystemExit) as exit_info:
+        main(argv)
+    assert exit_info.value.code == 2
+    err = capsys.readouterr().err
+    assert err == f"{message} (see python -m img2logo.experiments --help)\n"

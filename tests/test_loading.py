@@ -211,6 +211,36 @@ def test_exif_orientation_is_applied_as_every_viewer_does(tmp_path, orientation)
     assert np.abs(img.rgb - expected).mean() < 0.01  # two JPEG decoders, the same picture
 
 
+@pytest.mark.parametrize("where", ["before", "after"])
+def test_a_png_exif_orientation_is_read_without_decoding_the_pixels(tmp_path, monkeypatch, where):
+    """issue 20, item 12: Pillow's PNG getexif() decoded the whole image to look past the pixels (4 s at 144 Mpx)."""
+    from PIL import Image, ImageOps, PngImagePlugin
+
+    from img2logo import loading
+
+    arr = np.full((60, 90, 3), 255, np.uint8)
+    arr[5:15, 5:40] = 0
+    exif = Image.Exif()
+    exif[0x0112] = 6
+    png = cv2.imencode(".png", arr)[1].tobytes()
+    block = exif.tobytes()
+    chunk = struct.pack(">I", len(block)) + b"eXIf" + block + struct.pack(">I", zlib.crc32(b"eXIf" + block))
+    at = 33 if where == "before" else len(png) - 12  # after the IHDR, or just before the IEND
+    path = tmp_path / f"{where}.png"
+    path.write_bytes(png[:at] + chunk + png[at:])
+    expected = np.asarray(ImageOps.exif_transpose(Image.open(path)).convert("RGB")) / 255.0
+    assert expected.shape == (90, 60, 3)
+
+    def no_decode(self):
+        raise AssertionError("the header probe decoded the pixels")
+
+    with monkeypatch.context() as m:
+        m.setattr(PngImagePlugin.PngImageFile, "load", no_decode)
+        assert loading._probe(path, 10**9) == (90, 60, 1, "PNG", 6)
+    img = load_image(path)
+    assert img.rgb.shape == expected.shape and np.abs(img.rgb - expected).max() < 1e-9
+
+
 def test_a_phone_photo_stored_sideways_is_upright_when_downscaled(tmp_path):
     from PIL import Image
 
@@ -237,3 +267,17 @@ def test_a_large_16_bit_rgba_png_is_decoded_once_and_reduced_like_the_area_resiz
     rgb, a = _reference(arr, (2048, 1238))
     assert np.abs(img.rgb - rgb).mean() < 0.005 and np.abs(img.alpha - a).mean() < 0.005
     assert np.percentile(np.abs(img.rgb - rgb), 99) < 0.1  # only edges differ: a box reduce, then the area resize
+
+
+@pytest.mark.parametrize(("mode", "factor"), [("RGBA", 5), ("RGBA", 2), ("LA", 3), ("RGB", 7), ("L", 1)])
+def test_the_strip_by_strip_reduce_gives_pillows_reduce_exactly(mode, factor):
+    """issue 20, item 12: Pillow's reduce of RGBA copies the image (premultiplied); strips give the same pixels."""
+    from PIL import Image
+
+    from img2logo.loading import _reduce_by_strips
+
+    rng = np.random.default_rng(12)
+    channels = {"RGBA": 4, "LA": 2, "RGB": 3, "L": 1}[mode]
+    arr = rng.integers(0, 256, (1303, 517, channels), dtype=np.uint8)  # 1303 rows: a partial last strip and block
+    im = Image.fromarray(arr[:, :, 0] if channels == 1 else arr, mode)
+    assert np.array_equal(_reduce_by_strips(im, factor), np.array(im.reduce(factor)))

@@ -464,7 +464,21 @@ def test_png_clean_backgrounds_and_scale(tmp_path):
         writers.write_png(a, tmp_path / "bad.png", scale=0)
     with pytest.raises(InvalidParameterError, match=r"each side must be in 1..16384 px"):
         writers.write_png(a, tmp_path / "bad.png", scale=1000)
+    with pytest.raises(InvalidParameterError, match=r"must be in 1..4096 px over the faded input"):
+        writers.write_png(a, tmp_path / "bad.png", image=image, scale=1000)
     assert not (tmp_path / "bad.png").exists()
+
+
+def test_png_size_is_the_input_size_bounded_by_the_working_size():
+    """Without a scale, the input's size up to MAX_IMAGE_SIDE (a 12000 px input's PNG took 12 GB at full size)."""
+    assert writers.png_size(512, 300) == (512, 300)
+    assert writers.png_size(12000, 9000) == (2048, 1536)
+    assert writers.png_size(12000, 9000, 0.5, "white") == (6000, 4500)
+    assert writers.png_size(3000, 1000, 1.0, "input") == (3000, 1000)
+    with pytest.raises(InvalidParameterError, match=r"scale 1 makes a 6000 x 4500 px PNG; .*1..4096 px over the faded"):
+        writers.png_size(6000, 4500, 1.0, "input")
+    with pytest.raises(InvalidParameterError, match="scale must be a number"):
+        writers.png_size(512, 300, "2")
 
 
 def test_pdf_is_vector_deterministic_and_renders_like_the_png(tmp_path):

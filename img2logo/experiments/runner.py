@@ -22,7 +22,7 @@ import os
 import sys
 from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
-from typing import Any
+from typing import Any, NoReturn
 
 from .._io import printable
 from ..errors import Img2LogoError, InvalidParameterError
@@ -341,13 +341,20 @@ def _value(text: str) -> Any:
         return text
 
 
+class _Parser(argparse.ArgumentParser):
+    """The runner's argument parser: an error is one line, ``error: ...`` (exit status 2), as the runner's others."""
+
+    def error(self, message: str) -> NoReturn:
+        self.exit(2, f"error: {printable(message)} (see {self.prog} --help)\n")
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """``python -m img2logo.experiments NOTEBOOK OUTPUT [--smoke] [-p NAME VALUE]...``.
 
     Exit status 0 on success; 2 for a bad parameter, a missing notebook or output folder, or an
     output that is the notebook (one line, nothing run); 1 for a failed cell.
     """
-    parser = argparse.ArgumentParser(
+    parser = _Parser(
         prog="python -m img2logo.experiments",
         description="Run a notebook with papermill; refuse parameter names it does not have.",
     )
