@@ -100,6 +100,13 @@ CLIPART_SEED_AREA: int = 9
 #: distance, px: a rim or a JPEG-blurred edge is a blend of the two sides, not a
 #: third colour; the 4 px reach over chroma subsampling (2 px) and ringing.
 CLIPART_RIM_RADIUS: int = 4
+#: Clip art, compressed (JPEG): a small fill of high contrast (an eye) has no flat pixel, as
+#: JPEG rings most in the blocks of its strongest edges; its pixels that no blend of the
+#: seeds near them explains seed it where they lie more than this from any other pixel, px.
+#: Ringing is a 1-2 px halo, but chroma is kept at half resolution (4:2:0) and bleeds: along
+#: a yellow-on-blue edge at quality 60 the strip of unexplained colours is up to 6 px wide
+#: (measured), so its pixels are all within 3 px of its edge. A dot needs about 10 px across.
+CLIPART_RING_WIDTH: float = 3.0
 #: Clip art: the spatial radius of the mean shift filter that flattens the fills of a
 #: noisy (JPEG) clip art, px: the 8x8 blocks' noise averages out within it.
 CLIPART_SHIFT_RADIUS: int = 4
