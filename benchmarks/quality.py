@@ -47,6 +47,9 @@ ROOT = Path(__file__).resolve().parents[1]
 EVAL = ROOT / "benchmarks" / "data"
 #: The second photo-like family (``benchmarks/make_photo2.py``), reported with its own means.
 PHOTO2 = EVAL / "photo2"
+#: The held-out clip arts and drawings (``benchmarks/make_heldout.py``): families ``heldout clipart``
+#: and ``heldout drawing``, each with its own means.
+HELDOUT = EVAL / "heldout"
 OUT = ROOT / "build" / "quality"
 COLUMNS = (
     "name",
@@ -71,13 +74,15 @@ INK_COLUMNS = ("ink lost", "stroke ratio")
 
 
 def cases() -> list[dict]:
-    """The evaluation set's manifest entries, the second photo-like family, then the photos of data/ (no truth).
+    """The evaluation set's manifest entries, the second photo-like family, the held-out clip arts and
+    drawings, then the photos of data/ (no truth) and the thick drawings.
 
-    ``family`` is the kind, except for the second photo-like family (``photo2``)
-    and the photos of ``data/`` (``data``): the means are per family.
+    ``family`` is the kind, except for the second photo-like family (``photo2``),
+    the held-out images (``heldout clipart``, ``heldout drawing``) and the photos
+    of ``data/`` (``data``): the means are per family.
     """
     out = []
-    for folder in (EVAL, PHOTO2):
+    for folder in (EVAL, PHOTO2, HELDOUT):
         manifest = json.loads((folder / "manifest.json").read_text(encoding="utf-8"))
         out += [dict(m, family=m.get("family", m["kind"]), path=folder / m["file"], folder=folder) for m in manifest]
     for path in sorted((ROOT / "data").glob("photo-*.png")):
@@ -231,7 +236,7 @@ def main(argv: list[str] | None = None) -> int:
         print("\nMeans per family (the kind, or photo2: the second photo-like family; data: the photos of data/)")
         print(means.to_string(float_format="%.2f"))
     kinks = np.concatenate(
-        [r["kinks"] for r, _ in runs if r["kind"] in ("clipart", "drawing") and "kinks" in r] or [np.zeros(0)]
+        [r["kinks"] for r, _ in runs if r["family"] in ("clipart", "drawing") and "kinks" in r] or [np.zeros(0)]
     )
     if len(kinks):
         print(

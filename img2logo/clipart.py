@@ -42,6 +42,7 @@ import numpy as np
 
 from .constants import (
     CLIPART_EDGE_CONTRAST,
+    CLIPART_FILL_SPREAD,
     CLIPART_FLAT_RADIUS,
     CLIPART_LINK_DISTANCE,
     CLIPART_MIN_CONTRAST,
@@ -254,7 +255,10 @@ def _unexplained_seeds(
     colour). The seeds are such pixels more than ``CLIPART_RING_WIDTH`` px from
     any other (a ringing halo or chroma bleeding along an edge is a strip no
     wider than that and has none), in 8-connected groups of at least
-    ``CLIPART_SEED_AREA`` px (a 3x3 block, as the flat seeds of a clean image).
+    ``CLIPART_SEED_AREA`` px (a 3x3 block, as the flat seeds of a clean image),
+    unless their 8-connected part of unexplained pixels is more than
+    ``CLIPART_FILL_SPREAD`` times what lies within ``CLIPART_RIM_RADIUS`` px of
+    them (thin strokes that cross, not a fill).
     """
     from skimage.measure import label
 
@@ -273,6 +277,15 @@ def _unexplained_seeds(
     if not own.any():
         return None
     core = ndimage.distance_transform_edt(own) > CLIPART_RING_WIDTH
+    if not core.any():
+        return None
+    # A small fill's unexplained pixels are its inside and its rim, near its core; a core in a
+    # network of thin strokes (where two 3 px lines of a JPEG drawing cross) is no small fill.
+    parts = label(own, connectivity=2)
+    size = 2 * CLIPART_RIM_RADIUS + 1
+    near = ndimage.binary_dilation(core, structure=np.ones((size, size), dtype=bool)) & own
+    spread = np.bincount(parts.ravel()) > CLIPART_FILL_SPREAD * np.bincount(parts[near], minlength=parts.max() + 1)
+    core &= ~spread[parts]
     groups = label(core, connectivity=2)
     small = np.bincount(groups.ravel()) < CLIPART_SEED_AREA
     small[0] = False
