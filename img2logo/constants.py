@@ -61,6 +61,9 @@ SEAM_CONTRAST: float = 0.25
 #: contrast (the strokes' rims), never into the ink: a 1 px diagonal ridge has steps that
 #: 8-connected ink would cross.
 SEAM_RIM: float = 0.1
+#: ... and it is at least this many times the median stroke width long: two strokes that only
+#: touch (a tail on a body) leave a ridge about as long as they are wide, and stay joined.
+SEAM_LENGTH: float = 2.0
 #: Connected specks of line pixels smaller than this are dropped, px (area).
 MIN_SPECK_AREA: int = 24
 #: Kind detection: an image is synthetic (a clip art or a drawing), not a photo, when

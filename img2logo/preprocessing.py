@@ -36,6 +36,7 @@ from .constants import (
     PHOTO_MIN_LINE_LENGTH,
     PHOTO_SPUR_LENGTH,
     SEAM_CONTRAST,
+    SEAM_LENGTH,
     SEAM_RIM,
     SEAM_WIDTH,
     SPUR_LENGTH,
@@ -445,13 +446,26 @@ def _paper_seams(gray: np.ndarray, ink: np.ndarray) -> np.ndarray:
     against open paper is no ridge, so nothing else changes.
     """
     import cv2
+    from scipy import ndimage
 
     if not ink.any() or ink.all():
         return np.zeros(ink.shape, dtype=bool)
     g = np.asarray(gray, dtype=np.float32)
     contrast = float(np.median(g[~ink]) - np.median(g[ink]))
     disc = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (SEAM_WIDTH, SEAM_WIDTH))
-    ridge = (cv2.morphologyEx(g, cv2.MORPH_TOPHAT, disc) > SEAM_CONTRAST * contrast).astype(np.uint8)
+    ridge = cv2.morphologyEx(g, cv2.MORPH_TOPHAT, disc) > SEAM_CONTRAST * contrast
+    # Pinched paper lies inside the ink; the tip of a paper wedge where two strokes meet at an
+    # acute angle is a ridge too, but next to open paper: the junction stays where it is.
+    ridge &= ndimage.distance_transform_edt(ink) > SEAM_WIDTH / 2
+    if not ridge.any():
+        return ridge
+    # Two strokes that only touch (an ear's base, a tail on a body) leave a ridge about as long
+    # as they are wide, where they are one in the drawing too; side by side, the pinch runs
+    # along them: a seam is at least SEAM_LENGTH stroke widths long.
+    parts, n = ndimage.label(ridge, structure=np.ones((3, 3), dtype=bool))
+    long = np.bincount(parts.ravel(), minlength=n + 1) >= SEAM_LENGTH * median_stroke_width(ink)
+    long[0] = False
+    ridge = long[parts].astype(np.uint8)
     # A ridge 1 px wide runs diagonally in steps that 8-connected ink crosses: widened by the
     # light pixels beside it (the strokes' rims), never into the ink itself.
     light = g > np.median(g[ink]) + SEAM_RIM * contrast
