@@ -271,19 +271,20 @@ def _unexplained_seeds(
         small[0] = False
         groups[small[groups]] = 0
         return groups if groups.any() else None
-    from scipy import ndimage
+    import cv2
 
     own = _unexplained(seed_of, areas_rgb, rgb, lab, CLIPART_EDGE_CONTRAST, lonely=True)
     if not own.any():
         return None
-    core = ndimage.distance_transform_edt(own) > CLIPART_RING_WIDTH
+    own8 = own.astype(np.uint8)
+    core = cv2.distanceTransform(own8, cv2.DIST_L2, cv2.DIST_MASK_PRECISE) > CLIPART_RING_WIDTH
     if not core.any():
         return None
     # A small fill's unexplained pixels are its inside and its rim, near its core; a core in a
     # network of thin strokes (where two 3 px lines of a JPEG drawing cross) is no small fill.
     parts = label(own, connectivity=2)
     size = 2 * CLIPART_RIM_RADIUS + 1
-    near = ndimage.binary_dilation(core, structure=np.ones((size, size), dtype=bool)) & own
+    near = (cv2.dilate(core.astype(np.uint8), np.ones((size, size), np.uint8)) > 0) & own
     spread = np.bincount(parts.ravel()) > CLIPART_FILL_SPREAD * np.bincount(parts[near], minlength=parts.max() + 1)
     core &= ~spread[parts]
     groups = label(core, connectivity=2)
@@ -320,17 +321,22 @@ def _unexplained(
     near = _near_entries(seed_of, n, rest)
     colours, colours_lab = rgb[rest], lab[rest]
     best = np.full(len(colours), np.inf)
+    singles = rgb2lab(areas_rgb[None])[0]
     if lonely:
         alone = ~near.any(axis=1)
-        seeds_lab = rgb2lab(areas_rgb[None])[0]
         if alone.any():
-            best[alone] = np.min(np.linalg.norm(colours_lab[alone, None] - seeds_lab[None], axis=2), axis=1)
+            best[alone] = np.min(np.linalg.norm(colours_lab[alone, None] - singles[None], axis=2), axis=1)
     for a in range(n):
         on_a = near[:, a]
+        if on_a.any():
+            best[on_a] = np.minimum(best[on_a], np.linalg.norm(colours_lab[on_a] - singles[a], axis=1))
+    # Only a pixel far from every seed's own colour can be far from every blend: the blends
+    # (an sRGB to CIELAB conversion each) are taken for those alone.
+    far = best > contrast
+    for a in range(n):
+        on_a = near[:, a] & far
         if not on_a.any():
             continue
-        single = rgb2lab(areas_rgb[a][None, None, :])[0, 0]
-        best[on_a] = np.minimum(best[on_a], np.linalg.norm(colours_lab[on_a] - single, axis=1))
         for b in range(a + 1, n):
             both = on_a & near[:, b]
             if not both.any():
