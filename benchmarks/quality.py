@@ -4,11 +4,14 @@ Runs the whole pipeline at the default options on every image of
 ``benchmarks/data/`` (clip arts, line drawings and photo-like images with a
 ground truth; ``benchmarks/data/README.md`` says how the truth was made), on
 the second photo-like family ``benchmarks/data/photo2/`` (built by
-``benchmarks/make_photo2.py`` the same way) and on the photos of ``data/`` (no
+``benchmarks/make_photo2.py`` the same way), on the held-out clip arts and
+drawings of ``benchmarks/data/heldout/`` (built by ``benchmarks/make_heldout.py``
+from OpenCV's drawing primitives, JPEG and thick variants included: families
+``heldout clipart`` and ``heldout drawing``) and on the photos of ``data/`` (no
 truth: only arcs, crossings and gaps) and on thick versions of the drawings of
 ``data/`` (kind "thick drawing": strokes widened by 9 and 13 px; the truth is
 the thin original's feature lines), then prints one row per image and the
-means per family (the kind; ``photo2``; ``data``), writes them to
+means per family (the kind; ``photo2``; the two held-out families; ``data``), writes them to
 ``build/quality/quality.csv`` and draws one contact sheet per family,
 ``build/quality/contact-<family>.png``: input | ground truth, the pixels farther
 than 10 px from the logo in red | logo.
@@ -25,7 +28,7 @@ ink lost (dark parts of the input of at least 30 px with no logo
 point within 3 px, for clip arts and drawings: an eye the skeleton truth hides
 from r10); stroke ratio (the logo's stroke width over the input's median stroke
 width, for drawings); seconds (the whole pipeline, one process per image at a time). Below the means
-per kind, the joins of all the clip arts and drawings pooled.
+per kind, the joins of the evaluation set's clip arts and drawings pooled.
 
 A benchmark, not a test: it prints and never fails on a bad number. An image
 whose run fails is a row with its error.
@@ -47,6 +50,9 @@ ROOT = Path(__file__).resolve().parents[1]
 EVAL = ROOT / "benchmarks" / "data"
 #: The second photo-like family (``benchmarks/make_photo2.py``), reported with its own means.
 PHOTO2 = EVAL / "photo2"
+#: The held-out clip arts and drawings (``benchmarks/make_heldout.py``): families ``heldout clipart``
+#: and ``heldout drawing``, each with its own means.
+HELDOUT = EVAL / "heldout"
 OUT = ROOT / "build" / "quality"
 COLUMNS = (
     "name",
@@ -71,13 +77,15 @@ INK_COLUMNS = ("ink lost", "stroke ratio")
 
 
 def cases() -> list[dict]:
-    """The evaluation set's manifest entries, the second photo-like family, then the photos of data/ (no truth).
+    """The evaluation set's manifest entries, the second photo-like family, the held-out clip arts and
+    drawings, then the photos of data/ (no truth) and the thick drawings.
 
-    ``family`` is the kind, except for the second photo-like family (``photo2``)
-    and the photos of ``data/`` (``data``): the means are per family.
+    ``family`` is the kind, except for the second photo-like family (``photo2``),
+    the held-out images (``heldout clipart``, ``heldout drawing``) and the photos
+    of ``data/`` (``data``): the means are per family.
     """
     out = []
-    for folder in (EVAL, PHOTO2):
+    for folder in (EVAL, PHOTO2, HELDOUT):
         manifest = json.loads((folder / "manifest.json").read_text(encoding="utf-8"))
         out += [dict(m, family=m.get("family", m["kind"]), path=folder / m["file"], folder=folder) for m in manifest]
     for path in sorted((ROOT / "data").glob("photo-*.png")):
@@ -228,10 +236,13 @@ def main(argv: list[str] | None = None) -> int:
         means["failed"] = table.groupby(by)["detected"].apply(lambda s: int((s == "-").sum()))
         expected = table["kind"].replace({THICK: "drawing"})
         means["kind right"] = (expected == table["detected"]).groupby(by).sum()
-        print("\nMeans per family (the kind, or photo2: the second photo-like family; data: the photos of data/)")
+        print(
+            "\nMeans per family (the kind, or photo2: the second photo-like family; heldout: the held-out "
+            "clip arts and drawings; data: the photos of data/)"
+        )
         print(means.to_string(float_format="%.2f"))
     kinks = np.concatenate(
-        [r["kinks"] for r, _ in runs if r["kind"] in ("clipart", "drawing") and "kinks" in r] or [np.zeros(0)]
+        [r["kinks"] for r, _ in runs if r["family"] in ("clipart", "drawing") and "kinks" in r] or [np.zeros(0)]
     )
     if len(kinks):
         print(

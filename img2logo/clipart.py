@@ -42,6 +42,7 @@ import numpy as np
 
 from .constants import (
     CLIPART_EDGE_CONTRAST,
+    CLIPART_FILL_SPREAD,
     CLIPART_FLAT_RADIUS,
     CLIPART_LINK_DISTANCE,
     CLIPART_MIN_CONTRAST,
@@ -49,6 +50,7 @@ from .constants import (
     CLIPART_NOISE_FACTOR,
     CLIPART_NOISY_FRACTION,
     CLIPART_RIM_RADIUS,
+    CLIPART_RING_WIDTH,
     CLIPART_SEED_AREA,
     CLIPART_SHIFT_RADIUS,
     CLIPART_STROKE_ELONGATION,
@@ -119,15 +121,16 @@ def clipart_regions(img: LoadedImage) -> np.ndarray:
     # artefact of one block, so seeds must be as large as a region.
     clean = fraction <= CLIPART_NOISY_FRACTION
     seed_area = CLIPART_SEED_AREA if clean else CLIPART_MIN_REGION_AREA
+    rgb = img.rgb
     if clean:
         noise = 0.0  # the differences measured are edges' (a drawing has little fill)
     else:
-        lab = _mean_shift(img.rgb, max(2 * CLIPART_MIN_CONTRAST, CLIPART_NOISE_FACTOR * noise))
+        rgb, lab = _mean_shift(img.rgb, max(2 * CLIPART_MIN_CONTRAST, CLIPART_NOISE_FACTOR * noise))
         noise, _ = colour_noise(lab)
     link = max(CLIPART_LINK_DISTANCE, CLIPART_NOISE_FACTOR * noise)
     contrast = max(CLIPART_MIN_CONTRAST, CLIPART_NOISE_FACTOR * noise)
     areas = _flat_areas(lab, link)
-    regions, seeded = _palette_regions(areas, img.rgb, lab, seed_area, contrast, strokes=clean)
+    regions, seeded = _palette_regions(areas, rgb, lab, seed_area, contrast, compressed=not clean)
     # A region without a single seed pixel is made of rims only: a sliver along an
     # edge (JPEG ringing), not a fill.
     rimmed = np.bincount(regions.ravel(), weights=seeded.ravel(), minlength=int(regions.max()) + 1) == 0
@@ -149,7 +152,7 @@ def label_means(labels: np.ndarray, values: np.ndarray) -> tuple[np.ndarray, np.
 
 
 def _palette_regions(
-    areas: np.ndarray, rgb: np.ndarray, lab: np.ndarray, seed_area: int, contrast: float, *, strokes: bool
+    areas: np.ndarray, rgb: np.ndarray, lab: np.ndarray, seed_area: int, contrast: float, *, compressed: bool
 ) -> tuple[np.ndarray, np.ndarray]:
     """Regions from flat-area seeds and a palette of their colours: (H, W) labels, (H, W) seed mask.
 
@@ -162,11 +165,11 @@ def _palette_regions(
     regions are the connected components of equal entries. A smooth gradient
     is one seed, so it keeps one entry throughout.
 
-    With ``strokes`` (a clean image), pixels that are no blend of the seeds
-    near them (farther than ``contrast`` from every mix of two) are a colour of
-    their own: a line too thin to have flat pixels (a 3 px stroke with
-    anti-aliased edges). Their connected groups of at least ``seed_area`` px
-    seed entries too.
+    Pixels that are no blend of the seeds near them are a colour of their own
+    (:func:`_unexplained_seeds`): in a clean image a line too thin to have flat
+    pixels (a 3 px stroke with anti-aliased edges), in a ``compressed`` one a
+    small fill that JPEG ringing leaves without a flat pixel (an eye, a horn's
+    tip). They seed entries too.
     """
     from skimage.measure import label
 
@@ -179,19 +182,15 @@ def _palette_regions(
     seed_of = seed_id[areas]
     means = lab_means[seeds]
     sizes = counts[seeds]
-    if strokes:
-        own = _unexplained(seed_of, label_means(areas, rgb)[1][seeds], rgb, lab, contrast)
-        if own.any():
-            groups = label(own, connectivity=2)
-            extra, extra_means = label_means(groups, lab)
-            keep = np.flatnonzero(extra >= seed_area)
-            keep = keep[keep > 0]
-            if len(keep):
-                new_id = np.full(len(extra), -1, dtype=np.int64)
-                new_id[keep] = len(means) + np.arange(len(keep))
-                seed_of = np.where(new_id[groups] >= 0, new_id[groups], seed_of)
-                means = np.vstack([means, extra_means[keep]])
-                sizes = np.concatenate([sizes, extra[keep]])
+    groups = _unexplained_seeds(seed_of, label_means(areas, rgb)[1][seeds], rgb, lab, contrast, seed_area, compressed)
+    if groups is not None:
+        extra, extra_means = label_means(groups, lab)
+        keep = np.flatnonzero(extra[1:] > 0) + 1
+        new_id = np.full(len(extra), -1, dtype=np.int64)
+        new_id[keep] = len(means) + np.arange(len(keep))
+        seed_of = np.where(new_id[groups] >= 0, new_id[groups], seed_of)
+        means = np.vstack([means, extra_means[keep]])
+        sizes = np.concatenate([sizes, extra[keep]])
     entry_of = np.empty(len(means), dtype=np.int64)
     palette: list[np.ndarray] = []
     for i in np.argsort(-sizes, kind="stable"):
@@ -233,14 +232,84 @@ def _near_entries(index: np.ndarray, n: int, rest: np.ndarray) -> np.ndarray:
     return near
 
 
+def _unexplained_seeds(
+    seed_of: np.ndarray,
+    areas_rgb: np.ndarray,
+    rgb: np.ndarray,
+    lab: np.ndarray,
+    contrast: float,
+    seed_area: int,
+    compressed: bool,
+) -> np.ndarray | None:
+    """Seeds of the colours that no blend of the flat seeds explains: (H, W) labels (0 = none), or None.
+
+    A clean image: the 8-connected groups of :func:`_unexplained` pixels of at
+    least ``seed_area`` px (a line too thin to have flat pixels).
+
+    A compressed image: a small fill of high contrast (a 10 px eye, black on
+    yellow) has no flat pixel, since JPEG rings most in the blocks of its
+    strongest edges, and would fall to its surroundings. Its pixels are farther
+    than ``CLIPART_EDGE_CONTRAST`` (four just noticeable differences: beyond a
+    fill's compression noise, which the mean shift has halved) from every
+    blend of the seeds near them (a pixel with no seed near, from every seed's
+    colour). The seeds are such pixels more than ``CLIPART_RING_WIDTH`` px from
+    any other (a ringing halo or chroma bleeding along an edge is a strip no
+    wider than that and has none), in 8-connected groups of at least
+    ``CLIPART_SEED_AREA`` px (a 3x3 block, as the flat seeds of a clean image),
+    unless their 8-connected part of unexplained pixels is more than
+    ``CLIPART_FILL_SPREAD`` times what lies within ``CLIPART_RIM_RADIUS`` px of
+    them (thin strokes that cross, not a fill).
+    """
+    from skimage.measure import label
+
+    if not compressed:
+        own = _unexplained(seed_of, areas_rgb, rgb, lab, contrast)
+        if not own.any():
+            return None
+        groups = label(own, connectivity=2)
+        small = np.bincount(groups.ravel()) < seed_area
+        small[0] = False
+        groups[small[groups]] = 0
+        return groups if groups.any() else None
+    import cv2
+
+    own = _unexplained(seed_of, areas_rgb, rgb, lab, CLIPART_EDGE_CONTRAST, lonely=True)
+    if not own.any():
+        return None
+    own8 = own.astype(np.uint8)
+    core = cv2.distanceTransform(own8, cv2.DIST_L2, cv2.DIST_MASK_PRECISE) > CLIPART_RING_WIDTH
+    if not core.any():
+        return None
+    # A small fill's unexplained pixels are its inside and its rim, near its core; a core in a
+    # network of thin strokes (where two 3 px lines of a JPEG drawing cross) is no small fill.
+    parts = label(own, connectivity=2)
+    size = 2 * CLIPART_RIM_RADIUS + 1
+    near = (cv2.dilate(core.astype(np.uint8), np.ones((size, size), np.uint8)) > 0) & own
+    spread = np.bincount(parts.ravel()) > CLIPART_FILL_SPREAD * np.bincount(parts[near], minlength=parts.max() + 1)
+    core &= ~spread[parts]
+    groups = label(core, connectivity=2)
+    small = np.bincount(groups.ravel()) < CLIPART_SEED_AREA
+    small[0] = False
+    groups[small[groups]] = 0
+    return groups if groups.any() else None
+
+
 def _unexplained(
-    seed_of: np.ndarray, areas_rgb: np.ndarray, rgb: np.ndarray, lab: np.ndarray, contrast: float
+    seed_of: np.ndarray,
+    areas_rgb: np.ndarray,
+    rgb: np.ndarray,
+    lab: np.ndarray,
+    contrast: float,
+    *,
+    lonely: bool = False,
 ) -> np.ndarray:
     """Non-seed pixels farther than ``contrast`` (Delta E) from every blend of two seeds near them: (H, W) bool.
 
     Anti-aliasing blends the two sides' colours in sRGB, so the blend is taken
     there (a straight line in sRGB is a curve in CIELAB) and compared in CIELAB.
-    ``areas_rgb`` holds the seeds' mean sRGB colours, shape (S, 3).
+    ``areas_rgb`` holds the seeds' mean sRGB colours, shape (S, 3). A pixel
+    with no seed within ``CLIPART_RIM_RADIUS`` is unexplained, or with
+    ``lonely`` compared with every seed's colour.
     """
     from skimage.color import rgb2lab
 
@@ -252,12 +321,22 @@ def _unexplained(
     near = _near_entries(seed_of, n, rest)
     colours, colours_lab = rgb[rest], lab[rest]
     best = np.full(len(colours), np.inf)
+    singles = rgb2lab(areas_rgb[None])[0]
+    if lonely:
+        alone = ~near.any(axis=1)
+        if alone.any():
+            best[alone] = np.min(np.linalg.norm(colours_lab[alone, None] - singles[None], axis=2), axis=1)
     for a in range(n):
         on_a = near[:, a]
+        if on_a.any():
+            best[on_a] = np.minimum(best[on_a], np.linalg.norm(colours_lab[on_a] - singles[a], axis=1))
+    # Only a pixel far from every seed's own colour can be far from every blend: the blends
+    # (an sRGB to CIELAB conversion each) are taken for those alone.
+    far = best > contrast
+    for a in range(n):
+        on_a = near[:, a] & far
         if not on_a.any():
             continue
-        single = rgb2lab(areas_rgb[a][None, None, :])[0, 0]
-        best[on_a] = np.minimum(best[on_a], np.linalg.norm(colours_lab[on_a] - single, axis=1))
         for b in range(a + 1, n):
             both = on_a & near[:, b]
             if not both.any():
@@ -270,8 +349,8 @@ def _unexplained(
     return out
 
 
-def _mean_shift(rgb: np.ndarray, colour_radius: float) -> np.ndarray:
-    """Mean shift filtering (Comaniciu and Meer 2002) of a noisy clip art: CIELAB (H, W, 3).
+def _mean_shift(rgb: np.ndarray, colour_radius: float) -> tuple[np.ndarray, np.ndarray]:
+    """Mean shift filtering (Comaniciu and Meer 2002) of a noisy clip art: sRGB and CIELAB, (H, W, 3) each.
 
     Each pixel moves to the mode of the colours within ``CLIPART_SHIFT_RADIUS``
     px and ``colour_radius`` (Delta E) of it: a fill's compression noise
@@ -284,7 +363,8 @@ def _mean_shift(rgb: np.ndarray, colour_radius: float) -> np.ndarray:
 
     u8 = np.clip(np.round(rgb * 255.0), 0, 255).astype(np.uint8)
     shifted = cv2.pyrMeanShiftFiltering(cv2.cvtColor(u8, cv2.COLOR_RGB2Lab), CLIPART_SHIFT_RADIUS, colour_radius)
-    return rgb2lab(cv2.cvtColor(shifted, cv2.COLOR_Lab2RGB) / 255.0)
+    out = cv2.cvtColor(shifted, cv2.COLOR_Lab2RGB) / 255.0
+    return out, rgb2lab(out)
 
 
 def _flat_areas(lab: np.ndarray, link: float) -> np.ndarray:

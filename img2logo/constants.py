@@ -50,6 +50,20 @@ BLANK_IMAGE_RANGE: float = 1.0 / 255.0
 # --- Feature lines ----------------------------------------------------------------
 #: Side spurs of the skeleton shorter than this are pruned, px.
 SPUR_LENGTH: float = 12.0
+#: Drawing: paper pinched between two strokes to a light line this narrow or less (the disc
+#: of the white top-hat, px: lines up to 4 px wide) and lighter than its sides by more than
+#: this share of the paper-ink contrast is paper, not ink, so that the two strokes keep two
+#: centre lines. A quarter: far above JPEG ringing inside a stroke (a few %), below the
+#: 0.45-0.5 of a 1-2 px gap between two anti-aliased strokes.
+SEAM_WIDTH: int = 5
+SEAM_CONTRAST: float = 0.25
+#: ... the seam is widened by the pixels beside it lighter than the ink by this share of the
+#: contrast (the strokes' rims), never into the ink: a 1 px diagonal ridge has steps that
+#: 8-connected ink would cross.
+SEAM_RIM: float = 0.1
+#: ... and it is at least this many times the median stroke width long: two strokes that only
+#: touch (a tail on a body) leave a ridge about as long as they are wide, and stay joined.
+SEAM_LENGTH: float = 2.0
 #: Connected specks of line pixels smaller than this are dropped, px (area).
 MIN_SPECK_AREA: int = 24
 #: Kind detection: an image is synthetic (a clip art or a drawing), not a photo, when
@@ -63,6 +77,11 @@ SYNTHETIC_FLAT_FRACTION: float = 0.4
 #: drawing if it is drawn in strokes. Twice the just noticeable difference, so
 #: anti-aliasing left in a region does not count as a second colour.
 INK_COLOUR_SPREAD: float = 4.6
+#: Kind detection: a region of a paper-ink blend at least this share of whose pixels are of
+#: the ink's colour (within INK_COLOUR_SPREAD) is ink with its rims and the paper it
+#: encloses (a small ring of a 4 px stroke: about half its pixels), not a grey of its own
+#: (a grey fill or line has no pixel of the ink's colour).
+INK_SHARE: float = 0.25
 #: Kind detection: a one-ink image is a line drawing when its strokes (twice the
 #: median distance from the ink's medial axis to its edge) are at most this fraction
 #: of the shorter image side wide; wider, it is a flat silhouette (a clip art).
@@ -100,6 +119,18 @@ CLIPART_SEED_AREA: int = 9
 #: distance, px: a rim or a JPEG-blurred edge is a blend of the two sides, not a
 #: third colour; the 4 px reach over chroma subsampling (2 px) and ringing.
 CLIPART_RIM_RADIUS: int = 4
+#: Clip art, compressed (JPEG): a small fill of high contrast (an eye) has no flat pixel, as
+#: JPEG rings most in the blocks of its strongest edges; its pixels that no blend of the
+#: seeds near them explains seed it where they lie more than this from any other pixel, px.
+#: Ringing is a 1-2 px halo, but chroma is kept at half resolution (4:2:0) and bleeds: along
+#: a yellow-on-blue edge at quality 60 the strip of unexplained colours is up to 6 px wide
+#: (measured), so its pixels are all within 3 px of its edge. A dot needs about 10 px across.
+CLIPART_RING_WIDTH: float = 3.0
+#: ... and such a seed is a small fill only when its part of unexplained pixels lies mostly
+#: near it: at most this many times what is within CLIPART_RIM_RADIUS px of it. Measured:
+#: 1.2-1.9 for the eye and horn tips of JPEG clip arts; 27-50 where two 3 px strokes of a
+#: line drawing (its whole network unexplained, with no flat pixel) cross.
+CLIPART_FILL_SPREAD: float = 4.0
 #: Clip art: the spatial radius of the mean shift filter that flattens the fills of a
 #: noisy (JPEG) clip art, px: the 8x8 blocks' noise averages out within it.
 CLIPART_SHIFT_RADIUS: int = 4

@@ -83,6 +83,28 @@ def test_jpeg_gives_the_same_regions_and_graph():
     assert length(jpg) == pytest.approx(length(png), rel=0.1)
 
 
+@pytest.mark.parametrize("quality", [60, 75, 85])
+def test_a_small_dark_fill_of_a_jpeg_keeps_its_region(quality):
+    """A 10 x 16 px black eye on yellow: JPEG ringing leaves it no flat pixel, it is still a region."""
+    im = _disc((250, 190, 50), (255, 255, 255))
+    cv2.ellipse(im, (80, 90), (5, 8), 0, 0, 360, (20, 20, 25), -1, lineType=cv2.LINE_AA)
+    regions = _regions(_jpeg(im, quality))
+    eye, body = regions[90, 80], regions[100, 130]
+    assert eye not in (body, regions[5, 5])
+    assert 110 <= int((regions == eye).sum()) <= 200  # the eye (about 150 px with its anti-aliased rim)
+    assert len(np.unique(regions)) == 3  # paper, disc, eye: no ringing seeded
+
+
+def test_thin_strokes_of_a_jpeg_drawing_seed_no_fill_where_they_cross():
+    """Two 3 px lines crossing: the crossing is thick enough to have an inside, but is no small fill."""
+    im = blank()
+    for end in ((40, 40, 160, 160), (40, 160, 160, 40)):
+        cv2.line(im, end[:2], end[2:], (0, 0, 0), 3, lineType=cv2.LINE_AA)
+    cv2.circle(im, (100, 40), 5, (0, 0, 0), -1, lineType=cv2.LINE_AA)  # and an 11 px dot
+    kind, reason = detect_kind(_jpeg(im, 70))
+    assert kind == "drawing", reason
+
+
 def test_a_thin_stripe_becomes_one_stroke():
     im = _disc((230, 120, 40), (255, 255, 255))
     cv2.line(im, (55, 100), (145, 100), (60, 30, 20), 3)  # a 3 px dark stripe across the disc

@@ -245,6 +245,18 @@ def test_a_9_px_dot_becomes_one_full_golden_circle_at_the_dot():
     assert c.r == pytest.approx(PHI ** (c.k + result.bias), rel=1e-6)  # on the ladder
 
 
+def test_a_jpeg_drawing_with_a_9_px_dot_keeps_one_full_circle_at_the_dot():
+    import cv2
+
+    _, data = cv2.imencode(".jpg", _ring_and_dot(ring=False, dot=True), [cv2.IMWRITE_JPEG_QUALITY, 70])
+    result = abstract(cv2.imdecode(data, cv2.IMREAD_COLOR), progress=False)
+    assert result.lines.kind == "drawing", result.lines.reason
+    full = [a for a in result.final.arcs if a.is_full_circle]
+    assert len(full) == 1
+    c = full[0].circle
+    assert math.hypot(c.cx - 150.5, c.cy - 150.5) <= 1.0 and c.r <= 4.5
+
+
 def test_stroke_width_option_overrides_and_is_checked():
     result = abstract(_ring_and_dot(ring=True, dot=False), progress=False, stroke_width=3.0)
     assert result.params["stroke_width"] == 3.0
