@@ -7,7 +7,7 @@ import math
 
 import numpy as np
 import pytest
-from conftest import arc_through
+from helpers import arc_through
 
 import img2logo.constrained_fit as cfit
 from img2logo.arc_extraction import (
