@@ -671,7 +671,8 @@ def _grabcut(
 
     Run on a copy whose longer side is ``SUBJECT_WORK_SIDE`` px, then once more
     at full size, only in a band of ``SUBJECT_REFINE_BAND`` px (at the working
-    scale) around the boundary found, with the colour models of the first run.
+    scale) around the boundary found, on the band's bounding box, starting from the
+    colour models of the first run.
     Given the photo's :func:`texture_map` ``texture``, it cuts on
     :func:`texture_colour_image` instead of the colours alone. Deterministic (OpenCV's random generator is seeded).
     """
@@ -720,13 +721,13 @@ def _grabcut(
         outside[y : y + rh, x : x + rw] = False
         full[outside] = cv2.GC_BGD
     # Only the band is open: the cut runs on its bounding box (and 1 px of fixed background
-    # around it, so every open pixel keeps its neighbours), with the first run's colour models
-    # frozen (GC_EVAL_FREEZE_MODEL: no k-means start at full size, no re-learning).
+    # around it, so every open pixel keeps its neighbours), starting from the first run's colour
+    # models (GC_EVAL: no k-means start at full size; they are re-learnt on the box once).
     rows, cols = np.nonzero(near)
     r0, r1 = max(0, rows.min() - 1), min(h, rows.max() + 2)
     c0, c1 = max(0, cols.min() - 1), min(w, cols.max() + 2)
     crop = np.ascontiguousarray(full[r0:r1, c0:c1])
-    cv2.grabCut(np.ascontiguousarray(full8[r0:r1, c0:c1]), crop, None, bgd, fgd, 1, cv2.GC_EVAL_FREEZE_MODEL)
+    cv2.grabCut(np.ascontiguousarray(full8[r0:r1, c0:c1]), crop, None, bgd, fgd, 1, cv2.GC_EVAL)
     full[r0:r1, c0:c1] = crop
     return (full == cv2.GC_FGD) | (full == cv2.GC_PR_FGD)
 
