@@ -13,6 +13,8 @@
 * **faces** (:attr:`Subject.faces`): inside the ellipse of each face found,
   the FDoG lines are kept down to ``FACE_MIN_LINE`` of the face's side, first
   in the budget: eyes, brows, nose and mouth are inner lines of the subject;
+* **carried to the outline**: an inner line that runs into the outline and
+  stops within the margin of it is carried on to it (:func:`reach_outline`);
 * **joined**: a line end that stops within ``LINE_JOIN_DISTANCE`` of another
   line is linked to it by a straight run of pixels (:func:`join_line_ends`), so
   that the segment graph has a junction there, not a near-miss gap; a short
@@ -45,6 +47,7 @@ from .constants import (
     INNER_LINE_MARGIN,
     INNER_MIN_LENGTH,
     INNER_MIN_SPAN,
+    LINE_JOIN_DISTANCE,
     OUTLINE_FRAME_MARGIN,
     PHOTO_LINE_BUDGET,
 )
@@ -80,8 +83,55 @@ def photo_feature_lines(img: LoadedImage, subject: Subject) -> np.ndarray:
     budget = max(0.0, budget - float(outline.sum()))
     features = salient_lines(skeletonize(inner & inside & faces), length, length)
     budget = max(0.0, budget - float(features.sum()))
-    lines = features | salient_lines(skeletonize(inner & inside & ~faces), budget=budget) | outline
-    return join_line_ends(skeletonize(lines))
+    lines = features | salient_lines(skeletonize(inner & inside & ~faces), budget=budget)
+    return join_line_ends(skeletonize(reach_outline(lines, outline) | outline))
+
+
+def reach_outline(lines: np.ndarray, outline: np.ndarray) -> np.ndarray:
+    """Inner lines (H, W) bool, those that run into the outline carried on to it.
+
+    Inner lines are cut ``INNER_LINE_MARGIN`` px inside the outline (and the
+    FDoG fades where three regions meet), so an edge between two of the
+    subject's regions stops short of the outline it meets: further than
+    ``LINE_JOIN_DISTANCE`` it would stay a near-miss gap. An end within
+    ``INNER_LINE_MARGIN + LINE_JOIN_DISTANCE`` of ``outline`` is carried
+    straight on (its direction: from the mean of the line's pixels within
+    ``LINE_JOIN_DISTANCE`` of the end to the end); if that meets the outline
+    within the same distance, the end is joined to the outline there by a
+    straight run. A line running beside the outline is left alone.
+    """
+    from scipy import ndimage
+    from skimage.draw import line
+
+    from ._skeleton import classify
+
+    out = np.asarray(lines, dtype=bool).copy()
+    if not out.any() or not outline.any():
+        return out
+    h, w = out.shape
+    dist, (near_r, near_c) = ndimage.distance_transform_edt(~outline, return_indices=True)
+    reach = INNER_LINE_MARGIN + LINE_JOIN_DISTANCE
+    ends = np.argwhere(out & (classify(out)[1] == 1) & (dist <= reach) & (dist > 1.5))
+    labels, _ = ndimage.label(out, structure=np.ones((3, 3)))
+    box = math.ceil(LINE_JOIN_DISTANCE)
+    for r, c in ends:
+        r0, c0 = max(0, r - box), max(0, c - box)
+        rows, cols = np.nonzero(labels[r0 : r + box + 1, c0 : c + box + 1] == labels[r, c])
+        rows, cols = rows + r0, cols + c0
+        close = np.hypot(rows - r, cols - c) <= LINE_JOIN_DISTANCE
+        heading = np.array([r - rows[close].mean(), c - cols[close].mean()])
+        if not np.any(heading):
+            continue
+        heading /= np.linalg.norm(heading)
+        for t in np.arange(1.0, reach + 1.0):  # straight on from the end: does it meet the outline?
+            qr, qc = (round(v) for v in np.array([r, c]) + t * heading)
+            if not (0 <= qr < h and 0 <= qc < w):
+                break
+            if dist[qr, qc] <= 1.0:
+                rr, cc = line(int(r), int(c), int(near_r[qr, qc]), int(near_c[qr, qc]))
+                out[rr, cc] = True
+                break
+    return out
 
 
 def face_region(shape: tuple[int, int], faces: tuple[tuple[int, int, int, int], ...]) -> np.ndarray:

@@ -227,15 +227,15 @@ def _find_subject(img: LoadedImage, foreground: object, subject: object) -> Subj
         if foreground == "auto" and img.has_alpha and not img.foreground.all():
             mask = img.foreground
             return Subject(readonly(mask.copy()), "alpha", f"kept the opaque pixels (alpha): {mask.mean():.0%}")
-        mask = _clean(_grabcut(img))
         texture = None
         if foreground == "auto":  # the same cut with texture: take the candidate whose outline is the sharper edge
-            texture = texture_map(img.rgb, _work_scale(img))
-            textured = _clean(_grabcut(img, texture=texture))
+            mask, texture, textured = _both_cuts(img)
             if textured.any() and outline_contrast(img, textured, texture=texture) > outline_contrast(
                 img, mask, texture=texture
             ):
                 mask = textured
+        else:
+            mask = _clean(_grabcut(img))
         if foreground == "grabcut":
             if not mask.any():
                 return Subject(None, "grabcut", "GrabCut found no object: kept the whole image")
@@ -271,6 +271,28 @@ def _find_subject(img: LoadedImage, foreground: object, subject: object) -> Subj
     if not mask.any():
         raise InvalidParameterError("foreground mask is empty: no pixel is marked as the object")
     return Subject(readonly(mask.copy()), "mask", f"kept the object of the given mask: {mask.mean():.0%} of the image")
+
+
+def _both_cuts(img: LoadedImage) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """GrabCut on the colours and on colour and texture, run side by side: (mask, texture, textured mask).
+
+    The two cuts are independent and OpenCV releases the interpreter while it
+    cuts, so they run in two threads (each seeds its own random generator:
+    the result is the same as one after the other).
+    """
+    from concurrent.futures import ThreadPoolExecutor
+
+    _ = img.smooth_lab  # computed once, before the threads share it
+
+    def textured() -> tuple[np.ndarray, np.ndarray]:
+        texture = texture_map(img.rgb, _work_scale(img))
+        return texture, _clean(_grabcut(img, texture=texture))
+
+    with ThreadPoolExecutor(max_workers=2) as pool:
+        other = pool.submit(textured)
+        mask = _clean(_grabcut(img))
+        texture, cut = other.result()
+    return mask, texture, cut
 
 
 def dominant_part(mask: np.ndarray, texture: np.ndarray | None) -> np.ndarray:
@@ -649,7 +671,8 @@ def _grabcut(
 
     Run on a copy whose longer side is ``SUBJECT_WORK_SIDE`` px, then once more
     at full size, only in a band of ``SUBJECT_REFINE_BAND`` px (at the working
-    scale) around the boundary found, with the colour models of the first run.
+    scale) around the boundary found, on the band's bounding box, starting from the
+    colour models of the first run.
     Given the photo's :func:`texture_map` ``texture``, it cuts on
     :func:`texture_colour_image` instead of the colours alone. Deterministic (OpenCV's random generator is seeded).
     """
@@ -688,7 +711,8 @@ def _grabcut(
         return up
     band = max(2, round(SUBJECT_REFINE_BAND / scale))
     full = np.full((h, w), cv2.GC_BGD, np.uint8)
-    full[ndimage.binary_dilation(up, iterations=band)] = cv2.GC_PR_BGD
+    near = ndimage.binary_dilation(up, iterations=band)
+    full[near] = cv2.GC_PR_BGD
     full[up] = cv2.GC_PR_FGD
     full[ndimage.binary_erosion(up, iterations=band)] = cv2.GC_FGD
     if rect is not None:  # outside the user's rectangle stays background
@@ -696,7 +720,15 @@ def _grabcut(
         outside = np.ones((h, w), bool)
         outside[y : y + rh, x : x + rw] = False
         full[outside] = cv2.GC_BGD
-    cv2.grabCut(full8, full, None, bgd, fgd, 1, cv2.GC_INIT_WITH_MASK)
+    # Only the band is open: the cut runs on its bounding box (and 1 px of fixed background
+    # around it, so every open pixel keeps its neighbours), starting from the first run's colour
+    # models (GC_EVAL: no k-means start at full size; they are re-learnt on the box once).
+    rows, cols = np.nonzero(near)
+    r0, r1 = max(0, rows.min() - 1), min(h, rows.max() + 2)
+    c0, c1 = max(0, cols.min() - 1), min(w, cols.max() + 2)
+    crop = np.ascontiguousarray(full[r0:r1, c0:c1])
+    cv2.grabCut(np.ascontiguousarray(full8[r0:r1, c0:c1]), crop, None, bgd, fgd, 1, cv2.GC_EVAL)
+    full[r0:r1, c0:c1] = crop
     return (full == cv2.GC_FGD) | (full == cv2.GC_PR_FGD)
 
 

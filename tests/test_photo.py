@@ -66,6 +66,23 @@ def test_a_line_end_near_another_line_makes_a_junction():
     assert out.sum() == skel.sum() + 4
 
 
+def test_an_inner_line_that_runs_into_the_outline_is_carried_on_to_it():
+    from img2logo.photo import reach_outline
+
+    outline = np.zeros((60, 80), bool)
+    outline[10, 5:75] = True  # the outline along the top
+    lines = np.zeros_like(outline)
+    lines[18:50, 40] = True  # an edge between two regions: stops 8 px under the outline
+    lines[16, 10:30] = True  # runs beside the outline 6 px inside it: left alone
+    out = reach_outline(lines, outline)
+    assert out[10:50, 40].all()  # carried straight up onto the outline
+    np.testing.assert_array_equal(out[:, :35], lines[:, :35])
+    far = np.zeros_like(outline)
+    far[30:50, 60] = True  # 20 px away: more than the margin and the join distance
+    np.testing.assert_array_equal(reach_outline(far, outline), far)
+    assert not reach_outline(np.zeros_like(outline), outline).any()
+
+
 def test_a_scene_draws_the_whole_image():
     rgb, _ = textured_photo([(170, 120, 80, 60, (0.95, 0.75, 0.2))])
     img = load_image(rgb)
