@@ -36,46 +36,199 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from .arc_extraction import redundant_intersections
+from .constants import CONSTRAINED_FIT_TOL
+from .golden_ladder import FibonacciLadder
+
 if TYPE_CHECKING:
     from .progressive import _Optimizer
 
 
 def tangent_joins(opt: _Optimizer, tolerance: float) -> bool:
-    """Make the circles of the current state touch at its smooth joins; whether the state changed.
+    """Make the circles of the current state touch at its smooth joins, one join at a time; whether it changed.
 
-    The whole problem is refitted (every circle and junction free, straight
-    lines fixed) with the tangencies of ``opt.tangencies``; while the fit
-    fails or its E^s (Eqn. 3) exceeds ``max(tolerance, E^s now)``, the join
-    whose circles are farthest from touching now is released
-    (``opt.loose``) and the fit tried again. Counts go to
+    The joins of ``opt.tangencies`` are taken in order of their kink now (the
+    nearest to touching first). For each, the circles of its two groups, with
+    the groups tied to them by joins already made tangent, are refitted in a
+    local window (Sec. 5.4, :meth:`~img2logo.progressive._Optimizer.solve`)
+    with every tangency made so far and this one; first on their rungs, and if
+    that fails, with each of the two circles one rung up or down the ladder
+    (:func:`_rung_choices`), the choice of lowest E^s kept. A choice is kept
+    only if the fit converges, E^s (Eqn. 3) stays within ``max(tolerance, E^s
+    now)``, no arc moves farther from its pixels than ``arc_bound`` (or than it
+    was), the tangencies made before still hold, and no redundant intersection
+    is added; otherwise the join is released (``opt.loose``), a kink is left
+    there, and the next join is tried. Counts go to
     ``opt.stats["tangent_joins"]`` and ``["released_tangencies"]``.
     """
     seeds = {g: (f.center, f.radius, f.k) for g, f in opt.fits.items()}
+    joins = opt.tangencies(opt.groups, seeds)
+    if not joins:
+        return False
     bound = max(float(tolerance), opt.similarity())
-    groups = dict(opt.groups)
-    node_groups = opt.node_groups()
-    before = (dict(opt.fits), opt.disp.copy())
-    changed = False
-    while True:
-        touching = opt.tangencies(groups, seeds)
-        if not touching:
-            break
-        out = opt.solve_whole(
-            groups, seeds, node_groups, n_groups_total=len(groups), n_junctions_total=len(node_groups), tangent=True
-        )
-        if out is not None:
-            fits, disp = out
-            opt.fits.update(fits)
-            for n, d in disp.items():
-                opt.disp[n] = d
-            if opt.similarity() <= bound:
-                changed = True
-                break
-            opt.fits, opt.disp = dict(before[0]), before[1].copy()
-        opt.loose.add(max(touching, key=lambda n: (_apart(opt, seeds, n, touching[n]), -n)))
-    opt.stats["tangent_joins"] = len(opt.tangencies(groups, seeds)) if changed else 0
+    order = sorted(joins, key=lambda n: (_apart(opt, seeds, n, joins[n]), n))
+    opt.loose |= set(joins)
+    made: dict[int, tuple[int, int]] = {}
+    for node in order:
+        a, b = joins[node]
+        opt.loose.discard(node)
+        made[node] = (a, b)
+        best = None
+        for combo in _rung_choices(opt, (a, b)):
+            trial = _try(opt, made, node, combo, bound)
+            if trial is not None and (best is None or trial[0] < best[0]):
+                best = trial
+            if best is not None and not any(combo.values()):
+                break  # the rungs the paper chose serve: no reason to leave them
+        if best is None:
+            del made[node]
+            opt.loose.add(node)
+            continue
+        _, fits, disp = best
+        opt.fits.update(fits)
+        for n, d in disp.items():
+            opt.disp[n] = d
+    opt.stats["tangent_joins"] = len(made)
     opt.stats["released_tangencies"] = len(opt.loose)
-    return changed
+    return bool(made)
+
+
+def _rung_choices(opt: _Optimizer, pair: tuple[int, int]) -> list[dict[int, int]]:
+    """Rung changes to try for a join's two circles: group -> step on the ladder, no change first.
+
+    With the radii on the ladder, two circles of given rungs through given
+    junctions touch only where the junctions happen to allow it; a circle one
+    rung up or down (a factor phi) changes its curvature at the join and often
+    lets the two touch with a small move. Only circles (not lines), only rungs
+    allowed (:func:`_neighbour_rung`), each step at most one rung.
+    """
+    steps = {}
+    for g in pair:
+        k = opt.fits[g].k
+        steps[g] = [0] if k is None else [0, *(s for s in (-1, 1) if _neighbour_rung(opt, g, s) is not None)]
+    a, b = pair
+    combos = [{a: sa, b: sb} for sa in steps[a] for sb in steps[b]]
+    return sorted(combos, key=lambda c: (abs(c[a]) + abs(c[b]), c[a], c[b]))
+
+
+def _neighbour_rung(opt: _Optimizer, gid: int, step: int) -> tuple[int, float] | None:
+    """The allowed rung ``step`` (-1 or +1) places from group ``gid``'s, (k, r); None if there is none.
+
+    A rung whose circle cannot reach the group's junctions (a diameter shorter
+    than their span, :meth:`~img2logo.progressive._Optimizer.reach`) is none.
+    """
+    ladder, k = opt.ladder, opt.fits[gid].k
+    if ladder.exponents is not None:
+        allowed = sorted(ladder.exponents)
+        if k not in allowed:
+            return None
+        i = allowed.index(k) + step
+        if not 0 <= i < len(allowed):
+            return None
+        j = allowed[i]
+    else:
+        j = k + step
+        if j < 2 and isinstance(ladder, FibonacciLadder):
+            return None  # F(1) = F(2): k = 2 is the unit, the smallest rung
+    r = ladder.radius(j)
+    if r < opt.reach(opt.groups[gid]):
+        return None
+    return j, r
+
+
+def _try(
+    opt: _Optimizer, made: dict[int, tuple[int, int]], node: int, combo: dict[int, int], bound: float
+) -> tuple[float, dict, dict] | None:
+    """Refit the window of the join at ``node`` with the rung steps ``combo``: (E^s, fits, displacements) or None.
+
+    None when the fit fails or breaks one of the rules of :func:`tangent_joins`.
+    The state is left as it was.
+    """
+    seeds = {g: (f.center, f.radius, f.k) for g, f in opt.fits.items()}
+    for g, step in combo.items():
+        if step:
+            k, r = _neighbour_rung(opt, g, step)
+            seeds[g] = (opt.fits[g].center, r, k)
+    changed, free = _window(opt, made, made[node])
+    node_groups = opt.node_groups()
+    out = opt.solve(
+        dict(opt.groups),
+        seeds,
+        node_groups,
+        changed=sorted(changed),
+        free_nodes=sorted(free),
+        fixed=set(),
+        n_groups_total=len(opt.groups),
+        n_junctions_total=len(node_groups),
+        rings=2,
+        tangent=True,
+    )
+    if out is None:
+        return None
+    fits, disp = out
+    cap = opt.options.arc_bound
+    if cap is not None and any(f.arc.frechet > max(cap, opt.fits[g].arc.frechet) for g, f in fits.items()):
+        return None
+    before = _redundant(opt, set(fits))
+    saved = dict(opt.fits), opt.disp.copy()
+    opt.fits.update(fits)
+    for n, d in disp.items():
+        opt.disp[n] = d
+    try:
+        similarity = opt.similarity()
+        ok = similarity <= bound and _touching(opt, made) and _redundant(opt, set(fits)) <= before
+    finally:
+        opt.fits, opt.disp = saved
+    return (similarity, fits, disp) if ok else None
+
+
+def _window(opt: _Optimizer, made: dict[int, tuple[int, int]], pair: tuple[int, int]) -> tuple[set[int], set[int]]:
+    """The groups and the free junctions of a join's window: (changed groups, free nodes).
+
+    The join's two groups, and every group tied to them by a tangent join
+    already made (a chain of touching circles moves as one); their junctions
+    are free. A circle of the window that touches one outside it at a fixed
+    junction would turn about that junction and break the tangency: the
+    junction is freed too, which brings the other circle in.
+    """
+    changed = set(pair)
+    grown = True
+    while grown:
+        grown = False
+        for x, y in made.values():
+            if (x in changed) != (y in changed):
+                changed |= {x, y}
+                grown = True
+    free = {n for g in changed for n in opt.constrained_nodes(opt.groups[g])}
+    node_groups = opt.node_groups()
+    while True:
+        members = changed | {c for n in free for c in node_groups.get(n, ())}
+        more = {m for m, (x, y) in made.items() if ((x in members) != (y in members)) and m not in free}
+        if not more:
+            return changed, free
+        free |= more
+
+
+def _touching(opt: _Optimizer, made: dict[int, tuple[int, int]]) -> bool:
+    """Whether the circles of every join in ``made`` touch at it, to ``CONSTRAINED_FIT_TOL`` px (see :func:`_apart`)."""
+    seeds = {g: (f.center, f.radius, f.k) for g, f in opt.fits.items()}
+    return all(
+        _apart(opt, seeds, n, pair) * min(opt.fits[pair[0]].radius, opt.fits[pair[1]].radius) <= CONSTRAINED_FIT_TOL
+        for n, pair in made.items()
+    )
+
+
+def _redundant(opt: _Optimizer, of: set[int]) -> int:
+    """Redundant intersections (Sec. 5.2, Fig. 12) of the state's arcs that involve the groups ``of``."""
+    gids = list(opt.groups)
+    arcs = [opt.fits[g].arc.arc for g in gids]
+    node_groups = opt.node_groups()
+    nodes = sorted(node_groups)
+    index = {n: i for i, n in enumerate(nodes)}
+    points = np.array([opt.graph.junctions[n] + opt.disp[n] for n in nodes]).reshape(-1, 2)
+    arc_junctions = [[index[n] for n in opt.constrained_nodes(opt.groups[g])] for g in gids]
+    changed = [i for i, g in enumerate(gids) if g in of]
+    return len(redundant_intersections(arcs, points, arc_junctions, candidates=changed))
 
 
 def _apart(opt: _Optimizer, seeds: dict, node: int, pair: tuple[int, int]) -> float:
