@@ -314,6 +314,11 @@ SMOOTH_TANGENT_LENGTH: float = 30.0
 #: there by less than this, rad (issue 17's target: >= 90 % of the joins); two
 #: degrees is below what the eye sees at a stroke's join.
 TANGENT_JOIN_ANGLE: float = math.radians(2.0)
+#: A tangent join's junction slides along the input's line (img2logo.tangency), the
+#: two groups' pixels split anew where it is: each keeps at least this many pixels,
+#: the fewest a circle is fitted to (three points fix a circle); a junction sliding
+#: farther would swallow the group, and the join is released instead.
+SLIDE_MIN_PIXELS: int = 3
 
 # --- Result files and figures (writers, plotting) ---------------------------------
 #: Contract invariant: a circle's radius is phi ** (k + bias) within this fraction

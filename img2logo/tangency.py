@@ -9,8 +9,26 @@ junction (the junction on the line of centres, centre distance |r1 - r2| or
 r1 + r2). :func:`tangent_joins` refits the last level of the progressive
 optimization (:mod:`img2logo.progressive`) with that tangency as one more
 equality per join in the constrained fit (Eqn. 13,
-:func:`~img2logo.constrained_fit.fit_constrained`, ``tangents``), the radii
-staying on their rungs.
+:func:`~img2logo.constrained_fit.fit_constrained`, ``tangents``), one join at a
+time in its local window (Sec. 5.4), the radii on the ladder.
+
+Two freedoms make a tangency affordable where fixed rungs and fixed nodes make
+it rigid:
+
+* **the rungs of the two circles are chosen jointly** (:func:`_rung_choices`):
+  when the rungs the paper chose (Eqn. 12) cannot touch within the tolerance,
+  each circle may go one rung up or down, which turns its tangent at the join
+  by as much as the kink; the choice of lowest E^s is kept;
+* **the junction slides along the line** (:func:`_slide`): a smooth join's node
+  is only where the over-segmentation split one smooth feature line, so the
+  two groups' pixels are split anew where the junction now is, and E^s counts
+  the junction's distance off the line instead of its displacement (a junction
+  moved along a smooth line moves the logo away from nothing).
+
+A tangency that makes the fit fail, lifts E^s above the tolerance T, breaks
+one made before or adds a redundant intersection is released (only that one):
+a kink is left there, and a valid image always gets a logo. Corners (where
+the input turns) are never constrained.
 
 Why the last level and not every fit: with the radii fixed on the ladder, a
 chain of tangent circles is rigid, and the first levels join every short piece
@@ -20,28 +38,30 @@ to 9.77 px (no merge fits under T = 5 any more), and on the evaluation set's
 clip arts gives 47.1 arcs instead of 40.0 (the polar bear 49 instead of 30,
 r10 0.90 instead of 0.99) and one failed run; enforcing it in the merge windows
 only gives 41.6 arcs and runs the clip-art fish 2x slower. It would make 93 %
-and 33 % of the joins tangent; this refit alone makes 20 %.
-
-A tangency that makes the fit infeasible, or lifts E^s above the tolerance T,
-is released, the most kinked join first (like the junction release of
-:mod:`img2logo.recovery`): a kink is left there, and a valid image always gets
-a logo. Corners (where the input turns) are never constrained.
+and 33 % of the joins tangent. A whole refit of the last level with every
+tangency at once, released one by one, made 20 %; this pass makes 37 % (70
+joins on the clip arts and drawings). What bounds it: the merge loop stops
+where E^s is within a few tenths of a px of T (the polar bear: 4.59 of 5), and
+a tangency there costs 0.1-1 px of E^s (measured per join with every rung
+choice), so a few joins per image fit and the rest keep their kink.
 
 Coordinates: px, x right, y down (``contract/README.md``).
 """
 
 from __future__ import annotations
 
+from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING
 
 import numpy as np
 
 from .arc_extraction import redundant_intersections
-from .constants import CONSTRAINED_FIT_TOL
+from .constants import CONSTRAINED_FIT_TOL, SLIDE_MIN_PIXELS
 from .golden_ladder import FibonacciLadder
+from .simplification import Group, merge_groups
 
 if TYPE_CHECKING:
-    from .progressive import _Optimizer
+    from .progressive import _Fit, _Optimizer
 
 
 def tangent_joins(opt: _Optimizer, tolerance: float) -> bool:
@@ -76,7 +96,7 @@ def tangent_joins(opt: _Optimizer, tolerance: float) -> bool:
         best = None
         for combo in _rung_choices(opt, (a, b)):
             trial = _try(opt, made, node, combo, bound)
-            if trial is not None and (best is None or trial[0] < best[0]):
+            if trial is not None and (best is None or trial.similarity < best.similarity):
                 best = trial
             if best is not None and not any(combo.values()):
                 break  # the rungs the paper chose serve: no reason to leave them
@@ -84,10 +104,11 @@ def tangent_joins(opt: _Optimizer, tolerance: float) -> bool:
             del made[node]
             opt.loose.add(node)
             continue
-        _, fits, disp = best
-        opt.fits.update(fits)
-        for n, d in disp.items():
+        opt.fits.update(best.fits)
+        for n, d in best.disp.items():
             opt.disp[n] = d
+        opt.groups.update(best.groups)
+        opt.off_line.update(best.off_line)
     opt.stats["tangent_joins"] = len(made)
     opt.stats["released_tangencies"] = len(opt.loose)
     return bool(made)
@@ -136,13 +157,26 @@ def _neighbour_rung(opt: _Optimizer, gid: int, step: int) -> tuple[int, float] |
     return j, r
 
 
+@dataclass
+class _Trial:
+    """A tangent refit tried for one join (:func:`_try`): what applying it changes."""
+
+    similarity: float  # E^s (Eqn. 3) after it, px
+    fits: dict[int, _Fit]  # the new fits of the window's groups
+    disp: dict[int, np.ndarray]  # node -> new d_k
+    groups: dict[int, Group]  # groups whose pixels were split anew at a slid join
+    off_line: dict[int, float]  # tangent join -> its junction's distance off the input's line, px
+
+
 def _try(
     opt: _Optimizer, made: dict[int, tuple[int, int]], node: int, combo: dict[int, int], bound: float
-) -> tuple[float, dict, dict] | None:
-    """Refit the window of the join at ``node`` with the rung steps ``combo``: (E^s, fits, displacements) or None.
+) -> _Trial | None:
+    """Refit the window of the join at ``node`` with the rung steps ``combo``; None if it fails a rule.
 
-    None when the fit fails or breaks one of the rules of :func:`tangent_joins`.
-    The state is left as it was.
+    The rules are those of :func:`tangent_joins`. After the fit, the pixels of
+    the two groups at every tangent join in the window are split anew where the
+    junction now is (:func:`_split`), and their arcs extracted and scored
+    against them. The state is left as it was.
     """
     seeds = {g: (f.center, f.radius, f.k) for g, f in opt.fits.items()}
     for g, step in combo.items():
@@ -151,35 +185,94 @@ def _try(
             seeds[g] = (opt.fits[g].center, r, k)
     changed, free = _window(opt, made, made[node])
     node_groups = opt.node_groups()
-    out = opt.solve(
-        dict(opt.groups),
-        seeds,
-        node_groups,
-        changed=sorted(changed),
-        free_nodes=sorted(free),
-        fixed=set(),
-        n_groups_total=len(opt.groups),
-        n_junctions_total=len(node_groups),
-        rings=2,
-        tangent=True,
-    )
-    if out is None:
-        return None
-    fits, disp = out
-    cap = opt.options.arc_bound
-    if cap is not None and any(f.arc.frechet > max(cap, opt.fits[g].arc.frechet) for g, f in fits.items()):
-        return None
-    before = _redundant(opt, set(fits))
-    saved = dict(opt.fits), opt.disp.copy()
-    opt.fits.update(fits)
-    for n, d in disp.items():
-        opt.disp[n] = d
+    saved = dict(opt.fits), opt.disp.copy(), dict(opt.groups), dict(opt.off_line)
     try:
+        out = opt.solve(
+            dict(opt.groups),
+            seeds,
+            node_groups,
+            changed=sorted(changed),
+            free_nodes=sorted(free),
+            fixed=set(),
+            n_groups_total=len(opt.groups),
+            n_junctions_total=len(node_groups),
+            rings=2,
+            tangent=True,
+        )
+        if out is None:
+            return None
+        fits, disp = out
+        opt.fits.update(fits)
+        for n, d in disp.items():
+            opt.disp[n] = d
+        groups, off_line = _slide(opt, made, set(fits))
+        if groups is None:
+            return None
+        opt.groups.update(groups)
+        opt.off_line.update(off_line)
+        for g, group in groups.items():
+            f = opt.fits[g]
+            fits[g] = replace(f, arc=opt.arc_for(group, f.center, f.radius, f.k, opt.disp.__getitem__))
+        cap = opt.options.arc_bound
+        if cap is not None and any(f.arc.frechet > max(cap, saved[0][g].arc.frechet) for g, f in fits.items()):
+            return None
+        opt.fits.update(fits)
         similarity = opt.similarity()
-        ok = similarity <= bound and _touching(opt, made) and _redundant(opt, set(fits)) <= before
+        if similarity > bound or not _touching(opt, made):
+            return None
+        crossings = _redundant(opt, set(fits))
     finally:
-        opt.fits, opt.disp = saved
-    return (similarity, fits, disp) if ok else None
+        opt.fits, opt.disp, opt.groups, opt.off_line = saved
+    if crossings > _redundant(opt, set(fits)):
+        return None
+    return _Trial(similarity, fits, disp, groups, off_line)
+
+
+def _slide(
+    opt: _Optimizer, made: dict[int, tuple[int, int]], moved: set[int]
+) -> tuple[dict[int, Group] | None, dict[int, float]]:
+    """The groups split anew at the tangent joins of ``moved`` groups, and those joins' distances off the line.
+
+    At a smooth join the node is only where the over-segmentation happened to
+    split one smooth feature line: a junction that slides along the line to
+    where the two circles touch moves the logo away from nothing. So the two
+    groups' pixels are split where the displaced junction projects on their
+    joined pixel chain (:func:`_split`), and E^s counts the junction's distance
+    off the line instead of its displacement (``opt.off_line``). (None, {}) if
+    a junction slid past the end of one of the groups (fewer than
+    ``SLIDE_MIN_PIXELS`` left): the join would swallow it.
+    """
+    groups: dict[int, Group] = {}
+    off: dict[int, float] = {}
+    for n, (a, b) in made.items():
+        if a not in moved and b not in moved:
+            continue
+        ga, gb = groups.get(a, opt.groups[a]), groups.get(b, opt.groups[b])
+        chain = merge_groups(ga, gb, n).points
+        split = _split(chain, opt.graph.junctions[n] + opt.disp[n])
+        if split is None:
+            return None, {}
+        pa, pb, off[n] = split
+        groups[a] = replace(ga, points=pa if ga.nodes[-1] == n else pa[::-1])
+        groups[b] = replace(gb, points=pb if gb.nodes[0] == n else pb[::-1])
+    return groups, off
+
+
+def _split(chain: np.ndarray, q: np.ndarray) -> tuple[np.ndarray, np.ndarray, float] | None:
+    """Split a pixel chain (n, 2) px at the point nearest ``q``: (head, tail, distance of q from the chain, px).
+
+    The nearest point of the polyline ends the head and starts the tail. None
+    if either would keep fewer than ``SLIDE_MIN_PIXELS`` pixels.
+    """
+    a, v = chain[:-1], np.diff(chain, axis=0)
+    t = np.clip(np.einsum("ij,ij->i", q - a, v) / np.maximum(np.einsum("ij,ij->i", v, v), 1e-300), 0.0, 1.0)
+    foot = a + t[:, None] * v
+    dist = np.hypot(*(q - foot).T)
+    i = int(np.argmin(dist))
+    head, tail = np.vstack([chain[: i + 1], foot[i]]), np.vstack([foot[i], chain[i + 1 :]])
+    if len(head) <= SLIDE_MIN_PIXELS or len(tail) <= SLIDE_MIN_PIXELS:  # the pixels and the foot
+        return None
+    return head, tail, float(dist[i])
 
 
 def _window(opt: _Optimizer, made: dict[int, tuple[int, int]], pair: tuple[int, int]) -> tuple[set[int], set[int]]:
