@@ -319,6 +319,11 @@ TANGENT_JOIN_ANGLE: float = math.radians(2.0)
 #: the fewest a circle is fitted to (three points fix a circle); a junction sliding
 #: farther would swallow the group, and the join is released instead.
 SLIDE_MIN_PIXELS: int = 3
+#: A tangent join whose circles cannot touch on their rungs tries at most this many
+#: choices of one rung up or down for the two circles (img2logo.tangency), those
+#: that bring the circles nearest to touching first: each costs a constrained fit,
+#: and the tangent pass must stay within issue 17's time budget (1.2x the pipeline).
+RUNG_CHOICES: int = 2
 
 # --- Result files and figures (writers, plotting) ---------------------------------
 #: Contract invariant: a circle's radius is phi ** (k + bias) within this fraction

@@ -56,7 +56,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .arc_extraction import redundant_intersections
-from .constants import CONSTRAINED_FIT_TOL, SLIDE_MIN_PIXELS
+from .constants import CONSTRAINED_FIT_TOL, RUNG_CHOICES, SLIDE_MIN_PIXELS
 from .golden_ladder import FibonacciLadder
 from .simplification import Group, merge_groups
 
@@ -94,7 +94,7 @@ def tangent_joins(opt: _Optimizer, tolerance: float) -> bool:
         opt.loose.discard(node)
         made[node] = (a, b)
         best = None
-        for combo in _rung_choices(opt, (a, b)):
+        for combo in _rung_choices(opt, node, (a, b)):
             trial = _try(opt, made, node, combo, bound)
             if trial is not None and (best is None or trial.similarity < best.similarity):
                 best = trial
@@ -114,22 +114,58 @@ def tangent_joins(opt: _Optimizer, tolerance: float) -> bool:
     return bool(made)
 
 
-def _rung_choices(opt: _Optimizer, pair: tuple[int, int]) -> list[dict[int, int]]:
-    """Rung changes to try for a join's two circles: group -> step on the ladder, no change first.
+def _rung_choices(opt: _Optimizer, node: int, pair: tuple[int, int]) -> list[dict[int, int]]:
+    """Rung changes to try for a join's two circles, group -> step on the ladder: no change first.
 
     With the radii on the ladder, two circles of given rungs through given
     junctions touch only where the junctions happen to allow it; a circle one
-    rung up or down (a factor phi) changes its curvature at the join and often
-    lets the two touch with a small move. Only circles (not lines), only rungs
-    allowed (:func:`_neighbour_rung`), each step at most one rung.
+    rung up or down (a factor phi) turns its tangent at the join and may let
+    the two touch with a small move. Only circles (not lines), only allowed
+    rungs (:func:`_neighbour_rung`), each step at most one rung; and only the
+    choices that bring the two circles nearer to touching where the junctions
+    are now (:func:`_predicted_apart`), the nearest first, at most
+    ``RUNG_CHOICES`` of them (each costs a fit).
     """
     steps = {}
     for g in pair:
         k = opt.fits[g].k
         steps[g] = [0] if k is None else [0, *(s for s in (-1, 1) if _neighbour_rung(opt, g, s) is not None)]
     a, b = pair
-    combos = [{a: sa, b: sb} for sa in steps[a] for sb in steps[b]]
-    return sorted(combos, key=lambda c: (abs(c[a]) + abs(c[b]), c[a], c[b]))
+    combos = [{a: sa, b: sb} for sa in steps[a] for sb in steps[b] if sa or sb]
+    now = _predicted_apart(opt, node, pair, {})
+    apart = {i: _predicted_apart(opt, node, pair, c) for i, c in enumerate(combos)}
+    nearer = sorted((i for i in apart if apart[i] < now), key=lambda i: (apart[i], i))
+    return [{a: 0, b: 0}, *(combos[i] for i in nearer[:RUNG_CHOICES])]
+
+
+def _predicted_apart(opt: _Optimizer, node: int, pair: tuple[int, int], combo: dict[int, int]) -> float:
+    """|sin| of the angle between the radii to a join's junction of its two circles, rungs stepped by ``combo``.
+
+    Each circle is placed through the junction and the group's other end
+    where they are now (on the side of its centre now): how far from touching
+    the choice of rungs leaves the two before any junction moves. Lines keep
+    their circle. Infinite if a radius is too short to reach the other end.
+    """
+    q = opt.graph.junctions[node] + opt.disp[node]
+    radii = []
+    for g in pair:
+        f, group = opt.fits[g], opt.groups[g]
+        center = f.center
+        step = combo.get(g, 0)
+        if f.k is not None:
+            r = f.radius if not step else _neighbour_rung(opt, g, step)[1]
+            other = group.nodes[0] if group.nodes[-1] == node else group.nodes[-1]
+            p = opt.graph.junctions[other] + opt.disp[other]
+            half = 0.5 * float(np.hypot(*(p - q)))
+            if r < half or half == 0.0:
+                return np.inf
+            mid, u = 0.5 * (p + q), np.array([q[1] - p[1], p[0] - q[0]]) / (2.0 * half)
+            s = np.sqrt(r * r - half * half)
+            side = 1.0 if float((f.center - mid) @ u) >= 0.0 else -1.0
+            center = mid + side * s * u
+        radii.append(center - q)
+    a, b = radii
+    return abs(float(a[0] * b[1] - a[1] * b[0])) / max(float(np.hypot(*a) * np.hypot(*b)), 1e-300)
 
 
 def _neighbour_rung(opt: _Optimizer, gid: int, step: int) -> tuple[int, float] | None:
