@@ -65,27 +65,65 @@ if TYPE_CHECKING:
 
 
 def tangent_joins(opt: _Optimizer, tolerance: float) -> bool:
-    """Make the circles of the current state touch at its smooth joins, one join at a time; whether it changed.
+    """Make the circles of the current state touch at its smooth joins; whether the state changed.
 
-    The joins of ``opt.tangencies`` are taken in order of their kink now (the
-    nearest to touching first). For each, the circles of its two groups, with
-    the groups tied to them by joins already made tangent, are refitted in a
-    local window (Sec. 5.4, :meth:`~img2logo.progressive._Optimizer.solve`)
-    with every tangency made so far and this one; first on their rungs, and if
-    that fails, with each of the two circles one rung up or down the ladder
-    (:func:`_rung_choices`), the choice of lowest E^s kept. A choice is kept
-    only if the fit converges, E^s (Eqn. 3) stays within ``max(tolerance, E^s
-    now)``, no arc moves farther from its pixels than ``arc_bound`` (or than it
-    was), the tangencies made before still hold, and no redundant intersection
-    is added; otherwise the join is released (``opt.loose``), a kink is left
-    there, and the next join is tried. Counts go to
-    ``opt.stats["tangent_joins"]`` and ``["released_tangencies"]``.
+    The joins of ``opt.tangencies`` are made tangent one at a time
+    (:func:`_one_at_a_time`); when that leaves some released, the whole
+    refit with every tangency at once is tried too (:func:`_all_at_once`),
+    and the result with more tangent joins is kept (on a tie the lower E^s):
+    one join's refit may spend the slack under T that a joint refit shares.
+    Both keep E^s (Eqn. 3) within ``max(tolerance, E^s now)`` and add no
+    redundant intersection. Counts go to ``opt.stats["tangent_joins"]`` and
+    ``["released_tangencies"]``.
     """
     seeds = {g: (f.center, f.radius, f.k) for g, f in opt.fits.items()}
     joins = opt.tangencies(opt.groups, seeds)
     if not joins:
         return False
     bound = max(float(tolerance), opt.similarity())
+    start = _state(opt)
+    made = _one_at_a_time(opt, joins, bound)
+    if len(made) < len(joins):
+        one = _state(opt), opt.similarity()
+        _restore(opt, start)
+        whole = _all_at_once(opt, joins, bound)
+        if len(whole) > len(made) or (len(whole) == len(made) and opt.similarity() < one[1]):
+            made = whole
+        else:
+            _restore(opt, one[0])
+    opt.stats["tangent_joins"] = len(made)
+    opt.stats["released_tangencies"] = len(opt.loose)
+    return bool(made)
+
+
+def _state(opt: _Optimizer) -> tuple:
+    """What the tangent pass changes in the optimizer's state (a copy)."""
+    return dict(opt.fits), opt.disp.copy(), dict(opt.groups), dict(opt.off_line), set(opt.loose)
+
+
+def _restore(opt: _Optimizer, state: tuple) -> None:
+    """Put back a state of :func:`_state` (copied again: it may be restored twice)."""
+    fits, disp, groups, off_line, loose = state
+    opt.fits, opt.disp, opt.groups = dict(fits), disp.copy(), dict(groups)
+    opt.off_line, opt.loose = dict(off_line), set(loose)
+
+
+def _one_at_a_time(opt: _Optimizer, joins: dict[int, tuple[int, int]], bound: float) -> dict[int, tuple[int, int]]:
+    """Make ``joins`` tangent one at a time; the joins made.
+
+    Taken in order of their kink now (the nearest to touching first). For each,
+    the circles of its two groups, with the groups tied to them by joins
+    already made tangent, are refitted in a local window (Sec. 5.4,
+    :meth:`~img2logo.progressive._Optimizer.solve`) with every tangency made so
+    far and this one; first on their rungs, and if that fails, with the rung
+    choices of :func:`_rung_choices`, the one of lowest E^s kept; the junction
+    slides along the line (:func:`_slide`). A choice is kept only if the fit
+    converges, E^s stays within ``bound``, no arc moves farther from its
+    pixels than ``arc_bound`` (or than it was), the tangencies made before
+    still hold, and no redundant intersection is added; otherwise the join is
+    released (``opt.loose``), a kink is left there, and the next join is tried.
+    """
+    seeds = {g: (f.center, f.radius, f.k) for g, f in opt.fits.items()}
     order = sorted(joins, key=lambda n: (_apart(opt, seeds, n, joins[n]), n))
     opt.loose |= set(joins)
     made: dict[int, tuple[int, int]] = {}
@@ -109,9 +147,40 @@ def tangent_joins(opt: _Optimizer, tolerance: float) -> bool:
             opt.disp[n] = d
         opt.groups.update(best.groups)
         opt.off_line.update(best.off_line)
-    opt.stats["tangent_joins"] = len(made)
-    opt.stats["released_tangencies"] = len(opt.loose)
-    return bool(made)
+    return made
+
+
+def _all_at_once(opt: _Optimizer, joins: dict[int, tuple[int, int]], bound: float) -> dict[int, tuple[int, int]]:
+    """Refit the whole state with every tangency of ``joins`` at once; the joins made.
+
+    Every circle and junction free, straight lines fixed, the rungs and the
+    nodes as they are. While the fit fails, lifts E^s above ``bound`` or adds a
+    redundant intersection, the join whose circles are farthest from touching
+    now is released (``opt.loose``) and the fit tried again.
+    """
+    seeds = {g: (f.center, f.radius, f.k) for g, f in opt.fits.items()}
+    groups = dict(opt.groups)
+    node_groups = opt.node_groups()
+    before = _state(opt)
+    crossings = _redundant(opt, set(groups))
+    while True:
+        touching = opt.tangencies(groups, seeds)
+        if not touching:
+            return {}
+        out = opt.solve_whole(
+            groups, seeds, node_groups, n_groups_total=len(groups), n_junctions_total=len(node_groups), tangent=True
+        )
+        if out is not None:
+            fits, disp = out
+            opt.fits.update(fits)
+            for n, d in disp.items():
+                opt.disp[n] = d
+            if opt.similarity() <= bound and _redundant(opt, set(groups)) <= crossings:
+                return touching
+            loose = set(opt.loose)
+            _restore(opt, before)
+            opt.loose = loose
+        opt.loose.add(max(touching, key=lambda n: (_apart(opt, seeds, n, touching[n]), -n)))
 
 
 def _rung_choices(opt: _Optimizer, node: int, pair: tuple[int, int]) -> list[dict[int, int]]:
