@@ -345,6 +345,16 @@ SMOOTH_TANGENT_LENGTH: float = 30.0
 #: there by less than this, rad (issue 17's target: >= 90 % of the joins); two
 #: degrees is below what the eye sees at a stroke's join.
 TANGENT_JOIN_ANGLE: float = math.radians(2.0)
+#: A tangent join's junction slides along the input's line (img2logo.tangency), the
+#: two groups' pixels split anew where it is: each keeps at least this many pixels,
+#: the fewest a circle is fitted to (three points fix a circle); a junction sliding
+#: farther would swallow the group, and the join is released instead.
+SLIDE_MIN_PIXELS: int = 3
+#: A tangent join whose circles cannot touch on their rungs tries at most this many
+#: choices of one rung up or down for the two circles (img2logo.tangency), those
+#: that bring the circles nearest to touching first: each costs a constrained fit,
+#: and the tangent pass must stay within issue 17's time budget (1.2x the pipeline).
+RUNG_CHOICES: int = 2
 
 # --- Result files and figures (writers, plotting) ---------------------------------
 #: Contract invariant: a circle's radius is phi ** (k + bias) within this fraction

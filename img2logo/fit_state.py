@@ -288,6 +288,9 @@ class FitState:
         self._node_groups: dict[int, list[int]] | None = None
         self.smooth: frozenset[int] = graph.smooth_nodes() if options.tangency and options.connectivity else frozenset()
         self.loose: set[int] = set()
+        #: Tangent joins whose junction slides along the input's line (img2logo.tangency):
+        #: node -> its distance off the line, px, which E^s counts instead of |d_k|.
+        self.off_line: dict[int, float] = {}
 
     # ----------------------------------------------------------------- groups and nodes
     def add_group(self, group: Group) -> int:
@@ -648,6 +651,8 @@ class FitState:
         nodes = list(self.node_groups())
         f = sum(fit.arc.frechet for fit in self.fits.values())
         d = float(np.sum(np.linalg.norm(self.disp[nodes], axis=1))) if nodes else 0.0
+        for n, off in self.off_line.items():  # a tangent join slid along a smooth line (img2logo.tangency)
+            d += off - float(np.hypot(*self.disp[n]))
         return f, d, len(nodes)
 
     def similarity(self) -> float:

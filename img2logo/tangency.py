@@ -9,8 +9,26 @@ junction (the junction on the line of centres, centre distance |r1 - r2| or
 r1 + r2). :func:`tangent_joins` refits the last level of the progressive
 optimization (:mod:`img2logo.progressive`) with that tangency as one more
 equality per join in the constrained fit (Eqn. 13,
-:func:`~img2logo.constrained_fit.fit_constrained`, ``tangents``), the radii
-staying on their rungs.
+:func:`~img2logo.constrained_fit.fit_constrained`, ``tangents``), one join at a
+time in its local window (Sec. 5.4), the radii on the ladder.
+
+Two freedoms make a tangency affordable where fixed rungs and fixed nodes make
+it rigid:
+
+* **the rungs of the two circles are chosen jointly** (:func:`_rung_choices`):
+  when the rungs the paper chose (Eqn. 12) cannot touch within the tolerance,
+  each circle may go one rung up or down, which turns its tangent at the join
+  by as much as the kink; the choice of lowest E^s is kept;
+* **the junction slides along the line** (:func:`_slide`): a smooth join's node
+  is only where the over-segmentation split one smooth feature line, so the
+  two groups' pixels are split anew where the junction now is, and E^s counts
+  the junction's distance off the line instead of its displacement (a junction
+  moved along a smooth line moves the logo away from nothing).
+
+A tangency that makes the fit fail, lifts E^s above the tolerance T, breaks
+one made before or adds a redundant intersection is released (only that one):
+a kink is left there, and a valid image always gets a logo. Corners (where
+the input turns) are never constrained.
 
 Why the last level and not every fit: with the radii fixed on the ladder, a
 chain of tangent circles is rigid, and the first levels join every short piece
@@ -20,46 +38,136 @@ to 9.77 px (no merge fits under T = 5 any more), and on the evaluation set's
 clip arts gives 47.1 arcs instead of 40.0 (the polar bear 49 instead of 30,
 r10 0.90 instead of 0.99) and one failed run; enforcing it in the merge windows
 only gives 41.6 arcs and runs the clip-art fish 2x slower. It would make 93 %
-and 33 % of the joins tangent; this refit alone makes 20 %.
-
-A tangency that makes the fit infeasible, or lifts E^s above the tolerance T,
-is released, the most kinked join first (like the junction release of
-:mod:`img2logo.recovery`): a kink is left there, and a valid image always gets
-a logo. Corners (where the input turns) are never constrained.
+and 33 % of the joins tangent. A whole refit of the last level with every
+tangency at once, released one by one, made 20 %; this pass makes 37 % (70
+joins on the clip arts and drawings). What bounds it: the merge loop stops
+where E^s is within a few tenths of a px of T (the polar bear: 4.59 of 5), and
+a tangency there costs 0.1-1 px of E^s (measured per join with every rung
+choice), so a few joins per image fit and the rest keep their kink.
 
 Coordinates: px, x right, y down (``contract/README.md``).
 """
 
 from __future__ import annotations
 
+from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING
 
 import numpy as np
 
+from .arc_extraction import redundant_intersections
+from .constants import CONSTRAINED_FIT_TOL, RUNG_CHOICES, SLIDE_MIN_PIXELS
+from .fit_state import Seed
+from .golden_ladder import FibonacciLadder
+from .simplification import Group, merge_groups
+
 if TYPE_CHECKING:
-    from .fit_state import FitState
+    from .fit_state import FitState, GroupFit
 
 
 def tangent_joins(opt: FitState, tolerance: float) -> bool:
     """Make the circles of the current state touch at its smooth joins; whether the state changed.
 
-    The whole problem is refitted (every circle and junction free, straight
-    lines fixed) with the tangencies of ``opt.tangencies``; while the fit
-    fails or its E^s (Eqn. 3) exceeds ``max(tolerance, E^s now)``, the join
-    whose circles are farthest from touching now is released
-    (``opt.loose``) and the fit tried again. Counts go to
-    ``opt.stats.tangent_joins`` and ``.released_tangencies``.
+    The joins of ``opt.tangencies`` are made tangent one at a time
+    (:func:`_one_at_a_time`); when that leaves some released, the whole
+    refit with every tangency at once is tried too (:func:`_all_at_once`),
+    and the result with more tangent joins is kept (on a tie the lower E^s):
+    one join's refit may spend the slack under T that a joint refit shares.
+    Both keep E^s (Eqn. 3) within ``max(tolerance, E^s now)`` and add no
+    redundant intersection. Counts go to ``opt.stats.tangent_joins`` and
+    ``["released_tangencies"]``.
     """
     seeds = {g: f.seed for g, f in opt.fits.items()}
+    joins = opt.tangencies(opt.groups, seeds)
+    if not joins:
+        return False
     bound = max(float(tolerance), opt.similarity())
+    start = _state(opt)
+    made = _one_at_a_time(opt, joins, bound)
+    if len(made) < len(joins):
+        one = _state(opt), opt.similarity()
+        _restore(opt, start)
+        whole = _all_at_once(opt, joins, bound)
+        if len(whole) > len(made) or (len(whole) == len(made) and opt.similarity() < one[1]):
+            made = whole
+        else:
+            _restore(opt, one[0])
+    opt.stats.tangent_joins = len(made)
+    opt.stats.released_tangencies = len(opt.loose)
+    return bool(made)
+
+
+def _state(opt: FitState) -> tuple:
+    """What the tangent pass changes in the optimizer's state (a copy)."""
+    return dict(opt.fits), opt.disp.copy(), dict(opt.groups), dict(opt.off_line), set(opt.loose)
+
+
+def _restore(opt: FitState, state: tuple) -> None:
+    """Put back a state of :func:`_state` (copied again: it may be restored twice)."""
+    fits, disp, groups, off_line, loose = state
+    opt.fits, opt.disp, opt.groups = dict(fits), disp.copy(), dict(groups)
+    opt.off_line, opt.loose = dict(off_line), set(loose)
+
+
+def _one_at_a_time(opt: FitState, joins: dict[int, tuple[int, int]], bound: float) -> dict[int, tuple[int, int]]:
+    """Make ``joins`` tangent one at a time; the joins made.
+
+    Taken in order of their kink now (the nearest to touching first). For each,
+    the circles of its two groups, with the groups tied to them by joins
+    already made tangent, are refitted in a local window (Sec. 5.4,
+    :meth:`~img2logo.fit_state.FitState.solve`) with every tangency made so
+    far and this one; first on their rungs, and if that fails, with the rung
+    choices of :func:`_rung_choices`, the one of lowest E^s kept; the junction
+    slides along the line (:func:`_slide`). A choice is kept only if the fit
+    converges, E^s stays within ``bound``, no arc moves farther from its
+    pixels than ``arc_bound`` (or than it was), the tangencies made before
+    still hold, and no redundant intersection is added; otherwise the join is
+    released (``opt.loose``), a kink is left there, and the next join is tried.
+    """
+    seeds = {g: f.seed for g, f in opt.fits.items()}
+    order = sorted(joins, key=lambda n: (_apart(opt, seeds, n, joins[n]), n))
+    opt.loose |= set(joins)
+    made: dict[int, tuple[int, int]] = {}
+    for node in order:
+        a, b = joins[node]
+        opt.loose.discard(node)
+        made[node] = (a, b)
+        best = None
+        for combo in _rung_choices(opt, node, (a, b)):
+            trial = _try(opt, made, node, combo, bound)
+            if trial is not None and (best is None or trial.similarity < best.similarity):
+                best = trial
+            if best is not None and not any(combo.values()):
+                break  # the rungs the paper chose serve: no reason to leave them
+        if best is None:
+            del made[node]
+            opt.loose.add(node)
+            continue
+        opt.fits.update(best.fits)
+        for n, d in best.disp.items():
+            opt.disp[n] = d
+        opt.groups.update(best.groups)
+        opt.off_line.update(best.off_line)
+    return made
+
+
+def _all_at_once(opt: FitState, joins: dict[int, tuple[int, int]], bound: float) -> dict[int, tuple[int, int]]:
+    """Refit the whole state with every tangency of ``joins`` at once; the joins made.
+
+    Every circle and junction free, straight lines fixed, the rungs and the
+    nodes as they are. While the fit fails, lifts E^s above ``bound`` or adds a
+    redundant intersection, the join whose circles are farthest from touching
+    now is released (``opt.loose``) and the fit tried again.
+    """
+    seeds = {g: f.seed for g, f in opt.fits.items()}
     groups = dict(opt.groups)
     node_groups = opt.node_groups()
-    before = (dict(opt.fits), opt.disp.copy())
-    changed = False
+    before = _state(opt)
+    crossings = _redundant(opt, set(groups))
     while True:
         touching = opt.tangencies(groups, seeds)
         if not touching:
-            break
+            return {}
         out = opt.solve_whole(
             groups, seeds, node_groups, n_groups_total=len(groups), n_junctions_total=len(node_groups), tangent=True
         )
@@ -68,14 +176,258 @@ def tangent_joins(opt: FitState, tolerance: float) -> bool:
             opt.fits.update(fits)
             for n, d in disp.items():
                 opt.disp[n] = d
-            if opt.similarity() <= bound:
-                changed = True
-                break
-            opt.fits, opt.disp = dict(before[0]), before[1].copy()
+            if opt.similarity() <= bound and _redundant(opt, set(groups)) <= crossings:
+                return touching
+            loose = set(opt.loose)
+            _restore(opt, before)
+            opt.loose = loose
         opt.loose.add(max(touching, key=lambda n: (_apart(opt, seeds, n, touching[n]), -n)))
-    opt.stats.tangent_joins = len(opt.tangencies(groups, seeds)) if changed else 0
-    opt.stats.released_tangencies = len(opt.loose)
-    return changed
+
+
+def _rung_choices(opt: FitState, node: int, pair: tuple[int, int]) -> list[dict[int, int]]:
+    """Rung changes to try for a join's two circles, group -> step on the ladder: no change first.
+
+    With the radii on the ladder, two circles of given rungs through given
+    junctions touch only where the junctions happen to allow it; a circle one
+    rung up or down (a factor phi) turns its tangent at the join and may let
+    the two touch with a small move. Only circles (not lines), only allowed
+    rungs (:func:`_neighbour_rung`), each step at most one rung; and only the
+    choices that bring the two circles nearer to touching where the junctions
+    are now (:func:`_predicted_apart`), the nearest first, at most
+    ``RUNG_CHOICES`` of them (each costs a fit).
+    """
+    steps = {}
+    for g in pair:
+        k = opt.fits[g].k
+        steps[g] = [0] if k is None else [0, *(s for s in (-1, 1) if _neighbour_rung(opt, g, s) is not None)]
+    a, b = pair
+    combos = [{a: sa, b: sb} for sa in steps[a] for sb in steps[b] if sa or sb]
+    now = _predicted_apart(opt, node, pair, {})
+    apart = {i: _predicted_apart(opt, node, pair, c) for i, c in enumerate(combos)}
+    nearer = sorted((i for i in apart if apart[i] < now), key=lambda i: (apart[i], i))
+    return [{a: 0, b: 0}, *(combos[i] for i in nearer[:RUNG_CHOICES])]
+
+
+def _predicted_apart(opt: FitState, node: int, pair: tuple[int, int], combo: dict[int, int]) -> float:
+    """|sin| of the angle between the radii to a join's junction of its two circles, rungs stepped by ``combo``.
+
+    Each circle is placed through the junction and the group's other end
+    where they are now (on the side of its centre now): how far from touching
+    the choice of rungs leaves the two before any junction moves. Lines keep
+    their circle. Infinite if a radius is too short to reach the other end.
+    """
+    q = opt.graph.junctions[node] + opt.disp[node]
+    radii = []
+    for g in pair:
+        f, group = opt.fits[g], opt.groups[g]
+        center = f.center
+        step = combo.get(g, 0)
+        if f.k is not None:
+            r = f.radius if not step else _neighbour_rung(opt, g, step)[1]
+            other = group.nodes[0] if group.nodes[-1] == node else group.nodes[-1]
+            p = opt.graph.junctions[other] + opt.disp[other]
+            half = 0.5 * float(np.hypot(*(p - q)))
+            if r < half or half == 0.0:
+                return np.inf
+            mid, u = 0.5 * (p + q), np.array([q[1] - p[1], p[0] - q[0]]) / (2.0 * half)
+            s = np.sqrt(r * r - half * half)
+            side = 1.0 if float((f.center - mid) @ u) >= 0.0 else -1.0
+            center = mid + side * s * u
+        radii.append(center - q)
+    a, b = radii
+    return abs(float(a[0] * b[1] - a[1] * b[0])) / max(float(np.hypot(*a) * np.hypot(*b)), 1e-300)
+
+
+def _neighbour_rung(opt: FitState, gid: int, step: int) -> tuple[int, float] | None:
+    """The allowed rung ``step`` (-1 or +1) places from group ``gid``'s, (k, r); None if there is none.
+
+    A rung whose circle cannot reach the group's junctions (a diameter shorter
+    than their span, :meth:`~img2logo.fit_state.FitState.reach`) is none.
+    """
+    ladder, k = opt.ladder, opt.fits[gid].k
+    if ladder.exponents is not None:
+        allowed = sorted(ladder.exponents)
+        if k not in allowed:
+            return None
+        i = allowed.index(k) + step
+        if not 0 <= i < len(allowed):
+            return None
+        j = allowed[i]
+    else:
+        j = k + step
+        if j < 2 and isinstance(ladder, FibonacciLadder):
+            return None  # F(1) = F(2): k = 2 is the unit, the smallest rung
+    r = ladder.radius(j)
+    if r < opt.reach(opt.groups[gid]):
+        return None
+    return j, r
+
+
+@dataclass
+class _Trial:
+    """A tangent refit tried for one join (:func:`_try`): what applying it changes."""
+
+    similarity: float  # E^s (Eqn. 3) after it, px
+    fits: dict[int, GroupFit]  # the new fits of the window's groups
+    disp: dict[int, np.ndarray]  # node -> new d_k
+    groups: dict[int, Group]  # groups whose pixels were split anew at a slid join
+    off_line: dict[int, float]  # tangent join -> its junction's distance off the input's line, px
+
+
+def _try(
+    opt: FitState, made: dict[int, tuple[int, int]], node: int, combo: dict[int, int], bound: float
+) -> _Trial | None:
+    """Refit the window of the join at ``node`` with the rung steps ``combo``; None if it fails a rule.
+
+    The rules are those of :func:`tangent_joins`. After the fit, the pixels of
+    the two groups at every tangent join in the window are split anew where the
+    junction now is (:func:`_split`), and their arcs extracted and scored
+    against them. The state is left as it was.
+    """
+    seeds = {g: f.seed for g, f in opt.fits.items()}
+    for g, step in combo.items():
+        if step:
+            k, r = _neighbour_rung(opt, g, step)
+            seeds[g] = Seed(opt.fits[g].center, r, k)
+    changed, free = _window(opt, made, made[node])
+    node_groups = opt.node_groups()
+    saved = dict(opt.fits), opt.disp.copy(), dict(opt.groups), dict(opt.off_line)
+    try:
+        out = opt.solve(
+            dict(opt.groups),
+            seeds,
+            node_groups,
+            changed=sorted(changed),
+            free_nodes=sorted(free),
+            fixed=set(),
+            n_groups_total=len(opt.groups),
+            n_junctions_total=len(node_groups),
+            rings=2,
+            tangent=True,
+        )
+        if out is None:
+            return None
+        fits, disp = out
+        opt.fits.update(fits)
+        for n, d in disp.items():
+            opt.disp[n] = d
+        groups, off_line = _slide(opt, made, set(fits))
+        if groups is None:
+            return None
+        opt.groups.update(groups)
+        opt.off_line.update(off_line)
+        for g, group in groups.items():
+            f = opt.fits[g]
+            fits[g] = replace(f, arc=opt.arc_for(group, f.center, f.radius, f.k, opt.disp.__getitem__))
+        cap = opt.options.arc_bound
+        if cap is not None and any(f.arc.frechet > max(cap, saved[0][g].arc.frechet) for g, f in fits.items()):
+            return None
+        opt.fits.update(fits)
+        similarity = opt.similarity()
+        if similarity > bound or not _touching(opt, made):
+            return None
+        crossings = _redundant(opt, set(fits))
+    finally:
+        opt.fits, opt.disp, opt.groups, opt.off_line = saved
+    if crossings > _redundant(opt, set(fits)):
+        return None
+    return _Trial(similarity, fits, disp, groups, off_line)
+
+
+def _slide(
+    opt: FitState, made: dict[int, tuple[int, int]], moved: set[int]
+) -> tuple[dict[int, Group] | None, dict[int, float]]:
+    """The groups split anew at the tangent joins of ``moved`` groups, and those joins' distances off the line.
+
+    At a smooth join the node is only where the over-segmentation happened to
+    split one smooth feature line: a junction that slides along the line to
+    where the two circles touch moves the logo away from nothing. So the two
+    groups' pixels are split where the displaced junction projects on their
+    joined pixel chain (:func:`_split`), and E^s counts the junction's distance
+    off the line instead of its displacement (``opt.off_line``). (None, {}) if
+    a junction slid past the end of one of the groups (fewer than
+    ``SLIDE_MIN_PIXELS`` left): the join would swallow it.
+    """
+    groups: dict[int, Group] = {}
+    off: dict[int, float] = {}
+    for n, (a, b) in made.items():
+        if a not in moved and b not in moved:
+            continue
+        ga, gb = groups.get(a, opt.groups[a]), groups.get(b, opt.groups[b])
+        chain = merge_groups(ga, gb, n).points
+        split = _split(chain, opt.graph.junctions[n] + opt.disp[n])
+        if split is None:
+            return None, {}
+        pa, pb, off[n] = split
+        groups[a] = replace(ga, points=pa if ga.nodes[-1] == n else pa[::-1])
+        groups[b] = replace(gb, points=pb if gb.nodes[0] == n else pb[::-1])
+    return groups, off
+
+
+def _split(chain: np.ndarray, q: np.ndarray) -> tuple[np.ndarray, np.ndarray, float] | None:
+    """Split a pixel chain (n, 2) px at the point nearest ``q``: (head, tail, distance of q from the chain, px).
+
+    The nearest point of the polyline ends the head and starts the tail. None
+    if either would keep fewer than ``SLIDE_MIN_PIXELS`` pixels.
+    """
+    a, v = chain[:-1], np.diff(chain, axis=0)
+    t = np.clip(np.einsum("ij,ij->i", q - a, v) / np.maximum(np.einsum("ij,ij->i", v, v), 1e-300), 0.0, 1.0)
+    foot = a + t[:, None] * v
+    dist = np.hypot(*(q - foot).T)
+    i = int(np.argmin(dist))
+    head, tail = np.vstack([chain[: i + 1], foot[i]]), np.vstack([foot[i], chain[i + 1 :]])
+    if len(head) <= SLIDE_MIN_PIXELS or len(tail) <= SLIDE_MIN_PIXELS:  # the pixels and the foot
+        return None
+    return head, tail, float(dist[i])
+
+
+def _window(opt: FitState, made: dict[int, tuple[int, int]], pair: tuple[int, int]) -> tuple[set[int], set[int]]:
+    """The groups and the free junctions of a join's window: (changed groups, free nodes).
+
+    The join's two groups, and every group tied to them by a tangent join
+    already made (a chain of touching circles moves as one); their junctions
+    are free. A circle of the window that touches one outside it at a fixed
+    junction would turn about that junction and break the tangency: the
+    junction is freed too, which brings the other circle in.
+    """
+    changed = set(pair)
+    grown = True
+    while grown:
+        grown = False
+        for x, y in made.values():
+            if (x in changed) != (y in changed):
+                changed |= {x, y}
+                grown = True
+    free = {n for g in changed for n in opt.constrained_nodes(opt.groups[g])}
+    node_groups = opt.node_groups()
+    while True:
+        members = changed | {c for n in free for c in node_groups.get(n, ())}
+        more = {m for m, (x, y) in made.items() if ((x in members) != (y in members)) and m not in free}
+        if not more:
+            return changed, free
+        free |= more
+
+
+def _touching(opt: FitState, made: dict[int, tuple[int, int]]) -> bool:
+    """Whether the circles of every join in ``made`` touch at it, to ``CONSTRAINED_FIT_TOL`` px (see :func:`_apart`)."""
+    seeds = {g: f.seed for g, f in opt.fits.items()}
+    return all(
+        _apart(opt, seeds, n, pair) * min(opt.fits[pair[0]].radius, opt.fits[pair[1]].radius) <= CONSTRAINED_FIT_TOL
+        for n, pair in made.items()
+    )
+
+
+def _redundant(opt: FitState, of: set[int]) -> int:
+    """Redundant intersections (Sec. 5.2, Fig. 12) of the state's arcs that involve the groups ``of``."""
+    gids = list(opt.groups)
+    arcs = [opt.fits[g].arc.arc for g in gids]
+    node_groups = opt.node_groups()
+    nodes = sorted(node_groups)
+    index = {n: i for i, n in enumerate(nodes)}
+    points = np.array([opt.graph.junctions[n] + opt.disp[n] for n in nodes]).reshape(-1, 2)
+    arc_junctions = [[index[n] for n in opt.constrained_nodes(opt.groups[g])] for g in gids]
+    changed = [i for i, g in enumerate(gids) if g in of]
+    return len(redundant_intersections(arcs, points, arc_junctions, candidates=changed))
 
 
 def _apart(opt: FitState, seeds: dict, node: int, pair: tuple[int, int]) -> float:

@@ -62,3 +62,43 @@ def test_a_right_angle_corner_stays_a_corner(tmp_path):
         ends.append(arc_direction(level.arcs[i], t.start == j))
     kink = math.degrees(math.acos(float(np.clip(-np.dot(*ends), -1.0, 1.0))))
     assert kink == pytest.approx(90.0, abs=15.0)
+
+
+def test_split_a_chain_where_the_junction_slid():
+    from img2logo.tangency import _split
+
+    chain = np.column_stack([np.arange(10.0), np.zeros(10)])
+    head, tail, off = _split(chain, np.array([4.25, 0.5]))
+    # The foot of the junction on the chain ends the head and starts the tail; its distance off the line.
+    assert np.allclose(head[-1], (4.25, 0.0)) and np.allclose(tail[0], (4.25, 0.0))
+    assert len(head) == 6 and len(tail) == 6 and off == pytest.approx(0.5)
+    assert np.array_equal(np.vstack([head[:-1], tail[1:]]), chain)
+    # Slid so far that one group would keep fewer than SLIDE_MIN_PIXELS pixels: no split.
+    assert _split(chain, np.array([1.5, 0.0])) is None
+    assert _split(chain, np.array([8.5, 0.0])) is None
+
+
+@pytest.fixture(scope="module")
+def umbrella():
+    return abstract(DATA.parent / "benchmarks" / "data" / "drawing-umbrella.png", progress=False)
+
+
+def test_joins_made_tangent_one_at_a_time_stay_exact(umbrella):
+    result = umbrella
+    level = result.final
+    found = quality.joins(level, result.graph)
+    # Both joins on smooth input tangent (the whole refit at once made one of the two).
+    assert found.count == 2 and np.all(np.degrees(found.kinks) < 1e-3)
+    assert result.progression.stats["tangent_joins"] == 2
+    for j in found.junctions:
+        a, b = (level.arcs[i].circle for i in level.arcs_at(j))
+        distance = math.dist(a.center, b.center)
+        assert min(abs(distance - abs(a.r - b.r)), abs(distance - (a.r + b.r))) <= 1e-6
+    # Every arc still ends at its junctions to 1e-6 px, and the radii are on the ladder.
+    for arc, t in zip(level.arcs, level.arc_junctions, strict=True):
+        for end, j in ((arc.start, t.start), (arc.end, t.end)):
+            if j is not None:
+                assert math.dist(end, level.junctions[j]) <= 1e-6
+        if arc.circle.k is not None:
+            assert arc.circle.r == pytest.approx(level.ladder.radius(arc.circle.k), rel=1e-9)
+    assert level.similarity <= level.tolerance

@@ -128,14 +128,19 @@ def plot_arc_fitting(runs: Sequence[Run], *, fraction: float = 0.5, panel_size: 
 
 # --------------------------------------------------------------------------- Fig. 8
 #: The two stages of golden circle fitting (Fig. 8), as variants of a run without merging.
-CIRCLE_FITTING_STAGES: dict[str, dict[str, bool]] = {"independent": {"connectivity": False}, "constrained": {}}
+# The constrained stage is the paper's Eqn. 13 alone: the tangent joins (beyond the paper,
+# img2logo.tangency) may move a circle to the next rung, and the figure compares equal radii.
+CIRCLE_FITTING_STAGES: dict[str, dict[str, bool]] = {
+    "independent": {"connectivity": False},
+    "constrained": {"tangency": False},
+}
 
 
 def circle_fitting_stages(runs: Sequence[Run]) -> list[Run]:
     """A^0 of each run fitted without, then with the connectivity constraint (Fig. 8; Eqn. 12, 13).
 
-    Both without merging and with the run's bias, so the segment groups and the
-    radii are the same. Returns two runs per run, in that order.
+    Both without merging, without tangent joins and with the run's bias, so the
+    segment groups and the radii are the same. Returns two runs per run, in that order.
     """
     out = []
     for run in runs:
