@@ -223,7 +223,7 @@ def _predicted_apart(opt: FitState, node: int, pair: tuple[int, int], combo: dic
         center = f.center
         step = combo.get(g, 0)
         if f.k is not None:
-            r = f.radius if not step else _neighbour_rung(opt, g, step)[1]
+            r = f.radius if not step else _offered_rung(opt, g, step)[1]
             other = group.nodes[0] if group.nodes[-1] == node else group.nodes[-1]
             p = opt.graph.junctions[other] + opt.disp[other]
             half = 0.5 * float(np.hypot(*(p - q)))
@@ -238,6 +238,14 @@ def _predicted_apart(opt: FitState, node: int, pair: tuple[int, int], combo: dic
     return abs(float(a[0] * b[1] - a[1] * b[0])) / max(float(np.hypot(*a) * np.hypot(*b)), 1e-300)
 
 
+def _offered_rung(opt: FitState, gid: int, step: int) -> tuple[int, float]:
+    """:func:`_neighbour_rung` for a step :func:`_rung_choices` offered (so it exists)."""
+    rung = _neighbour_rung(opt, gid, step)
+    if rung is None:
+        raise RuntimeError(f"group {gid} has no rung {step:+d} from its own; it was not offered")
+    return rung
+
+
 def _neighbour_rung(opt: FitState, gid: int, step: int) -> tuple[int, float] | None:
     """The allowed rung ``step`` (-1 or +1) places from group ``gid``'s, (k, r); None if there is none.
 
@@ -245,6 +253,8 @@ def _neighbour_rung(opt: FitState, gid: int, step: int) -> tuple[int, float] | N
     than their span, :meth:`~img2logo.fit_state.FitState.reach`) is none.
     """
     ladder, k = opt.ladder, opt.fits[gid].k
+    if k is None:
+        return None  # a straight line has no rung
     if ladder.exponents is not None:
         allowed = sorted(ladder.exponents)
         if k not in allowed:
@@ -287,7 +297,7 @@ def _try(
     seeds = {g: f.seed for g, f in opt.fits.items()}
     for g, step in combo.items():
         if step:
-            k, r = _neighbour_rung(opt, g, step)
+            k, r = _offered_rung(opt, g, step)
             seeds[g] = Seed(opt.fits[g].center, r, k)
     changed, free = _window(opt, made, made[node])
     node_groups = opt.node_groups()
