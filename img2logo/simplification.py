@@ -12,6 +12,7 @@ Coordinates: px, x right, y down (``contract/README.md``).
 
 from __future__ import annotations
 
+import heapq
 from collections.abc import Callable, Container, Sequence
 from dataclasses import dataclass
 
@@ -78,31 +79,59 @@ def simplify(
     mirror axis of a symmetric run). ``valence`` is the graph's node valence.
     Returns the simplified groups.
     """
-    current = list(groups)
+    # Incremental: a merge changes the candidates only at the ends of the two groups
+    # it joins, so those are re-scored and a heap gives the next best. The choice is
+    # the one of a full scan over the nodes in order: the lowest error, the lowest
+    # node on a tie; the groups keep their order (the merged one last), as does
+    # each node's pair (the earlier group first), so every merged group is the same.
+    current: dict[int, Group] = dict(enumerate(groups))  # insertion-ordered, like the list
+    at: dict[int, list[int]] = {}  # node -> ids of the groups with an end there, in order
+    for i, g in current.items():
+        for n in set(g.ends):
+            at.setdefault(n, []).append(i)
+    pairs: dict[int, tuple[int, int, Group]] = {}  # node -> the pair whose merge there is a candidate, merged
+    heap: list[tuple[float, int, int, int]] = []
+    # Scored once per pair of groups: two groups that share both their ends (a loop
+    # of two) are one candidate, merged at the node where it was first scored.
     scores: dict[tuple[tuple[int, ...], tuple[int, ...]], tuple[float, Group]] = {}
-    while True:
-        at: dict[int, list[int]] = {}
-        for i, g in enumerate(current):
+
+    def score(node: int) -> None:
+        pairs.pop(node, None)
+        idx = at.get(node, [])
+        if valence[node] != 2 or len(idx) != 2 or node in axis_nodes:
+            return
+        ga, gb = current[idx[0]], current[idx[1]]
+        if ga.locked or gb.locked or ga is gb:
+            return
+        key = (ga.segments, gb.segments)
+        if key not in scores:
+            merged = merge_groups(ga, gb, node)
+            scores[key] = (error(merged), merged)
+        err, merged = scores[key]
+        if err < SIMPLIFICATION_ERROR:  # (a NaN never is)
+            pairs[node] = (idx[0], idx[1], merged)
+            heapq.heappush(heap, (err, node, idx[0], idx[1]))  # (node, i, j) is never pushed twice
+
+    for node in sorted(at):
+        score(node)
+    next_id = len(current)
+    while heap:
+        _, node, i, j = heapq.heappop(heap)
+        if pairs.get(node, (None, None))[:2] != (i, j):
+            continue  # a pair that an earlier merge broke
+        merged = pairs.pop(node)[2]
+        ga, gb = current.pop(i), current.pop(j)
+        touched = set(ga.ends) | set(gb.ends)
+        for g, gid in ((ga, i), (gb, j)):
             for n in set(g.ends):
-                at.setdefault(n, []).append(i)
-        best, best_err = None, SIMPLIFICATION_ERROR
-        for node, idx in sorted(at.items()):
-            if valence[node] != 2 or len(idx) != 2 or node in axis_nodes:
-                continue
-            ga, gb = current[idx[0]], current[idx[1]]
-            if ga.locked or gb.locked or ga is gb:
-                continue
-            key = (ga.segments, gb.segments)
-            if key not in scores:
-                merged = merge_groups(ga, gb, node)
-                scores[key] = (error(merged), merged)
-            err, merged = scores[key]
-            if err < best_err:
-                best, best_err = (idx[0], idx[1], merged), err
-        if best is None:
-            return current
-        i, j, merged = best
-        current = [g for k, g in enumerate(current) if k not in (i, j)] + [merged]
+                at[n].remove(gid)
+        current[next_id] = merged
+        for n in set(merged.ends):
+            at[n].append(next_id)
+        next_id += 1
+        for n in sorted(touched):
+            score(n)
+    return list(current.values())
 
 
 def straight_line(group: Group) -> tuple[np.ndarray, np.ndarray] | None:

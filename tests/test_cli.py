@@ -938,3 +938,22 @@ def test_same_files_whatever_the_thread_counts(tmp_path):
         subprocess.run(cmd, env=env, check=True)
         outputs.append([(out / name).read_bytes() for name in ("fish.json", "fish.png")])
     assert outputs[0] == outputs[1]
+
+
+def test_the_command_freezes_its_heap_and_main_with_argv_does_not(tmp_path, monkeypatch):
+    """The process that is the command moves its long-lived objects out of the collector's sight (gc.freeze).
+
+    main([...]) called from Python (tests, notebooks) leaves the collector alone.
+    """
+    import gc
+
+    gc.unfreeze()
+    try:
+        out = tmp_path / "leaf.svg"
+        assert main([str(DATA / "drawing-leaf.png"), "-q", "--svg", str(out)]) == 0
+        assert gc.get_freeze_count() == 0
+        monkeypatch.setattr(sys, "argv", ["img2logo", str(DATA / "drawing-leaf.png"), "-q", "--svg", str(out)])
+        assert main() == 0
+        assert gc.get_freeze_count() > 0 and out.read_text().startswith("<?xml")
+    finally:
+        gc.unfreeze()

@@ -56,3 +56,56 @@ def test_a_straight_stroke_is_told_from_an_arc():
     assert not is_straight(Group((0,), (0, 1), _arc(0.0, 1.5), False))
     assert straight_line(Group((0,), (0, 1), _arc(0.0, 1.5), False)) is None
     assert not is_straight(Group((0,), (0, 0), stroke.points, False))  # a closed group is never a line
+
+
+def _full_scan(groups, error, valence, axis_nodes=frozenset()):
+    """The simplification as first written: every node scanned in order after each merge (the reference)."""
+    current = list(groups)
+    scores = {}
+    while True:
+        at = {}
+        for i, g in enumerate(current):
+            for n in set(g.ends):
+                at.setdefault(n, []).append(i)
+        best, best_err = None, SIMPLIFICATION_ERROR
+        for node, idx in sorted(at.items()):
+            if valence[node] != 2 or len(idx) != 2 or node in axis_nodes:
+                continue
+            ga, gb = current[idx[0]], current[idx[1]]
+            if ga.locked or gb.locked or ga is gb:
+                continue
+            key = (ga.segments, gb.segments)
+            if key not in scores:
+                merged = merge_groups(ga, gb, node)
+                scores[key] = (error(merged), merged)
+            err, merged = scores[key]
+            if err < best_err:
+                best, best_err = (idx[0], idx[1], merged), err
+        if best is None:
+            return current
+        i, j, merged = best
+        current = [g for k, g in enumerate(current) if k not in (i, j)] + [merged]
+
+
+def test_simplify_makes_the_merges_of_a_full_scan_in_the_same_order():
+    """The incremental simplification merges what a scan of every node after each merge would, ties included."""
+    graph = build_segment_graph(extract_feature_lines(DATA / "clipart-fish.png"))
+    locked = np.zeros(graph.n_segments, dtype=bool)
+    locked[::17] = True
+    groups = [
+        Group((i,), tuple(int(n) for n in graph.ends[i]), seg, bool(locked[i])) for i, seg in enumerate(graph.segments)
+    ]
+    valence = graph.valence
+
+    def fitted(g):  # the mean distance to the fitted circle, rounded to 0.25 px: many ties
+        from img2logo.circle_fitting import fit_circle, mean_abs_error
+
+        fit = fit_circle(g.points, refine=False)
+        return round(4 * mean_abs_error(g.points, fit.center, fit.radius)) / 4
+
+    for error, axis in ((fitted, frozenset()), (lambda g: 0.5, frozenset()), (fitted, frozenset(range(0, 400, 7)))):
+        ours, reference = simplify(groups, error, valence, axis), _full_scan(groups, error, valence, axis)
+        assert len(ours) < len(groups)
+        assert [(g.segments, g.nodes) for g in ours] == [(g.segments, g.nodes) for g in reference]
+        for a, b in zip(ours, reference, strict=True):
+            np.testing.assert_array_equal(a.points, b.points)
