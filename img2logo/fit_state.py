@@ -22,7 +22,7 @@ import dataclasses
 import math
 from collections.abc import Callable, Hashable, Mapping, Sequence
 from dataclasses import dataclass
-from typing import Any, NamedTuple, Protocol, cast
+from typing import Any, NamedTuple, Protocol, TypeAlias, cast
 
 import numpy as np
 
@@ -153,7 +153,7 @@ class AxisConstraints(Protocol):
 
 
 #: The result of a constrained fit over a window: the new fits by group, the displacements d_k by node.
-Solution = tuple[dict[int, GroupFit], dict[int, np.ndarray]]
+Solution: TypeAlias = "tuple[dict[int, GroupFit], dict[int, np.ndarray]]"  # a string: autodoc documents it as data
 
 
 def on_axis(symmetry: AxisConstraints | None, group: Group) -> bool:

@@ -19,7 +19,7 @@ import dataclasses
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import cast
+from typing import TypeAlias, cast
 
 import numpy as np
 
@@ -28,10 +28,10 @@ from .fit_state import FitState, GroupFit, Seed, Solution
 from .simplification import Group, hold_line, merge_groups
 
 #: Called by :func:`merge_loop` after every merge, with the state (now one level further).
-MergeCallback = Callable[[FitState], None]
+MergeCallback: TypeAlias = Callable[[FitState], None]
 
 #: A merge candidate: (group a, group b, their common end node).
-Pair = tuple[int, int, int]
+Pair: TypeAlias = "tuple[int, int, int]"  # a string: autodoc documents it as data, not as a class
 
 
 @dataclass(frozen=True, eq=False)

@@ -4,4 +4,5 @@ import sys
 
 from .runner import main
 
-sys.exit(main())
+if __name__ == "__main__":  # not on a mere import (the docs build imports every module)
+    sys.exit(main())
