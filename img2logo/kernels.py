@@ -268,12 +268,7 @@ def sqp_dense(
         if connectivity and (pos_c[inc_i[r]] >= 0 or pos_j[inc_k[r]] >= 0):
             active[r] = True
             m_inc += 1
-    act_rows = np.empty(m_inc, np.int64)
-    q = 0
-    for r in range(m_all):
-        if active[r]:
-            act_rows[q] = r
-            q += 1
+    act_rows = np.nonzero(active)[0]
     # Tangencies (a, b, k): all evaluated; those with a free variable are constraints, after the incidences.
     t_n = tangents.shape[0]
     tan_a, tan_b, tan_k = np.empty(t_n, np.int64), np.empty(t_n, np.int64), np.empty(t_n, np.int64)
@@ -285,12 +280,7 @@ def sqp_dense(
         if connectivity and (pos_c[tan_a[t]] >= 0 or pos_c[tan_b[t]] >= 0 or pos_j[tan_k[t]] >= 0):
             tan_active[t] = True
             m_tan += 1
-    tan_rows = np.empty(m_tan, np.int64)
-    q = 0
-    for t in range(t_n):
-        if tan_active[t]:
-            tan_rows[q] = t
-            q += 1
+    tan_rows = np.nonzero(tan_active)[0]
     m = m_inc + m_tan
     size = n + m
     # The unknowns the system keeps (a mirror axis holds some x coordinates).
