@@ -73,8 +73,9 @@ def recover(state: FitState, seeds: Mapping[int, Seed]) -> Solution:
     """A^0 when the joint fit fails: each connected part alone, releasing junctions as needed.
 
     The parts of the drawing that share no junction are independent
-    problems, so a part that converges keeps its exact connectivity. In a
-    part that does not, the junction its golden circles miss most (the
+    problems, so a part that converges keeps its exact connectivity. A part
+    that does not is tried again from its circles' best centres for their
+    snapped radii (:func:`centred_seeds`). In a part that still does not, the junction its golden circles miss most (the
     largest distance from the junction to a circle through it, before the
     fit) is released: its arcs end where it projects on their circles, like
     a free end. This repeats until the part converges (a part with every
@@ -83,6 +84,7 @@ def recover(state: FitState, seeds: Mapping[int, Seed]) -> Solution:
     fits: dict[int, GroupFit] = {}
     disp: dict[int, np.ndarray] = {}
     n_total = len(state.groups)
+    centred: dict[int, Seed] | None = None
     for part in parts(state):
         while True:
             groups = {g: state.groups[g] for g in part}
@@ -90,6 +92,13 @@ def recover(state: FitState, seeds: Mapping[int, Seed]) -> Solution:
             out = state.solve_whole(
                 groups, seeds, at, n_groups_total=n_total, n_junctions_total=max(len(state.node_groups()), 1)
             )
+            if out is None:
+                # The free centres with the snapped radii can start the fit far from the pixels;
+                # the same problem from the centres that fit each radius best, before any release.
+                centred = centred_seeds(state, seeds) if centred is None else centred
+                out = state.solve_whole(
+                    groups, centred, at, n_groups_total=n_total, n_junctions_total=max(len(state.node_groups()), 1)
+                )
             if out is not None:
                 fits.update(out[0])
                 disp.update(out[1])
@@ -114,6 +123,28 @@ def recover(state: FitState, seeds: Mapping[int, Seed]) -> Solution:
             stacklevel=2,
         )
     return fits, disp
+
+
+def centred_seeds(state: FitState, seeds: Mapping[int, Seed]) -> dict[int, Seed]:
+    """The seeds with each golden circle's centre where it fits its group's pixels best (:func:`fit_center`).
+
+    A seed's centre is its free circle's (:meth:`FitState.golden`): once the
+    radius is snapped up or down the ladder (by up to a factor of phi, or from a
+    capped free radius to a rung far above it), that circle runs off its pixels
+    by the difference of the radii, 240 px for a straight 70 px segment whose
+    free radius was capped at 1400 px and snapped to 1646. Eqn. 13 started there
+    can stall where it converges from the centre placed for the snapped radius
+    (the second stage of Sec. 5.3 for each circle alone). Straight lines and
+    circles held on a mirror axis keep their centres.
+    """
+    from .circle_fitting import fit_center
+
+    out = dict(seeds)
+    for g, seed in seeds.items():
+        group = state.groups[g]
+        if seed.k is not None and not state.on_axis(group):
+            out[g] = seed._replace(center=fit_center(group.points, seed.radius, seed.center))
+    return out
 
 
 def parts(state: FitState) -> list[list[int]]:

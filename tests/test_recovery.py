@@ -6,13 +6,13 @@ import warnings
 
 import numpy as np
 import pytest
-from helpers import check_level, golden_chain, golden_radius, hand_built_state, sampled_arc
+from helpers import DATA, check_level, golden_chain, golden_radius, hand_built_state, sampled_arc
 
 from img2logo import InvalidParameterError
 from img2logo.fit_state import Seed
 from img2logo.geometry import line_arc
 from img2logo.progressive import optimize
-from img2logo.recovery import ConnectivityWarning, parts, recover
+from img2logo.recovery import ConnectivityWarning, centred_seeds, parts, recover
 from img2logo.segment_graph import SegmentGraph
 
 
@@ -129,12 +129,15 @@ def test_a_part_with_every_junction_released_still_gets_its_arcs(monkeypatch):
 
 
 def test_one_huge_radius_on_a_real_drawing_gives_a_logo(data_dir):
-    # --radii 15 (r = 1364 px on a 512 px drawing): no fit meets the junctions; released, not a crash.
-    from img2logo import abstract, recovery
+    # --radii 15 (r = 1364 px on a 512 px drawing): every circle 1364 px, not a crash. From the
+    # free centres the joint fit stalls; from the centred ones (the circles on their pixels) it
+    # meets every junction.
+    from img2logo import abstract
 
-    with pytest.warns(recovery.ConnectivityWarning):
-        result = abstract(data_dir / "drawing-fish.png", exponents=[15], progress=False)
+    result = abstract(data_dir / "drawing-fish.png", exponents=[15], progress=False)
     assert result.final.arcs and {a.circle.k for a in result.final.arcs} == {15}
+    assert result.progression.stats["released_junctions"] == 0
+    check_level(result.levels[0])
 
 
 def test_radii_too_large_for_the_image_are_named():
@@ -146,3 +149,55 @@ def test_radii_too_large_for_the_image_are_named():
         optimize(graph, ladder="fibonacci", unit=15000.0)
     with pytest.raises(InvalidParameterError, match=r"choose smaller exponents \(--radii\)"):
         optimize(graph, exponents=[24, 25], bias=0.0)  # phi**24 = 103682 px
+
+
+def test_centred_seeds_put_each_golden_circle_where_its_pixels_are():
+    # A seed's centre is its free circle's; with the radius snapped the circle runs off the
+    # pixels by the difference of the radii. Centred, it lies on them; a line keeps its place.
+    graph, truth = golden_chain()
+    state = hand_built_state(graph)
+    seeds = {g: Seed(c + np.array([40.0, -25.0]), r, 8 + g) for g, (c, r) in enumerate(truth)}
+    line = line_arc(graph.junctions[0], graph.junctions[1]).circle
+    seeds[0] = Seed(line.center, line.r, None)
+    centred = centred_seeds(state, seeds)
+    np.testing.assert_array_equal(centred[0].center, seeds[0].center)
+    for g in (1, 2):
+        np.testing.assert_allclose(centred[g].center, truth[g][0], atol=1e-6)
+        assert centred[g].radius == seeds[g].radius and centred[g].k == seeds[g].k
+
+
+def test_a_part_that_stalls_from_the_free_centres_is_solved_from_the_centred_ones(monkeypatch):
+    # Eqn. 13 from the free centres is made to fail; the retry from the centred seeds converges
+    # before any junction is released.
+    from img2logo import fit_state
+
+    graph, truth = golden_chain()
+    state = hand_built_state(graph)
+    seeds = {g: Seed(c + np.array([30.0, 0.0]), r, 8 + g) for g, (c, r) in enumerate(truth)}
+    solve = fit_state.FitState.solve
+
+    def stalls_off_the_pixels(self, groups, seeds_, *args, **kwargs):
+        off = any(np.hypot(*(seeds_[g].center - truth[g][0])) > 1.0 for g in groups)
+        return None if off else solve(self, groups, seeds_, *args, **kwargs)
+
+    monkeypatch.setattr(fit_state.FitState, "solve", stalls_off_the_pixels)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        fits, disp = recover(state, seeds)
+    assert not state.released and sorted(fits) == [0, 1, 2]
+    np.testing.assert_allclose(np.array(list(disp.values())), 0.0, atol=1e-6)
+
+
+def test_a_clip_art_with_thin_legs_keeps_every_junction():
+    # The held-out critter-c (a body on two 22 px legs with round caps, a head, a tail): its
+    # straight leg sides' free circles are capped at 1400 px and snapped to 1646 px, 240 px off
+    # their pixels, and the joint fit from there stalled; recovery released the four junctions
+    # of the legs, which came out as open arcs 1-4 px from the body (near-miss gaps).
+    from img2logo import abstract, quality
+
+    path = DATA.parent / "benchmarks" / "data" / "heldout" / "clipart-critter-c.png"
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", ConnectivityWarning)
+        result = abstract(path, progress=False)
+    assert result.progression.stats["released_junctions"] == 0
+    assert len(quality.near_miss_gaps(result.final)) == 0
