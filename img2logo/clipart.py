@@ -41,6 +41,7 @@ from __future__ import annotations
 import numpy as np
 
 from .constants import (
+    CLIPART_BLOCK_REACH,
     CLIPART_EDGE_CONTRAST,
     CLIPART_FILL_SPREAD,
     CLIPART_FLAT_RADIUS,
@@ -220,11 +221,11 @@ def _palette_regions(
     return _relabel(regions), ~rest
 
 
-def _near_entries(index: np.ndarray, n: int, rest: np.ndarray) -> np.ndarray:
-    """For each pixel of ``rest``, which of the ``n`` entries have seed pixels within the rim radius: (R, n) bool."""
+def _near_entries(index: np.ndarray, n: int, rest: np.ndarray, radius: int = CLIPART_RIM_RADIUS) -> np.ndarray:
+    """For each pixel of ``rest``, which of the ``n`` entries have seed pixels within ``radius`` px: (R, n) bool."""
     import cv2
 
-    size = 2 * CLIPART_RIM_RADIUS + 1
+    size = 2 * radius + 1
     disk = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (size, size))
     near = np.empty((int(rest.sum()), n), dtype=bool)
     for e in range(n):
@@ -251,10 +252,13 @@ def _unexplained_seeds(
     strongest edges, and would fall to its surroundings. Its pixels are farther
     than ``CLIPART_EDGE_CONTRAST`` (four just noticeable differences: beyond a
     fill's compression noise, which the mean shift has halved) from every
-    blend of the seeds near them (a pixel with no seed near, from every seed's
-    colour). The seeds are such pixels more than ``CLIPART_RING_WIDTH`` px from
-    any other (a ringing halo or chroma bleeding along an edge is a strip no
-    wider than that and has none), in 8-connected groups of at least
+    blend of the seeds near them (a pixel with no seed near, of the seeds
+    within ``CLIPART_BLOCK_REACH``: not the colour of a seed farther away, or a
+    12-14 px spot of the colour of larger ones elsewhere would be explained,
+    seed nothing and be merged away as a region without a seed pixel). The seeds are
+    such pixels more than ``CLIPART_RING_WIDTH`` px from any other (a ringing
+    halo or chroma bleeding along an edge is a strip no wider than that and has
+    none), in 8-connected groups of at least
     ``CLIPART_SEED_AREA`` px (a 3x3 block, as the flat seeds of a clean image),
     unless their 8-connected part of unexplained pixels is more than
     ``CLIPART_FILL_SPREAD`` times what lies within ``CLIPART_RIM_RADIUS`` px of
@@ -309,7 +313,8 @@ def _unexplained(
     there (a straight line in sRGB is a curve in CIELAB) and compared in CIELAB.
     ``areas_rgb`` holds the seeds' mean sRGB colours, shape (S, 3). A pixel
     with no seed within ``CLIPART_RIM_RADIUS`` is unexplained, or with
-    ``lonely`` compared with every seed's colour.
+    ``lonely`` compared with the blends of the seeds within
+    ``CLIPART_BLOCK_REACH`` (unexplained with none there either).
     """
     from skimage.color import rgb2lab
 
@@ -325,7 +330,7 @@ def _unexplained(
     if lonely:
         alone = ~near.any(axis=1)
         if alone.any():
-            best[alone] = np.min(np.linalg.norm(colours_lab[alone, None] - singles[None], axis=2), axis=1)
+            near[alone] = _near_entries(seed_of, n, rest, CLIPART_BLOCK_REACH)[alone]
     for a in range(n):
         on_a = near[:, a]
         if on_a.any():

@@ -126,6 +126,12 @@ CLIPART_RIM_RADIUS: int = 4
 #: a yellow-on-blue edge at quality 60 the strip of unexplained colours is up to 6 px wide
 #: (measured), so its pixels are all within 3 px of its edge. A dot needs about 10 px across.
 CLIPART_RING_WIDTH: float = 3.0
+#: Clip art, compressed (JPEG): a pixel with no seed within CLIPART_RIM_RADIUS is explained
+#: only by the blends of the seeds within this distance, px: as far as JPEG spreads an edge's
+#: colours (chroma is coded at half resolution in 8 x 8 blocks, 16 x 16 px of the image), so
+#: a rim or bleeding pixel has its sides' flat pixels this near. Not by a seed's colour from
+#: farther away: a 14 px spot of the colour of larger spots elsewhere is a fill of its own.
+CLIPART_BLOCK_REACH: int = 16
 #: ... and such a seed is a small fill only when its part of unexplained pixels lies mostly
 #: near it: at most this many times what is within CLIPART_RIM_RADIUS px of it. Measured:
 #: 1.2-1.9 for the eye and horn tips of JPEG clip arts; 27-50 where two 3 px strokes of a

@@ -95,6 +95,32 @@ def test_a_small_dark_fill_of_a_jpeg_keeps_its_region(quality):
     assert len(np.unique(regions)) == 3  # paper, disc, eye: no ringing seeded
 
 
+def _spots(small_radius: int) -> np.ndarray:
+    """An orange body with two brown spots 32 px across and a third, small one of their colour (4x, area-reduced)."""
+    s = 4
+    im = np.full((200 * s, 200 * s, 3), 255, np.uint8)
+    cv2.ellipse(im, (100 * s, 100 * s), (85 * s, 60 * s), 0, 0, 360, (240, 170, 60), -1, lineType=cv2.LINE_AA)
+    for x, y, r in ((60, 90, 16), (140, 90, 16), (100, 125, small_radius)):
+        cv2.circle(im, (x * s, y * s), r * s, (170, 95, 40), -1, lineType=cv2.LINE_AA)
+    return cv2.resize(im, (200, 200), interpolation=cv2.INTER_AREA)
+
+
+@pytest.mark.parametrize("quality", [60, 70, 85, 95])
+@pytest.mark.parametrize("radius", [5, 7])
+def test_a_small_spot_of_a_jpeg_keeps_its_region_beside_larger_ones_of_its_colour(quality, radius):
+    """A 10-14 px spot whose flat part is smaller than a seed, of the colour of two large spots 25 px away.
+
+    Its pixels more than 4 px from the body's flat pixels are near no seed; the colour of the large
+    spots (beyond a 16 px chroma block) used to explain them, so they seeded nothing and made a
+    region without a seed pixel, merged into the body as a sliver (the JPEG giraffe's small spots).
+    """
+    regions = _regions(_jpeg(_spots(radius), quality))
+    spot, body = regions[125, 100], regions[100, 100]
+    assert spot not in (body, regions[5, 5])
+    assert np.pi * (radius - 1.5) ** 2 <= int((regions == spot).sum()) <= np.pi * (radius + 1.5) ** 2
+    assert len(np.unique(regions)) == 5  # paper, body, three spots: no ringing along the body's edge seeded
+
+
 def test_thin_strokes_of_a_jpeg_drawing_seed_no_fill_where_they_cross():
     """Two 3 px lines crossing: the crossing is thick enough to have an inside, but is no small fill."""
     im = blank()
