@@ -217,7 +217,7 @@ SUBJECT_MAX_FRAME: float = 0.25
 SUBJECT_MIN_CONTRAST: float = 2.8
 #: ... the distance of those points from the outline, px.
 SUBJECT_CONTRAST_STEP: float = 4.0
-#: Automatic subject, texture (subject.texture_colour_image): GrabCut also cuts
+#: Automatic subject, texture (subject_cues.texture_colour_image): GrabCut also cuts
 #: on CIELAB plus the texture, this many L* units per decade of the local
 #: fine-detail energy: a smooth surface and grass or gravel differ by about a
 #: decade, which then weighs as a clear colour edge (about 20 dE) does, so an
@@ -228,7 +228,7 @@ SUBJECT_TEXTURE_WEIGHT: float = 20.0
 SUBJECT_TEXTURE_FLOOR: float = 0.3
 #: ... an automatic subject whose outline is no colour edge is still kept when
 #: its texture differs from that around it by at least this many decades of
-#: fine-detail energy (subject.texture_step): a factor of 3. A cut through one
+#: fine-detail energy (subject_cues.texture_step): a factor of 3. A cut through one
 #: texture has the same on both sides (about 0); a flat body on grass-like
 #: texture of its own colour gives about 0.8 (tests/test_subject.py).
 SUBJECT_MIN_TEXTURE_STEP: float = 0.5
@@ -254,7 +254,7 @@ FACE_MIN_NEIGHBOURS: int = 12
 #: in length (an eye or a brow is about a fifth of the face), instead of the
 #: photo's INNER_MIN_LENGTH and PHOTO_MIN_LINE_LENGTH, which would drop them.
 FACE_MIN_LINE: float = 0.1
-#: Automatic subject, depth of field (subject.focus_seeds): fine detail is the
+#: Automatic subject, depth of field (subject_cues.focus_seeds): fine detail is the
 #: image minus its Gaussian blur of this sigma, px of the working copy ...
 FOCUS_DETAIL_SIGMA: float = 1.0
 #: ... its energy is averaged over a Gaussian window of this sigma, px of the
