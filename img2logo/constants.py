@@ -240,6 +240,26 @@ SUBJECT_NECK: float = 0.08
 #: ... and a part cut off by it counts if it holds this fraction of the area
 #: (smaller pieces are a tail or a leg, left to the outline).
 SUBJECT_MIN_PART: float = 0.15
+#: Cast shadows (subject_shadow.cast_shadow): a shadow darkens the background it
+#: falls on by a factor and keeps its chromaticity (linear RGB over its sum) and the
+#: texture of its log-luminance. Those are compared between the subject candidate
+#: and a ring outside it, from this many working px from the outline (the outer
+#: radius is also the Gaussian sigma of the local means: a shadow is compared with
+#: the background beside it) ...
+SHADOW_RING: tuple[float, float] = (1.5, 10.0)
+#: ... the object's own features from the candidate this many working px inside
+#: its outline ...
+SHADOW_CORE: float = 6.0
+#: ... chromaticity smoothed by a Gaussian of this sigma, working px (JPEG and
+#: sensor noise make a single pixel's chromaticity unreliable) ...
+SHADOW_CHROMA_SIGMA: float = 1.0
+#: ... a candidate pixel is shadowed background when it is darker than the ring's
+#: median and its chromaticity is within this Mahalanobis distance of the ring's
+#: (2.5: about 95 % of the background's own spread), grown from the pixels that
+#: chromaticity and texture together put nearer the background than the object ...
+SHADOW_MAX_CHROMA_DISTANCE: float = 2.5
+#: (then it is left out only if the outline section it takes away is no edge and
+#: the one left beside it is: SUBJECT_MIN_CONTRAST; a penumbra is soft).
 #: Faces (subject.find_faces): a face smaller than this fraction of the
 #: shorter side is too small for its eyes and mouth to become arcs of their own ...
 FACE_MIN_SIDE: float = 0.08

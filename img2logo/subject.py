@@ -66,23 +66,24 @@ from .constants import (
     SUBJECT_GRABCUT_ITERATIONS,
     SUBJECT_MAX_AREA,
     SUBJECT_MAX_FRAME,
-    SUBJECT_MAX_HOLE,
     SUBJECT_MIN_AREA,
     SUBJECT_MIN_CONTRAST,
     SUBJECT_MIN_PART,
     SUBJECT_MIN_TEXTURE_STEP,
     SUBJECT_NECK,
     SUBJECT_REFINE_BAND,
-    SUBJECT_SMOOTH_SIGMA,
     SUBJECT_TEXTURE_WEIGHT,
 )
 from .errors import InvalidParameterError
 from .loading import LoadedImage, load_mask
 from .subject_cues import (
     FocusSeeds,
+    clean_mask,
+    fill_small_holes,
     focus_seeds,
     focus_step,
     frame_box,
+    largest_part,
     outline_contrast,
     texture_colour_image,
     texture_map,
@@ -90,6 +91,7 @@ from .subject_cues import (
     work_scale,
     working_copy,
 )
+from .subject_shadow import cast_shadow
 
 #: The string values of ``foreground``.
 FOREGROUND_CHOICES = ("auto", "none", "grabcut")
@@ -209,7 +211,7 @@ def _find_subject(img: LoadedImage, foreground: object, subject: object) -> Subj
         if not (isinstance(foreground, str) and foreground in ("auto", "grabcut")):
             raise InvalidParameterError("subject (a rectangle) needs foreground auto or grabcut, not a mask or none")
         rect = parse_subject_rectangle(subject, shape)
-        mask = _clean(_grabcut(img, rect=rect))
+        mask = clean_mask(_grabcut(img, rect=rect))
         if not mask.any():
             raise InvalidParameterError(f"no object found in the subject rectangle {','.join(map(str, rect))}")
         x, y, w, h = rect
@@ -230,7 +232,7 @@ def _find_subject(img: LoadedImage, foreground: object, subject: object) -> Subj
             ):
                 mask = textured
         else:
-            mask = _clean(_grabcut(img))
+            mask = clean_mask(_grabcut(img))
         if foreground == "grabcut":
             if not mask.any():
                 return Subject(None, "grabcut", "GrabCut found no object: kept the whole image")
@@ -247,7 +249,7 @@ def _find_subject(img: LoadedImage, foreground: object, subject: object) -> Subj
             else:
                 why = f"{why}, texture step {step:.2f} decades"
         if seeds is not None:  # a close-up in focus that runs off the picture: try depth of field
-            focused = _clean(_grabcut(img, seeds=seeds))
+            focused = clean_mask(_grabcut(img, seeds=seeds))
             why_focus = _not_dominant(focused, frame=False) or _weak_focus_outline(img, seeds, focused)
             if not why_focus:
                 mask, why, how = focused, "", "found by GrabCut from the sharp subject and the blurred background"
@@ -258,6 +260,10 @@ def _find_subject(img: LoadedImage, foreground: object, subject: object) -> Subj
         kept = dominant_part(mask, texture)
         if kept is not mask:
             mask, how = kept, f"{how}; a part of another texture beyond a thin neck left out"
+        if not how.startswith("found by GrabCut from the sharp"):  # a blurred background shows no cast shadow
+            shadow = cast_shadow(img, mask)
+            if shadow is not None:
+                mask, how = clean_mask(mask & ~shadow), f"{how}; its cast shadow left out"
         return Subject(readonly(mask), "auto", f"kept the main object, {mask.mean():.0%} of the image ({how})")
     mask = load_mask(foreground, shape) if isinstance(foreground, Path) else np.asarray(foreground)
     if mask.shape != shape:
@@ -281,11 +287,11 @@ def _both_cuts(img: LoadedImage) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 
     def textured() -> tuple[np.ndarray, np.ndarray]:
         texture = texture_map(img.rgb, work_scale(img))
-        return texture, _clean(_grabcut(img, texture=texture))
+        return texture, clean_mask(_grabcut(img, texture=texture))
 
     with ThreadPoolExecutor(max_workers=2) as pool:
         other = pool.submit(textured)
-        mask = _clean(_grabcut(img))
+        mask = clean_mask(_grabcut(img))
         texture, cut = other.result()
     return mask, texture, cut
 
@@ -322,7 +328,7 @@ def dominant_part(mask: np.ndarray, texture: np.ndarray | None) -> np.ndarray:
     if step < SUBJECT_MIN_TEXTURE_STEP:
         return mask
     near = cv2.dilate((labels == parts[0]).astype(np.uint8), disc).astype(bool)
-    return _largest(mask & near)
+    return largest_part(mask & near)
 
 
 def find_faces(img: LoadedImage, mask: np.ndarray | None = None) -> tuple[tuple[int, int, int, int], ...]:
@@ -454,10 +460,10 @@ def _grabcut(
             box = (bx0, by0, max(2, bx1 - bx0), max(2, by1 - by0))
         label = np.zeros((sh, sw), np.uint8)
         cv2.grabCut(small8, label, box, bgd, fgd, SUBJECT_GRABCUT_ITERATIONS, cv2.GC_INIT_WITH_RECT)
-    fg = _largest((label == cv2.GC_FGD) | (label == cv2.GC_PR_FGD))
+    fg = largest_part((label == cv2.GC_FGD) | (label == cv2.GC_PR_FGD))
     if not fg.any():
         return np.zeros((h, w), bool)
-    fg = _fill_small_holes(fg)
+    fg = fill_small_holes(fg)
     up = cv2.resize(fg.astype(np.float32), (w, h), interpolation=cv2.INTER_LINEAR) >= 0.5
     if scale == 1.0:
         return up
@@ -486,33 +492,3 @@ def _grabcut(
 
 def _bgr8(rgb: np.ndarray) -> np.ndarray:
     return np.ascontiguousarray((np.clip(rgb[:, :, ::-1], 0.0, 1.0) * 255).round().astype(np.uint8))
-
-
-def _largest(mask: np.ndarray) -> np.ndarray:
-    """The largest 8-connected piece of ``mask``."""
-    from scipy import ndimage
-
-    lab, n = ndimage.label(mask, structure=np.ones((3, 3)))
-    if n <= 1:
-        return mask.copy()
-    sizes = np.bincount(lab.ravel())[1:]
-    return lab == 1 + int(np.argmax(sizes))
-
-
-def _clean(mask: np.ndarray) -> np.ndarray:
-    """Largest piece, holes filled, smoothed by a Gaussian of ``SUBJECT_SMOOTH_SIGMA`` px, (H, W) bool."""
-    from scipy import ndimage
-
-    if not mask.any():
-        return mask
-    mask = _fill_small_holes(_largest(mask))
-    smooth = ndimage.gaussian_filter(mask.astype(np.float32), SUBJECT_SMOOTH_SIGMA) >= 0.5
-    smooth = _largest(smooth)
-    return _fill_small_holes(smooth) if smooth.any() else mask
-
-
-def _fill_small_holes(mask: np.ndarray) -> np.ndarray:
-    """Fill the holes of ``mask`` smaller than ``SUBJECT_MAX_HOLE`` of its area (GrabCut's specks)."""
-    from skimage.morphology import remove_small_holes
-
-    return remove_small_holes(mask, max_size=max(1, int(SUBJECT_MAX_HOLE * mask.sum())))

@@ -12,6 +12,8 @@ Measurements only; :mod:`img2logo.subject` decides with them. Each works on a
   :func:`focus_step`: depth of field (a close-up in focus in front of a
   blurred background), GrabCut's seeds from it, and the focus step across an
   outline;
+* :func:`clean_mask`, :func:`largest_part`, :func:`fill_small_holes`: a
+  candidate mask's cleaning (its largest piece, GrabCut's specks filled, smoothed);
 * :func:`working_copy`, :func:`work_scale`, :func:`frame_box`,
   :func:`frame_strip`: the small copy GrabCut and the cues work on, and the
   strip along the image frame that is taken as background.
@@ -42,6 +44,8 @@ from .constants import (
     LUMA_WEIGHTS,
     SUBJECT_CONTRAST_STEP,
     SUBJECT_FRAME_INSET,
+    SUBJECT_MAX_HOLE,
+    SUBJECT_SMOOTH_SIGMA,
     SUBJECT_TEXTURE_FLOOR,
     SUBJECT_TEXTURE_WEIGHT,
     SUBJECT_WORK_SIDE,
@@ -50,7 +54,11 @@ from .loading import LoadedImage
 
 
 def outline_contrast(
-    img: LoadedImage, mask: np.ndarray, step: float = SUBJECT_CONTRAST_STEP, texture: np.ndarray | None = None
+    img: LoadedImage,
+    mask: np.ndarray,
+    step: float = SUBJECT_CONTRAST_STEP,
+    texture: np.ndarray | None = None,
+    where: np.ndarray | None = None,
 ) -> float:
     """How sharply a mask's outline separates colours (and textures): across over along, unit-free.
 
@@ -59,7 +67,9 @@ def outline_contrast(
     the differences between the points ``step`` px either way along the
     outline, inside and outside (along: the texture). Returns median(across) /
     median(along). An object's outline follows an edge (several times the
-    texture); a cut through fur or gravel does not (about 2).
+    texture); a cut through fur or gravel does not (about 2). Given ``where``
+    (H, W) bool, only the outline's pixels in it count (one section of it);
+    0 if there are none.
     """
     from scipy import ndimage
 
@@ -70,11 +80,9 @@ def outline_contrast(
     else:  # colour averaged over the texture's window: the grass's blades are no step, its mean colour is
         window = FOCUS_WINDOW / work_scale(img)
         lab = np.dstack([ndimage.gaussian_filter(img.smooth_lab, (window, window, 0)), texture])
-    signed = ndimage.distance_transform_edt(mask) - ndimage.distance_transform_edt(~mask)
-    gy, gx = np.gradient(ndimage.gaussian_filter(signed, 2.0))
-    rows, cols = np.nonzero(mask & ~ndimage.binary_erosion(mask))
-    norm = np.hypot(gx[rows, cols], gy[rows, cols]) + 1e-12
-    nx, ny = gx[rows, cols] / norm, gy[rows, cols] / norm  # the inward normal, (x, y)
+    rows, cols, nx, ny = outline_normals(mask, where)
+    if rows.size == 0:
+        return 0.0
     h, w = mask.shape
 
     def at(dr: np.ndarray, dc: np.ndarray) -> np.ndarray:
@@ -89,6 +97,25 @@ def outline_contrast(
         diff = at(r0 + step * nx, c0 - step * ny) - at(r0 - step * nx, c0 + step * ny)
         along = np.maximum(along, np.linalg.norm(diff, axis=1))
     return float(np.median(across) / (np.median(along) + 1e-9))
+
+
+def outline_normals(
+    mask: np.ndarray, where: np.ndarray | None = None
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """A mask's outline pixels (in ``where``, if given) and their inward unit normals: rows, cols, nx, ny.
+
+    The outline is the mask's pixels next to a pixel outside it; the normal is
+    the gradient of the signed distance to it, smoothed by a Gaussian of 2 px
+    (x = column, y = row direction).
+    """
+    from scipy import ndimage
+
+    signed = ndimage.distance_transform_edt(mask) - ndimage.distance_transform_edt(~mask)
+    gy, gx = np.gradient(ndimage.gaussian_filter(signed, 2.0))
+    edge = mask & ~ndimage.binary_erosion(mask)
+    rows, cols = np.nonzero(edge if where is None else edge & where)
+    norm = np.hypot(gx[rows, cols], gy[rows, cols]) + 1e-12
+    return rows, cols, gx[rows, cols] / norm, gy[rows, cols] / norm
 
 
 def texture_step(img: LoadedImage, texture: np.ndarray, mask: np.ndarray) -> float:
@@ -291,3 +318,33 @@ def texture_colour_image(lab: np.ndarray, texture: np.ndarray) -> np.ndarray:
     lo, hi = np.percentile(proj, 0.5, axis=0), np.percentile(proj, 99.5, axis=0)
     proj = np.clip((proj - lo) / np.maximum(hi - lo, 1e-9), 0.0, 1.0)
     return np.ascontiguousarray((proj * 255).round().astype(np.uint8).reshape(*lab.shape[:2], 3))
+
+
+def largest_part(mask: np.ndarray) -> np.ndarray:
+    """The largest 8-connected piece of ``mask``."""
+    from scipy import ndimage
+
+    lab, n = ndimage.label(mask, structure=np.ones((3, 3)))
+    if n <= 1:
+        return mask.copy()
+    sizes = np.bincount(lab.ravel())[1:]
+    return lab == 1 + int(np.argmax(sizes))
+
+
+def clean_mask(mask: np.ndarray) -> np.ndarray:
+    """Largest piece, holes filled, smoothed by a Gaussian of ``SUBJECT_SMOOTH_SIGMA`` px, (H, W) bool."""
+    from scipy import ndimage
+
+    if not mask.any():
+        return mask
+    mask = fill_small_holes(largest_part(mask))
+    smooth = ndimage.gaussian_filter(mask.astype(np.float32), SUBJECT_SMOOTH_SIGMA) >= 0.5
+    smooth = largest_part(smooth)
+    return fill_small_holes(smooth) if smooth.any() else mask
+
+
+def fill_small_holes(mask: np.ndarray) -> np.ndarray:
+    """Fill the holes of ``mask`` smaller than ``SUBJECT_MAX_HOLE`` of its area (GrabCut's specks)."""
+    from skimage.morphology import remove_small_holes
+
+    return remove_small_holes(mask, max_size=max(1, int(SUBJECT_MAX_HOLE * mask.sum())))
