@@ -77,7 +77,8 @@ def _mahalanobis(features: np.ndarray, where: np.ndarray, sigma: float | None = 
     pixels ``where`` around each pixel, normalized convolution) and their
     spread about it: a shadow is compared with the background beside it, not
     with every colour of the background (a brick wall's mortar is no match for
-    a shadow on its bricks).
+    a shadow on its bricks). Pixels beyond the Gaussian's reach of all of them
+    take their mean over all.
     """
     from scipy import ndimage
 
@@ -87,6 +88,8 @@ def _mahalanobis(features: np.ndarray, where: np.ndarray, sigma: float | None = 
         weight = ndimage.gaussian_filter(where.astype(np.float64), sigma)
         summed = ndimage.gaussian_filter(features * where[..., None], (sigma, sigma, 0))
         mean = summed / np.maximum(weight, 1e-12)[..., None]
+        far = weight < 1e-6  # beyond the Gaussian's reach (4 sigma) of every such pixel: their mean over all
+        mean[far] = features[where].mean(axis=0)
     sample = (features - mean)[where]
     cov = np.atleast_2d(np.cov(sample.T)) + 1e-9 * np.eye(sample.shape[1])
     diff = features - mean
