@@ -28,6 +28,8 @@ Arrays are indexed (row, column).
 
 from __future__ import annotations
 
+from functools import partial
+
 import numpy as np
 
 from .constants import (
@@ -80,14 +82,16 @@ def _mahalanobis(features: np.ndarray, where: np.ndarray, sigma: float | None = 
     a shadow on its bricks). Pixels beyond the Gaussian's reach of all of them
     take their mean over all.
     """
-    from scipy import ndimage
+    import cv2
 
     if sigma is None:
         mean = features[where].mean(axis=0)
     else:
-        weight = ndimage.gaussian_filter(where.astype(np.float64), sigma)
-        summed = ndimage.gaussian_filter(features * where[..., None], (sigma, sigma, 0))
-        mean = summed / np.maximum(weight, 1e-12)[..., None]
+        # OpenCV's Gaussian (the same 4-sigma reach, mirrored border), several times scipy's speed at this sigma
+        blur = partial(cv2.GaussianBlur, ksize=(0, 0), sigmaX=sigma, borderType=cv2.BORDER_REFLECT)
+        weight = blur(where.astype(np.float32)).astype(np.float64)
+        summed = blur(np.ascontiguousarray(features * where[..., None], dtype=np.float32)).astype(np.float64)
+        mean = summed.reshape(features.shape) / np.maximum(weight, 1e-12)[..., None]
         far = weight < 1e-6  # beyond the Gaussian's reach (4 sigma) of every such pixel: their mean over all
         mean[far] = features[where].mean(axis=0)
     sample = (features - mean)[where]
