@@ -223,7 +223,7 @@ SUBJECT_MAX_FRAME: float = 0.25
 SUBJECT_MIN_CONTRAST: float = 2.8
 #: ... the distance of those points from the outline, px.
 SUBJECT_CONTRAST_STEP: float = 4.0
-#: Automatic subject, texture (subject.texture_colour_image): GrabCut also cuts
+#: Automatic subject, texture (subject_cues.texture_colour_image): GrabCut also cuts
 #: on CIELAB plus the texture, this many L* units per decade of the local
 #: fine-detail energy: a smooth surface and grass or gravel differ by about a
 #: decade, which then weighs as a clear colour edge (about 20 dE) does, so an
@@ -234,7 +234,7 @@ SUBJECT_TEXTURE_WEIGHT: float = 20.0
 SUBJECT_TEXTURE_FLOOR: float = 0.3
 #: ... an automatic subject whose outline is no colour edge is still kept when
 #: its texture differs from that around it by at least this many decades of
-#: fine-detail energy (subject.texture_step): a factor of 3. A cut through one
+#: fine-detail energy (subject_cues.texture_step): a factor of 3. A cut through one
 #: texture has the same on both sides (about 0); a flat body on grass-like
 #: texture of its own colour gives about 0.8 (tests/test_subject.py).
 SUBJECT_MIN_TEXTURE_STEP: float = 0.5
@@ -246,6 +246,26 @@ SUBJECT_NECK: float = 0.08
 #: ... and a part cut off by it counts if it holds this fraction of the area
 #: (smaller pieces are a tail or a leg, left to the outline).
 SUBJECT_MIN_PART: float = 0.15
+#: Cast shadows (subject_shadow.cast_shadow): a shadow darkens the background it
+#: falls on by a factor and keeps its chromaticity (linear RGB over its sum) and the
+#: texture of its log-luminance. Those are compared between the subject candidate
+#: and a ring outside it, from this many working px from the outline (the outer
+#: radius is also the Gaussian sigma of the local means: a shadow is compared with
+#: the background beside it) ...
+SHADOW_RING: tuple[float, float] = (1.5, 10.0)
+#: ... the object's own features from the candidate this many working px inside
+#: its outline ...
+SHADOW_CORE: float = 6.0
+#: ... chromaticity smoothed by a Gaussian of this sigma, working px (JPEG and
+#: sensor noise make a single pixel's chromaticity unreliable) ...
+SHADOW_CHROMA_SIGMA: float = 1.0
+#: ... a candidate pixel is shadowed background when it is darker than the ring's
+#: median and its chromaticity is within this Mahalanobis distance of the ring's
+#: (2.5: about 95 % of the background's own spread), grown from the pixels that
+#: chromaticity and texture together put nearer the background than the object ...
+SHADOW_MAX_CHROMA_DISTANCE: float = 2.5
+#: (then it is left out only if the outline section it takes away is no edge and
+#: the one left beside it is: SUBJECT_MIN_CONTRAST; a penumbra is soft).
 #: Faces (subject.find_faces): a face smaller than this fraction of the
 #: shorter side is too small for its eyes and mouth to become arcs of their own ...
 FACE_MIN_SIDE: float = 0.08
@@ -260,7 +280,7 @@ FACE_MIN_NEIGHBOURS: int = 12
 #: in length (an eye or a brow is about a fifth of the face), instead of the
 #: photo's INNER_MIN_LENGTH and PHOTO_MIN_LINE_LENGTH, which would drop them.
 FACE_MIN_LINE: float = 0.1
-#: Automatic subject, depth of field (subject.focus_seeds): fine detail is the
+#: Automatic subject, depth of field (subject_cues.focus_seeds): fine detail is the
 #: image minus its Gaussian blur of this sigma, px of the working copy ...
 FOCUS_DETAIL_SIGMA: float = 1.0
 #: ... its energy is averaged over a Gaussian window of this sigma, px of the

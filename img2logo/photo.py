@@ -232,11 +232,21 @@ def edge_tangent_flow(gray: np.ndarray, sigma: float = ETF_SIGMA) -> np.ndarray:
 
     The eigenvector of the smoothed structure tensor with the smaller eigenvalue
     (the direction of least change), a standard stand-in for Kang's iterative
-    ETF filter [KD09].
+    ETF filter [KD09]. The tensor is scikit-image's ``structure_tensor`` (Sobel
+    derivatives, Gaussian of ``sigma`` px, zero outside), written out with
+    ``scipy.ndimage``: the same numbers without importing ``skimage.feature``,
+    which loads ``scipy.stats`` (most of a second of a photo's command line).
     """
-    from skimage.feature import structure_tensor
+    from scipy import ndimage
 
-    arr, arc, acc = structure_tensor(gray, sigma=sigma, order="rc")
+    gray = np.asarray(gray)
+    if gray.dtype.kind != "f":  # the flow's angles do not depend on the scale, only the sums' range does
+        gray = gray.astype(np.float64)
+    d_row, d_col = (ndimage.sobel(gray, axis=axis, mode="constant", cval=0) for axis in (0, 1))
+    arr, arc, acc = (
+        ndimage.gaussian_filter(a * b, sigma, mode="constant", cval=0)
+        for a, b in ((d_row, d_row), (d_row, d_col), (d_col, d_col))
+    )
     # Tensor in (x, y) = (col, row): [[acc, arc], [arc, arr]]; the minor
     # eigenvector's angle is half the orientation angle plus 90 degrees.
     theta = 0.5 * np.arctan2(2.0 * arc, acc - arr) + math.pi / 2.0

@@ -9,23 +9,23 @@ only (paper Fig. 1, 10). :func:`find_subject` finds it without user input
   strip of ``SUBJECT_FRAME_INSET`` of each side is background, the rest maybe
   object), run on a copy whose longer side is ``SUBJECT_WORK_SIDE`` px, then
   refined at full size in a band around its boundary. GrabCut runs twice:
-  on the colours, and on colour and texture (:func:`texture_colour_image`:
+  on the colours, and on colour and texture (:func:`~img2logo.subject_cues.texture_colour_image`:
   the local energy of fine detail beside CIELAB, so that an object of the
   background's own hue but another texture, a smooth body on grass or
   gravel, is told apart); the candidate whose outline is the sharper edge
-  (:func:`outline_contrast`) is taken. The result is kept if
+  (:func:`~img2logo.subject_cues.outline_contrast`) is taken. The result is kept if
   it is one dominant object: between ``SUBJECT_MIN_AREA`` and
   ``SUBJECT_MAX_AREA`` of the image, touching at most ``SUBJECT_MAX_FRAME`` of
-  the frame, with an outline that is an edge (:func:`outline_contrast` at
+  the frame, with an outline that is an edge (:func:`~img2logo.subject_cues.outline_contrast` at
   least ``SUBJECT_MIN_CONTRAST``; or, in a photo without depth of field, a
-  texture edge: :func:`texture_step` at least ``SUBJECT_MIN_TEXTURE_STEP``).
+  texture edge: :func:`~img2logo.subject_cues.texture_step` at least ``SUBJECT_MIN_TEXTURE_STEP``).
   If it is not, and the photo shows depth of
-  field (:func:`focus_seeds`: a close-up in focus that runs off the picture
+  field (:func:`~img2logo.subject_cues.focus_seeds`: a close-up in focus that runs off the picture
   in front of a blurred background), GrabCut starts again from the blurred
   parts of the frame (background) and the sharp cores (object); that result is
   kept if it covers between ``SUBJECT_MIN_AREA`` and ``SUBJECT_MAX_AREA``
   (it may touch the frame) and its outline is a colour edge or a focus edge
-  (:func:`focus_step` at least ``FOCUS_MIN_STEP``). Otherwise the whole image
+  (:func:`~img2logo.subject_cues.focus_step` at least ``FOCUS_MIN_STEP``). Otherwise the whole image
   is kept (a scene, or a close-up that fills the frame), and
   :attr:`Subject.description` says why. A kept candidate made of parts of
   different texture joined by a thin neck (a pagoda and the trees beside
@@ -62,39 +62,36 @@ from .constants import (
     FACE_MIN_NEIGHBOURS,
     FACE_MIN_SIDE,
     FACE_SCALE_STEP,
-    FOCUS_BLURRED,
-    FOCUS_DETAIL_SIGMA,
-    FOCUS_MIN_BLURRED_FRAME,
-    FOCUS_MIN_SHARP_AREA,
-    FOCUS_MIN_SHARP_FRAME,
-    FOCUS_MIN_SOFT,
     FOCUS_MIN_STEP,
-    FOCUS_SHARP,
-    FOCUS_SHARP_CORE,
-    FOCUS_SOFT_SIGMAS,
-    FOCUS_SOFT_WINDOW,
-    FOCUS_STEP,
-    FOCUS_WINDOW,
-    LUMA_WEIGHTS,
-    SUBJECT_CONTRAST_STEP,
-    SUBJECT_FRAME_INSET,
     SUBJECT_GRABCUT_ITERATIONS,
     SUBJECT_MAX_AREA,
     SUBJECT_MAX_FRAME,
-    SUBJECT_MAX_HOLE,
     SUBJECT_MIN_AREA,
     SUBJECT_MIN_CONTRAST,
     SUBJECT_MIN_PART,
     SUBJECT_MIN_TEXTURE_STEP,
     SUBJECT_NECK,
     SUBJECT_REFINE_BAND,
-    SUBJECT_SMOOTH_SIGMA,
-    SUBJECT_TEXTURE_FLOOR,
     SUBJECT_TEXTURE_WEIGHT,
-    SUBJECT_WORK_SIDE,
 )
 from .errors import InvalidParameterError
 from .loading import LoadedImage, load_mask
+from .subject_cues import (
+    FocusSeeds,
+    clean_mask,
+    fill_small_holes,
+    focus_seeds,
+    focus_step,
+    frame_box,
+    largest_part,
+    outline_contrast,
+    texture_colour_image,
+    texture_map,
+    texture_step,
+    work_scale,
+    working_copy,
+)
+from .subject_shadow import cast_shadow
 
 #: The string values of ``foreground``.
 FOREGROUND_CHOICES = ("auto", "none", "grabcut")
@@ -214,7 +211,7 @@ def _find_subject(img: LoadedImage, foreground: object, subject: object) -> Subj
         if not (isinstance(foreground, str) and foreground in ("auto", "grabcut")):
             raise InvalidParameterError("subject (a rectangle) needs foreground auto or grabcut, not a mask or none")
         rect = parse_subject_rectangle(subject, shape)
-        mask = _clean(_grabcut(img, rect=rect))
+        mask = clean_mask(_grabcut(img, rect=rect))
         if not mask.any():
             raise InvalidParameterError(f"no object found in the subject rectangle {','.join(map(str, rect))}")
         x, y, w, h = rect
@@ -235,7 +232,7 @@ def _find_subject(img: LoadedImage, foreground: object, subject: object) -> Subj
             ):
                 mask = textured
         else:
-            mask = _clean(_grabcut(img))
+            mask = clean_mask(_grabcut(img))
         if foreground == "grabcut":
             if not mask.any():
                 return Subject(None, "grabcut", "GrabCut found no object: kept the whole image")
@@ -252,7 +249,7 @@ def _find_subject(img: LoadedImage, foreground: object, subject: object) -> Subj
             else:
                 why = f"{why}, texture step {step:.2f} decades"
         if seeds is not None:  # a close-up in focus that runs off the picture: try depth of field
-            focused = _clean(_grabcut(img, seeds=seeds))
+            focused = clean_mask(_grabcut(img, seeds=seeds))
             why_focus = _not_dominant(focused, frame=False) or _weak_focus_outline(img, seeds, focused)
             if not why_focus:
                 mask, why, how = focused, "", "found by GrabCut from the sharp subject and the blurred background"
@@ -263,6 +260,10 @@ def _find_subject(img: LoadedImage, foreground: object, subject: object) -> Subj
         kept = dominant_part(mask, texture)
         if kept is not mask:
             mask, how = kept, f"{how}; a part of another texture beyond a thin neck left out"
+        if not how.startswith("found by GrabCut from the sharp"):  # a blurred background shows no cast shadow
+            shadow = cast_shadow(img, mask)
+            if shadow is not None:
+                mask, how = clean_mask(mask & ~shadow), f"{how}; its cast shadow left out"
         return Subject(readonly(mask), "auto", f"kept the main object, {mask.mean():.0%} of the image ({how})")
     mask = load_mask(foreground, shape) if isinstance(foreground, Path) else np.asarray(foreground)
     if mask.shape != shape:
@@ -285,12 +286,12 @@ def _both_cuts(img: LoadedImage) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     _ = img.smooth_lab  # computed once, before the threads share it
 
     def textured() -> tuple[np.ndarray, np.ndarray]:
-        texture = texture_map(img.rgb, _work_scale(img))
-        return texture, _clean(_grabcut(img, texture=texture))
+        texture = texture_map(img.rgb, work_scale(img))
+        return texture, clean_mask(_grabcut(img, texture=texture))
 
     with ThreadPoolExecutor(max_workers=2) as pool:
         other = pool.submit(textured)
-        mask = _clean(_grabcut(img))
+        mask = clean_mask(_grabcut(img))
         texture, cut = other.result()
     return mask, texture, cut
 
@@ -302,7 +303,7 @@ def dominant_part(mask: np.ndarray, texture: np.ndarray | None) -> np.ndarray:
     a disc of radius ``SUBJECT_NECK`` times the square root of its area cuts
     its thin necks; if that leaves two or more parts of at least
     ``SUBJECT_MIN_PART`` of the mask's area and the largest differs in texture
-    (median :func:`texture_map`) from another by at least
+    (median :func:`~img2logo.subject_cues.texture_map`) from another by at least
     ``SUBJECT_MIN_TEXTURE_STEP`` decades, only the largest is kept, with the
     mask's pixels within the disc's radius of it. Otherwise ``mask`` itself is
     returned (a giraffe's neck joins parts of one texture: it stays).
@@ -327,7 +328,7 @@ def dominant_part(mask: np.ndarray, texture: np.ndarray | None) -> np.ndarray:
     if step < SUBJECT_MIN_TEXTURE_STEP:
         return mask
     near = cv2.dilate((labels == parts[0]).astype(np.uint8), disc).astype(bool)
-    return _largest(mask & near)
+    return largest_part(mask & near)
 
 
 def find_faces(img: LoadedImage, mask: np.ndarray | None = None) -> tuple[tuple[int, int, int, int], ...]:
@@ -344,7 +345,7 @@ def find_faces(img: LoadedImage, mask: np.ndarray | None = None) -> tuple[tuple[
     from skimage import data
     from skimage.feature import Cascade
 
-    small, scale = _working_copy(img)
+    small, scale = working_copy(img)
     sh, sw = small.shape[:2]
     side = max(8, round(FACE_MIN_SIDE * min(sh, sw)))
     r0, c0 = 0, 0
@@ -395,220 +396,12 @@ def _not_dominant(mask: np.ndarray, frame: bool = True) -> str:
     return ""
 
 
-def outline_contrast(
-    img: LoadedImage, mask: np.ndarray, step: float = SUBJECT_CONTRAST_STEP, texture: np.ndarray | None = None
-) -> float:
-    """How sharply a mask's outline separates colours (and textures): across over along, unit-free.
-
-    At every outline pixel, the CIELAB difference between the points ``step``
-    px inside and outside along the outline's normal (across), and the larger of
-    the differences between the points ``step`` px either way along the
-    outline, inside and outside (along: the texture). Returns median(across) /
-    median(along). An object's outline follows an edge (several times the
-    texture); a cut through fur or gravel does not (about 2).
-    """
-    from scipy import ndimage
-
-    if not mask.any() or mask.all():
-        return 0.0
-    if texture is None:
-        lab = img.smooth_lab
-    else:  # colour averaged over the texture's window: the grass's blades are no step, its mean colour is
-        window = FOCUS_WINDOW / _work_scale(img)
-        lab = np.dstack([ndimage.gaussian_filter(img.smooth_lab, (window, window, 0)), texture])
-    signed = ndimage.distance_transform_edt(mask) - ndimage.distance_transform_edt(~mask)
-    gy, gx = np.gradient(ndimage.gaussian_filter(signed, 2.0))
-    rows, cols = np.nonzero(mask & ~ndimage.binary_erosion(mask))
-    norm = np.hypot(gx[rows, cols], gy[rows, cols]) + 1e-12
-    nx, ny = gx[rows, cols] / norm, gy[rows, cols] / norm  # the inward normal, (x, y)
-    h, w = mask.shape
-
-    def at(dr: np.ndarray, dc: np.ndarray) -> np.ndarray:
-        rr = np.clip(np.round(rows + dr).astype(np.int64), 0, h - 1)
-        cc = np.clip(np.round(cols + dc).astype(np.int64), 0, w - 1)
-        return lab[rr, cc]
-
-    across = np.linalg.norm(at(step * ny, step * nx) - at(-step * ny, -step * nx), axis=1)
-    along = np.zeros_like(across)
-    for side in (1.0, -1.0):
-        r0, c0 = side * step * ny, side * step * nx
-        diff = at(r0 + step * nx, c0 - step * ny) - at(r0 - step * nx, c0 + step * ny)
-        along = np.maximum(along, np.linalg.norm(diff, axis=1))
-    return float(np.median(across) / (np.median(along) + 1e-9))
-
-
-def texture_step(img: LoadedImage, texture: np.ndarray, mask: np.ndarray) -> float:
-    """How much a mask's texture differs from that around it, decades of fine-detail energy.
-
-    The difference of the medians of :func:`texture_map` ``texture`` (H, W) in
-    a band inside the outline and in a ring outside it, each between two and
-    four texture windows (``FOCUS_WINDOW`` working px) from it, where the
-    window no longer straddles the outline; the parts on the image frame are
-    left out. An object of another texture than its background (a smooth body
-    on grass) gives most of a decade or more; a cut through one texture about 0.
-    """
-    from scipy import ndimage
-
-    if not mask.any() or mask.all():
-        return 0.0
-    window = FOCUS_WINDOW / _work_scale(img)
-    inside = ndimage.distance_transform_edt(mask)
-    outside = ndimage.distance_transform_edt(~mask)
-    near, far = 2.0 * window, 4.0 * window
-    away = ndimage.distance_transform_edt(np.pad(np.ones(mask.shape, bool), 1, constant_values=False))[1:-1, 1:-1] > far
-    band = (inside > near) & (inside <= far) & away
-    ring = (outside > near) & (outside <= far) & away
-    if not band.any() or not ring.any():
-        return 0.0
-    return abs(float(np.median(texture[band]) - np.median(texture[ring]))) / SUBJECT_TEXTURE_WEIGHT
-
-
 def _weak_outline(img: LoadedImage, mask: np.ndarray) -> str:
     """Why the outline of ``mask`` is no object's edge, or ``""`` if it is."""
     ratio = outline_contrast(img, mask)
     if ratio < SUBJECT_MIN_CONTRAST:
         return f"the candidate's outline is no edge: colour step across it {ratio:.1f}x the texture's"
     return ""
-
-
-def _working_copy(img: LoadedImage) -> tuple[np.ndarray, float]:
-    """The photo at the working scale (longer side ``SUBJECT_WORK_SIDE`` px at most): RGB (h, w, 3) float32, scale."""
-    import cv2
-
-    h, w = img.height, img.width
-    scale = _work_scale(img)
-    sw, sh = max(8, round(w * scale)), max(8, round(h * scale))
-    return cv2.resize(img.rgb.astype(np.float32), (sw, sh), interpolation=cv2.INTER_AREA), scale
-
-
-def _work_scale(img: LoadedImage) -> float:
-    """The working copy's size over the photo's: its longer side is ``SUBJECT_WORK_SIDE`` px at most."""
-    return min(1.0, SUBJECT_WORK_SIDE / max(img.height, img.width))
-
-
-def _frame_box(shape: tuple[int, int]) -> tuple[int, int, int, int]:
-    """The box (x, y, width, height) inside the frame strip of an (h, w) image, px."""
-    sh, sw = shape
-    x0, y0 = round(SUBJECT_FRAME_INSET * sw), round(SUBJECT_FRAME_INSET * sh)
-    return x0, y0, sw - 2 * x0, sh - 2 * y0
-
-
-def _frame_strip(shape: tuple[int, int]) -> np.ndarray:
-    """The strip of ``SUBJECT_FRAME_INSET`` of each side along the frame, (h, w) bool."""
-    x0, y0, bw, bh = _frame_box(shape)
-    strip = np.ones(shape, bool)
-    strip[y0 : y0 + bh, x0 : x0 + bw] = False
-    return strip
-
-
-@dataclass(frozen=True, eq=False)
-class FocusSeeds:
-    """Where a photo is in focus and where it is blurred, at GrabCut's working scale.
-
-    Attributes
-    ----------
-    focus : ndarray of float, shape (h, w)
-        Fine detail (:func:`fine_detail`) over its 90th percentile over the
-        image, unit-free: about 1 in the sharpest parts, under
-        ``FOCUS_BLURRED`` where the image is out of focus (or flat).
-    label : ndarray of uint8, shape (h, w)
-        GrabCut's start labels: background where the frame is blurred,
-        probably background where the inside is blurred, object in the cores
-        of the sharp parts, probably object elsewhere.
-    """
-
-    focus: np.ndarray
-    label: np.ndarray
-
-
-def fine_detail(gray: np.ndarray) -> np.ndarray:
-    """Local energy of the finest detail of a gray image, (H, W) float, gray units.
-
-    The RMS, over a Gaussian window of ``FOCUS_WINDOW`` px, of the image minus
-    its Gaussian blur of ``FOCUS_DETAIL_SIGMA`` px: texture and edges in focus
-    give much, a defocused (or flat) part next to nothing, whatever its colour.
-    """
-    from scipy import ndimage
-
-    g = np.asarray(gray, dtype=np.float64)
-    hf = g - ndimage.gaussian_filter(g, FOCUS_DETAIL_SIGMA)
-    return np.sqrt(ndimage.gaussian_filter(hf * hf, FOCUS_WINDOW))
-
-
-def focus_seeds(img: LoadedImage) -> FocusSeeds | None:
-    """GrabCut's seeds from depth of field, or None when the photo shows none.
-
-    A photo whose subject is in focus in front of a blurred background (a
-    close-up: it may fill most of the frame and run off it) has two kinds of
-    frame: blurred where the background shows, sharp where the subject runs
-    off the picture. Then only the blurred parts of the frame are background
-    seeds, and the cores of the sharp parts (the sharp map eroded by
-    ``FOCUS_SHARP_CORE`` px: texture in focus, not a lone edge) object seeds.
-    Used only when the frame shows both (at least ``FOCUS_MIN_BLURRED_FRAME``
-    of the frame strip blurred, at least ``FOCUS_MIN_SHARP_FRAME`` in focus),
-    the blurred part of the frame is soft rather than flat (the median energy
-    of the band between Gaussians of ``FOCUS_SOFT_SIGMAS`` px there, over the
-    same 90th percentile, at least ``FOCUS_MIN_SOFT``: a defocused background
-    keeps its shapes, a clear sky or a plain wall has none and is no evidence
-    of depth of field) and the sharp cores cover at least
-    ``FOCUS_MIN_SHARP_AREA`` of the image. Otherwise None, and GrabCut starts
-    from the whole frame: a subject away from the frame (the photo-likes, a
-    flower in the middle of a blurred garden) is found that way.
-    """
-    import cv2
-    from scipy import ndimage
-
-    small, _ = _working_copy(img)
-    gray = small @ np.array(LUMA_WEIGHTS, np.float32)
-    detail = fine_detail(gray)
-    top = float(np.percentile(detail, 90))
-    if top <= 1e-6:
-        return None
-    focus = detail / top
-    strip = _frame_strip(focus.shape)
-    blurred = focus < FOCUS_BLURRED
-    in_focus = focus > FOCUS_SHARP
-    if blurred[strip].mean() < FOCUS_MIN_BLURRED_FRAME or in_focus[strip].mean() < FOCUS_MIN_SHARP_FRAME:
-        return None
-    band = ndimage.gaussian_filter(gray, FOCUS_SOFT_SIGMAS[0]) - ndimage.gaussian_filter(gray, FOCUS_SOFT_SIGMAS[1])
-    soft = np.sqrt(ndimage.gaussian_filter(band * band, FOCUS_SOFT_WINDOW)) / top
-    if np.median(soft[strip & blurred]) < FOCUS_MIN_SOFT:
-        return None
-    sharp = ndimage.binary_erosion(in_focus, iterations=FOCUS_SHARP_CORE)
-    if sharp.mean() < FOCUS_MIN_SHARP_AREA:
-        return None
-    label = np.full(focus.shape, cv2.GC_PR_FGD, np.uint8)
-    label[blurred] = cv2.GC_PR_BGD
-    label[sharp] = cv2.GC_FGD
-    label[strip & blurred] = cv2.GC_BGD
-    return FocusSeeds(readonly(focus), readonly(label))
-
-
-def focus_step(seeds: FocusSeeds, mask: np.ndarray) -> float:
-    """How much sharper a mask is just inside its outline than just outside, unit-free.
-
-    The median focus (:attr:`FocusSeeds.focus`) ``FOCUS_STEP`` working px
-    inside the outline over the median ``FOCUS_STEP`` px outside, at the
-    working scale; the outline's parts on the image frame are left out. A
-    subject in focus against a blurred background gives several; a cut
-    through a scene in focus about 1.
-    """
-    import cv2
-    from scipy import ndimage
-
-    sh, sw = seeds.focus.shape
-    small = cv2.resize(mask.astype(np.float32), (sw, sh), interpolation=cv2.INTER_AREA) >= 0.5
-    if not small.any() or small.all():
-        return 0.0
-    inside = ndimage.distance_transform_edt(small)
-    outside = ndimage.distance_transform_edt(~small)
-    band = (inside > FOCUS_STEP - 1) & (inside <= FOCUS_STEP)
-    ring = (outside > FOCUS_STEP - 1) & (outside <= FOCUS_STEP)
-    away = ndimage.binary_erosion(np.ones((sh, sw), bool), iterations=FOCUS_STEP + 2, border_value=0)
-    band, ring = band & away, ring & away
-    if not band.any() or not ring.any():
-        return 0.0
-    return float(np.median(seeds.focus[band]) / max(float(np.median(seeds.focus[ring])), 1e-6))
 
 
 def _weak_focus_outline(img: LoadedImage, seeds: FocusSeeds, mask: np.ndarray) -> str:
@@ -625,42 +418,6 @@ def _weak_focus_outline(img: LoadedImage, seeds: FocusSeeds, mask: np.ndarray) -
     )
 
 
-def texture_map(rgb: np.ndarray, scale: float = 1.0) -> np.ndarray:
-    """The texture of a photo in CIELAB-like units, (H, W) float.
-
-    ``SUBJECT_TEXTURE_WEIGHT * log10(SUBJECT_TEXTURE_FLOOR + e)``, with ``e``
-    the local energy of the finest detail of L* (as :func:`fine_detail`, its
-    sigmas taken at the working scale: ``scale`` is the working copy's size
-    over this image's), so one decade of texture energy (smooth skin against
-    grass, a flat body against gravel) weighs as a clear colour step.
-    """
-    from scipy import ndimage
-    from skimage.color import rgb2lab
-
-    light = rgb2lab(np.clip(rgb, 0.0, 1.0))[..., 0]
-    k = 1.0 / scale  # this image's px per working px
-    detail = light - ndimage.gaussian_filter(light, FOCUS_DETAIL_SIGMA * k)
-    energy = np.sqrt(ndimage.gaussian_filter(detail * detail, FOCUS_WINDOW * k))
-    return SUBJECT_TEXTURE_WEIGHT * np.log10(SUBJECT_TEXTURE_FLOOR + energy)
-
-
-def texture_colour_image(lab: np.ndarray, texture: np.ndarray) -> np.ndarray:
-    """Colour and texture in three 8-bit channels, for GrabCut: (h, w, 3) uint8.
-
-    The four features at every pixel, CIELAB ``lab`` (h, w, 3) and
-    :func:`texture_map` ``texture`` (h, w), are projected on their three
-    principal axes (over the image), each stretched to 0-255 between its 0.5th
-    and 99.5th percentiles (GrabCut takes three 8-bit channels). Deterministic.
-    """
-    features = np.dstack([lab, texture]).reshape(-1, 4)
-    features = features - features.mean(axis=0)
-    _, _, axes = np.linalg.svd(features[:: max(1, features.shape[0] // 20000)], full_matrices=False)
-    proj = features @ axes[:3].T
-    lo, hi = np.percentile(proj, 0.5, axis=0), np.percentile(proj, 99.5, axis=0)
-    proj = np.clip((proj - lo) / np.maximum(hi - lo, 1e-9), 0.0, 1.0)
-    return np.ascontiguousarray((proj * 255).round().astype(np.uint8).reshape(*lab.shape[:2], 3))
-
-
 def _grabcut(
     img: LoadedImage,
     rect: tuple[int, int, int, int] | None = None,
@@ -673,14 +430,15 @@ def _grabcut(
     at full size, only in a band of ``SUBJECT_REFINE_BAND`` px (at the working
     scale) around the boundary found, on the band's bounding box, starting from the
     colour models of the first run.
-    Given the photo's :func:`texture_map` ``texture``, it cuts on
-    :func:`texture_colour_image` instead of the colours alone. Deterministic (OpenCV's random generator is seeded).
+    Given the photo's :func:`~img2logo.subject_cues.texture_map` ``texture``, it cuts on
+    :func:`~img2logo.subject_cues.texture_colour_image` instead of the colours alone.
+    Deterministic (OpenCV's random generator is seeded).
     """
     import cv2
     from scipy import ndimage
 
     h, w = img.height, img.width
-    small, scale = _working_copy(img)
+    small, scale = working_copy(img)
     sh, sw = small.shape[:2]
     sx, sy = sw / w, sh / h
     bgd, fgd = np.zeros((1, 65), np.float64), np.zeros((1, 65), np.float64)
@@ -694,7 +452,7 @@ def _grabcut(
         cv2.grabCut(small8, label, None, bgd, fgd, SUBJECT_GRABCUT_ITERATIONS, cv2.GC_INIT_WITH_MASK)
     else:
         if rect is None:
-            box = _frame_box((sh, sw))
+            box = frame_box((sh, sw))
         else:
             x, y, rw, rh = rect
             bx0, by0 = int(np.floor(x * sx)), int(np.floor(y * sy))
@@ -702,10 +460,10 @@ def _grabcut(
             box = (bx0, by0, max(2, bx1 - bx0), max(2, by1 - by0))
         label = np.zeros((sh, sw), np.uint8)
         cv2.grabCut(small8, label, box, bgd, fgd, SUBJECT_GRABCUT_ITERATIONS, cv2.GC_INIT_WITH_RECT)
-    fg = _largest((label == cv2.GC_FGD) | (label == cv2.GC_PR_FGD))
+    fg = largest_part((label == cv2.GC_FGD) | (label == cv2.GC_PR_FGD))
     if not fg.any():
         return np.zeros((h, w), bool)
-    fg = _fill_small_holes(fg)
+    fg = fill_small_holes(fg)
     up = cv2.resize(fg.astype(np.float32), (w, h), interpolation=cv2.INTER_LINEAR) >= 0.5
     if scale == 1.0:
         return up
@@ -734,33 +492,3 @@ def _grabcut(
 
 def _bgr8(rgb: np.ndarray) -> np.ndarray:
     return np.ascontiguousarray((np.clip(rgb[:, :, ::-1], 0.0, 1.0) * 255).round().astype(np.uint8))
-
-
-def _largest(mask: np.ndarray) -> np.ndarray:
-    """The largest 8-connected piece of ``mask``."""
-    from scipy import ndimage
-
-    lab, n = ndimage.label(mask, structure=np.ones((3, 3)))
-    if n <= 1:
-        return mask.copy()
-    sizes = np.bincount(lab.ravel())[1:]
-    return lab == 1 + int(np.argmax(sizes))
-
-
-def _clean(mask: np.ndarray) -> np.ndarray:
-    """Largest piece, holes filled, smoothed by a Gaussian of ``SUBJECT_SMOOTH_SIGMA`` px, (H, W) bool."""
-    from scipy import ndimage
-
-    if not mask.any():
-        return mask
-    mask = _fill_small_holes(_largest(mask))
-    smooth = ndimage.gaussian_filter(mask.astype(np.float32), SUBJECT_SMOOTH_SIGMA) >= 0.5
-    smooth = _largest(smooth)
-    return _fill_small_holes(smooth) if smooth.any() else mask
-
-
-def _fill_small_holes(mask: np.ndarray) -> np.ndarray:
-    """Fill the holes of ``mask`` smaller than ``SUBJECT_MAX_HOLE`` of its area (GrabCut's specks)."""
-    from skimage.morphology import remove_small_holes
-
-    return remove_small_holes(mask, max_size=max(1, int(SUBJECT_MAX_HOLE * mask.sum())))

@@ -105,7 +105,7 @@ def test_bad_subject_options():
 
 
 def test_outline_contrast_tells_an_edge_from_a_cut_through_texture():
-    from img2logo.subject import outline_contrast
+    from img2logo.subject_cues import outline_contrast
 
     rgb, (truth,) = textured_photo([(170, 120, 80, 60, (0.95, 0.75, 0.2))])
     img = load_image(rgb)
@@ -168,7 +168,7 @@ def test_auto_finds_a_close_up_in_focus_that_runs_off_the_picture_by_depth_of_fi
 
 
 def test_depth_of_field_needs_a_blurred_background_not_a_flat_one():
-    from img2logo.subject import focus_seeds
+    from img2logo.subject_cues import focus_seeds
 
     rgb, _ = close_up()
     assert focus_seeds(load_image(rgb)) is not None
@@ -181,7 +181,7 @@ def test_depth_of_field_needs_a_blurred_background_not_a_flat_one():
 
 
 def test_focus_step_tells_a_sharp_subject_from_a_cut_through_it():
-    from img2logo.subject import focus_seeds, focus_step
+    from img2logo.subject_cues import focus_seeds, focus_step
 
     rgb, truth = close_up()
     seeds = focus_seeds(load_image(rgb))
@@ -223,20 +223,21 @@ def test_auto_finds_an_object_of_the_backgrounds_own_hue_by_its_texture():
 
 
 def test_the_two_cuts_side_by_side_are_those_made_one_after_the_other():
-    from img2logo.subject import _both_cuts, _clean, _grabcut, _work_scale, texture_map
+    from img2logo.subject import _both_cuts, _grabcut
+    from img2logo.subject_cues import clean_mask, texture_map, work_scale
 
     rgb, (truth,) = textured_photo([(170, 120, 80, 60, (0.95, 0.75, 0.2))], size=(300, 400))
     img = load_image(rgb)  # 400 px: the working copy is smaller, so the full-size refinement runs
     mask, texture, textured = _both_cuts(img)
     again = load_image(rgb)
-    np.testing.assert_array_equal(mask, _clean(_grabcut(again)))
-    np.testing.assert_array_equal(texture, texture_map(again.rgb, _work_scale(again)))
-    np.testing.assert_array_equal(textured, _clean(_grabcut(again, texture=texture)))
+    np.testing.assert_array_equal(mask, clean_mask(_grabcut(again)))
+    np.testing.assert_array_equal(texture, texture_map(again.rgb, work_scale(again)))
+    np.testing.assert_array_equal(textured, clean_mask(_grabcut(again, texture=texture)))
     assert outline_distance(mask, truth) <= 3.0  # the refinement on the band's box keeps the outline
 
 
 def test_texture_step_tells_another_texture_from_a_cut_through_one():
-    from img2logo.subject import texture_map, texture_step
+    from img2logo.subject_cues import texture_map, texture_step
 
     rgb, truth = same_hue_photo()
     img = load_image(rgb)

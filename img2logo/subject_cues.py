@@ -1,0 +1,350 @@
+"""The cues that tell a photo's subject from its background: colour edges, texture, focus.
+
+Measurements only; :mod:`img2logo.subject` decides with them. Each works on a
+:class:`~img2logo.loading.LoadedImage` (or its arrays) and a candidate mask:
+
+* :func:`outline_contrast`: how sharply a mask's outline separates colours
+  (across it) against the texture (along it);
+* :func:`texture_map`, :func:`texture_colour_image`, :func:`texture_step`:
+  the local energy of fine detail, a feature image for GrabCut that carries
+  it beside CIELAB, and how much a mask's texture differs from that around it;
+* :class:`FocusSeeds`, :func:`fine_detail`, :func:`focus_seeds`,
+  :func:`focus_step`: depth of field (a close-up in focus in front of a
+  blurred background), GrabCut's seeds from it, and the focus step across an
+  outline;
+* :func:`clean_mask`, :func:`largest_part`, :func:`fill_small_holes`: a
+  candidate mask's cleaning (its largest piece, GrabCut's specks filled, smoothed);
+* :func:`working_copy`, :func:`work_scale`, :func:`frame_box`,
+  :func:`frame_strip`: the small copy GrabCut and the cues work on, and the
+  strip along the image frame that is taken as background.
+
+Arrays are indexed (row, column); a box is (x, y, w, h) in px.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ._validation import readonly
+from .constants import (
+    FOCUS_BLURRED,
+    FOCUS_DETAIL_SIGMA,
+    FOCUS_MIN_BLURRED_FRAME,
+    FOCUS_MIN_SHARP_AREA,
+    FOCUS_MIN_SHARP_FRAME,
+    FOCUS_MIN_SOFT,
+    FOCUS_SHARP,
+    FOCUS_SHARP_CORE,
+    FOCUS_SOFT_SIGMAS,
+    FOCUS_SOFT_WINDOW,
+    FOCUS_STEP,
+    FOCUS_WINDOW,
+    LUMA_WEIGHTS,
+    SUBJECT_CONTRAST_STEP,
+    SUBJECT_FRAME_INSET,
+    SUBJECT_MAX_HOLE,
+    SUBJECT_SMOOTH_SIGMA,
+    SUBJECT_TEXTURE_FLOOR,
+    SUBJECT_TEXTURE_WEIGHT,
+    SUBJECT_WORK_SIDE,
+)
+from .loading import LoadedImage
+
+
+def outline_contrast(
+    img: LoadedImage,
+    mask: np.ndarray,
+    step: float = SUBJECT_CONTRAST_STEP,
+    texture: np.ndarray | None = None,
+    where: np.ndarray | None = None,
+) -> float:
+    """How sharply a mask's outline separates colours (and textures): across over along, unit-free.
+
+    At every outline pixel, the CIELAB difference between the points ``step``
+    px inside and outside along the outline's normal (across), and the larger of
+    the differences between the points ``step`` px either way along the
+    outline, inside and outside (along: the texture). Returns median(across) /
+    median(along). An object's outline follows an edge (several times the
+    texture); a cut through fur or gravel does not (about 2). Given ``where``
+    (H, W) bool, only the outline's pixels in it count (one section of it);
+    0 if there are none.
+    """
+    from scipy import ndimage
+
+    if not mask.any() or mask.all():
+        return 0.0
+    if texture is None:
+        lab = img.smooth_lab
+    else:  # colour averaged over the texture's window: the grass's blades are no step, its mean colour is
+        window = FOCUS_WINDOW / work_scale(img)
+        lab = np.dstack([ndimage.gaussian_filter(img.smooth_lab, (window, window, 0)), texture])
+    rows, cols, nx, ny = outline_normals(mask, where)
+    if rows.size == 0:
+        return 0.0
+    h, w = mask.shape
+
+    def at(dr: np.ndarray, dc: np.ndarray) -> np.ndarray:
+        rr = np.clip(np.round(rows + dr).astype(np.int64), 0, h - 1)
+        cc = np.clip(np.round(cols + dc).astype(np.int64), 0, w - 1)
+        return lab[rr, cc]
+
+    across = np.linalg.norm(at(step * ny, step * nx) - at(-step * ny, -step * nx), axis=1)
+    along = np.zeros_like(across)
+    for side in (1.0, -1.0):
+        r0, c0 = side * step * ny, side * step * nx
+        diff = at(r0 + step * nx, c0 - step * ny) - at(r0 - step * nx, c0 + step * ny)
+        along = np.maximum(along, np.linalg.norm(diff, axis=1))
+    return float(np.median(across) / (np.median(along) + 1e-9))
+
+
+def outline_normals(
+    mask: np.ndarray, where: np.ndarray | None = None
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """A mask's outline pixels (in ``where``, if given) and their inward unit normals: rows, cols, nx, ny.
+
+    The outline is the mask's pixels next to a pixel outside it; the normal is
+    the gradient of the signed distance to it, smoothed by a Gaussian of 2 px
+    (x = column, y = row direction).
+    """
+    from scipy import ndimage
+
+    signed = ndimage.distance_transform_edt(mask) - ndimage.distance_transform_edt(~mask)
+    gy, gx = np.gradient(ndimage.gaussian_filter(signed, 2.0))
+    edge = mask & ~ndimage.binary_erosion(mask)
+    rows, cols = np.nonzero(edge if where is None else edge & where)
+    norm = np.hypot(gx[rows, cols], gy[rows, cols]) + 1e-12
+    return rows, cols, gx[rows, cols] / norm, gy[rows, cols] / norm
+
+
+def texture_step(img: LoadedImage, texture: np.ndarray, mask: np.ndarray) -> float:
+    """How much a mask's texture differs from that around it, decades of fine-detail energy.
+
+    The difference of the medians of :func:`texture_map` ``texture`` (H, W) in
+    a band inside the outline and in a ring outside it, each between two and
+    four texture windows (``FOCUS_WINDOW`` working px) from it, where the
+    window no longer straddles the outline; the parts on the image frame are
+    left out. An object of another texture than its background (a smooth body
+    on grass) gives most of a decade or more; a cut through one texture about 0.
+    """
+    from scipy import ndimage
+
+    if not mask.any() or mask.all():
+        return 0.0
+    window = FOCUS_WINDOW / work_scale(img)
+    inside = ndimage.distance_transform_edt(mask)
+    outside = ndimage.distance_transform_edt(~mask)
+    near, far = 2.0 * window, 4.0 * window
+    away = ndimage.distance_transform_edt(np.pad(np.ones(mask.shape, bool), 1, constant_values=False))[1:-1, 1:-1] > far
+    band = (inside > near) & (inside <= far) & away
+    ring = (outside > near) & (outside <= far) & away
+    if not band.any() or not ring.any():
+        return 0.0
+    return abs(float(np.median(texture[band]) - np.median(texture[ring]))) / SUBJECT_TEXTURE_WEIGHT
+
+
+def working_copy(img: LoadedImage) -> tuple[np.ndarray, float]:
+    """The photo at the working scale (longer side ``SUBJECT_WORK_SIDE`` px at most): RGB (h, w, 3) float32, scale."""
+    import cv2
+
+    h, w = img.height, img.width
+    scale = work_scale(img)
+    sw, sh = max(8, round(w * scale)), max(8, round(h * scale))
+    return cv2.resize(img.rgb.astype(np.float32), (sw, sh), interpolation=cv2.INTER_AREA), scale
+
+
+def work_scale(img: LoadedImage) -> float:
+    """The working copy's size over the photo's: its longer side is ``SUBJECT_WORK_SIDE`` px at most."""
+    return min(1.0, SUBJECT_WORK_SIDE / max(img.height, img.width))
+
+
+def frame_box(shape: tuple[int, int]) -> tuple[int, int, int, int]:
+    """The box (x, y, width, height) inside the frame strip of an (h, w) image, px."""
+    sh, sw = shape
+    x0, y0 = round(SUBJECT_FRAME_INSET * sw), round(SUBJECT_FRAME_INSET * sh)
+    return x0, y0, sw - 2 * x0, sh - 2 * y0
+
+
+def frame_strip(shape: tuple[int, int]) -> np.ndarray:
+    """The strip of ``SUBJECT_FRAME_INSET`` of each side along the frame, (h, w) bool."""
+    x0, y0, bw, bh = frame_box(shape)
+    strip = np.ones(shape, bool)
+    strip[y0 : y0 + bh, x0 : x0 + bw] = False
+    return strip
+
+
+@dataclass(frozen=True, eq=False)
+class FocusSeeds:
+    """Where a photo is in focus and where it is blurred, at GrabCut's working scale.
+
+    Attributes
+    ----------
+    focus : ndarray of float, shape (h, w)
+        Fine detail (:func:`fine_detail`) over its 90th percentile over the
+        image, unit-free: about 1 in the sharpest parts, under
+        ``FOCUS_BLURRED`` where the image is out of focus (or flat).
+    label : ndarray of uint8, shape (h, w)
+        GrabCut's start labels: background where the frame is blurred,
+        probably background where the inside is blurred, object in the cores
+        of the sharp parts, probably object elsewhere.
+    """
+
+    focus: np.ndarray
+    label: np.ndarray
+
+
+def fine_detail(gray: np.ndarray) -> np.ndarray:
+    """Local energy of the finest detail of a gray image, (H, W) float, gray units.
+
+    The RMS, over a Gaussian window of ``FOCUS_WINDOW`` px, of the image minus
+    its Gaussian blur of ``FOCUS_DETAIL_SIGMA`` px: texture and edges in focus
+    give much, a defocused (or flat) part next to nothing, whatever its colour.
+    """
+    from scipy import ndimage
+
+    g = np.asarray(gray, dtype=np.float64)
+    hf = g - ndimage.gaussian_filter(g, FOCUS_DETAIL_SIGMA)
+    return np.sqrt(ndimage.gaussian_filter(hf * hf, FOCUS_WINDOW))
+
+
+def focus_seeds(img: LoadedImage) -> FocusSeeds | None:
+    """GrabCut's seeds from depth of field, or None when the photo shows none.
+
+    A photo whose subject is in focus in front of a blurred background (a
+    close-up: it may fill most of the frame and run off it) has two kinds of
+    frame: blurred where the background shows, sharp where the subject runs
+    off the picture. Then only the blurred parts of the frame are background
+    seeds, and the cores of the sharp parts (the sharp map eroded by
+    ``FOCUS_SHARP_CORE`` px: texture in focus, not a lone edge) object seeds.
+    Used only when the frame shows both (at least ``FOCUS_MIN_BLURRED_FRAME``
+    of the frame strip blurred, at least ``FOCUS_MIN_SHARP_FRAME`` in focus),
+    the blurred part of the frame is soft rather than flat (the median energy
+    of the band between Gaussians of ``FOCUS_SOFT_SIGMAS`` px there, over the
+    same 90th percentile, at least ``FOCUS_MIN_SOFT``: a defocused background
+    keeps its shapes, a clear sky or a plain wall has none and is no evidence
+    of depth of field) and the sharp cores cover at least
+    ``FOCUS_MIN_SHARP_AREA`` of the image. Otherwise None, and GrabCut starts
+    from the whole frame: a subject away from the frame (the photo-likes, a
+    flower in the middle of a blurred garden) is found that way.
+    """
+    import cv2
+    from scipy import ndimage
+
+    small, _ = working_copy(img)
+    gray = small @ np.array(LUMA_WEIGHTS, np.float32)
+    detail = fine_detail(gray)
+    top = float(np.percentile(detail, 90))
+    if top <= 1e-6:
+        return None
+    focus = detail / top
+    strip = frame_strip(focus.shape)
+    blurred = focus < FOCUS_BLURRED
+    in_focus = focus > FOCUS_SHARP
+    if blurred[strip].mean() < FOCUS_MIN_BLURRED_FRAME or in_focus[strip].mean() < FOCUS_MIN_SHARP_FRAME:
+        return None
+    band = ndimage.gaussian_filter(gray, FOCUS_SOFT_SIGMAS[0]) - ndimage.gaussian_filter(gray, FOCUS_SOFT_SIGMAS[1])
+    soft = np.sqrt(ndimage.gaussian_filter(band * band, FOCUS_SOFT_WINDOW)) / top
+    if np.median(soft[strip & blurred]) < FOCUS_MIN_SOFT:
+        return None
+    sharp = ndimage.binary_erosion(in_focus, iterations=FOCUS_SHARP_CORE)
+    if sharp.mean() < FOCUS_MIN_SHARP_AREA:
+        return None
+    label = np.full(focus.shape, cv2.GC_PR_FGD, np.uint8)
+    label[blurred] = cv2.GC_PR_BGD
+    label[sharp] = cv2.GC_FGD
+    label[strip & blurred] = cv2.GC_BGD
+    return FocusSeeds(readonly(focus), readonly(label))
+
+
+def focus_step(seeds: FocusSeeds, mask: np.ndarray) -> float:
+    """How much sharper a mask is just inside its outline than just outside, unit-free.
+
+    The median focus (:attr:`FocusSeeds.focus`) ``FOCUS_STEP`` working px
+    inside the outline over the median ``FOCUS_STEP`` px outside, at the
+    working scale; the outline's parts on the image frame are left out. A
+    subject in focus against a blurred background gives several; a cut
+    through a scene in focus about 1.
+    """
+    import cv2
+    from scipy import ndimage
+
+    sh, sw = seeds.focus.shape
+    small = cv2.resize(mask.astype(np.float32), (sw, sh), interpolation=cv2.INTER_AREA) >= 0.5
+    if not small.any() or small.all():
+        return 0.0
+    inside = ndimage.distance_transform_edt(small)
+    outside = ndimage.distance_transform_edt(~small)
+    band = (inside > FOCUS_STEP - 1) & (inside <= FOCUS_STEP)
+    ring = (outside > FOCUS_STEP - 1) & (outside <= FOCUS_STEP)
+    away = ndimage.binary_erosion(np.ones((sh, sw), bool), iterations=FOCUS_STEP + 2, border_value=0)
+    band, ring = band & away, ring & away
+    if not band.any() or not ring.any():
+        return 0.0
+    return float(np.median(seeds.focus[band]) / max(float(np.median(seeds.focus[ring])), 1e-6))
+
+
+def texture_map(rgb: np.ndarray, scale: float = 1.0) -> np.ndarray:
+    """The texture of a photo in CIELAB-like units, (H, W) float.
+
+    ``SUBJECT_TEXTURE_WEIGHT * log10(SUBJECT_TEXTURE_FLOOR + e)``, with ``e``
+    the local energy of the finest detail of L* (as :func:`fine_detail`, its
+    sigmas taken at the working scale: ``scale`` is the working copy's size
+    over this image's), so one decade of texture energy (smooth skin against
+    grass, a flat body against gravel) weighs as a clear colour step.
+    """
+    from scipy import ndimage
+    from skimage.color import rgb2lab
+
+    light = rgb2lab(np.clip(rgb, 0.0, 1.0))[..., 0]
+    k = 1.0 / scale  # this image's px per working px
+    detail = light - ndimage.gaussian_filter(light, FOCUS_DETAIL_SIGMA * k)
+    energy = np.sqrt(ndimage.gaussian_filter(detail * detail, FOCUS_WINDOW * k))
+    return SUBJECT_TEXTURE_WEIGHT * np.log10(SUBJECT_TEXTURE_FLOOR + energy)
+
+
+def texture_colour_image(lab: np.ndarray, texture: np.ndarray) -> np.ndarray:
+    """Colour and texture in three 8-bit channels, for GrabCut: (h, w, 3) uint8.
+
+    The four features at every pixel, CIELAB ``lab`` (h, w, 3) and
+    :func:`texture_map` ``texture`` (h, w), are projected on their three
+    principal axes (over the image), each stretched to 0-255 between its 0.5th
+    and 99.5th percentiles (GrabCut takes three 8-bit channels). Deterministic.
+    """
+    features = np.dstack([lab, texture]).reshape(-1, 4)
+    features = features - features.mean(axis=0)
+    _, _, axes = np.linalg.svd(features[:: max(1, features.shape[0] // 20000)], full_matrices=False)
+    proj = features @ axes[:3].T
+    lo, hi = np.percentile(proj, 0.5, axis=0), np.percentile(proj, 99.5, axis=0)
+    proj = np.clip((proj - lo) / np.maximum(hi - lo, 1e-9), 0.0, 1.0)
+    return np.ascontiguousarray((proj * 255).round().astype(np.uint8).reshape(*lab.shape[:2], 3))
+
+
+def largest_part(mask: np.ndarray) -> np.ndarray:
+    """The largest 8-connected piece of ``mask``."""
+    from scipy import ndimage
+
+    lab, n = ndimage.label(mask, structure=np.ones((3, 3)))
+    if n <= 1:
+        return mask.copy()
+    sizes = np.bincount(lab.ravel())[1:]
+    return lab == 1 + int(np.argmax(sizes))
+
+
+def clean_mask(mask: np.ndarray) -> np.ndarray:
+    """Largest piece, holes filled, smoothed by a Gaussian of ``SUBJECT_SMOOTH_SIGMA`` px, (H, W) bool."""
+    from scipy import ndimage
+
+    if not mask.any():
+        return mask
+    mask = fill_small_holes(largest_part(mask))
+    smooth = ndimage.gaussian_filter(mask.astype(np.float32), SUBJECT_SMOOTH_SIGMA) >= 0.5
+    smooth = largest_part(smooth)
+    return fill_small_holes(smooth) if smooth.any() else mask
+
+
+def fill_small_holes(mask: np.ndarray) -> np.ndarray:
+    """Fill the holes of ``mask`` smaller than ``SUBJECT_MAX_HOLE`` of its area (GrabCut's specks)."""
+    from skimage.morphology import remove_small_holes
+
+    return remove_small_holes(mask, max_size=max(1, int(SUBJECT_MAX_HOLE * mask.sum())))
