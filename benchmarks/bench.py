@@ -81,17 +81,21 @@ def bench_preprocessing(names: list[str], repeat: int) -> None:
 
 def bench_pipeline(name: str, repeat: int, path: Path | None = None, budget: float = PIPELINE_BUDGET) -> None:
     path = DATA / f"{name}.png" if path is None else path
-    runs = []
+    runs, cpu = [], []
     for _ in range(repeat + 1):
-        start = time.perf_counter()
+        start, start_cpu = time.perf_counter(), time.process_time()
         result = abstract(path, progress=False)
         runs.append((time.perf_counter() - start, result))
-    runs = runs[1:]  # the first run pays for imports
+        cpu.append(time.process_time() - start_cpu)
+    runs, cpu = runs[1:], cpu[1:]  # the first run pays for imports
     total = statistics.median(t for t, _ in runs)
     stages = {k: statistics.median(r.timings[k] for _, r in runs) for k in runs[0][1].timings}
     result = runs[0][1]
     ratio = total / budget
-    print(f"\nWhole pipeline on {name} (median of {repeat}): {total:.2f} s, ratio {ratio:.2f} of {budget:g} s")
+    print(
+        f"\nWhole pipeline on {name} (median of {repeat}): {total:.2f} s (CPU {statistics.median(cpu):.2f} s), "
+        f"ratio {ratio:.2f} of {budget:g} s; {_load()}"
+    )
     print("  " + ", ".join(f"{k} {v * 1e3:.0f} ms" for k, v in stages.items()))
     prog = result.progression
     print(f"  arcs {prog.arc_counts[0]} -> {prog.arc_counts[-1]} over {len(prog.levels)} levels; stats {prog.stats}")
