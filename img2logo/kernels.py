@@ -90,7 +90,7 @@ def __getattr__(name: str) -> Any:
 
 
 def module_name() -> str:
-    """The ahead-of-time module's name: ``_kernels_`` and a hash of the kernels' source, signatures and numpy's version."""
+    """The ahead-of-time module's name: ``_kernels_`` and a hash of the kernels' source, signatures, numpy's version."""
     digest = hashlib.sha256(f"{np.__version__} {ENTRY_POINTS}".encode())
     here = Path(__file__).parent
     for name in _SOURCES:

@@ -325,7 +325,8 @@ def test_ahead_of_time_and_jit_kernels_agree_bit_for_bit(monkeypatch):
     assert [(r.arc_a, r.arc_b, r.point.tobytes()) for r in aot[1]] == [
         (r.arc_a, r.arc_b, r.point.tobytes()) for r in jit[1]
     ]
-    assert (aot[2].arc.theta0, aot[2].arc.sweep, aot[2].frechet) == (jit[2].arc.theta0, jit[2].arc.sweep, jit[2].frechet)
+    (a, b) = (aot[2], jit[2])
+    assert (a.arc.theta0, a.arc.sweep, a.frechet) == (b.arc.theta0, b.arc.sweep, b.frechet)
 
 
 def test_an_ahead_of_time_entry_point_checks_its_arrays():
