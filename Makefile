@@ -27,6 +27,7 @@ $(STAMP): pyproject.toml
 	@test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
 	$(BIN)/python -m pip install --quiet -e '.[dev]'
+	$(BIN)/python -m img2logo.kernels  # compiles the kernels once (about 20 s), so that no run waits for it
 	@touch $@
 
 test: $(KIT)

@@ -98,10 +98,11 @@ def _frechet(p: np.ndarray, q: np.ndarray, bound: float = math.inf) -> float:
 
 
 def _frechet_kernel():
-    """The compiled dynamic program of [EM94] (:func:`img2logo.kernels.frechet`).
+    """The compiled dynamic program of [EM94] (:func:`img2logo.kernels_arcs.frechet`).
 
-    numba is imported here, on first use, not at module import, so that the
-    command line starts fast; the compiled code is cached on disk.
+    Loaded here, on first use, not at module import, so that the command line
+    starts fast (:mod:`img2logo.kernels`: compiled once ahead of time, no numba
+    at run time).
     """
     from . import kernels
 
@@ -193,7 +194,7 @@ def extract_arc(
         kept, cap = admissible_arcs(circle, seg, junctions)
         chosen = min(kept, key=lambda a: float(np.sum(nearest_on_arc(a, seg)[0] ** 2)))
         return _best_by_frechet([chosen], seg, cap)
-    from . import kernels  # numba loads on the first extraction, not at import
+    from . import kernels  # the compiled kernels load on the first extraction, not at import
 
     if not kernels.usable():
         return _extract_reference(circle, seg, junctions)
@@ -455,7 +456,7 @@ def redundant_intersections(
     Pairs whose circles cannot meet or whose bounding boxes are disjoint are
     discarded by a prefilter (:func:`arc_pairs_near`); only the rest get the
     exact test of :func:`arc_intersections`. Both run compiled
-    (:func:`img2logo.kernels.redundant_kernel`, the same arithmetic as the
+    (:func:`img2logo.kernels_arcs.redundant_kernel`, the same arithmetic as the
     Python reference ``_redundant_reference``).
     """
     arcs = list(arcs)
@@ -483,7 +484,7 @@ def redundant_intersections(
     if n < 2 or len(rows) == 0:
         return []
 
-    from . import kernels  # numba loads on the first check, not at import
+    from . import kernels  # the compiled kernels load on the first check, not at import
 
     if not kernels.usable():
         return _redundant_reference(arcs, junctions, owned, rows, tol)

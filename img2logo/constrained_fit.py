@@ -360,13 +360,13 @@ def _fit(
     """The SQP solve of :func:`fit_constrained` on its checked arrays.
 
     A KKT system of at most ``KKT_DENSE_MAX`` unknowns and multipliers (a local
-    window) is solved by the compiled kernel :func:`img2logo.kernels.sqp_dense`,
+    window) is solved by the compiled kernel :func:`img2logo.kernels_sqp.sqp_dense`,
     the same method step for step; larger ones (a global solve) by the Python
     reference :func:`_fit_reference` with a sparse LU. ``compiled=False`` always
     runs the reference (the tests compare the two), as does an install where
     numba cannot cache the kernel (:data:`img2logo.kernels.CACHED`).
     """
-    from . import kernels  # numba loads on the first fit, not at import
+    from . import kernels  # the compiled kernels load on the first fit, not at import
 
     n_c, n_j = len(radii), len(junctions)
     size = _kkt_size(n_c, n_j, incidence, free_c, free_j, connectivity, tangents)
@@ -415,7 +415,7 @@ def _fit(
 def _fit_reference(
     prob: Problem, keep: np.ndarray | None, connectivity: bool, tol: float, max_iter: int, stall: int
 ) -> ConstrainedFit:
-    """The SQP loop of :func:`fit_constrained` in Python (the reference of :func:`img2logo.kernels.sqp_dense`)."""
+    """The SQP loop of :func:`fit_constrained` in Python (the reference of :func:`img2logo.kernels_sqp.sqp_dense`)."""
     iterations, converged, nu, lam = 0, False, 0.0, None
     x = prob.get_x()
     history: list[float] = []  # violations, to stop early on infeasible problems

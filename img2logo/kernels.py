@@ -1,888 +1,217 @@
-"""Compiled kernels of the optimizer's inner loop (numba): the constrained fit of Eqn. 13, on plain arrays.
+"""The compiled kernels of the optimizer's inner loop, loaded without numba at run time.
 
-The progressive optimization (Sec. 5) evaluates hundreds of merge candidates,
-each a windowed least-squares problem of 10-60 unknowns: the arithmetic is
-microseconds, the interpreter around small numpy arrays was the cost. The
-kernels here do the same arithmetic as their Python reference (the one that
-documents the method, kept beside its public function) in compiled loops:
+The kernels themselves are written in :mod:`img2logo.kernels_sqp` (the SQP of
+Eqn. 13 for a local window) and :mod:`img2logo.kernels_arcs` (arc-arc
+intersections, the redundant-intersection test, the arc extraction with its
+Fréchet distance), each beneath a public function whose Python code stays as
+the reference the tests compare against. This module gives them to their
+callers as attributes (``kernels.sqp_dense(...)``), loaded on first use:
 
-* :func:`sqp_dense`: the whole SQP solve of :func:`img2logo.constrained_fit.fit_constrained`
-  for a dense KKT system (residuals, Jacobian, the KKT matrix, its solve by LU
-  with partial pivoting, the line search on the L1 merit).
+1. **Ahead of time.** On the first use in an install the entry points below are
+   compiled once, with numba's ``pycc``, into one extension module (seconds,
+   once), stored in ``img2logo/__pycache__`` or, when that is read-only, in
+   ``$XDG_CACHE_HOME/img2logo``; its name carries a hash of the kernels' source
+   and of numpy's version, so an edited kernel is never run stale. A later
+   process imports that module like any other: numba is not imported at all.
+   Its import and start-up were ~0.7 s of CPU of every run of the command (the
+   library's import, then its typing and lowering registries when the first
+   cached kernel loaded), more than the run's own work on a clip art.
+2. **Just in time**, where no such module can be built (no C compiler): numba's
+   ``njit(cache=True)``, loaded from numba's disk cache.
+3. **Not at all** where numba cannot cache either (:data:`CACHED` False): the
+   callers run their Python reference, with the same results to the solver's
+   tolerance, rather than compile in every process.
 
-This module imports numba, so it is imported by its callers only when a fit runs
-(``import img2logo`` and ``img2logo --version`` load no numba). Every kernel is
-compiled on first use (once per install: seconds) and cached on disk by numba
-(``cache=True``), next to this file or, when that is read-only, in numba's user
-cache directory; a later process loads it from there. Where no cache can be
-written at all (:data:`CACHED` False) the callers run their Python reference
-instead of compiling in every process.
-
-Coordinates follow :mod:`img2logo.geometry`: px, x right, y down.
+Both compiled forms are the same numba code with the same types, compiled for
+this machine's processor without fast-math: the same floating-point operations
+in the same order.
 """
 
 from __future__ import annotations
 
-import math
+import hashlib
+import importlib.util
+import os
+import sysconfig
+import tempfile
+from pathlib import Path
+from types import ModuleType
+from typing import Any
 
 import numpy as np
-from numba import njit
 
-#: Whether numba can cache the kernels on disk. When it cannot (a read-only
-#: install and no writable user cache directory), every process would compile
-#: them again (seconds, more than the whole run): the callers then take their
-#: Python reference path instead, with the same results to the solver's tolerance.
+#: Whether the compiled kernels are usable: False only where neither an
+#: ahead-of-time module can be built nor numba's disk cache written.
 CACHED = True
 
+#: The entry points: name -> (module, argument types in numba's notation, return type).
+#: An argument marked ``!`` is written in place, so it is never converted.
+ENTRY_POINTS: dict[str, tuple[str, tuple[str, ...], str]] = {
+    "sqp_dense": (
+        "kernels_sqp",
+        tuple(
+            "f8[:,::1] i8[::1] f8[::1] !f8[:,::1] f8[:,::1] !f8[:,::1] i8[:,::1] i8[::1] i8[::1] f8[::1] "
+            "f8 b1 i8[:,::1] f8[::1] b1[::1] f8 i8 i8 f8 f8".split()
+        ),
+        "Tuple((i8, b1, f8, f8))",
+    ),
+    "extract_arc_kernel": (
+        "kernels_arcs",
+        ("f8", "f8", "f8", "f8[:,::1]", "f8[:,::1]", "f8[::1]", "f8", "f8", "f8", "f8"),
+        "Tuple((b1, f8, f8, b1, f8))",
+    ),
+    "frechet": ("kernels_arcs", ("f8[:,::1]", "f8[:,::1]", "f8"), "f8"),
+    "redundant_kernel": (
+        "kernels_arcs",
+        ("f8[:,::1]", "i8[::1]", "f8[:,::1]", "i8[::1]", "i8[::1]", "f8", "f8"),
+        "Tuple((i8[:,::1], f8[:,::1]))",
+    ),
+    "arc_pairs_kernel": ("kernels_arcs", ("f8[:,::1]", "i8[::1]", "f8"), "i8[:,::1]"),
+    "arc_intersections_kernel": ("kernels_arcs", ("f8[::1]", "f8[::1]", "f8", "!f8[:,::1]"), "i8"),
+}
 
-def _jit(fn):
-    """``numba.njit(cache=True)``, or uncached (and ``CACHED`` False) where no cache directory can be written."""
-    global CACHED
-    try:
-        return njit(cache=True, nogil=True)(fn)
-    except RuntimeError:  # numba: "cannot cache function ...: no locator available for file ..."
-        CACHED = False
-        return njit(cache=False, nogil=True)(fn)
+_DTYPES = {"f8": np.dtype(np.float64), "i8": np.dtype(np.int64), "b1": np.dtype(np.bool_)}
+_SOURCES = ("kernels_sqp.py", "kernels_arcs.py", "kernels_jit.py")
+_loaded: dict[str, Any] = {}
+#: Where the loaded kernels came from: the ahead-of-time module's path, or "numba's JIT".
+source = ""
 
 
 def usable() -> bool:
-    """Whether the compiled kernels should be used: they load from numba's disk cache."""
+    """Whether the compiled kernels should be used (see :data:`CACHED`); loads them."""
+    _load()
     return CACHED
 
 
-# --------------------------------------------------------------------------------
-# The constrained fit (Eqn. 13), dense KKT systems
-# --------------------------------------------------------------------------------
+def __getattr__(name: str) -> Any:
+    if name in ENTRY_POINTS:
+        return _load()[name]
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
-@_jit
-def _set_x(x, centers, disp, free_c, free_j):  # pragma: no cover - compiled
-    nc = free_c.shape[0]
-    for i in range(nc):
-        centers[free_c[i], 0] = x[2 * i]
-        centers[free_c[i], 1] = x[2 * i + 1]
-    for j in range(free_j.shape[0]):
-        disp[free_j[j], 0] = x[2 * (nc + j)]
-        disp[free_j[j], 1] = x[2 * (nc + j) + 1]
+def module_name() -> str:
+    """The ahead-of-time module's name: ``_kernels_`` and a hash of the kernels' source, signatures, numpy's version."""
+    digest = hashlib.sha256(f"{np.__version__} {ENTRY_POINTS}".encode())
+    here = Path(__file__).parent
+    for name in _SOURCES:
+        digest.update((here / name).read_bytes())
+    return "_kernels_" + digest.hexdigest()[:16]
 
 
-@_jit
-def _objective(
-    centers, disp, free_j, px, py, pt_circle, r_pts, w_pts, f_const, wj, e, vx, vy, dist
-):  # pragma: no cover
-    """E^l (Eqn. 7); fills the residuals e, vectors o - p and distances of the free circles' points."""
-    s = 0.0
-    for p in range(px.shape[0]):
-        c = pt_circle[p]
-        ax = centers[c, 0] - px[p]
-        ay = centers[c, 1] - py[p]
-        d = math.sqrt(ax * ax + ay * ay)
-        vx[p], vy[p], dist[p] = ax, ay, d
-        ee = d - r_pts[p]
-        e[p] = ee
-        s += w_pts[p] * ee * ee
-    sd = 0.0
-    for j in range(free_j.shape[0]):
-        k = free_j[j]
-        sd += disp[k, 0] * disp[k, 0] + disp[k, 1] * disp[k, 1]
-    return f_const + s + wj * sd
+def _directories() -> list[Path]:
+    """Where the ahead-of-time module may live: next to the package's bytecode, else the user's cache."""
+    cache = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+    return [Path(__file__).parent / "__pycache__", Path(cache) / "img2logo"]
 
 
-@_jit
-def _constraints(centers, disp, inc_i, inc_k, inc_p, inc_r, c_all, vcx, vcy):  # pragma: no cover - compiled
-    """All incidence residuals |o_i - (p_k + d_k)| - r_i and their vectors."""
-    for r in range(inc_i.shape[0]):
-        i, k = inc_i[r], inc_k[r]
-        ax = centers[i, 0] - inc_p[r, 0] - disp[k, 0]
-        ay = centers[i, 1] - inc_p[r, 1] - disp[k, 1]
-        vcx[r], vcy[r] = ax, ay
-        c_all[r] = math.sqrt(ax * ax + ay * ay) - inc_r[r]
-
-
-@_jit
-def _tangency(centers, disp, junctions, tan_a, tan_b, tan_k, tan_s, t_all, tab):  # pragma: no cover - compiled
-    """All tangency residuals cross(o_a - q, o_b - q) / max(r_a, r_b); the vectors a, b as rows (ax, ay, bx, by)."""
-    for t in range(tan_a.shape[0]):
-        k = tan_k[t]
-        qx = junctions[k, 0] + disp[k, 0]
-        qy = junctions[k, 1] + disp[k, 1]
-        ax = centers[tan_a[t], 0] - qx
-        ay = centers[tan_a[t], 1] - qy
-        bx = centers[tan_b[t], 0] - qx
-        by = centers[tan_b[t], 1] - qy
-        tab[t, 0], tab[t, 1], tab[t, 2], tab[t, 3] = ax, ay, bx, by
-        t_all[t] = (ax * by - ay * bx) * tan_s[t]
-
-
-@_jit
-def _merit(nu, f, c_all, active, t_all, tan_active):  # pragma: no cover - compiled
-    """The L1 merit E^l + nu * sum |c| over the constraints."""
-    s = 0.0
-    for r in range(c_all.shape[0]):
-        if active[r]:
-            s += abs(c_all[r])
-    out = f + nu * s
-    st = 0.0
-    n_on = 0
-    for t in range(t_all.shape[0]):
-        if tan_active[t]:
-            st += abs(t_all[t])
-            n_on += 1
-    if n_on:
-        out += nu * st
-    return out
-
-
-@_jit
-def _max_abs(values):  # pragma: no cover - compiled
-    out = 0.0
-    for v in values:
-        out = max(out, abs(v))
-    return out
-
-
-@_jit
-def _lu_solve(a, b):  # pragma: no cover - compiled
-    """Solve a x = b in place by Gaussian elimination with partial pivoting; False on an exactly zero pivot."""
-    n = a.shape[0]
-    for k in range(n):
-        p = k
-        best = abs(a[k, k])
-        for i in range(k + 1, n):
-            v = abs(a[i, k])
-            if v > best:
-                best, p = v, i
-        if best == 0.0:
-            return False
-        if p != k:
-            for j in range(n):
-                a[k, j], a[p, j] = a[p, j], a[k, j]
-            b[k], b[p] = b[p], b[k]
-        piv = a[k, k]
-        for i in range(k + 1, n):
-            f = a[i, k] / piv
-            if f != 0.0:
-                for j in range(k + 1, n):
-                    a[i, j] -= f * a[k, j]
-                b[i] -= f * b[k]
-    for i in range(n - 1, -1, -1):
-        s = b[i]
-        for j in range(i + 1, n):
-            s -= a[i, j] * b[j]
-        b[i] = s / a[i, i]
-    return True
-
-
-@_jit
-def sqp_dense(
-    points,
-    owner,
-    radii,
-    centers,
-    junctions,
-    disp,
-    incidence,
-    free_c,
-    free_j,
-    ws,
-    wj,
-    connectivity,
-    tangents,
-    tan_s_all,
-    held,
-    tol,
-    max_iter,
-    stall,
-    ftol,
-    damping,
-):  # pragma: no cover - compiled
-    """The SQP solve of Eqn. 13 with a dense KKT system; ``centers`` and ``disp`` are updated in place.
-
-    The same method, step for step, as the Python reference in
-    :mod:`img2logo.constrained_fit` (see :func:`~img2logo.constrained_fit.fit_constrained`):
-    a Newton step on the Lagrangian once multipliers are known, Gauss-Newton
-    before or when that step lacks positive curvature; the damped KKT system
-    ``[[W + mu I, A^T], [A, -delta I]]`` solved by LU with partial pivoting; a
-    backtracking line search on the L1 merit.
-
-    Parameters
-    ----------
-    points : (P, 2) float64, px; owner : (P,) int64, the circle of each point (grouped by circle, in order).
-    radii : (C,); centers : (C, 2), px; junctions, disp : (J, 2), px.
-    incidence : (M, 2) int64, unique rows (circle, junction).
-    free_c, free_j : sorted unique int64 indices of the free circles and junctions.
-    ws : (C,) segment weights; wj : the junction weight.
-    tangents : (T, 3) int64 unique rows (a, b, k); tan_s_all : (T,) their scales 1 / max(r_a, r_b).
-    held : (n,) bool, the unknowns held fixed (a mirror axis).
-
-    Returns
-    -------
-    (iterations, converged, objective, violation)
-    """
-    n_c, n_j = radii.shape[0], junctions.shape[0]
-    nc, nj = free_c.shape[0], free_j.shape[0]
-    n = 2 * (nc + nj)
-    pos_c = -np.ones(n_c, np.int64)
-    for i in range(nc):
-        pos_c[free_c[i]] = i
-    pos_j = -np.ones(n_j, np.int64)
-    for j in range(nj):
-        pos_j[free_j[j]] = j
-    # Points of free circles vary; those of fixed circles add a constant.
-    n_pts = 0
-    for p in range(owner.shape[0]):
-        if pos_c[owner[p]] >= 0:
-            n_pts += 1
-    px, py = np.empty(n_pts), np.empty(n_pts)
-    pt_circle, pt_pos = np.empty(n_pts, np.int64), np.empty(n_pts, np.int64)
-    r_pts, w_pts = np.empty(n_pts), np.empty(n_pts)
-    f_fixed = 0.0
-    q = 0
-    for p in range(owner.shape[0]):
-        o = owner[p]
-        if pos_c[o] >= 0:
-            px[q], py[q] = points[p, 0], points[p, 1]
-            pt_circle[q], pt_pos[q] = o, pos_c[o]
-            r_pts[q], w_pts[q] = radii[o], ws[o]
-            q += 1
-        else:
-            ax, ay = points[p, 0] - centers[o, 0], points[p, 1] - centers[o, 1]
-            ee = math.sqrt(ax * ax + ay * ay) - radii[o]
-            f_fixed += ws[o] * ee * ee
-    d_fixed = 0.0
-    for k in range(n_j):
-        if pos_j[k] < 0:
-            d_fixed += disp[k, 0] * disp[k, 0] + disp[k, 1] * disp[k, 1]
-    f_const = f_fixed + wj * d_fixed
-    # Incidences: all are evaluated; those with a free variable are constraints.
-    m_all = incidence.shape[0]
-    inc_i, inc_k = np.empty(m_all, np.int64), np.empty(m_all, np.int64)
-    for r in range(m_all):
-        inc_i[r], inc_k[r] = incidence[r, 0], incidence[r, 1]
-    inc_p, inc_r = np.empty((m_all, 2)), np.empty(m_all)
-    active = np.zeros(m_all, np.bool_)
-    m_inc = 0
-    for r in range(m_all):
-        inc_p[r, 0], inc_p[r, 1] = junctions[inc_k[r], 0], junctions[inc_k[r], 1]
-        inc_r[r] = radii[inc_i[r]]
-        if connectivity and (pos_c[inc_i[r]] >= 0 or pos_j[inc_k[r]] >= 0):
-            active[r] = True
-            m_inc += 1
-    act_rows = np.nonzero(active)[0]
-    # Tangencies (a, b, k): all evaluated; those with a free variable are constraints, after the incidences.
-    t_n = tangents.shape[0]
-    tan_a, tan_b, tan_k = np.empty(t_n, np.int64), np.empty(t_n, np.int64), np.empty(t_n, np.int64)
-    for t in range(t_n):
-        tan_a[t], tan_b[t], tan_k[t] = tangents[t, 0], tangents[t, 1], tangents[t, 2]
-    tan_active = np.zeros(t_n, np.bool_)
-    m_tan = 0
-    for t in range(t_n):
-        if connectivity and (pos_c[tan_a[t]] >= 0 or pos_c[tan_b[t]] >= 0 or pos_j[tan_k[t]] >= 0):
-            tan_active[t] = True
-            m_tan += 1
-    tan_rows = np.nonzero(tan_active)[0]
-    m = m_inc + m_tan
-    size = n + m
-    # The unknowns the system keeps (a mirror axis holds some x coordinates).
-    n_keep = 0
-    keep = np.empty(size, np.int64)
-    for u in range(size):
-        if u >= n or not held[u]:
-            keep[n_keep] = u
-            n_keep += 1
-    keep = keep[:n_keep]
-
-    e, vx, vy, dist = np.empty(n_pts), np.empty(n_pts), np.empty(n_pts), np.empty(n_pts)
-    c_all, vcx, vcy = np.empty(m_all), np.empty(m_all), np.empty(m_all)
-    t_all, tab = np.empty(t_n), np.empty((t_n, 4))
-    g = np.zeros(n)
-    gn = np.zeros((nc + nj, 4))
-    hq = np.zeros((nc, 4))  # residual curvature per free centre
-    c = np.zeros(m)
-    uc = np.zeros((m_inc, 2))
-    dc = np.ones(m_inc)
-    tg = np.zeros((m_tan, 6))  # d c / d o_a, d c / d o_b, d c / d d_k of each active tangency
-    mat = np.zeros((size, size))
-    sub = np.zeros((n_keep, n_keep))
-    rhs = np.zeros(n_keep)
-    sol = np.zeros(size)
-    dx = np.zeros(n)
-    lam = np.zeros(m)
-    have_lam = False
-    x = np.empty(n)
-    for i in range(nc):
-        x[2 * i], x[2 * i + 1] = centers[free_c[i], 0], centers[free_c[i], 1]
-    for j in range(nj):
-        x[2 * (nc + j)], x[2 * (nc + j) + 1] = disp[free_j[j], 0], disp[free_j[j], 1]
-    xt = np.empty(n)
-    history = np.empty(max_iter + 1)
-    n_hist = 0
-    iterations, converged, nu = 0, False, 0.0
-
-    while True:
-        # --- linearize: E^l, its gradient, the active constraints, the violation
-        f = _objective(centers, disp, free_j, px, py, pt_circle, r_pts, w_pts, f_const, wj, e, vx, vy, dist)
-        g.fill(0.0)
-        gn.fill(0.0)
-        hq.fill(0.0)
-        for p in range(n_pts):
-            safe = dist[p] if dist[p] > 0 else 1.0
-            ux = vx[p] / safe if dist[p] > 0 else 1.0
-            uy = vy[p] / safe
-            qq = e[p] / safe
-            w = w_pts[p]
-            i = pt_pos[p]
-            g[2 * i] += w * (e[p] * ux)
-            g[2 * i + 1] += w * (e[p] * uy)
-            gn[i, 0] += w * (ux * ux)
-            gn[i, 1] += w * (ux * uy)
-            gn[i, 3] += w * (uy * uy)
-            hq[i, 0] += w * (qq * uy * uy)
-            hq[i, 1] += w * (qq * ux * uy)
-            hq[i, 3] += w * (qq * ux * ux)
-        for i in range(nc):
-            g[2 * i] *= 2.0
-            g[2 * i + 1] *= 2.0
-            gn[i, 0] *= 2.0
-            gn[i, 1] *= 2.0
-            gn[i, 2] = gn[i, 1]
-            gn[i, 3] *= 2.0
-            hq[i, 0] *= 2.0
-            hq[i, 1] *= 2.0
-            hq[i, 3] *= 2.0
-        for j in range(nj):
-            g[2 * (nc + j)] = 2.0 * wj * disp[free_j[j], 0]
-            g[2 * (nc + j) + 1] = 2.0 * wj * disp[free_j[j], 1]
-            gn[nc + j, 0] = 2.0 * wj
-            gn[nc + j, 3] = 2.0 * wj
-        _constraints(centers, disp, inc_i, inc_k, inc_p, inc_r, c_all, vcx, vcy)
-        for q in range(m_inc):
-            r = act_rows[q]
-            c[q] = c_all[r]
-            d = math.sqrt(vcx[r] * vcx[r] + vcy[r] * vcy[r])
-            dsafe = d if d > 0 else 1.0
-            uc[q, 0] = vcx[r] / dsafe if d > 0 else 1.0
-            uc[q, 1] = vcy[r] / dsafe
-            dc[q] = dsafe
-        violation = _max_abs(c_all)
-        if t_n:
-            _tangency(centers, disp, junctions, tan_a, tan_b, tan_k, tan_s_all, t_all, tab)
-            violation = max(violation, _max_abs(t_all))
-            for q in range(m_tan):
-                t = tan_rows[q]
-                s = tan_s_all[t]
-                # d c / d o_a = s J b, d c / d o_b = s J^T a, d c / d d_k = -(both); J = [[0, 1], [-1, 0]].
-                gax, gay = s * tab[t, 3], -s * tab[t, 2]
-                gbx, gby = -s * tab[t, 1], s * tab[t, 0]
-                tg[q, 0], tg[q, 1], tg[q, 2], tg[q, 3] = gax, gay, gbx, gby
-                tg[q, 4], tg[q, 5] = -(gax + gbx), -(gay + gby)
-                c[m_inc + q] = t_all[t]
-        feasible = violation <= tol or not connectivity
-        if n == 0 or iterations >= max_iter:
-            converged = feasible and n == 0
+def _load() -> dict[str, Any]:
+    """The entry points by name: ahead of time if possible, else numba's JIT (see the module's notes)."""
+    if _loaded:
+        return _loaded
+    global CACHED, source
+    name = module_name()
+    filename = name + sysconfig.get_config_var("EXT_SUFFIX")
+    module = None
+    for directory in _directories():
+        if (directory / filename).is_file():
+            module = _import(name, directory / filename)
             break
-        history[n_hist] = violation
-        n_hist += 1
-        if not feasible and n_hist > stall and violation > 0.5 * history[n_hist - 1 - stall]:
-            break  # stalled: most likely the fixed variables leave no feasible solution
-        # --- the KKT step: Newton on the Lagrangian once multipliers are known, else Gauss-Newton
-        scale = 0.0
-        for b in range(nc + nj):
-            for u in range(4):
-                scale = max(scale, gn[b, u])
-        scale = max(scale, 1e-300)
-        delta = damping / scale
-        found, curvature = False, 0.0
-        for attempt in range(2):
-            newton = attempt == 0 and have_lam
-            if attempt == 0 and not have_lam:
-                continue
-            mat.fill(0.0)
-            for b in range(nc + nj):
-                h0 = gn[b, 0] + damping * scale
-                h1, h2 = gn[b, 1], gn[b, 2]
-                h3 = gn[b, 3] + damping * scale
-                if newton and b < nc:
-                    h0 += hq[b, 0]
-                    h1 -= hq[b, 1]
-                    h2 -= hq[b, 1]
-                    h3 += hq[b, 3]
-                mat[2 * b, 2 * b], mat[2 * b, 2 * b + 1] = h0, h1
-                mat[2 * b + 1, 2 * b], mat[2 * b + 1, 2 * b + 1] = h2, h3
-            for q in range(m_inc):
-                r = act_rows[q]
-                ci, ck = pos_c[inc_i[r]], pos_j[inc_k[r]]
-                row = n + q
-                if ci >= 0:
-                    mat[row, 2 * ci], mat[row, 2 * ci + 1] = uc[q, 0], uc[q, 1]
-                    mat[2 * ci, row], mat[2 * ci + 1, row] = uc[q, 0], uc[q, 1]
-                if ck >= 0:
-                    cb = 2 * (nc + ck)
-                    mat[row, cb], mat[row, cb + 1] = -uc[q, 0], -uc[q, 1]
-                    mat[cb, row], mat[cb + 1, row] = -uc[q, 0], -uc[q, 1]
-                if newton:
-                    # Constraint curvature lam (I - u u^T) / |v| on o_i and d_k, minus it between them.
-                    s = lam[q] / dc[q]
-                    ux, uy = uc[q, 0], uc[q, 1]
-                    k0, k1, k3 = s * uy * uy, -s * ux * uy, s * ux * ux
-                    for blk in (ci, nc + ck if ck >= 0 else -1):
-                        if blk >= 0:
-                            mat[2 * blk, 2 * blk] += k0
-                            mat[2 * blk, 2 * blk + 1] += k1
-                            mat[2 * blk + 1, 2 * blk] += k1
-                            mat[2 * blk + 1, 2 * blk + 1] += k3
-                    if ci >= 0 and ck >= 0:
-                        a0, b0 = 2 * ci, 2 * (nc + ck)
-                        mat[a0, b0], mat[a0, b0 + 1], mat[a0 + 1, b0], mat[a0 + 1, b0 + 1] = -k0, -k1, -k1, -k3
-                        mat[b0, a0], mat[b0, a0 + 1], mat[b0 + 1, a0], mat[b0 + 1, a0 + 1] = -k0, -k1, -k1, -k3
-            for q in range(m_tan):
-                t = tan_rows[q]
-                row = n + m_inc + q
-                blocks = (pos_c[tan_a[t]], pos_c[tan_b[t]], nc + pos_j[tan_k[t]] if pos_j[tan_k[t]] >= 0 else -1)
-                for v in range(3):
-                    blk = blocks[v]
-                    if blk >= 0:
-                        mat[row, 2 * blk], mat[row, 2 * blk + 1] = tg[q, 2 * v], tg[q, 2 * v + 1]
-                        mat[2 * blk, row], mat[2 * blk + 1, row] = tg[q, 2 * v], tg[q, 2 * v + 1]
-                if newton:
-                    # lam s Hess(cross(o_a - q, o_b - q)): J on (o_a, o_b) and (o_b, q), -J on (o_a, q), J^T = -J.
-                    lt = lam[m_inc + q] * tan_s_all[t]
-                    for pr in range(3):
-                        if pr == 0:
-                            rb, cb, sign = blocks[0], blocks[1], 1.0
-                        elif pr == 1:
-                            rb, cb, sign = blocks[0], blocks[2], -1.0
-                        else:
-                            rb, cb, sign = blocks[1], blocks[2], 1.0
-                        if rb >= 0 and cb >= 0:
-                            w = sign * lt
-                            mat[2 * rb, 2 * cb + 1] += w
-                            mat[2 * rb + 1, 2 * cb] += -w
-                            mat[2 * cb, 2 * rb + 1] += -w
-                            mat[2 * cb + 1, 2 * rb] += w
-            for q in range(m):
-                mat[n + q, n + q] = -delta
-            for a in range(n_keep):
-                rhs[a] = -g[keep[a]] if keep[a] < n else -c[keep[a] - n]
-                for b in range(n_keep):
-                    sub[a, b] = mat[keep[a], keep[b]]
-            ok = _lu_solve(sub, rhs)
-            if ok:
-                for a in range(n_keep):
-                    if not math.isfinite(rhs[a]):
-                        ok = False
-            if not ok:
-                found = False
-                continue
-            sol.fill(0.0)
-            for a in range(n_keep):
-                sol[keep[a]] = rhs[a]
-            gdx, lc, ll = 0.0, 0.0, 0.0
-            for u in range(n):
-                dx[u] = sol[u]
-                gdx += g[u] * dx[u]
-            for q in range(m):
-                lam[q] = sol[n + q]
-                lc += lam[q] * c[q]
-                ll += lam[q] * lam[q]
-            # From the first block row W dx = -g - A^T lam and A dx - delta lam = -c.
-            curvature = -gdx + lc - delta * ll
-            found = True
-            have_lam = True
-            if curvature > 0:
+    if module is None:
+        for directory in _directories():
+            try:
+                module = _import(name, build(directory))
                 break
-        if not found:
-            break
-        lam_max = 0.0
-        c_sum = 0.0
-        for q in range(m):
-            lam_max = max(lam_max, abs(lam[q]))
-            c_sum += abs(c[q])
-        nu = max(nu, 1.5 * lam_max + 1e-12)
-        phi0 = f + nu * c_sum
-        dx_max = 0.0
-        for u in range(n):
-            dx_max = max(dx_max, abs(dx[u]))
-        if feasible and (dx_max <= tol or abs(curvature) <= ftol * f):
-            # Converged; a last full step polishes the result, if it helps.
-            converged = True
-            for u in range(n):
-                xt[u] = x[u] + dx[u]
-            _set_x(xt, centers, disp, free_c, free_j)
-            f_new = _objective(centers, disp, free_j, px, py, pt_circle, r_pts, w_pts, f_const, wj, e, vx, vy, dist)
-            _constraints(centers, disp, inc_i, inc_k, inc_p, inc_r, c_all, vcx, vcy)
-            new_violation = _max_abs(c_all)
-            if t_n:
-                _tangency(centers, disp, junctions, tan_a, tan_b, tan_k, tan_s_all, t_all, tab)
-                new_violation = max(new_violation, _max_abs(t_all))
-            if _merit(nu, f_new, c_all, active, t_all, tan_active) <= phi0 and (
-                not connectivity or new_violation <= violation
-            ):
-                iterations += 1
-            else:
-                _set_x(x, centers, disp, free_c, free_j)
-            break
-        gdx = 0.0
-        for u in range(n):
-            gdx += g[u] * dx[u]
-        slope = gdx - nu * c_sum
-        alpha, accepted = 1.0, False
-        for _ in range(40):
-            for u in range(n):
-                xt[u] = x[u] + alpha * dx[u]
-            _set_x(xt, centers, disp, free_c, free_j)
-            f_new = _objective(centers, disp, free_j, px, py, pt_circle, r_pts, w_pts, f_const, wj, e, vx, vy, dist)
-            _constraints(centers, disp, inc_i, inc_k, inc_p, inc_r, c_all, vcx, vcy)
-            if t_n:
-                _tangency(centers, disp, junctions, tan_a, tan_b, tan_k, tan_s_all, t_all, tab)
-            if _merit(nu, f_new, c_all, active, t_all, tan_active) <= phi0 + 1e-4 * alpha * min(slope, 0.0):
-                accepted = True
-                break
-            alpha *= 0.5
-        if not accepted:
-            _set_x(x, centers, disp, free_c, free_j)
-            converged = feasible
-            break
-        for u in range(n):
-            x[u] = x[u] + alpha * dx[u]
-        iterations += 1
-
-    f = _objective(centers, disp, free_j, px, py, pt_circle, r_pts, w_pts, f_const, wj, e, vx, vy, dist)
-    _constraints(centers, disp, inc_i, inc_k, inc_p, inc_r, c_all, vcx, vcy)
-    violation = _max_abs(c_all)
-    if t_n:
-        _tangency(centers, disp, junctions, tan_a, tan_b, tan_k, tan_s_all, t_all, tab)
-        violation = max(violation, _max_abs(t_all))
-    return iterations, converged, f, violation
-
-
-# --------------------------------------------------------------------------------
-# Arc-arc intersections (Sec. 5.2, Fig. 6, 12): arcs as rows (cx, cy, r, theta0, sweep)
-# --------------------------------------------------------------------------------
-
-TAU = 2.0 * math.pi
-FULL_CIRCLE_SLACK = 1e-9  # |sweep| >= 2 pi - this is a whole circle (geometry.Arc.is_full_circle)
-
-
-@_jit
-def _mod_tau(value):  # pragma: no cover - compiled
-    """``np.mod(value, 2 pi)``: the remainder with the sign of the divisor, as numpy computes it."""
-    return value % TAU  # numba's float % is CPython's: fmod, then + 2 pi when negative (numpy's npy_divmod)
-
-
-@_jit
-def _contains_angle(arc, theta, tol):  # pragma: no cover - compiled
-    """``Arc.contains_angle`` for one angle (radians), within ``tol`` radians."""
-    sweep = arc[4]
-    if abs(sweep) >= TAU - FULL_CIRCLE_SLACK:
-        return True
-    offset = _mod_tau((theta - arc[3]) * math.copysign(1.0, sweep))
-    return offset <= abs(sweep) + tol or offset >= TAU - tol
-
-
-@_jit
-def _on_arc(arc, x, y, tol):  # pragma: no cover - compiled
-    """Whether the point (x, y) of the arc's circle is within ``tol`` px of the arc's angle range."""
-    return _contains_angle(arc, math.atan2(y - arc[1], x - arc[0]), tol / arc[2])
-
-
-@_jit
-def arc_intersections_kernel(a, b, tol, out):  # pragma: no cover - compiled
-    """Points where two arcs meet (``arc_extraction.arc_intersections``): written to ``out`` (4, 2), count returned.
-
-    Circle-circle intersection, then the angle ranges; arcs of one circle (centres and
-    radii within ``tol``) meet at the end points of their overlap.
-    """
-    r1, r2 = a[2], b[2]
-    dx, dy = b[0] - a[0], b[1] - a[1]
-    d = math.hypot(dx, dy)
-    if d <= tol:
-        if abs(r1 - r2) > tol:
-            return 0
-        full_a = abs(a[4]) >= TAU - FULL_CIRCLE_SLACK
-        full_b = abs(b[4]) >= TAU - FULL_CIRCLE_SLACK
-        if full_a and full_b:
-            out[0, 0], out[0, 1] = a[0] + a[2] * math.cos(a[3]), a[1] + a[2] * math.sin(a[3])
-            return 1
-        k = 0
-        for side in range(2):
-            arc, other = (a, b) if side == 0 else (b, a)
-            if abs(arc[4]) >= TAU - FULL_CIRCLE_SLACK:
+            except Exception:  # no compiler, a read-only directory, ...: the next place, then the JIT
                 continue
-            for end in range(2):
-                t = arc[3] + (arc[4] if end else 0.0)
-                px, py = arc[0] + arc[2] * math.cos(t), arc[1] + arc[2] * math.sin(t)
-                if not _on_arc(other, px, py, tol):
-                    continue
-                new = True
-                for q in range(k):
-                    if math.hypot(px - out[q, 0], py - out[q, 1]) <= tol:
-                        new = False
-                if new:
-                    out[k, 0], out[k, 1] = px, py
-                    k += 1
-        return k
-    outside, inside = d - (r1 + r2), abs(r1 - r2) - d  # > 0: apart, one inside the other
-    if outside > tol or inside > tol:
-        return 0
-    x = (d * d + r1 * r1 - r2 * r2) / (2.0 * d)  # along the centre line, from a's centre
-    ux, uy = dx / d, dy / d
-    bx, by = a[0] + x * ux, a[1] + x * uy
-    n = 0
-    if abs(outside) <= tol or abs(inside) <= tol:  # tangent
-        out[0, 0], out[0, 1] = bx, by
-        n = 1
-    else:
-        # Half the chord, by a product of differences of the inputs (no cancellation).
-        h2 = -outside * (d + r1 - r2) * (d - r1 + r2) * (d + r1 + r2) / (4.0 * d * d)
-        h = math.sqrt(max(h2, 0.0))
-        out[0, 0], out[0, 1] = bx + h * -uy, by + h * ux
-        out[1, 0], out[1, 1] = bx - h * -uy, by - h * ux
-        n = 2
-    k = 0
-    for q in range(n):
-        px, py = out[q, 0], out[q, 1]
-        if _on_arc(a, px, py, tol) and _on_arc(b, px, py, tol):
-            out[k, 0], out[k, 1] = px, py
-            k += 1
-    return k
+    if module is not None:
+        source = str(module.__file__)
+        for entry, (_, args, _) in ENTRY_POINTS.items():
+            _loaded[entry] = _checked(getattr(module, entry), args)
+        return _loaded
+    from . import kernels_arcs, kernels_jit, kernels_sqp  # numba's JIT: its import and its cache
+
+    for entry, (source, _, _) in ENTRY_POINTS.items():
+        _loaded[entry] = getattr(kernels_sqp if source == "kernels_sqp" else kernels_arcs, entry)
+    CACHED = CACHED and kernels_jit.CACHED
+    source = "numba's JIT"
+    return _loaded
 
 
-@_jit
-def bounding_boxes(params):  # pragma: no cover - compiled
-    """Bounding boxes (n, 4) of arcs (n, 5): xmin, ymin, xmax, ymax, px.
+def _import(name: str, path: Path) -> ModuleType:
+    spec = importlib.util.spec_from_file_location(name, path)
+    if spec is None or spec.loader is None:
+        raise ImportError(f"cannot load {path}")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
 
-    The extremes of the end points and of the points at angles 0, pi/2, pi, 3 pi/2 on the arc.
+
+def _checked(fn: Any, args: tuple[str, ...]) -> Any:
+    """``fn`` with its array arguments made C-contiguous of the exported dtype.
+
+    An ahead-of-time entry point, unlike the JIT's dispatcher, has one signature
+    and does not check what it is given; an in-place argument (``!``) must already
+    be right, since a converted copy would lose what the kernel writes.
     """
-    n = params.shape[0]
-    out = np.empty((n, 4))
-    for i in range(n):
-        cx, cy, r, t0, sw = params[i, 0], params[i, 1], params[i, 2], params[i, 3], params[i, 4]
-        full = abs(sw) >= TAU - FULL_CIRCLE_SLACK
-        xmin, ymin, xmax, ymax = np.inf, np.inf, -np.inf, -np.inf
-        for u in range(6):
-            if u == 0:
-                ang = t0
-            elif u == 1:
-                ang = t0 + sw
-            else:
-                ang = (u - 2) * (math.pi / 2)
-                if not full and _mod_tau((ang - t0) * np.sign(sw)) > abs(sw):
-                    continue
-            x, y = cx + r * math.cos(ang), cy + r * math.sin(ang)
-            xmin, ymin, xmax, ymax = min(xmin, x), min(ymin, y), max(xmax, x), max(ymax, y)
-        out[i, 0], out[i, 1], out[i, 2], out[i, 3] = xmin, ymin, xmax, ymax
-    return out
+    arrays = []
+    for i, spec in enumerate(args):
+        if "[" in spec:
+            arrays.append((i, _DTYPES[spec.strip("!")[:2]], spec.count(",") + 1, spec.startswith("!")))
+
+    def call(*values: Any) -> Any:
+        values_ = list(values)
+        for i, dtype, ndim, in_place in arrays:
+            a = values_[i]
+            if not (isinstance(a, np.ndarray) and a.dtype == dtype and a.flags.c_contiguous):
+                if in_place:
+                    raise TypeError(f"argument {i} of {fn.__name__} must be a C-contiguous {dtype} array")
+                a = values_[i] = np.ascontiguousarray(a, dtype=dtype)
+            if a.ndim != ndim:
+                raise TypeError(f"argument {i} of {fn.__name__} must have {ndim} dimensions, got {a.ndim}")
+        return fn(*values_)
+
+    call.__name__ = call.__qualname__ = getattr(fn, "__name__", "kernel")
+    return call
 
 
-@_jit
-def arc_pairs_kernel(params, rows, tol):  # pragma: no cover - compiled
-    """Pairs (K, 2) i < j, i or j in ``rows`` (sorted, unique), whose circles meet and boxes overlap within ``tol``.
+def build(directory: Path) -> Path:
+    """Compile the entry points ahead of time into ``directory`` (numba's ``pycc``); the module's path.
 
-    Sorted by (i, j) (``arc_extraction.arc_pairs_near``).
+    The module is written under a temporary name and renamed into place, so that
+    processes building at once never load a half-written file.
     """
-    n = params.shape[0]
-    boxes = bounding_boxes(params)
-    in_rows = np.zeros(n, np.bool_)
-    for i in rows:
-        in_rows[i] = True
-    pairs = np.empty((n * len(rows), 2), np.int64)
-    k = 0
-    for i in range(n):
-        for j in range(i + 1, n):
-            if not (in_rows[i] or in_rows[j]):
-                continue
-            d = math.hypot(params[i, 0] - params[j, 0], params[i, 1] - params[j, 1])
-            ri, rj = params[i, 2], params[j, 2]
-            if not (d <= ri + rj + tol and d >= abs(ri - rj) - tol):
-                continue
-            bi, bj = boxes[i], boxes[j]
-            if bi[0] <= bj[2] + tol and bj[0] <= bi[2] + tol and bi[1] <= bj[3] + tol and bj[1] <= bi[3] + tol:
-                pairs[k, 0], pairs[k, 1] = i, j
-                k += 1
-    return pairs[:k]
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # pycc is marked for deprecation; it still compiles, with numba's code
+        from numba.pycc import CC
+
+        from . import kernels_arcs, kernels_sqp
+
+        name = module_name()
+        directory.mkdir(parents=True, exist_ok=True)
+        with tempfile.TemporaryDirectory(dir=directory) as tmp:
+            cc = CC(name)
+            cc.output_dir = tmp
+            cc.target_cpu = "host"  # as numba's JIT does
+            cc.verbose = False
+            for entry, (source, args, result) in ENTRY_POINTS.items():
+                module = kernels_sqp if source == "kernels_sqp" else kernels_arcs
+                signature = f"{result}({', '.join(a.strip('!') for a in args)})"
+                cc.export(entry, signature)(getattr(module, entry).py_func)
+            cc.compile()
+            built = next(Path(tmp).glob(name + "*"))
+            target = directory / built.name
+            os.replace(built, target)
+    return target
 
 
-@_jit
-def redundant_kernel(params, rows, junctions, owned_ptr, owned_idx, inter_tol, tol):  # pragma: no cover - compiled
-    """Redundant intersections (``arc_extraction.redundant_intersections``): pairs (K, 2) and points (K, 2).
-
-    Of the pairs of :func:`arc_pairs_kernel`, every meeting point (within
-    ``inter_tol``) farther than ``tol`` px from all the junctions both arcs own
-    (arc i owns ``owned_idx[owned_ptr[i]:owned_ptr[i + 1]]``).
-    """
-    pairs = arc_pairs_kernel(params, rows, inter_tol)
-    out_pairs = np.empty((4 * pairs.shape[0], 2), np.int64)
-    out_pts = np.empty((4 * pairs.shape[0], 2))
-    pts = np.empty((4, 2))
-    k = 0
-    for q in range(pairs.shape[0]):
-        i, j = pairs[q, 0], pairs[q, 1]
-        n_pts = arc_intersections_kernel(params[i], params[j], inter_tol, pts)
-        for u in range(n_pts):
-            px, py = pts[u, 0], pts[u, 1]
-            near = False
-            for a in range(owned_ptr[i], owned_ptr[i + 1]):
-                ka = owned_idx[a]
-                shared = False
-                for b in range(owned_ptr[j], owned_ptr[j + 1]):
-                    if owned_idx[b] == ka:
-                        shared = True
-                if shared and math.hypot(junctions[ka, 0] - px, junctions[ka, 1] - py) <= tol:
-                    near = True
-            if not near:
-                out_pairs[k, 0], out_pairs[k, 1] = i, j
-                out_pts[k, 0], out_pts[k, 1] = px, py
-                k += 1
-    return out_pairs[:k], out_pts[:k]
+def main(argv: list[str] | None = None) -> int:
+    """``python -m img2logo.kernels``: build (if need be) and load the kernels; print where from."""
+    _load()
+    print(f"img2logo kernels: {source}" + ("" if CACHED else " (no disk cache: the Python reference runs)"))
+    return 0
 
 
-# --------------------------------------------------------------------------------
-# Arc extraction (Sec. 5.3, Fig. 9): the discrete Fréchet distance and the candidates
-# --------------------------------------------------------------------------------
-
-
-@_jit
-def frechet(p, q, bound):  # pragma: no cover - compiled
-    """Exact discrete Fréchet distance [EM94] of (N, 2) and (M, 2) polylines; ``inf`` once known >= ``bound``.
-
-    The coupling table c[i, j] = max(|p_i - q_j|^2, min(c[i-1, j], c[i-1, j-1],
-    c[i, j-1])) is filled row by row keeping one row; squared distances give the
-    same coupling (the square root is monotone). Every coupling crosses every
-    row, so a row whose smallest entry is >= bound^2 ends the computation.
-    """
-    n, m = p.shape[0], q.shape[0]
-    bound2 = bound * bound
-    row = np.empty(m)
-    acc = -1.0
-    for j in range(m):
-        dx, dy = p[0, 0] - q[j, 0], p[0, 1] - q[j, 1]
-        acc = max(acc, dx * dx + dy * dy)
-        row[j] = acc
-    if n > 1 and row.min() >= bound2:
-        return math.inf
-    for i in range(1, n):
-        dx, dy = p[i, 0] - q[0, 0], p[i, 1] - q[0, 1]
-        diag = row[0]
-        row[0] = max(row[0], dx * dx + dy * dy)
-        low = row[0]
-        for j in range(1, m):
-            dx, dy = p[i, 0] - q[j, 0], p[i, 1] - q[j, 1]
-            up = row[j]
-            best = min(up, diag, row[j - 1])
-            row[j] = max(best, dx * dx + dy * dy)
-            diag = up
-            low = min(low, row[j])
-        if i < n - 1 and low >= bound2:
-            return math.inf
-    return math.sqrt(row[m - 1])
-
-
-@_jit
-def _arc_samples(cx, cy, r, theta0, sweep, step, reverse):  # pragma: no cover - compiled
-    """``Arc.sample(step)`` (ends included, at least 2 points), walked backwards if ``reverse``."""
-    n = max(2, math.ceil(abs(sweep) * r / step) + 1)
-    out = np.empty((n, 2))
-    dt = 1.0 / (n - 1)
-    for i in range(n):
-        t = i * dt if i < n - 1 else 1.0  # np.linspace(0, 1, n)
-        theta = theta0 + sweep * t
-        k = n - 1 - i if reverse else i
-        out[k, 0], out[k, 1] = cx + r * math.cos(theta), cy + r * math.sin(theta)
-    return out
-
-
-@_jit
-def extract_arc_kernel(cx, cy, r, seg, junctions, theta, junction_tol, ratio, slack, step):  # pragma: no cover
-    """The arc of ``arc_extraction.extract_arc`` (method "frechet") on arrays.
-
-    Candidates between every two junctions (m, 2), at polar angles ``theta`` (m,)
-    (numpy's ``arctan2``, which rounds unlike libm's), both ways round that contain
-    all of them, those no longer than ``ratio`` x the chain's length + ``slack``
-    px (else the shortest), both orientations, tried by increasing lower bound
-    with the Fréchet computation cut at the best so far.
-
-    Returns
-    -------
-    (found, theta0, sweep, reverse, frechet)
-        The chosen candidate (theta0, sweep) and whether it is walked the other
-        way; ``found`` is False when no candidate passes through all the junctions.
-    """
-    m = junctions.shape[0]
-    tol = junction_tol / r  # radians
-    cand = np.empty((max(1, m * (m - 1)), 2))
-    n_cand = 0
-    if math.hypot(junctions[0, 0] - junctions[m - 1, 0], junctions[0, 1] - junctions[m - 1, 1]) <= junction_tol:
-        cand[0, 0], cand[0, 1] = theta[0], TAU  # a closed loop: the whole circle from the loop's node
-        n_cand = 1
-    else:
-        arc = np.empty(5)
-        arc[0], arc[1], arc[2] = cx, cy, r
-        for a in range(m):
-            for b in range(a + 1, m):
-                sweep = _mod_tau(theta[b] - theta[a])
-                if sweep <= tol or sweep >= TAU - tol:  # coincident junctions bound no arc
-                    continue
-                for side in range(2):
-                    arc[3], arc[4] = theta[a], sweep if side == 0 else sweep - TAU
-                    ok = True
-                    for u in range(m):
-                        if not _contains_angle(arc, theta[u], tol):
-                            ok = False
-                            break
-                    if ok:
-                        cand[n_cand, 0], cand[n_cand, 1] = arc[3], arc[4]
-                        n_cand += 1
-    if n_cand == 0:
-        return False, 0.0, 0.0, False, math.inf
-    seg_length = 0.0
-    for i in range(seg.shape[0] - 1):
-        seg_length += math.hypot(seg[i + 1, 0] - seg[i, 0], seg[i + 1, 1] - seg[i, 1])
-    cap = ratio * seg_length + slack
-    kept = np.empty(n_cand, np.int64)
-    n_kept = 0
-    shortest = 0
-    for c in range(n_cand):
-        length = abs(cand[c, 1]) * r
-        if length <= cap:
-            kept[n_kept] = c
-            n_kept += 1
-        if length < abs(cand[shortest, 1]) * r:
-            shortest = c
-    if n_kept == 0:
-        kept[0] = shortest
-        n_kept = 1
-    # Both orientations of each kept arc, by increasing lower bound (the coupled end points' distance).
-    n_opt = 2 * n_kept
-    lower = np.empty(n_opt)
-    last = seg.shape[0] - 1
-    for o in range(n_opt):
-        c = kept[o // 2]
-        t0, sw = cand[c, 0], cand[c, 1]
-        sx, sy = cx + r * math.cos(t0 + sw * 0.0), cy + r * math.sin(t0 + sw * 0.0)
-        ex, ey = cx + r * math.cos(t0 + sw * 1.0), cy + r * math.sin(t0 + sw * 1.0)
-        if o % 2:
-            sx, sy, ex, ey = ex, ey, sx, sy
-        lower[o] = max(math.hypot(seg[0, 0] - sx, seg[0, 1] - sy), math.hypot(seg[last, 0] - ex, seg[last, 1] - ey))
-    # A stable insertion sort (ties keep the candidates' order): a few options, and
-    # numba's np.argsort costs seconds of compilation.
-    order = np.arange(n_opt)
-    for o in range(1, n_opt):
-        v = order[o]
-        u = o - 1
-        while u >= 0 and lower[order[u]] > lower[v]:
-            order[u + 1] = order[u]
-            u -= 1
-        order[u + 1] = v
-    best, best_opt = math.inf, order[0]
-    for o in order:
-        if lower[o] >= best:
-            break
-        c = kept[o // 2]
-        length = abs(cand[c, 1]) * r
-        pts = _arc_samples(cx, cy, r, cand[c, 0], cand[c, 1], step * max(1.0, length / cap), o % 2 == 1)
-        value = frechet(seg, pts, best)
-        if value < best:
-            best, best_opt = value, o
-    c = kept[best_opt // 2]
-    return True, cand[c, 0], cand[c, 1], best_opt % 2 == 1, best
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -284,3 +284,78 @@ def test_without_a_disk_cache_the_python_reference_runs(monkeypatch):
     circle = Circle(0.0, 0.0, 100.0)
     got = extract_arc(circle, circle.point_at(np.linspace(0.0, 1.0, 50)), circle.point_at(np.array([0.0, 1.0])))
     assert got.arc.sweep == pytest.approx(1.0)
+
+
+# --- Loading: ahead of time, just in time ----------------------------------------
+
+
+def _aot_or_skip():
+    import sysconfig
+
+    import img2logo.kernels as kernels
+
+    kernels.usable()
+    if not kernels.source.endswith(sysconfig.get_config_var("EXT_SUFFIX")):
+        pytest.skip("no ahead-of-time module here (no C compiler): the kernels run by numba's JIT")
+    return kernels
+
+
+def test_ahead_of_time_and_jit_kernels_agree_bit_for_bit(monkeypatch):
+    # One numba code, one set of types, the same processor: the same floating-point operations.
+    kernels = _aot_or_skip()
+    from img2logo import kernels_arcs, kernels_sqp
+
+    def run():
+        fits = [fit_constrained(*_loop(n, seed)) for n, seed in ((3, 1), (5, 2), (6, 3))]
+        arcs, junctions, owned = _random_arcs(4)
+        rng = np.random.default_rng(7)
+        circle = Circle(120.0, 90.0, 60.0)
+        seg = circle.point_at(np.linspace(0.3, 2.5, 80)) + rng.normal(0.0, 1.0, (80, 2))
+        arc = extract_arc(circle, seg, circle.point_at(np.array([0.3, 1.4, 2.5])))
+        return fits, redundant_intersections(arcs, junctions, owned), arc
+
+    aot = run()
+    for name, (source, _, _) in kernels.ENTRY_POINTS.items():
+        module = kernels_sqp if source == "kernels_sqp" else kernels_arcs
+        monkeypatch.setitem(kernels._loaded, name, getattr(module, name))
+    jit = run()
+    for a, b in zip(aot[0], jit[0], strict=True):
+        assert a.centers.tobytes() == b.centers.tobytes() and a.displacements.tobytes() == b.displacements.tobytes()
+        assert (a.objective, a.violation, a.iterations) == (b.objective, b.violation, b.iterations)
+    assert [(r.arc_a, r.arc_b, r.point.tobytes()) for r in aot[1]] == [
+        (r.arc_a, r.arc_b, r.point.tobytes()) for r in jit[1]
+    ]
+    (a, b) = (aot[2], jit[2])
+    assert (a.arc.theta0, a.arc.sweep, a.frechet) == (b.arc.theta0, b.arc.sweep, b.frechet)
+
+
+def test_an_ahead_of_time_entry_point_checks_its_arrays():
+    kernels = _aot_or_skip()
+    p = np.array([[0.0, 0.0], [3.0, 4.0], [6.0, 8.0]])
+    # Converted: a strided view and integers give the same distance as the C-contiguous float array.
+    assert kernels.frechet(p[::2], np.array([[0, 0], [6, 8]]), math.inf) == kernels.frechet(
+        np.ascontiguousarray(p[::2]), np.array([[0.0, 0.0], [6.0, 8.0]]), math.inf
+    )
+    with pytest.raises(TypeError, match="must have 2 dimensions, got 1"):
+        kernels.frechet(p[0], p, math.inf)
+    with pytest.raises(TypeError, match="argument 3 of arc_intersections_kernel must be a C-contiguous float64"):
+        kernels.arc_intersections_kernel(p[0], p[1], 1e-6, np.empty((4, 2), dtype=np.float32))
+
+
+def test_the_command_loads_no_numba(tmp_path):
+    # A run imports the ahead-of-time module, not numba (its import and registries were ~0.7 s of CPU a run).
+    import subprocess
+    import sys
+
+    _aot_or_skip()
+    code = (
+        "import sys, numpy as np\n"
+        "from img2logo.constrained_fit import fit_constrained\n"
+        "from img2logo.geometry import Circle\n"
+        "c = Circle(0.0, 0.0, 10.0)\n"
+        "fit_constrained([c.point_at(np.linspace(0, 3, 20))], np.array([10.0]), np.array([[0.5, 0.2]]),"
+        " np.zeros((0, 2)), np.zeros((0, 2), dtype=int))\n"
+        "print('numba' in sys.modules)\n"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, cwd=tmp_path)
+    assert out.stdout.strip() == "False"
