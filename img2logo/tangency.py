@@ -50,6 +50,7 @@ Coordinates: px, x right, y down (``contract/README.md``).
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING
 
@@ -62,7 +63,7 @@ from .golden_ladder import FibonacciLadder
 from .simplification import Group, merge_groups
 
 if TYPE_CHECKING:
-    from .fit_state import FitState, GroupFit
+    from .fit_state import FitState, GroupFit, Stats
 
 
 def tangent_joins(opt: FitState, tolerance: float) -> bool:
@@ -97,16 +98,53 @@ def tangent_joins(opt: FitState, tolerance: float) -> bool:
     return bool(made)
 
 
+def tangent_level(opt: FitState, tolerance: float, history: Sequence[tuple]) -> int:
+    """Make the result's smooth joins tangent, on the last level or one before it; how many levels back.
+
+    ``history`` holds :func:`snapshot` of every level of the merge loop, the
+    last the current state. A join whose tangency does not fit under T on the
+    last level (:func:`tangent_joins`) may fit on a level before it, whose
+    arcs are shorter and whose E^s leaves more slack: the level kept is the
+    one with the fewest arcs plus kinked joins (a kink weighs one arc; on a
+    tie the later level), its tangent refit within T. A level k back adds k
+    arcs, so the search stops as soon as k reaches the best count of kinks:
+    no level further back can win. ``opt`` is left in the kept level's state,
+    tangent where it could be made so.
+    """
+    best: tuple[int, int, tuple, Stats] | None = None
+    for back in range(len(history)):
+        if best is not None and back >= best[0]:
+            break
+        if back:
+            _restore(opt, history[-1 - back])
+        opt.loose, opt.off_line = set(), {}
+        tangent_joins(opt, tolerance)
+        score = back + len(opt.loose)
+        if best is None or score < best[0]:
+            best = (score, back, _state(opt), replace(opt.stats))
+    assert best is not None  # the last level is always tried
+    _restore(opt, best[2])
+    opt.stats = best[3]
+    return best[1]
+
+
+def snapshot(opt: FitState) -> tuple:
+    """What a level of the merge loop is in the optimizer's state (a copy), for :func:`tangent_level`."""
+    return _state(opt)
+
+
 def _state(opt: FitState) -> tuple:
     """What the tangent pass changes in the optimizer's state (a copy)."""
-    return dict(opt.fits), opt.disp.copy(), dict(opt.groups), dict(opt.off_line), set(opt.loose)
+    return dict(opt.fits), opt.disp.copy(), dict(opt.groups), dict(opt.off_line), set(opt.loose), set(opt.held)
 
 
 def _restore(opt: FitState, state: tuple) -> None:
     """Put back a state of :func:`_state` (copied again: it may be restored twice)."""
-    fits, disp, groups, off_line, loose = state
+    fits, disp, groups, off_line, loose, held = state
+    if groups.keys() != opt.groups.keys():
+        opt.invalidate()
     opt.fits, opt.disp, opt.groups = dict(fits), disp.copy(), dict(groups)
-    opt.off_line, opt.loose = dict(off_line), set(loose)
+    opt.off_line, opt.loose, opt.held = dict(off_line), set(loose), set(held)
 
 
 def _one_at_a_time(opt: FitState, joins: dict[int, tuple[int, int]], bound: float) -> dict[int, tuple[int, int]]:
