@@ -57,7 +57,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .arc_extraction import redundant_intersections
-from .constants import CONSTRAINED_FIT_TOL, RUNG_CHOICES, SLIDE_MIN_PIXELS
+from .constants import CONSTRAINED_FIT_TOL, KINK_WEIGHT, RUNG_CHOICES, SLIDE_MIN_PIXELS
 from .fit_state import Seed
 from .golden_ladder import FibonacciLadder
 from .simplification import Group, merge_groups
@@ -105,11 +105,11 @@ def tangent_level(opt: FitState, tolerance: float, history: Sequence[tuple]) -> 
     last the current state. A join whose tangency does not fit under T on the
     last level (:func:`tangent_joins`) may fit on a level before it, whose
     arcs are shorter and whose E^s leaves more slack: the level kept is the
-    one with the fewest arcs plus kinked joins (a kink weighs one arc; on a
-    tie the later level), its tangent refit within T. A level k back adds k
-    arcs, so the search stops as soon as k reaches the best count of kinks:
-    no level further back can win. ``opt`` is left in the kept level's state,
-    tangent where it could be made so.
+    one with the fewest arcs plus kinked joins, a kink weighing
+    ``KINK_WEIGHT`` arcs (on a tie the later level), its tangent refit within
+    T. A level k back adds k arcs, so the search stops as soon as k reaches
+    the best score: no level further back can win. ``opt`` is left in the
+    kept level's state, tangent where it could be made so.
     """
     best: tuple[int, int, tuple, Stats] | None = None
     for back in range(len(history)):
@@ -119,7 +119,7 @@ def tangent_level(opt: FitState, tolerance: float, history: Sequence[tuple]) -> 
             _restore(opt, history[-1 - back])
         opt.loose, opt.off_line = set(), {}
         tangent_joins(opt, tolerance)
-        score = back + len(opt.loose)
+        score = back + KINK_WEIGHT * len(opt.loose)
         if best is None or score < best[0]:
             best = (score, back, _state(opt), replace(opt.stats))
     assert best is not None  # the last level is always tried

@@ -120,15 +120,17 @@ class _Levels:
 
 
 @pytest.mark.parametrize(
-    ("kinks", "back", "passes"),
+    ("kinks", "weight", "back", "passes"),
     [
-        ((3, 1, 0), 1, 2),  # 3 kinks, or 1 more arc and 1 kink: 2 back could only tie, so it is not tried
-        ((1, 0, 0), 0, 1),  # one kink: a level further back cannot do better than one more arc
-        ((0, 0, 0), 0, 1),  # all tangent on the last level: the loop's result
-        ((4, 3, 0, 0, 0), 2, 3),  # the search stops where the levels back reach the best count
+        ((3, 1, 0), 1, 1, 2),  # 3 kinks, or 1 more arc and 1 kink: 2 back could only tie, so it is not tried
+        ((1, 0, 0), 1, 0, 1),  # one kink: a level further back cannot do better than one more arc
+        ((0, 0, 0), 2, 0, 1),  # all tangent on the last level: the loop's result
+        ((4, 3, 0, 0, 0), 1, 2, 3),  # the search stops where the levels back reach the best score
+        ((1, 1, 0, 0), 2, 0, 2),  # a kink weighs two arcs: 2 more arcs for it only tie, the later level kept
+        ((1, 0, 0), 2, 1, 2),  # ... and one more arc for it wins
     ],
 )
-def test_the_level_kept_has_the_fewest_arcs_plus_kinks(monkeypatch, kinks, back, passes):
+def test_the_level_kept_has_the_fewest_arcs_plus_weighted_kinks(monkeypatch, kinks, weight, back, passes):
     import img2logo.tangency as tangency
 
     levels = _Levels(kinks)
@@ -142,6 +144,7 @@ def test_the_level_kept_has_the_fewest_arcs_plus_kinks(monkeypatch, kinks, back,
         return True
 
     monkeypatch.setattr(tangency, "tangent_joins", fake_pass)
+    monkeypatch.setattr(tangency, "KINK_WEIGHT", weight)
     assert tangency.tangent_level(levels, 5.0, history) == back
     assert len(levels.passes) == passes and len(levels.groups) == len(kinks) - back
     assert len(levels.loose) == kinks[back]
