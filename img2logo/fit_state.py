@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from collections.abc import Callable, Hashable, Mapping, Sequence
+from collections.abc import Callable, Collection, Hashable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any, NamedTuple, Protocol, TypeAlias, cast
 
@@ -28,7 +28,7 @@ import numpy as np
 
 from .arc_extraction import ArcFit, extract_arc
 from .circle_fitting import fit_center, fit_circle, mean_abs_error
-from .constants import JUNCTION_TOLERANCE, LINE_MIN_ANGLE, SYMMETRY_FIT_STALL
+from .constants import CONSTRAINED_FIT_TOL, JUNCTION_TOLERANCE, LINE_MIN_ANGLE, SYMMETRY_FIT_STALL
 from .constrained_fit import WindowFit, fit_window
 from .geometry import Abstraction, ArcJunctions, Circle, Line, line_arc
 from .golden_ladder import Ladder
@@ -288,6 +288,8 @@ class FitState:
         self._node_groups: dict[int, list[int]] | None = None
         self.smooth: frozenset[int] = graph.smooth_nodes() if options.tangency and options.connectivity else frozenset()
         self.loose: set[int] = set()
+        #: Smooth joins the merge loop made tangent (img2logo.merging): held in every later merge's window.
+        self.held: set[int] = set()
         #: Tangent joins whose junction slides along the input's line (img2logo.tangency):
         #: node -> its distance off the line, px, which E^s counts instead of |d_k|.
         self.off_line: dict[int, float] = {}
@@ -320,6 +322,10 @@ class FitState:
             self.disp[n] = d
         return gid
 
+    def invalidate(self) -> None:
+        """Forget what is cached about the groups (after they were replaced wholesale)."""
+        self._node_groups = None
+
     def release(self, node: int) -> None:
         """Give up the connectivity constraint at junction ``node`` (:func:`~img2logo.recovery.recover`)."""
         self.released.add(node)
@@ -350,6 +356,29 @@ class FitState:
                 continue
             out[n] = (gids[0], gids[1])
         return out
+
+    def touching_joins(self, nodes: Collection[int]) -> set[int]:
+        """The smooth joins among ``nodes`` whose two circles touch there now, to ``CONSTRAINED_FIT_TOL`` px."""
+        seeds = {g: f.seed for g, f in self.fits.items()}
+        out = set()
+        for n, (a, b) in self.tangencies(self.groups, seeds).items():
+            if n not in nodes:
+                continue
+            p = self.graph.junctions[n] + self.disp[n]
+            u, v = seeds[a].center - p, seeds[b].center - p
+            sin = abs(float(u[0] * v[1] - u[1] * v[0])) / max(float(np.hypot(*u) * np.hypot(*v)), 1e-300)
+            if sin * min(seeds[a].radius, seeds[b].radius) <= CONSTRAINED_FIT_TOL:
+                out.add(n)
+        return out
+
+    def _touching(
+        self, groups: Mapping[int, Group], seeds: Mapping[int, Seed], tangent: bool | Collection[int]
+    ) -> dict[int, tuple[int, int]]:
+        """:meth:`tangencies` of ``groups``; only those at the nodes ``tangent`` when it is a collection."""
+        joins = self.tangencies(groups, seeds)
+        if tangent is True:
+            return joins
+        return {n: pair for n, pair in joins.items() if n in cast(Collection[int], tangent)}
 
     def constrained_nodes(self, group: Group) -> tuple[int, ...]:
         """Nodes where ``group``'s arc must pass (its J' part), in path order.
@@ -541,7 +570,7 @@ class FitState:
         n_junctions_total: int,
         rings: int = 1,
         order: Callable[[int], Any] | None = None,
-        tangent: bool = False,
+        tangent: bool | Collection[int] = False,
     ) -> Solution | None:
         """Eqn. 13 over a window of ``groups`` (:func:`~img2logo.constrained_fit.fit_window`), then their arcs.
 
@@ -571,7 +600,7 @@ class FitState:
             constraints=lambda circles, nodes: self.axis_constraints(
                 cast(Sequence[int], circles), groups, cast(Sequence[int], nodes)
             ),
-            tangencies=cast(Mapping[Hashable, tuple[Hashable, Hashable]], self.tangencies(groups, seeds))
+            tangencies=cast(Mapping[Hashable, tuple[Hashable, Hashable]], self._touching(groups, seeds, tangent))
             if tangent
             else None,
         )
@@ -588,7 +617,7 @@ class FitState:
         n_groups_total: int,
         n_junctions_total: int,
         order: Callable[[int], Any] | None = None,
-        tangent: bool = False,
+        tangent: bool | Collection[int] = False,
     ) -> Solution | None:
         """:meth:`solve` over all of ``groups`` at once, every junction free (a global solve, counted).
 

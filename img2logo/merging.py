@@ -90,9 +90,24 @@ def evaluate(state: FitState, pair: Pair) -> MergeOutcome | None:
     seeds[-1] = state.golden(merged, held=held)
 
     merged_nodes = set(state.constrained_nodes(merged))
+    hold = _hold(state, after, seeds, merged, node)
     global_solve = not state.options.localized
     out: Solution | None = None
-    if not global_solve:
+    if not global_solve and hold:
+        out = state.solve(
+            after,
+            seeds,
+            node_groups_after,
+            changed=[-1],
+            free_nodes=sorted(merged_nodes),
+            fixed=set(),
+            n_groups_total=n_groups,
+            n_junctions_total=nj_after,
+            rings=2,
+            order=lambda g: (g != -1, g),
+            tangent=hold,
+        )
+    if not global_solve and out is None:
         # The window: the new circle and its neighbours, with the new circle's
         # junctions free (Sec. 5.4). If the fixed junctions leave no solution,
         # a second ring (the neighbours' junctions and their circles) is freed
@@ -120,7 +135,17 @@ def evaluate(state: FitState, pair: Pair) -> MergeOutcome | None:
                 state.stats.rejected_hopeless += 1
                 return None
             global_solve = True
-    if global_solve:
+    if global_solve and hold:
+        out = state.solve_whole(
+            after,
+            seeds,
+            node_groups_after,
+            n_groups_total=n_groups,
+            n_junctions_total=nj_after,
+            order=lambda g: (g == -1, g),
+            tangent=hold,
+        )
+    if global_solve and out is None:
         out = state.solve_whole(
             after,
             seeds,
@@ -151,6 +176,19 @@ def evaluate(state: FitState, pair: Pair) -> MergeOutcome | None:
     return MergeOutcome(
         pair, merged, fits, disp, window_ids, delta_f, delta_d, nj_after - len(old_nodes), redundant, global_solve
     )
+
+
+def _hold(state: FitState, after: dict[int, Group], seeds: dict[int, Seed], merged: Group, node: int) -> set[int]:
+    """The smooth joins a merge's refit holds tangent (beyond the paper, :mod:`img2logo.tangency`).
+
+    Those the loop made tangent before (``state.held``) and those at the merged
+    group's two ends: a merge is judged with the tangencies it would leave in
+    place. Not the merge's own node, which the merged arc runs on through.
+    """
+    if not state.smooth:
+        return set()
+    joins = state.tangencies(after, seeds)
+    return {n for n in joins if n != node and (n in state.held or n in merged.ends)}
 
 
 def _redundant(
@@ -232,6 +270,8 @@ def merge_loop(state: FitState, tolerance: float, merged: MergeCallback | None =
                 cache[best] = dataclasses.replace(outcome, redundant=now)
                 continue
         state.merge(outcome.pair[0], outcome.pair[1], outcome.merged, outcome.fits, outcome.displacements)
+        if state.smooth:
+            state.held = state.touching_joins(state.held | set(outcome.merged.ends))
         changed = outcome.window | {outcome.pair[0], outcome.pair[1]}
         cache = {p: o for p, o in cache.items() if p[0] in state.groups and p[1] in state.groups}
         for p, o in cache.items():

@@ -54,7 +54,7 @@ from .recovery import check_reach, check_span, recover
 from .segment_graph import SegmentGraph
 from .simplification import Group, hold_line
 from .simplification import simplify as simplify_groups
-from .tangency import tangent_joins
+from .tangency import snapshot, tangent_level
 
 #: Signature of a progress callback: (level t, number of arcs, E^s in px).
 ProgressCallback = Callable[[int, int, float], None]
@@ -241,10 +241,14 @@ def optimize(
     if progress:
         progress(0, len(levels[0].arcs), levels[0].similarity)
 
+    history = [snapshot(state)] if state.smooth else []
+
     def add_level(state: FitState) -> None:
         """A merge was made: the state is level A^t, t = len(levels)."""
         level = state.abstraction(len(levels), record)
         levels.append(level)
+        if state.smooth:
+            history.append(snapshot(state))
         if progress:
             progress(level.level, len(level.arcs), level.similarity)
 
@@ -254,8 +258,11 @@ def optimize(
         stopped = merge_loop(state, opts.tolerance, add_level)
     timings["loop"] = time.perf_counter() - start
     start = time.perf_counter()
-    if state.smooth and tangent_joins(state, opts.tolerance):
-        # The result, its circles touching at the smooth joins (beyond the paper).
+    if state.smooth:
+        # The result, its circles touching at the smooth joins (beyond the paper); it may be
+        # a level before the loop's last, whose shorter arcs leave room for more tangencies.
+        back = tangent_level(state, opts.tolerance, history)
+        del levels[len(levels) - back :]
         levels[-1] = state.abstraction(levels[-1].level, record)
     timings["tangency"] = time.perf_counter() - start
     return Progression(tuple(levels), float(golden.bias), simplified, stopped, state.stats.as_dict(), timings, golden)

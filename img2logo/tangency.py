@@ -30,39 +30,57 @@ one made before or adds a redundant intersection is released (only that one):
 a kink is left there, and a valid image always gets a logo. Corners (where
 the input turns) are never constrained.
 
-Why the last level and not every fit: with the radii fixed on the ladder, a
-chain of tangent circles is rigid, and the first levels join every short piece
-of the over-segmentation. Measured (``make quality``, issue 17): enforcing it
-in A^0 and every merge's window raises E^s(A^0) of the clip-art fish from 2.36
-to 9.77 px (no merge fits under T = 5 any more), and on the evaluation set's
-clip arts gives 47.1 arcs instead of 40.0 (the polar bear 49 instead of 30,
-r10 0.90 instead of 0.99) and one failed run; enforcing it in the merge windows
-only gives 41.6 arcs and runs the clip-art fish 2x slower. It would make 93 %
-and 33 % of the joins tangent. A whole refit of the last level with every
-tangency at once, released one by one, made 20 %; this pass makes 37 % (70
-joins on the clip arts and drawings). What bounds it: the merge loop stops
-where E^s is within a few tenths of a px of T (the polar bear: 4.59 of 5), and
-a tangency there costs 0.1-1 px of E^s (measured per join with every rung
-choice), so a few joins per image fit and the rest keep their kink.
+Where the tangencies are made, and why there. With the radii fixed on the
+ladder, a chain of tangent circles is rigid, and the first levels join every
+short piece of the over-segmentation. Measured (``make quality``, issue 17):
+enforcing every tangency in A^0 and every merge's window raises E^s(A^0) of the
+clip-art fish from 2.36 to 9.77 px (no merge fits under T = 5 any more), and on
+the evaluation set's clip arts gives 47.1 arcs instead of 40.0 and one failed
+run; enforcing all of a window's tangencies in the merges gives 41.6 arcs and
+33 % tangent. So three narrower steps:
+
+* a merge is judged with the tangencies it leaves in place
+  (:func:`img2logo.merging.evaluate`): the smooth joins at the merged arc's
+  two ends, and those earlier merges made tangent (``FitState.held``), are held
+  in its local refit, so the merge error is the E^s of the logo with them;
+* after the loop, this pass (:func:`tangent_joins`) on the last level;
+* the result may be a level before the last (:func:`tangent_level`): the merge
+  loop stops where E^s is within a few tenths of a px of T (the polar bear:
+  4.59 of 5), and a tangency there costs 0.1-1 px of E^s (its long arcs move
+  5-10 px to touch), while a level with one more arc has shorter arcs and more
+  room. The level kept has the fewest arcs plus ``KINK_WEIGHT`` x its kinked
+  joins.
+
+On the clip arts and drawings of ``make quality`` the pass alone made 37 % of
+70 joins tangent (median kink 9.8 degrees), with the merges judged with their
+tangencies 58 % of 88 (40.2 -> 41.6 clip-art arcs), with the level chosen too
+78 % of 90 (42.4 arcs; a kink weighing one arc: 72 %). Tried and not kept, as
+they changed nothing or less: every rung pair of one step (8 choices, not 2:
+the pass alone stayed at 37 %); and, with a kink weighing one arc, E^s counting
+every smooth join's junction by its distance off the line in the merge loop too
+(69 % against 72 %; with two arcs a kink, 74 % against 78 % for 0.2 fewer
+clip-art arcs) and growing a merge's window to the far circle of a held join
+(72 %, the same).
 
 Coordinates: px, x right, y down (``contract/README.md``).
 """
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING
 
 import numpy as np
 
 from .arc_extraction import redundant_intersections
-from .constants import CONSTRAINED_FIT_TOL, RUNG_CHOICES, SLIDE_MIN_PIXELS
+from .constants import CONSTRAINED_FIT_TOL, KINK_WEIGHT, RUNG_CHOICES, SLIDE_MIN_PIXELS
 from .fit_state import Seed
 from .golden_ladder import FibonacciLadder
 from .simplification import Group, merge_groups
 
 if TYPE_CHECKING:
-    from .fit_state import FitState, GroupFit
+    from .fit_state import FitState, GroupFit, Stats
 
 
 def tangent_joins(opt: FitState, tolerance: float) -> bool:
@@ -97,16 +115,53 @@ def tangent_joins(opt: FitState, tolerance: float) -> bool:
     return bool(made)
 
 
+def tangent_level(opt: FitState, tolerance: float, history: Sequence[tuple]) -> int:
+    """Make the result's smooth joins tangent, on the last level or one before it; how many levels back.
+
+    ``history`` holds :func:`snapshot` of every level of the merge loop, the
+    last the current state. A join whose tangency does not fit under T on the
+    last level (:func:`tangent_joins`) may fit on a level before it, whose
+    arcs are shorter and whose E^s leaves more slack: the level kept is the
+    one with the fewest arcs plus kinked joins, a kink weighing
+    ``KINK_WEIGHT`` arcs (on a tie the later level), its tangent refit within
+    T. A level k back adds k arcs, so the search stops as soon as k reaches
+    the best score: no level further back can win. ``opt`` is left in the
+    kept level's state, tangent where it could be made so.
+    """
+    best: tuple[int, int, tuple, Stats] | None = None
+    for back in range(len(history)):
+        if best is not None and back >= best[0]:
+            break
+        if back:
+            _restore(opt, history[-1 - back])
+        opt.loose, opt.off_line = set(), {}
+        tangent_joins(opt, tolerance)
+        score = back + KINK_WEIGHT * len(opt.loose)
+        if best is None or score < best[0]:
+            best = (score, back, _state(opt), replace(opt.stats))
+    assert best is not None  # the last level is always tried
+    _restore(opt, best[2])
+    opt.stats = best[3]
+    return best[1]
+
+
+def snapshot(opt: FitState) -> tuple:
+    """What a level of the merge loop is in the optimizer's state (a copy), for :func:`tangent_level`."""
+    return _state(opt)
+
+
 def _state(opt: FitState) -> tuple:
     """What the tangent pass changes in the optimizer's state (a copy)."""
-    return dict(opt.fits), opt.disp.copy(), dict(opt.groups), dict(opt.off_line), set(opt.loose)
+    return dict(opt.fits), opt.disp.copy(), dict(opt.groups), dict(opt.off_line), set(opt.loose), set(opt.held)
 
 
 def _restore(opt: FitState, state: tuple) -> None:
     """Put back a state of :func:`_state` (copied again: it may be restored twice)."""
-    fits, disp, groups, off_line, loose = state
+    fits, disp, groups, off_line, loose, held = state
+    if groups.keys() != opt.groups.keys():
+        opt.invalidate()
     opt.fits, opt.disp, opt.groups = dict(fits), disp.copy(), dict(groups)
-    opt.off_line, opt.loose = dict(off_line), set(loose)
+    opt.off_line, opt.loose, opt.held = dict(off_line), set(loose), set(held)
 
 
 def _one_at_a_time(opt: FitState, joins: dict[int, tuple[int, int]], bound: float) -> dict[int, tuple[int, int]]:

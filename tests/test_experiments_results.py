@@ -30,7 +30,9 @@ def run() -> experiments.Run:
 
 @pytest.fixture(scope="module")
 def sweep() -> list[experiments.Run]:
-    return experiments.sweep([experiments.data_path(IMAGE)], {"tolerance": [12.0, 3.0, 6.0]})
+    # The paper's fit: with tangent joins the result may be a level before the loop's last
+    # (img2logo.tangency.tangent_level), and the runs are no longer prefixes of one another.
+    return experiments.sweep([experiments.data_path(IMAGE)], {"tolerance": [12.0, 3.0, 6.0]}, tangency=False)
 
 
 def fake_progression(similarities: list[float]) -> SimpleNamespace:

@@ -104,12 +104,17 @@ def test_a_hopeless_merge_is_rejected_without_a_global_solve():
 
 
 def test_a_merge_whose_global_problem_fails_is_rejected():
-    state = _fitted_chain(_Unsolvable, tolerance=100.0)
+    state = _fitted_chain(_Unsolvable, tolerance=100.0, tangency=False)
     solves = state.stats.global_solves
     state.failing = True
     assert evaluate(state, (0, 1, 1)) is None
     assert state.stats.local_failed == 1 and state.stats.rejected_hopeless == 0
     assert state.stats.global_solves == solves + 1
+    # With a smooth join held tangent (node 2), the global problem is tried with it, then without.
+    state = _fitted_chain(_Unsolvable, tolerance=100.0)
+    solves = state.stats.global_solves
+    state.failing = True
+    assert evaluate(state, (0, 1, 1)) is None and state.stats.global_solves == solves + 2
     # Without localized fitting the global problem is the only one solved.
     state = _fitted_chain(_Unsolvable, localized=False)
     state.failing = True
@@ -193,3 +198,61 @@ def test_max_arc_distance_rejects_merges_that_stray_from_their_line():
     for arc, ids in zip(capped.final.arcs, capped.final.arc_segments, strict=True):
         pts = np.concatenate([graph.segments[i] for i in ids])
         assert np.max(np.abs(arc.circle.distance(pts))) <= 3.0 + 1e-6
+
+
+# --------------------------------------------------------------------------- tangent joins (beyond the paper)
+def _touch(state, out, node, pair):
+    """How far two circles of a merge's outcome are from touching at ``node``: |sin| of the angle of their radii x r."""
+    fits = {**state.fits, **out.fits}
+    p = state.graph.junctions[node] + out.displacements.get(node, state.disp[node])
+    a, b = (fits[g].center - p for g in pair)
+    sin = abs(float(a[0] * b[1] - a[1] * b[0])) / float(np.hypot(*a) * np.hypot(*b))
+    return sin * min(fits[g].radius for g in pair)
+
+
+def _arc_then_bend(**settings):
+    """One golden circle (k = 9) cut in two segments, then a circle off the ladder touching it: fitted, one group each.
+
+    Segments 0 and 1 meet at node 1 on the first circle; segment 2 runs on
+    from node 2 on a circle of 1.3 x r(k = 8) that touches it from outside.
+    """
+    r1, r2 = golden_radius(9), 1.3 * golden_radius(8)
+    c1 = np.array([200.0, 200.0])
+    a0 = sampled_arc(c1, r1, np.pi, 0.75 * np.pi)
+    a1 = sampled_arc(c1, r1, 0.75 * np.pi, 0.5 * np.pi)
+    j2 = a1[-1]
+    c2 = j2 + (j2 - c1) / r1 * r2
+    a2 = sampled_arc(c2, r2, -0.5 * np.pi, -0.5 * np.pi + 1.0)
+    graph = SegmentGraph(
+        (a0, a1, a2), np.array([a0[0], a0[-1], j2, a2[-1]]), np.array([[0, 1], [1, 2], [2, 3]]), 600, 600
+    )
+    state = hand_built_state(graph, **settings)
+    initial_fit(state)
+    return state
+
+
+def test_a_merge_is_judged_with_the_smooth_join_it_ends_at_tangent():
+    from img2logo.merging import _hold
+
+    state = _arc_then_bend()
+    assert state.smooth == {1, 2}
+    after = {-1: merge_groups(state.groups[0], state.groups[1], 1), 2: state.groups[2]}
+    seeds = {2: state.fits[2].seed, -1: state.golden(after[-1])}
+    # The merged arc ends at node 2, a smooth join with group 2; node 1 is inside it now.
+    assert _hold(state, after, seeds, after[-1], 1) == {2}
+    out = evaluate(state, (0, 1, 1))
+    assert out is not None and not out.global_solve
+    assert _touch(state, out, 2, (-1, 2)) <= 1e-6
+    # Without tangency (the paper's fit) the circles of the snapped radii kink there.
+    paper = _arc_then_bend(tangency=False)
+    assert paper.smooth == frozenset()
+    out = evaluate(paper, (0, 1, 1))
+    assert out is not None and _touch(paper, out, 2, (-1, 2)) > 1e-3
+
+
+def test_the_loop_keeps_the_tangencies_it_made():
+    state = _arc_then_bend()
+    assert merge_loop(state, 10.0) == "tolerance"
+    # The one circle's two segments merged; the join it ends at is tangent and held for later merges.
+    assert sorted(g.segments for g in state.groups.values()) == [(0, 1), (2,)]
+    assert state.held == state.touching_joins({2}) == {2}
