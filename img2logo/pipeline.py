@@ -17,12 +17,12 @@ from typing import Any
 
 import numpy as np
 
-from .constants import MIN_STROKE_WIDTH, PHOTO_MAX_ARC_FACTOR
+from .constants import MIN_STROKE_WIDTH, PHOTO_MAX_ARC_FACTOR, PHOTO_WORK_SIDE
 from .errors import InvalidParameterError
 from .geometry import Abstraction
-from .loading import mask_to_working_size
+from .loading import downscale, mask_to_working_size
 from .options import AUTO, Options, check_lock_mask
-from .preprocessing import FeatureLines, LoadedImage, extract_feature_lines, load_image
+from .preprocessing import FeatureLines, LoadedImage, extract_feature_lines, load_image, photo_reason
 from .progressive import ProgressCallback, Progression, optimize
 from .segment_graph import SegmentGraph, build_segment_graph
 from .subject import FOREGROUND_CHOICES, subject_rectangle_numbers
@@ -153,6 +153,12 @@ def abstract(
     timings: dict[str, float] = {}
     start = time.perf_counter()
     img = load_image(image)
+    work_kind, reason = opts.kind, None
+    if work_kind in ("auto", "photo") and max(img.width, img.height) > PHOTO_WORK_SIDE:
+        reason = "given" if work_kind == "photo" else photo_reason(img)
+        if reason is not None:  # a photo is worked at the size its defaults were chosen at (constants)
+            img = downscale(img, PHOTO_WORK_SIDE, f"a photo is worked at {PHOTO_WORK_SIDE} px on its longer side")
+            work_kind = "photo"
     if img.scale != 1.0:
         # The work is done at the downscaled size: masks and the rectangle, given in the input's
         # pixels, are scaled in here, and every level is scaled back to the input's pixels below.
@@ -166,7 +172,9 @@ def abstract(
         if subject is not None:
             subject = tuple(v * img.scale for v in subject_rectangle_numbers(subject))
         opts = dataclasses.replace(opts, foreground=foreground, subject=subject)
-    lines = extract_feature_lines(img, kind=opts.kind, foreground=opts.foreground, subject=opts.subject)
+    lines = extract_feature_lines(img, kind=work_kind, foreground=opts.foreground, subject=opts.subject)
+    if reason is not None:  # what detect_kind measured at the loaded size, not "given"
+        lines = dataclasses.replace(lines, reason=reason)
     timings["feature_lines"] = time.perf_counter() - start
     start = time.perf_counter()
     graph = build_segment_graph(lines, rdp_tolerance=opts.rdp_tolerance, min_length=opts.min_length)
