@@ -405,14 +405,14 @@ def png_size(width: float, height: float, scale: float | None = None, background
         raise InvalidParameterError(f"scale must be a number, got {scale!r}")
     else:
         s = check_positive(scale, "scale")
-    size = (round(width * s), round(height * s))
     bound = MAX_PNG_IMAGE_SIDE if background == "input" else MAX_PNG_SIDE
-    if min(size) < 1 or max(size) > bound:
+    w, h = float(width) * s, float(height) * s  # compared before rounding: 1e308 times a side is inf
+    if not max(w, h) < 2 * bound or min(round(w), round(h)) < 1 or max(round(w), round(h)) > bound:
         over = f" over the faded input (white or transparent: up to {MAX_PNG_SIDE} px)" if bound != MAX_PNG_SIDE else ""
         raise InvalidParameterError(
-            f"scale {s:g} makes a {size[0]} x {size[1]} px PNG; each side must be in 1..{bound} px{over}"
+            f"scale {s:g} makes a {w:.0f} x {h:.0f} px PNG; each side must be in 1..{bound} px{over}"
         )
-    return size
+    return (round(w), round(h))
 
 
 def write_pdf(
