@@ -246,6 +246,10 @@ def test_a_photo_over_the_photo_working_size_is_worked_at_it_and_drawn_in_its_ow
     with pytest.warns(DownscaleWarning, match="a photo is worked at"):
         given = abstract(big, kind="photo", progress=False)
     assert given.image.width == 512 and given.lines.reason == "given"
+    # A subject rectangle is given, and said, in the input's pixels (the work is at half of them).
+    with pytest.warns(DownscaleWarning):
+        boxed = abstract(big, subject=(200, 60, 620, 560), progress=False)
+    assert boxed.lines.subject.description.startswith("kept the object in 200,60,620,560 (GrabCut)")
     assert abstract(small, progress=False).image.width == 512
 
 
