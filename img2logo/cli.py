@@ -96,8 +96,10 @@ class _Parser(argparse.ArgumentParser):
             command = "img2logo batch" if self.prog.endswith("batch") else "img2logo"
             message = (
                 f"unknown option {printable(unknown)} (for a file whose name starts with '-', "
-                f"write: {command} -- {printable(unknown)})"
+                f"write: {command} [OPTIONS] -- {printable(unknown)})"
             )
+        elif message.startswith("unrecognized arguments") and "--" in getattr(self, "_given", []):
+            message += " (everything after -- is a file name: put the options before --)"
         self.exit(EXIT_ERROR, f"img2logo: error: {printable(message)}\n")
 
     def _unknown_option(self) -> str | None:

@@ -692,11 +692,18 @@ def test_batch_workers_end_with_their_parent(tmp_path, sig):
         (["in.png", "--tolerance"], "argument --tolerance/-T: expected one argument"),
         (["batch"], "the following arguments are required: INPUT_DIR, OUTPUT_DIR"),
         (["batch", "a", "b", "--jobs", "x"], "argument --jobs/-j: invalid int value: 'x'"),
-        (["-x.png"], "unknown option -x.png (for a file whose name starts with '-', write: img2logo -- -x.png)"),
+        (
+            ["-x.png"],
+            "unknown option -x.png (for a file whose name starts with '-', write: img2logo [OPTIONS] -- -x.png)",
+        ),
+        (
+            ["--", "-x.png", "-q"],
+            "unrecognized arguments: -q (everything after -- is a file name: put the options before --)",
+        ),
         (["in.png", "--svg", "o.svg", "-x.png"], "unknown option -x.png (for a file whose name starts with '-'"),
         (
             ["batch", "-in", "out"],
-            "unknown option -in (for a file whose name starts with '-', write: img2logo batch --",
+            "unknown option -in (for a file whose name starts with '-', write: img2logo batch [OPTIONS] -- -in)",
         ),
     ],
 )
