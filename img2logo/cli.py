@@ -410,7 +410,7 @@ def _check_outputs(args: argparse.Namespace) -> dict:
 #: The files of ``--levels-dir``: ``level-0000.json``, ``level-0000.svg``, ... (more digits past 9999).
 LEVEL_FILE = re.compile(r"level-\d{4,}\.(json|svg)")
 
-#: The suffixes each output option accepts (lower case), and suffixes that name another format.
+#: The suffix each output option's format has (:data:`img2logo.writers.FORMAT_SUFFIXES` names the others).
 _SUFFIXES: dict[str, tuple[str, ...]] = {
     "--svg": (".svg",),
     "--json": (".json",),
@@ -418,10 +418,6 @@ _SUFFIXES: dict[str, tuple[str, ...]] = {
     "--pdf": (".pdf",),
     "--segments-png": (".png",),
 }
-_OTHER_FORMATS: frozenset[str] = frozenset(
-    ".svg .svgz .json .png .apng .jpg .jpeg .jpe .jfif .jp2 .gif .webp .avif .heic .heif .tif .tiff .bmp .ico "
-    ".pdf .eps .ps .ai .emf .wmf .psd .xcf .exr .hdr .pbm .pgm .ppm .pnm .csv .txt .html .htm .xml .yaml".split()
-)
 
 
 def _check_suffix(flag: str, path: str) -> None:
@@ -432,8 +428,10 @@ def _check_suffix(flag: str, path: str) -> None:
     """
     import os
 
+    from .writers import FORMAT_SUFFIXES
+
     suffix = os.path.splitext(path)[1].lower()
-    if suffix in _OTHER_FORMATS and suffix not in _SUFFIXES[flag]:
+    if suffix in FORMAT_SUFFIXES and suffix not in _SUFFIXES[flag]:
         wanted = " or ".join(_SUFFIXES[flag])
         raise InvalidParameterError(
             f"{flag} {path}: {suffix} names another format ({flag} writes {_SUFFIXES[flag][0][1:].upper()}); "
