@@ -59,6 +59,7 @@ __all__ = [
     "load_image",
     "load_mask",
     "median_stroke_width",
+    "photo_reason",
 ]
 
 KINDS = ("photo", "clipart", "drawing")
