@@ -140,6 +140,8 @@ def check_format_suffix(path: str | os.PathLike[str], fmt: str) -> None:
     InvalidParameterError
         Naming the path, the suffix and the suffix to use.
     """
+    if not isinstance(path, str | os.PathLike):
+        return  # not a path: the writer's own check says so
     suffix = os.path.splitext(os.fspath(path))[1].lower()
     if suffix in FORMAT_SUFFIXES and suffix != f".{fmt}":
         raise InvalidParameterError(
