@@ -228,11 +228,12 @@ def _subject_said_in_input_pixels(lines: FeatureLines, given: object, scaled: ob
     def text(rect: object, shape: tuple[int, int]) -> str:
         return ",".join(str(v) for v in parse_subject_rectangle(rect, shape))
 
+    found = lines.subject
+    if found is None:
+        return lines
     work = text(scaled, (img.height, img.width))
-    said = re.sub(
-        rf"\b{re.escape(work)}\b", text(given, (img.input_height, img.input_width)), lines.subject.description
-    )
-    return dataclasses.replace(lines, subject=dataclasses.replace(lines.subject, description=said))
+    said = re.sub(rf"\b{re.escape(work)}\b", text(given, (img.input_height, img.input_width)), found.description)
+    return dataclasses.replace(lines, subject=dataclasses.replace(found, description=said))
 
 
 def _in_input_pixels(progression: Progression, img: LoadedImage) -> Progression:
