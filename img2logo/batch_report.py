@@ -72,8 +72,15 @@ class BatchFailure:
 
     @property
     def line(self) -> str:
-        """The message naming the file: ``"<path>: <message>"``, the path not repeated."""
-        return self.message if self.message.startswith(self.path) else f"{self.path}: {self.message}"
+        """The message naming the file: ``"<path>: <message>"``, the path not repeated.
+
+        The message is on one line (:func:`~img2logo.batch_pool.one_line`): a path with a
+        newline is in it with a space there, and is given back as it is (printed escaped).
+        """
+        for said in (self.path, " ".join(self.path.split())):
+            if self.message.startswith(said):
+                return self.path + self.message[len(said) :]
+        return f"{self.path}: {self.message}"
 
 
 @dataclass(frozen=True)

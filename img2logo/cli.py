@@ -96,8 +96,10 @@ class _Parser(argparse.ArgumentParser):
             command = "img2logo batch" if self.prog.endswith("batch") else "img2logo"
             message = (
                 f"unknown option {printable(unknown)} (for a file whose name starts with '-', "
-                f"write: {command} -- {printable(unknown)})"
+                f"write: {command} [OPTIONS] -- {printable(unknown)})"
             )
+        elif message.startswith("unrecognized arguments") and "--" in getattr(self, "_given", []):
+            message += " (everything after -- is a file name: put the options before --)"
         self.exit(EXIT_ERROR, f"img2logo: error: {printable(message)}\n")
 
     def _unknown_option(self) -> str | None:
@@ -149,7 +151,7 @@ def _parser() -> argparse.ArgumentParser:
         default=None,
         metavar="S",
         help=(
-            "size of the PNG relative to the input image (default 1, at most the 2048 px working size; "
+            "size of the PNG relative to the input image (default 1, at most 2048 px on the longer side; "
             "4 = four times as wide and high)"
         ),
     )
@@ -336,7 +338,14 @@ def _abstract_options(args: argparse.Namespace, *, batch: bool = False):
         value = getattr(args, f.name)
         parse = f.metadata["parse"]
         given[f.name] = value if parse is None else parse(value)
-    options = Options.from_keywords(given)
+    try:
+        options = Options.from_keywords(given)
+    except InvalidParameterError as exc:  # the library names its keyword; the user typed the flag
+        flags = {f.name: f.metadata["flags"][0] for _, f in cli_fields(batch=batch)}
+        said = re.match(r"(\w+)(?: \(--[\w-]+\))? ", str(exc))
+        if said is None or said.group(1) not in flags:
+            raise
+        raise InvalidParameterError(flags[said.group(1)] + " " + str(exc)[said.end() :]) from exc
     check_lock_mask(options, getattr(args, "lock_mask", None))
     if getattr(args, "level", None) is not None and args.level < 0:
         raise InvalidParameterError(f"--level must be >= 0, got {args.level}")
@@ -401,7 +410,7 @@ def _check_outputs(args: argparse.Namespace) -> dict:
 #: The files of ``--levels-dir``: ``level-0000.json``, ``level-0000.svg``, ... (more digits past 9999).
 LEVEL_FILE = re.compile(r"level-\d{4,}\.(json|svg)")
 
-#: The suffixes each output option accepts (lower case), and suffixes that name another format.
+#: The suffix each output option's format has (:data:`img2logo.writers.FORMAT_SUFFIXES` names the others).
 _SUFFIXES: dict[str, tuple[str, ...]] = {
     "--svg": (".svg",),
     "--json": (".json",),
@@ -409,10 +418,6 @@ _SUFFIXES: dict[str, tuple[str, ...]] = {
     "--pdf": (".pdf",),
     "--segments-png": (".png",),
 }
-_OTHER_FORMATS: frozenset[str] = frozenset(
-    ".svg .svgz .json .png .apng .jpg .jpeg .jpe .jfif .jp2 .gif .webp .avif .heic .heif .tif .tiff .bmp .ico "
-    ".pdf .eps .ps .ai .emf .wmf .psd .xcf .exr .hdr .pbm .pgm .ppm .pnm .csv .txt .html .htm .xml .yaml".split()
-)
 
 
 def _check_suffix(flag: str, path: str) -> None:
@@ -423,8 +428,10 @@ def _check_suffix(flag: str, path: str) -> None:
     """
     import os
 
+    from .writers import FORMAT_SUFFIXES
+
     suffix = os.path.splitext(path)[1].lower()
-    if suffix in _OTHER_FORMATS and suffix not in _SUFFIXES[flag]:
+    if suffix in FORMAT_SUFFIXES and suffix not in _SUFFIXES[flag]:
         wanted = " or ".join(_SUFFIXES[flag])
         raise InvalidParameterError(
             f"{flag} {path}: {suffix} names another format ({flag} writes {_SUFFIXES[flag][0][1:].upper()}); "
@@ -443,9 +450,11 @@ def _naming(path: str, call, *a, **kw):
 
 
 def _run(args: argparse.Namespace, say, *, freeze: bool = False) -> int:
-    from .batch import ignored_subject_options
+    import dataclasses
+
+    from .batch import _foreground_file, ignored_subject_options
     from .fills import parse_fill_option
-    from .loading import load_image, load_mask
+    from .loading import load_image
     from .pipeline import abstract
 
     if freeze:  # the modules just imported live as long as the process
@@ -455,12 +464,17 @@ def _run(args: argparse.Namespace, say, *, freeze: bool = False) -> int:
     fill_spec = parse_fill_option(args.fill)
     if not any(getattr(args, flag[2:].replace("-", "_")) for flag in _OUTPUT_FLAGS):  # before any work
         raise InvalidParameterError(f"nothing to write: give {', '.join(_OUTPUT_FLAGS[:-1])} or {_OUTPUT_FLAGS[-1]}")
-    if args.png_scale is not None and not args.png_scale > 0:
-        raise InvalidParameterError(f"--png-scale must be > 0, got {args.png_scale:g}")
+    if args.png_scale is not None and not 0 < args.png_scale < float("inf"):
+        raise InvalidParameterError(f"--png-scale must be a finite number > 0, got {args.png_scale:g}")
     _check_outputs(args)
     image = load_image(args.input)
-    # Masks and the subject rectangle are in the input's pixels (abstract scales them to a downscaled input).
-    lock_mask = None if not args.lock_mask else load_mask(args.lock_mask, (image.input_height, image.input_width))
+    # Masks and the subject rectangle are in the input's pixels (abstract scales them to a downscaled input);
+    # a mask is read here, before the work, whatever the kind turns out to be.
+    shape = (image.input_height, image.input_width)
+    lock_mask = None if not args.lock_mask else _mask_option("--lock-mask", args.lock_mask, shape)
+    foreground = _foreground_file(args.foreground)
+    if foreground is not None:
+        options = dataclasses.replace(options, foreground=_mask_option("--foreground", foreground, shape))
     say(f"{args.input}: {image.width}x{image.height} px")
     if args.png:  # the PNG's size is checked before the work, in the input's pixels as write_png draws it
         from .constants import MAX_PNG_IMAGE_SIDE, MAX_PNG_SIDE
@@ -469,7 +483,7 @@ def _run(args: argparse.Namespace, say, *, freeze: bool = False) -> int:
         try:
             png_size(image.input_width, image.input_height, args.png_scale, args.png_background)
         except InvalidParameterError:
-            side = round(max(image.input_width, image.input_height) * args.png_scale)
+            side = f"{max(image.input_width, image.input_height) * args.png_scale:.0f}"  # inf for 1e308
             over = args.png_background == "input"
             raise InvalidParameterError(
                 f"--png-scale {args.png_scale:g} makes the PNG {side} px on its longer side; it must be "
@@ -481,11 +495,16 @@ def _run(args: argparse.Namespace, say, *, freeze: bool = False) -> int:
                 )
             ) from None
     if args.subject is not None:
-        import dataclasses
-
         from .subject import parse_subject_rectangle
 
-        subject = parse_subject_rectangle(args.subject, (image.input_height, image.input_width))
+        try:
+            subject = parse_subject_rectangle(args.subject, shape)
+        except InvalidParameterError as exc:  # named as typed: "--subject 1e308,0,5,5", not its 309 digits
+            said = re.match(r"subject(?: rectangle \S+)? ", str(exc))
+            if said is None:
+                raise
+            typed = f"--subject {printable(args.subject)} " if " rectangle " in said.group(0) else "--subject "
+            raise InvalidParameterError(typed + str(exc)[said.end() :]) from exc
         options = dataclasses.replace(options, subject=subject)
     progress = None if not args.quiet else False
     result = _naming(args.input, abstract, image, options=options, lock_mask=lock_mask, progress=progress)
@@ -512,6 +531,16 @@ def _run(args: argparse.Namespace, say, *, freeze: bool = False) -> int:
     level = _pick_level(result, args.level)
     _write_outputs(result, level, args, say, fill_spec)
     return 0
+
+
+def _mask_option(flag: str, path, shape: tuple[int, int]):
+    """The mask a flag names, of the input's ``shape``; its error names the flag (the image is not at fault)."""
+    from .loading import load_mask
+
+    try:
+        return load_mask(path, shape)
+    except Img2LogoError as exc:
+        raise type(exc)(f"{flag}: {exc}") from exc
 
 
 def _count(n: int, noun: str) -> str:
@@ -623,11 +652,13 @@ def _write_outputs(result, level, args: argparse.Namespace, say, fill_spec) -> N
             for path in stale:  # an earlier run's levels past this run's last: removed with the set
                 remove_file(path)
     image = result.image
-    if args.png and args.png_scale is None and (image.width, image.height) != (image.input_width, image.input_height):
-        say(
-            f"png: drawn at {image.width}x{image.height} px, the working size (the input is "
-            f"{image.input_width}x{image.input_height} px; --png-scale S draws S times that)"
-        )
+    if args.png and args.png_scale is None:
+        size = writers.png_size(image.input_width, image.input_height, None, args.png_background)
+        if size != (image.input_width, image.input_height):
+            say(
+                f"png: drawn at {size[0]}x{size[1]} px (the input is {image.input_width}x{image.input_height} px; "
+                "--png-scale S draws S times that)"
+            )
     for path in done:
         say(f"wrote {path}")
     if args.levels_dir:

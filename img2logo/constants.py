@@ -27,6 +27,17 @@ FORMAT_NAME: str = "img2logo.abstraction/1"
 MIN_IMAGE_SIDE: int = 16
 #: Images whose longer side exceeds this are downscaled (with a warning), px.
 MAX_IMAGE_SIDE: int = 2048
+#: A photo is worked at most this size on its longer side, px (the result is scaled back
+#: to the input's pixels, as for MAX_IMAGE_SIDE). The photo stage's lengths (T = 5 px,
+#: PHOTO_MIN_LINE_LENGTH, PHOTO_SPUR_LENGTH, the subject's margins) were chosen and
+#: measured on photos of 300-512 px (the evaluation set, data/), and a logo of 20-60 arcs
+#: of a photo's subject needs no finer texture: worked at this size, a photo gives the
+#: logo those defaults were measured for, whatever its resolution. At the 2048 px
+#: working size the noisy 12000 px flower of issue 20 gave 103 arcs, its outline in
+#: pieces, and took 25 s of CPU; at 1024 px 60 arcs, at 512 px 33 arcs, whole.
+#: Clip art and drawings keep MAX_IMAGE_SIDE: their thin strokes and small fills are
+#: the logo.
+PHOTO_WORK_SIDE: int = 512
 #: Largest accepted input, pixels (width x height), read from the file's header before
 #: decoding: 8-bit RGBA at this size is 600 MB decoded; a larger file is refused as a
 #: likely decompression bomb (the largest camera sensors give about 100 Mpx).

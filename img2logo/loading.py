@@ -190,6 +190,34 @@ def load_image(source: object, *, max_side: int = MAX_IMAGE_SIDE, max_pixels: in
     return LoadedImage(readonly(rgb), readonly(alpha), has_alpha, scale, name, (int(w), int(h)))
 
 
+def downscale(img: LoadedImage, max_side: int, why: str) -> LoadedImage:
+    """``img`` shrunk to ``max_side`` px on its longer side (area interpolation), or ``img`` if not larger.
+
+    The input's size is kept (``input_size``) and ``scale`` becomes the whole
+    factor from the input, so results and masks convert as for a large input
+    (:func:`mask_to_working_size`); a :class:`DownscaleWarning` says ``why``.
+    """
+    side = max(img.width, img.height)
+    if side <= max_side:
+        return img
+    import cv2
+
+    f = max_side / side
+    size = (max(MIN_IMAGE_SIDE, round(img.width * f)), max(MIN_IMAGE_SIDE, round(img.height * f)))
+    warnings.warn(
+        f"{img.source}: {why}: {size[0]}x{size[1]} px (the results are in the input's "
+        f"{img.input_width}x{img.input_height} px)",
+        DownscaleWarning,
+        stacklevel=2,
+    )
+    rgb = np.clip(cv2.resize(img.rgb, size, interpolation=cv2.INTER_AREA), 0.0, 1.0)
+    alpha = np.clip(cv2.resize(img.alpha, size, interpolation=cv2.INTER_AREA), 0.0, 1.0)
+    scale = max_side / max(img.input_width, img.input_height)  # as load_image's: the whole factor from the input
+    return LoadedImage(
+        readonly(rgb), readonly(alpha), img.has_alpha, scale, img.source, (img.input_width, img.input_height)
+    )
+
+
 def mask_to_working_size(mask: object, img: LoadedImage, name: str) -> np.ndarray | None:
     """A mask given in the input's pixels (a path or an array, as :func:`load_mask`) at ``img``'s working size.
 

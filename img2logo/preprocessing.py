@@ -59,6 +59,7 @@ __all__ = [
     "load_image",
     "load_mask",
     "median_stroke_width",
+    "photo_reason",
 ]
 
 KINDS = ("photo", "clipart", "drawing")
@@ -119,8 +120,17 @@ def detect_kind(image: object) -> tuple[str, str]:
     return kind, reason
 
 
-def _detect(img: LoadedImage) -> tuple[str, str, np.ndarray | None]:
-    """(kind, reason, clip-art regions or None): the regions are reused for a clip art."""
+def photo_reason(img: LoadedImage) -> str | None:
+    """Why ``img`` is a photo (:func:`detect_kind`'s first test: camera noise and texture), or None if it is not one.
+
+    Cheap (one pass over the pixels): the pipeline asks it first, since a
+    photo's work is done at ``PHOTO_WORK_SIDE`` (:func:`img2logo.pipeline.abstract`).
+    """
+    return _photo_reason(_flat_fraction(img))
+
+
+def _flat_fraction(img: LoadedImage) -> float:
+    """The fraction of pixels whose four neighbours have exactly their colour (8 bits a channel)."""
     v = np.round(img.rgb * 255.0).astype(np.int32)
     key = (v[..., 0] << 16) | (v[..., 1] << 8) | v[..., 2]
     same = np.ones(key.shape, dtype=bool)
@@ -129,17 +139,29 @@ def _detect(img: LoadedImage) -> tuple[str, str, np.ndarray | None]:
     same[:, :-1] &= eh
     same[1:] &= ev
     same[:-1] &= ev
-    flat = float(same.mean())
-    if flat < SYNTHETIC_FLAT_FRACTION:
-        # A share under 1% would read "only 0%": said as it is.
-        share = (
-            "no pixel sits"
-            if flat == 0.0
-            else "under 1% of the pixels sit"
-            if flat < 0.01
-            else f"only {flat:.0%} of the pixels sit"
-        )
-        return "photo", f"{share} in flat fills (camera noise, texture): a photo", None
+    return float(same.mean())
+
+
+def _photo_reason(flat: float) -> str | None:
+    if flat >= SYNTHETIC_FLAT_FRACTION:
+        return None
+    # A share under 1% would read "only 0%": said as it is.
+    share = (
+        "no pixel sits"
+        if flat == 0.0
+        else "under 1% of the pixels sit"
+        if flat < 0.01
+        else f"only {flat:.0%} of the pixels sit"
+    )
+    return f"{share} in flat fills (camera noise, texture): a photo"
+
+
+def _detect(img: LoadedImage) -> tuple[str, str, np.ndarray | None]:
+    """(kind, reason, clip-art regions or None): the regions are reused for a clip art."""
+    flat = _flat_fraction(img)
+    reason = _photo_reason(flat)
+    if reason is not None:
+        return "photo", reason, None
     regions = clipart_regions(img)
 
     area, means = label_means(regions, img.lab)

@@ -60,8 +60,10 @@ if TYPE_CHECKING:
     from .segment_graph import SegmentGraph
 
 __all__ = [
+    "FORMAT_SUFFIXES",
     "PNG_BACKGROUNDS",
     "SVG_METADATA_NS",
+    "check_format_suffix",
     "check_output_paths",
     "output_set",
     "read_json",
@@ -120,6 +122,34 @@ def read_json(path: str | os.PathLike[str]) -> Abstraction:
     return from_document(doc)
 
 
+#: Suffixes that name a file format (lower case): an output named with one of them must be of that format.
+FORMAT_SUFFIXES: frozenset[str] = frozenset(
+    ".svg .svgz .json .png .apng .jpg .jpeg .jpe .jfif .jp2 .gif .webp .avif .heic .heif .tif .tiff .bmp .ico "
+    ".pdf .eps .ps .ai .emf .wmf .psd .xcf .exr .hdr .pbm .pgm .ppm .pnm .csv .txt .html .htm .xml .yaml".split()
+)
+
+
+def check_format_suffix(path: str | os.PathLike[str], fmt: str) -> None:
+    """Refuse ``path`` if its suffix names a format other than ``fmt`` (``"svg"``, ...): the file would lie.
+
+    ``write_svg(a, "logo.pdf")`` would put SVG into a ``.pdf``. A suffix that names
+    no known format (``logo.out``, none at all) is accepted: the name is the user's.
+
+    Raises
+    ------
+    InvalidParameterError
+        Naming the path, the suffix and the suffix to use.
+    """
+    if not isinstance(path, str | os.PathLike):
+        return  # not a path: the writer's own check says so
+    suffix = os.path.splitext(os.fspath(path))[1].lower()
+    if suffix in FORMAT_SUFFIXES and suffix != f".{fmt}":
+        raise InvalidParameterError(
+            f"{os.fspath(path)}: {suffix} names another format (this writes {fmt.upper()}); "
+            f"give a file name ending in .{fmt}"
+        )
+
+
 def write_json(
     abstraction: Abstraction,
     path: str | os.PathLike[str],
@@ -140,6 +170,7 @@ def write_json(
     pathlib.Path
         The path written.
     """
+    check_format_suffix(path, "json")
     doc = to_document(abstraction, params, check=check, fills=fills)
     data = (json.dumps(doc, indent=2, sort_keys=True, allow_nan=False, ensure_ascii=False) + "\n").encode("utf-8")
     return atomic_write(path, lambda f: f.write(data))
@@ -291,6 +322,7 @@ def write_svg(
     pathlib.Path
         The path written.
     """
+    check_format_suffix(path, "svg")
     text = to_svg(
         abstraction,
         construction_circles=construction_circles,
@@ -362,6 +394,7 @@ def write_png(
     pathlib.Path
         The path written.
     """
+    check_format_suffix(path, "png")
     fill_list, width, height, sw = _drawing(abstraction, fills, stroke_width)
     d = check_positive(dpi, "dpi")
     if background is None:
@@ -405,14 +438,14 @@ def png_size(width: float, height: float, scale: float | None = None, background
         raise InvalidParameterError(f"scale must be a number, got {scale!r}")
     else:
         s = check_positive(scale, "scale")
-    size = (round(width * s), round(height * s))
     bound = MAX_PNG_IMAGE_SIDE if background == "input" else MAX_PNG_SIDE
-    if min(size) < 1 or max(size) > bound:
+    w, h = float(width) * s, float(height) * s  # compared before rounding: 1e308 times a side is inf
+    if not max(w, h) < 2 * bound or min(round(w), round(h)) < 1 or max(round(w), round(h)) > bound:
         over = f" over the faded input (white or transparent: up to {MAX_PNG_SIDE} px)" if bound != MAX_PNG_SIDE else ""
         raise InvalidParameterError(
-            f"scale {s:g} makes a {size[0]} x {size[1]} px PNG; each side must be in 1..{bound} px{over}"
+            f"scale {s:g} makes a {w:.0f} x {h:.0f} px PNG; each side must be in 1..{bound} px{over}"
         )
-    return size
+    return (round(w), round(h))
 
 
 def write_pdf(
@@ -450,6 +483,7 @@ def write_pdf(
     pathlib.Path
         The path written.
     """
+    check_format_suffix(path, "pdf")
     import matplotlib.style
     from matplotlib.backends.backend_pdf import FigureCanvasPdf
     from matplotlib.figure import Figure
@@ -521,6 +555,7 @@ def write_segment_graph_png(
     pathlib.Path
         The path written.
     """
+    check_format_suffix(path, "png")
     from .segment_graph import SegmentGraph  # lazily: it loads scipy
 
     if not isinstance(graph, SegmentGraph):

@@ -451,6 +451,9 @@ def test_the_summary_text_escapes_control_characters(tmp_path):
     text = report.summary()
     assert "a\\nb.png" in text and "in/c\\rd.png: not a readable image" in text and "\r" not in text
     assert len(text.splitlines()) == 6
+    # A message that names the path already (on one line: the newline a space) does not name it twice.
+    failure = BatchFailure("a\nb.png", "in/a\nb.png", "in/a b.png: not a readable image")
+    assert failure.line == "in/a\nb.png: not a readable image"
 
 
 def test_a_foreground_for_a_drawing_is_ignored_with_one_warning(tmp_path):

@@ -77,7 +77,7 @@ def test_bad_option_value_is_a_usage_error(capsys):
 
 def test_zero_rdp_tolerance_is_refused(capsys):
     assert main([str(DATA / "drawing-fish.png"), "--rdp", "0"]) == EXIT_ERROR
-    assert "rdp_tolerance must be > 0" in capsys.readouterr().err
+    assert "img2logo: error: --rdp must be > 0, got 0.0" in capsys.readouterr().err
 
 
 def test_console_entry_point_runs():
@@ -132,12 +132,12 @@ def test_levels_dir_and_level(tmp_path, capsys):
     [
         (["--level", "999"], "--level must be in 0.."),
         (["--radii", "3,x"], "--radii must be integers separated by commas"),
-        (["--tolerance", "0"], "tolerance must be > 0"),
-        (["--bias", "1.5"], r"bias must be in [0, 1)"),
-        (["--unit", "2"], "unit is a parameter of the Fibonacci ladder (ladder='fibonacci')"),
-        (["--ladder", "fibonacci", "--bias", "0.2"], "bias is a parameter of the phi ladder"),
-        (["--ladder", "fibonacci", "--unit", "0"], "unit must be > 0, got 0.0"),
-        (["--ladder", "fibonacci", "--radii", "1,5"], "exponents of the Fibonacci ladder must be >= 2"),
+        (["--tolerance", "0"], "error: --tolerance must be > 0"),
+        (["--bias", "1.5"], r"error: --bias must be in [0, 1)"),
+        (["--unit", "2"], "error: --unit is a parameter of the Fibonacci ladder (ladder='fibonacci')"),
+        (["--ladder", "fibonacci", "--bias", "0.2"], "error: --bias is a parameter of the phi ladder"),
+        (["--ladder", "fibonacci", "--unit", "0"], "error: --unit must be > 0, got 0.0"),
+        (["--ladder", "fibonacci", "--radii", "1,5"], "error: --radii of the Fibonacci ladder must be >= 2"),
     ],
 )
 def test_bad_logo_options(tmp_path, capsys, args, message):
@@ -161,11 +161,20 @@ def test_radii_option_restricts_the_circles(tmp_path):
 @pytest.mark.parametrize(
     ("args", "message"),
     [
-        (["--rdp", "1e308"], "rdp_tolerance must be at most 1e+07 px (longer than any image), got 1e+308"),
-        (["--rdp", "1e200"], "rdp_tolerance must be at most 1e+07 px"),
-        (["--ladder", "fibonacci", "--unit", "1e308"], "unit must be in 0.001..1e+07 px, got 1e+308"),
-        (["--radii", "99999"], "exponents (--radii) must be in -14..33"),
-        (["--radii=-1000000"], "exponents (--radii) must be in -14..33"),
+        (["--rdp", "1e308"], "error: --rdp must be at most 1e+07 px (longer than any image), got 1e+308"),
+        (["--rdp", "1e200"], "error: --rdp must be at most 1e+07 px"),
+        (["--ladder", "fibonacci", "--unit", "1e308"], "error: --unit must be in 0.001..1e+07 px, got 1e+308"),
+        (["--radii", "99999"], "error: --radii must be in -14..33"),
+        (["--radii=-1000000"], "error: --radii must be in -14..33"),
+        (["--tolerance", "1e308"], "error: --tolerance must be at most 1e+07 px"),
+        (["--tolerance", "nan"], "error: --tolerance must be finite, got nan"),
+        (["--min-length", "-5"], "error: --min-length must be >= 0, got -5.0"),
+        (["--bias", "1.5"], "error: --bias must be in [0, 1), got 1.5"),
+        (["--stroke-width", "1e308"], "error: --stroke-width must be at most 1e+07 px"),
+        (["--symmetry", "nan"], "error: --symmetry angle must be a finite number of degrees"),
+        (["--png", "o.png", "--png-scale", "1e308"], "error: --png-scale 1e+308 makes the PNG inf px on its longer"),
+        (["--png", "o.png", "--png-scale", "inf"], "error: --png-scale must be a finite number > 0, got inf"),
+        (["--subject", "1e308,0,5,5"], "error: --subject 1e308,0,5,5 must cover at least 4x4 px of the 512x512 image"),
         (["--ladder", "fibonacci", "--unit", "1e5"], "the smallest, 1e+05 px, is over 20 x the image's longer side"),
         (["--radii", "25"], "choose smaller exponents (--radii)"),
     ],
@@ -173,6 +182,7 @@ def test_radii_option_restricts_the_circles(tmp_path):
 def test_huge_lengths_and_radii_are_one_line_with_nothing_on_stdout(tmp_path, capfd, args, message):
     # issue 20, items 5 and 22: a cv2.error, LAPACK lines on stdout, numpy overflow warnings before.
     out = tmp_path / "x.json"
+    args = [str(tmp_path / a) if a == "o.png" else a for a in args]
     assert main([str(DATA / "drawing-leaf.png"), "-q", "--json", str(out), *args]) == EXIT_ERROR
     captured = capfd.readouterr()
     assert captured.out == ""
@@ -290,7 +300,7 @@ def test_batch_command_all_good_is_quiet_and_exits_zero(tmp_path, capsys):
         (lambda d: d / "missing", [], "input folder not found"),
         (lambda d: d, [], "no images (png, jpg, jpeg, tif, tiff, bmp, webp) in"),
         (lambda d: d, ["--jobs", "0"], "--jobs must be >= 1, got 0"),
-        (lambda d: d, ["--tolerance", "-1"], "tolerance must be > 0"),
+        (lambda d: d, ["--tolerance", "-1"], "--tolerance must be > 0"),
     ],
 )
 def test_batch_command_errors_exit_two(tmp_path, capsys, make, args, message):
@@ -329,7 +339,7 @@ def test_clean_png_and_pdf_outputs(tmp_path, capsys):
     err = capsys.readouterr().err
     assert f"wrote {out / 'leaf.png'}" in err and f"wrote {out / 'leaf.pdf'}" in err
     assert main([*args, "--png-scale", "0"]) == EXIT_ERROR
-    assert capsys.readouterr().err == "img2logo: error: --png-scale must be > 0, got 0\n"
+    assert capsys.readouterr().err == "img2logo: error: --png-scale must be a finite number > 0, got 0\n"
     assert main([*args, "--png-scale", "100"]) == EXIT_ERROR
     assert capsys.readouterr().err.endswith(
         "\nimg2logo: error: --png-scale 100 makes the PNG 51200 px on its longer side; it must be 1..4096 "
@@ -398,14 +408,21 @@ def test_photo_subject_is_reported_and_can_be_chosen(tmp_path, capsys):
     assert "subject: kept the whole image (foreground none)" in capsys.readouterr().err
     out = tmp_path / "x.json"
     for args, message in [
-        (["--foreground", "magic"], "foreground must be one of auto, none, grabcut"),
-        (["--foreground", str(tmp_path / "missing.png")], "image file not found"),
-        (["--subject", "1,2"], "subject must be a rectangle X,Y,W,H"),
+        (["--foreground", "magic"], "error: --foreground must be one of auto, none, grabcut"),
+        (["--foreground", str(tmp_path / "missing.png")], f"--foreground: image file not found: {tmp_path}"),
+        (["--lock-mask", str(tmp_path / "missing.png")], f"--lock-mask: image file not found: {tmp_path}"),
+        (["--foreground", str(DATA / "photo-cat.png")], "--foreground: "),
+        (["--subject", "1,2"], "error: --subject must be a rectangle X,Y,W,H"),
     ]:
         assert main([str(path), "--kind", "photo", "--json", str(out), *args]) == EXIT_ERROR
         err = capsys.readouterr().err
         assert err.strip().splitlines()[-1].startswith("img2logo: error: ") and message in err
         assert not out.exists()
+    # A missing mask is a bad option on any image, before the work: a drawing (whose subject options
+    # are ignored) does not run with it either.
+    assert main([str(DATA / "drawing-fish.png"), "--foreground", str(tmp_path / "m.png"), "--json", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert err == f"img2logo: error: --foreground: image file not found: {tmp_path / 'm.png'}\n" and not out.exists()
 
 
 # --------------------------------------------------------------------------- never lose data
@@ -426,7 +443,7 @@ def _copy(tmp_path, name="drawing-leaf.png"):
         (["--svg", "{dir}/pipe.svg"], r"--svg .*pipe\.svg is not a regular file"),
         (["--levels-dir", "{dir}/file"], r"--levels-dir .*file is a file, not a folder"),
         (["--levels-dir", "{dir}", "--svg", "{dir}/level-0000.svg"], r"inside --levels-dir"),
-        (["--min-length", "-5"], r"min_length must be >= 0, got -5\.0"),
+        (["--min-length", "-5"], r"--min-length must be >= 0, got -5\.0"),
         (["--foreground", "{dir}/mask.png", "--png", "{dir}/mask.png"], r"--png .*mask\.png is the input .*mask\.png"),
         (["--foreground", "{dir}/mask.png", "--svg", "{dir}/mlink.svg"], r"mlink\.svg is the input .*mask\.png"),
         (["--lock-mask", "{dir}/mask.png", "--json", "{dir}/mask.png"], r"--json .*mask\.png is the input .*mask\.png"),
@@ -556,7 +573,7 @@ def test_png_of_an_input_over_the_working_size_is_drawn_at_the_working_size(tmp_
     png, json_path = tmp_path / "big-logo.png", tmp_path / "big.json"
     assert main([str(big), "--png", str(png), "--json", str(json_path)]) == 0
     err = capsys.readouterr().err
-    line = "png: drawn at 2048x1638 px, the working size (the input is 2600x2080 px; --png-scale S draws S times that)"
+    line = "png: drawn at 2048x1638 px (the input is 2600x2080 px; --png-scale S draws S times that)"
     assert line in err.splitlines()
     assert cv2.imread(str(png)).shape[:2] == (1638, 2048)
     assert json.loads(json_path.read_text())["width"] == 2600  # the document stays in the input's pixels
@@ -675,11 +692,18 @@ def test_batch_workers_end_with_their_parent(tmp_path, sig):
         (["in.png", "--tolerance"], "argument --tolerance/-T: expected one argument"),
         (["batch"], "the following arguments are required: INPUT_DIR, OUTPUT_DIR"),
         (["batch", "a", "b", "--jobs", "x"], "argument --jobs/-j: invalid int value: 'x'"),
-        (["-x.png"], "unknown option -x.png (for a file whose name starts with '-', write: img2logo -- -x.png)"),
+        (
+            ["-x.png"],
+            "unknown option -x.png (for a file whose name starts with '-', write: img2logo [OPTIONS] -- -x.png)",
+        ),
+        (
+            ["--", "-x.png", "-q"],
+            "unrecognized arguments: -q (everything after -- is a file name: put the options before --)",
+        ),
         (["in.png", "--svg", "o.svg", "-x.png"], "unknown option -x.png (for a file whose name starts with '-'"),
         (
             ["batch", "-in", "out"],
-            "unknown option -in (for a file whose name starts with '-', write: img2logo batch --",
+            "unknown option -in (for a file whose name starts with '-', write: img2logo batch [OPTIONS] -- -in)",
         ),
     ],
 )
@@ -694,7 +718,7 @@ def test_argument_errors_are_one_line(capsys, args, message):
 
 def test_negative_numbers_are_option_values_not_unknown_options(capsys):
     assert main([str(DATA / "drawing-leaf.png"), "--min-length", "-5"]) == EXIT_ERROR
-    assert capsys.readouterr().err == "img2logo: error: min_length must be >= 0, got -5.0\n"
+    assert capsys.readouterr().err == "img2logo: error: --min-length must be >= 0, got -5.0\n"
 
 
 def test_a_file_whose_name_starts_with_a_dash_after_two_dashes(tmp_path, monkeypatch, capsys):

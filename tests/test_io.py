@@ -200,9 +200,9 @@ def test_check_output_paths(tmp_path):
 
 # --- a target that is no regular file: a FIFO, a device (issue 20, item 4) -------------------
 def _special_targets(tmp_path):
-    fifo = tmp_path / "pipe.json"
+    fifo = tmp_path / "pipe.out"  # a suffix of no format: each writer may be aimed at it
     os.mkfifo(fifo)
-    link = tmp_path / "link.svg"
+    link = tmp_path / "link.out"
     link.symlink_to(fifo)
     return fifo, link
 
@@ -220,7 +220,7 @@ def test_a_fifo_at_the_target_is_refused_and_kept(tmp_path, write):
     import stat
 
     assert stat.S_ISFIFO(os.stat(fifo).st_mode) and link.is_symlink()  # nothing replaced
-    assert leftovers(tmp_path) == ["link.svg", "pipe.json"]  # no temporary file left
+    assert leftovers(tmp_path) == ["link.out", "pipe.out"]  # no temporary file left
 
 
 def test_a_device_at_the_target_is_refused(tmp_path, monkeypatch):

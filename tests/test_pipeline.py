@@ -214,6 +214,53 @@ def test_a_symmetric_logo_of_a_downscaled_input_keeps_its_axis_in_its_pixels():
     assert is_symmetric(result.final, record["point"], record["direction"])
 
 
+def test_a_photo_over_the_photo_working_size_is_worked_at_it_and_drawn_in_its_own_pixels():
+    """A photo is worked at PHOTO_WORK_SIDE px, the size its defaults were chosen at (issue 20, item 12)."""
+    import warnings
+
+    import cv2
+
+    from img2logo import contract
+    from img2logo.constants import PHOTO_WORK_SIDE
+    from img2logo.loading import DownscaleWarning
+
+    small = cv2.cvtColor(cv2.imread(str(DATA / "photo-flower.png")), cv2.COLOR_BGR2RGB)  # 512 x 342
+    big = cv2.resize(small, (1024, 684), interpolation=cv2.INTER_CUBIC)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        result = abstract(big, progress=False)
+    said = [str(w.message) for w in caught if issubclass(w.category, DownscaleWarning)]
+    assert said == [
+        f"<array>: a photo is worked at {PHOTO_WORK_SIDE} px on its longer side: 512x342 px "
+        "(the results are in the input's 1024x684 px)"
+    ]
+    assert (result.image.width, result.image.height, result.image.scale) == (512, 342, 0.5)
+    assert result.lines.kind == "photo" and result.lines.reason.endswith("a photo")  # detected, not "given"
+    final = result.final
+    assert (final.width, final.height) == (1024, 684) and final.tolerance == pytest.approx(10.0)
+    contract.to_document(final, check=True)  # radii exactly on the ladder after the scale back
+    # The same logo as the photo at 512 px, scaled by 2: its arcs' count is of the same order.
+    at_512 = abstract(small, progress=False).final
+    assert abs(len(final.arcs) - len(at_512.arcs)) <= max(3, len(at_512.arcs) // 4)
+    # kind="photo" given: the same size, "given"; a photo at or under the size is worked as it is.
+    with pytest.warns(DownscaleWarning, match="a photo is worked at"):
+        given = abstract(big, kind="photo", progress=False)
+    assert given.image.width == 512 and given.lines.reason == "given"
+    # A subject rectangle is given, and said, in the input's pixels (the work is at half of them).
+    with pytest.warns(DownscaleWarning):
+        boxed = abstract(big, subject=(200, 60, 620, 560), progress=False)
+    assert boxed.lines.subject.description.startswith("kept the object in 200,60,620,560 (GrabCut)")
+    assert abstract(small, progress=False).image.width == 512
+
+
+def test_a_clip_art_over_the_photo_working_size_keeps_its_size():
+    import cv2
+
+    big = cv2.resize(cv2.imread(str(DATA / "clipart-fish.png")), (700, 700), interpolation=cv2.INTER_NEAREST)
+    result = abstract(big[:, :, ::-1], progress=False)
+    assert result.lines.kind == "clipart" and result.image.width == 700 and result.image.scale == 1.0
+
+
 def _ring_and_dot(ring: bool, dot: bool):
     import cv2
     import numpy as np

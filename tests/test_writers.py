@@ -557,3 +557,21 @@ def test_inkscape_opens_the_svg_and_renders_it_like_resvg(tmp_path, discs_result
         env={"HOME": str(tmp_path), "PATH": "/usr/bin:/bin"},
     )
     assert query.returncode == 0 and "arc-0" in query.stdout
+
+
+@pytest.mark.parametrize(
+    ("write", "name", "fmt"),
+    [
+        ("write_svg", "logo.pdf", "SVG"),
+        ("write_png", "logo.jpg", "PNG"),
+        ("write_json", "logo.svg", "JSON"),
+        ("write_pdf", "logo.png", "PDF"),
+    ],
+)
+def test_a_suffix_that_names_another_format_is_refused(tmp_path, write, name, fmt):
+    """``write_svg(a, "logo.pdf")`` put SVG into a .pdf (issue 20, "Also"); a suffix of no format is the user's."""
+    level = make_abstraction()
+    with pytest.raises(InvalidParameterError, match=rf"names another format \(this writes {fmt}\); give a file name"):
+        getattr(writers, write)(level, tmp_path / name)
+    assert not (tmp_path / name).exists()
+    assert getattr(writers, write)(level, tmp_path / "logo.out").is_file()
