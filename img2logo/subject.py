@@ -86,6 +86,7 @@ from .subject_cues import (
     largest_part,
     outline_contrast,
     texture_colour_image,
+    texture_lab,
     texture_map,
     texture_step,
     work_scale,
@@ -227,10 +228,10 @@ def _find_subject(img: LoadedImage, foreground: object, subject: object) -> Subj
         texture = None
         if foreground == "auto":  # the same cut with texture: take the candidate whose outline is the sharper edge
             mask, texture, textured = _both_cuts(img)
-            if textured.any() and outline_contrast(img, textured, texture=texture) > outline_contrast(
-                img, mask, texture=texture
-            ):
-                mask = textured
+            if textured.any():
+                lab = texture_lab(img, texture)  # once for both candidates
+                if outline_contrast(img, textured, lab=lab) > outline_contrast(img, mask, lab=lab):
+                    mask = textured
         else:
             mask = clean_mask(_grabcut(img))
         if foreground == "grabcut":

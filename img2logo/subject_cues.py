@@ -3,8 +3,9 @@
 Measurements only; :mod:`img2logo.subject` decides with them. Each works on a
 :class:`~img2logo.loading.LoadedImage` (or its arrays) and a candidate mask:
 
-* :func:`outline_contrast`: how sharply a mask's outline separates colours
-  (across it) against the texture (along it);
+* :func:`outline_contrast`, :func:`texture_lab`, :func:`outline_normals`:
+  how sharply a mask's outline separates colours (across it) against the
+  texture (along it), what it compares given a texture, the outline's normals;
 * :func:`texture_map`, :func:`texture_colour_image`, :func:`texture_step`:
   the local energy of fine detail, a feature image for GrabCut that carries
   it beside CIELAB, and how much a mask's texture differs from that around it;
@@ -14,6 +15,7 @@ Measurements only; :mod:`img2logo.subject` decides with them. Each works on a
   outline;
 * :func:`clean_mask`, :func:`largest_part`, :func:`fill_small_holes`: a
   candidate mask's cleaning (its largest piece, GrabCut's specks filled, smoothed);
+  :func:`mask_box`: the box on which a mask's distance transforms are exact;
 * :func:`working_copy`, :func:`work_scale`, :func:`frame_box`,
   :func:`frame_strip`: the small copy GrabCut and the cues work on, and the
   strip along the image frame that is taken as background.
@@ -59,6 +61,7 @@ def outline_contrast(
     step: float = SUBJECT_CONTRAST_STEP,
     texture: np.ndarray | None = None,
     where: np.ndarray | None = None,
+    lab: np.ndarray | None = None,
 ) -> float:
     """How sharply a mask's outline separates colours (and textures): across over along, unit-free.
 
@@ -69,17 +72,13 @@ def outline_contrast(
     median(along). An object's outline follows an edge (several times the
     texture); a cut through fur or gravel does not (about 2). Given ``where``
     (H, W) bool, only the outline's pixels in it count (one section of it);
-    0 if there are none.
+    0 if there are none. ``lab`` (H, W, C), if given, is the image compared,
+    :func:`texture_lab` of ``texture`` computed once for several masks.
     """
-    from scipy import ndimage
-
     if not mask.any() or mask.all():
         return 0.0
-    if texture is None:
-        lab = img.smooth_lab
-    else:  # colour averaged over the texture's window: the grass's blades are no step, its mean colour is
-        window = FOCUS_WINDOW / work_scale(img)
-        lab = np.dstack([ndimage.gaussian_filter(img.smooth_lab, (window, window, 0)), texture])
+    if lab is None:
+        lab = img.smooth_lab if texture is None else texture_lab(img, texture)
     rows, cols, nx, ny = outline_normals(mask, where)
     if rows.size == 0:
         return 0.0
@@ -99,6 +98,18 @@ def outline_contrast(
     return float(np.median(across) / (np.median(along) + 1e-9))
 
 
+def texture_lab(img: LoadedImage, texture: np.ndarray) -> np.ndarray:
+    """CIELAB averaged over the texture's window, and :func:`texture_map` ``texture``: (H, W, 4) float.
+
+    What :func:`outline_contrast` compares given a texture: the grass's blades
+    are no step, its mean colour is.
+    """
+    from scipy import ndimage
+
+    window = FOCUS_WINDOW / work_scale(img)
+    return np.dstack([ndimage.gaussian_filter(img.smooth_lab, (window, window, 0)), texture])
+
+
 def outline_normals(
     mask: np.ndarray, where: np.ndarray | None = None
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
@@ -110,12 +121,37 @@ def outline_normals(
     """
     from scipy import ndimage
 
+    # Only the mask's box and a margin past the smoothing's reach (8 px) and the gradient's
+    # (1 px) are needed; the distances there are those of the whole image (see mask_box).
+    if not mask.any():
+        empty = np.zeros(0, np.int64)
+        return empty, empty, empty.astype(float), empty.astype(float)
+    box = mask_box(mask, 12)
+    mask = mask[box]
     signed = ndimage.distance_transform_edt(mask) - ndimage.distance_transform_edt(~mask)
     gy, gx = np.gradient(ndimage.gaussian_filter(signed, 2.0))
     edge = mask & ~ndimage.binary_erosion(mask)
-    rows, cols = np.nonzero(edge if where is None else edge & where)
+    rows, cols = np.nonzero(edge if where is None else edge & where[box])
     norm = np.hypot(gx[rows, cols], gy[rows, cols]) + 1e-12
-    return rows, cols, gx[rows, cols] / norm, gy[rows, cols] / norm
+    return rows + box[0].start, cols + box[1].start, gx[rows, cols] / norm, gy[rows, cols] / norm
+
+
+def mask_box(mask: np.ndarray, margin: int) -> tuple[slice, slice]:
+    """The bounding box of a non-empty mask (H, W) bool grown by ``margin`` px, clipped to the image: (rows, cols).
+
+    On this box, the distance transforms of ``mask`` and of ``~mask`` equal
+    the whole image's: every mask pixel is in it, and the pixel nearest to an
+    inside one outside the mask is too (projecting a pixel beyond the box onto
+    the box's 1 px ring brings it nearer and keeps it outside the mask), for
+    any ``margin`` >= 1. Work on the box costs its area instead of the image's.
+    """
+    rows = np.flatnonzero(mask.any(axis=1))
+    cols = np.flatnonzero(mask.any(axis=0))
+    h, w = mask.shape
+    return (
+        slice(max(0, int(rows[0]) - margin), min(h, int(rows[-1]) + margin + 1)),
+        slice(max(0, int(cols[0]) - margin), min(w, int(cols[-1]) + margin + 1)),
+    )
 
 
 def texture_step(img: LoadedImage, texture: np.ndarray, mask: np.ndarray) -> float:

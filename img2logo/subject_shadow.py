@@ -28,6 +28,7 @@ Arrays are indexed (row, column).
 
 from __future__ import annotations
 
+import math
 from functools import partial
 
 import numpy as np
@@ -43,7 +44,7 @@ from .constants import (
     SUBJECT_MIN_CONTRAST,
 )
 from .loading import LoadedImage
-from .subject_cues import clean_mask, outline_contrast, work_scale
+from .subject_cues import clean_mask, mask_box, outline_contrast, work_scale
 
 #: Fewest pixels in the ring and the core for their statistics to mean something.
 _MIN_SAMPLES = 50
@@ -112,9 +113,13 @@ def cast_shadow(img: LoadedImage, mask: np.ndarray) -> np.ndarray | None:
     if not mask.any() or mask.all():
         return None
     scale = work_scale(img)
-    inside = ndimage.distance_transform_edt(mask)
-    outside = ndimage.distance_transform_edt(~mask)
-    ring = (outside > SHADOW_RING[0] / scale) & (outside <= SHADOW_RING[1] / scale)
+    # The distances on the mask's box grown past the ring are the whole image's (mask_box);
+    # beyond it a pixel is farther than the ring and inside nothing.
+    near = mask_box(mask, math.ceil(SHADOW_RING[1] / scale) + 1)
+    inside, ring = np.zeros(mask.shape), np.zeros(mask.shape, bool)
+    inside[near] = ndimage.distance_transform_edt(mask[near])
+    outside = ndimage.distance_transform_edt(~mask[near])
+    ring[near] = (outside > SHADOW_RING[0] / scale) & (outside <= SHADOW_RING[1] / scale)
     core = inside > SHADOW_CORE / scale
     if ring.sum() < _MIN_SAMPLES or core.sum() < _MIN_SAMPLES:
         return None

@@ -115,6 +115,28 @@ def test_outline_contrast_tells_an_edge_from_a_cut_through_texture():
     assert outline_contrast(img, cut) < 2.0
 
 
+def test_mask_box_keeps_the_distance_transforms_and_the_outline_normals_of_the_whole_image():
+    from img2logo.subject_cues import mask_box, outline_normals
+
+    rng = np.random.default_rng(3)
+    for shape, centre in (((120, 160), (60, 80)), ((120, 160), (5, 150)), ((90, 90), (45, 45))):
+        yy, xx = np.mgrid[0 : shape[0], 0 : shape[1]]
+        mask = np.hypot(yy - centre[0], (xx - centre[1]) * 0.7) < 30 + 6 * rng.random(shape)  # a ragged blob
+        box = mask_box(mask, 1)
+        assert mask[box].sum() == mask.sum()
+        assert np.array_equal(ndimage.distance_transform_edt(mask[box]), ndimage.distance_transform_edt(mask)[box])
+        assert np.array_equal(ndimage.distance_transform_edt(~mask[box]), ndimage.distance_transform_edt(~mask)[box])
+        # the normals on the box are those computed on the whole image
+        signed = ndimage.distance_transform_edt(mask) - ndimage.distance_transform_edt(~mask)
+        gy, gx = np.gradient(ndimage.gaussian_filter(signed, 2.0))
+        rows, cols, nx, ny = outline_normals(mask)
+        norm = np.hypot(gx[rows, cols], gy[rows, cols]) + 1e-12
+        assert np.array_equal(nx, gx[rows, cols] / norm) and np.array_equal(ny, gy[rows, cols] / norm)
+        assert np.array_equal(np.sort(rows * shape[1] + cols), np.flatnonzero(mask & ~ndimage.binary_erosion(mask)))
+    empty = outline_normals(np.zeros((10, 10), bool))
+    assert all(a.size == 0 for a in empty)
+
+
 def close_up(size=(240, 320), seed=0, soft_background=True):
     """A close-up in focus that runs off the picture: an RGB float image and its true mask.
 
