@@ -30,6 +30,60 @@ _RING = ((-1, 0), (-1, 1), (0, 1), (1, 1), (1, 0), (1, -1), (0, -1), (-1, -1))
 _EIGHT = np.ones((3, 3), dtype=bool)
 
 
+def _load_zhang_suen():
+    """scikit-image's compiled Zhang-Suen thinning, loaded without its package.
+
+    ``skimage.morphology`` imports all its submodules on import, and with them
+    ``scipy.spatial`` (about 0.1 s of CPU a run); the thinning itself is one
+    compiled module of it that needs only numpy. Loading that module by its file
+    runs the very code :func:`skimage.morphology.skeletonize` runs for a 2-D
+    image, so the skeletons are the same bit for bit. Should the module move in
+    another scikit-image, the public function is used.
+    """
+    import importlib.util
+    from pathlib import Path
+
+    try:
+        spec = importlib.util.find_spec("skimage")
+        if spec is None or spec.origin is None:
+            raise ImportError("skimage not found")
+        folder = Path(spec.origin).parent / "morphology"
+        name = "skimage.morphology._skeletonize_various_cy"
+        found = sorted(folder.glob("_skeletonize_various_cy.*"))
+        found = [f for f in found if f.suffix in (".so", ".pyd")]
+        if not found:
+            raise ImportError(f"no compiled {name} in {folder}")
+        mod_spec = importlib.util.spec_from_file_location(name, found[0])
+        if mod_spec is None or mod_spec.loader is None:
+            raise ImportError(f"cannot load {found[0]}")
+        module = importlib.util.module_from_spec(mod_spec)
+        mod_spec.loader.exec_module(module)
+        return module._fast_skeletonize
+    except (ImportError, OSError, AttributeError):
+        from skimage.morphology import skeletonize as public
+
+        return public
+
+
+_ZHANG_SUEN = None
+
+
+def skeletonize(mask: np.ndarray) -> np.ndarray:
+    """1-px skeleton of a 2-D binary ``mask`` (Zhang-Suen thinning), bool (H, W).
+
+    The same pixels as ``skimage.morphology.skeletonize(mask)`` (its default,
+    Zhang-Suen, method for 2-D images), without importing ``skimage.morphology``
+    (see :func:`_load_zhang_suen`).
+    """
+    global _ZHANG_SUEN
+    if _ZHANG_SUEN is None:
+        _ZHANG_SUEN = _load_zhang_suen()
+    image = np.asarray(mask).astype(bool, order="C", copy=False)
+    if image.ndim != 2:
+        raise ValueError(f"skeletonize needs a 2-D mask, got shape {image.shape}")
+    return np.asarray(_ZHANG_SUEN(image), dtype=bool)
+
+
 @dataclass
 class PixelGraph:
     """Mutable working graph of a skeleton (private).
@@ -408,7 +462,6 @@ def join_line_ends(skel: np.ndarray, distance: float = LINE_JOIN_DISTANCE) -> np
     Ends are taken in raster order; a new run is itself a line for the ends
     after it.
     """
-    from scipy.spatial import cKDTree
     from skimage.draw import line
 
     out = np.asarray(skel, dtype=bool).copy()
@@ -417,23 +470,31 @@ def join_line_ends(skel: np.ndarray, distance: float = LINE_JOIN_DISTANCE) -> np
     ends = np.argwhere(out & (classify(out)[1] == 1))
     if len(ends) == 0:
         return out
-    pixels = np.argwhere(out)
-    tree = cKDTree(pixels)
+    first = out.copy()  # the line pixels searched: those of the map as given
     near_steps, reach = math.ceil(1.5 * distance), math.ceil(3.0 * distance)
     h, w = out.shape
+    tie_break = None
     for r, c in ends:
         end = (int(r), int(c))
         if not out[end]:
             continue
         own = _walk(out, end, near_steps)
-        best, best_d = None, math.inf
-        for k in tree.query_ball_point((r, c), distance):
-            q = (int(pixels[k][0]), int(pixels[k][1]))
+        best, best_d, tied = None, math.inf, False
+        for q in _pixels_within(first, end, distance):
             if q in own or not out[q]:
                 continue
-            d = math.hypot(q[0] - r, q[1] - c)
+            d = math.hypot(q[0] - end[0], q[1] - end[1])
             if d < best_d:
-                best, best_d = q, d
+                best, best_d, tied = q, d, False
+            elif d == best_d:
+                tied = True
+        if tied:
+            # Two nearest pixels at the same distance: the one a k-d tree of the
+            # line pixels lists first, as this function has always chosen (the
+            # tree loads scipy.spatial, 0.1 s of CPU, so only when needed).
+            if tie_break is None:
+                tie_break = _TreeOrder(first)
+            best, best_d = tie_break.nearest(end, distance, own, out)
         if best is None or best_d <= 1.5:
             continue
         if best in _walk(out, end, reach):
@@ -445,6 +506,40 @@ def join_line_ends(skel: np.ndarray, distance: float = LINE_JOIN_DISTANCE) -> np
             rr, cc = line(end[0], end[1], best[0], best[1])
             out[np.clip(rr, 0, h - 1), np.clip(cc, 0, w - 1)] = True
     return out
+
+
+def _pixels_within(pixels: np.ndarray, at: tuple[int, int], distance: float) -> list[tuple[int, int]]:
+    """The set pixels of ``pixels`` (H, W) at most ``distance`` px from ``at`` (row, col)."""
+    reach = math.floor(distance)
+    r0, c0 = max(at[0] - reach, 0), max(at[1] - reach, 0)
+    rows, cols = np.nonzero(pixels[r0 : at[0] + reach + 1, c0 : at[1] + reach + 1])
+    rows += r0
+    cols += c0
+    inside = (rows - at[0]) ** 2 + (cols - at[1]) ** 2 <= distance * distance
+    return list(zip(rows[inside].tolist(), cols[inside].tolist(), strict=True))
+
+
+class _TreeOrder:
+    """The nearest line pixel with ties broken in a k-d tree's order (scipy's cKDTree)."""
+
+    def __init__(self, pixels: np.ndarray) -> None:
+        from scipy.spatial import cKDTree
+
+        self.points = np.argwhere(pixels)
+        self.tree = cKDTree(self.points)
+
+    def nearest(
+        self, end: tuple[int, int], distance: float, own: set[tuple[int, int]], current: np.ndarray
+    ) -> tuple[tuple[int, int] | None, float]:
+        best, best_d = None, math.inf
+        for k in self.tree.query_ball_point(end, distance):
+            q = (int(self.points[k][0]), int(self.points[k][1]))
+            if q in own or not current[q]:
+                continue
+            d = math.hypot(q[0] - end[0], q[1] - end[1])
+            if d < best_d:
+                best, best_d = q, d
+        return best, best_d
 
 
 def _branch(skel: np.ndarray, end: tuple[int, int]) -> list[tuple[int, int]] | None:
