@@ -172,6 +172,8 @@ def _palette_regions(
     small fill that JPEG ringing leaves without a flat pixel (an eye, a horn's
     tip). They seed entries too.
     """
+    from ._skeleton import label
+
     counts, lab_means = label_means(areas, lab)
     seeds = np.flatnonzero(counts >= seed_area)
     if len(seeds) == 0:
@@ -209,12 +211,12 @@ def _palette_regions(
         lonely = ~near.any(axis=1)
         cost[lonely] = ((colours[lonely, None, :] - pal[None]) ** 2).sum(axis=2)
         index[rest] = np.argmin(cost, axis=1)
-    regions = _label(index, connectivity=1, background=-1)
+    regions = label(index, connectivity=1, background=-1)
     # A 1 px line drawn without anti-aliasing is a string of pixels touching at
     # their corners: tiny 4-connected pieces that are one 8-connected region.
     tiny = np.bincount(regions.ravel())[regions] < CLIPART_MIN_REGION_AREA
     if tiny.any():
-        joined = _label(np.where(tiny, index, -1), connectivity=2, background=-1)
+        joined = label(np.where(tiny, index, -1), connectivity=2, background=-1)
         regions = np.where(tiny, joined + regions.max() + 1, regions)
     return _relabel(regions), ~rest
 
@@ -262,11 +264,13 @@ def _unexplained_seeds(
     ``CLIPART_FILL_SPREAD`` times what lies within ``CLIPART_RIM_RADIUS`` px of
     them (thin strokes that cross, not a fill).
     """
+    from ._skeleton import label
+
     if not compressed:
         own = _unexplained(seed_of, areas_rgb, rgb, lab, contrast)
         if not own.any():
             return None
-        groups = _label(own, connectivity=2)
+        groups = label(own, connectivity=2)
         small = np.bincount(groups.ravel()) < seed_area
         small[0] = False
         groups[small[groups]] = 0
@@ -282,12 +286,12 @@ def _unexplained_seeds(
         return None
     # A small fill's unexplained pixels are its inside and its rim, near its core; a core in a
     # network of thin strokes (where two 3 px lines of a JPEG drawing cross) is no small fill.
-    parts = _label(own, connectivity=2)
+    parts = label(own, connectivity=2)
     size = 2 * CLIPART_RIM_RADIUS + 1
     near = (cv2.dilate(core.astype(np.uint8), np.ones((size, size), np.uint8)) > 0) & own
     spread = np.bincount(parts.ravel()) > CLIPART_FILL_SPREAD * np.bincount(parts[near], minlength=parts.max() + 1)
     core &= ~spread[parts]
-    groups = _label(core, connectivity=2)
+    groups = label(core, connectivity=2)
     small = np.bincount(groups.ravel()) < CLIPART_SEED_AREA
     small[0] = False
     groups[small[groups]] = 0
@@ -394,7 +398,9 @@ def _flat_areas(lab: np.ndarray, link: float) -> np.ndarray:
     # Adjacent flat pixels are within the link of each other by definition, so the
     # flat areas are the 4-connected components of the flat mask; every other pixel
     # is an area of its own (labels after the components').
-    labels = _label(flat, connectivity=1)
+    from ._skeleton import label
+
+    labels = label(flat, connectivity=1)
     n = int(labels.max())
     rest = ~flat
     labels[rest] = n + 1 + np.arange(int(rest.sum()))
@@ -425,9 +431,7 @@ def thin_regions(regions: np.ndarray) -> np.ndarray:
     ndarray of int
         The labels, sorted.
     """
-    from scipy import ndimage
-
-    from ._skeleton import skeletonize
+    from ._skeleton import bounding_slices, distance_to_background, skeletonize
 
     # The distance to the nearest other region: pad with -1 so that the image
     # frame is an edge too.
@@ -437,10 +441,10 @@ def thin_regions(regions: np.ndarray) -> np.ndarray:
     edge[:, 1:] |= padded[:, :-1] != padded[:, 1:]
     edge[:-1] |= padded[:-1] != padded[1:]
     edge[1:] |= padded[:-1] != padded[1:]
-    dist = ndimage.distance_transform_edt(~edge)[1:-1, 1:-1] + 0.5
+    dist = distance_to_background(~edge)[1:-1, 1:-1] + 0.5
     out = []
     n = int(regions.max()) + 1
-    slices = ndimage.find_objects(regions + 1)
+    slices = bounding_slices(regions + 1)
     for label in range(1, n):
         sl = slices[label] if label < len(slices) else None
         if sl is None:
@@ -532,46 +536,6 @@ def _merge_small_regions(regions: np.ndarray, min_area: int, also: np.ndarray | 
             target[r] = t
         regions = target[regions]
     return _relabel(regions)
-
-
-def _label(image: np.ndarray, connectivity: int, background: int = 0) -> np.ndarray:
-    """Connected components of equal values, numbered 1.. in raster order, int (H, W).
-
-    What ``skimage.measure.label(image, background=background,
-    connectivity=connectivity)`` returns (``connectivity`` 1: 4-neighbours, 2: 8;
-    background pixels 0; int32 for a bool image, int64 otherwise), by OpenCV's
-    labelling of each value's mask: ``skimage.measure.label`` imports
-    ``skimage.morphology`` and ``scipy.spatial`` (about 0.1 s of CPU a run).
-    A component is numbered by its first pixel in raster order, as scikit-image does.
-    """
-    import cv2
-
-    out_type = np.int32 if image.dtype == bool else np.int64
-    values = [v for v in np.unique(image) if v != background]
-    labels = np.zeros(image.shape, dtype=np.int64)
-    tops: list[np.ndarray] = [np.zeros(1, dtype=np.int64)]
-    n = 0
-    for v in values:
-        mask = (image == v).astype(np.uint8)
-        count, parts, stats, _ = cv2.connectedComponentsWithStats(mask, connectivity=4 if connectivity == 1 else 8)
-        if count <= 1:
-            continue
-        labels[parts > 0] = parts[parts > 0] + n
-        tops.append(stats[1:, cv2.CC_STAT_TOP].astype(np.int64))
-        n += count - 1
-    if n == 0:
-        return labels.astype(out_type)
-    # A component's first raster pixel lies in its top row: among the pixels of
-    # their components' top rows, the first of each label in raster order.
-    top = np.concatenate(tops)
-    flat = labels.ravel()
-    rows = np.repeat(np.arange(image.shape[0]), image.shape[1])
-    candidates = np.flatnonzero((flat > 0) & (rows == top[flat]))
-    first_label, first_at = np.unique(flat[candidates], return_index=True)
-    order = np.empty(n + 1, dtype=np.int64)
-    order[0] = 0
-    order[first_label[np.argsort(candidates[first_at], kind="stable")]] = np.arange(1, n + 1)
-    return order[labels].astype(out_type)
 
 
 def _relabel(regions: np.ndarray) -> np.ndarray:

@@ -201,7 +201,6 @@ def _rim_regions(regions: np.ndarray, rgb: np.ndarray, means: np.ndarray, paper:
     both stay colours of their own. As soon as one region is neither ink nor
     such a rim the image has a second colour and the rest is not looked at.
     """
-    from scipy import ndimage
     from skimage.color import rgb2lab
 
     n = len(means)
@@ -222,6 +221,8 @@ def _rim_regions(regions: np.ndarray, rgb: np.ndarray, means: np.ndarray, paper:
     blends = rgb2lab((paper_rgb[None] + t[:, None] * (ink_rgb - paper_rgb)[None])[:, None, :])[:, 0, :]
     if any(np.min(np.linalg.norm(blends - means[r], axis=1)) > INK_COLOUR_SPREAD for r in others):
         return out  # a colour of its own: no rim makes this one ink
+    from scipy import ndimage
+
     slices = ndimage.find_objects(regions + 1)
     eight = np.ones((3, 3), dtype=bool)
     ink_lab = rgb2lab(ink_rgb[None, None, :])[0, 0]
