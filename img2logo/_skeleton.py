@@ -100,35 +100,35 @@ def label(image: np.ndarray, connectivity: int, background: int = 0) -> np.ndarr
     out_type = np.int32 if image.dtype == bool else np.int64
     eight = 4 if connectivity == 1 else 8
     if image.dtype == bool and background == 0:
-        n, labels, stats, _ = cv2.connectedComponentsWithStats(
-            np.ascontiguousarray(image).view(np.uint8), connectivity=eight
-        )
+        n, labels = cv2.connectedComponents(np.ascontiguousarray(image).view(np.uint8), connectivity=eight)
         n -= 1
-        top = stats[:, cv2.CC_STAT_TOP]
     else:
+        lo, hi = int(image.min()), int(image.max())
+        if hi - lo < 65536:  # small labels (a palette's entries): counted, not sorted
+            values = lo + np.flatnonzero(np.bincount((image - lo).ravel(), minlength=hi - lo + 1))
+        else:
+            values = np.unique(image)
+        values = values[values != background]
         labels = np.zeros(image.shape, dtype=np.int32)
-        tops = [np.zeros(1, dtype=np.int32)]
+        offset = np.zeros(image.shape, dtype=np.int32)
         n = 0
-        for v in np.unique(image):
-            if v == background:
-                continue
-            mask = (image == v).view(np.uint8)
-            count, parts, stats, _ = cv2.connectedComponentsWithStats(mask, connectivity=eight)
-            labels += np.where(parts > 0, parts + n, 0).astype(np.int32)
-            tops.append(stats[1:, cv2.CC_STAT_TOP])
+        for v in values:
+            mask = image == v
+            count, parts = cv2.connectedComponents(mask.view(np.uint8), connectivity=eight)
+            labels += parts  # the masks are disjoint
+            offset[mask] = n
             n += count - 1
-        top = np.concatenate(tops)
+        labels += offset
     if n == 0:
         return labels.astype(out_type)
-    # OpenCV numbers in its own scan order (blocks of 2 x 2 px). A component's
-    # first raster pixel lies in its top row: scan only the rows that are a top.
-    rows = np.unique(top[1:])
-    band = labels[rows]
-    first = (band > 0) & (rows[:, None] == top[band])
-    first_label, first_at = np.unique(band[first], return_index=True)
-    order = np.empty(n + 1, dtype=np.int32)
-    order[0] = 0
-    order[first_label[np.argsort(first_at, kind="stable")]] = np.arange(1, n + 1, dtype=np.int32)
+    # OpenCV numbers in its own scan order (blocks of 2 x 2 px): renumber by
+    # each component's first pixel in raster order.
+    flat = labels.ravel()
+    at = np.flatnonzero(flat)
+    first = np.full(n + 1, flat.size, dtype=np.int64)
+    np.minimum.at(first, flat[at], at)
+    order = np.zeros(n + 1, dtype=np.int32)
+    order[1 + np.argsort(first[1:], kind="stable")] = np.arange(1, n + 1, dtype=np.int32)
     if not np.array_equal(order, np.arange(n + 1)):
         labels = order[labels]
     return labels.astype(out_type)
