@@ -16,6 +16,7 @@ Touching node pixels are clustered into one node.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -30,7 +31,7 @@ _RING = ((-1, 0), (-1, 1), (0, 1), (1, 1), (1, 0), (1, -1), (0, -1), (-1, -1))
 _EIGHT = np.ones((3, 3), dtype=bool)
 
 
-def _load_zhang_suen():
+def _load_zhang_suen() -> Callable[[np.ndarray], np.ndarray]:
     """scikit-image's compiled Zhang-Suen thinning, loaded without its package.
 
     ``skimage.morphology`` imports all its submodules on import, and with them
@@ -40,17 +41,24 @@ def _load_zhang_suen():
     image, so the skeletons are the same bit for bit. Should the module move in
     another scikit-image, the public function is used.
     """
+    import importlib.machinery
     import importlib.util
+    import sys
     from pathlib import Path
 
+    name = "skimage.morphology._skeletonize_various_cy"
     try:
+        if name in sys.modules:  # skimage.morphology is loaded already (a photo's run)
+            return sys.modules[name]._fast_skeletonize
         spec = importlib.util.find_spec("skimage")
         if spec is None or spec.origin is None:
             raise ImportError("skimage not found")
         folder = Path(spec.origin).parent / "morphology"
-        name = "skimage.morphology._skeletonize_various_cy"
-        found = sorted(folder.glob("_skeletonize_various_cy.*"))
-        found = [f for f in found if f.suffix in (".so", ".pyd")]
+        found = [
+            folder / f"_skeletonize_various_cy{suffix}"
+            for suffix in importlib.machinery.EXTENSION_SUFFIXES
+            if (folder / f"_skeletonize_various_cy{suffix}").is_file()
+        ]
         if not found:
             raise ImportError(f"no compiled {name} in {folder}")
         mod_spec = importlib.util.spec_from_file_location(name, found[0])
@@ -65,7 +73,7 @@ def _load_zhang_suen():
         return public
 
 
-_ZHANG_SUEN = None
+_ZHANG_SUEN: Callable[[np.ndarray], np.ndarray] | None = None
 
 
 def skeletonize(mask: np.ndarray) -> np.ndarray:
@@ -123,7 +131,7 @@ def label(image: np.ndarray, connectivity: int, background: int = 0) -> np.ndarr
         return labels.astype(out_type)
     # OpenCV numbers in its own scan order (blocks of 2 x 2 px): renumber by
     # each component's first pixel in raster order.
-    flat = labels.ravel()
+    flat = np.asarray(labels, dtype=np.int32).ravel()
     at = np.flatnonzero(flat)
     first = np.full(n + 1, flat.size, dtype=np.int64)
     np.minimum.at(first, flat[at], at)
