@@ -16,10 +16,11 @@ Touching node pixels are clustered into one node.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy import ndimage, sparse
+from scipy import sparse
 from scipy.sparse import csgraph
 
 from .constants import LINE_JOIN_DISTANCE
@@ -28,6 +29,161 @@ from .geometry import polyline_length
 # The 8 neighbours in circular order: N, NE, E, SE, S, SW, W, NW (row, column).
 _RING = ((-1, 0), (-1, 1), (0, 1), (1, 1), (1, 0), (1, -1), (0, -1), (-1, -1))
 _EIGHT = np.ones((3, 3), dtype=bool)
+
+
+def _load_zhang_suen() -> Callable[[np.ndarray], np.ndarray]:
+    """scikit-image's compiled Zhang-Suen thinning, loaded without its package.
+
+    ``skimage.morphology`` imports all its submodules on import, and with them
+    ``scipy.spatial`` (about 0.1 s of CPU a run); the thinning itself is one
+    compiled module of it that needs only numpy. Loading that module by its file
+    runs the very code :func:`skimage.morphology.skeletonize` runs for a 2-D
+    image, so the skeletons are the same bit for bit. Should the module move in
+    another scikit-image, the public function is used.
+    """
+    import importlib.machinery
+    import importlib.util
+    import sys
+    from pathlib import Path
+
+    name = "skimage.morphology._skeletonize_various_cy"
+    try:
+        if name in sys.modules:  # skimage.morphology is loaded already (a photo's run)
+            return sys.modules[name]._fast_skeletonize
+        spec = importlib.util.find_spec("skimage")
+        if spec is None or spec.origin is None:
+            raise ImportError("skimage not found")
+        folder = Path(spec.origin).parent / "morphology"
+        found = [
+            folder / f"_skeletonize_various_cy{suffix}"
+            for suffix in importlib.machinery.EXTENSION_SUFFIXES
+            if (folder / f"_skeletonize_various_cy{suffix}").is_file()
+        ]
+        if not found:
+            raise ImportError(f"no compiled {name} in {folder}")
+        mod_spec = importlib.util.spec_from_file_location(name, found[0])
+        if mod_spec is None or mod_spec.loader is None:
+            raise ImportError(f"cannot load {found[0]}")
+        module = importlib.util.module_from_spec(mod_spec)
+        mod_spec.loader.exec_module(module)
+        return module._fast_skeletonize
+    except (ImportError, OSError, AttributeError):
+        from skimage.morphology import skeletonize as public
+
+        return public
+
+
+_ZHANG_SUEN: Callable[[np.ndarray], np.ndarray] | None = None
+
+
+def skeletonize(mask: np.ndarray) -> np.ndarray:
+    """1-px skeleton of a 2-D binary ``mask`` (Zhang-Suen thinning), bool (H, W).
+
+    The same pixels as ``skimage.morphology.skeletonize(mask)`` (its default,
+    Zhang-Suen, method for 2-D images), without importing ``skimage.morphology``
+    (see :func:`_load_zhang_suen`).
+    """
+    global _ZHANG_SUEN
+    if _ZHANG_SUEN is None:
+        _ZHANG_SUEN = _load_zhang_suen()
+    image = np.asarray(mask).astype(bool, order="C", copy=False)
+    if image.ndim != 2:
+        raise ValueError(f"skeletonize needs a 2-D mask, got shape {image.shape}")
+    return np.asarray(_ZHANG_SUEN(image), dtype=bool)
+
+
+def label(image: np.ndarray, connectivity: int, background: int = 0) -> np.ndarray:
+    """Connected components of equal values, numbered 1.. in raster order, int (H, W).
+
+    What ``skimage.measure.label(image, background=background,
+    connectivity=connectivity)`` returns (``connectivity`` 1: 4-neighbours, 2: 8;
+    background pixels 0; int32 for a bool image, int64 otherwise), by OpenCV's
+    labelling of each value's mask: ``skimage.measure.label`` imports
+    ``skimage.morphology`` and ``scipy.spatial`` (about 0.1 s of CPU a run).
+    A component is numbered by its first pixel in raster order, as scikit-image
+    does (and ``scipy.ndimage.label``, whose int32 labels a bool image gets too).
+    """
+    import cv2
+
+    out_type = np.int32 if image.dtype == bool else np.int64
+    eight = 4 if connectivity == 1 else 8
+    if image.dtype == bool and background == 0:
+        n, labels = cv2.connectedComponents(np.ascontiguousarray(image).view(np.uint8), connectivity=eight)
+        n -= 1
+    else:
+        lo, hi = int(image.min()), int(image.max())
+        if hi - lo < 65536:  # small labels (a palette's entries): counted, not sorted
+            values = lo + np.flatnonzero(np.bincount((image - lo).ravel(), minlength=hi - lo + 1))
+        else:
+            values = np.unique(image)
+        values = values[values != background]
+        labels = np.zeros(image.shape, dtype=np.int32)
+        offset = np.zeros(image.shape, dtype=np.int32)
+        n = 0
+        for v in values:
+            mask = image == v
+            count, parts = cv2.connectedComponents(mask.view(np.uint8), connectivity=eight)
+            labels += parts  # the masks are disjoint
+            offset[mask] = n
+            n += count - 1
+        labels += offset
+    if n == 0:
+        return labels.astype(out_type)
+    # OpenCV numbers in its own scan order (blocks of 2 x 2 px): renumber by
+    # each component's first pixel in raster order.
+    flat = np.asarray(labels, dtype=np.int32).ravel()
+    at = np.flatnonzero(flat)
+    first = np.full(n + 1, flat.size, dtype=np.int64)
+    np.minimum.at(first, flat[at], at)
+    order = np.zeros(n + 1, dtype=np.int32)
+    order[1 + np.argsort(first[1:], kind="stable")] = np.arange(1, n + 1, dtype=np.int32)
+    if not np.array_equal(order, np.arange(n + 1)):
+        labels = order[labels]
+    return labels.astype(out_type)
+
+
+def distance_to_background(mask: np.ndarray) -> np.ndarray:
+    """Euclidean distance of every pixel of ``mask`` to the nearest pixel outside it, px, float64 (H, W).
+
+    ``scipy.ndimage.distance_transform_edt(mask)``, to the bit: OpenCV's exact
+    transform (``DIST_MASK_PRECISE``) returns float32, whose square rounds back to
+    the integer squared distance (below 2**22 px^2, well within float32's 24-bit
+    mantissa), and its float64 square root is what scipy computes. Importing
+    ``scipy.ndimage`` costs about 0.06 s of CPU a run. ``mask`` must hold a pixel
+    outside it (as every caller's does: an image frame or a padding).
+    """
+    import cv2
+
+    inside = np.asarray(mask, dtype=bool)
+    if inside.all():
+        raise ValueError("distance_to_background needs a background pixel")
+    root = cv2.distanceTransform(inside.astype(np.uint8), cv2.DIST_L2, cv2.DIST_MASK_PRECISE)
+    squared = np.rint(root.astype(np.float64) ** 2)
+    return np.sqrt(squared)
+
+
+def bounding_slices(labels: np.ndarray) -> list[tuple[slice, slice] | None]:
+    """``scipy.ndimage.find_objects(labels)``: entry ``i`` bounds the pixels labelled ``i + 1``, None where none are."""
+    flat = np.asarray(labels).ravel()
+    n = int(flat.max()) if flat.size else 0
+    if n <= 0:
+        return []
+    h, w = labels.shape
+    at = np.flatnonzero(flat > 0)
+    lab = flat[at]
+    rows, cols = np.divmod(at, w)
+    top = np.full(n + 1, h)
+    bottom = np.full(n + 1, -1)
+    left = np.full(n + 1, w)
+    right = np.full(n + 1, -1)
+    np.minimum.at(top, lab, rows)
+    np.maximum.at(bottom, lab, rows)
+    np.minimum.at(left, lab, cols)
+    np.maximum.at(right, lab, cols)
+    return [
+        (slice(int(top[i]), int(bottom[i]) + 1), slice(int(left[i]), int(right[i]) + 1)) if bottom[i] >= 0 else None
+        for i in range(1, n + 1)
+    ]
 
 
 @dataclass
@@ -93,11 +249,14 @@ def trace(skel: np.ndarray) -> PixelGraph:
     skel = skel & (count > 0)  # isolated pixels are specks, not lines
     # A junction's node takes in its line neighbours too: otherwise the branches
     # stay 8-connected to each other around a single junction pixel.
-    branch = ndimage.binary_dilation(skel & (crossings >= 3), structure=_EIGHT)
+    import cv2
+
+    branch = cv2.dilate((skel & (crossings >= 3)).astype(np.uint8), _EIGHT.astype(np.uint8)) > 0
     node_mask = skel & ((crossings == 1) | branch)
     graph = PixelGraph()
 
-    node_lab, n_nodes = ndimage.label(node_mask, structure=_EIGHT)
+    node_lab = label(node_mask, connectivity=2)
+    n_nodes = int(node_lab.max())
     if n_nodes:
         rr, cc = np.nonzero(node_lab)
         order = np.argsort(node_lab[rr, cc], kind="stable")
@@ -112,7 +271,8 @@ def trace(skel: np.ndarray) -> PixelGraph:
         return graph
     index = np.full(skel.shape, -1, dtype=np.int64)
     index[rows, cols] = np.arange(len(rows))
-    comp_lab, n_comp = ndimage.label(chain_mask, structure=_EIGHT)
+    comp_lab = label(chain_mask, connectivity=2)
+    n_comp = int(comp_lab.max())
     comp_of = comp_lab[rows, cols] - 1
 
     # Weighted 8-neighbour adjacency of chain pixels, and their contacts with nodes.
@@ -408,7 +568,6 @@ def join_line_ends(skel: np.ndarray, distance: float = LINE_JOIN_DISTANCE) -> np
     Ends are taken in raster order; a new run is itself a line for the ends
     after it.
     """
-    from scipy.spatial import cKDTree
     from skimage.draw import line
 
     out = np.asarray(skel, dtype=bool).copy()
@@ -417,23 +576,31 @@ def join_line_ends(skel: np.ndarray, distance: float = LINE_JOIN_DISTANCE) -> np
     ends = np.argwhere(out & (classify(out)[1] == 1))
     if len(ends) == 0:
         return out
-    pixels = np.argwhere(out)
-    tree = cKDTree(pixels)
+    first = out.copy()  # the line pixels searched: those of the map as given
     near_steps, reach = math.ceil(1.5 * distance), math.ceil(3.0 * distance)
     h, w = out.shape
+    tie_break = None
     for r, c in ends:
         end = (int(r), int(c))
         if not out[end]:
             continue
         own = _walk(out, end, near_steps)
-        best, best_d = None, math.inf
-        for k in tree.query_ball_point((r, c), distance):
-            q = (int(pixels[k][0]), int(pixels[k][1]))
+        best, best_d, tied = None, math.inf, False
+        for q in _pixels_within(first, end, distance):
             if q in own or not out[q]:
                 continue
-            d = math.hypot(q[0] - r, q[1] - c)
+            d = math.hypot(q[0] - end[0], q[1] - end[1])
             if d < best_d:
-                best, best_d = q, d
+                best, best_d, tied = q, d, False
+            elif d == best_d:
+                tied = True
+        if tied:
+            # Two nearest pixels at the same distance: the one a k-d tree of the
+            # line pixels lists first, as this function has always chosen (the
+            # tree loads scipy.spatial, 0.1 s of CPU, so only when needed).
+            if tie_break is None:
+                tie_break = _TreeOrder(first)
+            best, best_d = tie_break.nearest(end, distance, own, out)
         if best is None or best_d <= 1.5:
             continue
         if best in _walk(out, end, reach):
@@ -445,6 +612,40 @@ def join_line_ends(skel: np.ndarray, distance: float = LINE_JOIN_DISTANCE) -> np
             rr, cc = line(end[0], end[1], best[0], best[1])
             out[np.clip(rr, 0, h - 1), np.clip(cc, 0, w - 1)] = True
     return out
+
+
+def _pixels_within(pixels: np.ndarray, at: tuple[int, int], distance: float) -> list[tuple[int, int]]:
+    """The set pixels of ``pixels`` (H, W) at most ``distance`` px from ``at`` (row, col)."""
+    reach = math.floor(distance)
+    r0, c0 = max(at[0] - reach, 0), max(at[1] - reach, 0)
+    rows, cols = np.nonzero(pixels[r0 : at[0] + reach + 1, c0 : at[1] + reach + 1])
+    rows += r0
+    cols += c0
+    inside = (rows - at[0]) ** 2 + (cols - at[1]) ** 2 <= distance * distance
+    return list(zip(rows[inside].tolist(), cols[inside].tolist(), strict=True))
+
+
+class _TreeOrder:
+    """The nearest line pixel with ties broken in a k-d tree's order (scipy's cKDTree)."""
+
+    def __init__(self, pixels: np.ndarray) -> None:
+        from scipy.spatial import cKDTree
+
+        self.points = np.argwhere(pixels)
+        self.tree = cKDTree(self.points)
+
+    def nearest(
+        self, end: tuple[int, int], distance: float, own: set[tuple[int, int]], current: np.ndarray
+    ) -> tuple[tuple[int, int] | None, float]:
+        best, best_d = None, math.inf
+        for k in self.tree.query_ball_point(end, distance):
+            q = (int(self.points[k][0]), int(self.points[k][1]))
+            if q in own or not current[q]:
+                continue
+            d = math.hypot(q[0] - end[0], q[1] - end[1])
+            if d < best_d:
+                best, best_d = q, d
+        return best, best_d
 
 
 def _branch(skel: np.ndarray, end: tuple[int, int]) -> list[tuple[int, int]] | None:

@@ -172,7 +172,7 @@ def _palette_regions(
     small fill that JPEG ringing leaves without a flat pixel (an eye, a horn's
     tip). They seed entries too.
     """
-    from skimage.measure import label
+    from ._skeleton import label
 
     counts, lab_means = label_means(areas, lab)
     seeds = np.flatnonzero(counts >= seed_area)
@@ -211,12 +211,12 @@ def _palette_regions(
         lonely = ~near.any(axis=1)
         cost[lonely] = ((colours[lonely, None, :] - pal[None]) ** 2).sum(axis=2)
         index[rest] = np.argmin(cost, axis=1)
-    regions = label(index, background=-1, connectivity=1)
+    regions = label(index, connectivity=1, background=-1)
     # A 1 px line drawn without anti-aliasing is a string of pixels touching at
     # their corners: tiny 4-connected pieces that are one 8-connected region.
     tiny = np.bincount(regions.ravel())[regions] < CLIPART_MIN_REGION_AREA
     if tiny.any():
-        joined = label(np.where(tiny, index, -1), background=-1, connectivity=2)
+        joined = label(np.where(tiny, index, -1), connectivity=2, background=-1)
         regions = np.where(tiny, joined + regions.max() + 1, regions)
     return _relabel(regions), ~rest
 
@@ -264,7 +264,7 @@ def _unexplained_seeds(
     ``CLIPART_FILL_SPREAD`` times what lies within ``CLIPART_RIM_RADIUS`` px of
     them (thin strokes that cross, not a fill).
     """
-    from skimage.measure import label
+    from ._skeleton import label
 
     if not compressed:
         own = _unexplained(seed_of, areas_rgb, rgb, lab, contrast)
@@ -398,7 +398,7 @@ def _flat_areas(lab: np.ndarray, link: float) -> np.ndarray:
     # Adjacent flat pixels are within the link of each other by definition, so the
     # flat areas are the 4-connected components of the flat mask; every other pixel
     # is an area of its own (labels after the components').
-    from skimage.measure import label
+    from ._skeleton import label
 
     labels = label(flat, connectivity=1)
     n = int(labels.max())
@@ -431,8 +431,7 @@ def thin_regions(regions: np.ndarray) -> np.ndarray:
     ndarray of int
         The labels, sorted.
     """
-    from scipy import ndimage
-    from skimage.morphology import skeletonize
+    from ._skeleton import bounding_slices, distance_to_background, skeletonize
 
     # The distance to the nearest other region: pad with -1 so that the image
     # frame is an edge too.
@@ -442,10 +441,10 @@ def thin_regions(regions: np.ndarray) -> np.ndarray:
     edge[:, 1:] |= padded[:, :-1] != padded[:, 1:]
     edge[:-1] |= padded[:-1] != padded[1:]
     edge[1:] |= padded[:-1] != padded[1:]
-    dist = ndimage.distance_transform_edt(~edge)[1:-1, 1:-1] + 0.5
+    dist = distance_to_background(~edge)[1:-1, 1:-1] + 0.5
     out = []
     n = int(regions.max()) + 1
-    slices = ndimage.find_objects(regions + 1)
+    slices = bounding_slices(regions + 1)
     for label in range(1, n):
         sl = slices[label] if label < len(slices) else None
         if sl is None:
@@ -547,9 +546,15 @@ def _relabel(regions: np.ndarray) -> np.ndarray:
 
 def region_boundaries(regions: np.ndarray) -> np.ndarray:
     """Boundaries between regions as a thin map (thinned to 1 px by the caller)."""
-    from skimage.segmentation import find_boundaries
+    # skimage.segmentation.find_boundaries(regions, connectivity=1, mode="inner"):
+    # a labelled pixel whose 4-neighbourhood holds another label, by OpenCV (exact
+    # on float64 labels) rather than importing skimage.morphology (0.1 s a run).
+    import cv2
 
-    return find_boundaries(regions, connectivity=1, mode="inner") & _interior(regions.shape)
+    values = regions.astype(np.float64)
+    cross = cv2.getStructuringElement(cv2.MORPH_CROSS, (3, 3))
+    edge = cv2.dilate(values, cross) != cv2.erode(values, cross)
+    return edge & (regions != 0) & _interior(regions.shape)
 
 
 def _interior(shape: tuple[int, int]) -> np.ndarray:

@@ -223,7 +223,6 @@ def _rim_regions(regions: np.ndarray, rgb: np.ndarray, means: np.ndarray, paper:
     both stay colours of their own. As soon as one region is neither ink nor
     such a rim the image has a second colour and the rest is not looked at.
     """
-    from scipy import ndimage
     from skimage.color import rgb2lab
 
     n = len(means)
@@ -244,6 +243,8 @@ def _rim_regions(regions: np.ndarray, rgb: np.ndarray, means: np.ndarray, paper:
     blends = rgb2lab((paper_rgb[None] + t[:, None] * (ink_rgb - paper_rgb)[None])[:, None, :])[:, 0, :]
     if any(np.min(np.linalg.norm(blends - means[r], axis=1)) > INK_COLOUR_SPREAD for r in others):
         return out  # a colour of its own: no rim makes this one ink
+    from scipy import ndimage
+
     slices = ndimage.find_objects(regions + 1)
     eight = np.ones((3, 3), dtype=bool)
     ink_lab = rgb2lab(ink_rgb[None, None, :])[0, 0]
@@ -278,10 +279,9 @@ def median_stroke_width(ink: np.ndarray) -> float:
     from both edges (to within half a pixel).
     """
     from scipy import ndimage
-    from skimage.morphology import skeletonize
 
     dist = ndimage.distance_transform_edt(ink)
-    skel = skeletonize(ink)
+    skel = _skeleton.skeletonize(ink)
     return float(2.0 * np.median(dist[skel])) if skel.any() else 0.0
 
 
@@ -337,11 +337,9 @@ def extract_feature_lines(
         spur_length = PHOTO_SPUR_LENGTH if kind == "photo" else SPUR_LENGTH
     radius = stroke = None
     if kind == "drawing":
-        from skimage.morphology import skeletonize
-
         ink = _drawing_lines(img)
         radius = _half_width(ink)
-        axis = skeletonize(ink)
+        axis = _skeleton.skeletonize(ink)
         stroke = float(2.0 * np.median(radius[axis])) if axis.any() else 0.0
         raw = _skeleton.join_line_ends(axis)
         min_len = spur_length if min_line_length is None else min_line_length
@@ -415,9 +413,7 @@ def _join(raw: np.ndarray) -> np.ndarray:
     0.75-6 px from another arc: a near-miss gap. :func:`_skeleton.join_line_ends`
     links it (the same rule as for photos).
     """
-    from skimage.morphology import skeletonize
-
-    return _skeleton.join_line_ends(skeletonize(raw))
+    return _skeleton.join_line_ends(_skeleton.skeletonize(raw))
 
 
 def _clean_skeleton(
@@ -429,9 +425,7 @@ def _clean_skeleton(
     spurs pruned at a junction by the stroke's half width there
     (:func:`_skeleton.prune`).
     """
-    from skimage.morphology import skeletonize
-
-    skel = skeletonize(mask)
+    skel = _skeleton.skeletonize(mask)
     graph = _skeleton.trace(skel)
     _skeleton.prune(
         graph,
@@ -498,7 +492,6 @@ def _drawing_lines(img: LoadedImage) -> np.ndarray:
     """Ink of a line drawing: Otsu threshold, specks removed, holes of 1-2 px filled."""
     from scipy import ndimage
     from skimage.filters import threshold_otsu
-    from skimage.morphology import remove_small_holes, remove_small_objects
 
     gray = ndimage.gaussian_filter(img.gray, 1.0)  # smooths the stroke edges: fewer spurs
     if np.ptp(gray) < BLANK_IMAGE_RANGE:
@@ -508,5 +501,20 @@ def _drawing_lines(img: LoadedImage) -> np.ndarray:
     if not dark:  # light strokes on a dark ground
         ink = ~ink
     ink &= ~_paper_seams(img.gray if dark else 1.0 - img.gray, ink)
-    ink = remove_small_objects(ink, max_size=MIN_SPECK_AREA - 1)
-    return remove_small_holes(ink, max_size=MIN_SPECK_AREA // 4)
+    ink = _without_small_parts(ink, MIN_SPECK_AREA - 1)
+    return ~_without_small_parts(~ink, MIN_SPECK_AREA // 4)
+
+
+def _without_small_parts(mask: np.ndarray, max_size: int) -> np.ndarray:
+    """``mask`` less its 4-connected parts of at most ``max_size`` px, bool (H, W).
+
+    What ``skimage.morphology.remove_small_objects(mask, max_size=max_size)``
+    does (and, on ``~mask``, ``remove_small_holes``), by OpenCV's component
+    labelling: importing ``skimage.morphology`` costs about 0.1 s of CPU a run.
+    """
+    import cv2
+
+    _, parts, stats, _ = cv2.connectedComponentsWithStats(mask.astype(np.uint8), connectivity=4)
+    keep = stats[:, cv2.CC_STAT_AREA] > max_size
+    keep[0] = False  # the background
+    return keep[parts]

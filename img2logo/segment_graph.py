@@ -173,15 +173,13 @@ def build_segment_graph(
     InvalidParameterError
         If ``lines`` is not a 2-D map or a parameter is out of range.
     """
-    from skimage.morphology import skeletonize
-
     rdp_tolerance = check_positive(rdp_tolerance, "rdp_tolerance")
     min_length = check_positive(min_length, "min_length", allow_zero=True)
     line_map = getattr(lines, "lines", lines)
     arr = np.asarray(line_map)
     if arr.ndim != 2:
         raise InvalidParameterError(f"lines must be a 2-D map of shape (H, W), got shape {arr.shape}")
-    skel = skeletonize(arr.astype(bool))
+    skel = _skeleton.skeletonize(arr.astype(bool))
     graph = _skeleton.trace(skel)
     _skeleton.prune(graph, spur_length=min_length, min_length=min_length, junction_merge=JUNCTION_MERGE_DISTANCE)
 

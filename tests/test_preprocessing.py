@@ -426,3 +426,123 @@ def test_a_speck_below_the_dot_size_is_still_dropped():
     im[150:154, 150:154] = 0  # 16 px: a disc 4.5 px wide, below the dot size
     assert 2.0 * np.sqrt(16 / np.pi) < DOT_MIN_DIAMETER
     assert not extract_feature_lines(im).lines[140:165, 140:165].any()
+
+
+# --------------------------------------------------------------------------- stand-ins for scipy / skimage
+# The run avoids importing scipy.ndimage, scipy.spatial and skimage.morphology
+# (their imports cost about 0.2 s of CPU a run); what replaces them must give the
+# very same pixels and numbers, so the logos stay byte-identical.
+def _random_masks(n: int, seed: int) -> list[np.ndarray]:
+    rng = np.random.default_rng(seed)
+    out = []
+    for _ in range(n):
+        h, w = (int(v) for v in rng.integers(1, 48, 2))
+        mask = rng.random((h, w)) < rng.uniform(0.05, 0.95)
+        if rng.random() < 0.5:  # blobs and strokes, not only noise
+            mask = cv2.dilate(mask.astype(np.uint8), np.ones((2, 2), np.uint8)) > 0
+        out.append(mask)
+    return out
+
+
+def test_skeleton_label_matches_skimage_and_ndimage() -> None:
+    from scipy import ndimage
+    from skimage.measure import label as sk_label
+
+    from img2logo._skeleton import label
+
+    rng = np.random.default_rng(3)
+    for mask in _random_masks(150, 1):
+        for connectivity in (1, 2):
+            expected = sk_label(mask, connectivity=connectivity)
+            got = label(mask, connectivity=connectivity)
+            assert got.dtype == expected.dtype and np.array_equal(got, expected)
+        values = rng.integers(0, 4, mask.shape)
+        for connectivity, background in ((1, -1), (2, -1), (1, 0)):
+            expected = sk_label(values, connectivity=connectivity, background=background)
+            got = label(values, connectivity=connectivity, background=background)
+            assert got.dtype == expected.dtype and np.array_equal(got, expected)
+        ndi, n = ndimage.label(mask, structure=np.ones((3, 3), dtype=bool))
+        assert np.array_equal(label(mask, connectivity=2), ndi) and n == label(mask, connectivity=2).max()
+
+
+def test_skeleton_distance_and_slices_match_ndimage() -> None:
+    from scipy import ndimage
+
+    from img2logo._skeleton import bounding_slices, distance_to_background
+
+    for mask in _random_masks(150, 2):
+        if mask.all():
+            mask[0, 0] = False
+        expected = ndimage.distance_transform_edt(mask)
+        got = distance_to_background(mask)
+        assert got.dtype == expected.dtype and np.array_equal(got, expected)
+        labels = (mask.cumsum(axis=1) % 5).astype(np.int64) * mask
+        assert bounding_slices(labels) == ndimage.find_objects(labels)
+    with pytest.raises(ValueError, match="background pixel"):
+        distance_to_background(np.ones((3, 3), dtype=bool))
+
+
+def test_skeleton_thinning_and_joins_match_skimage_and_cKDTree() -> None:
+    import math
+
+    from scipy.spatial import cKDTree
+    from skimage.draw import line
+    from skimage.morphology import skeletonize as sk_skeletonize
+
+    from img2logo._skeleton import _branch, _walk, classify, join_line_ends, skeletonize
+
+    def joined_by_tree(skel: np.ndarray, distance: float) -> np.ndarray:
+        """join_line_ends as it was written with a k-d tree over the line pixels."""
+        out = skel.copy()
+        pixels = np.argwhere(out)
+        if len(pixels) == 0:
+            return out
+        tree = cKDTree(pixels)
+        h, w = out.shape
+        for r, c in np.argwhere(out & (classify(out)[1] == 1)):
+            end = (int(r), int(c))
+            if not out[end]:
+                continue
+            own = _walk(out, end, math.ceil(1.5 * distance))
+            best, best_d = None, math.inf
+            for k in tree.query_ball_point((r, c), distance):
+                q = (int(pixels[k][0]), int(pixels[k][1]))
+                if q in own or not out[q]:
+                    continue
+                d = math.hypot(q[0] - r, q[1] - c)
+                if d < best_d:
+                    best, best_d = q, d
+            if best is None or best_d <= 1.5:
+                continue
+            reach = math.ceil(3.0 * distance)
+            if best in _walk(out, end, reach):
+                spur = _branch(out, end)
+                if spur is not None and len(spur) <= reach:
+                    for q in spur:
+                        out[q] = False
+            else:
+                rr, cc = line(end[0], end[1], best[0], best[1])
+                out[np.clip(rr, 0, h - 1), np.clip(cc, 0, w - 1)] = True
+        return out
+
+    for mask in _random_masks(150, 4):
+        skel = skeletonize(mask)
+        assert np.array_equal(skel, sk_skeletonize(mask))
+        for distance in (6.0, 3.5):
+            assert np.array_equal(join_line_ends(skel, distance), joined_by_tree(skel, distance))
+
+
+def test_clipart_boundaries_and_small_parts_match_skimage() -> None:
+    from skimage.morphology import remove_small_holes, remove_small_objects
+    from skimage.segmentation import find_boundaries
+
+    from img2logo.clipart import _interior, region_boundaries
+    from img2logo.preprocessing import _without_small_parts
+
+    for mask in _random_masks(150, 5):
+        regions = (mask.cumsum(axis=0) % 4).astype(np.int64)
+        expected = find_boundaries(regions, connectivity=1, mode="inner") & _interior(regions.shape)
+        assert np.array_equal(region_boundaries(regions), expected)
+        for size in (0, 2, 7):
+            assert np.array_equal(_without_small_parts(mask, size), remove_small_objects(mask, max_size=size))
+            assert np.array_equal(~_without_small_parts(~mask, size), remove_small_holes(mask, max_size=size))
