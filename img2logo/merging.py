@@ -93,38 +93,31 @@ def evaluate(state: FitState, pair: Pair) -> MergeOutcome | None:
     hold = _hold(state, after, seeds, merged, node)
     global_solve = not state.options.localized
     out: Solution | None = None
-    if not global_solve and hold:
-        out = state.solve(
+
+    def solve_window(fixed: set[int], tangent: bool | set[int] = False) -> Solution | None:
+        return state.solve(
             after,
             seeds,
             node_groups_after,
             changed=[-1],
             free_nodes=sorted(merged_nodes),
-            fixed=set(),
+            fixed=fixed,
             n_groups_total=n_groups,
             n_junctions_total=nj_after,
             rings=2,
             order=lambda g: (g != -1, g),
-            tangent=hold,
+            tangent=tangent,
         )
+
+    if not global_solve and hold:
+        out = solve_window(set(), tangent=hold)
     if not global_solve and out is None:
         # The window: the new circle and its neighbours, with the new circle's
         # junctions free (Sec. 5.4). If the fixed junctions leave no solution,
         # a second ring (the neighbours' junctions and their circles) is freed
         # before the global problem is solved. Without the connectivity
         # constraint only the new circle moves.
-        out = state.solve(
-            after,
-            seeds,
-            node_groups_after,
-            changed=[-1],
-            free_nodes=sorted(merged_nodes),
-            fixed=set() if state.options.connectivity else set(after) - {-1},
-            n_groups_total=n_groups,
-            n_junctions_total=nj_after,
-            rings=2,
-            order=lambda g: (g != -1, g),
-        )
+        out = solve_window(set() if state.options.connectivity else set(after) - {-1})
         if out is None:
             state.stats.local_failed += 1
             # A merged segment whose pixels lie on average more than T from

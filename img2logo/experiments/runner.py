@@ -155,7 +155,7 @@ _bias = _number(0.0, 1.0, closed=False)
 
 #: How each notebook parameter is checked, by name (one meaning per name in every notebook).
 PARAMETER_RULES: dict[str, Check] = {
-    **dict.fromkeys(("smoke", "interactive"), _rule(lambda v: isinstance(v, bool), "True or False")),
+    **dict.fromkeys(("smoke", "interactive", "tangency"), _rule(lambda v: isinstance(v, bool), "True or False")),
     **dict.fromkeys(("images", "fill_images"), _images),
     "eval_images": _rule(_listed(_evaluation_image), "a non-empty list of file names in benchmarks/data/"),
     **dict.fromkeys(("image", "edit_image", "fig15_image", "lock_image", "bias_image"), _image),
