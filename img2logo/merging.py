@@ -128,25 +128,23 @@ def evaluate(state: FitState, pair: Pair) -> MergeOutcome | None:
                 state.stats.rejected_hopeless += 1
                 return None
             global_solve = True
-    if global_solve and hold:
-        out = state.solve_whole(
-            after,
-            seeds,
-            node_groups_after,
-            n_groups_total=n_groups,
-            n_junctions_total=nj_after,
-            order=lambda g: (g == -1, g),
-            tangent=hold,
-        )
-    if global_solve and out is None:
-        out = state.solve_whole(
-            after,
-            seeds,
-            node_groups_after,
-            n_groups_total=n_groups,
-            n_junctions_total=nj_after,
-            order=lambda g: (g == -1, g),  # the merged group last, as in ``after``
-        )
+    if global_solve:
+
+        def solve_global(tangent: bool | set[int] = False) -> Solution | None:
+            return state.solve_whole(
+                after,
+                seeds,
+                node_groups_after,
+                n_groups_total=n_groups,
+                n_junctions_total=nj_after,
+                order=lambda g: (g == -1, g),  # the merged group last, as in ``after``
+                tangent=tangent,
+            )
+
+        if hold:
+            out = solve_global(tangent=hold)
+        if out is None:
+            out = solve_global()
     if out is None:  # the global problem has no solution either
         return None
     fits, disp = out
