@@ -75,6 +75,8 @@ def check_choice(value: object, name: str, choices: Iterable[str]) -> str:
 
 def check_integer(value: object, name: str, minimum: int) -> int:
     """``value`` as an int >= ``minimum`` (Python or numpy integer, not bool)."""
+    if type(value) is int and value >= minimum:  # the common case, without numpy's types
+        return value
     import numpy as np
 
     if isinstance(value, bool | np.bool_) or not isinstance(value, int | np.integer):

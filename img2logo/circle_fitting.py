@@ -179,6 +179,25 @@ def fit_circle(points: object, *, max_radius: float | None = None, refine: bool 
     p = check_points(points)
     if len(p) < 3:
         raise FitError(f"a circle fit needs at least 3 points, got {len(p)}")
+    if max_radius is not None:
+        check_positive(max_radius, "max_radius")
+    if not refine:
+        from . import kernels  # the compiled kernels load on the first fit, not at import
+
+        if kernels.usable():
+            status, cx, cy, radius, rms, capped = kernels.fit_circle_kernel(
+                p, 0.0 if max_radius is None else float(max_radius), MAX_RADIUS_FACTOR
+            )
+            if status == 1:
+                raise FitError(f"a circle fit needs at least 3 distinct points, got {int(cx)}")
+            if status == 2:
+                raise FitError(f"max_radius {cx:g} is less than half the points' extent {cy:g}")
+            return CircleFit(readonly(np.array([cx, cy])), radius, rms, capped)
+    return _fit_circle_reference(p, max_radius, refine)
+
+
+def _fit_circle_reference(p: np.ndarray, max_radius: float | None, refine: bool) -> CircleFit:
+    """:func:`fit_circle` in numpy, the Hyper fit by SVD: the compiled kernel's reference."""
     # Count distinct points up to 3 (np.unique(axis=0) is slow): any circle through
     # two points would fit them exactly.
     not_first = np.any(p != p[0], axis=1)
@@ -232,6 +251,10 @@ def mean_abs_error(points: object, center: object, radius: float) -> float:
     if o.shape != (2,) or not np.all(np.isfinite(o)):
         raise InvalidParameterError(f"center must be a finite array of shape (2,), got {o.shape}")
     r = check_positive(radius, "radius")
+    from . import kernels
+
+    if kernels.usable():
+        return float(kernels.mean_abs_error_kernel(p, float(o[0]), float(o[1]), r))
     return float(np.mean(np.abs(np.hypot(p[:, 0] - o[0], p[:, 1] - o[1]) - r)))
 
 
@@ -246,6 +269,15 @@ def fit_center(points: object, radius: float, center0: object, *, iterations: in
     p = check_points(points)
     o = np.array(center0, dtype=np.float64).reshape(2)
     r = check_positive(radius, "radius")
+    from . import kernels
+
+    if kernels.usable():
+        return np.array(kernels.fit_center_kernel(p, r, float(o[0]), float(o[1]), int(iterations)))
+    return _fit_center_reference(p, r, o, iterations)
+
+
+def _fit_center_reference(p: np.ndarray, r: float, o: np.ndarray, iterations: int) -> np.ndarray:
+    """:func:`fit_center` in numpy: the compiled kernel's reference."""
     for _ in range(iterations):
         vx, vy = o[0] - p[:, 0], o[1] - p[:, 1]
         dist = np.sqrt(vx * vx + vy * vy)  # np.hypot is ~5x slower; px cannot overflow

@@ -286,6 +286,8 @@ class FitState:
         self.released: set[int] = set()
         self._path_cache: dict[tuple[int, ...], tuple[int, ...]] = {}
         self._node_groups: dict[int, list[int]] | None = None
+        #: group -> (arc, junction nodes, their points' bytes, ArcJunctions by path position): :meth:`_topology`.
+        self._topologies: dict[int, tuple[Any, tuple[int, ...], bytes, ArcJunctions]] = {}
         self.smooth: frozenset[int] = graph.smooth_nodes() if options.tangency and options.connectivity else frozenset()
         self.loose: set[int] = set()
         #: Smooth joins the merge loop made tangent (img2logo.merging): held in every later merge's window.
@@ -699,10 +701,7 @@ class FitState:
         junction = {n: i for i, n in enumerate(nodes)}
         points = np.array([self.graph.junctions[n] + self.disp[n] for n in nodes]).reshape(-1, 2)
         arcs = tuple(self.fits[g].arc.arc for g in order)
-        topology = tuple(
-            self.arc_junctions(arc, [junction[n] for n in self.constrained_nodes(self.groups[g])], points)
-            for g, arc in zip(order, arcs, strict=True)
-        )
+        topology = tuple(self._topology(g, arc, junction) for g, arc in zip(order, arcs, strict=True))
         return Abstraction(
             level=level,
             arcs=arcs,
@@ -719,6 +718,27 @@ class FitState:
             arc_junctions=topology,
             junction_nodes=tuple(nodes),
             connected=self.options.connectivity,
+        )
+
+    def _topology(self, g: int, arc: Any, junction: Mapping[int, int]) -> ArcJunctions:
+        """:meth:`arc_junctions` of group ``g``'s ``arc``, its junctions numbered by ``junction`` (node -> index).
+
+        Found in the group's own path positions and kept while its arc and its
+        junctions' points stay the same: between two levels most arcs do.
+        """
+        nodes = self.constrained_nodes(self.groups[g])
+        index = list(nodes)
+        points = self.graph.junctions[index] + self.disp[index]
+        key = points.tobytes()
+        cached = self._topologies.get(g)
+        if cached is None or cached[0] is not arc or cached[1] != nodes or cached[2] != key:
+            cached = self._topologies[g] = (arc, nodes, key, self.arc_junctions(arc, range(len(nodes)), points))
+        local = cached[3]
+        at = [junction[n] for n in nodes]
+        return ArcJunctions(
+            None if local.start is None else at[local.start],
+            None if local.end is None else at[local.end],
+            tuple(at[i] for i in local.through),
         )
 
     @staticmethod

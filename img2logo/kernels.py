@@ -1,9 +1,10 @@
 """The compiled kernels of the optimizer's inner loop, loaded without numba at run time.
 
 The kernels themselves are written in :mod:`img2logo.kernels_sqp` (the SQP of
-Eqn. 13 for a local window) and :mod:`img2logo.kernels_arcs` (arc-arc
+Eqn. 13 for a local window), :mod:`img2logo.kernels_arcs` (arc-arc
 intersections, the redundant-intersection test, the arc extraction with its
-Fréchet distance), each beneath a public function whose Python code stays as
+Fréchet distance) and :mod:`img2logo.kernels_circle` (the free circle fit, a
+golden circle's centre), each beneath a public function whose Python code stays as
 the reference the tests compare against. This module gives them to their
 callers as attributes (``kernels.sqp_dense(...)``), loaded on first use:
 
@@ -68,10 +69,13 @@ ENTRY_POINTS: dict[str, tuple[str, tuple[str, ...], str]] = {
     ),
     "arc_pairs_kernel": ("kernels_arcs", ("f8[:,::1]", "i8[::1]", "f8"), "i8[:,::1]"),
     "arc_intersections_kernel": ("kernels_arcs", ("f8[::1]", "f8[::1]", "f8", "!f8[:,::1]"), "i8"),
+    "fit_circle_kernel": ("kernels_circle", ("f8[:,::1]", "f8", "f8"), "Tuple((i8, f8, f8, f8, f8, b1))"),
+    "fit_center_kernel": ("kernels_circle", ("f8[:,::1]", "f8", "f8", "f8", "i8"), "UniTuple(f8, 2)"),
+    "mean_abs_error_kernel": ("kernels_circle", ("f8[:,::1]", "f8", "f8", "f8"), "f8"),
 }
 
 _DTYPES = {"f8": np.dtype(np.float64), "i8": np.dtype(np.int64), "b1": np.dtype(np.bool_)}
-_SOURCES = ("kernels_sqp.py", "kernels_arcs.py", "kernels_jit.py")
+_SOURCES = ("kernels_sqp.py", "kernels_arcs.py", "kernels_circle.py", "kernels_jit.py")
 _loaded: dict[str, Any] = {}
 #: Where the loaded kernels came from: the ahead-of-time module's path, or "numba's JIT".
 source = ""
@@ -128,10 +132,10 @@ def _load() -> dict[str, Any]:
         for entry, (_, args, _) in ENTRY_POINTS.items():
             _loaded[entry] = _checked(getattr(module, entry), args)
         return _loaded
-    from . import kernels_arcs, kernels_jit, kernels_sqp  # numba's JIT: its import and its cache
+    from . import kernels_jit  # numba's JIT: its import and its cache
 
     for entry, (source, _, _) in ENTRY_POINTS.items():
-        _loaded[entry] = getattr(kernels_sqp if source == "kernels_sqp" else kernels_arcs, entry)
+        _loaded[entry] = getattr(importlib.import_module(f".{source}", __package__), entry)
     CACHED = CACHED and kernels_jit.CACHED
     source = "numba's JIT"
     return _loaded
@@ -186,8 +190,6 @@ def build(directory: Path) -> Path:
         warnings.simplefilter("ignore")  # pycc is marked for deprecation; it still compiles, with numba's code
         from numba.pycc import CC
 
-        from . import kernels_arcs, kernels_sqp
-
         name = module_name()
         directory.mkdir(parents=True, exist_ok=True)
         with tempfile.TemporaryDirectory(dir=directory) as tmp:
@@ -196,7 +198,7 @@ def build(directory: Path) -> Path:
             cc.target_cpu = "host"  # as numba's JIT does
             cc.verbose = False
             for entry, (source, args, result) in ENTRY_POINTS.items():
-                module = kernels_sqp if source == "kernels_sqp" else kernels_arcs
+                module = importlib.import_module(f".{source}", __package__)
                 signature = f"{result}({', '.join(a.strip('!') for a in args)})"
                 cc.export(entry, signature)(getattr(module, entry).py_func)
             cc.compile()

@@ -10,6 +10,7 @@ import pytest
 from helpers import arc_through
 
 import img2logo.constrained_fit as cfit
+from img2logo import circle_fitting
 from img2logo.arc_extraction import (
     _arc_pairs_reference,
     _arc_params,
@@ -20,8 +21,10 @@ from img2logo.arc_extraction import (
     extract_arc,
     redundant_intersections,
 )
+from img2logo.circle_fitting import fit_center, fit_circle, mean_abs_error
 from img2logo.constants import CONSTRAINED_FIT_MAX_ITER, CONSTRAINED_FIT_TOL, INTERSECTION_TOL, PHI
 from img2logo.constrained_fit import fit_constrained
+from img2logo.errors import FitError
 from img2logo.geometry import TAU, Arc, Circle
 
 
@@ -286,6 +289,56 @@ def test_without_a_disk_cache_the_python_reference_runs(monkeypatch):
     assert got.arc.sweep == pytest.approx(1.0)
 
 
+# --- Circle fits: the free fit (Hyper, by Newton), a golden circle's centre -------------
+
+
+def _pixel_arc(rng, m):
+    r, sweep, c = rng.uniform(2, 300), rng.uniform(0.2, 6.3), rng.uniform(0, 512, 2)
+    theta = rng.uniform(0, sweep, m)
+    return np.round((c + r * np.c_[np.cos(theta), np.sin(theta)]) * 2) / 2 + rng.normal(0, 0.3, (m, 2))
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_free_circle_kernel_matches_the_svd_reference(seed):
+    rng = np.random.default_rng(seed)
+    for _ in range(100):
+        p = _pixel_arc(rng, int(rng.integers(3, 150)))
+        ref = circle_fitting._fit_circle_reference(p, None, False)
+        got = fit_circle(p, refine=False)
+        assert got.capped == ref.capped
+        assert np.max(np.abs(got.center - ref.center)) <= 1e-9 * max(ref.radius, 1.0)
+        assert got.radius == pytest.approx(ref.radius, rel=1e-9) and got.rms == pytest.approx(ref.rms, abs=1e-9)
+
+
+def test_free_circle_kernel_caps_straight_points_and_refuses_what_the_reference_refuses():
+    line = np.c_[np.arange(10.0), 2.0 * np.arange(10.0)]
+    bent = line + np.array([[0.0, 0.0]] * 9 + [[0.1, 0.0]])
+    for p, max_radius in ((line, None), (bent, 50.0), (line[::-1], None)):
+        got = fit_circle(p, max_radius=max_radius, refine=False)
+        ref = circle_fitting._fit_circle_reference(p, max_radius, False)
+        assert got.capped and ref.capped and got.radius == ref.radius
+        assert np.allclose(got.center, ref.center, atol=1e-9)
+    with pytest.raises(FitError, match="at least 3 distinct points, got 2"):
+        fit_circle([[0, 0], [1, 1], [0, 0]], refine=False)
+    with pytest.raises(FitError, match="less than half the points' extent"):
+        fit_circle(line, max_radius=1.0, refine=False)
+
+
+def test_fit_center_and_mean_abs_error_kernels_match_the_reference():
+    rng = np.random.default_rng(5)
+    for _ in range(300):
+        p = _pixel_arc(rng, int(rng.integers(2, 100)))
+        start, radius = p.mean(axis=0) + rng.normal(0, 30, 2), rng.uniform(2, 300)
+        ref = circle_fitting._fit_center_reference(p, radius, start.copy(), 8)
+        got = fit_center(p, radius, start)
+        assert np.max(np.abs(got - ref)) <= 1e-9
+        assert mean_abs_error(p, got, radius) == pytest.approx(
+            float(np.mean(np.abs(np.hypot(*(p - got).T) - radius))), abs=1e-12
+        )
+    # All the points at the centre: no direction, no step (least squares' minimum norm).
+    assert np.array_equal(fit_center(np.zeros((3, 2)), 2.0, [0.0, 0.0]), [0.0, 0.0])
+
+
 # --- Loading: ahead of time, just in time ----------------------------------------
 
 
@@ -302,8 +355,9 @@ def _aot_or_skip():
 
 def test_ahead_of_time_and_jit_kernels_agree_bit_for_bit(monkeypatch):
     # One numba code, one set of types, the same processor: the same floating-point operations.
+    import importlib
+
     kernels = _aot_or_skip()
-    from img2logo import kernels_arcs, kernels_sqp
 
     def run():
         fits = [fit_constrained(*_loop(n, seed)) for n, seed in ((3, 1), (5, 2), (6, 3))]
@@ -312,11 +366,20 @@ def test_ahead_of_time_and_jit_kernels_agree_bit_for_bit(monkeypatch):
         circle = Circle(120.0, 90.0, 60.0)
         seg = circle.point_at(np.linspace(0.3, 2.5, 80)) + rng.normal(0.0, 1.0, (80, 2))
         arc = extract_arc(circle, seg, circle.point_at(np.array([0.3, 1.4, 2.5])))
-        return fits, redundant_intersections(arcs, junctions, owned), arc
+        free = fit_circle(seg, refine=False)
+        golden = fit_center(seg, 55.0, free.center)
+        return (
+            fits,
+            redundant_intersections(arcs, junctions, owned),
+            arc,
+            free,
+            golden,
+            mean_abs_error(seg, golden, 55.0),
+        )
 
     aot = run()
     for name, (source, _, _) in kernels.ENTRY_POINTS.items():
-        module = kernels_sqp if source == "kernels_sqp" else kernels_arcs
+        module = importlib.import_module(f"img2logo.{source}")
         monkeypatch.setitem(kernels._loaded, name, getattr(module, name))
     jit = run()
     for a, b in zip(aot[0], jit[0], strict=True):
@@ -327,6 +390,11 @@ def test_ahead_of_time_and_jit_kernels_agree_bit_for_bit(monkeypatch):
     ]
     (a, b) = (aot[2], jit[2])
     assert (a.arc.theta0, a.arc.sweep, a.frechet) == (b.arc.theta0, b.arc.sweep, b.frechet)
+    assert aot[3].center.tobytes() == jit[3].center.tobytes() and (aot[3].radius, aot[3].rms) == (
+        jit[3].radius,
+        jit[3].rms,
+    )
+    assert aot[4].tobytes() == jit[4].tobytes() and aot[5] == jit[5]
 
 
 def test_an_ahead_of_time_entry_point_checks_its_arrays():
