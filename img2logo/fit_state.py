@@ -22,6 +22,7 @@ import dataclasses
 import math
 from collections.abc import Callable, Collection, Hashable, Mapping, Sequence
 from dataclasses import dataclass
+from functools import cached_property
 from typing import Any, NamedTuple, Protocol, TypeAlias, cast
 
 import numpy as np
@@ -80,9 +81,9 @@ class GroupFit:
     k: int | None
     arc: ArcFit
 
-    @property
+    @cached_property
     def seed(self) -> Seed:
-        """This circle as the start of the next fit."""
+        """This circle as the start of the next fit (made once: every candidate merge's window asks)."""
         return Seed(self.center, self.radius, self.k)
 
 

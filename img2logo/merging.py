@@ -192,10 +192,16 @@ def _redundant(
     """Redundant intersections that involve the arcs a merge changed."""
     gids = list(after)
     arcs = [(fits[g] if g in fits else state.fits[g]).arc.arc for g in gids]
-    nodes = sorted(node_groups_after)
-    node_index = {n: i for i, n in enumerate(nodes)}
-    junctions = state.graph.junctions
-    points = np.array([junctions[n] + (disp[n] if n in disp else state.disp[n]) for n in nodes]).reshape(-1, 2)
+    nodes = np.array(sorted(node_groups_after), dtype=np.intp)
+    # The junctions' points, the window's displacements over the state's (one array, not a row each).
+    moved = state.disp[nodes]
+    index = np.full(len(state.disp), -1, dtype=np.intp)
+    index[nodes] = np.arange(len(nodes))
+    for n, d in disp.items():
+        if index[n] >= 0:
+            moved[index[n]] = d
+    points = (state.graph.junctions[nodes] + moved).reshape(-1, 2)
+    node_index = dict(zip(nodes.tolist(), range(len(nodes)), strict=True))
     arc_junctions = [[node_index[n] for n in state.constrained_nodes(after[g])] for g in gids]
     changed = [i for i, g in enumerate(gids) if g in fits]
     return len(redundant_intersections(arcs, points, arc_junctions, candidates=changed))
