@@ -516,15 +516,19 @@ class Abstraction:
         checks decide, and name what fails.
         """
         tol, margin = JUNCTION_TOLERANCE, 1e-9
-        on_arc, on_junction, ends_arc, ends_junction, ends_angle = [], [], [], [], []
+        on_arc: list[int] = []
+        on_junction: list[int] = []
+        ends_arc: list[int] = []
+        ends_junction: list[int] = []
+        ends_angle: list[float] = []
         for i, t in enumerate(topology):
             for k in (*t.ends, *t.through):
                 on_arc.append(i)
                 on_junction.append(k)
-            for k, angle in ((t.start, 0.0), (t.end, 1.0)):
-                if k is not None:
+            for end, angle in ((t.start, 0.0), (t.end, 1.0)):
+                if end is not None:
                     ends_arc.append(i)
-                    ends_junction.append(k)
+                    ends_junction.append(end)
                     ends_angle.append(angle)
         if not on_arc:
             return True
