@@ -104,6 +104,31 @@ def test_bad_subject_options():
     assert parse_subject_rectangle(" 5, 6 ,100,50", (240, 320)) == (5, 6, 100, 50)
 
 
+def test_a_subject_rectangle_is_in_the_input_pixels_of_a_downscaled_image():
+    from img2logo.loading import downscale
+
+    rgb, (truth,) = textured_photo([(170, 120, 80, 60, (0.95, 0.75, 0.2))])
+    big = cv2.resize(rgb, (640, 480), interpolation=cv2.INTER_LINEAR)  # the object in 180..500 x 120..360, px
+    with pytest.warns(UserWarning):
+        img = downscale(load_image(big), 320, "half size")
+    assert img.scale == pytest.approx(0.5)
+    found = find_subject(img, subject=(160, 100, 360, 280))
+    assert found.description.startswith("kept the object in 160,100,360,280 (GrabCut)")
+    assert outline_distance(found.mask, truth) <= 3.0  # cut at the working size, in its pixels
+    # the errors name the rectangle as given, in the input's pixels
+    with pytest.raises(InvalidParameterError, match="subject rectangle 0,0,640,480 covers the whole 640x480 image"):
+        find_subject(img, subject=(0, 0, 640, 480))
+    small = r"subject rectangle 10,10,5,5 must cover at least 4x4 px of the image as it is worked at \(320x240 px"
+    with pytest.raises(InvalidParameterError, match=small):
+        find_subject(img, subject=(10, 10, 5, 5))
+    flat = np.full((480, 640, 3), 0.5)
+    flat[::2] = 0.52  # no object anywhere
+    with pytest.warns(UserWarning):
+        plain = downscale(load_image(flat), 320, "half size")
+    with pytest.raises(InvalidParameterError, match=r"no object found in the subject rectangle 100,100,300,200$"):
+        find_subject(plain, subject=(100, 100, 300, 200))
+
+
 def test_outline_contrast_tells_an_edge_from_a_cut_through_texture():
     from img2logo.subject_cues import outline_contrast
 
