@@ -330,3 +330,30 @@ def test_dominant_part_leaves_out_a_part_of_another_texture_beyond_a_thin_neck()
     # The same shape in one texture (a giraffe's neck joins its head to its body): kept whole.
     assert dominant_part(mask, np.zeros((240, 320))) is mask
     assert dominant_part(tower, texture) is tower  # one part: nothing to choose
+
+
+def test_texture_step_asks_for_the_step_along_most_of_the_outline():
+    # A cut through smooth sky between two textured towers (skimage's rocket): the towers
+    # beside its sides make its inside smoother than its surroundings, but most of its outline
+    # (the top) runs through the sky, no texture edge.
+    from img2logo.subject_cues import texture_map, texture_step
+
+    rng = np.random.default_rng(0)
+    rgb = np.linspace(0.2, 0.5, 240)[:, None, None] * np.array([0.5, 0.6, 1.0]) * np.ones((240, 320, 1))
+    for c0 in (0, 250):
+        rgb[:, c0 : c0 + 70] += rng.normal(0, 0.15, (240, 70, 1))
+    img = load_image(np.clip(rgb, 0, 1))
+    texture = texture_map(img.rgb, 0.8)
+    sky = np.zeros((240, 320), bool)
+    sky[170:240, 70:250] = True
+    assert texture_step(img, texture, sky) < 0.2
+    tall = np.zeros((240, 320), bool)
+    tall[20:240, 70:250] = True  # its sides, most of its outline, are a texture edge
+    assert texture_step(img, texture, tall) > 0.5
+
+
+def test_the_rocket_photo_is_no_subject_by_its_texture():
+    from skimage import data
+
+    found = find_subject(load_image(data.rocket()))
+    assert "by its texture" not in found.description
