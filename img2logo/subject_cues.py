@@ -388,7 +388,17 @@ def clean_mask(mask: np.ndarray) -> np.ndarray:
 
 
 def fill_small_holes(mask: np.ndarray) -> np.ndarray:
-    """Fill the holes of ``mask`` smaller than ``SUBJECT_MAX_HOLE`` of its area (GrabCut's specks)."""
-    from skimage.morphology import remove_small_holes
+    """Fill the holes of ``mask`` smaller than ``SUBJECT_MAX_HOLE`` of its area (GrabCut's specks).
 
-    return remove_small_holes(mask, max_size=max(1, int(SUBJECT_MAX_HOLE * mask.sum())))
+    What ``skimage.morphology.remove_small_holes(mask, max_size=...)`` does (its
+    4-connected parts of ``~mask`` of at most that many px filled), by OpenCV's
+    component labelling: importing ``skimage.morphology`` costs about 0.1 s of
+    CPU a run.
+    """
+    import cv2
+
+    max_size = max(1, int(SUBJECT_MAX_HOLE * mask.sum()))
+    _, parts, stats, _ = cv2.connectedComponentsWithStats((~mask).astype(np.uint8), connectivity=4)
+    small = stats[:, cv2.CC_STAT_AREA] <= max_size
+    small[0] = False  # label 0: the mask's own pixels
+    return mask | small[parts]
