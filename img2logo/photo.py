@@ -67,7 +67,8 @@ def photo_feature_lines(img: LoadedImage, subject: Subject) -> np.ndarray:
         draws the whole image.
     """
     from scipy import ndimage
-    from skimage.morphology import skeletonize
+
+    from ._skeleton import skeletonize  # skimage's thinning, without importing skimage.morphology
 
     mask = subject.mask
     inner = photo_lines(img)

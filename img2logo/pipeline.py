@@ -25,7 +25,7 @@ from .options import AUTO, Options, check_lock_mask
 from .preprocessing import FeatureLines, LoadedImage, extract_feature_lines, load_image, photo_reason
 from .progressive import ProgressCallback, Progression, optimize
 from .segment_graph import SegmentGraph, build_segment_graph
-from .subject import FOREGROUND_CHOICES, parse_subject_rectangle, subject_rectangle_numbers
+from .subject import FOREGROUND_CHOICES
 from .symmetry import SymmetryChoice, check_symmetry_option, choose_axis, optimize_symmetric
 
 #: ``abstract``'s ``tolerance`` and ``kind`` when not given: those of ``options`` (default 5 px, "auto").
@@ -159,25 +159,20 @@ def abstract(
         if reason is not None:  # a photo is worked at the size its defaults were chosen at (constants)
             img = downscale(img, PHOTO_WORK_SIDE, f"a photo is worked at {PHOTO_WORK_SIDE} px on its longer side")
             work_kind = "photo"
-    settings_subject = None
     if img.scale != 1.0:
-        # The work is done at the downscaled size: masks and the rectangle, given in the input's
-        # pixels, are scaled in here, and every level is scaled back to the input's pixels below.
+        # The work is done at the downscaled size: masks, given in the input's pixels, are scaled
+        # in here (the subject rectangle by find_subject, which says it as given), and every level
+        # is scaled back to the input's pixels below.
         lock_mask = mask_to_working_size(lock_mask, img, "lock_mask")
         foreground = opts.foreground
         if isinstance(foreground, np.ndarray | Path) or (
             isinstance(foreground, str) and foreground not in FOREGROUND_CHOICES
         ):
             foreground = mask_to_working_size(foreground, img, "foreground")
-        subject = settings_subject = opts.subject
-        if subject is not None:
-            subject = tuple(v * img.scale for v in subject_rectangle_numbers(subject))
-        opts = dataclasses.replace(opts, foreground=foreground, subject=subject)
+        opts = dataclasses.replace(opts, foreground=foreground)
     lines = extract_feature_lines(img, kind=work_kind, foreground=opts.foreground, subject=opts.subject)
     if reason is not None:  # what detect_kind measured at the loaded size, not "given"
         lines = dataclasses.replace(lines, reason=reason)
-    if img.scale != 1.0 and settings_subject is not None and lines.subject is not None:
-        lines = _subject_said_in_input_pixels(lines, settings_subject, opts.subject, img)
     timings["feature_lines"] = time.perf_counter() - start
     start = time.perf_counter()
     graph = build_segment_graph(lines, rdp_tolerance=opts.rdp_tolerance, min_length=opts.min_length)
@@ -219,21 +214,6 @@ def abstract(
         progression = _in_input_pixels(progression, img)
     timings.update(progression.timings)
     return Result(img, lines, graph, progression, timings, progression.levels[0].params, choice)
-
-
-def _subject_said_in_input_pixels(lines: FeatureLines, given: object, scaled: object, img: LoadedImage) -> FeatureLines:
-    """The subject's description naming the rectangle as given, in the input's pixels, not the working size's."""
-    import re
-
-    def text(rect: object, shape: tuple[int, int]) -> str:
-        return ",".join(str(v) for v in parse_subject_rectangle(rect, shape))
-
-    found = lines.subject
-    if found is None:
-        return lines
-    work = text(scaled, (img.height, img.width))
-    said = re.sub(rf"\b{re.escape(work)}\b", text(given, (img.input_height, img.input_width)), found.description)
-    return dataclasses.replace(lines, subject=dataclasses.replace(found, description=said))
 
 
 def _in_input_pixels(progression: Progression, img: LoadedImage) -> Progression:

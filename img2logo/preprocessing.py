@@ -310,7 +310,8 @@ def extract_feature_lines(
         an image with transparency uses its alpha), the whole image, GrabCut
         kept whatever it finds, or a mask (white = object). None is ``"auto"``.
     subject : (x, y, w, h) or "X,Y,W,H", optional
-        Photos only: a rectangle around the object, px, that seeds GrabCut.
+        Photos only: a rectangle around the object, px of the input image (before
+        any downscale), that seeds GrabCut (:func:`img2logo.subject.find_subject`).
     spur_length : float, optional
         Side spurs of the skeleton shorter than this are pruned, px (default
         ``SPUR_LENGTH``; photos ``PHOTO_SPUR_LENGTH``).

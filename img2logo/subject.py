@@ -186,8 +186,10 @@ def find_subject(img: LoadedImage, foreground: object = "auto", subject: object 
         How to find it (see the module's documentation); None is ``"auto"``. A
         path is read as a mask image (white = object).
     subject : (x, y, w, h) or "X,Y,W,H", optional
-        A rectangle around the object, px: GrabCut starts from it. Only with
-        ``foreground`` ``"auto"`` or ``"grabcut"``.
+        A rectangle around the object, px of the input image (before any
+        downscale: ``img.input_width`` by ``img.input_height``; it is scaled
+        by ``img.scale`` here, and said as given): GrabCut starts from it.
+        Only with ``foreground`` ``"auto"`` or ``"grabcut"``.
 
     Returns
     -------
@@ -211,11 +213,12 @@ def _find_subject(img: LoadedImage, foreground: object, subject: object) -> Subj
     if subject is not None:
         if not (isinstance(foreground, str) and foreground in ("auto", "grabcut")):
             raise InvalidParameterError("subject (a rectangle) needs foreground auto or grabcut, not a mask or none")
-        rect = parse_subject_rectangle(subject, shape)
+        said = parse_subject_rectangle(subject, (img.input_height, img.input_width))  # the input's pixels
+        rect = said if img.scale == 1.0 else _at_working_size(said, img)
         mask = clean_mask(_grabcut(img, rect=rect))
         if not mask.any():
-            raise InvalidParameterError(f"no object found in the subject rectangle {','.join(map(str, rect))}")
-        x, y, w, h = rect
+            raise InvalidParameterError(f"no object found in the subject rectangle {','.join(map(str, said))}")
+        x, y, w, h = said
         return Subject(
             readonly(mask), "rectangle", f"kept the object in {x},{y},{w},{h} (GrabCut): {mask.mean():.0%} of the image"
         )
@@ -273,6 +276,24 @@ def _find_subject(img: LoadedImage, foreground: object, subject: object) -> Subj
     if not mask.any():
         raise InvalidParameterError("foreground mask is empty: no pixel is marked as the object")
     return Subject(readonly(mask.copy()), "mask", f"kept the object of the given mask: {mask.mean():.0%} of the image")
+
+
+def _at_working_size(rect: tuple[int, int, int, int], img: LoadedImage) -> tuple[int, int, int, int]:
+    """A rectangle (x, y, w, h) in the input's pixels, checked, at the size ``img`` is worked at (``img.scale``)."""
+    x, y, w, h = rect
+    x0, y0 = int(np.floor(x * img.scale)), int(np.floor(y * img.scale))
+    x1, y1 = min(img.width, int(np.ceil((x + w) * img.scale))), min(img.height, int(np.ceil((y + h) * img.scale)))
+    if x1 - x0 < 4 or y1 - y0 < 4:
+        raise InvalidParameterError(
+            f"subject rectangle {x},{y},{w},{h} must cover at least 4x4 px of the image as it is worked at "
+            f"({img.width}x{img.height} px, {img.scale:.3g} of the input's {img.input_width}x{img.input_height})"
+        )
+    if x0 == 0 and y0 == 0 and x1 == img.width and y1 == img.height:
+        raise InvalidParameterError(
+            f"subject rectangle {x},{y},{w},{h} covers the whole image as it is worked at "
+            f"({img.width}x{img.height} px): it must leave some background outside"
+        )
+    return x0, y0, x1 - x0, y1 - y0
 
 
 def _both_cuts(img: LoadedImage) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

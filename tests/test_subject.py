@@ -104,6 +104,31 @@ def test_bad_subject_options():
     assert parse_subject_rectangle(" 5, 6 ,100,50", (240, 320)) == (5, 6, 100, 50)
 
 
+def test_a_subject_rectangle_is_in_the_input_pixels_of_a_downscaled_image():
+    from img2logo.loading import downscale
+
+    rgb, (truth,) = textured_photo([(170, 120, 80, 60, (0.95, 0.75, 0.2))])
+    big = cv2.resize(rgb, (640, 480), interpolation=cv2.INTER_LINEAR)  # the object in 180..500 x 120..360, px
+    with pytest.warns(UserWarning):
+        img = downscale(load_image(big), 320, "half size")
+    assert img.scale == pytest.approx(0.5)
+    found = find_subject(img, subject=(160, 100, 360, 280))
+    assert found.description.startswith("kept the object in 160,100,360,280 (GrabCut)")
+    assert outline_distance(found.mask, truth) <= 3.0  # cut at the working size, in its pixels
+    # the errors name the rectangle as given, in the input's pixels
+    with pytest.raises(InvalidParameterError, match="subject rectangle 0,0,640,480 covers the whole 640x480 image"):
+        find_subject(img, subject=(0, 0, 640, 480))
+    small = r"subject rectangle 10,10,5,5 must cover at least 4x4 px of the image as it is worked at \(320x240 px"
+    with pytest.raises(InvalidParameterError, match=small):
+        find_subject(img, subject=(10, 10, 5, 5))
+    flat = np.full((480, 640, 3), 0.5)
+    flat[::2] = 0.52  # no object anywhere
+    with pytest.warns(UserWarning):
+        plain = downscale(load_image(flat), 320, "half size")
+    with pytest.raises(InvalidParameterError, match=r"no object found in the subject rectangle 100,100,300,200$"):
+        find_subject(plain, subject=(100, 100, 300, 200))
+
+
 def test_outline_contrast_tells_an_edge_from_a_cut_through_texture():
     from img2logo.subject_cues import outline_contrast
 
@@ -305,3 +330,30 @@ def test_dominant_part_leaves_out_a_part_of_another_texture_beyond_a_thin_neck()
     # The same shape in one texture (a giraffe's neck joins its head to its body): kept whole.
     assert dominant_part(mask, np.zeros((240, 320))) is mask
     assert dominant_part(tower, texture) is tower  # one part: nothing to choose
+
+
+def test_texture_step_asks_for_the_step_along_most_of_the_outline():
+    # A cut through smooth sky between two textured towers (skimage's rocket): the towers
+    # beside its sides make its inside smoother than its surroundings, but most of its outline
+    # (the top) runs through the sky, no texture edge.
+    from img2logo.subject_cues import texture_map, texture_step
+
+    rng = np.random.default_rng(0)
+    rgb = np.linspace(0.2, 0.5, 240)[:, None, None] * np.array([0.5, 0.6, 1.0]) * np.ones((240, 320, 1))
+    for c0 in (0, 250):
+        rgb[:, c0 : c0 + 70] += rng.normal(0, 0.15, (240, 70, 1))
+    img = load_image(np.clip(rgb, 0, 1))
+    texture = texture_map(img.rgb, 0.8)
+    sky = np.zeros((240, 320), bool)
+    sky[170:240, 70:250] = True
+    assert texture_step(img, texture, sky) < 0.2
+    tall = np.zeros((240, 320), bool)
+    tall[20:240, 70:250] = True  # its sides, most of its outline, are a texture edge
+    assert texture_step(img, texture, tall) > 0.5
+
+
+def test_the_rocket_photo_is_no_subject_by_its_texture():
+    from skimage import data
+
+    found = find_subject(load_image(data.rocket()))
+    assert "by its texture" not in found.description
