@@ -402,6 +402,19 @@ RUNG_CHOICES: int = 2
 #: quality``, issue 17): 1 gives 72 % of the joins tangent and 42.1 clip-art arcs, 2 gives
 #: 78 % and 42.4, 3 gives 83 % and 43.3 with two more near-miss gaps (held-out clip arts).
 KINK_WEIGHT: int = 2
+#: A smooth join that no refit from its circles makes tangent is fitted as one unit, a tangent
+#: biarc over its two groups' joined pixels (img2logo.tangency._biarc): its junction is tried
+#: every this many pixels of the chain (every pixel around the best), every this many pixels
+#: measured ...
+BIARC_STEP: int = 6
+#: ... its common tangent there up to this far from the chain's direction, rad (the kinks
+#: left on smooth input are 3-25 degrees, measured) ...
+BIARC_TURN: float = math.radians(30.0)
+#: ... in this many steps either way (4 degrees; the grid is searched again four times finer
+#: around its best) ...
+BIARC_TURN_STEPS: int = 8
+#: ... and the refit starts from the best this many of the rung choices (each a fit).
+BIARC_STARTS: int = 2
 
 # --- Result files and figures (writers, plotting) ---------------------------------
 #: Contract invariant: a circle's radius is phi ** (k + bias) within this fraction

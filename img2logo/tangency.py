@@ -23,7 +23,17 @@ it rigid:
   is only where the over-segmentation split one smooth feature line, so the
   two groups' pixels are split anew where the junction now is, and E^s counts
   the junction's distance off the line instead of its displacement (a junction
-  moved along a smooth line moves the logo away from nothing).
+  moved along a smooth line moves the logo away from nothing);
+* **the two circles are fitted as one unit** (:func:`_biarc_starts`): when no
+  refit from the current circles touches within T, the tangent biarc closest
+  to the two groups' joined pixels (rungs of both and one up or down for each,
+  its junction anywhere on the pixels, :func:`_biarc`) is the refit's start,
+  the junction's rest point moved there for the fit. Where a smooth line's
+  curvature changes from one rung to the next is seldom where the
+  over-segmentation put the node: on the polar bear's kinked joins the best
+  biarc's junction lies 15-85 px along the line from the node, farther than the
+  refit from the current circles moves it (its displacement term of Eqn. 13
+  pulls it back, and each group's pixels stay on their own circle).
 
 A tangency that makes the fit fail, lifts E^s above the tolerance T, breaks
 one made before or adds a redundant intersection is released (only that one):
@@ -54,7 +64,8 @@ run; enforcing all of a window's tangencies in the merges gives 41.6 arcs and
 On the clip arts and drawings of ``make quality`` the pass alone made 37 % of
 70 joins tangent (median kink 9.8 degrees), with the merges judged with their
 tangencies 58 % of 88 (40.2 -> 41.6 clip-art arcs), with the level chosen too
-78 % of 90 (42.4 arcs; a kink weighing one arc: 72 %). Tried and not kept, as
+78 % of 90 (42.4 arcs; a kink weighing one arc: 72 %), with the biarc starts
+91 % of 93 (42.8 arcs; the polar bear 7 of 16 -> 16 of 19 with 32 -> 39 arcs). Tried and not kept, as
 they changed nothing or less: every rung pair of one step (8 choices, not 2:
 the pass alone stayed at 37 %); and, with a kink weighing one arc, E^s counting
 every smooth join's junction by its distance off the line in the merge loop too
@@ -70,18 +81,29 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any, cast
+from weakref import WeakKeyDictionary
 
 import numpy as np
 
 from .arc_extraction import redundant_intersections
-from .constants import CONSTRAINED_FIT_TOL, KINK_WEIGHT, RUNG_CHOICES, SLIDE_MIN_PIXELS
+from .constants import (
+    BIARC_STARTS,
+    BIARC_STEP,
+    BIARC_TURN,
+    BIARC_TURN_STEPS,
+    CONSTRAINED_FIT_TOL,
+    KINK_WEIGHT,
+    RUNG_CHOICES,
+    SLIDE_MIN_PIXELS,
+)
 from .fit_state import Seed
 from .golden_ladder import FibonacciLadder
 from .simplification import Group, merge_groups
 
 if TYPE_CHECKING:
     from .fit_state import FitState, GroupFit, Stats
+    from .segment_graph import SegmentGraph
 
 
 def tangent_joins(opt: FitState, tolerance: float) -> bool:
@@ -211,6 +233,14 @@ def _one_at_a_time(opt: FitState, joins: dict[int, tuple[int, int]], bound: floa
                 best = trial
             if best is not None and not any(combo.values()):
                 break  # the rungs the paper chose serve: no reason to leave them
+        if best is None:
+            # No start near the current circles touches within T: fit the pair as one unit
+            # (a tangent biarc over the two groups' joined pixels, the junction anywhere on
+            # them, :func:`_biarc`) and start the refit from there.
+            for combo, start in _biarc_starts(opt, node, (a, b)):
+                trial = _try(opt, made, node, combo, bound, start)
+                if trial is not None and (best is None or trial.similarity < best.similarity):
+                    best = trial
         if best is None:
             del made[node]
             opt.loose.add(node)
@@ -357,14 +387,23 @@ class _Trial:
 
 
 def _try(
-    opt: FitState, made: dict[int, tuple[int, int]], node: int, combo: dict[int, int], bound: float
+    opt: FitState,
+    made: dict[int, tuple[int, int]],
+    node: int,
+    combo: dict[int, int],
+    bound: float,
+    start: _Start | None = None,
 ) -> _Trial | None:
     """Refit the window of the join at ``node`` with the rung steps ``combo``; None if it fails a rule.
 
     The rules are those of :func:`tangent_joins`. After the fit, the pixels of
     the two groups at every tangent join in the window are split anew where the
     junction now is (:func:`_split`), and their arcs extracted and scored
-    against them. The state is left as it was.
+    against them. With ``start`` (:func:`_biarc_starts`) the fit starts from a
+    tangent biarc: the join's two circles there, their pixels split at its
+    junction, and the junction's rest point moved there for the fit (its
+    displacement term of Eqn. 13 pulls towards the biarc's junction, not back
+    along the line to the node). The state is left as it was.
     """
     seeds = {g: f.seed for g, f in opt.fits.items()}
     for g, step in combo.items():
@@ -374,7 +413,15 @@ def _try(
     changed, free = _window(opt, made, made[node])
     node_groups = opt.node_groups()
     saved = dict(opt.fits), opt.disp.copy(), dict(opt.groups), dict(opt.off_line)
+    graph = opt.graph
     try:
+        if start is not None:
+            seeds.update(start.seeds)
+            opt.groups.update(start.groups)
+            rest = graph.junctions.copy()
+            rest[node] = start.junction
+            opt.disp[node] = 0.0
+            opt.graph = cast("SegmentGraph", _Moved(graph, rest))
         out = opt.solve(
             dict(opt.groups),
             seeds,
@@ -387,6 +434,10 @@ def _try(
             rings=2,
             tangent=True,
         )
+        if start is not None:
+            opt.graph = graph
+            if out is not None:  # the displacements from the graph's own node again
+                out[1][node] = out[1].get(node, opt.disp[node]) + start.junction - graph.junctions[node]
         if out is None:
             return None
         fits, disp = out
@@ -410,10 +461,154 @@ def _try(
             return None
         crossings = _redundant(opt, set(fits))
     finally:
+        opt.graph = graph
         opt.fits, opt.disp, opt.groups, opt.off_line = saved
     if crossings > _redundant(opt, set(fits)):
         return None
     return _Trial(similarity, fits, disp, groups, off_line)
+
+
+class _Moved:
+    """A segment graph with other rest points for its junctions (a biarc's start, :func:`_try`)."""
+
+    def __init__(self, graph: SegmentGraph, junctions: np.ndarray) -> None:
+        self._graph = graph
+        self.junctions = junctions
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self._graph, name)
+
+
+@dataclass(frozen=True)
+class _Start:
+    """A tangent biarc to start a join's refit from (:func:`_biarc_starts`)."""
+
+    seeds: dict[int, Seed]  # the two groups' circles, touching at ``junction``
+    groups: dict[int, Group]  # the two groups, their pixels split at ``junction``
+    junction: np.ndarray  # (2,) px, on the joined pixel chain
+
+
+def _biarc_starts(opt: FitState, node: int, pair: tuple[int, int]) -> list[tuple[dict[int, int], _Start]]:
+    """Tangent biarcs over a smooth join's two groups, as starts of its refit: (rung steps, start), best first.
+
+    Why: two circles of fixed rungs touch at one point only, and where the
+    curvature of a smooth line changes from one rung to the next is seldom where
+    the over-segmentation put the node: measured on the polar bear's kinked
+    joins, the best tangent biarc over the two groups' joined pixels has its
+    junction 15-85 px along the line from the node, and its pixels within
+    1.5-3 px of its circles (the two arcs now: 1-4 px), while the refit from the
+    current circles keeps the junction within a few px of the node (its
+    displacement term) and each group's pixels on their own circle. So the two
+    circles are fitted as one unit (:func:`_biarc`) on the rungs of both and one
+    rung up or down for each, and the ``BIARC_STARTS`` of smallest largest
+    pixel distance are returned. None for a straight line (fixed) or a closed group.
+    """
+    a, b = pair
+    fa, fb = opt.fits[a], opt.fits[b]
+    ga, gb = opt.groups[a], opt.groups[b]
+    if fa.k is None or fb.k is None or ga.closed or gb.closed:
+        return []
+    chain = merge_groups(ga, gb, node).points
+    rungs = {}
+    for g in pair:
+        k = cast(int, opt.fits[g].k)
+        rungs[g] = [(0, k, opt.fits[g].radius)]
+        rungs[g] += [(s, *r) for s in (-1, 1) if (r := _neighbour_rung(opt, g, s)) is not None]
+    radii = tuple(r for g in pair for _, _, r in rungs[g])
+    key = (ga.segments, gb.segments, node, len(chain), *chain[0], *chain[-1], *radii)
+    cache = _BIARCS.setdefault(opt, {})
+    if key not in cache:
+        cache[key] = _biarc(chain, [r for _, _, r in rungs[a]], [r for _, _, r in rungs[b]])
+    found = cache[key]
+    out = []
+    for _, ia, ib, i, ca, cb in found[:BIARC_STARTS]:
+        (sa, ka, ra), (sb, kb, rb) = rungs[a][ia], rungs[b][ib]
+        head, tail = chain[: i + 1], chain[i:]
+        groups = {
+            a: replace(ga, points=head if ga.nodes[-1] == node else head[::-1]),
+            b: replace(gb, points=tail if gb.nodes[0] == node else tail[::-1]),
+        }
+        seeds = {a: Seed(ca, ra, ka), b: Seed(cb, rb, kb)}
+        out.append(({a: sa, b: sb}, _Start(seeds, groups, chain[i].copy())))
+    return out
+
+
+#: The biarcs of a run's smooth joins (:func:`_biarc`), by the joined pixels and the radii:
+#: the levels that :func:`tangent_level` tries share most of their groups.
+_BIARCS: WeakKeyDictionary[FitState, dict[tuple, list]] = WeakKeyDictionary()
+
+
+def _biarc(
+    chain: np.ndarray, radii_a: Sequence[float], radii_b: Sequence[float]
+) -> list[tuple[float, int, int, int, np.ndarray, np.ndarray]]:
+    """The tangent biarcs closest to a pixel chain (n, 2), one per pair of radii: best first.
+
+    For every radius ``radii_a[ia]`` of the head's circle and ``radii_b[ib]`` of
+    the tail's: the junction is a pixel ``chain[i]`` (at least
+    ``SLIDE_MIN_PIXELS`` from either end); the common tangent there is the
+    chain's direction turned by up to ``BIARC_TURN`` rad either way; each circle
+    on either side. The head ``chain[:i + 1]`` goes with the first circle, the
+    tail ``chain[i:]`` with the second; the biarc kept has the smallest largest
+    distance of a pixel from its circle (the discrete Fréchet distance of E^s
+    is at least that). Searched on a grid (every ``BIARC_STEP`` pixels, every
+    ``BIARC_TURN / BIARC_TURN_STEPS`` rad, every ``BIARC_STEP``-th pixel
+    measured), then around the best of each pair on every pixel and a grid four
+    times finer. Returns (largest distance px, ia, ib, i, centre a, centre b)
+    sorted by the distance; empty if the chain is too short.
+    """
+    n = len(chain)
+    lo, hi = SLIDE_MIN_PIXELS + 1, n - SLIDE_MIN_PIXELS - 1
+    if hi <= lo:
+        return []
+    step = BIARC_TURN / BIARC_TURN_STEPS
+    splits = np.arange(lo, hi, BIARC_STEP)
+    turns = np.arange(-BIARC_TURN_STEPS, BIARC_TURN_STEPS + 1) * step
+    sides = ((-1.0, -1.0), (-1.0, 1.0), (1.0, -1.0), (1.0, 1.0))
+    heads = [{sa: _biarc_worst(chain, splits, turns, r, sa, True, BIARC_STEP) for sa in (-1.0, 1.0)} for r in radii_a]
+    tails = [{sb: _biarc_worst(chain, splits, turns, r, sb, False, BIARC_STEP) for sb in (-1.0, 1.0)} for r in radii_b]
+    out = []
+    for ia, ra in enumerate(radii_a):
+        for ib, rb in enumerate(radii_b):
+            w = [np.maximum(heads[ia][sa], tails[ib][sb]) for sa, sb in sides]
+            j = min(range(4), key=lambda j: float(w[j].min()))
+            s, t = np.unravel_index(int(np.argmin(w[j])), w[j].shape)
+            sa, sb = sides[j]
+            # Around the best on the coarse grid: every pixel and a finer turn, every pixel measured.
+            fine = np.arange(max(lo, splits[s] - BIARC_STEP), min(hi, splits[s] + BIARC_STEP + 1))
+            near = turns[t] + np.arange(-4, 5) * (step / 4.0)
+            wa = _biarc_worst(chain, fine, near, ra, sa, True, 1)
+            wb = _biarc_worst(chain, fine, near, rb, sb, False, 1)
+            w2 = np.maximum(wa, wb)
+            s2, t2 = np.unravel_index(int(np.argmin(w2)), w2.shape)
+            i = int(fine[s2])
+            normal = _biarc_normal(chain, np.array([i]), np.array([near[t2]]))[0, 0]
+            out.append((float(w2[s2, t2]), ia, ib, i, chain[i] + sa * ra * normal, chain[i] + sb * rb * normal))
+    out.sort(key=lambda t: t[0])
+    return out
+
+
+def _biarc_normal(chain: np.ndarray, splits: np.ndarray, turns: np.ndarray) -> np.ndarray:
+    """Unit normals (S, A, 2) of the chain's direction at pixels ``splits`` turned by ``turns`` rad."""
+    n = len(chain)
+    d = chain[np.minimum(splits + 3, n - 1)] - chain[np.maximum(splits - 3, 0)]
+    theta = np.arctan2(d[:, 1], d[:, 0])[:, None] + turns[None, :]
+    return np.stack([-np.sin(theta), np.cos(theta)], axis=-1)
+
+
+def _biarc_worst(
+    chain: np.ndarray, splits: np.ndarray, turns: np.ndarray, r: float, side: float, head: bool, stride: int
+) -> np.ndarray:
+    """Largest distance (S, A) px of the head's (or tail's) pixels from a circle of radius ``r``, per split and turn.
+
+    The circle touches the chain's turned direction at ``chain[split]``, its
+    centre on the ``side`` (+1 or -1) of it; every ``stride``-th pixel measured.
+    """
+    centre = chain[splits][:, None, :] + side * r * _biarc_normal(chain, splits, turns)  # (S, A, 2)
+    index = np.arange(0, len(chain), stride)
+    sample = chain[index]
+    dist = np.abs(np.hypot(sample[:, 0] - centre[..., :1], sample[:, 1] - centre[..., 1:]) - r)  # (S, A, m)
+    mine = index[None, :] <= splits[:, None] if head else index[None, :] >= splits[:, None]
+    return np.where(mine[:, None, :], dist, 0.0).max(axis=-1)
 
 
 def _slide(

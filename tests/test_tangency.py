@@ -78,6 +78,26 @@ def test_split_a_chain_where_the_junction_slid():
     assert _split(chain, np.array([8.5, 0.0])) is None
 
 
+def test_a_biarc_is_found_where_its_two_circles_touch():
+    from img2logo.tangency import _biarc
+
+    # A smooth line of two tangent circles, radii 50 and 80 px, touching at (0, 0) with the
+    # common tangent along x: the head on the circle centred (0, 50), the tail on (0, -80).
+    head = np.column_stack([50 * np.sin(t := np.linspace(-1.2, 0.0, 61)), 50 - 50 * np.cos(t)])
+    tail = np.column_stack([80 * np.sin(u := np.linspace(0.0, 0.75, 61)[1:]), -80 + 80 * np.cos(u)])
+    chain = np.vstack([head, tail])
+    found = _biarc(chain, [30.0, 50.0, 80.0], [50.0, 80.0, 130.0])
+    worst, ia, ib, i, ca, cb = found[0]
+    # The radii of the line, the junction at the touching point, the circles where they are.
+    assert (ia, ib) == (1, 1) and i == 60 and worst < 0.5  # the finer grid turns by 1 degree
+    assert np.allclose(ca, (0.0, 50.0), atol=1.0) and np.allclose(cb, (0.0, -80.0), atol=1.5)
+    # The circles touch: the junction on the line of centres, at both radii.
+    assert np.hypot(*(ca - chain[i])) == pytest.approx(50.0) and np.hypot(*(cb - chain[i])) == pytest.approx(80.0)
+    assert found == sorted(found, key=lambda f: f[0]) and found[-1][0] > 1.0
+    # Too short a chain for a junction with SLIDE_MIN_PIXELS on both sides: none.
+    assert _biarc(chain[:6], [50.0], [80.0]) == []
+
+
 @pytest.fixture(scope="module")
 def umbrella():
     return abstract(DATA.parent / "benchmarks" / "data" / "drawing-umbrella.png", progress=False)
