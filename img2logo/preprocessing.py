@@ -126,20 +126,7 @@ def photo_reason(img: LoadedImage) -> str | None:
     Cheap (one pass over the pixels): the pipeline asks it first, since a
     photo's work is done at ``PHOTO_WORK_SIDE`` (:func:`img2logo.pipeline.abstract`).
     """
-    return _photo_reason(_flat_fraction(img))
-
-
-def _flat_fraction(img: LoadedImage) -> float:
-    """The fraction of pixels whose four neighbours have exactly their colour (8 bits a channel)."""
-    v = np.round(img.rgb * 255.0).astype(np.int32)
-    key = (v[..., 0] << 16) | (v[..., 1] << 8) | v[..., 2]
-    same = np.ones(key.shape, dtype=bool)
-    eh, ev = key[:, 1:] == key[:, :-1], key[1:] == key[:-1]
-    same[:, 1:] &= eh
-    same[:, :-1] &= eh
-    same[1:] &= ev
-    same[:-1] &= ev
-    return float(same.mean())
+    return _photo_reason(img.flat_fraction)
 
 
 def _photo_reason(flat: float) -> str | None:
@@ -158,7 +145,7 @@ def _photo_reason(flat: float) -> str | None:
 
 def _detect(img: LoadedImage) -> tuple[str, str, np.ndarray | None]:
     """(kind, reason, clip-art regions or None): the regions are reused for a clip art."""
-    flat = _flat_fraction(img)
+    flat = img.flat_fraction
     reason = _photo_reason(flat)
     if reason is not None:
         return "photo", reason, None
