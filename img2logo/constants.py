@@ -42,16 +42,17 @@ PHOTO_WORK_SIDE: int = 512
 #: its stage's lengths (T = 5 px, SPUR_LENGTH, CLIPART_RIM_RADIUS, the seed and region
 #: areas, the 3x3 flatness test, the drawing's stroke and rim tests) were chosen on 512 px
 #: images whose edges are 1-2 px of anti-aliasing, and T = 5 px of 512 is the detail of a
-#: logo of 20-60 arcs. Measured on the evaluation set's clip arts upscaled (bicubic) to 2048
-#: and 4000 px, r10 against the 512 px truth (benchmarks/data): worked at 2048 px (before)
-#: they gave 2-4 times the arcs of the 512 px originals (the ewe 136 for 36), the seal lost
-#: its outline (r10 0.18: an upscaled edge is a ramp the noise test takes for compression),
-#: the ewe crossed itself twice, 16 s of CPU each; at 1024 px 1.2-1.5 times the arcs (mean
-#: 56 for 41), r10 0.98, and the thick-stroked drawing-bike upscaled to 3000-6000 px was
-#: taken for a clip art of 6 colours; at 512 px the originals' logos (mean 39-40 arcs for 41,
-#: r10 0.97, every kind right), 3 s. Thin strokes survive the area downscale as faint lines:
-#: 3 px strokes of a 4096 px drawing and clip art (0.4 px at 512) are all traced. What is
-#: lost is what a 512 px copy cannot show (a part under CLIPART_MIN_REGION_AREA there).
+#: logo of 20-60 arcs. Measured with benchmarks/upscaled.py (the evaluation set's 7 clip arts
+#: and 9 drawings upscaled bicubic to 2048 and 4000 px; r10 of the logo scaled back, against
+#: the 512 px truth): worked at 2048 px (before), the clip arts gave 92 arcs on average for
+#: the originals' 39 (the ewe 136), the seal lost its outline (r10 0.18: an upscaled edge is
+#: a ramp its noise test takes for compression), 16 s of CPU each, and 5 of the 9 drawings
+#: were taken for clip arts; at 1024 px 56 arcs, r10 0.98, and still 5 of 9 drawings taken
+#: for clip arts (their strokes' ramps read as a second colour); at 512 px the originals'
+#: logos: 39-40 arcs, r10 0.97 (the drawings 12.9 arcs for 12.7, r10 1.00), every kind right,
+#: 3 s. Thin strokes survive the area downscale as faint lines: 3 px strokes of a 4096 px
+#: drawing and clip art (0.4 px at 512) are all traced. What is lost is what a 512 px copy
+#: cannot show (a part under CLIPART_MIN_REGION_AREA there).
 SYNTHETIC_WORK_SIDE: int = 512
 #: Largest accepted input, pixels (width x height), read from the file's header before
 #: decoding: 8-bit RGBA at this size is 600 MB decoded; a larger file is refused as a

@@ -123,8 +123,8 @@ class Options:
     ``Options(tolerance=7.0, ladder="fibonacci")`` or
     ``Options.from_keywords({...})``; change one with :func:`dataclasses.replace`
     (checked again). Lengths are in px of the working image: the input, or for an
-    input over ``MAX_IMAGE_SIDE`` its downscale, whose results
-    :func:`img2logo.abstract` scales back to the input's pixels (T and E^s with them).
+    input over 512 px (``PHOTO_WORK_SIDE``, ``SYNTHETIC_WORK_SIDE``) its downscale, whose
+    results :func:`img2logo.abstract` scales back to the input's pixels (T and E^s with them).
 
     Attributes
     ----------
