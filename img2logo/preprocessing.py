@@ -41,8 +41,9 @@ from .constants import (
     SEAM_WIDTH,
     SPUR_LENGTH,
     SYNTHETIC_FLAT_FRACTION,
+    SYNTHETIC_WORK_SIDE,
 )
-from .loading import DownscaleWarning, LoadedImage, load_image, load_mask
+from .loading import DownscaleWarning, LoadedImage, downscale, load_image, load_mask
 from .photo import edge_tangent_flow, face_line_length, face_region, flow_dog, photo_feature_lines
 from .subject import Subject, find_subject
 
@@ -115,8 +116,13 @@ def detect_kind(image: object) -> tuple[str, str]:
       ``DRAWING_MAX_STROKE_FRACTION`` of the image's shorter side wide;
     * otherwise a **clip art**: several flat colours (a grey animal on white is
       a clip art of greys, not a drawing).
+
+    Measured, as :func:`img2logo.abstract` does, on a copy at most
+    ``SYNTHETIC_WORK_SIDE`` px on its longer side (the size these tests were
+    chosen at: an upscaled drawing's strokes are ramps that read as a second
+    colour at 2048 px), so both tell the same kind.
     """
-    kind, reason, _ = _detect(load_image(image))
+    kind, reason, _ = _detect(downscale(load_image(image), SYNTHETIC_WORK_SIDE))
     return kind, reason
 
 
