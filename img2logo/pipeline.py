@@ -107,7 +107,10 @@ def abstract(
     Parameters
     ----------
     image : path, ndarray or LoadedImage
-        The input (see :func:`img2logo.load_image`).
+        The input (see :func:`img2logo.load_image`). Over 512 px on its longer
+        side it is worked at 512 px (``SYNTHETIC_WORK_SIDE``, ``PHOTO_WORK_SIDE``:
+        the size every default was chosen at), with one warning, and every level
+        is scaled back to the input's pixels.
     tolerance : float
         T, the largest similarity error E^s (Eqn. 1) accepted, px (default 5).
     kind : {"auto", "photo", "clipart", "drawing"}
