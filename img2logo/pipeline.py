@@ -174,7 +174,7 @@ def abstract(
             subject = tuple(v * img.scale for v in subject_rectangle_numbers(subject))
         opts = dataclasses.replace(opts, foreground=foreground, subject=subject)
     lines = extract_feature_lines(img, kind=work_kind, foreground=opts.foreground, subject=opts.subject)
-    if reason is not None:  # what detect_kind measured at the loaded size, not "given"
+    if reason is not None:  # what the photo test measured (_working_copy), not "given"
         lines = dataclasses.replace(lines, reason=reason)
     if img.scale != 1.0 and settings_subject is not None and lines.subject is not None:
         lines = _subject_said_in_input_pixels(lines, settings_subject, opts.subject, img)
