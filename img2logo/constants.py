@@ -35,9 +35,25 @@ MAX_IMAGE_SIDE: int = 2048
 #: logo those defaults were measured for, whatever its resolution. At the 2048 px
 #: working size the noisy 12000 px flower of issue 20 gave 103 arcs, its outline in
 #: pieces, and took 25 s of CPU; at 1024 px 60 arcs, at 512 px 33 arcs, whole.
-#: Clip art and drawings keep MAX_IMAGE_SIDE: their thin strokes and small fills are
-#: the logo.
+#: Clip art and drawings: SYNTHETIC_WORK_SIDE.
 PHOTO_WORK_SIDE: int = 512
+#: A clip art or a line drawing is worked at most this size on its longer side, px, for the
+#: photo's reason (the result is scaled back to the input's pixels, as for MAX_IMAGE_SIDE):
+#: its stage's lengths (T = 5 px, SPUR_LENGTH, CLIPART_RIM_RADIUS, the seed and region
+#: areas, the 3x3 flatness test, the drawing's stroke and rim tests) were chosen on 512 px
+#: images whose edges are 1-2 px of anti-aliasing, and T = 5 px of 512 is the detail of a
+#: logo of 20-60 arcs. Measured with benchmarks/upscaled.py (the evaluation set's 7 clip arts
+#: and 9 drawings upscaled bicubic to 2048 and 4000 px; r10 of the logo scaled back, against
+#: the 512 px truth): worked at 2048 px (before), the clip arts gave 92 arcs on average for
+#: the originals' 39 (the ewe 136), the seal lost its outline (r10 0.18: an upscaled edge is
+#: a ramp its noise test takes for compression), 16 s of CPU each, and 5 of the 9 drawings
+#: were taken for clip arts; at 1024 px 56 arcs, r10 0.98, and still 5 of 9 drawings taken
+#: for clip arts (their strokes' ramps read as a second colour); at 512 px the originals'
+#: logos: 39-40 arcs, r10 0.97 (the drawings 12.9 arcs for 12.7, r10 1.00), every kind right,
+#: 3 s. Thin strokes survive the area downscale as faint lines: 3 px strokes of a 4096 px
+#: drawing and clip art (0.4 px at 512) are all traced. What is lost is what a 512 px copy
+#: cannot show (a part under CLIPART_MIN_REGION_AREA there).
+SYNTHETIC_WORK_SIDE: int = 512
 #: Largest accepted input, pixels (width x height), read from the file's header before
 #: decoding: 8-bit RGBA at this size is 600 MB decoded; a larger file is refused as a
 #: likely decompression bomb (the largest camera sensors give about 100 Mpx).
@@ -52,6 +68,11 @@ MAX_LENGTH: float = 1e7
 #: ``unit``), px: a thousandth of a pixel, a circle no drawing can show; below it
 #: phi ** k only heads for underflow (``--radii=-1000000``).
 MIN_LADDER_RADIUS: float = 1e-3
+#: The largest angle an option takes, degrees (``symmetry``'s axis direction, either sign): a
+#: direction repeats every 360 degrees (a mirror axis every 180), so a larger number is a
+#: typo, and from about 1e18 degrees on a double's spacing exceeds a turn and the direction
+#: it names is noise (``--symmetry 1e308`` had run with an arbitrary axis).
+MAX_ANGLE_DEGREES: float = 360.0
 #: Rows composited over white at a time when a large image with alpha is downscaled:
 #: bounds the float32 temporaries to about 4 MB per 1000 px of width.
 DOWNSCALE_STRIP_ROWS: int = 256

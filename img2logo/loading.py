@@ -104,6 +104,20 @@ class LoadedImage:
         return self.rgb @ np.array(LUMA_WEIGHTS)
 
     @functools.cached_property
+    def flat_fraction(self) -> float:
+        """The fraction of pixels whose four neighbours have exactly their colour (8 bits a channel); computed
+        once (the pipeline's photo test and the kind detection both need it, :func:`img2logo.detect_kind`)."""
+        v = np.round(self.rgb * 255.0).astype(np.int32)
+        key = (v[..., 0] << 16) | (v[..., 1] << 8) | v[..., 2]
+        same = np.ones(key.shape, dtype=bool)
+        eh, ev = key[:, 1:] == key[:, :-1], key[1:] == key[:-1]
+        same[:, 1:] &= eh
+        same[:, :-1] &= eh
+        same[1:] &= ev
+        same[:-1] &= ev
+        return float(same.mean())
+
+    @functools.cached_property
     def lab(self) -> np.ndarray:
         """CIELAB colours (D65), (H, W, 3) float64, read-only; computed once (kind detection and
         clip-art regions both need them)."""
@@ -190,12 +204,13 @@ def load_image(source: object, *, max_side: int = MAX_IMAGE_SIDE, max_pixels: in
     return LoadedImage(readonly(rgb), readonly(alpha), has_alpha, scale, name, (int(w), int(h)))
 
 
-def downscale(img: LoadedImage, max_side: int, why: str) -> LoadedImage:
+def downscale(img: LoadedImage, max_side: int, why: str | None = None) -> LoadedImage:
     """``img`` shrunk to ``max_side`` px on its longer side (area interpolation), or ``img`` if not larger.
 
     The input's size is kept (``input_size``) and ``scale`` becomes the whole
     factor from the input, so results and masks convert as for a large input
-    (:func:`mask_to_working_size`); a :class:`DownscaleWarning` says ``why``.
+    (:func:`mask_to_working_size`); a :class:`DownscaleWarning` says ``why``
+    (None: no warning, the caller says it with :func:`warn_downscaled`).
     """
     side = max(img.width, img.height)
     if side <= max_side:
@@ -204,17 +219,24 @@ def downscale(img: LoadedImage, max_side: int, why: str) -> LoadedImage:
 
     f = max_side / side
     size = (max(MIN_IMAGE_SIDE, round(img.width * f)), max(MIN_IMAGE_SIDE, round(img.height * f)))
-    warnings.warn(
-        f"{img.source}: {why}: {size[0]}x{size[1]} px (the results are in the input's "
-        f"{img.input_width}x{img.input_height} px)",
-        DownscaleWarning,
-        stacklevel=2,
-    )
     rgb = np.clip(cv2.resize(img.rgb, size, interpolation=cv2.INTER_AREA), 0.0, 1.0)
     alpha = np.clip(cv2.resize(img.alpha, size, interpolation=cv2.INTER_AREA), 0.0, 1.0)
     scale = max_side / max(img.input_width, img.input_height)  # as load_image's: the whole factor from the input
-    return LoadedImage(
+    small = LoadedImage(
         readonly(rgb), readonly(alpha), img.has_alpha, scale, img.source, (img.input_width, img.input_height)
+    )
+    if why is not None:
+        warn_downscaled(small, why, stacklevel=3)
+    return small
+
+
+def warn_downscaled(img: LoadedImage, why: str, stacklevel: int = 2) -> None:
+    """The :class:`DownscaleWarning` of a working copy ``img``: ``why``, its size and the input's."""
+    warnings.warn(
+        f"{img.source}: {why}: {img.width}x{img.height} px (the results are in the input's "
+        f"{img.input_width}x{img.input_height} px)",
+        DownscaleWarning,
+        stacklevel=stacklevel + 1,
     )
 
 

@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from ._validation import check_choice, check_positive
-from .constants import MAX_LENGTH, MIN_LADDER_RADIUS, MIN_SEGMENT_LENGTH, RDP_TOLERANCE, TOLERANCE
+from .constants import MAX_ANGLE_DEGREES, MAX_LENGTH, MIN_LADDER_RADIUS, MIN_SEGMENT_LENGTH, RDP_TOLERANCE, TOLERANCE
 from .errors import InvalidParameterError, UnknownOptionError
 
 __all__ = [
@@ -123,8 +123,8 @@ class Options:
     ``Options(tolerance=7.0, ladder="fibonacci")`` or
     ``Options.from_keywords({...})``; change one with :func:`dataclasses.replace`
     (checked again). Lengths are in px of the working image: the input, or for an
-    input over ``MAX_IMAGE_SIDE`` its downscale, whose results
-    :func:`img2logo.abstract` scales back to the input's pixels (T and E^s with them).
+    input over 512 px (``PHOTO_WORK_SIDE``, ``SYNTHETIC_WORK_SIDE``) its downscale, whose
+    results :func:`img2logo.abstract` scales back to the input's pixels (T and E^s with them).
 
     Attributes
     ----------
@@ -496,8 +496,8 @@ def check_symmetry_option(value: object) -> str | None:
     """The ``symmetry`` option checked: None for ``"none"``, else its canonical text.
 
     Accepts ``"none"``, ``"auto"``, ``"vertical"``, ``"horizontal"`` or an angle in
-    degrees (a number, or a string of one), the direction of the axis from +x
-    towards +y (90 is upright).
+    degrees (a number, or a string of one, within +-``MAX_ANGLE_DEGREES``), the
+    direction of the axis from +x towards +y (90 is upright).
 
     Raises
     ------
@@ -518,6 +518,9 @@ def check_symmetry_option(value: object) -> str | None:
         raise InvalidParameterError(
             f"symmetry must be auto, none, vertical, horizontal or an angle in degrees, got {value!r}"
         ) from None
-    if not math.isfinite(angle):
-        raise InvalidParameterError(f"symmetry angle must be a finite number of degrees, got {value!r}")
+    if not math.isfinite(angle) or abs(angle) > MAX_ANGLE_DEGREES:
+        raise InvalidParameterError(
+            f"symmetry angle must be a number of degrees in -{MAX_ANGLE_DEGREES:g}..{MAX_ANGLE_DEGREES:g}, "
+            f"got {value!r}"
+        )
     return f"{angle:g}"

@@ -17,10 +17,10 @@ from typing import Any
 
 import numpy as np
 
-from .constants import MIN_STROKE_WIDTH, PHOTO_MAX_ARC_FACTOR, PHOTO_WORK_SIDE
+from .constants import MIN_STROKE_WIDTH, PHOTO_MAX_ARC_FACTOR, PHOTO_WORK_SIDE, SYNTHETIC_WORK_SIDE
 from .errors import InvalidParameterError
 from .geometry import Abstraction
-from .loading import downscale, mask_to_working_size
+from .loading import downscale, mask_to_working_size, warn_downscaled
 from .options import AUTO, Options, check_lock_mask
 from .preprocessing import FeatureLines, LoadedImage, extract_feature_lines, load_image, photo_reason
 from .progressive import ProgressCallback, Progression, optimize
@@ -107,7 +107,10 @@ def abstract(
     Parameters
     ----------
     image : path, ndarray or LoadedImage
-        The input (see :func:`img2logo.load_image`).
+        The input (see :func:`img2logo.load_image`). Over 512 px on its longer
+        side it is worked at 512 px (``SYNTHETIC_WORK_SIDE``, ``PHOTO_WORK_SIDE``:
+        the size every default was chosen at), with one warning, and every level
+        is scaled back to the input's pixels.
     tolerance : float
         T, the largest similarity error E^s (Eqn. 1) accepted, px (default 5).
     kind : {"auto", "photo", "clipart", "drawing"}
@@ -118,9 +121,12 @@ def abstract(
     lock_mask : ndarray of bool, shape (H, W), optional
         Segments mostly inside it are never merged (Sec. 7, Fig. 16); not with symmetry.
     progress : callable, bool or None
-        A callback ``progress(t, n_arcs, similarity)``; ``True`` shows a
-        progress bar on the terminal; ``None`` (default) shows one only when
-        standard error is a terminal.
+        A callback ``progress(t, n_arcs, similarity)``, called after every level
+        the merge loop makes, then once more with the result's final level when
+        the tangent joins chose it (its t may be earlier than the last reported:
+        :func:`img2logo.progressive.optimize`); the last call is always
+        ``Result.final``. ``True`` shows a progress bar on the terminal;
+        ``None`` (default) shows one only when standard error is a terminal.
     **settings
         Any other field of :class:`~img2logo.options.Options`: ``rdp_tolerance``,
         ``min_length``, ``foreground``, ``subject``, ``symmetry`` (``"none"``,
@@ -152,13 +158,7 @@ def abstract(
     check_lock_mask(opts, lock_mask)
     timings: dict[str, float] = {}
     start = time.perf_counter()
-    img = load_image(image)
-    work_kind, reason = opts.kind, None
-    if work_kind in ("auto", "photo") and max(img.width, img.height) > PHOTO_WORK_SIDE:
-        reason = "given" if work_kind == "photo" else photo_reason(img)
-        if reason is not None:  # a photo is worked at the size its defaults were chosen at (constants)
-            img = downscale(img, PHOTO_WORK_SIDE, f"a photo is worked at {PHOTO_WORK_SIDE} px on its longer side")
-            work_kind = "photo"
+    img, work_kind, reason = _working_copy(load_image(image), opts.kind)
     if img.scale != 1.0:
         # The work is done at the downscaled size: masks, given in the input's pixels, are scaled
         # in here (the subject rectangle by find_subject, which says it as given), and every level
@@ -171,7 +171,7 @@ def abstract(
             foreground = mask_to_working_size(foreground, img, "foreground")
         opts = dataclasses.replace(opts, foreground=foreground)
     lines = extract_feature_lines(img, kind=work_kind, foreground=opts.foreground, subject=opts.subject)
-    if reason is not None:  # what detect_kind measured at the loaded size, not "given"
+    if reason is not None:  # what the photo test measured (_working_copy), not "given"
         lines = dataclasses.replace(lines, reason=reason)
     timings["feature_lines"] = time.perf_counter() - start
     start = time.perf_counter()
@@ -214,6 +214,36 @@ def abstract(
         progression = _in_input_pixels(progression, img)
     timings.update(progression.timings)
     return Result(img, lines, graph, progression, timings, progression.levels[0].params, choice)
+
+
+def _working_copy(img: LoadedImage, kind: str) -> tuple[LoadedImage, str, str | None]:
+    """The image at the size its kind is worked at, the kind to extract it as, and why it is a photo (or None).
+
+    Every kind's default lengths (T = 5 px, the spurs, the smallest region, ...) were chosen on
+    images of 300-512 px: a clip art or a drawing is worked at ``SYNTHETIC_WORK_SIDE`` px at most
+    and a photo at ``PHOTO_WORK_SIDE`` (constants, with the measurements), so that a larger file of
+    the same picture gives about the same logo and the time follows the working size, not the
+    input's. The photo test (:func:`photo_reason`) runs once, on the synthetic working copy, and
+    the kind detection reuses it (:attr:`LoadedImage.flat_fraction` is cached); the reason is
+    "given" when ``kind`` says photo. One :class:`DownscaleWarning` says the size chosen.
+    """
+    reason = None
+    work = img if kind == "photo" else downscale(img, SYNTHETIC_WORK_SIDE)  # said below, once the kind is known
+    if kind == "photo" and max(img.width, img.height) > PHOTO_WORK_SIDE:
+        reason = "given"
+    elif kind == "auto" and (work is not img or max(img.width, img.height) > PHOTO_WORK_SIDE):
+        reason = photo_reason(work)
+    if reason is not None:
+        side = min(PHOTO_WORK_SIDE, max(img.width, img.height))
+        photo = (
+            work if max(work.width, work.height) == side else downscale(img, PHOTO_WORK_SIDE)
+        )  # from the loaded copy
+        if photo is not img:
+            warn_downscaled(photo, f"a photo is worked at {PHOTO_WORK_SIDE} px on its longer side")
+        return photo, "photo", reason
+    if work is not img:
+        warn_downscaled(work, f"a clip art or a drawing is worked at {SYNTHETIC_WORK_SIDE} px on its longer side")
+    return work, kind, reason
 
 
 def _in_input_pixels(progression: Progression, img: LoadedImage) -> Progression:

@@ -41,8 +41,9 @@ from .constants import (
     SEAM_WIDTH,
     SPUR_LENGTH,
     SYNTHETIC_FLAT_FRACTION,
+    SYNTHETIC_WORK_SIDE,
 )
-from .loading import DownscaleWarning, LoadedImage, load_image, load_mask
+from .loading import DownscaleWarning, LoadedImage, downscale, load_image, load_mask
 from .photo import edge_tangent_flow, face_line_length, face_region, flow_dog, photo_feature_lines
 from .subject import Subject, find_subject
 
@@ -115,8 +116,13 @@ def detect_kind(image: object) -> tuple[str, str]:
       ``DRAWING_MAX_STROKE_FRACTION`` of the image's shorter side wide;
     * otherwise a **clip art**: several flat colours (a grey animal on white is
       a clip art of greys, not a drawing).
+
+    Measured, as :func:`img2logo.abstract` does, on a copy at most
+    ``SYNTHETIC_WORK_SIDE`` px on its longer side (the size these tests were
+    chosen at: an upscaled drawing's strokes are ramps that read as a second
+    colour at 2048 px), so both tell the same kind.
     """
-    kind, reason, _ = _detect(load_image(image))
+    kind, reason, _ = _detect(downscale(load_image(image), SYNTHETIC_WORK_SIDE))
     return kind, reason
 
 
@@ -126,20 +132,7 @@ def photo_reason(img: LoadedImage) -> str | None:
     Cheap (one pass over the pixels): the pipeline asks it first, since a
     photo's work is done at ``PHOTO_WORK_SIDE`` (:func:`img2logo.pipeline.abstract`).
     """
-    return _photo_reason(_flat_fraction(img))
-
-
-def _flat_fraction(img: LoadedImage) -> float:
-    """The fraction of pixels whose four neighbours have exactly their colour (8 bits a channel)."""
-    v = np.round(img.rgb * 255.0).astype(np.int32)
-    key = (v[..., 0] << 16) | (v[..., 1] << 8) | v[..., 2]
-    same = np.ones(key.shape, dtype=bool)
-    eh, ev = key[:, 1:] == key[:, :-1], key[1:] == key[:-1]
-    same[:, 1:] &= eh
-    same[:, :-1] &= eh
-    same[1:] &= ev
-    same[:-1] &= ev
-    return float(same.mean())
+    return _photo_reason(img.flat_fraction)
 
 
 def _photo_reason(flat: float) -> str | None:
@@ -158,7 +151,7 @@ def _photo_reason(flat: float) -> str | None:
 
 def _detect(img: LoadedImage) -> tuple[str, str, np.ndarray | None]:
     """(kind, reason, clip-art regions or None): the regions are reused for a clip art."""
-    flat = _flat_fraction(img)
+    flat = img.flat_fraction
     reason = _photo_reason(flat)
     if reason is not None:
         return "photo", reason, None

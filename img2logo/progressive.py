@@ -167,7 +167,12 @@ def optimize(
     lock_mask : ndarray of bool, shape (H, W), optional
         Segments mostly inside it are never merged (Sec. 7, Fig. 16).
     progress : callable, optional
-        Called as ``progress(t, n_arcs, similarity)`` after every level.
+        Called as ``progress(t, n_arcs, similarity)`` after every level the merge
+        loop makes (A^0 first), then, when the tangent joins were refitted
+        (``tangency``), once more with the result's final level: its t may be
+        smaller than the last reported (the later levels are dropped) and its
+        arcs and E^s are those after the refit. The last call is always the
+        result's ``final``.
     params : mapping, optional
         Extra entries recorded in every level's ``params``.
     symmetry : img2logo.symmetry.HalfAxis, optional
@@ -264,6 +269,8 @@ def optimize(
         back = tangent_level(state, opts.tolerance, history)
         del levels[len(levels) - back :]
         levels[-1] = state.abstraction(levels[-1].level, record)
+        if progress:  # the result: an earlier t than the last reported when levels were dropped
+            progress(levels[-1].level, len(levels[-1].arcs), levels[-1].similarity)
     timings["tangency"] = time.perf_counter() - start
     return Progression(tuple(levels), float(golden.bias), simplified, stopped, state.stats.as_dict(), timings, golden)
 

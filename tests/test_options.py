@@ -137,6 +137,8 @@ def test_the_command_line_flags_come_from_the_fields():
         ({"tolerance": True}, r"^tolerance must be a number of px, got True$"),
         ({"rdp_tolerance": "2"}, r"^rdp_tolerance must be a number of px, got '2'$"),
         ({"bias": "0.5"}, r"^bias must be a number in \[0, 1\), got '0\.5'$"),
+        ({"symmetry": 1e308}, r"^symmetry angle must be a number of degrees in -360\.\.360, got 1e\+308$"),
+        ({"symmetry": "-360.5"}, r"^symmetry angle must be a number of degrees in -360\.\.360, got '-360\.5'$"),
     ],
 )
 def test_out_of_range_lengths_and_radii_are_refused_without_numpy_warnings(keywords, message):
@@ -152,3 +154,4 @@ def test_the_largest_lengths_and_radii_are_accepted():
     o = Options(tolerance=1e7, rdp_tolerance=1e7, exponents=[-14, 33])
     assert (o.tolerance, o.exponents) == (1e7, (-14, 33))
     assert Options(ladder="fibonacci", unit=1e-3).unit == 1e-3
+    assert Options(symmetry=-360).symmetry == -360 and Options(symmetry="360").symmetry == "360"

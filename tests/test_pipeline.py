@@ -59,7 +59,9 @@ def test_abstract_accepts_arrays_and_reports_the_kind():
 def test_progress_callback_and_switches_pass_through():
     calls = []
     res = abstract(drawing("spiral"), tolerance=3.0, progress=lambda *a: calls.append(a), merging=False)
-    assert len(res.levels) == 1 and len(calls) == 1
+    # A^0 as made, then A^0 with its tangent joins refitted: the last call is the result.
+    assert len(res.levels) == 1 and [c[0] for c in calls] == [0, 0]
+    assert calls[-1] == (0, len(res.final.arcs), res.final.similarity)
 
 
 def test_unknown_switch_is_an_error():
@@ -253,12 +255,81 @@ def test_a_photo_over_the_photo_working_size_is_worked_at_it_and_drawn_in_its_ow
     assert abstract(small, progress=False).image.width == 512
 
 
-def test_a_clip_art_over_the_photo_working_size_keeps_its_size():
+def test_an_upscaled_clip_art_gives_the_logo_of_its_original():
+    """Worked at SYNTHETIC_WORK_SIDE = 512 px, a clip art upscaled to 700 px is its 512 px original again."""
     import cv2
 
-    big = cv2.resize(cv2.imread(str(DATA / "clipart-fish.png")), (700, 700), interpolation=cv2.INTER_NEAREST)
-    result = abstract(big[:, :, ::-1], progress=False)
-    assert result.lines.kind == "clipart" and result.image.width == 700 and result.image.scale == 1.0
+    from img2logo.constants import SYNTHETIC_WORK_SIDE
+
+    small = cv2.imread(str(DATA / "clipart-fish.png"))
+    big = cv2.resize(small, (700, 700), interpolation=cv2.INTER_NEAREST)
+    with pytest.warns(UserWarning, match="a clip art or a drawing is worked at 512 px"):
+        result = abstract(big[:, :, ::-1], progress=False)
+    assert SYNTHETIC_WORK_SIDE == 512 and result.lines.kind == "clipart"
+    assert (result.image.width, result.final.width) == (512, 700)
+    original = abstract(small[:, :, ::-1], progress=False).final
+    assert abs(len(result.final.arcs) - len(original.arcs)) <= 2
+
+
+def test_a_clip_art_or_a_drawing_over_the_synthetic_working_size_is_worked_at_it(monkeypatch):
+    """Clip art and drawings are worked at SYNTHETIC_WORK_SIDE px (here made 256 to stay small), with one warning,
+    their results in the input's pixels; the photo test runs once, on that working copy (issue 20, item 12)."""
+    import functools
+    import warnings
+
+    from img2logo import contract, pipeline
+    from img2logo.loading import DownscaleWarning, LoadedImage
+
+    monkeypatch.setattr(pipeline, "SYNTHETIC_WORK_SIDE", 256)
+    measured = []
+    original = LoadedImage.__dict__["flat_fraction"].func
+
+    def counted(self):
+        measured.append(self.width)
+        return original(self)
+
+    prop = functools.cached_property(counted)
+    prop.__set_name__(LoadedImage, "flat_fraction")
+    monkeypatch.setattr(LoadedImage, "flat_fraction", prop)
+    for name, kind in (("clipart-fish", "clipart"), ("drawing-fish", "drawing")):
+        measured.clear()
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            result = abstract(DATA / f"{name}.png", progress=False)
+        said = [str(w.message) for w in caught if issubclass(w.category, DownscaleWarning)]
+        assert said == [
+            f"{DATA / name}.png: a clip art or a drawing is worked at 256 px on its longer side: 256x256 px "
+            "(the results are in the input's 512x512 px)"
+        ]
+        assert result.lines.kind == kind and (result.image.width, result.image.scale) == (256, 0.5)
+        assert measured == [256]  # once: the pipeline's photo test, reused by the kind detection
+        final = result.final
+        assert (final.width, final.height) == (512, 512) and final.tolerance == pytest.approx(10.0)
+        contract.to_document(final, check=True)
+    with pytest.warns(DownscaleWarning, match="a clip art or a drawing is worked at 256 px"):
+        given = abstract(DATA / "drawing-fish.png", kind="drawing", progress=False)
+    assert given.image.width == 256 and given.lines.reason == "given"
+
+
+def test_a_photo_over_the_synthetic_working_size_is_worked_at_the_photo_size_with_one_warning(monkeypatch):
+    """The photo test runs on the synthetic working copy; a photo is then shrunk from the loaded image."""
+    import warnings
+
+    from img2logo import pipeline
+    from img2logo.loading import DownscaleWarning
+
+    monkeypatch.setattr(pipeline, "SYNTHETIC_WORK_SIDE", 384)  # the cat is 451 x 300
+    monkeypatch.setattr(pipeline, "PHOTO_WORK_SIDE", 256)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        result = abstract(DATA / "photo-cat.png", progress=False)
+    said = [str(w.message) for w in caught if issubclass(w.category, DownscaleWarning)]
+    assert said == [
+        f"{DATA}/photo-cat.png: a photo is worked at 256 px on its longer side: 256x170 px "
+        "(the results are in the input's 451x300 px)"
+    ]
+    assert result.lines.kind == "photo" and result.lines.reason.endswith("a photo")
+    assert (result.image.width, result.final.width) == (256, 451)
 
 
 def _ring_and_dot(ring: bool, dot: bool):

@@ -195,6 +195,22 @@ def test_detect_kind_on_synthetic_inputs():
     assert detect_kind(load_image(noise))[0] == "photo"
 
 
+def test_detect_kind_of_an_upscaled_drawing_is_a_drawing():
+    """Measured at SYNTHETIC_WORK_SIDE, as abstract does: at 2048 px the deer's stroke ramps read as a clip art."""
+    import warnings
+
+    import cv2
+
+    from img2logo.preprocessing import _detect
+
+    small = cv2.imread(str(DATA.parent / "benchmarks" / "data" / "drawing-deer.png"))[:, :, ::-1]
+    big = np.ascontiguousarray(cv2.resize(small, (2048, 2048), interpolation=cv2.INTER_CUBIC))
+    assert detect_kind(big)[0] == detect_kind(small)[0] == "drawing"
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        assert _detect(load_image(big))[0] == "clipart"  # what the 2048 px copy said (issue 20, item 12)
+
+
 def test_auto_reports_its_choice():
     lines = extract_feature_lines(drawing("circle"))
     assert lines.kind == "drawing"

@@ -196,8 +196,10 @@ def test_progress_callback_sees_every_level():
     graph, _ = golden_chain(noise=0.3)
     seen = []
     prog = optimize(graph, bias=BIAS, tolerance=50.0, progress=lambda t, n, e: seen.append((t, n, e)))
-    assert [s[0] for s in seen] == list(range(len(prog.levels)))
-    assert [s[1] for s in seen] == prog.arc_counts
+    # Every level as the loop made it, then the result after its tangent joins (the last call).
+    assert [s[0] for s in seen[:-1]] == list(range(len(prog.levels)))
+    assert [s[1] for s in seen[:-1]] == prog.arc_counts
+    assert seen[-1] == (prog.final.level, len(prog.final.arcs), prog.final.similarity)
 
 
 def test_deterministic():
@@ -343,3 +345,18 @@ def test_a_semicircle_whose_radius_rounds_down_is_raised_to_reach_its_ends():
     chord = float(np.hypot(*(graph.junctions[2] - graph.junctions[3])))
     assert half.circle.r >= chord / 2
     assert half.circle.r == pytest.approx(100.0, rel=1e-6)
+
+
+def test_progress_reports_every_loop_level_then_the_result_the_tangent_joins_chose():
+    # drawing-bird: the loop makes A^0..A^4, the tangent joins keep A^2 (its shorter arcs touch).
+    graph = build_segment_graph(extract_feature_lines(DATA / "drawing-bird.png"))
+    calls = []
+    prog = optimize(graph, tolerance=5.0, progress=lambda t, n, s: calls.append((t, n, s)))
+    final = prog.final
+    assert [t for t, _, _ in calls[:-1]] == list(range(len(calls) - 1))  # every level as the loop made it
+    assert calls[-1] == (final.level, len(final.arcs), final.similarity)  # last: the result, after the refit
+    assert final.level < calls[-2][0] and len(prog.levels) == final.level + 1  # later levels were dropped
+    calls.clear()
+    prog = optimize(graph, tolerance=5.0, tangency=False, progress=lambda t, n, s: calls.append((t, n, s)))
+    assert [t for t, _, _ in calls] == list(range(len(prog.levels)))  # no refit: each level once
+    assert calls[-1] == (prog.final.level, len(prog.final.arcs), prog.final.similarity)
