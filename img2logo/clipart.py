@@ -404,13 +404,23 @@ def _flat_areas(lab: np.ndarray, link: float) -> np.ndarray:
     h, w = lab.shape[:2]
     rad = CLIPART_FLAT_RADIUS
     lab32 = lab.astype(np.float32)  # squared distances in float32: a third of the time
-    padded = np.pad(lab32, ((rad, rad), (rad, rad), (0, 0)), mode="edge")
     spread = np.zeros((h, w), dtype=np.float32)
-    for dr in range(-rad, rad + 1):
+    # Each pair of pixels of a window once, for both its ends: (dr, dc) from one is
+    # (-dr, -dc) from the other, and the squared difference is the same number. Beyond
+    # the image's edge a window is the edge pixels repeated, pixels of the window
+    # already, so the pixels inside the image give its largest difference.
+    for dr in range(rad + 1):
         for dc in range(-rad, rad + 1):
-            if dr or dc:
-                diff = padded[rad + dr : rad + dr + h, rad + dc : rad + dc + w] - lab32
-                np.maximum(spread, np.einsum("ijk,ijk->ij", diff, diff), out=spread)
+            if dr == 0 and dc <= 0:
+                continue
+            if dr >= h or abs(dc) >= w:
+                continue  # no such pair in so small an image
+            here = (slice(0, h - dr), slice(max(0, -dc), w - max(0, dc)))
+            there = (slice(dr, h), slice(max(0, dc), w - max(0, -dc)))
+            diff = lab32[there] - lab32[here]
+            d = np.einsum("ijk,ijk->ij", diff, diff)
+            np.maximum(spread[here], d, out=spread[here])
+            np.maximum(spread[there], d, out=spread[there])
     spread = np.sqrt(spread)
     flat = spread <= link
     # Adjacent flat pixels are within the link of each other by definition, so the
