@@ -28,6 +28,7 @@ $(STAMP): pyproject.toml
 	$(BIN)/python -m pip install --quiet --upgrade pip
 	$(BIN)/python -m pip install --quiet -e '.[dev]'
 	$(BIN)/python -m img2logo.kernels  # compiles the kernels once (about 20 s), so that no run waits for it
+	$(BIN)/python -m compileall -q img2logo  # the bytecode, as pip writes it for a wheel: no run compiles the sources
 	@touch $@
 
 test: $(KIT)
@@ -98,6 +99,7 @@ $(BENCH): pyproject.toml $(STAMP)
 	@touch $@
 
 bench: $(BENCH)
+	$(BIN)/python -m compileall -q img2logo  # the edited sources' bytecode: what an installed copy runs
 	$(BIN)/python benchmarks/bench.py
 
 # What the logos keep of the evaluation set's features (benchmarks/data/): a table,

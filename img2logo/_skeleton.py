@@ -18,6 +18,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 from scipy import sparse
@@ -31,43 +32,49 @@ _RING = ((-1, 0), (-1, 1), (0, 1), (1, 1), (1, 0), (1, -1), (0, -1), (-1, -1))
 _EIGHT = np.ones((3, 3), dtype=bool)
 
 
-def _load_zhang_suen() -> Callable[[np.ndarray], np.ndarray]:
-    """scikit-image's compiled Zhang-Suen thinning, loaded without its package.
+def compiled_module(package: str, folder: str, name: str) -> Any:
+    """A compiled module of ``package`` (in its ``folder``), loaded by its file without the package's imports.
 
-    ``skimage.morphology`` imports all its submodules on import, and with them
-    ``scipy.spatial`` (about 0.1 s of CPU a run); the thinning itself is one
-    compiled module of it that needs only numpy. Loading that module by its file
-    runs the very code :func:`skimage.morphology.skeletonize` runs for a 2-D
-    image, so the skeletons are the same bit for bit. Should the module move in
-    another scikit-image, the public function is used.
+    ``skimage.morphology`` and ``scipy.ndimage`` import all their submodules on
+    import (``scipy.ndimage`` brings ``scipy.special``; ``skimage.morphology``
+    ``scipy.spatial``): about 0.1 s of CPU a run each. The function a run needs
+    is one compiled module that needs only numpy, and loading that module runs
+    the very code the public function runs. Raises ImportError when the module
+    is not where it was (another version of the package): the caller then uses
+    the public function.
     """
     import importlib.machinery
     import importlib.util
     import sys
     from pathlib import Path
 
-    name = "skimage.morphology._skeletonize_various_cy"
+    full = f"{package}.{folder}.{name}"
+    if full in sys.modules:  # the package is loaded already (a photo's run)
+        return sys.modules[full]
     try:
-        if name in sys.modules:  # skimage.morphology is loaded already (a photo's run)
-            return sys.modules[name]._fast_skeletonize
-        spec = importlib.util.find_spec("skimage")
+        spec = importlib.util.find_spec(package)
         if spec is None or spec.origin is None:
-            raise ImportError("skimage not found")
-        folder = Path(spec.origin).parent / "morphology"
-        found = [
-            folder / f"_skeletonize_various_cy{suffix}"
-            for suffix in importlib.machinery.EXTENSION_SUFFIXES
-            if (folder / f"_skeletonize_various_cy{suffix}").is_file()
-        ]
+            raise ImportError(f"{package} not found")
+        where = Path(spec.origin).parent / folder
+        found = [where / f"{name}{suffix}" for suffix in importlib.machinery.EXTENSION_SUFFIXES]
+        found = [f for f in found if f.is_file()]
         if not found:
-            raise ImportError(f"no compiled {name} in {folder}")
-        mod_spec = importlib.util.spec_from_file_location(name, found[0])
+            raise ImportError(f"no compiled {full} in {where}")
+        mod_spec = importlib.util.spec_from_file_location(full, found[0])
         if mod_spec is None or mod_spec.loader is None:
             raise ImportError(f"cannot load {found[0]}")
         module = importlib.util.module_from_spec(mod_spec)
         mod_spec.loader.exec_module(module)
-        return module._fast_skeletonize
-    except (ImportError, OSError, AttributeError):
+        return module
+    except OSError as err:
+        raise ImportError(str(err)) from err
+
+
+def _load_zhang_suen() -> Callable[[np.ndarray], np.ndarray]:
+    """scikit-image's compiled Zhang-Suen thinning (:func:`compiled_module`), or its public function."""
+    try:
+        return compiled_module("skimage", "morphology", "_skeletonize_various_cy")._fast_skeletonize
+    except (ImportError, AttributeError):
         from skimage.morphology import skeletonize as public
 
         return public

@@ -207,7 +207,10 @@ def _palette_regions(
     if rest.any():
         near = _near_entries(index, len(pal), rest)
         colours = lab[rest]
-        cost = np.where(near, ((colours[:, None, :] - pal[None]) ** 2).sum(axis=2), np.inf)
+        cost = np.full(near.shape, np.inf)
+        for e in range(len(pal)):  # the entries near each pixel only (a few of them)
+            at = np.flatnonzero(near[:, e])
+            cost[at, e] = ((colours[at] - pal[e]) ** 2).sum(axis=1)
         lonely = ~near.any(axis=1)
         cost[lonely] = ((colours[lonely, None, :] - pal[None]) ** 2).sum(axis=2)
         index[rest] = np.argmin(cost, axis=1)
@@ -227,9 +230,22 @@ def _near_entries(index: np.ndarray, n: int, rest: np.ndarray, radius: int = CLI
 
     size = 2 * radius + 1
     disk = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (size, size))
-    near = np.empty((int(rest.sum()), n), dtype=bool)
+    h, w = index.shape
+    # Each entry is dilated within its bounding box grown by the radius: nothing
+    # farther is near it, and an eye's box is a thousandth of a large image.
+    where = np.full(index.shape, -1, dtype=np.int64)
+    where[rest] = np.arange(int(rest.sum()))
+    near = np.zeros((int(rest.sum()), n), dtype=bool)
     for e in range(n):
-        near[:, e] = cv2.dilate((index == e).astype(np.uint8), disk)[rest] > 0
+        mask = index == e
+        in_rows, in_cols = np.flatnonzero(mask.any(axis=1)), np.flatnonzero(mask.any(axis=0))
+        if len(in_rows) == 0:
+            continue
+        rows = slice(max(in_rows[0] - radius, 0), min(in_rows[-1] + 1 + radius, h))
+        cols = slice(max(in_cols[0] - radius, 0), min(in_cols[-1] + 1 + radius, w))
+        grown = cv2.dilate(mask[rows, cols].view(np.uint8), disk) > 0
+        at = where[rows, cols][grown]
+        near[at[at >= 0], e] = True
     return near
 
 
@@ -337,9 +353,10 @@ def _unexplained(
             best[on_a] = np.minimum(best[on_a], np.linalg.norm(colours_lab[on_a] - singles[a], axis=1))
     # Only a pixel far from every seed's own colour can be far from every blend: the blends
     # (an sRGB to CIELAB conversion each) are taken for those alone.
-    far = best > contrast
+    far = np.flatnonzero(best > contrast)
+    near, colours, colours_lab, far_best = near[far], colours[far], colours_lab[far], best[far]
     for a in range(n):
-        on_a = near[:, a] & far
+        on_a = near[:, a]
         if not on_a.any():
             continue
         for b in range(a + 1, n):
@@ -349,7 +366,8 @@ def _unexplained(
             ab = areas_rgb[b] - areas_rgb[a]
             t = np.clip((colours[both] - areas_rgb[a]) @ ab / max(float(ab @ ab), 1e-12), 0.0, 1.0)
             blend = rgb2lab((areas_rgb[a] + t[:, None] * ab)[:, None, :])[:, 0, :]
-            best[both] = np.minimum(best[both], np.linalg.norm(colours_lab[both] - blend, axis=1))
+            far_best[both] = np.minimum(far_best[both], np.linalg.norm(colours_lab[both] - blend, axis=1))
+    best[far] = far_best
     out[rest] = best > contrast
     return out
 
@@ -386,13 +404,23 @@ def _flat_areas(lab: np.ndarray, link: float) -> np.ndarray:
     h, w = lab.shape[:2]
     rad = CLIPART_FLAT_RADIUS
     lab32 = lab.astype(np.float32)  # squared distances in float32: a third of the time
-    padded = np.pad(lab32, ((rad, rad), (rad, rad), (0, 0)), mode="edge")
     spread = np.zeros((h, w), dtype=np.float32)
-    for dr in range(-rad, rad + 1):
+    # Each pair of pixels of a window once, for both its ends: (dr, dc) from one is
+    # (-dr, -dc) from the other, and the squared difference is the same number. Beyond
+    # the image's edge a window is the edge pixels repeated, pixels of the window
+    # already, so the pixels inside the image give its largest difference.
+    for dr in range(rad + 1):
         for dc in range(-rad, rad + 1):
-            if dr or dc:
-                diff = padded[rad + dr : rad + dr + h, rad + dc : rad + dc + w] - lab32
-                np.maximum(spread, np.einsum("ijk,ijk->ij", diff, diff), out=spread)
+            if dr == 0 and dc <= 0:
+                continue
+            if dr >= h or abs(dc) >= w:
+                continue  # no such pair in so small an image
+            here = (slice(0, h - dr), slice(max(0, -dc), w - max(0, dc)))
+            there = (slice(dr, h), slice(max(0, dc), w - max(0, -dc)))
+            diff = lab32[there] - lab32[here]
+            d = np.einsum("ijk,ijk->ij", diff, diff)
+            np.maximum(spread[here], d, out=spread[here])
+            np.maximum(spread[there], d, out=spread[there])
     spread = np.sqrt(spread)
     flat = spread <= link
     # Adjacent flat pixels are within the link of each other by definition, so the

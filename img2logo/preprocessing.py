@@ -236,20 +236,23 @@ def _rim_regions(regions: np.ndarray, rgb: np.ndarray, means: np.ndarray, paper:
     blends = rgb2lab((paper_rgb[None] + t[:, None] * (ink_rgb - paper_rgb)[None])[:, None, :])[:, 0, :]
     if any(np.min(np.linalg.norm(blends - means[r], axis=1)) > INK_COLOUR_SPREAD for r in others):
         return out  # a colour of its own: no rim makes this one ink
-    from scipy import ndimage
+    import cv2
 
-    slices = ndimage.find_objects(regions + 1)
-    eight = np.ones((3, 3), dtype=bool)
+    slices = _skeleton.bounding_slices(regions + 1)
+    eight = np.ones((3, 3), dtype=np.uint8)
     ink_lab = rgb2lab(ink_rgb[None, None, :])[0, 0]
     for r in others:
-        sl = tuple(slice(max(0, s.start - 1), s.stop + 1) for s in slices[r])
+        box = slices[r]
+        if box is None:  # no pixel: never, the labels are packed
+            continue
+        sl = tuple(slice(max(0, s.start - 1), s.stop + 1) for s in box)
         own = regions[sl] == r
         if np.mean(np.linalg.norm(rgb2lab(rgb[sl][own]) - ink_lab, axis=-1) <= INK_COLOUR_SPREAD) >= INK_SHARE:
             out[r] = True  # ink with its rims and the paper it encloses (a small ring), not a grey
             continue
-        if ndimage.distance_transform_edt(np.pad(own, 1)).max() > CLIPART_RIM_RADIUS + 0.5:
+        if _skeleton.distance_to_background(np.pad(own, 1)).max() > CLIPART_RIM_RADIUS + 0.5:
             return out
-        if not ink[regions[sl][ndimage.binary_dilation(own, structure=eight) & ~own]].any():
+        if not ink[regions[sl][(cv2.dilate(own.view(np.uint8), eight) > 0) & ~own]].any():
             return out
         out[r] = True
     return out
@@ -271,9 +274,7 @@ def median_stroke_width(ink: np.ndarray) -> float:
     to the nearest pixel that is not ink: a stroke w px wide has its axis w / 2
     from both edges (to within half a pixel).
     """
-    from scipy import ndimage
-
-    dist = ndimage.distance_transform_edt(ink)
+    dist = _distance(ink)
     skel = _skeleton.skeletonize(ink)
     return float(2.0 * np.median(dist[skel])) if skel.any() else 0.0
 
@@ -379,10 +380,10 @@ def keep_dots(lines: np.ndarray, ink: np.ndarray, stroke_width: float) -> np.nda
     stroke_width : float
         The drawing's median stroke width, px.
     """
-    from scipy import ndimage
     from skimage.draw import circle_perimeter
 
-    labels, n = ndimage.label(ink, structure=np.ones((3, 3), dtype=bool))
+    labels = _skeleton.label(ink, connectivity=2)
+    n = int(labels.max())
     if n == 0:
         return lines
     lined = np.bincount(labels[lines], minlength=n + 1) > 0
@@ -392,7 +393,15 @@ def keep_dots(lines: np.ndarray, ink: np.ndarray, stroke_width: float) -> np.nda
     if not bare:
         return lines
     out = lines.copy()
-    for k, (r, c) in zip(bare, ndimage.center_of_mass(ink, labels, bare), strict=True):
+    # scipy.ndimage.center_of_mass(ink, labels, bare): the same sums, by label.
+    rows, cols = np.indices(ink.shape, dtype=np.float64)
+    mass = np.bincount(labels.ravel(), weights=ink.ravel())[bare]
+    centres = zip(
+        np.bincount(labels.ravel(), weights=(ink * rows).ravel())[bare] / mass,
+        np.bincount(labels.ravel(), weights=(ink * cols).ravel())[bare] / mass,
+        strict=True,
+    )
+    for k, (r, c) in zip(bare, centres, strict=True):
         radius = max(DOT_MIN_RADIUS, (diameter[k] - stroke_width) / 2.0)
         rr, cc = circle_perimeter(round(r), round(c), round(radius), shape=out.shape)
         out[rr, cc] = True
@@ -437,9 +446,17 @@ def _half_width(ink: np.ndarray) -> np.ndarray:
     Measured on the skeleton, where it is the radius of the stroke's inscribed
     disc; 0 on the paper.
     """
-    from scipy import ndimage
+    return _distance(ink).astype(np.float32)
 
-    return ndimage.distance_transform_edt(ink).astype(np.float32)
+
+def _distance(mask: np.ndarray) -> np.ndarray:
+    """``scipy.ndimage.distance_transform_edt(mask)``, px, float64 (H, W), by :func:`_skeleton.distance_to_background`
+    (the same bits) unless ``mask`` has no background pixel."""
+    if np.all(mask):
+        from scipy import ndimage
+
+        return np.asarray(ndimage.distance_transform_edt(mask), dtype=np.float64)
+    return _skeleton.distance_to_background(mask)
 
 
 def _paper_seams(gray: np.ndarray, ink: np.ndarray) -> np.ndarray:
@@ -456,7 +473,6 @@ def _paper_seams(gray: np.ndarray, ink: np.ndarray) -> np.ndarray:
     against open paper is no ridge, so nothing else changes.
     """
     import cv2
-    from scipy import ndimage
 
     if not ink.any() or ink.all():
         return np.zeros(ink.shape, dtype=bool)
@@ -466,13 +482,14 @@ def _paper_seams(gray: np.ndarray, ink: np.ndarray) -> np.ndarray:
     ridge = cv2.morphologyEx(g, cv2.MORPH_TOPHAT, disc) > SEAM_CONTRAST * contrast
     # Pinched paper lies inside the ink; the tip of a paper wedge where two strokes meet at an
     # acute angle is a ridge too, but next to open paper: the junction stays where it is.
-    ridge &= ndimage.distance_transform_edt(ink) > SEAM_WIDTH / 2
+    ridge &= _skeleton.distance_to_background(ink) > SEAM_WIDTH / 2
     if not ridge.any():
         return ridge
     # Two strokes that only touch (an ear's base, a tail on a body) leave a ridge about as long
     # as they are wide, where they are one in the drawing too; side by side, the pinch runs
     # along them: a seam is at least SEAM_LENGTH stroke widths long.
-    parts, n = ndimage.label(ridge, structure=np.ones((3, 3), dtype=bool))
+    parts = _skeleton.label(ridge, connectivity=2)
+    n = int(parts.max())
     long = np.bincount(parts.ravel(), minlength=n + 1) >= SEAM_LENGTH * median_stroke_width(ink)
     long[0] = False
     ridge = long[parts].astype(np.uint8)
@@ -484,19 +501,62 @@ def _paper_seams(gray: np.ndarray, ink: np.ndarray) -> np.ndarray:
 
 def _drawing_lines(img: LoadedImage) -> np.ndarray:
     """Ink of a line drawing: Otsu threshold, specks removed, holes of 1-2 px filled."""
-    from scipy import ndimage
-    from skimage.filters import threshold_otsu
-
-    gray = ndimage.gaussian_filter(img.gray, 1.0)  # smooths the stroke edges: fewer spurs
+    gray = gaussian_blur(img.gray, 1.0)  # smooths the stroke edges: fewer spurs
     if np.ptp(gray) < BLANK_IMAGE_RANGE:
         return np.zeros(gray.shape, dtype=bool)
-    ink = gray < threshold_otsu(gray)
+    ink = gray < otsu_threshold(gray)
     dark = ink.mean() <= 0.5
     if not dark:  # light strokes on a dark ground
         ink = ~ink
     ink &= ~_paper_seams(img.gray if dark else 1.0 - img.gray, ink)
     ink = _without_small_parts(ink, MIN_SPECK_AREA - 1)
     return ~_without_small_parts(~ink, MIN_SPECK_AREA // 4)
+
+
+def gaussian_blur(image: np.ndarray, sigma: float) -> np.ndarray:
+    """``scipy.ndimage.gaussian_filter(image, sigma)`` of a 2-D float64 image, to the bit, float64 (H, W).
+
+    The same kernel (``truncate`` 4 standard deviations, mode ``reflect``) and
+    the same compiled 1-D correlations, rows then columns, by scipy's own
+    compiled module loaded without ``scipy.ndimage`` (:func:`_skeleton.compiled_module`).
+    """
+    src = np.asarray(image, dtype=np.float64)
+    try:
+        correlate1d = _skeleton.compiled_module("scipy", "ndimage", "_nd_image").correlate1d
+    except (ImportError, AttributeError):
+        from scipy import ndimage
+
+        return np.asarray(ndimage.gaussian_filter(src, sigma))
+    radius = int(4.0 * float(sigma) + 0.5)
+    x = np.arange(-radius, radius + 1)
+    phi = np.exp(-0.5 / (sigma * sigma) * x**2)
+    weights = np.ascontiguousarray((phi / phi.sum())[::-1])  # correlation: the kernel reversed
+    out = np.zeros(src.shape, dtype=np.float64)
+    reflect = 2  # scipy.ndimage's code of mode "reflect"
+    correlate1d(src, weights, 0, out, reflect, 0.0, 0)
+    correlate1d(out, weights, 1, out, reflect, 0.0, 0)
+    return out
+
+
+def otsu_threshold(gray: np.ndarray) -> float:
+    """Otsu's threshold of a grey image (Otsu 1979), as ``skimage.filters.threshold_otsu(gray)`` computes it.
+
+    The maximum of the between-class variance over a 256-bin histogram of the
+    image's range; the threshold is that bin's centre. Written out because
+    ``skimage.filters`` imports ``scipy.ndimage`` (about 0.1 s of CPU a run);
+    the same steps in the same float types give the same threshold.
+    """
+    values = np.asarray(gray).reshape(-1)
+    if np.all(values == values[0]):
+        return float(values[0])
+    hist, edges = np.histogram(values, bins=256)
+    centres = (edges[:-1] + edges[1:]) / 2.0
+    counts = hist.astype(np.float32)
+    below, above = np.cumsum(counts), np.cumsum(counts[::-1])[::-1]
+    mean_below = np.cumsum(counts * centres) / below
+    mean_above = (np.cumsum((counts * centres)[::-1]) / above[::-1])[::-1]
+    between = below[:-1] * above[1:] * (mean_below[:-1] - mean_above[1:]) ** 2
+    return float(centres[np.argmax(between)])
 
 
 def _without_small_parts(mask: np.ndarray, max_size: int) -> np.ndarray:

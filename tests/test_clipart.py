@@ -227,3 +227,55 @@ def test_a_jpeg_of_an_example_draws_the_same_lines(name):
         return sum(float(np.hypot(*np.diff(s, axis=0).T).sum()) for s in g.segments)
 
     assert length(b) == pytest.approx(length(a), rel=0.1)
+
+
+def test_near_entries_match_a_whole_image_dilation():
+    # The entries are dilated within their boxes (a speed-up): the same answer as dilating
+    # each entry's mask over the whole image, at the image's edges too.
+    from img2logo.clipart import _near_entries
+
+    rng = np.random.default_rng(7)
+    for _ in range(40):
+        h, w = (int(v) for v in rng.integers(1, 40, 2))
+        n = int(rng.integers(1, 6))
+        index = rng.integers(-1, n, (h, w))
+        index[rng.random((h, w)) < rng.uniform(0.0, 0.9)] = -1
+        rest = index < 0
+        for radius in (1, 3, 7):
+            disk = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (2 * radius + 1, 2 * radius + 1))
+            expected = np.stack(
+                [cv2.dilate((index == e).astype(np.uint8), disk)[rest] > 0 for e in range(n)], axis=1
+            ).reshape(int(rest.sum()), n)
+            assert np.array_equal(_near_entries(index, n, rest, radius), expected)
+
+
+def test_flat_areas_match_the_padded_window():
+    # Each pixel pair is measured once (a speed-up): the same areas as the window's
+    # largest difference over an edge-padded image, as first written.
+    from img2logo.clipart import _flat_areas
+    from img2logo.constants import CLIPART_FLAT_RADIUS as rad
+
+    def reference(lab: np.ndarray, link: float) -> np.ndarray:
+        from img2logo._skeleton import label
+
+        h, w = lab.shape[:2]
+        lab32 = lab.astype(np.float32)
+        padded = np.pad(lab32, ((rad, rad), (rad, rad), (0, 0)), mode="edge")
+        spread = np.zeros((h, w), dtype=np.float32)
+        for dr in range(-rad, rad + 1):
+            for dc in range(-rad, rad + 1):
+                diff = padded[rad + dr : rad + dr + h, rad + dc : rad + dc + w] - lab32
+                np.maximum(spread, np.einsum("ijk,ijk->ij", diff, diff), out=spread)
+        flat = np.sqrt(spread) <= link
+        labels = label(flat, connectivity=1)
+        labels[~flat] = labels.max() + 1 + np.arange(int((~flat).sum()))
+        return labels - 1
+
+    rng = np.random.default_rng(8)
+    for _ in range(60):
+        h, w = (int(v) for v in rng.integers(1, 30, 2))
+        lab = np.round(rng.random((h, w, 3)) * rng.choice([1.0, 5.0, 50.0]), int(rng.integers(0, 3)))
+        for link in (0.0, 1.0, 3.0):
+            assert np.array_equal(_flat_areas(lab, link), reference(lab, link))
+    lab = load_image(DATA / "clipart-fish.png").lab
+    assert np.array_equal(_flat_areas(lab, 1.15), reference(lab, 1.15))

@@ -562,3 +562,35 @@ def test_clipart_boundaries_and_small_parts_match_skimage() -> None:
         for size in (0, 2, 7):
             assert np.array_equal(_without_small_parts(mask, size), remove_small_objects(mask, max_size=size))
             assert np.array_equal(~_without_small_parts(~mask, size), remove_small_holes(mask, max_size=size))
+
+
+def test_drawing_blur_and_threshold_match_ndimage_and_skimage() -> None:
+    # A drawing's run avoids scipy.ndimage and skimage.filters (which imports it): about 0.1 s of CPU.
+    from scipy import ndimage
+    from skimage.filters import threshold_otsu
+
+    from img2logo.preprocessing import gaussian_blur, otsu_threshold
+
+    rng = np.random.default_rng(6)
+    for mask in _random_masks(60, 6):
+        image = mask * rng.uniform(0.2, 1.0) + rng.random(mask.shape) * rng.uniform(0.0, 0.3)
+        for sigma in (1.0, 0.7, 2.5):
+            expected = ndimage.gaussian_filter(image, sigma)
+            assert np.array_equal(gaussian_blur(image, sigma).view(np.uint64), expected.view(np.uint64))
+        assert otsu_threshold(image) == threshold_otsu(image)
+    assert otsu_threshold(np.full((4, 5), 0.25)) == 0.25  # one grey: skimage returns it
+
+
+def test_a_drawing_run_imports_no_ndimage(tmp_path) -> None:
+    import subprocess
+    import sys
+
+    code = (
+        "import sys; from img2logo import abstract; abstract(sys.argv[1]); "
+        "print(sorted(m for m in sys.modules if m in ('scipy.ndimage', 'scipy.special', 'skimage.filters')))"
+    )
+    path = DATA / "drawing-rabbit.png"
+    out = subprocess.run(
+        [sys.executable, "-c", code, str(path)], capture_output=True, text=True, check=True, cwd=tmp_path
+    )
+    assert out.stdout.strip() == "[]"
