@@ -19,11 +19,13 @@ import dataclasses
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
+from itertools import chain
 from typing import TypeAlias, cast
 
 import numpy as np
 
-from .arc_extraction import redundant_intersections
+from .arc_extraction import _redundant_arrays
+from .constants import REDUNDANT_INTERSECTION_TOL
 from .fit_state import FitState, GroupFit, Seed, Solution
 from .simplification import Group, hold_line, merge_groups
 
@@ -201,10 +203,15 @@ def _redundant(
         if index[n] >= 0:
             moved[index[n]] = d
     points = (state.graph.junctions[nodes] + moved).reshape(-1, 2)
-    node_index = dict(zip(nodes.tolist(), range(len(nodes)), strict=True))
-    arc_junctions = [[node_index[n] for n in state.constrained_nodes(after[g])] for g in gids]
-    changed = [i for i, g in enumerate(gids) if g in fits]
-    return len(redundant_intersections(arcs, points, arc_junctions, candidates=changed))
+    # Each arc's junctions as one flat array of indices into ``points`` (the kernel's layout).
+    owned = [state.constrained_nodes(after[g]) for g in gids]
+    sizes = [len(ks) for ks in owned]
+    ptr = np.zeros(len(sizes) + 1, dtype=np.int64)
+    np.cumsum(sizes, out=ptr[1:])
+    flat = index[np.fromiter(chain.from_iterable(owned), dtype=np.intp, count=int(ptr[-1]))].astype(np.int64)
+    changed = np.array([i for i, g in enumerate(gids) if g in fits], dtype=np.int64)
+    pairs, _ = _redundant_arrays(arcs, points, ptr, flat, changed, REDUNDANT_INTERSECTION_TOL)
+    return len(pairs)
 
 
 def recheck_redundant(state: FitState, outcome: MergeOutcome) -> int:
