@@ -487,13 +487,20 @@ def redundant_intersections(
 
 
 def _redundant_arrays(
-    arcs: Sequence[Arc], junctions: np.ndarray, ptr: np.ndarray, flat: np.ndarray, rows: np.ndarray, tol: float
+    arcs: Sequence[Arc],
+    junctions: np.ndarray,
+    ptr: np.ndarray,
+    flat: np.ndarray,
+    rows: np.ndarray,
+    tol: float,
+    params: np.ndarray | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """:func:`redundant_intersections` on checked arrays: (pairs (R, 2), points (R, 2)).
 
     Arc i's junctions are ``flat[ptr[i]:ptr[i + 1]]`` (int64, indices into
-    ``junctions``); ``rows`` the sorted candidate arcs. The merge loop calls it
-    directly with arrays it builds (every candidate merge is checked).
+    ``junctions``); ``rows`` the sorted candidate arcs; ``params`` the arcs'
+    rows of :func:`_arc_params` when the caller has them. The merge loop calls
+    it directly with arrays it builds (every candidate merge is checked).
     """
     if len(arcs) < 2 or len(rows) == 0:
         return np.zeros((0, 2), dtype=np.int64), np.zeros((0, 2))
@@ -507,7 +514,9 @@ def _redundant_arrays(
             np.array([(r.arc_a, r.arc_b) for r in found], dtype=np.int64).reshape(-1, 2),
             np.array([r.point for r in found], dtype=np.float64).reshape(-1, 2),
         )
-    return kernels.redundant_kernel(_arc_params(arcs), rows, junctions, ptr, flat, INTERSECTION_TOL, tol)
+    if params is None:
+        params = _arc_params(arcs)
+    return kernels.redundant_kernel(params, rows, junctions, ptr, flat, INTERSECTION_TOL, tol)
 
 
 def _redundant_reference(

@@ -86,6 +86,12 @@ class GroupFit:
         """This circle as the start of the next fit (made once: every candidate merge's window asks)."""
         return Seed(self.center, self.radius, self.k)
 
+    @cached_property
+    def arc_row(self) -> tuple[float, float, float, float, float]:
+        """The arc as (cx, cy, r, theta0, sweep), the compiled redundant-intersection test's row (made once)."""
+        a = self.arc.arc
+        return (a.circle.cx, a.circle.cy, a.circle.r, a.theta0, a.sweep)
+
 
 @dataclass
 class Stats:
@@ -286,6 +292,7 @@ class FitState:
         self.stats = Stats()
         self.released: set[int] = set()
         self._path_cache: dict[tuple[int, ...], tuple[int, ...]] = {}
+        self._constrained: dict[tuple[int, ...], tuple[int, ...]] = {}
         self._node_groups: dict[int, list[int]] | None = None
         #: group -> (arc, junction nodes, their points' bytes, ArcJunctions by path position): :meth:`_topology`.
         self._topologies: dict[int, tuple[Any, tuple[int, ...], bytes, ArcJunctions]] = {}
@@ -333,6 +340,7 @@ class FitState:
         """Give up the connectivity constraint at junction ``node`` (:func:`~img2logo.recovery.recover`)."""
         self.released.add(node)
         self._node_groups = None
+        self._constrained.clear()
 
     def tangencies(self, groups: Mapping[int, Group], seeds: Mapping[int, Seed]) -> dict[int, tuple[int, int]]:
         """Smooth node -> the two groups of ``groups`` that end there, whose circles must touch at it.
@@ -389,8 +397,13 @@ class FitState:
         The two ends, and inner nodes where other segments meet (valence >= 3
         in the graph, Sec. 6.2) unless only the ends are constrained (Fig. 11d).
         """
-        nodes = self.path_nodes(group)
-        return tuple(n for n in nodes if n not in self.released) if self.released else nodes
+        # Tens of thousands of calls a run: cached by the node path, forgotten when a junction is released.
+        hit = self._constrained.get(group.nodes)
+        if hit is None:
+            nodes = self.path_nodes(group)
+            hit = tuple(n for n in nodes if n not in self.released) if self.released else nodes
+            self._constrained[group.nodes] = hit
+        return hit
 
     def path_nodes(self, group: Group) -> tuple[int, ...]:
         """:meth:`constrained_nodes` with the released junctions (see :meth:`release`), in path order."""

@@ -193,7 +193,9 @@ def _redundant(
 ) -> int:
     """Redundant intersections that involve the arcs a merge changed."""
     gids = list(after)
-    arcs = [(fits[g] if g in fits else state.fits[g]).arc.arc for g in gids]
+    group_fits = [fits[g] if g in fits else state.fits[g] for g in gids]
+    arcs = [f.arc.arc for f in group_fits]
+    params = np.array([f.arc_row for f in group_fits], dtype=np.float64).reshape(-1, 5)
     nodes = np.array(sorted(node_groups_after), dtype=np.intp)
     # The junctions' points, the window's displacements over the state's (one array, not a row each).
     moved = state.disp[nodes]
@@ -210,7 +212,7 @@ def _redundant(
     np.cumsum(sizes, out=ptr[1:])
     flat = index[np.fromiter(chain.from_iterable(owned), dtype=np.intp, count=int(ptr[-1]))].astype(np.int64)
     changed = np.array([i for i, g in enumerate(gids) if g in fits], dtype=np.int64)
-    pairs, _ = _redundant_arrays(arcs, points, ptr, flat, changed, REDUNDANT_INTERSECTION_TOL)
+    pairs, _ = _redundant_arrays(arcs, points, ptr, flat, changed, REDUNDANT_INTERSECTION_TOL, params)
     return len(pairs)
 
 
