@@ -481,18 +481,42 @@ def redundant_intersections(
         rows = np.unique(np.asarray(list(candidates), dtype=np.int64))
         if len(rows) and (rows[0] < 0 or rows[-1] >= n):
             raise InvalidParameterError(f"candidates must index arcs 0..{n - 1}")
-    if n < 2 or len(rows) == 0:
-        return []
+    ptr = np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)
+    pairs, points = _redundant_arrays(arcs, junctions, ptr, flat.astype(np.int64), rows.astype(np.int64), tol)
+    return [RedundantIntersection(i, j, readonly(p.copy())) for (i, j), p in zip(pairs.tolist(), points, strict=True)]
+
+
+def _redundant_arrays(
+    arcs: Sequence[Arc],
+    junctions: np.ndarray,
+    ptr: np.ndarray,
+    flat: np.ndarray,
+    rows: np.ndarray,
+    tol: float,
+    params: np.ndarray | None = None,
+) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`redundant_intersections` on checked arrays: (pairs (R, 2), points (R, 2)).
+
+    Arc i's junctions are ``flat[ptr[i]:ptr[i + 1]]`` (int64, indices into
+    ``junctions``); ``rows`` the sorted candidate arcs; ``params`` the arcs'
+    rows of :func:`_arc_params` when the caller has them. The merge loop calls
+    it directly with arrays it builds (every candidate merge is checked).
+    """
+    if len(arcs) < 2 or len(rows) == 0:
+        return np.zeros((0, 2), dtype=np.int64), np.zeros((0, 2))
 
     from . import kernels  # the compiled kernels load on the first check, not at import
 
     if not kernels.usable():
-        return _redundant_reference(arcs, junctions, owned, rows, tol)
-    ptr = np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)
-    pairs, points = kernels.redundant_kernel(
-        _arc_params(arcs), rows, junctions, ptr, flat.astype(np.int64), INTERSECTION_TOL, tol
-    )
-    return [RedundantIntersection(i, j, readonly(p.copy())) for (i, j), p in zip(pairs.tolist(), points, strict=True)]
+        owned = [flat[ptr[i] : ptr[i + 1]] for i in range(len(arcs))]
+        found = _redundant_reference(arcs, junctions, owned, rows, tol)
+        return (
+            np.array([(r.arc_a, r.arc_b) for r in found], dtype=np.int64).reshape(-1, 2),
+            np.array([r.point for r in found], dtype=np.float64).reshape(-1, 2),
+        )
+    if params is None:
+        params = _arc_params(arcs)
+    return kernels.redundant_kernel(params, rows, junctions, ptr, flat, INTERSECTION_TOL, tol)
 
 
 def _redundant_reference(

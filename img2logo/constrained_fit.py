@@ -245,7 +245,6 @@ def fit_constrained(
         raise InvalidParameterError(f"incidence must be an integer array of shape (M, 2), got {inc.shape}, {inc.dtype}")
     _index_array(inc[:, 0], "incidence[:, 0]", n_c)
     _index_array(inc[:, 1], "incidence[:, 1]", n_j)
-    inc = _unique_rows(inc)
     free_c = np.arange(n_c) if free_circles is None else _index_array(free_circles, "free_circles", n_c)
     free_j = np.arange(n_j) if free_junctions is None else _index_array(free_junctions, "free_junctions", n_j)
     if segment_weight is None:
@@ -270,15 +269,8 @@ def fit_constrained(
     on_j = _index_array(axis_junctions, "axis_junctions", n_j)
     if axis is not None:
         axis = check_finite(axis, "axis")
-        centers = centers.copy()
-        disp = disp.copy()
-        centers[on_c, 0] = axis
-        disp[on_j, 0] = axis - junc[on_j, 0]
     elif len(on_c) or len(on_j):
         raise InvalidParameterError("axis_circles and axis_junctions need an axis")
-
-    owner = np.repeat(np.arange(n_c), [len(s) for s in sets])
-    points = np.concatenate(sets) if sets else np.zeros((0, 2))
     tan = np.asarray(tangents)
     if tan.size == 0:
         tan = np.zeros((0, 3), dtype=np.int64)
@@ -286,9 +278,49 @@ def fit_constrained(
         raise InvalidParameterError(f"tangents must be an integer array of shape (T, 3), got {tan.shape}, {tan.dtype}")
     _index_array(tan[:, :2].ravel(), "tangents[:, :2]", n_c)
     _index_array(tan[:, 2], "tangents[:, 2]", n_j)
-    tan = _unique_rows(tan)
     if np.any(tan[:, 0] == tan[:, 1]):
         raise InvalidParameterError("tangents must name two different circles in each row")
+    return _solve(
+        sets, radii_arr, centers, junc, disp, inc, free_c, free_j, ws, wj, connectivity, tan, axis, on_c, on_j, tol,
+        max_iter, stall,
+    )  # fmt: skip
+
+
+def _solve(
+    sets: Sequence[np.ndarray],
+    radii: np.ndarray,
+    centers: np.ndarray,
+    junctions: np.ndarray,
+    disp: np.ndarray,
+    incidence: np.ndarray,
+    free_c: np.ndarray,
+    free_j: np.ndarray,
+    ws: np.ndarray,
+    wj: float,
+    connectivity: bool,
+    tangents: np.ndarray,
+    axis: float | None,
+    on_c: np.ndarray,
+    on_j: np.ndarray,
+    tol: float,
+    max_iter: int,
+    stall: int,
+) -> ConstrainedFit:
+    """:func:`fit_constrained` on checked inputs (float64 points, sorted unique int64 indices).
+
+    The window refit (:func:`fit_window`) builds its arrays itself and calls this
+    directly: the checks of the public boundary ran ~8 times per candidate merge.
+    """
+    inc = _unique_rows(incidence)
+    tan = _unique_rows(tangents)
+    if axis is not None:
+        centers = centers.copy()
+        disp = disp.copy()
+        centers[on_c, 0] = axis
+        disp[on_j, 0] = axis - junctions[on_j, 0]
+    n_c = len(radii)
+    owner = np.repeat(np.arange(n_c), [len(s) for s in sets])
+    points = np.concatenate(sets) if sets else np.zeros((0, 2))
     held: list[int] = []
     if axis is not None:
         # The x coordinates held on the axis: their unknowns leave the KKT system.
@@ -299,9 +331,9 @@ def fit_constrained(
     return _fit(
         points,
         owner,
-        radii_arr,
+        radii,
         centers,
-        junc,
+        junctions,
         disp,
         inc,
         free_c,
@@ -620,22 +652,36 @@ def fit_window(
                 if pair[0] in fixed and pair[1] in fixed:
                     continue  # only the junction could move: two fixed circles touch or they do not
                 tangents.append((circle_index[pair[0]], circle_index[pair[1]], node_index[n]))
-        fit = fit_constrained(
-            [points[c] for c in window],
-            np.array([radii[c] for c in window]),
-            np.array([centers[c] for c in window]),
-            junction_points[list(nodes)],
-            np.array(incidence, dtype=np.int64).reshape(-1, 2),
-            displacements0=None if displacements0 is None else displacements0[list(nodes)],
-            free_circles=[i for i, c in enumerate(window) if c not in fixed],
-            free_junctions=[node_index[n] for n in sorted(free_j)],
-            segment_weight=1.0 / (max(n_circles or len(window), 1) * np.array([len(points[c]) for c in window])),
-            junction_weight=1.0 / max(n_junctions or len(nodes), 1),
-            tol=tol,
-            connectivity=connectivity,
-            tangents=np.array(tangents, dtype=np.int64).reshape(-1, 3),
-            **({} if constraints is None else constraints(window, nodes)),
-        )
+        sets = [points[c] for c in window]
+        extra = {} if constraints is None else constraints(window, nodes)
+        free_c = [i for i, c in enumerate(window) if c not in fixed]
+        free_k = [node_index[n] for n in sorted(free_j)]
+        weights = 1.0 / (max(n_circles or len(window), 1) * np.array([len(s) for s in sets]))
+        junc = junction_points[list(nodes)]
+        disp0 = np.zeros((len(nodes), 2)) if displacements0 is None else displacements0[list(nodes)]
+        inc = np.array(incidence, dtype=np.int64).reshape(-1, 2)
+        tan = np.array(tangents, dtype=np.int64).reshape(-1, 3)
+        if extra:  # a mirror axis: the public path, which places the held coordinates on it
+            fit = fit_constrained(
+                sets, np.array([radii[c] for c in window]), np.array([centers[c] for c in window]), junc, inc,
+                displacements0=disp0, free_circles=free_c, free_junctions=free_k, segment_weight=weights,
+                junction_weight=1.0 / max(n_junctions or len(nodes), 1), tol=tol, connectivity=connectivity,
+                tangents=tan, **extra,
+            )  # fmt: skip
+        else:
+            # The window's own arrays are well formed by construction (float64 points,
+            # indices sorted and in range): no checks of the public boundary here.
+            empty = np.zeros(0, dtype=np.int64)
+            fit = _solve(
+                [np.asarray(s, dtype=np.float64) for s in sets],
+                np.array([radii[c] for c in window], dtype=np.float64),
+                np.array([centers[c] for c in window], dtype=np.float64).reshape(-1, 2),
+                np.asarray(junc, dtype=np.float64).reshape(-1, 2),
+                np.asarray(disp0, dtype=np.float64).reshape(-1, 2),
+                inc, np.array(free_c, dtype=np.int64), np.array(free_k, dtype=np.int64), weights,
+                1.0 / max(n_junctions or len(nodes), 1), bool(connectivity), tan, None, empty, empty, float(tol),
+                CONSTRAINED_FIT_MAX_ITER, CONSTRAINED_FIT_STALL,
+            )  # fmt: skip
         ok = not connectivity or (fit.converged and (max_violation is None or fit.violation <= max_violation))
         last = WindowFit(ok, window, nodes, frozenset(free_j), fit)
         if ok:

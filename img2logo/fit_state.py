@@ -86,6 +86,12 @@ class GroupFit:
         """This circle as the start of the next fit (made once: every candidate merge's window asks)."""
         return Seed(self.center, self.radius, self.k)
 
+    @cached_property
+    def arc_row(self) -> tuple[float, float, float, float, float]:
+        """The arc as (cx, cy, r, theta0, sweep), the compiled redundant-intersection test's row (made once)."""
+        a = self.arc.arc
+        return (a.circle.cx, a.circle.cy, a.circle.r, a.theta0, a.sweep)
+
 
 @dataclass
 class Stats:
@@ -286,9 +292,13 @@ class FitState:
         self.stats = Stats()
         self.released: set[int] = set()
         self._path_cache: dict[tuple[int, ...], tuple[int, ...]] = {}
+        self._constrained: dict[tuple[int, ...], tuple[int, ...]] = {}
         self._node_groups: dict[int, list[int]] | None = None
-        #: group -> (arc, junction nodes, their points' bytes, ArcJunctions by path position): :meth:`_topology`.
-        self._topologies: dict[int, tuple[Any, tuple[int, ...], bytes, ArcJunctions]] = {}
+        #: group -> (arc, junction nodes, their points' bytes, ArcJunctions by path position,
+        #: the nodes' indices in the last level, its ArcJunctions there): :meth:`_topology`.
+        self._topologies: dict[
+            int, tuple[Any, tuple[int, ...], bytes, ArcJunctions, tuple[int, ...], ArcJunctions | None]
+        ] = {}
         self.smooth: frozenset[int] = graph.smooth_nodes() if options.tangency and options.connectivity else frozenset()
         self.loose: set[int] = set()
         #: Smooth joins the merge loop made tangent (img2logo.merging): held in every later merge's window.
@@ -333,6 +343,7 @@ class FitState:
         """Give up the connectivity constraint at junction ``node`` (:func:`~img2logo.recovery.recover`)."""
         self.released.add(node)
         self._node_groups = None
+        self._constrained.clear()
 
     def tangencies(self, groups: Mapping[int, Group], seeds: Mapping[int, Seed]) -> dict[int, tuple[int, int]]:
         """Smooth node -> the two groups of ``groups`` that end there, whose circles must touch at it.
@@ -389,8 +400,13 @@ class FitState:
         The two ends, and inner nodes where other segments meet (valence >= 3
         in the graph, Sec. 6.2) unless only the ends are constrained (Fig. 11d).
         """
-        nodes = self.path_nodes(group)
-        return tuple(n for n in nodes if n not in self.released) if self.released else nodes
+        # Tens of thousands of calls a run: cached by the node path, forgotten when a junction is released.
+        hit = self._constrained.get(group.nodes)
+        if hit is None:
+            nodes = self.path_nodes(group)
+            hit = tuple(n for n in nodes if n not in self.released) if self.released else nodes
+            self._constrained[group.nodes] = hit
+        return hit
 
     def path_nodes(self, group: Group) -> tuple[int, ...]:
         """:meth:`constrained_nodes` with the released junctions (see :meth:`release`), in path order."""
@@ -700,9 +716,10 @@ class FitState:
         node_groups = self.node_groups()
         nodes = sorted(node_groups)
         junction = {n: i for i, n in enumerate(nodes)}
-        points = np.array([self.graph.junctions[n] + self.disp[n] for n in nodes]).reshape(-1, 2)
+        displaced = self.graph.junctions + self.disp  # every node's p_k + d_k at once, (N, 2)
+        points = displaced[np.asarray(nodes, dtype=np.intp)].reshape(-1, 2)
         arcs = tuple(self.fits[g].arc.arc for g in order)
-        topology = tuple(self._topology(g, arc, junction) for g, arc in zip(order, arcs, strict=True))
+        topology = tuple(self._topology(g, arc, junction, displaced) for g, arc in zip(order, arcs, strict=True))
         return Abstraction(
             level=level,
             arcs=arcs,
@@ -721,26 +738,30 @@ class FitState:
             connected=self.options.connectivity,
         )
 
-    def _topology(self, g: int, arc: Any, junction: Mapping[int, int]) -> ArcJunctions:
+    def _topology(self, g: int, arc: Any, junction: Mapping[int, int], displaced: np.ndarray) -> ArcJunctions:
         """:meth:`arc_junctions` of group ``g``'s ``arc``, its junctions numbered by ``junction`` (node -> index).
 
         Found in the group's own path positions and kept while its arc and its
-        junctions' points stay the same: between two levels most arcs do.
+        junctions' points (rows of ``displaced``, by node) stay the same: between
+        two levels most arcs do; so is the numbered value while the numbering does.
         """
         nodes = self.constrained_nodes(self.groups[g])
-        index = list(nodes)
-        points = self.graph.junctions[index] + self.disp[index]
+        points = displaced[list(nodes)]
         key = points.tobytes()
         cached = self._topologies.get(g)
         if cached is None or cached[0] is not arc or cached[1] != nodes or cached[2] != key:
-            cached = self._topologies[g] = (arc, nodes, key, self.arc_junctions(arc, range(len(nodes)), points))
+            cached = (arc, nodes, key, self.arc_junctions(arc, range(len(nodes)), points), (), None)
+        at = tuple(junction[n] for n in nodes)
+        if cached[5] is not None and cached[4] == at:
+            return cached[5]
         local = cached[3]
-        at = [junction[n] for n in nodes]
-        return ArcJunctions(
+        value = ArcJunctions(
             None if local.start is None else at[local.start],
             None if local.end is None else at[local.end],
             tuple(at[i] for i in local.through),
         )
+        self._topologies[g] = (*cached[:4], at, value)
+        return value
 
     @staticmethod
     def arc_junctions(arc: Any, path: Sequence[int], points: np.ndarray) -> ArcJunctions:

@@ -19,11 +19,13 @@ import dataclasses
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
+from itertools import chain
 from typing import TypeAlias, cast
 
 import numpy as np
 
-from .arc_extraction import redundant_intersections
+from .arc_extraction import _redundant_arrays
+from .constants import REDUNDANT_INTERSECTION_TOL
 from .fit_state import FitState, GroupFit, Seed, Solution
 from .simplification import Group, hold_line, merge_groups
 
@@ -189,22 +191,29 @@ def _redundant(
     disp: dict[int, np.ndarray],
     node_groups_after: dict[int, list[int]],
 ) -> int:
-    """Redundant intersections that involve the arcs a merge changed."""
+    """Redundant intersections that involve the arcs a merge changed.
+
+    The junctions are indexed by node (every node of the graph, displaced; the
+    window's new d_k over the state's): the kernel reads only the junctions the
+    arcs own, which are the nodes of ``node_groups_after``.
+    """
     gids = list(after)
-    arcs = [(fits[g] if g in fits else state.fits[g]).arc.arc for g in gids]
-    nodes = np.array(sorted(node_groups_after), dtype=np.intp)
-    # The junctions' points, the window's displacements over the state's (one array, not a row each).
-    moved = state.disp[nodes]
-    index = np.full(len(state.disp), -1, dtype=np.intp)
-    index[nodes] = np.arange(len(nodes))
-    for n, d in disp.items():
-        if index[n] >= 0:
-            moved[index[n]] = d
-    points = (state.graph.junctions[nodes] + moved).reshape(-1, 2)
-    node_index = dict(zip(nodes.tolist(), range(len(nodes)), strict=True))
-    arc_junctions = [[node_index[n] for n in state.constrained_nodes(after[g])] for g in gids]
-    changed = [i for i, g in enumerate(gids) if g in fits]
-    return len(redundant_intersections(arcs, points, arc_junctions, candidates=changed))
+    group_fits = [fits[g] if g in fits else state.fits[g] for g in gids]
+    arcs = [f.arc.arc for f in group_fits]
+    params = np.array([f.arc_row for f in group_fits], dtype=np.float64).reshape(-1, 5)
+    junctions = state.graph.junctions
+    points = junctions + state.disp
+    if disp:
+        moved = np.fromiter(disp, dtype=np.intp, count=len(disp))
+        points[moved] = junctions[moved] + np.array(list(disp.values()), dtype=np.float64).reshape(-1, 2)
+    # Each arc's junctions as one flat array of node ids (the kernel's layout).
+    owned = [state.constrained_nodes(after[g]) for g in gids]
+    ptr = np.zeros(len(owned) + 1, dtype=np.int64)
+    np.cumsum([len(ks) for ks in owned], out=ptr[1:])
+    flat = np.fromiter(chain.from_iterable(owned), dtype=np.int64, count=int(ptr[-1]))
+    changed = np.array([i for i, g in enumerate(gids) if g in fits], dtype=np.int64)
+    pairs, _ = _redundant_arrays(arcs, points, ptr, flat, changed, REDUNDANT_INTERSECTION_TOL, params)
+    return len(pairs)
 
 
 def recheck_redundant(state: FitState, outcome: MergeOutcome) -> int:
