@@ -64,6 +64,7 @@ from .constants import (
     FACE_SCALE_STEP,
     FOCUS_MIN_STEP,
     SUBJECT_GRABCUT_ITERATIONS,
+    SUBJECT_GRABCUT_SETTLED,
     SUBJECT_MAX_AREA,
     SUBJECT_MAX_FRAME,
     SUBJECT_MIN_AREA,
@@ -471,7 +472,7 @@ def _grabcut(
     small8 = cv2.resize(full8, (sw, sh), interpolation=cv2.INTER_AREA) if textured else _bgr8(small)
     if seeds is not None:
         label = seeds.label.copy()
-        cv2.grabCut(small8, label, None, bgd, fgd, SUBJECT_GRABCUT_ITERATIONS, cv2.GC_INIT_WITH_MASK)
+        cv2.grabCut(small8, label, None, bgd, fgd, 1, cv2.GC_INIT_WITH_MASK)
     else:
         if rect is None:
             box = frame_box((sh, sw))
@@ -481,7 +482,8 @@ def _grabcut(
             bx1, by1 = min(sw, int(np.ceil((x + rw) * sx))), min(sh, int(np.ceil((y + rh) * sy)))
             box = (bx0, by0, max(2, bx1 - bx0), max(2, by1 - by0))
         label = np.zeros((sh, sw), np.uint8)
-        cv2.grabCut(small8, label, box, bgd, fgd, SUBJECT_GRABCUT_ITERATIONS, cv2.GC_INIT_WITH_RECT)
+        cv2.grabCut(small8, label, box, bgd, fgd, 1, cv2.GC_INIT_WITH_RECT)
+    _iterate_until_settled(small8, label, bgd, fgd)
     fg = largest_part((label == cv2.GC_FGD) | (label == cv2.GC_PR_FGD))
     if not fg.any():
         return np.zeros((h, w), bool)
@@ -510,6 +512,27 @@ def _grabcut(
     cv2.grabCut(np.ascontiguousarray(full8[r0:r1, c0:c1]), crop, None, bgd, fgd, 1, cv2.GC_EVAL)
     full[r0:r1, c0:c1] = crop
     return (full == cv2.GC_FGD) | (full == cv2.GC_PR_FGD)
+
+
+def _iterate_until_settled(image8: np.ndarray, label: np.ndarray, bgd: np.ndarray, fgd: np.ndarray) -> None:
+    """GrabCut's further iterations on ``label`` (h, w) uint8, in place, until the cut settles.
+
+    After GrabCut's first iteration (models learnt, one cut), up to
+    ``SUBJECT_GRABCUT_ITERATIONS`` in all, one at a time (OpenCV's ``GC_EVAL``
+    from the models ``bgd`` and ``fgd``: the same steps as one call with that
+    many iterations), stopping when an iteration moves at most
+    ``SUBJECT_GRABCUT_SETTLED`` of the pixels between object and background.
+    """
+    import cv2
+
+    fg = (label & 1).astype(bool)  # GC_FGD and GC_PR_FGD are the odd labels
+    for _ in range(SUBJECT_GRABCUT_ITERATIONS - 1):
+        cv2.grabCut(image8, label, None, bgd, fgd, 1, cv2.GC_EVAL)
+        now = (label & 1).astype(bool)
+        moved = np.count_nonzero(now != fg)
+        fg = now
+        if moved <= SUBJECT_GRABCUT_SETTLED * label.size:
+            return
 
 
 def _bgr8(rgb: np.ndarray) -> np.ndarray:
