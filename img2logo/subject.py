@@ -80,10 +80,13 @@ from .loading import LoadedImage, load_mask
 from .subject_cues import (
     FocusSeeds,
     clean_mask,
+    dilate,
+    erode,
     fill_small_holes,
     focus_seeds,
     focus_step,
     frame_box,
+    label,
     largest_part,
     outline_contrast,
     texture_colour_image,
@@ -332,14 +335,13 @@ def dominant_part(mask: np.ndarray, texture: np.ndarray | None) -> np.ndarray:
     returned (a giraffe's neck joins parts of one texture: it stays).
     """
     import cv2
-    from scipy import ndimage
 
     if texture is None or not mask.any():
         return mask
     radius = max(1, round(SUBJECT_NECK * float(np.sqrt(mask.sum()))))
     disc = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (2 * radius + 1, 2 * radius + 1))
     opened = cv2.morphologyEx(mask.astype(np.uint8), cv2.MORPH_OPEN, disc).astype(bool)
-    labels, n = ndimage.label(opened)
+    labels, n = label(opened)
     if n < 2:
         return mask
     sizes = np.bincount(labels.ravel())[1:]
@@ -458,7 +460,6 @@ def _grabcut(
     Deterministic (OpenCV's random generator is seeded).
     """
     import cv2
-    from scipy import ndimage
 
     h, w = img.height, img.width
     small, scale = working_copy(img)
@@ -493,10 +494,10 @@ def _grabcut(
         return up
     band = max(2, round(SUBJECT_REFINE_BAND / scale))
     full = np.full((h, w), cv2.GC_BGD, np.uint8)
-    near = ndimage.binary_dilation(up, iterations=band)
+    near = dilate(up, band)
     full[near] = cv2.GC_PR_BGD
     full[up] = cv2.GC_PR_FGD
-    full[ndimage.binary_erosion(up, iterations=band)] = cv2.GC_FGD
+    full[erode(up, band)] = cv2.GC_FGD
     if rect is not None:  # outside the user's rectangle stays background
         x, y, rw, rh = rect
         outside = np.ones((h, w), bool)

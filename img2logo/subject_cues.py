@@ -54,6 +54,11 @@ from .constants import (
 )
 from .loading import LoadedImage
 
+#: sRGB's linear RGB to CIE XYZ (D65), as scikit-image's ``skimage.color.colorconv.xyz_from_rgb``.
+_XYZ_FROM_RGB = np.array(
+    [[0.412453, 0.357580, 0.180423], [0.212671, 0.715160, 0.072169], [0.019334, 0.119193, 0.950227]]
+)
+
 
 def outline_contrast(
     img: LoadedImage,
@@ -104,10 +109,8 @@ def texture_lab(img: LoadedImage, texture: np.ndarray) -> np.ndarray:
     What :func:`outline_contrast` compares given a texture: the grass's blades
     are no step, its mean colour is.
     """
-    from scipy import ndimage
-
     window = FOCUS_WINDOW / work_scale(img)
-    return np.dstack([ndimage.gaussian_filter(img.smooth_lab, (window, window, 0)), texture])
+    return np.dstack([gaussian(img.smooth_lab, (window, window, 0)), texture])
 
 
 def outline_normals(
@@ -119,8 +122,6 @@ def outline_normals(
     the gradient of the signed distance to it, smoothed by a Gaussian of 2 px
     (x = column, y = row direction).
     """
-    from scipy import ndimage
-
     # Only the mask's box and a margin past the smoothing's reach (8 px) and the gradient's
     # (1 px) are needed; the distances there are those of the whole image (see mask_box).
     if not mask.any():
@@ -128,9 +129,9 @@ def outline_normals(
         return empty, empty, empty.astype(float), empty.astype(float)
     box = mask_box(mask, 12)
     mask = mask[box]
-    signed = ndimage.distance_transform_edt(mask) - ndimage.distance_transform_edt(~mask)
-    gy, gx = np.gradient(ndimage.gaussian_filter(signed, 2.0))
-    edge = mask & ~ndimage.binary_erosion(mask)
+    signed = distance(mask) - distance(~mask)
+    gy, gx = np.gradient(gaussian(signed, 2.0))
+    edge = mask & ~erode(mask)
     rows, cols = np.nonzero(edge if where is None else edge & where[box])
     norm = np.hypot(gx[rows, cols], gy[rows, cols]) + 1e-12
     return rows + box[0].start, cols + box[1].start, gx[rows, cols] / norm, gy[rows, cols] / norm
@@ -245,11 +246,9 @@ def fine_detail(gray: np.ndarray) -> np.ndarray:
     its Gaussian blur of ``FOCUS_DETAIL_SIGMA`` px: texture and edges in focus
     give much, a defocused (or flat) part next to nothing, whatever its colour.
     """
-    from scipy import ndimage
-
     g = np.asarray(gray, dtype=np.float64)
-    hf = g - ndimage.gaussian_filter(g, FOCUS_DETAIL_SIGMA)
-    return np.sqrt(ndimage.gaussian_filter(hf * hf, FOCUS_WINDOW))
+    hf = g - gaussian(g, FOCUS_DETAIL_SIGMA)
+    return np.sqrt(gaussian(hf * hf, FOCUS_WINDOW))
 
 
 def focus_seeds(img: LoadedImage) -> FocusSeeds | None:
@@ -273,7 +272,6 @@ def focus_seeds(img: LoadedImage) -> FocusSeeds | None:
     flower in the middle of a blurred garden) is found that way.
     """
     import cv2
-    from scipy import ndimage
 
     small, _ = working_copy(img)
     gray = small @ np.array(LUMA_WEIGHTS, np.float32)
@@ -287,11 +285,11 @@ def focus_seeds(img: LoadedImage) -> FocusSeeds | None:
     in_focus = focus > FOCUS_SHARP
     if blurred[strip].mean() < FOCUS_MIN_BLURRED_FRAME or in_focus[strip].mean() < FOCUS_MIN_SHARP_FRAME:
         return None
-    band = ndimage.gaussian_filter(gray, FOCUS_SOFT_SIGMAS[0]) - ndimage.gaussian_filter(gray, FOCUS_SOFT_SIGMAS[1])
-    soft = np.sqrt(ndimage.gaussian_filter(band * band, FOCUS_SOFT_WINDOW)) / top
+    band = gaussian(gray, FOCUS_SOFT_SIGMAS[0]) - gaussian(gray, FOCUS_SOFT_SIGMAS[1])
+    soft = np.sqrt(gaussian(band * band, FOCUS_SOFT_WINDOW)) / top
     if np.median(soft[strip & blurred]) < FOCUS_MIN_SOFT:
         return None
-    sharp = ndimage.binary_erosion(in_focus, iterations=FOCUS_SHARP_CORE)
+    sharp = erode(in_focus, FOCUS_SHARP_CORE)
     if sharp.mean() < FOCUS_MIN_SHARP_AREA:
         return None
     label = np.full(focus.shape, cv2.GC_PR_FGD, np.uint8)
@@ -311,17 +309,16 @@ def focus_step(seeds: FocusSeeds, mask: np.ndarray) -> float:
     through a scene in focus about 1.
     """
     import cv2
-    from scipy import ndimage
 
     sh, sw = seeds.focus.shape
     small = cv2.resize(mask.astype(np.float32), (sw, sh), interpolation=cv2.INTER_AREA) >= 0.5
     if not small.any() or small.all():
         return 0.0
-    inside = ndimage.distance_transform_edt(small)
-    outside = ndimage.distance_transform_edt(~small)
+    inside = distance(small)
+    outside = distance(~small)
     band = (inside > FOCUS_STEP - 1) & (inside <= FOCUS_STEP)
     ring = (outside > FOCUS_STEP - 1) & (outside <= FOCUS_STEP)
-    away = ndimage.binary_erosion(np.ones((sh, sw), bool), iterations=FOCUS_STEP + 2, border_value=0)
+    away = erode(np.ones((sh, sw), bool), FOCUS_STEP + 2)
     band, ring = band & away, ring & away
     if not band.any() or not ring.any():
         return 0.0
@@ -337,14 +334,23 @@ def texture_map(rgb: np.ndarray, scale: float = 1.0) -> np.ndarray:
     over this image's), so one decade of texture energy (smooth skin against
     grass, a flat body against gravel) weighs as a clear colour step.
     """
-    from scipy import ndimage
-    from skimage.color import rgb2lab
-
-    light = rgb2lab(np.clip(rgb, 0.0, 1.0))[..., 0]
+    light = lightness(rgb)
     k = 1.0 / scale  # this image's px per working px
-    detail = light - ndimage.gaussian_filter(light, FOCUS_DETAIL_SIGMA * k)
-    energy = np.sqrt(ndimage.gaussian_filter(detail * detail, FOCUS_WINDOW * k))
+    detail = light - gaussian(light, FOCUS_DETAIL_SIGMA * k)
+    energy = np.sqrt(gaussian(detail * detail, FOCUS_WINDOW * k))
     return SUBJECT_TEXTURE_WEIGHT * np.log10(SUBJECT_TEXTURE_FLOOR + energy)
+
+
+def lightness(rgb: np.ndarray) -> np.ndarray:
+    """CIELAB's L* of sRGB ``rgb`` (H, W, 3), clipped to [0, 1]: (H, W) float64, to the bit
+    ``skimage.color.rgb2lab(rgb)[..., 0]`` (D65), without its a* and b* (half its time).
+    """
+    lin = np.clip(np.asarray(rgb, dtype=np.float64), 0.0, 1.0)
+    curve = lin > 0.04045
+    lin[curve] = np.power((lin[curve] + 0.055) / 1.055, 2.4)
+    lin[~curve] /= 12.92
+    y = (lin @ _XYZ_FROM_RGB.T)[..., 1]  # the reference white's Y is 1
+    return np.where(y > 0.008856, 116.0 * np.cbrt(y), 116.0 * (7.787 * y + 16.0 / 116.0)) - 16.0
 
 
 def texture_colour_image(lab: np.ndarray, texture: np.ndarray) -> np.ndarray:
@@ -366,9 +372,7 @@ def texture_colour_image(lab: np.ndarray, texture: np.ndarray) -> np.ndarray:
 
 def largest_part(mask: np.ndarray) -> np.ndarray:
     """The largest 8-connected piece of ``mask``."""
-    from scipy import ndimage
-
-    lab, n = ndimage.label(mask, structure=np.ones((3, 3)))
+    lab, n = label(mask, eight=True)
     if n <= 1:
         return mask.copy()
     sizes = np.bincount(lab.ravel())[1:]
@@ -377,12 +381,10 @@ def largest_part(mask: np.ndarray) -> np.ndarray:
 
 def clean_mask(mask: np.ndarray) -> np.ndarray:
     """Largest piece, holes filled, smoothed by a Gaussian of ``SUBJECT_SMOOTH_SIGMA`` px, (H, W) bool."""
-    from scipy import ndimage
-
     if not mask.any():
         return mask
     mask = fill_small_holes(largest_part(mask))
-    smooth = ndimage.gaussian_filter(mask.astype(np.float32), SUBJECT_SMOOTH_SIGMA) >= 0.5
+    smooth = gaussian(mask.astype(np.float32), SUBJECT_SMOOTH_SIGMA) >= 0.5
     smooth = largest_part(smooth)
     return fill_small_holes(smooth) if smooth.any() else mask
 
@@ -402,3 +404,84 @@ def fill_small_holes(mask: np.ndarray) -> np.ndarray:
     small = stats[:, cv2.CC_STAT_AREA] <= max_size
     small[0] = False  # label 0: the mask's own pixels
     return mask | small[parts]
+
+
+# ---------------------------------------------------------------- scipy.ndimage's filters, without importing it
+# Importing scipy.ndimage costs about 0.2 s of CPU a run (it brings scipy.special). These give its
+# results to the bit: the same compiled 1-D correlations (preprocessing.gaussian_blur's way), OpenCV's
+# exact distance transform (_skeleton.distance_to_background) and labelling (_skeleton.label), and
+# OpenCV's morphology with scipy's border.
+
+
+def gaussian(image: np.ndarray, sigma: float | tuple[float, ...]) -> np.ndarray:
+    """``scipy.ndimage.gaussian_filter(image, sigma)``, to the bit, in ``image``'s float type (same shape).
+
+    ``sigma`` in px, one for all axes or one per axis (0 leaves an axis
+    alone); scipy's kernel (``truncate`` 4 standard deviations, mode
+    ``reflect``), axis after axis, each result stored in the image's float
+    type as scipy does.
+    """
+    from ._skeleton import compiled_module
+
+    src = np.asarray(image)
+    sigmas = (float(sigma),) * src.ndim if np.isscalar(sigma) else tuple(float(v) for v in sigma)
+    try:
+        correlate1d = compiled_module("scipy", "ndimage", "_nd_image").correlate1d
+    except (ImportError, AttributeError):
+        from scipy import ndimage
+
+        return np.asarray(ndimage.gaussian_filter(src, sigmas))
+    out = np.zeros(src.shape, dtype=src.dtype)
+    current = src
+    for axis, sd in enumerate(sigmas):
+        if sd <= 1e-15:
+            continue
+        radius = int(4.0 * sd + 0.5)
+        x = np.arange(-radius, radius + 1)
+        phi = np.exp(-0.5 / (sd * sd) * x**2)
+        weights = np.ascontiguousarray((phi / phi.sum())[::-1], dtype=np.float64)
+        correlate1d(current, weights, axis, out, 2, 0.0, 0)  # 2: scipy.ndimage's code of mode "reflect"
+        current = out
+    if current is src:
+        out[...] = src
+    return out
+
+
+def distance(mask: np.ndarray) -> np.ndarray:
+    """``scipy.ndimage.distance_transform_edt(mask)``, to the bit, float64 (H, W), px."""
+    from ._skeleton import distance_to_background
+
+    mask = np.asarray(mask, dtype=bool)
+    if mask.all():  # no background pixel: scipy's own answer
+        from scipy import ndimage
+
+        return np.asarray(ndimage.distance_transform_edt(mask), dtype=np.float64)
+    return distance_to_background(mask)
+
+
+def erode(mask: np.ndarray, iterations: int = 1) -> np.ndarray:
+    """``scipy.ndimage.binary_erosion(mask, iterations=iterations)``: the 4-neighbour cross, outside the image
+    empty, (H, W) bool."""
+    import cv2
+
+    cross = cv2.getStructuringElement(cv2.MORPH_CROSS, (3, 3))
+    src = np.ascontiguousarray(mask, dtype=bool).view(np.uint8)
+    return cv2.erode(src, cross, iterations=iterations, borderType=cv2.BORDER_CONSTANT, borderValue=0).astype(bool)
+
+
+def dilate(mask: np.ndarray, iterations: int = 1) -> np.ndarray:
+    """``scipy.ndimage.binary_dilation(mask, iterations=iterations)``: the 4-neighbour cross, (H, W) bool."""
+    import cv2
+
+    cross = cv2.getStructuringElement(cv2.MORPH_CROSS, (3, 3))
+    src = np.ascontiguousarray(mask, dtype=bool).view(np.uint8)
+    return cv2.dilate(src, cross, iterations=iterations, borderType=cv2.BORDER_CONSTANT, borderValue=0).astype(bool)
+
+
+def label(mask: np.ndarray, eight: bool = False) -> tuple[np.ndarray, int]:
+    """``scipy.ndimage.label(mask)`` (4-neighbours; ``eight``: ``structure=np.ones((3, 3))``): labels (H, W)
+    int32 numbered 1.. in raster order, and their number."""
+    from ._skeleton import label as components
+
+    labels = components(np.asarray(mask, dtype=bool), connectivity=2 if eight else 1)
+    return labels, int(labels.max()) if labels.size else 0

@@ -44,7 +44,7 @@ from .constants import (
     SUBJECT_MIN_CONTRAST,
 )
 from .loading import LoadedImage
-from .subject_cues import clean_mask, mask_box, outline_contrast, work_scale
+from .subject_cues import clean_mask, dilate, distance, gaussian, label, mask_box, outline_contrast, work_scale
 
 #: Fewest pixels in the ring and the core for their statistics to mean something.
 _MIN_SAMPLES = 50
@@ -60,17 +60,15 @@ def shadow_features(rgb: np.ndarray, scale: float = 1.0) -> tuple[np.ndarray, np
     the same way as the chromaticity. ``scale`` is the working copy's size
     over this image's (the sigmas are in working px). ``rgb`` is sRGB in [0, 1].
     """
-    from scipy import ndimage
-
     k = 1.0 / scale
     linear = np.clip(np.asarray(rgb, dtype=np.float64), 1.0 / 255.0, 1.0) ** 2.2
     sigma = SHADOW_CHROMA_SIGMA * k
-    smooth = ndimage.gaussian_filter(linear, (sigma, sigma, 0))
+    smooth = gaussian(linear, (sigma, sigma, 0))
     chroma = smooth[..., :2] / smooth.sum(axis=-1, keepdims=True)
     log_lum = np.log(linear @ np.asarray(LUMA_WEIGHTS))
-    detail = log_lum - ndimage.gaussian_filter(log_lum, FOCUS_DETAIL_SIGMA * k)
-    texture = np.log10(1e-3 + np.sqrt(ndimage.gaussian_filter(detail * detail, FOCUS_WINDOW * k)))
-    return np.dstack([chroma, texture]), ndimage.gaussian_filter(log_lum, sigma)
+    detail = log_lum - gaussian(log_lum, FOCUS_DETAIL_SIGMA * k)
+    texture = np.log10(1e-3 + np.sqrt(gaussian(detail * detail, FOCUS_WINDOW * k)))
+    return np.dstack([chroma, texture]), gaussian(log_lum, sigma)
 
 
 def _mahalanobis(features: np.ndarray, where: np.ndarray, sigma: float | None = None) -> np.ndarray:
@@ -108,8 +106,6 @@ def cast_shadow(img: LoadedImage, mask: np.ndarray) -> np.ndarray | None:
     ``mask`` (H, W) bool, only when leaving them out makes the outline beside
     them the object's sharp edge.
     """
-    from scipy import ndimage
-
     if not mask.any() or mask.all():
         return None
     scale = work_scale(img)
@@ -117,8 +113,8 @@ def cast_shadow(img: LoadedImage, mask: np.ndarray) -> np.ndarray | None:
     # beyond it a pixel is farther than the ring and inside nothing.
     near = mask_box(mask, math.ceil(SHADOW_RING[1] / scale) + 1)
     inside, ring = np.zeros(mask.shape), np.zeros(mask.shape, bool)
-    inside[near] = ndimage.distance_transform_edt(mask[near])
-    outside = ndimage.distance_transform_edt(~mask[near])
+    inside[near] = distance(mask[near])
+    outside = distance(~mask[near])
     ring[near] = (outside > SHADOW_RING[0] / scale) & (outside <= SHADOW_RING[1] / scale)
     core = inside > SHADOW_CORE / scale
     if ring.sum() < _MIN_SAMPLES or core.sum() < _MIN_SAMPLES:
@@ -137,7 +133,7 @@ def cast_shadow(img: LoadedImage, mask: np.ndarray) -> np.ndarray | None:
         return None
     chroma = features[..., :2]
     grown = darker & (_mahalanobis(chroma, ring_b, local) < SHADOW_MAX_CHROMA_DISTANCE)
-    labels, _ = ndimage.label(grown | seeds)
+    labels, _ = label(grown | seeds)
     hit = np.unique(labels[seeds])
     shadow = np.zeros(mask.shape, bool)
     shadow[box] = np.isin(labels, hit[hit > 0])
@@ -146,7 +142,7 @@ def cast_shadow(img: LoadedImage, mask: np.ndarray) -> np.ndarray | None:
     if not left_out.any() or not kept.any():
         return None
     before = outline_contrast(img, mask, where=left_out)  # the outline's section that goes
-    after = outline_contrast(img, kept, where=ndimage.binary_dilation(left_out, iterations=2))  # and the new one
+    after = outline_contrast(img, kept, where=dilate(left_out, 2))  # and the new one
     if before >= SUBJECT_MIN_CONTRAST or after < SUBJECT_MIN_CONTRAST:
         return None
     return left_out
