@@ -637,10 +637,3 @@ SYMMETRY_FIT_STALL: int = 20
 SYMMETRY_SNAP_ANGLE: float = 1.0
 #: See SYMMETRY_SNAP_ANGLE: the score an exactly upright axis may lose, as a fraction.
 SYMMETRY_SNAP_SCORE_LOSS: float = 0.01
-#: Photo subject (subject._grabcut): GrabCut's iterations on the working copy stop
-#: early once one moves at most this fraction of its pixels between object and
-#: background (at most SUBJECT_GRABCUT_ITERATIONS in all). The first iteration is
-#: most of the cut's time (its max-flow from the rectangle); the later ones move a
-#: few pixels each, which the full-size refinement in a band around the boundary
-#: decides again.
-SUBJECT_GRABCUT_SETTLED: float = 0.001

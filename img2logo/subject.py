@@ -64,7 +64,6 @@ from .constants import (
     FACE_SCALE_STEP,
     FOCUS_MIN_STEP,
     SUBJECT_GRABCUT_ITERATIONS,
-    SUBJECT_GRABCUT_SETTLED,
     SUBJECT_MAX_AREA,
     SUBJECT_MAX_FRAME,
     SUBJECT_MIN_AREA,
@@ -234,9 +233,8 @@ def _find_subject(img: LoadedImage, foreground: object, subject: object) -> Subj
             return Subject(readonly(mask.copy()), "alpha", f"kept the opaque pixels (alpha): {mask.mean():.0%}")
         texture = None
         if foreground == "auto":  # the same cut with texture: take the candidate whose outline is the sharper edge
-            mask, texture, textured = _both_cuts(img)
-            if textured.any():
-                lab = texture_lab(img, texture)  # once for both candidates
+            mask, texture, textured, lab = _both_cuts(img)
+            if lab is not None:  # texture_lab of the texture, once for both candidates
                 if outline_contrast(img, textured, lab=lab) > outline_contrast(img, mask, lab=lab):
                     mask = textured
         else:
@@ -300,26 +298,39 @@ def _at_working_size(rect: tuple[int, int, int, int], img: LoadedImage) -> tuple
     return x0, y0, x1 - x0, y1 - y0
 
 
-def _both_cuts(img: LoadedImage) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """GrabCut on the colours and on colour and texture, run side by side: (mask, texture, textured mask).
+def _both_cuts(img: LoadedImage) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray | None]:
+    """GrabCut on the colours and on colour and texture, run side by side: (mask, texture, textured mask, lab).
 
     The two cuts are independent and OpenCV releases the interpreter while it
-    cuts, so they run in two threads (each seeds its own random generator:
-    the result is the same as one after the other).
+    cuts (and numpy while it filters), so they run in two threads, each
+    seeding its own random generator: the result is the same as one after the
+    other. The work around them is shared out too: while this thread takes the
+    photo's smoothed CIELAB (``img.smooth_lab``), the other makes the texture
+    map, then waits for the CIELAB to make its feature image; after its cut it
+    makes what the two candidates' outlines are compared on, ``lab``
+    (:func:`~img2logo.subject_cues.texture_lab`; None when the textured cut
+    found nothing).
     """
+    import threading
     from concurrent.futures import ThreadPoolExecutor
 
-    _ = img.smooth_lab  # computed once, before the threads share it
+    lab_ready = threading.Event()
 
-    def textured() -> tuple[np.ndarray, np.ndarray]:
+    def textured() -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
         texture = texture_map(img.rgb, work_scale(img))
-        return texture, clean_mask(_grabcut(img, texture=texture))
+        lab_ready.wait()
+        cut = clean_mask(_grabcut(img, texture=texture))
+        return texture, cut, texture_lab(img, texture) if cut.any() else None
 
     with ThreadPoolExecutor(max_workers=2) as pool:
         other = pool.submit(textured)
+        try:
+            _ = img.smooth_lab  # computed once, here, while the other thread makes the texture map
+        finally:
+            lab_ready.set()
         mask = clean_mask(_grabcut(img))
-        texture, cut = other.result()
-    return mask, texture, cut
+        texture, cut, lab = other.result()
+    return mask, texture, cut, lab
 
 
 def dominant_part(mask: np.ndarray, texture: np.ndarray | None) -> np.ndarray:
@@ -473,7 +484,7 @@ def _grabcut(
     small8 = cv2.resize(full8, (sw, sh), interpolation=cv2.INTER_AREA) if textured else _bgr8(small)
     if seeds is not None:
         label = seeds.label.copy()
-        cv2.grabCut(small8, label, None, bgd, fgd, 1, cv2.GC_INIT_WITH_MASK)
+        cv2.grabCut(small8, label, None, bgd, fgd, SUBJECT_GRABCUT_ITERATIONS, cv2.GC_INIT_WITH_MASK)
     else:
         if rect is None:
             box = frame_box((sh, sw))
@@ -483,8 +494,7 @@ def _grabcut(
             bx1, by1 = min(sw, int(np.ceil((x + rw) * sx))), min(sh, int(np.ceil((y + rh) * sy)))
             box = (bx0, by0, max(2, bx1 - bx0), max(2, by1 - by0))
         label = np.zeros((sh, sw), np.uint8)
-        cv2.grabCut(small8, label, box, bgd, fgd, 1, cv2.GC_INIT_WITH_RECT)
-    _iterate_until_settled(small8, label, bgd, fgd)
+        cv2.grabCut(small8, label, box, bgd, fgd, SUBJECT_GRABCUT_ITERATIONS, cv2.GC_INIT_WITH_RECT)
     fg = largest_part((label == cv2.GC_FGD) | (label == cv2.GC_PR_FGD))
     if not fg.any():
         return np.zeros((h, w), bool)
@@ -513,27 +523,6 @@ def _grabcut(
     cv2.grabCut(np.ascontiguousarray(full8[r0:r1, c0:c1]), crop, None, bgd, fgd, 1, cv2.GC_EVAL)
     full[r0:r1, c0:c1] = crop
     return (full == cv2.GC_FGD) | (full == cv2.GC_PR_FGD)
-
-
-def _iterate_until_settled(image8: np.ndarray, label: np.ndarray, bgd: np.ndarray, fgd: np.ndarray) -> None:
-    """GrabCut's further iterations on ``label`` (h, w) uint8, in place, until the cut settles.
-
-    After GrabCut's first iteration (models learnt, one cut), up to
-    ``SUBJECT_GRABCUT_ITERATIONS`` in all, one at a time (OpenCV's ``GC_EVAL``
-    from the models ``bgd`` and ``fgd``: the same steps as one call with that
-    many iterations), stopping when an iteration moves at most
-    ``SUBJECT_GRABCUT_SETTLED`` of the pixels between object and background.
-    """
-    import cv2
-
-    fg = (label & 1).astype(bool)  # GC_FGD and GC_PR_FGD are the odd labels
-    for _ in range(SUBJECT_GRABCUT_ITERATIONS - 1):
-        cv2.grabCut(image8, label, None, bgd, fgd, 1, cv2.GC_EVAL)
-        now = (label & 1).astype(bool)
-        moved = np.count_nonzero(now != fg)
-        fg = now
-        if moved <= SUBJECT_GRABCUT_SETTLED * label.size:
-            return
 
 
 def _bgr8(rgb: np.ndarray) -> np.ndarray:

@@ -271,15 +271,16 @@ def test_auto_finds_an_object_of_the_backgrounds_own_hue_by_its_texture():
 
 def test_the_two_cuts_side_by_side_are_those_made_one_after_the_other():
     from img2logo.subject import _both_cuts, _grabcut
-    from img2logo.subject_cues import clean_mask, texture_map, work_scale
+    from img2logo.subject_cues import clean_mask, texture_lab, texture_map, work_scale
 
     rgb, (truth,) = textured_photo([(170, 120, 80, 60, (0.95, 0.75, 0.2))], size=(300, 400))
     img = load_image(rgb)  # 400 px: the working copy is smaller, so the full-size refinement runs
-    mask, texture, textured = _both_cuts(img)
+    mask, texture, textured, lab = _both_cuts(img)
     again = load_image(rgb)
     np.testing.assert_array_equal(mask, clean_mask(_grabcut(again)))
     np.testing.assert_array_equal(texture, texture_map(again.rgb, work_scale(again)))
     np.testing.assert_array_equal(textured, clean_mask(_grabcut(again, texture=texture)))
+    np.testing.assert_array_equal(lab, texture_lab(again, texture))
     assert outline_distance(mask, truth) <= 3.0  # the refinement on the band's box keeps the outline
 
 
