@@ -358,3 +358,51 @@ def test_the_rocket_photo_is_no_subject_by_its_texture():
 
     found = find_subject(load_image(data.rocket()))
     assert "by its texture" not in found.description
+
+
+def test_the_cues_filters_are_scipy_ndimage_s_to_the_bit():
+    from scipy import ndimage
+    from skimage.color import rgb2lab
+
+    from img2logo.subject_cues import dilate, distance, erode, gaussian, label, lightness
+
+    rng = np.random.default_rng(3)
+    for h, w in ((37, 52), (64, 41), (9, 80)):
+        image = rng.random((h, w))
+        for sigma in (0.8, 2.0, 5.3):
+            for dtype in (np.float64, np.float32):
+                ours, theirs = gaussian(image.astype(dtype), sigma), ndimage.gaussian_filter(image.astype(dtype), sigma)
+                assert ours.dtype == theirs.dtype
+                np.testing.assert_array_equal(ours, theirs)
+        colour = rng.random((h, w, 3))
+        np.testing.assert_array_equal(gaussian(colour, (1.5, 1.5, 0)), ndimage.gaussian_filter(colour, (1.5, 1.5, 0)))
+        np.testing.assert_array_equal(lightness(colour * 1.2 - 0.1), rgb2lab(np.clip(colour * 1.2 - 0.1, 0, 1))[..., 0])
+        mask = ndimage.gaussian_filter(rng.random((h, w)), 2.0) > 0.5
+        np.testing.assert_array_equal(distance(mask), ndimage.distance_transform_edt(mask))
+        np.testing.assert_array_equal(distance(np.ones((h, w), bool)), ndimage.distance_transform_edt(np.ones((h, w))))
+        for n in (1, 3):
+            np.testing.assert_array_equal(erode(mask, n), ndimage.binary_erosion(mask, iterations=n))
+            np.testing.assert_array_equal(dilate(mask, n), ndimage.binary_dilation(mask, iterations=n))
+        for eight, structure in ((False, None), (True, np.ones((3, 3)))):
+            ours, n = label(mask, eight=eight)
+            theirs, m = ndimage.label(mask, structure=structure)
+            assert n == m
+            np.testing.assert_array_equal(ours, theirs)
+
+
+def test_the_cues_do_not_import_scipy_ndimage():
+    import subprocess
+    import sys
+
+    code = (
+        "import sys, numpy as np\n"
+        "from img2logo.loading import load_image\n"
+        "from img2logo.subject_cues import clean_mask, focus_seeds, outline_normals, texture_map\n"
+        "rng = np.random.default_rng(0)\n"
+        "img = load_image(rng.random((90, 120, 3)))\n"
+        "mask = np.zeros((90, 120), bool); mask[20:70, 30:90] = True\n"
+        "texture_map(img.rgb, 0.5); clean_mask(mask); outline_normals(mask); focus_seeds(img)\n"
+        "print('scipy.ndimage' in sys.modules)\n"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "False"
