@@ -302,12 +302,12 @@ def _both_cuts(img: LoadedImage) -> tuple[np.ndarray, np.ndarray, np.ndarray, np
     """GrabCut on the colours and on colour and texture, run side by side: (mask, texture, textured mask, lab).
 
     The two cuts are independent and OpenCV releases the interpreter while it
-    cuts (and numpy while it filters), so they run in two threads, each
-    seeding its own random generator: the result is the same as one after the
-    other. The work around them is shared out too: while this thread takes the
-    photo's smoothed CIELAB (``img.smooth_lab``), the other makes the texture
-    map, then waits for the CIELAB to make its feature image; after its cut it
-    makes what the two candidates' outlines are compared on, ``lab``
+    cuts, so they run in two threads, each seeding its own random generator:
+    the result is the same as one after the other. The work around them is
+    shared out too: while this thread takes the photo's smoothed CIELAB
+    (``img.smooth_lab``), the other makes the texture map, then waits for the
+    CIELAB to make its feature image; after its cut it makes what the two
+    candidates' outlines are compared on, ``lab``
     (:func:`~img2logo.subject_cues.texture_lab`; None when the textured cut
     found nothing).
     """
