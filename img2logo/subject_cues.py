@@ -18,7 +18,11 @@ Measurements only; :mod:`img2logo.subject` decides with them. Each works on a
   :func:`mask_box`: the box on which a mask's distance transforms are exact;
 * :func:`working_copy`, :func:`work_scale`, :func:`frame_box`,
   :func:`frame_strip`: the small copy GrabCut and the cues work on, and the
-  strip along the image frame that is taken as background.
+  strip along the image frame that is taken as background;
+* :func:`lightness`, :func:`gaussian`, :func:`distance`, :func:`erode`,
+  :func:`dilate`, :func:`label`: CIELAB's L* and scipy.ndimage's filters,
+  to the bit, without importing either package's module (about 0.2 s of CPU
+  a run for ``scipy.ndimage``).
 
 Arrays are indexed (row, column); a box is (x, y, w, h) in px.
 """
