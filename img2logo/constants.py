@@ -637,3 +637,11 @@ SYMMETRY_FIT_STALL: int = 20
 SYMMETRY_SNAP_ANGLE: float = 1.0
 #: See SYMMETRY_SNAP_ANGLE: the score an exactly upright axis may lose, as a fraction.
 SYMMETRY_SNAP_SCORE_LOSS: float = 0.01
+
+#: Photo colour lines (photo.photo_lines): a line of the colour-opponent FDoG is
+#: kept only this far from every lightness line, px: 3 x the FDoG's surround
+#: sigma (1.6 FDOG_SIGMA_C), the reach of its DoG across an edge. Within it, a
+#: colour line is the same edge as the lightness line (a colour object's
+#: outline lies one or two px beside its lightness line: drawn twice, a duck of
+#: 16 arcs had 34); beyond it, the edge has no lightness line of its own.
+COLOUR_LINE_GATE: float = 3.0 * 1.6 * FDOG_SIGMA_C
