@@ -39,6 +39,7 @@ from .constants import (
     BILATERAL_DIAMETER,
     BILATERAL_SIGMA_COLOR,
     COLOUR_LINE_GATE,
+    COLOUR_LINE_SUBSAMPLE,
     ETF_SIGMA,
     FACE_MIN_LINE,
     FDOG_RHO,
@@ -248,19 +249,19 @@ def photo_lines(img: LoadedImage) -> np.ndarray:
 
     Lightness lines: the FDoG of the gray image, first smoothed by a bilateral
     filter (KD09 smooth with a flow-based bilateral filter): fur, grain and
-    texture fade, edges stay. Colour lines: the same FDoG of the photo's
-    colour-opponent channel (:func:`opponent_channel`), on the lightness's flow
-    (measured on the photo-likes: the colour channels' tensor added to it moved
-    the lightness lines, a near-miss gap and a silhouette 0.97 -> 0.96), kept
-    only farther than ``COLOUR_LINE_GATE`` from every lightness line:
-    an edge of colour with no step of lightness (a pink nose on tan fur) is
-    drawn, an outline already drawn in lightness is not drawn again beside it.
-    Both are binarized on the lightness response's scale (a colour step makes
-    a line where a lightness step of the same CIELAB size would).
+    texture fade, edges stay. Colour lines: the same FDoG (no dark-side bias,
+    ``rho`` 1) of the photo's colour-opponent channel (:func:`opponent_channel`)
+    on a copy ``COLOUR_LINE_SUBSAMPLE`` times smaller, on its own flow (on the
+    lightness's flow a colour edge with no lightness step has no direction:
+    its line breaks up), kept only farther than ``COLOUR_LINE_GATE`` from every
+    lightness line: an edge of colour with no step of lightness (a pink nose
+    on tan fur) is drawn, an outline already drawn in lightness is not drawn
+    again beside it (the gate is measured from both sides of the lightness edge,
+    its dark line and its bright lobe: a colour line lies on the less red side,
+    which may be the bright one). Both are binarized on the lightness response's scale (a
+    colour step makes a line where a lightness step of the same CIELAB size
+    would). The lightness lines are those of the FDoG alone.
     """
-    import cv2
-    from scipy import ndimage
-
     lightness, colour = photo_line_maps(img)
     return lightness | colour
 
@@ -271,13 +272,22 @@ def photo_line_maps(img: LoadedImage) -> tuple[np.ndarray, np.ndarray]:
     from scipy import ndimage
 
     gray = cv2.bilateralFilter(img.gray.astype(np.float32), BILATERAL_DIAMETER, BILATERAL_SIGMA_COLOR, 5.0)
-    opponent = cv2.bilateralFilter(opponent_channel(img), BILATERAL_DIAMETER, BILATERAL_SIGMA_COLOR, 5.0)
-    light, colour = flow_dog_responses(np.dstack([gray, opponent]), rho=(FDOG_RHO, 1.0))
+    light = flow_dog_response(gray)
     scale = float(np.max(np.abs(light))) or 1.0
     lines = _binarize(light, scale)
+    h, w = gray.shape
+    opponent = opponent_channel(img)
+    small = (max(1, round(w / COLOUR_LINE_SUBSAMPLE)), max(1, round(h / COLOUR_LINE_SUBSAMPLE)))
+    opponent = cv2.resize(opponent, small, interpolation=cv2.INTER_AREA)
+    opponent = cv2.bilateralFilter(opponent, BILATERAL_DIAMETER, BILATERAL_SIGMA_COLOR, 5.0)
+    colour = cv2.resize(flow_dog_response(opponent, rho=1.0), (w, h), interpolation=cv2.INTER_LINEAR)
     colour_lines = _binarize(colour, scale)
-    if lines.any() and colour_lines.any():
-        colour_lines &= ndimage.distance_transform_edt(~lines) > COLOUR_LINE_GATE
+    # Both sides of every lightness edge: the response without its bias to dark sides (the DoG's
+    # surround weighted by rho < 1 leaves (1 - rho) x the blurred gray, positive on flat ground).
+    unbiased = light - (1.0 - FDOG_RHO) * cv2.GaussianBlur(gray, (0, 0), 1.6 * FDOG_SIGMA_C)
+    edges = _binarize(unbiased, scale) | _binarize(-unbiased, scale)
+    if edges.any() and colour_lines.any():
+        colour_lines &= ndimage.distance_transform_edt(~edges) > COLOUR_LINE_GATE
     return lines, colour_lines
 
 
@@ -346,36 +356,34 @@ def flow_dog(
 
     A 1-D DoG ``G_sc - rho G_1.6sc`` is taken across the edge tangent flow at
     every pixel, then those responses are averaged with a Gaussian of
-    ``sigma_m`` along the flow curves (:func:`flow_dog_responses`); a pixel is a
+    ``sigma_m`` along the flow curves (:func:`flow_dog_response`); a pixel is a
     line where the result is negative and ``1 + tanh(H) < tau``.
     """
-    (response,) = flow_dog_responses(gray, sigma_c=sigma_c, sigma_m=sigma_m, rho=(rho,))
+    response = flow_dog_response(gray, sigma_c=sigma_c, sigma_m=sigma_m, rho=rho)
     scale = np.max(np.abs(response)) or 1.0
     response = response / scale * 8.0  # unit-free: the tanh threshold acts on a fixed range
     return (response < 0) & (1.0 + np.tanh(response) < tau)
 
 
-def flow_dog_responses(
-    channels: np.ndarray,
+def flow_dog_response(
+    gray: np.ndarray,
     *,
     sigma_c: float = FDOG_SIGMA_C,
     sigma_m: float = FDOG_SIGMA_M,
-    rho: tuple[float, ...] = (FDOG_RHO,),
-) -> list[np.ndarray]:
-    """The FDoG responses [KD09] of (H, W) or (H, W, C) channels: C arrays (H, W) float32.
+    rho: float = FDOG_RHO,
+) -> np.ndarray:
+    """The FDoG response [KD09] of a channel (H, W): (H, W) float32, in the channel's units.
 
-    The flow is :func:`edge_tangent_flow` of the first channel (the lightness:
-    its lines are the same with or without the other channels); channel ``k``'s DoG
-    across it is ``G_sc - rho[k] G_1.6sc`` (``rho`` below 1 biases a lightness
-    channel to lines on dark sides; a colour-opponent channel has no dark side:
-    1), then averaged with a Gaussian of ``sigma_m`` px along the flow curves.
+    A 1-D DoG ``G_sc - rho G_1.6sc`` across the edge tangent flow
+    (:func:`edge_tangent_flow`) at every pixel, averaged with a Gaussian of
+    ``sigma_m`` px along the flow curves. ``rho`` below 1 biases a lightness
+    channel to lines on dark sides; a colour-opponent channel has no dark side (1).
     """
     import cv2
 
-    g = np.ascontiguousarray(channels, dtype=np.float32)
-    n = 1 if g.ndim == 2 else g.shape[2]
-    h, w = g.shape[:2]
-    flow = np.ascontiguousarray(edge_tangent_flow(g if n == 1 else g[..., 0]), dtype=np.float32)
+    g = np.ascontiguousarray(gray, dtype=np.float32)
+    h, w = g.shape
+    flow = np.ascontiguousarray(edge_tangent_flow(gray), dtype=np.float32)
     tx, ty = flow[..., 0], flow[..., 1]
     nx, ny = -ty, tx  # gradient direction, across the edge
     ys, xs = np.mgrid[0:h, 0:w].astype(np.float32)
@@ -386,18 +394,17 @@ def flow_dog_responses(
     sigma_s = 1.6 * sigma_c
     half = math.ceil(3.0 * sigma_s)
     t = np.arange(-half, half + 1, dtype=np.float32)
-    centre = np.exp(-(t**2) / (2 * sigma_c**2)) / (sigma_c * math.sqrt(2 * math.pi))
-    surround = np.exp(-(t**2) / (2 * sigma_s**2)) / (sigma_s * math.sqrt(2 * math.pi))
-    rhos = np.asarray(rho, dtype=np.float32).reshape(n)
+    dog = np.exp(-(t**2) / (2 * sigma_c**2)) / (sigma_c * math.sqrt(2 * math.pi)) - rho * np.exp(
+        -(t**2) / (2 * sigma_s**2)
+    ) / (sigma_s * math.sqrt(2 * math.pi))
     across = np.zeros_like(g)
-    for k, ti in enumerate(t):
-        weight = centre[k] - rhos * surround[k]
-        across += (weight[0] if n == 1 else weight) * sample(g, xs + ti * nx, ys + ti * ny)
+    for ti, wi in zip(t, dog, strict=True):
+        across += wi * sample(g, xs + ti * nx, ys + ti * ny)
 
     steps = math.ceil(3.0 * sigma_m)
     weights = np.exp(-(np.arange(steps + 1) ** 2) / (2 * sigma_m**2)).astype(np.float32)
-    # The flow and the responses sampled in one pass (one remap of 2 + C channels: the same
-    # numbers as one channel at a time, bilinear per channel); the sum runs over all of them.
+    # The flow and the response sampled in one pass (one remap of 3 channels: the same
+    # numbers as one channel at a time, bilinear per channel); the sum runs over all three.
     packed = np.ascontiguousarray(np.dstack([flow, across]))
     acc = weights[0] * packed
     total = weights[0]
@@ -414,5 +421,4 @@ def flow_dog_responses(
             sign = np.sign(fx * vx + fy * vy)
             sign[sign == 0] = 1
             vx, vy = fx * sign, fy * sign
-    response = acc[..., 2:] / total
-    return [np.ascontiguousarray(response[..., k]) for k in range(n)]
+    return acc[..., 2] / total
