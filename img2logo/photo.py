@@ -276,10 +276,9 @@ def photo_line_maps(img: LoadedImage) -> tuple[np.ndarray, np.ndarray]:
     scale = float(np.max(np.abs(light))) or 1.0
     lines = _binarize(light, scale)
     h, w = gray.shape
-    opponent = opponent_channel(img)
     small = (max(1, round(w / COLOUR_LINE_SUBSAMPLE)), max(1, round(h / COLOUR_LINE_SUBSAMPLE)))
-    opponent = cv2.resize(opponent, small, interpolation=cv2.INTER_AREA)
-    opponent = cv2.bilateralFilter(opponent, BILATERAL_DIAMETER, BILATERAL_SIGMA_COLOR, 5.0)
+    rgb = cv2.resize(np.ascontiguousarray(img.rgb, dtype=np.float32), small, interpolation=cv2.INTER_AREA)
+    opponent = cv2.bilateralFilter(opponent_channel(rgb), BILATERAL_DIAMETER, BILATERAL_SIGMA_COLOR, 5.0)
     colour = cv2.resize(flow_dog_response(opponent, rho=1.0), (w, h), interpolation=cv2.INTER_LINEAR)
     colour_lines = _binarize(colour, scale)
     # Both sides of every lightness edge: the response without its bias to dark sides (the DoG's
@@ -291,25 +290,26 @@ def photo_line_maps(img: LoadedImage) -> tuple[np.ndarray, np.ndarray]:
     return lines, colour_lines
 
 
-def opponent_channel(img: LoadedImage) -> np.ndarray:
-    """The photo's colour-opponent channel, (H, W) float32, CIELAB units / 100.
+def opponent_channel(rgb: np.ndarray) -> np.ndarray:
+    """A photo's colour-opponent channel, (H, W) float32, CIELAB units / 100.
 
-    The CIELAB chroma (a*, b*) projected on its principal axis over the image
-    (the direction in which the photo's colours differ most: tan fur against
-    a pink nose, a green leaf against a red petal), signed so that the axis
-    points to +a* (red); on the gray image's scale (L* / 100), so that a colour
-    step and a lightness step of the same CIELAB size give the same response.
+    The CIELAB chroma (a*, b*) of ``rgb`` ((H, W, 3) in [0, 1]) projected on
+    its principal axis over the image (the direction in which the photo's
+    colours differ most: tan fur against a pink nose, a green leaf against a red
+    petal), signed so that the axis points to +a* (red); on the gray image's
+    scale (L* / 100), so that a colour step and a lightness step of the same
+    CIELAB size give the same response.
     """
     import cv2
 
-    lab = cv2.cvtColor(np.ascontiguousarray(img.rgb, dtype=np.float32), cv2.COLOR_RGB2Lab)
-    ab = lab[..., 1:3].reshape(-1, 2).astype(np.float64) / 100.0
-    centred = ab - ab.mean(axis=0)
-    _, vectors = np.linalg.eigh(centred.T @ centred)
+    lab = cv2.cvtColor(np.ascontiguousarray(rgb, dtype=np.float32), cv2.COLOR_RGB2Lab)
+    ab = lab[..., 1:3].reshape(-1, 2) / np.float32(100.0)
+    centred = ab - ab.mean(axis=0, dtype=np.float64).astype(np.float32)
+    _, vectors = np.linalg.eigh((centred.T @ centred).astype(np.float64))
     axis = vectors[:, -1]
     if axis[0] < 0 or (axis[0] == 0 and axis[1] < 0):
         axis = -axis
-    return (ab @ axis).reshape(img.rgb.shape[:2]).astype(np.float32)
+    return (ab @ axis.astype(np.float32)).reshape(lab.shape[:2])
 
 
 def _binarize(response: np.ndarray, scale: float) -> np.ndarray:

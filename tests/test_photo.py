@@ -181,7 +181,7 @@ def test_opponent_channel_is_the_main_chroma_axis_pointing_to_red():
     from img2logo.photo import opponent_channel
 
     rgb, a, _ = _two_discs(noise=0.0)
-    u = opponent_channel(load_image(rgb))
+    u = opponent_channel(rgb)
     assert u.shape == a.shape and u.dtype == np.float32
     assert u[60, 80] > u[5, 5] + 0.1  # pink (redder) above tan: a step of more than 10 CIELAB units
 
