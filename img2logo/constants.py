@@ -637,3 +637,18 @@ SYMMETRY_FIT_STALL: int = 20
 SYMMETRY_SNAP_ANGLE: float = 1.0
 #: See SYMMETRY_SNAP_ANGLE: the score an exactly upright axis may lose, as a fraction.
 SYMMETRY_SNAP_SCORE_LOSS: float = 0.01
+
+#: Photo colour lines: the colour-opponent FDoG runs on a copy this many times
+#: smaller (each side), on its own flow: a photo's chroma is blurrier than its
+#: lightness (JPEG keeps it at half resolution, 4:2:0; the eye resolves it at
+#: about half the lightness's acuity), a step's DoG response does not depend on
+#: the pixel size, and the pass costs a quarter (0.03 s on a 512 px photo).
+COLOUR_LINE_SUBSAMPLE: float = 2.0
+#: Photo colour lines (photo.photo_lines): a line of the colour-opponent FDoG is
+#: kept only this far from both sides of every lightness edge, px: 3 x the
+#: colour FDoG's surround sigma (1.6 FDOG_SIGMA_C on a copy COLOUR_LINE_SUBSAMPLE
+#: times smaller), the reach of its DoG across an edge. Within it, a colour line
+#: is the same edge as the lightness line (a colour object's outline lies beside
+#: its lightness line: drawn twice, a duck of 16 arcs had 34); beyond it, the
+#: edge has no lightness step of its own.
+COLOUR_LINE_GATE: float = 3.0 * 1.6 * FDOG_SIGMA_C * COLOUR_LINE_SUBSAMPLE

@@ -38,6 +38,8 @@ from ._skeleton import join_line_ends
 from .constants import (
     BILATERAL_DIAMETER,
     BILATERAL_SIGMA_COLOR,
+    COLOUR_LINE_GATE,
+    COLOUR_LINE_SUBSAMPLE,
     ETF_SIGMA,
     FACE_MIN_LINE,
     FDOG_RHO,
@@ -71,21 +73,47 @@ def photo_feature_lines(img: LoadedImage, subject: Subject) -> np.ndarray:
     from ._skeleton import skeletonize  # skimage's thinning, without importing skimage.morphology
 
     mask = subject.mask
-    inner = photo_lines(img)
+    inner, colour = photo_line_maps(img)
     budget = PHOTO_LINE_BUDGET * (img.height + img.width)
     faces = face_region((img.height, img.width), subject.faces)
-    length = face_line_length(subject.faces)
     if mask is None:
-        features = salient_lines(skeletonize(inner & faces), length, length)
-        rest = salient_lines(skeletonize(inner & ~faces), budget=max(0.0, budget - float(features.sum())))
-        return join_line_ends(features | rest)
+        lines, budget = _chosen_lines(inner, faces, subject.faces, budget)
+        colour_lines, _ = _chosen_lines(colour, faces, subject.faces, budget, budget)
+        return join_line_ends(lines | colour_lines)
     inside = ndimage.binary_erosion(mask, iterations=INNER_LINE_MARGIN)
     outline = subject_outline(mask)
     budget = max(0.0, budget - float(outline.sum()))
-    features = salient_lines(skeletonize(inner & inside & faces), length, length)
-    budget = max(0.0, budget - float(features.sum()))
-    lines = features | salient_lines(skeletonize(inner & inside & ~faces), budget=budget)
+    lines, budget = _chosen_lines(inner & inside, faces, subject.faces, budget)
+    # A colour line within the gate of the outline is the outline again (its lightness line
+    # lay outside the mask): colour lines are kept that much further inside.
+    if colour.any():  # the erosion by ceil(gate) 4-neighbour steps: taxicab distance to the outside
+        deep = ndimage.distance_transform_cdt(inside, metric="taxicab") > math.ceil(COLOUR_LINE_GATE)
+        lines |= _chosen_lines(colour & deep, faces, subject.faces, budget, budget)[0]
     return join_line_ends(skeletonize(reach_outline(lines, outline) | outline))
+
+
+def _chosen_lines(
+    lines: np.ndarray,
+    region: np.ndarray,
+    faces: tuple[tuple[int, int, int, int], ...],
+    budget: float,
+    face_budget: float = math.inf,
+) -> tuple[np.ndarray, float]:
+    """The salient lines of a line map (H, W) bool, the faces' first; and the budget left, px.
+
+    Inside the faces' ``region`` lines down to :func:`face_line_length` are
+    kept within ``face_budget`` (a face's eyes and mouth are short), the rest by
+    :func:`salient_lines` within ``budget`` less the faces' lines.
+    """
+    from ._skeleton import skeletonize  # skimage's thinning, without importing skimage.morphology
+
+    chosen = np.zeros(lines.shape, bool)
+    if faces:
+        length = face_line_length(faces)
+        chosen = salient_lines(skeletonize(lines & region), length, length, face_budget)
+        budget = max(0.0, budget - float(chosen.sum()))
+    chosen |= salient_lines(skeletonize(lines & ~region), budget=budget)
+    return chosen, max(0.0, budget - float(chosen.sum()))
 
 
 def reach_outline(lines: np.ndarray, outline: np.ndarray) -> np.ndarray:
@@ -217,15 +245,77 @@ def subject_outline(mask: np.ndarray, frame_margin: float = OUTLINE_FRAME_MARGIN
 
 
 def photo_lines(img: LoadedImage) -> np.ndarray:
-    """Flow-based difference of Gaussians [KD09] of the whole photo, binarized.
+    """Flow-based difference of Gaussians [KD09] of the whole photo, binarized: (H, W) bool.
 
-    The gray image is first smoothed by a bilateral filter (KD09 smooth with a
-    flow-based bilateral filter): fur, grain and texture fade, edges stay.
+    Lightness lines: the FDoG of the gray image, first smoothed by a bilateral
+    filter (KD09 smooth with a flow-based bilateral filter): fur, grain and
+    texture fade, edges stay. Colour lines: the same FDoG (no dark-side bias,
+    ``rho`` 1) of the photo's colour-opponent channel (:func:`opponent_channel`)
+    on a copy ``COLOUR_LINE_SUBSAMPLE`` times smaller, on its own flow (on the
+    lightness's flow a colour edge with no lightness step has no direction:
+    its line breaks up), kept only farther than ``COLOUR_LINE_GATE`` from every
+    lightness line: an edge of colour with no step of lightness (a pink nose
+    on tan fur) is drawn, an outline already drawn in lightness is not drawn
+    again beside it (the gate is measured from both sides of the lightness edge,
+    its dark line and its bright lobe: a colour line lies on the less red side,
+    which may be the bright one). Both are binarized on the lightness response's scale (a
+    colour step makes a line where a lightness step of the same CIELAB size
+    would). The lightness lines are those of the FDoG alone.
+    """
+    lightness, colour = photo_line_maps(img)
+    return lightness | colour
+
+
+def photo_line_maps(img: LoadedImage) -> tuple[np.ndarray, np.ndarray]:
+    """The photo's lightness lines and its colour lines (:func:`photo_lines`), each (H, W) bool."""
+    import cv2
+    from scipy import ndimage
+
+    gray = cv2.bilateralFilter(img.gray.astype(np.float32), BILATERAL_DIAMETER, BILATERAL_SIGMA_COLOR, 5.0)
+    light = flow_dog_response(gray)
+    scale = float(np.max(np.abs(light))) or 1.0
+    lines = _binarize(light, scale)
+    h, w = gray.shape
+    small = (max(1, round(w / COLOUR_LINE_SUBSAMPLE)), max(1, round(h / COLOUR_LINE_SUBSAMPLE)))
+    rgb = cv2.resize(np.ascontiguousarray(img.rgb, dtype=np.float32), small, interpolation=cv2.INTER_AREA)
+    opponent = cv2.bilateralFilter(opponent_channel(rgb), BILATERAL_DIAMETER, BILATERAL_SIGMA_COLOR, 5.0)
+    colour = cv2.resize(flow_dog_response(opponent, rho=1.0), (w, h), interpolation=cv2.INTER_LINEAR)
+    colour_lines = _binarize(colour, scale)
+    # Both sides of every lightness edge: the response without its bias to dark sides (the DoG's
+    # surround weighted by rho < 1 leaves (1 - rho) x the blurred gray, positive on flat ground).
+    unbiased = light - (1.0 - FDOG_RHO) * cv2.GaussianBlur(gray, (0, 0), 1.6 * FDOG_SIGMA_C)
+    edges = _binarize(unbiased, scale) | _binarize(-unbiased, scale)
+    if edges.any() and colour_lines.any():
+        colour_lines &= ndimage.distance_transform_edt(~edges) > COLOUR_LINE_GATE
+    return lines, colour_lines
+
+
+def opponent_channel(rgb: np.ndarray) -> np.ndarray:
+    """A photo's colour-opponent channel, (H, W) float32, CIELAB units / 100.
+
+    The CIELAB chroma (a*, b*) of ``rgb`` ((H, W, 3) in [0, 1]) projected on
+    its principal axis over the image (the direction in which the photo's
+    colours differ most: tan fur against a pink nose, a green leaf against a red
+    petal), signed so that the axis points to +a* (red); on the gray image's
+    scale (L* / 100), so that a colour step and a lightness step of the same
+    CIELAB size give the same response.
     """
     import cv2
 
-    smooth = cv2.bilateralFilter(img.gray.astype(np.float32), BILATERAL_DIAMETER, BILATERAL_SIGMA_COLOR, 5.0)
-    return flow_dog(smooth)
+    lab = cv2.cvtColor(np.ascontiguousarray(rgb, dtype=np.float32), cv2.COLOR_RGB2Lab)
+    ab = lab[..., 1:3].reshape(-1, 2) / np.float32(100.0)
+    centred = ab - ab.mean(axis=0, dtype=np.float64).astype(np.float32)
+    _, vectors = np.linalg.eigh((centred.T @ centred).astype(np.float64))
+    axis = vectors[:, -1]
+    if axis[0] < 0 or (axis[0] == 0 and axis[1] < 0):
+        axis = -axis
+    return (ab @ axis.astype(np.float32)).reshape(lab.shape[:2])
+
+
+def _binarize(response: np.ndarray, scale: float) -> np.ndarray:
+    """FDoG lines [KD09]: a negative response with ``1 + tanh(H) < FDOG_TAU``, H on a unit-free range."""
+    h = response / scale * 8.0  # unit-free: the tanh threshold acts on a fixed range
+    return (h < 0) & (1.0 + np.tanh(h) < FDOG_TAU)
 
 
 def edge_tangent_flow(gray: np.ndarray, sigma: float = ETF_SIGMA) -> np.ndarray:
@@ -266,14 +356,34 @@ def flow_dog(
 
     A 1-D DoG ``G_sc - rho G_1.6sc`` is taken across the edge tangent flow at
     every pixel, then those responses are averaged with a Gaussian of
-    ``sigma_m`` along the flow curves; a pixel is a line where the result is
-    negative and ``1 + tanh(H) < tau``.
+    ``sigma_m`` along the flow curves (:func:`flow_dog_response`); a pixel is a
+    line where the result is negative and ``1 + tanh(H) < tau``.
+    """
+    response = flow_dog_response(gray, sigma_c=sigma_c, sigma_m=sigma_m, rho=rho)
+    scale = np.max(np.abs(response)) or 1.0
+    response = response / scale * 8.0  # unit-free: the tanh threshold acts on a fixed range
+    return (response < 0) & (1.0 + np.tanh(response) < tau)
+
+
+def flow_dog_response(
+    gray: np.ndarray,
+    *,
+    sigma_c: float = FDOG_SIGMA_C,
+    sigma_m: float = FDOG_SIGMA_M,
+    rho: float = FDOG_RHO,
+) -> np.ndarray:
+    """The FDoG response [KD09] of a channel (H, W): (H, W) float32, in the channel's units.
+
+    A 1-D DoG ``G_sc - rho G_1.6sc`` across the edge tangent flow
+    (:func:`edge_tangent_flow`) at every pixel, averaged with a Gaussian of
+    ``sigma_m`` px along the flow curves. ``rho`` below 1 biases a lightness
+    channel to lines on dark sides; a colour-opponent channel has no dark side (1).
     """
     import cv2
 
     g = np.ascontiguousarray(gray, dtype=np.float32)
     h, w = g.shape
-    flow = edge_tangent_flow(gray).astype(np.float32)
+    flow = np.ascontiguousarray(edge_tangent_flow(gray), dtype=np.float32)
     tx, ty = flow[..., 0], flow[..., 1]
     nx, ny = -ty, tx  # gradient direction, across the edge
     ys, xs = np.mgrid[0:h, 0:w].astype(np.float32)
@@ -293,21 +403,22 @@ def flow_dog(
 
     steps = math.ceil(3.0 * sigma_m)
     weights = np.exp(-(np.arange(steps + 1) ** 2) / (2 * sigma_m**2)).astype(np.float32)
-    acc = weights[0] * across
+    # The flow and the response sampled in one pass (one remap of 3 channels: the same
+    # numbers as one channel at a time, bilinear per channel); the sum runs over all three.
+    packed = np.ascontiguousarray(np.dstack([flow, across]))
+    acc = weights[0] * packed
     total = weights[0]
     for direction in (1.0, -1.0):
         px, py = xs.copy(), ys.copy()
         vx, vy = direction * tx, direction * ty
         for s in range(1, steps + 1):
             px, py = px + vx, py + vy
+            f = sample(packed, px, py)
+            acc += weights[s] * f
+            total += weights[s]
             # Follow the flow: keep the sense of travel where the field flips.
-            fx, fy = sample(tx, px, py), sample(ty, px, py)
+            fx, fy = f[..., 0], f[..., 1]
             sign = np.sign(fx * vx + fy * vy)
             sign[sign == 0] = 1
             vx, vy = fx * sign, fy * sign
-            acc += weights[s] * sample(across, px, py)
-            total += weights[s]
-    response = acc / total
-    scale = np.max(np.abs(response)) or 1.0
-    response = response / scale * 8.0  # unit-free: the tanh threshold acts on a fixed range
-    return (response < 0) & (1.0 + np.tanh(response) < tau)
+    return acc[..., 2] / total

@@ -124,3 +124,79 @@ def test_a_portrait_keeps_the_eyes_and_mouth_inside_the_face():
     img = load_image(rgb)
     bare = photo_feature_lines(img, Subject(fl.subject.mask, "mask", "the same mask, no face"))
     assert (photo_feature_lines(img, fl.subject) & face).sum() > 2 * (bare & face).sum()
+
+
+def _two_discs(noise=0.01, seed=0):
+    """Tan ground; a pink disc of the ground's own luminance (a colour edge only) at (80, 60)
+    and a dark red one (a lightness edge too) at (200, 60), radius 30 px: RGB (120, 280, 3)."""
+    rng = np.random.default_rng(seed)
+    h, w = 120, 280
+    yy, xx = np.mgrid[0:h, 0:w]
+    tan = np.array([0.75, 0.6, 0.4])
+    luma = tan @ np.array([0.299, 0.587, 0.114])
+    pink = np.array([0.9, 0.0, 0.55])
+    pink[1] = (luma - 0.299 * pink[0] - 0.114 * pink[2]) / 0.587  # the same luminance as the ground
+    rgb = np.broadcast_to(tan, (h, w, 3)).copy()
+    a = np.hypot(xx - 80, yy - 60) < 30
+    b = np.hypot(xx - 200, yy - 60) < 30
+    rgb[a], rgb[b] = pink, (0.5, 0.1, 0.1)
+    rgb = ndimage.gaussian_filter(rgb, (0.8, 0.8, 0)) + noise * rng.standard_normal((h, w, 3))
+    return np.clip(rgb, 0, 1), a, b
+
+
+def test_a_colour_edge_without_a_lightness_step_is_drawn_once():
+    from img2logo.photo import photo_line_maps
+
+    rgb, a, b = _two_discs()
+    lightness, colour = photo_line_maps(load_image(rgb))
+    ring_a = np.abs(ndimage.distance_transform_edt(~a) - ndimage.distance_transform_edt(a)) <= 4
+    ring_b = np.abs(ndimage.distance_transform_edt(~b) - ndimage.distance_transform_edt(b)) <= 4
+    # The pink disc has no lightness line; its colour line runs all round it ...
+    assert not lightness[ring_a].any()
+    found = ndimage.binary_dilation(colour, iterations=2)
+    edge_a = a & ~ndimage.binary_erosion(a)
+    assert found[edge_a].mean() > 0.9
+    # ... as one line: a row across the disc's left edge crosses one run of it.
+    row = colour[60, 30:80]
+    assert np.count_nonzero(np.diff(row.astype(int)) == 1) + row[0] == 1
+    # The dark red disc's outline is a lightness line, not drawn again as a colour line.
+    assert lightness[ring_b].sum() > 100
+    assert not colour[ring_b].any()
+    # Nothing on the flat ground (the colour line runs in the chroma's blur, up to 10 px out).
+    far = ~ndimage.binary_dilation(a | b, iterations=12)
+    assert not (lightness | colour)[far].any()
+
+
+def test_flow_dog_binarizes_the_response_on_its_own_scale():
+    from img2logo.photo import flow_dog, flow_dog_response
+
+    rgb, _, _ = _two_discs()
+    gray = load_image(rgb).gray.astype(np.float32)
+    h = flow_dog_response(gray)
+    h = h / np.abs(h).max() * 8.0
+    np.testing.assert_array_equal(flow_dog(gray), (h < 0) & (1.0 + np.tanh(h) < 0.5))
+
+
+def test_opponent_channel_is_the_main_chroma_axis_pointing_to_red():
+    from img2logo.photo import opponent_channel
+
+    rgb, a, _ = _two_discs(noise=0.0)
+    u = opponent_channel(rgb)
+    assert u.shape == a.shape and u.dtype == np.float32
+    assert u[60, 80] > u[5, 5] + 0.1  # pink (redder) above tan: a step of more than 10 CIELAB units
+
+
+def test_colour_lines_come_after_the_lightness_lines_in_the_budget(monkeypatch):
+    import img2logo.photo as photo
+
+    rgb, a, _ = _two_discs()
+    img = load_image(rgb)
+    whole = Subject(None, "none", "")
+    both = photo_feature_lines(img, whole)
+    edge_a = a & ~ndimage.binary_erosion(a)
+    near = ndimage.distance_transform_edt(~both)
+    assert np.mean(near[edge_a] <= 6) > 0.9  # the pink disc is drawn (a colour line)
+    # With a budget that the lightness lines use up, the colour lines are left out.
+    monkeypatch.setattr(photo, "PHOTO_LINE_BUDGET", 150 / (img.height + img.width))
+    tight = photo_feature_lines(img, whole)
+    assert np.mean(ndimage.distance_transform_edt(~tight)[edge_a] <= 6) < 0.2
