@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import operator
 from collections.abc import Callable
 from dataclasses import dataclass
 from itertools import chain
@@ -80,7 +81,8 @@ def evaluate(state: FitState, pair: Pair) -> MergeOutcome | None:
         state.stats.rejected_crossing += 1
         return None
     merged = merge_groups(state.groups[a], state.groups[b], node)
-    after = {g: grp for g, grp in state.groups.items() if g not in (a, b)}
+    after = dict(state.groups)  # in the state's order, the merged group last
+    del after[a], after[b]
     after[-1] = merged
     n_groups = len(after)
     node_groups_after = state.node_groups_after(a, b, merged)
@@ -210,7 +212,8 @@ class _Level:
     redundant-intersection test; ``flat`` their junction nodes in order, of
     arc ``owner``; ``lengths`` how many each; ``inner`` node -> the groups
     that run on through it; ``ends`` node -> the groups ending there (each
-    once); ``lines`` the straight lines (k None), in ``state.fits``'s order.
+    once); ``lines`` the straight lines (k None), in ``state.fits``'s order;
+    ``pos`` group -> its index in ``gids``.
     """
 
     groups: tuple[Group, ...]
@@ -225,20 +228,22 @@ class _Level:
     inner: dict[int, list[int]]
     ends: dict[int, list[int]]
     lines: tuple[int, ...]
+    pos: dict[int, int]
 
 
 def _level(state: FitState) -> _Level:
     """The current level's :class:`_Level`, made again when a group, a fit or a released junction changed."""
+    # Compared element by element by identity in C (map, operator.is_): ~10^3 calls a run.
     gids = tuple(state.groups)
     groups = tuple(state.groups.values())
-    fits = tuple(state.fits.get(g) for g in gids)  # (a group not fitted yet: only its topology is read)
+    fits = tuple(map(state.fits.get, gids))  # (a group not fitted yet: only its topology is read)
     cached = cast("_Level | None", state.merge_cache)
     if (
         cached is not None
         and cached.gids == gids
         and cached.released == len(state.released)
-        and all(x is y for x, y in zip(cached.groups, groups, strict=True))
-        and all(x is y for x, y in zip(cached.fits, fits, strict=True))
+        and all(map(operator.is_, cached.groups, groups))
+        and all(map(operator.is_, cached.fits, fits))
     ):
         return cached
     owned = [state.constrained_nodes(g) for g in groups]
@@ -260,6 +265,7 @@ def _level(state: FitState) -> _Level:
         inner,
         state.end_groups(),
         tuple(g for g, f in state.fits.items() if f.k is None),
+        {g: i for i, g in enumerate(gids)},
     )
     state.merge_cache = level
     return level
@@ -282,7 +288,7 @@ def _redundant(
     """
     a, b, _ = pair
     level = _level(state)
-    pos = {g: i for i, g in enumerate(level.gids)}
+    pos = level.pos
     pa, pb = pos[a], pos[b]
     keep = np.ones(len(level.gids), dtype=bool)
     keep[[pa, pb]] = False
