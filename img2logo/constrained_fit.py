@@ -280,115 +280,148 @@ def fit_constrained(
     _index_array(tan[:, 2], "tangents[:, 2]", n_j)
     if np.any(tan[:, 0] == tan[:, 1]):
         raise InvalidParameterError("tangents must name two different circles in each row")
-    return _solve(
-        sets, radii_arr, centers, junc, disp, inc, free_c, free_j, ws, wj, connectivity, tan, axis, on_c, on_j, tol,
-        max_iter, stall,
+    problem = WindowProblem.of(
+        sets, radii_arr, centers, junc, disp, inc, free_c, free_j, ws, wj, connectivity, tan,
+        axis=axis, on_c=on_c, on_j=on_j, tol=tol, max_iter=max_iter, stall=stall,
     )  # fmt: skip
+    return _fit(problem)
 
 
-def _solve(
-    sets: Sequence[np.ndarray],
-    radii: np.ndarray,
-    centers: np.ndarray,
-    junctions: np.ndarray,
-    disp: np.ndarray,
-    incidence: np.ndarray,
-    free_c: np.ndarray,
-    free_j: np.ndarray,
-    ws: np.ndarray,
-    wj: float,
-    connectivity: bool,
-    tangents: np.ndarray,
-    axis: float | None,
-    on_c: np.ndarray,
-    on_j: np.ndarray,
-    tol: float,
-    max_iter: int,
-    stall: int,
-) -> ConstrainedFit:
-    """:func:`fit_constrained` on checked inputs (float64 points, sorted unique int64 indices).
+@dataclass(frozen=True, eq=False)
+class WindowProblem:
+    """Eqn. 13 on checked arrays: what the SQP of :func:`fit_constrained` solves (one value, not 18 arguments).
 
-    The window refit (:func:`fit_window`) builds its arrays itself and calls this
-    directly: the checks of the public boundary ran ~8 times per candidate merge.
+    Built by :func:`fit_constrained` after its checks (:meth:`of`), and directly
+    by :func:`fit_window` from the window's own arrays, which are well formed by
+    construction. Solved by :func:`_fit`: the compiled kernel for a local window,
+    the Python reference (:class:`~img2logo.constrained_sqp.Problem`, the same
+    fields but ``held``, ``tol``, ``max_iter`` and ``stall``) for a large one.
+
+    Attributes
+    ----------
+    points : ndarray, shape (P, 2)
+        Every circle's points, px (float64), grouped by circle in circle order.
+    owner : ndarray of int64, shape (P,)
+        The circle of each point.
+    radii : ndarray, shape (C,)
+        The fixed radii r_i, px.
+    centers : ndarray, shape (C, 2)
+        The starting centres o_i, px (the fixed circles' final ones).
+    junctions : ndarray, shape (J, 2)
+        The undisplaced junctions p_k, px.
+    disp : ndarray, shape (J, 2)
+        The starting displacements d_k, px (the fixed junctions' final ones).
+    incidence : ndarray of int64, shape (M, 2)
+        Rows (i, k), distinct and sorted: circle i passes through junction k.
+    free_c, free_j : ndarray of int64
+        The free circles and junctions, sorted, distinct.
+    ws : ndarray, shape (C,)
+        The segment weight of each circle.
+    wj : float
+        The displacement weight.
+    connectivity : bool
+        False: no constraints (Fig. 11c).
+    tangents : ndarray of int64, shape (T, 3)
+        Rows (a, b, k), distinct and sorted: circles a and b touch at junction k.
+    held : tuple of int
+        Unknowns held where they are (the x coordinates on a mirror axis), as
+        indices into x = (free centres, free displacements).
+    tol : float
+        Tolerance on the constraints and the last step, px.
+    max_iter, stall : int
+        Most SQP steps; steps without the violation halving before giving up.
     """
-    inc = _unique_rows(incidence)
-    tan = _unique_rows(tangents)
-    if axis is not None:
-        centers = centers.copy()
-        disp = disp.copy()
-        centers[on_c, 0] = axis
-        disp[on_j, 0] = axis - junctions[on_j, 0]
-    n_c = len(radii)
-    owner = np.repeat(np.arange(n_c), [len(s) for s in sets])
-    points = np.concatenate(sets) if sets else np.zeros((0, 2))
-    held: list[int] = []
-    if axis is not None:
-        # The x coordinates held on the axis: their unknowns leave the KKT system.
-        pos_c = {int(c): i for i, c in enumerate(free_c)}
-        pos_j = {int(k): i for i, k in enumerate(free_j)}
-        held = [2 * pos_c[int(c)] for c in on_c if int(c) in pos_c]
-        held += [2 * (len(free_c) + pos_j[int(k)]) for k in on_j if int(k) in pos_j]
-    return _fit(
-        points,
-        owner,
-        radii,
-        centers,
-        junctions,
-        disp,
-        inc,
-        free_c,
-        free_j,
-        ws,
-        wj,
-        connectivity,
-        tan,
-        held,
-        tol,
-        max_iter,
-        stall,
-    )
+
+    points: np.ndarray
+    owner: np.ndarray
+    radii: np.ndarray
+    centers: np.ndarray
+    junctions: np.ndarray
+    disp: np.ndarray
+    incidence: np.ndarray
+    free_c: np.ndarray
+    free_j: np.ndarray
+    ws: np.ndarray
+    wj: float
+    connectivity: bool
+    tangents: np.ndarray
+    held: tuple[int, ...] = ()
+    tol: float = CONSTRAINED_FIT_TOL
+    max_iter: int = CONSTRAINED_FIT_MAX_ITER
+    stall: int = CONSTRAINED_FIT_STALL
+
+    @classmethod
+    def of(
+        cls,
+        sets: Sequence[np.ndarray],
+        radii: np.ndarray,
+        centers: np.ndarray,
+        junctions: np.ndarray,
+        disp: np.ndarray,
+        incidence: np.ndarray,
+        free_c: np.ndarray,
+        free_j: np.ndarray,
+        ws: np.ndarray,
+        wj: float,
+        connectivity: bool,
+        tangents: np.ndarray,
+        *,
+        axis: float | None = None,
+        on_c: np.ndarray | None = None,
+        on_j: np.ndarray | None = None,
+        tol: float = CONSTRAINED_FIT_TOL,
+        max_iter: int = CONSTRAINED_FIT_MAX_ITER,
+        stall: int = CONSTRAINED_FIT_STALL,
+    ) -> WindowProblem:
+        """The problem of :func:`fit_constrained`'s checked inputs (float64 points, sorted unique int64 indices).
+
+        Incidence and tangent rows are made distinct and sorted; with a mirror
+        ``axis``, the centres ``on_c`` and junctions ``on_j`` are placed on it
+        and their x coordinates held.
+        """
+        inc = _unique_rows(incidence)
+        tan = _unique_rows(tangents)
+        held: list[int] = []
+        if axis is not None:
+            on_c = np.zeros(0, dtype=np.int64) if on_c is None else on_c
+            on_j = np.zeros(0, dtype=np.int64) if on_j is None else on_j
+            centers = centers.copy()
+            disp = disp.copy()
+            centers[on_c, 0] = axis
+            disp[on_j, 0] = axis - junctions[on_j, 0]
+            # The x coordinates held on the axis: their unknowns leave the KKT system.
+            pos_c = {int(c): i for i, c in enumerate(free_c)}
+            pos_j = {int(k): i for i, k in enumerate(free_j)}
+            held = [2 * pos_c[int(c)] for c in on_c if int(c) in pos_c]
+            held += [2 * (len(free_c) + pos_j[int(k)]) for k in on_j if int(k) in pos_j]
+        owner = np.repeat(np.arange(len(radii)), [len(s) for s in sets])
+        points = np.concatenate(sets) if sets else np.zeros((0, 2))
+        return cls(
+            points, owner, radii, centers, junctions, disp, inc, free_c, free_j, ws, wj, connectivity, tan,
+            tuple(held), tol, max_iter, stall,
+        )  # fmt: skip
+
+    def kkt_size(self) -> int:
+        """Unknowns plus multipliers of its KKT system (:class:`~img2logo.constrained_sqp.Problem`), not built."""
+        n = 2 * (len(self.free_c) + len(self.free_j))
+        if not self.connectivity:
+            return n
+        on_c, on_j = np.zeros(len(self.radii), dtype=bool), np.zeros(len(self.junctions), dtype=bool)
+        on_c[self.free_c], on_j[self.free_j] = True, True
+        inc, tan = self.incidence, self.tangents
+        m = int(np.count_nonzero(on_c[inc[:, 0]] | on_j[inc[:, 1]]))
+        m += int(np.count_nonzero(on_c[tan[:, 0]] | on_c[tan[:, 1]] | on_j[tan[:, 2]]))
+        return n + m
+
+    def reference(self) -> Problem:
+        """The Python reference's :class:`~img2logo.constrained_sqp.Problem` of it."""
+        return Problem(
+            self.points, self.owner, self.radii, self.centers, self.junctions, self.disp, self.incidence,
+            self.free_c, self.free_j, self.ws, self.wj, self.connectivity, self.tangents,
+        )  # fmt: skip
 
 
-def _kkt_size(
-    n_c: int,
-    n_j: int,
-    incidence: np.ndarray,
-    free_c: np.ndarray,
-    free_j: np.ndarray,
-    connectivity: bool,
-    tangents: np.ndarray,
-) -> int:
-    """Unknowns plus multipliers of the KKT system of :class:`~img2logo.constrained_sqp.Problem`, not built."""
-    n = 2 * (len(free_c) + len(free_j))
-    if not connectivity:
-        return n
-    on_c, on_j = np.zeros(n_c, dtype=bool), np.zeros(n_j, dtype=bool)
-    on_c[free_c], on_j[free_j] = True, True
-    m = int(np.count_nonzero(on_c[incidence[:, 0]] | on_j[incidence[:, 1]]))
-    m += int(np.count_nonzero(on_c[tangents[:, 0]] | on_c[tangents[:, 1]] | on_j[tangents[:, 2]]))
-    return n + m
-
-
-def _fit(
-    points: np.ndarray,
-    owner: np.ndarray,
-    radii: np.ndarray,
-    centers: np.ndarray,
-    junctions: np.ndarray,
-    disp: np.ndarray,
-    incidence: np.ndarray,
-    free_c: np.ndarray,
-    free_j: np.ndarray,
-    ws: np.ndarray,
-    wj: float,
-    connectivity: bool,
-    tangents: np.ndarray,
-    held: list[int],
-    tol: float,
-    max_iter: int,
-    stall: int,
-    compiled: bool = True,
-) -> ConstrainedFit:
+def _fit(problem: WindowProblem, compiled: bool = True) -> ConstrainedFit:
     """The SQP solve of :func:`fit_constrained` on its checked arrays.
 
     A KKT system of at most ``KKT_DENSE_MAX`` unknowns and multipliers (a local
@@ -400,32 +433,31 @@ def _fit(
     """
     from . import kernels  # the compiled kernels load on the first fit, not at import
 
-    n_c, n_j = len(radii), len(junctions)
-    size = _kkt_size(n_c, n_j, incidence, free_c, free_j, connectivity, tangents)
-    if compiled and kernels.usable() and size <= KKT_DENSE_MAX:
-        centers, disp = np.array(centers, dtype=np.float64), np.array(disp, dtype=np.float64)
-        held_mask = np.zeros(2 * (len(free_c) + len(free_j)), dtype=bool)
-        held_mask[np.asarray(held, dtype=np.intp)] = True
-        tan_s = 1.0 / np.maximum(radii[tangents[:, 0]], radii[tangents[:, 1]])
+    p = problem
+    if compiled and kernels.usable() and p.kkt_size() <= KKT_DENSE_MAX:
+        centers, disp = np.array(p.centers, dtype=np.float64), np.array(p.disp, dtype=np.float64)
+        held_mask = np.zeros(2 * (len(p.free_c) + len(p.free_j)), dtype=bool)
+        held_mask[np.asarray(p.held, dtype=np.intp)] = True
+        tan_s = 1.0 / np.maximum(p.radii[p.tangents[:, 0]], p.radii[p.tangents[:, 1]])
         iterations, converged, objective, violation = kernels.sqp_dense(
-            np.ascontiguousarray(points, dtype=np.float64).reshape(-1, 2),
-            np.ascontiguousarray(owner, dtype=np.int64),
-            np.ascontiguousarray(radii, dtype=np.float64),
+            np.ascontiguousarray(p.points, dtype=np.float64).reshape(-1, 2),
+            np.ascontiguousarray(p.owner, dtype=np.int64),
+            np.ascontiguousarray(p.radii, dtype=np.float64),
             centers,
-            np.ascontiguousarray(junctions, dtype=np.float64).reshape(-1, 2),
+            np.ascontiguousarray(p.junctions, dtype=np.float64).reshape(-1, 2),
             disp.reshape(-1, 2),
-            np.ascontiguousarray(incidence, dtype=np.int64).reshape(-1, 2),
-            np.ascontiguousarray(free_c, dtype=np.int64),
-            np.ascontiguousarray(free_j, dtype=np.int64),
-            np.ascontiguousarray(ws, dtype=np.float64),
-            float(wj),
-            bool(connectivity),
-            np.ascontiguousarray(tangents, dtype=np.int64).reshape(-1, 3),
+            np.ascontiguousarray(p.incidence, dtype=np.int64).reshape(-1, 2),
+            np.ascontiguousarray(p.free_c, dtype=np.int64),
+            np.ascontiguousarray(p.free_j, dtype=np.int64),
+            np.ascontiguousarray(p.ws, dtype=np.float64),
+            float(p.wj),
+            bool(p.connectivity),
+            np.ascontiguousarray(p.tangents, dtype=np.int64).reshape(-1, 3),
             tan_s,
             held_mask,
-            float(tol),
-            int(max_iter),
-            int(stall),
+            float(p.tol),
+            int(p.max_iter),
+            int(p.stall),
             CONSTRAINED_FIT_FTOL,
             KKT_DAMPING,
         )
@@ -437,11 +469,9 @@ def _fit(
             iterations=int(iterations),
             converged=bool(converged),
         )
-    prob = Problem(
-        points, owner, radii, centers, junctions, disp, incidence, free_c, free_j, ws, wj, connectivity, tangents
-    )
-    keep = np.setdiff1d(np.arange(prob.n + prob.m), held) if held else None
-    return _fit_reference(prob, keep, connectivity, tol, max_iter, stall)
+    prob = p.reference()
+    keep = np.setdiff1d(np.arange(prob.n + prob.m), p.held) if p.held else None
+    return _fit_reference(prob, keep, p.connectivity, p.tol, p.max_iter, p.stall)
 
 
 def _fit_reference(
@@ -659,8 +689,9 @@ def fit_window(
         weights = 1.0 / (max(n_circles or len(window), 1) * np.array([len(s) for s in sets]))
         junc = junction_points[list(nodes)]
         disp0 = np.zeros((len(nodes), 2)) if displacements0 is None else displacements0[list(nodes)]
-        inc = np.array(incidence, dtype=np.int64).reshape(-1, 2)
-        tan = np.array(tangents, dtype=np.int64).reshape(-1, 3)
+        # Distinct and sorted, as fit_constrained makes them (sorted tuples: a lexsort of a few rows).
+        inc = np.array(sorted(set(incidence)), dtype=np.int64).reshape(-1, 2)
+        tan = np.array(sorted(set(tangents)), dtype=np.int64).reshape(-1, 3)
         if extra:  # a mirror axis: the public path, which places the held coordinates on it
             fit = fit_constrained(
                 sets, np.array([radii[c] for c in window]), np.array([centers[c] for c in window]), junc, inc,
@@ -670,17 +701,19 @@ def fit_window(
             )  # fmt: skip
         else:
             # The window's own arrays are well formed by construction (float64 points,
-            # indices sorted and in range): no checks of the public boundary here.
-            empty = np.zeros(0, dtype=np.int64)
-            fit = _solve(
-                [np.asarray(s, dtype=np.float64) for s in sets],
-                np.array([radii[c] for c in window], dtype=np.float64),
-                np.array([centers[c] for c in window], dtype=np.float64).reshape(-1, 2),
-                np.asarray(junc, dtype=np.float64).reshape(-1, 2),
-                np.asarray(disp0, dtype=np.float64).reshape(-1, 2),
-                inc, np.array(free_c, dtype=np.int64), np.array(free_k, dtype=np.int64), weights,
-                1.0 / max(n_junctions or len(nodes), 1), bool(connectivity), tan, None, empty, empty, float(tol),
-                CONSTRAINED_FIT_MAX_ITER, CONSTRAINED_FIT_STALL,
+            # indices sorted and in range, incidence and tangent rows distinct and
+            # sorted): no checks of the public boundary here.
+            fit = _fit(
+                WindowProblem(
+                    np.concatenate([np.asarray(s, dtype=np.float64) for s in sets]) if sets else np.zeros((0, 2)),
+                    np.repeat(np.arange(len(window)), [len(s) for s in sets]),
+                    np.array([radii[c] for c in window], dtype=np.float64),
+                    np.array([centers[c] for c in window], dtype=np.float64).reshape(-1, 2),
+                    np.asarray(junc, dtype=np.float64).reshape(-1, 2),
+                    np.asarray(disp0, dtype=np.float64).reshape(-1, 2),
+                    inc, np.array(free_c, dtype=np.int64), np.array(free_k, dtype=np.int64), weights,
+                    1.0 / max(n_junctions or len(nodes), 1), bool(connectivity), tan, (), float(tol),
+                )
             )  # fmt: skip
         ok = not connectivity or (fit.converged and (max_violation is None or fit.violation <= max_violation))
         last = WindowFit(ok, window, nodes, frozenset(free_j), fit)

@@ -27,7 +27,7 @@ from typing import Any, NamedTuple, Protocol, TypeAlias, cast
 
 import numpy as np
 
-from .arc_extraction import ArcFit, extract_arc
+from .arc_extraction import ArcFit, _extract
 from .circle_fitting import fit_center, fit_circle, mean_abs_error
 from .constants import CONSTRAINED_FIT_TOL, JUNCTION_TOLERANCE, LINE_MIN_ANGLE, SYMMETRY_FIT_STALL
 from .constrained_fit import WindowFit, fit_window
@@ -293,11 +293,14 @@ class FitState:
         self.released: set[int] = set()
         self._path_cache: dict[tuple[int, ...], tuple[int, ...]] = {}
         self._constrained: dict[tuple[int, ...], tuple[int, ...]] = {}
+        #: group path -> (released junctions when made, straight_line, the arc's Seed or None): :meth:`golden`.
+        self._golden: dict[tuple[tuple[int, ...], tuple[int, ...]], tuple[int, Any, Seed | None]] = {}
         self._node_groups: dict[int, list[int]] | None = None
         #: group -> (arc, junction nodes, their points' bytes, ArcJunctions by path position,
-        #: the nodes' indices in the last level, its ArcJunctions there): :meth:`_topology`.
+        #: the nodes' indices in the last level, its ArcJunctions there, whether a level
+        #: checked that arc at those points): :meth:`_topology`.
         self._topologies: dict[
-            int, tuple[Any, tuple[int, ...], bytes, ArcJunctions, tuple[int, ...], ArcJunctions | None]
+            int, tuple[Any, tuple[int, ...], bytes, ArcJunctions, tuple[int, ...], ArcJunctions | None, bool]
         ] = {}
         self.smooth: frozenset[int] = graph.smooth_nodes() if options.tangency and options.connectivity else frozenset()
         self.loose: set[int] = set()
@@ -306,6 +309,8 @@ class FitState:
         #: Tangent joins whose junction slides along the input's line (img2logo.tangency):
         #: node -> its distance off the line, px, which E^s counts instead of |d_k|.
         self.off_line: dict[int, float] = {}
+        #: What the merge loop keeps of one level for all its candidates (img2logo.merging._level).
+        self.merge_cache: object | None = None
 
     # ----------------------------------------------------------------- groups and nodes
     def add_group(self, group: Group) -> int:
@@ -506,7 +511,14 @@ class FitState:
         pin it to their intersection (far away, or nowhere, for nearly parallel
         ones); otherwise the group stays an arc.
         """
-        line = straight_line(group) if self.options.lines and not self.on_axis(group) else None
+        # Cached by the group's path (its pixels are its segments'): every candidate merge
+        # of a level, and its rescoring, asks for the merged group's seed again.
+        key = (group.segments, group.nodes)
+        hit = self._golden.get(key)
+        if hit is None or hit[0] != len(self.released):
+            line = straight_line(group) if self.options.lines and not self.on_axis(group) else None
+            hit = self._golden[key] = (len(self.released), line, None)
+        line = hit[1]
         if line is not None and held is not None:
             u = (line[1] - line[0]) / np.hypot(*(line[1] - line[0]))
             for n in self.constrained_nodes(group):
@@ -517,6 +529,12 @@ class FitState:
         if line is not None:
             arc = line_arc(line[0], line[1])
             return Seed(arc.circle.center, arc.circle.r, None)
+        if hit[2] is None:
+            hit = self._golden[key] = (hit[0], hit[1], self._golden_arc(group))
+        return hit[2]
+
+    def _golden_arc(self, group: Group) -> Seed:
+        """The free fit snapped to the ladder (Eqn. 12) as a circle, not a line: :meth:`golden`'s arc."""
         center, radius = self.free_circle(group)
         k, r = self.ladder.snap(radius)
         reach = self.reach(group)
@@ -572,7 +590,7 @@ class FitState:
             loose = np.array([n in self.released for n in nodes])
             if loose.any():
                 pts[loose] = circle.point_at(circle.angle_of(pts[loose]))
-        fit = extract_arc(circle, group.points, pts, method=cast(Any, self.options.arc_selection))
+        fit = _extract(circle, np.asarray(group.points, dtype=np.float64), pts, self.options.arc_selection)
         return fit if k is not None else ArcFit(Line.of(fit.arc), fit.frechet)
 
     # ----------------------------------------------------------------- the constrained fit
@@ -590,6 +608,7 @@ class FitState:
         rings: int = 1,
         order: Callable[[int], Any] | None = None,
         tangent: bool | Collection[int] = False,
+        cap: float | None = None,
     ) -> Solution | None:
         """Eqn. 13 over a window of ``groups`` (:func:`~img2logo.constrained_fit.fit_window`), then their arcs.
 
@@ -597,7 +616,9 @@ class FitState:
         grown by up to ``rings`` rings; the ``fixed`` groups keep their circles,
         and so do straight lines (a huge free circle is nearly singular along
         its chord: their junctions slide onto them). With ``tangent``, the
-        circles of :meth:`tangencies` touch at their junctions too. None if it fails.
+        circles of :meth:`tangencies` touch at their junctions too. With ``cap``
+        (px), a merged group (id -1) whose arc strays farther than that is the
+        only fit returned (see :meth:`_fits`). None if it fails.
         """
         fixed = set(fixed) | {g for g in groups if seeds[g].k is None}
         window = fit_window(
@@ -625,7 +646,7 @@ class FitState:
         )
         if not window.ok:
             return None
-        return self._fits(window, groups, seeds, fixed)
+        return self._fits(window, groups, seeds, fixed, cap)
 
     def solve_whole(
         self,
@@ -637,6 +658,7 @@ class FitState:
         n_junctions_total: int,
         order: Callable[[int], Any] | None = None,
         tangent: bool | Collection[int] = False,
+        cap: float | None = None,
     ) -> Solution | None:
         """:meth:`solve` over all of ``groups`` at once, every junction free (a global solve, counted).
 
@@ -655,6 +677,7 @@ class FitState:
             n_junctions_total=n_junctions_total,
             order=order,
             tangent=tangent,
+            cap=cap,
         )
 
     def axis_constraints(
@@ -677,20 +700,38 @@ class FitState:
         groups: Mapping[int, Group],
         seeds: Mapping[int, Seed],
         fixed: set[int],
+        cap: float | None = None,
     ) -> Solution:
-        """The new fits (the window's free groups, and lines whose junctions moved) and displacements."""
+        """The new fits (the window's free groups, and lines whose junctions moved) and displacements.
+
+        With ``cap``, the merged group's (id -1) arc is extracted first, and
+        when it is farther than ``cap`` px from its pixels only it is returned:
+        the merge loop rejects that merge (``max_arc_distance``) and reads no other arc.
+        """
         disp = cast(dict[int, np.ndarray], window.displacements())
         if not self.options.connectivity:
             disp = {cast(int, n): np.zeros(2) for n in window.junctions}
-        fits = {}
         moved = window.free_junctions
-        for gid in cast(Sequence[int], window.circles):
+        circles = cast(Sequence[int], window.circles)
+
+        def fit(gid: int) -> GroupFit | None:
             line_moved = seeds[gid].k is None and bool(moved & set(self.constrained_nodes(groups[gid])))
             if gid in fixed and not line_moved:
-                continue
+                return None
             _, r, k = seeds[gid]
             center = window.center(gid)
-            fits[gid] = GroupFit(center, r, k, self.arc_for(groups[gid], center, r, k, lambda n: disp[n]))
+            return GroupFit(center, r, k, self.arc_for(groups[gid], center, r, k, lambda n: disp[n]))
+
+        first = None
+        if cap is not None and -1 in circles:
+            first = fit(-1)
+            if first is not None and first.arc.frechet > cap:
+                return {-1: first}, disp  # the merge is rejected: the window's other arcs are not needed
+        fits = {}
+        for gid in circles:
+            f = first if gid == -1 and cap is not None else fit(gid)
+            if f is not None:
+                fits[gid] = f
         return fits, disp
 
     # ----------------------------------------------------------------- errors
@@ -720,7 +761,10 @@ class FitState:
         points = displaced[np.asarray(nodes, dtype=np.intp)].reshape(-1, 2)
         arcs = tuple(self.fits[g].arc.arc for g in order)
         topology = tuple(self._topology(g, arc, junction, displaced) for g, arc in zip(order, arcs, strict=True))
-        return Abstraction(
+        # The arcs an earlier level checked, with the same junction points: left out of its geometric check.
+        known = tuple(self._topologies[g][6] for g in order)
+        out = Abstraction._with_known(
+            known,
             level=level,
             arcs=arcs,
             arc_segments=tuple(self.groups[g].segments for g in order),
@@ -737,6 +781,11 @@ class FitState:
             junction_nodes=tuple(nodes),
             connected=self.options.connectivity,
         )
+        for g in order:  # checked now
+            entry = self._topologies[g]
+            if not entry[6]:
+                self._topologies[g] = (*entry[:6], True)
+        return out
 
     def _topology(self, g: int, arc: Any, junction: Mapping[int, int], displaced: np.ndarray) -> ArcJunctions:
         """:meth:`arc_junctions` of group ``g``'s ``arc``, its junctions numbered by ``junction`` (node -> index).
@@ -750,7 +799,7 @@ class FitState:
         key = points.tobytes()
         cached = self._topologies.get(g)
         if cached is None or cached[0] is not arc or cached[1] != nodes or cached[2] != key:
-            cached = (arc, nodes, key, self.arc_junctions(arc, range(len(nodes)), points), (), None)
+            cached = (arc, nodes, key, self.arc_junctions(arc, range(len(nodes)), points), (), None, False)
         at = tuple(junction[n] for n in nodes)
         if cached[5] is not None and cached[4] == at:
             return cached[5]
@@ -760,7 +809,7 @@ class FitState:
             None if local.end is None else at[local.end],
             tuple(at[i] for i in local.through),
         )
-        self._topologies[g] = (*cached[:4], at, value)
+        self._topologies[g] = (*cached[:4], at, value, cached[6])
         return value
 
     @staticmethod

@@ -442,6 +442,19 @@ class Abstraction:
             put(self, "arc_junctions", self._found_arc_junctions())
         self._check_topology()
 
+    @classmethod
+    def _with_known(cls, known: Sequence[bool], **fields: Any) -> Abstraction:
+        """``Abstraction(**fields)``, with the arcs ``known`` (by index) left out of the geometric topology check.
+
+        For :meth:`img2logo.fit_state.FitState.abstraction`, which knows the
+        arcs that an earlier level checked with the same junction points; every
+        other check runs as for any value.
+        """
+        self = cls.__new__(cls)
+        self.__dict__["_known"] = tuple(known)
+        self.__init__(**fields)  # type: ignore[misc]
+        return self
+
     # ----------------------------------------------------------------- checks
     def _check_ladder(self) -> None:
         ladder = self.ladder
@@ -454,6 +467,8 @@ class Abstraction:
             )
         if ladder.bias != self.bias:
             raise InvalidParameterError(f"bias {self.bias!r} is not the ladder's bias {ladder.bias!r}")
+        if self._ladder_clearly_holds(ladder):
+            return
         golden = set(self.golden_circles)
         radii: dict[int, float] = {}  # k -> its ladder radius (many circles share a rung)
         for i, c in enumerate(self.circles):
@@ -478,6 +493,29 @@ class Abstraction:
                     f"circle {i}: r={c.r!r} is not {rule}, "
                     f"relative error {abs(c.r - expected) / c.r:.3g} > {RADIUS_RELATIVE_TOLERANCE:g}"
                 )
+
+    def _ladder_clearly_holds(self, ladder: Ladder) -> bool:
+        """The radius check of :meth:`_check_ladder` arc by arc, without naming circles (every level of a run).
+
+        True when every arc's circle that is not a line's has a k and its
+        ladder radius; otherwise :meth:`_check_ladder` decides and names the circle.
+        """
+        radii: dict[int, float] = {}
+        for a in self.arcs:
+            if a.is_line:
+                continue
+            c = a.circle
+            if c.k is None:
+                return False
+            expected = radii.get(c.k)
+            if expected is None:
+                try:
+                    expected = radii[c.k] = ladder.radius(c.k)
+                except InvalidParameterError:
+                    return False
+            if not abs(c.r - expected) <= RADIUS_RELATIVE_TOLERANCE * c.r:
+                return False
+        return True
 
     def _found_arc_junctions(self) -> tuple[ArcJunctions, ...]:
         """Each arc's junctions when none are given: the listed junction nearest each end, the others passed through.
@@ -507,13 +545,16 @@ class Abstraction:
             out.append(ArcJunctions(ends[0], ends[1], through))
         return tuple(out)
 
-    def _topology_clearly_holds(self, topology: tuple[ArcJunctions, ...]) -> bool:
+    def _topology_clearly_holds(self, topology: tuple[ArcJunctions, ...], known: Sequence[bool] = ()) -> bool:
         """The geometric checks of :meth:`_check_topology` for all the arcs at once, with a margin.
 
         True when every junction is on its arc's circle, at its end point and
         within its angle range by more than rounding (a level of the progressive
         optimization: ~10^2 arcs, ~10^2 times a run). Otherwise the arc-by-arc
-        checks decide, and name what fails.
+        checks decide, and name what fails. The arcs ``known`` (by index) are
+        left out: those the progressive optimization checked at an earlier
+        level, with the same arc and the same junction points
+        (:meth:`img2logo.fit_state.FitState.abstraction`).
         """
         tol, margin = JUNCTION_TOLERANCE, 1e-9
         on_arc: list[int] = []
@@ -521,10 +562,17 @@ class Abstraction:
         ends_arc: list[int] = []
         ends_junction: list[int] = []
         ends_angle: list[float] = []
+        through_arc: list[int] = []
+        through_junction: list[int] = []
         for i, t in enumerate(topology):
+            if known and known[i]:
+                continue
             for k in (*t.ends, *t.through):
                 on_arc.append(i)
                 on_junction.append(k)
+            for k in t.through:
+                through_arc.append(i)
+                through_junction.append(k)
             for end, angle in ((t.start, 0.0), (t.end, 1.0)):
                 if end is not None:
                     ends_arc.append(i)
@@ -545,10 +593,9 @@ class Abstraction:
                 np.hypot(p[:, 0] - cx[e] - r[e] * np.cos(angle), p[:, 1] - cy[e] - r[e] * np.sin(angle)) <= tol - margin
             ):
                 return False
-        through_arc = [i for i, t in enumerate(topology) for _ in t.through]
         if through_arc:
             c = np.asarray(through_arc)
-            p = self.junctions[[k for t in topology for k in t.through]]
+            p = self.junctions[through_junction]
             full = np.abs(sweep[c]) >= TAU - 1e-9
             offset = np.mod((np.arctan2(p[:, 1] - cy[c], p[:, 0] - cx[c]) - theta0[c]) * np.sign(sweep[c]), TAU)
             slack = tol / r[c] - margin
@@ -580,9 +627,10 @@ class Abstraction:
                 raise InvalidParameterError(
                     f"junction {k} lists arcs {sorted(set(listed))}, but arc_junctions puts arcs {sorted(at[k])} there"
                 )
+        known = self.__dict__.pop("_known", ())  # set by _with_known only, for this check only
         if not self.connected:
             return
-        if self._topology_clearly_holds(topology):
+        if self._topology_clearly_holds(topology, known):
             return
         tol = JUNCTION_TOLERANCE
         for i, (arc, t) in enumerate(zip(self.arcs, topology, strict=True)):
@@ -698,4 +746,11 @@ class Abstraction:
 
 
 def _int_tuples(values: Sequence[Sequence[int]], name: str) -> tuple[tuple[int, ...], ...]:
-    return tuple(tuple(check_integer(v, f"{name} entry", 0) for v in entry) for entry in values)
+    out = []
+    for entry in values:
+        t = tuple(entry)
+        # The common case (Python ints >= 0, every level of a run) without a call per entry.
+        if not all(type(v) is int and v >= 0 for v in t):
+            t = tuple(check_integer(v, f"{name} entry", 0) for v in t)
+        out.append(t)
+    return tuple(out)

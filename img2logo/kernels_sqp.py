@@ -106,6 +106,62 @@ def _merit(nu, f, c_all, active, t_all, tan_active):  # pragma: no cover - compi
 
 
 @_jit
+def _trial_step(
+    x,
+    alpha,
+    dx,
+    xt,
+    centers,
+    disp,
+    free_c,
+    free_j,
+    px,
+    py,
+    pt_circle,
+    r_pts,
+    w_pts,
+    f_const,
+    wj,
+    e,
+    vx,
+    vy,
+    dist,
+    inc_i,
+    inc_k,
+    inc_p,
+    inc_r,
+    c_all,
+    vcx,
+    vcy,
+    junctions,
+    tan_a,
+    tan_b,
+    tan_k,
+    tan_s_all,
+    t_all,
+    tab,
+    active,
+    tan_active,
+    nu,
+):  # pragma: no cover - compiled
+    """Move to ``x + alpha dx`` and evaluate it: (its L1 merit, its constraint violation).
+
+    The trial point of the line search and of the last polishing step
+    (``alpha`` = 1): E^l, every incidence and tangency residual at it.
+    """
+    for u in range(x.shape[0]):
+        xt[u] = x[u] + alpha * dx[u]
+    _set_x(xt, centers, disp, free_c, free_j)
+    f_new = _objective(centers, disp, free_j, px, py, pt_circle, r_pts, w_pts, f_const, wj, e, vx, vy, dist)
+    _constraints(centers, disp, inc_i, inc_k, inc_p, inc_r, c_all, vcx, vcy)
+    violation = _max_abs(c_all)
+    if tan_a.shape[0]:
+        _tangency(centers, disp, junctions, tan_a, tan_b, tan_k, tan_s_all, t_all, tab)
+        violation = max(violation, _max_abs(t_all))
+    return _merit(nu, f_new, c_all, active, t_all, tan_active), violation
+
+
+@_jit
 def _max_abs(values):  # pragma: no cover - compiled
     out = 0.0
     for v in values:
@@ -478,18 +534,12 @@ def sqp_dense(
         if feasible and (dx_max <= tol or abs(curvature) <= ftol * f):
             # Converged; a last full step polishes the result, if it helps.
             converged = True
-            for u in range(n):
-                xt[u] = x[u] + dx[u]
-            _set_x(xt, centers, disp, free_c, free_j)
-            f_new = _objective(centers, disp, free_j, px, py, pt_circle, r_pts, w_pts, f_const, wj, e, vx, vy, dist)
-            _constraints(centers, disp, inc_i, inc_k, inc_p, inc_r, c_all, vcx, vcy)
-            new_violation = _max_abs(c_all)
-            if t_n:
-                _tangency(centers, disp, junctions, tan_a, tan_b, tan_k, tan_s_all, t_all, tab)
-                new_violation = max(new_violation, _max_abs(t_all))
-            if _merit(nu, f_new, c_all, active, t_all, tan_active) <= phi0 and (
-                not connectivity or new_violation <= violation
-            ):
+            merit, new_violation = _trial_step(
+                x, 1.0, dx, xt, centers, disp, free_c, free_j, px, py, pt_circle, r_pts, w_pts, f_const, wj, e, vx,
+                vy, dist, inc_i, inc_k, inc_p, inc_r, c_all, vcx, vcy, junctions, tan_a, tan_b, tan_k, tan_s_all,
+                t_all, tab, active, tan_active, nu,
+            )  # fmt: skip
+            if merit <= phi0 and (not connectivity or new_violation <= violation):
                 iterations += 1
             else:
                 _set_x(x, centers, disp, free_c, free_j)
@@ -500,14 +550,12 @@ def sqp_dense(
         slope = gdx - nu * c_sum
         alpha, accepted = 1.0, False
         for _ in range(40):
-            for u in range(n):
-                xt[u] = x[u] + alpha * dx[u]
-            _set_x(xt, centers, disp, free_c, free_j)
-            f_new = _objective(centers, disp, free_j, px, py, pt_circle, r_pts, w_pts, f_const, wj, e, vx, vy, dist)
-            _constraints(centers, disp, inc_i, inc_k, inc_p, inc_r, c_all, vcx, vcy)
-            if t_n:
-                _tangency(centers, disp, junctions, tan_a, tan_b, tan_k, tan_s_all, t_all, tab)
-            if _merit(nu, f_new, c_all, active, t_all, tan_active) <= phi0 + 1e-4 * alpha * min(slope, 0.0):
+            merit, _ = _trial_step(
+                x, alpha, dx, xt, centers, disp, free_c, free_j, px, py, pt_circle, r_pts, w_pts, f_const, wj, e, vx,
+                vy, dist, inc_i, inc_k, inc_p, inc_r, c_all, vcx, vcy, junctions, tan_a, tan_b, tan_k, tan_s_all,
+                t_all, tab, active, tan_active, nu,
+            )  # fmt: skip
+            if merit <= phi0 + 1e-4 * alpha * min(slope, 0.0):
                 accepted = True
                 break
             alpha *= 0.5

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import operator
 from collections.abc import Callable
 from dataclasses import dataclass
 from itertools import chain
@@ -27,6 +28,7 @@ import numpy as np
 from .arc_extraction import _redundant_arrays
 from .constants import REDUNDANT_INTERSECTION_TOL
 from .fit_state import FitState, GroupFit, Seed, Solution
+from .geometry import Arc
 from .simplification import Group, hold_line, merge_groups
 
 #: Called by :func:`merge_loop` after every merge, with the state (now one level further).
@@ -75,26 +77,28 @@ def evaluate(state: FitState, pair: Pair) -> MergeOutcome | None:
     # Two arcs that both run on through one junction cross there (an X): one
     # of them ends at the junction instead, so that arcs meet only at their
     # ends or where one ends on the other (a T), and no crossing is left.
-    if any(node in g.nodes[1:-1] for gid, g in state.groups.items() if gid not in (a, b)):
+    if any(g != a and g != b for g in _level(state).inner.get(node, ())):
         state.stats.rejected_crossing += 1
         return None
     merged = merge_groups(state.groups[a], state.groups[b], node)
-    after = {g: grp for g, grp in state.groups.items() if g not in (a, b)}
+    after = dict(state.groups)  # in the state's order, the merged group last
+    del after[a], after[b]
     after[-1] = merged
     n_groups = len(after)
     node_groups_after = state.node_groups_after(a, b, merged)
     nj_after = len(node_groups_after)
     seeds: dict[int, Seed] = {g: state.fits[g].seed for g in after if g != -1}
     held: dict[int, list[np.ndarray]] = {}
-    for g, f in state.fits.items():
-        if f.k is None and g not in (a, b):
+    for g in _level(state).lines:
+        if g != a and g != b:
             hold_line(held, state.groups[g], state.constrained_nodes(state.groups[g]))
     seeds[-1] = state.golden(merged, held=held)
 
     merged_nodes = set(state.constrained_nodes(merged))
-    hold = _hold(state, after, seeds, merged, node)
+    hold = _hold(state, seeds, merged, pair)
     global_solve = not state.options.localized
     out: Solution | None = None
+    cap = state.options.arc_bound
 
     def solve_window(fixed: set[int], tangent: bool | set[int] = False) -> Solution | None:
         return state.solve(
@@ -109,6 +113,7 @@ def evaluate(state: FitState, pair: Pair) -> MergeOutcome | None:
             rings=2,
             order=lambda g: (g != -1, g),
             tangent=tangent,
+            cap=cap,
         )
 
     if not global_solve and hold:
@@ -141,6 +146,7 @@ def evaluate(state: FitState, pair: Pair) -> MergeOutcome | None:
                 n_junctions_total=nj_after,
                 order=lambda g: (g == -1, g),  # the merged group last, as in ``after``
                 tangent=tangent,
+                cap=cap,
             )
 
         if hold:
@@ -150,8 +156,7 @@ def evaluate(state: FitState, pair: Pair) -> MergeOutcome | None:
     if out is None:  # the global problem has no solution either
         return None
     fits, disp = out
-    cap = state.options.arc_bound
-    if cap is not None and fits[-1].arc.frechet > cap:
+    if cap is not None and fits[-1].arc.frechet > cap:  # (then the window's other arcs were not extracted)
         state.stats.rejected_far_arc += 1
         return None
 
@@ -165,53 +170,155 @@ def evaluate(state: FitState, pair: Pair) -> MergeOutcome | None:
 
     redundant = 0
     if state.options.avoid_intersections:
-        redundant = _redundant(state, after, fits, disp, node_groups_after)
+        redundant = _redundant(state, pair, merged, fits, disp)
     return MergeOutcome(
         pair, merged, fits, disp, window_ids, delta_f, delta_d, nj_after - len(old_nodes), redundant, global_solve
     )
 
 
-def _hold(state: FitState, after: dict[int, Group], seeds: dict[int, Seed], merged: Group, node: int) -> set[int]:
+def _hold(state: FitState, seeds: dict[int, Seed], merged: Group, pair: Pair) -> set[int]:
     """The smooth joins a merge's refit holds tangent (beyond the paper, :mod:`img2logo.tangency`).
 
     Those the loop made tangent before (``state.held``) and those at the merged
     group's two ends: a merge is judged with the tangencies it would leave in
     place. Not the merge's own node, which the merged arc runs on through.
+    Each is a join of :meth:`FitState.tangencies` after the merge, found from
+    the groups ending at it (only the merge's two groups and the merged one change).
     """
     if not state.smooth:
         return set()
-    joins = state.tangencies(after, seeds)
-    return {n for n in joins if n != node and (n in state.held or n in merged.ends)}
+    a, b, node = pair
+    ends = _level(state).ends
+    out = set()
+    for n in state.held | set(merged.ends):
+        if n == node or n not in state.smooth or n in state.loose or n in state.released:
+            continue
+        gids = [g for g in ends.get(n, ()) if g != a and g != b]
+        if n in merged.ends:
+            gids.append(-1)
+        if len(gids) != 2 or (seeds[gids[0]].k is None and seeds[gids[1]].k is None):
+            continue
+        out.add(n)
+    return out
+
+
+@dataclass(frozen=True, eq=False)
+class _Level:
+    """What every candidate of one level reads of the current groups (made once a level, :func:`_level`).
+
+    ``groups``, ``fits``, ``released``: what it was made from (compared by
+    identity). ``gids``: the groups in ``state.groups``'s order; ``arcs`` and
+    ``params`` their arcs and rows (cx, cy, r, theta0, sweep) of the compiled
+    redundant-intersection test; ``flat`` their junction nodes in order, of
+    arc ``owner``; ``lengths`` how many each; ``inner`` node -> the groups
+    that run on through it; ``ends`` node -> the groups ending there (each
+    once); ``lines`` the straight lines (k None), in ``state.fits``'s order;
+    ``pos`` group -> its index in ``gids``.
+    """
+
+    groups: tuple[Group, ...]
+    fits: tuple[GroupFit | None, ...]
+    released: int
+    gids: tuple[int, ...]
+    arcs: list[Arc]
+    params: np.ndarray
+    flat: np.ndarray
+    owner: np.ndarray
+    lengths: np.ndarray
+    inner: dict[int, list[int]]
+    ends: dict[int, list[int]]
+    lines: tuple[int, ...]
+    pos: dict[int, int]
+
+
+def _level(state: FitState) -> _Level:
+    """The current level's :class:`_Level`, made again when a group, a fit or a released junction changed."""
+    # Compared element by element by identity in C (map, operator.is_): ~10^3 calls a run.
+    gids = tuple(state.groups)
+    groups = tuple(state.groups.values())
+    fits = tuple(map(state.fits.get, gids))  # (a group not fitted yet: only its topology is read)
+    cached = cast("_Level | None", state.merge_cache)
+    if (
+        cached is not None
+        and cached.gids == gids
+        and cached.released == len(state.released)
+        and all(map(operator.is_, cached.groups, groups))
+        and all(map(operator.is_, cached.fits, fits))
+    ):
+        return cached
+    owned = [state.constrained_nodes(g) for g in groups]
+    lengths = np.array([len(ks) for ks in owned], dtype=np.int64)
+    inner: dict[int, list[int]] = {}
+    for gid, g in zip(gids, groups, strict=True):
+        for n in g.nodes[1:-1]:
+            inner.setdefault(n, []).append(gid)
+    level = _Level(
+        groups,
+        fits,
+        len(state.released),
+        gids,
+        [f.arc.arc for f in fits if f is not None],
+        np.array([f.arc_row for f in fits if f is not None], dtype=np.float64).reshape(-1, 5),
+        np.fromiter(chain.from_iterable(owned), dtype=np.int64, count=int(lengths.sum())),
+        np.repeat(np.arange(len(gids), dtype=np.int64), lengths),
+        lengths,
+        inner,
+        state.end_groups(),
+        tuple(g for g, f in state.fits.items() if f.k is None),
+        {g: i for i, g in enumerate(gids)},
+    )
+    state.merge_cache = level
+    return level
 
 
 def _redundant(
     state: FitState,
-    after: dict[int, Group],
+    pair: Pair,
+    merged: Group,
     fits: dict[int, GroupFit],
     disp: dict[int, np.ndarray],
-    node_groups_after: dict[int, list[int]],
 ) -> int:
     """Redundant intersections that involve the arcs a merge changed.
 
-    The junctions are indexed by node (every node of the graph, displaced; the
-    window's new d_k over the state's): the kernel reads only the junctions the
-    arcs own, which are the nodes of ``node_groups_after``.
+    The arcs are the level's (:func:`_level`) without the pair's two, in the
+    state's order, with the merged group's (id -1) last, as ``after`` of
+    :func:`evaluate`. The junctions are indexed by node (every node of the
+    graph, displaced; the window's new d_k over the state's): the kernel reads
+    only the junctions the arcs own.
     """
-    gids = list(after)
-    group_fits = [fits[g] if g in fits else state.fits[g] for g in gids]
-    arcs = [f.arc.arc for f in group_fits]
-    params = np.array([f.arc_row for f in group_fits], dtype=np.float64).reshape(-1, 5)
+    a, b, _ = pair
+    level = _level(state)
+    pos = level.pos
+    pa, pb = pos[a], pos[b]
+    keep = np.ones(len(level.gids), dtype=bool)
+    keep[[pa, pb]] = False
+    # After the merge: arc i of the level is arc i - (how many of a, b come before it).
+    new_pos = np.cumsum(keep) - 1
+    params = np.vstack([level.params[keep], np.asarray(fits[-1].arc_row, dtype=np.float64).reshape(1, 5)])
+    arcs = [arc for arc, k in zip(level.arcs, keep.tolist(), strict=True) if k]
+    arcs.append(fits[-1].arc.arc)
+    changed_list = []
+    for g, f in fits.items():
+        if g == -1:
+            continue
+        i = int(new_pos[pos[g]])
+        params[i] = f.arc_row
+        arcs[i] = f.arc.arc
+        changed_list.append(i)
+    changed_list.append(len(arcs) - 1)
+    changed = np.array(sorted(changed_list), dtype=np.int64)
+    merged_nodes = state.constrained_nodes(merged)
+    lengths = np.append(level.lengths[keep], len(merged_nodes))
+    ptr = np.zeros(len(lengths) + 1, dtype=np.int64)
+    np.cumsum(lengths, out=ptr[1:])
+    flat = np.concatenate(
+        [level.flat[(level.owner != pa) & (level.owner != pb)], np.array(merged_nodes, dtype=np.int64)]
+    )
     junctions = state.graph.junctions
     points = junctions + state.disp
     if disp:
         moved = np.fromiter(disp, dtype=np.intp, count=len(disp))
         points[moved] = junctions[moved] + np.array(list(disp.values()), dtype=np.float64).reshape(-1, 2)
-    # Each arc's junctions as one flat array of node ids (the kernel's layout).
-    owned = [state.constrained_nodes(after[g]) for g in gids]
-    ptr = np.zeros(len(owned) + 1, dtype=np.int64)
-    np.cumsum([len(ks) for ks in owned], out=ptr[1:])
-    flat = np.fromiter(chain.from_iterable(owned), dtype=np.int64, count=int(ptr[-1]))
-    changed = np.array([i for i, g in enumerate(gids) if g in fits], dtype=np.int64)
     pairs, _ = _redundant_arrays(arcs, points, ptr, flat, changed, REDUNDANT_INTERSECTION_TOL, params)
     return len(pairs)
 
@@ -222,10 +329,7 @@ def recheck_redundant(state: FitState, outcome: MergeOutcome) -> int:
     A cached count goes stale when any arc moves, not only the arcs of the
     outcome's window: the chosen merge is checked again before it is made.
     """
-    a, b, _ = outcome.pair
-    after = {g: grp for g, grp in state.groups.items() if g not in (a, b)}
-    after[-1] = outcome.merged
-    return _redundant(state, after, outcome.fits, outcome.displacements, state.node_groups_after(a, b, outcome.merged))
+    return _redundant(state, outcome.pair, outcome.merged, outcome.fits, outcome.displacements)
 
 
 def merge_loop(state: FitState, tolerance: float, merged: MergeCallback | None = None) -> str:

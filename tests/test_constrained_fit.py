@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -398,3 +399,25 @@ def test_unique_rows_is_numpys_unique_along_rows():
         got = cfit._unique_rows(rows)
         want = np.unique(rows.astype(np.int64), axis=0)
         assert got.dtype == np.int64 and got.shape == want.shape and (got == want).all()
+
+
+def test_window_problem_is_what_fit_constrained_solves(chain):
+    sets, radii, centers, junctions, incidence = chain
+    free_c, free_j = np.array([1]), np.array([1, 2])
+    ws = np.full(3, 1.0 / 3)
+    public = fit_constrained(
+        sets, radii, centers, junctions, incidence[::-1], free_circles=free_c, free_junctions=free_j
+    )
+    problem = cfit.WindowProblem.of(
+        sets, radii, centers, junctions, np.zeros((4, 2)), incidence[::-1], free_c, free_j, ws, 0.25, True,
+        np.zeros((0, 3), dtype=np.int64),
+    )  # fmt: skip
+    assert problem.incidence.tolist() == incidence.tolist()  # distinct and sorted
+    assert problem.kkt_size() == 6 + 4  # unknowns: one centre, two displacements; the 4 incidences they touch
+    for compiled in (True, False):
+        fit = cfit._fit(problem, compiled=compiled)
+        assert fit.converged
+        np.testing.assert_allclose(fit.centers, public.centers, atol=1e-9)
+    assert np.array_equal(cfit._fit(problem).centers, public.centers)  # the same arithmetic
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        problem.tol = 1.0  # type: ignore[misc]

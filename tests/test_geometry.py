@@ -214,3 +214,33 @@ def test_polyline_lengths_are_known_answers():
     np.testing.assert_array_equal(cumulative_length(pts), [0.0, 5.0, 6.0])
     assert polyline_length(pts[:1]) == 0.0
     np.testing.assert_array_equal(cumulative_length(pts[:1]), [0.0])
+
+
+def test_arcs_known_to_hold_are_left_out_of_the_geometric_check_only():
+    fields = dict(
+        level=1,
+        arcs=chain().arcs,
+        arc_segments=((0, 1), (2,), (3,)),
+        junctions=chain().junctions,
+        junction_arcs=((0,), (0, 1), (0, 2)),
+        similarity=0.5,
+        bias=BIAS,
+        tolerance=5.0,
+        width=260,
+        height=200,
+        arc_junctions=(ArcJunctions(0, 2, (1,)), ArcJunctions(1), ArcJunctions(2)),
+    )
+    plain = Abstraction(**fields)
+    known = Abstraction._with_known((True, False, True), **fields)
+    assert known.arcs == plain.arcs and known.arc_junctions == plain.arc_junctions
+    assert np.array_equal(known.junctions, plain.junctions) and "_known" not in vars(known)
+    # Arc 0 ends at junction 1 instead of 2: caught, unless arc 0 is known.
+    wrong = dict(fields, arc_junctions=(ArcJunctions(0, 1, (2,)), ArcJunctions(1), ArcJunctions(2)))
+    with pytest.raises(InvalidParameterError, match="junction 1: arc 0 has no end point at"):
+        Abstraction._with_known((False, True, True), **wrong)
+    assert Abstraction._with_known((True, False, False), **wrong).arc_junctions[0].end == 1
+    # The structural checks run for known arcs too.
+    with pytest.raises(InvalidParameterError, match="junction 1 lists arcs"):
+        Abstraction._with_known(
+            (True, True, True), **dict(fields, arc_junctions=(ArcJunctions(0, 2), ArcJunctions(1), ArcJunctions(2)))
+        )

@@ -239,7 +239,7 @@ def test_a_merge_is_judged_with_the_smooth_join_it_ends_at_tangent():
     after = {-1: merge_groups(state.groups[0], state.groups[1], 1), 2: state.groups[2]}
     seeds = {2: state.fits[2].seed, -1: state.golden(after[-1])}
     # The merged arc ends at node 2, a smooth join with group 2; node 1 is inside it now.
-    assert _hold(state, after, seeds, after[-1], 1) == {2}
+    assert _hold(state, seeds, after[-1], (0, 1, 1)) == {2}
     out = evaluate(state, (0, 1, 1))
     assert out is not None and not out.global_solve
     assert _touch(state, out, 2, (-1, 2)) <= 1e-6
@@ -256,3 +256,29 @@ def test_the_loop_keeps_the_tangencies_it_made():
     # The one circle's two segments merged; the join it ends at is tangent and held for later merges.
     assert sorted(g.segments for g in state.groups.values()) == [(0, 1), (2,)]
     assert state.held == state.touching_joins({2}) == {2}
+
+
+def test_a_far_merged_arc_is_found_before_the_windows_other_arcs():
+    state = _fitted_chain(max_arc_distance=10.0)
+    calls = []
+    arc_for = state.arc_for
+    state.arc_for = lambda group, *a: calls.append(group) or arc_for(group, *a)
+    assert evaluate(state, (0, 1, 1)) is None and state.stats.rejected_far_arc == 1
+    assert len(calls) == 1  # the merged arc only: the merge is rejected on it
+    state = _fitted_chain()
+    out = evaluate(state, (0, 1, 1))
+    assert out is not None and sorted(out.fits) == [-1, 2]  # without a bound, the window's arcs
+
+
+def test_the_levels_arrays_are_made_again_after_a_merge():
+    from img2logo.merging import _level
+
+    state = _fitted_chain()
+    first = _level(state)
+    assert _level(state) is first and first.gids == (0, 1, 2) and first.inner == {}
+    assert first.ends == state.end_groups()
+    out = evaluate(state, (0, 1, 1))
+    state.merge(0, 1, out.merged, out.fits, out.displacements)
+    again = _level(state)
+    assert again is not first and again.gids == (2, 3) and again.inner == {1: [3]}
+    assert again.flat.tolist() == [n for g in state.groups.values() for n in state.constrained_nodes(g)]
