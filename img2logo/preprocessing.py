@@ -216,7 +216,7 @@ def _rim_regions(regions: np.ndarray, rgb: np.ndarray, means: np.ndarray, paper:
     both stay colours of their own. As soon as one region is neither ink nor
     such a rim the image has a second colour and the rest is not looked at.
     """
-    from skimage.color import rgb2lab
+    from ._cielab import rgb2lab  # skimage.color.rgb2lab, without importing scipy.linalg
 
     n = len(means)
     out = np.zeros(n, dtype=bool)
