@@ -323,10 +323,9 @@ def solve_kkt(
     rhs = np.concatenate([-g, -c])
     part = rhs if keep is None else rhs[keep]
     if isinstance(mat, np.ndarray):
-        if keep is not None:
-            mat = mat[np.ix_(keep, keep)]
+        dense = mat if keep is None else mat[np.ix_(keep, keep)]
         try:
-            part = np.linalg.solve(mat, part)
+            part = np.linalg.solve(dense, part)
         except np.linalg.LinAlgError:
             return None
     else:

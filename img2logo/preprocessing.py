@@ -380,8 +380,6 @@ def keep_dots(lines: np.ndarray, ink: np.ndarray, stroke_width: float) -> np.nda
     stroke_width : float
         The drawing's median stroke width, px.
     """
-    from skimage.draw import circle_perimeter
-
     labels = _skeleton.label(ink, connectivity=2)
     n = int(labels.max())
     if n == 0:
@@ -392,6 +390,8 @@ def keep_dots(lines: np.ndarray, ink: np.ndarray, stroke_width: float) -> np.nda
     bare = [k for k in range(1, n + 1) if not lined[k] and diameter[k] >= DOT_MIN_DIAMETER]
     if not bare:
         return lines
+    from skimage.draw import circle_perimeter  # only for a dot (skimage.draw imports scipy)
+
     out = lines.copy()
     # scipy.ndimage.center_of_mass(ink, labels, bare): the same sums, by label.
     rows, cols = np.indices(ink.shape, dtype=np.float64)
