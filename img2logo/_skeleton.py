@@ -21,8 +21,6 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
-from scipy import sparse
-from scipy.sparse import csgraph
 
 from .constants import LINE_JOIN_DISTANCE
 from .geometry import polyline_length
@@ -298,27 +296,108 @@ def trace(skel: np.ndarray) -> PixelGraph:
         touch = lab > 0
         c_pix.append(i[touch])
         c_node.append(lab[touch] - 1)
-    adj = sparse.csr_matrix(
-        (np.concatenate(wts), (np.concatenate(src), np.concatenate(dst))), shape=(len(rows), len(rows))
-    )
+    # The pixels renumbered run by run (each run a block, raster order within it):
+    # every edge stays within its run, so a run's graph is a slice of the whole.
+    by_run = np.argsort(comp_of, kind="stable")
+    renumber = np.empty(len(rows), dtype=np.int64)
+    renumber[by_run] = np.arange(len(rows))
+    src_, dst_ = renumber[np.concatenate(src)], renumber[np.concatenate(dst)]
+    adj = _Graph.from_edges(src_, dst_, np.concatenate(wts), len(rows))
+    block = np.concatenate([[0], np.cumsum(np.bincount(comp_of, minlength=n_comp))])
     contact_pix = np.concatenate(c_pix)
     contact_node = np.concatenate(c_node)
 
-    members = [[] for _ in range(n_comp)]
-    for p, comp in enumerate(comp_of):
-        members[comp].append(p)
     contacts: list[dict[int, set[int]]] = [{} for _ in range(n_comp)]
     for p, n in zip(contact_pix.tolist(), contact_node.tolist(), strict=True):
         contacts[comp_of[p]].setdefault(n, set()).add(p)
 
     pixels = np.column_stack([rows, cols])
     for comp in range(n_comp):
-        idx = np.asarray(members[comp])
-        sub = adj[idx][:, idx]
+        a, b = int(block[comp]), int(block[comp + 1])
+        idx = by_run[a:b]
         local = {int(g): k for k, g in enumerate(idx)}
         ends = _contact_groups(contacts[comp], pixels, local)
-        _trace_component(graph, sub, idx, pixels, ends)
+        _trace_component(graph, adj.block(a, b), idx, pixels, ends)
     return graph
+
+
+@dataclass(frozen=True)
+class _Graph:
+    """A weighted directed graph in CSR form: node i's edges go to ``indices[indptr[i]:indptr[i + 1]]``."""
+
+    indptr: np.ndarray  # (N + 1,) int64
+    indices: np.ndarray  # (E,) int64, ascending within a node's edges
+    weights: np.ndarray  # (E,) float64, px
+
+    @classmethod
+    def from_edges(cls, src: np.ndarray, dst: np.ndarray, weights: np.ndarray, n: int) -> _Graph:
+        order = np.lexsort((dst, src))
+        indptr = np.concatenate([[0], np.cumsum(np.bincount(src, minlength=n))]).astype(np.int64)
+        return cls(indptr, np.ascontiguousarray(dst[order], dtype=np.int64), np.ascontiguousarray(weights[order]))
+
+    @property
+    def n(self) -> int:
+        return len(self.indptr) - 1
+
+    def neighbours(self, i: int) -> np.ndarray:
+        return self.indices[self.indptr[i] : self.indptr[i + 1]]
+
+    def block(self, a: int, b: int) -> _Graph:
+        """The subgraph of nodes a..b-1, renumbered from 0 (no edge may leave it)."""
+        lo, hi = self.indptr[a], self.indptr[b]
+        return _Graph(self.indptr[a : b + 1] - lo, self.indices[lo:hi] - a, self.weights[lo:hi])
+
+    def without(self, node: int) -> _Graph:
+        """The same nodes without the edges to and from ``node``."""
+        src = np.repeat(np.arange(self.n), np.diff(self.indptr))
+        keep = (src != node) & (self.indices != node)
+        indptr = np.concatenate([[0], np.cumsum(np.bincount(src[keep], minlength=self.n))]).astype(np.int64)
+        return _Graph(indptr, self.indices[keep], self.weights[keep])
+
+
+def _dijkstra(graph: _Graph, sources: list[int]) -> tuple[np.ndarray, np.ndarray]:
+    """Distances (N,) from the nearest source and predecessors (N,), -9999 for none.
+
+    ``scipy.sparse.csgraph.dijkstra(graph, indices=sources, min_only=True,
+    return_predecessors=True)`` to the bit, the same path among equally short
+    ones (the tests compare the two), without importing ``scipy.sparse`` (its
+    array-API layer and ``csgraph`` cost a run about 0.25 s of CPU): the compiled
+    kernel (:func:`img2logo.kernels_graph.dijkstra_kernel`), else
+    :func:`_dijkstra_reference`.
+    """
+    from . import kernels
+
+    if not kernels.usable():
+        return _dijkstra_reference(graph, sources)
+    dist = np.empty(graph.n)
+    pred = np.empty(graph.n, dtype=np.int64)
+    kernels.dijkstra_kernel(graph.indptr, graph.indices, graph.weights, np.asarray(sources, dtype=np.int64), dist, pred)
+    return dist, pred
+
+
+def _dijkstra_reference(graph: _Graph, sources: list[int]) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`_dijkstra` in Python: nearest node first, the larger index first among equal ones (scipy's order)."""
+    import heapq
+
+    dist = [math.inf] * graph.n
+    pred = [-9999] * graph.n
+    heap = []
+    for s in sources:
+        dist[s] = 0.0
+        heapq.heappush(heap, (0.0, -s))
+    indptr, indices, weights = graph.indptr.tolist(), graph.indices.tolist(), graph.weights.tolist()
+    while heap:
+        d, v = heapq.heappop(heap)
+        v = -v
+        if dist[v] < d:
+            continue
+        for e in range(indptr[v], indptr[v + 1]):
+            j, nd = indices[e], d + weights[e]
+            if dist[j] > nd:
+                dist[j] = nd
+                pred[j] = v
+                heapq.heappush(heap, (nd, -j))
+    return np.array(dist), np.array(pred, dtype=np.int64)
 
 
 def _contact_groups(
@@ -343,8 +422,8 @@ def _contact_groups(
     return groups
 
 
-def _shortest_path(sub: sparse.csr_matrix, sources: list[int], targets: list[int]) -> list[int]:
-    dist, pred, _ = csgraph.dijkstra(sub, indices=sources, min_only=True, return_predecessors=True)
+def _shortest_path(sub: _Graph, sources: list[int], targets: list[int]) -> list[int]:
+    dist, pred = _dijkstra(sub, sources)
     t = min(targets, key=lambda k: dist[k])
     path = [t]
     while pred[path[-1]] >= 0:
@@ -354,7 +433,7 @@ def _shortest_path(sub: sparse.csr_matrix, sources: list[int], targets: list[int
 
 def _trace_component(
     graph: PixelGraph,
-    sub: sparse.csr_matrix,
+    sub: _Graph,
     idx: np.ndarray,
     pixels: np.ndarray,
     ends: list[tuple[int, list[int]]],
@@ -364,13 +443,11 @@ def _trace_component(
     if not ends:
         # Closed loop: cut it open next to its first pixel, which becomes a node.
         start = 0
-        nbrs = sub[start].indices
+        nbrs = sub.neighbours(start)
         if len(nbrs) == 0:
             return
-        cut = sub.tolil()
-        cut[start, :] = 0
-        cut[:, start] = 0
-        rest = _shortest_path(cut.tocsr(), [int(nbrs[0])], [int(n) for n in nbrs[1:]] or [int(nbrs[0])])
+        cut = sub.without(start)
+        rest = _shortest_path(cut, [int(nbrs[0])], [int(n) for n in nbrs[1:]] or [int(nbrs[0])])
         node = graph.add_node(pix[start][::-1] + 0.5, pix[start][None])
         graph.chains.append(pix[rest])
         graph.ends.append((node, node))
@@ -378,7 +455,7 @@ def _trace_component(
     if len(ends) == 1:
         # A run leaving one node and ending in a blob: end it at its farthest pixel.
         node, src = ends[0]
-        dist = csgraph.dijkstra(sub, indices=src, min_only=True)
+        dist = _dijkstra(sub, src)[0]
         far = int(np.argmax(np.where(np.isfinite(dist), dist, -1)))
         path = _shortest_path(sub, src, [far])
         tip = graph.add_node(pix[far][::-1] + 0.5, pix[far][None])
@@ -392,7 +469,7 @@ def _trace_component(
         return
     # Three or more ends on one run (a branch the crossing number missed): a new
     # junction at the pixel with the smallest total path length to all ends.
-    dist = np.vstack([csgraph.dijkstra(sub, indices=s, min_only=True) for _, s in ends])
+    dist = np.vstack([_dijkstra(sub, s)[0] for _, s in ends])
     hub = int(np.argmin(dist.sum(axis=0)))
     centre = graph.add_node(pix[hub][::-1] + 0.5, pix[hub][None])
     for node, src in ends:
@@ -575,8 +652,6 @@ def join_line_ends(skel: np.ndarray, distance: float = LINE_JOIN_DISTANCE) -> np
     Ends are taken in raster order; a new run is itself a line for the ends
     after it.
     """
-    from skimage.draw import line
-
     out = np.asarray(skel, dtype=bool).copy()
     if not out.any():
         return out
@@ -619,6 +694,35 @@ def join_line_ends(skel: np.ndarray, distance: float = LINE_JOIN_DISTANCE) -> np
             rr, cc = line(end[0], end[1], best[0], best[1])
             out[np.clip(rr, 0, h - 1), np.clip(cc, 0, w - 1)] = True
     return out
+
+
+def line(r0: int, c0: int, r1: int, c1: int) -> tuple[np.ndarray, np.ndarray]:
+    """The pixels (rows, columns) of the digital line from (r0, c0) to (r1, c1), ends included.
+
+    ``skimage.draw.line`` pixel for pixel (Bresenham's algorithm as scikit-image
+    writes it; the tests compare the two), without importing ``skimage.draw``,
+    which imports scikit-image and scipy (about 0.05 s of CPU a run).
+    """
+    r, c = r0, c0
+    dr, dc = abs(r1 - r0), abs(c1 - c0)
+    sc = 1 if c1 - c > 0 else -1
+    sr = 1 if r1 - r > 0 else -1
+    steep = dr > dc
+    if steep:
+        r, c, dr, dc, sr, sc = c, r, dc, dr, sc, sr
+    d = 2 * dr - dc
+    rr, cc = [], []
+    for _ in range(dc):
+        rr.append(c if steep else r)
+        cc.append(r if steep else c)
+        while d >= 0:
+            r += sr
+            d -= 2 * dc
+        c += sc
+        d += 2 * dr
+    rr.append(r1)
+    cc.append(c1)
+    return np.array(rr, dtype=np.intp), np.array(cc, dtype=np.intp)
 
 
 def _pixels_within(pixels: np.ndarray, at: tuple[int, int], distance: float) -> list[tuple[int, int]]:

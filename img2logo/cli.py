@@ -365,7 +365,6 @@ def _check_outputs(args: argparse.Namespace) -> dict:
     import os
     from pathlib import Path
 
-    from .batch import _foreground_file
     from .writers import check_output_paths
 
     mask = _foreground_file(args.foreground)
@@ -449,11 +448,27 @@ def _naming(path: str, call, *a, **kw):
         raise type(exc)(f"{path}: {exc}") from exc
 
 
+def _foreground_file(foreground: object):
+    """:func:`img2logo.batch._foreground_file`; the batch module (and its thread pool's) loads only for a mask."""
+    if foreground == "auto":  # the default: no file
+        return None
+    from .batch import _foreground_file as of_batch
+
+    return of_batch(foreground)
+
+
+def _fill_spec(spec: object):
+    """:func:`img2logo.fills.parse_fill_option`, or None for the default ``none`` (no fills: not imported)."""
+    if spec == "none":
+        return None
+    from .fills import parse_fill_option
+
+    return parse_fill_option(spec)
+
+
 def _run(args: argparse.Namespace, say, *, freeze: bool = False) -> int:
     import dataclasses
 
-    from .batch import _foreground_file, ignored_subject_options
-    from .fills import parse_fill_option
     from .loading import load_image
     from .pipeline import abstract
 
@@ -461,7 +476,7 @@ def _run(args: argparse.Namespace, say, *, freeze: bool = False) -> int:
         _freeze_heap()
 
     options = _abstract_options(args)
-    fill_spec = parse_fill_option(args.fill)
+    fill_spec = _fill_spec(args.fill)
     if not any(getattr(args, flag[2:].replace("-", "_")) for flag in _OUTPUT_FLAGS):  # before any work
         raise InvalidParameterError(f"nothing to write: give {', '.join(_OUTPUT_FLAGS[:-1])} or {_OUTPUT_FLAGS[-1]}")
     if args.png_scale is not None and not 0 < args.png_scale < float("inf"):
@@ -512,7 +527,11 @@ def _run(args: argparse.Namespace, say, *, freeze: bool = False) -> int:
     say(f"kind {result.lines.kind} ({result.lines.reason})")
     given = [f"--subject {args.subject}"] if args.subject is not None else []
     given += [f"--foreground {args.foreground}"] if args.foreground != "auto" else []
-    ignored = ignored_subject_options(result.lines, given)
+    ignored = None
+    if given:
+        from .batch_pool import ignored_subject_options
+
+        ignored = ignored_subject_options(result.lines, given)
     if ignored:
         say(f"img2logo: warning: {ignored}")
     if result.lines.subject is not None:
@@ -617,7 +636,7 @@ def _write_outputs(result, level, args: argparse.Namespace, say, fill_spec) -> N
     from . import writers
     from ._io import remove_file
 
-    fills = None if fill_spec.mode == "none" else fill_spec.make(level, result.image)
+    fills = None if fill_spec is None or fill_spec.mode == "none" else fill_spec.make(level, result.image)
     if fills is not None:
         say(f"fills: {len(fills)} regions ({args.fill})")
 

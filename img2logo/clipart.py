@@ -332,7 +332,7 @@ def _unexplained(
     ``lonely`` compared with the blends of the seeds within
     ``CLIPART_BLOCK_REACH`` (unexplained with none there either).
     """
-    from skimage.color import rgb2lab
+    from ._cielab import rgb2lab  # skimage.color.rgb2lab, without importing scipy.linalg
 
     rest = seed_of < 0
     out = np.zeros(seed_of.shape, dtype=bool)
@@ -382,7 +382,8 @@ def _mean_shift(rgb: np.ndarray, colour_radius: float) -> tuple[np.ndarray, np.n
     CIELAB, whose units are close to Delta E.
     """
     import cv2
-    from skimage.color import rgb2lab
+
+    from ._cielab import rgb2lab  # skimage.color.rgb2lab, without importing scipy.linalg
 
     u8 = np.clip(np.round(rgb * 255.0), 0, 255).astype(np.uint8)
     shifted = cv2.pyrMeanShiftFiltering(cv2.cvtColor(u8, cv2.COLOR_RGB2Lab), CLIPART_SHIFT_RADIUS, colour_radius)

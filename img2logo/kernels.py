@@ -3,8 +3,9 @@
 The kernels themselves are written in :mod:`img2logo.kernels_sqp` (the SQP of
 Eqn. 13 for a local window), :mod:`img2logo.kernels_arcs` (arc-arc
 intersections, the redundant-intersection test, the arc extraction with its
-Fréchet distance) and :mod:`img2logo.kernels_circle` (the free circle fit, a
-golden circle's centre), each beneath a public function whose Python code stays as
+Fréchet distance), :mod:`img2logo.kernels_circle` (the free circle fit, a
+golden circle's centre) and :mod:`img2logo.kernels_graph` (the skeleton's shortest
+paths, the global KKT solve in a band), each beneath a public function whose Python code stays as
 the reference the tests compare against. This module gives them to their
 callers as attributes (``kernels.sqp_dense(...)``), loaded on first use:
 
@@ -72,10 +73,12 @@ ENTRY_POINTS: dict[str, tuple[str, tuple[str, ...], str]] = {
     "fit_circle_kernel": ("kernels_circle", ("f8[:,::1]", "f8", "f8"), "Tuple((i8, f8, f8, f8, f8, b1))"),
     "fit_center_kernel": ("kernels_circle", ("f8[:,::1]", "f8", "f8", "f8", "i8"), "UniTuple(f8, 2)"),
     "mean_abs_error_kernel": ("kernels_circle", ("f8[:,::1]", "f8", "f8", "f8"), "f8"),
+    "dijkstra_kernel": ("kernels_graph", ("i8[::1]", "i8[::1]", "f8[::1]", "i8[::1]", "!f8[::1]", "!i8[::1]"), "i8"),
+    "banded_solve_kernel": ("kernels_graph", ("i8[::1]", "i8[::1]", "f8[::1]", "f8[::1]", "!f8[::1]"), "i8"),
 }
 
 _DTYPES = {"f8": np.dtype(np.float64), "i8": np.dtype(np.int64), "b1": np.dtype(np.bool_)}
-_SOURCES = ("kernels_sqp.py", "kernels_arcs.py", "kernels_circle.py", "kernels_jit.py")
+_SOURCES = ("kernels_sqp.py", "kernels_arcs.py", "kernels_circle.py", "kernels_graph.py", "kernels_jit.py")
 _loaded: dict[str, Any] = {}
 #: Where the loaded kernels came from: the ahead-of-time module's path, or "numba's JIT".
 source = ""

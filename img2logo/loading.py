@@ -120,8 +120,9 @@ class LoadedImage:
     @functools.cached_property
     def lab(self) -> np.ndarray:
         """CIELAB colours (D65), (H, W, 3) float64, read-only; computed once (kind detection and
-        clip-art regions both need them)."""
-        from skimage.color import rgb2lab
+        clip-art regions both need them): ``skimage.color.rgb2lab`` to the bit, without its import (which
+        loads scipy.linalg, :mod:`img2logo._cielab`)."""
+        from ._cielab import rgb2lab
 
         return readonly(rgb2lab(self.rgb))
 

@@ -13,7 +13,7 @@ import time
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -21,12 +21,14 @@ from .constants import MIN_STROKE_WIDTH, PHOTO_MAX_ARC_FACTOR, PHOTO_WORK_SIDE, 
 from .errors import InvalidParameterError
 from .geometry import Abstraction
 from .loading import downscale, mask_to_working_size, warn_downscaled
-from .options import AUTO, Options, check_lock_mask
+from .options import AUTO, Options, check_lock_mask, check_symmetry_option
 from .preprocessing import FeatureLines, LoadedImage, extract_feature_lines, load_image, photo_reason
 from .progressive import ProgressCallback, Progression, optimize
 from .segment_graph import SegmentGraph, build_segment_graph
 from .subject import FOREGROUND_CHOICES
-from .symmetry import SymmetryChoice, check_symmetry_option, choose_axis, optimize_symmetric
+
+if TYPE_CHECKING:  # the symmetry module loads only for a run that asks for an axis
+    from .symmetry import SymmetryChoice
 
 #: ``abstract``'s ``tolerance`` and ``kind`` when not given: those of ``options`` (default 5 px, "auto").
 _DEFAULT: Any = type("Default", (), {"__repr__": lambda self: "<default>"})()
@@ -197,6 +199,8 @@ def abstract(
     choice = None
     mode = check_symmetry_option(opts.symmetry)
     if mode is not None:
+        from .symmetry import choose_axis, optimize_symmetric
+
         start = time.perf_counter()
         choice = choose_axis(lines.lines, mode)
         timings["symmetry"] = time.perf_counter() - start

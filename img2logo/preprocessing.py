@@ -216,7 +216,7 @@ def _rim_regions(regions: np.ndarray, rgb: np.ndarray, means: np.ndarray, paper:
     both stay colours of their own. As soon as one region is neither ink nor
     such a rim the image has a second colour and the rest is not looked at.
     """
-    from skimage.color import rgb2lab
+    from ._cielab import rgb2lab  # skimage.color.rgb2lab, without importing scipy.linalg
 
     n = len(means)
     out = np.zeros(n, dtype=bool)
@@ -380,8 +380,6 @@ def keep_dots(lines: np.ndarray, ink: np.ndarray, stroke_width: float) -> np.nda
     stroke_width : float
         The drawing's median stroke width, px.
     """
-    from skimage.draw import circle_perimeter
-
     labels = _skeleton.label(ink, connectivity=2)
     n = int(labels.max())
     if n == 0:
@@ -392,6 +390,8 @@ def keep_dots(lines: np.ndarray, ink: np.ndarray, stroke_width: float) -> np.nda
     bare = [k for k in range(1, n + 1) if not lined[k] and diameter[k] >= DOT_MIN_DIAMETER]
     if not bare:
         return lines
+    from skimage.draw import circle_perimeter  # only for a dot (skimage.draw imports scipy)
+
     out = lines.copy()
     # scipy.ndimage.center_of_mass(ink, labels, bare): the same sums, by label.
     rows, cols = np.indices(ink.shape, dtype=np.float64)

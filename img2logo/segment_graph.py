@@ -125,16 +125,27 @@ class SegmentGraph:
         return tuple(int(i) for i in np.flatnonzero((self.ends == k).any(axis=1)))
 
     def n_components(self) -> int:
-        """Number of connected components of the graph."""
-        from scipy.sparse import coo_matrix
-        from scipy.sparse.csgraph import connected_components
+        """Number of connected components of the graph (a junction on no segment is one).
 
-        n = self.n_junctions
-        if n == 0:
-            return 0
-        adj = coo_matrix((np.ones(len(self.ends)), (self.ends[:, 0], self.ends[:, 1])), shape=(n, n))
-        count, _ = connected_components(adj, directed=False)
-        return int(count)
+        A union-find over the segments' ends: the count of
+        ``scipy.sparse.csgraph.connected_components`` (the tests compare them)
+        without importing ``scipy.sparse`` for it.
+        """
+        root = list(range(self.n_junctions))
+
+        def find(k: int) -> int:
+            while root[k] != k:
+                root[k] = root[root[k]]
+                k = root[k]
+            return k
+
+        count = self.n_junctions
+        for a, b in self.ends.tolist():
+            ra, rb = find(a), find(b)
+            if ra != rb:
+                root[ra] = rb
+                count -= 1
+        return count
 
 
 def build_segment_graph(

@@ -1,0 +1,67 @@
+"""The skeleton's stand-ins for scipy and scikit-image give their numbers (the oracles, imported by the tests only)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from img2logo import _skeleton
+
+DATA = Path(__file__).resolve().parents[1] / "data"
+
+
+def test_line_is_skimages_pixel_for_pixel():
+    from skimage.draw import line as oracle
+
+    ends = [*np.random.default_rng(0).integers(-12, 40, (3000, 4)).tolist(), [3, 3, 3, 3], [0, 0, 5, 5]]
+    for r0, c0, r1, c1 in ends:
+        got, want = _skeleton.line(r0, c0, r1, c1), oracle(r0, c0, r1, c1)
+        for g, w in zip(got, want, strict=True):
+            assert g.dtype == w.dtype
+            np.testing.assert_array_equal(g, w)
+
+
+def _scipy_dijkstra(graph, sources):
+    from scipy import sparse
+    from scipy.sparse import csgraph
+
+    n = graph.n
+    csr = sparse.csr_matrix((graph.weights, graph.indices, graph.indptr), shape=(n, n))
+    dist, pred, _ = csgraph.dijkstra(csr, indices=sources, min_only=True, return_predecessors=True)
+    return dist, pred.astype(np.int64)
+
+
+@pytest.mark.parametrize("name", ["clipart-fish", "clipart-cat", "drawing-rabbit", "drawing-snail", "photo-flower"])
+def test_trace_is_the_same_as_with_scipys_dijkstra(monkeypatch, name):
+    from img2logo.preprocessing import extract_feature_lines, load_image
+
+    lines = extract_feature_lines(load_image(DATA / f"{name}.png")).lines
+    skel = _skeleton.skeletonize(np.array(lines))
+    ours = _skeleton.trace(skel)
+    monkeypatch.setattr(_skeleton, "_dijkstra", _scipy_dijkstra)
+    theirs = _skeleton.trace(skel)
+    assert ours.ends == theirs.ends
+    assert len(ours.chains) == len(theirs.chains) > 0
+    for a, b in zip(ours.chains, theirs.chains, strict=True):
+        np.testing.assert_array_equal(a, b)
+    for a, b in zip(ours.nodes, theirs.nodes, strict=True):
+        np.testing.assert_array_equal(a, b)
+
+
+def test_a_closed_loop_and_a_blob_are_traced_as_with_scipy(monkeypatch):
+    import cv2
+
+    img = np.zeros((40, 60), dtype=np.uint8)
+    cv2.circle(img, (15, 20), 10, 1, 1)  # a closed loop: cut open at a node of its own
+    img[5:12, 35:42] = 1  # a blob at the end of a line
+    img[12:30, 38] = 1
+    skel = img.astype(bool)
+    ours = _skeleton.trace(skel)
+    monkeypatch.setattr(_skeleton, "_dijkstra", _scipy_dijkstra)
+    theirs = _skeleton.trace(skel)
+    assert ours.ends == theirs.ends
+    assert any(a == b for a, b in ours.ends)  # the loop
+    for a, b in zip(ours.chains, theirs.chains, strict=True):
+        np.testing.assert_array_equal(a, b)
