@@ -128,7 +128,7 @@ def tangent_joins(opt: FitState, tolerance: float) -> bool:
     if len(made) < len(joins):
         one = _state(opt), opt.similarity()
         _restore(opt, start)
-        whole = _all_at_once(opt, joins, bound)
+        whole = _all_at_once(opt, joins, bound, least=len(made))
         if len(whole) > len(made) or (len(whole) == len(made) and opt.similarity() < one[1]):
             made = whole
         else:
@@ -253,13 +253,19 @@ def _one_at_a_time(opt: FitState, joins: dict[int, tuple[int, int]], bound: floa
     return made
 
 
-def _all_at_once(opt: FitState, joins: dict[int, tuple[int, int]], bound: float) -> dict[int, tuple[int, int]]:
+def _all_at_once(
+    opt: FitState, joins: dict[int, tuple[int, int]], bound: float, *, least: int = 0
+) -> dict[int, tuple[int, int]]:
     """Refit the whole state with every tangency of ``joins`` at once; the joins made.
 
     Every circle and junction free, straight lines fixed, the rungs and the
     nodes as they are. While the fit fails, lifts E^s above ``bound`` or adds a
     redundant intersection, the join whose circles are farthest from touching
-    now is released (``opt.loose``) and the fit tried again.
+    now is released (``opt.loose``) and the fit tried again; once fewer than
+    ``least`` joins are left (what one join at a time made: a result that
+    :func:`tangent_joins` would not keep), none is made and the state is left
+    for the caller to restore. Each try is a global solve (on the polar bear
+    up to 20 a pass): the ones that could not win are not made.
     """
     seeds = {g: f.seed for g, f in opt.fits.items()}
     groups = dict(opt.groups)
@@ -268,7 +274,7 @@ def _all_at_once(opt: FitState, joins: dict[int, tuple[int, int]], bound: float)
     crossings = _redundant(opt, set(groups))
     while True:
         touching = opt.tangencies(groups, seeds)
-        if not touching:
+        if not touching or len(touching) < least:
             return {}
         out = opt.solve_whole(
             groups, seeds, node_groups, n_groups_total=len(groups), n_junctions_total=len(node_groups), tangent=True
