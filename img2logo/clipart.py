@@ -166,10 +166,17 @@ def label_means(labels: np.ndarray, values: np.ndarray) -> tuple[np.ndarray, np.
     ``labels`` is (H, W) of non-negative ints, ``values`` (H, W, C); n is the
     largest label + 1, and an unused label has count 0 and mean 0.
     """
+    from . import kernels
+
     flat = labels.ravel()
-    counts = np.bincount(flat).astype(np.float64)
     chans = values.reshape(len(flat), -1)
-    sums = np.stack([np.bincount(flat, weights=chans[:, c], minlength=len(counts)) for c in range(chans.shape[1])], 1)
+    if kernels.usable() and len(flat):  # one pass for every channel, adding as np.bincount does
+        counts, sums = kernels.label_sums_kernel(flat, chans, int(flat.max()) + 1)
+    else:
+        counts = np.bincount(flat).astype(np.float64)
+        sums = np.stack(
+            [np.bincount(flat, weights=chans[:, c], minlength=len(counts)) for c in range(chans.shape[1])], 1
+        )
     return counts, sums / np.maximum(counts, 1.0)[:, None]
 
 

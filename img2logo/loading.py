@@ -752,5 +752,8 @@ def composite_on_white(
         colour = np.repeat(colour, 3, axis=2)
     elif bgr:
         colour = colour[:, :, ::-1]
-    rgb = colour * alpha[:, :, None] + (1.0 - alpha[:, :, None])
+    if has_alpha:
+        rgb = colour * alpha[:, :, None] + (1.0 - alpha[:, :, None])
+    else:  # alpha 1 everywhere: colour * 1 + 0, the same bits (+ 0.0 turns a -0.0 into 0.0 as that did)
+        rgb = colour + 0.0
     return np.ascontiguousarray(rgb), alpha, has_alpha
