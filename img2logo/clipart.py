@@ -61,6 +61,27 @@ from .constants import (
 from .loading import LoadedImage
 
 
+def srgb_to_lab(rgb: np.ndarray) -> np.ndarray:
+    """``skimage.color.rgb2lab(rgb)`` (D65), to the bit, of an (H, W, 3) float64 image in [0, 1].
+
+    An 8-bit image (every value k / 255, as loaded) holds a few thousand colours
+    at most where it has 262144 pixels (a 512 px clip art: about a thousand):
+    each distinct colour is converted once, by scikit-image's own function on
+    the (1, U, 3) array of them (the same row-by-row arithmetic as on the whole
+    image), and spread back to its pixels. Any other image is converted whole.
+    """
+    from ._cielab import rgb2lab  # skimage.color.rgb2lab, without importing scipy.linalg
+
+    values = np.rint(rgb * 255.0)
+    if rgb.ndim != 3 or rgb.shape[2] != 3 or not np.array_equal(values / 255.0, rgb):
+        return np.asarray(rgb2lab(rgb))
+    v = values.astype(np.int32)
+    key = ((v[..., 0] << 16) | (v[..., 1] << 8) | v[..., 2]).ravel()
+    colours, index = np.unique(key, return_inverse=True)
+    table = np.stack([(colours >> 16) & 255, (colours >> 8) & 255, colours & 255], axis=1) / 255.0
+    return np.asarray(rgb2lab(table[None]))[0][index].reshape(rgb.shape)
+
+
 def colour_noise(lab: np.ndarray) -> tuple[float, float]:
     """Colour noise of a clip art's fills: (typical neighbour difference, noisy fraction).
 
@@ -145,10 +166,17 @@ def label_means(labels: np.ndarray, values: np.ndarray) -> tuple[np.ndarray, np.
     ``labels`` is (H, W) of non-negative ints, ``values`` (H, W, C); n is the
     largest label + 1, and an unused label has count 0 and mean 0.
     """
+    from . import kernels
+
     flat = labels.ravel()
-    counts = np.bincount(flat).astype(np.float64)
     chans = values.reshape(len(flat), -1)
-    sums = np.stack([np.bincount(flat, weights=chans[:, c], minlength=len(counts)) for c in range(chans.shape[1])], 1)
+    if kernels.usable() and len(flat):  # one pass for every channel, adding as np.bincount does
+        counts, sums = kernels.label_sums_kernel(flat, chans, int(flat.max()) + 1)
+    else:
+        counts = np.bincount(flat).astype(np.float64)
+        sums = np.stack(
+            [np.bincount(flat, weights=chans[:, c], minlength=len(counts)) for c in range(chans.shape[1])], 1
+        )
     return counts, sums / np.maximum(counts, 1.0)[:, None]
 
 
@@ -269,9 +297,11 @@ def _unexplained_seeds(
     than ``CLIPART_EDGE_CONTRAST`` (four just noticeable differences: beyond a
     fill's compression noise, which the mean shift has halved) from every
     blend of the seeds near them (a pixel with no seed near, of the seeds
-    within ``CLIPART_BLOCK_REACH``: not the colour of a seed farther away, or a
-    12-14 px spot of the colour of larger ones elsewhere would be explained,
-    seed nothing and be merged away as a region without a seed pixel). The seeds are
+    within ``CLIPART_BLOCK_REACH`` whose own colour reaches it,
+    :func:`_reached_entries`: not the colour of a seed farther away or across
+    another colour, or a 12-14 px spot of the colour of larger ones elsewhere
+    or nearby would be explained, seed nothing and be merged away as a region
+    without a seed pixel). The seeds are
     such pixels more than ``CLIPART_RING_WIDTH`` px from any other (a ringing
     halo or chroma bleeding along an edge is a strip no wider than that and has
     none), in 8-connected groups of at least
@@ -330,7 +360,8 @@ def _unexplained(
     ``areas_rgb`` holds the seeds' mean sRGB colours, shape (S, 3). A pixel
     with no seed within ``CLIPART_RIM_RADIUS`` is unexplained, or with
     ``lonely`` compared with the blends of the seeds within
-    ``CLIPART_BLOCK_REACH`` (unexplained with none there either).
+    ``CLIPART_BLOCK_REACH`` whose own colour reaches it (:func:`_reached_entries`;
+    unexplained with none).
     """
     from ._cielab import rgb2lab  # skimage.color.rgb2lab, without importing scipy.linalg
 
@@ -346,7 +377,7 @@ def _unexplained(
     if lonely:
         alone = ~near.any(axis=1)
         if alone.any():
-            near[alone] = _near_entries(seed_of, n, rest, CLIPART_BLOCK_REACH)[alone]
+            near[alone] = _reached_entries(seed_of, singles, lab, contrast, rest, alone)
     for a in range(n):
         on_a = near[:, a]
         if on_a.any():
@@ -372,6 +403,54 @@ def _unexplained(
     return out
 
 
+def _reached_entries(
+    seed_of: np.ndarray,
+    singles: np.ndarray,
+    lab: np.ndarray,
+    contrast: float,
+    rest: np.ndarray,
+    alone: np.ndarray,
+) -> np.ndarray:
+    """Which seeds explain the ``alone`` pixels of ``rest`` from afar: (A, S) bool, A = ``alone.sum()``.
+
+    A pixel with no seed within ``CLIPART_RIM_RADIUS`` px (inside a JPEG block that
+    ringing left without a flat pixel, or a rim that chroma bleeding widened) is
+    explained by the seeds within ``CLIPART_BLOCK_REACH`` px whose own colour
+    reaches it: the seed's 8-connected part of pixels within ``contrast`` (Delta
+    E) of its colour ``singles[s]`` (CIELAB, (S, 3)), its seed pixels included,
+    comes within ``CLIPART_RIM_RADIUS`` px of the pixel, as the seed's own pixels
+    would for a pixel near it. A seed across pixels of another colour (the paper
+    between two spots) does not: a 14 px spot 10 px from a larger one of its
+    colour is a fill of its own, not that spot's blurred rim. The parts are
+    taken within the box of the seed and the pixels it may explain, grown by the
+    reach.
+    """
+    import cv2
+
+    h, w = seed_of.shape
+    n = len(singles)
+    within = _near_entries(seed_of, n, rest, CLIPART_BLOCK_REACH)[alone]
+    out = np.zeros(within.shape, dtype=bool)
+    pix_rows, pix_cols = np.nonzero(rest)
+    pix_rows, pix_cols = pix_rows[alone], pix_cols[alone]
+    size = 2 * CLIPART_RIM_RADIUS + 1
+    disk = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (size, size))
+    margin = CLIPART_BLOCK_REACH + CLIPART_RIM_RADIUS
+    for s in np.flatnonzero(within.any(axis=0)):
+        at = np.flatnonzero(within[:, s])
+        rows = slice(max(int(pix_rows[at].min()) - margin, 0), min(int(pix_rows[at].max()) + 1 + margin, h))
+        cols = slice(max(int(pix_cols[at].min()) - margin, 0), min(int(pix_cols[at].max()) + 1 + margin, w))
+        own = seed_of[rows, cols] == s
+        diff = lab[rows, cols] - singles[s]
+        colour = own | (np.einsum("ijk,ijk->ij", diff, diff) <= contrast * contrast)
+        count, parts = cv2.connectedComponents(colour.view(np.uint8), connectivity=8)
+        seeded = np.bincount(parts[own], minlength=count) > 0
+        seeded[0] = False
+        grown = cv2.dilate(seeded[parts].view(np.uint8), disk) > 0
+        out[at, s] = grown[pix_rows[at] - rows.start, pix_cols[at] - cols.start]
+    return out
+
+
 def _mean_shift(rgb: np.ndarray, colour_radius: float) -> tuple[np.ndarray, np.ndarray]:
     """Mean shift filtering (Comaniciu and Meer 2002) of a noisy clip art: sRGB and CIELAB, (H, W, 3) each.
 
@@ -383,12 +462,10 @@ def _mean_shift(rgb: np.ndarray, colour_radius: float) -> tuple[np.ndarray, np.n
     """
     import cv2
 
-    from ._cielab import rgb2lab  # skimage.color.rgb2lab, without importing scipy.linalg
-
     u8 = np.clip(np.round(rgb * 255.0), 0, 255).astype(np.uint8)
     shifted = cv2.pyrMeanShiftFiltering(cv2.cvtColor(u8, cv2.COLOR_RGB2Lab), CLIPART_SHIFT_RADIUS, colour_radius)
     out = cv2.cvtColor(shifted, cv2.COLOR_Lab2RGB) / 255.0
-    return out, rgb2lab(out)
+    return out, srgb_to_lab(out)
 
 
 def _flat_areas(lab: np.ndarray, link: float) -> np.ndarray:

@@ -162,7 +162,9 @@ CLIPART_RING_WIDTH: float = 3.0
 #: only by the blends of the seeds within this distance, px: as far as JPEG spreads an edge's
 #: colours (chroma is coded at half resolution in 8 x 8 blocks, 16 x 16 px of the image), so
 #: a rim or bleeding pixel has its sides' flat pixels this near. Not by a seed's colour from
-#: farther away: a 14 px spot of the colour of larger spots elsewhere is a fill of its own.
+#: farther away: a 14 px spot of the colour of larger spots elsewhere is a fill of its own;
+#: nor across another colour (clipart._reached_entries: the seed's colour must reach the
+#: pixel), as a 14 px spot 10 px from a larger one of its colour is.
 CLIPART_BLOCK_REACH: int = 16
 #: ... and such a seed is a small fill only when its part of unexplained pixels lies mostly
 #: near it: at most this many times what is within CLIPART_RIM_RADIUS px of it. Measured:

@@ -75,10 +75,19 @@ ENTRY_POINTS: dict[str, tuple[str, tuple[str, ...], str]] = {
     "mean_abs_error_kernel": ("kernels_circle", ("f8[:,::1]", "f8", "f8", "f8"), "f8"),
     "dijkstra_kernel": ("kernels_graph", ("i8[::1]", "i8[::1]", "f8[::1]", "i8[::1]", "!f8[::1]", "!i8[::1]"), "i8"),
     "banded_solve_kernel": ("kernels_graph", ("i8[::1]", "i8[::1]", "f8[::1]", "f8[::1]", "!f8[::1]"), "i8"),
+    "label_sums_kernel": ("kernels_front", ("i8[::1]", "f8[:,::1]", "i8"), "Tuple((f8[::1], f8[:,::1]))"),
+    "biarc_worst_kernel": ("kernels_circle", tuple("f8[:,::1] f8[:,:,::1] i8[::1] i8[::1] f8 b1".split()), "f8[:,::1]"),
 }
 
 _DTYPES = {"f8": np.dtype(np.float64), "i8": np.dtype(np.int64), "b1": np.dtype(np.bool_)}
-_SOURCES = ("kernels_sqp.py", "kernels_arcs.py", "kernels_circle.py", "kernels_graph.py", "kernels_jit.py")
+_SOURCES = (
+    "kernels_sqp.py",
+    "kernels_arcs.py",
+    "kernels_circle.py",
+    "kernels_graph.py",
+    "kernels_front.py",
+    "kernels_jit.py",
+)
 _loaded: dict[str, Any] = {}
 #: Where the loaded kernels came from: the ahead-of-time module's path, or "numba's JIT".
 source = ""

@@ -18,6 +18,8 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from .kernels_jit import jit as _jit
 
 #: Newton iterations on the Hyper fit's characteristic polynomial (Chernov's limit).
@@ -231,3 +233,32 @@ def mean_abs_error_kernel(p, cx, cy, radius):  # pragma: no cover - compiled
     for i in range(n):
         total += abs(math.hypot(p[i, 0] - cx, p[i, 1] - cy) - radius)
     return total / n
+
+
+@_jit
+def biarc_worst_kernel(chain, centre, index, splits, radius, head):  # pragma: no cover - compiled
+    """``tangency._biarc_worst`` past its circles' centres: the largest distance (S, A), px.
+
+    ``centre`` (S, A, 2) holds the circle of each split and turn; of the pixels
+    ``chain[index]`` those up to the split (``head``) or from it on count. The
+    same arithmetic as the numpy reference, which measures every pixel and
+    zeroes the others' distances (the distances are not negative: the largest
+    is the same).
+    """
+    n_splits = centre.shape[0]
+    n_turns = centre.shape[1]
+    out = np.zeros((n_splits, n_turns))
+    for s in range(n_splits):
+        split = splits[s]
+        for a in range(n_turns):
+            cx = centre[s, a, 0]
+            cy = centre[s, a, 1]
+            worst = 0.0
+            for j in range(len(index)):
+                i = index[j]
+                if (head and i <= split) or (not head and i >= split):
+                    d = abs(math.hypot(chain[i, 0] - cx, chain[i, 1] - cy) - radius)
+                    if d > worst:
+                        worst = d
+            out[s, a] = worst
+    return out

@@ -128,7 +128,7 @@ def tangent_joins(opt: FitState, tolerance: float) -> bool:
     if len(made) < len(joins):
         one = _state(opt), opt.similarity()
         _restore(opt, start)
-        whole = _all_at_once(opt, joins, bound)
+        whole = _all_at_once(opt, joins, bound, least=len(made))
         if len(whole) > len(made) or (len(whole) == len(made) and opt.similarity() < one[1]):
             made = whole
         else:
@@ -253,13 +253,19 @@ def _one_at_a_time(opt: FitState, joins: dict[int, tuple[int, int]], bound: floa
     return made
 
 
-def _all_at_once(opt: FitState, joins: dict[int, tuple[int, int]], bound: float) -> dict[int, tuple[int, int]]:
+def _all_at_once(
+    opt: FitState, joins: dict[int, tuple[int, int]], bound: float, *, least: int = 0
+) -> dict[int, tuple[int, int]]:
     """Refit the whole state with every tangency of ``joins`` at once; the joins made.
 
     Every circle and junction free, straight lines fixed, the rungs and the
     nodes as they are. While the fit fails, lifts E^s above ``bound`` or adds a
     redundant intersection, the join whose circles are farthest from touching
-    now is released (``opt.loose``) and the fit tried again.
+    now is released (``opt.loose``) and the fit tried again; once fewer than
+    ``least`` joins are left (what one join at a time made: a result that
+    :func:`tangent_joins` would not keep), none is made and the state is left
+    for the caller to restore. Each try is a global solve (on the polar bear
+    up to 20 a pass): the ones that could not win are not made.
     """
     seeds = {g: f.seed for g, f in opt.fits.items()}
     groups = dict(opt.groups)
@@ -268,7 +274,7 @@ def _all_at_once(opt: FitState, joins: dict[int, tuple[int, int]], bound: float)
     crossings = _redundant(opt, set(groups))
     while True:
         touching = opt.tangencies(groups, seeds)
-        if not touching:
+        if not touching or len(touching) < least:
             return {}
         out = opt.solve_whole(
             groups, seeds, node_groups, n_groups_total=len(groups), n_junctions_total=len(node_groups), tangent=True
@@ -298,25 +304,39 @@ def _rung_choices(opt: FitState, node: int, pair: tuple[int, int]) -> list[dict[
     are now (:func:`_predicted_apart`), the nearest first, at most
     ``RUNG_CHOICES`` of them (each costs a fit).
     """
-    steps = {}
+    steps: dict[int, list[int]] = {}
+    rungs: dict[tuple[int, int], tuple[int, float]] = {}  # (group, step) -> (k, r), each looked up once
     for g in pair:
-        k = opt.fits[g].k
-        steps[g] = [0] if k is None else [0, *(s for s in (-1, 1) if _neighbour_rung(opt, g, s) is not None)]
+        steps[g] = [0]
+        if opt.fits[g].k is None:
+            continue
+        for s in (-1, 1):
+            rung = _neighbour_rung(opt, g, s)
+            if rung is not None:
+                rungs[g, s] = rung
+                steps[g].append(s)
     a, b = pair
     combos = [{a: sa, b: sb} for sa in steps[a] for sb in steps[b] if sa or sb]
     now = _predicted_apart(opt, node, pair, {})
-    apart = {i: _predicted_apart(opt, node, pair, c) for i, c in enumerate(combos)}
+    apart = {i: _predicted_apart(opt, node, pair, c, rungs) for i, c in enumerate(combos)}
     nearer = sorted((i for i in apart if apart[i] < now), key=lambda i: (apart[i], i))
     return [{a: 0, b: 0}, *(combos[i] for i in nearer[:RUNG_CHOICES])]
 
 
-def _predicted_apart(opt: FitState, node: int, pair: tuple[int, int], combo: dict[int, int]) -> float:
+def _predicted_apart(
+    opt: FitState,
+    node: int,
+    pair: tuple[int, int],
+    combo: dict[int, int],
+    rungs: dict[tuple[int, int], tuple[int, float]] | None = None,
+) -> float:
     """|sin| of the angle between the radii to a join's junction of its two circles, rungs stepped by ``combo``.
 
     Each circle is placed through the junction and the group's other end
     where they are now (on the side of its centre now): how far from touching
     the choice of rungs leaves the two before any junction moves. Lines keep
     their circle. Infinite if a radius is too short to reach the other end.
+    ``rungs`` holds the offered rungs by (group, step) when they are known.
     """
     q = opt.graph.junctions[node] + opt.disp[node]
     radii = []
@@ -325,7 +345,7 @@ def _predicted_apart(opt: FitState, node: int, pair: tuple[int, int], combo: dic
         center = f.center
         step = combo.get(g, 0)
         if f.k is not None:
-            r = f.radius if not step else _offered_rung(opt, g, step)[1]
+            r = f.radius if not step else (rungs[g, step] if rungs else _offered_rung(opt, g, step))[1]
             other = group.nodes[0] if group.nodes[-1] == node else group.nodes[-1]
             p = opt.graph.junctions[other] + opt.disp[other]
             half = 0.5 * float(np.hypot(*(p - q)))
@@ -605,6 +625,17 @@ def _biarc_worst(
     """
     centre = chain[splits][:, None, :] + side * r * _biarc_normal(chain, splits, turns)  # (S, A, 2)
     index = np.arange(0, len(chain), stride)
+    from . import kernels
+
+    if kernels.usable():  # the same numbers, without the (S, A, m) distances of both sides
+        return kernels.biarc_worst_kernel(chain, centre, index, np.asarray(splits, dtype=np.int64), float(r), head)
+    return _biarc_worst_reference(chain, centre, index, splits, r, head)
+
+
+def _biarc_worst_reference(
+    chain: np.ndarray, centre: np.ndarray, index: np.ndarray, splits: np.ndarray, r: float, head: bool
+) -> np.ndarray:
+    """:func:`_biarc_worst` in numpy past the centres (S, A, 2): the compiled kernel's reference."""
     sample = chain[index]
     dist = np.abs(np.hypot(sample[:, 0] - centre[..., :1], sample[:, 1] - centre[..., 1:]) - r)  # (S, A, m)
     mine = index[None, :] <= splits[:, None] if head else index[None, :] >= splits[:, None]

@@ -121,6 +121,46 @@ def test_a_small_spot_of_a_jpeg_keeps_its_region_beside_larger_ones_of_its_colou
     assert len(np.unique(regions)) == 5  # paper, body, three spots: no ringing along the body's edge seeded
 
 
+@pytest.mark.parametrize("quality", [60, 70, 85, 95])
+@pytest.mark.parametrize("radius", [5, 7])
+def test_a_small_spot_of_a_jpeg_near_a_larger_one_of_its_colour_keeps_its_region(quality, radius):
+    """A 10-14 px spot 10 px from a 32 px spot of its colour, within a 16 px chroma block of it.
+
+    The larger spot's seed is near the small spot's pixels, but across the body's colour: it
+    explains them only through pixels of its own colour, which stop at its rim (the lost spot
+    of ``clipart-critter-d-jpeg``).
+    """
+    s = 4
+    im = np.full((200 * s, 200 * s, 3), 255, np.uint8)
+    cv2.ellipse(im, (100 * s, 100 * s), (85 * s, 60 * s), 0, 0, 360, (240, 170, 60), -1, lineType=cv2.LINE_AA)
+    x = 60 + 16 + 10 + radius
+    for cx, cy, r in ((60, 100, 16), (x, 100, radius)):
+        cv2.circle(im, (cx * s, cy * s), r * s, (170, 95, 40), -1, lineType=cv2.LINE_AA)
+    regions = _regions(_jpeg(cv2.resize(im, (200, 200), interpolation=cv2.INTER_AREA), quality))
+    spot, big, body = regions[100, x], regions[100, 60], regions[70, 100]
+    assert spot not in (body, big, regions[5, 5])
+    assert np.pi * (radius - 1.5) ** 2 <= int((regions == spot).sum()) <= np.pi * (radius + 1.5) ** 2
+    assert len(np.unique(regions)) == 4  # paper, body, two spots
+
+
+def test_srgb_to_lab_is_scikit_images_rgb2lab():
+    """Once per colour of an 8-bit image, the same bits as the whole image's conversion."""
+    from skimage.color import rgb2lab
+
+    from img2logo.clipart import srgb_to_lab
+
+    rng = np.random.default_rng(3)
+    for colours in (2, 50, 5000):
+        palette = rng.integers(0, 256, (colours, 3))
+        rgb = palette[rng.integers(0, colours, (60, 70))] / 255.0
+        assert np.array_equal(srgb_to_lab(rgb), rgb2lab(rgb))
+    blurred = cv2.GaussianBlur(rgb, (5, 5), 1.0)  # not 8-bit: converted whole
+    assert np.array_equal(srgb_to_lab(blurred), rgb2lab(blurred))
+    for name in ("clipart-fish.png", "drawing-rabbit.png", "photo-cat.png"):
+        rgb = load_image(DATA / name).rgb
+        assert np.array_equal(srgb_to_lab(rgb), rgb2lab(rgb))
+
+
 def test_thin_strokes_of_a_jpeg_drawing_seed_no_fill_where_they_cross():
     """Two 3 px lines crossing: the crossing is thick enough to have an inside, but is no small fill."""
     im = blank()
@@ -279,3 +319,20 @@ def test_flat_areas_match_the_padded_window():
             assert np.array_equal(_flat_areas(lab, link), reference(lab, link))
     lab = load_image(DATA / "clipart-fish.png").lab
     assert np.array_equal(_flat_areas(lab, 1.15), reference(lab, 1.15))
+
+
+def test_label_means_match_bincount():
+    # One compiled pass for all channels (a speed-up): the same bits as np.bincount per channel.
+    from img2logo.clipart import label_means
+
+    rng = np.random.default_rng(9)
+    for _ in range(20):
+        h, w = (int(v) for v in rng.integers(1, 50, 2))
+        labels = rng.integers(0, int(rng.integers(1, 300)), (h, w))
+        values = rng.random((h, w, 3)) * 100.0
+        flat = labels.ravel()
+        counts = np.bincount(flat).astype(np.float64)
+        sums = np.stack([np.bincount(flat, weights=values[..., c].ravel(), minlength=len(counts)) for c in range(3)], 1)
+        got_counts, got_means = label_means(labels, values)
+        assert np.array_equal(got_counts, counts)
+        assert np.array_equal(got_means, sums / np.maximum(counts, 1.0)[:, None])

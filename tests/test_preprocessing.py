@@ -594,3 +594,19 @@ def test_a_drawing_run_imports_no_ndimage(tmp_path) -> None:
         [sys.executable, "-c", code, str(path)], capture_output=True, text=True, check=True, cwd=tmp_path
     )
     assert out.stdout.strip() == "[]"
+
+
+def test_classify_matches_the_ring_of_shifted_copies():
+    # The neighbours coded as a byte and read from tables (a speed-up): the same crossing
+    # numbers and counts as walking the 8 shifted copies of the padded map, at the edges too.
+    from img2logo._skeleton import _RING, classify
+
+    rng = np.random.default_rng(11)
+    for _ in range(30):
+        h, w = (int(v) for v in rng.integers(1, 40, 2))
+        skel = rng.random((h, w)) < rng.uniform(0.0, 1.0)
+        pad = np.pad(skel, 1)
+        ring = np.stack([pad[1 + dr : 1 + dr + h, 1 + dc : 1 + dc + w] for dr, dc in _RING])
+        crossings, count = classify(skel)
+        assert np.array_equal(crossings, np.sum(~ring & np.roll(ring, -1, axis=0), axis=0))
+        assert np.array_equal(count, ring.sum(axis=0))

@@ -173,3 +173,23 @@ def test_the_level_kept_has_the_fewest_arcs_plus_weighted_kinks(monkeypatch, kin
 def _at(levels, n):
     levels.groups = dict.fromkeys(range(n))
     return levels
+
+
+def test_biarc_worst_kernel_matches_the_numpy_reference():
+    # The compiled kernel measures each side's pixels only: the same bits as the reference.
+    from img2logo.tangency import _biarc_normal, _biarc_worst, _biarc_worst_reference
+
+    rng = np.random.default_rng(5)
+    for _ in range(40):
+        n = int(rng.integers(20, 120))
+        t = np.linspace(0.0, rng.uniform(0.5, 3.0), n)
+        radius = rng.uniform(10.0, 200.0)
+        chain = np.round(np.stack([radius * np.cos(t), radius * np.sin(t)], 1) + rng.normal(0, 0.7, (n, 2))) + 100.5
+        splits, turns = np.arange(4, n - 5, 3), np.linspace(-0.3, 0.3, 7)
+        for head in (True, False):
+            for stride in (1, 3):
+                r, side = rng.uniform(5.0, 300.0), float(rng.choice([-1.0, 1.0]))
+                centre = chain[splits][:, None, :] + side * r * _biarc_normal(chain, splits, turns)
+                index = np.arange(0, n, stride)
+                expected = _biarc_worst_reference(chain, centre, index, splits, r, head)
+                assert np.array_equal(_biarc_worst(chain, splits, turns, r, side, head, stride), expected)
