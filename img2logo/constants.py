@@ -637,3 +637,8 @@ SYMMETRY_FIT_STALL: int = 20
 SYMMETRY_SNAP_ANGLE: float = 1.0
 #: See SYMMETRY_SNAP_ANGLE: the score an exactly upright axis may lose, as a fraction.
 SYMMETRY_SNAP_SCORE_LOSS: float = 0.01
+#: Inflated bytes of one strip when a PNG larger than the working size is decoded strip by strip
+#: (loading._read_png_strips): rows of the file, a multiple of the reduce factor, about this many
+#: bytes (one strip of a 12000 px 16-bit RGBA file: 170 rows). Bounds the decode's memory to a strip
+#: and the reduced image (the full-size 16-bit image was 1.15 GB); larger strips save only calls.
+PNG_STRIP_BYTES: int = 16 << 20

@@ -5,7 +5,8 @@ Eqn. 13 for a local window), :mod:`img2logo.kernels_arcs` (arc-arc
 intersections, the redundant-intersection test, the arc extraction with its
 Fréchet distance) and :mod:`img2logo.kernels_circle` (the free circle fit, a
 golden circle's centre), each beneath a public function whose Python code stays as
-the reference the tests compare against. This module gives them to their
+the reference the tests compare against, and :mod:`img2logo.kernels_png` (a large
+PNG's unfiltering and box reduce, strip by strip; its reference is Pillow's decoding). This module gives them to their
 callers as attributes (``kernels.sqp_dense(...)``), loaded on first use:
 
 1. **Ahead of time.** On the first use in an install the entry points below are
@@ -72,10 +73,12 @@ ENTRY_POINTS: dict[str, tuple[str, tuple[str, ...], str]] = {
     "fit_circle_kernel": ("kernels_circle", ("f8[:,::1]", "f8", "f8"), "Tuple((i8, f8, f8, f8, f8, b1))"),
     "fit_center_kernel": ("kernels_circle", ("f8[:,::1]", "f8", "f8", "f8", "i8"), "UniTuple(f8, 2)"),
     "mean_abs_error_kernel": ("kernels_circle", ("f8[:,::1]", "f8", "f8", "f8"), "f8"),
+    "png_unfilter": ("kernels_png", ("!u1[::1]", "i8", "i8", "i8", "!u1[::1]"), "i8"),
+    "png_reduce": ("kernels_png", ("u1[::1]", "i8", "i8", "i8", "i8", "i8", "i8", "b1", "i8", "!f8[:,::1]"), "i8"),
 }
 
-_DTYPES = {"f8": np.dtype(np.float64), "i8": np.dtype(np.int64), "b1": np.dtype(np.bool_)}
-_SOURCES = ("kernels_sqp.py", "kernels_arcs.py", "kernels_circle.py", "kernels_jit.py")
+_DTYPES = {"f8": np.dtype(np.float64), "i8": np.dtype(np.int64), "b1": np.dtype(np.bool_), "u1": np.dtype(np.uint8)}
+_SOURCES = ("kernels_sqp.py", "kernels_arcs.py", "kernels_circle.py", "kernels_png.py", "kernels_jit.py")
 _loaded: dict[str, Any] = {}
 #: Where the loaded kernels came from: the ahead-of-time module's path, or "numba's JIT".
 source = ""
