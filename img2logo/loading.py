@@ -437,8 +437,6 @@ def _read_png_strips(path: Path, factor: int) -> np.ndarray | None:
         if ctype == 3 and palette is None:
             raise InvalidImageError(f"{path}: not a readable image: the palette PNG has no palette (no PLTE chunk)")
         rows_per = factor * max(1, PNG_STRIP_BYTES // ((stride + 1) * factor))
-        buf = np.empty(rows_per * (stride + 1), dtype=np.uint8)
-        view = memoryview(buf)
         prior = np.zeros(stride, dtype=np.uint8)
         expand = _png_expander(ctype, depth, width, palette, key)
         channels = samples if expand is None else expand.channels
@@ -447,50 +445,120 @@ def _read_png_strips(path: Path, factor: int) -> np.ndarray | None:
             ((height + factor - 1) // factor, (width + factor - 1) // factor, channels),
             dtype=np.uint16 if out_depth == 16 else np.uint8,
         )
-        inflater = _inflater()
-        tail = first
-        for y in range(0, height, rows_per):
-            rows = min(rows_per, height - y)
-            need, have = rows * (stride + 1), 0
-            try:
-                while have < need:
-                    piece = inflater.decompress(tail, need - have)
-                    tail = inflater.unconsumed_tail
-                    if piece:
-                        view[have : have + len(piece)] = piece
-                        have += len(piece)
-                        continue
-                    nxt = None if tail or inflater.eof else next(chunks, None)
-                    if nxt is None or nxt[0] != b"IDAT":
+        pitch = stride + 1
+        # Rows per kernel call: about a megabyte, so that the inflating thread waits little for the GIL.
+        piece_rows = factor * max(1, (1 << 20) // (pitch * factor))
+        strips = _InflatedStrips(path, chunks, first, height, rows_per, pitch)
+        try:
+            for y, rows, buf in strips:
+                for r0 in range(0, rows, piece_rows):
+                    r1 = min(rows, r0 + piece_rows)
+                    block = buf[r0 * pitch : r1 * pitch]
+                    bad = kernels.png_unfilter(block, r1 - r0, stride, max(1, samples * depth // 8), prior)
+                    if bad >= 0:
                         raise InvalidImageError(
-                            f"{path}: not a readable image: its pixel data ends before the last row "
-                            f"(row {y + have // (stride + 1) + 1} of {height}; the file cut short?)"
+                            f"{path}: not a readable image: its pixel data is damaged "
+                            f"(row {y + r0 + bad + 1} has filter type {block[bad * pitch]})"
                         )
-                    tail = nxt[1]
-            except _zlib_errors() as exc:
-                raise InvalidImageError(
-                    f"{path}: not a readable image: its compressed pixel data is damaged ({exc})"
-                ) from exc
-            bad = kernels.png_unfilter(buf[:need], rows, stride, max(1, samples * depth // 8), prior)
-            if bad >= 0:
-                raise InvalidImageError(
-                    f"{path}: not a readable image: its pixel data is damaged "
-                    f"(row {y + bad + 1} has filter type {buf[bad * (stride + 1)]})"
-                )
-            if expand is None:
-                strip, pitch, offset, alpha = buf, stride + 1, 1, ctype in (4, 6)
-            else:
-                pixels = np.ascontiguousarray(expand(buf[:need].reshape(rows, stride + 1)[:, 1:]))
-                strip = pixels.view(np.uint8).reshape(-1)
-                pitch, offset, alpha = width * channels * (out_depth // 8), 0, expand.alpha
-            small = np.empty(((rows + factor - 1) // factor, result.shape[1] * channels))
-            n = kernels.png_reduce(strip, rows, pitch, offset, width, channels, out_depth, alpha, factor, small)
-            result[y // factor : y // factor + n] = np.rint(small).reshape(n, -1, channels)
+                    if expand is None:
+                        strip, step, offset, alpha = block, pitch, 1, ctype in (4, 6)
+                    else:
+                        pixels = np.ascontiguousarray(expand(block.reshape(r1 - r0, pitch)[:, 1:]))
+                        strip = pixels.view(np.uint8).reshape(-1)
+                        step, offset, alpha = width * channels * (out_depth // 8), 0, expand.alpha
+                    small = np.empty(((r1 - r0 + factor - 1) // factor, result.shape[1] * channels))
+                    n = kernels.png_reduce(
+                        strip, r1 - r0, step, offset, width, channels, out_depth, alpha, factor, small
+                    )
+                    top = (y + r0) // factor
+                    result[top : top + n] = np.rint(small).reshape(n, -1, channels)
+                strips.done(buf)
+        finally:
+            strips.close()
     if channels == 1:
         return result[:, :, 0]
     if channels >= 3:  # OpenCV's channel order, as the rest of loading expects
         result = np.ascontiguousarray(result[:, :, [2, 1, 0, *range(3, channels)]])
     return result
+
+
+class _InflatedStrips:
+    """A PNG's inflated rows, a strip at a time, inflated by a thread of their own.
+
+    zlib releases the GIL while it inflates, so on two cores the next strip is
+    inflated while the compiled kernels unfilter and reduce this one (which hold
+    the GIL, in calls of about a megabyte). Iterating gives (first row, rows,
+    buffer) in order; :meth:`done` hands a buffer back, :meth:`close` stops the
+    thread and waits for it. An error of the thread (a file cut short, damaged
+    data: :class:`InvalidImageError`) is raised by the iteration.
+    """
+
+    BUFFERS = 3
+
+    def __init__(
+        self, path: Path, chunks: Iterator[tuple[bytes, bytes]], first: bytes, height: int, rows_per: int, pitch: int
+    ) -> None:
+        import queue
+        import threading
+
+        self._free: queue.Queue = queue.Queue()
+        self._full: queue.Queue = queue.Queue()
+        for _ in range(self.BUFFERS):
+            self._free.put(np.empty(rows_per * pitch, dtype=np.uint8))
+        self._stop = False
+        args = (path, chunks, first, height, rows_per, pitch)
+        self._thread = threading.Thread(target=self._run, args=args, name="img2logo-inflate", daemon=True)
+        self._thread.start()
+
+    def _run(
+        self, path: Path, chunks: Iterator[tuple[bytes, bytes]], tail: bytes, height: int, rows_per: int, pitch: int
+    ) -> None:
+        try:
+            inflater = _inflater()
+            for y in range(0, height, rows_per):
+                buf = self._free.get()
+                if buf is None or self._stop:
+                    return
+                view, need, have = memoryview(buf), min(rows_per, height - y) * pitch, 0
+                try:
+                    while have < need:
+                        piece = inflater.decompress(tail, need - have)
+                        tail = inflater.unconsumed_tail
+                        if piece:
+                            view[have : have + len(piece)] = piece
+                            have += len(piece)
+                            continue
+                        nxt = None if tail or inflater.eof else next(chunks, None)
+                        if nxt is None or nxt[0] != b"IDAT":
+                            raise InvalidImageError(
+                                f"{path}: not a readable image: its pixel data ends before the last row "
+                                f"(row {y + have // pitch + 1} of {height}; the file cut short?)"
+                            )
+                        tail = nxt[1]
+                except _zlib_errors() as exc:
+                    raise InvalidImageError(
+                        f"{path}: not a readable image: its compressed pixel data is damaged ({exc})"
+                    ) from exc
+                self._full.put((y, need // pitch, buf))
+            self._full.put(None)
+        except BaseException as exc:  # handed to the reading thread, which raises it
+            self._full.put(exc)
+
+    def __iter__(self) -> Iterator[tuple[int, int, np.ndarray]]:
+        while (item := self._full.get()) is not None:
+            if isinstance(item, BaseException):
+                raise item
+            yield item
+
+    def done(self, buf: np.ndarray) -> None:
+        """Hand ``buf`` back for a later strip."""
+        self._free.put(buf)
+
+    def close(self) -> None:
+        """Stop the inflating thread (after its current call) and wait for it."""
+        self._stop = True
+        self._free.put(None)
+        self._thread.join()
 
 
 def _png_chunks(f: BinaryIO) -> Iterator[tuple[bytes, bytes]]:
