@@ -6,8 +6,9 @@ intersections, the redundant-intersection test, the arc extraction with its
 Fréchet distance) and :mod:`img2logo.kernels_circle` (the free circle fit, a
 golden circle's centre), each beneath a public function whose Python code stays as
 the reference the tests compare against, and :mod:`img2logo.kernels_png` (a large
-PNG's unfiltering and box reduce, strip by strip; its reference is Pillow's decoding). This module gives them to their
-callers as attributes (``kernels.sqp_dense(...)``), loaded on first use:
+PNG's unfiltering and box reduce, strip by strip; its reference is Pillow's decoding).
+This module gives them to their callers as attributes (``kernels.sqp_dense(...)``),
+loaded on first use:
 
 1. **Ahead of time.** On the first use in an install the entry points below are
    compiled once, with numba's ``pycc``, into one extension module (seconds,
