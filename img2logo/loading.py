@@ -21,7 +21,7 @@ import warnings
 from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, BinaryIO
+from typing import TYPE_CHECKING, Any, BinaryIO
 
 import numpy as np
 
@@ -627,7 +627,7 @@ class _Expander:
             lut[: len(entries), :3] = entries
             if self.alpha:
                 lut[:, 3] = 255
-                opacities = np.frombuffer(key, dtype=np.uint8)[:256]
+                opacities = np.frombuffer(key or b"", dtype=np.uint8)[:256]
                 lut[: len(opacities), 3] = opacities
             self.lut = lut
             self.channels = lut.shape[1]
@@ -668,7 +668,7 @@ def _png_expander(ctype: int, depth: int, width: int, palette: bytes | None, key
     return None
 
 
-def _inflater() -> object:
+def _inflater() -> Any:
     """A streaming zlib decompressor: ``zlib_ng``'s where it is installed (the same bytes, about 1.7 times
     faster on a photo's 16-bit noise), else the standard library's."""
     try:
