@@ -654,3 +654,8 @@ COLOUR_LINE_SUBSAMPLE: float = 2.0
 #: its lightness line: drawn twice, a duck of 16 arcs had 34); beyond it, the
 #: edge has no lightness step of its own.
 COLOUR_LINE_GATE: float = 3.0 * 1.6 * FDOG_SIGMA_C * COLOUR_LINE_SUBSAMPLE
+#: Inflated bytes of one strip when a PNG larger than the working size is decoded strip by strip
+#: (loading._read_png_strips): rows of the file, a multiple of the reduce factor, about this many
+#: bytes (one strip of a 12000 px 16-bit RGBA file: 170 rows). Bounds the decode's memory to a strip
+#: and the reduced image (the full-size 16-bit image was 1.15 GB); larger strips save only calls.
+PNG_STRIP_BYTES: int = 16 << 20

@@ -4,10 +4,13 @@ The kernels themselves are written in :mod:`img2logo.kernels_sqp` (the SQP of
 Eqn. 13 for a local window), :mod:`img2logo.kernels_arcs` (arc-arc
 intersections, the redundant-intersection test, the arc extraction with its
 Fréchet distance), :mod:`img2logo.kernels_circle` (the free circle fit, a
-golden circle's centre) and :mod:`img2logo.kernels_graph` (the skeleton's shortest
-paths, the global KKT solve in a band), each beneath a public function whose Python code stays as
-the reference the tests compare against. This module gives them to their
-callers as attributes (``kernels.sqp_dense(...)``), loaded on first use:
+golden circle's centre, the biarc search's worst distances), :mod:`img2logo.kernels_graph`
+(the skeleton's shortest paths, the global KKT solve in a band) and
+:mod:`img2logo.kernels_front` (the clip-art regions' label sums), each beneath a public
+function whose Python code stays as the reference the tests compare against, and
+:mod:`img2logo.kernels_png` (a large PNG's unfiltering and box reduce, strip by strip; its
+reference is Pillow's decoding). This module gives them to their callers as attributes
+(``kernels.sqp_dense(...)``), loaded on first use:
 
 1. **Ahead of time.** On the first use in an install the entry points below are
    compiled once, with numba's ``pycc``, into one extension module (seconds,
@@ -77,15 +80,18 @@ ENTRY_POINTS: dict[str, tuple[str, tuple[str, ...], str]] = {
     "banded_solve_kernel": ("kernels_graph", ("i8[::1]", "i8[::1]", "f8[::1]", "f8[::1]", "!f8[::1]"), "i8"),
     "label_sums_kernel": ("kernels_front", ("i8[::1]", "f8[:,::1]", "i8"), "Tuple((f8[::1], f8[:,::1]))"),
     "biarc_worst_kernel": ("kernels_circle", tuple("f8[:,::1] f8[:,:,::1] i8[::1] i8[::1] f8 b1".split()), "f8[:,::1]"),
+    "png_unfilter": ("kernels_png", ("!u1[::1]", "i8", "i8", "i8", "!u1[::1]"), "i8"),
+    "png_reduce": ("kernels_png", ("u1[::1]", "i8", "i8", "i8", "i8", "i8", "i8", "b1", "i8", "!f8[:,::1]"), "i8"),
 }
 
-_DTYPES = {"f8": np.dtype(np.float64), "i8": np.dtype(np.int64), "b1": np.dtype(np.bool_)}
+_DTYPES = {"f8": np.dtype(np.float64), "i8": np.dtype(np.int64), "b1": np.dtype(np.bool_), "u1": np.dtype(np.uint8)}
 _SOURCES = (
     "kernels_sqp.py",
     "kernels_arcs.py",
     "kernels_circle.py",
     "kernels_graph.py",
     "kernels_front.py",
+    "kernels_png.py",
     "kernels_jit.py",
 )
 _loaded: dict[str, Any] = {}

@@ -309,3 +309,239 @@ def test_a_plain_png_is_probed_without_pillow(tmp_path, monkeypatch):
     )
     with pytest.raises(InvalidImageError, match=r"70x40 px, more than the limit"):
         loading._probe(plain, 100)
+
+
+# --------------------------------------------------------------------------- a large PNG, strip by strip
+def _box_mean(arr: np.ndarray, factor: int, alpha: bool) -> np.ndarray:
+    """Reference of the strip path's reduce: (H, W, C) samples to the float box means (colour premultiplied)."""
+    a = arr.astype(np.float64)
+    h, w, c = a.shape
+    big_h, big_w = -(-h // factor), -(-w // factor)
+    pad = np.full((big_h * factor, big_w * factor, c), np.nan)
+    pad[:h, :w] = a
+    boxes = pad.reshape(big_h, factor, big_w, factor, c)
+    if not alpha:
+        return np.nanmean(boxes, axis=(1, 3))
+    op = boxes[..., -1:]
+    sum_a = np.nansum(op, axis=(1, 3))
+    colour = np.nansum(boxes[..., :-1] * op, axis=(1, 3)) / np.where(sum_a > 0, sum_a, 1.0)
+    count = np.sum(~np.isnan(op), axis=(1, 3))
+    return np.concatenate([np.where(sum_a > 0, colour, 0.0), sum_a / count], axis=2)
+
+
+def _noisy(h: int, w: int, channels: int, dtype: type, seed: int = 3) -> np.ndarray:
+    """A smooth picture with noise: (H, W, C) of ``dtype``, every filter type worth choosing."""
+    rng = np.random.default_rng(seed)
+    coarse = rng.uniform(0, 255, (h // 16 + 2, w // 16 + 2, channels)).astype(np.float32)
+    smooth = cv2.resize(coarse, (w, h), interpolation=cv2.INTER_CUBIC).reshape(h, w, channels)
+    values = np.clip(smooth + rng.normal(0, 6, smooth.shape), 0, 255)
+    return (values * 257).astype(np.uint16) if dtype == np.uint16 else values.astype(np.uint8)
+
+
+@pytest.mark.parametrize(
+    ("channels", "dtype", "factor", "png_filter"),
+    [
+        (4, np.uint16, 5, "FILTER_PAETH"),
+        (4, np.uint8, 3, "ALL_FILTERS"),
+        (3, np.uint16, 2, "FILTER_AVG"),
+        (3, np.uint8, 7, "FILTER_UP"),
+        (1, np.uint16, 4, "FILTER_SUB"),
+        (1, np.uint8, 1, "ALL_FILTERS"),
+    ],
+)
+def test_a_large_png_read_strip_by_strip_is_its_box_reduce(tmp_path, monkeypatch, channels, dtype, factor, png_filter):
+    # issue 20, item 12: the full-size image is never in memory; the result is the box mean to rounding,
+    # at the file's depth, whatever the row filters (strips of a few rows: many strip joins).
+    from img2logo import loading
+
+    monkeypatch.setattr(loading, "PNG_STRIP_BYTES", 5000)
+    arr = _noisy(301, 517, channels, dtype)
+    path = tmp_path / "big.png"
+    filters = (
+        [cv2.IMWRITE_PNG_FILTER, getattr(cv2, f"IMWRITE_PNG_{png_filter}")]
+        if hasattr(cv2, "IMWRITE_PNG_FILTER")
+        else []
+    )
+    cv2.imwrite(str(path), arr[:, :, 0] if channels == 1 else arr, filters)
+    got = loading._read_png_strips(path, factor)
+    assert got is not None and got.dtype == dtype
+    expected = _box_mean(arr, factor, channels == 4)
+    assert got.reshape(expected.shape).shape == expected.shape
+    assert np.abs(got.reshape(expected.shape) - expected).max() <= 0.5  # rounded to the file's depth
+
+
+def _png(width: int, height: int, depth: int, ctype: int, rows: list[bytes], chunks: tuple = ()) -> bytes:
+    """A PNG of the given filtered rows (each its filter-type byte and data), with extra (type, data) chunks."""
+
+    def chunk(kind: bytes, data: bytes) -> bytes:
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+
+    ihdr = struct.pack(">IIBBBBB", width, height, depth, ctype, 0, 0, 0)
+    extra = b"".join(chunk(k, d) for k, d in chunks)
+    return (
+        b"\x89PNG\r\n\x1a\n"
+        + chunk(b"IHDR", ihdr)
+        + extra
+        + chunk(b"IDAT", zlib.compress(b"".join(rows)))
+        + chunk(b"IEND", b"")
+    )
+
+
+def _filtered(raw: np.ndarray, bpp: int) -> list[bytes]:
+    """Rows of ``raw`` (H, stride) uint8, row y filtered with type y % 5 (PNG specification, Sec. 9.2)."""
+    out, prior = [], np.zeros(raw.shape[1], dtype=np.int64)
+    for y, row in enumerate(raw.astype(np.int64)):
+        kind = y % 5
+        left = np.concatenate([np.zeros(bpp, np.int64), row[:-bpp]])
+        upper_left = np.concatenate([np.zeros(bpp, np.int64), prior[:-bpp]])
+        if kind == 4:
+            p = left + prior - upper_left
+            pa, pb, pc = np.abs(p - left), np.abs(p - prior), np.abs(p - upper_left)
+            pred = np.where((pa <= pb) & (pa <= pc), left, np.where(pb <= pc, prior, upper_left))
+        else:
+            pred = [np.zeros_like(row), left, prior, (left + prior) // 2][kind]
+        out.append(bytes([kind]) + ((row - pred) & 255).astype(np.uint8).tobytes())
+        prior = row
+    return out
+
+
+@pytest.mark.parametrize("bpp", [1, 3, 8])
+def test_every_row_filter_is_undone_exactly(tmp_path, bpp):
+    # Known answers: rows filtered by None, Sub, Up, Average and Paeth in turn, read back unreduced.
+    from img2logo import loading
+
+    rng = np.random.default_rng(bpp)
+    ctype, depth, channels = {1: (0, 8, 1), 3: (2, 8, 3), 8: (6, 16, 4)}[bpp]
+    width = 37
+    raw = rng.integers(0, 256, (23, width * bpp), dtype=np.uint8)
+    path = tmp_path / "filters.png"
+    path.write_bytes(_png(width, 23, depth, ctype, _filtered(raw, bpp)))
+    got = loading._read_png_strips(path, 1)
+    samples = raw.view(">u2").astype(np.uint16) if depth == 16 else raw
+    samples = samples.reshape(23, width, channels)
+    if channels >= 3:
+        samples = samples[:, :, [2, 1, 0, *range(3, channels)]]
+    if channels == 4:  # factor 1 keeps the colour of a transparent pixel: 0, as Pillow's reduce
+        samples = np.where(samples[:, :, 3:] == 0, 0, samples)
+    assert np.array_equal(got.reshape(samples.shape), samples)
+
+
+def test_a_png_of_one_idat_chunk_over_a_megabyte(tmp_path):
+    # Some encoders write all the pixel data in one chunk: it is read a megabyte at a time.
+    from img2logo import loading
+
+    raw = np.random.default_rng(5).integers(0, 256, (400, 600 * 8), dtype=np.uint8)  # 1.9 MB of noise
+    data = _png(600, 400, 16, 6, _filtered(raw, 8))
+    assert len(data) > 1 << 20
+    path = tmp_path / "one.png"
+    path.write_bytes(data)
+    got = loading._read_png_strips(path, 1)
+    samples = raw.view(">u2").astype(np.uint16).reshape(400, 600, 4)[:, :, [2, 1, 0, 3]]
+    assert np.array_equal(got, np.where(samples[:, :, 3:] == 0, 0, samples))
+    path.write_bytes(data[: len(data) // 2])
+    with pytest.raises(
+        InvalidImageError, match=r"one\.png: not a readable image: its pixel data ends before the last row"
+    ):
+        loading._read_png_strips(path, 1)
+
+
+def test_a_palette_and_low_depth_and_colour_key_png_read_strip_by_strip(tmp_path):
+    from PIL import Image
+
+    from img2logo import loading
+
+    arr = _noisy(207, 333, 3, np.uint8)
+    arr[50:80, 20:90] = (10, 20, 30)
+    cases = {
+        "p.png": (Image.fromarray(arr).quantize(64), {}),
+        "pa.png": (Image.fromarray(arr).quantize(64), {"transparency": bytes(range(0, 256, 4))}),
+        "one.png": (Image.fromarray(arr[:, :, 0] > 128), {}),
+        "four.png": (Image.fromarray(arr[:, :, 0]), {"bits": 4}),
+        "key.png": (Image.fromarray(arr), {"transparency": (10, 20, 30)}),
+    }
+    for name, (im, options) in cases.items():
+        path = tmp_path / name
+        im.save(path, **options)
+        got = loading._read_png_strips(path, 3)
+        rgba = np.array(Image.open(path).convert("RGBA"))[:, :, [2, 1, 0, 3]]
+        expected = _box_mean(rgba, 3, True)
+        if got.ndim == 2:
+            got = np.dstack([got] * 3)
+        if got.shape[2] == 3:
+            got = np.dstack([got, np.full(got.shape[:2], 255)])
+        visible = expected[:, :, 3] > 0
+        assert np.abs(got[:, :, 3] - expected[:, :, 3]).max() <= 0.5, name
+        assert np.abs(got[visible][:, :3] - expected[visible][:, :3]).max() <= 0.5, name
+
+
+def test_a_large_16_bit_rgba_png_loads_as_through_pillow(tmp_path, monkeypatch):
+    # The strip path and the path before it (Pillow, 8 bits) give the same image to a grey level.
+    from img2logo import loading
+
+    arr = np.dstack([_noisy(260, 430, 3, np.uint16), _shapes(260, 430, True)[:, :, 3].astype(np.uint16) * 257])
+    path = tmp_path / "big16.png"
+    cv2.imwrite(str(path), arr)
+    with pytest.warns(DownscaleWarning, match=r"image is 430x260 px, .*downscaled to 64x39 px"):
+        new = load_image(path, max_side=64)
+    monkeypatch.setattr(loading, "_read_png_strips", lambda path, factor: None)
+    with pytest.warns(DownscaleWarning):
+        old = load_image(path, max_side=64)
+    assert (new.width, new.height, new.has_alpha, new.input_size) == (old.width, old.height, True, (430, 260))
+    assert np.abs(new.rgb - old.rgb).max() < 2.5 / 255 and np.abs(new.alpha - old.alpha).max() < 1.5 / 255
+
+
+def test_a_large_png_stored_sideways_is_upright_on_the_strip_path(tmp_path, monkeypatch):
+    from PIL import Image
+
+    from img2logo import loading
+
+    calls = []
+    strips = loading._read_png_strips
+    monkeypatch.setattr(loading, "_read_png_strips", lambda path, factor: calls.append(factor) or strips(path, factor))
+    arr = np.full((240, 440, 3), 255, np.uint8)  # stored landscape, viewed portrait
+    arr[10:40, 10:120] = 0
+    exif = Image.Exif()
+    exif[0x0112] = 6
+    path = tmp_path / "phone.png"
+    Image.fromarray(arr).save(path, exif=exif.tobytes())
+    with pytest.warns(DownscaleWarning, match=r"image is 240x440 px, .*downscaled to 35x64 px"):
+        img = load_image(path, max_side=64)
+    assert calls == [6] and (img.width, img.height, img.input_size) == (35, 64, (240, 440))
+    assert img.gray[1:6, 30:34].mean() < 0.3 and img.gray[58:63, 1:5].mean() > 0.9  # the bar, at the top right
+
+
+@pytest.mark.parametrize(
+    ("damage", "message"),
+    [
+        (
+            "cut",
+            r"big\.png: not a readable image: its pixel data ends before the last row \(row \d+ of 300; the file cut",
+        ),
+        ("flip", r"big\.png: not a readable image: its (compressed )?pixel data is damaged"),
+    ],
+)
+def test_a_cut_or_damaged_large_png_is_one_line(tmp_path, damage, message):
+    arr = _noisy(300, 410, 4, np.uint16)
+    data = bytearray(cv2.imencode(".png", arr)[1].tobytes())
+    if damage == "cut":
+        data = data[: len(data) // 2]
+    else:
+        middle = len(data) // 2
+        data[middle : middle + 64] = bytes(64)
+    path = tmp_path / "big.png"
+    path.write_bytes(bytes(data))
+    with pytest.raises(InvalidImageError, match=message) as caught:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", DownscaleWarning)
+            load_image(path, max_side=64)
+    assert "\n" not in str(caught.value)
+
+
+def test_an_interlaced_png_is_left_to_pillow(tmp_path):
+    from img2logo import loading
+
+    data = bytearray(cv2.imencode(".png", _noisy(40, 50, 3, np.uint8))[1].tobytes())
+    data[28] = 1  # the IHDR's interlace method: Adam7
+    path = tmp_path / "adam7.png"
+    path.write_bytes(bytes(data))
+    assert loading._read_png_strips(path, 2) is None
