@@ -377,7 +377,7 @@ def _unexplained(
     if lonely:
         alone = ~near.any(axis=1)
         if alone.any():
-            near[alone] = _reached_entries(seed_of, singles, lab, contrast, rest, alone)
+            near[alone] = _reached_entries(seed_of, singles, lab, contrast, rest, np.asarray(alone))
     for a in range(n):
         on_a = near[:, a]
         if on_a.any():

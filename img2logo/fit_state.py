@@ -531,7 +531,10 @@ class FitState:
             return Seed(arc.circle.center, arc.circle.r, None)
         if hit[2] is None:
             hit = self._golden[key] = (hit[0], hit[1], self._golden_arc(group))
-        return hit[2]
+        seed = hit[2]
+        if seed is None:  # never: it was just made
+            raise RuntimeError("no golden seed was made")
+        return seed
 
     def _golden_arc(self, group: Group) -> Seed:
         """The free fit snapped to the ladder (Eqn. 12) as a circle, not a line: :meth:`golden`'s arc."""

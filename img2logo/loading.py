@@ -692,7 +692,7 @@ def _zlib_errors() -> tuple[type[Exception], ...]:
     with contextlib.suppress(ImportError):
         from zlib_ng import zlib_ng
 
-        errors.append(zlib_ng.error)
+        errors.append(zlib_ng.error)  # type: ignore[arg-type]  # a class, typed as an instance in its stub
     return tuple(errors)
 
 

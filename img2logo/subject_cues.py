@@ -428,7 +428,10 @@ def gaussian(image: np.ndarray, sigma: float | tuple[float, ...]) -> np.ndarray:
     from ._skeleton import compiled_module
 
     src = np.asarray(image)
-    sigmas = (float(sigma),) * src.ndim if np.isscalar(sigma) else tuple(float(v) for v in sigma)
+    if isinstance(sigma, (int, float, np.integer, np.floating)):
+        sigmas = (float(sigma),) * src.ndim
+    else:
+        sigmas = tuple(float(v) for v in sigma)
     try:
         correlate1d = compiled_module("scipy", "ndimage", "_nd_image").correlate1d
     except (ImportError, AttributeError):
