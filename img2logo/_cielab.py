@@ -50,3 +50,22 @@ def rgb2lab(rgb: np.ndarray) -> np.ndarray:
     a = 500.0 * (x - y)
     b = 200.0 * (y - z)
     return np.concatenate([c[..., np.newaxis] for c in (lightness, a, b)], axis=-1)
+
+
+def srgb_to_lab(rgb: np.ndarray) -> np.ndarray:
+    """``skimage.color.rgb2lab(rgb)`` (D65), to the bit, of an (H, W, 3) float64 image in [0, 1].
+
+    An 8-bit image (every value k / 255, as loaded) holds a few thousand colours
+    at most where it has 262144 pixels (a 512 px clip art: about a thousand):
+    each distinct colour is converted once, by :func:`rgb2lab` on
+    the (1, U, 3) array of them (the same row-by-row arithmetic as on the whole
+    image), and spread back to its pixels. Any other image is converted whole.
+    """
+    values = np.rint(rgb * 255.0)
+    if rgb.ndim != 3 or rgb.shape[2] != 3 or not np.array_equal(values / 255.0, rgb):
+        return np.asarray(rgb2lab(rgb))
+    v = values.astype(np.int32)
+    key = ((v[..., 0] << 16) | (v[..., 1] << 8) | v[..., 2]).ravel()
+    colours, index = np.unique(key, return_inverse=True)
+    table = np.stack([(colours >> 16) & 255, (colours >> 8) & 255, colours & 255], axis=1) / 255.0
+    return np.asarray(rgb2lab(table[None]))[0][index].reshape(rgb.shape)

@@ -40,6 +40,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ._cielab import srgb_to_lab
 from .constants import (
     CLIPART_BLOCK_REACH,
     CLIPART_EDGE_CONTRAST,
@@ -59,27 +60,6 @@ from .constants import (
     CLIPART_STROKE_WIDTH,
 )
 from .loading import LoadedImage
-
-
-def srgb_to_lab(rgb: np.ndarray) -> np.ndarray:
-    """``skimage.color.rgb2lab(rgb)`` (D65), to the bit, of an (H, W, 3) float64 image in [0, 1].
-
-    An 8-bit image (every value k / 255, as loaded) holds a few thousand colours
-    at most where it has 262144 pixels (a 512 px clip art: about a thousand):
-    each distinct colour is converted once, by scikit-image's own function on
-    the (1, U, 3) array of them (the same row-by-row arithmetic as on the whole
-    image), and spread back to its pixels. Any other image is converted whole.
-    """
-    from ._cielab import rgb2lab  # skimage.color.rgb2lab, without importing scipy.linalg
-
-    values = np.rint(rgb * 255.0)
-    if rgb.ndim != 3 or rgb.shape[2] != 3 or not np.array_equal(values / 255.0, rgb):
-        return np.asarray(rgb2lab(rgb))
-    v = values.astype(np.int32)
-    key = ((v[..., 0] << 16) | (v[..., 1] << 8) | v[..., 2]).ravel()
-    colours, index = np.unique(key, return_inverse=True)
-    table = np.stack([(colours >> 16) & 255, (colours >> 8) & 255, colours & 255], axis=1) / 255.0
-    return np.asarray(rgb2lab(table[None]))[0][index].reshape(rgb.shape)
 
 
 def colour_noise(lab: np.ndarray) -> tuple[float, float]:

@@ -122,7 +122,7 @@ class LoadedImage:
     def lab(self) -> np.ndarray:
         """CIELAB colours (D65), (H, W, 3) float64, read-only; computed once (kind detection and
         clip-art regions both need them)."""
-        from .clipart import srgb_to_lab  # skimage's rgb2lab, once per colour of an 8-bit image
+        from ._cielab import srgb_to_lab  # skimage's rgb2lab, once per colour of an 8-bit image
 
         return readonly(srgb_to_lab(self.rgb))
 

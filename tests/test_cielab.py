@@ -4,10 +4,11 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import cv2
 import numpy as np
 import pytest
 
-from img2logo._cielab import rgb2lab
+from img2logo._cielab import rgb2lab, srgb_to_lab
 from img2logo.loading import load_image
 
 DATA = Path(__file__).resolve().parents[1] / "data"
@@ -35,3 +36,19 @@ def test_other_dtypes_go_to_skimage():
 
     rgb = np.random.default_rng(1).integers(0, 256, (4, 4, 3)).astype(np.uint8)
     np.testing.assert_array_equal(rgb2lab(rgb), oracle(rgb))
+
+
+def test_srgb_to_lab_is_scikit_images_rgb2lab():
+    """Once per colour of an 8-bit image, the same bits as the whole image's conversion."""
+    from skimage.color import rgb2lab
+
+    rng = np.random.default_rng(3)
+    for colours in (2, 50, 5000):
+        palette = rng.integers(0, 256, (colours, 3))
+        rgb = palette[rng.integers(0, colours, (60, 70))] / 255.0
+        assert np.array_equal(srgb_to_lab(rgb), rgb2lab(rgb))
+    blurred = cv2.GaussianBlur(rgb, (5, 5), 1.0)  # not 8-bit: converted whole
+    assert np.array_equal(srgb_to_lab(blurred), rgb2lab(blurred))
+    for name in ("clipart-fish.png", "drawing-rabbit.png", "photo-cat.png"):
+        rgb = load_image(DATA / name).rgb
+        assert np.array_equal(srgb_to_lab(rgb), rgb2lab(rgb))

@@ -143,24 +143,6 @@ def test_a_small_spot_of_a_jpeg_near_a_larger_one_of_its_colour_keeps_its_region
     assert len(np.unique(regions)) == 4  # paper, body, two spots
 
 
-def test_srgb_to_lab_is_scikit_images_rgb2lab():
-    """Once per colour of an 8-bit image, the same bits as the whole image's conversion."""
-    from skimage.color import rgb2lab
-
-    from img2logo.clipart import srgb_to_lab
-
-    rng = np.random.default_rng(3)
-    for colours in (2, 50, 5000):
-        palette = rng.integers(0, 256, (colours, 3))
-        rgb = palette[rng.integers(0, colours, (60, 70))] / 255.0
-        assert np.array_equal(srgb_to_lab(rgb), rgb2lab(rgb))
-    blurred = cv2.GaussianBlur(rgb, (5, 5), 1.0)  # not 8-bit: converted whole
-    assert np.array_equal(srgb_to_lab(blurred), rgb2lab(blurred))
-    for name in ("clipart-fish.png", "drawing-rabbit.png", "photo-cat.png"):
-        rgb = load_image(DATA / name).rgb
-        assert np.array_equal(srgb_to_lab(rgb), rgb2lab(rgb))
-
-
 def test_thin_strokes_of_a_jpeg_drawing_seed_no_fill_where_they_cross():
     """Two 3 px lines crossing: the crossing is thick enough to have an inside, but is no small fill."""
     im = blank()
