@@ -158,9 +158,10 @@ def fit_constrained(
     curvature. ``mu`` and ``delta`` are ``KKT_DAMPING`` relative to the largest
     entry of J^T J, so nearly singular systems (huge radii, redundant
     constraints) stay solvable. The system is solved densely for a small
-    window and by a sparse LU above ``KKT_DENSE_MAX`` unknowns; a backtracking
-    line search on the L1 merit ``E^l + nu * sum |c|`` (``nu`` = 1.5 x the
-    largest multiplier seen) chooses the step length.
+    window and by a banded elimination (:func:`img2logo.constrained_sqp.solve_kkt`)
+    above ``KKT_DENSE_MAX`` unknowns; a backtracking line search on the L1
+    merit ``E^l + nu * sum |c|`` (``nu`` = 1.5 x the largest multiplier seen)
+    chooses the step length.
 
     Parameters
     ----------
@@ -427,9 +428,9 @@ def _fit(problem: WindowProblem, compiled: bool = True) -> ConstrainedFit:
     A KKT system of at most ``KKT_DENSE_MAX`` unknowns and multipliers (a local
     window) is solved by the compiled kernel :func:`img2logo.kernels_sqp.sqp_dense`,
     the same method step for step; larger ones (a global solve) by the Python
-    reference :func:`_fit_reference` with a sparse LU. ``compiled=False`` always
-    runs the reference (the tests compare the two), as does an install where
-    numba cannot cache the kernel (:data:`img2logo.kernels.CACHED`).
+    reference :func:`_fit_reference` with the banded elimination of the sparse
+    KKT system. ``compiled=False`` always runs the reference (the tests compare
+    the two), as does an install where numba cannot cache the kernel (:data:`img2logo.kernels.CACHED`).
     """
     from . import kernels  # the compiled kernels load on the first fit, not at import
 
