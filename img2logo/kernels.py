@@ -230,7 +230,27 @@ def main(argv: list[str] | None = None) -> int:
     """``python -m img2logo.kernels``: build (if need be) and load the kernels; print where from."""
     _load()
     print(f"img2logo kernels: {source}" + ("" if CACHED else " (no disk cache: the Python reference runs)"))
+    _warm_png_jit()
     return 0
+
+
+def _warm_png_jit() -> None:
+    """Compile numba's JIT PNG kernels into their disk cache, with the argument types the loader gives.
+
+    A PNG of at least ``PNG_NOGIL_BYTES`` is decoded by them (they release the GIL,
+    :func:`img2logo.loading._png_kernels`); compiled here, at install, the first such
+    run does not wait seconds for it. Nothing happens where numba cannot cache them.
+    """
+    try:
+        from . import kernels_jit, kernels_png
+    except Exception:  # numba missing or unusable: the ahead-of-time kernels decode every PNG
+        return
+    if not kernels_jit.CACHED:
+        return
+    rows = np.zeros(2 * 5, dtype=np.uint8)  # two rows of one filter byte and 4 samples
+    kernels_png.png_unfilter(rows, 2, 4, 1, np.zeros(4, dtype=np.uint8))
+    for alpha in (False, True):
+        kernels_png.png_reduce(rows, 2, 5, 1, 2, 2, 8, alpha, 2, np.zeros((1, 2)))
 
 
 if __name__ == "__main__":

@@ -9,8 +9,9 @@ is never in memory. The reference is Pillow's decoding and ``Image.reduce``
 (averages of colour premultiplied by alpha): the tests compare the two.
 
 Written in the subset of Python that numba compiles; loaded through
-:mod:`img2logo.kernels` (ahead of time, or numba's JIT as a fallback), never
-imported by the loader directly.
+:mod:`img2logo.kernels` (ahead of time, or numba's JIT as a fallback); for a PNG of
+at least ``PNG_NOGIL_BYTES`` of pixel data the loader takes the JIT's own, which
+release the GIL (:func:`img2logo.loading._png_kernels`).
 """
 
 from __future__ import annotations

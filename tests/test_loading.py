@@ -370,6 +370,29 @@ def test_a_large_png_read_strip_by_strip_is_its_box_reduce(tmp_path, monkeypatch
     assert np.abs(got.reshape(expected.shape) - expected).max() <= 0.5  # rounded to the file's depth
 
 
+def test_a_huge_png_is_decoded_by_the_kernels_that_release_the_gil_with_the_same_bits(tmp_path, monkeypatch):
+    # From PNG_NOGIL_BYTES on, numba's JIT kernels (nogil) replace the ahead-of-time ones, which hold the
+    # GIL and so kept the inflating thread waiting: the same source, the same result to the bit.
+    pytest.importorskip("numba")
+    from img2logo import kernels, kernels_jit, kernels_png, loading
+
+    if not kernels_jit.CACHED:
+        pytest.skip("numba cannot cache its kernels here: the ahead-of-time ones always run")
+    assert loading._png_kernels(loading.PNG_NOGIL_BYTES) == (kernels_png.png_unfilter, kernels_png.png_reduce)
+    assert loading._png_kernels(loading.PNG_NOGIL_BYTES - 1) == (kernels.png_unfilter, kernels.png_reduce)
+    monkeypatch.setattr(loading, "PNG_STRIP_BYTES", 5000)
+    for channels, dtype in ((4, np.uint16), (3, np.uint8)):
+        arr = _noisy(211, 157, channels, dtype)
+        path = tmp_path / f"big{channels}.png"
+        cv2.imwrite(str(path), arr, [cv2.IMWRITE_PNG_FILTER, cv2.IMWRITE_PNG_FILTER_PAETH])
+        monkeypatch.setattr(loading, "PNG_NOGIL_BYTES", 1 << 40)
+        held = loading._read_png_strips(path, 3)
+        monkeypatch.setattr(loading, "PNG_NOGIL_BYTES", 0)
+        released = loading._read_png_strips(path, 3)
+        assert held is not None and released is not None
+        assert np.array_equal(held, released)
+
+
 def _png(width: int, height: int, depth: int, ctype: int, rows: list[bytes], chunks: tuple = ()) -> bytes:
     """A PNG of the given filtered rows (each its filter-type byte and data), with extra (type, data) chunks."""
 
