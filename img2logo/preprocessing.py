@@ -20,7 +20,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import _skeleton
+from . import _skeleton, subject_cues
 from ._validation import check_choice, check_positive, readonly
 from .clipart import clipart_lines, clipart_regions, label_means
 from .constants import (
@@ -514,28 +514,13 @@ def _drawing_lines(img: LoadedImage) -> np.ndarray:
 
 
 def gaussian_blur(image: np.ndarray, sigma: float) -> np.ndarray:
-    """``scipy.ndimage.gaussian_filter(image, sigma)`` of a 2-D float64 image, to the bit, float64 (H, W).
+    """``scipy.ndimage.gaussian_filter(image, sigma)`` of a 2-D image, to the bit, float64 (H, W).
 
-    The same kernel (``truncate`` 4 standard deviations, mode ``reflect``) and
-    the same compiled 1-D correlations, rows then columns, by scipy's own
-    compiled module loaded without ``scipy.ndimage`` (:func:`_skeleton.compiled_module`).
+    :func:`img2logo.subject_cues.gaussian` on the image as float64: scipy's kernel
+    (``truncate`` 4 standard deviations, mode ``reflect``) and its compiled 1-D
+    correlations, rows then columns, without importing ``scipy.ndimage``.
     """
-    src = np.asarray(image, dtype=np.float64)
-    try:
-        correlate1d = _skeleton.compiled_module("scipy", "ndimage", "_nd_image").correlate1d
-    except (ImportError, AttributeError):
-        from scipy import ndimage
-
-        return np.asarray(ndimage.gaussian_filter(src, sigma))
-    radius = int(4.0 * float(sigma) + 0.5)
-    x = np.arange(-radius, radius + 1)
-    phi = np.exp(-0.5 / (sigma * sigma) * x**2)
-    weights = np.ascontiguousarray((phi / phi.sum())[::-1])  # correlation: the kernel reversed
-    out = np.zeros(src.shape, dtype=np.float64)
-    reflect = 2  # scipy.ndimage's code of mode "reflect"
-    correlate1d(src, weights, 0, out, reflect, 0.0, 0)
-    correlate1d(out, weights, 1, out, reflect, 0.0, 0)
-    return out
+    return subject_cues.gaussian(np.asarray(image, dtype=np.float64), sigma)
 
 
 def otsu_threshold(gray: np.ndarray) -> float:

@@ -412,9 +412,10 @@ def fill_small_holes(mask: np.ndarray) -> np.ndarray:
 
 # ---------------------------------------------------------------- scipy.ndimage's filters, without importing it
 # Importing scipy.ndimage costs about 0.2 s of CPU a run (it brings scipy.special). These give its
-# results to the bit: the same compiled 1-D correlations (preprocessing.gaussian_blur's way), OpenCV's
-# exact distance transform (_skeleton.distance_to_background) and labelling (_skeleton.label), and
-# OpenCV's morphology with scipy's border.
+# results to the bit: scipy's own compiled 1-D correlations (a drawing's blur,
+# preprocessing.gaussian_blur, is this gaussian), OpenCV's exact distance transform
+# (_skeleton.distance_to_background) and labelling (_skeleton.label), and OpenCV's morphology with
+# scipy's border.
 
 
 def gaussian(image: np.ndarray, sigma: float | tuple[float, ...]) -> np.ndarray:
