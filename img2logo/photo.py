@@ -34,7 +34,7 @@ import math
 
 import numpy as np
 
-from ._skeleton import join_line_ends
+from ._skeleton import distance_to_background, join_line_ends
 from .constants import (
     BILATERAL_DIAMETER,
     BILATERAL_SIGMA_COLOR,
@@ -269,7 +269,6 @@ def photo_lines(img: LoadedImage) -> np.ndarray:
 def photo_line_maps(img: LoadedImage) -> tuple[np.ndarray, np.ndarray]:
     """The photo's lightness lines and its colour lines (:func:`photo_lines`), each (H, W) bool."""
     import cv2
-    from scipy import ndimage
 
     gray = cv2.bilateralFilter(img.gray.astype(np.float32), BILATERAL_DIAMETER, BILATERAL_SIGMA_COLOR, 5.0)
     light = flow_dog_response(gray)
@@ -286,7 +285,7 @@ def photo_line_maps(img: LoadedImage) -> tuple[np.ndarray, np.ndarray]:
     unbiased = light - (1.0 - FDOG_RHO) * cv2.GaussianBlur(gray, (0, 0), 1.6 * FDOG_SIGMA_C)
     edges = _binarize(unbiased, scale) | _binarize(-unbiased, scale)
     if edges.any() and colour_lines.any():
-        colour_lines &= ndimage.distance_transform_edt(~edges) > COLOUR_LINE_GATE
+        colour_lines &= distance_to_background(~edges) > COLOUR_LINE_GATE  # edges.any(): scipy's EDT
     return lines, colour_lines
 
 
