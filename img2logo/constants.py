@@ -654,6 +654,11 @@ COLOUR_LINE_SUBSAMPLE: float = 2.0
 #: its lightness line: drawn twice, a duck of 16 arcs had 34); beyond it, the
 #: edge has no lightness step of its own.
 COLOUR_LINE_GATE: float = 3.0 * 1.6 * FDOG_SIGMA_C * COLOUR_LINE_SUBSAMPLE
+#: Photo colour lines (photo.new_colour_lines): the two sides of a drawn lightness line (its
+#: dark line and its bright lobe, where the colour line of the same edge lies) are the lightness
+#: edge within this of it, px: 3 x the lightness FDoG's surround sigma (1.6 FDOG_SIGMA_C), the
+#: reach of its DoG across the edge.
+EDGE_SIDE_REACH: float = 3.0 * 1.6 * FDOG_SIGMA_C
 #: Inflated bytes of one strip when a PNG larger than the working size is decoded strip by strip
 #: (loading._read_png_strips): rows of the file, a multiple of the reduce factor, about this many
 #: bytes (one strip of a 12000 px 16-bit RGBA file: 170 rows). Bounds the decode's memory to a strip

@@ -31,6 +31,7 @@ in px, x to the right, y downwards (``contract/README.md``).
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -40,6 +41,7 @@ from .constants import (
     BILATERAL_SIGMA_COLOR,
     COLOUR_LINE_GATE,
     COLOUR_LINE_SUBSAMPLE,
+    EDGE_SIDE_REACH,
     ETF_SIGMA,
     FACE_MIN_LINE,
     FDOG_RHO,
@@ -73,11 +75,13 @@ def photo_feature_lines(img: LoadedImage, subject: Subject) -> np.ndarray:
     from ._skeleton import skeletonize  # skimage's thinning, without importing skimage.morphology
 
     mask = subject.mask
-    inner, colour = photo_line_maps(img)
+    maps = line_maps(img)
+    inner = maps.lightness
     budget = PHOTO_LINE_BUDGET * (img.height + img.width)
     faces = face_region((img.height, img.width), subject.faces)
     if mask is None:
         lines, budget = _chosen_lines(inner, faces, subject.faces, budget)
+        colour = new_colour_lines(maps, lines)
         colour_lines, _ = _chosen_lines(colour, faces, subject.faces, budget, budget)
         return join_line_ends(lines | colour_lines)
     inside = ndimage.binary_erosion(mask, iterations=INNER_LINE_MARGIN)
@@ -86,9 +90,10 @@ def photo_feature_lines(img: LoadedImage, subject: Subject) -> np.ndarray:
     lines, budget = _chosen_lines(inner & inside, faces, subject.faces, budget)
     # A colour line within the gate of the outline is the outline again (its lightness line
     # lay outside the mask): colour lines are kept that much further inside.
-    if colour.any():  # the erosion by ceil(gate) 4-neighbour steps: taxicab distance to the outside
+    if maps.colour.any():  # the erosion by ceil(gate) 4-neighbour steps: taxicab distance to the outside
         deep = ndimage.distance_transform_cdt(inside, metric="taxicab") > math.ceil(COLOUR_LINE_GATE)
-        lines |= _chosen_lines(colour & deep, faces, subject.faces, budget, budget)[0]
+        colour = new_colour_lines(maps, lines | outline, deep)
+        lines |= _chosen_lines(colour, faces, subject.faces, budget, budget)[0]
     return join_line_ends(skeletonize(reach_outline(lines, outline) | outline))
 
 
@@ -268,6 +273,44 @@ def photo_lines(img: LoadedImage) -> np.ndarray:
 
 def photo_line_maps(img: LoadedImage) -> tuple[np.ndarray, np.ndarray]:
     """The photo's lightness lines and its colour lines (:func:`photo_lines`), each (H, W) bool."""
+    maps = line_maps(img)
+    colour_lines = maps.colour
+    if maps.edges.any() and colour_lines.any():
+        colour_lines = colour_lines & (distance_to_background(~maps.edges) > COLOUR_LINE_GATE)  # edges.any(): EDT
+    return maps.lightness, colour_lines
+
+
+@dataclass(frozen=True)
+class LineMaps:
+    """A photo's FDoG line maps before the colour lines are gated, each (H, W).
+
+    Attributes
+    ----------
+    lightness : ndarray of bool
+        The lightness lines (:func:`photo_lines`).
+    colour : ndarray of bool
+        The colour lines, not gated.
+    edges : ndarray of bool
+        Both sides of every lightness edge: its dark line and its bright lobe.
+    lightness_step, colour_step : ndarray of float32
+        The strength of the lightness edge (the FDoG response without its bias
+        to dark sides, either sign) and of the colour line (the colour FDoG's
+        negative response), on the same scale (L* / 100).
+    """
+
+    lightness: np.ndarray
+    colour: np.ndarray
+    edges: np.ndarray
+    lightness_step: np.ndarray
+    colour_step: np.ndarray
+
+
+def line_maps(img: LoadedImage) -> LineMaps:
+    """The photo's lightness lines, its colour lines not yet gated, and the edges' sides and strengths.
+
+    See :func:`photo_lines`; :func:`photo_line_maps` gates the colour lines
+    against every lightness edge, :func:`new_colour_lines` against the drawn ones.
+    """
     import cv2
 
     gray = cv2.bilateralFilter(img.gray.astype(np.float32), BILATERAL_DIAMETER, BILATERAL_SIGMA_COLOR, 5.0)
@@ -279,14 +322,58 @@ def photo_line_maps(img: LoadedImage) -> tuple[np.ndarray, np.ndarray]:
     rgb = cv2.resize(np.ascontiguousarray(img.rgb, dtype=np.float32), small, interpolation=cv2.INTER_AREA)
     opponent = cv2.bilateralFilter(opponent_channel(rgb), BILATERAL_DIAMETER, BILATERAL_SIGMA_COLOR, 5.0)
     colour = cv2.resize(flow_dog_response(opponent, rho=1.0), (w, h), interpolation=cv2.INTER_LINEAR)
-    colour_lines = _binarize(colour, scale)
     # Both sides of every lightness edge: the response without its bias to dark sides (the DoG's
     # surround weighted by rho < 1 leaves (1 - rho) x the blurred gray, positive on flat ground).
     unbiased = light - (1.0 - FDOG_RHO) * cv2.GaussianBlur(gray, (0, 0), 1.6 * FDOG_SIGMA_C)
     edges = _binarize(unbiased, scale) | _binarize(-unbiased, scale)
-    if edges.any() and colour_lines.any():
-        colour_lines &= distance_to_background(~edges) > COLOUR_LINE_GATE  # edges.any(): scipy's EDT
-    return lines, colour_lines
+    return LineMaps(lines, _binarize(colour, scale), edges, np.abs(unbiased).astype(np.float32), -colour)
+
+
+def new_colour_lines(maps: LineMaps, drawn: np.ndarray, where: np.ndarray | None = None) -> np.ndarray:
+    """The colour lines (H, W) bool that draw an edge not drawn yet, whole up to the lines they meet.
+
+    A colour line within ``COLOUR_LINE_GATE`` of both sides of a ``drawn``
+    line (``maps.edges`` within ``EDGE_SIDE_REACH`` of it) is that line's edge
+    again: drawn, it would double it; it goes. Within the gate of a lightness
+    edge that is not drawn (too short or too faint: the petals' shading of a
+    flower, a 20 px stroke of lightness along a pink nose's top) it is kept
+    only if its colour step is stronger than every such lightness step within
+    the gate: then the edge is one of colour (the nose's top on tan fur); a
+    weaker one is that lightness edge's own tint. A kept colour line is drawn
+    whole back to the line it meets (restored along itself for
+    ``COLOUR_LINE_GATE + EDGE_SIDE_REACH`` px), so that the two join (a nose's
+    top meets its sides) instead of stopping a gate's width short of it.
+
+    Parameters
+    ----------
+    maps : LineMaps
+        The photo's line maps (:func:`line_maps`).
+    drawn : ndarray of bool, shape (H, W)
+        The lines drawn already (the chosen lightness lines and the outline).
+    where : ndarray of bool, shape (H, W), optional
+        Where colour lines may be drawn (default: everywhere).
+    """
+    import cv2
+
+    colour = maps.colour if where is None else maps.colour & where
+    drawn = np.asarray(drawn, dtype=bool)
+    if not colour.any():
+        return colour.copy()
+    sides = drawn | (maps.edges & (distance_to_background(~drawn) <= EDGE_SIDE_REACH)) if drawn.any() else drawn
+    reach = math.ceil(COLOUR_LINE_GATE)
+    disc = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (2 * reach + 1, 2 * reach + 1))
+    undrawn = cv2.dilate(np.where(sides, np.float32(0.0), maps.lightness_step), disc)
+    own = colour & (maps.colour_step > undrawn)
+    if maps.edges.any():
+        own |= colour & (distance_to_background(~maps.edges) > COLOUR_LINE_GATE)
+    out = own & (distance_to_background(~sides) > COLOUR_LINE_GATE) if sides.any() else own
+    step = np.ones((3, 3), np.uint8)
+    for _ in range(math.ceil(COLOUR_LINE_GATE + EDGE_SIDE_REACH)):  # geodesic dilation within the line
+        grown = cv2.dilate(out.view(np.uint8), step).view(bool) & own
+        if np.array_equal(grown, out):
+            break
+        out = grown
+    return out
 
 
 def opponent_channel(rgb: np.ndarray) -> np.ndarray:
