@@ -92,7 +92,7 @@ def photo_feature_lines(img: LoadedImage, subject: Subject) -> np.ndarray:
     # lay outside the mask): colour lines are kept that much further inside.
     if maps.colour.any():  # the erosion by ceil(gate) 4-neighbour steps: taxicab distance to the outside
         deep = ndimage.distance_transform_cdt(inside, metric="taxicab") > math.ceil(COLOUR_LINE_GATE)
-        colour = new_colour_lines(maps, lines | outline, deep)
+        colour = new_colour_lines(maps, lines | outline, deep, inside)
         lines |= _chosen_lines(colour, faces, subject.faces, budget, budget)[0]
     return join_line_ends(skeletonize(reach_outline(lines, outline) | outline))
 
@@ -329,7 +329,9 @@ def line_maps(img: LoadedImage) -> LineMaps:
     return LineMaps(lines, _binarize(colour, scale), edges, np.abs(unbiased).astype(np.float32), -colour)
 
 
-def new_colour_lines(maps: LineMaps, drawn: np.ndarray, where: np.ndarray | None = None) -> np.ndarray:
+def new_colour_lines(
+    maps: LineMaps, drawn: np.ndarray, deep: np.ndarray | None = None, inside: np.ndarray | None = None
+) -> np.ndarray:
     """The colour lines (H, W) bool that draw an edge not drawn yet, whole up to the lines they meet.
 
     A colour line within ``COLOUR_LINE_GATE`` of both sides of a ``drawn``
@@ -342,7 +344,8 @@ def new_colour_lines(maps: LineMaps, drawn: np.ndarray, where: np.ndarray | None
     weaker one is that lightness edge's own tint. A kept colour line is drawn
     whole back to the line it meets (restored along itself for
     ``COLOUR_LINE_GATE + EDGE_SIDE_REACH`` px), so that the two join (a nose's
-    top meets its sides) instead of stopping a gate's width short of it.
+    top meets its sides, a wing's edge the body's outline) instead of stopping
+    a gate's width short of it.
 
     Parameters
     ----------
@@ -350,12 +353,15 @@ def new_colour_lines(maps: LineMaps, drawn: np.ndarray, where: np.ndarray | None
         The photo's line maps (:func:`line_maps`).
     drawn : ndarray of bool, shape (H, W)
         The lines drawn already (the chosen lightness lines and the outline).
-    where : ndarray of bool, shape (H, W), optional
-        Where colour lines may be drawn (default: everywhere).
+    deep : ndarray of bool, shape (H, W), optional
+        Where a colour line may start (default: everywhere): far enough inside
+        the outline not to be the outline again ...
+    inside : ndarray of bool, shape (H, W), optional
+        ... and where it may be drawn back to the line it meets (default: everywhere).
     """
     import cv2
 
-    colour = maps.colour if where is None else maps.colour & where
+    colour = maps.colour if inside is None else maps.colour & inside
     drawn = np.asarray(drawn, dtype=bool)
     if not colour.any():
         return colour.copy()
@@ -367,6 +373,8 @@ def new_colour_lines(maps: LineMaps, drawn: np.ndarray, where: np.ndarray | None
     if maps.edges.any():
         own |= colour & (distance_to_background(~maps.edges) > COLOUR_LINE_GATE)
     out = own & (distance_to_background(~sides) > COLOUR_LINE_GATE) if sides.any() else own
+    if deep is not None:
+        out &= deep
     step = np.ones((3, 3), np.uint8)
     for _ in range(math.ceil(COLOUR_LINE_GATE + EDGE_SIDE_REACH)):  # geodesic dilation within the line
         grown = cv2.dilate(out.view(np.uint8), step).view(bool) & own
