@@ -343,7 +343,8 @@ def new_colour_lines(
     the gate: then the edge is one of colour (the nose's top on tan fur); a
     weaker one is that lightness edge's own tint. A kept colour line is drawn
     whole back to the line it meets (restored along itself for
-    ``COLOUR_LINE_GATE + EDGE_SIDE_REACH`` px), so that the two join (a nose's
+    ``COLOUR_LINE_GATE + EDGE_SIDE_REACH`` px, each step nearer the drawn
+    line than the last, so never along a line beside it), so that the two join (a nose's
     top meets its sides, a wing's edge the body's outline) instead of stopping
     a gate's width short of it.
 
@@ -372,12 +373,18 @@ def new_colour_lines(
     own = colour & (maps.colour_step > undrawn)
     if maps.edges.any():
         own |= colour & (distance_to_background(~maps.edges) > COLOUR_LINE_GATE)
-    out = own & (distance_to_background(~sides) > COLOUR_LINE_GATE) if sides.any() else own
+    if not sides.any():
+        return own & deep if deep is not None else own
+    away = distance_to_background(~sides).astype(np.float32)
+    out = own & (away > COLOUR_LINE_GATE)
     if deep is not None:
         out &= deep
     step = np.ones((3, 3), np.uint8)
-    for _ in range(math.ceil(COLOUR_LINE_GATE + EDGE_SIDE_REACH)):  # geodesic dilation within the line
-        grown = cv2.dilate(out.view(np.uint8), step).view(bool) & own
+    for _ in range(math.ceil(COLOUR_LINE_GATE + EDGE_SIDE_REACH)):
+        # Along the line, each step nearer the drawn line than the pixel it grows from: back to
+        # the line it meets, never along one that runs beside a drawn line.
+        parent = cv2.dilate(np.where(out, away, np.float32(-1.0)), step)
+        grown = out | (own & (parent > away))
         if np.array_equal(grown, out):
             break
         out = grown
