@@ -646,7 +646,7 @@ SYMMETRY_SNAP_SCORE_LOSS: float = 0.01
 #: about half the lightness's acuity), a step's DoG response does not depend on
 #: the pixel size, and the pass costs a quarter (0.03 s on a 512 px photo).
 COLOUR_LINE_SUBSAMPLE: float = 2.0
-#: Photo colour lines (photo.photo_lines): a line of the colour-opponent FDoG is
+#: Photo colour lines (photo.photo_lines, photo.new_colour_lines): a line of the colour-opponent FDoG is
 #: kept only this far from both sides of every lightness edge, px: 3 x the
 #: colour FDoG's surround sigma (1.6 FDOG_SIGMA_C on a copy COLOUR_LINE_SUBSAMPLE
 #: times smaller), the reach of its DoG across an edge. Within it, a colour line

@@ -10,6 +10,11 @@
   (:func:`flow_dog`), kept ``INNER_LINE_MARGIN`` px inside the outline; only
   the long ones, not tangles, the longest first within a length budget
   (:func:`salient_lines`);
+* its **colour lines**: the FDoG of the colour-opponent channel
+  (:func:`photo_lines`), after the lightness lines and within what they leave
+  of the budget; one is drawn where no drawn line is that edge already and no
+  stronger lightness edge lies beside it, whole back to the line it meets
+  (:func:`new_colour_lines`): a pink nose's top on tan fur;
 * **faces** (:attr:`Subject.faces`): inside the ellipse of each face found,
   the FDoG lines are kept down to ``FACE_MIN_LINE`` of the face's side, first
   in the budget: eyes, brows, nose and mouth are inner lines of the subject;
