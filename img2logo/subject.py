@@ -379,7 +379,6 @@ def find_faces(img: LoadedImage, mask: np.ndarray | None = None) -> tuple[tuple[
     """
     import cv2
     from skimage import data
-    from skimage.feature import Cascade
 
     small, scale = working_copy(img)
     sh, sw = small.shape[:2]
@@ -394,7 +393,7 @@ def find_faces(img: LoadedImage, mask: np.ndarray | None = None) -> tuple[tuple[
     largest = min(small.shape[:2])
     if largest < side:
         return ()
-    cascade = Cascade(data.lbp_frontal_face_cascade_filename())
+    cascade = _cascade_class()(data.lbp_frontal_face_cascade_filename())
     gray = cv2.cvtColor(np.ascontiguousarray(np.clip(small, 0, 1)), cv2.COLOR_RGB2GRAY)
     found = cascade.detect_multi_scale(
         img=gray,
@@ -412,6 +411,48 @@ def find_faces(img: LoadedImage, mask: np.ndarray | None = None) -> tuple[tuple[
         if mask is None or mask[cy, cx]:
             faces.append((x, y, w, h))
     return tuple(faces)
+
+
+def _cascade_class() -> type:
+    """scikit-image's ``skimage.feature.Cascade``, without importing ``skimage.color``'s colour conversions.
+
+    The compiled module ``skimage.feature._cascade`` imports ``rgb2gray`` from
+    ``skimage.color`` when it loads (for colour images; :func:`find_faces` gives
+    it gray ones), and ``skimage.color`` imports ``scipy.linalg``, whose array-API
+    layer imports most of numpy's optional modules: about 0.4 s of CPU, a fifth
+    of a photo's command line. While the module loads, ``skimage.color`` is a
+    stand-in whose ``rgb2gray`` imports the real one when first called; the
+    stand-in is gone as soon as the module is loaded.
+    """
+    import sys
+    import types
+
+    loaded = sys.modules.get("skimage.feature._cascade")
+    if loaded is not None or "skimage.color.colorconv" in sys.modules:
+        from skimage.feature import Cascade
+
+        return Cascade
+    import skimage
+
+    def rgb2gray(*args: object, **kwargs: object) -> np.ndarray:
+        from skimage.color import rgb2gray as real
+
+        return real(*args, **kwargs)
+
+    stand_in = types.ModuleType("skimage.color")
+    stand_in.rgb2gray = rgb2gray  # type: ignore[attr-defined]
+    before = sys.modules.get("skimage.color")
+    sys.modules["skimage.color"] = stand_in
+    try:
+        import skimage.feature._cascade as module
+    finally:
+        if before is None:
+            sys.modules.pop("skimage.color", None)
+        else:
+            sys.modules["skimage.color"] = before
+        if getattr(skimage, "color", None) is stand_in:
+            del skimage.color
+    return module.Cascade
 
 
 def _not_dominant(mask: np.ndarray, frame: bool = True) -> str:

@@ -200,3 +200,20 @@ def test_colour_lines_come_after_the_lightness_lines_in_the_budget(monkeypatch):
     monkeypatch.setattr(photo, "PHOTO_LINE_BUDGET", 150 / (img.height + img.width))
     tight = photo_feature_lines(img, whole)
     assert np.mean(ndimage.distance_transform_edt(~tight)[edge_a] <= 6) < 0.2
+
+
+def test_a_photo_s_feature_lines_import_no_scipy_package(data_dir):
+    """The subject search, the faces and the photo lines use scipy's compiled filters only: importing
+    ``scipy.ndimage`` or ``scipy.linalg`` (their array-API layer) costs most of a second of CPU a run."""
+    import subprocess
+    import sys
+
+    code = (
+        "import sys\n"
+        "from img2logo import extract_feature_lines\n"
+        f"fl = extract_feature_lines({str(data_dir / 'photo-flower.png')!r}, kind='photo')\n"
+        "assert fl.subject is not None and fl.subject.mask is not None and fl.lines.any()\n"
+        "print(sorted(m for m in sys.modules if m.startswith('scipy')))\n"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "['scipy.ndimage._nd_image']"

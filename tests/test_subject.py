@@ -390,6 +390,31 @@ def test_the_cues_filters_are_scipy_ndimage_s_to_the_bit():
             np.testing.assert_array_equal(ours, theirs)
 
 
+def test_the_flow_s_filters_and_the_nearest_pixel_are_scipy_ndimage_s_to_the_bit():
+    from scipy import ndimage
+
+    from img2logo.subject_cues import gaussian, nearest_background, sobel
+
+    rng = np.random.default_rng(4)
+    for h, w in ((37, 52), (64, 41), (9, 80)):
+        for dtype in (np.float32, np.float64):
+            image = rng.random((h, w)).astype(dtype)
+            for axis in (0, 1):
+                ours, theirs = sobel(image, axis), ndimage.sobel(image, axis=axis, mode="constant", cval=0)
+                assert ours.dtype == theirs.dtype
+                np.testing.assert_array_equal(ours, theirs)
+            for sigma in (0.8, 3.0):
+                ours = gaussian(image, sigma, mode="constant")
+                np.testing.assert_array_equal(ours, ndimage.gaussian_filter(image, sigma, mode="constant", cval=0))
+        lines = rng.random((h, w)) < 0.03  # sparse pixels: many ties between equally near ones
+        lines[h // 2, w // 3] = True
+        dist, (rows, cols) = nearest_background(~lines)
+        theirs, (their_rows, their_cols) = ndimage.distance_transform_edt(~lines, return_indices=True)
+        np.testing.assert_array_equal(dist, theirs)
+        np.testing.assert_array_equal(rows, their_rows)
+        np.testing.assert_array_equal(cols, their_cols)
+
+
 def test_the_cues_do_not_import_scipy_ndimage():
     import subprocess
     import sys
