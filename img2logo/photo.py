@@ -31,6 +31,8 @@ in px, x to the right, y downwards (``contract/README.md``).
 from __future__ import annotations
 
 import math
+import weakref
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -55,6 +57,9 @@ from .constants import (
 )
 from .loading import LoadedImage
 from .subject import Subject
+
+if TYPE_CHECKING:
+    from concurrent.futures import Executor, Future
 
 
 def photo_feature_lines(img: LoadedImage, subject: Subject) -> np.ndarray:
@@ -238,10 +243,14 @@ def subject_outline(mask: np.ndarray, frame_margin: float = OUTLINE_FRAME_MARGIN
             & (rc[:, 1] <= w - 1 - frame_margin)
         )
         ij = np.clip(np.round(rc).astype(np.int64), 0, [h - 1, w - 1])
-        for a in range(len(ij) - 1):
-            if keep[a] and keep[a + 1]:
-                rr, cc = line(ij[a, 0], ij[a, 1], ij[a + 1, 0], ij[a + 1, 1])
-                out[rr, cc] = True
+        both = keep[:-1] & keep[1:]
+        # A step to a neighbour (all of marching squares') is its two end pixels; a longer one a line.
+        near = both & (np.abs(np.diff(ij, axis=0)).max(axis=1, initial=0) <= 1)
+        out[ij[:-1][near, 0], ij[:-1][near, 1]] = True
+        out[ij[1:][near, 0], ij[1:][near, 1]] = True
+        for a in np.flatnonzero(both & ~near):
+            rr, cc = line(ij[a, 0], ij[a, 1], ij[a + 1, 0], ij[a + 1, 1])
+            out[rr, cc] = True
     return out
 
 
@@ -267,8 +276,31 @@ def photo_lines(img: LoadedImage) -> np.ndarray:
     return lightness | colour
 
 
+#: Line maps being made ahead of their use, by image (:func:`start_photo_line_maps`).
+_AHEAD: weakref.WeakKeyDictionary[LoadedImage, Future[tuple[np.ndarray, np.ndarray]]] = weakref.WeakKeyDictionary()
+
+
+def start_photo_line_maps(img: LoadedImage, pool: Executor) -> None:
+    """Start making :func:`photo_line_maps` of ``img`` in ``pool`` (a thread); that function then takes them.
+
+    The line maps do not depend on the subject: :func:`img2logo.subject.find_subject`
+    starts them on the core its cuts leave free, so that they are made while the
+    subject's outline is weighed, not after it.
+    """
+    _AHEAD[img] = pool.submit(_line_maps, img)
+
+
 def photo_line_maps(img: LoadedImage) -> tuple[np.ndarray, np.ndarray]:
-    """The photo's lightness lines and its colour lines (:func:`photo_lines`), each (H, W) bool."""
+    """The photo's lightness lines and its colour lines (:func:`photo_lines`), each (H, W) bool.
+
+    Those started by :func:`start_photo_line_maps`, when they were (they are taken
+    once), or made here.
+    """
+    ahead = _AHEAD.pop(img, None)
+    return ahead.result() if ahead is not None else _line_maps(img)
+
+
+def _line_maps(img: LoadedImage) -> tuple[np.ndarray, np.ndarray]:
     import cv2
 
     gray = cv2.bilateralFilter(img.gray.astype(np.float32), BILATERAL_DIAMETER, BILATERAL_SIGMA_COLOR, 5.0)

@@ -431,3 +431,37 @@ def test_the_cues_do_not_import_scipy_ndimage():
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "False"
+
+
+def test_the_cues_median_is_numpy_s_to_the_bit():
+    from img2logo.subject_cues import median
+
+    rng = np.random.default_rng(5)
+    for n in (1, 2, 3, 10, 11, 1000, 1001):
+        for dtype in (np.float64, np.float32):
+            values = rng.standard_normal(n).astype(dtype)
+            ours, theirs = median(values), np.median(values)
+            assert type(ours) is type(theirs)
+            assert ours == theirs
+    assert np.isnan(median(np.array([1.0, np.nan, 2.0])))
+    assert median(np.array([3, 1, 2])) == 2.0
+
+
+def test_the_line_maps_made_beside_the_cuts_are_those_made_after(monkeypatch):
+    from img2logo import photo
+
+    rgb, _ = textured_photo([(170, 120, 80, 60, (0.95, 0.75, 0.2))])
+    img = load_image(rgb)
+    made = []
+    monkeypatch.setattr(photo, "_line_maps", lambda image: made.append(image) or ("light", "colour"))
+    found = find_subject(img, lines_ahead=True)
+    assert found.mask is not None
+    assert photo.photo_line_maps(img) == ("light", "colour")  # taken from the thread ...
+    assert made == [img]
+    assert img not in photo._AHEAD  # ... once
+    monkeypatch.undo()
+    later = load_image(rgb)
+    find_subject(later, lines_ahead=True)
+    ahead, now = photo.photo_line_maps(later), photo.photo_line_maps(later)
+    for a, b in zip(ahead, now, strict=True):
+        np.testing.assert_array_equal(a, b)
