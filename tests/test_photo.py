@@ -202,17 +202,22 @@ def test_colour_lines_come_after_the_lightness_lines_in_the_budget(monkeypatch):
     assert np.mean(ndimage.distance_transform_edt(~tight)[edge_a] <= 6) < 0.2
 
 
-def test_a_photo_s_feature_lines_import_no_scipy_package(data_dir):
-    """The subject search, the faces and the photo lines use scipy's compiled filters only: importing
-    ``scipy.ndimage`` or ``scipy.linalg`` (their array-API layer) costs most of a second of CPU a run."""
+def test_a_photo_s_subject_and_line_maps_import_no_scipy_package(data_dir):
+    """The subject search, the faces, the line maps and the outline use scipy's compiled filters only:
+    importing ``scipy.ndimage`` or ``scipy.linalg`` (their array-API layer) costs most of a second of CPU."""
     import subprocess
     import sys
 
     code = (
         "import sys\n"
-        "from img2logo import extract_feature_lines\n"
-        f"fl = extract_feature_lines({str(data_dir / 'photo-flower.png')!r}, kind='photo')\n"
-        "assert fl.subject is not None and fl.subject.mask is not None and fl.lines.any()\n"
+        "from img2logo import load_image\n"
+        "from img2logo.photo import photo_line_maps, reach_outline, subject_outline\n"
+        "from img2logo.subject import find_subject\n"
+        f"img = load_image({str(data_dir / 'photo-flower.png')!r})\n"
+        "found = find_subject(img, lines_ahead=True)\n"
+        "light, colour = photo_line_maps(img)\n"
+        "assert found.mask is not None and light.any()\n"
+        "reach_outline(light, subject_outline(found.mask))\n"
         "print(sorted(m for m in sys.modules if m.startswith('scipy')))\n"
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
