@@ -356,8 +356,10 @@ def _both_cuts(
         return texture, cut, texture_lab(img, texture) if cut.any() else None
 
     own = ThreadPoolExecutor(max_workers=1) if pool is None else None
+    runner = pool if pool is not None else own
+    assert runner is not None
     try:
-        other = (pool or own).submit(textured)  # type: ignore[union-attr]
+        other = runner.submit(textured)
         try:
             _ = img.smooth_lab  # computed once, here, while the other thread makes the texture map
         finally:
