@@ -130,12 +130,13 @@ class LoadedImage:
     @functools.cached_property
     def smooth_lab(self) -> np.ndarray:
         """CIELAB colours of the image smoothed by a 1 px Gaussian (pixel noise out), (H, W, 3) float64,
-        read-only; computed once (the subject's outline test may run for two candidates)."""
-        from scipy import ndimage
-
+        read-only; computed once (the subject's outline test may run for two candidates).
+        The blur is ``scipy.ndimage.gaussian_filter`` to the bit, without importing ``scipy.ndimage``
+        (:func:`img2logo.subject_cues.gaussian`)."""
         from ._cielab import rgb2lab
+        from .subject_cues import gaussian
 
-        return readonly(rgb2lab(ndimage.gaussian_filter(self.rgb, (1.0, 1.0, 0.0))))
+        return readonly(rgb2lab(gaussian(self.rgb, (1.0, 1.0, 0.0))))
 
 
 # --------------------------------------------------------------------------- loading

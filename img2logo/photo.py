@@ -36,7 +36,9 @@ in px, x to the right, y downwards (``contract/README.md``).
 from __future__ import annotations
 
 import math
+import weakref
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -63,6 +65,9 @@ from .constants import (
 from .loading import LoadedImage
 from .subject import Subject
 
+if TYPE_CHECKING:
+    from concurrent.futures import Executor, Future
+
 
 def photo_feature_lines(img: LoadedImage, subject: Subject) -> np.ndarray:
     """A photo's feature lines, (H, W) bool, 1 px wide: outline, inner lines, joined.
@@ -75,9 +80,8 @@ def photo_feature_lines(img: LoadedImage, subject: Subject) -> np.ndarray:
         Its subject (:func:`img2logo.subject.find_subject`); a mask of None
         draws the whole image.
     """
-    from scipy import ndimage
-
     from ._skeleton import skeletonize  # skimage's thinning, without importing skimage.morphology
+    from .subject_cues import erode  # scipy.ndimage's binary erosion, without importing it
 
     mask = subject.mask
     maps = line_maps(img)
@@ -89,14 +93,14 @@ def photo_feature_lines(img: LoadedImage, subject: Subject) -> np.ndarray:
         colour = new_colour_lines(maps, lines)
         colour_lines, _ = _chosen_lines(colour, faces, subject.faces, budget, budget)
         return join_line_ends(lines | colour_lines)
-    inside = ndimage.binary_erosion(mask, iterations=INNER_LINE_MARGIN)
+    inside = erode(mask, INNER_LINE_MARGIN)
     outline = subject_outline(mask)
     budget = max(0.0, budget - float(outline.sum()))
     lines, budget = _chosen_lines(inner & inside, faces, subject.faces, budget)
     # A colour line within the gate of the outline is the outline again (its lightness line
     # lay outside the mask): colour lines are kept that much further inside.
     if maps.colour.any():  # the erosion by ceil(gate) 4-neighbour steps: taxicab distance to the outside
-        deep = ndimage.distance_transform_cdt(inside, metric="taxicab") > math.ceil(COLOUR_LINE_GATE)
+        deep = erode(inside, math.ceil(COLOUR_LINE_GATE))  # taxicab distance > ceil(gate)
         colour = new_colour_lines(maps, lines | outline, deep, inside)
         lines |= _chosen_lines(colour, faces, subject.faces, budget, budget)[0]
     return join_line_ends(skeletonize(reach_outline(lines, outline) | outline))
@@ -139,19 +143,17 @@ def reach_outline(lines: np.ndarray, outline: np.ndarray) -> np.ndarray:
     within the same distance, the end is joined to the outline there by a
     straight run. A line running beside the outline is left alone.
     """
-    from scipy import ndimage
-    from skimage.draw import line
-
-    from ._skeleton import classify
+    from ._skeleton import classify, line  # skimage.draw.line, without importing skimage.draw
+    from .subject_cues import label, nearest_background  # scipy.ndimage's, without importing it
 
     out = np.asarray(lines, dtype=bool).copy()
     if not out.any() or not outline.any():
         return out
     h, w = out.shape
-    dist, (near_r, near_c) = ndimage.distance_transform_edt(~outline, return_indices=True)
+    dist, (near_r, near_c) = nearest_background(~outline)
     reach = INNER_LINE_MARGIN + LINE_JOIN_DISTANCE
     ends = np.argwhere(out & (classify(out)[1] == 1) & (dist <= reach) & (dist > 1.5))
-    labels, _ = ndimage.label(out, structure=np.ones((3, 3)))
+    labels, _ = label(out, eight=True)
     box = math.ceil(LINE_JOIN_DISTANCE)
     for r, c in ends:
         r0, c0 = max(0, r - box), max(0, c - box)
@@ -175,9 +177,11 @@ def reach_outline(lines: np.ndarray, outline: np.ndarray) -> np.ndarray:
 
 def face_region(shape: tuple[int, int], faces: tuple[tuple[int, int, int, int], ...]) -> np.ndarray:
     """The ellipses inscribed in face boxes (x, y, w, h), px, as an (H, W) bool map."""
+    out = np.zeros(shape, bool)
+    if not faces:  # no import of skimage.draw (it imports scipy) for a photo without faces
+        return out
     from skimage.draw import ellipse
 
-    out = np.zeros(shape, bool)
     for x, y, w, h in faces:
         rr, cc = ellipse(y + h / 2.0, x + w / 2.0, h / 2.0, w / 2.0, shape=shape)
         out[rr, cc] = True
@@ -203,15 +207,16 @@ def salient_lines(
     before joining could link them into a network. Of those, the longest are
     kept while their pixels add up to at most ``budget``.
     """
-    from scipy import ndimage
+    from ._skeleton import bounding_slices  # scipy.ndimage.find_objects, without importing it
+    from .subject_cues import label
 
     skel = np.asarray(skel, dtype=bool)
-    lab, n = ndimage.label(skel, structure=np.ones((3, 3)))
+    lab, n = label(skel, eight=True)
     if n == 0:
         return skel.copy()
     sizes = np.bincount(lab.ravel(), minlength=n + 1)
     keep = np.zeros(n + 1, bool)
-    for i, sl in enumerate(ndimage.find_objects(lab), start=1):
+    for i, sl in enumerate(bounding_slices(lab), start=1):
         if sl is None:
             continue
         span = math.hypot(sl[0].stop - sl[0].start, sl[1].stop - sl[1].start)
@@ -231,13 +236,14 @@ def subject_outline(mask: np.ndarray, frame_margin: float = OUTLINE_FRAME_MARGIN
     image frame left out: there the picture ends, not the object. Holes give
     their own closed curves.
     """
-    from scipy import ndimage
-    from skimage.draw import line
     from skimage.measure import find_contours
+
+    from ._skeleton import line  # skimage.draw.line, without importing skimage.draw
+    from .subject_cues import gaussian  # scipy.ndimage's, without importing it
 
     h, w = mask.shape
     out = np.zeros((h, w), bool)
-    soft = ndimage.gaussian_filter(np.pad(mask.astype(np.float64), 1), 1.0)
+    soft = gaussian(np.pad(mask.astype(np.float64), 1), 1.0)
     for contour in find_contours(soft, 0.5):
         rc = contour - 1.0  # (row, col) of pixel centres, unpadded
         keep = (
@@ -247,10 +253,14 @@ def subject_outline(mask: np.ndarray, frame_margin: float = OUTLINE_FRAME_MARGIN
             & (rc[:, 1] <= w - 1 - frame_margin)
         )
         ij = np.clip(np.round(rc).astype(np.int64), 0, [h - 1, w - 1])
-        for a in range(len(ij) - 1):
-            if keep[a] and keep[a + 1]:
-                rr, cc = line(ij[a, 0], ij[a, 1], ij[a + 1, 0], ij[a + 1, 1])
-                out[rr, cc] = True
+        both = keep[:-1] & keep[1:]
+        # A step to a neighbour (all of marching squares') is its two end pixels; a longer one a line.
+        near = both & (np.abs(np.diff(ij, axis=0)).max(axis=1, initial=0) <= 1)
+        out[ij[:-1][near, 0], ij[:-1][near, 1]] = True
+        out[ij[1:][near, 0], ij[1:][near, 1]] = True
+        for a in np.flatnonzero(both & ~near):
+            rr, cc = line(ij[a, 0], ij[a, 1], ij[a + 1, 0], ij[a + 1, 1])
+            out[rr, cc] = True
     return out
 
 
@@ -274,6 +284,20 @@ def photo_lines(img: LoadedImage) -> np.ndarray:
     """
     lightness, colour = photo_line_maps(img)
     return lightness | colour
+
+
+#: Line maps being made ahead of their use, by image (:func:`start_photo_line_maps`).
+_AHEAD: weakref.WeakKeyDictionary[LoadedImage, Future[LineMaps]] = weakref.WeakKeyDictionary()
+
+
+def start_photo_line_maps(img: LoadedImage, pool: Executor) -> None:
+    """Start making :func:`photo_line_maps` of ``img`` in ``pool`` (a thread); that function then takes them.
+
+    The line maps do not depend on the subject: :func:`img2logo.subject.find_subject`
+    starts them on the core its cuts leave free, so that they are made while the
+    subject's outline is weighed, not after it.
+    """
+    _AHEAD[img] = pool.submit(_line_maps, img)
 
 
 def photo_line_maps(img: LoadedImage) -> tuple[np.ndarray, np.ndarray]:
@@ -315,7 +339,14 @@ def line_maps(img: LoadedImage) -> LineMaps:
 
     See :func:`photo_lines`; :func:`photo_line_maps` gates the colour lines
     against every lightness edge, :func:`new_colour_lines` against the drawn ones.
+    Those started by :func:`start_photo_line_maps`, when they were (they are taken
+    once), or made here.
     """
+    ahead = _AHEAD.pop(img, None)
+    return ahead.result() if ahead is not None else _line_maps(img)
+
+
+def _line_maps(img: LoadedImage) -> LineMaps:
     import cv2
 
     gray = cv2.bilateralFilter(img.gray.astype(np.float32), BILATERAL_DIAMETER, BILATERAL_SIGMA_COLOR, 5.0)
@@ -432,17 +463,17 @@ def edge_tangent_flow(gray: np.ndarray, sigma: float = ETF_SIGMA) -> np.ndarray:
     ETF filter [KD09]. The tensor is scikit-image's ``structure_tensor`` (Sobel
     derivatives, Gaussian of ``sigma`` px, zero outside), written out with
     ``scipy.ndimage``: the same numbers without importing ``skimage.feature``,
-    which loads ``scipy.stats`` (most of a second of a photo's command line).
+    which loads ``scipy.stats`` (most of a second of a photo's command line), nor
+    ``scipy.ndimage`` (:func:`~img2logo.subject_cues.sobel`, :func:`~img2logo.subject_cues.gaussian`).
     """
-    from scipy import ndimage
+    from .subject_cues import gaussian, sobel
 
     gray = np.asarray(gray)
     if gray.dtype.kind != "f":  # the flow's angles do not depend on the scale, only the sums' range does
         gray = gray.astype(np.float64)
-    d_row, d_col = (ndimage.sobel(gray, axis=axis, mode="constant", cval=0) for axis in (0, 1))
+    d_row, d_col = (sobel(gray, axis) for axis in (0, 1))
     arr, arc, acc = (
-        ndimage.gaussian_filter(a * b, sigma, mode="constant", cval=0)
-        for a, b in ((d_row, d_row), (d_row, d_col), (d_col, d_col))
+        gaussian(a * b, sigma, mode="constant") for a, b in ((d_row, d_row), (d_row, d_col), (d_col, d_col))
     )
     # Tensor in (x, y) = (col, row): [[acc, arc], [arc, arr]]; the minor
     # eigenvector's angle is half the orientation angle plus 90 degrees.

@@ -343,7 +343,7 @@ def extract_feature_lines(
         raw = _join(clipart_lines(regions))
         min_len = spur_length if min_line_length is None else min_line_length
     else:
-        found = find_subject(img, foreground, subject)
+        found = find_subject(img, foreground, subject, lines_ahead=True)  # the line maps beside the cuts
         raw = photo_feature_lines(img, found)
         min_len = PHOTO_MIN_LINE_LENGTH if min_line_length is None else min_line_length
     min_len = check_positive(min_len, "min_line_length", allow_zero=True)

@@ -54,6 +54,7 @@ from __future__ import annotations
 import dataclasses
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -87,6 +88,7 @@ from .subject_cues import (
     frame_box,
     label,
     largest_part,
+    median,
     outline_contrast,
     texture_colour_image,
     texture_lab,
@@ -96,6 +98,9 @@ from .subject_cues import (
     working_copy,
 )
 from .subject_shadow import cast_shadow
+
+if TYPE_CHECKING:
+    from concurrent.futures import Executor
 
 #: The string values of ``foreground``.
 FOREGROUND_CHOICES = ("auto", "none", "grabcut")
@@ -178,7 +183,9 @@ def parse_subject_rectangle(value: object, shape: tuple[int, int]) -> tuple[int,
     return x0, y0, x1 - x0, y1 - y0
 
 
-def find_subject(img: LoadedImage, foreground: object = "auto", subject: object = None) -> Subject:
+def find_subject(
+    img: LoadedImage, foreground: object = "auto", subject: object = None, *, lines_ahead: bool = False
+) -> Subject:
     """Find the subject of a photo, and the faces in it (:func:`find_faces`).
 
     Parameters
@@ -193,12 +200,24 @@ def find_subject(img: LoadedImage, foreground: object = "auto", subject: object 
         downscale: ``img.input_width`` by ``img.input_height``; it is scaled
         by ``img.scale`` here, and said as given): GrabCut starts from it.
         Only with ``foreground`` ``"auto"`` or ``"grabcut"``.
+    lines_ahead : bool
+        Also make the photo's line maps (:func:`img2logo.photo.photo_line_maps`,
+        which do not depend on the subject) in a thread of their own while the
+        subject is searched, from when a core is free of GrabCut; the photo's
+        lines (:func:`img2logo.photo.photo_feature_lines`) then take them.
 
     Returns
     -------
     Subject
     """
-    found = _find_subject(img, foreground, subject)
+    from concurrent.futures import ThreadPoolExecutor
+
+    pool = ThreadPoolExecutor(max_workers=2) if lines_ahead else None
+    try:
+        found = _find_subject(img, foreground, subject, pool)
+    finally:
+        if pool is not None:
+            pool.shutdown(wait=False)  # the line maps go on being made
     faces = find_faces(img, found.mask)
     if not faces:
         return found
@@ -206,7 +225,7 @@ def find_subject(img: LoadedImage, foreground: object = "auto", subject: object 
     return dataclasses.replace(found, faces=faces, description=found.description + note)
 
 
-def _find_subject(img: LoadedImage, foreground: object, subject: object) -> Subject:
+def _find_subject(img: LoadedImage, foreground: object, subject: object, pool: Executor | None) -> Subject:
     shape = (img.height, img.width)
     check_foreground_option(foreground)
     if foreground is None:
@@ -218,6 +237,7 @@ def _find_subject(img: LoadedImage, foreground: object, subject: object) -> Subj
             raise InvalidParameterError("subject (a rectangle) needs foreground auto or grabcut, not a mask or none")
         said = parse_subject_rectangle(subject, (img.input_height, img.input_width))  # the input's pixels
         rect = said if img.scale == 1.0 else _at_working_size(said, img)
+        _lines_ahead(img, pool)  # one cut: the other core makes the line maps
         mask = clean_mask(_grabcut(img, rect=rect))
         if not mask.any():
             raise InvalidParameterError(f"no object found in the subject rectangle {','.join(map(str, said))}")
@@ -233,11 +253,12 @@ def _find_subject(img: LoadedImage, foreground: object, subject: object) -> Subj
             return Subject(readonly(mask.copy()), "alpha", f"kept the opaque pixels (alpha): {mask.mean():.0%}")
         texture = None
         if foreground == "auto":  # the same cut with texture: take the candidate whose outline is the sharper edge
-            mask, texture, textured, lab = _both_cuts(img)
+            mask, texture, textured, lab = _both_cuts(img, pool)
             if lab is not None:  # texture_lab of the texture, once for both candidates
                 if outline_contrast(img, textured, lab=lab) > outline_contrast(img, mask, lab=lab):
                     mask = textured
         else:
+            _lines_ahead(img, pool)
             mask = clean_mask(_grabcut(img))
         if foreground == "grabcut":
             if not mask.any():
@@ -298,7 +319,17 @@ def _at_working_size(rect: tuple[int, int, int, int], img: LoadedImage) -> tuple
     return x0, y0, x1 - x0, y1 - y0
 
 
-def _both_cuts(img: LoadedImage) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray | None]:
+def _lines_ahead(img: LoadedImage, pool: Executor | None) -> None:
+    """Start the photo's line maps in ``pool``, if one is given (:func:`find_subject`'s ``lines_ahead``)."""
+    if pool is not None:
+        from .photo import start_photo_line_maps
+
+        start_photo_line_maps(img, pool)
+
+
+def _both_cuts(
+    img: LoadedImage, pool: Executor | None = None
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray | None]:
     """GrabCut on the colours and on colour and texture, run side by side: (mask, texture, textured mask, lab).
 
     The two cuts are independent and OpenCV releases the interpreter while it
@@ -309,7 +340,9 @@ def _both_cuts(img: LoadedImage) -> tuple[np.ndarray, np.ndarray, np.ndarray, np
     CIELAB to make its feature image; after its cut it makes what the two
     candidates' outlines are compared on, ``lab``
     (:func:`~img2logo.subject_cues.texture_lab`; None when the textured cut
-    found nothing).
+    found nothing). Given a ``pool`` of two threads (:func:`find_subject`'s
+    ``lines_ahead``), the other cut runs in it, and once this thread's cut is
+    done the photo's line maps are started in its second thread.
     """
     import threading
     from concurrent.futures import ThreadPoolExecutor
@@ -322,14 +355,21 @@ def _both_cuts(img: LoadedImage) -> tuple[np.ndarray, np.ndarray, np.ndarray, np
         cut = clean_mask(_grabcut(img, texture=texture))
         return texture, cut, texture_lab(img, texture) if cut.any() else None
 
-    with ThreadPoolExecutor(max_workers=2) as pool:
-        other = pool.submit(textured)
+    own = ThreadPoolExecutor(max_workers=1) if pool is None else None
+    runner = pool if pool is not None else own
+    assert runner is not None
+    try:
+        other = runner.submit(textured)
         try:
             _ = img.smooth_lab  # computed once, here, while the other thread makes the texture map
         finally:
             lab_ready.set()
         mask = clean_mask(_grabcut(img))
+        _lines_ahead(img, pool)  # a core is free now, or will be as soon as the other cut is done
         texture, cut, lab = other.result()
+    finally:
+        if own is not None:
+            own.shutdown()
     return mask, texture, cut, lab
 
 
@@ -359,7 +399,7 @@ def dominant_part(mask: np.ndarray, texture: np.ndarray | None) -> np.ndarray:
     parts = [i + 1 for i in np.argsort(-sizes) if sizes[i] >= SUBJECT_MIN_PART * mask.sum()]
     if len(parts) < 2:
         return mask
-    medians = [float(np.median(texture[labels == i])) for i in parts]
+    medians = [float(median(texture[labels == i])) for i in parts]
     step = max(abs(m - medians[0]) for m in medians[1:]) / SUBJECT_TEXTURE_WEIGHT
     if step < SUBJECT_MIN_TEXTURE_STEP:
         return mask
@@ -378,8 +418,6 @@ def find_faces(img: LoadedImage, mask: np.ndarray | None = None) -> tuple[tuple[
     texture at a few), and with its centre in ``mask`` when one is given.
     """
     import cv2
-    from skimage import data
-    from skimage.feature import Cascade
 
     small, scale = working_copy(img)
     sh, sw = small.shape[:2]
@@ -394,7 +432,7 @@ def find_faces(img: LoadedImage, mask: np.ndarray | None = None) -> tuple[tuple[
     largest = min(small.shape[:2])
     if largest < side:
         return ()
-    cascade = Cascade(data.lbp_frontal_face_cascade_filename())
+    cascade = _cascade_class()(_cascade_file())
     gray = cv2.cvtColor(np.ascontiguousarray(np.clip(small, 0, 1)), cv2.COLOR_RGB2GRAY)
     found = cascade.detect_multi_scale(
         img=gray,
@@ -412,6 +450,66 @@ def find_faces(img: LoadedImage, mask: np.ndarray | None = None) -> tuple[tuple[
         if mask is None or mask[cy, cx]:
             faces.append((x, y, w, h))
     return tuple(faces)
+
+
+def _cascade_file() -> str:
+    """The path of scikit-image's LBP frontal-face cascade (``skimage.data.lbp_frontal_face_cascade_filename``).
+
+    It ships in the package's ``data`` folder; asking ``skimage.data`` for it
+    loads its download registry and ``skimage.util`` (0.03 s of CPU a run).
+    """
+    import importlib.util
+
+    spec = importlib.util.find_spec("skimage")
+    if spec is not None and spec.origin is not None:
+        path = Path(spec.origin).parent / "data" / "lbpcascade_frontalface_opencv.xml"
+        if path.is_file():
+            return str(path)
+    from skimage import data
+
+    return str(data.lbp_frontal_face_cascade_filename())
+
+
+def _cascade_class() -> type:
+    """scikit-image's ``skimage.feature.Cascade``, without importing ``skimage.color``'s colour conversions.
+
+    The compiled module ``skimage.feature._cascade`` imports ``rgb2gray`` from
+    ``skimage.color`` when it loads (for colour images; :func:`find_faces` gives
+    it gray ones), and ``skimage.color`` imports ``scipy.linalg``, whose array-API
+    layer imports most of numpy's optional modules: about 0.4 s of CPU, a fifth
+    of a photo's command line. While the module loads, ``skimage.color`` is a
+    stand-in whose ``rgb2gray`` imports the real one when first called; the
+    stand-in is gone as soon as the module is loaded.
+    """
+    import sys
+    import types
+
+    loaded = sys.modules.get("skimage.feature._cascade")
+    if loaded is not None or "skimage.color.colorconv" in sys.modules:
+        from skimage.feature import Cascade
+
+        return Cascade
+    import skimage
+
+    def rgb2gray(*args: object, **kwargs: object) -> np.ndarray:
+        from skimage.color import rgb2gray as real
+
+        return real(*args, **kwargs)
+
+    stand_in = types.ModuleType("skimage.color")
+    stand_in.rgb2gray = rgb2gray  # type: ignore[attr-defined]
+    before = sys.modules.get("skimage.color")
+    sys.modules["skimage.color"] = stand_in
+    try:
+        import skimage.feature._cascade as module
+    finally:
+        if before is None:
+            sys.modules.pop("skimage.color", None)
+        else:
+            sys.modules["skimage.color"] = before
+        if getattr(skimage, "color", None) is stand_in:
+            del skimage.color
+    return module.Cascade
 
 
 def _not_dominant(mask: np.ndarray, frame: bool = True) -> str:

@@ -44,7 +44,17 @@ from .constants import (
     SUBJECT_MIN_CONTRAST,
 )
 from .loading import LoadedImage
-from .subject_cues import clean_mask, dilate, distance, gaussian, label, mask_box, outline_contrast, work_scale
+from .subject_cues import (
+    clean_mask,
+    dilate,
+    distance,
+    gaussian,
+    label,
+    mask_box,
+    median,
+    outline_contrast,
+    work_scale,
+)
 
 #: Fewest pixels in the ring and the core for their statistics to mean something.
 _MIN_SAMPLES = 50
@@ -124,7 +134,7 @@ def cast_shadow(img: LoadedImage, mask: np.ndarray) -> np.ndarray | None:
     box = (slice(rows.min(), rows.max() + 1), slice(cols.min(), cols.max() + 1))
     features, log_lum = shadow_features(img.rgb[box], scale)
     m, ring_b, core_b = mask[box], ring[box], core[box]
-    darker = m & (log_lum < np.median(log_lum[ring_b]))
+    darker = m & (log_lum < median(log_lum[ring_b]))
     local = SHADOW_RING[1] / scale
     to_ring = _mahalanobis(features, ring_b, local)
     to_core = _mahalanobis(features, core_b, local)

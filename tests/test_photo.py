@@ -251,3 +251,25 @@ def test_a_colour_line_is_gated_by_the_drawn_lines_and_drawn_back_to_the_line_it
     beside = np.zeros_like(drawn)
     beside[:, 26] = True
     assert not new_colour_lines(_maps(beside, edges, 0.5, 0.2), drawn).any()
+
+
+def test_a_photo_s_subject_and_line_maps_import_no_scipy_package(data_dir):
+    """The subject search, the faces, the line maps and the outline use scipy's compiled filters only:
+    importing ``scipy.ndimage`` or ``scipy.linalg`` (their array-API layer) costs most of a second of CPU."""
+    import subprocess
+    import sys
+
+    code = (
+        "import sys\n"
+        "from img2logo import load_image\n"
+        "from img2logo.photo import photo_line_maps, reach_outline, subject_outline\n"
+        "from img2logo.subject import find_subject\n"
+        f"img = load_image({str(data_dir / 'photo-flower.png')!r})\n"
+        "found = find_subject(img, lines_ahead=True)\n"
+        "light, colour = photo_line_maps(img)\n"
+        "assert found.mask is not None and light.any()\n"
+        "reach_outline(light, subject_outline(found.mask))\n"
+        "print(sorted(m for m in sys.modules if m.startswith('scipy')))\n"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "['scipy.ndimage._nd_image']"

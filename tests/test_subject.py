@@ -390,6 +390,31 @@ def test_the_cues_filters_are_scipy_ndimage_s_to_the_bit():
             np.testing.assert_array_equal(ours, theirs)
 
 
+def test_the_flow_s_filters_and_the_nearest_pixel_are_scipy_ndimage_s_to_the_bit():
+    from scipy import ndimage
+
+    from img2logo.subject_cues import gaussian, nearest_background, sobel
+
+    rng = np.random.default_rng(4)
+    for h, w in ((37, 52), (64, 41), (9, 80)):
+        for dtype in (np.float32, np.float64):
+            image = rng.random((h, w)).astype(dtype)
+            for axis in (0, 1):
+                ours, theirs = sobel(image, axis), ndimage.sobel(image, axis=axis, mode="constant", cval=0)
+                assert ours.dtype == theirs.dtype
+                np.testing.assert_array_equal(ours, theirs)
+            for sigma in (0.8, 3.0):
+                ours = gaussian(image, sigma, mode="constant")
+                np.testing.assert_array_equal(ours, ndimage.gaussian_filter(image, sigma, mode="constant", cval=0))
+        lines = rng.random((h, w)) < 0.03  # sparse pixels: many ties between equally near ones
+        lines[h // 2, w // 3] = True
+        dist, (rows, cols) = nearest_background(~lines)
+        theirs, (their_rows, their_cols) = ndimage.distance_transform_edt(~lines, return_indices=True)
+        np.testing.assert_array_equal(dist, theirs)
+        np.testing.assert_array_equal(rows, their_rows)
+        np.testing.assert_array_equal(cols, their_cols)
+
+
 def test_the_cues_do_not_import_scipy_ndimage():
     import subprocess
     import sys
@@ -406,3 +431,38 @@ def test_the_cues_do_not_import_scipy_ndimage():
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "False"
+
+
+def test_the_cues_median_is_numpy_s_to_the_bit():
+    from img2logo.subject_cues import median
+
+    rng = np.random.default_rng(5)
+    for n in (1, 2, 3, 10, 11, 1000, 1001):
+        for dtype in (np.float64, np.float32):
+            values = rng.standard_normal(n).astype(dtype)
+            ours, theirs = median(values), np.median(values)
+            assert type(ours) is type(theirs)
+            assert ours == theirs
+    assert np.isnan(median(np.array([1.0, np.nan, 2.0])))
+    assert median(np.array([3, 1, 2])) == 2.0
+
+
+def test_the_line_maps_made_beside_the_cuts_are_those_made_after(monkeypatch):
+    from img2logo import photo
+
+    rgb, _ = textured_photo([(170, 120, 80, 60, (0.95, 0.75, 0.2))])
+    img = load_image(rgb)
+    made = []
+    maps = object()
+    monkeypatch.setattr(photo, "_line_maps", lambda image: made.append(image) or maps)
+    found = find_subject(img, lines_ahead=True)
+    assert found.mask is not None
+    assert photo.line_maps(img) is maps  # taken from the thread ...
+    assert made == [img]
+    assert img not in photo._AHEAD  # ... once
+    monkeypatch.undo()
+    later = load_image(rgb)
+    find_subject(later, lines_ahead=True)
+    ahead, now = photo.photo_line_maps(later), photo.photo_line_maps(later)
+    for a, b in zip(ahead, now, strict=True):
+        np.testing.assert_array_equal(a, b)
