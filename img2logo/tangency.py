@@ -227,8 +227,9 @@ def _one_at_a_time(opt: FitState, joins: dict[int, tuple[int, int]], bound: floa
         opt.loose.discard(node)
         made[node] = (a, b)
         best = None
+        before: dict[frozenset[int], int] = {}  # the state's crossings by window: the same for every try here
         for combo in _rung_choices(opt, node, (a, b)):
-            trial = _try(opt, made, node, combo, bound)
+            trial = _try(opt, made, node, combo, bound, before=before)
             if trial is not None and (best is None or trial.similarity < best.similarity):
                 best = trial
             if best is not None and not any(combo.values()):
@@ -238,7 +239,7 @@ def _one_at_a_time(opt: FitState, joins: dict[int, tuple[int, int]], bound: floa
             # (a tangent biarc over the two groups' joined pixels, the junction anywhere on
             # them, :func:`_biarc`) and start the refit from there.
             for combo, start in _biarc_starts(opt, node, (a, b)):
-                trial = _try(opt, made, node, combo, bound, start)
+                trial = _try(opt, made, node, combo, bound, start, before=before)
                 if trial is not None and (best is None or trial.similarity < best.similarity):
                     best = trial
         if best is None:
@@ -413,6 +414,8 @@ def _try(
     combo: dict[int, int],
     bound: float,
     start: _Start | None = None,
+    *,
+    before: dict[frozenset[int], int] | None = None,
 ) -> _Trial | None:
     """Refit the window of the join at ``node`` with the rung steps ``combo``; None if it fails a rule.
 
@@ -423,7 +426,9 @@ def _try(
     tangent biarc: the join's two circles there, their pixels split at its
     junction, and the junction's rest point moved there for the fit (its
     displacement term of Eqn. 13 pulls towards the biarc's junction, not back
-    along the line to the node). The state is left as it was.
+    along the line to the node). The state is left as it was. ``before`` caches
+    the state's redundant intersections by the groups refitted, for the tries of
+    one join (the state does not change between them).
     """
     seeds = {g: f.seed for g, f in opt.fits.items()}
     for g, step in combo.items():
@@ -483,7 +488,11 @@ def _try(
     finally:
         opt.graph = graph
         opt.fits, opt.disp, opt.groups, opt.off_line = saved
-    if crossings > _redundant(opt, set(fits)):
+    before = {} if before is None else before
+    key = frozenset(fits)
+    if key not in before:
+        before[key] = _redundant(opt, set(fits))
+    if crossings > before[key]:
         return None
     return _Trial(similarity, fits, disp, groups, off_line)
 
