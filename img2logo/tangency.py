@@ -593,8 +593,14 @@ def _biarc(
     splits = np.arange(lo, hi, BIARC_STEP)
     turns = np.arange(-BIARC_TURN_STEPS, BIARC_TURN_STEPS + 1) * step
     sides = ((-1.0, -1.0), (-1.0, 1.0), (1.0, -1.0), (1.0, 1.0))
-    heads = [{sa: _biarc_worst(chain, splits, turns, r, sa, True, BIARC_STEP) for sa in (-1.0, 1.0)} for r in radii_a]
-    tails = [{sb: _biarc_worst(chain, splits, turns, r, sb, False, BIARC_STEP) for sb in (-1.0, 1.0)} for r in radii_b]
+    normal = _biarc_normal(chain, splits, turns)  # the coarse grid's, shared by every radius and side
+    heads = [
+        {sa: _biarc_worst(chain, splits, turns, r, sa, True, BIARC_STEP, normal) for sa in (-1.0, 1.0)} for r in radii_a
+    ]
+    tails = [
+        {sb: _biarc_worst(chain, splits, turns, r, sb, False, BIARC_STEP, normal) for sb in (-1.0, 1.0)}
+        for r in radii_b
+    ]
     out = []
     for ia, ra in enumerate(radii_a):
         for ib, rb in enumerate(radii_b):
@@ -625,14 +631,24 @@ def _biarc_normal(chain: np.ndarray, splits: np.ndarray, turns: np.ndarray) -> n
 
 
 def _biarc_worst(
-    chain: np.ndarray, splits: np.ndarray, turns: np.ndarray, r: float, side: float, head: bool, stride: int
+    chain: np.ndarray,
+    splits: np.ndarray,
+    turns: np.ndarray,
+    r: float,
+    side: float,
+    head: bool,
+    stride: int,
+    normal: np.ndarray | None = None,
 ) -> np.ndarray:
     """Largest distance (S, A) px of the head's (or tail's) pixels from a circle of radius ``r``, per split and turn.
 
     The circle touches the chain's turned direction at ``chain[split]``, its
     centre on the ``side`` (+1 or -1) of it; every ``stride``-th pixel measured.
+    ``normal`` is :func:`_biarc_normal` of ``splits`` and ``turns`` when known.
     """
-    centre = chain[splits][:, None, :] + side * r * _biarc_normal(chain, splits, turns)  # (S, A, 2)
+    if normal is None:
+        normal = _biarc_normal(chain, splits, turns)
+    centre = chain[splits][:, None, :] + side * r * normal  # (S, A, 2)
     index = np.arange(0, len(chain), stride)
     from . import kernels
 
