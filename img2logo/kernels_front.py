@@ -10,7 +10,11 @@ same differences, squares and sums in the same order, so the same bits, in one
 pass instead of a dozen of temporary images. :func:`label_kernel` numbers the
 connected components of equal values by their first pixel in raster order
 (``_skeleton.label``'s numbering), in one flood fill instead of OpenCV's
-labelling of each value's mask and a renumbering.
+labelling of each value's mask and a renumbering. :func:`colour_table_kernel` is
+``_cielab.srgb_to_lab``'s table of an 8-bit image's colours: the 24-bit code of
+every pixel (when every value is k / 255), the codes present in ascending
+order and each pixel's place among them, as ``np.unique(..., return_inverse=True)``
+gives them, by a bit set of the 2**24 codes instead of a sort.
 
 Written in the subset of Python that numba compiles; loaded through
 :mod:`img2logo.kernels` (ahead of time, or numba's JIT as a fallback), never
@@ -115,3 +119,67 @@ def label_kernel(image, background, eight):  # pragma: no cover - compiled
                             stack[top] = rr * w + cc
                             top += 1
     return out
+
+
+_M1 = np.uint64(0x5555555555555555)
+_M2 = np.uint64(0x3333333333333333)
+_M4 = np.uint64(0x0F0F0F0F0F0F0F0F)
+_H01 = np.uint64(0x0101010101010101)
+
+
+@_jit
+def _popcount(x):  # pragma: no cover - compiled
+    """Set bits of a uint64 (the SWAR count)."""
+    x = x - ((x >> np.uint64(1)) & _M1)
+    x = (x & _M2) + ((x >> np.uint64(2)) & _M2)
+    x = (x + (x >> np.uint64(4))) & _M4
+    return np.int64((x * _H01) >> np.uint64(56))
+
+
+@_jit
+def colour_table_kernel(rgb):  # pragma: no cover - compiled
+    """An 8-bit image's colours: (ok, codes present ascending (U,), each pixel's index among them (H * W,)).
+
+    ``rgb`` (H, W, 3) in [0, 1]; a pixel's code is ``(r << 16) | (g << 8) | b``
+    of its values times 255, rounded (``np.rint``). Not ok (and empty arrays)
+    when some value is not k / 255 for an integer k in 0..255.
+    """
+    h, w = rgb.shape[0], rgb.shape[1]
+    n = h * w
+    codes = np.empty(n, dtype=np.int64)
+    bits = np.zeros(1 << 18, dtype=np.uint64)
+    one = np.uint64(1)
+    for i in range(h):
+        for j in range(w):
+            code = 0
+            for c in range(3):
+                x = rgb[i, j, c]
+                v = np.rint(x * 255.0)
+                if not (v / 255.0 == x and 0.0 <= v <= 255.0):
+                    return False, np.empty(0, dtype=np.int64), np.empty(0, dtype=np.int64)
+                code = code * 256 + np.int64(v)
+            codes[i * w + j] = code
+            bits[code >> 6] |= one << np.uint64(code & 63)
+    before = np.empty(1 << 18, dtype=np.int64)
+    total = 0
+    for k in range(1 << 18):
+        before[k] = total
+        total += _popcount(bits[k])
+    colours = np.empty(total, dtype=np.int64)
+    m = 0
+    for k in range(1 << 18):
+        word = bits[k]
+        b = 0
+        while word != np.uint64(0):
+            if word & one:
+                colours[m] = k * 64 + b
+                m += 1
+            word = word >> one
+            b += 1
+    index = np.empty(n, dtype=np.int64)
+    for p in range(n):
+        code = codes[p]
+        k = code >> 6
+        below = bits[k] & ((one << np.uint64(code & 63)) - one)
+        index[p] = before[k] + _popcount(below)
+    return True, colours, index
