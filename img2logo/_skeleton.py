@@ -107,10 +107,17 @@ def label(image: np.ndarray, connectivity: int, background: int = 0) -> np.ndarr
     ``skimage.morphology`` and ``scipy.spatial`` (about 0.1 s of CPU a run).
     A component is numbered by its first pixel in raster order, as scikit-image
     does (and ``scipy.ndimage.label``, whose int32 labels a bool image gets too).
+    Compiled where the kernels are usable (:func:`img2logo.kernels_front.label_kernel`,
+    one flood fill: the same labels).
     """
-    import cv2
+    from . import kernels
 
     out_type = np.int32 if image.dtype == bool else np.int64
+    if kernels.usable():
+        values = np.ascontiguousarray(image, dtype=np.int64)
+        return kernels.label_kernel(values, int(background), connectivity != 1).astype(out_type, copy=False)
+    import cv2
+
     eight = 4 if connectivity == 1 else 8
     if image.dtype == bool and background == 0:
         n, labels = cv2.connectedComponents(np.ascontiguousarray(image).view(np.uint8), connectivity=eight)
@@ -323,14 +330,15 @@ def trace(skel: np.ndarray) -> PixelGraph:
     contact_node = np.concatenate(c_node)
 
     contacts: list[dict[int, set[int]]] = [{} for _ in range(n_comp)]
+    run_of = comp_of.tolist()
     for p, n in zip(contact_pix.tolist(), contact_node.tolist(), strict=True):
-        contacts[comp_of[p]].setdefault(n, set()).add(p)
+        contacts[run_of[p]].setdefault(n, set()).add(p)
 
     pixels = np.column_stack([rows, cols])
     for comp in range(n_comp):
         a, b = int(block[comp]), int(block[comp + 1])
         idx = by_run[a:b]
-        local = {int(g): k for k, g in enumerate(idx)}
+        local = {g: k for k, g in enumerate(idx.tolist())}
         ends = _contact_groups(contacts[comp], pixels, local)
         _trace_component(graph, adj.block(a, b), idx, pixels, ends)
     return graph
@@ -432,17 +440,18 @@ def _contact_groups(
             for b in range(a + 1, len(pix)):
                 if np.max(np.abs(pts[a] - pts[b])) <= 1:
                     lab[lab == lab[b]] = lab[a]
-        for g in np.unique(lab):
+        for g in sorted(set(lab.tolist())):  # np.unique imports numpy.ma (np.ma.is_masked)
             groups.append((node, [local[pix[k]] for k in np.flatnonzero(lab == g)]))
     return groups
 
 
 def _shortest_path(sub: _Graph, sources: list[int], targets: list[int]) -> list[int]:
-    dist, pred = _dijkstra(sub, sources)
+    dist, pred_ = _dijkstra(sub, sources)
     t = min(targets, key=lambda k: dist[k])
+    pred = pred_.tolist()  # followed as Python ints: numpy's scalar indexing per pixel was most of the time
     path = [t]
     while pred[path[-1]] >= 0:
-        path.append(int(pred[path[-1]]))
+        path.append(pred[path[-1]])
     return path[::-1]
 
 

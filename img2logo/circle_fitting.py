@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -176,16 +177,15 @@ def fit_circle(points: object, *, max_radius: float | None = None, refine: bool 
     InvalidParameterError
         ``points`` not of shape (N, 2) or not finite; ``max_radius`` not > 0.
     """
-    p = check_points(points)
+    p = _points(points)
     if len(p) < 3:
         raise FitError(f"a circle fit needs at least 3 points, got {len(p)}")
     if max_radius is not None:
         check_positive(max_radius, "max_radius")
     if not refine:
-        from . import kernels  # the compiled kernels load on the first fit, not at import
-
-        if kernels.usable():
-            status, cx, cy, radius, rms, capped = kernels.fit_circle_kernel(
+        kernels = _kernels()  # the compiled kernels load on the first fit, not at import
+        if kernels is not None:
+            status, cx, cy, radius, rms, capped = kernels["fit_circle_kernel"](
                 p, 0.0 if max_radius is None else float(max_radius), MAX_RADIUS_FACTOR
             )
             if status == 1:
@@ -246,15 +246,17 @@ def mean_abs_error(points: object, center: object, radius: float) -> float:
 
     The "average fitting error" of the line-segment simplification (Sec. 5.4).
     """
-    p = check_points(points)
+    p = _points(points)
     o = np.asarray(center, dtype=np.float64)
-    if o.shape != (2,) or not np.all(np.isfinite(o)):
+    if o.shape != (2,):
+        raise InvalidParameterError(f"center must be a finite array of shape (2,), got {o.shape}")
+    cx, cy = float(o[0]), float(o[1])
+    if not (math.isfinite(cx) and math.isfinite(cy)):
         raise InvalidParameterError(f"center must be a finite array of shape (2,), got {o.shape}")
     r = check_positive(radius, "radius")
-    from . import kernels
-
-    if kernels.usable():
-        return float(kernels.mean_abs_error_kernel(p, float(o[0]), float(o[1]), r))
+    kernels = _kernels()
+    if kernels is not None:
+        return float(kernels["mean_abs_error_kernel"](p, cx, cy, r))
     return float(np.mean(np.abs(np.hypot(p[:, 0] - o[0], p[:, 1] - o[1]) - r)))
 
 
@@ -266,14 +268,49 @@ def fit_center(points: object, radius: float, center0: object, *, iterations: in
     snapped to the ladder (Eqn. 12) and no junction constrains it. Stops early
     once a step is below 1e-9 px.
     """
-    p = check_points(points)
+    p = _points(points)
     o = np.array(center0, dtype=np.float64).reshape(2)
     r = check_positive(radius, "radius")
-    from . import kernels
-
-    if kernels.usable():
-        return np.array(kernels.fit_center_kernel(p, r, float(o[0]), float(o[1]), int(iterations)))
+    kernels = _kernels()
+    if kernels is not None:
+        return np.array(kernels["fit_center_kernel"](p, r, float(o[0]), float(o[1]), int(iterations)))
     return _fit_center_reference(p, r, o, iterations)
+
+
+_FLOAT64 = np.dtype(np.float64)
+
+
+def _points(points: object) -> np.ndarray:
+    """:func:`~img2logo._validation.check_points` (shape (N, 2), N >= 1, finite), C-contiguous float64.
+
+    The fits run thousands of times on a run's groups (the simplification, the
+    initial fit, every merge): an array that is already right passes on one sum,
+    which is finite only if every value is (a NaN or an infinity makes it NaN or
+    infinite).
+    """
+    if (
+        type(points) is np.ndarray
+        and points.dtype is _FLOAT64
+        and points.ndim == 2
+        and points.shape[1] == 2
+        and len(points)
+        and math.isfinite(points.sum())
+    ):
+        return points if points.flags.c_contiguous else np.ascontiguousarray(points)
+    return np.ascontiguousarray(check_points(points))
+
+
+_KERNELS: Any = None  # img2logo.kernels, once a fit asked for it (its import is not every run's)
+
+
+def _kernels() -> dict[str, Any] | None:
+    """The compiled kernels by name (:mod:`img2logo.kernels`), or None where the Python reference runs."""
+    global _KERNELS
+    if _KERNELS is None:
+        from . import kernels
+
+        _KERNELS = kernels
+    return _KERNELS._load() if _KERNELS.usable() else None
 
 
 def _fit_center_reference(p: np.ndarray, r: float, o: np.ndarray, iterations: int) -> np.ndarray:

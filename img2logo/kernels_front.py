@@ -1,8 +1,20 @@
-"""Compiled kernels of the front end: the clip-art regions' per-label sums.
+"""Compiled kernels of the front end: the clip-art regions' per-label sums, and colour spreads.
 
 :func:`label_sums_kernel` is ``clipart.label_means``'s ``np.bincount`` per
 channel in one pass over the pixels: each label's count and its sums, added
 in the pixels' order as ``np.bincount`` adds them, so the same bits.
+:func:`spread_kernel` is the largest squared colour difference of every pixel
+to its neighbours at given offsets (``clipart._flat_areas``' window,
+``clipart.colour_noise``'s 4-neighbours), in float32 as numpy computed it: the
+same differences, squares and sums in the same order, so the same bits, in one
+pass instead of a dozen of temporary images. :func:`label_kernel` numbers the
+connected components of equal values by their first pixel in raster order
+(``_skeleton.label``'s numbering), in one flood fill instead of OpenCV's
+labelling of each value's mask and a renumbering. :func:`colour_table_kernel` is
+``_cielab.srgb_to_lab``'s table of an 8-bit image's colours: the 24-bit code of
+every pixel (when every value is k / 255), the codes present in ascending
+order and each pixel's place among them, as ``np.unique(..., return_inverse=True)``
+gives them, by a bit set of the 2**24 codes instead of a sort.
 
 Written in the subset of Python that numba compiles; loaded through
 :mod:`img2logo.kernels` (ahead of time, or numba's JIT as a fallback), never
@@ -27,3 +39,147 @@ def label_sums_kernel(labels, values, n):  # pragma: no cover - compiled
         for c in range(values.shape[1]):
             sums[k, c] += values[i, c]
     return counts, sums
+
+
+@_jit
+def spread_kernel(lab, pairs):  # pragma: no cover - compiled
+    """Largest squared difference of each pixel of ``lab`` (H, W, 3) to those at ``pairs`` (P, 2) offsets, (H, W).
+
+    Each offset (dr, dc) is taken both ways (from a pixel and to it), within
+    the image. The colours are rounded to float32 and the squared differences
+    ``d0 * d0 + d1 * d1 + d2 * d2`` summed in float32 (numpy's
+    ``einsum("ijk,ijk->ij")`` of the float32 differences); the result holds
+    those float32 values in float64.
+    """
+    h, w = lab.shape[0], lab.shape[1]
+    lab32 = np.empty((h, w, 3), dtype=np.float32)
+    for i in range(h):
+        for j in range(w):
+            for c in range(3):
+                lab32[i, j, c] = np.float32(lab[i, j, c])
+    most = np.zeros((h, w), dtype=np.float32)
+    for p in range(pairs.shape[0]):
+        dr, dc = pairs[p, 0], pairs[p, 1]
+        if dr >= h or abs(dc) >= w:
+            continue
+        for i in range(h - dr):
+            for j in range(max(0, -dc), w - max(0, dc)):
+                i2, j2 = i + dr, j + dc
+                d0 = lab32[i2, j2, 0] - lab32[i, j, 0]
+                d1 = lab32[i2, j2, 1] - lab32[i, j, 1]
+                d2 = lab32[i2, j2, 2] - lab32[i, j, 2]
+                d = d0 * d0 + d1 * d1
+                d = d + d2 * d2
+                if d > most[i, j]:
+                    most[i, j] = d
+                if d > most[i2, j2]:
+                    most[i2, j2] = d
+    out = np.empty((h, w))
+    for i in range(h):
+        for j in range(w):
+            out[i, j] = most[i, j]
+    return out
+
+
+@_jit
+def label_kernel(image, background, eight):  # pragma: no cover - compiled
+    """Connected components of equal values of ``image`` (H, W), numbered 1.. by their first pixel in raster order.
+
+    Pixels equal to ``background`` are 0; ``eight``: 8-neighbours, else 4. Each
+    component is flooded (a stack of pixels, each pushed once) from its first
+    pixel met in raster order, so the numbers are in that order.
+    """
+    h, w = image.shape
+    out = np.zeros((h, w), dtype=np.int64)
+    stack = np.empty(h * w, dtype=np.int64)
+    n = 0
+    for i in range(h):
+        for j in range(w):
+            v = image[i, j]
+            if v == background or out[i, j] != 0:
+                continue
+            n += 1
+            out[i, j] = n
+            stack[0] = i * w + j
+            top = 1
+            while top > 0:
+                top -= 1
+                r = stack[top] // w
+                c = stack[top] - r * w
+                for dr in range(-1, 2):
+                    rr = r + dr
+                    if rr < 0 or rr >= h:
+                        continue
+                    for dc in range(-1, 2):
+                        if (dr == 0 and dc == 0) or (not eight and dr != 0 and dc != 0):
+                            continue
+                        cc = c + dc
+                        if 0 <= cc < w and out[rr, cc] == 0 and image[rr, cc] == v:
+                            out[rr, cc] = n
+                            stack[top] = rr * w + cc
+                            top += 1
+    return out
+
+
+_M1 = np.uint64(0x5555555555555555)
+_M2 = np.uint64(0x3333333333333333)
+_M4 = np.uint64(0x0F0F0F0F0F0F0F0F)
+_H01 = np.uint64(0x0101010101010101)
+
+
+@_jit
+def _popcount(x):  # pragma: no cover - compiled
+    """Set bits of a uint64 (the SWAR count)."""
+    x = x - ((x >> np.uint64(1)) & _M1)
+    x = (x & _M2) + ((x >> np.uint64(2)) & _M2)
+    x = (x + (x >> np.uint64(4))) & _M4
+    return np.int64((x * _H01) >> np.uint64(56))
+
+
+@_jit
+def colour_table_kernel(rgb):  # pragma: no cover - compiled
+    """An 8-bit image's colours: (ok, codes present ascending (U,), each pixel's index among them (H * W,)).
+
+    ``rgb`` (H, W, 3) in [0, 1]; a pixel's code is ``(r << 16) | (g << 8) | b``
+    of its values times 255, rounded (``np.rint``). Not ok (and empty arrays)
+    when some value is not k / 255 for an integer k in 0..255.
+    """
+    h, w = rgb.shape[0], rgb.shape[1]
+    n = h * w
+    codes = np.empty(n, dtype=np.int64)
+    bits = np.zeros(1 << 18, dtype=np.uint64)
+    one = np.uint64(1)
+    for i in range(h):
+        for j in range(w):
+            code = 0
+            for c in range(3):
+                x = rgb[i, j, c]
+                v = np.rint(x * 255.0)
+                if not (v / 255.0 == x and 0.0 <= v <= 255.0):
+                    return False, np.empty(0, dtype=np.int64), np.empty(0, dtype=np.int64)
+                code = code * 256 + np.int64(v)
+            codes[i * w + j] = code
+            bits[code >> 6] |= one << np.uint64(code & 63)
+    before = np.empty(1 << 18, dtype=np.int64)
+    total = 0
+    for k in range(1 << 18):
+        before[k] = total
+        total += _popcount(bits[k])
+    colours = np.empty(total, dtype=np.int64)
+    m = 0
+    for k in range(1 << 18):
+        word = bits[k]
+        b = 0
+        while word != np.uint64(0):
+            if word & one:
+                colours[m] = k * 64 + b
+                m += 1
+            word = word >> one
+            b += 1
+    index = np.empty(n, dtype=np.int64)
+    for p in range(n):
+        code = codes[p]
+        k = code >> 6
+        below = bits[k] & ((one << np.uint64(code & 63)) - one)
+        index[p] = before[k] + _popcount(below)
+    return True, colours, index

@@ -292,7 +292,6 @@ class Options:
         import numpy as np
 
         from .golden_ladder import make_ladder
-        from .subject import check_foreground_option, subject_rectangle_numbers
 
         put = object.__setattr__
         put(self, "tolerance", _check_length(self.tolerance, "tolerance"))
@@ -301,8 +300,14 @@ class Options:
         if self.stroke_width is not None:
             put(self, "stroke_width", _check_length(self.stroke_width, "stroke_width"))
         check_choice(self.kind, "kind", ("auto", "photo", "clipart", "drawing"))
-        check_foreground_option(self.foreground)
+        # The photo modules load only for a value to check (the default "auto" needs none): a clip art's run skips them.
+        if not (isinstance(self.foreground, str) and self.foreground == "auto"):
+            from .subject import check_foreground_option
+
+            check_foreground_option(self.foreground)
         if self.subject is not None:
+            from .subject import subject_rectangle_numbers
+
             subject_rectangle_numbers(self.subject)
         if self.max_arc_distance is not None and not (
             isinstance(self.max_arc_distance, str) and self.max_arc_distance == AUTO

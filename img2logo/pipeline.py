@@ -25,7 +25,6 @@ from .options import AUTO, Options, check_lock_mask, check_symmetry_option
 from .preprocessing import FeatureLines, LoadedImage, extract_feature_lines, load_image, photo_reason
 from .progressive import ProgressCallback, Progression, optimize
 from .segment_graph import SegmentGraph, build_segment_graph
-from .subject import FOREGROUND_CHOICES
 
 if TYPE_CHECKING:  # the symmetry module loads only for a run that asks for an axis
     from .symmetry import SymmetryChoice
@@ -166,6 +165,8 @@ def abstract(
         # in here (the subject rectangle by find_subject, which says it as given), and every level
         # is scaled back to the input's pixels below.
         lock_mask = mask_to_working_size(lock_mask, img, "lock_mask")
+        from .subject import FOREGROUND_CHOICES
+
         foreground = opts.foreground
         if isinstance(foreground, np.ndarray | Path) or (
             isinstance(foreground, str) and foreground not in FOREGROUND_CHOICES

@@ -17,12 +17,13 @@ in px, x to the right, y downwards (``contract/README.md``).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from . import _skeleton, subject_cues
+from . import _skeleton
 from ._validation import check_choice, check_positive, readonly
-from .clipart import clipart_lines, clipart_regions, label_means
+from .clipart import clipart_lines, clipart_regions, label_means, median
 from .constants import (
     BLANK_IMAGE_RANGE,
     CLIPART_RIM_RADIUS,
@@ -44,8 +45,23 @@ from .constants import (
     SYNTHETIC_WORK_SIDE,
 )
 from .loading import DownscaleWarning, LoadedImage, downscale, load_image, load_mask
-from .photo import edge_tangent_flow, face_line_length, face_region, flow_dog, photo_feature_lines
-from .subject import Subject, find_subject
+
+if TYPE_CHECKING:
+    from .photo import edge_tangent_flow, flow_dog
+    from .subject import Subject
+
+# The photo modules (the flow-based lines, the subject's segmentation) load only for a
+# photo: a clip art's or a drawing's run does not import them.
+_PHOTO_NAMES = ("edge_tangent_flow", "flow_dog")
+
+
+def __getattr__(name: str) -> Any:
+    if name in _PHOTO_NAMES:
+        from . import photo
+
+        return getattr(photo, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
 
 __all__ = [
     "KINDS",
@@ -276,7 +292,7 @@ def median_stroke_width(ink: np.ndarray) -> float:
     """
     dist = _distance(ink)
     skel = _skeleton.skeletonize(ink)
-    return float(2.0 * np.median(dist[skel])) if skel.any() else 0.0
+    return float(2.0 * median(dist[skel])) if skel.any() else 0.0
 
 
 # --------------------------------------------------------------------------- feature lines
@@ -335,7 +351,7 @@ def extract_feature_lines(
         ink = _drawing_lines(img)
         radius = _half_width(ink)
         axis = _skeleton.skeletonize(ink)
-        stroke = float(2.0 * np.median(radius[axis])) if axis.any() else 0.0
+        stroke = float(2.0 * median(radius[axis])) if axis.any() else 0.0
         raw = _skeleton.join_line_ends(axis)
         min_len = spur_length if min_line_length is None else min_line_length
     elif kind == "clipart":
@@ -343,12 +359,17 @@ def extract_feature_lines(
         raw = _join(clipart_lines(regions))
         min_len = spur_length if min_line_length is None else min_line_length
     else:
+        from .photo import photo_feature_lines
+        from .subject import find_subject
+
         found = find_subject(img, foreground, subject, lines_ahead=True)  # the line maps beside the cuts
         raw = photo_feature_lines(img, found)
         min_len = PHOTO_MIN_LINE_LENGTH if min_line_length is None else min_line_length
     min_len = check_positive(min_len, "min_line_length", allow_zero=True)
     lines = _clean_skeleton(raw, spur_length=spur_length, min_length=min_len, radius=radius)
     if found is not None and found.faces:  # a face's eyes and mouth are shorter than a photo's shortest line
+        from .photo import face_line_length, face_region
+
         short = face_line_length(found.faces)
         near_face = face_region(raw.shape, found.faces)
         lines |= _clean_skeleton(raw & near_face, spur_length=min(spur_length, short / 2), min_length=short)
@@ -477,7 +498,7 @@ def _paper_seams(gray: np.ndarray, ink: np.ndarray) -> np.ndarray:
     if not ink.any() or ink.all():
         return np.zeros(ink.shape, dtype=bool)
     g = np.asarray(gray, dtype=np.float32)
-    contrast = float(np.median(g[~ink]) - np.median(g[ink]))
+    contrast = float(median(g[~ink]) - median(g[ink]))
     disc = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (SEAM_WIDTH, SEAM_WIDTH))
     ridge = cv2.morphologyEx(g, cv2.MORPH_TOPHAT, disc) > SEAM_CONTRAST * contrast
     # Pinched paper lies inside the ink; the tip of a paper wedge where two strokes meet at an
@@ -495,7 +516,7 @@ def _paper_seams(gray: np.ndarray, ink: np.ndarray) -> np.ndarray:
     ridge = long[parts].astype(np.uint8)
     # A ridge 1 px wide runs diagonally in steps that 8-connected ink crosses: widened by the
     # light pixels beside it (the strokes' rims), never into the ink itself.
-    light = g > np.median(g[ink]) + SEAM_RIM * contrast
+    light = g > median(g[ink]) + SEAM_RIM * contrast
     return ink & light & (cv2.dilate(ridge, cv2.getStructuringElement(cv2.MORPH_CROSS, (3, 3))) > 0)
 
 
@@ -520,7 +541,9 @@ def gaussian_blur(image: np.ndarray, sigma: float) -> np.ndarray:
     (``truncate`` 4 standard deviations, mode ``reflect``) and its compiled 1-D
     correlations, rows then columns, without importing ``scipy.ndimage``.
     """
-    return subject_cues.gaussian(np.asarray(image, dtype=np.float64), sigma)
+    from .subject_cues import gaussian
+
+    return gaussian(np.asarray(image, dtype=np.float64), sigma)
 
 
 def otsu_threshold(gray: np.ndarray) -> float:

@@ -281,9 +281,12 @@ def _rdp_split_indices(poly: np.ndarray, tolerance: float) -> list[int]:
     # itself, so no lookup table).
     pts = poly.astype(np.float32)
     kept = cv2.approxPolyDP(pts.reshape(-1, 1, 2), tolerance, False).reshape(-1, 2)
+    # Compared as Python floats (the float32 values exactly): np.array_equal per pixel
+    # was most of the segment graph's time.
+    chain = pts.tolist()
     out, i = [], 0
-    for q in kept[1:-1]:
-        while not np.array_equal(pts[i], q):
+    for q in kept[1:-1].tolist():
+        while chain[i] != q:
             i += 1
         out.append(i)
     return [k for k in out if 0 < k < len(poly) - 1]

@@ -227,8 +227,9 @@ def _one_at_a_time(opt: FitState, joins: dict[int, tuple[int, int]], bound: floa
         opt.loose.discard(node)
         made[node] = (a, b)
         best = None
+        before: dict[frozenset[int], int] = {}  # the state's crossings by window: the same for every try here
         for combo in _rung_choices(opt, node, (a, b)):
-            trial = _try(opt, made, node, combo, bound)
+            trial = _try(opt, made, node, combo, bound, before=before)
             if trial is not None and (best is None or trial.similarity < best.similarity):
                 best = trial
             if best is not None and not any(combo.values()):
@@ -238,7 +239,7 @@ def _one_at_a_time(opt: FitState, joins: dict[int, tuple[int, int]], bound: floa
             # (a tangent biarc over the two groups' joined pixels, the junction anywhere on
             # them, :func:`_biarc`) and start the refit from there.
             for combo, start in _biarc_starts(opt, node, (a, b)):
-                trial = _try(opt, made, node, combo, bound, start)
+                trial = _try(opt, made, node, combo, bound, start, before=before)
                 if trial is not None and (best is None or trial.similarity < best.similarity):
                     best = trial
         if best is None:
@@ -413,6 +414,8 @@ def _try(
     combo: dict[int, int],
     bound: float,
     start: _Start | None = None,
+    *,
+    before: dict[frozenset[int], int] | None = None,
 ) -> _Trial | None:
     """Refit the window of the join at ``node`` with the rung steps ``combo``; None if it fails a rule.
 
@@ -423,7 +426,9 @@ def _try(
     tangent biarc: the join's two circles there, their pixels split at its
     junction, and the junction's rest point moved there for the fit (its
     displacement term of Eqn. 13 pulls towards the biarc's junction, not back
-    along the line to the node). The state is left as it was.
+    along the line to the node). The state is left as it was. ``before`` caches
+    the state's redundant intersections by the groups refitted, for the tries of
+    one join (the state does not change between them).
     """
     seeds = {g: f.seed for g, f in opt.fits.items()}
     for g, step in combo.items():
@@ -483,7 +488,11 @@ def _try(
     finally:
         opt.graph = graph
         opt.fits, opt.disp, opt.groups, opt.off_line = saved
-    if crossings > _redundant(opt, set(fits)):
+    before = {} if before is None else before
+    key = frozenset(fits)
+    if key not in before:
+        before[key] = _redundant(opt, set(fits))
+    if crossings > before[key]:
         return None
     return _Trial(similarity, fits, disp, groups, off_line)
 
@@ -584,8 +593,14 @@ def _biarc(
     splits = np.arange(lo, hi, BIARC_STEP)
     turns = np.arange(-BIARC_TURN_STEPS, BIARC_TURN_STEPS + 1) * step
     sides = ((-1.0, -1.0), (-1.0, 1.0), (1.0, -1.0), (1.0, 1.0))
-    heads = [{sa: _biarc_worst(chain, splits, turns, r, sa, True, BIARC_STEP) for sa in (-1.0, 1.0)} for r in radii_a]
-    tails = [{sb: _biarc_worst(chain, splits, turns, r, sb, False, BIARC_STEP) for sb in (-1.0, 1.0)} for r in radii_b]
+    normal = _biarc_normal(chain, splits, turns)  # the coarse grid's, shared by every radius and side
+    heads = [
+        {sa: _biarc_worst(chain, splits, turns, r, sa, True, BIARC_STEP, normal) for sa in (-1.0, 1.0)} for r in radii_a
+    ]
+    tails = [
+        {sb: _biarc_worst(chain, splits, turns, r, sb, False, BIARC_STEP, normal) for sb in (-1.0, 1.0)}
+        for r in radii_b
+    ]
     out = []
     for ia, ra in enumerate(radii_a):
         for ib, rb in enumerate(radii_b):
@@ -616,14 +631,24 @@ def _biarc_normal(chain: np.ndarray, splits: np.ndarray, turns: np.ndarray) -> n
 
 
 def _biarc_worst(
-    chain: np.ndarray, splits: np.ndarray, turns: np.ndarray, r: float, side: float, head: bool, stride: int
+    chain: np.ndarray,
+    splits: np.ndarray,
+    turns: np.ndarray,
+    r: float,
+    side: float,
+    head: bool,
+    stride: int,
+    normal: np.ndarray | None = None,
 ) -> np.ndarray:
     """Largest distance (S, A) px of the head's (or tail's) pixels from a circle of radius ``r``, per split and turn.
 
     The circle touches the chain's turned direction at ``chain[split]``, its
     centre on the ``side`` (+1 or -1) of it; every ``stride``-th pixel measured.
+    ``normal`` is :func:`_biarc_normal` of ``splits`` and ``turns`` when known.
     """
-    centre = chain[splits][:, None, :] + side * r * _biarc_normal(chain, splits, turns)  # (S, A, 2)
+    if normal is None:
+        normal = _biarc_normal(chain, splits, turns)
+    centre = chain[splits][:, None, :] + side * r * normal  # (S, A, 2)
     index = np.arange(0, len(chain), stride)
     from . import kernels
 

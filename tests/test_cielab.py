@@ -52,3 +52,16 @@ def test_srgb_to_lab_is_scikit_images_rgb2lab():
     for name in ("clipart-fish.png", "drawing-rabbit.png", "photo-cat.png"):
         rgb = load_image(DATA / name).rgb
         assert np.array_equal(srgb_to_lab(rgb), rgb2lab(rgb))
+
+
+def test_the_colour_table_kernel_is_numpys_unique(monkeypatch):
+    # The compiled table of an 8-bit image's colours: the same colours, order and bits as np.unique's.
+    from img2logo import kernels
+
+    rng = np.random.default_rng(7)
+    images = [rng.integers(0, 256, (40, 50, 3)) / 255.0, load_image(DATA / "photo-cat.png").rgb]
+    images.append(cv2.GaussianBlur(images[0], (5, 5), 1.0))  # not 8-bit: converted whole
+    compiled = [srgb_to_lab(rgb) for rgb in images]
+    monkeypatch.setattr(kernels, "CACHED", False)
+    for rgb, got in zip(images, compiled, strict=True):
+        assert np.array_equal(got, srgb_to_lab(rgb))

@@ -318,3 +318,32 @@ def test_label_means_match_bincount():
         got_counts, got_means = label_means(labels, values)
         assert np.array_equal(got_counts, counts)
         assert np.array_equal(got_means, sums / np.maximum(counts, 1.0)[:, None])
+
+
+def test_median_is_numpys_without_numpy_ma():
+    # np.median imports numpy.ma (a run's start-up): the same partition and mean, the same scalar.
+    from img2logo.clipart import median
+
+    rng = np.random.default_rng(4)
+    for dtype in (np.float32, np.float64):
+        for n in (1, 2, 3, 4, 9, 10, 1001):
+            values = (rng.random(n) * 100.0).astype(dtype)
+            got, want = median(values), np.median(values)
+            assert type(got) is type(want) and got == want
+    assert np.isnan(median(np.array([1.0, np.nan, 3.0])))
+
+
+def test_spread_kernel_is_the_numpy_reference(monkeypatch):
+    # The colour spreads of the flat areas and the noise, compiled: the same float32 bits as numpy's.
+    from img2logo import kernels
+    from img2logo.clipart import _spread
+
+    window = [(dr, dc) for dr in range(3) for dc in range(-2, 3) if dr > 0 or dc > 0]
+    rng = np.random.default_rng(5)
+    labs = [rng.random((h, w, 3)) * 100.0 for h, w in ((1, 1), (2, 7), (9, 3), (40, 33))]
+    labs.append(load_image(DATA / "clipart-fish.png").lab)
+    compiled = [(_spread(lab, window), _spread(lab, [(0, 1), (1, 0)])) for lab in labs]
+    monkeypatch.setattr(kernels, "CACHED", False)
+    for lab, (a, b) in zip(labs, compiled, strict=True):
+        assert a.dtype == np.float32 and np.array_equal(a, _spread(lab, window))
+        assert np.array_equal(b, _spread(lab, [(0, 1), (1, 0)]))

@@ -65,3 +65,21 @@ def test_a_closed_loop_and_a_blob_are_traced_as_with_scipy(monkeypatch):
     assert any(a == b for a, b in ours.ends)  # the loop
     for a, b in zip(ours.chains, theirs.chains, strict=True):
         np.testing.assert_array_equal(a, b)
+
+
+def test_label_kernel_is_opencvs_labelling_renumbered(monkeypatch):
+    # The compiled flood fill and OpenCV's labelling (the path without the kernels): the same labels.
+    from img2logo import kernels
+
+    rng = np.random.default_rng(6)
+    images = []
+    for _ in range(40):
+        h, w = (int(v) for v in rng.integers(1, 40, 2))
+        images.append(rng.random((h, w)) < rng.uniform(0.1, 0.9))
+        images.append(rng.integers(-1, 4, (h, w)))
+    cases = [(im, c, b) for im in images for c in (1, 2) for b in ((0,) if im.dtype == bool else (-1, 0))]
+    compiled = [_skeleton.label(im, connectivity=c, background=b) for im, c, b in cases]
+    monkeypatch.setattr(kernels, "CACHED", False)
+    for (im, c, b), got in zip(cases, compiled, strict=True):
+        want = _skeleton.label(im, connectivity=c, background=b)
+        assert got.dtype == want.dtype and np.array_equal(got, want)
