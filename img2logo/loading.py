@@ -132,9 +132,9 @@ class LoadedImage:
         """CIELAB colours of the image smoothed by a 1 px Gaussian (pixel noise out), (H, W, 3) float64,
         read-only; computed once (the subject's outline test may run for two candidates).
         The blur is ``scipy.ndimage.gaussian_filter`` to the bit, without importing ``scipy.ndimage``
-        (:func:`img2logo.subject_cues.gaussian`)."""
+        (:func:`img2logo._ndimage.gaussian`)."""
         from ._cielab import rgb2lab
-        from .subject_cues import gaussian
+        from ._ndimage import gaussian
 
         return readonly(rgb2lab(gaussian(self.rgb, (1.0, 1.0, 0.0))))
 

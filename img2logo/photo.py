@@ -80,8 +80,8 @@ def photo_feature_lines(img: LoadedImage, subject: Subject) -> np.ndarray:
         Its subject (:func:`img2logo.subject.find_subject`); a mask of None
         draws the whole image.
     """
+    from ._ndimage import erode  # scipy.ndimage's binary erosion, without importing it
     from ._skeleton import skeletonize  # skimage's thinning, without importing skimage.morphology
-    from .subject_cues import erode  # scipy.ndimage's binary erosion, without importing it
 
     mask = subject.mask
     maps = line_maps(img)
@@ -143,8 +143,8 @@ def reach_outline(lines: np.ndarray, outline: np.ndarray) -> np.ndarray:
     within the same distance, the end is joined to the outline there by a
     straight run. A line running beside the outline is left alone.
     """
+    from ._ndimage import label, nearest_background  # scipy.ndimage's, without importing it
     from ._skeleton import classify, line  # skimage.draw.line, without importing skimage.draw
-    from .subject_cues import label, nearest_background  # scipy.ndimage's, without importing it
 
     out = np.asarray(lines, dtype=bool).copy()
     if not out.any() or not outline.any():
@@ -207,8 +207,8 @@ def salient_lines(
     before joining could link them into a network. Of those, the longest are
     kept while their pixels add up to at most ``budget``.
     """
+    from ._ndimage import label
     from ._skeleton import bounding_slices  # scipy.ndimage.find_objects, without importing it
-    from .subject_cues import label
 
     skel = np.asarray(skel, dtype=bool)
     lab, n = label(skel, eight=True)
@@ -238,8 +238,8 @@ def subject_outline(mask: np.ndarray, frame_margin: float = OUTLINE_FRAME_MARGIN
     """
     from skimage.measure import find_contours
 
+    from ._ndimage import gaussian  # scipy.ndimage's, without importing it
     from ._skeleton import line  # skimage.draw.line, without importing skimage.draw
-    from .subject_cues import gaussian  # scipy.ndimage's, without importing it
 
     h, w = mask.shape
     out = np.zeros((h, w), bool)
@@ -464,9 +464,9 @@ def edge_tangent_flow(gray: np.ndarray, sigma: float = ETF_SIGMA) -> np.ndarray:
     derivatives, Gaussian of ``sigma`` px, zero outside), written out with
     ``scipy.ndimage``: the same numbers without importing ``skimage.feature``,
     which loads ``scipy.stats`` (most of a second of a photo's command line), nor
-    ``scipy.ndimage`` (:func:`~img2logo.subject_cues.sobel`, :func:`~img2logo.subject_cues.gaussian`).
+    ``scipy.ndimage`` (:func:`~img2logo._ndimage.sobel`, :func:`~img2logo._ndimage.gaussian`).
     """
-    from .subject_cues import gaussian, sobel
+    from ._ndimage import gaussian, sobel
 
     gray = np.asarray(gray)
     if gray.dtype.kind != "f":  # the flow's angles do not depend on the scale, only the sums' range does

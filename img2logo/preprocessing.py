@@ -359,10 +359,10 @@ def extract_feature_lines(
         raw = _join(clipart_lines(regions))
         min_len = spur_length if min_line_length is None else min_line_length
     else:
-        from .photo import photo_feature_lines
+        from .photo import photo_feature_lines, start_photo_line_maps
         from .subject import find_subject
 
-        found = find_subject(img, foreground, subject, lines_ahead=True)  # the line maps beside the cuts
+        found = find_subject(img, foreground, subject, beside=start_photo_line_maps)  # the line maps beside the cuts
         raw = photo_feature_lines(img, found)
         min_len = PHOTO_MIN_LINE_LENGTH if min_line_length is None else min_line_length
     min_len = check_positive(min_len, "min_line_length", allow_zero=True)
@@ -537,11 +537,11 @@ def _drawing_lines(img: LoadedImage) -> np.ndarray:
 def gaussian_blur(image: np.ndarray, sigma: float) -> np.ndarray:
     """``scipy.ndimage.gaussian_filter(image, sigma)`` of a 2-D image, to the bit, float64 (H, W).
 
-    :func:`img2logo.subject_cues.gaussian` on the image as float64: scipy's kernel
+    :func:`img2logo._ndimage.gaussian` on the image as float64: scipy's kernel
     (``truncate`` 4 standard deviations, mode ``reflect``) and its compiled 1-D
     correlations, rows then columns, without importing ``scipy.ndimage``.
     """
-    from .subject_cues import gaussian
+    from ._ndimage import gaussian
 
     return gaussian(np.asarray(image, dtype=np.float64), sigma)
 

@@ -58,6 +58,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ._ndimage import dilate, erode, label, median
 from ._validation import readonly
 from .constants import (
     FACE_MIN_NEIGHBOURS,
@@ -80,15 +81,11 @@ from .loading import LoadedImage, load_mask
 from .subject_cues import (
     FocusSeeds,
     clean_mask,
-    dilate,
-    erode,
     fill_small_holes,
     focus_seeds,
     focus_step,
     frame_box,
-    label,
     largest_part,
-    median,
     outline_contrast,
     texture_colour_image,
     texture_lab,
@@ -100,7 +97,11 @@ from .subject_cues import (
 from .subject_shadow import cast_shadow
 
 if TYPE_CHECKING:
+    from collections.abc import Callable
     from concurrent.futures import Executor
+
+    #: :func:`find_subject`'s ``beside``: work started in a spare thread of the subject search.
+    _Beside = Callable[[LoadedImage, Executor], object]
 
 #: The string values of ``foreground``.
 FOREGROUND_CHOICES = ("auto", "none", "grabcut")
@@ -184,7 +185,11 @@ def parse_subject_rectangle(value: object, shape: tuple[int, int]) -> tuple[int,
 
 
 def find_subject(
-    img: LoadedImage, foreground: object = "auto", subject: object = None, *, lines_ahead: bool = False
+    img: LoadedImage,
+    foreground: object = "auto",
+    subject: object = None,
+    *,
+    beside: _Beside | None = None,
 ) -> Subject:
     """Find the subject of a photo, and the faces in it (:func:`find_faces`).
 
@@ -200,11 +205,13 @@ def find_subject(
         downscale: ``img.input_width`` by ``img.input_height``; it is scaled
         by ``img.scale`` here, and said as given): GrabCut starts from it.
         Only with ``foreground`` ``"auto"`` or ``"grabcut"``.
-    lines_ahead : bool
-        Also make the photo's line maps (:func:`img2logo.photo.photo_line_maps`,
-        which do not depend on the subject) in a thread of their own while the
-        subject is searched, from when a core is free of GrabCut; the photo's
-        lines (:func:`img2logo.photo.photo_feature_lines`) then take them.
+    beside : callable, optional
+        Work that does not depend on the subject, started as ``beside(img,
+        pool)`` in a thread of its own (``pool``'s) while the subject is
+        searched, from when a core is free of GrabCut: the photo's line maps
+        (:func:`img2logo.photo.start_photo_line_maps`), which the photo's lines
+        (:func:`img2logo.photo.photo_feature_lines`) then take. Given here, not
+        imported, so that this stage knows nothing of the next.
 
     Returns
     -------
@@ -212,9 +219,9 @@ def find_subject(
     """
     from concurrent.futures import ThreadPoolExecutor
 
-    pool = ThreadPoolExecutor(max_workers=2) if lines_ahead else None
+    pool = ThreadPoolExecutor(max_workers=2) if beside is not None else None
     try:
-        found = _find_subject(img, foreground, subject, pool)
+        found = _find_subject(img, foreground, subject, pool, beside)
     finally:
         if pool is not None:
             pool.shutdown(wait=False)  # the line maps go on being made
@@ -225,7 +232,9 @@ def find_subject(
     return dataclasses.replace(found, faces=faces, description=found.description + note)
 
 
-def _find_subject(img: LoadedImage, foreground: object, subject: object, pool: Executor | None) -> Subject:
+def _find_subject(
+    img: LoadedImage, foreground: object, subject: object, pool: Executor | None, beside: _Beside | None
+) -> Subject:
     shape = (img.height, img.width)
     check_foreground_option(foreground)
     if foreground is None:
@@ -237,7 +246,7 @@ def _find_subject(img: LoadedImage, foreground: object, subject: object, pool: E
             raise InvalidParameterError("subject (a rectangle) needs foreground auto or grabcut, not a mask or none")
         said = parse_subject_rectangle(subject, (img.input_height, img.input_width))  # the input's pixels
         rect = said if img.scale == 1.0 else _at_working_size(said, img)
-        _lines_ahead(img, pool)  # one cut: the other core makes the line maps
+        _start_beside(img, pool, beside)  # one cut: the other core makes the line maps
         mask = clean_mask(_grabcut(img, rect=rect))
         if not mask.any():
             raise InvalidParameterError(f"no object found in the subject rectangle {','.join(map(str, said))}")
@@ -253,12 +262,12 @@ def _find_subject(img: LoadedImage, foreground: object, subject: object, pool: E
             return Subject(readonly(mask.copy()), "alpha", f"kept the opaque pixels (alpha): {mask.mean():.0%}")
         texture = None
         if foreground == "auto":  # the same cut with texture: take the candidate whose outline is the sharper edge
-            mask, texture, textured, lab = _both_cuts(img, pool)
+            mask, texture, textured, lab = _both_cuts(img, pool, beside)
             if lab is not None:  # texture_lab of the texture, once for both candidates
                 if outline_contrast(img, textured, lab=lab) > outline_contrast(img, mask, lab=lab):
                     mask = textured
         else:
-            _lines_ahead(img, pool)
+            _start_beside(img, pool, beside)
             mask = clean_mask(_grabcut(img))
         if foreground == "grabcut":
             if not mask.any():
@@ -319,16 +328,14 @@ def _at_working_size(rect: tuple[int, int, int, int], img: LoadedImage) -> tuple
     return x0, y0, x1 - x0, y1 - y0
 
 
-def _lines_ahead(img: LoadedImage, pool: Executor | None) -> None:
-    """Start the photo's line maps in ``pool``, if one is given (:func:`find_subject`'s ``lines_ahead``)."""
-    if pool is not None:
-        from .photo import start_photo_line_maps
-
-        start_photo_line_maps(img, pool)
+def _start_beside(img: LoadedImage, pool: Executor | None, beside: _Beside | None) -> None:
+    """Start :func:`find_subject`'s ``beside`` work in ``pool``, if it was given."""
+    if pool is not None and beside is not None:
+        beside(img, pool)
 
 
 def _both_cuts(
-    img: LoadedImage, pool: Executor | None = None
+    img: LoadedImage, pool: Executor | None = None, beside: _Beside | None = None
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray | None]:
     """GrabCut on the colours and on colour and texture, run side by side: (mask, texture, textured mask, lab).
 
@@ -341,8 +348,8 @@ def _both_cuts(
     candidates' outlines are compared on, ``lab``
     (:func:`~img2logo.subject_cues.texture_lab`; None when the textured cut
     found nothing). Given a ``pool`` of two threads (:func:`find_subject`'s
-    ``lines_ahead``), the other cut runs in it, and once this thread's cut is
-    done the photo's line maps are started in its second thread.
+    ``beside``), the other cut runs in it, and once this thread's cut is
+    done ``beside`` is started in its second thread.
     """
     import threading
     from concurrent.futures import ThreadPoolExecutor
@@ -365,7 +372,7 @@ def _both_cuts(
         finally:
             lab_ready.set()
         mask = clean_mask(_grabcut(img))
-        _lines_ahead(img, pool)  # a core is free now, or will be as soon as the other cut is done
+        _start_beside(img, pool, beside)  # a core is free now, or will be as soon as the other cut is done
         texture, cut, lab = other.result()
     finally:
         if own is not None:

@@ -33,6 +33,7 @@ from functools import partial
 
 import numpy as np
 
+from ._ndimage import dilate, distance, gaussian, label, median
 from .constants import (
     FOCUS_DETAIL_SIGMA,
     FOCUS_WINDOW,
@@ -46,12 +47,7 @@ from .constants import (
 from .loading import LoadedImage
 from .subject_cues import (
     clean_mask,
-    dilate,
-    distance,
-    gaussian,
-    label,
     mask_box,
-    median,
     outline_contrast,
     work_scale,
 )

@@ -262,10 +262,10 @@ def test_a_photo_s_subject_and_line_maps_import_no_scipy_package(data_dir):
     code = (
         "import sys\n"
         "from img2logo import load_image\n"
-        "from img2logo.photo import photo_line_maps, reach_outline, subject_outline\n"
+        "from img2logo.photo import photo_line_maps, reach_outline, start_photo_line_maps, subject_outline\n"
         "from img2logo.subject import find_subject\n"
         f"img = load_image({str(data_dir / 'photo-flower.png')!r})\n"
-        "found = find_subject(img, lines_ahead=True)\n"
+        "found = find_subject(img, beside=start_photo_line_maps)\n"
         "light, colour = photo_line_maps(img)\n"
         "assert found.mask is not None and light.any()\n"
         "reach_outline(light, subject_outline(found.mask))\n"

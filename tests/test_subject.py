@@ -364,7 +364,8 @@ def test_the_cues_filters_are_scipy_ndimage_s_to_the_bit():
     from scipy import ndimage
     from skimage.color import rgb2lab
 
-    from img2logo.subject_cues import dilate, distance, erode, gaussian, label, lightness
+    from img2logo._ndimage import dilate, distance, erode, gaussian, label
+    from img2logo.subject_cues import lightness
 
     rng = np.random.default_rng(3)
     for h, w in ((37, 52), (64, 41), (9, 80)):
@@ -393,7 +394,7 @@ def test_the_cues_filters_are_scipy_ndimage_s_to_the_bit():
 def test_the_flow_s_filters_and_the_nearest_pixel_are_scipy_ndimage_s_to_the_bit():
     from scipy import ndimage
 
-    from img2logo.subject_cues import gaussian, nearest_background, sobel
+    from img2logo._ndimage import gaussian, nearest_background, sobel
 
     rng = np.random.default_rng(4)
     for h, w in ((37, 52), (64, 41), (9, 80)):
@@ -434,7 +435,7 @@ def test_the_cues_do_not_import_scipy_ndimage():
 
 
 def test_the_cues_median_is_numpy_s_to_the_bit():
-    from img2logo.subject_cues import median
+    from img2logo._ndimage import median
 
     rng = np.random.default_rng(5)
     for n in (1, 2, 3, 10, 11, 1000, 1001):
@@ -455,14 +456,14 @@ def test_the_line_maps_made_beside_the_cuts_are_those_made_after(monkeypatch):
     made = []
     maps = object()
     monkeypatch.setattr(photo, "_line_maps", lambda image: made.append(image) or maps)
-    found = find_subject(img, lines_ahead=True)
+    found = find_subject(img, beside=photo.start_photo_line_maps)
     assert found.mask is not None
     assert photo.line_maps(img) is maps  # taken from the thread ...
     assert made == [img]
     assert img not in photo._AHEAD  # ... once
     monkeypatch.undo()
     later = load_image(rgb)
-    find_subject(later, lines_ahead=True)
+    find_subject(later, beside=photo.start_photo_line_maps)
     ahead, now = photo.photo_line_maps(later), photo.photo_line_maps(later)
     for a, b in zip(ahead, now, strict=True):
         np.testing.assert_array_equal(a, b)
