@@ -3,8 +3,8 @@
 :func:`img2logo.constrained_fit.fit_constrained` solves Eqn. 13 by sequential
 quadratic programming. Its local windows (a dense KKT system of at most
 ``KKT_DENSE_MAX`` unknowns) run compiled (:mod:`img2logo.kernels`); this module is
-the same step in numpy, kept as the reference the kernels are tested against and
-used for the large sparse global solves:
+the same step in numpy, kept as the reference the kernels are tested against (the
+global solves run compiled too, :func:`img2logo.kernels_sqp.sqp_banded`):
 
 * :class:`Problem` holds Eqn. 13 in terms of the free variables x = (free
   centres, free junction displacements): E^l (Eqn. 7), the incidence residuals
