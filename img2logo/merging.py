@@ -62,7 +62,7 @@ def candidates(state: FitState) -> list[Pair]:
     """
     out: list[Pair] = []
     sym = state.symmetry
-    for node, gids in sorted(state.end_groups().items()):
+    for node, gids in sorted(_level(state).ends.items()):  # the level's, made once for its candidates too
         if sym is not None and node in sym.nodes:
             continue  # an arc never runs on through the mirror axis: its mirror image would cross it
         ok = [g for g in sorted(gids) if not state.groups[g].locked and not state.groups[g].closed]
