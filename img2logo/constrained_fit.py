@@ -294,9 +294,10 @@ class WindowProblem:
 
     Built by :func:`fit_constrained` after its checks (:meth:`of`), and directly
     by :func:`fit_window` from the window's own arrays, which are well formed by
-    construction. Solved by :func:`_fit`: the compiled kernel for a local window,
-    the Python reference (:class:`~img2logo.constrained_sqp.Problem`, the same
-    fields but ``held``, ``tol``, ``max_iter`` and ``stall``) for a large one.
+    construction. Solved by :func:`_fit`: the compiled kernels (a local window
+    densely, a global solve in a band), or the Python reference
+    (:class:`~img2logo.constrained_sqp.Problem`, made of this value: it is a
+    :class:`~img2logo.constrained_sqp.ProblemArrays`).
 
     Attributes
     ----------
@@ -416,10 +417,7 @@ class WindowProblem:
 
     def reference(self) -> Problem:
         """The Python reference's :class:`~img2logo.constrained_sqp.Problem` of it."""
-        return Problem(
-            self.points, self.owner, self.radii, self.centers, self.junctions, self.disp, self.incidence,
-            self.free_c, self.free_j, self.ws, self.wj, self.connectivity, self.tangents,
-        )  # fmt: skip
+        return Problem(self)
 
 
 def _fit(problem: WindowProblem, compiled: bool = True) -> ConstrainedFit:
