@@ -29,6 +29,7 @@ from .constants import (
     CONSTRAINED_FIT_MAX_ITER,
     CONSTRAINED_FIT_STALL,
     CONSTRAINED_FIT_TOL,
+    KKT_COMPILED_MAX,
     KKT_DAMPING,
     KKT_DENSE_MAX,
 )
@@ -430,14 +431,15 @@ def _fit(problem: WindowProblem, compiled: bool = True) -> ConstrainedFit:
     entries in the reference's order eliminated in a band (the giraffe's global
     solves: about 3.5x faster than the Python loop, the same iterates to ~1e-11 px).
     ``compiled=False`` always runs the Python reference :func:`_fit_reference`
-    (the tests compare them), as does an install where numba cannot cache the
-    kernels (:data:`img2logo.kernels.CACHED`).
+    (the tests compare them), as does a system above ``KKT_COMPILED_MAX`` and an
+    install where numba cannot cache the kernels (:data:`img2logo.kernels.CACHED`).
     """
     from . import kernels  # the compiled kernels load on the first fit, not at import
 
     p = problem
-    if compiled and kernels.usable():
-        kernel = kernels.sqp_dense if p.kkt_size() <= KKT_DENSE_MAX else kernels.sqp_banded
+    size = p.kkt_size()
+    if compiled and size <= KKT_COMPILED_MAX and kernels.usable():
+        kernel = kernels.sqp_dense if size <= KKT_DENSE_MAX else kernels.sqp_banded
         centers, disp = np.array(p.centers, dtype=np.float64), np.array(p.disp, dtype=np.float64)
         held_mask = np.zeros(2 * (len(p.free_c) + len(p.free_j)), dtype=bool)
         held_mask[np.asarray(p.held, dtype=np.intp)] = True

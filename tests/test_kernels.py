@@ -167,6 +167,17 @@ def test_large_systems_take_the_banded_kernel(monkeypatch):
     assert fit.converged and not dense and len(banded) == 1
 
 
+def test_a_system_above_the_compiled_cap_runs_the_reference(monkeypatch):
+    # Above KKT_COMPILED_MAX the banded kernel's dense scratch matrix would be too large: the Python reference.
+    import img2logo.kernels as kernels
+
+    calls = []
+    monkeypatch.setattr(kernels, "sqp_banded", lambda *a: calls.append(a))
+    monkeypatch.setattr(cfit, "KKT_COMPILED_MAX", 50)
+    fit = fit_constrained(*_loop(12, 5))
+    assert fit.converged and not calls
+
+
 @pytest.mark.parametrize("seed", range(4))
 def test_global_loop_matches_the_reference(monkeypatch, seed):
     # A global solve: every variable of a 30-arc loop free (120 unknowns + 60 multipliers), solved in a band.
