@@ -504,6 +504,12 @@ KKT_DAMPING: float = 1e-9
 #: fit_constrained: KKT systems larger than this (unknowns + multipliers) are
 #: solved by a sparse LU, smaller ones (a local window) by a dense solve.
 KKT_DENSE_MAX: int = 60
+#: fit_constrained: the largest KKT system the compiled global solve takes
+#: (kernels_sqp.sqp_banded assembles it in a dense size x size scratch matrix
+#: before reading its band: 2500 is about 50 MB; the examples' largest is about
+#: 700, the cactus's initial fit); larger ones run the Python reference, whose
+#: memory grows with the band only.
+KKT_COMPILED_MAX: int = 2500
 
 # --- Progressive optimization (progressive.py) -------------------------------------
 #: Default tolerance T on the similarity error E^s (Eqn. 1), px; the paper's default.

@@ -3,8 +3,8 @@
 :func:`img2logo.constrained_fit.fit_constrained` solves Eqn. 13 by sequential
 quadratic programming. Its local windows (a dense KKT system of at most
 ``KKT_DENSE_MAX`` unknowns) run compiled (:mod:`img2logo.kernels`); this module is
-the same step in numpy, kept as the reference the kernels are tested against and
-used for the large sparse global solves:
+the same step in numpy, kept as the reference the kernels are tested against (the
+global solves run compiled too, :func:`img2logo.kernels_sqp.sqp_banded`):
 
 * :class:`Problem` holds Eqn. 13 in terms of the free variables x = (free
   centres, free junction displacements): E^l (Eqn. 7), the incidence residuals
@@ -18,13 +18,13 @@ Coordinates are input-image pixels: x to the right, y downwards. Lengths are in 
 
 from __future__ import annotations
 
-from typing import NamedTuple
+from typing import NamedTuple, Protocol
 
 import numpy as np
 
 from .constants import KKT_DAMPING, KKT_DENSE_MAX
 
-__all__ = ["Problem", "SparseKKT", "solve_kkt"]
+__all__ = ["Problem", "ProblemArrays", "SparseKKT", "solve_kkt"]
 
 
 class SparseKKT(NamedTuple):
@@ -47,25 +47,61 @@ def _norm(vx: np.ndarray, vy: np.ndarray) -> np.ndarray:
     return np.sqrt(vx * vx + vy * vy)
 
 
-class Problem:
-    """Eqn. 13 in terms of the free variables x = (free centres, free displacements)."""
+class ProblemArrays(Protocol):
+    """The arrays of Eqn. 13 that :class:`Problem` is made from.
 
-    def __init__(
-        self,
-        points: np.ndarray,
-        owner: np.ndarray,
-        radii: np.ndarray,
-        centers: np.ndarray,
-        junctions: np.ndarray,
-        disp: np.ndarray,
-        incidence: np.ndarray,
-        free_c: np.ndarray,
-        free_j: np.ndarray,
-        ws: np.ndarray,
-        wj: float,
-        connectivity: bool,
-        tangents: np.ndarray | None = None,
-    ) -> None:
+    :class:`img2logo.constrained_fit.WindowProblem` is one (its fields document
+    them); a protocol, so that this module need not import that one (which imports it).
+    """
+
+    @property
+    def points(self) -> np.ndarray: ...
+
+    @property
+    def owner(self) -> np.ndarray: ...
+
+    @property
+    def radii(self) -> np.ndarray: ...
+
+    @property
+    def centers(self) -> np.ndarray: ...
+
+    @property
+    def junctions(self) -> np.ndarray: ...
+
+    @property
+    def disp(self) -> np.ndarray: ...
+
+    @property
+    def incidence(self) -> np.ndarray: ...
+
+    @property
+    def free_c(self) -> np.ndarray: ...
+
+    @property
+    def free_j(self) -> np.ndarray: ...
+
+    @property
+    def ws(self) -> np.ndarray: ...
+
+    @property
+    def wj(self) -> float: ...
+
+    @property
+    def connectivity(self) -> bool: ...
+
+    @property
+    def tangents(self) -> np.ndarray: ...
+
+
+class Problem:
+    """Eqn. 13 in terms of the free variables x = (free centres, free displacements), of ``arrays``."""
+
+    def __init__(self, arrays: ProblemArrays) -> None:
+        a = arrays
+        points, owner, radii, centers, junctions, disp = a.points, a.owner, a.radii, a.centers, a.junctions, a.disp
+        incidence, free_c, free_j, ws, wj, connectivity = a.incidence, a.free_c, a.free_j, a.ws, a.wj, a.connectivity
+        tangents = a.tangents
         self.radii, self.junctions, self.wj = radii, junctions, wj
         self.centers, self.disp = centers.copy(), disp.copy()
         self.free_c, self.free_j = free_c, free_j

@@ -295,6 +295,8 @@ class FitState:
         self._constrained: dict[tuple[int, ...], tuple[int, ...]] = {}
         #: group path -> (released junctions when made, straight_line, the arc's Seed or None): :meth:`golden`.
         self._golden: dict[tuple[tuple[int, ...], tuple[int, ...]], tuple[int, Any, Seed | None]] = {}
+        #: group path -> (released junctions when made, :meth:`golden_error`).
+        self._golden_error: dict[tuple[tuple[int, ...], tuple[int, ...]], tuple[int, float]] = {}
         self._node_groups: dict[int, list[int]] | None = None
         #: group -> (arc, junction nodes, their points' bytes, ArcJunctions by path position,
         #: the nodes' indices in the last level, its ArcJunctions there, whether a level
@@ -492,11 +494,19 @@ class FitState:
         The free radius snapped to the ladder (Eqn. 12), the centre then placed
         where it fits best for that fixed radius.
         """
+        # Cached by the group's path as its seed is (the simplification and the merge loop's
+        # hopeless test ask again for the same groups); forgotten when a junction is released.
+        key = (group.segments, group.nodes)
+        hit = self._golden_error.get(key)
+        if hit is not None and hit[0] == len(self.released):
+            return hit[1]
         center, radius, _ = self.golden(group)
         pts = group.points
         if self.symmetry is not None and self.on_axis(group):  # the arc runs on into its mirror image
             pts = np.vstack([pts, self.symmetry.mirror(pts)])
-        return mean_abs_error(pts, fit_center(pts, radius, center), radius)
+        error = mean_abs_error(pts, fit_center(pts, radius, center), radius)
+        self._golden_error[key] = (len(self.released), error)
+        return error
 
     def golden(self, group: Group, *, held: Mapping[int, list[np.ndarray]] | None = None) -> Seed:
         """Free fit snapped to the ladder (Eqn. 12): the group's :class:`Seed`.
@@ -514,10 +524,7 @@ class FitState:
         # Cached by the group's path (its pixels are its segments'): every candidate merge
         # of a level, and its rescoring, asks for the merged group's seed again.
         key = (group.segments, group.nodes)
-        hit = self._golden.get(key)
-        if hit is None or hit[0] != len(self.released):
-            line = straight_line(group) if self.options.lines and not self.on_axis(group) else None
-            hit = self._golden[key] = (len(self.released), line, None)
+        hit = self._line_hit(group, key)
         line = hit[1]
         if line is not None and held is not None:
             u = (line[1] - line[0]) / np.hypot(*(line[1] - line[0]))
@@ -535,6 +542,18 @@ class FitState:
         if seed is None:  # never: it was just made
             raise RuntimeError("no golden seed was made")
         return seed
+
+    def _line_hit(self, group: Group, key: tuple[tuple[int, ...], tuple[int, ...]]) -> tuple[int, Any, Seed | None]:
+        """The :meth:`golden` cache's entry of ``group`` (``key``: its path), with its straight line found."""
+        hit = self._golden.get(key)
+        if hit is None or hit[0] != len(self.released):
+            line = straight_line(group) if self.options.lines and not self.on_axis(group) else None
+            hit = self._golden[key] = (len(self.released), line, None)
+        return hit
+
+    def straight(self, group: Group) -> bool:
+        """Whether ``group`` is a straight line, unless lines held at its junctions refuse it (:meth:`golden`)."""
+        return self._line_hit(group, (group.segments, group.nodes))[1] is not None
 
     def _golden_arc(self, group: Group) -> Seed:
         """The free fit snapped to the ladder (Eqn. 12) as a circle, not a line: :meth:`golden`'s arc."""

@@ -60,6 +60,15 @@ ENTRY_POINTS: dict[str, tuple[str, tuple[str, ...], str]] = {
         ),
         "Tuple((i8, b1, f8, f8))",
     ),
+    # (loop, session 9) the same SQP with the KKT system in a band: a global solve, compiled.
+    "sqp_banded": (
+        "kernels_sqp",
+        tuple(
+            "f8[:,::1] i8[::1] f8[::1] !f8[:,::1] f8[:,::1] !f8[:,::1] i8[:,::1] i8[::1] i8[::1] f8[::1] "
+            "f8 b1 i8[:,::1] f8[::1] b1[::1] f8 i8 i8 f8 f8".split()
+        ),
+        "Tuple((i8, b1, f8, f8))",
+    ),
     "extract_arc_kernel": (
         "kernels_arcs",
         ("f8", "f8", "f8", "f8[:,::1]", "f8[:,::1]", "f8[::1]", "f8", "f8", "f8", "f8"),

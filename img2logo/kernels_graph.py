@@ -208,8 +208,17 @@ def banded_solve_kernel(rows, cols, vals, rhs, x):  # pragma: no cover - compile
     band (kl below, ku above the diagonal) and its growth by row exchanges (kl
     more above), as LAPACK's ``gbtrf`` does.
     """
+    return banded_solve_ordered(_cuthill_mckee(len(rhs), rows, cols), rows, cols, vals, rhs, x)
+
+
+@_jit
+def banded_solve_ordered(order, rows, cols, vals, rhs, x):  # pragma: no cover - compiled
+    """:func:`banded_solve_kernel` in a given order of the unknowns (position -> unknown).
+
+    For a sequence of systems of one pattern (the steps of a global solve, in
+    :func:`img2logo.kernels_sqp.sqp_banded`): the order is found once.
+    """
     n = len(rhs)
-    order = _cuthill_mckee(n, rows, cols)
     pos = np.empty(n, dtype=np.int64)
     for i in range(n):
         pos[order[i]] = i

@@ -1,4 +1,4 @@
-"""Compiled kernel of the constrained fit of Eqn. 13 (the SQP of a local window), on plain arrays.
+"""Compiled kernels of the constrained fit of Eqn. 13 (the SQP of a local window or a global solve), on plain arrays.
 
 The progressive optimization (Sec. 5) evaluates hundreds of merge candidates,
 each a windowed least-squares problem of 10-60 unknowns: the arithmetic is
@@ -6,7 +6,8 @@ microseconds, the interpreter around small numpy arrays was the cost.
 :func:`sqp_dense` does the same arithmetic as its Python reference
 (:mod:`img2logo.constrained_sqp`, the one that documents the method) in compiled
 loops: residuals, Jacobian, the KKT matrix, its solve by LU with partial
-pivoting, the line search on the L1 merit.
+pivoting (:func:`sqp_dense`, a local window) or in a band (:func:`sqp_banded`, a
+global solve of hundreds of unknowns), the line search on the L1 merit.
 
 Written in the subset of Python that numba compiles; loaded through
 :mod:`img2logo.kernels` (ahead of time, or numba's JIT as a fallback), never
@@ -20,6 +21,7 @@ import math
 
 import numpy as np
 
+from .kernels_graph import _cuthill_mckee, banded_solve_ordered
 from .kernels_jit import jit as _jit
 
 # --------------------------------------------------------------------------------
@@ -224,14 +226,171 @@ def sqp_dense(
     ftol,
     damping,
 ):  # pragma: no cover - compiled
-    """The SQP solve of Eqn. 13 with a dense KKT system; ``centers`` and ``disp`` are updated in place.
+    """The SQP solve of Eqn. 13 with a dense KKT system (a local window); see :func:`_sqp`."""
+    return _sqp(
+        points, owner, radii, centers, junctions, disp, incidence, free_c, free_j, ws, wj, connectivity, tangents,
+        tan_s_all, held, tol, max_iter, stall, ftol, damping, False,
+    )  # fmt: skip
+
+
+@_jit
+def sqp_banded(
+    points,
+    owner,
+    radii,
+    centers,
+    junctions,
+    disp,
+    incidence,
+    free_c,
+    free_j,
+    ws,
+    wj,
+    connectivity,
+    tangents,
+    tan_s_all,
+    held,
+    tol,
+    max_iter,
+    stall,
+    ftol,
+    damping,
+):  # pragma: no cover - compiled
+    """The SQP solve of Eqn. 13 with the KKT system solved in a band (a global solve); see :func:`_sqp`."""
+    return _sqp(
+        points, owner, radii, centers, junctions, disp, incidence, free_c, free_j, ws, wj, connectivity, tangents,
+        tan_s_all, held, tol, max_iter, stall, ftol, damping, True,
+    )  # fmt: skip
+
+
+@_jit
+def _kkt_pattern(n, nc, m_inc, m_tan, act_rows, inc_i, inc_k, pos_c, pos_j, tan_rows, tan_a, tan_b, tan_k, keep):
+    """The entries (rows, cols) of the KKT matrix, in the order of the Python reference's (``Problem``).
+
+    The 2x2 blocks of H, the entries of A (centres, then displacements, then the
+    tangencies' o_a, o_b, d_k), those of A^T, the coupling blocks (o_i, d_k) and
+    (d_k, o_i) of the constraint curvature, the diagonal of the multipliers, then
+    the tangencies' curvature blocks; reduced to the unknowns ``keep`` and
+    renumbered. An entry repeated (a tangency's curvature on a coupling block)
+    is listed each time, as the reference lists it; ``first`` marks the first.
+    """
+    size = n + m_inc + m_tan
+    cap = 4 * (n // 2) + 4 * 2 * (2 * m_inc + 6 * m_tan) + 8 * m_inc + (m_inc + m_tan) + 24 * m_tan
+    rows = np.empty(cap, np.int64)
+    cols = np.empty(cap, np.int64)
+    e = 0
+    for b in range(n // 2):
+        for u in range(4):
+            rows[e], cols[e] = 2 * b + u // 2, 2 * b + u % 2
+            e += 1
+    a0 = e
+    for q in range(m_inc):
+        ci = pos_c[inc_i[act_rows[q]]]
+        if ci >= 0:
+            for u in range(2):
+                rows[e], cols[e] = n + q, 2 * ci + u
+                e += 1
+    for q in range(m_inc):
+        ck = pos_j[inc_k[act_rows[q]]]
+        if ck >= 0:
+            for u in range(2):
+                rows[e], cols[e] = n + q, 2 * (nc + ck) + u
+                e += 1
+    for v in range(3):
+        for q in range(m_tan):
+            t = tan_rows[q]
+            blk = pos_c[tan_a[t]] if v == 0 else (pos_c[tan_b[t]] if v == 1 else pos_j[tan_k[t]])
+            if blk >= 0:
+                if v == 2:
+                    blk += nc
+                for u in range(2):
+                    rows[e], cols[e] = n + m_inc + q, 2 * blk + u
+                    e += 1
+    a1 = e
+    for f in range(a0, a1):
+        rows[e], cols[e] = cols[f], rows[f]
+        e += 1
+    for side in range(2):
+        for q in range(m_inc):
+            ci, ck = pos_c[inc_i[act_rows[q]]], pos_j[inc_k[act_rows[q]]]
+            if ci >= 0 and ck >= 0:
+                cb, kb = 2 * ci, 2 * (nc + ck)
+                rb, lb = (cb, kb) if side == 0 else (kb, cb)
+                for u in range(4):
+                    rows[e], cols[e] = rb + u // 2, lb + u % 2
+                    e += 1
+    for q in range(m_inc + m_tan):
+        rows[e], cols[e] = n + q, n + q
+        e += 1
+    for pr in range(3):
+        for side in range(2):
+            for half in range(2):
+                for q in range(m_tan):
+                    t = tan_rows[q]
+                    ba, bb = pos_c[tan_a[t]], pos_c[tan_b[t]]
+                    bk = nc + pos_j[tan_k[t]] if pos_j[tan_k[t]] >= 0 else -1
+                    r, c = (ba, bb) if pr == 0 else ((ba, bk) if pr == 1 else (bb, bk))
+                    if r >= 0 and c >= 0:
+                        if side == 1:
+                            r, c = c, r
+                        rows[e], cols[e] = 2 * r + half, 2 * c + 1 - half
+                        e += 1
+    new = -np.ones(size, np.int64)
+    for a in range(keep.shape[0]):
+        new[keep[a]] = a
+    seen = np.zeros((keep.shape[0], keep.shape[0]), np.bool_)
+    out_r, out_c = np.empty(e, np.int64), np.empty(e, np.int64)
+    full_r, full_c = np.empty(e, np.int64), np.empty(e, np.int64)
+    first = np.zeros(e, np.bool_)
+    k = 0
+    for f in range(e):
+        r, c = new[rows[f]], new[cols[f]]
+        if r >= 0 and c >= 0:
+            out_r[k], out_c[k] = r, c
+            full_r[k], full_c[k] = rows[f], cols[f]
+            if not seen[r, c]:
+                seen[r, c] = True
+                first[k] = True
+            k += 1
+    return out_r[:k].copy(), out_c[:k].copy(), full_r[:k].copy(), full_c[:k].copy(), first[:k].copy()
+
+
+@_jit
+def _sqp(
+    points,
+    owner,
+    radii,
+    centers,
+    junctions,
+    disp,
+    incidence,
+    free_c,
+    free_j,
+    ws,
+    wj,
+    connectivity,
+    tangents,
+    tan_s_all,
+    held,
+    tol,
+    max_iter,
+    stall,
+    ftol,
+    damping,
+    banded,
+):  # pragma: no cover - compiled
+    """The SQP solve of Eqn. 13; ``centers`` and ``disp`` are updated in place.
 
     The same method, step for step, as the Python reference in
     :mod:`img2logo.constrained_fit` (see :func:`~img2logo.constrained_fit.fit_constrained`):
     a Newton step on the Lagrangian once multipliers are known, Gauss-Newton
     before or when that step lacks positive curvature; the damped KKT system
     ``[[W + mu I, A^T], [A, -delta I]]`` solved by LU with partial pivoting; a
-    backtracking line search on the L1 merit.
+    backtracking line search on the L1 merit. With ``banded`` (a global solve of
+    hundreds of unknowns) the system is solved as the reference solves a large
+    one: its entries, in the reference's order, by Gaussian elimination with
+    partial pivoting in a band after a reverse Cuthill-McKee ordering
+    (:func:`img2logo.kernels_graph.banded_solve_kernel`).
 
     Parameters
     ----------
@@ -242,6 +401,7 @@ def sqp_dense(
     ws : (C,) segment weights; wj : the junction weight.
     tangents : (T, 3) int64 unique rows (a, b, k); tan_s_all : (T,) their scales 1 / max(r_a, r_b).
     held : (n,) bool, the unknowns held fixed (a mirror axis).
+    banded : bool, solve the KKT system in a band (else densely by LU).
 
     Returns
     -------
@@ -331,7 +491,18 @@ def sqp_dense(
     dc = np.ones(m_inc)
     tg = np.zeros((m_tan, 6))  # d c / d o_a, d c / d o_b, d c / d d_k of each active tangency
     mat = np.zeros((size, size))
-    sub = np.zeros((n_keep, n_keep))
+    sub = np.zeros((0, 0) if banded else (n_keep, n_keep))
+    if banded:
+        pat_r, pat_c, pat_fr, pat_fc, pat_first = _kkt_pattern(
+            n, nc, m_inc, m_tan, act_rows, inc_i, inc_k, pos_c, pos_j, tan_rows, tan_a, tan_b, tan_k, keep
+        )
+    else:
+        pat_r, pat_c = np.zeros(0, np.int64), np.zeros(0, np.int64)
+        pat_fr, pat_fc, pat_first = np.zeros(0, np.int64), np.zeros(0, np.int64), np.zeros(0, np.bool_)
+    pat_v = np.zeros(pat_r.shape[0])
+    out = np.empty(n_keep)
+    # The elimination order of the pattern (the same in every step), found once.
+    order = _cuthill_mckee(n_keep, pat_r, pat_c) if banded else np.zeros(0, np.int64)
     rhs = np.zeros(n_keep)
     sol = np.zeros(size)
     dx = np.zeros(n)
@@ -425,7 +596,11 @@ def sqp_dense(
             newton = attempt == 0 and have_lam
             if attempt == 0 and not have_lam:
                 continue
-            mat.fill(0.0)
+            if banded:  # only the pattern's entries are ever written
+                for ent in range(pat_r.shape[0]):
+                    mat[pat_fr[ent], pat_fc[ent]] = 0.0
+            else:
+                mat.fill(0.0)
             for b in range(nc + nj):
                 h0 = gn[b, 0] + damping * scale
                 h1, h2 = gn[b, 1], gn[b, 2]
@@ -492,9 +667,17 @@ def sqp_dense(
                 mat[n + q, n + q] = -delta
             for a in range(n_keep):
                 rhs[a] = -g[keep[a]] if keep[a] < n else -c[keep[a] - n]
-                for b in range(n_keep):
-                    sub[a, b] = mat[keep[a], keep[b]]
-            ok = _lu_solve(sub, rhs)
+            if banded:
+                for ent in range(pat_r.shape[0]):
+                    pat_v[ent] = mat[pat_fr[ent], pat_fc[ent]] if pat_first[ent] else 0.0
+                ok = banded_solve_ordered(order, pat_r, pat_c, pat_v, rhs, out) == 0
+                for a in range(n_keep):
+                    rhs[a] = out[a]
+            else:
+                for a in range(n_keep):
+                    for b in range(n_keep):
+                        sub[a, b] = mat[keep[a], keep[b]]
+                ok = _lu_solve(sub, rhs)
             if ok:
                 for a in range(n_keep):
                     if not math.isfinite(rhs[a]):

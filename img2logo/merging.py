@@ -62,7 +62,7 @@ def candidates(state: FitState) -> list[Pair]:
     """
     out: list[Pair] = []
     sym = state.symmetry
-    for node, gids in sorted(state.end_groups().items()):
+    for node, gids in sorted(_level(state).ends.items()):  # the level's, made once for its candidates too
         if sym is not None and node in sym.nodes:
             continue  # an arc never runs on through the mirror axis: its mirror image would cross it
         ok = [g for g in sorted(gids) if not state.groups[g].locked and not state.groups[g].closed]
@@ -74,10 +74,11 @@ def evaluate(state: FitState, pair: Pair) -> MergeOutcome | None:
     """Merge ``pair`` tentatively, refit, and score it; None if infeasible."""
     state.stats.evaluated += 1
     a, b, node = pair
+    level = _level(state)
     # Two arcs that both run on through one junction cross there (an X): one
     # of them ends at the junction instead, so that arcs meet only at their
     # ends or where one ends on the other (a T), and no crossing is left.
-    if any(g != a and g != b for g in _level(state).inner.get(node, ())):
+    if any(g != a and g != b for g in level.inner.get(node, ())):
         state.stats.rejected_crossing += 1
         return None
     merged = merge_groups(state.groups[a], state.groups[b], node)
@@ -87,15 +88,18 @@ def evaluate(state: FitState, pair: Pair) -> MergeOutcome | None:
     n_groups = len(after)
     node_groups_after = state.node_groups_after(a, b, merged)
     nj_after = len(node_groups_after)
-    seeds: dict[int, Seed] = {g: state.fits[g].seed for g in after if g != -1}
+    seeds: dict[int, Seed] = dict(level.seeds)
+    del seeds[a], seeds[b]
+    # The lines' directions at their junctions (but a's and b's): read only when the merged group is straight.
     held: dict[int, list[np.ndarray]] = {}
-    for g in _level(state).lines:
-        if g != a and g != b:
-            hold_line(held, state.groups[g], state.constrained_nodes(state.groups[g]))
+    if state.straight(merged):
+        for g in level.lines:
+            if g != a and g != b:
+                hold_line(held, state.groups[g], state.constrained_nodes(state.groups[g]))
     seeds[-1] = state.golden(merged, held=held)
 
     merged_nodes = set(state.constrained_nodes(merged))
-    hold = _hold(state, seeds, merged, pair)
+    hold = _hold(state, seeds, merged, pair, level)
     global_solve = not state.options.localized
     out: Solution | None = None
     cap = state.options.arc_bound
@@ -170,13 +174,13 @@ def evaluate(state: FitState, pair: Pair) -> MergeOutcome | None:
 
     redundant = 0
     if state.options.avoid_intersections:
-        redundant = _redundant(state, pair, merged, fits, disp)
+        redundant = _redundant(state, pair, merged, fits, disp, level)
     return MergeOutcome(
         pair, merged, fits, disp, window_ids, delta_f, delta_d, nj_after - len(old_nodes), redundant, global_solve
     )
 
 
-def _hold(state: FitState, seeds: dict[int, Seed], merged: Group, pair: Pair) -> set[int]:
+def _hold(state: FitState, seeds: dict[int, Seed], merged: Group, pair: Pair, level: _Level | None = None) -> set[int]:
     """The smooth joins a merge's refit holds tangent (beyond the paper, :mod:`img2logo.tangency`).
 
     Those the loop made tangent before (``state.held``) and those at the merged
@@ -188,7 +192,7 @@ def _hold(state: FitState, seeds: dict[int, Seed], merged: Group, pair: Pair) ->
     if not state.smooth:
         return set()
     a, b, node = pair
-    ends = _level(state).ends
+    ends = (_level(state) if level is None else level).ends
     out = set()
     for n in state.held | set(merged.ends):
         if n == node or n not in state.smooth or n in state.loose or n in state.released:
@@ -213,7 +217,8 @@ class _Level:
     arc ``owner``; ``lengths`` how many each; ``inner`` node -> the groups
     that run on through it; ``ends`` node -> the groups ending there (each
     once); ``lines`` the straight lines (k None), in ``state.fits``'s order;
-    ``pos`` group -> its index in ``gids``.
+    ``pos`` group -> its index in ``gids``; ``seeds`` group -> its fit's
+    :class:`Seed` (in ``state.groups``'s order).
     """
 
     groups: tuple[Group, ...]
@@ -229,6 +234,7 @@ class _Level:
     ends: dict[int, list[int]]
     lines: tuple[int, ...]
     pos: dict[int, int]
+    seeds: dict[int, Seed]
 
 
 def _level(state: FitState) -> _Level:
@@ -266,6 +272,7 @@ def _level(state: FitState) -> _Level:
         state.end_groups(),
         tuple(g for g, f in state.fits.items() if f.k is None),
         {g: i for i, g in enumerate(gids)},
+        {g: f.seed for g, f in zip(gids, fits, strict=True) if f is not None},
     )
     state.merge_cache = level
     return level
@@ -277,6 +284,7 @@ def _redundant(
     merged: Group,
     fits: dict[int, GroupFit],
     disp: dict[int, np.ndarray],
+    level: _Level | None = None,
 ) -> int:
     """Redundant intersections that involve the arcs a merge changed.
 
@@ -287,7 +295,7 @@ def _redundant(
     only the junctions the arcs own.
     """
     a, b, _ = pair
-    level = _level(state)
+    level = _level(state) if level is None else level
     pos = level.pos
     pa, pb = pos[a], pos[b]
     keep = np.ones(len(level.gids), dtype=bool)

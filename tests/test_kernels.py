@@ -155,14 +155,57 @@ def test_infeasible_and_unconstrained_match_the_reference(monkeypatch):
     _assert_same(compiled, reference)
 
 
-def test_large_systems_stay_on_the_sparse_reference(monkeypatch):
-    # 12 arcs all free: 48 unknowns + 24 multipliers > KKT_DENSE_MAX, the kernel is not called.
-    calls = []
+def test_large_systems_take_the_banded_kernel(monkeypatch):
+    # 12 arcs all free: 48 unknowns + 24 multipliers > KKT_DENSE_MAX, the banded kernel, not the dense one.
     import img2logo.kernels as kernels
 
-    monkeypatch.setattr(kernels, "sqp_dense", lambda *a: calls.append(a))
+    dense, banded = [], []
+    monkeypatch.setattr(kernels, "sqp_dense", lambda *a: dense.append(a))
+    real = kernels.sqp_banded
+    monkeypatch.setattr(kernels, "sqp_banded", lambda *a: banded.append(a) or real(*a))
+    fit = fit_constrained(*_loop(12, 5))
+    assert fit.converged and not dense and len(banded) == 1
+
+
+def test_a_system_above_the_compiled_cap_runs_the_reference(monkeypatch):
+    # Above KKT_COMPILED_MAX the banded kernel's dense scratch matrix would be too large: the Python reference.
+    import img2logo.kernels as kernels
+
+    calls = []
+    monkeypatch.setattr(kernels, "sqp_banded", lambda *a: calls.append(a))
+    monkeypatch.setattr(cfit, "KKT_COMPILED_MAX", 50)
     fit = fit_constrained(*_loop(12, 5))
     assert fit.converged and not calls
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_global_loop_matches_the_reference(monkeypatch, seed):
+    # A global solve: every variable of a 30-arc loop free (120 unknowns + 60 multipliers), solved in a band.
+    compiled, reference = _both(monkeypatch, *_loop(30, 200 + seed, noise=1.0, jitter=3.0))
+    _assert_same(compiled, reference)
+
+
+def test_global_loop_iterates_match_the_reference(monkeypatch):
+    # Stopped after k steps the banded kernel and the reference are at the same iterate.
+    for k in range(1, 4):
+        compiled, reference = _both(monkeypatch, *_loop(24, 13, noise=1.0, jitter=4.0), max_iter=k)
+        assert compiled.iterations == reference.iterations == k
+        _assert_same(compiled, reference, tol=1e-9)
+
+
+def test_global_loop_with_tangencies_and_fixed_parts_matches_the_reference(monkeypatch):
+    # Tangent joins (Newton steps with their curvature), some circles and junctions fixed, a mirror axis.
+    sets, radii, start, junctions, incidence = _loop(20, 21)
+    tangents = [[i, i + 1, i + 1] for i in range(0, 18, 3)]
+    compiled, reference = _both(
+        monkeypatch, sets, radii, start, junctions, incidence, tangents=tangents,
+        free_circles=[i for i in range(20) if i % 7], free_junctions=[k for k in range(20) if k % 5],
+    )  # fmt: skip
+    _assert_same(compiled, reference)
+    compiled, reference = _both(
+        monkeypatch, sets, radii, start, junctions, incidence, axis=300.0, axis_circles=[3], axis_junctions=[0]
+    )
+    _assert_same(compiled, reference)
 
 
 # --- Redundant intersections -----------------------------------------------------
