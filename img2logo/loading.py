@@ -341,7 +341,7 @@ def _read_file(path: Path, *, max_side: int = MAX_IMAGE_SIDE, max_pixels: int = 
         raise ImageNotFoundError(f"{path} is a directory, not an image file")
     if not path.is_file():
         raise ImageNotFoundError(f"{path} is not a regular file (a device, a pipe, ...), not an image file")
-    header = _probe(path, max_pixels)
+    header = _probe(path, max_pixels, max_side)
     flags = cv2.IMREAD_UNCHANGED  # the pixels as stored: EXIF orientation is applied below
     orientation = 1
     if header is not None:
@@ -353,15 +353,27 @@ def _read_file(path: Path, *, max_side: int = MAX_IMAGE_SIDE, max_pixels: int = 
         if fmt == "JPEG" and factor > 1:
             reduced = {2: cv2.IMREAD_REDUCED_COLOR_2, 4: cv2.IMREAD_REDUCED_COLOR_4, 8: cv2.IMREAD_REDUCED_COLOR_8}
             flags = reduced[factor] | cv2.IMREAD_IGNORE_ORIENTATION
+        small = None
         if fmt == "PNG" and max(w, h) > max_side:
             reduce_by = max(1, max(w, h) // max_side)
-            small = _read_png_strips(path, reduce_by)
+            exif: list[bytes] = []
+            small = _read_png_strips(path, reduce_by, exif)
             if small is None:  # interlaced, or no compiled kernels: Pillow decodes it whole
                 small = _read_png_reduced(path, reduce_by)
-            if small is not None:
-                if orientation in (5, 6, 7, 8):
-                    w, h = h, w
-                return _upright(small, orientation), (w, h)
+                if orientation == 1:  # the probe stopped at the pixels: an eXIf chunk after them
+                    with contextlib.suppress(Exception):  # a damaged EXIF block: as stored
+                        orientation = int(_png_exif(path).get(0x0112, 1))
+            elif exif and orientation == 1:
+                orientation = _exif_orientation(exif[-1])
+        elif fmt == "TIFF" and max(w, h) > max_side:
+            from ._tiff import read_tiff_reduced
+
+            with _decoder_stderr():  # libtiff's "TIFFReadDirectory: ..." lines and the like
+                small = read_tiff_reduced(path, max(1, max(w, h) // max_side))  # None: OpenCV decodes it whole
+        if small is not None:
+            if orientation in (5, 6, 7, 8):
+                w, h = h, w
+            return _upright(small, orientation), (w, h)
     try:
         data = np.fromfile(path, dtype=np.uint8)  # imdecode: unicode-safe, unlike imread
     except OSError as exc:
@@ -390,7 +402,7 @@ def _read_file(path: Path, *, max_side: int = MAX_IMAGE_SIDE, max_pixels: int = 
 _PNG_TYPES = {0: (1, (1, 2, 4, 8, 16)), 2: (3, (8, 16)), 3: (1, (1, 2, 4, 8)), 4: (2, (8, 16)), 6: (4, (8, 16))}
 
 
-def _read_png_strips(path: Path, factor: int) -> np.ndarray | None:
+def _read_png_strips(path: Path, factor: int, exif: list[bytes] | None = None) -> np.ndarray | None:
     """A PNG that will be downscaled, decoded and box-reduced by ``factor`` a strip of rows at a time; BGR(A), or None.
 
     The full-size image is never in memory: the IDAT chunks are read in turn, their
@@ -405,7 +417,8 @@ def _read_png_strips(path: Path, factor: int) -> np.ndarray | None:
     16 bits, a palette, 1-4 bit grey and a ``tRNS`` colour key are read; an interlaced
     file, or where the compiled kernels are not usable, gives None (Pillow then
     decodes it whole). Chunks other than IHDR, PLTE, tRNS and IDAT are skipped
-    unread (text of any size, a bogus iCCP: nothing is printed).
+    unread (text of any size, a bogus iCCP: nothing is printed). The data of an eXIf
+    chunk after the pixels is appended to ``exif`` (given): its orientation applies.
 
     Raises
     ------
@@ -474,12 +487,17 @@ def _read_png_strips(path: Path, factor: int) -> np.ndarray | None:
                         strip = pixels.view(np.uint8).reshape(-1)
                         step, offset, alpha = width * channels * (out_depth // 8), 0, expand.alpha
                     small = np.empty(((r1 - r0 + factor - 1) // factor, result.shape[1] * channels))
-                    n = png_reduce(strip, r1 - r0, step, offset, width, channels, out_depth, alpha, factor, small)
+                    n = png_reduce(strip, r1 - r0, step, offset, width, channels, out_depth, False, alpha, factor, small)
                     top = (y + r0) // factor
                     result[top : top + n] = np.rint(small).reshape(n, -1, channels)
                 strips.done(buf)
         finally:
             strips.close()
+        for kind, data in chunks:  # what follows the last row: an eXIf chunk, IEND
+            if kind == b"eXIf" and exif is not None:
+                exif.append(data)
+        if exif is not None:
+            exif.extend(strips.exif)
     if channels == 1:
         return result[:, :, 0]
     if channels >= 3:  # OpenCV's channel order, as the rest of loading expects
@@ -533,6 +551,7 @@ class _InflatedStrips:
         for _ in range(self.BUFFERS):
             self._free.put(np.empty(rows_per * pitch, dtype=np.uint8))
         self._stop = False
+        self.exif: list[bytes] = []  # the data of eXIf chunks met among the pixel data's
         args = (path, chunks, first, height, rows_per, pitch)
         self._thread = threading.Thread(target=self._run, args=args, name="img2logo-inflate", daemon=True)
         self._thread.start()
@@ -556,6 +575,9 @@ class _InflatedStrips:
                             have += len(piece)
                             continue
                         nxt = None if tail or inflater.eof else next(chunks, None)
+                        while nxt is not None and nxt[0] == b"eXIf":  # between the pixel data's chunks
+                            self.exif.append(nxt[1])
+                            nxt = next(chunks, None)
                         if nxt is None or nxt[0] != b"IDAT":
                             raise InvalidImageError(
                                 f"{path}: not a readable image: its pixel data ends before the last row "
@@ -591,7 +613,7 @@ class _InflatedStrips:
 def _png_chunks(f: BinaryIO) -> Iterator[tuple[bytes, bytes]]:
     """(type, data) of the chunks after IHDR, until IEND or the end of the file.
 
-    Chunks other than PLTE, tRNS and IDAT are skipped without reading their data;
+    Chunks other than PLTE, tRNS, IDAT and eXIf are skipped without reading their data;
     consecutive IDAT chunks (8 KB each from libpng) come joined, about 1 MB at a
     time, so that the inflater is called per megabyte, not per chunk. CRCs are not
     checked (as Pillow): damaged pixel data fails zlib's own checksum.
@@ -606,7 +628,7 @@ def _png_chunks(f: BinaryIO) -> Iterator[tuple[bytes, bytes]]:
             batch, size = [], 0
         if kind == b"IEND":
             return
-        if kind not in (b"PLTE", b"tRNS", b"IDAT"):
+        if kind not in (b"PLTE", b"tRNS", b"IDAT", b"eXIf"):
             f.seek(length + 4, os.SEEK_CUR)
             head = f.read(8)
             continue
@@ -822,15 +844,19 @@ def _decoder_stderr() -> Iterator[None]:
         hold.close()
 
 
-def _probe(path: Path, max_pixels: int) -> tuple[int, int, int, str, int] | None:
+def _probe(path: Path, max_pixels: int, max_side: int | None = None) -> tuple[int, int, int, str, int] | None:
     """(width, height, pages, format, EXIF orientation) from the file's header, or None if nothing can tell.
 
     Width and height are as stored (before the orientation, 1 when there is none).
     A PNG whose text chunks Pillow refuses (a zTXt of megabytes) still has its size
-    read from its IHDR chunk, so the pixel limit holds before decoding.
+    read from its IHDR chunk, so the pixel limit holds before decoding. A PNG larger
+    than ``max_side`` (given) with no eXIf or acTL chunk before its pixels is probed up
+    to them only: its strip decoder reads an eXIf chunk after them (orientation 1 here).
     Raises InvalidImageError if the image has more than ``max_pixels`` pixels.
     """
-    plain = _plain_png_size(path)
+    plain = _plain_png_size(path, pixels_first=True) if max_side is not None else None
+    if plain is None or max(plain) <= max_side:  # type: ignore[operator]  # max_side is not None with plain
+        plain = _plain_png_size(path)
     if plain is not None:  # Pillow would say the same: one frame, no EXIF
         w, h = plain
         if w * h > max_pixels:
@@ -866,6 +892,18 @@ def _probe(path: Path, max_pixels: int) -> tuple[int, int, int, str, int] | None
     return w, h, pages, fmt, orientation
 
 
+def _exif_orientation(data: bytes) -> int:
+    """The Orientation (1..8) of an EXIF block; 1 when it has none or cannot be read."""
+    from PIL import Image
+
+    try:
+        exif = Image.Exif()
+        exif.load(data)
+        return int(exif.get(0x0112, 1))
+    except Exception:  # a damaged EXIF block: as stored
+        return 1
+
+
 def _png_exif(path: Path) -> Image.Exif:
     """The EXIF of a PNG's eXIf chunk, before or after the pixels (empty without one), decoding nothing.
 
@@ -889,14 +927,17 @@ def _png_exif(path: Path) -> Image.Exif:
     return exif
 
 
-def _plain_png_size(path: Path) -> tuple[int, int] | None:
+def _plain_png_size(path: Path, *, pixels_first: bool = False) -> tuple[int, int] | None:
     """(width, height) of a whole PNG with neither an eXIf nor an acTL chunk, or None for any other file.
 
     Such a PNG has one frame and no EXIF orientation, and its IHDR chunk gives its
     size: :func:`_probe` then needs no Pillow (whose import is about 0.03 s of CPU,
     more than the rest of a 512 px PNG's reading). The chunks are walked by their
     length fields, as in :func:`_png_exif`; a file without an IEND chunk (cut short)
-    is left to Pillow and OpenCV to judge.
+    is left to Pillow and OpenCV to judge. With ``pixels_first`` the walk stops at the
+    first IDAT chunk (the size of a PNG with neither chunk before its pixels): a huge
+    PNG's 100 000 IDAT chunks of 8 KB took 1.5 s to walk, and its strip decoder walks
+    them anyway, and reads an eXIf chunk after them (:func:`_read_png_strips`).
     """
     try:
         with open(path, "rb") as f:
@@ -909,7 +950,7 @@ def _plain_png_size(path: Path) -> tuple[int, int] | None:
                 length, kind = int.from_bytes(chunk[:4], "big"), chunk[4:]
                 if kind in (b"eXIf", b"acTL"):  # EXIF, or an animation: Pillow reads them
                     return None
-                if kind == b"IEND":
+                if kind == b"IEND" or (pixels_first and kind == b"IDAT"):
                     return size
                 f.seek(length + 4, os.SEEK_CUR)  # the data and the CRC
     except OSError:

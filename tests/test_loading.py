@@ -506,7 +506,7 @@ def test_a_large_16_bit_rgba_png_loads_as_through_pillow(tmp_path, monkeypatch):
     cv2.imwrite(str(path), arr)
     with pytest.warns(DownscaleWarning, match=r"image is 430x260 px, .*downscaled to 64x39 px"):
         new = load_image(path, max_side=64)
-    monkeypatch.setattr(loading, "_read_png_strips", lambda path, factor: None)
+    monkeypatch.setattr(loading, "_read_png_strips", lambda path, factor, exif=None: None)
     with pytest.warns(DownscaleWarning):
         old = load_image(path, max_side=64)
     assert (new.width, new.height, new.has_alpha, new.input_size) == (old.width, old.height, True, (430, 260))
@@ -520,7 +520,7 @@ def test_a_large_png_stored_sideways_is_upright_on_the_strip_path(tmp_path, monk
 
     calls = []
     strips = loading._read_png_strips
-    monkeypatch.setattr(loading, "_read_png_strips", lambda path, factor: calls.append(factor) or strips(path, factor))
+    monkeypatch.setattr(loading, "_read_png_strips", lambda path, factor, exif=None: calls.append(factor) or strips(path, factor, exif))
     arr = np.full((240, 440, 3), 255, np.uint8)  # stored landscape, viewed portrait
     arr[10:40, 10:120] = 0
     exif = Image.Exif()
