@@ -219,19 +219,22 @@ def _band_tiff(layout: _Layout, f: BinaryIO, first: int, stop: int, path: Path, 
         entries[277] = (3, 1, struct.pack(o + "H", 1))
         entries[284] = (3, 1, struct.pack(o + "H", 1))
         entries[262] = (3, 1, struct.pack(o + "H", 1))
-    entries[257] = (4, 1, struct.pack(o + "I", stop - first))
-    if not layout.tiled:
-        entries[278] = (4, 1, struct.pack(o + "I", layout.rows))
     n = len(index)
-    entries[_TILE_OFFSETS if layout.tiled else _STRIP_OFFSETS] = (4, n, b"")  # filled below
-    entries[_TILE_COUNTS if layout.tiled else _STRIP_COUNTS] = (4, n, struct.pack(f"{o}{n}I", *lengths))
+    entries[257] = (4, 1, struct.pack(o + "I", stop - first))
+    if layout.tiled:  # the row's tiles stacked, each a strip: OpenCV's tile reading fails in memory (5.1, 8 bits)
+        entries[256] = (4, 1, struct.pack(o + "I", _tag_int(layout, 322)))
+        entries[257] = (4, 1, struct.pack(o + "I", layout.rows * n // (1 if plane is not None else layout.planes)))
+        del entries[322], entries[323]
+    entries[278] = (4, 1, struct.pack(o + "I", layout.rows))
+    entries[_STRIP_OFFSETS] = (4, n, b"")  # filled below
+    entries[_STRIP_COUNTS] = (4, n, struct.pack(f"{o}{n}I", *lengths))
     ifd_size = 2 + 12 * len(entries) + 4
     extra = sum(len(v) + (len(v) & 1) for t, (_, _, v) in entries.items() if len(v) > 4)
     extra += 4 * n if 4 * n > 4 else 0
     start = 8 + ifd_size + extra
     positions = np.cumsum([start, *lengths[:-1]]).tolist()
     offsets_value = struct.pack(f"{o}{n}I", *positions)
-    entries[_TILE_OFFSETS if layout.tiled else _STRIP_OFFSETS] = (4, n, offsets_value)
+    entries[_STRIP_OFFSETS] = (4, n, offsets_value)
     head = (b"II" if o == "<" else b"MM") + struct.pack(o + "HI", 42, 8)
     table = [struct.pack(o + "H", len(entries))]
     values = []
@@ -267,6 +270,18 @@ def _band_tiff(layout: _Layout, f: BinaryIO, first: int, stop: int, path: Path, 
     return out
 
 
+def _untile(stacked: np.ndarray | None, layout: _Layout, rows: int) -> np.ndarray | None:
+    """A row of tiles decoded stacked (one above the other) as the band it is: (rows, width[, C])."""
+    tile_w = _tag_int(layout, 322)
+    across = -(-layout.width // tile_w)
+    if stacked is None or stacked.shape[0] % (across * layout.rows) or stacked.shape[1] != tile_w:
+        return None
+    k = stacked.shape[0] // (across * layout.rows)
+    tiles = stacked.reshape(k, across, layout.rows, tile_w, -1).transpose(0, 2, 1, 3, 4)
+    band = tiles.reshape(k * layout.rows, across * tile_w, -1)[:rows, : layout.width]
+    return np.ascontiguousarray(band if stacked.ndim == 3 else band[:, :, 0])
+
+
 def _tag_int(layout: _Layout, tag: int) -> int:
     kind, count, value = layout.tags[tag]
     return int(np.frombuffer(value, dtype=layout.order + _INTS[kind], count=1)[0])
@@ -299,6 +314,8 @@ class _Bands:
                         except cv2.error:
                             planes.append(None)
                         del tiff
+                    if layout.tiled:  # (tiles x tile rows, tile width, C) to the band's rows and columns
+                        planes = [_untile(q, layout, stop - first) for q in planes]
                     band = planes[0]
                     if layout.planes > 1 and all(q is not None and q.ndim == 2 for q in planes):
                         order = [2, 1, 0, *range(3, len(planes))]  # OpenCV's order: blue first
