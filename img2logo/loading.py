@@ -30,6 +30,7 @@ from .constants import (
     BLANK_IMAGE_RANGE,
     DOWNSCALE_STRIP_ROWS,
     LUMA_WEIGHTS,
+    MAX_FLOAT_IMAGE_PIXELS,
     MAX_IMAGE_PIXELS,
     MAX_IMAGE_SIDE,
     MIN_IMAGE_SIDE,
@@ -342,6 +343,15 @@ def _read_file(path: Path, *, max_side: int = MAX_IMAGE_SIDE, max_pixels: int = 
     if not path.is_file():
         raise ImageNotFoundError(f"{path} is not a regular file (a device, a pipe, ...), not an image file")
     header = _probe(path, max_pixels, max_side)
+    floats = _float_image_size(path)
+    if floats is not None and floats[0] * floats[1] > min(max_pixels, MAX_FLOAT_IMAGE_PIXELS):
+        fw, fh, kind = floats
+        if fw * fh > max_pixels:
+            raise InvalidImageError(_too_many_pixels(path, f"{fw}x{fh} px", max_pixels))
+        raise InvalidImageError(
+            f"{path}: image is {fw}x{fh} px of floating-point samples ({kind}); such a file is decoded whole, "
+            f"so img2logo reads it up to {MAX_FLOAT_IMAGE_PIXELS:,} px (its memory limit): downscale it first"
+        )
     flags = cv2.IMREAD_UNCHANGED  # the pixels as stored: EXIF orientation is applied below
     orientation = 1
     if header is not None:
@@ -365,6 +375,8 @@ def _read_file(path: Path, *, max_side: int = MAX_IMAGE_SIDE, max_pixels: int = 
                         orientation = int(_png_exif(path).get(0x0112, 1))
             elif exif and orientation == 1:
                 orientation = _exif_orientation(exif[-1])
+        elif fmt == "JPEG2000" and max(w, h) >= 2 * max_side:
+            small = _read_jpeg2000_reduced(path, max(w, h), max_side)
         elif fmt == "TIFF" and max(w, h) > max_side:
             from ._tiff import read_tiff_reduced
 
@@ -375,14 +387,18 @@ def _read_file(path: Path, *, max_side: int = MAX_IMAGE_SIDE, max_pixels: int = 
                 w, h = h, w
             return _upright(small, orientation), (w, h)
     try:
-        data = np.fromfile(path, dtype=np.uint8)  # imdecode: unicode-safe, unlike imread
+        # A file of 64 MB or more with a plain name is decoded from the file (OpenCV's decoders stream it):
+        # a 12000 px BMP's 576 MB were in memory twice (1.75 GB at the peak, measured). Otherwise from
+        # its bytes (imdecode: unicode-safe, unlike imread; the same decoders).
+        stream = path.stat().st_size >= 4 * PNG_STRIP_BYTES and str(path).isascii()
+        data = np.zeros(1, dtype=np.uint8) if stream else np.fromfile(path, dtype=np.uint8)
     except OSError as exc:
         raise InvalidImageError(f"{path}: cannot read the file: {exc.strerror or exc}") from exc
     if data.size == 0:
         raise InvalidImageError(f"{path}: file is empty")
     try:
         with _decoder_stderr():  # libpng's "libpng warning: iCCP: ..." lines and the like
-            arr = cv2.imdecode(data, flags)
+            arr = cv2.imread(str(path), flags) if stream else cv2.imdecode(data, flags)
     except cv2.error as exc:  # e.g. beyond OpenCV's own size limit
         raise InvalidImageError(f"{path}: not a readable image: {' '.join(str(exc).split())[-200:]}") from exc
     del data
@@ -767,6 +783,37 @@ def _read_png_reduced(path: Path, factor: int) -> np.ndarray | None:
     return arr
 
 
+def _read_jpeg2000_reduced(path: Path, side: int, max_side: int) -> np.ndarray | None:
+    """A JPEG 2000 image at least twice ``max_side``, decoded at 1/2**k of its size (its wavelet levels); BGR(A).
+
+    OpenJPEG decodes a 12000 x 12000 px file whole in 32-bit integers per sample (OpenCV's
+    path: 35 s and 2.3 GB at its peak, measured); Pillow's decoder (OpenJPEG too) stops
+    ``k`` resolution levels short (``Image.reduce`` set before ``load``), the largest ``k``
+    that leaves ``side / 2**k >= max_side``, as a JPEG's 1/2, 1/4, 1/8. Colour comes at 8 bits
+    (Pillow's modes; plenty at the working size), grey at 8 or 16. A mode other than L,
+    I;16, LA, RGB, RGBA gives None (OpenCV decodes the file whole); a damaged file, one line.
+    """
+    from PIL import Image
+
+    levels = 0
+    while side / (1 << (levels + 1)) >= max_side:
+        levels += 1
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            with Image.open(path) as im:
+                if im.mode not in ("L", "I;16", "LA", "RGB", "RGBA"):
+                    return None
+                im.reduce = levels  # type: ignore[method-assign,assignment]  # the plugin's setter
+                im.load()
+                arr = np.array(im)
+    except (OSError, ValueError, SyntaxError, Image.DecompressionBombError) as exc:
+        raise InvalidImageError(f"{path}: not a readable image: {' '.join(str(exc).split())[-200:]}") from exc
+    if arr.ndim == 3 and arr.shape[2] >= 3:  # OpenCV's channel order, as the rest of loading expects
+        arr = np.ascontiguousarray(arr[:, :, [2, 1, 0, *range(3, arr.shape[2])]])
+    return arr
+
+
 def _reduce_by_strips(im: Image.Image, factor: int) -> np.ndarray:
     """``np.array(im.reduce(factor))``, one strip of rows at a time: no second full-size image.
 
@@ -890,6 +937,32 @@ def _probe(path: Path, max_pixels: int, max_side: int | None = None) -> tuple[in
     if w * h > max_pixels:
         raise InvalidImageError(_too_many_pixels(path, f"{w}x{h} px", max_pixels))
     return w, h, pages, fmt, orientation
+
+
+def _float_image_size(path: Path) -> tuple[int, int, str] | None:
+    """(width, height, format) of a Radiance HDR or a PFM file from its header (Pillow reads neither), else None.
+
+    Radiance: text lines up to an empty one, then ``-Y H +X W`` (or another axis order); PFM:
+    ``PF`` or ``Pf``, then ``W H`` (Netpbm's PFM).
+    """
+    try:
+        with open(path, "rb") as f:
+            head = f.read(4096)
+    except OSError:
+        return None
+    if head.startswith((b"#?RADIANCE", b"#?RGBE")):
+        end = head.find(b"\n\n")
+        size = head[end + 2 :].split(b"\n", 1)[0].split() if end >= 0 else []
+        if len(size) == 4 and size[0][1:] in (b"Y", b"X") and size[2][1:] in (b"Y", b"X"):
+            with contextlib.suppress(ValueError):
+                a, b = int(size[1]), int(size[3])
+                return (b, a, "Radiance HDR") if size[0][1:] == b"Y" else (a, b, "Radiance HDR")
+        return None
+    if head[:3] in (b"PF\n", b"Pf\n", b"PF\r", b"Pf\r"):
+        words = head[3:].split(None, 2)
+        with contextlib.suppress(ValueError, IndexError):
+            return int(words[0]), int(words[1]), "PFM"
+    return None
 
 
 def _exif_orientation(data: bytes) -> int:

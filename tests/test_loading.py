@@ -776,3 +776,60 @@ def test_a_tiff_the_bands_cannot_do_is_left_to_the_whole_image_path(tmp_path):
         m.setattr(_tiff, "PNG_STRIP_BYTES", 20000)
         assert _tiff.read_tiff_reduced(one_strip, 2) is None  # one compressed strip of 720 KB: no smaller band
     assert _tiff.read_tiff_reduced(tmp_path / "none.tif", 2) is None
+
+
+def test_a_large_jpeg_2000_is_decoded_at_a_reduced_resolution(tmp_path):
+    # issue 20, item 12: OpenJPEG decoded a 12000 px file whole (2.3 GB); Pillow stops wavelet levels short.
+    from PIL import Image
+
+    arr = _shapes(1000, 1400, False)
+    path = tmp_path / "big.jp2"
+    Image.fromarray(arr[:, :, ::-1]).save(path)
+    with pytest.warns(DownscaleWarning, match=r"big\.jp2: image is 1400x1000 px, .*downscaled to 300x214 px"):
+        img = load_image(path, max_side=300)
+    with Image.open(path) as im:
+        im.reduce = 2  # 1400 / 4 = 350 >= 300 > 1400 / 8
+        im.load()
+        quarter = np.asarray(im)
+    assert quarter.shape == (250, 350, 3)
+    rgb, _ = _reference(quarter[:, :, ::-1], (300, 214))
+    assert np.abs(img.rgb - rgb).max() < 1.5 / 255
+    damaged = tmp_path / "cut.jp2"
+    damaged.write_bytes(path.read_bytes()[: path.stat().st_size // 3])
+    with pytest.raises(InvalidImageError, match=r"cut\.jp2: not a readable image") as caught:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", DownscaleWarning)
+            load_image(damaged, max_side=300)
+    assert "\n" not in str(caught.value)
+
+
+@pytest.mark.parametrize("suffix", [".hdr", ".pfm"])
+def test_a_floating_point_image_over_its_limit_is_refused_before_decoding(tmp_path, monkeypatch, suffix):
+    from img2logo import loading
+
+    path = tmp_path / f"big{suffix}"
+    assert cv2.imwrite(str(path), np.full((30, 50, 3), 0.5, np.float32))
+    assert loading._float_image_size(path)[:2] == (50, 30)
+    monkeypatch.setattr(loading, "MAX_FLOAT_IMAGE_PIXELS", 1000)
+    decoded = []
+    monkeypatch.setattr(cv2, "imdecode", lambda *a: decoded.append(a) or None)
+    kind = "Radiance HDR" if suffix == ".hdr" else "PFM"
+    with pytest.raises(InvalidImageError, match=rf"image is 50x30 px of floating-point samples \({kind}\); .* 1,000 px"):
+        load_image(path)
+    assert decoded == []
+
+
+def test_a_large_file_is_decoded_from_the_file_with_the_same_bits(tmp_path, monkeypatch):
+    # From 64 MB on (4 x PNG_STRIP_BYTES) OpenCV reads the file itself rather than a copy of its bytes.
+    from img2logo import loading
+
+    arr = _shapes(300, 400, True)
+    path = tmp_path / "big.bmp"
+    assert cv2.imwrite(str(path), arr)
+    small = load_image(path)
+    monkeypatch.setattr(loading, "PNG_STRIP_BYTES", 1000)
+    read = []
+    imread = cv2.imread
+    monkeypatch.setattr(cv2, "imread", lambda *a: read.append(a) or imread(*a))
+    streamed = load_image(path)
+    assert len(read) == 1 and np.array_equal(streamed.rgb, small.rgb) and np.array_equal(streamed.alpha, small.alpha)
