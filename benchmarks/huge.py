@@ -151,7 +151,13 @@ def _write_with_pillow(arr: np.ndarray, tmp: Path, how: str) -> None:
         Image.fromarray((rgb[:, :, :3] >> 8).astype(np.uint8)).save(tmp, format="TIFF", compression="packbits")
     else:
         tifffile.imwrite(
-            tmp, rgb, photometric="rgb", extrasamples=["unassalpha"], compression="zlib", tile=(512, 512), predictor=True
+            tmp,
+            rgb,
+            photometric="rgb",
+            extrasamples=["unassalpha"],
+            compression="zlib",
+            tile=(512, 512),
+            predictor=True,
         )
 
 

@@ -3,7 +3,10 @@
 OpenCV decodes a 12000 x 12000 px 16-bit RGBA TIFF whole: 1.15 GB of pixels and, at its peak,
 3.35 GB (measured, issue 20 item 12). Here the first image file directory (IFD) is read
 (TIFF 6.0, Sec. 2; BigTIFF too), and for each band of strips (or row of tiles) a small TIFF
-is made in memory: the same tags, but the band's height and only the band's strips. OpenCV
+is made in memory: the same tags, but the band's height and only the band's strips (a row of
+tiles becomes its tiles stacked one above the other, each a strip: OpenCV 5.1 fails to read
+8-bit tiles from memory; separate planes are decoded one at a time: it decodes 16-bit ones
+wrongly, measured). OpenCV
 (libtiff) decodes it, the same decoder with the same tags as the whole file's decode, so a
 band's pixels are those rows of the whole image to the bit, whatever the compression (none,
 LZW, deflate, PackBits), the predictor, the planar configuration, the byte order, the bit
@@ -12,10 +15,16 @@ thread of their own (OpenCV releases the GIL) while the compiled box reduce of
 :mod:`img2logo.kernels_png` (the PNG path's: colour averaged premultiplied by alpha, as
 ``PIL.Image.reduce``) works on the one before.
 
+Why OpenCV and not ``tifffile`` (installed, a dependency of scikit-image): without
+``imagecodecs`` tifffile has no LZW decoder at all (the commonest TIFF compression, OpenCV's
+default) and decodes PackBits in pure Python; libtiff through OpenCV decodes every one, is
+the whole-image path's own decoder, and needs no new dependency. Pillow's decoders driven per
+strip would lean on its private tile API and decode 16-bit colour to 8 bits.
+
 Not done here (None: OpenCV decodes the file whole, as before): a compression other than
-those four, JPEG-in-TIFF among them; a compressed strip taller than a band's worth of bytes
-(one strip of the whole image), a decoded band of a dtype other than 8 or 16 bits
-(floating point samples).
+those four (JPEG-in-TIFF among them); a compressed strip or tile row of more than four
+bands' bytes (one compressed strip of the whole image); separate planes other than RGB(A);
+samples other than 8 or 16-bit integers (floating point).
 """
 
 from __future__ import annotations
@@ -283,7 +292,7 @@ def _untile(stacked: np.ndarray | None, layout: _Layout, rows: int) -> np.ndarra
 
 
 def _tag_int(layout: _Layout, tag: int) -> int:
-    kind, count, value = layout.tags[tag]
+    kind, _, value = layout.tags[tag]
     return int(np.frombuffer(value, dtype=layout.order + _INTS[kind], count=1)[0])
 
 

@@ -79,8 +79,9 @@ def png_reduce(buf, rows, pitch, offset, width, channels, depth, little, alpha, 
 
     Row ``r`` of the strip starts at ``buf[r * pitch + offset]``: ``width`` pixels of
     ``channels`` samples of ``depth`` bits (8, or 16: big-endian as in a PNG, little-endian
-    with ``little``, as OpenCV decodes a TIFF here), the last an opacity when ``alpha``. Output row ``r // factor``, column ``x // factor`` of ``out``
-    (``channels`` floats a pixel, in the samples' scale) is the mean of the box's
+    with ``little``, as OpenCV decodes a TIFF here), the last an opacity when ``alpha``.
+    Output row ``r // factor``, column ``x // factor`` of ``out`` (``channels`` floats a
+    pixel, in the samples' scale) is the mean of the box's
     pixels (fewer at the right and bottom edges, as ``PIL.Image.reduce``); with
     ``alpha`` the colour is averaged premultiplied by the opacity and divided by
     the mean opacity (0 where the box is transparent), as Pillow's reduce does.

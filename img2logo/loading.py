@@ -503,7 +503,9 @@ def _read_png_strips(path: Path, factor: int, exif: list[bytes] | None = None) -
                         strip = pixels.view(np.uint8).reshape(-1)
                         step, offset, alpha = width * channels * (out_depth // 8), 0, expand.alpha
                     small = np.empty(((r1 - r0 + factor - 1) // factor, result.shape[1] * channels))
-                    n = png_reduce(strip, r1 - r0, step, offset, width, channels, out_depth, False, alpha, factor, small)
+                    n = png_reduce(
+                        strip, r1 - r0, step, offset, width, channels, out_depth, False, alpha, factor, small
+                    )
                     top = (y + r0) // factor
                     result[top : top + n] = np.rint(small).reshape(n, -1, channels)
                 strips.done(buf)

@@ -521,7 +521,9 @@ def test_a_large_png_stored_sideways_is_upright_on_the_strip_path(tmp_path, monk
 
     calls = []
     strips = loading._read_png_strips
-    monkeypatch.setattr(loading, "_read_png_strips", lambda path, factor, exif=None: calls.append(factor) or strips(path, factor, exif))
+    monkeypatch.setattr(
+        loading, "_read_png_strips", lambda path, factor, exif=None: calls.append(factor) or strips(path, factor, exif)
+    )
     arr = np.full((240, 440, 3), 255, np.uint8)  # stored landscape, viewed portrait
     arr[10:40, 10:120] = 0
     exif = Image.Exif()
@@ -672,7 +674,9 @@ def test_a_large_tiff_read_band_by_band_is_its_box_reduce(
         (1, np.uint16, {"byteorder": ">", "bigtiff": True, "rowsperstrip": 8}, 2),
     ],
 )
-def test_a_large_tiled_planar_or_big_endian_tiff_is_its_box_reduce(tmp_path, monkeypatch, channels, dtype, layout, factor):
+def test_a_large_tiled_planar_or_big_endian_tiff_is_its_box_reduce(
+    tmp_path, monkeypatch, channels, dtype, layout, factor
+):
     import tifffile
 
     from img2logo import _tiff
@@ -688,7 +692,9 @@ def test_a_large_tiled_planar_or_big_endian_tiff_is_its_box_reduce(tmp_path, mon
     got = _tiff.read_tiff_reduced(path, factor)
     assert got is not None and got.dtype == dtype
     reference = _tiff_reference(path)
-    assert np.array_equal(reference[:, :, :3] if channels >= 3 else reference, arr[:, :, :3][:, :, ::-1] if channels >= 3 else arr)
+    assert np.array_equal(
+        reference[:, :, :3] if channels >= 3 else reference, arr[:, :, :3][:, :, ::-1] if channels >= 3 else arr
+    )
     expected = _box_mean(reference, factor, channels == 4)
     assert np.abs(got.reshape(expected.shape) - expected).max() <= 0.5
 
@@ -751,7 +757,7 @@ def test_a_cut_or_damaged_large_tiff_is_one_line(tmp_path, monkeypatch, damage):
         data[len(data) // 3 : len(data) * 2 // 3 : 97] = bytes(len(data[len(data) // 3 : len(data) * 2 // 3 : 97]))
     path.write_bytes(bytes(data))
     if damage == "offsets":  # the strips point past the end of the file
-        layout = _tiff._layout(open(path, "rb"))  # noqa: SIM115
+        layout = _tiff._layout(open(path, "rb"))
         assert layout is not None
         monkeypatch.setattr(_tiff, "_layout", lambda f: dataclasses.replace(layout, offsets=layout.offsets + len(data)))
     with pytest.raises(InvalidImageError, match=r"big\.tif: not a readable image") as caught:
@@ -814,7 +820,9 @@ def test_a_floating_point_image_over_its_limit_is_refused_before_decoding(tmp_pa
     decoded = []
     monkeypatch.setattr(cv2, "imdecode", lambda *a: decoded.append(a) or None)
     kind = "Radiance HDR" if suffix == ".hdr" else "PFM"
-    with pytest.raises(InvalidImageError, match=rf"image is 50x30 px of floating-point samples \({kind}\); .* 1,000 px"):
+    with pytest.raises(
+        InvalidImageError, match=rf"image is 50x30 px of floating-point samples \({kind}\); .* 1,000 px"
+    ):
         load_image(path)
     assert decoded == []
 
