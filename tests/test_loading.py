@@ -841,3 +841,29 @@ def test_a_large_file_is_decoded_from_the_file_with_the_same_bits(tmp_path, monk
     monkeypatch.setattr(cv2, "imread", lambda *a: read.append(a) or imread(*a))
     streamed = load_image(path)
     assert len(read) == 1 and np.array_equal(streamed.rgb, small.rgb) and np.array_equal(streamed.alpha, small.alpha)
+
+
+@pytest.mark.parametrize("transparent", [False, True])
+def test_a_large_gif_is_decoded_as_its_palette_and_reduced_by_strips(tmp_path, transparent):
+    # issue 20, item 12: OpenCV decoded a 12000 px GIF through full-size BGRA canvases (1.8 GB).
+    from PIL import Image
+
+    im = Image.fromarray(_shapes(600, 700, False)[:, :, ::-1]).quantize(16)
+    path = tmp_path / "big.gif"
+    im.save(path, **({"transparency": 0} if transparent else {}))
+    with pytest.warns(DownscaleWarning, match=r"big\.gif: image is 700x600 px"):
+        img = load_image(path, max_side=200)
+    with Image.open(path) as again:
+        full = np.asarray(again.convert("RGBA" if transparent else "RGB"))[
+            :, :, [2, 1, 0, *([3] if transparent else [])]
+        ]
+    rgb, a = _reference(np.ascontiguousarray(full), (img.width, img.height))
+    assert img.has_alpha is transparent
+    assert np.abs(img.rgb - rgb).mean() < 0.01 and np.abs(img.alpha - a).mean() < 0.01  # reduce by 3, then area
+    cut = tmp_path / "cut.gif"
+    cut.write_bytes(path.read_bytes()[:200])
+    with pytest.raises(InvalidImageError, match=r"cut\.gif: not a readable image") as caught:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", DownscaleWarning)
+            load_image(cut, max_side=200)
+    assert "\n" not in str(caught.value)
