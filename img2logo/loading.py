@@ -375,6 +375,8 @@ def _read_file(path: Path, *, max_side: int = MAX_IMAGE_SIDE, max_pixels: int = 
                         orientation = int(_png_exif(path).get(0x0112, 1))
             elif exif and orientation == 1:
                 orientation = _exif_orientation(exif[-1])
+        elif fmt == "PPM" and max(w, h) > max_side:
+            small = _read_netpbm_strips(path, max(1, max(w, h) // max_side))
         elif fmt in ("GIF", "AVIF") and max(w, h) > max_side:
             small = _read_pillow_reduced(path, max(1, max(w, h) // max_side))
         elif fmt == "JPEG2000" and max(w, h) >= 2 * max_side:
@@ -785,6 +787,46 @@ def _read_png_reduced(path: Path, factor: int) -> np.ndarray | None:
     if arr.ndim == 3 and arr.shape[2] >= 3:  # OpenCV's channel order, as the rest of loading expects
         arr = np.ascontiguousarray(arr[:, :, [2, 1, 0, *range(3, arr.shape[2])]])
     return arr
+
+
+def _read_netpbm_strips(path: Path, factor: int) -> np.ndarray | None:
+    """A binary PGM or PPM (P5, P6) of maxval 255 or 65535 box-reduced by ``factor``, read a strip at a time; BGR.
+
+    Its samples are stored raw (16 bits big-endian, as a PNG's), so strips of rows are read
+    and reduced by the PNG path's kernel: OpenCV decoded a 12000 px 16-bit PPM whole through
+    a second full-size buffer (1.75 GB at the run's peak, measured). Another kind (text
+    samples, another maxval, PAM): None, and OpenCV decodes it whole.
+    """
+    from . import kernels
+
+    with open(path, "rb") as f:
+        head = f.read(512)
+        found = re.match(rb"(P[56])(?:\s+|#[^\n]*\n)+(\d+)(?:\s+|#[^\n]*\n)+(\d+)(?:\s+|#[^\n]*\n)+(\d+)\s", head)
+        if found is None or not kernels.usable():
+            return None
+        kind, width, height, maxval = found.group(1), *(int(g) for g in found.groups()[1:])
+        if maxval not in (255, 65535) or width <= 0 or height <= 0:
+            return None
+        channels, depth = (3 if kind == b"P6" else 1), (16 if maxval == 65535 else 8)
+        pitch = width * channels * depth // 8
+        reduce = _png_kernels(pitch * height)[1]
+        rows_per = factor * max(1, PNG_STRIP_BYTES // (pitch * factor))
+        result = np.empty((-(-height // factor), -(-width // factor), channels), np.uint16 if depth == 16 else np.uint8)
+        buf = np.empty(rows_per * pitch, dtype=np.uint8)
+        f.seek(found.end())
+        for y in range(0, height, rows_per):
+            rows = min(rows_per, height - y)
+            if f.readinto(memoryview(buf)[: rows * pitch]) < rows * pitch:
+                raise InvalidImageError(
+                    f"{path}: not a readable image: its pixel data ends before the last row "
+                    f"(row {y + 1} of {height}; the file cut short?)"
+                )
+            small = np.empty((-(-rows // factor), result.shape[1] * channels))
+            n = reduce(buf, rows, pitch, 0, width, channels, depth, False, False, factor, small)
+            result[y // factor : y // factor + n] = np.rint(small).reshape(n, -1, channels)
+    if channels == 1:
+        return result[:, :, 0]
+    return np.ascontiguousarray(result[:, :, ::-1])  # OpenCV's channel order
 
 
 def _read_pillow_reduced(path: Path, factor: int) -> np.ndarray | None:

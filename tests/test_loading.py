@@ -867,3 +867,26 @@ def test_a_large_gif_is_decoded_as_its_palette_and_reduced_by_strips(tmp_path, t
             warnings.simplefilter("ignore", DownscaleWarning)
             load_image(cut, max_side=200)
     assert "\n" not in str(caught.value)
+
+
+@pytest.mark.parametrize(("channels", "dtype", "factor"), [(3, np.uint16, 3), (1, np.uint8, 4), (3, np.uint8, 2)])
+def test_a_large_ppm_is_read_strip_by_strip_as_its_box_reduce(tmp_path, monkeypatch, channels, dtype, factor):
+    # issue 20, item 12: OpenCV decoded a 12000 px 16-bit PPM through a second full-size buffer (1.75 GB).
+    from img2logo import loading
+
+    monkeypatch.setattr(loading, "PNG_STRIP_BYTES", 20000)
+    arr = _noisy(301, 517, channels, dtype)
+    path = tmp_path / ("big.ppm" if channels == 3 else "big.pgm")
+    assert cv2.imwrite(str(path), arr if channels == 3 else arr[:, :, 0])
+    got = loading._read_netpbm_strips(path, factor)
+    assert got is not None and got.dtype == dtype
+    whole = cv2.imread(str(path), cv2.IMREAD_UNCHANGED)
+    expected = _box_mean(whole if whole.ndim == 3 else whole[:, :, None], factor, False)
+    assert np.abs(got.reshape(expected.shape) - expected).max() <= 0.5
+    cut = tmp_path / "cut.ppm"
+    cut.write_bytes(path.read_bytes()[: path.stat().st_size // 2])
+    with pytest.raises(InvalidImageError, match=r"cut\.ppm: not a readable image: its pixel data ends") as caught:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", DownscaleWarning)
+            load_image(cut, max_side=64)
+    assert "\n" not in str(caught.value)
