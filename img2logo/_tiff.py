@@ -422,20 +422,28 @@ def read_tiff_reduced(path: Path, factor: int) -> np.ndarray | None:
                 out_h, out_w = -(-layout.height // factor), -(-layout.width // factor)
                 result = np.empty((out_h, out_w, channels), dtype=band.dtype)
             last = first + len(band) == layout.height
-            if carry is not None:  # a band's rows after the last whole box of the band before (tiles, mostly)
-                band = np.concatenate([carry, band], axis=0)
-            whole = len(band) if last else len(band) // factor * factor
-            carry = band[whole:].copy() if whole < len(band) else None
-            if whole:
-                depth = 8 * band.dtype.itemsize
-                small = np.empty((-(-whole // factor), out_w * channels))
-                flat = np.ascontiguousarray(band[:whole]).reshape(-1).view(np.uint8)
-                pitch = layout.width * channels * band.dtype.itemsize
-                n = reduce(
-                    flat, whole, pitch, 0, layout.width, channels, depth, little, channels in (2, 4), factor, small
-                )
-                result[done : done + n] = np.rint(small).reshape(n, -1, channels)
-                done += n
+            pieces = [band]
+            if last and carry is not None and len(carry) + len(band) <= factor:  # the image's last box
+                pieces, carry = [np.concatenate([carry, band], axis=0)], None
+            if carry is not None:  # the rows after the band before's last whole box (tiles, mostly): one box more
+                need = min(factor - len(carry), len(band))
+                pieces = [np.concatenate([carry, band[:need]], axis=0), band[need:]]
+                carry = None
+            for k, piece in enumerate(pieces):
+                end = last and k == len(pieces) - 1
+                whole = len(piece) if end else len(piece) // factor * factor
+                if whole < len(piece):
+                    carry = piece[whole:].copy() if carry is None else np.concatenate([carry, piece[whole:]], axis=0)
+                if whole:
+                    small = np.empty((-(-whole // factor), out_w * channels))
+                    flat = np.ascontiguousarray(piece[:whole]).reshape(-1).view(np.uint8)  # a view: rows of a band
+                    pitch = layout.width * channels * piece.dtype.itemsize
+                    depth = 8 * piece.dtype.itemsize
+                    n = reduce(
+                        flat, whole, pitch, 0, layout.width, channels, depth, little, channels in (2, 4), factor, small
+                    )
+                    result[done : done + n] = np.rint(small).reshape(n, -1, channels)
+                    done += n
             del band
     finally:
         bands.close()
