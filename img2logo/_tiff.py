@@ -29,6 +29,7 @@ samples other than 8 or 16-bit integers (floating point).
 
 from __future__ import annotations
 
+import io
 import math
 import queue
 import struct
@@ -155,9 +156,10 @@ def _layout(f: BinaryIO) -> _Layout | None:
     planes = spp if planar == 2 and spp > 1 else 1
     if planes > 1 and (one(262) != 2 or spp not in (3, 4)):
         return None  # separate planes: RGB and RGBA only
-    across = -(-width // one(322, 0)) if tiled and one(322, 0) else 1
-    if tiled and (one(322, 0) <= 0 or rows <= 0 or one(322, 0) % 16 or rows % 16):
+    tile_w = int(one(322, 0) or 0)
+    if tiled and (tile_w <= 0 or rows <= 0 or tile_w % 16 or rows % 16):
         return None
+    across = -(-width // tile_w) if tiled else 1
     per_plane = across * -(-height // rows)
     if offsets.size < per_plane * planes or counts.size < per_plane * planes:
         return None
@@ -201,7 +203,9 @@ def _split(layout: _Layout, compression: int) -> _Layout:
     )
 
 
-def _band_tiff(layout: _Layout, f: BinaryIO, first: int, stop: int, path: Path, plane: int | None = None) -> np.ndarray:
+def _band_tiff(
+    layout: _Layout, f: io.BufferedReader, first: int, stop: int, path: Path, plane: int | None = None
+) -> np.ndarray:
     """A classic TIFF of rows ``first`` .. ``stop`` (strip or tile-row bounds) of the image: its tags, its data (uint8).
 
     With ``plane`` (a file of separate planes), that plane alone, as a grey image: OpenCV
@@ -210,7 +214,7 @@ def _band_tiff(layout: _Layout, f: BinaryIO, first: int, stop: int, path: Path, 
     o = layout.order
     across = -(-layout.width // _tag_int(layout, 322)) if layout.tiled else 1
     per_plane = across * -(-layout.height // layout.rows)
-    index = []
+    index: list[int] = []
     for p in range(layout.planes) if plane is None else (plane,):
         for k in range(first // layout.rows, -(-stop // layout.rows)):
             index.extend(p * per_plane + k * across + j for j in range(across))
@@ -261,7 +265,7 @@ def _band_tiff(layout: _Layout, f: BinaryIO, first: int, stop: int, path: Path, 
     header = b"".join([head, *table, *values])
     out = np.empty(len(header) + sum(lengths), dtype=np.uint8)
     out[: len(header)] = np.frombuffer(header, dtype=np.uint8)
-    view, at, k = memoryview(out), len(header), 0
+    view, at, k = out.data, len(header), 0
     while k < len(index):  # runs of strips that follow each other in the file: one read each
         j, begin = k + 1, int(layout.offsets[index[k]])
         end = begin + lengths[k]

@@ -816,7 +816,7 @@ def _read_netpbm_strips(path: Path, factor: int) -> np.ndarray | None:
         f.seek(found.end())
         for y in range(0, height, rows_per):
             rows = min(rows_per, height - y)
-            if f.readinto(memoryview(buf)[: rows * pitch]) < rows * pitch:
+            if f.readinto(buf.data[: rows * pitch]) < rows * pitch:
                 raise InvalidImageError(
                     f"{path}: not a readable image: its pixel data ends before the last row "
                     f"(row {y + 1} of {height}; the file cut short?)"
