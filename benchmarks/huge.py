@@ -15,7 +15,15 @@ The images (16-bit RGBA PNGs unless said; the largest accepted input is MAX_IMAG
 * ``flower-12000.jpg``: the same noisy flower, 8-bit RGB, JPEG quality 90;
 * ``flower-12000-paeth.png``: the noisy flower with every row Paeth-filtered (OpenCV's files use
   the Sub filter, the cheapest to undo; other encoders choose per row, Paeth often on photos):
-  the slowest PNG to decode.
+  the slowest PNG to decode;
+* the noisy flower in the other formats ``load_image`` accepts (what OpenCV decodes), written by
+  OpenCV with its defaults unless said: ``flower-12000.tif`` (16-bit RGBA, LZW with the
+  horizontal predictor, a strip a row), ``flower-12000-deflate-tiled.tif`` (16-bit RGBA,
+  deflate, 512 px tiles, by Pillow's libtiff), ``flower-12000-packbits.tif`` (8-bit RGB),
+  ``flower-12000.webp`` (8-bit RGBA, quality 90), ``flower-12000.bmp`` (8-bit RGBA),
+  ``flower-12000.gif`` (a palette), ``flower-12000.jp2`` (JPEG 2000, 8-bit RGB),
+  ``flower-12000.ppm`` (16-bit RGB), ``flower-12000.pfm`` (float RGB), ``flower-12000.hdr``
+  (Radiance), ``flower-12000.avif`` (8-bit RGB, speed 10), ``flower-12000.ras`` (Sun raster).
 
 ``--checkout DIR`` (repeatable) runs each image with each checkout's ``img2logo`` in turn
 (``PYTHONPATH=DIR``), alternating run by run, e.g. a ``git archive`` of the base commit
@@ -47,6 +55,31 @@ IMAGES = {
     "flower-12000.png": ("photo-flower.png", 12000, "noisy"),
     "flower-12000.jpg": ("photo-flower.png", 12000, "noisy"),
     "flower-12000-paeth.png": ("photo-flower.png", 12000, "noisy-paeth"),
+    "flower-12000.tif": ("photo-flower.png", 12000, "noisy"),
+    "flower-12000-deflate-tiled.tif": ("photo-flower.png", 12000, "noisy-deflate-tiled"),
+    "flower-12000-packbits.tif": ("photo-flower.png", 12000, "noisy-packbits"),
+    "flower-12000.webp": ("photo-flower.png", 12000, "noisy"),
+    "flower-12000.bmp": ("photo-flower.png", 12000, "noisy"),
+    "flower-12000.gif": ("photo-flower.png", 12000, "noisy"),
+    "flower-12000.jp2": ("photo-flower.png", 12000, "noisy"),
+    "flower-12000.ppm": ("photo-flower.png", 12000, "noisy"),
+    "flower-12000.pfm": ("photo-flower.png", 12000, "noisy"),
+    "flower-12000.hdr": ("photo-flower.png", 12000, "noisy"),
+    "flower-12000.avif": ("photo-flower.png", 12000, "noisy"),
+    "flower-12000.ras": ("photo-flower.png", 12000, "noisy"),
+}
+#: What each other format is given: (channels, dtype) of the array written (BGR(A), 16-bit: as made).
+FORMATS = {
+    ".tif": (4, np.uint16),
+    ".webp": (4, np.uint8),
+    ".bmp": (4, np.uint8),
+    ".gif": (3, np.uint8),
+    ".jp2": (3, np.uint8),
+    ".ppm": (3, np.uint16),
+    ".pfm": (3, np.float32),
+    ".hdr": (3, np.float32),
+    ".avif": (3, np.uint8),
+    ".ras": (3, np.uint8),
 }
 STRIP = 1000  # rows made at a time (bounds the float temporaries)
 
@@ -87,10 +120,45 @@ def make_image(name: str, folder: Path) -> Path:
     if how == "noisy-paeth":
         params = [cv2.IMWRITE_PNG_FILTER, cv2.IMWRITE_PNG_FILTER_PAETH]
     tmp = out.with_suffix(".part" + out.suffix)
+    if how in ("noisy-deflate-tiled", "noisy-packbits"):
+        _write_with_pillow(arr, tmp, how)
+        tmp.replace(out)
+        return out
+    if out.suffix in FORMATS:
+        channels, dtype = FORMATS[out.suffix]
+        arr = arr[:, :, :channels]
+        if dtype == np.uint8:
+            arr = (arr >> 8).astype(np.uint8)
+        elif dtype == np.float32:
+            arr = arr.astype(np.float32) / np.float32(65535.0)
+        params = {
+            ".webp": [cv2.IMWRITE_WEBP_QUALITY, 90],
+            ".avif": [getattr(cv2, "IMWRITE_AVIF_SPEED", 0), 10],
+        }.get(out.suffix, [])
     if not cv2.imwrite(str(tmp), arr, params):
         raise SystemExit(f"huge.py: cannot write {tmp}")
     tmp.replace(out)
     return out
+
+
+def _write_with_pillow(arr: np.ndarray, tmp: Path, how: str) -> None:
+    """A TIFF OpenCV does not write: 16-bit RGBA deflate in 512 px tiles (tifffile), or 8-bit RGB PackBits (Pillow)."""
+    import tifffile
+    from PIL import Image
+
+    rgb = arr[:, :, [2, 1, 0, 3]]  # RGBA
+    if how == "noisy-packbits":
+        Image.fromarray((rgb[:, :, :3] >> 8).astype(np.uint8)).save(tmp, format="TIFF", compression="packbits")
+    else:
+        tifffile.imwrite(
+            tmp,
+            rgb,
+            photometric="rgb",
+            extrasamples=["unassalpha"],
+            compression="zlib",
+            tile=(512, 512),
+            predictor=True,
+        )
 
 
 def run(image: Path, checkout: Path, work: Path) -> tuple[float, float, float, float, int | str]:

@@ -58,6 +58,11 @@ SYNTHETIC_WORK_SIDE: int = 512
 #: decoding: 8-bit RGBA at this size is 600 MB decoded; a larger file is refused as a
 #: likely decompression bomb (the largest camera sensors give about 100 Mpx).
 MAX_IMAGE_PIXELS: int = 150_000_000
+#: Largest accepted floating-point image (Radiance HDR, PFM), pixels: OpenCV decodes it whole
+#: into float32 RGB, 12 bytes a pixel, and the range check adds 3 more; at 64 Mpx that is about
+#: 1 GB (estimated, 15 bytes a pixel), within issue 20's 1.5 GB (a 12000 px one: 5.13 GB, 26-29 s of
+#: CPU, measured with benchmarks/huge.py).
+MAX_FLOAT_IMAGE_PIXELS: int = 64_000_000
 #: The largest length an option takes (``tolerance``, ``rdp_tolerance``,
 #: ``min_length``, ``max_arc_distance``, the Fibonacci ``unit``) and the largest
 #: radius a ladder may offer, px: longer than any accepted image (MAX_IMAGE_PIXELS

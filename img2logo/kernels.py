@@ -93,7 +93,7 @@ ENTRY_POINTS: dict[str, tuple[str, tuple[str, ...], str]] = {
     "colour_table_kernel": ("kernels_front", ("f8[:,:,::1]",), "Tuple((b1, i8[::1], i8[::1]))"),
     "biarc_worst_kernel": ("kernels_circle", tuple("f8[:,::1] f8[:,:,::1] i8[::1] i8[::1] f8 b1".split()), "f8[:,::1]"),
     "png_unfilter": ("kernels_png", ("!u1[::1]", "i8", "i8", "i8", "!u1[::1]"), "i8"),
-    "png_reduce": ("kernels_png", ("u1[::1]", "i8", "i8", "i8", "i8", "i8", "i8", "b1", "i8", "!f8[:,::1]"), "i8"),
+    "png_reduce": ("kernels_png", ("u1[::1]", *["i8"] * 6, "b1", "b1", "i8", "!f8[:,::1]"), "i8"),
 }
 
 _DTYPES = {"f8": np.dtype(np.float64), "i8": np.dtype(np.int64), "b1": np.dtype(np.bool_), "u1": np.dtype(np.uint8)}
@@ -262,7 +262,7 @@ def _warm_png_jit() -> None:
     rows = np.zeros(2 * 5, dtype=np.uint8)  # two rows of one filter byte and 4 samples
     kernels_png.png_unfilter(rows, 2, 4, 1, np.zeros(4, dtype=np.uint8))
     for alpha in (False, True):
-        kernels_png.png_reduce(rows, 2, 5, 1, 2, 2, 8, alpha, 2, np.zeros((1, 2)))
+        kernels_png.png_reduce(rows, 2, 5, 1, 2, 2, 8, False, alpha, 2, np.zeros((1, 2)))
 
 
 if __name__ == "__main__":

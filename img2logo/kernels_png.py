@@ -1,4 +1,4 @@
-"""Compiled kernels of the strip-wise PNG decoding of a large input: unfiltering and the box reduce.
+"""Compiled kernels of the strip-wise PNG (and TIFF) decoding of a large input: unfiltering and the box reduce.
 
 A PNG larger than the working size is decoded a strip of rows at a time
 (:func:`img2logo.loading._read_png_strips`): its deflate stream is inflated by
@@ -6,7 +6,8 @@ zlib in Python, each strip's rows are unfiltered here (PNG specification, Sec. 9
 filter types None, Sub, Up, Average and Paeth, byte by byte, each row on the one
 before it) and box-reduced by an integer factor here, so that the full-size image
 is never in memory. The reference is Pillow's decoding and ``Image.reduce``
-(averages of colour premultiplied by alpha): the tests compare the two.
+(averages of colour premultiplied by alpha): the tests compare the two. A large TIFF's
+bands of rows, decoded by OpenCV (:mod:`img2logo._tiff`), are box-reduced by the same kernel.
 
 Written in the subset of Python that numba compiles; loaded through
 :mod:`img2logo.kernels` (ahead of time, or numba's JIT as a fallback); for a PNG of
@@ -73,13 +74,14 @@ def png_unfilter(buf, rows, stride, bpp, prior):  # pragma: no cover - compiled
 
 
 @_jit
-def png_reduce(buf, rows, pitch, offset, width, channels, depth, alpha, factor, out):  # pragma: no cover - compiled
+def png_reduce(buf, rows, pitch, offset, width, channels, depth, little, alpha, factor, out):  # pragma: no cover
     """Box-reduce ``rows`` rows of samples by ``factor``; the number of output rows written to ``out``.
 
     Row ``r`` of the strip starts at ``buf[r * pitch + offset]``: ``width`` pixels of
-    ``channels`` samples of ``depth`` bits (8, or 16 big-endian), the last an opacity
-    when ``alpha``. Output row ``r // factor``, column ``x // factor`` of ``out``
-    (``channels`` floats a pixel, in the samples' scale) is the mean of the box's
+    ``channels`` samples of ``depth`` bits (8, or 16: big-endian as in a PNG, little-endian
+    with ``little``, as OpenCV decodes a TIFF here), the last an opacity when ``alpha``.
+    Output row ``r // factor``, column ``x // factor`` of ``out`` (``channels`` floats a
+    pixel, in the samples' scale) is the mean of the box's
     pixels (fewer at the right and bottom edges, as ``PIL.Image.reduce``); with
     ``alpha`` the colour is averaged premultiplied by the opacity and divided by
     the mean opacity (0 where the box is transparent), as Pillow's reduce does.
@@ -89,6 +91,8 @@ def png_reduce(buf, rows, pitch, offset, width, channels, depth, alpha, factor, 
     sums = np.zeros(out_w * channels)
     colours = channels - 1 if alpha else channels
     step = channels * (depth // 8)
+    hi = 1 if little else 0  # the offset of a 16-bit sample's high byte
+    lo = 1 - hi
     for oy in range(nout):
         sums[:] = 0.0
         r0 = oy * factor
@@ -102,13 +106,14 @@ def png_reduce(buf, rows, pitch, offset, width, channels, depth, alpha, factor, 
                     if depth == 16:
                         if alpha:
                             q = p + 2 * colours
-                            a = np.float64(buf[q]) * 256.0 + np.float64(buf[q + 1])
+                            a = np.float64(buf[q + hi]) * 256.0 + np.float64(buf[q + lo])
                             for c in range(colours):
-                                sums[s + c] += (np.float64(buf[p + 2 * c]) * 256.0 + np.float64(buf[p + 2 * c + 1])) * a
+                                v = np.float64(buf[p + 2 * c + hi]) * 256.0 + np.float64(buf[p + 2 * c + lo])
+                                sums[s + c] += v * a
                             sums[s + colours] += a
                         else:
                             for c in range(channels):
-                                sums[s + c] += np.float64(buf[p + 2 * c]) * 256.0 + np.float64(buf[p + 2 * c + 1])
+                                sums[s + c] += np.float64(buf[p + 2 * c + hi]) * 256.0 + np.float64(buf[p + 2 * c + lo])
                     elif alpha:
                         a = np.float64(buf[p + colours])
                         for c in range(colours):

@@ -30,6 +30,7 @@ from .constants import (
     BLANK_IMAGE_RANGE,
     DOWNSCALE_STRIP_ROWS,
     LUMA_WEIGHTS,
+    MAX_FLOAT_IMAGE_PIXELS,
     MAX_IMAGE_PIXELS,
     MAX_IMAGE_SIDE,
     MIN_IMAGE_SIDE,
@@ -342,7 +343,16 @@ def _read_file(path: Path, *, max_side: int = MAX_IMAGE_SIDE, max_pixels: int = 
         raise ImageNotFoundError(f"{path} is a directory, not an image file")
     if not path.is_file():
         raise ImageNotFoundError(f"{path} is not a regular file (a device, a pipe, ...), not an image file")
-    header = _probe(path, max_pixels)
+    header = _probe(path, max_pixels, max_side)
+    floats = _float_image_size(path)
+    if floats is not None and floats[0] * floats[1] > min(max_pixels, MAX_FLOAT_IMAGE_PIXELS):
+        fw, fh, kind = floats
+        if fw * fh > max_pixels:
+            raise InvalidImageError(_too_many_pixels(path, f"{fw}x{fh} px", max_pixels))
+        raise InvalidImageError(
+            f"{path}: image is {fw}x{fh} px of floating-point samples ({kind}); such a file is decoded whole, "
+            f"so img2logo reads it up to {MAX_FLOAT_IMAGE_PIXELS:,} px (its memory limit): downscale it first"
+        )
     flags = cv2.IMREAD_UNCHANGED  # the pixels as stored: EXIF orientation is applied below
     orientation = 1
     if header is not None:
@@ -354,24 +364,46 @@ def _read_file(path: Path, *, max_side: int = MAX_IMAGE_SIDE, max_pixels: int = 
         if fmt == "JPEG" and factor > 1:
             reduced = {2: cv2.IMREAD_REDUCED_COLOR_2, 4: cv2.IMREAD_REDUCED_COLOR_4, 8: cv2.IMREAD_REDUCED_COLOR_8}
             flags = reduced[factor] | cv2.IMREAD_IGNORE_ORIENTATION
+        small = None
         if fmt == "PNG" and max(w, h) > max_side:
             reduce_by = max(1, max(w, h) // max_side)
-            small = _read_png_strips(path, reduce_by)
+            exif: list[bytes] = []
+            small = _read_png_strips(path, reduce_by, exif)
             if small is None:  # interlaced, or no compiled kernels: Pillow decodes it whole
                 small = _read_png_reduced(path, reduce_by)
-            if small is not None:
-                if orientation in (5, 6, 7, 8):
-                    w, h = h, w
-                return _upright(small, orientation), (w, h)
+                if orientation == 1:  # the probe stopped at the pixels: an eXIf chunk after them
+                    with contextlib.suppress(Exception):  # a damaged EXIF block: as stored
+                        orientation = int(_png_exif(path).get(0x0112, 1))
+            elif exif and orientation == 1:
+                orientation = _exif_orientation(exif[-1])
+        elif fmt == "PPM" and max(w, h) > max_side:
+            small = _read_netpbm_strips(path, max(1, max(w, h) // max_side))
+        elif fmt in ("GIF", "AVIF") and max(w, h) > max_side:
+            small = _read_pillow_reduced(path, max(1, max(w, h) // max_side))
+        elif fmt == "JPEG2000" and max(w, h) >= 2 * max_side:
+            small = _read_jpeg2000_reduced(path, max(w, h), max_side)
+        elif fmt == "TIFF" and max(w, h) > max_side:
+            from ._tiff import read_tiff_reduced
+
+            with _decoder_stderr():  # libtiff's "TIFFReadDirectory: ..." lines and the like
+                small = read_tiff_reduced(path, max(1, max(w, h) // max_side))  # None: OpenCV decodes it whole
+        if small is not None:
+            if orientation in (5, 6, 7, 8):
+                w, h = h, w
+            return _upright(small, orientation), (w, h)
     try:
-        data = np.fromfile(path, dtype=np.uint8)  # imdecode: unicode-safe, unlike imread
+        # A file of 64 MB or more with a plain name is decoded from the file (OpenCV's decoders stream it):
+        # a 12000 px BMP's 576 MB were in memory twice (1.75 GB at the peak, measured). Otherwise from
+        # its bytes (imdecode: unicode-safe, unlike imread; the same decoders).
+        stream = path.stat().st_size >= 4 * PNG_STRIP_BYTES and str(path).isascii()
+        data = np.zeros(1, dtype=np.uint8) if stream else np.fromfile(path, dtype=np.uint8)
     except OSError as exc:
         raise InvalidImageError(f"{path}: cannot read the file: {exc.strerror or exc}") from exc
     if data.size == 0:
         raise InvalidImageError(f"{path}: file is empty")
     try:
         with _decoder_stderr():  # libpng's "libpng warning: iCCP: ..." lines and the like
-            arr = cv2.imdecode(data, flags)
+            arr = cv2.imread(str(path), flags) if stream else cv2.imdecode(data, flags)
     except cv2.error as exc:  # e.g. beyond OpenCV's own size limit
         raise InvalidImageError(f"{path}: not a readable image: {' '.join(str(exc).split())[-200:]}") from exc
     del data
@@ -391,7 +423,7 @@ def _read_file(path: Path, *, max_side: int = MAX_IMAGE_SIDE, max_pixels: int = 
 _PNG_TYPES = {0: (1, (1, 2, 4, 8, 16)), 2: (3, (8, 16)), 3: (1, (1, 2, 4, 8)), 4: (2, (8, 16)), 6: (4, (8, 16))}
 
 
-def _read_png_strips(path: Path, factor: int) -> np.ndarray | None:
+def _read_png_strips(path: Path, factor: int, exif: list[bytes] | None = None) -> np.ndarray | None:
     """A PNG that will be downscaled, decoded and box-reduced by ``factor`` a strip of rows at a time; BGR(A), or None.
 
     The full-size image is never in memory: the IDAT chunks are read in turn, their
@@ -406,7 +438,8 @@ def _read_png_strips(path: Path, factor: int) -> np.ndarray | None:
     16 bits, a palette, 1-4 bit grey and a ``tRNS`` colour key are read; an interlaced
     file, or where the compiled kernels are not usable, gives None (Pillow then
     decodes it whole). Chunks other than IHDR, PLTE, tRNS and IDAT are skipped
-    unread (text of any size, a bogus iCCP: nothing is printed).
+    unread (text of any size, a bogus iCCP: nothing is printed). The data of an eXIf
+    chunk after the pixels is appended to ``exif`` (given): its orientation applies.
 
     Raises
     ------
@@ -475,12 +508,19 @@ def _read_png_strips(path: Path, factor: int) -> np.ndarray | None:
                         strip = pixels.view(np.uint8).reshape(-1)
                         step, offset, alpha = width * channels * (out_depth // 8), 0, expand.alpha
                     small = np.empty(((r1 - r0 + factor - 1) // factor, result.shape[1] * channels))
-                    n = png_reduce(strip, r1 - r0, step, offset, width, channels, out_depth, alpha, factor, small)
+                    n = png_reduce(
+                        strip, r1 - r0, step, offset, width, channels, out_depth, False, alpha, factor, small
+                    )
                     top = (y + r0) // factor
                     result[top : top + n] = np.rint(small).reshape(n, -1, channels)
                 strips.done(buf)
         finally:
             strips.close()
+        for kind, data in chunks:  # what follows the last row: an eXIf chunk, IEND
+            if kind == b"eXIf" and exif is not None:
+                exif.append(data)
+        if exif is not None:
+            exif.extend(strips.exif)
     if channels == 1:
         return result[:, :, 0]
     if channels >= 3:  # OpenCV's channel order, as the rest of loading expects
@@ -534,6 +574,7 @@ class _InflatedStrips:
         for _ in range(self.BUFFERS):
             self._free.put(np.empty(rows_per * pitch, dtype=np.uint8))
         self._stop = False
+        self.exif: list[bytes] = []  # the data of eXIf chunks met among the pixel data's
         args = (path, chunks, first, height, rows_per, pitch)
         self._thread = threading.Thread(target=self._run, args=args, name="img2logo-inflate", daemon=True)
         self._thread.start()
@@ -557,6 +598,9 @@ class _InflatedStrips:
                             have += len(piece)
                             continue
                         nxt = None if tail or inflater.eof else next(chunks, None)
+                        while nxt is not None and nxt[0] == b"eXIf":  # between the pixel data's chunks
+                            self.exif.append(nxt[1])
+                            nxt = next(chunks, None)
                         if nxt is None or nxt[0] != b"IDAT":
                             raise InvalidImageError(
                                 f"{path}: not a readable image: its pixel data ends before the last row "
@@ -592,7 +636,7 @@ class _InflatedStrips:
 def _png_chunks(f: BinaryIO) -> Iterator[tuple[bytes, bytes]]:
     """(type, data) of the chunks after IHDR, until IEND or the end of the file.
 
-    Chunks other than PLTE, tRNS and IDAT are skipped without reading their data;
+    Chunks other than PLTE, tRNS, IDAT and eXIf are skipped without reading their data;
     consecutive IDAT chunks (8 KB each from libpng) come joined, about 1 MB at a
     time, so that the inflater is called per megabyte, not per chunk. CRCs are not
     checked (as Pillow): damaged pixel data fails zlib's own checksum.
@@ -607,7 +651,7 @@ def _png_chunks(f: BinaryIO) -> Iterator[tuple[bytes, bytes]]:
             batch, size = [], 0
         if kind == b"IEND":
             return
-        if kind not in (b"PLTE", b"tRNS", b"IDAT"):
+        if kind not in (b"PLTE", b"tRNS", b"IDAT", b"eXIf"):
             f.seek(length + 4, os.SEEK_CUR)
             head = f.read(8)
             continue
@@ -746,19 +790,122 @@ def _read_png_reduced(path: Path, factor: int) -> np.ndarray | None:
     return arr
 
 
-def _reduce_by_strips(im: Image.Image, factor: int) -> np.ndarray:
+def _read_netpbm_strips(path: Path, factor: int) -> np.ndarray | None:
+    """A binary PGM or PPM (P5, P6) of maxval 255 or 65535 box-reduced by ``factor``, read a strip at a time; BGR.
+
+    Its samples are stored raw (16 bits big-endian, as a PNG's), so strips of rows are read
+    and reduced by the PNG path's kernel: OpenCV decoded a 12000 px 16-bit PPM whole through
+    a second full-size buffer (1.75 GB at the run's peak, measured). Another kind (text
+    samples, another maxval, PAM): None, and OpenCV decodes it whole.
+    """
+    from . import kernels
+
+    with open(path, "rb") as f:
+        head = f.read(512)
+        found = re.match(rb"(P[56])(?:\s+|#[^\n]*\n)+(\d+)(?:\s+|#[^\n]*\n)+(\d+)(?:\s+|#[^\n]*\n)+(\d+)\s", head)
+        if found is None or not kernels.usable():
+            return None
+        kind, width, height, maxval = found.group(1), *(int(g) for g in found.groups()[1:])
+        if maxval not in (255, 65535) or width <= 0 or height <= 0:
+            return None
+        channels, depth = (3 if kind == b"P6" else 1), (16 if maxval == 65535 else 8)
+        pitch = width * channels * depth // 8
+        reduce = _png_kernels(pitch * height)[1]
+        rows_per = factor * max(1, PNG_STRIP_BYTES // (pitch * factor))
+        result = np.empty((-(-height // factor), -(-width // factor), channels), np.uint16 if depth == 16 else np.uint8)
+        buf = np.empty(rows_per * pitch, dtype=np.uint8)
+        f.seek(found.end())
+        for y in range(0, height, rows_per):
+            rows = min(rows_per, height - y)
+            if f.readinto(buf.data[: rows * pitch]) < rows * pitch:
+                raise InvalidImageError(
+                    f"{path}: not a readable image: its pixel data ends before the last row "
+                    f"(row {y + 1} of {height}; the file cut short?)"
+                )
+            small = np.empty((-(-rows // factor), result.shape[1] * channels))
+            n = reduce(buf, rows, pitch, 0, width, channels, depth, False, False, factor, small)
+            result[y // factor : y // factor + n] = np.rint(small).reshape(n, -1, channels)
+    if channels == 1:
+        return result[:, :, 0]
+    return np.ascontiguousarray(result[:, :, ::-1])  # OpenCV's channel order
+
+
+def _read_pillow_reduced(path: Path, factor: int) -> np.ndarray | None:
+    """A GIF or an AVIF that will be downscaled, decoded by Pillow and box-reduced by ``factor`` a strip at a time.
+
+    OpenCV decodes a 12000 x 12000 px GIF through full-size BGRA canvases (1.80 GB at the
+    run's peak, measured) and an AVIF through 16-bit ones (2.42 GB); Pillow holds a GIF as
+    its palette indices (144 MB) and an AVIF as 8-bit RGB(A), and each strip of rows is
+    converted to RGB(A) and reduced (:func:`_reduce_by_strips`): 0.22 GB and 2.0 s for the
+    GIF's load, 1.32 GB and 8.4 s of CPU for the AVIF's (measured). BGR(A); None where
+    Pillow cannot (OpenCV then decodes the file whole); a damaged file, one line.
+    """
+    from PIL import Image
+
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            with Image.open(path) as im:
+                im.load()
+                alpha = im.mode in ("RGBA", "LA", "PA") or "transparency" in im.info
+                mode = ("RGBA" if alpha else "RGB") if im.mode not in ("L", "LA") else im.mode
+                arr = _reduce_by_strips(im, factor, mode)
+    except (OSError, ValueError, SyntaxError, EOFError) as exc:
+        raise InvalidImageError(f"{path}: not a readable image: {' '.join(str(exc).split())[-200:]}") from exc
+    if arr.ndim == 3 and arr.shape[2] >= 3:  # OpenCV's channel order, as the rest of loading expects
+        arr = np.ascontiguousarray(arr[:, :, [2, 1, 0, *range(3, arr.shape[2])]])
+    return arr
+
+
+def _read_jpeg2000_reduced(path: Path, side: int, max_side: int) -> np.ndarray | None:
+    """A JPEG 2000 image at least twice ``max_side``, decoded at 1/2**k of its size (its wavelet levels); BGR(A).
+
+    OpenJPEG decodes a 12000 x 12000 px file whole in 32-bit integers per sample (OpenCV's
+    path: 35 s and 2.3 GB at its peak, measured); Pillow's decoder (OpenJPEG too) stops
+    ``k`` resolution levels short (``Image.reduce`` set before ``load``), the largest ``k``
+    that leaves ``side / 2**k >= max_side``, as a JPEG's 1/2, 1/4, 1/8. Colour comes at 8 bits
+    (Pillow's modes; plenty at the working size), grey at 8 or 16. A mode other than L,
+    I;16, LA, RGB, RGBA gives None (OpenCV decodes the file whole); a damaged file, one line.
+    """
+    from PIL import Image
+
+    levels = 0
+    while side / (1 << (levels + 1)) >= max_side:
+        levels += 1
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            with Image.open(path) as im:
+                if im.mode not in ("L", "I;16", "LA", "RGB", "RGBA"):
+                    return None
+                im.reduce = levels  # type: ignore[method-assign,assignment]  # the plugin's setter
+                im.load()
+                arr = np.array(im)
+    except (OSError, ValueError, SyntaxError, Image.DecompressionBombError) as exc:
+        raise InvalidImageError(f"{path}: not a readable image: {' '.join(str(exc).split())[-200:]}") from exc
+    if arr.ndim == 3 and arr.shape[2] >= 3:  # OpenCV's channel order, as the rest of loading expects
+        arr = np.ascontiguousarray(arr[:, :, [2, 1, 0, *range(3, arr.shape[2])]])
+    return arr
+
+
+def _reduce_by_strips(im: Image.Image, factor: int, mode: str | None = None) -> np.ndarray:
     """``np.array(im.reduce(factor))``, one strip of rows at a time: no second full-size image.
 
     Pillow's ``reduce`` of an RGBA image first converts all of it to premultiplied
     alpha (a copy as large as the decoded image: 576 MB at 12000 x 12000 px);
     a strip of ``factor`` x k rows cropped and reduced gives the same pixels, the
-    copy a strip's size.
+    copy a strip's size. With ``mode``, each strip is converted to it first (a palette's).
     """
     if factor <= 1:
-        return np.array(im)
+        return np.array(im if mode is None or im.mode == mode else im.convert(mode))
     w, h = im.size
     rows = factor * max(1, DOWNSCALE_STRIP_ROWS // factor)
-    strips = [np.array(im.crop((0, y, w, min(h, y + rows))).reduce(factor)) for y in range(0, h, rows)]
+
+    def strip(y: int) -> Image.Image:
+        part = im.crop((0, y, w, min(h, y + rows)))
+        return part if mode is None or part.mode == mode else part.convert(mode)
+
+    strips = [np.array(strip(y).reduce(factor)) for y in range(0, h, rows)]
     return np.concatenate(strips, axis=0)
 
 
@@ -823,15 +970,19 @@ def _decoder_stderr() -> Iterator[None]:
         hold.close()
 
 
-def _probe(path: Path, max_pixels: int) -> tuple[int, int, int, str, int] | None:
+def _probe(path: Path, max_pixels: int, max_side: int | None = None) -> tuple[int, int, int, str, int] | None:
     """(width, height, pages, format, EXIF orientation) from the file's header, or None if nothing can tell.
 
     Width and height are as stored (before the orientation, 1 when there is none).
     A PNG whose text chunks Pillow refuses (a zTXt of megabytes) still has its size
-    read from its IHDR chunk, so the pixel limit holds before decoding.
+    read from its IHDR chunk, so the pixel limit holds before decoding. A PNG larger
+    than ``max_side`` (given) with no eXIf or acTL chunk before its pixels is probed up
+    to them only: its strip decoder reads an eXIf chunk after them (orientation 1 here).
     Raises InvalidImageError if the image has more than ``max_pixels`` pixels.
     """
-    plain = _plain_png_size(path)
+    plain = _plain_png_size(path, pixels_first=True) if max_side is not None else None
+    if plain is None or max(plain) <= max_side:  # type: ignore[operator]  # max_side is not None with plain
+        plain = _plain_png_size(path)
     if plain is not None:  # Pillow would say the same: one frame, no EXIF
         w, h = plain
         if w * h > max_pixels:
@@ -867,6 +1018,44 @@ def _probe(path: Path, max_pixels: int) -> tuple[int, int, int, str, int] | None
     return w, h, pages, fmt, orientation
 
 
+def _float_image_size(path: Path) -> tuple[int, int, str] | None:
+    """(width, height, format) of a Radiance HDR or a PFM file from its header (Pillow reads neither), else None.
+
+    Radiance: text lines up to an empty one, then ``-Y H +X W`` (or another axis order); PFM:
+    ``PF`` or ``Pf``, then ``W H`` (Netpbm's PFM).
+    """
+    try:
+        with open(path, "rb") as f:
+            head = f.read(4096)
+    except OSError:
+        return None
+    if head.startswith((b"#?RADIANCE", b"#?RGBE")):
+        end = head.find(b"\n\n")
+        size = head[end + 2 :].split(b"\n", 1)[0].split() if end >= 0 else []
+        if len(size) == 4 and size[0][1:] in (b"Y", b"X") and size[2][1:] in (b"Y", b"X"):
+            with contextlib.suppress(ValueError):
+                a, b = int(size[1]), int(size[3])
+                return (b, a, "Radiance HDR") if size[0][1:] == b"Y" else (a, b, "Radiance HDR")
+        return None
+    if head[:3] in (b"PF\n", b"Pf\n", b"PF\r", b"Pf\r"):
+        words = head[3:].split(None, 2)
+        with contextlib.suppress(ValueError, IndexError):
+            return int(words[0]), int(words[1]), "PFM"
+    return None
+
+
+def _exif_orientation(data: bytes) -> int:
+    """The Orientation (1..8) of an EXIF block; 1 when it has none or cannot be read."""
+    from PIL import Image
+
+    try:
+        exif = Image.Exif()
+        exif.load(data)
+        return int(exif.get(0x0112, 1))
+    except Exception:  # a damaged EXIF block: as stored
+        return 1
+
+
 def _png_exif(path: Path) -> Image.Exif:
     """The EXIF of a PNG's eXIf chunk, before or after the pixels (empty without one), decoding nothing.
 
@@ -890,14 +1079,17 @@ def _png_exif(path: Path) -> Image.Exif:
     return exif
 
 
-def _plain_png_size(path: Path) -> tuple[int, int] | None:
+def _plain_png_size(path: Path, *, pixels_first: bool = False) -> tuple[int, int] | None:
     """(width, height) of a whole PNG with neither an eXIf nor an acTL chunk, or None for any other file.
 
     Such a PNG has one frame and no EXIF orientation, and its IHDR chunk gives its
     size: :func:`_probe` then needs no Pillow (whose import is about 0.03 s of CPU,
     more than the rest of a 512 px PNG's reading). The chunks are walked by their
     length fields, as in :func:`_png_exif`; a file without an IEND chunk (cut short)
-    is left to Pillow and OpenCV to judge.
+    is left to Pillow and OpenCV to judge. With ``pixels_first`` the walk stops at the
+    first IDAT chunk (the size of a PNG with neither chunk before its pixels): a huge
+    PNG's 100 000 IDAT chunks of 8 KB took 1.5 s to walk, and its strip decoder walks
+    them anyway, and reads an eXIf chunk after them (:func:`_read_png_strips`).
     """
     try:
         with open(path, "rb") as f:
@@ -910,7 +1102,7 @@ def _plain_png_size(path: Path) -> tuple[int, int] | None:
                 length, kind = int.from_bytes(chunk[:4], "big"), chunk[4:]
                 if kind in (b"eXIf", b"acTL"):  # EXIF, or an animation: Pillow reads them
                     return None
-                if kind == b"IEND":
+                if kind == b"IEND" or (pixels_first and kind == b"IDAT"):
                     return size
                 f.seek(length + 4, os.SEEK_CUR)  # the data and the CRC
     except OSError:

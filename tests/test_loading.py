@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import os
 import struct
 import warnings
@@ -506,7 +507,7 @@ def test_a_large_16_bit_rgba_png_loads_as_through_pillow(tmp_path, monkeypatch):
     cv2.imwrite(str(path), arr)
     with pytest.warns(DownscaleWarning, match=r"image is 430x260 px, .*downscaled to 64x39 px"):
         new = load_image(path, max_side=64)
-    monkeypatch.setattr(loading, "_read_png_strips", lambda path, factor: None)
+    monkeypatch.setattr(loading, "_read_png_strips", lambda path, factor, exif=None: None)
     with pytest.warns(DownscaleWarning):
         old = load_image(path, max_side=64)
     assert (new.width, new.height, new.has_alpha, new.input_size) == (old.width, old.height, True, (430, 260))
@@ -520,7 +521,9 @@ def test_a_large_png_stored_sideways_is_upright_on_the_strip_path(tmp_path, monk
 
     calls = []
     strips = loading._read_png_strips
-    monkeypatch.setattr(loading, "_read_png_strips", lambda path, factor: calls.append(factor) or strips(path, factor))
+    monkeypatch.setattr(
+        loading, "_read_png_strips", lambda path, factor, exif=None: calls.append(factor) or strips(path, factor, exif)
+    )
     arr = np.full((240, 440, 3), 255, np.uint8)  # stored landscape, viewed portrait
     arr[10:40, 10:120] = 0
     exif = Image.Exif()
@@ -568,3 +571,322 @@ def test_an_interlaced_png_is_left_to_pillow(tmp_path):
     path = tmp_path / "adam7.png"
     path.write_bytes(bytes(data))
     assert loading._read_png_strips(path, 2) is None
+
+
+def test_a_large_png_is_probed_up_to_its_pixels_and_its_exif_after_them_still_turns_it(tmp_path, monkeypatch):
+    # issue 20, item 12: the probe walked a huge PNG's 100 000 IDAT chunks (1.5 s) before the strip
+    # decoder walked them again; it stops at the first IDAT, and the strip decoder reads an eXIf after them.
+    from PIL import Image, ImageOps
+
+    from img2logo import loading
+
+    arr = _noisy(240, 440, 3, np.uint8)
+    exif = Image.Exif()
+    exif[0x0112] = 6
+    block = exif.tobytes()
+    chunk = struct.pack(">I", len(block)) + b"eXIf" + block + struct.pack(">I", zlib.crc32(b"eXIf" + block))
+    png = cv2.imencode(".png", arr)[1].tobytes()
+    path, before = tmp_path / "after.png", tmp_path / "before.png"
+    path.write_bytes(png[:-12] + chunk + png[-12:])
+    before.write_bytes(png[:33] + chunk + png[33:])  # the probe reads it (Pillow), the strip decoder decodes it
+    walked = []
+    seek = loading._plain_png_size
+    monkeypatch.setattr(
+        loading, "_plain_png_size", lambda p, **kw: walked.append(kw.get("pixels_first", False)) or seek(p, **kw)
+    )
+    assert loading._probe(path, 10**9, max_side=64) == (440, 240, 1, "PNG", 1)
+    assert walked == [True]  # no second walk over the pixel data's chunks
+    with pytest.warns(DownscaleWarning, match=r"image is 240x440 px"):
+        img = load_image(path, max_side=64)
+    with pytest.warns(DownscaleWarning, match=r"image is 240x440 px"):
+        ref = load_image(before, max_side=64)
+    assert (img.input_size, img.rgb.shape[:2]) == ((240, 440), (64, 35))
+    assert np.array_equal(img.rgb, ref.rgb)  # turned as every viewer shows it
+    upright = np.asarray(ImageOps.exif_transpose(Image.open(path)))
+    small = cv2.resize(upright, (35, 64), interpolation=cv2.INTER_AREA) / 255.0
+    assert np.abs(img.rgb - small).mean() < 0.1  # not the other way round (a quarter turn: 0.2)
+
+
+# --------------------------------------------------------------------------- a large TIFF, band by band
+def _tiff_reference(path) -> np.ndarray:
+    """The whole image decoded as (H, W, C), grey or BGR(A): tifffile's decode (an oracle: OpenCV 5.1 decodes
+    16-bit separate planes wrongly), OpenCV's channel order."""
+    import tifffile
+
+    with tifffile.TiffFile(path) as tif:
+        page = tif.pages[0]
+        arr = page.asarray()
+        if page.planarconfig == 2:
+            arr = np.moveaxis(arr, 0, 2)
+    if arr.ndim == 2:
+        return arr[:, :, None]
+    return arr[:, :, [2, 1, 0, *range(3, arr.shape[2])]]
+
+
+def _cv_tiff(path, arr: np.ndarray, compression: int, rows: int, predictor: bool) -> None:
+    params = [cv2.IMWRITE_TIFF_COMPRESSION, compression, cv2.IMWRITE_TIFF_ROWSPERSTRIP, rows]
+    if predictor:
+        params += [cv2.IMWRITE_TIFF_PREDICTOR, 2]
+    assert cv2.imwrite(str(path), arr[:, :, 0] if arr.shape[2] == 1 else arr, params)
+
+
+@pytest.mark.parametrize(
+    ("channels", "dtype", "compression", "rows", "predictor", "factor"),
+    [
+        (4, np.uint16, 5, 1, True, 5),  # OpenCV's own TIFF: LZW, the horizontal predictor, a strip a row
+        (4, np.uint8, 5, 7, False, 3),
+        (3, np.uint16, 8, 16, True, 4),  # deflate
+        (3, np.uint8, 32773, 5, False, 2),  # PackBits
+        (1, np.uint16, 1, 300, False, 3),  # uncompressed, one strip: split into strips of a band's bytes
+        (1, np.uint8, 32946, 3, True, 1),  # deflate, the old code
+        (4, np.uint16, 1, 9, False, 7),
+    ],
+)
+def test_a_large_tiff_read_band_by_band_is_its_box_reduce(
+    tmp_path, monkeypatch, channels, dtype, compression, rows, predictor, factor
+):
+    # issue 20, item 12: the whole image is never in memory; each band's decode is those rows of the whole
+    # decode, so the result is the box mean of the whole image to rounding, at the file's depth.
+    from img2logo import _tiff
+
+    monkeypatch.setattr(_tiff, "PNG_STRIP_BYTES", 20000)  # bands of a few strips: many band joins
+    arr = _noisy(301, 517, channels, dtype)
+    path = tmp_path / "big.tif"
+    _cv_tiff(path, arr, compression, rows, predictor)
+    got = _tiff.read_tiff_reduced(path, factor)
+    assert got is not None and got.dtype == dtype
+    whole = cv2.imread(str(path), cv2.IMREAD_UNCHANGED)  # the whole-image path's decoder
+    whole = whole if whole.ndim == 3 else whole[:, :, None]
+    assert np.array_equal(whole, arr)
+    expected = _box_mean(whole, factor, channels == 4)
+    assert np.abs(got.reshape(expected.shape) - expected).max() <= 0.5  # rounded to the file's depth
+
+
+@pytest.mark.parametrize(
+    ("channels", "dtype", "layout", "factor"),
+    [
+        (4, np.uint16, {"tile": (64, 48), "compression": "zlib", "predictor": True}, 5),
+        (3, np.uint8, {"tile": (32, 80)}, 3),
+        (4, np.uint16, {"planarconfig": "separate", "rowsperstrip": 6, "compression": "zlib"}, 4),
+        (3, np.uint8, {"planarconfig": "separate", "rowsperstrip": 5}, 2),
+        (4, np.uint16, {"byteorder": ">", "rowsperstrip": 4, "compression": "zlib", "predictor": True}, 3),
+        (3, np.uint16, {"byteorder": ">", "tile": (32, 32), "planarconfig": "separate"}, 6),
+        (1, np.uint16, {"byteorder": ">", "bigtiff": True, "rowsperstrip": 8}, 2),
+    ],
+)
+def test_a_large_tiled_planar_or_big_endian_tiff_is_its_box_reduce(
+    tmp_path, monkeypatch, channels, dtype, layout, factor
+):
+    import tifffile
+
+    from img2logo import _tiff
+
+    monkeypatch.setattr(_tiff, "PNG_STRIP_BYTES", 100000)  # a row of 64 px tiles of 16-bit RGBA: 265 KB
+    arr = _noisy(301, 517, channels, dtype)
+    rgb = arr[:, :, 0] if channels == 1 else arr  # RGB(A) as tifffile writes it
+    if layout.get("planarconfig") == "separate":
+        rgb = np.ascontiguousarray(np.moveaxis(rgb, 2, 0))
+    path = tmp_path / "big.tif"
+    extra = {"extrasamples": ["unassalpha"]} if channels == 4 else {}
+    tifffile.imwrite(path, rgb, photometric="minisblack" if channels == 1 else "rgb", **extra, **layout)
+    got = _tiff.read_tiff_reduced(path, factor)
+    assert got is not None and got.dtype == dtype
+    reference = _tiff_reference(path)
+    assert np.array_equal(
+        reference[:, :, :3] if channels >= 3 else reference, arr[:, :, :3][:, :, ::-1] if channels >= 3 else arr
+    )
+    expected = _box_mean(reference, factor, channels == 4)
+    assert np.abs(got.reshape(expected.shape) - expected).max() <= 0.5
+
+
+@pytest.mark.parametrize("compression", ["tiff_lzw", "packbits", "raw"])
+def test_a_large_palette_or_grey_tiff_is_pillows_decode_box_reduced(tmp_path, monkeypatch, compression):
+    from PIL import Image
+
+    from img2logo import _tiff
+
+    monkeypatch.setattr(_tiff, "PNG_STRIP_BYTES", 20000)
+    rgb = Image.fromarray(_noisy(301, 517, 3, np.uint8)[:, :, ::-1])
+    for mode in ("P", "L"):
+        im = rgb.quantize(64) if mode == "P" else rgb.convert("L")
+        path = tmp_path / f"{mode}.tif"
+        im.save(path, compression=compression)
+        got = _tiff.read_tiff_reduced(path, 3)
+        assert got is not None
+        full = np.asarray(im.convert("RGB"))[:, :, ::-1] if mode == "P" else np.asarray(im)[:, :, None]
+        expected = _box_mean(full, 3, False)
+        assert np.abs(got.reshape(expected.shape) - expected).max() <= 0.5
+
+
+def test_a_large_tiff_loads_as_through_the_whole_image_path(tmp_path, monkeypatch):
+    from img2logo import _tiff
+
+    monkeypatch.setattr(_tiff, "PNG_STRIP_BYTES", 20000)
+    # a transparent top, then a soft edge (as the PNG test): colour under it must not count
+    arr = np.dstack([_noisy(260, 430, 3, np.uint16), _shapes(260, 430, True)[:, :, 3].astype(np.uint16) * 257])
+    path = tmp_path / "big16.tif"
+    _cv_tiff(path, arr, 5, 2, True)
+    with pytest.warns(DownscaleWarning, match=r"image is 430x260 px, .*downscaled to 64x39 px"):
+        new = load_image(path, max_side=64)
+    monkeypatch.setattr(_tiff, "read_tiff_reduced", lambda path, factor: None)
+    with pytest.warns(DownscaleWarning):
+        old = load_image(path, max_side=64)
+    assert (new.width, new.height, new.has_alpha, new.input_size) == (old.width, old.height, True, (430, 260))
+    # The working image: the whole image's box mean by 6 (430 // 64) in 16 bits, then the area resize, as a
+    # large PNG's (the strip path); the whole-image path resized by area at once: the same picture, on
+    # another grid (over this picture's pixel noise: 0.044 on average, measured)
+    from img2logo import loading
+
+    boxes = np.rint(_box_mean(cv2.imread(str(path), cv2.IMREAD_UNCHANGED), 6, True)).astype(np.uint16)
+    rgb, alpha, _ = loading._shrink(boxes, (64, 39), "ref", bgr=True, owned=True)
+    assert np.abs(new.rgb - rgb).max() < 1e-4 and np.abs(new.alpha - alpha).max() < 1e-4
+    assert np.abs(new.rgb - old.rgb).mean() < 0.06 and np.abs(new.alpha - old.alpha).mean() < 0.01
+
+
+@pytest.mark.parametrize("damage", ["cut", "stream", "offsets"])
+def test_a_cut_or_damaged_large_tiff_is_one_line(tmp_path, monkeypatch, damage):
+    from img2logo import _tiff
+
+    monkeypatch.setattr(_tiff, "PNG_STRIP_BYTES", 20000)
+    path = tmp_path / "big.tif"
+    _cv_tiff(path, _noisy(300, 410, 4, np.uint16), 8, 4, True)
+    data = bytearray(path.read_bytes())
+    if damage == "cut":
+        data = data[: len(data) // 2]
+    elif damage == "stream":  # every strip's deflate header, or its checksum, broken
+        data[len(data) // 3 : len(data) * 2 // 3 : 97] = bytes(len(data[len(data) // 3 : len(data) * 2 // 3 : 97]))
+    path.write_bytes(bytes(data))
+    if damage == "offsets":  # the strips point past the end of the file
+        layout = _tiff._layout(open(path, "rb"))
+        assert layout is not None
+        monkeypatch.setattr(_tiff, "_layout", lambda f: dataclasses.replace(layout, offsets=layout.offsets + len(data)))
+    with pytest.raises(InvalidImageError, match=r"big\.tif: not a readable image") as caught:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", DownscaleWarning)
+            load_image(path, max_side=64)
+    assert "\n" not in str(caught.value)
+
+
+def test_a_tiff_the_bands_cannot_do_is_left_to_the_whole_image_path(tmp_path):
+    import tifffile
+
+    from img2logo import _tiff
+
+    arr = _noisy(64, 80, 3, np.uint8)
+    floats = tmp_path / "float.tif"
+    tifffile.imwrite(floats, arr.astype(np.float32) / 255, photometric="rgb")
+    assert _tiff.read_tiff_reduced(floats, 2) is None  # floating-point samples
+    one_strip = tmp_path / "one-strip.tif"
+    tifffile.imwrite(one_strip, _noisy(400, 600, 3, np.uint8), photometric="rgb", compression="zlib", rowsperstrip=400)
+    with pytest.MonkeyPatch.context() as m:
+        m.setattr(_tiff, "PNG_STRIP_BYTES", 20000)
+        assert _tiff.read_tiff_reduced(one_strip, 2) is None  # one compressed strip of 720 KB: no smaller band
+    assert _tiff.read_tiff_reduced(tmp_path / "none.tif", 2) is None
+
+
+def test_a_large_jpeg_2000_is_decoded_at_a_reduced_resolution(tmp_path):
+    # issue 20, item 12: OpenJPEG decoded a 12000 px file whole (2.3 GB); Pillow stops wavelet levels short.
+    from PIL import Image
+
+    arr = _shapes(1000, 1400, False)
+    path = tmp_path / "big.jp2"
+    Image.fromarray(arr[:, :, ::-1]).save(path)
+    with pytest.warns(DownscaleWarning, match=r"big\.jp2: image is 1400x1000 px, .*downscaled to 300x214 px"):
+        img = load_image(path, max_side=300)
+    with Image.open(path) as im:
+        im.reduce = 2  # 1400 / 4 = 350 >= 300 > 1400 / 8
+        im.load()
+        quarter = np.asarray(im)
+    assert quarter.shape == (250, 350, 3)
+    rgb, _ = _reference(quarter[:, :, ::-1], (300, 214))
+    assert np.abs(img.rgb - rgb).max() < 1.5 / 255
+    damaged = tmp_path / "cut.jp2"
+    damaged.write_bytes(path.read_bytes()[: path.stat().st_size // 3])
+    with pytest.raises(InvalidImageError, match=r"cut\.jp2: not a readable image") as caught:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", DownscaleWarning)
+            load_image(damaged, max_side=300)
+    assert "\n" not in str(caught.value)
+
+
+@pytest.mark.parametrize("suffix", [".hdr", ".pfm"])
+def test_a_floating_point_image_over_its_limit_is_refused_before_decoding(tmp_path, monkeypatch, suffix):
+    from img2logo import loading
+
+    path = tmp_path / f"big{suffix}"
+    assert cv2.imwrite(str(path), np.full((30, 50, 3), 0.5, np.float32))
+    assert loading._float_image_size(path)[:2] == (50, 30)
+    monkeypatch.setattr(loading, "MAX_FLOAT_IMAGE_PIXELS", 1000)
+    decoded = []
+    monkeypatch.setattr(cv2, "imdecode", lambda *a: decoded.append(a) or None)
+    kind = "Radiance HDR" if suffix == ".hdr" else "PFM"
+    with pytest.raises(
+        InvalidImageError, match=rf"image is 50x30 px of floating-point samples \({kind}\); .* 1,000 px"
+    ):
+        load_image(path)
+    assert decoded == []
+
+
+def test_a_large_file_is_decoded_from_the_file_with_the_same_bits(tmp_path, monkeypatch):
+    # From 64 MB on (4 x PNG_STRIP_BYTES) OpenCV reads the file itself rather than a copy of its bytes.
+    from img2logo import loading
+
+    arr = _shapes(300, 400, True)
+    path = tmp_path / "big.bmp"
+    assert cv2.imwrite(str(path), arr)
+    small = load_image(path)
+    monkeypatch.setattr(loading, "PNG_STRIP_BYTES", 1000)
+    read = []
+    imread = cv2.imread
+    monkeypatch.setattr(cv2, "imread", lambda *a: read.append(a) or imread(*a))
+    streamed = load_image(path)
+    assert len(read) == 1 and np.array_equal(streamed.rgb, small.rgb) and np.array_equal(streamed.alpha, small.alpha)
+
+
+@pytest.mark.parametrize("transparent", [False, True])
+def test_a_large_gif_is_decoded_as_its_palette_and_reduced_by_strips(tmp_path, transparent):
+    # issue 20, item 12: OpenCV decoded a 12000 px GIF through full-size BGRA canvases (1.8 GB).
+    from PIL import Image
+
+    im = Image.fromarray(_shapes(600, 700, False)[:, :, ::-1]).quantize(16)
+    path = tmp_path / "big.gif"
+    im.save(path, **({"transparency": 0} if transparent else {}))
+    with pytest.warns(DownscaleWarning, match=r"big\.gif: image is 700x600 px"):
+        img = load_image(path, max_side=200)
+    with Image.open(path) as again:
+        full = np.asarray(again.convert("RGBA" if transparent else "RGB"))[
+            :, :, [2, 1, 0, *([3] if transparent else [])]
+        ]
+    rgb, a = _reference(np.ascontiguousarray(full), (img.width, img.height))
+    assert img.has_alpha is transparent
+    assert np.abs(img.rgb - rgb).mean() < 0.01 and np.abs(img.alpha - a).mean() < 0.01  # reduce by 3, then area
+    cut = tmp_path / "cut.gif"
+    cut.write_bytes(path.read_bytes()[:200])
+    with pytest.raises(InvalidImageError, match=r"cut\.gif: not a readable image") as caught:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", DownscaleWarning)
+            load_image(cut, max_side=200)
+    assert "\n" not in str(caught.value)
+
+
+@pytest.mark.parametrize(("channels", "dtype", "factor"), [(3, np.uint16, 3), (1, np.uint8, 4), (3, np.uint8, 2)])
+def test_a_large_ppm_is_read_strip_by_strip_as_its_box_reduce(tmp_path, monkeypatch, channels, dtype, factor):
+    # issue 20, item 12: OpenCV decoded a 12000 px 16-bit PPM through a second full-size buffer (1.75 GB).
+    from img2logo import loading
+
+    monkeypatch.setattr(loading, "PNG_STRIP_BYTES", 20000)
+    arr = _noisy(301, 517, channels, dtype)
+    path = tmp_path / ("big.ppm" if channels == 3 else "big.pgm")
+    assert cv2.imwrite(str(path), arr if channels == 3 else arr[:, :, 0])
+    got = loading._read_netpbm_strips(path, factor)
+    assert got is not None and got.dtype == dtype
+    whole = cv2.imread(str(path), cv2.IMREAD_UNCHANGED)
+    expected = _box_mean(whole if whole.ndim == 3 else whole[:, :, None], factor, False)
+    assert np.abs(got.reshape(expected.shape) - expected).max() <= 0.5
+    cut = tmp_path / "cut.ppm"
+    cut.write_bytes(path.read_bytes()[: path.stat().st_size // 2])
+    with pytest.raises(InvalidImageError, match=r"cut\.ppm: not a readable image: its pixel data ends") as caught:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", DownscaleWarning)
+            load_image(cut, max_side=64)
+    assert "\n" not in str(caught.value)
