@@ -673,8 +673,9 @@ def join_line_ends(skel: np.ndarray, distance: float = LINE_JOIN_DISTANCE) -> np
       just behind the end): the end's branch is a spur that would run beside
       its sibling, and is removed back to the fork.
 
-    Ends are taken in raster order; a new run is itself a line for the ends
-    after it.
+    Of nearest pixels at the same distance, the one the line points at most
+    nearly (:func:`_straightest`). Ends are taken in raster order; a new run is
+    itself a line for the ends after it.
     """
     out = np.asarray(skel, dtype=bool).copy()
     if not out.any():
@@ -685,28 +686,22 @@ def join_line_ends(skel: np.ndarray, distance: float = LINE_JOIN_DISTANCE) -> np
     first = out.copy()  # the line pixels searched: those of the map as given
     near_steps, reach = math.ceil(1.5 * distance), math.ceil(3.0 * distance)
     h, w = out.shape
-    tie_break = None
     for r, c in ends:
         end = (int(r), int(c))
         if not out[end]:
             continue
         own = _walk(out, end, near_steps)
-        best, best_d, tied = None, math.inf, False
+        best, best_d, tied = None, math.inf, []
         for q in _pixels_within(first, end, distance):
             if q in own or not out[q]:
                 continue
             d = math.hypot(q[0] - end[0], q[1] - end[1])
             if d < best_d:
-                best, best_d, tied = q, d, False
+                best, best_d, tied = q, d, [q]
             elif d == best_d:
-                tied = True
-        if tied:
-            # Two nearest pixels at the same distance: the one a k-d tree of the
-            # line pixels lists first, as this function has always chosen (the
-            # tree loads scipy.spatial, 0.1 s of CPU, so only when needed).
-            if tie_break is None:
-                tie_break = _TreeOrder(first)
-            best, best_d = tie_break.nearest(end, distance, own, out)
+                tied.append(q)
+        if len(tied) > 1:
+            best = _straightest(end, own, tied)
         if best is None or best_d <= 1.5:
             continue
         if best in _walk(out, end, reach):
@@ -760,27 +755,18 @@ def _pixels_within(pixels: np.ndarray, at: tuple[int, int], distance: float) -> 
     return list(zip(rows[inside].tolist(), cols[inside].tolist(), strict=True))
 
 
-class _TreeOrder:
-    """The nearest line pixel with ties broken in a k-d tree's order (scipy's cKDTree)."""
+def _straightest(end: tuple[int, int], own: set[tuple[int, int]], tied: list[tuple[int, int]]) -> tuple[int, int]:
+    """Of line pixels ``tied`` equally near ``end``, the one the line reaching ``end`` points at most nearly.
 
-    def __init__(self, pixels: np.ndarray) -> None:
-        from scipy.spatial import cKDTree
-
-        self.points = np.argwhere(pixels)
-        self.tree = cKDTree(self.points)
-
-    def nearest(
-        self, end: tuple[int, int], distance: float, own: set[tuple[int, int]], current: np.ndarray
-    ) -> tuple[tuple[int, int] | None, float]:
-        best, best_d = None, math.inf
-        for k in self.tree.query_ball_point(end, distance):
-            q = (int(self.points[k][0]), int(self.points[k][1]))
-            if q in own or not current[q]:
-                continue
-            d = math.hypot(q[0] - end[0], q[1] - end[1])
-            if d < best_d:
-                best, best_d = q, d
-        return best, best_d
+    A join continues its stroke: the line's direction at the end is from the
+    centroid of its own stretch (``own``, the pixels just behind the end) to the
+    end; the pixel whose direction from the end turns least from it is taken,
+    the first in raster order among equal turns.
+    """
+    back_r = sum(p[0] for p in own) / len(own)
+    back_c = sum(p[1] for p in own) / len(own)
+    dr, dc = end[0] - back_r, end[1] - back_c
+    return max(tied, key=lambda q: (q[0] - end[0]) * dr + (q[1] - end[1]) * dc)  # equal lengths: the cosine
 
 
 def _branch(skel: np.ndarray, end: tuple[int, int]) -> list[tuple[int, int]] | None:
