@@ -8,7 +8,7 @@ gaussian), OpenCV's exact distance transform (:func:`distance`, through
 :func:`img2logo._skeleton.distance_to_background`), scipy's compiled feature
 transform (:func:`nearest_background`), labelling (:func:`label`), and OpenCV's
 morphology with scipy's border (:func:`erode`, :func:`dilate`); :func:`median`
-is ``np.median`` without ``numpy.ma``.
+and :func:`unique` are numpy's without ``numpy.ma`` (every kind of image uses those two).
 
 A low-level module of the photo path: :mod:`img2logo.loading` (a photo's
 smoothed CIELAB), :mod:`img2logo.subject_cues`, :mod:`img2logo.subject`,
@@ -130,22 +130,34 @@ def nearest_background(mask: np.ndarray) -> tuple[np.ndarray, tuple[np.ndarray, 
 
 
 def median(values: np.ndarray) -> np.floating:
-    """``np.median(values)`` of all the values, to the bit and of its type.
+    """``np.median(values)`` of all the values, to the bit, without importing ``numpy.ma``.
 
-    The same partition and the same mean of the middle one or two as numpy's;
-    ``np.median`` imports ``numpy.ma`` (for its NaN check) on its first call,
-    about 0.02 s of CPU a run. Values with a NaN, or none, are numpy's own case.
+    The same partition and the same mean of the one or two middle values as
+    numpy's, a numpy scalar of numpy's type (integers give float64); NaN if any
+    value is NaN. ``np.median`` looks up ``np.ma`` to check for NaNs, and that
+    imports ``numpy.ma`` (about 0.02 s of CPU a run).
     """
-    flat = np.asarray(values).ravel()
-    n = flat.size
-    if n == 0 or flat.dtype.kind != "f":
-        return np.median(flat)
+    a = np.asarray(values, dtype=np.result_type(values, np.float16)).ravel()  # floats, as np.median's mean
+    n = len(a)
+    if n == 0:
+        return np.mean(a)  # NaN with numpy's warning, as np.median gives
     half = n // 2
-    kth = [half - 1, half] if n % 2 == 0 else [half]
-    part = np.partition(flat, [*kth, -1])  # -1: a NaN sorts last
+    part = np.partition(a, [half - 1, half, -1] if n % 2 == 0 else [half, -1])  # -1: a NaN sorts last
     if np.isnan(part[-1]):
-        return np.median(flat)
-    return np.mean(part[kth[0] : half + 1], axis=0)
+        return part[-1]
+    return np.mean(part[half - 1 : half + 1] if n % 2 == 0 else part[half : half + 1])
+
+
+def unique(values: np.ndarray) -> np.ndarray:
+    """``np.unique(values)``: the distinct values of an integer array, sorted, 1-D, of its type.
+
+    ``np.unique`` imports ``numpy.ma`` on its first call (about 0.02 s of CPU a
+    run); a sort and a comparison of neighbours give the same array.
+    """
+    a = np.sort(np.asarray(values).ravel())
+    if a.size > 1:
+        a = a[np.concatenate(([True], a[1:] != a[:-1]))]
+    return a
 
 
 def erode(mask: np.ndarray, iterations: int = 1) -> np.ndarray:

@@ -127,7 +127,8 @@ def label(image: np.ndarray, connectivity: int, background: int = 0) -> np.ndarr
         if hi - lo < 65536:  # small labels (a palette's entries): counted, not sorted
             values = lo + np.flatnonzero(np.bincount((image - lo).ravel(), minlength=hi - lo + 1))
         else:
-            values = np.unique(image)
+            values = np.sort(image.ravel())
+            values = values[np.concatenate(([True], values[1:] != values[:-1]))]  # np.unique: numpy.ma
         values = values[values != background]
         labels = np.zeros(image.shape, dtype=np.int32)
         offset = np.zeros(image.shape, dtype=np.int32)

@@ -34,6 +34,7 @@ from typing import Literal
 
 import numpy as np
 
+from ._ndimage import unique
 from ._validation import check_choice, check_points, check_positive, readonly
 from .constants import (
     ARC_CANDIDATE_LENGTH_RATIO,
@@ -488,7 +489,7 @@ def redundant_intersections(
     if candidates is None:
         rows = np.arange(n)
     else:
-        rows = np.unique(np.asarray(list(candidates), dtype=np.int64))
+        rows = unique(np.asarray(list(candidates), dtype=np.int64))
         if len(rows) and (rows[0] < 0 or rows[-1] >= n):
             raise InvalidParameterError(f"candidates must index arcs 0..{n - 1}")
     ptr = np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)
@@ -558,7 +559,7 @@ def arc_pairs_near(arcs: Sequence[Arc], rows: np.ndarray, tol: float) -> list[tu
     """
     from . import kernels
 
-    rows = np.unique(np.asarray(rows, dtype=np.int64))
+    rows = unique(np.asarray(rows, dtype=np.int64))
     if not kernels.usable():
         return _arc_pairs_reference(arcs, rows, tol)
     return [(i, j) for i, j in kernels.arc_pairs_kernel(_arc_params(arcs), rows, float(tol)).tolist()]
@@ -581,7 +582,7 @@ def _arc_pairs_reference(arcs: Sequence[Arc], rows: np.ndarray, tol: float) -> l
     r_idx, c_idx = np.nonzero(mask)
     i, j = rows[r_idx], c_idx
     lo, hi = np.minimum(i, j), np.maximum(i, j)
-    key = np.unique(lo * n + hi)  # a pair of two candidates appears twice
+    key = unique(lo * n + hi)  # a pair of two candidates appears twice
     return [(int(k // n), int(k % n)) for k in key]
 
 

@@ -41,6 +41,7 @@ from __future__ import annotations
 import numpy as np
 
 from ._cielab import srgb_to_lab
+from ._ndimage import median
 from .constants import (
     CLIPART_BLOCK_REACH,
     CLIPART_EDGE_CONTRAST,
@@ -60,25 +61,6 @@ from .constants import (
     CLIPART_STROKE_WIDTH,
 )
 from .loading import LoadedImage
-
-
-def median(values: np.ndarray) -> np.floating:
-    """``np.median(values)`` of an array of floats, to the bit, without importing ``numpy.ma``.
-
-    The same partition and the same mean of the one or two middle values as
-    numpy's, a numpy scalar of the array's type; NaN if any value is NaN.
-    ``np.median`` looks up ``np.ma`` to check for NaNs, and that imports
-    ``numpy.ma`` (about 0.02 s of CPU a run).
-    """
-    a = np.asarray(values, dtype=np.result_type(values, np.float16)).ravel()  # floats, as np.median's mean
-    n = len(a)
-    if n == 0:
-        return np.mean(a)  # NaN with numpy's warning, as np.median gives
-    half = n // 2
-    part = np.partition(a, [half - 1, half, -1] if n % 2 == 0 else [half, -1])
-    if np.isnan(part[-1]):
-        return part[-1]
-    return np.mean(part[half - 1 : half + 1] if n % 2 == 0 else part[half : half + 1])
 
 
 def colour_noise(lab: np.ndarray) -> tuple[float, float]:

@@ -23,6 +23,7 @@ from typing import Any
 
 import numpy as np
 
+from ._ndimage import unique
 from ._validation import check_finite, check_points, check_positive, readonly
 from .constants import (
     CONSTRAINED_FIT_FTOL,
@@ -91,7 +92,7 @@ def _index_array(values: object, name: str, size: int) -> np.ndarray:
         raise InvalidParameterError(f"{name} must be a 1-D array of integers, got shape {arr.shape}, {arr.dtype}")
     if arr.min() < 0 or arr.max() >= size:
         raise InvalidParameterError(f"{name} must index 0..{size - 1}, got values from {arr.min()} to {arr.max()}")
-    return np.unique(arr).astype(np.int64)
+    return unique(arr).astype(np.int64)
 
 
 def _unique_rows(arr: np.ndarray) -> np.ndarray:

@@ -22,8 +22,9 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from . import _skeleton
+from ._ndimage import median
 from ._validation import check_choice, check_positive, readonly
-from .clipart import clipart_lines, clipart_regions, label_means, median
+from .clipart import clipart_lines, clipart_regions, label_means
 from .constants import (
     BLANK_IMAGE_RANGE,
     CLIPART_RIM_RADIUS,

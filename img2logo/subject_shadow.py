@@ -33,7 +33,7 @@ from functools import partial
 
 import numpy as np
 
-from ._ndimage import dilate, distance, gaussian, label, median
+from ._ndimage import dilate, distance, gaussian, label, median, unique
 from .constants import (
     FOCUS_DETAIL_SIGMA,
     FOCUS_WINDOW,
@@ -140,7 +140,7 @@ def cast_shadow(img: LoadedImage, mask: np.ndarray) -> np.ndarray | None:
     chroma = features[..., :2]
     grown = darker & (_mahalanobis(chroma, ring_b, local) < SHADOW_MAX_CHROMA_DISTANCE)
     labels, _ = label(grown | seeds)
-    hit = np.unique(labels[seeds])
+    hit = unique(labels[seeds])
     shadow = np.zeros(mask.shape, bool)
     shadow[box] = np.isin(labels, hit[hit > 0])
     kept = clean_mask(mask & ~shadow)

@@ -320,19 +320,6 @@ def test_label_means_match_bincount():
         assert np.array_equal(got_means, sums / np.maximum(counts, 1.0)[:, None])
 
 
-def test_median_is_numpys_without_numpy_ma():
-    # np.median imports numpy.ma (a run's start-up): the same partition and mean, the same scalar.
-    from img2logo.clipart import median
-
-    rng = np.random.default_rng(4)
-    for dtype in (np.float32, np.float64):
-        for n in (1, 2, 3, 4, 9, 10, 1001):
-            values = (rng.random(n) * 100.0).astype(dtype)
-            got, want = median(values), np.median(values)
-            assert type(got) is type(want) and got == want
-    assert np.isnan(median(np.array([1.0, np.nan, 3.0])))
-
-
 def test_spread_kernel_is_the_numpy_reference(monkeypatch):
     # The colour spreads of the flat areas and the noise, compiled: the same float32 bits as numpy's.
     from img2logo import kernels

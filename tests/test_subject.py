@@ -434,20 +434,6 @@ def test_the_cues_do_not_import_scipy_ndimage():
     assert out.stdout.strip() == "False"
 
 
-def test_the_cues_median_is_numpy_s_to_the_bit():
-    from img2logo._ndimage import median
-
-    rng = np.random.default_rng(5)
-    for n in (1, 2, 3, 10, 11, 1000, 1001):
-        for dtype in (np.float64, np.float32):
-            values = rng.standard_normal(n).astype(dtype)
-            ours, theirs = median(values), np.median(values)
-            assert type(ours) is type(theirs)
-            assert ours == theirs
-    assert np.isnan(median(np.array([1.0, np.nan, 2.0])))
-    assert median(np.array([3, 1, 2])) == 2.0
-
-
 def test_the_line_maps_made_beside_the_cuts_are_those_made_after(monkeypatch):
     from img2logo import photo
 
