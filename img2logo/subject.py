@@ -486,7 +486,9 @@ def _cascade_class() -> type:
     layer imports most of numpy's optional modules: about 0.4 s of CPU, a fifth
     of a photo's command line. While the module loads, ``skimage.color`` is a
     stand-in whose ``rgb2gray`` imports the real one when first called; the
-    stand-in is gone as soon as the module is loaded.
+    stand-in is gone as soon as the module is loaded. Should a later
+    scikit-image's cascade import more than that, the stand-in is dropped and
+    the package imported as usual (slower, the same faces).
     """
     import sys
     import types
@@ -509,6 +511,8 @@ def _cascade_class() -> type:
     sys.modules["skimage.color"] = stand_in
     try:
         import skimage.feature._cascade as module
+    except ImportError:  # a scikit-image whose cascade needs more of skimage.color: the whole import
+        module = None
     finally:
         if before is None:
             sys.modules.pop("skimage.color", None)
@@ -516,6 +520,10 @@ def _cascade_class() -> type:
             sys.modules["skimage.color"] = before
         if getattr(skimage, "color", None) is stand_in:
             del skimage.color
+    if module is None:
+        from skimage.feature import Cascade
+
+        return Cascade
     return module.Cascade
 
 
