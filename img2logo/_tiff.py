@@ -10,8 +10,11 @@ wrongly, measured). OpenCV
 (libtiff) decodes it, the same decoder with the same tags as the whole file's decode, so a
 band's pixels are those rows of the whole image to the bit, whatever the compression (none,
 LZW, deflate, PackBits), the predictor, the planar configuration, the byte order, the bit
-depth or the photometric interpretation (grey, RGB, a palette). The bands are decoded by a
-thread of their own (OpenCV releases the GIL) while the compiled box reduce of
+depth or the photometric interpretation (grey, RGB, a palette). A row of tiles is decoded a
+few tiles a call (at most half of ``PNG_STRIP_BYTES``) into one of four band buffers used in
+turn, and reduced there at the tiles' padded pitch: the whole row's decode and its reordered
+copy (49 MB each for a 12000 px 16-bit RGBA image), fresh every row, cost 3.2 s of page faults
+(measured). The bands are decoded by a thread of their own (OpenCV releases the GIL) while the compiled box reduce of
 :mod:`img2logo.kernels_png` (the PNG path's: colour averaged premultiplied by alpha, as
 ``PIL.Image.reduce``) works on the one before.
 
