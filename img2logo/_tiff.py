@@ -10,8 +10,11 @@ wrongly, measured). OpenCV
 (libtiff) decodes it, the same decoder with the same tags as the whole file's decode, so a
 band's pixels are those rows of the whole image to the bit, whatever the compression (none,
 LZW, deflate, PackBits), the predictor, the planar configuration, the byte order, the bit
-depth or the photometric interpretation (grey, RGB, a palette). The bands are decoded by a
-thread of their own (OpenCV releases the GIL) while the compiled box reduce of
+depth or the photometric interpretation (grey, RGB, a palette). A row of tiles is decoded a
+few tiles a call (at most half of ``PNG_STRIP_BYTES``) into one of four band buffers used in
+turn, and reduced there at the tiles' padded pitch: the whole row's decode and its reordered
+copy (49 MB each for a 12000 px 16-bit RGBA image), fresh every row, cost 3.2 s of page faults
+(measured). The bands are decoded by a thread of their own (OpenCV releases the GIL) while the compiled box reduce of
 :mod:`img2logo.kernels_png` (the PNG path's: colour averaged premultiplied by alpha, as
 ``PIL.Image.reduce``) works on the one before.
 
@@ -31,7 +34,6 @@ from __future__ import annotations
 
 import io
 import math
-import queue
 import struct
 import sys
 import threading
@@ -53,6 +55,9 @@ _KEEP = (256, 258, 259, 262, 266, 277, 284, 317, 320, 322, 323, 338, 339)
 _TYPE_BYTES = {1: 1, 2: 1, 3: 2, 4: 4, 5: 8, 6: 1, 7: 1, 8: 2, 9: 4, 10: 8, 11: 4, 12: 8, 13: 4, 16: 8, 17: 8, 18: 8}
 _INTS = {1: "B", 3: "H", 4: "I", 16: "Q", 13: "I", 18: "Q"}
 _STRIP_OFFSETS, _STRIP_COUNTS, _TILE_OFFSETS, _TILE_COUNTS = 273, 279, 324, 325
+#: Threads decoding bands (libtiff's inflating, which releases the GIL, is most of the time), and
+#: the bands they decode ahead of the one being reduced: each band's buffer is one of ``_AHEAD + 1``.
+_WORKERS, _AHEAD = 2, 3
 
 
 @dataclass(frozen=True)
@@ -295,72 +300,180 @@ def _untile(stacked: np.ndarray | None, layout: _Layout, rows: int) -> np.ndarra
     return np.ascontiguousarray(band if stacked.ndim == 3 else band[:, :, 0])
 
 
+def _flat_rows(rows: np.ndarray) -> tuple[np.ndarray, int]:
+    """Rows of pixels (R, W, C) as the kernel reads them: their bytes (uint8, 1-D) and the bytes from a row to the next.
+
+    Rows of a wider buffer (a tiled band's, the tiles' padded width) are read in place
+    where each row's pixels are contiguous; anything else is copied first.
+    """
+    item = rows.dtype.itemsize
+    if rows.strides[1:] != (rows.shape[2] * item, item) or rows.strides[0] < rows.shape[1] * rows.shape[2] * item:
+        rows = np.ascontiguousarray(rows)
+    pitch = rows.strides[0]
+    size = (len(rows) - 1) * pitch + rows.shape[1] * rows.shape[2] * item
+    flat = np.lib.stride_tricks.as_strided(rows.view(np.uint8), shape=(size,), strides=(1,))
+    return flat, pitch
+
+
 def _tag_int(layout: _Layout, tag: int) -> int:
     kind, _, value = layout.tags[tag]
     return int(np.frombuffer(value, dtype=layout.order + _INTS[kind], count=1)[0])
 
 
 class _Bands:
-    """The bands of rows decoded by OpenCV in a thread of their own, two ahead at most: (first row, array)."""
+    """The bands of rows decoded by OpenCV in threads of their own, a few ahead: (first row, array).
+
+    Worker ``w`` decodes bands ``w``, ``w + _WORKERS``, ...; band ``i`` is begun once the
+    reading thread has asked for band ``i - _AHEAD`` (so it is done with band
+    ``i - _AHEAD - 1``, whose tiled band buffer ``i`` then reuses). libtiff's inflating is
+    most of the time (a 12000 px 16-bit RGBA deflate TIFF: 9.1 s of 13 s of CPU, the reduce
+    4 s, measured): one decoding thread kept the second core half idle.
+    """
 
     def __init__(self, path: Path, layout: _Layout, bounds: list[tuple[int, int]]) -> None:
-        self._full: queue.Queue = queue.Queue(maxsize=2)
+        self._cv = threading.Condition()
+        self._done: dict[int, object] = {}  # band index: (first row, array) or the exception decoding it raised
+        self._taken = 0  # bands the reading thread has asked for
         self._stop = False
-        self._thread = threading.Thread(
-            target=self._run, args=(path, layout, bounds), name="img2logo-tiff", daemon=True
-        )
-        self._thread.start()
+        self._pool: list[np.ndarray | None] = [None] * (_AHEAD + 1)  # the tiled bands' buffers, reused in turn
+        self._n = len(bounds)
+        self._threads = [
+            threading.Thread(target=self._run, args=(path, layout, bounds, w), name="img2logo-tiff", daemon=True)
+            for w in range(min(_WORKERS, self._n))
+        ]
+        for t in self._threads:
+            t.start()
 
-    def _run(self, path: Path, layout: _Layout, bounds: list[tuple[int, int]]) -> None:
+    def _run(self, path: Path, layout: _Layout, bounds: list[tuple[int, int]], worker: int) -> None:
         import cv2
 
+        i = worker
         try:
             with open(path, "rb") as f:
-                for first, stop in bounds:
-                    if self._stop:
-                        return
-                    planes = []
-                    for plane in range(layout.planes) if layout.planes > 1 else (None,):
-                        tiff = _band_tiff(layout, f, first, stop, path, plane)
-                        try:
-                            planes.append(cv2.imdecode(tiff, cv2.IMREAD_UNCHANGED))
-                        except cv2.error:
-                            planes.append(None)
-                        del tiff
-                    if layout.tiled:  # (tiles x tile rows, tile width, C) to the band's rows and columns
-                        planes = [_untile(q, layout, stop - first) for q in planes]
-                    band = planes[0]
-                    if layout.planes > 1 and all(q is not None and q.ndim == 2 for q in planes):
-                        order = [2, 1, 0, *range(3, len(planes))]  # OpenCV's order: blue first
-                        band = np.dstack([planes[k] for k in order])
+                for i in range(worker, self._n, _WORKERS):
+                    with self._cv:
+                        self._cv.wait_for(lambda i=i: self._stop or i < self._taken + _AHEAD)  # type: ignore[misc]
+                        if self._stop:
+                            return
+                    first, stop = bounds[i]
+                    if layout.tiled and layout.planes == 1:
+                        band = self._tile_row(cv2, path, layout, f, first, stop, self._pool, i)
+                    else:
+                        band = self._strips(cv2, path, layout, f, first, stop)
                     if band is None or band.shape[:2] != (stop - first, layout.width):
                         raise InvalidImageError(
                             f"{path}: not a readable image: its pixel data is damaged "
                             f"(rows {first + 1} to {stop} of {layout.height} cannot be decoded)"
                         )
-                    self._put((first, band))
-            self._put(None)
+                    self._hand(i, (first, band))
         except BaseException as exc:  # handed to the reading thread, which raises it
-            self._put(exc)
+            self._hand(i, exc)
 
-    def _put(self, item: object) -> None:
-        while not self._stop:
+    def _hand(self, i: int, item: object) -> None:
+        with self._cv:
+            self._done[i] = item
+            self._cv.notify_all()
+
+    @staticmethod
+    def _strips(
+        cv2: object, path: Path, layout: _Layout, f: io.BufferedReader, first: int, stop: int
+    ) -> np.ndarray | None:
+        """A band of strips (or a row of tiles of separate planes) decoded: (rows, width[, C]), or None."""
+        planes = []
+        for plane in range(layout.planes) if layout.planes > 1 else (None,):
+            tiff = _band_tiff(layout, f, first, stop, path, plane)
             try:
-                self._full.put(item, timeout=0.1)
-                return
-            except queue.Full:
-                continue
+                planes.append(cv2.imdecode(tiff, cv2.IMREAD_UNCHANGED))  # type: ignore[attr-defined]
+            except cv2.error:  # type: ignore[attr-defined]
+                planes.append(None)
+            del tiff
+        if layout.tiled:  # (tiles x tile rows, tile width, C) to the band's rows and columns
+            planes = [_untile(q, layout, stop - first) for q in planes]
+        band = planes[0]
+        if layout.planes > 1 and all(q is not None and q.ndim == 2 for q in planes):
+            order = [2, 1, 0, *range(3, len(planes))]  # OpenCV's order: blue first
+            band = np.dstack([planes[k] for k in order])
+        return band
+
+    @staticmethod
+    def _tile_row(
+        cv2: object,
+        path: Path,
+        layout: _Layout,
+        f: io.BufferedReader,
+        first: int,
+        stop: int,
+        pool: list[np.ndarray | None],
+        i: int,
+    ) -> np.ndarray | None:
+        """A row of tiles decoded a few tiles a call into a reused buffer: (rows, width, C), a view of it; or None.
+
+        A whole row's decode (a 12000 px 16-bit RGBA image's: 49 MB) and its reordering
+        into rows are fresh allocations, larger than glibc's mmap threshold (32 MB at most):
+        every page of them faulted in anew (3.2 s of system time, measured). A few tiles'
+        decode (``PNG_STRIP_BYTES // 2`` at most) is reused by the allocator, and the band
+        is written in place into one of ``_AHEAD + 1`` buffers of the padded row (the tiles'
+        whole width), taken in turn (see :class:`_Bands`: that buffer's band before is reduced).
+        """
+        tile_w = _tag_int(layout, 322)
+        across = -(-layout.width // tile_w)
+        group = max(1, (PNG_STRIP_BYTES // 2) // max(1, layout.rows * tile_w * (layout.row_bytes // layout.width or 1)))
+        tall = -(-(stop - first) // layout.rows) * layout.rows  # whole tile rows
+        buf: np.ndarray | None = pool[i % len(pool)]
+        offsets = layout.offsets.reshape(-1, across)
+        counts = layout.counts[: layout.offsets.size].reshape(-1, across)
+        for top in range(first, stop, layout.rows):
+            at = top - first
+            for j in range(0, across, group):
+                k = min(group, across - j)
+                part = _Layout(
+                    layout.order,
+                    k * tile_w,
+                    layout.height,
+                    layout.rows,
+                    True,
+                    1,
+                    offsets[:, j : j + k].reshape(-1),
+                    counts[:, j : j + k].reshape(-1),
+                    layout.tags,
+                    layout.row_bytes,
+                )
+                tiff = _band_tiff(part, f, top, min(stop, top + layout.rows), path)
+                try:
+                    q = cv2.imdecode(tiff, cv2.IMREAD_UNCHANGED)  # type: ignore[attr-defined]
+                except cv2.error:  # type: ignore[attr-defined]
+                    return None
+                if q is None or q.shape[:2] != (k * layout.rows, tile_w):
+                    return None
+                q = q.reshape(k, layout.rows, tile_w, -1)
+                if buf is None or buf.shape[0] < tall or buf.shape[2] != q.shape[3] or buf.dtype != q.dtype:
+                    buf = np.empty((tall, across * tile_w, q.shape[3]), dtype=q.dtype)
+                    pool[i % len(pool)] = buf
+                tiles = buf[at : at + layout.rows].reshape(layout.rows, across, tile_w, -1)
+                tiles[:, j : j + k] = q.transpose(1, 0, 2, 3)
+        if buf is None:
+            return None
+        band = buf[: stop - first, : layout.width]
+        return band if band.shape[2] > 1 else band[:, :, 0]
 
     def __iter__(self) -> Iterator[tuple[int, np.ndarray]]:
-        while (item := self._full.get()) is not None:
+        for i in range(self._n):
+            with self._cv:
+                self._taken = i + 1  # done with band i - 1: its buffer may be reused
+                self._cv.notify_all()
+                self._cv.wait_for(lambda i=i: i in self._done)  # type: ignore[misc]
+                item = self._done.pop(i)
             if isinstance(item, BaseException):
                 raise item
-            yield item
+            yield item  # type: ignore[misc]
 
     def close(self) -> None:
-        """Stop the decoding thread (after its current band) and wait for it."""
-        self._stop = True
-        self._thread.join()
+        """Stop the decoding threads (after their current band) and wait for them."""
+        with self._cv:
+            self._stop = True
+            self._cv.notify_all()
+        for t in self._threads:
+            t.join()
 
 
 def read_tiff_reduced(path: Path, factor: int) -> np.ndarray | None:
@@ -440,8 +553,7 @@ def read_tiff_reduced(path: Path, factor: int) -> np.ndarray | None:
                     carry = piece[whole:].copy() if carry is None else np.concatenate([carry, piece[whole:]], axis=0)
                 if whole:
                     small = np.empty((-(-whole // factor), out_w * channels))
-                    flat = np.ascontiguousarray(piece[:whole]).reshape(-1).view(np.uint8)  # a view: rows of a band
-                    pitch = layout.width * channels * piece.dtype.itemsize
+                    flat, pitch = _flat_rows(piece[:whole])
                     depth = 8 * piece.dtype.itemsize
                     n = reduce(
                         flat, whole, pitch, 0, layout.width, channels, depth, little, channels in (2, 4), factor, small
