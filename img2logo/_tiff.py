@@ -502,7 +502,6 @@ def read_tiff_reduced(path: Path, factor: int) -> np.ndarray | None:
         one line saying so.
     """
     from . import kernels
-    from .loading import _png_kernels
 
     if not kernels.usable():
         return None
@@ -522,7 +521,7 @@ def read_tiff_reduced(path: Path, factor: int) -> np.ndarray | None:
     if both * layout.row_bytes * layout.planes <= 2 * PNG_STRIP_BYTES:
         band_rows = -(-band_rows // both) * both
     bounds = [(y, min(layout.height, y + band_rows)) for y in range(0, layout.height, band_rows)]
-    reduce = _png_kernels(layout.height * layout.row_bytes * layout.planes)[1]
+    reduce = kernels.band_kernels(layout.height * layout.row_bytes * layout.planes)[1]
     result: np.ndarray | None = None
     carry: np.ndarray | None = None  # rows of the last band not yet reduced (fewer than ``factor``)
     done = 0  # output rows written

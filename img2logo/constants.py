@@ -676,7 +676,7 @@ EDGE_SIDE_REACH: float = 3.0 * 1.6 * FDOG_SIGMA_C
 #: and the reduced image (the full-size 16-bit image was 1.15 GB); larger strips save only calls.
 PNG_STRIP_BYTES: int = 16 << 20
 #: Inflated bytes of a PNG from which its strips are unfiltered and reduced by numba's JIT kernels,
-#: which release the GIL (loading._png_kernels), instead of the ahead-of-time ones, which hold it:
+#: which release the GIL (kernels.band_kernels), instead of the ahead-of-time ones, which hold it:
 #: then the inflating thread runs beside them on the second core. Importing numba and loading its
 #: cached kernels costs about 0.5-1 s of CPU (the first run after an install compiles them once,
 #: a few seconds); zlib inflates 100-200 MB a second of such data, so from 256 MB on the overlap

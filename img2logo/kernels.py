@@ -246,11 +246,35 @@ def main(argv: list[str] | None = None) -> int:
     return 0
 
 
+def band_kernels(pixel_bytes: int) -> tuple[Any, Any]:
+    """The unfiltering and reducing kernels for an image of ``pixel_bytes`` decoded a band at a time.
+
+    ``(png_unfilter, png_reduce)``, for a large PNG (:func:`img2logo.loading.load_image`'s
+    strips) or TIFF (:mod:`img2logo._tiff`). The ahead-of-time kernels hold the GIL while
+    they run, so the thread inflating the next band waits for them (a 12000 px 16-bit
+    RGBA PNG: 17.7 s wall for 17.6 s of CPU, measured). From ``PNG_NOGIL_BYTES`` on,
+    numba's JIT kernels of the same source (:mod:`img2logo.kernels_png`, compiled
+    ``nogil``, cached on disk at install) run instead, where numba can cache them: the
+    threads then share the cores.
+    """
+    from .constants import PNG_NOGIL_BYTES
+
+    if pixel_bytes >= PNG_NOGIL_BYTES:
+        try:
+            from . import kernels_jit, kernels_png
+
+            if kernels_jit.CACHED:
+                return kernels_png.png_unfilter, kernels_png.png_reduce
+        except Exception:  # numba missing or unusable here: the ahead-of-time kernels do it
+            pass
+    return __getattr__("png_unfilter"), __getattr__("png_reduce")
+
+
 def _warm_png_jit() -> None:
     """Compile numba's JIT PNG kernels into their disk cache, with the argument types the loader gives.
 
     A PNG of at least ``PNG_NOGIL_BYTES`` is decoded by them (they release the GIL,
-    :func:`img2logo.loading._png_kernels`); compiled here, at install, the first such
+    :func:`band_kernels`); compiled here, at install, the first such
     run does not wait seconds for it. Nothing happens where numba cannot cache them.
     """
     try:

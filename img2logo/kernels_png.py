@@ -12,7 +12,7 @@ bands of rows, decoded by OpenCV (:mod:`img2logo._tiff`), are box-reduced by the
 Written in the subset of Python that numba compiles; loaded through
 :mod:`img2logo.kernels` (ahead of time, or numba's JIT as a fallback); for a PNG of
 at least ``PNG_NOGIL_BYTES`` of pixel data the loader takes the JIT's own, which
-release the GIL (:func:`img2logo.loading._png_kernels`).
+release the GIL (:func:`img2logo.kernels.band_kernels`).
 """
 
 from __future__ import annotations

@@ -34,7 +34,6 @@ from .constants import (
     MAX_IMAGE_PIXELS,
     MAX_IMAGE_SIDE,
     MIN_IMAGE_SIDE,
-    PNG_NOGIL_BYTES,
     PNG_STRIP_BYTES,
 )
 from .errors import ImageNotFoundError, InvalidImageError, InvalidParameterError
@@ -462,7 +461,7 @@ def _read_png_strips(path: Path, factor: int, exif: list[bytes] | None = None) -
             return None
         samples = _PNG_TYPES[ctype][0]
         stride = (width * samples * depth + 7) // 8
-        png_unfilter, png_reduce = _png_kernels((stride + 1) * height)
+        png_unfilter, png_reduce = kernels.band_kernels((stride + 1) * height)
         palette = key = None
         chunks = _png_chunks(f)
         for kind, data in chunks:
@@ -526,28 +525,6 @@ def _read_png_strips(path: Path, factor: int, exif: list[bytes] | None = None) -
     if channels >= 3:  # OpenCV's channel order, as the rest of loading expects
         result = np.ascontiguousarray(result[:, :, [2, 1, 0, *range(3, channels)]])
     return result
-
-
-def _png_kernels(inflated: int) -> tuple[Any, Any]:
-    """The unfiltering and reducing kernels for a PNG of ``inflated`` bytes of pixel data.
-
-    The ahead-of-time kernels (:mod:`img2logo.kernels`) hold the GIL while they run, so
-    the thread inflating the next strip waits for them (a 12000 px 16-bit RGBA PNG: 17.7 s
-    wall for 17.6 s of CPU, measured). From ``PNG_NOGIL_BYTES`` on, numba's JIT kernels
-    of the same source (:mod:`img2logo.kernels_png`, compiled ``nogil``, cached on disk)
-    run instead, where numba can cache them: the two threads then share the two cores.
-    """
-    from . import kernels
-
-    if inflated >= PNG_NOGIL_BYTES:
-        try:
-            from . import kernels_jit, kernels_png
-
-            if kernels_jit.CACHED:
-                return kernels_png.png_unfilter, kernels_png.png_reduce
-        except Exception:  # numba missing or unusable here: the ahead-of-time kernels do it
-            pass
-    return kernels.png_unfilter, kernels.png_reduce
 
 
 class _InflatedStrips:
@@ -810,7 +787,7 @@ def _read_netpbm_strips(path: Path, factor: int) -> np.ndarray | None:
             return None
         channels, depth = (3 if kind == b"P6" else 1), (16 if maxval == 65535 else 8)
         pitch = width * channels * depth // 8
-        reduce = _png_kernels(pitch * height)[1]
+        reduce = kernels.band_kernels(pitch * height)[1]
         rows_per = factor * max(1, PNG_STRIP_BYTES // (pitch * factor))
         result = np.empty((-(-height // factor), -(-width // factor), channels), np.uint16 if depth == 16 else np.uint8)
         buf = np.empty(rows_per * pitch, dtype=np.uint8)

@@ -375,20 +375,21 @@ def test_a_huge_png_is_decoded_by_the_kernels_that_release_the_gil_with_the_same
     # From PNG_NOGIL_BYTES on, numba's JIT kernels (nogil) replace the ahead-of-time ones, which hold the
     # GIL and so kept the inflating thread waiting: the same source, the same result to the bit.
     pytest.importorskip("numba")
-    from img2logo import kernels, kernels_jit, kernels_png, loading
+    from img2logo import constants, kernels, kernels_jit, kernels_png, loading
+    from img2logo.constants import PNG_NOGIL_BYTES
 
     if not kernels_jit.CACHED:
         pytest.skip("numba cannot cache its kernels here: the ahead-of-time ones always run")
-    assert loading._png_kernels(loading.PNG_NOGIL_BYTES) == (kernels_png.png_unfilter, kernels_png.png_reduce)
-    assert loading._png_kernels(loading.PNG_NOGIL_BYTES - 1) == (kernels.png_unfilter, kernels.png_reduce)
+    assert kernels.band_kernels(PNG_NOGIL_BYTES) == (kernels_png.png_unfilter, kernels_png.png_reduce)
+    assert kernels.band_kernels(PNG_NOGIL_BYTES - 1) == (kernels.png_unfilter, kernels.png_reduce)
     monkeypatch.setattr(loading, "PNG_STRIP_BYTES", 5000)
     for channels, dtype in ((4, np.uint16), (3, np.uint8)):
         arr = _noisy(211, 157, channels, dtype)
         path = tmp_path / f"big{channels}.png"
         cv2.imwrite(str(path), arr, [cv2.IMWRITE_PNG_FILTER, cv2.IMWRITE_PNG_FILTER_PAETH])
-        monkeypatch.setattr(loading, "PNG_NOGIL_BYTES", 1 << 40)
+        monkeypatch.setattr(constants, "PNG_NOGIL_BYTES", 1 << 40)
         held = loading._read_png_strips(path, 3)
-        monkeypatch.setattr(loading, "PNG_NOGIL_BYTES", 0)
+        monkeypatch.setattr(constants, "PNG_NOGIL_BYTES", 0)
         released = loading._read_png_strips(path, 3)
         assert held is not None and released is not None
         assert np.array_equal(held, released)
