@@ -96,8 +96,8 @@ class _Layout:
     row_bytes: int
 
 
-def _layout(f: BinaryIO) -> _Layout | None:
-    """Read the first IFD of an open TIFF; None if it is not one this module decodes (or not readable)."""
+def _fields(f: BinaryIO) -> tuple[str, dict[int, tuple[int, int, bytes]]] | None:
+    """An open TIFF's byte order and first IFD's tags (tag: (type, count, raw value bytes)); None if unreadable."""
     head = f.read(16)
     if len(head) < 8 or head[:2] not in (b"II", b"MM"):
         return None
@@ -135,12 +135,55 @@ def _layout(f: BinaryIO) -> _Layout | None:
             if len(value) < size:
                 return None
         fields[tag] = (kind, count, value[:size])
+    return order, fields
+
+
+def _ints(order: str, fields: dict[int, tuple[int, int, bytes]], tag: int) -> np.ndarray | None:
+    """A tag's integer values (int64), None when the IFD has no such integer tag."""
+    if tag not in fields or fields[tag][0] not in _INTS:
+        return None
+    kind, count, value = fields[tag]
+    return np.frombuffer(value, dtype=order + _INTS[kind], count=count).astype(np.int64)
+
+
+def sample_bytes(path: Path) -> int | None:
+    """Bytes of a TIFF's decoded samples (width x height x a pixel's bits / 8), from its first IFD; None if unreadable.
+
+    What a decoder that decodes the file whole holds at least once
+    (:func:`img2logo.loading.load_image` bounds it for the layouts this module
+    does not decode a band at a time).
+    """
+    try:
+        with open(path, "rb") as f:
+            read = _fields(f)
+    except (OSError, struct.error, ValueError):
+        return None
+    if read is None:
+        return None
+    order, fields = read
+    width, height = _ints(order, fields, 256), _ints(order, fields, 257)
+    spp, bits = _ints(order, fields, 277), _ints(order, fields, 258)
+    if width is None or height is None or not width.size or not height.size:
+        return None
+    samples = int(spp[0]) if spp is not None and spp.size else 1
+    if bits is None or not bits.size:
+        depth = samples  # BitsPerSample's default: 1
+    elif bits.size >= samples:
+        depth = int(bits[:samples].sum())
+    else:
+        depth = int(bits[0]) * samples
+    return int(width[0]) * int(height[0]) * depth // 8
+
+
+def _layout(f: BinaryIO) -> _Layout | None:
+    """Read the first IFD of an open TIFF; None if it is not one this module decodes (or not readable)."""
+    read = _fields(f)
+    if read is None:
+        return None
+    order, fields = read
 
     def ints(tag: int) -> np.ndarray | None:
-        if tag not in fields or fields[tag][0] not in _INTS:
-            return None
-        kind, count, value = fields[tag]
-        return np.frombuffer(value, dtype=order + _INTS[kind], count=count).astype(np.int64)
+        return _ints(order, fields, tag)
 
     def one(tag: int, default: int | None = None) -> int | None:
         v = ints(tag)

@@ -63,6 +63,13 @@ MAX_IMAGE_PIXELS: int = 150_000_000
 #: 1 GB (estimated, 15 bytes a pixel), within issue 20's 1.5 GB (a 12000 px one: 5.13 GB, 26-29 s of
 #: CPU, measured with benchmarks/huge.py).
 MAX_FLOAT_IMAGE_PIXELS: int = 64_000_000
+#: Largest TIFF decoded whole (a layout img2logo._tiff does not decode a band at a time:
+#: JPEG-in-TIFF, floating-point samples, one compressed strip of the whole image), bytes of
+#: decoded samples (width x height x samples x bytes a sample): OpenCV's libtiff then holds
+#: the decoded strip and the image, and the colour conversion a third copy; a 12000 px 16-bit
+#: RGBA TIFF (1.15 GB of samples) peaked at 3.35 GB, 2.9x (measured, issue 20 item 12), so
+#: 450 MB keeps the peak within issue 20's 1.5 GB. An 8-bit RGB TIFF up to 150 Mpx fits.
+MAX_WHOLE_TIFF_BYTES: int = 450_000_000
 #: The largest length an option takes (``tolerance``, ``rdp_tolerance``,
 #: ``min_length``, ``max_arc_distance``, the Fibonacci ``unit``) and the largest
 #: radius a ladder may offer, px: longer than any accepted image (MAX_IMAGE_PIXELS

@@ -33,6 +33,7 @@ from .constants import (
     MAX_FLOAT_IMAGE_PIXELS,
     MAX_IMAGE_PIXELS,
     MAX_IMAGE_SIDE,
+    MAX_WHOLE_TIFF_BYTES,
     MIN_IMAGE_SIDE,
     PNG_STRIP_BYTES,
 )
@@ -390,6 +391,7 @@ def _read_file(path: Path, *, max_side: int = MAX_IMAGE_SIDE, max_pixels: int = 
             if orientation in (5, 6, 7, 8):
                 w, h = h, w
             return _upright(small, orientation), (w, h)
+    _check_whole_tiff(path)
     try:
         # A file of 64 MB or more with a plain name is decoded from the file (OpenCV's decoders stream it):
         # a 12000 px BMP's 576 MB were in memory twice (1.75 GB at the peak, measured). Otherwise from
@@ -993,6 +995,32 @@ def _probe(path: Path, max_pixels: int, max_side: int | None = None) -> tuple[in
     if w * h > max_pixels:
         raise InvalidImageError(_too_many_pixels(path, f"{w}x{h} px", max_pixels))
     return w, h, pages, fmt, orientation
+
+
+def _check_whole_tiff(path: Path) -> None:
+    """Refuse a TIFF that would be decoded whole with more than ``MAX_WHOLE_TIFF_BYTES`` of samples.
+
+    Its bytes are width x height x the bits of a pixel / 8, from its first IFD
+    (:func:`img2logo._tiff.sample_bytes`). Where the compiled kernels are not
+    usable every large file is decoded whole: those are read as before.
+    """
+    try:
+        with open(path, "rb") as f:
+            if f.read(2) not in (b"II", b"MM"):  # not a TIFF (nor a BigTIFF)
+                return
+    except OSError:
+        return  # the decode says why
+    from . import kernels
+    from ._tiff import sample_bytes
+
+    size = sample_bytes(path)
+    if size is None or size <= MAX_WHOLE_TIFF_BYTES or not kernels.usable():
+        return
+    raise InvalidImageError(
+        f"{path}: image is a TIFF of {size / 1e6:,.0f} MB of samples in a layout decoded whole (JPEG-compressed, "
+        f"floating-point, or one strip of the whole image); img2logo reads such a file up to "
+        f"{MAX_WHOLE_TIFF_BYTES / 1e6:,.0f} MB (its memory limit): downscale it, or save it in strips or tiles"
+    )
 
 
 def _float_image_size(path: Path) -> tuple[int, int, str] | None:

@@ -785,6 +785,33 @@ def test_a_tiff_the_bands_cannot_do_is_left_to_the_whole_image_path(tmp_path):
     assert _tiff.read_tiff_reduced(tmp_path / "none.tif", 2) is None
 
 
+def test_a_large_tiff_decoded_whole_is_refused_over_its_byte_budget(tmp_path, monkeypatch):
+    # issue 20, item 12: a layout the bands cannot do (here floating-point samples) is decoded whole by
+    # OpenCV, 2.9x its samples at the peak: refused above MAX_WHOLE_TIFF_BYTES, read below it.
+    import tifffile
+
+    from img2logo import _tiff, loading
+
+    path = tmp_path / "float.tif"
+    tifffile.imwrite(path, _noisy(200, 300, 3, np.uint8).astype(np.float32) / 255, photometric="rgb")
+    monkeypatch.setattr(loading, "MAX_WHOLE_TIFF_BYTES", 200 * 300 * 3 * 4 - 1)
+    message = (
+        r"float\.tif: image is a TIFF of 1 MB of samples in a layout decoded whole \(JPEG-compressed, "
+        r"floating-point, or one strip of the whole image\); img2logo reads such a file up to 1 MB \(its "
+        r"memory limit\): downscale it, or save it in strips or tiles"
+    )
+    with pytest.raises(InvalidImageError, match=message):
+        load_image(path, max_side=100)
+    monkeypatch.setattr(loading, "MAX_WHOLE_TIFF_BYTES", 200 * 300 * 3 * 4)
+    with pytest.warns(DownscaleWarning):
+        assert load_image(path, max_side=100).width == 100
+    assert _tiff.sample_bytes(path) == 200 * 300 * 3 * 4
+    one_strip = tmp_path / "one-strip.tif"  # 16-bit RGBA in one deflated strip: 8 bytes a pixel
+    tifffile.imwrite(one_strip, _noisy(50, 70, 4, np.uint16), photometric="rgb", compression="zlib", extrasamples=[2])
+    assert _tiff.sample_bytes(one_strip) == 50 * 70 * 8
+    assert _tiff.sample_bytes(tmp_path / "nothing.tif") is None
+
+
 def test_a_large_jpeg_2000_is_decoded_at_a_reduced_resolution(tmp_path):
     # issue 20, item 12: OpenJPEG decoded a 12000 px file whole (2.3 GB); Pillow stops wavelet levels short.
     from PIL import Image
