@@ -65,11 +65,12 @@ MAX_IMAGE_PIXELS: int = 150_000_000
 MAX_FLOAT_IMAGE_PIXELS: int = 64_000_000
 #: Largest TIFF decoded whole (a layout img2logo._tiff does not decode a band at a time:
 #: JPEG-in-TIFF, floating-point samples, one compressed strip of the whole image), bytes of
-#: decoded samples (width x height x samples x bytes a sample): OpenCV's libtiff then holds
-#: the decoded strip and the image, and the colour conversion a third copy; a 12000 px 16-bit
-#: RGBA TIFF (1.15 GB of samples) peaked at 3.35 GB, 2.9x (measured, issue 20 item 12), so
-#: 450 MB keeps the peak within issue 20's 1.5 GB. An 8-bit RGB TIFF up to 150 Mpx fits.
-MAX_WHOLE_TIFF_BYTES: int = 450_000_000
+#: decoded samples (width x height x a pixel's bits / 8): OpenCV's libtiff then holds the
+#: decoded strip and the image, and the colour conversion another copy. Measured peaks: a 12000
+#: px 16-bit RGBA TIFF (1.15 GB of samples) 3.35 GB, 2.9x; a 12000 px 8-bit RGB one in one
+#: deflated strip (432 MB) 1.46 GB, 3.4x, 14.8 s. 350 MB keeps the peak near 1.2 GB, within
+#: issue 20's 1.5 GB (8-bit RGB up to about 117 Mpx in one strip).
+MAX_WHOLE_TIFF_BYTES: int = 350_000_000
 #: The largest length an option takes (``tolerance``, ``rdp_tolerance``,
 #: ``min_length``, ``max_arc_distance``, the Fibonacci ``unit``) and the largest
 #: radius a ladder may offer, px: longer than any accepted image (MAX_IMAGE_PIXELS
