@@ -8,7 +8,8 @@ gaussian), OpenCV's exact distance transform (:func:`distance`, through
 :func:`img2logo._skeleton.distance_to_background`), scipy's compiled feature
 transform (:func:`nearest_background`), labelling (:func:`label`), and OpenCV's
 morphology with scipy's border (:func:`erode`, :func:`dilate`); :func:`median`
-and :func:`unique` are numpy's without ``numpy.ma`` (every kind of image uses those two).
+is numpy's without ``numpy.ma`` (every kind of image uses it; ``np.unique``'s twin is
+:func:`img2logo._skeleton.unique`).
 
 A low-level module of the photo path: :mod:`img2logo.loading` (a photo's
 smoothed CIELAB), :mod:`img2logo.subject_cues`, :mod:`img2logo.subject`,
@@ -146,18 +147,6 @@ def median(values: np.ndarray) -> np.floating:
     if np.isnan(part[-1]):
         return part[-1]
     return np.mean(part[half - 1 : half + 1] if n % 2 == 0 else part[half : half + 1])
-
-
-def unique(values: np.ndarray) -> np.ndarray:
-    """``np.unique(values)``: the distinct values of an integer array, sorted, 1-D, of its type.
-
-    ``np.unique`` imports ``numpy.ma`` on its first call (about 0.02 s of CPU a
-    run); a sort and a comparison of neighbours give the same array.
-    """
-    a = np.sort(np.asarray(values).ravel())
-    if a.size > 1:
-        a = a[np.concatenate(([True], a[1:] != a[:-1]))]
-    return a
 
 
 def erode(mask: np.ndarray, iterations: int = 1) -> np.ndarray:

@@ -34,7 +34,7 @@ from typing import Literal
 
 import numpy as np
 
-from ._ndimage import unique
+from ._skeleton import unique
 from ._validation import check_choice, check_points, check_positive, readonly
 from .constants import (
     ARC_CANDIDATE_LENGTH_RATIO,

@@ -23,7 +23,7 @@ from typing import Any
 
 import numpy as np
 
-from ._ndimage import unique
+from ._skeleton import unique
 from ._validation import check_finite, check_points, check_positive, readonly
 from .constants import (
     CONSTRAINED_FIT_FTOL,

@@ -33,7 +33,8 @@ from functools import partial
 
 import numpy as np
 
-from ._ndimage import dilate, distance, gaussian, label, median, unique
+from ._ndimage import dilate, distance, gaussian, label, median
+from ._skeleton import unique
 from .constants import (
     FOCUS_DETAIL_SIGMA,
     FOCUS_WINDOW,

@@ -1,11 +1,11 @@
-"""img2logo._ndimage: numpy's median and unique without numpy.ma (scipy's filters: tests/test_subject.py)."""
+"""img2logo._ndimage: numpy's median without numpy.ma (scipy's filters: tests/test_subject.py)."""
 
 import subprocess
 import sys
 
 import numpy as np
 
-from img2logo._ndimage import median, unique
+from img2logo._ndimage import median
 
 
 def test_median_is_numpys_to_the_bit():
@@ -20,20 +20,10 @@ def test_median_is_numpys_to_the_bit():
     assert type(got) is np.float64 and got == 2.5
 
 
-def test_unique_is_numpys():
-    rng = np.random.default_rng(5)
-    for n in (0, 1, 2, 7, 100):
-        for dtype in (np.int32, np.int64):
-            values = rng.integers(-5, 6, n).astype(dtype)
-            got, want = unique(values), np.unique(values)
-            assert got.dtype == want.dtype and np.array_equal(got, want)
-    assert np.array_equal(unique(np.array([[3, 1], [1, 3]])), [1, 3])
-
-
 def test_neither_imports_numpy_ma():
     code = (
         "import sys, numpy as np\n"
-        "from img2logo._ndimage import median, unique\n"
+        "from img2logo._ndimage import median\nfrom img2logo._skeleton import unique\n"
         "median(np.arange(5.0)); unique(np.array([2, 1, 2]))\n"
         "print('numpy.ma' in sys.modules)\n"
     )

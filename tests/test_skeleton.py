@@ -83,3 +83,15 @@ def test_label_kernel_is_opencvs_labelling_renumbered(monkeypatch):
     for (im, c, b), got in zip(cases, compiled, strict=True):
         want = _skeleton.label(im, connectivity=c, background=b)
         assert got.dtype == want.dtype and np.array_equal(got, want)
+
+
+def test_unique_is_numpys():
+    from img2logo._skeleton import unique
+
+    rng = np.random.default_rng(5)
+    for n in (0, 1, 2, 7, 100):
+        for dtype in (np.int32, np.int64):
+            values = rng.integers(-5, 6, n).astype(dtype)
+            got, want = unique(values), np.unique(values)
+            assert got.dtype == want.dtype and np.array_equal(got, want)
+    assert np.array_equal(unique(np.array([[3, 1], [1, 3]])), [1, 3])
