@@ -32,6 +32,8 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import gc
+import os
 import re
 import sys
 import warnings
@@ -243,6 +245,16 @@ def main(argv: Sequence[str] | None = None) -> int:
     one line on standard error, ``img2logo: error: ...``.
     """
     command = argv is None  # the process is the command: its heap is frozen (see _freeze_heap)
+    if command:
+        _start_command()
+    try:
+        return _main(argv, command)
+    finally:
+        if command:
+            gc.enable()  # _start_command's pause ends with main, however it ends
+
+
+def _main(argv: Sequence[str] | None, command: bool) -> int:
     args_list = list(sys.argv[1:] if argv is None else argv)
     batch = bool(args_list) and args_list[0] == "batch"
     if batch:
@@ -263,7 +275,11 @@ def main(argv: Sequence[str] | None = None) -> int:
             with warnings.catch_warnings():
                 warnings.simplefilter("always")
                 warnings.showwarning = show  # as they come, not at the end
-                status = _batch(args, say) if batch else _run(args, say, freeze=command)
+                if batch:
+                    gc.enable()  # the batch's workers are forked from this process: as before
+                    status = _batch(args, say)
+                else:
+                    status = _run(args, say, freeze=command)
                 if command:
                     _freeze_heap()
                 return status
@@ -284,8 +300,35 @@ def main(argv: Sequence[str] | None = None) -> int:
             return EXIT_TERMINATED
 
 
+#: The thread counts of the numeric libraries that :func:`_start_command` sets to 1 (unless the user set them).
+THREAD_VARIABLES = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")
+
+
+def _start_command() -> None:
+    """What the process that is the command does before it imports numpy: one BLAS thread, no collections.
+
+    numpy's OpenBLAS starts a thread per further core when it loads; between
+    its calls each spins on its core before it sleeps. A run's BLAS work is
+    small matrices (OpenBLAS runs them on the calling thread anyway): the
+    spinning was all the second thread did, 45 ms of CPU on the import of
+    numpy alone and 0.06-0.24 s over a run (a clip art, a photo; the outputs
+    are the same bytes, ``test_same_files_whatever_the_thread_counts``), taken
+    from whatever else the machine runs. A variable the user set is kept. Only
+    before numpy is imported (a Python program calling ``main()`` has its own).
+
+    The cyclic garbage collector pauses until the modules are imported and
+    frozen (:func:`_freeze_heap`): the imports make hundreds of thousands of
+    objects that live as long as the process, and the collections during them
+    only walked those (a tenth of numpy's import).
+    """
+    if "numpy" not in sys.modules:
+        for var in THREAD_VARIABLES:
+            os.environ.setdefault(var, "1")
+    gc.disable()
+
+
 def _freeze_heap() -> None:
-    """Move every object alive now out of the cyclic garbage collector's sight (``gc.freeze``).
+    """Move every object alive now out of the cyclic garbage collector's sight (``gc.freeze``); collect again.
 
     Only when the process is the command (``main()`` without ``argv``), not when
     Python code calls ``main([...])``. The modules a run imports (numpy, scipy,
@@ -295,9 +338,8 @@ def _freeze_heap() -> None:
     2 s clip-art run (``benchmarks/bench.py`` measures the command). Frozen
     objects are still freed by reference counting; nothing else changes.
     """
-    import gc
-
     gc.freeze()
+    gc.enable()  # after _start_command's pause
 
 
 class _Terminated(BaseException):
@@ -472,9 +514,6 @@ def _run(args: argparse.Namespace, say, *, freeze: bool = False) -> int:
     from .loading import load_image
     from .pipeline import abstract
 
-    if freeze:  # the modules just imported live as long as the process
-        _freeze_heap()
-
     options = _abstract_options(args)
     fill_spec = _fill_spec(args.fill)
     if not any(getattr(args, flag[2:].replace("-", "_")) for flag in _OUTPUT_FLAGS):  # before any work
@@ -483,6 +522,8 @@ def _run(args: argparse.Namespace, say, *, freeze: bool = False) -> int:
         raise InvalidParameterError(f"--png-scale must be a finite number > 0, got {args.png_scale:g}")
     _check_outputs(args)
     image = load_image(args.input)
+    if freeze:  # the modules imported so far (numpy, OpenCV, the pipeline's, the writers') live as long as the process
+        _freeze_heap()
     # Masks and the subject rectangle are in the input's pixels (abstract scales them to a downscaled input);
     # a mask is read here, before the work, whatever the kind turns out to be.
     shape = (image.input_height, image.input_width)

@@ -34,7 +34,6 @@ in the same order.
 
 from __future__ import annotations
 
-import hashlib
 import importlib.util
 import os
 import sysconfig
@@ -125,11 +124,23 @@ def __getattr__(name: str) -> Any:
 
 def module_name() -> str:
     """The ahead-of-time module's name: ``_kernels_`` and a hash of the kernels' source, signatures, numpy's version."""
-    digest = hashlib.sha256(f"{np.__version__} {ENTRY_POINTS}".encode())
+    digest = _sha256(f"{np.__version__} {ENTRY_POINTS}".encode())
     here = Path(__file__).parent
     for name in _SOURCES:
         digest.update((here / name).read_bytes())
     return "_kernels_" + digest.hexdigest()[:16]
+
+
+def _sha256(data: bytes) -> Any:
+    """``hashlib.sha256(data)``, by Python's own SHA-256 where it has one: hashlib loads OpenSSL (2 ms a run)."""
+    try:
+        from _sha256 import sha256  # CPython <= 3.11; the same digest
+    except ImportError:
+        try:
+            from _sha2 import sha256  # type: ignore[no-redef]  # CPython >= 3.12
+        except ImportError:
+            from hashlib import sha256
+    return sha256(data)
 
 
 def _directories() -> list[Path]:

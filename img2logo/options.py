@@ -16,7 +16,6 @@ the option, what was expected and what came.
 from __future__ import annotations
 
 import dataclasses
-import difflib
 import math
 from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass, field
@@ -363,6 +362,8 @@ class Options:
         allowed = ABSTRACT_OPTIONS_FIELDS | also
         for name in keywords:
             if name not in allowed:
+                import difflib  # only for the message
+
                 near = difflib.get_close_matches(str(name), sorted(allowed), n=1)
                 hint = f" (did you mean {near[0]!r}?)" if near else ""
                 raise UnknownOptionError(

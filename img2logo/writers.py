@@ -28,7 +28,6 @@ a positive sweep is clockwise on screen, SVG's ``sweep-flag = 1``.
 
 from __future__ import annotations
 
-import json
 import math
 import os
 from collections.abc import Callable, Mapping, Sequence
@@ -40,7 +39,6 @@ import numpy as np
 from ._io import as_path, atomic_write, check_output_paths, output_set
 from ._validation import check_choice, check_instance, check_integer, check_positive
 from .constants import CONSTRUCTION_MARGIN, FORMAT_NAME, MAX_IMAGE_SIDE, MAX_PNG_IMAGE_SIDE, MAX_PNG_SIDE, PNG_DPI
-from .contract import from_document, to_document
 from .errors import InputNotFoundError, InvalidParameterError
 from .fill_values import Fill, check_fills
 from .geometry import Abstraction, Circle
@@ -102,6 +100,10 @@ def read_json(path: str | os.PathLike[str]) -> Abstraction:
         If it is a folder, cannot be read, is not UTF-8 JSON or not a valid document
         (see :func:`img2logo.contract.from_document`).
     """
+    import json  # the JSON document's modules load with its first reader or writer, not for an SVG
+
+    from .contract import from_document
+
     p = as_path(path)
     if not p.exists():
         raise InputNotFoundError(f"JSON file not found: {p}")
@@ -170,6 +172,10 @@ def write_json(
     pathlib.Path
         The path written.
     """
+    import json
+
+    from .contract import to_document
+
     check_format_suffix(path, "json")
     doc = to_document(abstraction, params, check=check, fills=fills)
     data = (json.dumps(doc, indent=2, sort_keys=True, allow_nan=False, ensure_ascii=False) + "\n").encode("utf-8")
