@@ -8,6 +8,7 @@ The notebook kit (``img2logo/experiments``) is covered with the library.
 from __future__ import annotations
 
 import ast
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -124,3 +125,31 @@ def test_the_file_format_loads_only_what_it_needs():
     loaded = set(ast.literal_eval(out.stdout))
     assert loaded <= CONTRACT_MODULES, sorted(loaded - CONTRACT_MODULES)
     assert "img2logo.contract" in loaded and "img2logo.fill_values" in loaded  # the list is read
+
+
+def test_a_clip_art_run_of_the_command_loads_only_what_it_needs(tmp_path):
+    """The command on a clip art, writing SVG, with one BLAS thread (issue 19).
+
+    Not numba (the kernels are compiled ahead of time), scipy, scikit-image (its
+    skeleton's compiled module alone), Pillow, matplotlib, numpy.ma, the JSON
+    contract, the photo path or the batch.
+    """
+    code = (
+        "import os, sys\n"
+        "from img2logo.cli import main\n"
+        "sys.argv = ['img2logo', sys.argv[1], '-q', '--svg', sys.argv[2]]\n"
+        "assert main() == 0\n"
+        "print(os.environ.get('OPENBLAS_NUM_THREADS'))\n"
+        "print(sorted(m for m in sys.argv[3].split() if m in sys.modules))\n"
+    )
+    unneeded = "numba scipy skimage PIL matplotlib numpy.ma img2logo.contract img2logo.photo img2logo.subject"
+    unneeded += " img2logo.batch img2logo.fills"
+    pinned = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")
+    env = {k: v for k, v in os.environ.items() if k not in pinned}
+    svg = tmp_path / "fish.svg"
+    cmd = [sys.executable, "-c", code, str(PACKAGE.parent / "data" / "clipart-fish.png"), str(svg), unneeded]
+    out = subprocess.run(cmd, cwd=PACKAGE.parent, env=env, capture_output=True, text=True, check=True).stdout
+    blas, loaded = out.splitlines()
+    assert blas == "1"
+    assert ast.literal_eval(loaded) == []
+    assert svg.read_text().startswith("<?xml")
