@@ -311,7 +311,7 @@ def _start_command() -> None:
     its calls each spins on its core before it sleeps. A run's BLAS work is
     small matrices (OpenBLAS runs them on the calling thread anyway): the
     spinning was all the second thread did, 45 ms of CPU on the import of
-    numpy alone and 0.06-0.24 s over a run (a clip art, a photo; the outputs
+    numpy alone and 0.05-0.24 s over a run (a clip art, a photo; the outputs
     are the same bytes, ``test_same_files_whatever_the_thread_counts``), taken
     from whatever else the machine runs. A variable the user set is kept. Only
     before numpy is imported (a Python program calling ``main()`` has its own).
@@ -328,7 +328,7 @@ def _start_command() -> None:
 
 
 def _freeze_heap() -> None:
-    """Move every object alive now out of the cyclic garbage collector's sight (``gc.freeze``); collect again.
+    """Move every object alive now out of the cyclic garbage collector's sight (``gc.freeze``); collections resume.
 
     Only when the process is the command (``main()`` without ``argv``), not when
     Python code calls ``main([...])``. The modules a run imports (numpy, scipy,
