@@ -187,23 +187,32 @@ def distance_to_background(mask: np.ndarray) -> np.ndarray:
 
 
 def bounding_slices(labels: np.ndarray) -> list[tuple[slice, slice] | None]:
-    """``scipy.ndimage.find_objects(labels)``: entry ``i`` bounds the pixels labelled ``i + 1``, None where none are."""
+    """``scipy.ndimage.find_objects(labels)``: entry ``i`` bounds the pixels labelled ``i + 1``, None where none are.
+
+    Compiled where the kernels are usable (:func:`img2logo.kernels_front.bounds_kernel`,
+    one pass over the pixels: the same boxes).
+    """
     flat = np.asarray(labels).ravel()
     n = int(flat.max()) if flat.size else 0
     if n <= 0:
         return []
-    h, w = labels.shape
-    at = np.flatnonzero(flat > 0)
-    lab = flat[at]
-    rows, cols = np.divmod(at, w)
-    top = np.full(n + 1, h)
-    bottom = np.full(n + 1, -1)
-    left = np.full(n + 1, w)
-    right = np.full(n + 1, -1)
-    np.minimum.at(top, lab, rows)
-    np.maximum.at(bottom, lab, rows)
-    np.minimum.at(left, lab, cols)
-    np.maximum.at(right, lab, cols)
+    from . import kernels
+
+    if kernels.usable():  # one pass over the pixels
+        top, bottom, left, right = kernels.bounds_kernel(np.asarray(labels), n).T.tolist()
+    else:
+        h, w = labels.shape
+        at = np.flatnonzero(flat > 0)
+        lab = flat[at]
+        rows, cols = np.divmod(at, w)
+        top = np.full(n + 1, h)
+        bottom = np.full(n + 1, -1)
+        left = np.full(n + 1, w)
+        right = np.full(n + 1, -1)
+        np.minimum.at(top, lab, rows)
+        np.maximum.at(bottom, lab, rows)
+        np.minimum.at(left, lab, cols)
+        np.maximum.at(right, lab, cols)
     return [
         (slice(int(top[i]), int(bottom[i]) + 1), slice(int(left[i]), int(right[i]) + 1)) if bottom[i] >= 0 else None
         for i in range(1, n + 1)

@@ -98,13 +98,27 @@ def colour_noise(lab: np.ndarray) -> tuple[float, float]:
     most = _spread(lab, [(0, 1), (1, 0)])  # squared, until the end
     border = np.concatenate([lab[0], lab[-1], lab[:, 0], lab[:, -1]])
     paper = np.array([median(border[:, c]) for c in range(border.shape[1])])  # np.median(border, axis=0)
-    fill = np.linalg.norm(lab - paper, axis=2) > CLIPART_MIN_CONTRAST
+    fill = colour_distance(lab, paper) > CLIPART_MIN_CONTRAST
     if not fill.any():
         return 0.0, 0.0
     v = np.sqrt(most[fill])
     noisy = v[(v > 0) & (v <= CLIPART_EDGE_CONTRAST)]
     level = max(float(median(v)), float(median(noisy)) if len(noisy) else 0.0)
     return level, float(np.mean((v > 0) & (v <= CLIPART_MIN_CONTRAST)))
+
+
+def colour_distance(lab: np.ndarray, colour: np.ndarray) -> np.ndarray:
+    """``np.linalg.norm(lab - colour, axis=2)``: the distance of every colour of ``lab`` (H, W, 3) to ``colour`` (3,).
+
+    (H, W) float64, the same bits; compiled where the kernels are usable
+    (:func:`img2logo.kernels_front.colour_distance_kernel`: one pass, no
+    temporary images).
+    """
+    from . import kernels
+
+    if kernels.usable():
+        return kernels.colour_distance_kernel(lab, np.asarray(colour, dtype=np.float64))
+    return np.linalg.norm(lab - colour, axis=2)
 
 
 def clipart_regions(img: LoadedImage) -> np.ndarray:
@@ -233,6 +247,8 @@ def _near_entries(index: np.ndarray, n: int, rest: np.ndarray, radius: int = CLI
     """For each pixel of ``rest``, which of the ``n`` entries have seed pixels within ``radius`` px: (R, n) bool."""
     import cv2
 
+    from ._skeleton import bounding_slices
+
     size = 2 * radius + 1
     disk = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (size, size))
     h, w = index.shape
@@ -241,14 +257,14 @@ def _near_entries(index: np.ndarray, n: int, rest: np.ndarray, radius: int = CLI
     where = np.full(index.shape, -1, dtype=np.int64)
     where[rest] = np.arange(int(rest.sum()))
     near = np.zeros((int(rest.sum()), n), dtype=bool)
-    for e in range(n):
-        mask = index == e
-        in_rows, in_cols = np.flatnonzero(mask.any(axis=1)), np.flatnonzero(mask.any(axis=0))
-        if len(in_rows) == 0:
+    boxes = bounding_slices(index + 1)  # entry e's pixels: label e + 1 (every index < n)
+    for e in range(min(n, len(boxes))):
+        box = boxes[e]
+        if box is None:
             continue
-        rows = slice(max(in_rows[0] - radius, 0), min(in_rows[-1] + 1 + radius, h))
-        cols = slice(max(in_cols[0] - radius, 0), min(in_cols[-1] + 1 + radius, w))
-        grown = cv2.dilate(mask[rows, cols].view(np.uint8), disk) > 0
+        rows = slice(max(box[0].start - radius, 0), min(box[0].stop + radius, h))
+        cols = slice(max(box[1].start - radius, 0), min(box[1].stop + radius, w))
+        grown = cv2.dilate((index[rows, cols] == e).view(np.uint8), disk) > 0
         at = where[rows, cols][grown]
         near[at[at >= 0], e] = True
     return near

@@ -183,3 +183,54 @@ def colour_table_kernel(rgb):  # pragma: no cover - compiled
         below = bits[k] & ((one << np.uint64(code & 63)) - one)
         index[p] = before[k] + _popcount(below)
     return True, colours, index
+
+
+@_jit
+def colour_distance_kernel(lab, colour):  # pragma: no cover - compiled
+    """``np.linalg.norm(lab - colour, axis=2)`` of ``lab`` (H, W, 3) and ``colour`` (3,): (H, W).
+
+    The same bits: the three squared differences summed in order, then the
+    square root, as numpy's reduction over a 3-long axis adds them.
+    """
+    h, w = lab.shape[0], lab.shape[1]
+    out = np.empty((h, w))
+    for i in range(h):
+        for j in range(w):
+            d0 = lab[i, j, 0] - colour[0]
+            d1 = lab[i, j, 1] - colour[1]
+            d2 = lab[i, j, 2] - colour[2]
+            s = d0 * d0 + d1 * d1
+            s = s + d2 * d2
+            out[i, j] = np.sqrt(s)
+    return out
+
+
+@_jit
+def bounds_kernel(labels, n):  # pragma: no cover - compiled
+    """The bounding box of every label 1..n of ``labels`` (H, W): (n + 1, 4) rows of (top, bottom, left, right).
+
+    Inclusive bounds; a label without a pixel keeps (H, -1, W, -1). One pass
+    over the pixels (``np.minimum.at`` and ``np.maximum.at`` of the rows and
+    columns, by label); labels <= 0 or > n are skipped.
+    """
+    h, w = labels.shape
+    out = np.empty((n + 1, 4), dtype=np.int64)
+    for k in range(n + 1):
+        out[k, 0] = h
+        out[k, 1] = -1
+        out[k, 2] = w
+        out[k, 3] = -1
+    for i in range(h):
+        for j in range(w):
+            k = labels[i, j]
+            if k <= 0 or k > n:
+                continue
+            if i < out[k, 0]:
+                out[k, 0] = i
+            if i > out[k, 1]:
+                out[k, 1] = i
+            if j < out[k, 2]:
+                out[k, 2] = j
+            if j > out[k, 3]:
+                out[k, 3] = j
+    return out

@@ -245,8 +245,7 @@ def _rim_regions(regions: np.ndarray, rgb: np.ndarray, means: np.ndarray, paper:
     largest = inked[np.argmax(area[inked])]
     ink = ~paper & (np.linalg.norm(means - means[largest], axis=1) <= INK_COLOUR_SPREAD)
     others = np.flatnonzero(~paper & ~ink)
-    rgb_means = np.stack([np.bincount(labels, weights=rgb[..., c].ravel(), minlength=n) for c in range(3)], 1)
-    rgb_means /= np.maximum(area, 1.0)[:, None]
+    rgb_means = label_means(regions, rgb)[1]  # np.bincount's sums by channel, divided by the areas
     ink_rgb = np.average(rgb_means[ink], axis=0, weights=area[ink])
     paper_rgb = np.average(rgb_means[paper], axis=0, weights=area[paper])
     t = np.linspace(0.0, 1.0, 65)
