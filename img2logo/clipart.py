@@ -225,7 +225,7 @@ def _palette_regions(
     rest = index < 0
     if rest.any():
         near = _near_entries(index, len(pal), rest)
-        colours = lab[rest]
+        colours = lab.reshape(-1, 3)[np.flatnonzero(rest)]
         cost = np.full(near.shape, np.inf)
         for e in range(len(pal)):  # the entries near each pixel only (a few of them)
             at = np.flatnonzero(near[:, e])
@@ -243,15 +243,27 @@ def _palette_regions(
     return _relabel(regions), ~rest
 
 
+#: :func:`_near_entries` looks round each pixel (compiled) while that reads at most this many
+#: pixels per pixel of the image; beyond (a JPEG's many rim pixels, the 16 px reach) it dilates
+#: each entry's pixels instead. Both give the same answer; this only picks the faster.
+_NEAR_PIXEL_WORK = 4
+
+
 def _near_entries(index: np.ndarray, n: int, rest: np.ndarray, radius: int = CLIPART_RIM_RADIUS) -> np.ndarray:
     """For each pixel of ``rest``, which of the ``n`` entries have seed pixels within ``radius`` px: (R, n) bool."""
     import cv2
 
+    from . import kernels
     from ._skeleton import bounding_slices
 
     size = 2 * radius + 1
     disk = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (size, size))
     h, w = index.shape
+    pix_rows, pix_cols = np.nonzero(rest)
+    offsets = np.argwhere(disk) - radius  # the disc is symmetric: a dilation by it reads these
+    if kernels.usable() and len(pix_rows) * len(offsets) <= _NEAR_PIXEL_WORK * index.size:
+        # Few pixels to answer (a clean clip art's rims): each looks round itself, compiled.
+        return kernels.near_kernel(index, pix_rows, pix_cols, n, offsets)
     # Each entry is dilated within its bounding box grown by the radius: nothing
     # farther is near it, and an eye's box is a thousandth of a large image.
     where = np.full(index.shape, -1, dtype=np.int64)
@@ -364,7 +376,8 @@ def _unexplained(
         return out
     n = len(areas_rgb)
     near = _near_entries(seed_of, n, rest)
-    colours, colours_lab = rgb[rest], lab[rest]
+    at = np.flatnonzero(rest)  # by index: a third of the time of the mask on (H, W, 3)
+    colours, colours_lab = rgb.reshape(-1, 3)[at], lab.reshape(-1, 3)[at]
     best = np.full(len(colours), np.inf)
     singles = rgb2lab(areas_rgb[None])[0]
     if lonely:
@@ -522,11 +535,11 @@ def _spread(lab: np.ndarray, pairs: list[tuple[int, int]]) -> np.ndarray:
 def _background_first(regions: np.ndarray) -> np.ndarray:
     """Relabel so that the region covering most of the image border is 0."""
     border = np.concatenate([regions[0], regions[-1], regions[:, 0], regions[:, -1]])
-    bg = np.bincount(border).argmax()
-    out = regions.copy()
-    out[regions == bg] = 0
-    out[(regions != bg) & (regions == 0)] = bg  # label 0 was taken: swap
-    return _relabel(out)
+    bg = int(np.bincount(border).argmax())
+    swap = np.arange(int(regions.max()) + 1)
+    swap[bg] = 0
+    swap[0] = bg  # label 0 was taken: swap
+    return _relabel(swap[regions])
 
 
 def thin_regions(regions: np.ndarray) -> np.ndarray:
@@ -651,7 +664,14 @@ def _merge_small_regions(regions: np.ndarray, min_area: int, also: np.ndarray | 
 
 
 def _relabel(regions: np.ndarray) -> np.ndarray:
-    """Labels 0..n-1 in the order of the (non-negative) values: the used ones, packed."""
+    """Labels 0..n-1 in the order of the (non-negative) values: the used ones, packed; int64.
+
+    Compiled where the kernels are usable (:func:`img2logo.kernels_front.relabel_kernel`).
+    """
+    from . import kernels
+
+    if kernels.usable() and regions.ndim == 2:
+        return kernels.relabel_kernel(regions)
     used = np.bincount(regions.ravel()) > 0
     return (np.cumsum(used) - 1)[regions].astype(np.int64)
 

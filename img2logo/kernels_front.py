@@ -234,3 +234,50 @@ def bounds_kernel(labels, n):  # pragma: no cover - compiled
             if j > out[k, 3]:
                 out[k, 3] = j
     return out
+
+
+@_jit
+def near_kernel(index, rows, cols, n, offsets):  # pragma: no cover - compiled
+    """Which of the entries 0..n-1 of ``index`` (H, W) lie at ``offsets`` (K, 2) of each pixel (rows[p], cols[p]).
+
+    (P, n) bool: ``near[p, e]`` when some pixel (rows[p] + dr, cols[p] + dc) of
+    the image holds ``e``, the offsets being a structuring element's: the
+    dilation of each entry's pixels by it, read at the given pixels. Values
+    outside 0..n-1 are no entry.
+    """
+    h, w = index.shape
+    near = np.zeros((len(rows), n), dtype=np.bool_)
+    for p in range(len(rows)):
+        r, c = rows[p], cols[p]
+        for k in range(offsets.shape[0]):
+            rr, cc = r + offsets[k, 0], c + offsets[k, 1]
+            if 0 <= rr < h and 0 <= cc < w:
+                e = index[rr, cc]
+                if 0 <= e < n:
+                    near[p, e] = True
+    return near
+
+
+@_jit
+def relabel_kernel(labels):  # pragma: no cover - compiled
+    """Non-negative labels (H, W) renumbered 0..n-1 in the order of their values, the used ones packed."""
+    h, w = labels.shape
+    top = 0
+    for i in range(h):
+        for j in range(w):
+            if labels[i, j] > top:
+                top = labels[i, j]
+    rank = np.zeros(top + 1, dtype=np.int64)
+    for i in range(h):
+        for j in range(w):
+            rank[labels[i, j]] = 1
+    total = 0
+    for k in range(top + 1):
+        used = rank[k]
+        rank[k] = total - 1 + used  # the used label's place; an unused one's is never read
+        total += used
+    out = np.empty((h, w), dtype=np.int64)
+    for i in range(h):
+        for j in range(w):
+            out[i, j] = rank[labels[i, j]]
+    return out
