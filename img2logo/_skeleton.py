@@ -126,6 +126,9 @@ def label(image: np.ndarray, connectivity: int, background: int = 0) -> np.ndarr
 
     out_type = np.int32 if image.dtype == bool else np.int64
     if kernels.usable():
+        if image.dtype == bool:  # the mask's bytes as they are
+            mask = np.ascontiguousarray(image).view(np.uint8)
+            return kernels.label_mask_kernel(mask, int(background), connectivity != 1).astype(out_type, copy=False)
         values = np.ascontiguousarray(image, dtype=np.int64)
         return kernels.label_kernel(values, int(background), connectivity != 1).astype(out_type, copy=False)
     import cv2
@@ -306,7 +309,7 @@ def trace(skel: np.ndarray) -> PixelGraph:
     node_lab = label(node_mask, connectivity=2)
     n_nodes = int(node_lab.max())
     if n_nodes:
-        rr, cc = np.nonzero(node_lab)
+        rr, cc = np.nonzero(node_mask)  # where node_lab > 0: the same pixels, from the mask's bytes
         order = np.argsort(node_lab[rr, cc], kind="stable")
         rr, cc = rr[order], cc[order]
         splits = np.cumsum(np.bincount(node_lab[rr, cc], minlength=n_nodes + 1))[:-1]

@@ -52,32 +52,34 @@ def spread_kernel(lab, pairs):  # pragma: no cover - compiled
     those float32 values in float64.
     """
     h, w = lab.shape[0], lab.shape[1]
-    lab32 = np.empty((h, w, 3), dtype=np.float32)
+    flat = lab.reshape(h * w * 3)
+    lab32 = np.empty(h * w * 3, dtype=np.float32)
+    for k in range(h * w * 3):
+        lab32[k] = np.float32(flat[k])
+    # A maximum is the same whatever the order its values come in: pixel by pixel, each pair.
+    most = np.zeros(h * w, dtype=np.float32)
     for i in range(h):
-        for j in range(w):
-            for c in range(3):
-                lab32[i, j, c] = np.float32(lab[i, j, c])
-    most = np.zeros((h, w), dtype=np.float32)
-    for p in range(pairs.shape[0]):
-        dr, dc = pairs[p, 0], pairs[p, 1]
-        if dr >= h or abs(dc) >= w:
-            continue
-        for i in range(h - dr):
+        for p in range(pairs.shape[0]):
+            dr, dc = pairs[p, 0], pairs[p, 1]
+            if dr >= h or abs(dc) >= w or i + dr >= h:
+                continue
+            step = dr * w + dc
             for j in range(max(0, -dc), w - max(0, dc)):
-                i2, j2 = i + dr, j + dc
-                d0 = lab32[i2, j2, 0] - lab32[i, j, 0]
-                d1 = lab32[i2, j2, 1] - lab32[i, j, 1]
-                d2 = lab32[i2, j2, 2] - lab32[i, j, 2]
+                a = i * w + j
+                b = a + step
+                d0 = lab32[3 * b] - lab32[3 * a]
+                d1 = lab32[3 * b + 1] - lab32[3 * a + 1]
+                d2 = lab32[3 * b + 2] - lab32[3 * a + 2]
                 d = d0 * d0 + d1 * d1
                 d = d + d2 * d2
-                if d > most[i, j]:
-                    most[i, j] = d
-                if d > most[i2, j2]:
-                    most[i2, j2] = d
+                if d > most[a]:
+                    most[a] = d
+                if d > most[b]:
+                    most[b] = d
     out = np.empty((h, w))
     for i in range(h):
         for j in range(w):
-            out[i, j] = most[i, j]
+            out[i, j] = most[i * w + j]
     return out
 
 
@@ -91,7 +93,9 @@ def label_kernel(image, background, eight):  # pragma: no cover - compiled
     """
     h, w = image.shape
     out = np.zeros((h, w), dtype=np.int64)
-    stack = np.empty(h * w, dtype=np.int64)
+    # The rows and columns stacked apart: no division per pixel popped.
+    stack_r = np.empty(h * w, dtype=np.int64)
+    stack_c = np.empty(h * w, dtype=np.int64)
     n = 0
     for i in range(h):
         for j in range(w):
@@ -100,12 +104,13 @@ def label_kernel(image, background, eight):  # pragma: no cover - compiled
                 continue
             n += 1
             out[i, j] = n
-            stack[0] = i * w + j
+            stack_r[0] = i
+            stack_c[0] = j
             top = 1
             while top > 0:
                 top -= 1
-                r = stack[top] // w
-                c = stack[top] - r * w
+                r = stack_r[top]
+                c = stack_c[top]
                 for dr in range(-1, 2):
                     rr = r + dr
                     if rr < 0 or rr >= h:
@@ -116,10 +121,15 @@ def label_kernel(image, background, eight):  # pragma: no cover - compiled
                         cc = c + dc
                         if 0 <= cc < w and out[rr, cc] == 0 and image[rr, cc] == v:
                             out[rr, cc] = n
-                            stack[top] = rr * w + cc
+                            stack_r[top] = rr
+                            stack_c[top] = cc
                             top += 1
     return out
 
+
+#: The same flood fill for a mask (H, W) of uint8 (a bool mask's bytes), exported with that
+#: signature: no int64 copy of the mask.
+label_mask_kernel = label_kernel
 
 _M1 = np.uint64(0x5555555555555555)
 _M2 = np.uint64(0x3333333333333333)
