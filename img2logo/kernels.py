@@ -87,6 +87,11 @@ ENTRY_POINTS: dict[str, tuple[str, tuple[str, ...], str]] = {
     "mean_abs_error_kernel": ("kernels_circle", ("f8[:,::1]", "f8", "f8", "f8"), "f8"),
     "dijkstra_kernel": ("kernels_graph", ("i8[::1]", "i8[::1]", "f8[::1]", "i8[::1]", "!f8[::1]", "!i8[::1]"), "i8"),
     "banded_solve_kernel": ("kernels_graph", ("i8[::1]", "i8[::1]", "f8[::1]", "f8[::1]", "!f8[::1]"), "i8"),
+    "end_tangents_kernel": (
+        "kernels_graph",
+        ("f8[:,::1]", "i8[::1]", "i8[::1]", "b1[::1]", "f8", "f8"),
+        "f8[:,::1]",
+    ),
     "label_sums_kernel": ("kernels_front", ("i8[::1]", "f8[:,::1]", "i8"), "Tuple((f8[::1], f8[:,::1]))"),
     "spread_kernel": ("kernels_front", ("f8[:,:,::1]", "i8[:,::1]"), "f8[:,::1]"),
     "label_kernel": ("kernels_front", ("i8[:,::1]", "i8", "b1"), "i8[:,::1]"),
