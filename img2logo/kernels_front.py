@@ -291,3 +291,60 @@ def relabel_kernel(labels):  # pragma: no cover - compiled
         for j in range(w):
             out[i, j] = rank[labels[i, j]]
     return out
+
+
+@_jit
+def edt_kernel(inside):  # pragma: no cover - compiled
+    """Euclidean distance of every pixel of ``inside`` (H, W) to the nearest pixel outside it, px: (H, W).
+
+    Exact: Meijster, Roerdink and Hesselink's two-pass algorithm (2000) in
+    integers (each column's distance to its nearest outside pixel, then each
+    row's lower envelope of parabolas), then the square root of the integer
+    squared distance, as ``scipy.ndimage.distance_transform_edt`` gives it.
+    Outside pixels are 0. ``inside`` must hold an outside pixel.
+    """
+    h, w = inside.shape
+    big = h + w  # farther than any pixel: a column without an outside pixel
+    g = np.empty((h, w), dtype=np.int64)
+    for x in range(w):  # the columns' passes row by row (the memory's order)
+        g[0, x] = big if inside[0, x] else 0
+    for y in range(1, h):
+        for x in range(w):
+            g[y, x] = 1 + g[y - 1, x] if inside[y, x] else 0
+    for y in range(h - 2, -1, -1):
+        for x in range(w):
+            if g[y + 1, x] < g[y, x]:
+                g[y, x] = 1 + g[y + 1, x]
+    out = np.empty((h, w))
+    s = np.empty(w, dtype=np.int64)
+    t = np.empty(w, dtype=np.int64)
+    for y in range(h):
+        q = 0
+        s[0] = 0
+        t[0] = 0
+        for u in range(1, w):
+            gu = g[y, u]
+            while q >= 0:
+                gs = g[y, s[q]]
+                if (t[q] - s[q]) * (t[q] - s[q]) + gs * gs > (t[q] - u) * (t[q] - u) + gu * gu:
+                    q -= 1
+                else:
+                    break
+            if q < 0:
+                q = 0
+                s[0] = u
+            else:
+                i = s[q]
+                gi = g[y, i]
+                sep = (u * u - i * i + gu * gu - gi * gi) // (2 * (u - i))
+                if sep + 1 < w:
+                    q += 1
+                    s[q] = u
+                    t[q] = sep + 1
+        for u in range(w - 1, -1, -1):
+            i = s[q]
+            gi = g[y, i]
+            out[y, u] = np.sqrt(np.float64((u - i) * (u - i) + gi * gi))
+            if u == t[q]:
+                q -= 1
+    return out
