@@ -312,10 +312,13 @@ def trace(skel: np.ndarray) -> PixelGraph:
     node_mask = skel & ((crossings == 1) | branch)
     graph = PixelGraph()
 
+    # The line's pixels once, in raster order; the nodes' and the chains' are among them.
+    line_rows, line_cols = np.nonzero(skel)
+    on_node = node_mask[line_rows, line_cols]
     node_lab = label(node_mask, connectivity=2)
     n_nodes = int(node_lab.max())
     if n_nodes:
-        rr, cc = np.nonzero(node_mask)  # where node_lab > 0: the same pixels, from the mask's bytes
+        rr, cc = line_rows[on_node], line_cols[on_node]  # where node_lab > 0
         order = np.argsort(node_lab[rr, cc], kind="stable")
         rr, cc = rr[order], cc[order]
         splits = np.cumsum(np.bincount(node_lab[rr, cc], minlength=n_nodes + 1))[:-1]
@@ -323,7 +326,7 @@ def trace(skel: np.ndarray) -> PixelGraph:
             graph.add_node(pix.mean(axis=0)[::-1] + 0.5, pix)
 
     chain_mask = skel & ~node_mask
-    rows, cols = np.nonzero(chain_mask)
+    rows, cols = line_rows[~on_node], line_cols[~on_node]  # np.nonzero(chain_mask)
     if len(rows) == 0:
         return graph
     index = np.full(skel.shape, -1, dtype=np.int64)
@@ -365,12 +368,12 @@ def trace(skel: np.ndarray) -> PixelGraph:
         contacts[run_of[p]].setdefault(n, set()).add(p)
 
     pixels = np.column_stack([rows, cols])
+    place = renumber.tolist()  # a pixel's place in its run's block: place[g] - the block's start
+    bounds = block.tolist()
     for comp in range(n_comp):
-        a, b = int(block[comp]), int(block[comp + 1])
-        idx = by_run[a:b]
-        local = {g: k for k, g in enumerate(idx.tolist())}
-        ends = _contact_groups(contacts[comp], pixels, local)
-        _trace_component(graph, adj.block(a, b), idx, pixels, ends)
+        a, b = bounds[comp], bounds[comp + 1]
+        ends = _contact_groups(contacts[comp], pixels, place, a)
+        _trace_component(graph, adj.block(a, b), by_run[a:b], pixels, ends)
     return graph
 
 
@@ -454,24 +457,26 @@ def _dijkstra_reference(graph: _Graph, sources: list[int]) -> tuple[np.ndarray, 
 
 
 def _contact_groups(
-    node_contacts: dict[int, set[int]], pixels: np.ndarray, local: dict[int, int]
+    node_contacts: dict[int, set[int]], pixels: np.ndarray, place: list[int], start: int
 ) -> list[tuple[int, list[int]]]:
     """Group a run's node contacts into ends: (node, local pixel indices).
 
-    A node touching the run in two separate places (a loop from a junction back
-    to itself) gives two ends.
+    Pixel ``g`` of the run is its pixel ``place[g] - start``. A node touching
+    the run in two separate places (a loop from a junction back to itself)
+    gives two ends.
     """
     groups = []
     for node, pix in sorted(node_contacts.items()):
         pix = sorted(pix)
-        pts = pixels[pix]
-        lab = np.arange(len(pix))
+        pts = pixels[pix].tolist()  # as Python ints: a few pixels, numpy's scalar steps cost more
+        lab = list(range(len(pix)))
         for a in range(len(pix)):  # tiny groups: a quadratic union is fine
             for b in range(a + 1, len(pix)):
-                if np.max(np.abs(pts[a] - pts[b])) <= 1:
-                    lab[lab == lab[b]] = lab[a]
-        for g in sorted(set(lab.tolist())):  # np.unique imports numpy.ma (np.ma.is_masked)
-            groups.append((node, [local[pix[k]] for k in np.flatnonzero(lab == g)]))
+                if max(abs(pts[a][0] - pts[b][0]), abs(pts[a][1] - pts[b][1])) <= 1:
+                    old, new = lab[b], lab[a]
+                    lab = [new if x == old else x for x in lab]
+        for g in sorted(set(lab)):
+            groups.append((node, [place[pix[k]] - start for k in range(len(pix)) if lab[k] == g]))
     return groups
 
 
