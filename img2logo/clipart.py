@@ -171,6 +171,25 @@ def label_means(labels: np.ndarray, values: np.ndarray) -> tuple[np.ndarray, np.
     return counts, sums / np.maximum(counts, 1.0)[:, None]
 
 
+def _label_means_of_two(labels: np.ndarray, a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, ...]:
+    """:func:`label_means` of ``labels`` for two images of values at once: (counts, means of a, means of b).
+
+    One pass over the labels where the kernels are usable
+    (:func:`img2logo.kernels_front.label_sums2_kernel`): the same sums.
+    """
+    from . import kernels
+
+    flat = labels.ravel()
+    if not (kernels.usable() and len(flat)):
+        counts, a_means = label_means(labels, a)
+        return counts, a_means, label_means(labels, b)[1]
+    counts, a_sums, b_sums = kernels.label_sums2_kernel(
+        flat, a.reshape(len(flat), -1), b.reshape(len(flat), -1), int(flat.max()) + 1
+    )
+    scale = np.maximum(counts, 1.0)[:, None]
+    return counts, a_sums / scale, b_sums / scale
+
+
 def _palette_regions(
     areas: np.ndarray, rgb: np.ndarray, lab: np.ndarray, seed_area: int, contrast: float, *, compressed: bool
 ) -> tuple[np.ndarray, np.ndarray]:
@@ -193,7 +212,7 @@ def _palette_regions(
     """
     from ._skeleton import label
 
-    counts, lab_means = label_means(areas, lab)
+    counts, lab_means, rgb_means = _label_means_of_two(areas, lab, rgb)
     seeds = np.flatnonzero(counts >= seed_area)
     if len(seeds) == 0:
         seeds = np.array([int(np.argmax(counts))])
@@ -202,13 +221,17 @@ def _palette_regions(
     seed_of = seed_id[areas]
     means = lab_means[seeds]
     sizes = counts[seeds]
-    groups = _unexplained_seeds(seed_of, label_means(areas, rgb)[1][seeds], rgb, lab, contrast, seed_area, compressed)
+    groups = _unexplained_seeds(seed_of, rgb_means[seeds], rgb, lab, contrast, seed_area, compressed)
     if groups is not None:
-        extra, extra_means = label_means(groups, lab)
+        # Only the groups' pixels (label 0, no group, is never used): the same sums, in the same order.
+        at = np.flatnonzero(groups)
+        in_group = groups.ravel()[at]
+        extra, extra_means = label_means(in_group, lab.reshape(-1, 3)[at])
         keep = np.flatnonzero(extra[1:] > 0) + 1
         new_id = np.full(len(extra), -1, dtype=np.int64)
         new_id[keep] = len(means) + np.arange(len(keep))
-        seed_of = np.where(new_id[groups] >= 0, new_id[groups], seed_of)
+        renamed = new_id[in_group]
+        np.put(seed_of, at[renamed >= 0], renamed[renamed >= 0])  # seed_of is this function's own array
         means = np.vstack([means, extra_means[keep]])
         sizes = np.concatenate([sizes, extra[keep]])
     entry_of = np.empty(len(means), dtype=np.int64)

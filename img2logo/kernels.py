@@ -93,6 +93,11 @@ ENTRY_POINTS: dict[str, tuple[str, tuple[str, ...], str]] = {
         "f8[:,::1]",
     ),
     "label_sums_kernel": ("kernels_front", ("i8[::1]", "f8[:,::1]", "i8"), "Tuple((f8[::1], f8[:,::1]))"),
+    "label_sums2_kernel": (
+        "kernels_front",
+        ("i8[::1]", "f8[:,::1]", "f8[:,::1]", "i8"),
+        "Tuple((f8[::1], f8[:,::1], f8[:,::1]))",
+    ),
     "spread_kernel": ("kernels_front", ("f8[:,:,::1]", "i8[:,::1]"), "f8[:,::1]"),
     "label_kernel": ("kernels_front", ("i8[:,::1]", "i8", "b1"), "i8[:,::1]"),
     "label_mask_kernel": ("kernels_front", ("u1[:,::1]", "i8", "b1"), "i8[:,::1]"),

@@ -42,6 +42,22 @@ def label_sums_kernel(labels, values, n):  # pragma: no cover - compiled
 
 
 @_jit
+def label_sums2_kernel(labels, a, b, n):  # pragma: no cover - compiled
+    """:func:`label_sums_kernel` for two sets of values (N, C) and (N, D) in one pass: (counts, sums a, sums b)."""
+    counts = np.zeros(n)
+    sums_a = np.zeros((n, a.shape[1]))
+    sums_b = np.zeros((n, b.shape[1]))
+    for i in range(len(labels)):
+        k = labels[i]
+        counts[k] += 1.0
+        for c in range(a.shape[1]):
+            sums_a[k, c] += a[i, c]
+        for c in range(b.shape[1]):
+            sums_b[k, c] += b[i, c]
+    return counts, sums_a, sums_b
+
+
+@_jit
 def spread_kernel(lab, pairs):  # pragma: no cover - compiled
     """Largest squared difference of each pixel of ``lab`` (H, W, 3) to those at ``pairs`` (P, 2) offsets, (H, W).
 
