@@ -210,6 +210,7 @@ def _palette_regions(
     small fill that JPEG ringing leaves without a flat pixel (an eye, a horn's
     tip). They seed entries too.
     """
+    from . import kernels
     from ._skeleton import label
 
     counts, lab_means, rgb_means = _label_means_of_two(areas, lab, rgb)
@@ -256,9 +257,11 @@ def _palette_regions(
         lonely = ~near.any(axis=1)
         cost[lonely] = ((colours[lonely, None, :] - pal[None]) ** 2).sum(axis=2)
         index[rest] = np.argmin(cost, axis=1)
-    regions = label(index, connectivity=1, background=-1)
     # A 1 px line drawn without anti-aliasing is a string of pixels touching at
     # their corners: tiny 4-connected pieces that are one 8-connected region.
+    if kernels.usable():  # the steps below in one compiled call
+        return kernels.palette_regions_kernel(index, CLIPART_MIN_REGION_AREA), ~rest
+    regions = label(index, connectivity=1, background=-1)
     tiny = np.bincount(regions.ravel())[regions] < CLIPART_MIN_REGION_AREA
     if tiny.any():
         joined = label(np.where(tiny, index, -1), connectivity=2, background=-1)
