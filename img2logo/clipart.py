@@ -62,8 +62,17 @@ from .constants import (
 )
 from .loading import LoadedImage
 
+#: The offsets whose colour differences :func:`colour_noise` measures: the 4-neighbours.
+_NOISE_PAIRS = ((0, 1), (1, 0))
 
-def colour_noise(lab: np.ndarray) -> tuple[float, float]:
+
+def _window_pairs() -> list[tuple[int, int]]:
+    """The offsets of :func:`_flat_areas`' window, each pair of its pixels once (see there)."""
+    rad = CLIPART_FLAT_RADIUS
+    return [(dr, dc) for dr in range(rad + 1) for dc in range(-rad, rad + 1) if dr > 0 or dc > 0]
+
+
+def colour_noise(lab: np.ndarray, *, most: np.ndarray | None = None) -> tuple[float, float]:
     """Colour noise of a clip art's fills: (typical neighbour difference, noisy fraction).
 
     Over the pixels that differ visibly (by more than ``CLIPART_MIN_CONTRAST``)
@@ -93,9 +102,11 @@ def colour_noise(lab: np.ndarray) -> tuple[float, float]:
         0.058 on JPEGs of quality 70 (the examples and the evaluation set).
 
     The background is left out because a white background stays exactly flat
-    even in a JPEG and would hide the fills' noise.
+    even in a JPEG and would hide the fills' noise. ``most``: those largest
+    squared differences, if known (:func:`_spreads`).
     """
-    most = _spread(lab, [(0, 1), (1, 0)])  # squared, until the end
+    if most is None:
+        most = _spread(lab, list(_NOISE_PAIRS))  # squared, until the end
     border = np.concatenate([lab[0], lab[-1], lab[:, 0], lab[:, -1]])
     paper = np.array([median(border[:, c]) for c in range(border.shape[1])])  # np.median(border, axis=0)
     fill = colour_distance(lab, paper) > CLIPART_MIN_CONTRAST
@@ -128,7 +139,9 @@ def clipart_regions(img: LoadedImage) -> np.ndarray:
     module docstring for the four steps.
     """
     lab = img.lab
-    noise, fraction = colour_noise(lab)
+    # The noise's and the flat areas' colour differences in one pass (the latter kept for a clean image).
+    noise_most, window_most = _spreads(lab, list(_NOISE_PAIRS), _window_pairs())
+    noise, fraction = colour_noise(lab, most=noise_most)
     # A clean clip art's fills are exactly flat: any flat 3x3 block is a fill. In a
     # compressed one, a flat patch smaller than a JPEG block (8 x 8 px) can be an
     # artefact of one block, so seeds must be as large as a region.
@@ -140,9 +153,10 @@ def clipart_regions(img: LoadedImage) -> np.ndarray:
     else:
         rgb, lab = _mean_shift(img.rgb, max(2 * CLIPART_MIN_CONTRAST, CLIPART_NOISE_FACTOR * noise))
         noise, _ = colour_noise(lab)
+        window_most = None  # of the filtered colours, below
     link = max(CLIPART_LINK_DISTANCE, CLIPART_NOISE_FACTOR * noise)
     contrast = max(CLIPART_MIN_CONTRAST, CLIPART_NOISE_FACTOR * noise)
-    areas = _flat_areas(lab, link)
+    areas = _flat_areas(lab, link, most=window_most)
     regions, seeded = _palette_regions(areas, rgb, lab, seed_area, contrast, compressed=not clean)
     # A region without a single seed pixel is made of rims only: a sliver along an
     # edge (JPEG ringing), not a fill.
@@ -500,7 +514,7 @@ def _mean_shift(rgb: np.ndarray, colour_radius: float) -> tuple[np.ndarray, np.n
     return out, srgb_to_lab(out)
 
 
-def _flat_areas(lab: np.ndarray, link: float) -> np.ndarray:
+def _flat_areas(lab: np.ndarray, link: float, *, most: np.ndarray | None = None) -> np.ndarray:
     """Connected components of flat pixels: (H, W) labels.
 
     A pixel is flat when every pixel within ``CLIPART_FLAT_RADIUS`` px of it
@@ -509,15 +523,14 @@ def _flat_areas(lab: np.ndarray, link: float) -> np.ndarray:
     pixel: along a shallow anti-aliased or blurred (JPEG) edge the colour changes
     little from one pixel to the next, and joining such pixels would bridge the
     two sides, but across the window such a pixel sees more than ``link`` of
-    the edge's contrast. Every other pixel is an area of its own.
+    the edge's contrast. Every other pixel is an area of its own. ``most``: the
+    window's largest squared differences (:func:`_spread` of :func:`_window_pairs`), if known.
     """
-    rad = CLIPART_FLAT_RADIUS
     # Each pair of pixels of a window once, for both its ends: (dr, dc) from one is
     # (-dr, -dc) from the other, and the squared difference is the same number. Beyond
     # the image's edge a window is the edge pixels repeated, pixels of the window
     # already, so the pixels inside the image give its largest difference.
-    pairs = [(dr, dc) for dr in range(rad + 1) for dc in range(-rad, rad + 1) if dr > 0 or dc > 0]
-    spread = np.sqrt(_spread(lab, pairs))
+    spread = np.sqrt(_spread(lab, _window_pairs()) if most is None else most)
     flat = spread <= link
     # Adjacent flat pixels are within the link of each other by definition, so the
     # flat areas are the 4-connected components of the flat mask; every other pixel
@@ -529,6 +542,26 @@ def _flat_areas(lab: np.ndarray, link: float) -> np.ndarray:
     rest = ~flat
     labels[rest] = n + 1 + np.arange(int(rest.sum()))
     return labels - 1
+
+
+def _spreads(
+    lab: np.ndarray, pairs_a: list[tuple[int, int]], pairs_b: list[tuple[int, int]]
+) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`_spread` of ``lab`` for two sets of offsets: two (H, W) float32, the same bits.
+
+    Compiled, in one pass (:func:`img2logo.kernels_front.spreads_kernel`), where the kernels are usable.
+    """
+    from . import kernels
+
+    if not kernels.usable():
+        return _spread(lab, pairs_a), _spread(lab, pairs_b)
+    both = sorted(set(pairs_a) | set(pairs_b))
+    return kernels.spreads_kernel(
+        np.ascontiguousarray(lab, dtype=np.float64),
+        np.array(both, dtype=np.int64).reshape(-1, 2),
+        np.array([p in pairs_a for p in both], dtype=bool),
+        np.array([p in pairs_b for p in both], dtype=bool),
+    )
 
 
 def _spread(lab: np.ndarray, pairs: list[tuple[int, int]]) -> np.ndarray:

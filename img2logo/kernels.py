@@ -99,6 +99,11 @@ ENTRY_POINTS: dict[str, tuple[str, tuple[str, ...], str]] = {
         "Tuple((f8[::1], f8[:,::1], f8[:,::1]))",
     ),
     "spread_kernel": ("kernels_front", ("f8[:,:,::1]", "i8[:,::1]"), "f8[:,::1]"),
+    "spreads_kernel": (
+        "kernels_front",
+        ("f8[:,:,::1]", "i8[:,::1]", "b1[::1]", "b1[::1]"),
+        "UniTuple(f4[:,::1], 2)",
+    ),
     "label_kernel": ("kernels_front", ("i8[:,::1]", "i8", "b1"), "i8[:,::1]"),
     "label_mask_kernel": ("kernels_front", ("u1[:,::1]", "i8", "b1"), "i8[:,::1]"),
     "colour_table_kernel": ("kernels_front", ("f8[:,:,::1]",), "Tuple((b1, i8[::1], i8[::1]))"),

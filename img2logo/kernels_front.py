@@ -100,6 +100,51 @@ def spread_kernel(lab, pairs):  # pragma: no cover - compiled
 
 
 @_jit
+def spreads_kernel(lab, pairs, in_a, in_b):  # pragma: no cover - compiled
+    """:func:`spread_kernel` for two sets of offsets at once: (largest of set a, largest of set b), float32 (H, W) each.
+
+    ``pairs`` (P, 2) holds both sets; ``in_a[p]``, ``in_b[p]`` say which a pair
+    is in. Each pair's squared difference is computed once, as there, and taken
+    into the maxima of its sets.
+    """
+    h, w = lab.shape[0], lab.shape[1]
+    flat = lab.reshape(h * w * 3)
+    lab32 = np.empty(h * w * 3, dtype=np.float32)
+    for k in range(h * w * 3):
+        lab32[k] = np.float32(flat[k])
+    most_a = np.zeros((h, w), dtype=np.float32)
+    most_b = np.zeros((h, w), dtype=np.float32)
+    ma = most_a.reshape(h * w)
+    mb = most_b.reshape(h * w)
+    for i in range(h):
+        for p in range(pairs.shape[0]):
+            dr, dc = pairs[p, 0], pairs[p, 1]
+            if dr >= h or abs(dc) >= w or i + dr >= h:
+                continue
+            step = dr * w + dc
+            to_a, to_b = in_a[p], in_b[p]
+            for j in range(max(0, -dc), w - max(0, dc)):
+                a = i * w + j
+                b = a + step
+                d0 = lab32[3 * b] - lab32[3 * a]
+                d1 = lab32[3 * b + 1] - lab32[3 * a + 1]
+                d2 = lab32[3 * b + 2] - lab32[3 * a + 2]
+                d = d0 * d0 + d1 * d1
+                d = d + d2 * d2
+                if to_a:
+                    if d > ma[a]:
+                        ma[a] = d
+                    if d > ma[b]:
+                        ma[b] = d
+                if to_b:
+                    if d > mb[a]:
+                        mb[a] = d
+                    if d > mb[b]:
+                        mb[b] = d
+    return most_a, most_b
+
+
+@_jit
 def label_kernel(image, background, eight):  # pragma: no cover - compiled
     """Connected components of equal values of ``image`` (H, W), numbered 1.. by their first pixel in raster order.
 
