@@ -408,6 +408,7 @@ def _unexplained(
     ``CLIPART_BLOCK_REACH`` whose own colour reaches it (:func:`_reached_entries`;
     unexplained with none).
     """
+    from . import kernels
     from ._cielab import rgb2lab  # skimage.color.rgb2lab, without importing scipy.linalg
 
     rest = seed_of < 0
@@ -424,22 +425,24 @@ def _unexplained(
         alone = ~near.any(axis=1)
         if alone.any():
             near[alone] = _reached_entries(seed_of, singles, lab, contrast, rest, np.asarray(alone))
-    for a in range(n):
-        on_a = near[:, a]
-        if on_a.any():
-            best[on_a] = np.minimum(best[on_a], np.linalg.norm(colours_lab[on_a] - singles[a], axis=1))
+    if kernels.usable():  # the loop below, compiled: the same norms, their minimum
+        best = kernels.nearest_colour_kernel(colours_lab, np.ascontiguousarray(singles, dtype=np.float64), near)
+    else:
+        for a in range(n):
+            on_a = near[:, a]
+            if on_a.any():
+                best[on_a] = np.minimum(best[on_a], np.linalg.norm(colours_lab[on_a] - singles[a], axis=1))
     # Only a pixel far from every seed's own colour can be far from every blend: the blends
     # (an sRGB to CIELAB conversion each) are taken for those alone.
     far = np.flatnonzero(best > contrast)
     near, colours, colours_lab, far_best = near[far], colours[far], colours_lab[far], best[far]
     for a in range(n):
-        on_a = near[:, a]
-        if not on_a.any():
+        on_a = np.flatnonzero(near[:, a])
+        if len(on_a) == 0:
             continue
-        for b in range(a + 1, n):
-            both = on_a & near[:, b]
-            if not both.any():
-                continue
+        # The seeds b > a near some of these pixels: only those pairs have pixels near both.
+        for b in np.flatnonzero(near[on_a, a + 1 :].any(axis=0)) + a + 1:
+            both = on_a[near[on_a, b]]  # the pixels near both, ascending: the mask's rows
             ab = areas_rgb[b] - areas_rgb[a]
             t = np.clip((colours[both] - areas_rgb[a]) @ ab / max(float(ab @ ab), 1e-12), 0.0, 1.0)
             blend = rgb2lab((areas_rgb[a] + t[:, None] * ab)[:, None, :])[:, 0, :]

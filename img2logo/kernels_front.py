@@ -447,3 +447,27 @@ def palette_regions_kernel(index, min_area):  # pragma: no cover - compiled
                 if counts[regions[i, j]] < min_area:
                     regions[i, j] = joined[i, j] + top + 1
     return relabel_kernel(regions)
+
+
+@_jit
+def nearest_colour_kernel(colours, singles, near):  # pragma: no cover - compiled
+    """The distance of each colour (P, 3) to the nearest of ``singles`` (S, 3) it is ``near`` (P, S): (P,).
+
+    ``np.linalg.norm``'s bits (the three squares added in order, the root);
+    infinite where no single is near.
+    """
+    out = np.empty(colours.shape[0])
+    for p in range(colours.shape[0]):
+        best = np.inf
+        for a in range(singles.shape[0]):
+            if near[p, a]:
+                d0 = colours[p, 0] - singles[a, 0]
+                d1 = colours[p, 1] - singles[a, 1]
+                d2 = colours[p, 2] - singles[a, 2]
+                s = d0 * d0 + d1 * d1
+                s = s + d2 * d2
+                d = np.sqrt(s)
+                if d < best:
+                    best = d
+        out[p] = best
+    return out
