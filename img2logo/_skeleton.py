@@ -120,7 +120,7 @@ def label(image: np.ndarray, connectivity: int, background: int = 0) -> np.ndarr
     A component is numbered by its first pixel in raster order, as scikit-image
     does (and ``scipy.ndimage.label``, whose int32 labels a bool image gets too).
     Compiled where the kernels are usable (:func:`img2logo.kernels_front.label_kernel`,
-    one flood fill: the same labels).
+    two passes with a union-find: the same labels).
     """
     from . import kernels
 

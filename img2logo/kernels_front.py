@@ -9,7 +9,7 @@ to its neighbours at given offsets (``clipart._flat_areas``' window,
 same differences, squares and sums in the same order, so the same bits, in one
 pass instead of a dozen of temporary images. :func:`label_kernel` numbers the
 connected components of equal values by their first pixel in raster order
-(``_skeleton.label``'s numbering), in one flood fill instead of OpenCV's
+(``_skeleton.label``'s numbering), in two passes with a union-find instead of OpenCV's
 labelling of each value's mask and a renumbering. :func:`colour_table_kernel` is
 ``_cielab.srgb_to_lab``'s table of an 8-bit image's colours: the 24-bit code of
 every pixel (when every value is k / 255), the codes present in ascending
@@ -145,50 +145,78 @@ def spreads_kernel(lab, pairs, in_a, in_b):  # pragma: no cover - compiled
 
 
 @_jit
+def _root(parent, k):  # pragma: no cover - compiled
+    """The root of ``k`` in a union-find forest whose parents are never larger than their children."""
+    while parent[k] != k:
+        parent[k] = parent[parent[k]]  # path halving: a grandparent is smaller still
+        k = parent[k]
+    return k
+
+
+@_jit
 def label_kernel(image, background, eight):  # pragma: no cover - compiled
     """Connected components of equal values of ``image`` (H, W), numbered 1.. by their first pixel in raster order.
 
-    Pixels equal to ``background`` are 0; ``eight``: 8-neighbours, else 4. Each
-    component is flooded (a stack of pixels, each pushed once) from its first
-    pixel met in raster order, so the numbers are in that order.
+    Pixels equal to ``background`` are 0; ``eight``: 8-neighbours, else 4.
+    Two passes with a union-find (Rosenfeld and Pfaltz 1966): each pixel takes
+    the provisional labels of its neighbours already scanned that have its
+    value, a new one where none; every union keeps the smaller label as the
+    root. A component's first pixel in raster order has no such neighbour, so
+    its root is the label made there, and the roots in their order are the
+    components in the order of their first pixels.
     """
     h, w = image.shape
-    out = np.zeros((h, w), dtype=np.int64)
-    # The rows and columns stacked apart: no division per pixel popped.
-    stack_r = np.empty(h * w, dtype=np.int64)
-    stack_c = np.empty(h * w, dtype=np.int64)
+    prov = np.zeros((h, w), dtype=np.int64)
+    parent = np.empty(h * w + 1, dtype=np.int64)
     n = 0
     for i in range(h):
         for j in range(w):
             v = image[i, j]
-            if v == background or out[i, j] != 0:
+            if v == background:
                 continue
-            n += 1
-            out[i, j] = n
-            stack_r[0] = i
-            stack_c[0] = j
-            top = 1
-            while top > 0:
-                top -= 1
-                r = stack_r[top]
-                c = stack_c[top]
-                for dr in range(-1, 2):
-                    rr = r + dr
-                    if rr < 0 or rr >= h:
-                        continue
-                    for dc in range(-1, 2):
-                        if (dr == 0 and dc == 0) or (not eight and dr != 0 and dc != 0):
-                            continue
-                        cc = c + dc
-                        if 0 <= cc < w and out[rr, cc] == 0 and image[rr, cc] == v:
-                            out[rr, cc] = n
-                            stack_r[top] = rr
-                            stack_c[top] = cc
-                            top += 1
-    return out
+            best = 0
+            for k in range(4):
+                if k == 0:
+                    ii, jj = i, j - 1
+                elif k == 1:
+                    ii, jj = i - 1, j
+                elif k == 2:
+                    if not eight:
+                        break
+                    ii, jj = i - 1, j - 1
+                else:
+                    ii, jj = i - 1, j + 1
+                if ii < 0 or jj < 0 or jj >= w or image[ii, jj] != v:
+                    continue
+                r = _root(parent, prov[ii, jj])
+                if best == 0:
+                    best = r
+                elif r != best:
+                    if r < best:
+                        parent[best] = r
+                        best = r
+                    else:
+                        parent[r] = best
+            if best == 0:
+                n += 1
+                parent[n] = n
+                best = n
+            prov[i, j] = best
+    final = np.zeros(n + 1, dtype=np.int64)
+    count = 0
+    for k in range(1, n + 1):
+        if parent[k] == k:
+            count += 1
+            final[k] = count
+        else:
+            final[k] = final[parent[k]]  # the parent is smaller: numbered already
+    for i in range(h):
+        for j in range(w):
+            prov[i, j] = final[prov[i, j]]
+    return prov
 
 
-#: The same flood fill for a mask (H, W) of uint8 (a bool mask's bytes), exported with that
+#: The same labelling for a mask (H, W) of uint8 (a bool mask's bytes), exported with that
 #: signature: no int64 copy of the mask.
 label_mask_kernel = label_kernel
 
