@@ -97,6 +97,19 @@ def skeletonize(mask: np.ndarray) -> np.ndarray:
     return np.asarray(_ZHANG_SUEN(image), dtype=bool)
 
 
+def nonzero(mask: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``np.nonzero(mask)`` of a 2-D ``mask``: the rows and columns of its set pixels, in raster order, int64.
+
+    By ``np.flatnonzero`` and a division: numpy's 2-D ``nonzero`` takes about 0.4 ms
+    on 512 x 512 px whatever the count, the flat one a twentieth of that.
+    """
+    mask = np.asarray(mask)
+    if mask.size == 0:
+        return np.nonzero(mask)
+    rows, cols = np.divmod(np.flatnonzero(mask), mask.shape[1])
+    return rows, cols
+
+
 def unique(values: np.ndarray) -> np.ndarray:
     """``np.unique(values)``: the distinct values of an integer array, sorted, 1-D, of its type.
 
@@ -313,7 +326,7 @@ def trace(skel: np.ndarray) -> PixelGraph:
     graph = PixelGraph()
 
     # The line's pixels once, in raster order; the nodes' and the chains' are among them.
-    line_rows, line_cols = np.nonzero(skel)
+    line_rows, line_cols = nonzero(skel)
     on_node = node_mask[line_rows, line_cols]
     node_lab = label(node_mask, connectivity=2)
     n_nodes = int(node_lab.max())
@@ -715,7 +728,7 @@ def join_line_ends(skel: np.ndarray, distance: float = LINE_JOIN_DISTANCE) -> np
     out = np.asarray(skel, dtype=bool).copy()
     if not out.any():
         return out
-    ends = np.argwhere(out & (classify(out)[1] == 1))
+    ends = np.column_stack(nonzero(out & (classify(out)[1] == 1)))  # np.argwhere
     if len(ends) == 0:
         return out
     first = out.copy()  # the line pixels searched: those of the map as given

@@ -294,12 +294,12 @@ def _near_entries(index: np.ndarray, n: int, rest: np.ndarray, radius: int = CLI
     import cv2
 
     from . import kernels
-    from ._skeleton import bounding_slices
+    from ._skeleton import bounding_slices, nonzero
 
     size = 2 * radius + 1
     disk = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (size, size))
     h, w = index.shape
-    pix_rows, pix_cols = np.nonzero(rest)
+    pix_rows, pix_cols = nonzero(rest)
     offsets = np.argwhere(disk) - radius  # the disc is symmetric: a dilation by it reads these
     if kernels.usable() and len(pix_rows) * len(offsets) <= _NEAR_PIXEL_WORK * index.size:
         # Few pixels to answer (a clean clip art's rims): each looks round itself, compiled.
@@ -476,11 +476,13 @@ def _reached_entries(
     """
     import cv2
 
+    from ._skeleton import nonzero
+
     h, w = seed_of.shape
     n = len(singles)
     within = _near_entries(seed_of, n, rest, CLIPART_BLOCK_REACH)[alone]
     out = np.zeros(within.shape, dtype=bool)
-    pix_rows, pix_cols = np.nonzero(rest)
+    pix_rows, pix_cols = nonzero(rest)
     pix_rows, pix_cols = pix_rows[alone], pix_cols[alone]
     size = 2 * CLIPART_RIM_RADIUS + 1
     disk = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (size, size))
