@@ -160,7 +160,7 @@ def clipart_regions(img: LoadedImage) -> np.ndarray:
     regions, seeded = _palette_regions(areas, rgb, lab, seed_area, contrast, compressed=not clean)
     # A region without a single seed pixel is made of rims only: a sliver along an
     # edge (JPEG ringing), not a fill.
-    rimmed = np.bincount(regions.ravel(), weights=seeded.ravel(), minlength=int(regions.max()) + 1) == 0
+    rimmed = np.bincount(regions.ravel()[seeded.ravel()], minlength=int(regions.max()) + 1) == 0
     regions = _merge_small_regions(regions, CLIPART_MIN_REGION_AREA, also=rimmed)
     return _background_first(regions)
 
