@@ -97,11 +97,12 @@ def simplify(
     # Scored once per pair of groups: two groups that share both their ends (a loop
     # of two) are one candidate, merged at the node where it was first scored.
     scores: dict[tuple[tuple[int, ...], tuple[int, ...]], tuple[float, Group]] = {}
+    split = set(np.flatnonzero(np.asarray(valence) == 2).tolist())  # the split points: valence 2
 
     def score(node: int) -> None:
         pairs.pop(node, None)
         idx = at.get(node, [])
-        if valence[node] != 2 or len(idx) != 2 or node in axis_nodes:
+        if node not in split or len(idx) != 2 or node in axis_nodes:
             return
         ga, gb = current[idx[0]], current[idx[1]]
         if ga.locked or gb.locked or ga is gb:
