@@ -499,3 +499,34 @@ def nearest_colour_kernel(colours, singles, near):  # pragma: no cover - compile
                     best = d
         out[p] = best
     return out
+
+
+@_jit
+def _padded(regions, i, j):  # pragma: no cover - compiled
+    """``regions`` padded by one pixel of -1 all round, at (i, j) of the padded image."""
+    h, w = regions.shape
+    if 1 <= i <= h and 1 <= j <= w:
+        return regions[i - 1, j - 1]
+    return -1
+
+
+@_jit
+def region_depth_kernel(regions):  # pragma: no cover - compiled
+    """The distance of every pixel to the nearest region edge, in ``regions`` padded by one pixel of -1: (H + 2, W + 2).
+
+    A padded pixel is an edge when a 4-neighbour holds another label (``clipart.thin_regions``'
+    edge map); :func:`edt_kernel` of the rest.
+    """
+    h, w = regions.shape
+    inside = np.empty((h + 2, w + 2), dtype=np.uint8)
+    for i in range(h + 2):
+        for j in range(w + 2):
+            v = _padded(regions, i, j)
+            edge = (
+                (j + 1 < w + 2 and _padded(regions, i, j + 1) != v)
+                or (j > 0 and _padded(regions, i, j - 1) != v)
+                or (i + 1 < h + 2 and _padded(regions, i + 1, j) != v)
+                or (i > 0 and _padded(regions, i - 1, j) != v)
+            )
+            inside[i, j] = 0 if edge else 1
+    return edt_kernel(inside)

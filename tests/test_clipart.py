@@ -345,8 +345,10 @@ def test_regions_are_the_same_without_the_compiled_kernels(monkeypatch, path):
 
     img = load_image(path)
     compiled = clipart_regions(img)
+    thin = thin_regions(compiled)  # the edges' distances compiled too
     monkeypatch.setattr(kernels, "CACHED", False)
     assert np.array_equal(compiled, clipart_regions(img))
+    assert np.array_equal(thin, thin_regions(compiled))
 
 
 def test_near_entries_look_round_or_dilate_alike(monkeypatch):
