@@ -362,10 +362,14 @@ def _unexplained_seeds(
         if not own.any():
             return None
         groups = label(own, connectivity=2)
-        small = np.bincount(groups.ravel()) < seed_area
+        # Over the unexplained pixels only (a few thousand): the same counts and the same zeros.
+        at = np.flatnonzero(own)
+        in_group = groups.ravel()[at]
+        small = np.bincount(in_group) < seed_area
         small[0] = False
-        groups[small[groups]] = 0
-        return groups if groups.any() else None
+        dropped = small[in_group]
+        np.put(groups, at[dropped], 0)
+        return groups if not dropped.all() else None
     import cv2
 
     own = _unexplained(seed_of, areas_rgb, rgb, lab, CLIPART_EDGE_CONTRAST, lonely=True)
