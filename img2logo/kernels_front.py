@@ -145,15 +145,6 @@ def spreads_kernel(lab, pairs, in_a, in_b):  # pragma: no cover - compiled
 
 
 @_jit
-def _root(parent, k):  # pragma: no cover - compiled
-    """The root of ``k`` in a union-find forest whose parents are never larger than their children."""
-    while parent[k] != k:
-        parent[k] = parent[parent[k]]  # path halving: a grandparent is smaller still
-        k = parent[k]
-    return k
-
-
-@_jit
 def label_kernel(image, background, eight):  # pragma: no cover - compiled
     """Connected components of equal values of ``image`` (H, W), numbered 1.. by their first pixel in raster order.
 
@@ -188,7 +179,10 @@ def label_kernel(image, background, eight):  # pragma: no cover - compiled
                     ii, jj = i - 1, j + 1
                 if ii < 0 or jj < 0 or jj >= w or image[ii, jj] != v:
                     continue
-                r = _root(parent, prov[ii, jj])
+                r = prov[ii, jj]
+                while parent[r] != r:
+                    parent[r] = parent[parent[r]]  # path halving: a grandparent is smaller still
+                    r = parent[r]
                 if best == 0:
                     best = r
                 elif r != best:
@@ -502,15 +496,6 @@ def nearest_colour_kernel(colours, singles, near):  # pragma: no cover - compile
 
 
 @_jit
-def _padded(regions, i, j):  # pragma: no cover - compiled
-    """``regions`` padded by one pixel of -1 all round, at (i, j) of the padded image."""
-    h, w = regions.shape
-    if 1 <= i <= h and 1 <= j <= w:
-        return regions[i - 1, j - 1]
-    return -1
-
-
-@_jit
 def region_depth_kernel(regions):  # pragma: no cover - compiled
     """The distance of every pixel to the nearest region edge, in ``regions`` padded by one pixel of -1: (H + 2, W + 2).
 
@@ -518,15 +503,16 @@ def region_depth_kernel(regions):  # pragma: no cover - compiled
     edge map); :func:`edt_kernel` of the rest.
     """
     h, w = regions.shape
-    inside = np.empty((h + 2, w + 2), dtype=np.uint8)
+    padded = np.full((h + 2, w + 2), -1, dtype=np.int64)
+    padded[1 : h + 1, 1 : w + 1] = regions
+    inside = np.ones((h + 2, w + 2), dtype=np.uint8)
     for i in range(h + 2):
         for j in range(w + 2):
-            v = _padded(regions, i, j)
-            edge = (
-                (j + 1 < w + 2 and _padded(regions, i, j + 1) != v)
-                or (j > 0 and _padded(regions, i, j - 1) != v)
-                or (i + 1 < h + 2 and _padded(regions, i + 1, j) != v)
-                or (i > 0 and _padded(regions, i - 1, j) != v)
-            )
-            inside[i, j] = 0 if edge else 1
+            v = padded[i, j]
+            if j + 1 < w + 2 and padded[i, j + 1] != v:
+                inside[i, j] = 0
+                inside[i, j + 1] = 0
+            if i + 1 < h + 2 and padded[i + 1, j] != v:
+                inside[i, j] = 0
+                inside[i + 1, j] = 0
     return edt_kernel(inside)
