@@ -259,7 +259,7 @@ def _palette_regions(
             entry_of[i] = len(palette)
             palette.append(means[i])
     pal = np.array(palette)
-    index = np.where(seed_of >= 0, entry_of[np.maximum(seed_of, 0)], -1)
+    index = np.append(entry_of, -1)[seed_of]  # a seed's entry; -1 (the last) for the rest
     rest = index < 0
     if rest.any():
         near = _near_entries(index, len(pal), rest)
