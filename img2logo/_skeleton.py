@@ -328,10 +328,10 @@ def trace(skel: np.ndarray) -> PixelGraph:
     # The line's pixels once, in raster order; the nodes' and the chains' are among them.
     line_rows, line_cols = nonzero(skel)
     on_node = node_mask[line_rows, line_cols]
-    node_lab = label(node_mask, connectivity=2)
+    rr, cc = line_rows[on_node], line_cols[on_node]  # where node_lab > 0
+    node_lab = _sparse_label(node_mask, rr, cc)
     n_nodes = int(node_lab.max())
     if n_nodes:
-        rr, cc = line_rows[on_node], line_cols[on_node]  # where node_lab > 0
         order = np.argsort(node_lab[rr, cc], kind="stable")
         rr, cc = rr[order], cc[order]
         splits = np.cumsum(np.bincount(node_lab[rr, cc], minlength=n_nodes + 1))[:-1]
@@ -344,7 +344,7 @@ def trace(skel: np.ndarray) -> PixelGraph:
         return graph
     index = np.full(skel.shape, -1, dtype=np.int64)
     index[rows, cols] = np.arange(len(rows))
-    comp_lab = label(chain_mask, connectivity=2)
+    comp_lab = _sparse_label(chain_mask, rows, cols)
     n_comp = int(comp_lab.max())
     comp_of = comp_lab[rows, cols] - 1
 
@@ -388,6 +388,23 @@ def trace(skel: np.ndarray) -> PixelGraph:
         ends = _contact_groups(contacts[comp], pixels, place, a)
         _trace_component(graph, adj.block(a, b), by_run[a:b], pixels, ends)
     return graph
+
+
+def _sparse_label(mask: np.ndarray, rows: np.ndarray, cols: np.ndarray) -> np.ndarray:
+    """``label(mask, connectivity=2)`` of a sparse ``mask`` whose set pixels are (rows, cols), in raster order.
+
+    Compiled over those pixels alone where the kernels are usable
+    (:func:`img2logo.kernels_front.sparse_label_kernel`): the same numbers,
+    int64, written into an image of zeros.
+    """
+    from . import kernels
+
+    if not kernels.usable():
+        return label(mask, connectivity=2)
+    out = np.zeros(mask.shape, dtype=np.int64)
+    if len(rows):
+        out[rows, cols] = kernels.sparse_label_kernel(rows, cols, mask.shape[0], mask.shape[1])
+    return out
 
 
 @dataclass(frozen=True)

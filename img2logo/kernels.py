@@ -114,6 +114,7 @@ ENTRY_POINTS: dict[str, tuple[str, tuple[str, ...], str]] = {
     "palette_regions_kernel": ("kernels_front", ("i8[:,::1]", "i8"), "i8[:,::1]"),
     "nearest_colour_kernel": ("kernels_front", ("f8[:,::1]", "f8[:,::1]", "b1[:,::1]"), "f8[::1]"),
     "region_depth_kernel": ("kernels_front", ("i8[:,::1]",), "f8[:,::1]"),
+    "sparse_label_kernel": ("kernels_front", ("i8[::1]", "i8[::1]", "i8", "i8"), "i8[::1]"),
     "near_kernel": ("kernels_front", ("i8[:,::1]", "i8[::1]", "i8[::1]", "i8", "i8[:,::1]"), "b1[:,::1]"),
     "biarc_worst_kernel": ("kernels_circle", tuple("f8[:,::1] f8[:,:,::1] i8[::1] i8[::1] f8 b1".split()), "f8[:,::1]"),
     "png_unfilter": ("kernels_png", ("!u1[::1]", "i8", "i8", "i8", "!u1[::1]"), "i8"),

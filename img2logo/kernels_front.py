@@ -516,3 +516,56 @@ def region_depth_kernel(regions):  # pragma: no cover - compiled
                 inside[i, j] = 0
                 inside[i + 1, j] = 0
     return edt_kernel(inside)
+
+
+@_jit
+def sparse_label_kernel(rows, cols, h, w):  # pragma: no cover - compiled
+    """The 8-connected components of the pixels (rows[p], cols[p]) (in raster order) of an (h, w) image: (P,) labels.
+
+    Numbered 1.. by their first pixel in raster order, as :func:`label_kernel`
+    numbers those of a mask holding just these pixels; a union-find over the
+    pixels alone (a skeleton's few thousand), each joined to its neighbours
+    met before it, the smaller index the root.
+    """
+    n = len(rows)
+    where = np.full(h * w, -1, dtype=np.int64)
+    for p in range(n):
+        where[rows[p] * w + cols[p]] = p
+    parent = np.arange(n)
+    for p in range(n):
+        r, c = rows[p], cols[p]
+        for k in range(4):
+            if k == 0:
+                rr, cc = r, c - 1
+            elif k == 1:
+                rr, cc = r - 1, c - 1
+            elif k == 2:
+                rr, cc = r - 1, c
+            else:
+                rr, cc = r - 1, c + 1
+            if rr < 0 or cc < 0 or cc >= w:
+                continue
+            q = where[rr * w + cc]
+            if q < 0:
+                continue
+            a = p
+            while parent[a] != a:
+                parent[a] = parent[parent[a]]  # path halving: a grandparent is earlier still
+                a = parent[a]
+            b = q
+            while parent[b] != b:
+                parent[b] = parent[parent[b]]
+                b = parent[b]
+            if a < b:
+                parent[b] = a
+            elif b < a:
+                parent[a] = b
+    out = np.empty(n, dtype=np.int64)
+    count = 0
+    for p in range(n):
+        if parent[p] == p:
+            count += 1
+            out[p] = count
+        else:
+            out[p] = out[parent[p]]  # the parent is an earlier pixel: labelled already
+    return out

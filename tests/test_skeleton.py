@@ -121,3 +121,14 @@ def test_compiled_boxes_distances_and_set_pixels_match_the_references(monkeypatc
         assert d.dtype == np.float64 and np.array_equal(d, _skeleton.distance_to_background(m))
         got, want = _skeleton.nonzero(m), np.nonzero(m)
         assert all(g.dtype == np.int64 and np.array_equal(g, v) for g, v in zip(got, want, strict=True))
+
+
+def test_sparse_labels_are_labels():
+    # trace labels its node and chain pixels alone (compiled): label's numbers for the mask.
+    rng = np.random.default_rng(9)
+    for _ in range(60):
+        h, w = (int(v) for v in rng.integers(1, 50, 2))
+        mask = rng.random((h, w)) < rng.uniform(0.02, 0.6)
+        rows, cols = _skeleton.nonzero(mask)
+        got = _skeleton._sparse_label(mask, rows, cols)
+        assert np.array_equal(got, _skeleton.label(mask, connectivity=2))
