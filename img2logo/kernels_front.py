@@ -16,6 +16,17 @@ every pixel (when every value is k / 255), the codes present in ascending
 order and each pixel's place among them, as ``np.unique(..., return_inverse=True)``
 gives them, by a bit set of the 2**24 codes instead of a sort.
 
+The rest are the front's other full-image passes in one loop each (issue 19),
+every one the same numbers as the numpy or OpenCV steps it replaces (the tests
+compare them): :func:`colour_distance_kernel` (a CIELAB distance image),
+:func:`spreads_kernel` (two sets of spreads in one pass), :func:`label_sums2_kernel`,
+:func:`bounds_kernel` (``find_objects``' boxes), :func:`near_kernel` (the entries
+round each rim pixel), :func:`nearest_colour_kernel`, :func:`relabel_kernel`,
+:func:`palette_regions_kernel` (the palette's pieces, joined and packed),
+:func:`edt_kernel` (an exact Euclidean distance transform, Meijster et al. 2000),
+:func:`region_depth_kernel` (the region edges' distances) and
+:func:`sparse_label_kernel` (the components of a skeleton's pixels alone).
+
 Written in the subset of Python that numba compiles; loaded through
 :mod:`img2logo.kernels` (ahead of time, or numba's JIT as a fallback), never
 imported by the pipeline directly.
