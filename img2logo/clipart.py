@@ -62,8 +62,17 @@ from .constants import (
 )
 from .loading import LoadedImage
 
+#: The offsets whose colour differences :func:`colour_noise` measures: the 4-neighbours.
+_NOISE_PAIRS = ((0, 1), (1, 0))
 
-def colour_noise(lab: np.ndarray) -> tuple[float, float]:
+
+def _window_pairs() -> list[tuple[int, int]]:
+    """The offsets of :func:`_flat_areas`' window, each pair of its pixels once (see there)."""
+    rad = CLIPART_FLAT_RADIUS
+    return [(dr, dc) for dr in range(rad + 1) for dc in range(-rad, rad + 1) if dr > 0 or dc > 0]
+
+
+def colour_noise(lab: np.ndarray, *, most: np.ndarray | None = None) -> tuple[float, float]:
     """Colour noise of a clip art's fills: (typical neighbour difference, noisy fraction).
 
     Over the pixels that differ visibly (by more than ``CLIPART_MIN_CONTRAST``)
@@ -93,18 +102,34 @@ def colour_noise(lab: np.ndarray) -> tuple[float, float]:
         0.058 on JPEGs of quality 70 (the examples and the evaluation set).
 
     The background is left out because a white background stays exactly flat
-    even in a JPEG and would hide the fills' noise.
+    even in a JPEG and would hide the fills' noise. ``most``: those largest
+    squared differences, if known (:func:`_spreads`).
     """
-    most = _spread(lab, [(0, 1), (1, 0)])  # squared, until the end
+    if most is None:
+        most = _spread(lab, list(_NOISE_PAIRS))  # squared, until the end
     border = np.concatenate([lab[0], lab[-1], lab[:, 0], lab[:, -1]])
     paper = np.array([median(border[:, c]) for c in range(border.shape[1])])  # np.median(border, axis=0)
-    fill = np.linalg.norm(lab - paper, axis=2) > CLIPART_MIN_CONTRAST
+    fill = colour_distance(lab, paper) > CLIPART_MIN_CONTRAST
     if not fill.any():
         return 0.0, 0.0
     v = np.sqrt(most[fill])
     noisy = v[(v > 0) & (v <= CLIPART_EDGE_CONTRAST)]
     level = max(float(median(v)), float(median(noisy)) if len(noisy) else 0.0)
     return level, float(np.mean((v > 0) & (v <= CLIPART_MIN_CONTRAST)))
+
+
+def colour_distance(lab: np.ndarray, colour: np.ndarray) -> np.ndarray:
+    """``np.linalg.norm(lab - colour, axis=2)``: the distance of every colour of ``lab`` (H, W, 3) to ``colour`` (3,).
+
+    (H, W) float64, the same bits; compiled where the kernels are usable
+    (:func:`img2logo.kernels_front.colour_distance_kernel`: one pass, no
+    temporary images).
+    """
+    from . import kernels
+
+    if kernels.usable():
+        return kernels.colour_distance_kernel(lab, np.asarray(colour, dtype=np.float64))
+    return np.linalg.norm(lab - colour, axis=2)
 
 
 def clipart_regions(img: LoadedImage) -> np.ndarray:
@@ -114,7 +139,9 @@ def clipart_regions(img: LoadedImage) -> np.ndarray:
     module docstring for the four steps.
     """
     lab = img.lab
-    noise, fraction = colour_noise(lab)
+    # The noise's and the flat areas' colour differences in one pass (the latter kept for a clean image).
+    noise_most, window_most = _spreads(lab, list(_NOISE_PAIRS), _window_pairs())
+    noise, fraction = colour_noise(lab, most=noise_most)
     # A clean clip art's fills are exactly flat: any flat 3x3 block is a fill. In a
     # compressed one, a flat patch smaller than a JPEG block (8 x 8 px) can be an
     # artefact of one block, so seeds must be as large as a region.
@@ -126,13 +153,14 @@ def clipart_regions(img: LoadedImage) -> np.ndarray:
     else:
         rgb, lab = _mean_shift(img.rgb, max(2 * CLIPART_MIN_CONTRAST, CLIPART_NOISE_FACTOR * noise))
         noise, _ = colour_noise(lab)
+        window_most = None  # of the filtered colours, below
     link = max(CLIPART_LINK_DISTANCE, CLIPART_NOISE_FACTOR * noise)
     contrast = max(CLIPART_MIN_CONTRAST, CLIPART_NOISE_FACTOR * noise)
-    areas = _flat_areas(lab, link)
+    areas = _flat_areas(lab, link, most=window_most)
     regions, seeded = _palette_regions(areas, rgb, lab, seed_area, contrast, compressed=not clean)
     # A region without a single seed pixel is made of rims only: a sliver along an
     # edge (JPEG ringing), not a fill.
-    rimmed = np.bincount(regions.ravel(), weights=seeded.ravel(), minlength=int(regions.max()) + 1) == 0
+    rimmed = np.bincount(regions.ravel()[seeded.ravel()], minlength=int(regions.max()) + 1) == 0
     regions = _merge_small_regions(regions, CLIPART_MIN_REGION_AREA, also=rimmed)
     return _background_first(regions)
 
@@ -157,6 +185,25 @@ def label_means(labels: np.ndarray, values: np.ndarray) -> tuple[np.ndarray, np.
     return counts, sums / np.maximum(counts, 1.0)[:, None]
 
 
+def _label_means_of_two(labels: np.ndarray, a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, ...]:
+    """:func:`label_means` of ``labels`` for two images of values at once: (counts, means of a, means of b).
+
+    One pass over the labels where the kernels are usable
+    (:func:`img2logo.kernels_front.label_sums2_kernel`): the same sums.
+    """
+    from . import kernels
+
+    flat = labels.ravel()
+    if not (kernels.usable() and len(flat)):
+        counts, a_means = label_means(labels, a)
+        return counts, a_means, label_means(labels, b)[1]
+    counts, a_sums, b_sums = kernels.label_sums2_kernel(
+        flat, a.reshape(len(flat), -1), b.reshape(len(flat), -1), int(flat.max()) + 1
+    )
+    scale = np.maximum(counts, 1.0)[:, None]
+    return counts, a_sums / scale, b_sums / scale
+
+
 def _palette_regions(
     areas: np.ndarray, rgb: np.ndarray, lab: np.ndarray, seed_area: int, contrast: float, *, compressed: bool
 ) -> tuple[np.ndarray, np.ndarray]:
@@ -177,9 +224,10 @@ def _palette_regions(
     small fill that JPEG ringing leaves without a flat pixel (an eye, a horn's
     tip). They seed entries too.
     """
+    from . import kernels
     from ._skeleton import label
 
-    counts, lab_means = label_means(areas, lab)
+    counts, lab_means, rgb_means = _label_means_of_two(areas, lab, rgb)
     seeds = np.flatnonzero(counts >= seed_area)
     if len(seeds) == 0:
         seeds = np.array([int(np.argmax(counts))])
@@ -188,13 +236,17 @@ def _palette_regions(
     seed_of = seed_id[areas]
     means = lab_means[seeds]
     sizes = counts[seeds]
-    groups = _unexplained_seeds(seed_of, label_means(areas, rgb)[1][seeds], rgb, lab, contrast, seed_area, compressed)
+    groups = _unexplained_seeds(seed_of, rgb_means[seeds], rgb, lab, contrast, seed_area, compressed)
     if groups is not None:
-        extra, extra_means = label_means(groups, lab)
+        # Only the groups' pixels (label 0, no group, is never used): the same sums, in the same order.
+        at = np.flatnonzero(groups)
+        in_group = groups.ravel()[at]
+        extra, extra_means = label_means(in_group, lab.reshape(-1, 3)[at])
         keep = np.flatnonzero(extra[1:] > 0) + 1
         new_id = np.full(len(extra), -1, dtype=np.int64)
         new_id[keep] = len(means) + np.arange(len(keep))
-        seed_of = np.where(new_id[groups] >= 0, new_id[groups], seed_of)
+        renamed = new_id[in_group]
+        np.put(seed_of, at[renamed >= 0], renamed[renamed >= 0])  # seed_of is this function's own array
         means = np.vstack([means, extra_means[keep]])
         sizes = np.concatenate([sizes, extra[keep]])
     entry_of = np.empty(len(means), dtype=np.int64)
@@ -207,11 +259,11 @@ def _palette_regions(
             entry_of[i] = len(palette)
             palette.append(means[i])
     pal = np.array(palette)
-    index = np.where(seed_of >= 0, entry_of[np.maximum(seed_of, 0)], -1)
+    index = np.append(entry_of, -1)[seed_of]  # a seed's entry; -1 (the last) for the rest
     rest = index < 0
     if rest.any():
         near = _near_entries(index, len(pal), rest)
-        colours = lab[rest]
+        colours = lab.reshape(-1, 3)[np.flatnonzero(rest)]
         cost = np.full(near.shape, np.inf)
         for e in range(len(pal)):  # the entries near each pixel only (a few of them)
             at = np.flatnonzero(near[:, e])
@@ -219,9 +271,11 @@ def _palette_regions(
         lonely = ~near.any(axis=1)
         cost[lonely] = ((colours[lonely, None, :] - pal[None]) ** 2).sum(axis=2)
         index[rest] = np.argmin(cost, axis=1)
-    regions = label(index, connectivity=1, background=-1)
     # A 1 px line drawn without anti-aliasing is a string of pixels touching at
     # their corners: tiny 4-connected pieces that are one 8-connected region.
+    if kernels.usable():  # the steps below in one compiled call
+        return kernels.palette_regions_kernel(index, CLIPART_MIN_REGION_AREA), ~rest
+    regions = label(index, connectivity=1, background=-1)
     tiny = np.bincount(regions.ravel())[regions] < CLIPART_MIN_REGION_AREA
     if tiny.any():
         joined = label(np.where(tiny, index, -1), connectivity=2, background=-1)
@@ -229,26 +283,40 @@ def _palette_regions(
     return _relabel(regions), ~rest
 
 
+#: :func:`_near_entries` looks round each pixel (compiled) while that reads at most this many
+#: pixels per pixel of the image; beyond (a JPEG's many rim pixels, the 16 px reach) it dilates
+#: each entry's pixels instead. Both give the same answer; this only picks the faster.
+_NEAR_PIXEL_WORK = 4
+
+
 def _near_entries(index: np.ndarray, n: int, rest: np.ndarray, radius: int = CLIPART_RIM_RADIUS) -> np.ndarray:
     """For each pixel of ``rest``, which of the ``n`` entries have seed pixels within ``radius`` px: (R, n) bool."""
     import cv2
 
+    from . import kernels
+    from ._skeleton import bounding_slices, nonzero
+
     size = 2 * radius + 1
     disk = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (size, size))
     h, w = index.shape
+    pix_rows, pix_cols = nonzero(rest)
+    offsets = np.argwhere(disk) - radius  # the disc is symmetric: a dilation by it reads these
+    if kernels.usable() and len(pix_rows) * len(offsets) <= _NEAR_PIXEL_WORK * index.size:
+        # Few pixels to answer (a clean clip art's rims): each looks round itself, compiled.
+        return kernels.near_kernel(index, pix_rows, pix_cols, n, offsets)
     # Each entry is dilated within its bounding box grown by the radius: nothing
     # farther is near it, and an eye's box is a thousandth of a large image.
     where = np.full(index.shape, -1, dtype=np.int64)
     where[rest] = np.arange(int(rest.sum()))
     near = np.zeros((int(rest.sum()), n), dtype=bool)
-    for e in range(n):
-        mask = index == e
-        in_rows, in_cols = np.flatnonzero(mask.any(axis=1)), np.flatnonzero(mask.any(axis=0))
-        if len(in_rows) == 0:
+    boxes = bounding_slices(index + 1)  # entry e's pixels: label e + 1 (every index < n)
+    for e in range(min(n, len(boxes))):
+        box = boxes[e]
+        if box is None:
             continue
-        rows = slice(max(in_rows[0] - radius, 0), min(in_rows[-1] + 1 + radius, h))
-        cols = slice(max(in_cols[0] - radius, 0), min(in_cols[-1] + 1 + radius, w))
-        grown = cv2.dilate(mask[rows, cols].view(np.uint8), disk) > 0
+        rows = slice(max(box[0].start - radius, 0), min(box[0].stop + radius, h))
+        cols = slice(max(box[1].start - radius, 0), min(box[1].stop + radius, w))
+        grown = cv2.dilate((index[rows, cols] == e).view(np.uint8), disk) > 0
         at = where[rows, cols][grown]
         near[at[at >= 0], e] = True
     return near
@@ -294,10 +362,14 @@ def _unexplained_seeds(
         if not own.any():
             return None
         groups = label(own, connectivity=2)
-        small = np.bincount(groups.ravel()) < seed_area
+        # Over the unexplained pixels only (a few thousand): the same counts and the same zeros.
+        at = np.flatnonzero(own)
+        in_group = groups.ravel()[at]
+        small = np.bincount(in_group) < seed_area
         small[0] = False
-        groups[small[groups]] = 0
-        return groups if groups.any() else None
+        dropped = small[in_group]
+        np.put(groups, at[dropped], 0)
+        return groups if not dropped.all() else None
     import cv2
 
     own = _unexplained(seed_of, areas_rgb, rgb, lab, CLIPART_EDGE_CONTRAST, lonely=True)
@@ -340,6 +412,7 @@ def _unexplained(
     ``CLIPART_BLOCK_REACH`` whose own colour reaches it (:func:`_reached_entries`;
     unexplained with none).
     """
+    from . import kernels
     from ._cielab import rgb2lab  # skimage.color.rgb2lab, without importing scipy.linalg
 
     rest = seed_of < 0
@@ -348,29 +421,32 @@ def _unexplained(
         return out
     n = len(areas_rgb)
     near = _near_entries(seed_of, n, rest)
-    colours, colours_lab = rgb[rest], lab[rest]
+    at = np.flatnonzero(rest)  # by index: a third of the time of the mask on (H, W, 3)
+    colours, colours_lab = rgb.reshape(-1, 3)[at], lab.reshape(-1, 3)[at]
     best = np.full(len(colours), np.inf)
     singles = rgb2lab(areas_rgb[None])[0]
     if lonely:
         alone = ~near.any(axis=1)
         if alone.any():
             near[alone] = _reached_entries(seed_of, singles, lab, contrast, rest, np.asarray(alone))
-    for a in range(n):
-        on_a = near[:, a]
-        if on_a.any():
-            best[on_a] = np.minimum(best[on_a], np.linalg.norm(colours_lab[on_a] - singles[a], axis=1))
+    if kernels.usable():  # the loop below, compiled: the same norms, their minimum
+        best = kernels.nearest_colour_kernel(colours_lab, np.ascontiguousarray(singles, dtype=np.float64), near)
+    else:
+        for a in range(n):
+            on_a = near[:, a]
+            if on_a.any():
+                best[on_a] = np.minimum(best[on_a], np.linalg.norm(colours_lab[on_a] - singles[a], axis=1))
     # Only a pixel far from every seed's own colour can be far from every blend: the blends
     # (an sRGB to CIELAB conversion each) are taken for those alone.
     far = np.flatnonzero(best > contrast)
     near, colours, colours_lab, far_best = near[far], colours[far], colours_lab[far], best[far]
     for a in range(n):
-        on_a = near[:, a]
-        if not on_a.any():
+        on_a = np.flatnonzero(near[:, a])
+        if len(on_a) == 0:
             continue
-        for b in range(a + 1, n):
-            both = on_a & near[:, b]
-            if not both.any():
-                continue
+        # The seeds b > a near some of these pixels: only those pairs have pixels near both.
+        for b in np.flatnonzero(near[on_a, a + 1 :].any(axis=0)) + a + 1:
+            both = on_a[near[on_a, b]]  # the pixels near both, ascending: the mask's rows
             ab = areas_rgb[b] - areas_rgb[a]
             t = np.clip((colours[both] - areas_rgb[a]) @ ab / max(float(ab @ ab), 1e-12), 0.0, 1.0)
             blend = rgb2lab((areas_rgb[a] + t[:, None] * ab)[:, None, :])[:, 0, :]
@@ -404,11 +480,13 @@ def _reached_entries(
     """
     import cv2
 
+    from ._skeleton import nonzero
+
     h, w = seed_of.shape
     n = len(singles)
     within = _near_entries(seed_of, n, rest, CLIPART_BLOCK_REACH)[alone]
     out = np.zeros(within.shape, dtype=bool)
-    pix_rows, pix_cols = np.nonzero(rest)
+    pix_rows, pix_cols = nonzero(rest)
     pix_rows, pix_cols = pix_rows[alone], pix_cols[alone]
     size = 2 * CLIPART_RIM_RADIUS + 1
     disk = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (size, size))
@@ -445,7 +523,7 @@ def _mean_shift(rgb: np.ndarray, colour_radius: float) -> tuple[np.ndarray, np.n
     return out, srgb_to_lab(out)
 
 
-def _flat_areas(lab: np.ndarray, link: float) -> np.ndarray:
+def _flat_areas(lab: np.ndarray, link: float, *, most: np.ndarray | None = None) -> np.ndarray:
     """Connected components of flat pixels: (H, W) labels.
 
     A pixel is flat when every pixel within ``CLIPART_FLAT_RADIUS`` px of it
@@ -454,15 +532,14 @@ def _flat_areas(lab: np.ndarray, link: float) -> np.ndarray:
     pixel: along a shallow anti-aliased or blurred (JPEG) edge the colour changes
     little from one pixel to the next, and joining such pixels would bridge the
     two sides, but across the window such a pixel sees more than ``link`` of
-    the edge's contrast. Every other pixel is an area of its own.
+    the edge's contrast. Every other pixel is an area of its own. ``most``: the
+    window's largest squared differences (:func:`_spread` of :func:`_window_pairs`), if known.
     """
-    rad = CLIPART_FLAT_RADIUS
     # Each pair of pixels of a window once, for both its ends: (dr, dc) from one is
     # (-dr, -dc) from the other, and the squared difference is the same number. Beyond
     # the image's edge a window is the edge pixels repeated, pixels of the window
     # already, so the pixels inside the image give its largest difference.
-    pairs = [(dr, dc) for dr in range(rad + 1) for dc in range(-rad, rad + 1) if dr > 0 or dc > 0]
-    spread = np.sqrt(_spread(lab, pairs))
+    spread = np.sqrt(_spread(lab, _window_pairs()) if most is None else most)
     flat = spread <= link
     # Adjacent flat pixels are within the link of each other by definition, so the
     # flat areas are the 4-connected components of the flat mask; every other pixel
@@ -474,6 +551,26 @@ def _flat_areas(lab: np.ndarray, link: float) -> np.ndarray:
     rest = ~flat
     labels[rest] = n + 1 + np.arange(int(rest.sum()))
     return labels - 1
+
+
+def _spreads(
+    lab: np.ndarray, pairs_a: list[tuple[int, int]], pairs_b: list[tuple[int, int]]
+) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`_spread` of ``lab`` for two sets of offsets: two (H, W) float32, the same bits.
+
+    Compiled, in one pass (:func:`img2logo.kernels_front.spreads_kernel`), where the kernels are usable.
+    """
+    from . import kernels
+
+    if not kernels.usable():
+        return _spread(lab, pairs_a), _spread(lab, pairs_b)
+    both = sorted(set(pairs_a) | set(pairs_b))
+    return kernels.spreads_kernel(
+        np.ascontiguousarray(lab, dtype=np.float64),
+        np.array(both, dtype=np.int64).reshape(-1, 2),
+        np.array([p in pairs_a for p in both], dtype=bool),
+        np.array([p in pairs_b for p in both], dtype=bool),
+    )
 
 
 def _spread(lab: np.ndarray, pairs: list[tuple[int, int]]) -> np.ndarray:
@@ -506,11 +603,11 @@ def _spread(lab: np.ndarray, pairs: list[tuple[int, int]]) -> np.ndarray:
 def _background_first(regions: np.ndarray) -> np.ndarray:
     """Relabel so that the region covering most of the image border is 0."""
     border = np.concatenate([regions[0], regions[-1], regions[:, 0], regions[:, -1]])
-    bg = np.bincount(border).argmax()
-    out = regions.copy()
-    out[regions == bg] = 0
-    out[(regions != bg) & (regions == 0)] = bg  # label 0 was taken: swap
-    return _relabel(out)
+    bg = int(np.bincount(border).argmax())
+    swap = np.arange(int(regions.max()) + 1)
+    swap[bg] = 0
+    swap[0] = bg  # label 0 was taken: swap
+    return _relabel(swap[regions])
 
 
 def thin_regions(regions: np.ndarray) -> np.ndarray:
@@ -527,17 +624,22 @@ def thin_regions(regions: np.ndarray) -> np.ndarray:
     ndarray of int
         The labels, sorted.
     """
+    from . import kernels
     from ._skeleton import bounding_slices, distance_to_background, skeletonize
 
     # The distance to the nearest other region: pad with -1 so that the image
     # frame is an edge too.
-    padded = np.pad(regions, 1, constant_values=-1)
-    edge = np.zeros(padded.shape, dtype=bool)
-    edge[:, :-1] |= padded[:, :-1] != padded[:, 1:]
-    edge[:, 1:] |= padded[:, :-1] != padded[:, 1:]
-    edge[:-1] |= padded[:-1] != padded[1:]
-    edge[1:] |= padded[:-1] != padded[1:]
-    dist = distance_to_background(~edge)[1:-1, 1:-1] + 0.5
+    if kernels.usable():  # the edges and their distance in one compiled call
+        depth = kernels.region_depth_kernel(regions)
+    else:
+        padded = np.pad(regions, 1, constant_values=-1)
+        edge = np.zeros(padded.shape, dtype=bool)
+        edge[:, :-1] |= padded[:, :-1] != padded[:, 1:]
+        edge[:, 1:] |= padded[:, :-1] != padded[:, 1:]
+        edge[:-1] |= padded[:-1] != padded[1:]
+        edge[1:] |= padded[:-1] != padded[1:]
+        depth = distance_to_background(~edge)
+    dist = depth[1:-1, 1:-1] + 0.5
     out = []
     n = int(regions.max()) + 1
     slices = bounding_slices(regions + 1)
@@ -635,7 +737,14 @@ def _merge_small_regions(regions: np.ndarray, min_area: int, also: np.ndarray | 
 
 
 def _relabel(regions: np.ndarray) -> np.ndarray:
-    """Labels 0..n-1 in the order of the (non-negative) values: the used ones, packed."""
+    """Labels 0..n-1 in the order of the (non-negative) values: the used ones, packed; int64.
+
+    Compiled where the kernels are usable (:func:`img2logo.kernels_front.relabel_kernel`).
+    """
+    from . import kernels
+
+    if kernels.usable() and regions.ndim == 2:
+        return kernels.relabel_kernel(regions)
     used = np.bincount(regions.ravel()) > 0
     return (np.cumsum(used) - 1)[regions].astype(np.int64)
 

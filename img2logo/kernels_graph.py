@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .kernels_circle import fit_circle_kernel
 from .kernels_jit import jit as _jit
 
 
@@ -275,3 +276,55 @@ def banded_solve_ordered(order, rows, cols, vals, rhs, x):  # pragma: no cover -
     for i in range(n):
         x[order[i]] = y[i]
     return 0
+
+
+@_jit
+def end_tangents_kernel(points, starts, stops, at_start, length, radius_factor):  # pragma: no cover - compiled
+    """``segment_graph.end_tangent`` of many segment ends: (M, 2) unit tangents into the segments.
+
+    Segment m is ``points[starts[m]:stops[m]]`` (px), its end the first point
+    when ``at_start[m]``, else the last (the points taken backwards). As the
+    Python function: the points within ``length`` px of arc length of the end
+    (the cumulative hypot of the steps, added in order; at least 2), their
+    circle (:func:`img2logo.kernels_circle.fit_circle_kernel`, the fit
+    ``fit_circle(..., refine=False)`` runs), the tangent at the end point
+    oriented along the chord, or the chord where no circle or a capped one.
+    """
+    out = np.empty((len(starts), 2))
+    for m in range(len(starts)):
+        a, b = starts[m], stops[m]
+        n = b - a
+        near = np.empty((n, 2))
+        for i in range(n):
+            k = a + i if at_start[m] else b - 1 - i
+            near[i, 0] = points[k, 0]
+            near[i, 1] = points[k, 1]
+        cum = 0.0
+        count = 1  # the points whose length from the end is <= length: the first always (0)
+        for i in range(1, n):
+            cum = cum + np.hypot(near[i, 0] - near[i - 1, 0], near[i, 1] - near[i - 1, 1])
+            if cum <= length:
+                count = i + 1
+            else:
+                break
+        count = max(count, 2)
+        chord0 = near[count - 1, 0] - near[0, 0]
+        chord1 = near[count - 1, 1] - near[0, 1]
+        use_chord = True
+        if count >= 3:
+            status, cx, cy, _radius, _rms, capped = fit_circle_kernel(near[:count].copy(), 0.0, radius_factor)
+            if status == 0 and not capped:
+                use_chord = False
+                t0 = -(near[0, 1] - cy)
+                t1 = near[0, 0] - cx
+                if t0 * chord0 + t1 * chord1 < 0:
+                    t0 = -t0
+                    t1 = -t1
+                norm = max(np.hypot(t0, t1), 1e-300)
+                out[m, 0] = t0 / norm
+                out[m, 1] = t1 / norm
+        if use_chord:
+            norm = max(np.hypot(chord0, chord1), 1e-300)
+            out[m, 0] = chord0 / norm
+            out[m, 1] = chord1 / norm
+    return out

@@ -245,8 +245,7 @@ def _rim_regions(regions: np.ndarray, rgb: np.ndarray, means: np.ndarray, paper:
     largest = inked[np.argmax(area[inked])]
     ink = ~paper & (np.linalg.norm(means - means[largest], axis=1) <= INK_COLOUR_SPREAD)
     others = np.flatnonzero(~paper & ~ink)
-    rgb_means = np.stack([np.bincount(labels, weights=rgb[..., c].ravel(), minlength=n) for c in range(3)], 1)
-    rgb_means /= np.maximum(area, 1.0)[:, None]
+    rgb_means = label_means(regions, rgb)[1]  # np.bincount's sums by channel, divided by the areas
     ink_rgb = np.average(rgb_means[ink], axis=0, weights=area[ink])
     paper_rgb = np.average(rgb_means[paper], axis=0, weights=area[paper])
     t = np.linspace(0.0, 1.0, 65)
@@ -291,7 +290,11 @@ def median_stroke_width(ink: np.ndarray) -> float:
     to the nearest pixel that is not ink: a stroke w px wide has its axis w / 2
     from both edges (to within half a pixel).
     """
-    dist = _distance(ink)
+    return _median_stroke_width(ink, _distance(ink))
+
+
+def _median_stroke_width(ink: np.ndarray, dist: np.ndarray) -> float:
+    """:func:`median_stroke_width` of ``ink`` whose distance to the paper ``dist`` (:func:`_distance`) is known."""
     skel = _skeleton.skeletonize(ink)
     return float(2.0 * median(dist[skel])) if skel.any() else 0.0
 
@@ -504,7 +507,8 @@ def _paper_seams(gray: np.ndarray, ink: np.ndarray) -> np.ndarray:
     ridge = cv2.morphologyEx(g, cv2.MORPH_TOPHAT, disc) > SEAM_CONTRAST * contrast
     # Pinched paper lies inside the ink; the tip of a paper wedge where two strokes meet at an
     # acute angle is a ridge too, but next to open paper: the junction stays where it is.
-    ridge &= _skeleton.distance_to_background(ink) > SEAM_WIDTH / 2
+    depth = _skeleton.distance_to_background(ink)  # _distance(ink): the ink has paper here
+    ridge &= depth > SEAM_WIDTH / 2
     if not ridge.any():
         return ridge
     # Two strokes that only touch (an ear's base, a tail on a body) leave a ridge about as long
@@ -512,7 +516,7 @@ def _paper_seams(gray: np.ndarray, ink: np.ndarray) -> np.ndarray:
     # along them: a seam is at least SEAM_LENGTH stroke widths long.
     parts = _skeleton.label(ridge, connectivity=2)
     n = int(parts.max())
-    long = np.bincount(parts.ravel(), minlength=n + 1) >= SEAM_LENGTH * median_stroke_width(ink)
+    long = np.bincount(parts.ravel(), minlength=n + 1) >= SEAM_LENGTH * _median_stroke_width(ink, depth)
     long[0] = False
     ridge = long[parts].astype(np.uint8)
     # A ridge 1 px wide runs diagonally in steps that 8-connected ink crosses: widened by the

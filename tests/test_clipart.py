@@ -334,3 +334,46 @@ def test_spread_kernel_is_the_numpy_reference(monkeypatch):
     for lab, (a, b) in zip(labs, compiled, strict=True):
         assert a.dtype == np.float32 and np.array_equal(a, _spread(lab, window))
         assert np.array_equal(b, _spread(lab, [(0, 1), (1, 0)]))
+
+
+@pytest.mark.parametrize("path", [DATA / "clipart-fish.png", EVAL / "clipart-giraffe-jpeg.jpg"])
+def test_regions_are_the_same_without_the_compiled_kernels(monkeypatch, path):
+    # The compiled steps (the spreads, colour distances, label sums, near entries, nearest seed
+    # colours, the palette's labelling and packing) against numpy and OpenCV: the same regions,
+    # for a clean clip art and a compressed one.
+    from img2logo import kernels
+
+    img = load_image(path)
+    compiled = clipart_regions(img)
+    thin = thin_regions(compiled)  # the edges' distances compiled too
+    monkeypatch.setattr(kernels, "CACHED", False)
+    assert np.array_equal(compiled, clipart_regions(img))
+    assert np.array_equal(thin, thin_regions(compiled))
+
+
+def test_near_entries_look_round_or_dilate_alike(monkeypatch):
+    # Each pixel looking round itself (compiled) and each entry dilated: the same answer.
+    from img2logo import clipart
+
+    rng = np.random.default_rng(3)
+    index = np.where(rng.random((60, 80)) < 0.2, -1, rng.integers(0, 5, (60, 80)))
+    rest = index < 0
+    looked = clipart._near_entries(index, 5, rest)
+    monkeypatch.setattr(clipart, "_NEAR_PIXEL_WORK", -1)  # never look round: dilate
+    assert np.array_equal(looked, clipart._near_entries(index, 5, rest))
+    assert looked.any() and not looked.all()
+
+
+def test_colour_distance_and_spreads_are_numpys(monkeypatch):
+    from img2logo import kernels
+    from img2logo.clipart import _spread, _spreads, colour_distance
+
+    rng = np.random.default_rng(4)
+    labs = [rng.random((h, w, 3)) * 100.0 for h, w in ((1, 1), (2, 7), (9, 3), (40, 33))]
+    pairs_a, pairs_b = [(0, 1), (1, 0)], [(0, 1), (1, -1), (1, 0), (1, 1), (2, 2)]
+    compiled = [(colour_distance(lab, lab[0, 0]), _spreads(lab, pairs_a, pairs_b)) for lab in labs]
+    monkeypatch.setattr(kernels, "CACHED", False)
+    for lab, (dist, (a, b)) in zip(labs, compiled, strict=True):
+        assert np.array_equal(dist, np.linalg.norm(lab - lab[0, 0], axis=2))
+        assert a.dtype == np.float32 and np.array_equal(a, _spread(lab, pairs_a))
+        assert np.array_equal(b, _spread(lab, pairs_b))

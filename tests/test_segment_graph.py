@@ -258,3 +258,19 @@ def test_turns_are_nan_off_valence_two():
         30,
     )
     assert straight.turns[1] == pytest.approx(0.0, abs=1e-9) and straight.smooth_nodes() == {1}
+
+
+def test_turns_compiled_are_end_tangents_turns():
+    # SegmentGraph.turns takes every end's tangent in one compiled call: end_tangent's numbers, to the bit.
+    from img2logo.segment_graph import end_tangent
+
+    for name in ("clipart-fish.png", "drawing-bird.png"):
+        g = build_segment_graph(extract_feature_lines(DATA / name))
+        want = np.full(g.n_junctions, np.nan)
+        for k in range(g.n_junctions):
+            ends = [(i, e) for i, pair in enumerate(g.ends.tolist()) for e in (0, 1) if pair[e] == k]
+            if len(ends) == 2 and ends[0][0] != ends[1][0]:
+                t0, t1 = (end_tangent(g.segments[i], e == 0) for i, e in ends)
+                want[k] = float(np.arccos(np.clip(-np.dot(t0, t1), -1.0, 1.0)))
+        assert np.array_equal(g.turns, want, equal_nan=True)
+        assert np.isfinite(want).sum() > 10

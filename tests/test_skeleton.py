@@ -68,7 +68,7 @@ def test_a_closed_loop_and_a_blob_are_traced_as_with_scipy(monkeypatch):
 
 
 def test_label_kernel_is_opencvs_labelling_renumbered(monkeypatch):
-    # The compiled flood fill and OpenCV's labelling (the path without the kernels): the same labels.
+    # The compiled union-find labelling and OpenCV's (the path without the kernels): the same labels.
     from img2logo import kernels
 
     rng = np.random.default_rng(6)
@@ -95,3 +95,40 @@ def test_unique_is_numpys():
             got, want = unique(values), np.unique(values)
             assert got.dtype == want.dtype and np.array_equal(got, want)
     assert np.array_equal(unique(np.array([[3, 1], [1, 3]])), [1, 3])
+
+
+def test_compiled_boxes_distances_and_set_pixels_match_the_references(monkeypatch):
+    # bounding_slices, distance_to_background (Meijster's exact transform against OpenCV's
+    # precise one) and nonzero: the compiled paths give what the references give.
+    from img2logo import kernels
+
+    rng = np.random.default_rng(8)
+    labels, masks = [], []
+    for _ in range(60):
+        h, w = (int(v) for v in rng.integers(1, 50, 2))
+        labels.append(rng.integers(0, 6, (h, w)) * (rng.random((h, w)) < 0.3))
+        mask = rng.random((h, w)) < rng.uniform(0.2, 1.0)
+        mask.flat[int(rng.integers(mask.size))] = False  # a background pixel
+        masks.append(mask)
+    far = np.ones((300, 200), dtype=bool)
+    far[0, 0] = False  # one corner: distances across the whole image
+    masks.append(far)
+    boxes = [_skeleton.bounding_slices(lab) for lab in labels]
+    dists = [_skeleton.distance_to_background(m) for m in masks]
+    monkeypatch.setattr(kernels, "CACHED", False)
+    assert boxes == [_skeleton.bounding_slices(lab) for lab in labels]
+    for m, d in zip(masks, dists, strict=True):
+        assert d.dtype == np.float64 and np.array_equal(d, _skeleton.distance_to_background(m))
+        got, want = _skeleton.nonzero(m), np.nonzero(m)
+        assert all(g.dtype == np.int64 and np.array_equal(g, v) for g, v in zip(got, want, strict=True))
+
+
+def test_sparse_labels_are_labels():
+    # trace labels its node and chain pixels alone (compiled): label's numbers for the mask.
+    rng = np.random.default_rng(9)
+    for _ in range(60):
+        h, w = (int(v) for v in rng.integers(1, 50, 2))
+        mask = rng.random((h, w)) < rng.uniform(0.02, 0.6)
+        rows, cols = _skeleton.nonzero(mask)
+        got = _skeleton._sparse_label(mask, rows, cols)
+        assert np.array_equal(got, _skeleton.label(mask, connectivity=2))
