@@ -72,7 +72,7 @@ ENTRY_POINTS: dict[str, tuple[str, tuple[str, ...], str]] = {
     "extract_arc_kernel": (
         "kernels_arcs",
         ("f8", "f8", "f8", "f8[:,::1]", "f8[:,::1]", "f8[::1]", "f8", "f8", "f8", "f8"),
-        "Tuple((b1, f8, f8, b1, f8))",
+        "Tuple((b1, f8, f8, b1, f8, b1))",
     ),
     "frechet": ("kernels_arcs", ("f8[:,::1]", "f8[:,::1]", "f8"), "f8"),
     "redundant_kernel": (

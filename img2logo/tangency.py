@@ -86,7 +86,7 @@ from weakref import WeakKeyDictionary
 
 import numpy as np
 
-from .arc_extraction import redundant_intersections
+from .arc_extraction import _redundant_arrays
 from .constants import (
     BIARC_STARTS,
     BIARC_STEP,
@@ -94,6 +94,7 @@ from .constants import (
     BIARC_TURN_STEPS,
     CONSTRAINED_FIT_TOL,
     KINK_WEIGHT,
+    REDUNDANT_INTERSECTION_TOL,
     RUNG_CHOICES,
     SLIDE_MIN_PIXELS,
 )
@@ -318,8 +319,9 @@ def _rung_choices(opt: FitState, node: int, pair: tuple[int, int]) -> list[dict[
                 steps[g].append(s)
     a, b = pair
     combos = [{a: sa, b: sb} for sa in steps[a] for sb in steps[b] if sa or sb]
-    now = _predicted_apart(opt, node, pair, {})
-    apart = {i: _predicted_apart(opt, node, pair, c, rungs) for i, c in enumerate(combos)}
+    placed = {g: _placement(opt, node, g) for g in pair}  # what does not depend on the rung, once
+    now = _predicted_apart(opt, node, pair, {}, placed=placed)
+    apart = {i: _predicted_apart(opt, node, pair, c, rungs, placed) for i, c in enumerate(combos)}
     nearer = sorted((i for i in apart if apart[i] < now), key=lambda i: (apart[i], i))
     return [{a: 0, b: 0}, *(combos[i] for i in nearer[:RUNG_CHOICES])]
 
@@ -330,6 +332,7 @@ def _predicted_apart(
     pair: tuple[int, int],
     combo: dict[int, int],
     rungs: dict[tuple[int, int], tuple[int, float]] | None = None,
+    placed: dict[int, tuple] | None = None,
 ) -> float:
     """|sin| of the angle between the radii to a join's junction of its two circles, rungs stepped by ``combo``.
 
@@ -337,28 +340,47 @@ def _predicted_apart(
     where they are now (on the side of its centre now): how far from touching
     the choice of rungs leaves the two before any junction moves. Lines keep
     their circle. Infinite if a radius is too short to reach the other end.
-    ``rungs`` holds the offered rungs by (group, step) when they are known.
+    ``rungs`` holds the offered rungs by (group, step) when they are known,
+    ``placed`` the groups' :func:`_placement` at the join (the same for every combo).
     """
-    q = opt.graph.junctions[node] + opt.disp[node]
     radii = []
     for g in pair:
-        f, group = opt.fits[g], opt.groups[g]
+        q, chord = placed[g] if placed is not None else _placement(opt, node, g)
+        f = opt.fits[g]
         center = f.center
         step = combo.get(g, 0)
-        if f.k is not None:
+        if chord is not None:
+            half, mid, u, side = chord
             r = f.radius if not step else (rungs[g, step] if rungs else _offered_rung(opt, g, step))[1]
-            other = group.nodes[0] if group.nodes[-1] == node else group.nodes[-1]
-            p = opt.graph.junctions[other] + opt.disp[other]
-            half = 0.5 * float(np.hypot(*(p - q)))
             if r < half or half == 0.0:
                 return np.inf
-            mid, u = 0.5 * (p + q), np.array([q[1] - p[1], p[0] - q[0]]) / (2.0 * half)
             s = np.sqrt(r * r - half * half)
-            side = 1.0 if float((f.center - mid) @ u) >= 0.0 else -1.0
             center = mid + side * s * u
         radii.append(center - q)
     a, b = radii
     return abs(float(a[0] * b[1] - a[1] * b[0])) / max(float(np.hypot(*a) * np.hypot(*b)), 1e-300)
+
+
+def _placement(opt: FitState, node: int, g: int) -> tuple[np.ndarray, tuple | None]:
+    """Where :func:`_predicted_apart` places group ``g``'s circle at the join ``node``, whatever its radius.
+
+    (the junction q, (half the chord from q to the group's other end, the
+    chord's midpoint, the unit normal of the chord, the side of the circle's
+    centre now)), the second None for a line (it keeps its circle) and for a
+    chord of length 0 only half is set.
+    """
+    q = opt.graph.junctions[node] + opt.disp[node]
+    f, group = opt.fits[g], opt.groups[g]
+    if f.k is None:
+        return q, None
+    other = group.nodes[0] if group.nodes[-1] == node else group.nodes[-1]
+    p = opt.graph.junctions[other] + opt.disp[other]
+    half = 0.5 * float(np.hypot(*(p - q)))
+    if half == 0.0:
+        return q, (half, None, None, None)
+    mid, u = 0.5 * (p + q), np.array([q[1] - p[1], p[0] - q[0]]) / (2.0 * half)
+    side = 1.0 if float((f.center - mid) @ u) >= 0.0 else -1.0
+    return q, (half, mid, u, side)
 
 
 def _offered_rung(opt: FitState, gid: int, step: int) -> tuple[int, float]:
@@ -751,16 +773,28 @@ def _touching(opt: FitState, made: dict[int, tuple[int, int]]) -> bool:
 
 
 def _redundant(opt: FitState, of: set[int]) -> int:
-    """Redundant intersections (Sec. 5.2, Fig. 12) of the state's arcs that involve the groups ``of``."""
+    """Redundant intersections (Sec. 5.2, Fig. 12) of the state's arcs that involve the groups ``of``.
+
+    :func:`~img2logo.arc_extraction.redundant_intersections` on arrays the
+    state already has (the fits' arc rows, every junction's p_k + d_k at once),
+    past its checks: the same test on the same numbers.
+    """
     gids = list(opt.groups)
-    arcs = [opt.fits[g].arc.arc for g in gids]
     node_groups = opt.node_groups()
     nodes = sorted(node_groups)
     index = {n: i for i, n in enumerate(nodes)}
-    points = np.array([opt.graph.junctions[n] + opt.disp[n] for n in nodes]).reshape(-1, 2)
-    arc_junctions = [[index[n] for n in opt.constrained_nodes(opt.groups[g])] for g in gids]
-    changed = [i for i, g in enumerate(gids) if g in of]
-    return len(redundant_intersections(arcs, points, arc_junctions, candidates=changed))
+    at = np.asarray(nodes, dtype=np.intp)
+    points = (opt.graph.junctions[at] + opt.disp[at]).reshape(-1, 2)
+    owned = [[index[n] for n in opt.constrained_nodes(opt.groups[g])] for g in gids]
+    ptr = np.zeros(len(gids) + 1, dtype=np.int64)
+    ptr[1:] = np.cumsum([len(ks) for ks in owned])
+    flat = np.fromiter((k for ks in owned for k in ks), dtype=np.int64, count=int(ptr[-1]))
+    rows = np.array([i for i, g in enumerate(gids) if g in of], dtype=np.int64)
+    fits = [opt.fits[g] for g in gids]
+    params = np.array([f.arc_row for f in fits], dtype=np.float64).reshape(-1, 5)
+    arcs = [f.arc.arc for f in fits]
+    pairs, _ = _redundant_arrays(arcs, points, ptr, flat, rows, REDUNDANT_INTERSECTION_TOL, params)
+    return len(pairs)
 
 
 def _apart(opt: FitState, seeds: dict, node: int, pair: tuple[int, int]) -> float:
