@@ -92,6 +92,11 @@ ENTRY_POINTS: dict[str, tuple[str, tuple[str, ...], str]] = {
     "label_kernel": ("kernels_front", ("i8[:,::1]", "i8", "b1"), "i8[:,::1]"),
     "colour_table_kernel": ("kernels_front", ("f8[:,:,::1]",), "Tuple((b1, i8[::1], i8[::1]))"),
     "biarc_worst_kernel": ("kernels_circle", tuple("f8[:,::1] f8[:,:,::1] i8[::1] i8[::1] f8 b1".split()), "f8[:,::1]"),
+    "biarc_best_kernel": (
+        "kernels_arcs",
+        tuple("f8[:,::1] f8[:,:,::1] f8[:,:,::1] i8[::1] f8 f8".split()),
+        "Tuple((f8, i8, i8))",
+    ),
     "png_unfilter": ("kernels_png", ("!u1[::1]", "i8", "i8", "i8", "!u1[::1]"), "i8"),
     "png_reduce": ("kernels_png", ("u1[::1]", *["i8"] * 6, "b1", "b1", "i8", "!f8[:,::1]"), "i8"),
 }

@@ -443,3 +443,51 @@ def extract_arc_kernel(cx, cy, r, seg, junctions, theta, junction_tol, ratio, sl
             best, best_opt = value, o
     c = kept[best_opt // 2]
     return True, cand[c, 0], cand[c, 1], best_opt % 2 == 1, best, near_tol
+
+
+# --------------------------------------------------------------------------------
+# Tangent biarcs (img2logo.tangency._biarc): the fine search around the coarse grid's best
+# --------------------------------------------------------------------------------
+
+
+@_jit
+def biarc_best_kernel(chain, centre_a, centre_b, splits, radius_a, radius_b):  # pragma: no cover - compiled
+    """The best biarc of a grid of splits and turns (``tangency._biarc_fine``): (distance px, s, a).
+
+    For split ``splits[s]`` and turn ``a``, the head's pixels ``chain[:split + 1]``
+    go with the circle of centre ``centre_a[s, a]`` and radius ``radius_a``, the
+    tail's ``chain[split:]`` with ``centre_b[s, a]`` and ``radius_b``; a biarc's
+    distance is the largest distance of a pixel from its circle (the arithmetic
+    of :func:`img2logo.kernels_circle.biarc_worst_kernel`). Returned: the
+    smallest over the grid, and where, the first in row-major order on a tie
+    (numpy's ``argmin`` of the grid of both kernels' ``maximum``). A biarc's
+    pixels stop being measured once it is known to be no better than the best
+    so far (its largest distance can only grow): most of the grid is left after
+    a few pixels.
+    """
+    n = chain.shape[0]
+    best = math.inf
+    best_s, best_a = 0, 0
+    for s in range(centre_a.shape[0]):
+        split = splits[s]
+        for a in range(centre_a.shape[1]):
+            worst = 0.0
+            cx, cy = centre_a[s, a, 0], centre_a[s, a, 1]
+            for i in range(split + 1):
+                d = abs(math.hypot(chain[i, 0] - cx, chain[i, 1] - cy) - radius_a)
+                if d > worst:
+                    worst = d
+                    if worst >= best:
+                        break
+            if worst >= best:
+                continue
+            cx, cy = centre_b[s, a, 0], centre_b[s, a, 1]
+            for i in range(split, n):
+                d = abs(math.hypot(chain[i, 0] - cx, chain[i, 1] - cy) - radius_b)
+                if d > worst:
+                    worst = d
+                    if worst >= best:
+                        break
+            if worst < best:
+                best, best_s, best_a = worst, s, a
+    return best, best_s, best_a

@@ -319,7 +319,7 @@ def _rung_choices(opt: FitState, node: int, pair: tuple[int, int]) -> list[dict[
                 steps[g].append(s)
     a, b = pair
     combos = [{a: sa, b: sb} for sa in steps[a] for sb in steps[b] if sa or sb]
-    placed = {g: _placement(opt, node, g) for g in pair}  # what does not depend on the rung, once
+    placed: dict = {}  # each circle's radius to the junction by (group, step), placed once
     now = _predicted_apart(opt, node, pair, {}, placed=placed)
     apart = {i: _predicted_apart(opt, node, pair, c, rungs, placed) for i, c in enumerate(combos)}
     nearer = sorted((i for i in apart if apart[i] < now), key=lambda i: (apart[i], i))
@@ -332,7 +332,7 @@ def _predicted_apart(
     pair: tuple[int, int],
     combo: dict[int, int],
     rungs: dict[tuple[int, int], tuple[int, float]] | None = None,
-    placed: dict[int, tuple] | None = None,
+    placed: dict | None = None,
 ) -> float:
     """|sin| of the angle between the radii to a join's junction of its two circles, rungs stepped by ``combo``.
 
@@ -340,47 +340,48 @@ def _predicted_apart(
     where they are now (on the side of its centre now): how far from touching
     the choice of rungs leaves the two before any junction moves. Lines keep
     their circle. Infinite if a radius is too short to reach the other end.
-    ``rungs`` holds the offered rungs by (group, step) when they are known,
-    ``placed`` the groups' :func:`_placement` at the join (the same for every combo).
+    ``rungs`` holds the offered rungs by (group, step) when they are known;
+    ``placed`` keeps the circles placed so far by (group, step) for the next
+    call on the same join (:func:`_rung_choices` scores up to 9 choices of 6 circles).
     """
+    placed = {} if placed is None else placed
     radii = []
     for g in pair:
-        q, chord = placed[g] if placed is not None else _placement(opt, node, g)
-        f = opt.fits[g]
-        center = f.center
         step = combo.get(g, 0)
-        if chord is not None:
-            half, mid, u, side = chord
-            r = f.radius if not step else (rungs[g, step] if rungs else _offered_rung(opt, g, step))[1]
-            if r < half or half == 0.0:
-                return np.inf
-            s = np.sqrt(r * r - half * half)
-            center = mid + side * s * u
-        radii.append(center - q)
-    a, b = radii
-    return abs(float(a[0] * b[1] - a[1] * b[0])) / max(float(np.hypot(*a) * np.hypot(*b)), 1e-300)
+        if (g, step) not in placed:
+            placed[g, step] = _placed(opt, node, g, step, rungs)
+        radius = placed[g, step]
+        if radius is None:
+            return np.inf
+        radii.append(radius)
+    (a, ha), (b, hb) = radii
+    return abs(float(a[0] * b[1] - a[1] * b[0])) / max(float(ha * hb), 1e-300)
 
 
-def _placement(opt: FitState, node: int, g: int) -> tuple[np.ndarray, tuple | None]:
-    """Where :func:`_predicted_apart` places group ``g``'s circle at the join ``node``, whatever its radius.
+def _placed(
+    opt: FitState, node: int, g: int, step: int, rungs: dict[tuple[int, int], tuple[int, float]] | None
+) -> tuple[np.ndarray, Any] | None:
+    """:func:`_predicted_apart`'s circle of group ``g`` at the join ``node``, its rung stepped by ``step``.
 
-    (the junction q, (half the chord from q to the group's other end, the
-    chord's midpoint, the unit normal of the chord, the side of the circle's
-    centre now)), the second None for a line (it keeps its circle) and for a
-    chord of length 0 only half is set.
+    (its radius vector to the junction, that vector's length); None if the
+    radius is too short to reach the group's other end.
     """
     q = opt.graph.junctions[node] + opt.disp[node]
     f, group = opt.fits[g], opt.groups[g]
-    if f.k is None:
-        return q, None
-    other = group.nodes[0] if group.nodes[-1] == node else group.nodes[-1]
-    p = opt.graph.junctions[other] + opt.disp[other]
-    half = 0.5 * float(np.hypot(*(p - q)))
-    if half == 0.0:
-        return q, (half, None, None, None)
-    mid, u = 0.5 * (p + q), np.array([q[1] - p[1], p[0] - q[0]]) / (2.0 * half)
-    side = 1.0 if float((f.center - mid) @ u) >= 0.0 else -1.0
-    return q, (half, mid, u, side)
+    center = f.center
+    if f.k is not None:
+        r = f.radius if not step else (rungs[g, step] if rungs else _offered_rung(opt, g, step))[1]
+        other = group.nodes[0] if group.nodes[-1] == node else group.nodes[-1]
+        p = opt.graph.junctions[other] + opt.disp[other]
+        half = 0.5 * float(np.hypot(*(p - q)))
+        if r < half or half == 0.0:
+            return None
+        mid, u = 0.5 * (p + q), np.array([q[1] - p[1], p[0] - q[0]]) / (2.0 * half)
+        s = np.sqrt(r * r - half * half)
+        side = 1.0 if float((f.center - mid) @ u) >= 0.0 else -1.0
+        center = mid + side * s * u
+    radius = center - q
+    return radius, np.hypot(*radius)
 
 
 def _offered_rung(opt: FitState, gid: int, step: int) -> tuple[int, float]:
@@ -633,15 +634,41 @@ def _biarc(
             # Around the best on the coarse grid: every pixel and a finer turn, every pixel measured.
             fine = np.arange(max(lo, splits[s] - BIARC_STEP), min(hi, splits[s] + BIARC_STEP + 1))
             near = turns[t] + np.arange(-4, 5) * (step / 4.0)
-            wa = _biarc_worst(chain, fine, near, ra, sa, True, 1)
-            wb = _biarc_worst(chain, fine, near, rb, sb, False, 1)
-            w2 = np.maximum(wa, wb)
-            s2, t2 = np.unravel_index(int(np.argmin(w2)), w2.shape)
+            worst, s2, t2 = _biarc_fine(chain, fine, near, (ra, sa), (rb, sb))
             i = int(fine[s2])
             normal = _biarc_normal(chain, np.array([i]), np.array([near[t2]]))[0, 0]
-            out.append((float(w2[s2, t2]), ia, ib, i, chain[i] + sa * ra * normal, chain[i] + sb * rb * normal))
+            out.append((worst, ia, ib, i, chain[i] + sa * ra * normal, chain[i] + sb * rb * normal))
     out.sort(key=lambda t: t[0])
     return out
+
+
+def _biarc_fine(
+    chain: np.ndarray, splits: np.ndarray, turns: np.ndarray, head: tuple[float, float], tail: tuple[float, float]
+) -> tuple[float, int, int]:
+    """The best biarc of a grid of ``splits`` and ``turns``: (largest pixel distance px, split index, turn index).
+
+    ``head`` and ``tail`` are the two circles' (radius, side); every pixel is
+    measured. The smallest over the grid of the larger of the head's and the
+    tail's :func:`_biarc_worst`, the first in row-major order on a tie. Compiled
+    (:func:`img2logo.kernels_arcs.biarc_best_kernel`), a biarc's pixels stop
+    being measured once it cannot beat the best so far: the same numbers as the
+    two grids, a third of the work on the clip arts' joins.
+    """
+    (ra, sa), (rb, sb) = head, tail
+    from . import kernels
+
+    if kernels.usable():
+        normal = _biarc_normal(chain, splits, turns)
+        base = chain[splits][:, None, :]
+        worst, s, t = kernels.biarc_best_kernel(
+            chain, base + sa * ra * normal, base + sb * rb * normal, np.asarray(splits, dtype=np.int64), ra, rb
+        )
+        return float(worst), int(s), int(t)
+    w = np.maximum(
+        _biarc_worst(chain, splits, turns, ra, sa, True, 1), _biarc_worst(chain, splits, turns, rb, sb, False, 1)
+    )
+    s, t = np.unravel_index(int(np.argmin(w)), w.shape)
+    return float(w[s, t]), int(s), int(t)
 
 
 def _biarc_normal(chain: np.ndarray, splits: np.ndarray, turns: np.ndarray) -> np.ndarray:
