@@ -97,6 +97,11 @@ ENTRY_POINTS: dict[str, tuple[str, tuple[str, ...], str]] = {
         tuple("f8[:,::1] f8[:,:,::1] f8[:,:,::1] i8[::1] f8 f8".split()),
         "Tuple((f8, i8, i8))",
     ),
+    "biarc_coarse_kernel": (
+        "kernels_arcs",
+        tuple("f8[:,::1] i8[::1] i8[::1] f8[:,:,:,::1] f8[:,:,:,::1] f8 f8".split()),
+        "Tuple((f8, i8, i8, i8))",
+    ),
     "png_unfilter": ("kernels_png", ("!u1[::1]", "i8", "i8", "i8", "!u1[::1]"), "i8"),
     "png_reduce": ("kernels_png", ("u1[::1]", *["i8"] * 6, "b1", "b1", "i8", "!f8[:,::1]"), "i8"),
 }

@@ -491,3 +491,52 @@ def biarc_best_kernel(chain, centre_a, centre_b, splits, radius_a, radius_b):  #
             if worst < best:
                 best, best_s, best_a = worst, s, a
     return best, best_s, best_a
+
+
+@_jit
+def biarc_coarse_kernel(chain, index, splits, heads, tails, radius_a, radius_b):  # pragma: no cover - compiled
+    """The best biarc of the coarse grid for one pair of radii (``tangency._biarc_coarse``): (distance, j, s, a).
+
+    ``heads[side_a, s, a]`` and ``tails[side_b, s, a]`` are the centres of the
+    head's and the tail's circles (sides -1, +1) at split ``splits[s]`` and turn
+    ``a``; of the pixels ``chain[index]`` (increasing) those up to the split go
+    with the head's circle, those from it on with the tail's (the arithmetic of
+    :func:`img2logo.kernels_circle.biarc_worst_kernel`). Over j = 2 side_a +
+    side_b, then the grid in row-major order, the smallest largest distance and
+    where it is first reached; a biarc's pixels stop being measured once it is
+    known to be no better than the best so far.
+    """
+    n_index = index.shape[0]
+    best = math.inf
+    best_j, best_s, best_a = 0, 0, 0
+    for j in range(4):
+        side_a, side_b = j // 2, j % 2
+        for s in range(heads.shape[1]):
+            split = splits[s]
+            for a in range(heads.shape[2]):
+                worst = 0.0
+                cx, cy = heads[side_a, s, a, 0], heads[side_a, s, a, 1]
+                for k in range(n_index):
+                    i = index[k]
+                    if i > split:
+                        break
+                    d = abs(math.hypot(chain[i, 0] - cx, chain[i, 1] - cy) - radius_a)
+                    if d > worst:
+                        worst = d
+                        if worst >= best:
+                            break
+                if worst >= best:
+                    continue
+                cx, cy = tails[side_b, s, a, 0], tails[side_b, s, a, 1]
+                for k in range(n_index - 1, -1, -1):
+                    i = index[k]
+                    if i < split:
+                        break
+                    d = abs(math.hypot(chain[i, 0] - cx, chain[i, 1] - cy) - radius_b)
+                    if d > worst:
+                        worst = d
+                        if worst >= best:
+                            break
+                if worst < best:
+                    best, best_j, best_s, best_a = worst, j, s, a
+    return best, best_j, best_s, best_a

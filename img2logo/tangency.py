@@ -616,20 +616,11 @@ def _biarc(
     splits = np.arange(lo, hi, BIARC_STEP)
     turns = np.arange(-BIARC_TURN_STEPS, BIARC_TURN_STEPS + 1) * step
     sides = ((-1.0, -1.0), (-1.0, 1.0), (1.0, -1.0), (1.0, 1.0))
-    normal = _biarc_normal(chain, splits, turns)  # the coarse grid's, shared by every radius and side
-    heads = [
-        {sa: _biarc_worst(chain, splits, turns, r, sa, True, BIARC_STEP, normal) for sa in (-1.0, 1.0)} for r in radii_a
-    ]
-    tails = [
-        {sb: _biarc_worst(chain, splits, turns, r, sb, False, BIARC_STEP, normal) for sb in (-1.0, 1.0)}
-        for r in radii_b
-    ]
+    coarse = _biarc_coarse(chain, splits, turns, radii_a, radii_b)
     out = []
     for ia, ra in enumerate(radii_a):
         for ib, rb in enumerate(radii_b):
-            w = [np.maximum(heads[ia][sa], tails[ib][sb]) for sa, sb in sides]
-            j = min(range(4), key=lambda j: float(w[j].min()))
-            s, t = np.unravel_index(int(np.argmin(w[j])), w[j].shape)
+            j, s, t = coarse[ia, ib]
             sa, sb = sides[j]
             # Around the best on the coarse grid: every pixel and a finer turn, every pixel measured.
             fine = np.arange(max(lo, splits[s] - BIARC_STEP), min(hi, splits[s] + BIARC_STEP + 1))
@@ -639,6 +630,51 @@ def _biarc(
             normal = _biarc_normal(chain, np.array([i]), np.array([near[t2]]))[0, 0]
             out.append((worst, ia, ib, i, chain[i] + sa * ra * normal, chain[i] + sb * rb * normal))
     out.sort(key=lambda t: t[0])
+    return out
+
+
+def _biarc_coarse(
+    chain: np.ndarray, splits: np.ndarray, turns: np.ndarray, radii_a: Sequence[float], radii_b: Sequence[float]
+) -> dict[tuple[int, int], tuple[int, int, int]]:
+    """The best biarc of :func:`_biarc`'s coarse grid for every pair of radii: (ia, ib) -> (sides, split, turn).
+
+    Sides index ``((-1, -1), (-1, 1), (1, -1), (1, 1))`` (the head's circle's and
+    the tail's); every ``BIARC_STEP``-th pixel measured. The smallest largest
+    distance over the sides and the grid, the first in that order on a tie.
+    Compiled (:func:`img2logo.kernels_arcs.biarc_coarse_kernel`), a biarc's
+    pixels stop being measured once it cannot beat the best so far: the same
+    choice as the smallest of numpy's minima over the four grids of the two
+    sides' :func:`_biarc_worst`, and its argmin.
+    """
+    normal = _biarc_normal(chain, splits, turns)  # shared by every radius and side
+    from . import kernels
+
+    out = {}
+    if kernels.usable():
+        base = chain[splits][:, None, :]
+        heads = [np.stack([base + side * r * normal for side in (-1.0, 1.0)]) for r in radii_a]
+        tails = [np.stack([base + side * r * normal for side in (-1.0, 1.0)]) for r in radii_b]
+        index = np.arange(0, len(chain), BIARC_STEP)
+        at = np.asarray(splits, dtype=np.int64)
+        for ia, ra in enumerate(radii_a):
+            for ib, rb in enumerate(radii_b):
+                _, j, s, t = kernels.biarc_coarse_kernel(chain, index, at, heads[ia], tails[ib], ra, rb)
+                out[ia, ib] = (int(j), int(s), int(t))
+        return out
+    sides = ((-1.0, -1.0), (-1.0, 1.0), (1.0, -1.0), (1.0, 1.0))
+    head = [
+        {sa: _biarc_worst(chain, splits, turns, r, sa, True, BIARC_STEP, normal) for sa in (-1.0, 1.0)} for r in radii_a
+    ]
+    tail = [
+        {sb: _biarc_worst(chain, splits, turns, r, sb, False, BIARC_STEP, normal) for sb in (-1.0, 1.0)}
+        for r in radii_b
+    ]
+    for ia in range(len(radii_a)):
+        for ib in range(len(radii_b)):
+            w = [np.maximum(head[ia][sa], tail[ib][sb]) for sa, sb in sides]
+            j = min(range(4), key=lambda j: float(w[j].min()))
+            s, t = np.unravel_index(int(np.argmin(w[j])), w[j].shape)
+            out[ia, ib] = (j, int(s), int(t))
     return out
 
 
