@@ -3,7 +3,7 @@
 The kernels themselves are written in :mod:`img2logo.kernels_sqp` (the SQP of
 Eqn. 13 for a local window), :mod:`img2logo.kernels_arcs` (arc-arc
 intersections, the redundant-intersection test, the arc extraction with its
-Fréchet distance), :mod:`img2logo.kernels_circle` (the free circle fit, a
+Fréchet distance, the tangent biarcs' searches), :mod:`img2logo.kernels_circle` (the free circle fit, a
 golden circle's centre, the biarc search's worst distances), :mod:`img2logo.kernels_graph`
 (the skeleton's shortest paths, the global KKT solve in a band) and
 :mod:`img2logo.kernels_front` (the clip-art regions' label sums), each beneath a public
