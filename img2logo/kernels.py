@@ -3,7 +3,7 @@
 The kernels themselves are written in :mod:`img2logo.kernels_sqp` (the SQP of
 Eqn. 13 for a local window), :mod:`img2logo.kernels_arcs` (arc-arc
 intersections, the redundant-intersection test, the arc extraction with its
-Fréchet distance), :mod:`img2logo.kernels_circle` (the free circle fit, a
+Fréchet distance, the tangent biarcs' searches), :mod:`img2logo.kernels_circle` (the free circle fit, a
 golden circle's centre, the biarc search's worst distances), :mod:`img2logo.kernels_graph`
 (the skeleton's shortest paths, the global KKT solve in a band) and
 :mod:`img2logo.kernels_front` (the clip-art regions' label sums), each beneath a public
@@ -71,7 +71,7 @@ ENTRY_POINTS: dict[str, tuple[str, tuple[str, ...], str]] = {
     "extract_arc_kernel": (
         "kernels_arcs",
         ("f8", "f8", "f8", "f8[:,::1]", "f8[:,::1]", "f8[::1]", "f8", "f8", "f8", "f8"),
-        "Tuple((b1, f8, f8, b1, f8))",
+        "Tuple((b1, f8, f8, b1, f8, b1))",
     ),
     "frechet": ("kernels_arcs", ("f8[:,::1]", "f8[:,::1]", "f8"), "f8"),
     "redundant_kernel": (
@@ -116,6 +116,16 @@ ENTRY_POINTS: dict[str, tuple[str, tuple[str, ...], str]] = {
     "sparse_label_kernel": ("kernels_front", ("i8[::1]", "i8[::1]", "i8", "i8"), "i8[::1]"),
     "near_kernel": ("kernels_front", ("i8[:,::1]", "i8[::1]", "i8[::1]", "i8", "i8[:,::1]"), "b1[:,::1]"),
     "biarc_worst_kernel": ("kernels_circle", tuple("f8[:,::1] f8[:,:,::1] i8[::1] i8[::1] f8 b1".split()), "f8[:,::1]"),
+    "biarc_best_kernel": (
+        "kernels_arcs",
+        tuple("f8[:,::1] f8[:,:,::1] f8[:,:,::1] i8[::1] f8 f8".split()),
+        "Tuple((f8, i8, i8))",
+    ),
+    "biarc_coarse_kernel": (
+        "kernels_arcs",
+        tuple("f8[:,::1] i8[::1] i8[::1] f8[:,:,:,::1] f8[:,:,:,::1] f8 f8".split()),
+        "Tuple((f8, i8, i8, i8))",
+    ),
     "png_unfilter": ("kernels_png", ("!u1[::1]", "i8", "i8", "i8", "!u1[::1]"), "i8"),
     "png_reduce": ("kernels_png", ("u1[::1]", *["i8"] * 6, "b1", "b1", "i8", "!f8[:,::1]"), "i8"),
 }

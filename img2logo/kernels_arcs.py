@@ -206,38 +206,111 @@ def redundant_kernel(params, rows, junctions, owned_ptr, owned_idx, inter_tol, t
 
 
 @_jit
+def _greedy_coupling(p, q):  # pragma: no cover - compiled
+    """The largest squared distance of a greedy coupling of (N, 2) and (M, 2) polylines: >= the Fréchet distance^2.
+
+    From the first pair of vertices to the last, each step to the nearest of the
+    next pairs (both on, or one of them); a coupling like any other, so its
+    largest distance bounds the discrete Fréchet distance from above. O(N + M).
+    """
+    n, m = p.shape[0], q.shape[0]
+    i, j = 0, 0
+    dx, dy = p[0, 0] - q[0, 0], p[0, 1] - q[0, 1]
+    worst = dx * dx + dy * dy
+    while i < n - 1 or j < m - 1:
+        if i == n - 1:
+            j += 1
+        elif j == m - 1:
+            i += 1
+        else:
+            dx, dy = p[i + 1, 0] - q[j + 1, 0], p[i + 1, 1] - q[j + 1, 1]
+            both = dx * dx + dy * dy
+            dx, dy = p[i + 1, 0] - q[j, 0], p[i + 1, 1] - q[j, 1]
+            on_p = dx * dx + dy * dy
+            dx, dy = p[i, 0] - q[j + 1, 0], p[i, 1] - q[j + 1, 1]
+            on_q = dx * dx + dy * dy
+            if both <= on_p and both <= on_q:
+                i += 1
+                j += 1
+            elif on_p <= on_q:
+                i += 1
+            else:
+                j += 1
+        dx, dy = p[i, 0] - q[j, 0], p[i, 1] - q[j, 1]
+        worst = max(worst, dx * dx + dy * dy)
+    return worst
+
+
+@_jit
 def frechet(p, q, bound):  # pragma: no cover - compiled
     """Exact discrete Fréchet distance [EM94] of (N, 2) and (M, 2) polylines; ``inf`` once known >= ``bound``.
 
+    :func:`_frechet_within` of the smaller of ``bound^2`` and the largest
+    squared distance of a greedy coupling (:func:`_greedy_coupling`, which the
+    answer cannot exceed).
+    """
+    return _frechet_within(p, q, min(_greedy_coupling(p, q), bound * bound))
+
+
+@_jit
+def _frechet_within(p, q, cap):  # pragma: no cover - compiled
+    """The discrete Fréchet distance [EM94] of (N, 2) and (M, 2) polylines if at most sqrt(``cap``), else ``inf``.
+
     The coupling table c[i, j] = max(|p_i - q_j|^2, min(c[i-1, j], c[i-1, j-1],
     c[i, j-1])) is filled row by row keeping one row; squared distances give the
-    same coupling (the square root is monotone). Every coupling crosses every
-    row, so a row whose smallest entry is >= bound^2 ends the computation.
+    same coupling (the square root is monotone). A coupling through a pair of
+    vertices more than sqrt(``cap``) apart has a larger distance, so such a cell
+    is left out (infinite), and so is every cell no coupling reaches without
+    one: each row is filled only from the first reachable cell of the row above
+    to the last one reachable in it, a band along the diagonal a few cells wide
+    where the two polylines run close together, instead of the whole table. The
+    cells filled hold the whole table's values (maxima and minima of the same
+    squared distances), so a result within the cap is the same number. A row
+    with no cell left ends the computation: every coupling crosses every row.
     """
     n, m = p.shape[0], q.shape[0]
-    bound2 = bound * bound
     row = np.empty(m)
+    # Row 0: the running maximum, while within the cap. Cells lo..hi of a row are its band.
     acc = -1.0
+    hi = -1
     for j in range(m):
         dx, dy = p[0, 0] - q[j, 0], p[0, 1] - q[j, 1]
-        acc = max(acc, dx * dx + dy * dy)
+        d2 = dx * dx + dy * dy
+        if d2 > cap:
+            break
+        acc = max(acc, d2)
         row[j] = acc
-    if n > 1 and row.min() >= bound2:
+        hi = j
+    if hi < 0:
         return math.inf
+    lo = 0
     for i in range(1, n):
-        dx, dy = p[i, 0] - q[0, 0], p[i, 1] - q[0, 1]
-        diag = row[0]
-        row[0] = max(row[0], dx * dx + dy * dy)
-        low = row[0]
-        for j in range(1, m):
-            dx, dy = p[i, 0] - q[j, 0], p[i, 1] - q[j, 1]
-            up = row[j]
-            best = min(up, diag, row[j - 1])
-            row[j] = max(best, dx * dx + dy * dy)
+        px, py = p[i, 0], p[i, 1]
+        new_lo, new_hi = -1, -1
+        diag = math.inf  # the row above at j - 1
+        left = math.inf  # this row at j - 1
+        for j in range(lo, m):
+            up = row[j] if j <= hi else math.inf
+            best = min(up, diag, left)
             diag = up
-            low = min(low, row[j])
-        if i < n - 1 and low >= bound2:
+            if best == math.inf and j > hi:
+                break  # past the row above's band and nothing from the left: no further cell is reached
+            dx, dy = px - q[j, 0], py - q[j, 1]
+            d2 = dx * dx + dy * dy
+            if best == math.inf or d2 > cap:
+                value = math.inf
+            else:
+                value = max(best, d2)
+                if new_lo < 0:
+                    new_lo = j
+                new_hi = j
+            row[j] = value
+            left = value
+        if new_lo < 0:
             return math.inf
+        lo, hi = new_lo, new_hi
+    if hi != m - 1:
+        return math.inf
     return math.sqrt(row[m - 1])
 
 
@@ -263,15 +336,23 @@ def extract_arc_kernel(cx, cy, r, seg, junctions, theta, junction_tol, ratio, sl
     (numpy's ``arctan2``, which rounds unlike libm's), both ways round that contain
     all of them, those no longer than ``ratio`` x the chain's length + ``slack``
     px (else the shortest), both orientations, tried by increasing lower bound
-    with the Fréchet computation cut at the best so far.
+    with the Fréchet computation cut at the best so far and at the smallest
+    greedy coupling's distance (:func:`_greedy_coupling`).
 
     Returns
     -------
-    (found, theta0, sweep, reverse, frechet)
+    (found, theta0, sweep, reverse, frechet, near_tol)
         The chosen candidate (theta0, sweep) and whether it is walked the other
         way; ``found`` is False when no candidate passes through all the junctions.
+        ``near_tol``: a junction is at least half of ``junction_tol`` off the circle
+        (the caller checks those against the tolerance itself, with numpy's rounding;
+        on the rest, far within it, the check is spared).
     """
     m = junctions.shape[0]
+    near_tol = False
+    for u in range(m):
+        if abs(math.hypot(junctions[u, 0] - cx, junctions[u, 1] - cy) - r) > 0.5 * junction_tol:
+            near_tol = True
     tol = junction_tol / r  # radians
     cand = np.empty((max(1, m * (m - 1)), 2))
     n_cand = 0
@@ -297,7 +378,7 @@ def extract_arc_kernel(cx, cy, r, seg, junctions, theta, junction_tol, ratio, sl
                         cand[n_cand, 0], cand[n_cand, 1] = arc[3], arc[4]
                         n_cand += 1
     if n_cand == 0:
-        return False, 0.0, 0.0, False, math.inf
+        return False, 0.0, 0.0, False, math.inf, near_tol
     seg_length = 0.0
     for i in range(seg.shape[0] - 1):
         seg_length += math.hypot(seg[i + 1, 0] - seg[i, 0], seg[i + 1, 1] - seg[i, 1])
@@ -337,15 +418,125 @@ def extract_arc_kernel(cx, cy, r, seg, junctions, theta, junction_tol, ratio, sl
             order[u + 1] = order[u]
             u -= 1
         order[u + 1] = v
+    # Samples of each kept arc (a reversed option walks them backwards) and, per option, the
+    # largest distance of a greedy coupling: the smallest of these bounds the winner's distance.
+    samples = []
+    reverse = []
+    hint = math.inf
+    for o in range(n_opt):
+        c = kept[o // 2]
+        if o % 2 == 0:
+            length = abs(cand[c, 1]) * r
+            samples.append(_arc_samples(cx, cy, r, cand[c, 0], cand[c, 1], step * max(1.0, length / cap), False))
+            reverse.append(samples[-1][::-1].copy())
+        hint = min(hint, _greedy_coupling(seg, samples[o // 2] if o % 2 == 0 else reverse[o // 2]))
     best, best_opt = math.inf, order[0]
     for o in order:
         if lower[o] >= best:
             break
-        c = kept[o // 2]
-        length = abs(cand[c, 1]) * r
-        pts = _arc_samples(cx, cy, r, cand[c, 0], cand[c, 1], step * max(1.0, length / cap), o % 2 == 1)
-        value = frechet(seg, pts, best)
+        pts = samples[o // 2] if o % 2 == 0 else reverse[o // 2]
+        # Within the best so far, and within the smallest greedy coupling: an option farther than
+        # that is not the nearest one (the nearest is at most that far), so only a band of its
+        # table is filled, not a whole table of a far option before the near one is found.
+        value = _frechet_within(seg, pts, min(hint, best * best))
         if value < best:
             best, best_opt = value, o
     c = kept[best_opt // 2]
-    return True, cand[c, 0], cand[c, 1], best_opt % 2 == 1, best
+    return True, cand[c, 0], cand[c, 1], best_opt % 2 == 1, best, near_tol
+
+
+# --------------------------------------------------------------------------------
+# Tangent biarcs (img2logo.tangency._biarc): the fine search around the coarse grid's best
+# --------------------------------------------------------------------------------
+
+
+@_jit
+def biarc_best_kernel(chain, centre_a, centre_b, splits, radius_a, radius_b):  # pragma: no cover - compiled
+    """The best biarc of a grid of splits and turns (``tangency._biarc_fine``): (distance px, s, a).
+
+    For split ``splits[s]`` and turn ``a``, the head's pixels ``chain[:split + 1]``
+    go with the circle of centre ``centre_a[s, a]`` and radius ``radius_a``, the
+    tail's ``chain[split:]`` with ``centre_b[s, a]`` and ``radius_b``; a biarc's
+    distance is the largest distance of a pixel from its circle (the arithmetic
+    of :func:`img2logo.kernels_circle.biarc_worst_kernel`). Returned: the
+    smallest over the grid, and where, the first in row-major order on a tie
+    (numpy's ``argmin`` of the grid of both kernels' ``maximum``). A biarc's
+    pixels stop being measured once it is known to be no better than the best
+    so far (its largest distance can only grow): most of the grid is left after
+    a few pixels.
+    """
+    n = chain.shape[0]
+    best = math.inf
+    best_s, best_a = 0, 0
+    for s in range(centre_a.shape[0]):
+        split = splits[s]
+        for a in range(centre_a.shape[1]):
+            worst = 0.0
+            cx, cy = centre_a[s, a, 0], centre_a[s, a, 1]
+            for i in range(split + 1):
+                d = abs(math.hypot(chain[i, 0] - cx, chain[i, 1] - cy) - radius_a)
+                if d > worst:
+                    worst = d
+                    if worst >= best:
+                        break
+            if worst >= best:
+                continue
+            cx, cy = centre_b[s, a, 0], centre_b[s, a, 1]
+            for i in range(split, n):
+                d = abs(math.hypot(chain[i, 0] - cx, chain[i, 1] - cy) - radius_b)
+                if d > worst:
+                    worst = d
+                    if worst >= best:
+                        break
+            if worst < best:
+                best, best_s, best_a = worst, s, a
+    return best, best_s, best_a
+
+
+@_jit
+def biarc_coarse_kernel(chain, index, splits, heads, tails, radius_a, radius_b):  # pragma: no cover - compiled
+    """The best biarc of the coarse grid for one pair of radii (``tangency._biarc_coarse``): (distance, j, s, a).
+
+    ``heads[side_a, s, a]`` and ``tails[side_b, s, a]`` are the centres of the
+    head's and the tail's circles (sides -1, +1) at split ``splits[s]`` and turn
+    ``a``; of the pixels ``chain[index]`` (increasing) those up to the split go
+    with the head's circle, those from it on with the tail's (the arithmetic of
+    :func:`img2logo.kernels_circle.biarc_worst_kernel`). Over j = 2 side_a +
+    side_b, then the grid in row-major order, the smallest largest distance and
+    where it is first reached; a biarc's pixels stop being measured once it is
+    known to be no better than the best so far.
+    """
+    n_index = index.shape[0]
+    best = math.inf
+    best_j, best_s, best_a = 0, 0, 0
+    for j in range(4):
+        side_a, side_b = j // 2, j % 2
+        for s in range(heads.shape[1]):
+            split = splits[s]
+            for a in range(heads.shape[2]):
+                worst = 0.0
+                cx, cy = heads[side_a, s, a, 0], heads[side_a, s, a, 1]
+                for k in range(n_index):
+                    i = index[k]
+                    if i > split:
+                        break
+                    d = abs(math.hypot(chain[i, 0] - cx, chain[i, 1] - cy) - radius_a)
+                    if d > worst:
+                        worst = d
+                        if worst >= best:
+                            break
+                if worst >= best:
+                    continue
+                cx, cy = tails[side_b, s, a, 0], tails[side_b, s, a, 1]
+                for k in range(n_index - 1, -1, -1):
+                    i = index[k]
+                    if i < split:
+                        break
+                    d = abs(math.hypot(chain[i, 0] - cx, chain[i, 1] - cy) - radius_b)
+                    if d > worst:
+                        worst = d
+                        if worst >= best:
+                            break
+                if worst < best:
+                    best, best_j, best_s, best_a = worst, j, s, a
+    return best, best_j, best_s, best_a

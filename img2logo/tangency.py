@@ -86,7 +86,7 @@ from weakref import WeakKeyDictionary
 
 import numpy as np
 
-from .arc_extraction import redundant_intersections
+from .arc_extraction import _redundant_arrays
 from .constants import (
     BIARC_STARTS,
     BIARC_STEP,
@@ -94,6 +94,7 @@ from .constants import (
     BIARC_TURN_STEPS,
     CONSTRAINED_FIT_TOL,
     KINK_WEIGHT,
+    REDUNDANT_INTERSECTION_TOL,
     RUNG_CHOICES,
     SLIDE_MIN_PIXELS,
 )
@@ -318,8 +319,9 @@ def _rung_choices(opt: FitState, node: int, pair: tuple[int, int]) -> list[dict[
                 steps[g].append(s)
     a, b = pair
     combos = [{a: sa, b: sb} for sa in steps[a] for sb in steps[b] if sa or sb]
-    now = _predicted_apart(opt, node, pair, {})
-    apart = {i: _predicted_apart(opt, node, pair, c, rungs) for i, c in enumerate(combos)}
+    placed: dict = {}  # each circle's radius to the junction by (group, step), placed once
+    now = _predicted_apart(opt, node, pair, {}, placed=placed)
+    apart = {i: _predicted_apart(opt, node, pair, c, rungs, placed) for i, c in enumerate(combos)}
     nearer = sorted((i for i in apart if apart[i] < now), key=lambda i: (apart[i], i))
     return [{a: 0, b: 0}, *(combos[i] for i in nearer[:RUNG_CHOICES])]
 
@@ -330,6 +332,7 @@ def _predicted_apart(
     pair: tuple[int, int],
     combo: dict[int, int],
     rungs: dict[tuple[int, int], tuple[int, float]] | None = None,
+    placed: dict | None = None,
 ) -> float:
     """|sin| of the angle between the radii to a join's junction of its two circles, rungs stepped by ``combo``.
 
@@ -337,28 +340,48 @@ def _predicted_apart(
     where they are now (on the side of its centre now): how far from touching
     the choice of rungs leaves the two before any junction moves. Lines keep
     their circle. Infinite if a radius is too short to reach the other end.
-    ``rungs`` holds the offered rungs by (group, step) when they are known.
+    ``rungs`` holds the offered rungs by (group, step) when they are known;
+    ``placed`` keeps the circles placed so far by (group, step) for the next
+    call on the same join (:func:`_rung_choices` scores up to 9 choices of 6 circles).
     """
-    q = opt.graph.junctions[node] + opt.disp[node]
+    placed = {} if placed is None else placed
     radii = []
     for g in pair:
-        f, group = opt.fits[g], opt.groups[g]
-        center = f.center
         step = combo.get(g, 0)
-        if f.k is not None:
-            r = f.radius if not step else (rungs[g, step] if rungs else _offered_rung(opt, g, step))[1]
-            other = group.nodes[0] if group.nodes[-1] == node else group.nodes[-1]
-            p = opt.graph.junctions[other] + opt.disp[other]
-            half = 0.5 * float(np.hypot(*(p - q)))
-            if r < half or half == 0.0:
-                return np.inf
-            mid, u = 0.5 * (p + q), np.array([q[1] - p[1], p[0] - q[0]]) / (2.0 * half)
-            s = np.sqrt(r * r - half * half)
-            side = 1.0 if float((f.center - mid) @ u) >= 0.0 else -1.0
-            center = mid + side * s * u
-        radii.append(center - q)
-    a, b = radii
-    return abs(float(a[0] * b[1] - a[1] * b[0])) / max(float(np.hypot(*a) * np.hypot(*b)), 1e-300)
+        if (g, step) not in placed:
+            placed[g, step] = _placed(opt, node, g, step, rungs)
+        radius = placed[g, step]
+        if radius is None:
+            return np.inf
+        radii.append(radius)
+    (a, ha), (b, hb) = radii
+    return abs(float(a[0] * b[1] - a[1] * b[0])) / max(float(ha * hb), 1e-300)
+
+
+def _placed(
+    opt: FitState, node: int, g: int, step: int, rungs: dict[tuple[int, int], tuple[int, float]] | None
+) -> tuple[np.ndarray, Any] | None:
+    """:func:`_predicted_apart`'s circle of group ``g`` at the join ``node``, its rung stepped by ``step``.
+
+    (its radius vector to the junction, that vector's length); None if the
+    radius is too short to reach the group's other end.
+    """
+    q = opt.graph.junctions[node] + opt.disp[node]
+    f, group = opt.fits[g], opt.groups[g]
+    center = f.center
+    if f.k is not None:
+        r = f.radius if not step else (rungs[g, step] if rungs else _offered_rung(opt, g, step))[1]
+        other = group.nodes[0] if group.nodes[-1] == node else group.nodes[-1]
+        p = opt.graph.junctions[other] + opt.disp[other]
+        half = 0.5 * float(np.hypot(*(p - q)))
+        if r < half or half == 0.0:
+            return None
+        mid, u = 0.5 * (p + q), np.array([q[1] - p[1], p[0] - q[0]]) / (2.0 * half)
+        s = np.sqrt(r * r - half * half)
+        side = 1.0 if float((f.center - mid) @ u) >= 0.0 else -1.0
+        center = mid + side * s * u
+    radius = center - q
+    return radius, np.hypot(*radius)
 
 
 def _offered_rung(opt: FitState, gid: int, step: int) -> tuple[int, float]:
@@ -593,33 +616,95 @@ def _biarc(
     splits = np.arange(lo, hi, BIARC_STEP)
     turns = np.arange(-BIARC_TURN_STEPS, BIARC_TURN_STEPS + 1) * step
     sides = ((-1.0, -1.0), (-1.0, 1.0), (1.0, -1.0), (1.0, 1.0))
-    normal = _biarc_normal(chain, splits, turns)  # the coarse grid's, shared by every radius and side
-    heads = [
-        {sa: _biarc_worst(chain, splits, turns, r, sa, True, BIARC_STEP, normal) for sa in (-1.0, 1.0)} for r in radii_a
-    ]
-    tails = [
-        {sb: _biarc_worst(chain, splits, turns, r, sb, False, BIARC_STEP, normal) for sb in (-1.0, 1.0)}
-        for r in radii_b
-    ]
+    coarse = _biarc_coarse(chain, splits, turns, radii_a, radii_b)
     out = []
     for ia, ra in enumerate(radii_a):
         for ib, rb in enumerate(radii_b):
-            w = [np.maximum(heads[ia][sa], tails[ib][sb]) for sa, sb in sides]
-            j = min(range(4), key=lambda j: float(w[j].min()))
-            s, t = np.unravel_index(int(np.argmin(w[j])), w[j].shape)
+            j, s, t = coarse[ia, ib]
             sa, sb = sides[j]
             # Around the best on the coarse grid: every pixel and a finer turn, every pixel measured.
             fine = np.arange(max(lo, splits[s] - BIARC_STEP), min(hi, splits[s] + BIARC_STEP + 1))
             near = turns[t] + np.arange(-4, 5) * (step / 4.0)
-            wa = _biarc_worst(chain, fine, near, ra, sa, True, 1)
-            wb = _biarc_worst(chain, fine, near, rb, sb, False, 1)
-            w2 = np.maximum(wa, wb)
-            s2, t2 = np.unravel_index(int(np.argmin(w2)), w2.shape)
+            worst, s2, t2 = _biarc_fine(chain, fine, near, (ra, sa), (rb, sb))
             i = int(fine[s2])
             normal = _biarc_normal(chain, np.array([i]), np.array([near[t2]]))[0, 0]
-            out.append((float(w2[s2, t2]), ia, ib, i, chain[i] + sa * ra * normal, chain[i] + sb * rb * normal))
+            out.append((worst, ia, ib, i, chain[i] + sa * ra * normal, chain[i] + sb * rb * normal))
     out.sort(key=lambda t: t[0])
     return out
+
+
+def _biarc_coarse(
+    chain: np.ndarray, splits: np.ndarray, turns: np.ndarray, radii_a: Sequence[float], radii_b: Sequence[float]
+) -> dict[tuple[int, int], tuple[int, int, int]]:
+    """The best biarc of :func:`_biarc`'s coarse grid for every pair of radii: (ia, ib) -> (sides, split, turn).
+
+    Sides index ``((-1, -1), (-1, 1), (1, -1), (1, 1))`` (the head's circle's and
+    the tail's); every ``BIARC_STEP``-th pixel measured. The smallest largest
+    distance over the sides and the grid, the first in that order on a tie.
+    Compiled (:func:`img2logo.kernels_arcs.biarc_coarse_kernel`), a biarc's
+    pixels stop being measured once it cannot beat the best so far: the same
+    choice as the smallest of numpy's minima over the four grids of the two
+    sides' :func:`_biarc_worst`, and its argmin.
+    """
+    normal = _biarc_normal(chain, splits, turns)  # shared by every radius and side
+    from . import kernels
+
+    out = {}
+    if kernels.usable():
+        base = chain[splits][:, None, :]
+        heads = [np.stack([base + side * r * normal for side in (-1.0, 1.0)]) for r in radii_a]
+        tails = [np.stack([base + side * r * normal for side in (-1.0, 1.0)]) for r in radii_b]
+        index = np.arange(0, len(chain), BIARC_STEP)
+        at = np.asarray(splits, dtype=np.int64)
+        for ia, ra in enumerate(radii_a):
+            for ib, rb in enumerate(radii_b):
+                _, j, s, t = kernels.biarc_coarse_kernel(chain, index, at, heads[ia], tails[ib], ra, rb)
+                out[ia, ib] = (int(j), int(s), int(t))
+        return out
+    sides = ((-1.0, -1.0), (-1.0, 1.0), (1.0, -1.0), (1.0, 1.0))
+    head = [
+        {sa: _biarc_worst(chain, splits, turns, r, sa, True, BIARC_STEP, normal) for sa in (-1.0, 1.0)} for r in radii_a
+    ]
+    tail = [
+        {sb: _biarc_worst(chain, splits, turns, r, sb, False, BIARC_STEP, normal) for sb in (-1.0, 1.0)}
+        for r in radii_b
+    ]
+    for ia in range(len(radii_a)):
+        for ib in range(len(radii_b)):
+            w = [np.maximum(head[ia][sa], tail[ib][sb]) for sa, sb in sides]
+            j = min(range(4), key=lambda j: float(w[j].min()))
+            s, t = np.unravel_index(int(np.argmin(w[j])), w[j].shape)
+            out[ia, ib] = (j, int(s), int(t))
+    return out
+
+
+def _biarc_fine(
+    chain: np.ndarray, splits: np.ndarray, turns: np.ndarray, head: tuple[float, float], tail: tuple[float, float]
+) -> tuple[float, int, int]:
+    """The best biarc of a grid of ``splits`` and ``turns``: (largest pixel distance px, split index, turn index).
+
+    ``head`` and ``tail`` are the two circles' (radius, side); every pixel is
+    measured. The smallest over the grid of the larger of the head's and the
+    tail's :func:`_biarc_worst`, the first in row-major order on a tie. Compiled
+    (:func:`img2logo.kernels_arcs.biarc_best_kernel`), a biarc's pixels stop
+    being measured once it cannot beat the best so far: the same numbers as the
+    two grids, a third of the work on the clip arts' joins.
+    """
+    (ra, sa), (rb, sb) = head, tail
+    from . import kernels
+
+    if kernels.usable():
+        normal = _biarc_normal(chain, splits, turns)
+        base = chain[splits][:, None, :]
+        worst, s, t = kernels.biarc_best_kernel(
+            chain, base + sa * ra * normal, base + sb * rb * normal, np.asarray(splits, dtype=np.int64), ra, rb
+        )
+        return float(worst), int(s), int(t)
+    w = np.maximum(
+        _biarc_worst(chain, splits, turns, ra, sa, True, 1), _biarc_worst(chain, splits, turns, rb, sb, False, 1)
+    )
+    s, t = np.unravel_index(int(np.argmin(w)), w.shape)
+    return float(w[s, t]), int(s), int(t)
 
 
 def _biarc_normal(chain: np.ndarray, splits: np.ndarray, turns: np.ndarray) -> np.ndarray:
@@ -751,16 +836,28 @@ def _touching(opt: FitState, made: dict[int, tuple[int, int]]) -> bool:
 
 
 def _redundant(opt: FitState, of: set[int]) -> int:
-    """Redundant intersections (Sec. 5.2, Fig. 12) of the state's arcs that involve the groups ``of``."""
+    """Redundant intersections (Sec. 5.2, Fig. 12) of the state's arcs that involve the groups ``of``.
+
+    :func:`~img2logo.arc_extraction.redundant_intersections` on arrays the
+    state already has (the fits' arc rows, every junction's p_k + d_k at once),
+    past its checks: the same test on the same numbers.
+    """
     gids = list(opt.groups)
-    arcs = [opt.fits[g].arc.arc for g in gids]
     node_groups = opt.node_groups()
     nodes = sorted(node_groups)
     index = {n: i for i, n in enumerate(nodes)}
-    points = np.array([opt.graph.junctions[n] + opt.disp[n] for n in nodes]).reshape(-1, 2)
-    arc_junctions = [[index[n] for n in opt.constrained_nodes(opt.groups[g])] for g in gids]
-    changed = [i for i, g in enumerate(gids) if g in of]
-    return len(redundant_intersections(arcs, points, arc_junctions, candidates=changed))
+    at = np.asarray(nodes, dtype=np.intp)
+    points = (opt.graph.junctions[at] + opt.disp[at]).reshape(-1, 2)
+    owned = [[index[n] for n in opt.constrained_nodes(opt.groups[g])] for g in gids]
+    ptr = np.zeros(len(gids) + 1, dtype=np.int64)
+    ptr[1:] = np.cumsum([len(ks) for ks in owned])
+    flat = np.fromiter((k for ks in owned for k in ks), dtype=np.int64, count=int(ptr[-1]))
+    rows = np.array([i for i, g in enumerate(gids) if g in of], dtype=np.int64)
+    fits = [opt.fits[g] for g in gids]
+    params = np.array([f.arc_row for f in fits], dtype=np.float64).reshape(-1, 5)
+    arcs = [f.arc.arc for f in fits]
+    pairs, _ = _redundant_arrays(arcs, points, ptr, flat, rows, REDUNDANT_INTERSECTION_TOL, params)
+    return len(pairs)
 
 
 def _apart(opt: FitState, seeds: dict, node: int, pair: tuple[int, int]) -> float:

@@ -107,6 +107,70 @@ def test_bounded_frechet_stops_early_only_when_it_cannot_win() -> None:
     assert _frechet(p, q, bound=exact * 0.5) == math.inf
 
 
+def frechet_table(p: np.ndarray, q: np.ndarray) -> float:
+    """The whole O(N M) table on squared distances, as the compiled kernel computes them (bit for bit)."""
+    n, m = len(p), len(q)
+    c = np.empty((n, m))
+    for i in range(n):
+        for j in range(m):
+            dx, dy = p[i, 0] - q[j, 0], p[i, 1] - q[j, 1]
+            d2 = dx * dx + dy * dy
+            if i == 0 and j == 0:
+                c[i, j] = d2
+            elif i == 0:
+                c[i, j] = max(c[0, j - 1], d2)
+            elif j == 0:
+                c[i, j] = max(c[i - 1, 0], d2)
+            else:
+                c[i, j] = max(min(c[i - 1, j], c[i - 1, j - 1], c[i, j - 1]), d2)
+    return math.sqrt(c[-1, -1])
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_banded_frechet_is_the_whole_table_bit_for_bit(seed) -> None:
+    # The kernel fills only a band of the table (cells within a greedy coupling's distance):
+    # the same number as the whole table, also on integer pixels (ties), one-point curves,
+    # curves far apart and near ones; with a bound, the same number below it and inf or at
+    # least the bound otherwise.
+    rng = np.random.default_rng(seed)
+    for trial in range(150):
+        n, m = (int(v) for v in rng.integers(1, 40, 2))
+        p = np.cumsum(rng.normal(size=(n, 2)), axis=0) * rng.uniform(0.2, 3.0)
+        if trial % 3 == 0:  # a noisy copy of p, resampled: the band is narrow
+            q = p[np.sort(rng.integers(0, n, m))] + rng.normal(size=(m, 2)) * 0.4
+        else:
+            q = np.cumsum(rng.normal(size=(m, 2)), axis=0) * rng.uniform(0.2, 3.0) + rng.normal(size=2) * 5
+        if trial % 4 == 0:
+            p, q = np.round(p), np.round(q)
+        exact = frechet_table(p, q)
+        assert _frechet(p, q) == exact
+        for bound in (exact, exact * 1.5 + 1e-9, exact * rng.uniform(0.0, 1.0)):
+            got = _frechet(p, q, bound=bound)
+            assert got == exact if exact < bound else got >= bound
+
+
+def test_extract_arc_with_a_far_first_candidate_matches_the_whole_table(monkeypatch) -> None:
+    # Two junctions a third of a circle apart and the pixels along the short arc between them,
+    # clockwise: the long arc (far from the pixels) comes first among candidates of equal lower
+    # bound. Cut at the nearest option's greedy coupling, it costs a band, not a whole table;
+    # the arc and its distance are those of the whole tables.
+    import img2logo.arc_extraction as extraction
+
+    circle = Circle(0.0, 0.0, 40.0)
+    seg = circle.point_at(np.linspace(0.0, -2.1, 90)) + np.random.default_rng(3).normal(0.0, 0.6, (90, 2))
+    junctions = circle.point_at(np.array([0.0, -2.1]))
+    tried = []
+    monkeypatch.setattr(
+        extraction, "_frechet", lambda p, q, bound=math.inf: tried.append(len(q)) or frechet_table(p, q)
+    )
+    want = extraction._extract_reference(circle, seg, junctions)
+    assert tried[0] > 150  # the long way round first
+    monkeypatch.undo()
+    got = extract_arc(circle, seg, junctions)
+    assert (got.arc.theta0, got.arc.sweep, got.frechet) == (want.arc.theta0, want.arc.sweep, want.frechet)
+    assert got.arc.sweep == pytest.approx(-2.1)
+
+
 @pytest.mark.parametrize(
     ("p", "message"),
     [

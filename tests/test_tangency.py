@@ -193,3 +193,59 @@ def test_biarc_worst_kernel_matches_the_numpy_reference():
                 index = np.arange(0, n, stride)
                 expected = _biarc_worst_reference(chain, centre, index, splits, r, head)
                 assert np.array_equal(_biarc_worst(chain, splits, turns, r, side, head, stride), expected)
+
+
+def test_biarc_fine_search_is_the_grids_argmin():
+    # The compiled search stops measuring a biarc once it cannot win: the same value and the
+    # same place as numpy's argmin over the two grids' maximum, the first one on a tie
+    # (repeated splits and turns make ties).
+    from img2logo.tangency import _biarc_fine, _biarc_worst
+
+    rng = np.random.default_rng(11)
+    for _ in range(40):
+        n = int(rng.integers(20, 120))
+        t = np.linspace(0.0, rng.uniform(0.5, 3.0), n)
+        radius = rng.uniform(10.0, 200.0)
+        chain = np.round(np.stack([radius * np.cos(t), radius * np.sin(t)], 1) + rng.normal(0, 0.7, (n, 2))) + 100.5
+        splits = np.sort(rng.integers(4, n - 5, 9))
+        turns = np.sort(np.concatenate([rng.uniform(-0.3, 0.3, 5), [0.0, 0.0]]))
+        head = (rng.uniform(5.0, 300.0), float(rng.choice([-1.0, 1.0])))
+        tail = (rng.uniform(5.0, 300.0), float(rng.choice([-1.0, 1.0])))
+        w = np.maximum(
+            _biarc_worst(chain, splits, turns, *head, True, 1), _biarc_worst(chain, splits, turns, *tail, False, 1)
+        )
+        s, a = np.unravel_index(int(np.argmin(w)), w.shape)
+        assert _biarc_fine(chain, splits, turns, head, tail) == (float(w[s, a]), int(s), int(a))
+
+
+def test_biarc_coarse_search_is_the_grids_choice():
+    # The compiled coarse search stops measuring a biarc once it cannot win: for every pair of
+    # radii the same sides and place as the smallest of the four grids' minima (numpy's
+    # maximum of the two sides' grids), and its argmin, the first on a tie.
+    from img2logo.constants import BIARC_STEP
+    from img2logo.tangency import _biarc_coarse, _biarc_normal, _biarc_worst
+
+    sides = ((-1.0, -1.0), (-1.0, 1.0), (1.0, -1.0), (1.0, 1.0))
+    rng = np.random.default_rng(12)
+    for _ in range(20):
+        n = int(rng.integers(30, 200))
+        t = np.linspace(0.0, rng.uniform(0.5, 3.0), n)
+        radius = rng.uniform(10.0, 200.0)
+        chain = np.round(np.stack([radius * np.cos(t), radius * np.sin(t)], 1) + rng.normal(0, 0.7, (n, 2))) + 100.5
+        splits = np.arange(5, n - 5, 4)
+        turns = np.sort(np.concatenate([rng.uniform(-0.4, 0.4, 6), [0.0, 0.0]]))
+        radii_a, radii_b = list(rng.uniform(5.0, 300.0, 2)), [radius, *rng.uniform(5.0, 300.0, 2)]
+        normal = _biarc_normal(chain, splits, turns)
+        got = _biarc_coarse(chain, splits, turns, radii_a, radii_b)
+        for ia, ra in enumerate(radii_a):
+            for ib, rb in enumerate(radii_b):
+                w = [
+                    np.maximum(
+                        _biarc_worst(chain, splits, turns, ra, sa, True, BIARC_STEP, normal),
+                        _biarc_worst(chain, splits, turns, rb, sb, False, BIARC_STEP, normal),
+                    )
+                    for sa, sb in sides
+                ]
+                j = min(range(4), key=lambda j: float(w[j].min()))
+                s, a = np.unravel_index(int(np.argmin(w[j])), w[j].shape)
+                assert got[ia, ib] == (j, int(s), int(a))
