@@ -100,6 +100,9 @@ def evaluate(state: FitState, pair: Pair) -> MergeOutcome | None:
 
     merged_nodes = set(state.constrained_nodes(merged))
     hold = _hold(state, seeds, merged, pair, level)
+    lines = [g for g in level.lines if g != a and g != b]  # the groups after the merge that are straight
+    if seeds[-1].k is None:
+        lines.append(-1)
     global_solve = not state.options.localized
     out: Solution | None = None
     cap = state.options.arc_bound
@@ -118,6 +121,7 @@ def evaluate(state: FitState, pair: Pair) -> MergeOutcome | None:
             order=lambda g: (g != -1, g),
             tangent=tangent,
             cap=cap,
+            lines=lines,
         )
 
     if not global_solve and hold:
