@@ -110,7 +110,8 @@ class Stats:
     rejected_intersections : int
         Candidates left with redundant intersections (Fig. 12) when the loop stopped.
     rejected_far_arc : int
-        Candidates whose arc strays farther than ``max_arc_distance``.
+        Candidates whose arc strays farther than ``max_arc_distance``: found by
+        their fit, or before it where no circle of their radius comes that near.
     released_junctions : int
         Junctions whose connectivity constraint was given up (:func:`img2logo.recovery.recover`).
     tangent_joins : int
@@ -315,6 +316,9 @@ class FitState:
         self.off_line: dict[int, float] = {}
         #: What the merge loop keeps of one level for all its candidates (img2logo.merging._level).
         self.merge_cache: object | None = None
+        #: (merged group's segments, nodes, radius) -> whether no circle of that radius comes within
+        #: the arc bound of its pixels (img2logo.merging._too_far): asked again at every level.
+        self.far_arcs: dict[tuple[tuple[int, ...], tuple[int, ...], float], bool] = {}
 
     # ----------------------------------------------------------------- groups and nodes
     def add_group(self, group: Group) -> int:
