@@ -13,7 +13,7 @@ import math
 from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from itertools import chain
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 
@@ -438,7 +438,7 @@ class Abstraction:
         if len(nodes) != len(j):
             raise InvalidParameterError(f"junction_nodes must have one entry per junction ({len(j)}), got {len(nodes)}")
         # The common case (Python ints >= 0, every level of a run) in one pass in C.
-        if not (set(map(type, nodes)) <= {int} and min(nodes, default=0) >= 0):
+        if not (set(map(type, nodes)) <= {int} and min(cast(tuple[int, ...], nodes), default=0) >= 0):
             nodes = tuple(None if n is None else check_integer(n, "junction_nodes entry", 0) for n in nodes)
         put(self, "junction_nodes", nodes)
         if self.arc_junctions is None:
