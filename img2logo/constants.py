@@ -538,6 +538,16 @@ SIMPLIFICATION_ERROR: float = 1.0
 #: photo-likes, sil6 least / mean: 0.76 / 0.90 unbounded, 0.79 / 0.91 at 2 T,
 #: 0.85 / 0.93 at 1 T (15-22 arcs).
 PHOTO_MAX_ARC_FACTOR: float = 1.0
+#: A merge candidate whose new circle (radius fixed on the ladder) cannot pass within
+#: ``max_arc_distance`` + this of all its pixels, wherever its centre, is rejected
+#: before its fit (img2logo.merging, kernels_sqp.far_circle_kernel): the fit's arc,
+#: coupled to every pixel by the Fréchet distance, would be farther. The margin
+#: covers rounding: the arc's samples lie on their circle to ~1e-10 px (r <= 1e6 px),
+#: the proof's distances to ~1e-12 px; 1e-6 px is far above both.
+FAR_ARC_MARGIN: float = 1e-6
+#: Most boxes of centres the proof above tries before giving up (then the fit decides):
+#: on the flower's 117 merged groups at most ~800 us each, ~4 ms in all.
+FAR_ARC_BUDGET: int = 20000
 
 # --- Arc extraction and intersections (arc_extraction.py) --------------------------
 #: Spacing of the samples of a candidate arc compared with a segment's pixels by

@@ -422,7 +422,7 @@ class WindowProblem:
         return Problem(self)
 
 
-def _fit(problem: WindowProblem, compiled: bool = True) -> ConstrainedFit:
+def _fit(problem: WindowProblem, compiled: bool = True, size: int | None = None) -> ConstrainedFit:
     """The SQP solve of :func:`fit_constrained` on its checked arrays.
 
     A KKT system of at most ``KKT_DENSE_MAX`` unknowns and multipliers (a local
@@ -434,17 +434,23 @@ def _fit(problem: WindowProblem, compiled: bool = True) -> ConstrainedFit:
     ``compiled=False`` always runs the Python reference :func:`_fit_reference`
     (the tests compare them), as does a system above ``KKT_COMPILED_MAX`` and an
     install where numba cannot cache the kernels (:data:`img2logo.kernels.CACHED`).
+    ``size``: the problem's :meth:`WindowProblem.kkt_size` when the caller counted it.
     """
     from . import kernels  # the compiled kernels load on the first fit, not at import
 
     p = problem
-    size = p.kkt_size()
+    if size is None:
+        size = p.kkt_size()
     if compiled and size <= KKT_COMPILED_MAX and kernels.usable():
         kernel = kernels.sqp_dense if size <= KKT_DENSE_MAX else kernels.sqp_banded
         centers, disp = np.array(p.centers, dtype=np.float64), np.array(p.disp, dtype=np.float64)
         held_mask = np.zeros(2 * (len(p.free_c) + len(p.free_j)), dtype=bool)
-        held_mask[np.asarray(p.held, dtype=np.intp)] = True
-        tan_s = 1.0 / np.maximum(p.radii[p.tangents[:, 0]], p.radii[p.tangents[:, 1]])
+        if p.held:
+            held_mask[np.asarray(p.held, dtype=np.intp)] = True
+        if len(p.tangents):
+            tan_s = 1.0 / np.maximum(p.radii[p.tangents[:, 0]], p.radii[p.tangents[:, 1]])
+        else:
+            tan_s = np.zeros(0)
         iterations, converged, objective, violation = kernel(
             np.ascontiguousarray(p.points, dtype=np.float64).reshape(-1, 2),
             np.ascontiguousarray(p.owner, dtype=np.int64),
@@ -673,11 +679,16 @@ def fit_window(
     for _ring in range(max(int(rings), 1)):
         members = seeds | {c for n in free_j for c in junction_circles.get(n, ())}
         window = tuple(sorted(members, key=order))
-        nodes = tuple(sorted({n for c in window for n in circle_junctions[c]} | free_j))
+        owned = [circle_junctions[c] for c in window]  # each circle's junctions, read once
+        node_set = set(free_j)
+        for js in owned:
+            node_set.update(js)
+        nodes = tuple(sorted(node_set))
         if not window and not nodes:
             return WindowFit(True, window, (), frozenset(free_j), None)
         node_index = {n: i for i, n in enumerate(nodes)}
-        incidence = [(i, node_index[n]) for i, c in enumerate(window) for n in circle_junctions[c]]
+        # Distinct and sorted, as fit_constrained makes them (sorted tuples: a lexsort of a few rows).
+        incidence = sorted({(i, node_index[n]) for i, js in enumerate(owned) for n in js})
         tangents = []
         if touching:
             circle_index = {c: i for i, c in enumerate(window)}
@@ -689,15 +700,17 @@ def fit_window(
                     continue  # only the junction could move: two fixed circles touch or they do not
                 tangents.append((circle_index[pair[0]], circle_index[pair[1]], node_index[n]))
         sets = [points[c] for c in window]
+        lengths = [len(s) for s in sets]
         extra = {} if constraints is None else constraints(window, nodes)
         free_c = [i for i, c in enumerate(window) if c not in fixed]
         free_k = [node_index[n] for n in sorted(free_j)]
-        weights = 1.0 / (max(n_circles or len(window), 1) * np.array([len(s) for s in sets]))
-        junc = junction_points[list(nodes)]
-        disp0 = np.zeros((len(nodes), 2)) if displacements0 is None else displacements0[list(nodes)]
-        # Distinct and sorted, as fit_constrained makes them (sorted tuples: a lexsort of a few rows).
-        inc = np.array(sorted(set(incidence)), dtype=np.int64).reshape(-1, 2)
-        tan = np.array(sorted(set(tangents)), dtype=np.int64).reshape(-1, 3)
+        weights = 1.0 / (max(n_circles or len(window), 1) * np.array(lengths))
+        node_list = list(nodes)
+        junc = junction_points[node_list]
+        disp0 = np.zeros((len(nodes), 2)) if displacements0 is None else displacements0[node_list]
+        inc = np.array(incidence, dtype=np.int64).reshape(-1, 2)
+        tangents = sorted(set(tangents))
+        tan = np.array(tangents, dtype=np.int64).reshape(-1, 3)
         if extra:  # a mirror axis: the public path, which places the held coordinates on it
             fit = fit_constrained(
                 sets, np.array([radii[c] for c in window]), np.array([centers[c] for c in window]), junc, inc,
@@ -708,24 +721,32 @@ def fit_window(
         else:
             # The window's own arrays are well formed by construction (float64 points,
             # indices sorted and in range, incidence and tangent rows distinct and
-            # sorted): no checks of the public boundary here.
+            # sorted): no checks of the public boundary here. Its KKT size is counted
+            # here on the lists (WindowProblem.kkt_size on its arrays, the same number).
+            size = 2 * (len(free_c) + len(free_k))
+            if connectivity:
+                on_c = set(free_c)
+                on_k = set(free_k)
+                size += sum(1 for i, k in incidence if i in on_c or k in on_k)
+                size += sum(1 for a, b, k in tangents if a in on_c or b in on_c or k in on_k)
             fit = _fit(
                 WindowProblem(
                     np.concatenate([np.asarray(s, dtype=np.float64) for s in sets]) if sets else np.zeros((0, 2)),
-                    np.repeat(np.arange(len(window)), [len(s) for s in sets]),
+                    np.repeat(np.arange(len(window)), lengths),
                     np.array([radii[c] for c in window], dtype=np.float64),
                     np.array([centers[c] for c in window], dtype=np.float64).reshape(-1, 2),
                     np.asarray(junc, dtype=np.float64).reshape(-1, 2),
                     np.asarray(disp0, dtype=np.float64).reshape(-1, 2),
                     inc, np.array(free_c, dtype=np.int64), np.array(free_k, dtype=np.int64), weights,
                     1.0 / max(n_junctions or len(nodes), 1), bool(connectivity), tan, (), float(tol),
-                )
+                ),
+                size=size,
             )  # fmt: skip
         ok = not connectivity or (fit.converged and (max_violation is None or fit.violation <= max_violation))
         last = WindowFit(ok, window, nodes, frozenset(free_j), fit)
         if ok:
             return last
-        grown = free_j | {n for c in window for n in circle_junctions[c]}
+        grown = node_set  # the free junctions and all those of the window's circles
         if grown == free_j:
             break  # the next ring would be the same window
         free_j = grown

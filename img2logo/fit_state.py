@@ -110,7 +110,8 @@ class Stats:
     rejected_intersections : int
         Candidates left with redundant intersections (Fig. 12) when the loop stopped.
     rejected_far_arc : int
-        Candidates whose arc strays farther than ``max_arc_distance``.
+        Candidates whose arc strays farther than ``max_arc_distance``: found by
+        their fit, or before it where no circle of their radius comes that near.
     released_junctions : int
         Junctions whose connectivity constraint was given up (:func:`img2logo.recovery.recover`).
     tangent_joins : int
@@ -298,12 +299,14 @@ class FitState:
         #: group path -> (released junctions when made, :meth:`golden_error`).
         self._golden_error: dict[tuple[tuple[int, ...], tuple[int, ...]], tuple[int, float]] = {}
         self._node_groups: dict[int, list[int]] | None = None
-        #: group -> (arc, junction nodes, their points' bytes, ArcJunctions by path position,
-        #: the nodes' indices in the last level, its ArcJunctions there, whether a level
-        #: checked that arc at those points): :meth:`_topology`.
+        #: group -> (arc, junction nodes, the :meth:`abstraction` call that last saw it, ArcJunctions
+        #: by path position, the nodes' indices in that level, its ArcJunctions there, whether a
+        #: level checked that arc at those points): :meth:`_topology`.
         self._topologies: dict[
-            int, tuple[Any, tuple[int, ...], bytes, ArcJunctions, tuple[int, ...], ArcJunctions | None, bool]
+            int, tuple[Any, tuple[int, ...], int, ArcJunctions, tuple[int, ...], ArcJunctions | None, bool]
         ] = {}
+        #: What the last :meth:`abstraction` call read: its number, every node's displaced point, J' in order.
+        self._last_level: tuple[int, np.ndarray | None, list[int]] = (0, None, [])
         self.smooth: frozenset[int] = graph.smooth_nodes() if options.tangency and options.connectivity else frozenset()
         self.loose: set[int] = set()
         #: Smooth joins the merge loop made tangent (img2logo.merging): held in every later merge's window.
@@ -313,6 +316,9 @@ class FitState:
         self.off_line: dict[int, float] = {}
         #: What the merge loop keeps of one level for all its candidates (img2logo.merging._level).
         self.merge_cache: object | None = None
+        #: (merged group's segments, nodes, radius) -> whether no circle of that radius comes within
+        #: the arc bound of its pixels (img2logo.merging._too_far): asked again at every level.
+        self.far_arcs: dict[tuple[tuple[int, ...], tuple[int, ...], float], bool] = {}
 
     # ----------------------------------------------------------------- groups and nodes
     def add_group(self, group: Group) -> int:
@@ -631,6 +637,7 @@ class FitState:
         order: Callable[[int], Any] | None = None,
         tangent: bool | Collection[int] = False,
         cap: float | None = None,
+        lines: Collection[int] | None = None,
     ) -> Solution | None:
         """Eqn. 13 over a window of ``groups`` (:func:`~img2logo.constrained_fit.fit_window`), then their arcs.
 
@@ -640,9 +647,12 @@ class FitState:
         its chord: their junctions slide onto them). With ``tangent``, the
         circles of :meth:`tangencies` touch at their junctions too. With ``cap``
         (px), a merged group (id -1) whose arc strays farther than that is the
-        only fit returned (see :meth:`_fits`). None if it fails.
+        only fit returned (see :meth:`_fits`). ``lines``: the groups whose seeds
+        are straight lines (k None), when the caller knows them (a merge candidate's
+        from its level's); default found in ``seeds``. None if it fails.
         """
-        fixed = set(fixed) | {g for g in groups if seeds[g].k is None}
+        fixed = set(fixed)
+        fixed.update({g for g in groups if seeds[g].k is None} if lines is None else lines)
         window = fit_window(
             _Lazy(lambda g: groups[g].points),
             _Lazy(lambda g: seeds[g].radius),
@@ -775,14 +785,29 @@ class FitState:
     def abstraction(self, level: int, params: Mapping[str, Any]) -> Abstraction:
         """The current state as a frozen :class:`Abstraction` A^t, with its ladder and topology."""
         order = sorted(self.groups, key=lambda g: min(self.groups[g].segments))
-        index = {g: i for i, g in enumerate(order)}
-        node_groups = self.node_groups()
-        nodes = sorted(node_groups)
+        nodes = sorted(self.node_groups())
         junction = {n: i for i, n in enumerate(nodes)}
         displaced = self.graph.junctions + self.disp  # every node's p_k + d_k at once, (N, 2)
         points = displaced[np.asarray(nodes, dtype=np.intp)].reshape(-1, 2)
         arcs = tuple(self.fits[g].arc.arc for g in order)
-        topology = tuple(self._topology(g, arc, junction, displaced) for g, arc in zip(order, arcs, strict=True))
+        # The nodes whose point moved since the last call (all of them on the first), and
+        # whether J' is numbered as then: a group's topology is read again only where they changed.
+        call, before, nodes_before = self._last_level
+        moved: set[int] | None = None
+        if before is not None and before.shape == displaced.shape:
+            moved = set(np.flatnonzero((displaced != before).any(axis=1)).tolist())
+        self._last_level = (call + 1, displaced, nodes)
+        renumbered = nodes != nodes_before
+        topology = tuple(
+            self._topology(g, arc, junction, displaced, moved, renumbered, call)
+            for g, arc in zip(order, arcs, strict=True)
+        )
+        # Each junction's arcs in index order: the groups walked in that order (what
+        # sorting each node's groups by index gives, without a sort per node).
+        at_node: dict[int, list[int]] = {n: [] for n in nodes}
+        for i, g in enumerate(order):
+            for n in set(self.constrained_nodes(self.groups[g])):
+                at_node[n].append(i)
         # The arcs an earlier level checked, with the same junction points: left out of its geometric check.
         known = tuple(self._topologies[g][6] for g in order)
         out = Abstraction._with_known(
@@ -791,7 +816,7 @@ class FitState:
             arcs=arcs,
             arc_segments=tuple(self.groups[g].segments for g in order),
             junctions=points,
-            junction_arcs=tuple(tuple(sorted(index[g] for g in node_groups[n])) for n in nodes),
+            junction_arcs=tuple(map(tuple, map(at_node.__getitem__, nodes))),
             similarity=float(self.similarity()),
             bias=float(self.ladder.bias),
             tolerance=float(self.options.tolerance),
@@ -809,21 +834,44 @@ class FitState:
                 self._topologies[g] = (*entry[:6], True)
         return out
 
-    def _topology(self, g: int, arc: Any, junction: Mapping[int, int], displaced: np.ndarray) -> ArcJunctions:
+    def _topology(
+        self,
+        g: int,
+        arc: Any,
+        junction: Mapping[int, int],
+        displaced: np.ndarray,
+        moved: set[int] | None,
+        renumbered: bool,
+        call: int,
+    ) -> ArcJunctions:
         """:meth:`arc_junctions` of group ``g``'s ``arc``, its junctions numbered by ``junction`` (node -> index).
 
         Found in the group's own path positions and kept while its arc and its
         junctions' points (rows of ``displaced``, by node) stay the same: between
         two levels most arcs do; so is the numbered value while the numbering does.
+        ``moved``: the nodes whose point changed since the last :meth:`abstraction`
+        call (None: any may have), ``call`` that call's number; ``renumbered``:
+        whether J' is numbered differently from then. An entry is reused only when
+        that last call saw it (a group of an earlier level restored later is read again).
         """
         nodes = self.constrained_nodes(self.groups[g])
-        points = displaced[list(nodes)]
-        key = points.tobytes()
         cached = self._topologies.get(g)
-        if cached is None or cached[0] is not arc or cached[1] != nodes or cached[2] != key:
-            cached = (arc, nodes, key, self.arc_junctions(arc, range(len(nodes)), points), (), None, False)
+        if (
+            cached is None
+            or cached[0] is not arc
+            or cached[2] != call
+            or cached[1] != nodes
+            or moved is None
+            or not moved.isdisjoint(nodes)
+        ):
+            points = displaced[list(nodes)]
+            cached = (arc, nodes, call, self.arc_junctions(arc, range(len(nodes)), points), (), None, False)
+        elif not renumbered and cached[5] is not None:
+            self._topologies[g] = (*cached[:2], call + 1, *cached[3:])
+            return cached[5]
         at = tuple(junction[n] for n in nodes)
         if cached[5] is not None and cached[4] == at:
+            self._topologies[g] = (*cached[:2], call + 1, *cached[3:])
             return cached[5]
         local = cached[3]
         value = ArcJunctions(
@@ -831,7 +879,7 @@ class FitState:
             None if local.end is None else at[local.end],
             tuple(at[i] for i in local.through),
         )
-        self._topologies[g] = (*cached[:4], at, value, cached[6])
+        self._topologies[g] = (*cached[:2], call + 1, cached[3], at, value, cached[6])
         return value
 
     @staticmethod

@@ -12,7 +12,8 @@ from __future__ import annotations
 import math
 from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import Any
+from itertools import chain
+from typing import Any, cast
 
 import numpy as np
 
@@ -305,7 +306,10 @@ class ArcJunctions:
     @property
     def ends(self) -> tuple[int, ...]:
         """The junctions at an end point of the arc (each once)."""
-        return tuple(dict.fromkeys(j for j in (self.start, self.end) if j is not None))
+        start, end = self.start, self.end  # (read for every arc of every level: no generator)
+        if start is None:
+            return () if end is None else (end,)
+        return (start,) if end is None or end == start else (start, end)
 
     def renumbered(self, mapping: Mapping[int, int]) -> ArcJunctions:
         """The same with junction ``j`` renamed ``mapping[j]``; a junction not in it is dropped (a free end)."""
@@ -392,9 +396,9 @@ class Abstraction:
         j = np.asarray(self.junctions, dtype=np.float64).reshape(-1, 2)
         put(self, "junctions", readonly(j.copy()))
         put(self, "arcs", tuple(self.arcs))
-        for a in self.arcs:
-            if not isinstance(a, Arc):
-                raise InvalidParameterError(f"arcs must be Arc values, got {type(a).__name__}")
+        if not all(isinstance(a, Arc) for a in self.arcs):
+            bad = next(a for a in self.arcs if not isinstance(a, Arc))
+            raise InvalidParameterError(f"arcs must be Arc values, got {type(bad).__name__}")
         put(self, "level", check_integer(self.level, "level", 0))
         put(self, "width", check_integer(self.width, "width", 1))
         put(self, "height", check_integer(self.height, "height", 1))
@@ -433,11 +437,10 @@ class Abstraction:
         nodes = (None,) * len(j) if self.junction_nodes is None else tuple(self.junction_nodes)
         if len(nodes) != len(j):
             raise InvalidParameterError(f"junction_nodes must have one entry per junction ({len(j)}), got {len(nodes)}")
-        put(
-            self,
-            "junction_nodes",
-            tuple(None if n is None else check_integer(n, "junction_nodes entry", 0) for n in nodes),
-        )
+        # The common case (Python ints >= 0, every level of a run) in one pass in C.
+        if not (set(map(type, nodes)) <= {int} and min(cast(tuple[int, ...], nodes), default=0) >= 0):
+            nodes = tuple(None if n is None else check_integer(n, "junction_nodes entry", 0) for n in nodes)
+        put(self, "junction_nodes", nodes)
         if self.arc_junctions is None:
             put(self, "arc_junctions", self._found_arc_junctions())
         self._check_topology()
@@ -447,8 +450,9 @@ class Abstraction:
         """``Abstraction(**fields)``, with the arcs ``known`` (by index) left out of the geometric topology check.
 
         For :meth:`img2logo.fit_state.FitState.abstraction`, which knows the
-        arcs that an earlier level checked with the same junction points; every
-        other check runs as for any value.
+        arcs that an earlier level checked with the same junction points (and
+        the same ladder, the run's: they are left out of the radius check too);
+        every other check runs as for any value.
         """
         self = cls.__new__(cls)
         self.__dict__["_known"] = tuple(known)
@@ -499,10 +503,12 @@ class Abstraction:
 
         True when every arc's circle that is not a line's has a k and its
         ladder radius; otherwise :meth:`_check_ladder` decides and names the circle.
+        The arcs an earlier level of the run checked (:meth:`_with_known`) are left out.
         """
         radii: dict[int, float] = {}
-        for a in self.arcs:
-            if a.is_line:
+        known = self.__dict__.get("_known", ())  # arcs an earlier level of the run checked (_with_known)
+        for i, a in enumerate(self.arcs):
+            if (known and known[i]) or a.is_line:
                 continue
             c = a.circle
             if c.k is None:
@@ -746,11 +752,8 @@ class Abstraction:
 
 
 def _int_tuples(values: Sequence[Sequence[int]], name: str) -> tuple[tuple[int, ...], ...]:
-    out = []
-    for entry in values:
-        t = tuple(entry)
-        # The common case (Python ints >= 0, every level of a run) without a call per entry.
-        if not all(type(v) is int and v >= 0 for v in t):
-            t = tuple(check_integer(v, f"{name} entry", 0) for v in t)
-        out.append(t)
-    return tuple(out)
+    out = tuple(map(tuple, values))
+    # The common case (Python ints >= 0, every level of a run) in one pass in C.
+    if set(map(type, chain.from_iterable(out))) <= {int} and min(chain.from_iterable(out), default=0) >= 0:
+        return out
+    return tuple(tuple(check_integer(v, f"{name} entry", 0) for v in t) for t in out)

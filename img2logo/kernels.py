@@ -68,6 +68,8 @@ ENTRY_POINTS: dict[str, tuple[str, tuple[str, ...], str]] = {
         ),
         "Tuple((i8, b1, f8, f8))",
     ),
+    # (loop, session 10) a photo's merged arc that no circle of its radius can bring within the bound.
+    "far_circle_kernel": ("kernels_sqp", ("f8[:,::1]", "f8", "f8", "f8", "f8", "i8"), "b1"),
     "extract_arc_kernel": (
         "kernels_arcs",
         ("f8", "f8", "f8", "f8[:,::1]", "f8[:,::1]", "f8[::1]", "f8", "f8", "f8", "f8"),

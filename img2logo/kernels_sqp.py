@@ -757,3 +757,76 @@ def _sqp(
         _tangency(centers, disp, junctions, tan_a, tan_b, tan_k, tan_s_all, t_all, tab)
         violation = max(violation, _max_abs(t_all))
     return iterations, converged, f, violation
+
+
+# --------------------------------------------------------------------------------
+# A merged arc that is certainly too far (the photo's arc bound, before the fit)
+# --------------------------------------------------------------------------------
+
+
+@_jit
+def far_circle_kernel(points, r, cx0, cy0, bound, budget):  # pragma: no cover - compiled
+    """Whether no circle of radius ``r`` passes within ``bound`` px of every one of ``points`` (N, 2).
+
+    True is a proof: every centre is excluded, by a branch and bound over boxes of
+    centres in which one point's nearest and farthest distances to the box both
+    miss the annulus ``[r - bound, r + bound]`` around it. False means only "not
+    shown": a centre within ``bound`` of all points was found (``cx0, cy0`` is tried
+    first), a box got too small, or ``budget`` boxes were tried. Then an arc on
+    any circle of radius ``r``, which the Fréchet distance couples to every point,
+    is at least ``bound`` from one of them (:func:`img2logo.merging.evaluate`).
+    """
+    n = points.shape[0]
+    worst = 0.0
+    for i in range(n):
+        worst = max(worst, abs(math.hypot(points[i, 0] - cx0, points[i, 1] - cy0) - r))
+    if worst <= bound:
+        return False
+    outer, inner = r + bound, r - bound
+    x0, x1, y0, y1 = -math.inf, math.inf, -math.inf, math.inf
+    for i in range(n):  # every centre is within r + bound of every point
+        x0, x1 = max(x0, points[i, 0] - outer), min(x1, points[i, 0] + outer)
+        y0, y1 = max(y0, points[i, 1] - outer), min(y1, points[i, 1] + outer)
+    if x0 > x1 or y0 > y1:
+        return True
+    stack = np.empty((128, 4))
+    stack[0, 0], stack[0, 1], stack[0, 2], stack[0, 3] = x0, x1, y0, y1
+    top, boxes, last = 1, 0, 0
+    while top > 0:
+        top -= 1
+        bx0, bx1, by0, by1 = stack[top, 0], stack[top, 1], stack[top, 2], stack[top, 3]
+        boxes += 1
+        if boxes > budget:
+            return False
+        excluded = False
+        for t in range(n):  # the point that excluded the last box first
+            i = last + t
+            if i >= n:
+                i -= n
+            px, py = points[i, 0], points[i, 1]
+            dx = bx0 - px if px < bx0 else (px - bx1 if px > bx1 else 0.0)
+            dy = by0 - py if py < by0 else (py - by1 if py > by1 else 0.0)
+            fx = max(abs(px - bx0), abs(px - bx1))
+            fy = max(abs(py - by0), abs(py - by1))
+            if math.sqrt(dx * dx + dy * dy) > outer or math.sqrt(fx * fx + fy * fy) < inner:
+                excluded = True
+                last = i
+                break
+        if excluded:
+            continue
+        cx, cy = 0.5 * (bx0 + bx1), 0.5 * (by0 + by1)
+        worst = 0.0
+        for i in range(n):
+            worst = max(worst, abs(math.hypot(points[i, 0] - cx, points[i, 1] - cy) - r))
+        if worst <= bound:
+            return False
+        if max(bx1 - bx0, by1 - by0) < 1e-7 or top + 2 > stack.shape[0]:
+            return False
+        if bx1 - bx0 >= by1 - by0:  # halve the longer side
+            stack[top, 0], stack[top, 1], stack[top, 2], stack[top, 3] = bx0, cx, by0, by1
+            stack[top + 1, 0], stack[top + 1, 1], stack[top + 1, 2], stack[top + 1, 3] = cx, bx1, by0, by1
+        else:
+            stack[top, 0], stack[top, 1], stack[top, 2], stack[top, 3] = bx0, bx1, by0, cy
+            stack[top + 1, 0], stack[top + 1, 1], stack[top + 1, 2], stack[top + 1, 3] = bx0, bx1, cy, by1
+        top += 2
+    return True

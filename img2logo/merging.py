@@ -26,7 +26,7 @@ from typing import TypeAlias, cast
 import numpy as np
 
 from .arc_extraction import _redundant_arrays
-from .constants import REDUNDANT_INTERSECTION_TOL
+from .constants import FAR_ARC_BUDGET, FAR_ARC_MARGIN, REDUNDANT_INTERSECTION_TOL
 from .fit_state import FitState, GroupFit, Seed, Solution
 from .geometry import Arc
 from .simplification import Group, hold_line, merge_groups
@@ -97,12 +97,19 @@ def evaluate(state: FitState, pair: Pair) -> MergeOutcome | None:
             if g != a and g != b:
                 hold_line(held, state.groups[g], state.constrained_nodes(state.groups[g]))
     seeds[-1] = state.golden(merged, held=held)
+    cap = state.options.arc_bound
+    if cap is not None and _too_far(state, merged, seeds[-1], cap):
+        # Every path below would end in the rejection of the fit's arc (or a failed fit).
+        state.stats.rejected_far_arc += 1
+        return None
 
     merged_nodes = set(state.constrained_nodes(merged))
     hold = _hold(state, seeds, merged, pair, level)
+    lines = [g for g in level.lines if g != a and g != b]  # the groups after the merge that are straight
+    if seeds[-1].k is None:
+        lines.append(-1)
     global_solve = not state.options.localized
     out: Solution | None = None
-    cap = state.options.arc_bound
 
     def solve_window(fixed: set[int], tangent: bool | set[int] = False) -> Solution | None:
         return state.solve(
@@ -118,6 +125,7 @@ def evaluate(state: FitState, pair: Pair) -> MergeOutcome | None:
             order=lambda g: (g != -1, g),
             tangent=tangent,
             cap=cap,
+            lines=lines,
         )
 
     if not global_solve and hold:
@@ -166,8 +174,9 @@ def evaluate(state: FitState, pair: Pair) -> MergeOutcome | None:
 
     old_nodes = set(state.node_groups())
     changed_nodes = set(disp) | {node}
-    delta_d = sum(float(np.linalg.norm(disp[n])) for n in changed_nodes if n in node_groups_after and n in disp)
-    delta_d -= sum(float(np.linalg.norm(state.disp[n])) for n in changed_nodes if n in old_nodes)
+    # |d_k| as np.linalg.norm computes it for a vector (sqrt of its dot with itself), without its dispatch.
+    delta_d = sum(math.sqrt(disp[n].dot(disp[n])) for n in changed_nodes if n in node_groups_after and n in disp)
+    delta_d -= sum(math.sqrt(state.disp[n].dot(state.disp[n])) for n in changed_nodes if n in old_nodes)
     delta_f = sum(f.arc.frechet for f in fits.values())
     delta_f -= sum(state.fits[g].arc.frechet for g in {a, b} | (set(fits) - {-1}))
     window_ids = frozenset({a, b} | (set(fits) - {-1}))
@@ -178,6 +187,42 @@ def evaluate(state: FitState, pair: Pair) -> MergeOutcome | None:
     return MergeOutcome(
         pair, merged, fits, disp, window_ids, delta_f, delta_d, nj_after - len(old_nodes), redundant, global_solve
     )
+
+
+def _too_far(state: FitState, merged: Group, seed: Seed, cap: float) -> bool:
+    """Whether the merged group's arc is certainly farther than ``cap`` px from its pixels, before any fit.
+
+    Its circle keeps the seed's radius r through the fit (Eqn. 12); its arc's
+    discrete Fréchet distance to the pixels is at least every pixel's distance
+    to the circle. When no centre brings every pixel within ``cap`` +
+    ``FAR_ARC_MARGIN`` of a circle of radius r (a proof by
+    :func:`img2logo.kernels_sqp.far_circle_kernel`), the fit's arc would be
+    rejected as too far, or the fit fail: the candidate is rejected without it,
+    with the same outcome. Made once per merged group and radius (the loop asks
+    again at every level); never for a straight line (its centre is fixed far
+    away), nor without the compiled kernels.
+    """
+    if seed.k is None:
+        return False
+    key = (merged.segments, merged.nodes, float(seed.radius))
+    hit = state.far_arcs.get(key)
+    if hit is None:
+        from . import kernels  # loaded by the first fit already
+
+        hit = False
+        if kernels.usable():
+            hit = bool(
+                kernels.far_circle_kernel(
+                    np.ascontiguousarray(merged.points, dtype=np.float64).reshape(-1, 2),
+                    float(seed.radius),
+                    float(seed.center[0]),
+                    float(seed.center[1]),
+                    cap + FAR_ARC_MARGIN,
+                    FAR_ARC_BUDGET,
+                )
+            )
+        state.far_arcs[key] = hit
+    return hit
 
 
 def _hold(state: FitState, seeds: dict[int, Seed], merged: Group, pair: Pair, level: _Level | None = None) -> set[int]:

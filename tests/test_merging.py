@@ -128,6 +128,42 @@ def test_a_merged_arc_farther_than_the_bound_is_rejected():
     assert evaluate(state, (0, 1, 1)) is None and state.stats.rejected_far_arc == 1
 
 
+def test_a_merged_arc_no_circle_of_its_radius_brings_near_is_rejected_before_its_fit():
+    state = _fitted_chain(_Unsolvable, max_arc_distance=10.0)
+    state.failing = True  # a fit would fail: the candidate must not get that far
+    assert evaluate(state, (0, 1, 1)) is None
+    assert state.stats.rejected_far_arc == 1 and state.stats.local_failed == 0
+    assert list(state.far_arcs.values()) == [True]  # the proof is made once per merged group and radius
+    assert evaluate(state, (0, 1, 1)) is None and state.stats.rejected_far_arc == 2
+    # A bound the merged arc meets: no proof, the fit decides.
+    state = _fitted_chain(max_arc_distance=1000.0)
+    assert evaluate(state, (0, 1, 1)) is not None and list(state.far_arcs.values()) == [False]
+
+
+def test_the_far_circle_proof_never_excludes_a_circle_that_comes_near():
+    from img2logo import kernels
+
+    if not kernels.usable():
+        pytest.skip("no compiled kernels")
+    rng = np.random.default_rng(7)
+    # Points on a circle of radius 40 (a 2 rad arc), with noise.
+    t = np.linspace(0.0, 2.0, 60)
+    pts = np.c_[100 + 40 * np.cos(t), 100 + 40 * np.sin(t)] + rng.normal(0, 0.5, (60, 2))
+    pts = np.ascontiguousarray(pts)
+    start = (100.0, 100.0)
+    assert not kernels.far_circle_kernel(pts, 40.0, *start, 2.0, 20000)  # its own circle is near
+    assert kernels.far_circle_kernel(pts, 15.0, *start, 2.0, 20000)  # too small to reach along it
+    assert kernels.far_circle_kernel(pts, 400.0, *start, 2.0, 20000)  # too flat for its bend
+    # Whenever it proves a radius far, no centre of a fine grid brings every point within the bound.
+    xs = np.linspace(-400, 600, 401)
+    grid = np.stack(np.meshgrid(xs, xs), axis=-1).reshape(-1, 2)
+    dist = np.hypot(grid[:, None, 0] - pts[None, ::3, 0], grid[:, None, 1] - pts[None, ::3, 1])
+    for r in (25.0, 30.0, 35.0, 45.0, 60.0, 90.0, 150.0):
+        for bound in (1.0, 3.0, 6.0, 12.0):
+            if kernels.far_circle_kernel(pts, r, *start, bound, 20000):
+                assert np.abs(dist - r).max(axis=1).min() > bound
+
+
 def _arc_and_a_stroke_across_it():
     """Two arcs of one golden circle (k = 9) end to end, and a 16 px straight stroke across the first."""
     c, r = np.array([150.0, 150.0]), golden_radius(9)
@@ -263,6 +299,8 @@ def test_a_far_merged_arc_is_found_before_the_windows_other_arcs():
     calls = []
     arc_for = state.arc_for
     state.arc_for = lambda group, *a: calls.append(group) or arc_for(group, *a)
+    merged = merge_groups(state.groups[0], state.groups[1], 1)
+    state.far_arcs[(merged.segments, merged.nodes, float(state.golden(merged).radius))] = False  # not proved far
     assert evaluate(state, (0, 1, 1)) is None and state.stats.rejected_far_arc == 1
     assert len(calls) == 1  # the merged arc only: the merge is rejected on it
     state = _fitted_chain()
