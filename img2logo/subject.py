@@ -64,6 +64,7 @@ from .constants import (
     FACE_MIN_NEIGHBOURS,
     FACE_MIN_SIDE,
     FACE_SCALE_STEP,
+    FOCUS_GRABCUT_ITERATIONS,
     FOCUS_MIN_STEP,
     SUBJECT_GRABCUT_ITERATIONS,
     SUBJECT_MAX_AREA,
@@ -575,9 +576,11 @@ def _grabcut(
 ) -> np.ndarray:
     """GrabCut from a rectangle (default: the frame inset by ``SUBJECT_FRAME_INSET``) or focus seeds, (H, W) bool.
 
-    Run on a copy whose longer side is ``SUBJECT_WORK_SIDE`` px, then once more
-    at full size, only in a band of ``SUBJECT_REFINE_BAND`` px (at the working
-    scale) around the boundary found, on the band's bounding box, starting from the
+    Run on a copy whose longer side is ``SUBJECT_WORK_SIDE`` px
+    (``SUBJECT_GRABCUT_ITERATIONS`` iterations from a rectangle,
+    ``FOCUS_GRABCUT_ITERATIONS`` from focus seeds), then once more at full
+    size, only in a band of ``SUBJECT_REFINE_BAND`` px (at the working scale)
+    around the boundary found, on the band's bounding box, starting from the
     colour models of the first run.
     Given the photo's :func:`~img2logo.subject_cues.texture_map` ``texture``, it cuts on
     :func:`~img2logo.subject_cues.texture_colour_image` instead of the colours alone.
@@ -597,7 +600,7 @@ def _grabcut(
     small8 = cv2.resize(full8, (sw, sh), interpolation=cv2.INTER_AREA) if textured else _bgr8(small)
     if seeds is not None:
         label = seeds.label.copy()
-        cv2.grabCut(small8, label, None, bgd, fgd, SUBJECT_GRABCUT_ITERATIONS, cv2.GC_INIT_WITH_MASK)
+        cv2.grabCut(small8, label, None, bgd, fgd, FOCUS_GRABCUT_ITERATIONS, cv2.GC_INIT_WITH_MASK)
     else:
         if rect is None:
             box = frame_box((sh, sw))

@@ -364,13 +364,17 @@ def texture_colour_image(lab: np.ndarray, texture: np.ndarray) -> np.ndarray:
     principal axes (over the image), each stretched to 0-255 between its 0.5th
     and 99.5th percentiles (GrabCut takes three 8-bit channels). Deterministic.
     """
+    h, w = lab.shape[:2]
     features = np.dstack([lab, texture]).reshape(-1, 4)
     features = features - features.mean(axis=0)
     _, _, axes = np.linalg.svd(features[:: max(1, features.shape[0] // 20000)], full_matrices=False)
-    proj = features @ axes[:3].T
-    lo, hi = np.percentile(proj, 0.5, axis=0), np.percentile(proj, 99.5, axis=0)
+    # A row of the image at a time (numpy's stacked matmul): one (H*W, 4) product is large enough
+    # for OpenBLAS to share it out to its threads, which then spin idle for a while after it
+    # (about 0.1 s of CPU time on two cores, four times the work); the products are the same.
+    proj = (features.reshape(h, w, 4) @ axes[:3].T).reshape(-1, 3)
+    lo, hi = np.percentile(proj, (0.5, 99.5), axis=0)
     proj = np.clip((proj - lo) / np.maximum(hi - lo, 1e-9), 0.0, 1.0)
-    return np.ascontiguousarray((proj * 255).round().astype(np.uint8).reshape(*lab.shape[:2], 3))
+    return np.ascontiguousarray((proj * 255).round().astype(np.uint8).reshape(h, w, 3))
 
 
 def largest_part(mask: np.ndarray) -> np.ndarray:

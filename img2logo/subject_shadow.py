@@ -78,31 +78,39 @@ def shadow_features(rgb: np.ndarray, scale: float = 1.0) -> tuple[np.ndarray, np
     return np.dstack([chroma, texture]), gaussian(log_lum, sigma)
 
 
-def _mahalanobis(features: np.ndarray, where: np.ndarray, sigma: float | None = None) -> np.ndarray:
-    """Mahalanobis distance of every feature vector (H, W, d) to those of the pixels ``where`` (H, W) bool.
-
-    With ``sigma`` (px), to their local mean (a Gaussian-weighted mean of the
-    pixels ``where`` around each pixel, normalized convolution) and their
-    spread about it: a shadow is compared with the background beside it, not
-    with every colour of the background (a brick wall's mortar is no match for
-    a shadow on its bricks). Pixels beyond the Gaussian's reach of all of them
-    take their mean over all.
+def _local_mean(features: np.ndarray, where: np.ndarray, sigma: float) -> np.ndarray:
+    """The Gaussian-weighted mean (sigma px) of the feature vectors (H, W, d) of the pixels ``where`` (H, W) bool
+    around each pixel, (H, W, d): normalized convolution. Pixels beyond the Gaussian's reach of all of them take
+    their mean over all. Channel by channel, so the first channels' means are those of the first features alone.
     """
     import cv2
 
-    if sigma is None:
-        mean = features[where].mean(axis=0)
-    else:
-        # OpenCV's Gaussian (the same 4-sigma reach, mirrored border), several times scipy's speed at this sigma
-        blur = partial(cv2.GaussianBlur, ksize=(0, 0), sigmaX=sigma, borderType=cv2.BORDER_REFLECT)
-        weight = blur(where.astype(np.float32)).astype(np.float64)
-        summed = blur(np.ascontiguousarray(features * where[..., None], dtype=np.float32)).astype(np.float64)
-        mean = summed.reshape(features.shape) / np.maximum(weight, 1e-12)[..., None]
-        far = weight < 1e-6  # beyond the Gaussian's reach (4 sigma) of every such pixel: their mean over all
-        mean[far] = features[where].mean(axis=0)
-    sample = (features - mean)[where]
-    cov = np.atleast_2d(np.cov(sample.T)) + 1e-9 * np.eye(sample.shape[1])
+    # OpenCV's Gaussian (the same 4-sigma reach, mirrored border), several times scipy's speed at this sigma
+    blur = partial(cv2.GaussianBlur, ksize=(0, 0), sigmaX=sigma, borderType=cv2.BORDER_REFLECT)
+    weight = blur(where.astype(np.float32)).astype(np.float64)
+    summed = blur(np.ascontiguousarray(features * where[..., None], dtype=np.float32)).astype(np.float64)
+    mean = summed.reshape(features.shape) / np.maximum(weight, 1e-12)[..., None]
+    far = weight < 1e-6  # beyond the Gaussian's reach (4 sigma) of every such pixel: their mean over all
+    mean[far] = features[where].mean(axis=0)
+    return mean
+
+
+def _mahalanobis(
+    features: np.ndarray, where: np.ndarray, sigma: float | None = None, mean: np.ndarray | None = None
+) -> np.ndarray:
+    """Mahalanobis distance of every feature vector (H, W, d) to those of the pixels ``where`` (H, W) bool.
+
+    With ``sigma`` (px), to their local mean (:func:`_local_mean`; or ``mean``
+    (H, W, d) if given, that mean computed once for several feature sets) and their
+    spread about it: a shadow is compared with the background beside it, not
+    with every colour of the background (a brick wall's mortar is no match for
+    a shadow on its bricks).
+    """
+    if mean is None:
+        mean = features[where].mean(axis=0) if sigma is None else _local_mean(features, where, sigma)
     diff = features - mean
+    sample = diff[where]
+    cov = np.atleast_2d(np.cov(sample.T)) + 1e-9 * np.eye(sample.shape[1])
     return np.sqrt(np.maximum(np.einsum("...i,ij,...j->...", diff, np.linalg.inv(cov), diff), 0.0))
 
 
@@ -132,14 +140,16 @@ def cast_shadow(img: LoadedImage, mask: np.ndarray) -> np.ndarray | None:
     features, log_lum = shadow_features(img.rgb[box], scale)
     m, ring_b, core_b = mask[box], ring[box], core[box]
     darker = m & (log_lum < median(log_lum[ring_b]))
+    seeds = darker & (inside[box] > 1.0 / scale)
+    if not seeds.any():
+        return None
     local = SHADOW_RING[1] / scale
-    to_ring = _mahalanobis(features, ring_b, local)
-    to_core = _mahalanobis(features, core_b, local)
-    seeds = darker & (to_ring < to_core) & (inside[box] > 1.0 / scale)
+    ring_mean = _local_mean(features, ring_b, local)  # the chromaticity's is its first two channels
+    seeds &= _mahalanobis(features, ring_b, mean=ring_mean) < _mahalanobis(features, core_b, local)
     if not seeds.any():
         return None
     chroma = features[..., :2]
-    grown = darker & (_mahalanobis(chroma, ring_b, local) < SHADOW_MAX_CHROMA_DISTANCE)
+    grown = darker & (_mahalanobis(chroma, ring_b, mean=ring_mean[..., :2]) < SHADOW_MAX_CHROMA_DISTANCE)
     labels, _ = label(grown | seeds)
     hit = unique(labels[seeds])
     shadow = np.zeros(mask.shape, bool)

@@ -353,6 +353,21 @@ def test_texture_step_asks_for_the_step_along_most_of_the_outline():
     assert texture_step(img, texture, tall) > 0.5
 
 
+def test_the_texture_colour_image_projects_a_row_at_a_time_as_all_at_once():
+    from img2logo.subject_cues import texture_colour_image
+
+    rng = np.random.default_rng(5)
+    lab = rng.random((97, 133, 3)) * (100.0, 60.0, 60.0)
+    texture = rng.random((97, 133)) * 20.0
+    features = np.dstack([lab, texture]).reshape(-1, 4)
+    features = features - features.mean(axis=0)
+    _, _, axes = np.linalg.svd(features[:: max(1, features.shape[0] // 20000)], full_matrices=False)
+    proj = features @ axes[:3].T  # the whole product, as before it was split by rows
+    lo, hi = np.percentile(proj, 0.5, axis=0), np.percentile(proj, 99.5, axis=0)
+    expected = (np.clip((proj - lo) / np.maximum(hi - lo, 1e-9), 0.0, 1.0) * 255).round().astype(np.uint8)
+    np.testing.assert_array_equal(texture_colour_image(lab, texture), expected.reshape(97, 133, 3))
+
+
 def test_the_rocket_photo_is_no_subject_by_its_texture():
     from skimage import data
 
