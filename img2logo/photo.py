@@ -15,6 +15,10 @@
   of the budget; one is drawn where no drawn line is that edge already and no
   stronger lightness edge lies beside it, whole back to the line it meets
   (:func:`new_colour_lines`): a pink nose's top on tan fur;
+* its **dark dots** (:func:`subject_dots`, :mod:`img2logo.photo_features`): eyes
+  and noses, small dark blobs on the subject, each drawn as its closed outline
+  first, the lines of its own edge left out; the caller keeps them through the
+  length filters (:func:`dot_lines`);
 * **faces** (:attr:`Subject.faces`): inside the ellipse of each face found,
   the FDoG lines are kept down to ``FACE_MIN_LINE`` of the face's side, first
   in the budget: eyes, brows, nose and mouth are inner lines of the subject;
@@ -63,14 +67,35 @@ from .constants import (
     PHOTO_LINE_BUDGET,
 )
 from .loading import LoadedImage
+from .photo_features import Dots, dark_dots
 from .subject import Subject
 
 if TYPE_CHECKING:
     from concurrent.futures import Executor, Future
 
 
-def photo_feature_lines(img: LoadedImage, subject: Subject) -> np.ndarray:
-    """A photo's feature lines, (H, W) bool, 1 px wide: outline, inner lines, joined.
+def subject_dots(img: LoadedImage, subject: Subject) -> Dots:
+    """The dark dots of a photo's subject (:func:`img2logo.photo_features.dark_dots`): none without a subject."""
+    if subject.mask is None:  # a scene: no face to keep the dots of
+        return Dots(np.zeros((img.height, img.width), bool), 0)
+    return dark_dots(img.rgb, subject.mask)
+
+
+def dot_lines(raw: np.ndarray, dots: Dots) -> np.ndarray:
+    """The lines of ``raw`` (:func:`photo_feature_lines`) that draw the dots: (H, W) bool.
+
+    A dot's outline is shorter than a photo's shortest line (``PHOTO_MIN_LINE_LENGTH``);
+    the caller adds these back after the length filters.
+    """
+    from ._ndimage import dilate  # scipy.ndimage's binary dilation, without importing it
+
+    if not dots.count:
+        return np.zeros(raw.shape, bool)
+    return raw & dilate(dots.region, 2)
+
+
+def photo_feature_lines(img: LoadedImage, subject: Subject, dots: Dots | None = None) -> np.ndarray:
+    """A photo's feature lines, (H, W) bool, 1 px wide: outline, dots, inner lines, joined.
 
     Parameters
     ----------
@@ -79,14 +104,25 @@ def photo_feature_lines(img: LoadedImage, subject: Subject) -> np.ndarray:
     subject : Subject
         Its subject (:func:`img2logo.subject.find_subject`); a mask of None
         draws the whole image.
+    dots : Dots, optional
+        Its dark dots (:func:`subject_dots`, found here by default): each is
+        drawn as its outline, and the lines within ``EDGE_SIDE_REACH`` of it
+        (its own edge's FDoG lines) are not.
     """
-    from ._ndimage import erode  # scipy.ndimage's binary erosion, without importing it
+    from ._ndimage import dilate, erode  # scipy.ndimage's binary morphology, without importing it
     from ._skeleton import skeletonize  # skimage's thinning, without importing skimage.morphology
 
     mask = subject.mask
     maps = line_maps(img)
     inner = maps.lightness
     budget = PHOTO_LINE_BUDGET * (img.height + img.width)
+    if dots is None:
+        dots = subject_dots(img, subject)
+    dot_outline = np.zeros(inner.shape, bool)
+    if dots.count:
+        dot_outline = subject_outline(dots.region, frame_margin=0.0)
+        inner = inner & ~dilate(dots.region, math.ceil(EDGE_SIDE_REACH))
+        budget = max(0.0, budget - float(dot_outline.sum()))
     faces = face_region((img.height, img.width), subject.faces)
     if mask is None:
         lines, budget = _chosen_lines(inner, faces, subject.faces, budget)
@@ -101,9 +137,11 @@ def photo_feature_lines(img: LoadedImage, subject: Subject) -> np.ndarray:
     # lay outside the mask): colour lines are kept that much further inside.
     if maps.colour.any():  # the erosion by ceil(gate) 4-neighbour steps: taxicab distance to the outside
         deep = erode(inside, math.ceil(COLOUR_LINE_GATE))  # taxicab distance > ceil(gate)
-        colour = new_colour_lines(maps, lines | outline, deep, inside)
+        if dots.count:  # a dot's colour lines are its outline again
+            deep &= ~dilate(dots.region, math.ceil(COLOUR_LINE_GATE))
+        colour = new_colour_lines(maps, lines | outline | dot_outline, deep, inside)
         lines |= _chosen_lines(colour, faces, subject.faces, budget, budget)[0]
-    return join_line_ends(skeletonize(reach_outline(lines, outline) | outline))
+    return join_line_ends(skeletonize(reach_outline(lines, outline) | outline | dot_outline))
 
 
 def _chosen_lines(
