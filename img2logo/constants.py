@@ -414,6 +414,11 @@ DOT_MIN_CONTRAST: float = 10.0
 #: light (measured: the evaluation set's eyes and noses 2.5-14, gaps in the cat's fur and the
 #: dahlia's petals 0.4-2.0).
 DOT_SURROUND_CONTRAST: float = 2.0
+#: Photo clear steps (photo.clear_steps): a line of the FDoG without its bias to dark sides is kept
+#: inside the subject when the lightness difference between its two sides is at least this many
+#: times the sides' own spread along it: an edge between two even regions (a seal's white belly on
+#: its grey body), not a crease in texture. Twice, as for a dot (DOT_SURROUND_CONTRAST).
+STEP_SIDE_CONTRAST: float = DOT_SURROUND_CONTRAST
 
 # --- Segment graph ----------------------------------------------------------------
 #: Default Ramer-Douglas-Peucker tolerance of the over-segmentation, px (Sec. 4).

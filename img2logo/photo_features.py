@@ -32,6 +32,7 @@ Arrays are indexed (row, column), as in :mod:`img2logo.photo`.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -144,6 +145,16 @@ def _blobs(lightness: np.ndarray, mask: np.ndarray) -> list[tuple[int, int, floa
     return [(int(pr[i]) + r0, int(pc[i]) + c0, math.sqrt(2.0) * sigmas[k[i]]) for i in order]
 
 
+@functools.lru_cache(maxsize=64)
+def _window(radius: float) -> tuple[int, np.ndarray, np.ndarray, np.ndarray]:
+    """A blob's window around its centre: its half side (px), and in it the centre's disc (0.5 r),
+    the ring (1.5-2.5 r) and the pixels beyond the disc its region must close in (1.5 r), bool."""
+    reach = math.ceil(_RING_OUT * radius)
+    yy, xx = np.ogrid[-reach : reach + 1, -reach : reach + 1]
+    d = np.hypot(yy, xx)
+    return reach, d <= 0.5 * radius, (d > _RING_IN * radius) & (d <= _RING_OUT * radius), d > _CLOSE * radius
+
+
 def _dot_region(
     lightness: np.ndarray, mask: np.ndarray, r: int, c: int, radius: float
 ) -> tuple[tuple[int, int], np.ndarray] | None:
@@ -154,17 +165,14 @@ def _dot_region(
     import cv2
 
     h, w = lightness.shape
-    reach = math.ceil(_RING_OUT * radius)
+    reach, centre_disc, ring, beyond = _window(radius)
     r0, r1, c0, c1 = r - reach, r + reach + 1, c - reach, c + reach + 1
     if r0 < 0 or c0 < 0 or r1 > h or c1 > w:
         return None  # its ring leaves the image: not on the subject
     light = lightness[r0:r1, c0:c1]
-    yy, xx = np.ogrid[-reach : reach + 1, -reach : reach + 1]
-    d = np.hypot(yy, xx)
-    ring = (d > _RING_IN * radius) & (d <= _RING_OUT * radius)
     if not mask[r0:r1, c0:c1][ring].all():
         return None
-    centre = float(light[d <= 0.5 * radius].mean())
+    centre = float(light[centre_disc].mean())
     low, around, high = (float(v) for v in np.percentile(light[ring], (10.0, 50.0, 90.0)))
     if around - centre < max(DOT_MIN_CONTRAST, DOT_SURROUND_CONTRAST * (high - low)):
         return None
@@ -173,7 +181,7 @@ def _dot_region(
         return None
     _, labels = cv2.connectedComponents(dark, connectivity=8)
     piece = labels == labels[reach, reach]
-    if piece[d > _CLOSE * radius].any():
+    if piece[beyond].any():
         return None  # it runs on: a part of a longer dark line, or of texture
     if piece.sum() < MIN_SPECK_AREA:
         return None  # a speck of noise or grain
