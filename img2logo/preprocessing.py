@@ -344,7 +344,7 @@ def extract_feature_lines(
         kind, reason, regions = _detect(img)
     else:
         reason = "given"
-    found = None
+    found = dots = None
     if spur_length is None:
         spur_length = PHOTO_SPUR_LENGTH if kind == "photo" else SPUR_LENGTH
     radius = stroke = None
@@ -369,7 +369,7 @@ def extract_feature_lines(
         min_len = PHOTO_MIN_LINE_LENGTH if min_line_length is None else min_line_length
     min_len = check_positive(min_len, "min_line_length", allow_zero=True)
     lines = _clean_skeleton(raw, spur_length=spur_length, min_length=min_len, radius=radius)
-    if found is not None and dots.count:  # an eye's outline is shorter than a photo's shortest line
+    if dots is not None and dots.count:  # an eye's outline is shorter than a photo's shortest line
         from .photo import dot_lines
 
         lines |= dot_lines(raw, dots)
