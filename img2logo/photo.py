@@ -15,6 +15,10 @@
   of the budget; one is drawn where no drawn line is that edge already and no
   stronger lightness edge lies beside it, whole back to the line it meets
   (:func:`new_colour_lines`): a pink nose's top on tan fur;
+* its **dark dots** (:func:`subject_dots`, :mod:`img2logo.photo_features`): eyes
+  and noses, small dark blobs on the subject, each drawn as its closed outline
+  first, the lines of its own edge left out; the caller keeps them through the
+  length filters (:func:`dot_lines`);
 * **faces** (:attr:`Subject.faces`): inside the ellipse of each face found,
   the FDoG lines are kept down to ``FACE_MIN_LINE`` of the face's side, first
   in the budget: eyes, brows, nose and mouth are inner lines of the subject;
@@ -61,16 +65,38 @@ from .constants import (
     LINE_JOIN_DISTANCE,
     OUTLINE_FRAME_MARGIN,
     PHOTO_LINE_BUDGET,
+    STEP_SIDE_CONTRAST,
 )
 from .loading import LoadedImage
+from .photo_features import Dots, dark_dots
 from .subject import Subject
 
 if TYPE_CHECKING:
     from concurrent.futures import Executor, Future
 
 
-def photo_feature_lines(img: LoadedImage, subject: Subject) -> np.ndarray:
-    """A photo's feature lines, (H, W) bool, 1 px wide: outline, inner lines, joined.
+def subject_dots(img: LoadedImage, subject: Subject) -> Dots:
+    """The dark dots of a photo's subject (:func:`img2logo.photo_features.dark_dots`): none without a subject."""
+    if subject.mask is None:  # a scene: no face to keep the dots of
+        return Dots(np.zeros((img.height, img.width), bool), 0)
+    return dark_dots(img.rgb, subject.mask)
+
+
+def dot_lines(raw: np.ndarray, dots: Dots) -> np.ndarray:
+    """The lines of ``raw`` (:func:`photo_feature_lines`) that draw the dots: (H, W) bool.
+
+    A dot's outline is shorter than a photo's shortest line (``PHOTO_MIN_LINE_LENGTH``);
+    the caller adds these back after the length filters.
+    """
+    from ._ndimage import dilate  # scipy.ndimage's binary dilation, without importing it
+
+    if not dots.count:
+        return np.zeros(raw.shape, bool)
+    return raw & dilate(dots.region, 2)
+
+
+def photo_feature_lines(img: LoadedImage, subject: Subject, dots: Dots | None = None) -> np.ndarray:
+    """A photo's feature lines, (H, W) bool, 1 px wide: outline, dots, inner lines, joined.
 
     Parameters
     ----------
@@ -79,14 +105,25 @@ def photo_feature_lines(img: LoadedImage, subject: Subject) -> np.ndarray:
     subject : Subject
         Its subject (:func:`img2logo.subject.find_subject`); a mask of None
         draws the whole image.
+    dots : Dots, optional
+        Its dark dots (:func:`subject_dots`, found here by default): each is
+        drawn as its outline, and the lines within ``EDGE_SIDE_REACH`` of it
+        (its own edge's FDoG lines) are not.
     """
-    from ._ndimage import erode  # scipy.ndimage's binary erosion, without importing it
+    from ._ndimage import dilate, erode  # scipy.ndimage's binary morphology, without importing it
     from ._skeleton import skeletonize  # skimage's thinning, without importing skimage.morphology
 
     mask = subject.mask
     maps = line_maps(img)
     inner = maps.lightness
     budget = PHOTO_LINE_BUDGET * (img.height + img.width)
+    if dots is None:
+        dots = subject_dots(img, subject)
+    dot_outline = np.zeros(inner.shape, bool)
+    if dots.count:
+        dot_outline = subject_outline(dots.region, frame_margin=0.0)
+        inner = inner & ~dilate(dots.region, math.ceil(EDGE_SIDE_REACH))
+        budget = max(0.0, budget - float(dot_outline.sum()))
     faces = face_region((img.height, img.width), subject.faces)
     if mask is None:
         lines, budget = _chosen_lines(inner, faces, subject.faces, budget)
@@ -94,6 +131,8 @@ def photo_feature_lines(img: LoadedImage, subject: Subject) -> np.ndarray:
         colour_lines, _ = _chosen_lines(colour, faces, subject.faces, budget, budget)
         return join_line_ends(lines | colour_lines)
     inside = erode(mask, INNER_LINE_MARGIN)
+    if maps.steps is not None:
+        inner = inner | clear_steps(img.gray, maps.steps & inside, inner)
     outline = subject_outline(mask)
     budget = max(0.0, budget - float(outline.sum()))
     lines, budget = _chosen_lines(inner & inside, faces, subject.faces, budget)
@@ -101,9 +140,11 @@ def photo_feature_lines(img: LoadedImage, subject: Subject) -> np.ndarray:
     # lay outside the mask): colour lines are kept that much further inside.
     if maps.colour.any():  # the erosion by ceil(gate) 4-neighbour steps: taxicab distance to the outside
         deep = erode(inside, math.ceil(COLOUR_LINE_GATE))  # taxicab distance > ceil(gate)
-        colour = new_colour_lines(maps, lines | outline, deep, inside)
+        if dots.count:  # a dot's colour lines are its outline again
+            deep &= ~dilate(dots.region, math.ceil(COLOUR_LINE_GATE))
+        colour = new_colour_lines(maps, lines | outline | dot_outline, deep, inside)
         lines |= _chosen_lines(colour, faces, subject.faces, budget, budget)[0]
-    return join_line_ends(skeletonize(reach_outline(lines, outline) | outline))
+    return join_line_ends(skeletonize(reach_outline(lines, outline) | outline | dot_outline))
 
 
 def _chosen_lines(
@@ -128,6 +169,55 @@ def _chosen_lines(
         budget = max(0.0, budget - float(chosen.sum()))
     chosen |= salient_lines(skeletonize(lines & ~region), budget=budget)
     return chosen, max(0.0, budget - float(chosen.sum()))
+
+
+def clear_steps(gray: np.ndarray, steps: np.ndarray, lines: np.ndarray) -> np.ndarray:
+    """The lines of clear lightness steps that the lightness lines miss: (H, W) bool, 1 px wide.
+
+    The lightness lines' bias to dark sides (``FDOG_RHO`` < 1, [KD09]) leaves out
+    the step between two light regions (a seal's white belly on its grey body:
+    the bias, 1 % of the blurred gray, is most of the step's response). ``steps``
+    are the dark sides of every edge, the FDoG without that bias. Those more than
+    ``LINE_JOIN_DISTANCE / 2`` px from ``lines``, thinned, long enough for
+    :func:`salient_lines`, are kept where they are a clear step: the median
+    lightness difference between the two sides (``gray`` sampled ``EDGE_SIDE_REACH``
+    px across the line, along the gradient) is at least ``STEP_SIDE_CONTRAST``
+    times the sides' own spread (the mean of their 10-90 % ranges along the line):
+    an edge between two even regions, not a crease in texture (fur, petals, skin).
+    """
+    import cv2
+
+    from ._ndimage import dilate, label  # scipy.ndimage's, without importing it
+    from ._skeleton import skeletonize  # skimage's thinning, without importing skimage.morphology
+
+    out = np.zeros(steps.shape, bool)
+    new = steps & ~dilate(lines, math.ceil(LINE_JOIN_DISTANCE / 2.0)) if lines.any() else steps
+    if not new.any():
+        return out
+    new = salient_lines(skeletonize(new))
+    labels, n = label(new, eight=True)
+    if n == 0:
+        return out
+    g = cv2.GaussianBlur(np.ascontiguousarray(gray, dtype=np.float32), (0, 0), FDOG_SIGMA_C)
+    rows, cols = np.nonzero(labels)
+    gx = cv2.Sobel(g, cv2.CV_32F, 1, 0)[rows, cols]
+    gy = cv2.Sobel(g, cv2.CV_32F, 0, 1)[rows, cols]
+    norm = np.hypot(gx, gy) + np.float32(1e-12)
+    dx, dy = EDGE_SIDE_REACH * gx / norm, EDGE_SIDE_REACH * gy / norm
+
+    def side(sign: float) -> np.ndarray:
+        x, y = (cols + sign * dx).astype(np.float32), (rows + sign * dy).astype(np.float32)
+        return cv2.remap(g, x[None], y[None], cv2.INTER_LINEAR, borderMode=cv2.BORDER_REPLICATE)[0]
+
+    light, dark = side(1.0), side(-1.0)
+    which = labels[rows, cols]
+    keep = np.zeros(n + 1, bool)
+    for i in range(1, n + 1):
+        on = which == i
+        a, b = light[on], dark[on]
+        spread = 0.5 * (np.subtract(*np.percentile(a, (90.0, 10.0))) + np.subtract(*np.percentile(b, (90.0, 10.0))))
+        keep[i] = float(np.median(a - b)) >= STEP_SIDE_CONTRAST * spread
+    return keep[labels]
 
 
 def reach_outline(lines: np.ndarray, outline: np.ndarray) -> np.ndarray:
@@ -325,6 +415,9 @@ class LineMaps:
         The strength of the lightness edge (the FDoG response without its bias
         to dark sides, either sign) and of the colour line (the colour FDoG's
         negative response), on the same scale (L* / 100).
+    steps : ndarray of bool, optional
+        The dark side of every lightness edge: the FDoG line without its bias
+        to dark sides (:func:`clear_steps`); None: not made.
     """
 
     lightness: np.ndarray
@@ -332,6 +425,7 @@ class LineMaps:
     edges: np.ndarray
     lightness_step: np.ndarray
     colour_step: np.ndarray
+    steps: np.ndarray | None = None
 
 
 def line_maps(img: LoadedImage) -> LineMaps:
@@ -361,8 +455,15 @@ def _line_maps(img: LoadedImage) -> LineMaps:
     # Both sides of every lightness edge: the response without its bias to dark sides (the DoG's
     # surround weighted by rho < 1 leaves (1 - rho) x the blurred gray, positive on flat ground).
     unbiased = light - (1.0 - FDOG_RHO) * cv2.GaussianBlur(gray, (0, 0), 1.6 * FDOG_SIGMA_C)
-    edges = _binarize(unbiased, scale) | _binarize(-unbiased, scale)
-    return LineMaps(lines, _binarize(colour, scale), edges, np.abs(unbiased).astype(np.float32), -colour)
+    steps = _binarize(unbiased, scale)  # the dark sides
+    return LineMaps(
+        lines,
+        _binarize(colour, scale),
+        steps | _binarize(-unbiased, scale),
+        np.abs(unbiased).astype(np.float32),
+        -colour,
+        steps,
+    )
 
 
 def new_colour_lines(

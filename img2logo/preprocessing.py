@@ -347,7 +347,7 @@ def extract_feature_lines(
         kind, reason, regions = _detect(img)
     else:
         reason = "given"
-    found = None
+    found = dots = None
     if spur_length is None:
         spur_length = PHOTO_SPUR_LENGTH if kind == "photo" else SPUR_LENGTH
     radius = stroke = None
@@ -363,14 +363,19 @@ def extract_feature_lines(
         raw = _join(clipart_lines(regions))
         min_len = spur_length if min_line_length is None else min_line_length
     else:
-        from .photo import photo_feature_lines, start_photo_line_maps
+        from .photo import photo_feature_lines, start_photo_line_maps, subject_dots
         from .subject import find_subject
 
         found = find_subject(img, foreground, subject, beside=start_photo_line_maps)  # the line maps beside the cuts
-        raw = photo_feature_lines(img, found)
+        dots = subject_dots(img, found)
+        raw = photo_feature_lines(img, found, dots)
         min_len = PHOTO_MIN_LINE_LENGTH if min_line_length is None else min_line_length
     min_len = check_positive(min_len, "min_line_length", allow_zero=True)
     lines = _clean_skeleton(raw, spur_length=spur_length, min_length=min_len, radius=radius)
+    if dots is not None and dots.count:  # an eye's outline is shorter than a photo's shortest line
+        from .photo import dot_lines
+
+        lines |= dot_lines(raw, dots)
     if found is not None and found.faces:  # a face's eyes and mouth are shorter than a photo's shortest line
         from .photo import face_line_length, face_region
 

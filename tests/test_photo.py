@@ -273,3 +273,29 @@ def test_a_photo_s_subject_and_line_maps_import_no_scipy_package(data_dir):
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "['scipy.ndimage._nd_image']"
+
+
+def _light_disc_on_grey(noise: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
+    """A white disc on a grey body (a seal's belly) and the dark side of its edge, 1 px outside it."""
+    rng = np.random.default_rng(1)
+    yy, xx = np.mgrid[0:96, 0:96]
+    d = np.hypot(yy - 48, xx - 48)
+    gray = np.where(d <= 20, 0.9, 0.65) + rng.uniform(-noise, noise, d.shape)
+    return gray, np.abs(d - 21.5) <= 0.5
+
+
+def test_a_clear_step_between_two_light_regions_is_kept():
+    from img2logo.photo import clear_steps
+
+    gray, steps = _light_disc_on_grey()
+    kept = clear_steps(gray, steps, np.zeros_like(steps))
+    assert kept.sum() > 0.8 * steps.sum() and not kept[48, 48]
+
+
+def test_a_step_in_texture_or_beside_a_drawn_line_is_not():
+    from img2logo.photo import clear_steps
+
+    gray, steps = _light_disc_on_grey(noise=0.5)  # the sides vary (blurred) about as much as they differ
+    assert not clear_steps(gray, steps, np.zeros_like(steps)).any()
+    gray, steps = _light_disc_on_grey()
+    assert not clear_steps(gray, steps, steps).any()  # drawn already

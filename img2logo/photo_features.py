@@ -1,0 +1,188 @@
+"""A photo subject's dark dots (paper Sec. 4, beyond it): eyes and noses, drawn as their closed outlines.
+
+The flow-based lines of :mod:`img2logo.photo` draw a photo's edges, and keep
+the long ones: a small dark dot (an animal's eye, a button nose) gives a short
+closed line, which the length filters meant for texture drop, so a teddy bear
+or a seal loses its face. A designer always keeps those dots. :func:`dark_dots`
+finds them with a scale-space blob detector, the scale-normalized Laplacian of
+Gaussian [Lin98] of the CIELAB lightness, and keeps a blob if
+
+* it lies on the subject: the ring around it (``1.5 r`` to ``2.5 r`` of its
+  centre, r = sqrt(2) sigma, the blob's radius) is inside the subject mask;
+* it is strongly darker than that ring: the ring's median lightness less the
+  blob centre's mean is at least ``DOT_MIN_CONTRAST`` L* and at least
+  ``DOT_SURROUND_CONTRAST`` times the ring's own spread (its 10-90 % range): a dot on
+  an even face, not a dark gap in texture (fur, petals), whose surround varies
+  as much as the gap is dark;
+* it is a dot, not a part of a longer dark line or of texture: its region (the
+  pixels darker than half-way between the centre and the ring, connected to the
+  centre) closes within ``1.5 r`` of the centre, and it is no speck (at least
+  ``MIN_SPECK_AREA`` px).
+
+Only dark blobs: eyes and nostrils are dark (a pupil and a cavity absorb the
+light), while small bright blobs in photos are mostly specular highlights (an
+eye's catch light, a lamp), which a designer leaves out. :mod:`img2logo.photo` draws
+each dot as its region's outline, the half-contrast iso-line (a closed 1-px
+curve), which the optimization turns into a closed golden arc or circle.
+
+[Lin98] T. Lindeberg, Feature detection with automatic scale selection, IJCV 30(2), 1998.
+
+Arrays are indexed (row, column), as in :mod:`img2logo.photo`.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .constants import (
+    DOT_MAX_RADIUS_FRACTION,
+    DOT_MIN_CONTRAST,
+    DOT_MIN_RADIUS,
+    DOT_SCALES_PER_OCTAVE,
+    DOT_SURROUND_CONTRAST,
+    MIN_SPECK_AREA,
+)
+
+#: The ring around a blob that its contrast is measured on, and the disc its region must close in,
+#: in blob radii: the LoG of a disc of radius r changes sign at r, and its surround reaches about 2.5 r.
+_CLOSE, _RING_IN, _RING_OUT = 1.5, 1.5, 2.5
+
+
+@dataclass(frozen=True)
+class Dots:
+    """The dark dots of a photo's subject (:func:`dark_dots`).
+
+    Attributes
+    ----------
+    region : ndarray of bool, shape (H, W)
+        The dots' pixels: each dot a connected region, inside its half-contrast iso-line.
+    count : int
+        How many.
+    """
+
+    region: np.ndarray
+    count: int
+
+
+def dot_radii(shape: tuple[int, int]) -> tuple[float, float]:
+    """The smallest and the largest radius of a dot in an image of this (H, W), px.
+
+    From ``DOT_MIN_RADIUS`` (the smallest closed line the segment graph splits)
+    to ``DOT_MAX_RADIUS_FRACTION`` of the image's longer side, at least the smallest.
+    """
+    return DOT_MIN_RADIUS, max(DOT_MIN_RADIUS, DOT_MAX_RADIUS_FRACTION * max(shape))
+
+
+def dark_dots(rgb: np.ndarray, mask: np.ndarray | None) -> Dots:
+    """The dark dots of a photo's subject: eyes, noses (see the module's docstring).
+
+    Parameters
+    ----------
+    rgb : ndarray, shape (H, W, 3)
+        The photo, in [0, 1].
+    mask : ndarray of bool, shape (H, W), or None
+        The subject; None: the whole image.
+    """
+    import cv2
+
+    rgb = np.asarray(rgb)
+    if rgb.ndim != 3 or rgb.shape[2] != 3:
+        raise ValueError(f"rgb must be an (H, W, 3) array, got shape {rgb.shape}")
+    h, w = rgb.shape[:2]
+    if mask is None:
+        mask = np.ones((h, w), bool)
+    mask = np.asarray(mask, dtype=bool)
+    if mask.shape != (h, w):
+        raise ValueError(f"mask must have the image's shape {(h, w)}, got {mask.shape}")
+    region = np.zeros((h, w), bool)
+    if not mask.any():
+        return Dots(region, 0)
+    lightness = cv2.cvtColor(np.ascontiguousarray(rgb, dtype=np.float32), cv2.COLOR_RGB2Lab)[..., 0]
+    count = 0
+    for r, c, radius in _blobs(lightness, mask):
+        if region[r, c]:
+            continue  # a dot found at another scale already
+        dot = _dot_region(lightness, mask, r, c, radius)
+        if dot is not None:
+            (r0, c0), piece = dot
+            region[r0 : r0 + piece.shape[0], c0 : c0 + piece.shape[1]] |= piece
+            count += 1
+    return Dots(region, count)
+
+
+def _blobs(lightness: np.ndarray, mask: np.ndarray) -> list[tuple[int, int, float]]:
+    """Dark blobs of ``lightness`` (L*) centred in ``mask``: (row, column, radius px), strongest first.
+
+    The local maxima over position and scale of the scale-normalized Laplacian
+    of Gaussian ``sigma^2 LoG`` (positive at a dark blob's centre), sigma from
+    r_min / sqrt(2) to r_max / sqrt(2) (:func:`dot_radii`), ``DOT_SCALES_PER_OCTAVE``
+    a doubling; the response of a disc of contrast C is about 0.8 C at its scale, so
+    a maximum below half ``DOT_MIN_CONTRAST`` is not measured further.
+    """
+    import cv2
+
+    r_min, r_max = dot_radii(lightness.shape)
+    n = 1 + math.floor(DOT_SCALES_PER_OCTAVE * math.log2(r_max / r_min) + 1e-9)
+    sigmas = [r_min / math.sqrt(2.0) * 2.0 ** (k / DOT_SCALES_PER_OCTAVE) for k in range(n)]
+    rows, cols = np.nonzero(mask)
+    pad = math.ceil(_RING_OUT * r_max) + 1  # the crop around the subject, with room for the rings
+    r0, r1 = max(0, rows.min() - pad), min(lightness.shape[0], rows.max() + pad + 1)
+    c0, c1 = max(0, cols.min() - pad), min(lightness.shape[1], cols.max() + pad + 1)
+    crop = np.ascontiguousarray(lightness[r0:r1, c0:c1])
+    stack = np.stack([s * s * cv2.Laplacian(cv2.GaussianBlur(crop, (0, 0), s), cv2.CV_32F) for s in sigmas])
+    square = np.ones((3, 3), np.uint8)
+    near = np.stack([cv2.dilate(layer, square) for layer in stack])  # the 3 x 3 maximum in each layer
+    most = near.copy()
+    most[1:] = np.maximum(most[1:], near[:-1])
+    most[:-1] = np.maximum(most[:-1], near[1:])
+    peaks = (stack >= most) & (stack > 0.5 * DOT_MIN_CONTRAST) & mask[r0:r1, c0:c1][None]
+    k, pr, pc = np.nonzero(peaks)
+    order = np.argsort(-stack[k, pr, pc], kind="stable")
+    return [(int(pr[i]) + r0, int(pc[i]) + c0, math.sqrt(2.0) * sigmas[k[i]]) for i in order]
+
+
+@functools.lru_cache(maxsize=64)
+def _window(radius: float) -> tuple[int, np.ndarray, np.ndarray, np.ndarray]:
+    """A blob's window around its centre: its half side (px), and in it the centre's disc (0.5 r),
+    the ring (1.5-2.5 r) and the pixels beyond the disc its region must close in (1.5 r), bool."""
+    reach = math.ceil(_RING_OUT * radius)
+    yy, xx = np.ogrid[-reach : reach + 1, -reach : reach + 1]
+    d = np.hypot(yy, xx)
+    return reach, d <= 0.5 * radius, (d > _RING_IN * radius) & (d <= _RING_OUT * radius), d > _CLOSE * radius
+
+
+def _dot_region(
+    lightness: np.ndarray, mask: np.ndarray, r: int, c: int, radius: float
+) -> tuple[tuple[int, int], np.ndarray] | None:
+    """The region of the blob at (r, c) of this radius if it is a dot (see the module), else None.
+
+    Returns the top-left corner (row, column) of a window and the dot's pixels in it.
+    """
+    import cv2
+
+    h, w = lightness.shape
+    reach, centre_disc, ring, beyond = _window(radius)
+    r0, r1, c0, c1 = r - reach, r + reach + 1, c - reach, c + reach + 1
+    if r0 < 0 or c0 < 0 or r1 > h or c1 > w:
+        return None  # its ring leaves the image: not on the subject
+    light = lightness[r0:r1, c0:c1]
+    if not mask[r0:r1, c0:c1][ring].all():
+        return None
+    centre = float(light[centre_disc].mean())
+    low, around, high = (float(v) for v in np.percentile(light[ring], (10.0, 50.0, 90.0)))
+    if around - centre < max(DOT_MIN_CONTRAST, DOT_SURROUND_CONTRAST * (high - low)):
+        return None
+    dark = (light < 0.5 * (centre + around)).astype(np.uint8)
+    if not dark[reach, reach]:
+        return None
+    _, labels = cv2.connectedComponents(dark, connectivity=8)
+    piece = labels == labels[reach, reach]
+    if piece[beyond].any():
+        return None  # it runs on: a part of a longer dark line, or of texture
+    if piece.sum() < MIN_SPECK_AREA:
+        return None  # a speck of noise or grain
+    return (r0, c0), piece
