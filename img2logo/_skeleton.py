@@ -496,8 +496,8 @@ def _contact_groups(
     gives two ends.
     """
     groups = []
-    for node, pix in sorted(node_contacts.items()):
-        pix = sorted(pix)
+    for node, contact in sorted(node_contacts.items()):
+        pix = sorted(contact)
         pts = pixels[pix].tolist()  # as Python ints: a few pixels, numpy's scalar steps cost more
         lab = list(range(len(pix)))
         for a in range(len(pix)):  # tiny groups: a quadratic union is fine

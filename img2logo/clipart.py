@@ -140,6 +140,7 @@ def clipart_regions(img: LoadedImage) -> np.ndarray:
     """
     lab = img.lab
     # The noise's and the flat areas' colour differences in one pass (the latter kept for a clean image).
+    window_most: np.ndarray | None
     noise_most, window_most = _spreads(lab, list(_NOISE_PAIRS), _window_pairs())
     noise, fraction = colour_noise(lab, most=noise_most)
     # A clean clip art's fills are exactly flat: any flat 3x3 block is a fill. In a
