@@ -151,6 +151,29 @@ def test_the_runner_command_refuses_an_unknown_name_with_one_line(tmp_path, caps
     assert "04_tolerance_sweep.ipynb: no parameter tolerance" in err
 
 
+def test_the_kernel_runs_one_blas_thread_and_the_environment_is_restored(tmp_path, monkeypatch):
+    papermill = pytest.importorskip("papermill", reason="the notebook runner needs the extra [kit]")
+    import os
+
+    from img2logo.cli import THREAD_VARIABLES
+    from img2logo.experiments.runner import PROGRESS_ENV
+
+    seen = {}
+
+    def execute(path, output, **kwargs):  # the kernel inherits os.environ as it is here
+        seen.update({var: os.environ.get(var) for var in (*THREAD_VARIABLES, PROGRESS_ENV)})
+        Path(output).write_text(Path(path).read_text())
+
+    monkeypatch.setattr(papermill, "execute_notebook", execute)
+    monkeypatch.delenv("OPENBLAS_NUM_THREADS", raising=False)
+    monkeypatch.setenv("OMP_NUM_THREADS", "3")  # a count the user set is kept
+    monkeypatch.delenv(PROGRESS_ENV, raising=False)
+    run_notebook(ROOT / "notebooks" / "04_tolerance_sweep.ipynb", tmp_path / "out.ipynb")
+    assert seen["OPENBLAS_NUM_THREADS"] == "1" and seen["OMP_NUM_THREADS"] == "3" and seen[PROGRESS_ENV] == "0"
+    assert "OPENBLAS_NUM_THREADS" not in os.environ and os.environ["OMP_NUM_THREADS"] == "3"
+    assert PROGRESS_ENV not in os.environ
+
+
 @pytest.mark.notebook
 def test_a_bad_parameter_value_stops_the_notebook_with_one_line(tmp_path):
     pytest.importorskip("papermill", reason="the notebook runner needs the extra [kit]")

@@ -262,8 +262,13 @@ def run_notebook(
             f"{nb.name}: no parameter {', '.join(unknown)}; its parameters are {', '.join(known)}"
         )
     # A run for the record draws no progress bar into the executed notebook (sweep(progress=None)).
-    previous = os.environ.get(PROGRESS_ENV)
-    os.environ[PROGRESS_ENV] = "0"
+    # The kernel inherits the environment: one BLAS/OpenMP thread, as the command runs (cli.THREAD_VARIABLES:
+    # the same bytes, without threads spinning beside the next notebook), unless the user set a count.
+    from img2logo.cli import THREAD_VARIABLES
+
+    settings = {PROGRESS_ENV: "0", **{var: os.environ.get(var, "1") for var in THREAD_VARIABLES}}
+    previous = {name: os.environ.get(name) for name in settings}
+    os.environ.update(settings)
     try:
         papermill.execute_notebook(
             str(nb),
@@ -281,10 +286,11 @@ def run_notebook(
             raise NotebookParameterError(message) from None
         raise NotebookError(f"{message} (cell {err.exec_count}; the traceback is in {output})") from None
     finally:
-        if previous is None:
-            os.environ.pop(PROGRESS_ENV, None)
-        else:
-            os.environ[PROGRESS_ENV] = previous
+        for name, value in previous.items():
+            if value is None:
+                os.environ.pop(name, None)
+            else:
+                os.environ[name] = value
     _name_the_kernel(Path(output), kernel_name)
     return Path(output)
 
