@@ -578,15 +578,16 @@ def _spread(lab: np.ndarray, pairs: list[tuple[int, int]]) -> np.ndarray:
     """Largest squared CIELAB difference of every pixel to the pixels at ``pairs`` (dr, dc) from it and to it.
 
     (H, W) float32. Squared distances in float32 (a third of the time of
-    float64); compiled (:func:`img2logo.kernels_front.spread_kernel`, the same
-    bits) where the kernels are usable, else the numpy below.
+    float64); compiled (:func:`img2logo.kernels_front.spreads_kernel` with one set, the
+    same bits) where the kernels are usable, else the numpy below.
     """
     from . import kernels
 
     h, w = lab.shape[:2]
     if kernels.usable():
         offsets = np.array(pairs, dtype=np.int64).reshape(-1, 2)
-        return kernels.spread_kernel(np.ascontiguousarray(lab, dtype=np.float64), offsets).astype(np.float32)
+        every, none = np.ones(len(offsets), dtype=bool), np.zeros(len(offsets), dtype=bool)
+        return kernels.spreads_kernel(np.ascontiguousarray(lab, dtype=np.float64), offsets, every, none)[0]
     lab32 = lab.astype(np.float32)
     most = np.zeros((h, w), dtype=np.float32)
     for dr, dc in pairs:

@@ -99,7 +99,6 @@ ENTRY_POINTS: dict[str, tuple[str, tuple[str, ...], str]] = {
         ("i8[::1]", "f8[:,::1]", "f8[:,::1]", "i8"),
         "Tuple((f8[::1], f8[:,::1], f8[:,::1]))",
     ),
-    "spread_kernel": ("kernels_front", ("f8[:,:,::1]", "i8[:,::1]"), "f8[:,::1]"),
     "spreads_kernel": (
         "kernels_front",
         ("f8[:,:,::1]", "i8[:,::1]", "b1[::1]", "b1[::1]"),

@@ -3,8 +3,8 @@
 :func:`label_sums_kernel` is ``clipart.label_means``'s ``np.bincount`` per
 channel in one pass over the pixels: each label's count and its sums, added
 in the pixels' order as ``np.bincount`` adds them, so the same bits.
-:func:`spread_kernel` is the largest squared colour difference of every pixel
-to its neighbours at given offsets (``clipart._flat_areas``' window,
+:func:`spreads_kernel` is the largest squared colour difference of every pixel
+to its neighbours at given offsets, for one or two sets of them (``clipart._flat_areas``' window,
 ``clipart.colour_noise``'s 4-neighbours), in float32 as numpy computed it: the
 same differences, squares and sums in the same order, so the same bits, in one
 pass instead of a dozen of temporary images. :func:`label_kernel` numbers the
@@ -69,53 +69,18 @@ def label_sums2_kernel(labels, a, b, n):  # pragma: no cover - compiled
 
 
 @_jit
-def spread_kernel(lab, pairs):  # pragma: no cover - compiled
-    """Largest squared difference of each pixel of ``lab`` (H, W, 3) to those at ``pairs`` (P, 2) offsets, (H, W).
-
-    Each offset (dr, dc) is taken both ways (from a pixel and to it), within
-    the image. The colours are rounded to float32 and the squared differences
-    ``d0 * d0 + d1 * d1 + d2 * d2`` summed in float32 (numpy's
-    ``einsum("ijk,ijk->ij")`` of the float32 differences); the result holds
-    those float32 values in float64.
-    """
-    h, w = lab.shape[0], lab.shape[1]
-    flat = lab.reshape(h * w * 3)
-    lab32 = np.empty(h * w * 3, dtype=np.float32)
-    for k in range(h * w * 3):
-        lab32[k] = np.float32(flat[k])
-    # A maximum is the same whatever the order its values come in: pixel by pixel, each pair.
-    most = np.zeros(h * w, dtype=np.float32)
-    for i in range(h):
-        for p in range(pairs.shape[0]):
-            dr, dc = pairs[p, 0], pairs[p, 1]
-            if dr >= h or abs(dc) >= w or i + dr >= h:
-                continue
-            step = dr * w + dc
-            for j in range(max(0, -dc), w - max(0, dc)):
-                a = i * w + j
-                b = a + step
-                d0 = lab32[3 * b] - lab32[3 * a]
-                d1 = lab32[3 * b + 1] - lab32[3 * a + 1]
-                d2 = lab32[3 * b + 2] - lab32[3 * a + 2]
-                d = d0 * d0 + d1 * d1
-                d = d + d2 * d2
-                if d > most[a]:
-                    most[a] = d
-                if d > most[b]:
-                    most[b] = d
-    out = np.empty((h, w))
-    for i in range(h):
-        for j in range(w):
-            out[i, j] = most[i * w + j]
-    return out
-
-
-@_jit
 def spreads_kernel(lab, pairs, in_a, in_b):  # pragma: no cover - compiled
-    """:func:`spread_kernel` for two sets of offsets at once: (largest of set a, largest of set b), float32 (H, W) each.
+    """Largest squared difference of each pixel of ``lab`` (H, W, 3) to those at two sets of offsets, float32 (H, W).
+
+    Returned: (largest of set a, largest of set b).
+
+    Each offset (dr, dc) of ``pairs`` (P, 2) is taken both ways (from a pixel
+    and to it), within the image. The colours are rounded to float32 and the
+    squared differences ``d0 * d0 + d1 * d1 + d2 * d2`` summed in float32
+    (numpy's ``einsum("ijk,ijk->ij")`` of the float32 differences).
 
     ``pairs`` (P, 2) holds both sets; ``in_a[p]``, ``in_b[p]`` say which a pair
-    is in. Each pair's squared difference is computed once, as there, and taken
+    is in. Each pair's squared difference is computed once and taken
     into the maxima of its sets.
     """
     h, w = lab.shape[0], lab.shape[1]
