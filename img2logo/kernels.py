@@ -34,10 +34,11 @@ in the same order.
 
 from __future__ import annotations
 
+import importlib.machinery
 import importlib.util
 import os
-import sysconfig
 import tempfile
+import threading
 from pathlib import Path
 from types import ModuleType
 from typing import Any
@@ -142,6 +143,9 @@ _SOURCES = (
     "kernels_jit.py",
 )
 _loaded: dict[str, Any] = {}
+#: Held while the kernels load: a photo's run loads them from two threads at once (its line maps beside the
+#: subject search), and the other thread must not see half the entry points.
+_loading = threading.Lock()
 #: Where the loaded kernels came from: the ahead-of-time module's path, or "numba's JIT".
 source = ""
 
@@ -187,11 +191,21 @@ def _directories() -> list[Path]:
 
 def _load() -> dict[str, Any]:
     """The entry points by name: ahead of time if possible, else numba's JIT (see the module's notes)."""
-    if _loaded:
+    if _loaded:  # filled in one step, below: never half
         return _loaded
+    with _loading:
+        if not _loaded:
+            _loaded.update(_entry_points())
+    return _loaded
+
+
+def _entry_points() -> dict[str, Any]:
+    """The entry points by name, loaded: ahead of time if possible, else numba's JIT."""
     global CACHED, source
     name = module_name()
-    filename = name + sysconfig.get_config_var("EXT_SUFFIX")
+    # The running interpreter's extension suffix, as pycc names the module. Not sysconfig's EXT_SUFFIX: its
+    # variables are filled on first use, unlocked, and a second thread could read None meanwhile (seen once).
+    filename = name + importlib.machinery.EXTENSION_SUFFIXES[0]
     module = None
     for directory in _directories():
         if (directory / filename).is_file():
@@ -206,16 +220,16 @@ def _load() -> dict[str, Any]:
                 continue
     if module is not None:
         source = str(module.__file__)
-        for entry, (_, args, _) in ENTRY_POINTS.items():
-            _loaded[entry] = _checked(getattr(module, entry), args)
-        return _loaded
+        return {entry: _checked(getattr(module, entry), args) for entry, (_, args, _) in ENTRY_POINTS.items()}
     from . import kernels_jit  # numba's JIT: its import and its cache
 
-    for entry, (source, _, _) in ENTRY_POINTS.items():
-        _loaded[entry] = getattr(importlib.import_module(f".{source}", __package__), entry)
+    entries = {
+        entry: getattr(importlib.import_module(f".{home}", __package__), entry)
+        for entry, (home, _, _) in ENTRY_POINTS.items()
+    }
     CACHED = CACHED and kernels_jit.CACHED
     source = "numba's JIT"
-    return _loaded
+    return entries
 
 
 def _import(name: str, path: Path) -> ModuleType:

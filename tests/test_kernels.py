@@ -470,3 +470,29 @@ def test_the_command_loads_no_numba(tmp_path):
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, cwd=tmp_path)
     assert out.stdout.strip() == "False"
+
+
+def test_two_threads_loading_at_once_both_get_every_entry_point(monkeypatch):
+    """A photo's run loads the kernels from two threads; neither may see half of them."""
+    import threading
+
+    import img2logo.kernels as kernels
+
+    real = kernels._entry_points
+    calls = []
+
+    def slow():  # widens the window in which the other thread could look
+        calls.append(1)
+        threading.Event().wait(0.05)
+        return real()
+
+    monkeypatch.setattr(kernels, "_loaded", {})
+    monkeypatch.setattr(kernels, "_entry_points", slow)
+    seen = []
+    threads = [threading.Thread(target=lambda: seen.append(set(kernels._load()))) for _ in range(2)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert seen == [set(kernels.ENTRY_POINTS)] * 2
+    assert len(calls) == 1
