@@ -445,8 +445,12 @@ def _try(
     The rules are those of :func:`tangent_joins`. After the fit, the pixels of
     the two groups at every tangent join in the window are split anew where the
     junction now is (:func:`_split`), and their arcs extracted and scored
-    against them. With ``start`` (:func:`_biarc_starts`) the fit starts from a
-    tangent biarc: the join's two circles there, their pixels split at its
+    against them: in the solve, before any arc is extracted, which stops
+    extracting once E^s must exceed ``bound`` (``FitState.solve``'s ``bound``
+    and ``regroup``; measured, the arcs extracted in the tangent pass 286 -> 212
+    on the clip-art fish, 4986 -> 3815 on the polar bear, the same results).
+    With ``start`` (:func:`_biarc_starts`) the fit starts from a tangent
+    biarc (its arcs extracted after the fit, as before): the join's two circles there, their pixels split at its
     junction, and the junction's rest point moved there for the fit (its
     displacement term of Eqn. 13 pulls towards the biarc's junction, not back
     along the line to the node). The state is left as it was. ``before`` caches
