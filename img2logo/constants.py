@@ -535,6 +535,11 @@ CIRCLE_REFINE_MAX_ITER: int = 30
 #: fit_constrained: default tolerance on the connectivity constraints (Eqn. 13),
 #: and on the size of the last SQP step, px.
 CONSTRAINED_FIT_TOL: float = 1e-6
+#: FitState.solve with a bound: a fit is cut off once a lower bound of E^s exceeds the
+#: bound by more than this fraction of it (at least 1 px times it): the lower bound and
+#: E^s sum the same terms in another order, whose rounding (~1e-15) must not reject a
+#: fit that E^s itself keeps.
+CUT_MARGIN: float = 1e-9
 #: fit_constrained: a feasible iterate whose next step would lower E^l (Eqn. 7) by
 #: less than this fraction of it has converged, even if the step exceeds the tolerance.
 CONSTRAINED_FIT_FTOL: float = 1e-12

@@ -21,7 +21,7 @@ from __future__ import annotations
 import dataclasses
 import math
 from collections.abc import Callable, Collection, Hashable, Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import cached_property
 from typing import Any, NamedTuple, Protocol, TypeAlias, cast
 
@@ -29,7 +29,7 @@ import numpy as np
 
 from .arc_extraction import ArcFit, _extract
 from .circle_fitting import fit_center, fit_circle, mean_abs_error
-from .constants import CONSTRAINED_FIT_TOL, JUNCTION_TOLERANCE, LINE_MIN_ANGLE, SYMMETRY_FIT_STALL
+from .constants import CONSTRAINED_FIT_TOL, CUT_MARGIN, JUNCTION_TOLERANCE, LINE_MIN_ANGLE, SYMMETRY_FIT_STALL
 from .constrained_fit import WindowFit, fit_window
 from .geometry import Abstraction, ArcJunctions, Circle, Line, line_arc
 from .golden_ladder import Ladder
@@ -162,6 +162,11 @@ class AxisConstraints(Protocol):
 
 #: The result of a constrained fit over a window: the new fits by group, the displacements d_k by node.
 Solution: TypeAlias = "tuple[dict[int, GroupFit], dict[int, np.ndarray]]"  # a string: autodoc documents it as data
+#: :meth:`FitState.solve`'s ``regroup``: (node -> d_k, the fitted groups) -> (groups split anew, join -> px off
+#: the line), or None to fail the fit.
+Regroup: TypeAlias = (
+    "Callable[[Callable[[int], np.ndarray], set[int]], tuple[Mapping[int, Group], Mapping[int, float]] | None]"
+)
 
 
 def on_axis(symmetry: AxisConstraints | None, group: Group) -> bool:
@@ -638,6 +643,8 @@ class FitState:
         tangent: bool | Collection[int] = False,
         cap: float | None = None,
         lines: Collection[int] | None = None,
+        bound: float | None = None,
+        regroup: Regroup | None = None,
     ) -> Solution | None:
         """Eqn. 13 over a window of ``groups`` (:func:`~img2logo.constrained_fit.fit_window`), then their arcs.
 
@@ -649,7 +656,10 @@ class FitState:
         (px), a merged group (id -1) whose arc strays farther than that is the
         only fit returned (see :meth:`_fits`). ``lines``: the groups whose seeds
         are straight lines (k None), when the caller knows them (a merge candidate's
-        from its level's); default found in ``seeds``. None if it fails.
+        from its level's); default found in ``seeds``. With ``bound`` (px), None
+        as soon as E^s (Eqn. 3) of the state with the new fits and displacements
+        must exceed it, and ``regroup`` may split groups anew before their arcs
+        are extracted (:meth:`_fits_within`; a tangent join's slide). None if it fails.
         """
         fixed = set(fixed)
         fixed.update({g for g in groups if seeds[g].k is None} if lines is None else lines)
@@ -678,6 +688,8 @@ class FitState:
         )
         if not window.ok:
             return None
+        if bound is not None:
+            return self._fits_within(window, groups, seeds, fixed, node_groups, bound, regroup)
         return self._fits(window, groups, seeds, fixed, cap)
 
     def solve_whole(
@@ -764,6 +776,81 @@ class FitState:
             f = first if gid == -1 and cap is not None else fit(gid)
             if f is not None:
                 fits[gid] = f
+        return fits, disp
+
+    def _fits_within(
+        self,
+        window: WindowFit,
+        groups: Mapping[int, Group],
+        seeds: Mapping[int, Seed],
+        fixed: set[int],
+        node_groups: Mapping[int, Sequence[int]],
+        bound: float,
+        regroup: Regroup | None,
+    ) -> Solution | None:
+        """:meth:`_fits`, or None once E^s (Eqn. 3) of the state with them must exceed ``bound`` px.
+
+        With ``regroup``, called with the window's displacements (node -> d_k,
+        the others the state's) and the groups it fits, the groups it returns
+        take the pixels it gives them before any arc is extracted (a group
+        outside the window keeps its circle), and its joins are counted by their
+        distance off the line (``off_line``); None from it is None. A lower bound
+        of E^s is kept as the arcs are extracted: the Fréchet distances of the
+        current fits left as they are and of the arcs extracted so far, over the
+        number of fits, plus the displacements over the number of nodes of
+        ``node_groups`` (each term at least 0). Once it exceeds ``bound`` by
+        more than the rounding of the sums (``CUT_MARGIN``) so does E^s, and no
+        further arc is extracted (on the clip-art fish 14 of 25 tangent tries,
+        on the polar bear 258 of 358, were rejected for E^s only after every
+        arc). Otherwise the fits are those :meth:`_fits` and then a re-extraction
+        of the regrouped groups' arcs would give, the same numbers.
+        """
+        disp = cast(dict[int, np.ndarray], window.displacements())
+        if not self.options.connectivity:
+            disp = {cast(int, n): np.zeros(2) for n in window.junctions}
+        moved = window.free_junctions
+        todo = []
+        for gid in cast(Sequence[int], window.circles):
+            line_moved = seeds[gid].k is None and bool(moved & set(self.constrained_nodes(groups[gid])))
+            if gid not in fixed or line_moved:
+                todo.append(gid)
+        now = self.disp
+
+        def at(n: int) -> np.ndarray:
+            return disp[n] if n in disp else now[n]
+
+        new_groups: Mapping[int, Group] = {}
+        off: Mapping[int, float] = {}
+        if regroup is not None:
+            out = regroup(at, set(todo))
+            if out is None:
+                return None
+            new_groups, off = out
+        fitted = set(todo)
+        todo += [g for g in new_groups if g not in fitted]
+        n_fits = len(self.fits.keys() | set(todo))
+        skip = set(todo)
+        running = sum(f.arc.frechet for g, f in self.fits.items() if g not in skip)
+        off_line = {**self.off_line, **off}
+        d = sum(off_line[n] if n in off_line else float(np.hypot(*at(n))) for n in node_groups)
+        shift = d / len(node_groups) if node_groups else 0.0
+        limit = bound + CUT_MARGIN * max(1.0, abs(bound))
+        fits = {}
+        for gid in todo:
+            if running / max(n_fits, 1) + shift > limit:
+                return None
+            group = new_groups.get(gid, groups[gid])
+            if gid in fitted:
+                _, r, k = seeds[gid]
+                center = window.center(gid)
+                f = GroupFit(center, r, k, self.arc_for(group, center, r, k, at))
+            else:  # split anew at a join of a fitted group: its circle stays
+                f = self.fits[gid]
+                f = replace(f, arc=self.arc_for(group, f.center, f.radius, f.k, at))
+            fits[gid] = f
+            running += f.arc.frechet
+        if running / max(n_fits, 1) + shift > limit:
+            return None
         return fits, disp
 
     # ----------------------------------------------------------------- errors

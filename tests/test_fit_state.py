@@ -130,3 +130,77 @@ def test_a_circle_on_the_mirror_axis_is_fitted_with_its_mirror_image():
     assert mirrored.axis_constraints([0], state.groups, [0, 1])["axis_circles"] == [0]
     assert mirrored.axis_constraints([0], state.groups, [0, 1])["axis_junctions"] == [0]
     assert state.axis_constraints([0], state.groups, [0, 1]) == {}
+
+
+def _bounded_chain():
+    """The golden chain's initial fit, the middle circle one rung up: a window whose refit cannot be exact."""
+    graph, _ = golden_chain()
+    state = hand_built_state(graph)
+    initial_fit(state)
+    seeds = {g: f.seed for g, f in state.fits.items()}
+    c, _, k = seeds[1]
+    seeds[1] = Seed(c, state.ladder.radius(k + 1), k + 1)
+    node_groups = state.node_groups()
+    keywords = {
+        "changed": [1],
+        "free_nodes": sorted(state.constrained_nodes(state.groups[1])),
+        "fixed": set(),
+        "n_groups_total": len(state.groups),
+        "n_junctions_total": len(node_groups),
+    }
+    return state, seeds, node_groups, keywords
+
+
+def _similarity_with(state, out):
+    """E^s of ``state`` with a solve's fits and displacements applied (the state left as it was)."""
+    fits, disp = dict(state.fits), state.disp.copy()
+    state.fits.update(out[0])
+    for n, d in out[1].items():
+        state.disp[n] = d
+    try:
+        return state.similarity()
+    finally:
+        state.fits, state.disp = fits, disp
+
+
+def test_a_bounded_solve_fails_exactly_where_the_unbounded_one_exceeds_the_bound():
+    state, seeds, node_groups, keywords = _bounded_chain()
+    out = state.solve(dict(state.groups), seeds, node_groups, **keywords)
+    assert out is not None
+    after = _similarity_with(state, out)
+    assert after > 0.1  # the rung moved: not an exact fit
+    for factor in (0.0, 0.5, 0.999, 1.001, 2.0):
+        got = state.solve(dict(state.groups), seeds, node_groups, **keywords, bound=factor * after)
+        assert (got is None) == (after > factor * after)
+        if got is not None:  # a fit within the bound is the unbounded one, the same numbers
+            assert got[0].keys() == out[0].keys() and got[1].keys() == out[1].keys()
+            for g, f in out[0].items():
+                assert got[0][g].arc.frechet == f.arc.frechet and np.array_equal(got[0][g].center, f.center)
+            for n, d in out[1].items():
+                assert np.array_equal(got[1][n], d)
+
+
+def test_a_bounded_solve_regroups_before_extracting_and_fails_with_the_regroup():
+    state, seeds, node_groups, keywords = _bounded_chain()
+    keywords["fixed"] = {0}  # group 0 keeps its circle: outside the fitted groups
+    seen = []
+
+    def regroup(at, moved):
+        seen.append((sorted(moved), {n: at(n).copy() for n in node_groups}))
+        return {0: dataclasses.replace(state.groups[0], points=state.groups[0].points[:-3])}, {}
+
+    out = state.solve(dict(state.groups), seeds, node_groups, **keywords)
+    got = state.solve(dict(state.groups), seeds, node_groups, **keywords, bound=np.inf, regroup=regroup)
+    assert got is not None and len(seen) == 1
+    moved, at = seen[0]
+    assert moved == sorted(out[0])  # called with the groups the window fits, and every node's d_k after it
+    for n in node_groups:
+        np.testing.assert_array_equal(at[n], out[1].get(n, state.disp[n]))
+    # The group outside the window keeps its circle; its arc is on the pixels the regroup gave it.
+    fit0 = state.fits[0]
+    assert 0 not in out[0] and np.array_equal(got[0][0].center, fit0.center) and got[0][0].radius == fit0.radius
+    shorter = dataclasses.replace(state.groups[0], points=state.groups[0].points[:-3])
+    expected = state.arc_for(shorter, fit0.center, fit0.radius, fit0.k, lambda n: at[n])
+    assert got[0][0].arc.frechet == expected.frechet
+    failed = state.solve(dict(state.groups), seeds, node_groups, **keywords, bound=np.inf, regroup=lambda *a: None)
+    assert failed is None

@@ -249,3 +249,25 @@ def test_biarc_coarse_search_is_the_grids_choice():
                 j = min(range(4), key=lambda j: float(w[j].min()))
                 s, a = np.unravel_index(int(np.argmin(w[j])), w[j].shape)
                 assert got[ia, ib] == (j, int(s), int(a))
+
+
+def test_cutting_off_tries_over_the_bound_changes_no_result(monkeypatch):
+    """A try is cut off once its E^s must exceed the bound (``FitState.solve``'s ``bound``): the same logo."""
+    from img2logo.fit_state import FitState
+
+    image = DATA / "clipart-fish.png"
+    cut = abstract(image, progress=False)
+    within = FitState._fits_within
+    cuts = []
+
+    def never_cut(self, window, groups, seeds, fixed, node_groups, bound, regroup):
+        out = within(self, window, groups, seeds, fixed, node_groups, bound, regroup)
+        full = within(self, window, groups, seeds, fixed, node_groups, math.inf, regroup)
+        cuts.append(out is None and full is not None)
+        return full
+
+    monkeypatch.setattr(FitState, "_fits_within", never_cut)
+    whole = abstract(image, progress=False)
+    assert any(cuts)  # some tries were cut off, and every one would have failed on E^s
+    assert whole.progression.stats == cut.progression.stats
+    assert whole.final.arcs == cut.final.arcs and whole.final.similarity == cut.final.similarity
