@@ -499,7 +499,8 @@ def _try(
             # groups at the tangent joins are split anew (:func:`_slide`) before their arcs are
             # extracted, not after. A biarc's start keeps the order below: its junction's rest point
             # is moved for the fit and its arcs read the graph's own again.
-            **({} if start is not None else {"bound": bound, "regroup": regroup}),
+            bound=None if start is not None else bound,
+            regroup=None if start is not None else regroup,
         )
         if start is not None:
             opt.graph = graph
@@ -514,9 +515,10 @@ def _try(
         if start is None:
             groups, off_line = slid  # split in the solve, the arcs extracted there
         else:
-            groups, off_line = _slide(opt, made, set(fits))
-            if groups is None:
+            moved, off_line = _slide(opt, made, set(fits))
+            if moved is None:
                 return None
+            groups = moved
             for g, group in groups.items():
                 f = opt.fits[g]
                 fits[g] = replace(f, arc=opt.arc_for(group, f.center, f.radius, f.k, opt.disp.__getitem__))
