@@ -738,6 +738,26 @@ class FitState:
             "stall": SYMMETRY_FIT_STALL,
         }
 
+    def _window_displacements(self, window: WindowFit) -> dict[int, np.ndarray]:
+        """The window's d_k by node (px, (2,) each): zero for every junction without connectivity."""
+        if not self.options.connectivity:
+            return {cast(int, n): np.zeros(2) for n in window.junctions}
+        return cast(dict[int, np.ndarray], window.displacements())
+
+    def _refitted(
+        self, window: WindowFit, groups: Mapping[int, Group], seeds: Mapping[int, Seed], fixed: set[int]
+    ) -> list[int]:
+        """The window's groups whose arcs are extracted anew, in its order.
+
+        Its free groups, and the straight lines (fixed) whose junctions moved.
+        """
+        moved = window.free_junctions
+        return [
+            gid
+            for gid in cast(Sequence[int], window.circles)
+            if gid not in fixed or (seeds[gid].k is None and bool(moved & set(self.constrained_nodes(groups[gid]))))
+        ]
+
     def _fits(
         self,
         window: WindowFit,
@@ -752,30 +772,20 @@ class FitState:
         when it is farther than ``cap`` px from its pixels only it is returned:
         the merge loop rejects that merge (``max_arc_distance``) and reads no other arc.
         """
-        disp = cast(dict[int, np.ndarray], window.displacements())
-        if not self.options.connectivity:
-            disp = {cast(int, n): np.zeros(2) for n in window.junctions}
-        moved = window.free_junctions
-        circles = cast(Sequence[int], window.circles)
+        disp = self._window_displacements(window)
+        todo = self._refitted(window, groups, seeds, fixed)
 
-        def fit(gid: int) -> GroupFit | None:
-            line_moved = seeds[gid].k is None and bool(moved & set(self.constrained_nodes(groups[gid])))
-            if gid in fixed and not line_moved:
-                return None
+        def fit(gid: int) -> GroupFit:
             _, r, k = seeds[gid]
             center = window.center(gid)
-            return GroupFit(center, r, k, self.arc_for(groups[gid], center, r, k, lambda n: disp[n]))
+            return GroupFit(center, r, k, self.arc_for(groups[gid], center, r, k, disp.__getitem__))
 
         first = None
-        if cap is not None and -1 in circles:
+        if cap is not None and -1 in todo:
             first = fit(-1)
-            if first is not None and first.arc.frechet > cap:
+            if first.arc.frechet > cap:
                 return {-1: first}, disp  # the merge is rejected: the window's other arcs are not needed
-        fits = {}
-        for gid in circles:
-            f = first if gid == -1 and cap is not None else fit(gid)
-            if f is not None:
-                fits[gid] = f
+        fits = {gid: first if gid == -1 and first is not None else fit(gid) for gid in todo}
         return fits, disp
 
     def _fits_within(
@@ -805,15 +815,8 @@ class FitState:
         arc). Otherwise the fits are those :meth:`_fits` and then a re-extraction
         of the regrouped groups' arcs would give, the same numbers.
         """
-        disp = cast(dict[int, np.ndarray], window.displacements())
-        if not self.options.connectivity:
-            disp = {cast(int, n): np.zeros(2) for n in window.junctions}
-        moved = window.free_junctions
-        todo = []
-        for gid in cast(Sequence[int], window.circles):
-            line_moved = seeds[gid].k is None and bool(moved & set(self.constrained_nodes(groups[gid])))
-            if gid not in fixed or line_moved:
-                todo.append(gid)
+        disp = self._window_displacements(window)
+        todo = self._refitted(window, groups, seeds, fixed)
         now = self.disp
 
         def at(n: int) -> np.ndarray:
