@@ -121,7 +121,9 @@ def _blobs(lightness: np.ndarray, mask: np.ndarray) -> list[tuple[int, int, floa
     of Gaussian ``sigma^2 LoG`` (positive at a dark blob's centre), sigma from
     r_min / sqrt(2) to r_max / sqrt(2) (:func:`dot_radii`), ``DOT_SCALES_PER_OCTAVE``
     a doubling; the response of a disc of contrast C is about 0.8 C at its scale, so
-    a maximum below half ``DOT_MIN_CONTRAST`` is not measured further.
+    a maximum below half ``DOT_MIN_CONTRAST`` is not measured further. On OpenCV's
+    filters: scikit-image's ``blob_log`` does this job, but importing it costs
+    0.2 s (measured), a third of a 512 px photo's run, which loads no scipy.
     """
     import cv2
 
