@@ -7,11 +7,13 @@ the second photo-like family ``benchmarks/data/photo2/`` (built by
 ``benchmarks/make_photo2.py`` the same way), on the held-out clip arts and
 drawings of ``benchmarks/data/heldout/`` (built by ``benchmarks/make_heldout.py``
 from OpenCV's drawing primitives, JPEG and thick variants included: families
-``heldout clipart`` and ``heldout drawing``) and on the photos of ``data/`` (no
+``heldout clipart`` and ``heldout drawing``), on the held-out photo-likes of
+``benchmarks/data/heldout-photo/`` (built by ``benchmarks/make_photo2.py`` after
+the code it checks, not tuned on: family ``heldout photo``) and on the photos of ``data/`` (no
 truth: only arcs, crossings and gaps) and on thick versions of the drawings of
 ``data/`` (kind "thick drawing": strokes widened by 9 and 13 px; the truth is
 the thin original's feature lines), then prints one row per image and the
-means per family (the kind; ``photo2``; the two held-out families; ``data``), writes them to
+means per family (the kind; ``photo2``; the three held-out families; ``data``), writes them to
 ``build/quality/quality.csv`` and draws one contact sheet per family,
 ``build/quality/contact-<family>.png``: input | ground truth, the pixels farther
 than 10 px from the logo in red | logo.
@@ -53,6 +55,8 @@ PHOTO2 = EVAL / "photo2"
 #: The held-out clip arts and drawings (``benchmarks/make_heldout.py``): families ``heldout clipart``
 #: and ``heldout drawing``, each with its own means.
 HELDOUT = EVAL / "heldout"
+#: The held-out photo-likes (``benchmarks/make_photo2.py``'s ``HELDOUT_CASES``): family ``heldout photo``.
+HELDOUT_PHOTO = EVAL / "heldout-photo"
 OUT = ROOT / "build" / "quality"
 COLUMNS = (
     "name",
@@ -78,14 +82,14 @@ INK_COLUMNS = ("ink lost", "stroke ratio")
 
 def cases() -> list[dict]:
     """The evaluation set's manifest entries, the second photo-like family, the held-out clip arts and
-    drawings, then the photos of data/ (no truth) and the thick drawings.
+    drawings, the held-out photo-likes, then the photos of data/ (no truth) and the thick drawings.
 
     ``family`` is the kind, except for the second photo-like family (``photo2``),
-    the held-out images (``heldout clipart``, ``heldout drawing``) and the photos
+    the held-out images (``heldout clipart``, ``heldout drawing``, ``heldout photo``) and the photos
     of ``data/`` (``data``): the means are per family.
     """
     out = []
-    for folder in (EVAL, PHOTO2, HELDOUT):
+    for folder in (EVAL, PHOTO2, HELDOUT, HELDOUT_PHOTO):
         manifest = json.loads((folder / "manifest.json").read_text(encoding="utf-8"))
         out += [dict(m, family=m.get("family", m["kind"]), path=folder / m["file"], folder=folder) for m in manifest]
     for path in sorted((ROOT / "data").glob("photo-*.png")):
@@ -238,7 +242,7 @@ def main(argv: list[str] | None = None) -> int:
         means["kind right"] = (expected == table["detected"]).groupby(by).sum()
         print(
             "\nMeans per family (the kind, or photo2: the second photo-like family; heldout: the held-out "
-            "clip arts and drawings; data: the photos of data/)"
+            "clip arts, drawings and photo-likes; data: the photos of data/)"
         )
         print(means.to_string(float_format="%.2f"))
     kinks = np.concatenate(
