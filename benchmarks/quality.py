@@ -10,10 +10,11 @@ from OpenCV's drawing primitives, JPEG and thick variants included: families
 ``heldout clipart`` and ``heldout drawing``), on the held-out photo-likes of
 ``benchmarks/data/heldout-photo/`` (built by ``benchmarks/make_photo2.py`` after
 the code it checks, not tuned on: family ``heldout photo``) and on the photos of ``data/`` (no
-truth: only arcs, crossings and gaps) and on thick versions of the drawings of
+truth: only arcs, crossings and gaps), on five real photos that ship with
+scikit-image (family ``real``, no truth either: :data:`REAL_PHOTOS`) and on thick versions of the drawings of
 ``data/`` (kind "thick drawing": strokes widened by 9 and 13 px; the truth is
 the thin original's feature lines), then prints one row per image and the
-means per family (the kind; ``photo2``; the three held-out families; ``data``), writes them to
+means per family (the kind; ``photo2``; the three held-out families; ``data``; ``real``), writes them to
 ``build/quality/quality.csv`` and draws one contact sheet per family,
 ``build/quality/contact-<family>.png``: input | ground truth, the pixels farther
 than 10 px from the logo in red | logo.
@@ -94,6 +95,8 @@ def cases() -> list[dict]:
         out += [dict(m, family=m.get("family", m["kind"]), path=folder / m["file"], folder=folder) for m in manifest]
     for path in sorted((ROOT / "data").glob("photo-*.png")):
         out.append({"name": f"data/{path.stem}", "kind": "photo", "family": "data", "path": path, "folder": EVAL})
+    for path in real_photos():
+        out.append({"name": f"real/{path.stem}", "kind": "photo", "family": "real", "path": path, "folder": EVAL})
     for path in sorted((ROOT / "data").glob("drawing-*.png")):
         for kernel in THICK_KERNELS:
             out.append(
@@ -106,6 +109,21 @@ def cases() -> list[dict]:
                 }
             )
     return out
+
+
+#: Real photos that ship with scikit-image (``skimage.data``'s files; each licence is in its function's
+#: docstring: CC0 or public domain): a portrait, a cup on a table, a launch pad at dusk, a motorcycle in a
+#: cluttered garage, a gray cameraman on a lawn. No truth: the family ``real`` reports arcs, crossings,
+#: gaps and seconds, and its contact sheet shows what a user would get. (``chelsea.png`` is ``data/photo-cat.png``.)
+REAL_PHOTOS = ("astronaut.png", "coffee.png", "rocket.jpg", "motorcycle_left.png", "camera.png")
+
+
+def real_photos() -> list[Path]:
+    """The files of :data:`REAL_PHOTOS` in the installed scikit-image (those it has)."""
+    import skimage.data
+
+    folder = Path(skimage.data.__file__).parent
+    return [folder / name for name in REAL_PHOTOS if (folder / name).is_file()]
 
 
 #: Kind of the thick versions of data/'s drawings: their strokes widened by eroding the paper
@@ -242,7 +260,7 @@ def main(argv: list[str] | None = None) -> int:
         means["kind right"] = (expected == table["detected"]).groupby(by).sum()
         print(
             "\nMeans per family (the kind, or photo2: the second photo-like family; heldout: the held-out "
-            "clip arts, drawings and photo-likes; data: the photos of data/)"
+            "clip arts, drawings and photo-likes; data: the photos of data/; real: scikit-image's real photos)"
         )
         print(means.to_string(float_format="%.2f"))
     kinks = np.concatenate(
