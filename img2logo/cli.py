@@ -76,6 +76,8 @@ examples:
 img2logo batch INPUT_DIR OUTPUT_DIR [options]: every image of a folder, on all cores, with a summary
 table and a gallery page (see img2logo batch --help)."""
 
+#: Said below a photo's subject line when no object was found and the whole image is drawn.
+SUBJECT_HINT = "to draw one object instead, give --subject X,Y,W,H (a rectangle around it, px) or --foreground MASK.png"
 #: The output flags of one image; without any of them there is nothing to do.
 _OUTPUT_FLAGS = ("--svg", "--json", "--png", "--pdf", "--segments-png", "--levels-dir")
 
@@ -577,6 +579,9 @@ def _run(args: argparse.Namespace, say, *, freeze: bool = False) -> int:
         say(f"img2logo: warning: {ignored}")
     if result.lines.subject is not None:
         say(f"subject: {result.lines.subject.description}")
+        if result.lines.subject.mask is None and result.lines.subject.method == "auto":
+            # Said where the user looks: the way to choose the object when none was found.
+            say(f"subject: {SUBJECT_HINT}")
     if result.symmetry is not None:
         say(result.symmetry.description)
     say(

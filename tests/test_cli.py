@@ -395,6 +395,23 @@ def test_lines_option(tmp_path):
         assert len(json.loads(out.read_text())["extra"].get("lines", [])) == expected
 
 
+def test_a_photo_without_an_object_says_how_to_choose_one(tmp_path, capsys):
+    import cv2
+    from helpers import textured_photo
+
+    from img2logo.cli import SUBJECT_HINT
+
+    rgb, _ = textured_photo([])  # pure texture: no dominant object, the whole image is drawn
+    path = tmp_path / "texture.png"
+    cv2.imwrite(str(path), (rgb[:, :, ::-1] * 255).round().astype(np.uint8))
+    assert main([str(path), "--kind", "photo", "--json", str(tmp_path / "t.json")]) == 0
+    err = capsys.readouterr().err
+    assert "subject: kept the whole image: no dominant object" in err
+    assert f"subject: {SUBJECT_HINT}" in err
+    assert main([str(path), "--kind", "photo", "--foreground", "none", "--json", str(tmp_path / "t.json")]) == 0
+    assert SUBJECT_HINT not in capsys.readouterr().err  # asked for: no hint
+
+
 def test_photo_subject_is_reported_and_can_be_chosen(tmp_path, capsys):
     import cv2
     from helpers import textured_photo
