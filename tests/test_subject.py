@@ -351,6 +351,33 @@ def test_an_object_away_from_the_frame_strip_is_not_cut_again(monkeypatch):
     assert outline_distance(subject.mask, truth) <= 3.0
 
 
+def test_the_outline_moved_into_the_strip_must_be_an_edge():
+    from img2logo.subject import _moved_outline
+
+    rgb, (body,) = textured_photo([(160, 110, 80, 60, (0.95, 0.75, 0.2))], size=(240, 320))
+    img = load_image(rgb)
+    cut = body.copy()
+    cut[140:] = False  # the object cut straight, as by the frame strip
+    assert _moved_outline(img, cut, body) > 2.8  # its own rim: an edge (9.5)
+    yy, xx = np.mgrid[0:240, 0:320]
+    clutter = body | ((yy > 60) & (yy < 200) & (xx > 200) & (xx < 300))  # and a block of the background
+    assert _moved_outline(img, body, clutter) < 2.8  # a cut through texture (0.7)
+    assert _moved_outline(img, body, body) == 0.0
+
+
+def test_the_shelves_behind_the_motorcycle_are_not_let_into_the_frame_strip():
+    # The candidate is the bike's body and the shelves behind it; the shelves run off the top of the
+    # picture, and let into the strip there, their sides are a cut through clutter, no edge (2.6).
+    from skimage import data
+
+    from img2logo.loading import downscale
+
+    subject = find_subject(downscale(load_image(data.stereo_motorcycle()[0]), 512))
+    assert subject.mask is not None
+    assert "frame strip" not in subject.description
+    assert not subject.mask[:8].any()
+
+
 def test_the_retina_photo_is_a_disc():
     from scipy import ndimage as ndi
     from skimage import data
