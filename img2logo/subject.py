@@ -307,7 +307,8 @@ def _find_subject(
         if how.startswith("found by GrabCut from the image frame") and _near_frame_strip(mask):
             # one dominant object, found with the frame strip as certain background: it runs into the strip,
             # so its cut goes on with the strip near it open (_reach_frame); kept if it is still one object
-            reached = clean_mask(_refine(img, _reach_frame(small_cuts[taken])))
+            cut = _reach_frame(small_cuts[taken])
+            reached = clean_mask(_refine(img, cut)) if cut is not None else mask
             gained = (reached & frame_strip(mask.shape) & ~mask).any()
             if gained and not _not_dominant(reached) and _object_outline(img, texture, reached):
                 if _moved_outline(img, mask, reached) >= SUBJECT_MIN_CONTRAST:
@@ -759,7 +760,7 @@ def _refine(img: LoadedImage, cut: _SmallCut) -> np.ndarray:
     return (full == cv2.GC_FGD) | (full == cv2.GC_PR_FGD)
 
 
-def _reach_frame(cut: _SmallCut) -> _SmallCut:
+def _reach_frame(cut: _SmallCut) -> _SmallCut | None:
     """The object of a cut from the frame let into the frame strip where its colours say so.
 
     GrabCut from the frame (:func:`~img2logo.subject_cues.frame_box`) takes the strip of
@@ -776,7 +777,8 @@ def _reach_frame(cut: _SmallCut) -> _SmallCut:
     mechanism by which GrabCut decides inside the box). This is repeated, for
     the strip near the object as it has grown, up to ``SUBJECT_FRAME_ROUNDS``
     times. The rest of the strip stays certain background. ``cut`` is left as
-    it is.
+    it is. None if no pixel of the strip joined the object (nothing to refine
+    or check again).
     """
     import cv2
 
@@ -794,6 +796,9 @@ def _reach_frame(cut: _SmallCut) -> _SmallCut:
         label[near] = cv2.GC_PR_BGD
         closed &= ~near
         cv2.grabCut(cut.small8, label, None, bgd, fgd, 1, cv2.GC_EVAL)
+    joined = frame_strip((sh, sw)) & ((label == cv2.GC_FGD) | (label == cv2.GC_PR_FGD))
+    if not joined.any():
+        return None
     return dataclasses.replace(cut, label=label, bgd=bgd, fgd=fgd)
 
 

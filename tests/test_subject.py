@@ -325,6 +325,7 @@ def test_a_disc_that_almost_fills_the_picture_keeps_its_round_outline():
     cut = _cut_small(img)
     before = _SmallCut(cut.label.copy(), cut.bgd.copy(), cut.fgd.copy(), cut.full8, cut.small8, None)
     reached = _reach_frame(cut)
+    assert reached is not None
     for name in ("label", "bgd", "fgd"):  # the cut is left as it was
         np.testing.assert_array_equal(getattr(cut, name), getattr(before, name))
     assert (reached.label % 2 == 1).sum() > (cut.label % 2 == 1).sum()  # GC_FGD 1, GC_PR_FGD 3
