@@ -69,7 +69,7 @@ from .constants import (
     STEP_SIDE_CONTRAST,
 )
 from .loading import LoadedImage
-from .photo_features import Dots, dark_dots
+from .photo_features import Dots, cielab_lightness, dark_dots, with_enclosed_dots
 from .subject import Subject
 
 if TYPE_CHECKING:
@@ -80,11 +80,23 @@ def subject_dots(img: LoadedImage, subject: Subject, maps: LineMaps | None = Non
     """The dark dots of a photo's subject (:func:`img2logo.photo_features.dark_dots`): none without a subject.
 
     With the photo's line maps (:func:`line_maps`), the dark dots inside the
-    closed loops of its lightness lines too: pupils in irises.
+    closed loops of its lightness lines too (:func:`subject_pupils`).
     """
     if subject.mask is None:  # a scene: no face to keep the dots of
         return Dots(np.zeros((img.height, img.width), bool), 0)
     return dark_dots(img.rgb, subject.mask, None if maps is None else maps.lightness)
+
+
+def subject_pupils(img: LoadedImage, subject: Subject, maps: LineMaps, dots: Dots) -> Dots:
+    """``dots`` (:func:`subject_dots` without line maps) and the dark dots inside the closed loops of
+    the lightness lines: pupils in irises (:func:`img2logo.photo_features.enclosed_dots`).
+
+    Two steps, so that the blob dots are found while the line maps are still
+    being made beside the subject's cuts (:func:`start_photo_line_maps`).
+    """
+    if subject.mask is None:
+        return dots
+    return with_enclosed_dots(dots, cielab_lightness(img.rgb), maps.lightness, subject.mask)
 
 
 def dot_lines(raw: np.ndarray, dots: Dots) -> np.ndarray:

@@ -120,7 +120,6 @@ def dark_dots(rgb: np.ndarray, mask: np.ndarray | None, lines: np.ndarray | None
         The photo's lightness lines (:func:`img2logo.photo.photo_lines`): the
         dark dots inside their closed loops are found too (:func:`enclosed_dots`).
     """
-    import cv2
 
     rgb = np.asarray(rgb)
     if rgb.ndim != 3 or rgb.shape[2] != 3:
@@ -134,7 +133,7 @@ def dark_dots(rgb: np.ndarray, mask: np.ndarray | None, lines: np.ndarray | None
     region = np.zeros((h, w), bool)
     if not mask.any():
         return Dots(region, 0)
-    lightness = cv2.cvtColor(np.ascontiguousarray(rgb, dtype=np.float32), cv2.COLOR_RGB2Lab)[..., 0]
+    lightness = cielab_lightness(rgb)
     if lines is not None:
         lines = np.asarray(lines, dtype=bool)
         if lines.shape != (h, w):
@@ -148,11 +147,30 @@ def dark_dots(rgb: np.ndarray, mask: np.ndarray | None, lines: np.ndarray | None
             (r0, c0), piece = dot
             region[r0 : r0 + piece.shape[0], c0 : c0 + piece.shape[1]] |= fill_holes(piece)
             count += 1
-    for (r0, c0), piece in enclosed_dots(lightness, lines, mask) if lines is not None else ():
+    dots = Dots(region, count)
+    return dots if lines is None else with_enclosed_dots(dots, lightness, lines, mask)
+
+
+def with_enclosed_dots(dots: Dots, lightness: np.ndarray, lines: np.ndarray, mask: np.ndarray) -> Dots:
+    """``dots`` and the dark dots inside the closed loops of ``lines`` (:func:`enclosed_dots`).
+
+    One that overlaps a dot of ``dots`` makes it whole (a catch light's notch
+    in its rim filled) and is not counted again.
+    """
+    region = dots.region.copy()
+    count = dots.count
+    for (r0, c0), piece in enclosed_dots(lightness, lines, mask):
         window = region[r0 : r0 + piece.shape[0], c0 : c0 + piece.shape[1]]
-        count += int(not window[piece].any())  # a new dot, or a blob's dot made whole (a notch filled)
+        count += int(not window[piece].any())
         window |= piece
     return Dots(region, count)
+
+
+def cielab_lightness(rgb: np.ndarray) -> np.ndarray:
+    """The CIELAB lightness L* (H, W) float32 of a photo ``rgb`` (H, W, 3) in [0, 1]."""
+    import cv2
+
+    return cv2.cvtColor(np.ascontiguousarray(rgb, dtype=np.float32), cv2.COLOR_RGB2Lab)[..., 0]
 
 
 def fill_holes(piece: np.ndarray) -> np.ndarray:
