@@ -42,10 +42,13 @@ lines inside its convex hull (the pupil's outline and what it encloses)
 * is enclosed by the loop's inside (``EYE_ENCLOSED_SHARE`` of its rim), not a
   bay of a concave loop nor a line running into it;
 * lies near the loop's centre (``EYE_MAX_PUPIL_OFFSET``), as a pupil in its iris;
-* is darker than nine tenths of the loop's inside (its 10th percentile, the
+* is dark as a whole: the median of its convex hull (the dot as drawn, below)
+  is darker than nine tenths of the loop's inside (its 10th percentile, the
   pixels next to the lines left out) by ``DOT_MIN_CONTRAST`` L*: a population of
-  its own, not the dark end of the iris's shading or of texture. The loop is
-  the evidence of an eye that the ring test asks the surround's evenness for.
+  its own, not the dark end of the iris's shading or of texture, and not a
+  crease in a light surface (the relief of a coin), whose hull is mostly that
+  surface. The loop is the evidence of an eye that the ring test asks the
+  surround's evenness for.
 
 The pupil is drawn as the convex hull of those lines: a slit or a disc, with
 the catch light and the cornea's reflections that the lines went round inside
@@ -297,8 +300,8 @@ def enclosed_dots(
         if iris.sum() < MIN_SPECK_AREA:
             continue
         light = lightness[r0 : r0 + dot.shape[0], c0 : c0 + dot.shape[1]]
-        if np.percentile(light[iris], 10.0) - np.median(light[lined]) < DOT_MIN_CONTRAST:
-            continue  # not darker than the iris's shaded parts: a crease, not a pupil
+        if np.percentile(light[iris], 10.0) - np.median(light[dot]) < DOT_MIN_CONTRAST:
+            continue  # not darker than the iris's shaded parts, or a crease in a light surface
         found.append(((r0, c0), dot))
     return found
 

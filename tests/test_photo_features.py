@@ -97,6 +97,13 @@ def test_no_pupil_without_a_closed_loop_a_dark_inside_or_a_centred_dot():
     open_loop[70:80, 140:160] = False  # the iris's loop cut open at its top
     assert enclosed_dots(light, open_loop, mask) == []
     assert enclosed_dots(np.where(light < 60, 45.0, light), lines, mask) == []  # as dark as its iris
+    light, lines, mask = _eye(slit=(0.1, 0.1), catch=False, pupil_lines=False)  # no pupil: a crease
+    yy, xx = np.mgrid[-100:100, -150:150]
+    arc = (np.abs(np.hypot(yy, xx) - 9.0) < 1.0) & (yy < 4)  # a dark curve, light inside it
+    light[arc], lines[arc] = 5.0, True
+    assert enclosed_dots(light, lines, mask) == []  # the relief of a coin: its hull is mostly light
+    light[np.hypot(yy, xx) < 9.0] = 5.0
+    assert len(enclosed_dots(light, lines, mask)) == 1  # filled: a pupil
     light, lines, mask = _eye(slit=(3.0, 6.0), pupil_at=(100, 166))  # a mark by the rim, off the centre
     assert enclosed_dots(light, lines, mask) == []
     light, lines, mask = _eye(size=(120, 160))  # an iris of 24 px is too large a loop in 160 px
