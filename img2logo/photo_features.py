@@ -92,7 +92,9 @@ class Dots:
     Attributes
     ----------
     region : ndarray of bool, shape (H, W)
-        The dots' pixels: each dot a connected region, inside its half-contrast iso-line.
+        The dots' pixels: each dot a connected region, inside its half-contrast
+        iso-line (its holes, catch lights, filled), or a pupil's convex hull
+        (:func:`enclosed_dots`).
     count : int
         How many.
     """
