@@ -443,6 +443,25 @@ DOT_SURROUND_CONTRAST: float = 2.0
 #: times the sides' own spread along it: an edge between two even regions (a seal's white belly on
 #: its grey body), not a crease in texture. Twice, as for a dot (DOT_SURROUND_CONTRAST).
 STEP_SIDE_CONTRAST: float = DOT_SURROUND_CONTRAST
+#: Photo enclosed dots (photo_features.enclosed_dots): a pupil is a dark dot inside a lighter closed
+#: loop of the lightness lines (an iris, an eye's opening). A loop of equivalent radius up to this
+#: fraction of the image's longer side (and no wider than that diameter) is looked in: four times
+#: a dot's largest radius (DOT_MAX_RADIUS_FRACTION), as a pupil is at least about a quarter of its
+#: iris across (a human pupil 2-8 mm in a 12 mm iris; a cat's slit is as long as its iris).
+EYE_MAX_RADIUS_FRACTION: float = 4.0 * DOT_MAX_RADIUS_FRACTION
+#: ... the dot, the lines inside the loop and what they enclose, is at most this share of the loop's
+#: convex hull: the iris is the larger part of an eye, so that the loop's median is the iris's
+#: lightness (a human iris fills 30-50 % of the eye's opening, a pupil less of its iris) ...
+EYE_MAX_PUPIL_SHARE: float = 0.5
+#: ... and it is enclosed: at least this share of the pixels just around it are the loop's inside
+#: (the rest: lines of the loop it touches). A third of its rim may touch the loop (a cat's slit
+#: pupil reaching its eyelid); a bay of a concave loop (the hull's side) is enclosed about half
+#: (measured: the cat's pupils 1.0 and 0.93, bays and lines into a loop 0.5).
+EYE_ENCLOSED_SHARE: float = 2.0 / 3.0
+#: ... and its centre lies within this share of the loop's radius of the loop's centre (in the
+#: loop's own ellipse): a pupil is at its iris's centre, which an eyelid cutting the loop shifts
+#: (a cat's half-covered iris: 0.4); a crease or a mark beside a loop's rim is off it (0.55-0.9).
+EYE_MAX_PUPIL_OFFSET: float = 0.5
 
 # --- Segment graph ----------------------------------------------------------------
 #: Default Ramer-Douglas-Peucker tolerance of the over-segmentation, px (Sec. 4).

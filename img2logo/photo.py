@@ -16,9 +16,10 @@
   stronger lightness edge lies beside it, whole back to the line it meets
   (:func:`new_colour_lines`): a pink nose's top on tan fur;
 * its **dark dots** (:func:`subject_dots`, :mod:`img2logo.photo_features`): eyes
-  and noses, small dark blobs on the subject, each drawn as its closed outline
-  first, the lines of its own edge left out; the caller keeps them through the
-  length filters (:func:`dot_lines`);
+  and noses, small dark blobs on the subject, and pupils, dark dots inside the
+  closed loops of the lightness lines (an iris), each drawn as its closed outline
+  first (a catch light inside), the lines of its own edge left out; the caller
+  keeps them through the length filters (:func:`dot_lines`);
 * **faces** (:attr:`Subject.faces`): inside the ellipse of each face found,
   the FDoG lines are kept down to ``FACE_MIN_LINE`` of the face's side, first
   in the budget: eyes, brows, nose and mouth are inner lines of the subject;
@@ -68,18 +69,34 @@ from .constants import (
     STEP_SIDE_CONTRAST,
 )
 from .loading import LoadedImage
-from .photo_features import Dots, dark_dots
+from .photo_features import Dots, cielab_lightness, dark_dots, with_enclosed_dots
 from .subject import Subject
 
 if TYPE_CHECKING:
     from concurrent.futures import Executor, Future
 
 
-def subject_dots(img: LoadedImage, subject: Subject) -> Dots:
-    """The dark dots of a photo's subject (:func:`img2logo.photo_features.dark_dots`): none without a subject."""
+def subject_dots(img: LoadedImage, subject: Subject, maps: LineMaps | None = None) -> Dots:
+    """The dark dots of a photo's subject (:func:`img2logo.photo_features.dark_dots`): none without a subject.
+
+    With the photo's line maps (:func:`line_maps`), the dark dots inside the
+    closed loops of its lightness lines too (:func:`subject_pupils`).
+    """
     if subject.mask is None:  # a scene: no face to keep the dots of
         return Dots(np.zeros((img.height, img.width), bool), 0)
-    return dark_dots(img.rgb, subject.mask)
+    return dark_dots(img.rgb, subject.mask, None if maps is None else maps.lightness)
+
+
+def subject_pupils(img: LoadedImage, subject: Subject, maps: LineMaps, dots: Dots) -> Dots:
+    """``dots`` (:func:`subject_dots` without line maps) and the dark dots inside the closed loops of
+    the lightness lines: pupils in irises (:func:`img2logo.photo_features.enclosed_dots`).
+
+    Two steps, so that the blob dots are found while the line maps are still
+    being made beside the subject's cuts (:func:`start_photo_line_maps`).
+    """
+    if subject.mask is None:
+        return dots
+    return with_enclosed_dots(dots, cielab_lightness(img.rgb), maps.lightness, subject.mask)
 
 
 def dot_lines(raw: np.ndarray, dots: Dots) -> np.ndarray:
@@ -95,7 +112,9 @@ def dot_lines(raw: np.ndarray, dots: Dots) -> np.ndarray:
     return raw & dilate(dots.region, 2)
 
 
-def photo_feature_lines(img: LoadedImage, subject: Subject, dots: Dots | None = None) -> np.ndarray:
+def photo_feature_lines(
+    img: LoadedImage, subject: Subject, dots: Dots | None = None, maps: LineMaps | None = None
+) -> np.ndarray:
     """A photo's feature lines, (H, W) bool, 1 px wide: outline, dots, inner lines, joined.
 
     Parameters
@@ -109,16 +128,19 @@ def photo_feature_lines(img: LoadedImage, subject: Subject, dots: Dots | None = 
         Its dark dots (:func:`subject_dots`, found here by default): each is
         drawn as its outline, and the lines within ``EDGE_SIDE_REACH`` of it
         (its own edge's FDoG lines) are not.
+    maps : LineMaps, optional
+        Its line maps (:func:`line_maps`, made or taken here by default).
     """
     from ._ndimage import dilate, erode  # scipy.ndimage's binary morphology, without importing it
     from ._skeleton import skeletonize  # skimage's thinning, without importing skimage.morphology
 
     mask = subject.mask
-    maps = line_maps(img)
+    if maps is None:
+        maps = line_maps(img)
     inner = maps.lightness
     budget = PHOTO_LINE_BUDGET * (img.height + img.width)
     if dots is None:
-        dots = subject_dots(img, subject)
+        dots = subject_dots(img, subject, maps)
     dot_outline = np.zeros(inner.shape, bool)
     if dots.count:
         dot_outline = subject_outline(dots.region, frame_margin=0.0)

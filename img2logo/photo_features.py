@@ -21,9 +21,38 @@ Gaussian [Lin98] of the CIELAB lightness, and keeps a blob if
 
 Only dark blobs: eyes and nostrils are dark (a pupil and a cavity absorb the
 light), while small bright blobs in photos are mostly specular highlights (an
-eye's catch light, a lamp), which a designer leaves out. :mod:`img2logo.photo` draws
-each dot as its region's outline, the half-contrast iso-line (a closed 1-px
-curve), which the optimization turns into a closed golden arc or circle.
+eye's catch light, a lamp), which a designer leaves out: a catch light inside a
+dot is filled, so that the dot has one outline, not a ring around the light.
+:mod:`img2logo.photo` draws each dot as its region's outline, the half-contrast
+iso-line (a closed 1-px curve), which the optimization turns into a closed
+golden arc or circle.
+
+A pupil in a large eye (a close-up of a cat) fails those tests: a slit is
+elongated, so its region runs beyond ``1.5 r`` of the round blob, and its ring
+takes in the dark eyelid and the iris's shading, which vary as much as the pupil
+is dark. The eye itself says where to measure: :func:`enclosed_dots` finds a dark
+dot inside a lighter **closed loop** of the photo's lightness lines (an iris, an
+eye's opening), measured against the loop's inside, not a ring. A loop (a
+4-connected region between the lines, not open to the frame) of radius up to
+``EYE_MAX_RADIUS_FRACTION`` of the image holds a pupil if the largest piece of
+lines inside its convex hull (the pupil's outline and what it encloses)
+
+* is no speck (``MIN_SPECK_AREA``), a dot by size (its convex hull within the
+  largest dot radius) and at most ``EYE_MAX_PUPIL_SHARE`` of the loop's hull;
+* is enclosed by the loop's inside (``EYE_ENCLOSED_SHARE`` of its rim), not a
+  bay of a concave loop nor a line running into it;
+* lies near the loop's centre (``EYE_MAX_PUPIL_OFFSET``), as a pupil in its iris;
+* is dark as a whole: the median of its convex hull (the dot as drawn, below)
+  is darker than nine tenths of the loop's inside (its 10th percentile, the
+  pixels next to the lines left out) by ``DOT_MIN_CONTRAST`` L*: a population of
+  its own, not the dark end of the iris's shading or of texture, and not a
+  crease in a light surface (the relief of a coin), whose hull is mostly that
+  surface. The loop is the evidence of an eye that the ring test asks the
+  surround's evenness for.
+
+The pupil is drawn as the convex hull of those lines: a slit or a disc, with
+the catch light and the cornea's reflections that the lines went round inside
+it (a pupil is convex).
 
 [Lin98] T. Lindeberg, Feature detection with automatic scale selection, IJCV 30(2), 1998.
 
@@ -44,6 +73,10 @@ from .constants import (
     DOT_MIN_RADIUS,
     DOT_SCALES_PER_OCTAVE,
     DOT_SURROUND_CONTRAST,
+    EYE_ENCLOSED_SHARE,
+    EYE_MAX_PUPIL_OFFSET,
+    EYE_MAX_PUPIL_SHARE,
+    EYE_MAX_RADIUS_FRACTION,
     MIN_SPECK_AREA,
 )
 
@@ -59,7 +92,9 @@ class Dots:
     Attributes
     ----------
     region : ndarray of bool, shape (H, W)
-        The dots' pixels: each dot a connected region, inside its half-contrast iso-line.
+        The dots' pixels: each dot a connected region, inside its half-contrast
+        iso-line (its holes, catch lights, filled), or a pupil's convex hull
+        (:func:`enclosed_dots`).
     count : int
         How many.
     """
@@ -77,7 +112,7 @@ def dot_radii(shape: tuple[int, int]) -> tuple[float, float]:
     return DOT_MIN_RADIUS, max(DOT_MIN_RADIUS, DOT_MAX_RADIUS_FRACTION * max(shape))
 
 
-def dark_dots(rgb: np.ndarray, mask: np.ndarray | None) -> Dots:
+def dark_dots(rgb: np.ndarray, mask: np.ndarray | None, lines: np.ndarray | None = None) -> Dots:
     """The dark dots of a photo's subject: eyes, noses (see the module's docstring).
 
     Parameters
@@ -86,8 +121,10 @@ def dark_dots(rgb: np.ndarray, mask: np.ndarray | None) -> Dots:
         The photo, in [0, 1].
     mask : ndarray of bool, shape (H, W), or None
         The subject; None: the whole image.
+    lines : ndarray of bool, shape (H, W), optional
+        The photo's lightness lines (:func:`img2logo.photo.photo_lines`): the
+        dark dots inside their closed loops are found too (:func:`enclosed_dots`).
     """
-    import cv2
 
     rgb = np.asarray(rgb)
     if rgb.ndim != 3 or rgb.shape[2] != 3:
@@ -101,7 +138,11 @@ def dark_dots(rgb: np.ndarray, mask: np.ndarray | None) -> Dots:
     region = np.zeros((h, w), bool)
     if not mask.any():
         return Dots(region, 0)
-    lightness = cv2.cvtColor(np.ascontiguousarray(rgb, dtype=np.float32), cv2.COLOR_RGB2Lab)[..., 0]
+    lightness = cielab_lightness(rgb)
+    if lines is not None:
+        lines = np.asarray(lines, dtype=bool)
+        if lines.shape != (h, w):
+            raise ValueError(f"lines must have the image's shape {(h, w)}, got {lines.shape}")
     count = 0
     for r, c, radius in _blobs(lightness, mask):
         if region[r, c]:
@@ -109,9 +150,58 @@ def dark_dots(rgb: np.ndarray, mask: np.ndarray | None) -> Dots:
         dot = _dot_region(lightness, mask, r, c, radius)
         if dot is not None:
             (r0, c0), piece = dot
-            region[r0 : r0 + piece.shape[0], c0 : c0 + piece.shape[1]] |= piece
+            region[r0 : r0 + piece.shape[0], c0 : c0 + piece.shape[1]] |= fill_holes(piece)
             count += 1
+    dots = Dots(region, count)
+    return dots if lines is None else with_enclosed_dots(dots, lightness, lines, mask)
+
+
+def with_enclosed_dots(dots: Dots, lightness: np.ndarray, lines: np.ndarray, mask: np.ndarray) -> Dots:
+    """``dots`` and the dark dots inside the closed loops of ``lines`` (:func:`enclosed_dots`).
+
+    One that overlaps a dot of ``dots`` makes it whole (a catch light's notch
+    in its rim filled) and is not counted again.
+    """
+    region = dots.region.copy()
+    count = dots.count
+    for (r0, c0), piece in enclosed_dots(lightness, lines, mask):
+        window = region[r0 : r0 + piece.shape[0], c0 : c0 + piece.shape[1]]
+        count += int(not window[piece].any())
+        window |= piece
     return Dots(region, count)
+
+
+def cielab_lightness(rgb: np.ndarray) -> np.ndarray:
+    """The CIELAB lightness L* (H, W) float32 of a photo ``rgb`` (H, W, 3) in [0, 1]."""
+    import cv2
+
+    return cv2.cvtColor(np.ascontiguousarray(rgb, dtype=np.float32), cv2.COLOR_RGB2Lab)[..., 0]
+
+
+def fill_holes(piece: np.ndarray) -> np.ndarray:
+    """A region (bool) with its holes filled: a catch light inside an eye's dot is part of it.
+
+    The holes are the parts of the background not 4-connected to the window's border.
+    """
+    import cv2
+
+    outside = np.pad(~np.asarray(piece, dtype=bool), 1, constant_values=True).astype(np.uint8)
+    cv2.floodFill(outside, None, (0, 0), 2)
+    return outside[1:-1, 1:-1] != 2
+
+
+def convex_hull(piece: np.ndarray) -> np.ndarray:
+    """A region (bool) and the pixels of its convex hull: an eye's catch light is part of its dot.
+
+    A catch light inside a pupil leaves a hole in its dark region, one on its
+    rim a notch; an eye, a nostril, a button nose is convex.
+    """
+    import cv2
+
+    piece = np.asarray(piece, dtype=bool)
+    hull = np.zeros(piece.shape, np.uint8)
+    cv2.fillPoly(hull, [cv2.convexHull(np.argwhere(piece)[:, ::-1].astype(np.int32))], 1)
+    return piece | hull.astype(bool)
 
 
 def _blobs(lightness: np.ndarray, mask: np.ndarray) -> list[tuple[int, int, float]]:
@@ -145,6 +235,93 @@ def _blobs(lightness: np.ndarray, mask: np.ndarray) -> list[tuple[int, int, floa
     k, pr, pc = np.nonzero(peaks)
     order = np.argsort(-stack[k, pr, pc], kind="stable")
     return [(int(pr[i]) + r0, int(pc[i]) + c0, math.sqrt(2.0) * sigmas[k[i]]) for i in order]
+
+
+def enclosed_dots(
+    lightness: np.ndarray, lines: np.ndarray, mask: np.ndarray
+) -> list[tuple[tuple[int, int], np.ndarray]]:
+    """The dark dots inside lighter closed loops of ``lines``: pupils in irises (see the module).
+
+    Parameters
+    ----------
+    lightness : ndarray of float, shape (H, W)
+        The photo's CIELAB lightness, L*.
+    lines : ndarray of bool, shape (H, W)
+        Its lightness lines (:func:`img2logo.photo.photo_lines`), before any length filter.
+    mask : ndarray of bool, shape (H, W)
+        The subject: a dot lies on it.
+
+    Returns
+    -------
+    list of ((row, column), ndarray of bool)
+        Each dot as the top-left corner of a window and its pixels in it: the
+        convex hull of the lines inside a loop and of what they enclose.
+    """
+    import cv2
+
+    h, w = lines.shape
+    _, r_dot = dot_radii((h, w))
+    r_eye = EYE_MAX_RADIUS_FRACTION * max(h, w)
+    n, labels, stats, _ = cv2.connectedComponentsWithStats((~lines).astype(np.uint8), connectivity=4)
+    square = np.ones((3, 3), np.uint8)
+    found = []
+    for i in range(1, n):
+        x, y, bw, bh, area = (int(v) for v in stats[i])
+        if x == 0 or y == 0 or x + bw == w or y + bh == h:
+            continue  # open to the frame: no loop
+        if area < MIN_SPECK_AREA or max(bw, bh) > 2.0 * r_eye:
+            continue
+        r0, c0 = y - 1, x - 1  # a pixel of the loop's lines around it
+        inside = labels[r0 : y + bh + 1, c0 : x + bw + 1] == i
+        contours, _ = cv2.findContours(inside.astype(np.uint8), cv2.RETR_EXTERNAL, cv2.CHAIN_APPROX_SIMPLE)
+        hull = np.zeros(inside.shape, np.uint8)
+        cv2.fillPoly(hull, [cv2.convexHull(np.vstack(contours))], 1)
+        eye = hull.astype(bool)
+        if eye.sum() > math.pi * r_eye * r_eye:
+            continue
+        n_in, parts, part_stats, _ = cv2.connectedComponentsWithStats((eye & ~inside).astype(np.uint8), connectivity=8)
+        if n_in < 2:
+            continue  # nothing inside
+        k = 1 + int(np.argmax(part_stats[1:, cv2.CC_STAT_AREA]))
+        lined = parts == k
+        if part_stats[k, cv2.CC_STAT_AREA] < MIN_SPECK_AREA:
+            continue
+        dot = convex_hull(lined)
+        size = int(dot.sum())
+        if size > EYE_MAX_PUPIL_SHARE * eye.sum() or size > math.pi * r_dot * r_dot:
+            continue
+        if not mask[r0 : r0 + dot.shape[0], c0 : c0 + dot.shape[1]][dot].all():
+            continue
+        rim = cv2.dilate(lined.astype(np.uint8), square).astype(bool) & ~lined
+        if (rim & inside).sum() < EYE_ENCLOSED_SHARE * rim.sum():
+            continue  # a bay of the loop, or a line running into it
+        if _offset(eye, dot) > EYE_MAX_PUPIL_OFFSET:
+            continue  # off its loop's centre: not its pupil
+        ring = cv2.dilate(dot.astype(np.uint8), square).astype(bool)
+        iris = cv2.erode(inside.astype(np.uint8), square).astype(bool) & ~ring
+        if iris.sum() < MIN_SPECK_AREA:
+            continue
+        light = lightness[r0 : r0 + dot.shape[0], c0 : c0 + dot.shape[1]]
+        if np.percentile(light[iris], 10.0) - np.median(light[dot]) < DOT_MIN_CONTRAST:
+            continue  # not darker than the iris's shaded parts, or a crease in a light surface
+        found.append(((r0, c0), dot))
+    return found
+
+
+def _offset(loop: np.ndarray, dot: np.ndarray) -> float:
+    """How far the centre of ``dot`` is from that of ``loop`` (bool, one window), in the loop's radii.
+
+    Measured in the loop's own ellipse (the Mahalanobis distance under the
+    second moments of its pixels, halved: 1 on the rim of a uniform ellipse).
+    """
+    ly, lx = np.nonzero(loop)
+    dy, dx = np.nonzero(dot)
+    cov = np.cov(np.vstack([ly, lx]).astype(np.float64))
+    delta = np.array([dy.mean() - ly.mean(), dx.mean() - lx.mean()])
+    try:
+        return 0.5 * math.sqrt(max(0.0, float(delta @ np.linalg.solve(cov, delta))))
+    except np.linalg.LinAlgError:  # a loop one pixel wide: no centre to speak of
+        return math.inf
 
 
 @functools.lru_cache(maxsize=64)

@@ -363,12 +363,14 @@ def extract_feature_lines(
         raw = _join(clipart_lines(regions))
         min_len = spur_length if min_line_length is None else min_line_length
     else:
-        from .photo import photo_feature_lines, start_photo_line_maps, subject_dots
+        from .photo import line_maps, photo_feature_lines, start_photo_line_maps, subject_dots, subject_pupils
         from .subject import find_subject
 
         found = find_subject(img, foreground, subject, beside=start_photo_line_maps)  # the line maps beside the cuts
-        dots = subject_dots(img, found)
-        raw = photo_feature_lines(img, found, dots)
+        dots = subject_dots(img, found)  # the blob dots, while the line maps may still be under way
+        maps = line_maps(img)
+        dots = subject_pupils(img, found, maps, dots)  # and the pupils in the lines' closed loops
+        raw = photo_feature_lines(img, found, dots, maps)
         min_len = PHOTO_MIN_LINE_LENGTH if min_line_length is None else min_line_length
     min_len = check_positive(min_len, "min_line_length", allow_zero=True)
     lines = _clean_skeleton(raw, spur_length=spur_length, min_length=min_len, radius=radius)

@@ -126,6 +126,31 @@ def test_a_portrait_keeps_the_eyes_and_mouth_inside_the_face():
     assert (photo_feature_lines(img, fl.subject) & face).sum() > 2 * (bare & face).sum()
 
 
+def test_a_slit_pupil_with_a_catch_light_is_drawn_as_one_outline():
+    from img2logo.photo import line_maps, subject_dots
+
+    # A light iris (radius 24 px) on a lighter face, a dark vertical slit (5 x 14 px) in it and a
+    # bright catch light in the slit: the lightness lines go round the slit and the catch light.
+    h, w = 200, 300
+    yy, xx = np.mgrid[0:h, 0:w]
+    gray = np.full((h, w), 0.75)
+    gray[np.hypot(yy - 100, xx - 150) < 24] = 0.5
+    gray[np.hypot((yy - 100) / 14.0, (xx - 150) / 5.0) < 1.0] = 0.05
+    gray[np.hypot(yy - 94, xx - 151) < 2.5] = 0.97
+    img = load_image(np.repeat(ndimage.gaussian_filter(gray, 1.0)[..., None], 3, axis=2))
+    subject = Subject(np.ones((h, w), bool), "mask", "the whole image")
+    maps = line_maps(img)
+    dots = subject_dots(img, subject, maps)
+    assert dots.count == 1 and dots.region[94, 151] and dots.region[108, 150]
+    lines = photo_feature_lines(img, subject, dots, maps)
+    labels, n = ndimage.label(lines, structure=np.ones((3, 3)))
+    assert n == 2  # the iris's loop and the pupil's outline
+    pupil = ndimage.binary_fill_holes(labels == labels[100, 150 + np.flatnonzero(lines[100, 150:])[0]])
+    assert pupil[94, 151] and pupil[100, 150] and not lines[92:97, 149:154].any()  # the catch light inside it
+    assert not pupil[100, 160]  # and the iris outside
+    assert subject_dots(img, subject).count == 0  # without the lines: a slit is no round blob
+
+
 def _two_discs(noise=0.01, seed=0):
     """Tan ground; a pink disc of the ground's own luminance (a colour edge only) at (80, 60)
     and a dark red one (a lightness edge too) at (200, 60), radius 30 px: RGB (120, 280, 3)."""
