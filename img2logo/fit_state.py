@@ -911,11 +911,13 @@ class FitState:
         A node of J' where exactly one group is constrained, at an end of it,
         the group not closed: the input's line ends there, and so does its arc
         (to ``JUNCTION_TOLERANCE``). At every other node of J' two arcs or more
-        meet, so no end there is open.
+        meet, so no end there is open; nor on a symmetric run's mirror axis,
+        where the arc meets its mirror image.
         """
+        axis = self.symmetry.nodes if self.symmetry is not None else frozenset()
         out = []
         for n, gs in self.node_groups().items():
-            if len(gs) == 1:
+            if len(gs) == 1 and n not in axis:
                 group = self.groups[gs[0]]
                 if not group.closed and n in group.ends:
                     out.append((n, gs[0]))
