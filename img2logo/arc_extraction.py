@@ -350,6 +350,37 @@ def nearest_on_arc(arc: Arc, points: np.ndarray) -> tuple[np.ndarray, np.ndarray
     return (d[0], q[0]) if single else (d, q)
 
 
+def _distances_to_arcs(points: np.ndarray, params: np.ndarray, limit: float = math.inf) -> np.ndarray:
+    """Distances from ``points`` (m, 2) to arcs given as rows (cx, cy, r, theta0, sweep) (n, 5): (m, n), px.
+
+    :func:`nearest_on_arc`'s distances for every point and arc at once: the
+    radial distance where the point's angle lies on the arc, else the distance
+    to the nearer end (also for the centre itself). Where the point is farther
+    than ``limit`` px from the arc's circle, the distance to the circle is
+    given instead (a lower bound, also above ``limit``): the merge loop's
+    near-miss test (:mod:`img2logo.merging`), which reads every open end
+    against every arc of a level, asks only which arcs come within a few px.
+    """
+    p = np.asarray(points, dtype=np.float64).reshape(-1, 2)
+    arcs = np.asarray(params, dtype=np.float64).reshape(-1, 5)
+    dx = p[:, 0, None] - arcs[:, 0]
+    dy = p[:, 1, None] - arcs[:, 1]
+    rho = np.hypot(dx, dy)
+    out = np.abs(rho - arcs[:, 2])
+    i, j = np.nonzero(out <= limit) if limit < math.inf else np.indices(out.shape).reshape(2, -1)
+    if not len(i):
+        return out
+    cx, cy, r, t0, sw = arcs[j].T
+    offset = np.mod((np.arctan2(dy[i, j], dx[i, j]) - t0) * np.where(sw < 0, -1.0, 1.0), TAU)
+    on = (np.abs(sw) >= TAU - 1e-9) | (offset <= np.abs(sw) + 1e-9) | (offset >= TAU - 1e-9)
+    px, py = p[i, 0], p[i, 1]
+    t1 = t0 + sw
+    to_start = np.hypot(px - (cx + r * np.cos(t0)), py - (cy + r * np.sin(t0)))
+    to_end = np.hypot(px - (cx + r * np.cos(t1)), py - (cy + r * np.sin(t1)))
+    out[i, j] = np.where(on & (rho[i, j] > 0), out[i, j], np.minimum(to_start, to_end))
+    return out
+
+
 # --------------------------------------------------------------------------- intersections
 def arc_intersections(a: Arc, b: Arc, *, tol: float = INTERSECTION_TOL) -> np.ndarray:
     """Points where two arcs meet, exactly (circle-circle intersection, then angle ranges).

@@ -27,9 +27,18 @@ from typing import Any, NamedTuple, Protocol, TypeAlias, cast
 
 import numpy as np
 
-from .arc_extraction import ArcFit, _extract
+from .arc_extraction import ArcFit, _distances_to_arcs, _extract, _redundant_arrays
 from .circle_fitting import fit_center, fit_circle, mean_abs_error
-from .constants import CONSTRAINED_FIT_TOL, CUT_MARGIN, JUNCTION_TOLERANCE, LINE_MIN_ANGLE, SYMMETRY_FIT_STALL
+from .constants import (
+    CONSTRAINED_FIT_TOL,
+    CUT_MARGIN,
+    GAP_MAX,
+    GAP_MIN,
+    JUNCTION_TOLERANCE,
+    LINE_MIN_ANGLE,
+    REDUNDANT_INTERSECTION_TOL,
+    SYMMETRY_FIT_STALL,
+)
 from .constrained_fit import WindowFit, fit_window
 from .geometry import Abstraction, ArcJunctions, Circle, Line, line_arc
 from .golden_ladder import Ladder
@@ -119,7 +128,16 @@ class Stats:
     released_tangencies : int
         Smooth joins whose tangency was given up.
     rejected_crossing : int
-        Candidates rejected because another arc runs on through their junction (an X).
+        Candidates rejected because another arc runs on through their junction (an X), or
+        because their arc would run on past an end of its path through a junction another arc
+        runs on through (checked for the merge the loop chose, :func:`img2logo.merging.merge_loop`).
+    rejected_gaps : int
+        Candidates left with a near-miss gap they would make (a free end brought 0.75-6 px
+        from an arc; checked for the merge the loop chose, :func:`img2logo.merging.merge_loop`)
+        when the loop stopped.
+    split_groups : int
+        Groups of the line-segment simplification split into their segments again because
+        their arc in A^0 made a redundant intersection (:func:`img2logo.progressive.split_crossed`).
     """
 
     evaluated: int = 0
@@ -132,6 +150,8 @@ class Stats:
     tangent_joins: int = 0
     released_tangencies: int = 0
     rejected_crossing: int = 0
+    rejected_gaps: int = 0
+    split_groups: int = 0
 
     def as_dict(self) -> dict[str, int]:
         """The counts by name, in the order of the fields."""
@@ -855,6 +875,74 @@ class FitState:
         if running / max(n_fits, 1) + shift > limit:
             return None
         return fits, disp
+
+    # ----------------------------------------------------------------- topology
+    def redundant_pairs(self, of: Collection[int] | None = None) -> list[tuple[int, int]]:
+        """Redundant intersections (Sec. 5.2, Fig. 6c, 12) of the current arcs: the pairs of groups that meet.
+
+        Two arcs meet redundantly at a point farther than ``REDUNDANT_INTERSECTION_TOL``
+        from every junction they both pass (their constrained nodes, displaced);
+        :func:`~img2logo.arc_extraction.redundant_intersections` on arrays the
+        state already has (the fits' arc rows, every junction's p_k + d_k at
+        once), past its checks: the same test on the same numbers. Only pairs
+        with a group of ``of`` (default all), in the state's order of groups;
+        a pair that meets at several points appears once per point.
+        """
+        gids = list(self.groups)
+        node_groups = self.node_groups()
+        nodes = sorted(node_groups)
+        index = {n: i for i, n in enumerate(nodes)}
+        at = np.asarray(nodes, dtype=np.intp)
+        points = (self.graph.junctions[at] + self.disp[at]).reshape(-1, 2)
+        owned = [[index[n] for n in self.constrained_nodes(self.groups[g])] for g in gids]
+        ptr = np.zeros(len(gids) + 1, dtype=np.int64)
+        ptr[1:] = np.cumsum([len(ks) for ks in owned])
+        flat = np.fromiter((k for ks in owned for k in ks), dtype=np.int64, count=int(ptr[-1]))
+        rows = np.array([i for i, g in enumerate(gids) if of is None or g in of], dtype=np.int64)
+        fits = [self.fits[g] for g in gids]
+        params = np.array([f.arc_row for f in fits], dtype=np.float64).reshape(-1, 5)
+        arcs = [f.arc.arc for f in fits]
+        pairs, _ = _redundant_arrays(arcs, points, ptr, flat, rows, REDUNDANT_INTERSECTION_TOL, params)
+        return [(gids[i], gids[j]) for i, j in pairs.tolist()]
+
+    def open_ends(self) -> list[tuple[int, int]]:
+        """The free ends of the current groups: (node, group) pairs, by node.
+
+        A node of J' where exactly one group is constrained, at an end of it,
+        the group not closed: the input's line ends there, and so does its arc
+        (to ``JUNCTION_TOLERANCE``). At every other node of J' two arcs or more
+        meet, so no end there is open; nor on a symmetric run's mirror axis,
+        where the arc meets its mirror image.
+        """
+        axis = self.symmetry.nodes if self.symmetry is not None else frozenset()
+        out = []
+        for n, gs in self.node_groups().items():
+            if len(gs) == 1 and n not in axis:
+                group = self.groups[gs[0]]
+                if not group.closed and n in group.ends:
+                    out.append((n, gs[0]))
+        out.sort()
+        return out
+
+    def gap_ends(self) -> set[int]:
+        """The free ends (:meth:`open_ends`) that are near-miss gaps now: their nearest other arc 0.75-6 px away.
+
+        As :func:`img2logo.quality.near_miss_gaps` counts them (``GAP_MIN`` to
+        ``GAP_MAX``): an end the eye joins to the arc beside it and the logo does
+        not. Measured from the junction's p_k + d_k to every other arc.
+        """
+        ends = self.open_ends()
+        if not ends or len(self.fits) < 2:
+            return set()
+        gids = list(self.fits)
+        col = {g: i for i, g in enumerate(gids)}
+        nodes = np.array([n for n, _ in ends], dtype=np.intp)
+        points = (self.graph.junctions[nodes] + self.disp[nodes]).reshape(-1, 2)
+        rows = np.array([self.fits[g].arc_row for g in gids], dtype=np.float64)
+        distances = _distances_to_arcs(points, rows, GAP_MAX)
+        distances[np.arange(len(ends)), [col[g] for _, g in ends]] = np.inf
+        nearest = distances.min(axis=1)
+        return {n for (n, _), d in zip(ends, nearest.tolist(), strict=True) if GAP_MIN <= d <= GAP_MAX}
 
     # ----------------------------------------------------------------- errors
     def totals(self) -> tuple[float, float, int]:

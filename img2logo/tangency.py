@@ -36,7 +36,9 @@ it rigid:
   pulls it back, and each group's pixels stay on their own circle).
 
 A tangency that makes the fit fail, lifts E^s above the tolerance T, breaks
-one made before or adds a redundant intersection is released (only that one):
+one made before, adds a redundant intersection or makes a near-miss gap (a free
+end moved 0.75-6 px from an arc, as the merge loop refuses one too:
+:func:`img2logo.merging.evaluate`) is released (only that one):
 a kink is left there, and a valid image always gets a logo. Corners (where
 the input turns) are never constrained.
 
@@ -86,7 +88,6 @@ from weakref import WeakKeyDictionary
 
 import numpy as np
 
-from .arc_extraction import _redundant_arrays
 from .constants import (
     BIARC_STARTS,
     BIARC_STEP,
@@ -94,7 +95,6 @@ from .constants import (
     BIARC_TURN_STEPS,
     CONSTRAINED_FIT_TOL,
     KINK_WEIGHT,
-    REDUNDANT_INTERSECTION_TOL,
     RUNG_CHOICES,
     SLIDE_MIN_PIXELS,
 )
@@ -116,7 +116,7 @@ def tangent_joins(opt: FitState, tolerance: float) -> bool:
     and the result with more tangent joins is kept (on a tie the lower E^s):
     one join's refit may spend the slack under T that a joint refit shares.
     Both keep E^s (Eqn. 3) within ``max(tolerance, E^s now)`` and add no
-    redundant intersection. Counts go to ``opt.stats.tangent_joins`` and
+    redundant intersection and no near-miss gap. Counts go to ``opt.stats.tangent_joins`` and
     ``["released_tangencies"]``.
     """
     seeds = {g: f.seed for g, f in opt.fits.items()}
@@ -216,7 +216,8 @@ def _one_at_a_time(opt: FitState, joins: dict[int, tuple[int, int]], bound: floa
     slides along the line (:func:`_slide`). A choice is kept only if the fit
     converges, E^s stays within ``bound``, no arc moves farther from its
     pixels than ``arc_bound`` (or than it was), the tangencies made before
-    still hold, and no redundant intersection is added; otherwise the join is
+    still hold, and no redundant intersection or near-miss gap
+    (:meth:`~img2logo.fit_state.FitState.gap_ends`) is added; otherwise the join is
     released (``opt.loose``), a kink is left there, and the next join is tried.
     """
     seeds = {g: f.seed for g, f in opt.fits.items()}
@@ -229,8 +230,9 @@ def _one_at_a_time(opt: FitState, joins: dict[int, tuple[int, int]], bound: floa
         made[node] = (a, b)
         best = None
         before: dict[frozenset[int], int] = {}  # the state's crossings by window: the same for every try here
+        gaps = opt.gap_ends()  # the state's near-miss gaps: the same for every try here
         for combo in _rung_choices(opt, node, (a, b)):
-            trial = _try(opt, made, node, combo, bound, before=before)
+            trial = _try(opt, made, node, combo, bound, before=before, gaps=gaps)
             if trial is not None and (best is None or trial.similarity < best.similarity):
                 best = trial
             if best is not None and not any(combo.values()):
@@ -240,7 +242,7 @@ def _one_at_a_time(opt: FitState, joins: dict[int, tuple[int, int]], bound: floa
             # (a tangent biarc over the two groups' joined pixels, the junction anywhere on
             # them, :func:`_biarc`) and start the refit from there.
             for combo, start in _biarc_starts(opt, node, (a, b)):
-                trial = _try(opt, made, node, combo, bound, start, before=before)
+                trial = _try(opt, made, node, combo, bound, start, before=before, gaps=gaps)
                 if trial is not None and (best is None or trial.similarity < best.similarity):
                     best = trial
         if best is None:
@@ -261,8 +263,8 @@ def _all_at_once(
     """Refit the whole state with every tangency of ``joins`` at once; the joins made.
 
     Every circle and junction free, straight lines fixed, the rungs and the
-    nodes as they are. While the fit fails, lifts E^s above ``bound`` or adds a
-    redundant intersection, the join whose circles are farthest from touching
+    nodes as they are. While the fit fails, lifts E^s above ``bound``, adds a
+    redundant intersection or makes a near-miss gap, the join whose circles are farthest from touching
     now is released (``opt.loose``) and the fit tried again; once fewer than
     ``least`` joins are left (what one join at a time made: a result that
     :func:`tangent_joins` would not keep), none is made and the state is left
@@ -274,6 +276,7 @@ def _all_at_once(
     node_groups = opt.node_groups()
     before = _state(opt)
     crossings = _redundant(opt, set(groups))
+    gaps = opt.gap_ends()
     while True:
         touching = opt.tangencies(groups, seeds)
         if not touching or len(touching) < least:
@@ -286,7 +289,7 @@ def _all_at_once(
             opt.fits.update(fits)
             for n, d in disp.items():
                 opt.disp[n] = d
-            if opt.similarity() <= bound and _redundant(opt, set(groups)) <= crossings:
+            if opt.similarity() <= bound and _redundant(opt, set(groups)) <= crossings and opt.gap_ends() <= gaps:
                 return touching
             loose = set(opt.loose)
             _restore(opt, before)
@@ -439,6 +442,7 @@ def _try(
     start: _Start | None = None,
     *,
     before: dict[frozenset[int], int] | None = None,
+    gaps: set[int] | None = None,
 ) -> _Trial | None:
     """Refit the window of the join at ``node`` with the rung steps ``combo``; None if it fails a rule.
 
@@ -455,7 +459,8 @@ def _try(
     displacement term of Eqn. 13 pulls towards the biarc's junction, not back
     along the line to the node). The state is left as it was. ``before`` caches
     the state's redundant intersections by the groups refitted, for the tries of
-    one join (the state does not change between them).
+    one join (the state does not change between them); ``gaps`` the state's
+    near-miss gaps (:meth:`~img2logo.fit_state.FitState.gap_ends`, made here without it).
     """
     seeds = {g: f.seed for g, f in opt.fits.items()}
     for g, step in combo.items():
@@ -532,6 +537,7 @@ def _try(
         if similarity > bound or not _touching(opt, made):
             return None
         crossings = _redundant(opt, set(fits))
+        made_gaps = opt.gap_ends()
     finally:
         opt.graph = graph
         opt.fits, opt.disp, opt.groups, opt.off_line = saved
@@ -540,6 +546,8 @@ def _try(
     if key not in before:
         before[key] = _redundant(opt, set(fits))
     if crossings > before[key]:
+        return None
+    if not made_gaps <= (opt.gap_ends() if gaps is None else gaps):
         return None
     return _Trial(similarity, fits, disp, groups, off_line)
 
@@ -864,26 +872,9 @@ def _touching(opt: FitState, made: dict[int, tuple[int, int]]) -> bool:
 def _redundant(opt: FitState, of: set[int]) -> int:
     """Redundant intersections (Sec. 5.2, Fig. 12) of the state's arcs that involve the groups ``of``.
 
-    :func:`~img2logo.arc_extraction.redundant_intersections` on arrays the
-    state already has (the fits' arc rows, every junction's p_k + d_k at once),
-    past its checks: the same test on the same numbers.
+    :meth:`FitState.redundant_pairs <img2logo.fit_state.FitState.redundant_pairs>`, counted.
     """
-    gids = list(opt.groups)
-    node_groups = opt.node_groups()
-    nodes = sorted(node_groups)
-    index = {n: i for i, n in enumerate(nodes)}
-    at = np.asarray(nodes, dtype=np.intp)
-    points = (opt.graph.junctions[at] + opt.disp[at]).reshape(-1, 2)
-    owned = [[index[n] for n in opt.constrained_nodes(opt.groups[g])] for g in gids]
-    ptr = np.zeros(len(gids) + 1, dtype=np.int64)
-    ptr[1:] = np.cumsum([len(ks) for ks in owned])
-    flat = np.fromiter((k for ks in owned for k in ks), dtype=np.int64, count=int(ptr[-1]))
-    rows = np.array([i for i, g in enumerate(gids) if g in of], dtype=np.int64)
-    fits = [opt.fits[g] for g in gids]
-    params = np.array([f.arc_row for f in fits], dtype=np.float64).reshape(-1, 5)
-    arcs = [f.arc.arc for f in fits]
-    pairs, _ = _redundant_arrays(arcs, points, ptr, flat, rows, REDUNDANT_INTERSECTION_TOL, params)
-    return len(pairs)
+    return len(opt.redundant_pairs(of))
 
 
 def _apart(opt: FitState, seeds: dict, node: int, pair: tuple[int, int]) -> float:

@@ -448,3 +448,22 @@ def test_redundant_intersections_of_fewer_than_two_arcs_are_none() -> None:
     assert redundant_intersections([], np.zeros((0, 2)), []) == []
     assert redundant_intersections([a], np.zeros((0, 2)), [[]]) == []
     assert redundant_intersections([a, a], np.zeros((0, 2)), [[], []], candidates=[]) == []
+
+
+def test_distances_to_many_arcs_are_nearest_on_arcs_and_bounded_beyond_the_limit():
+    from img2logo.arc_extraction import _arc_params, _distances_to_arcs, nearest_on_arc
+
+    rng = np.random.default_rng(3)
+    arcs = [
+        Arc(Circle(*rng.uniform(0, 100, 2), rng.uniform(1, 80)), rng.uniform(-3, 3), rng.uniform(-6.28, 6.28))
+        for _ in range(120)
+    ]
+    arcs.append(Arc(Circle(50.0, 50.0, 10.0), 0.3, 2 * np.pi))  # a whole circle
+    points = rng.uniform(-50, 150, (60, 2))
+    points[0] = arcs[0].circle.center  # the centre itself: the nearer end
+    exact = np.stack([nearest_on_arc(a, points)[0] for a in arcs], axis=1)
+    np.testing.assert_allclose(_distances_to_arcs(points, _arc_params(arcs)), exact, rtol=0, atol=1e-9)
+    near = _distances_to_arcs(points, _arc_params(arcs), 6.0)
+    within = exact <= 6.0
+    np.testing.assert_allclose(near[within], exact[within], rtol=0, atol=1e-9)
+    assert np.all(near[~within] > 6.0) and np.all(near <= exact + 1e-9)  # beyond it, a lower bound above it

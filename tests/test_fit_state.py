@@ -10,6 +10,7 @@ from helpers import golden_chain, golden_radius, hand_built_state
 
 from img2logo.fit_state import FitState, FreeCircles, GroupFit, Seed, Stats, on_axis
 from img2logo.progressive import initial_fit, optimize
+from img2logo.segment_graph import SegmentGraph
 from img2logo.simplification import merge_groups
 from img2logo.symmetry import HalfAxis
 
@@ -25,6 +26,8 @@ STATS = (
     "tangent_joins",
     "released_tangencies",
     "rejected_crossing",
+    "rejected_gaps",
+    "split_groups",
 )
 
 
@@ -204,3 +207,30 @@ def test_a_bounded_solve_regroups_before_extracting_and_fails_with_the_regroup()
     assert got[0][0].arc.frechet == expected.frechet
     failed = state.solve(dict(state.groups), seeds, node_groups, **keywords, bound=np.inf, regroup=lambda *a: None)
     assert failed is None
+
+
+# --------------------------------------------------------------------------- topology
+def _line_and_a_stroke_towards_it(tip: float) -> SegmentGraph:
+    """A line in two segments (nodes 0-1-2 along y = 100) and a stroke up towards the first, ``tip`` px short."""
+    left = np.linspace([50.5, 100.5], [150.5, 100.5], 101)
+    right = np.linspace([150.5, 100.5], [250.5, 100.5], 101)
+    stroke = np.linspace([120.5, 130.5], [120.5, 100.5 + tip], 31)
+    junctions = np.array([left[0], left[-1], right[-1], stroke[0], stroke[-1]])
+    return SegmentGraph((left, right, stroke), junctions, np.array([[0, 1], [1, 2], [3, 4]]), 300, 300)
+
+
+def test_open_ends_are_the_free_ends_and_a_gap_is_one_0_75_to_6_px_from_another_arc():
+    for tip, gaps in ((7.5, set()), (3.0, {4}), (0.2, set())):
+        state = hand_built_state(_line_and_a_stroke_towards_it(tip))
+        initial_fit(state)
+        assert state.open_ends() == [(0, 0), (2, 1), (3, 2), (4, 2)]  # node 1 joins two arcs: not open
+        assert state.gap_ends() == gaps, tip  # 7.5 px: a free end; 3 px: a near miss; 0.2 px: joined (0.55 px)
+
+
+def test_redundant_pairs_are_the_groups_whose_arcs_cross_away_from_their_junctions():
+    state = hand_built_state(_line_and_a_stroke_towards_it(-8.0))  # the stroke runs 8 px on across the line
+    initial_fit(state)
+    assert state.redundant_pairs() == [(0, 2)] and state.redundant_pairs(of={1}) == []
+    state = hand_built_state(_line_and_a_stroke_towards_it(3.0))
+    initial_fit(state)
+    assert state.redundant_pairs() == []

@@ -8,14 +8,18 @@ import numpy as np
 import pytest
 from helpers import DATA, golden_chain, golden_radius, hand_built_state, sampled_arc
 
-from img2logo import build_segment_graph, extract_feature_lines
-from img2logo.arc_extraction import redundant_intersections
-from img2logo.fit_state import FitState
-from img2logo.merging import candidates, evaluate, merge_loop
+from img2logo import build_segment_graph, extract_feature_lines, quality
+from img2logo.arc_extraction import ArcFit, redundant_intersections
+from img2logo.fit_state import FitState, GroupFit
+from img2logo.geometry import Arc, Circle
+from img2logo.merging import _new_gaps, candidates, evaluate, merge_loop
 from img2logo.progressive import initial_fit, optimize
 from img2logo.segment_graph import SegmentGraph
 from img2logo.simplification import Group, merge_groups
 from img2logo.symmetry import HalfAxis
+
+#: The evaluation set of ``make quality``.
+BENCH = DATA.parent / "benchmarks" / "data"
 
 
 class _Unsolvable(FitState):
@@ -186,6 +190,77 @@ def test_a_merge_that_leaves_a_redundant_intersection_is_counted_and_not_made():
     initial_fit(state)
     assert evaluate(state, (0, 1, 1)).redundant == 0
     assert merge_loop(state, 5.0) == "no mergeable pair" and len(state.groups) == 2
+
+
+def _line_and_a_stroke_below(tip: float) -> SegmentGraph:
+    """A straight line in two segments (nodes 0-1-2 along y = 100) and a stroke up towards node 1, ``tip`` px short."""
+    left = np.linspace([50.5, 100.5], [150.5, 100.5], 101)
+    right = np.linspace([150.5, 100.5], [250.5, 100.5], 101)
+    stroke = np.linspace([150.5, 130.5], [150.5, 100.5 + tip], 31)
+    junctions = np.array([left[0], left[-1], right[-1], stroke[0], stroke[-1]])
+    return SegmentGraph((left, right, stroke), junctions, np.array([[0, 1], [1, 2], [3, 4]]), 300, 300)
+
+
+def _sagging(sag: float) -> GroupFit:
+    """A fit of the whole line from (50.5, 100.5) to (250.5, 100.5) whose arc sags ``sag`` px in its middle."""
+    r = (100.0**2 + sag**2) / (2 * sag)
+    circle = Circle(150.5, 100.5 + sag - r, r)
+    t0, t1 = circle.angle_of(np.array([[50.5, 100.5], [250.5, 100.5]]))
+    return GroupFit(circle.center, r, None, ArcFit(Arc(circle, float(t0), float(t1 - t0)), 0.0))
+
+
+def test_a_merge_that_brings_a_free_end_within_a_near_miss_is_counted_and_not_made():
+    # The stroke's tip (node 4) is 7.5 px below the line: a free end, no gap. A merge of the line
+    # whose arc sagged 3 px would leave it 4.5 px from the arc: a near-miss gap it made.
+    state = hand_built_state(_line_and_a_stroke_below(7.5))
+    initial_fit(state)
+    assert state.gap_ends() == set()
+    assert _new_gaps(state, (0, 1, 1), {-1: _sagging(3.0)}, {}) == 1
+    assert _new_gaps(state, (0, 1, 1), {-1: _sagging(0.5)}, {}) == 0  # 7 px: still a free end
+    assert _new_gaps(state, (0, 1, 1), {-1: _sagging(7.2)}, {}) == 0  # 0.3 px: joined
+    # The refit moving the free end itself counts too: the stroke's tip 3 px nearer.
+    stroke = dataclasses.replace(state.fits[2])
+    assert _new_gaps(state, (0, 1, 1), {-1: _sagging(0.5), 2: stroke}, {4: np.array([0.0, -3.0])}) == 1
+    # A gap the input has already is no reason to refuse the merge.
+    state = hand_built_state(_line_and_a_stroke_below(3.0))
+    initial_fit(state)
+    assert state.gap_ends() == {4} and _new_gaps(state, (0, 1, 1), {-1: _sagging(0.5)}, {}) == 0
+    out = evaluate(state, (0, 1, 1))
+    assert out is not None and out.gaps == 0 and out.redundant == 0
+
+
+def test_the_loop_refuses_a_merge_that_would_leave_a_near_miss_gap(monkeypatch):
+    import img2logo.merging as merging
+
+    state = hand_built_state(_line_and_a_stroke_below(7.5))
+    initial_fit(state)
+    # Every refit of the line sags 3 px (as the coffee cup's rim's did), then the loop must not merge.
+    real = merging.evaluate
+
+    def sagging(state, pair):
+        out = real(state, pair)
+        if out is None or pair[:2] != (0, 1):
+            return out
+        fits = {**out.fits, -1: _sagging(3.0)}
+        return dataclasses.replace(out, fits=fits, gaps=_new_gaps(state, pair, fits, out.displacements))
+
+    monkeypatch.setattr(merging, "evaluate", sagging)
+    assert merge_loop(state, 50.0) == "no mergeable pair"
+    assert sorted(state.groups) == [0, 1, 2] and state.stats.rejected_gaps == 1
+
+
+def test_no_merged_arc_runs_on_through_a_junction_another_arc_runs_on_through():
+    # Regression: on the clip-art cactus at T = 9 an arm's outline merged into an arc from one of
+    # its inner junctions to the other, running on across the stem at its two end nodes (an X at each).
+    graph = build_segment_graph(extract_feature_lines(BENCH / "clipart-cactus.png"))
+    prog = optimize(graph, tolerance=9.0)
+    level = prog.final
+    runs: dict[int, set[int]] = {}
+    for i, t in enumerate(level.arc_junctions):
+        for j in t.through:
+            runs.setdefault(j, set()).add(i)
+    assert all(len(arcs) == 1 for arcs in runs.values())
+    assert len(quality.crossings(level)) == 0 and prog.stats["rejected_crossing"] > 0
 
 
 # --------------------------------------------------------------------------- the loop

@@ -8,13 +8,14 @@ import math
 import cv2
 import numpy as np
 import pytest
-from helpers import BIAS, DATA, blank, check_level, golden_chain, sampled_arc
+from helpers import BIAS, DATA, blank, check_level, golden_chain, hand_built_state, sampled_arc
 
 from img2logo import InvalidParameterError, SegmentGraph, build_segment_graph, extract_feature_lines
 from img2logo.arc_extraction import redundant_intersections
 from img2logo.constants import PHI
 from img2logo.geometry import Abstraction
-from img2logo.progressive import optimize
+from img2logo.progressive import initial_fit, optimize
+from img2logo.simplification import merge_groups
 
 
 # --------------------------------------------------------------------------- known answers
@@ -360,3 +361,48 @@ def test_progress_reports_every_loop_level_then_the_result_the_tangent_joins_cho
     prog = optimize(graph, tolerance=5.0, tangency=False, progress=lambda t, n, s: calls.append((t, n, s)))
     assert [t for t, _, _ in calls] == list(range(len(prog.levels)))  # no refit: each level once
     assert calls[-1] == (prog.final.level, len(prog.final.arcs), prog.final.similarity)
+
+
+# --------------------------------------------------------------------------- A^0 and its redundant intersections
+def _corner_and_a_stroke_inside() -> SegmentGraph:
+    """An L (two straight 50 px segments meeting at node 1) and a 37 px stroke inside its corner, 4-5 px off both."""
+    across = np.linspace([100.5, 100.5], [150.5, 100.5], 51)
+    down = np.linspace([150.5, 100.5], [150.5, 150.5], 51)
+    stroke = np.linspace([146.5, 104.5], [120.5, 130.5], 27)
+    junctions = np.array([across[0], across[-1], down[-1], stroke[0], stroke[-1]])
+    return SegmentGraph((across, down, stroke), junctions, np.array([[0, 1], [1, 2], [3, 4]]), 300, 300)
+
+
+@pytest.mark.parametrize("avoid", [True, False])
+def test_a_simplified_group_whose_arc_crosses_another_is_split_into_its_segments(avoid):
+    # One golden arc for the L (as the line-segment simplification would make it) cuts its corner and
+    # crosses the stroke: A^0 splits it again, and its two straight arcs cross nothing.
+    state = hand_built_state(_corner_and_a_stroke_inside(), avoid_intersections=avoid)
+    across, down = state.groups.pop(0), state.groups.pop(1)
+    state.add_group(merge_groups(across, down, 1))
+    state.invalidate()
+    initial_fit(state)
+    if avoid:
+        assert state.stats.split_groups == 1 and state.redundant_pairs() == []
+        assert sorted(g.segments for g in state.groups.values()) == [(0,), (1,), (2,)]
+    else:  # without the avoidance (Fig. 12) the crossing is not looked for
+        assert state.stats.split_groups == 0 and len(state.redundant_pairs()) == 1
+    assert state.stats.global_solves == (2 if avoid else 1)
+
+
+def test_the_coffee_cup_has_no_crossing_and_no_near_miss_gap():
+    # scikit-image's coffee photo (make quality's family real): A^0 had a simplified group at the
+    # hairpin where the saucer's rim meets the spoon whose arc crossed the rim's arc, and a merge
+    # carried the cup's rim on through a branch point, its refit moving a free end 6.3 -> 4.4 px from it.
+    skimage_data = pytest.importorskip("skimage.data")
+    from pathlib import Path
+
+    from img2logo import abstract, quality
+
+    path = Path(skimage_data.__file__).parent / "coffee.png"
+    if not path.is_file():
+        pytest.skip("scikit-image ships no coffee.png")
+    result = abstract(path, progress=False)
+    assert result.progression.stats["split_groups"] == 1 and result.progression.stats["rejected_gaps"] >= 1
+    for level in (result.levels[0], result.final):
+        assert len(quality.crossings(level)) == 0 and len(quality.near_miss_gaps(level)) == 0

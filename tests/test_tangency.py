@@ -271,3 +271,12 @@ def test_cutting_off_tries_over_the_bound_changes_no_result(monkeypatch):
     assert any(cuts)  # some tries were cut off, and every one would have failed on E^s
     assert whole.progression.stats == cut.progression.stats
     assert whole.final.arcs == cut.final.arcs and whole.final.similarity == cut.final.similarity
+
+
+def test_the_tangent_joins_make_no_near_miss_gap():
+    # Regression: on the seal of make quality's photo2 at T = 7 the tangent refit of a join moved two
+    # arcs' free ends 2-5 px from the arc beside them (the loop's last level had none).
+    seal = DATA.parent / "benchmarks" / "data" / "photo2" / "photo2-seal.png"
+    result = abstract(seal, tolerance=7.0, progress=False)
+    assert result.progression.stats["tangent_joins"] >= 1
+    assert len(quality.near_miss_gaps(result.final)) == 0 and len(quality.crossings(result.final)) == 0
