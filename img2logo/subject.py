@@ -114,6 +114,9 @@ if TYPE_CHECKING:
 
 #: The string values of ``foreground``.
 FOREGROUND_CHOICES = ("auto", "none", "grabcut")
+#: The rectangle argument of ``cv2.grabCut`` where it is unused (GC_INIT_WITH_MASK, GC_EVAL): OpenCV
+#: accepts None there, its type stubs want a rectangle.
+_NO_RECT = (0, 0, 0, 0)
 
 
 @dataclass(frozen=True, eq=False)
@@ -703,7 +706,7 @@ def _cut_small(
     small8 = cv2.resize(full8, (sw, sh), interpolation=cv2.INTER_AREA) if textured else _bgr8(small)
     if seeds is not None:
         label = seeds.label.copy()
-        cv2.grabCut(small8, label, None, bgd, fgd, FOCUS_GRABCUT_ITERATIONS, cv2.GC_INIT_WITH_MASK)
+        cv2.grabCut(small8, label, _NO_RECT, bgd, fgd, FOCUS_GRABCUT_ITERATIONS, cv2.GC_INIT_WITH_MASK)
     else:
         if rect is None:
             box = frame_box((sh, sw))
@@ -755,7 +758,7 @@ def _refine(img: LoadedImage, cut: _SmallCut) -> np.ndarray:
     r0, r1 = max(0, rows.min() - 1), min(h, rows.max() + 2)
     c0, c1 = max(0, cols.min() - 1), min(w, cols.max() + 2)
     crop = np.ascontiguousarray(full[r0:r1, c0:c1])
-    cv2.grabCut(np.ascontiguousarray(cut.full8[r0:r1, c0:c1]), crop, None, bgd, fgd, 1, cv2.GC_EVAL)
+    cv2.grabCut(np.ascontiguousarray(cut.full8[r0:r1, c0:c1]), crop, _NO_RECT, bgd, fgd, 1, cv2.GC_EVAL)
     full[r0:r1, c0:c1] = crop
     return (full == cv2.GC_FGD) | (full == cv2.GC_PR_FGD)
 
@@ -795,7 +798,7 @@ def _reach_frame(cut: _SmallCut) -> _SmallCut | None:
             break
         label[near] = cv2.GC_PR_BGD
         closed &= ~near
-        cv2.grabCut(cut.small8, label, None, bgd, fgd, 1, cv2.GC_EVAL)
+        cv2.grabCut(cut.small8, label, _NO_RECT, bgd, fgd, 1, cv2.GC_EVAL)
     joined = frame_strip((sh, sw)) & ((label == cv2.GC_FGD) | (label == cv2.GC_PR_FGD))
     if not joined.any():
         return None
