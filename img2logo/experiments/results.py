@@ -130,9 +130,11 @@ def plot_arc_fitting(runs: Sequence[Run], *, fraction: float = 0.5, panel_size: 
 #: The two stages of golden circle fitting (Fig. 8), as variants of a run without merging.
 # The constrained stage is the paper's Eqn. 13 alone: the tangent joins (beyond the paper,
 # img2logo.tangency) may move a circle to the next rung, and the figure compares equal radii.
+# Neither splits a simplified group whose arc crosses another (avoid_intersections, beyond the
+# paper's A^0: progressive.split_crossed): the figure compares the same segment groups.
 CIRCLE_FITTING_STAGES: dict[str, dict[str, bool]] = {
-    "independent": {"connectivity": False},
-    "constrained": {"tangency": False},
+    "independent": {"connectivity": False, "avoid_intersections": False},
+    "constrained": {"tangency": False, "avoid_intersections": False},
 }
 
 
