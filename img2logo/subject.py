@@ -33,7 +33,10 @@ only (paper Fig. 1, 10). :func:`find_subject` finds it without user input
   candidate from the frame that comes near the frame strip is let into the
   strip where its colours say so (:func:`_reach_frame`: a disc that almost
   fills the picture, a portrait's shoulders that run off its foot), if it is
-  then still one dominant object with an object's outline;
+  then still one dominant object with an object's outline. Last, the thin
+  parts that leave it, which GrabCut at the working size and the smoothing
+  drop (a tail, a tripod's legs: :func:`~img2logo.subject_cues.thin_parts`),
+  are joined to it;
 * ``"grabcut"``: the same GrabCut, kept whatever it finds;
 * a rectangle ``subject=(x, y, w, h)``: GrabCut started from it (outside is
   background);
@@ -100,6 +103,7 @@ from .subject_cues import (
     texture_lab,
     texture_map,
     texture_step,
+    thin_parts,
     work_scale,
     working_copy,
 )
@@ -323,6 +327,7 @@ def _find_subject(
             shadow = cast_shadow(img, mask)
             if shadow is not None:
                 mask, how = clean_mask(mask & ~shadow), f"{how}; its cast shadow left out"
+        mask, how = _with_thin_parts(img, mask, how)
         return Subject(readonly(mask), "auto", f"kept the main object, {mask.mean():.0%} of the image ({how})")
     mask = load_mask(foreground, shape) if isinstance(foreground, Path) else np.asarray(foreground)
     if mask.shape != shape:
@@ -331,6 +336,22 @@ def _find_subject(
     if not mask.any():
         raise InvalidParameterError("foreground mask is empty: no pixel is marked as the object")
     return Subject(readonly(mask.copy()), "mask", f"kept the object of the given mask: {mask.mean():.0%} of the image")
+
+
+def _with_thin_parts(img: LoadedImage, mask: np.ndarray, how: str) -> tuple[np.ndarray, str]:
+    """``mask`` with the thin parts that leave it (:func:`~img2logo.subject_cues.thin_parts`), and ``how`` said.
+
+    Each is joined to the mask across the 3 px it lies off it, and kept as
+    found at full size: :func:`~img2logo.subject_cues.clean_mask`'s smoothing
+    would take a part 3 px wide away again.
+    """
+    thin = thin_parts(img, mask)
+    if not thin.any():
+        return mask, how
+    count = label(thin, eight=True)[1]
+    bridge = dilate(thin, 3) & dilate(mask, 3)
+    joined = largest_part(fill_small_holes(mask | thin | bridge))
+    return joined, f"{how}; {count} thin part(s) leaving it kept"
 
 
 def _at_working_size(rect: tuple[int, int, int, int], img: LoadedImage) -> tuple[int, int, int, int]:

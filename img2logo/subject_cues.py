@@ -13,6 +13,8 @@ Measurements only; :mod:`img2logo.subject` decides with them. Each works on a
   :func:`focus_step`: depth of field (a close-up in focus in front of a
   blurred background), GrabCut's seeds from it, and the focus step across an
   outline;
+* :func:`thin_parts`: the thin parts of the object (a tail, a tripod's
+  legs) that leave a candidate mask and that GrabCut and the smoothing drop;
 * :func:`clean_mask`, :func:`largest_part`, :func:`fill_small_holes`: a
   candidate mask's cleaning (its largest piece, GrabCut's specks filled, smoothed);
   :func:`mask_box`: the box on which a mask's distance transforms are exact;
@@ -50,9 +52,13 @@ from .constants import (
     SUBJECT_CONTRAST_STEP,
     SUBJECT_FRAME_INSET,
     SUBJECT_MAX_HOLE,
+    SUBJECT_MIN_CONTRAST,
     SUBJECT_SMOOTH_SIGMA,
     SUBJECT_TEXTURE_FLOOR,
     SUBJECT_TEXTURE_WEIGHT,
+    SUBJECT_THIN_MAX_CONTACT,
+    SUBJECT_THIN_MIN_ELONGATION,
+    SUBJECT_THIN_WINDOW,
     SUBJECT_WORK_SIDE,
 )
 from .loading import LoadedImage
@@ -411,3 +417,88 @@ def fill_small_holes(mask: np.ndarray) -> np.ndarray:
     small = stats[:, cv2.CC_STAT_AREA] <= max_size
     small[0] = False  # label 0: the mask's own pixels
     return mask | small[parts]
+
+
+def thin_parts(img: LoadedImage, mask: np.ndarray) -> np.ndarray:
+    """The thin parts of the object that leave ``mask``: (H, W) bool, outside it.
+
+    The logo draws the subject whole (paper Fig. 1, 10). GrabCut on the
+    working copy and :func:`clean_mask`'s smoothing drop a part a few px wide
+    (a tail, a tripod's legs); here it is found at full size by what makes it
+    a part of its own:
+
+    * it is thin: a median filter of CIELAB over a square window of
+      ``SUBJECT_THIN_WINDOW`` of the longer side takes it away (it covers under
+      half the window; a step edge, with more than half the window on either
+      side, stays), and the colour differs from that median by
+      ``SUBJECT_MIN_CONTRAST`` times the local level of such differences (the
+      median over a window twice as wide: grass, gravel, grain);
+    * it leaves the mask: a connected piece of those pixels further than 2 px
+      from the mask (nearer, the outline's own blurred rim) that comes within
+      3 px of it over at most ``SUBJECT_THIN_MAX_CONTACT`` of its length (its
+      skeleton's), and is at least ``SUBJECT_THIN_MIN_ELONGATION`` times
+      longer than wide (a rim along the outline, a shadow's edge, a blob of
+      texture are not), and it ends in the picture (one that runs off it, a
+      stalk, a pole, a wire, may pass behind the object);
+    * it stands apart from what is around it: its median CIELAB distance from
+      the median colour around it (within half a window, the mask and other
+      thin pixels left out) at least ``SUBJECT_MIN_CONTRAST`` times that
+      surround's own spread (median distance from its median), the same ratio
+      as an outline's (:func:`outline_contrast`): a strip in clutter (shelves,
+      towers) is no further from its surround than the surround is from itself;
+    * it is no pattern of the background's: the pixels of the thin strokes
+      that do not leave the mask (as elongated as a part must be) closer to
+      its median colour than half that step are fewer than its own (brick
+      mortar, grass blades, poles repeat).
+    """
+    import cv2
+
+    from ._skeleton import skeletonize  # skimage's thinning, without importing skimage.morphology
+
+    h, w = mask.shape
+    found = np.zeros((h, w), bool)
+    if not mask.any() or mask.all():
+        return found
+    mask = np.ascontiguousarray(mask, dtype=bool)
+    rgb8 = np.clip(np.round(np.asarray(img.rgb, np.float32) * 255.0), 0, 255).astype(np.uint8)
+    lab8 = cv2.cvtColor(np.ascontiguousarray(rgb8), cv2.COLOR_RGB2LAB)  # L* x 255/100, a* and b* + 128
+    window = max(3, round(SUBJECT_THIN_WINDOW * max(h, w))) | 1
+    scale = np.array([100.0 / 255.0, 1.0, 1.0], np.float32)
+    lab = lab8.astype(np.float32) * scale
+    apart = np.linalg.norm(lab - cv2.medianBlur(lab8, window).astype(np.float32) * scale, axis=2)
+    levels = np.clip(np.round(apart * 4.0), 0, 255).astype(np.uint8)  # quarter dE steps
+    level = cv2.medianBlur(levels, 2 * window + 1).astype(np.float32) / 4.0 + 0.25
+    rim = cv2.dilate(mask.view(np.uint8), cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (5, 5))).astype(bool)
+    near = cv2.dilate(rim.view(np.uint8), np.ones((3, 3), np.uint8)).astype(bool)  # the next px out
+    thin = (apart > SUBJECT_MIN_CONTRAST * level) & ~rim  # the outline's own blurred rim (2 px) left out
+    count, parts, stats, _ = cv2.connectedComponentsWithStats(thin.view(np.uint8), connectivity=8)
+    reach = window // 2
+    around_disc = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (2 * reach + 1, 2 * reach + 1))
+    leaving = np.unique(parts[near & thin])
+    lengths = np.bincount(parts[skeletonize(thin)], minlength=count)
+    strokes = lengths**2 >= SUBJECT_THIN_MIN_ELONGATION * stats[:, cv2.CC_STAT_AREA]  # length / width
+    strokes[leaving] = False
+    elsewhere = lab[strokes[parts] & thin]  # the background's own strokes (not a blot's rounded corner)
+    for i in leaving:
+        x, y, bw, bh, area = stats[i]
+        if i == 0 or area < window or x <= 1 or y <= 1 or x + bw >= w - 1 or y + bh >= h - 1:
+            continue  # too small for a stroke; or it runs off the picture (a stalk, a pole, a wire behind)
+        box = (slice(max(0, y - reach), min(h, y + bh + reach)), slice(max(0, x - reach), min(w, x + bw + reach)))
+        part = parts[box] == i
+        length = int(lengths[i])
+        contact = int((part & near[box]).sum())
+        if contact > SUBJECT_THIN_MAX_CONTACT * length or length < SUBJECT_THIN_MIN_ELONGATION * area / max(length, 1):
+            continue
+        around = cv2.dilate(part.view(np.uint8), around_disc).astype(bool) & ~thin[box] & ~mask[box]
+        if not around.any():
+            continue
+        ground = np.median(lab[box][around], axis=0)
+        spread = float(median(np.linalg.norm(lab[box][around] - ground, axis=1)))
+        step = float(median(np.linalg.norm(lab[box][part] - ground, axis=1)))
+        if step < SUBJECT_MIN_CONTRAST * max(spread, SUBJECT_TEXTURE_FLOOR):  # the floor: photo noise
+            continue
+        own = np.median(lab[box][part], axis=0)
+        alike = int((np.linalg.norm(elsewhere - own, axis=1) < step / 2).sum()) if elsewhere.size else 0
+        if alike < area:  # not a pattern of the background's (mortar, poles, blades): the object's
+            found[box] |= part
+    return found
