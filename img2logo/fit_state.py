@@ -262,6 +262,17 @@ def _rung_reaching(ladder: Ladder, k: int, reach: float) -> tuple[int, float]:
 
 
 # --------------------------------------------------------------------------- the state
+
+
+def near_miss(nearest: np.ndarray) -> np.ndarray:
+    """Whether free ends whose nearest other arc is ``nearest`` (m,) px away are near-miss gaps, (m,) bool.
+
+    ``GAP_MIN`` to ``GAP_MAX`` px, as :func:`img2logo.quality.near_miss_gaps` counts them: an end the
+    eye joins to the arc beside it and the logo does not.
+    """
+    return (nearest >= GAP_MIN) & (nearest <= GAP_MAX)
+
+
 class FitState:
     """The state of one run of the progressive optimization: groups, their fits, the displacements.
 
@@ -936,13 +947,25 @@ class FitState:
             return set()
         gids = list(self.fits)
         col = {g: i for i, g in enumerate(gids)}
+        rows = np.array([self.fits[g].arc_row for g in gids], dtype=np.float64)
+        _, distances = self.end_distances(ends, rows, [col[g] for _, g in ends])
+        gap = near_miss(distances.min(axis=1))
+        return {n for (n, _), is_gap in zip(ends, gap.tolist(), strict=True) if is_gap}
+
+    def end_distances(
+        self, ends: Sequence[tuple[int, int]], rows: np.ndarray, own: Sequence[int] | np.ndarray
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """Free ends (:meth:`open_ends`) and how far each lies from arcs: points (m, 2) and distances (m, n), px.
+
+        ``rows`` (n, 5) are arcs as :attr:`GroupFit.arc_row`; ``own`` (m,) the row of
+        each end's own arc, whose distance is infinite. The points are the
+        junctions' p_k + d_k; distances beyond ``GAP_MAX`` may be any larger value.
+        """
         nodes = np.array([n for n, _ in ends], dtype=np.intp)
         points = (self.graph.junctions[nodes] + self.disp[nodes]).reshape(-1, 2)
-        rows = np.array([self.fits[g].arc_row for g in gids], dtype=np.float64)
         distances = _distances_to_arcs(points, rows, GAP_MAX)
-        distances[np.arange(len(ends)), [col[g] for _, g in ends]] = np.inf
-        nearest = distances.min(axis=1)
-        return {n for (n, _), d in zip(ends, nearest.tolist(), strict=True) if GAP_MIN <= d <= GAP_MAX}
+        distances[np.arange(len(ends)), np.asarray(own, dtype=np.intp)] = np.inf
+        return points, distances
 
     # ----------------------------------------------------------------- errors
     def totals(self) -> tuple[float, float, int]:

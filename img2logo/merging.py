@@ -35,11 +35,10 @@ from .constants import (
     FAR_ARC_BUDGET,
     FAR_ARC_MARGIN,
     GAP_MAX,
-    GAP_MIN,
     JUNCTION_TOLERANCE,
     REDUNDANT_INTERSECTION_TOL,
 )
-from .fit_state import FitState, GroupFit, Seed, Solution
+from .fit_state import FitState, GroupFit, Seed, Solution, near_miss
 from .geometry import Arc
 from .simplification import Group, hold_line, merge_groups
 
@@ -524,12 +523,9 @@ def _open_ends(state: FitState, level: _Level) -> _OpenEnds:
     nodes = [n for n, _ in found]
     owners = np.array([g for _, g in found], dtype=np.int64)
     columns = np.array([level.pos[g] for _, g in found], dtype=np.intp)
-    at = np.array(nodes, dtype=np.intp)
-    points = (state.graph.junctions[at] + state.disp[at]).reshape(-1, 2)
-    distances = _distances_to_arcs(points, level.params, GAP_MAX)
-    distances[np.arange(len(nodes)), columns] = np.inf
+    points, distances = state.end_distances(found, level.params, columns)
     nearest = distances.min(axis=1) if distances.shape[1] else np.full(len(nodes), np.inf)
-    out = _OpenEnds(nodes, owners, columns, points, distances, (nearest >= GAP_MIN) & (nearest <= GAP_MAX))
+    out = _OpenEnds(nodes, owners, columns, points, distances, near_miss(nearest))
     level.memo["open"] = out
     return out
 
@@ -583,8 +579,7 @@ def _new_gaps(
     owners = np.where((ends.owners == a) | (ends.owners == b), -1, ends.owners)
     new[owners[:, None] == gids[None, :]] = np.inf
     nearest = np.minimum(nearest, new.min(axis=1))
-    gap = (nearest >= GAP_MIN) & (nearest <= GAP_MAX)
-    return int(np.count_nonzero(gap & ~ends.gap))
+    return int(np.count_nonzero(near_miss(nearest) & ~ends.gap))
 
 
 def recheck_redundant(state: FitState, outcome: MergeOutcome) -> int:

@@ -273,10 +273,7 @@ def enclosed_dots(
             continue
         r0, c0 = y - 1, x - 1  # a pixel of the loop's lines around it
         inside = labels[r0 : y + bh + 1, c0 : x + bw + 1] == i
-        contours, _ = cv2.findContours(inside.astype(np.uint8), cv2.RETR_EXTERNAL, cv2.CHAIN_APPROX_SIMPLE)
-        hull = np.zeros(inside.shape, np.uint8)
-        cv2.fillPoly(hull, [cv2.convexHull(np.vstack(contours))], 1)
-        eye = hull.astype(bool)
+        eye = convex_hull(inside)
         if eye.sum() > math.pi * r_eye * r_eye:
             continue
         n_in, parts, part_stats, _ = cv2.connectedComponentsWithStats((eye & ~inside).astype(np.uint8), connectivity=8)

@@ -315,11 +315,15 @@ def _find_subject(
             # one dominant object, found with the frame strip as certain background: it runs into the strip,
             # so its cut goes on with the strip near it open (_reach_frame); kept if it is still one object
             cut = _reach_frame(small_cuts[taken])
-            reached = clean_mask(_refine(img, cut)) if cut is not None else mask
-            gained = (reached & frame_strip(mask.shape) & ~mask).any()
-            if gained and not _not_dominant(reached) and _object_outline(img, texture, reached):
-                if _moved_outline(img, mask, reached) >= SUBJECT_MIN_CONTRAST:
-                    mask, how = reached, f"{how}; its part in the frame strip kept"
+            reached = None if cut is None else clean_mask(_refine(img, cut))
+            if (
+                reached is not None
+                and (reached & frame_strip(mask.shape) & ~mask).any()
+                and not _not_dominant(reached)
+                and _object_outline(img, texture, reached)
+                and _moved_outline(img, mask, reached) >= SUBJECT_MIN_CONTRAST
+            ):
+                mask, how = reached, f"{how}; its part in the frame strip kept"
         kept = dominant_part(mask, texture)
         if kept is not mask:
             mask, how = kept, f"{how}; a part of another texture beyond a thin neck left out"
