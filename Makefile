@@ -13,7 +13,7 @@ PORT   ?= 8866
 HTMLKIT := $(VENV)/.installed-html
 DOCSKIT := $(VENV)/.installed-docs
 BENCH  := $(VENV)/.installed-bench
-LIB    := $(wildcard img2logo/*.py img2logo/*/*.py) pyproject.toml
+LIB    := $(shell find img2logo -name '*.py') pyproject.toml
 DATA   := $(wildcard data/*.png)
 NB     ?= $(basename $(notdir $(wildcard notebooks/*.ipynb)))
 RUNS   := $(patsubst %,build/notebooks/%.ipynb,$(NB))
@@ -27,7 +27,7 @@ $(STAMP): pyproject.toml
 	@test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
 	$(BIN)/python -m pip install --quiet -e '.[dev]'
-	$(BIN)/python -m img2logo.kernels  # compiles the kernels once (about 20 s), so that no run waits for it
+	$(BIN)/python -m img2logo._compiled.kernels  # compiles the kernels once (about 20 s), so that no run waits for it
 	$(BIN)/python -m compileall -q img2logo  # the bytecode, as pip writes it for a wheel: no run compiles the sources
 	@touch $@
 
@@ -69,12 +69,12 @@ $(STUDIO): pyproject.toml $(KIT)
 # The level explorer (notebook 11) in JupyterLab and the studio (notebook 14) in Voila, driven by Debian's
 # chromium (apt-get install chromium) through playwright; skipped, with the reason, where chromium is missing.
 test-browser: $(BROWSER)
-	$(BIN)/python -m pytest -m browser -rs tests/test_experiments_explore_browser.py tests/test_experiments_studio_browser.py
+	$(BIN)/python -m pytest -m browser -rs tests/experiments/test_explore_browser.py tests/studio/test_browser.py
 
 # The designer's studio (notebook 14) as a page, served by Voila on this machine only; Ctrl-C stops it.
 # Another port: make studio PORT=8870
 studio: $(STUDIO)
-	@$(BIN)/python -m img2logo.experiments.studio_serve --port $(PORT)
+	@$(BIN)/python -m img2logo.studio.serve --port $(PORT)
 
 # JupyterLab on the notebooks; Ctrl-C stops it. Options: make lab LAB_ARGS="--no-browser --port 8890"
 lab: $(LAB)

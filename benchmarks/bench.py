@@ -22,8 +22,8 @@ import time
 from pathlib import Path
 
 from img2logo import build_segment_graph, extract_feature_lines, load_image
+from img2logo.fit.progressive import optimize
 from img2logo.pipeline import abstract
-from img2logo.progressive import optimize
 
 ROOT = Path(__file__).resolve().parents[1]
 DATA = ROOT / "data"
@@ -132,11 +132,11 @@ def bench_table3(name: str, repeat: int) -> None:
 
 
 def bench_startup(repeat: int) -> None:
-    """Start-up as whole processes: ``import img2logo.cli``, ``import img2logo`` and ``img2logo --version``."""
+    """Start-up as whole processes: ``import img2logo.app.cli``, ``import img2logo`` and ``img2logo --version``."""
     for label, cmd, budget in (
-        ("python -c 'import img2logo.cli'", [sys.executable, "-c", "import img2logo.cli"], STARTUP_BUDGET),
+        ("python -c 'import img2logo.app.cli'", [sys.executable, "-c", "import img2logo.app.cli"], STARTUP_BUDGET),
         ("python -c 'import img2logo'", [sys.executable, "-c", "import img2logo"], VERSION_BUDGET),
-        ("img2logo --version", [sys.executable, "-m", "img2logo.cli", "--version"], VERSION_BUDGET),
+        ("img2logo --version", [sys.executable, "-m", "img2logo.app.cli", "--version"], VERSION_BUDGET),
     ):
         times = [_process_times(cmd) for _ in range(repeat)]
         med = statistics.median(w for w, _ in times)
@@ -146,15 +146,16 @@ def bench_startup(repeat: int) -> None:
             f"{med * 1e3:.0f} ms (CPU {cpu * 1e3:.0f} ms), ratio {med / budget:.2f} of {budget:g} s"
         )
     # What every run pays before its work: the modules a run imports and the compiled kernels' load.
-    code = "import img2logo.pipeline, img2logo.writers, img2logo.kernels as k; k.usable()"
+    code = "import img2logo.pipeline, img2logo.export.writers, img2logo._compiled.kernels as k; k.usable()"
     times = [_process_times([sys.executable, "-c", code]) for _ in range(repeat)]
     med, cpu = statistics.median(w for w, _ in times), statistics.median(c for _, c in times)
     print(f"\nA run's fixed cost (python -c '{code}', median of {repeat}): {med * 1e3:.0f} ms (CPU {cpu * 1e3:.0f} ms)")
     # The same as the command pays it: started as the command starts (one BLAS thread, no collections during the
-    # imports: img2logo.cli._start_command), with OpenCV, which every run imports to read its image.
+    # imports: img2logo.app.cli._start_command), with OpenCV, which every run imports to read its image.
     code = (
-        "import img2logo.cli as c; c._start_command(); "
-        "import img2logo.pipeline, img2logo.writers, img2logo.kernels as k, cv2; k.usable(); c._freeze_heap()"
+        "import img2logo.app.cli as c; c._start_command(); "
+        "import img2logo.pipeline, img2logo.export.writers, img2logo._compiled.kernels as k, cv2; "
+        "k.usable(); c._freeze_heap()"
     )
     times = [_process_times([sys.executable, "-c", code]) for _ in range(repeat)]
     med, cpu = statistics.median(w for w, _ in times), statistics.median(c for _, c in times)
@@ -200,7 +201,15 @@ def bench_cli_vs_vtracer(repeat: int) -> None:
     print(f"{head[0]:16s} " + " ".join(f"{h:>10s}" for h in head[1:]))
     with tempfile.TemporaryDirectory() as tmp:
         for path in VTRACER_IMAGES:
-            ours_cmd = [sys.executable, "-m", "img2logo.cli", str(path), "-q", "--svg", os.path.join(tmp, "ours.svg")]
+            ours_cmd = [
+                sys.executable,
+                "-m",
+                "img2logo.app.cli",
+                str(path),
+                "-q",
+                "--svg",
+                os.path.join(tmp, "ours.svg"),
+            ]
             code = "import sys, vtracer; vtracer.convert_image_to_svg_py(sys.argv[1], sys.argv[2], mode='spline')"
             theirs_cmd = [sys.executable, "-c", code, str(path), os.path.join(tmp, "vtracer.svg")]
             _process_seconds(ours_cmd)  # warm-up: the compiled kernels (built once per install), the file system's
@@ -233,7 +242,7 @@ def bench_cli_photo(repeat: int) -> None:
     print(f"{'image':20s} {'wall':>8s} {'cpu':>8s} {'ratio':>7s}")
     with tempfile.TemporaryDirectory() as tmp:
         for path in PHOTO_CLI_IMAGES:
-            cmd = [sys.executable, "-m", "img2logo.cli", str(path), "-q", "--svg", os.path.join(tmp, "logo.svg")]
+            cmd = [sys.executable, "-m", "img2logo.app.cli", str(path), "-q", "--svg", os.path.join(tmp, "logo.svg")]
             _process_seconds(cmd)  # warm-up: numba's on-disk cache, the file system's
             walls, cpus = [], []
             for _ in range(repeat):

@@ -185,7 +185,7 @@ def ink_columns(case: dict, result) -> dict:
     """Ink parts lost (clip arts, drawings) and the stroke width ratio (drawings) of one run."""
     from img2logo import quality
     from img2logo.constants import INK_PART_GRAY
-    from img2logo.plotting import level_stroke_width
+    from img2logo.export.plotting import level_stroke_width
 
     out = dict.fromkeys(INK_COLUMNS, np.nan)
     if case["kind"] in ("clipart", "drawing", THICK):
@@ -200,7 +200,7 @@ def ink_columns(case: dict, result) -> dict:
 def contact_sheet(kind: str, runs: list[tuple[dict, object]], path: Path) -> None:
     from img2logo import plot_abstraction, quality
     from img2logo.experiments.layout import panel_grid
-    from img2logo.writers import save_figure
+    from img2logo.export.writers import save_figure
 
     fig, axes = panel_grid(len(runs), 3, 3.0)
     for (row, run), ax_row in zip(runs, axes, strict=True):

@@ -24,10 +24,10 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tests"))
 
-from test_experiments_explore_browser import CHROMIUM, CHROMIUM_ARGS, free_port, wait_until_up  # noqa: E402
+from browser_support import CHROMIUM, CHROMIUM_ARGS, free_port, wait_until_up  # noqa: E402
 
-from img2logo.experiments.studio import Studio  # noqa: E402
-from img2logo.experiments.studio_serve import serve_command  # noqa: E402
+from img2logo.studio.serve import serve_command  # noqa: E402
+from img2logo.studio.session import Studio  # noqa: E402
 
 CANVAS = "document.querySelector('.img2logo-studio canvas').toDataURL()"
 

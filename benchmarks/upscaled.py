@@ -35,7 +35,7 @@ def main(argv: list[str] | None = None) -> int:
     import cv2
 
     from img2logo import abstract, load_mask, pipeline, quality
-    from img2logo.loading import load_image
+    from img2logo.images.loading import load_image
 
     pipeline.SYNTHETIC_WORK_SIDE = 1 << 30  # W is set by the loaded copy, not by the pipeline
     pairs = [tuple(int(v) for v in p.split(":")) for p in args.sizes.split(",")]

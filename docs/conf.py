@@ -38,7 +38,7 @@ exclude_patterns = ["_build"]
 html_theme = "alabaster"
 html_title = f"img2logo {release}"
 # The site reads offline: MathJax from the notebooks' local copy when make html made it.
-# The package re-exports its values (img2logo.Abstraction is img2logo.geometry.Abstraction):
+# The package re-exports its values (img2logo.Abstraction is img2logo.geometry.primitives.Abstraction):
 # a cross-reference finds both; either is right.
 suppress_warnings = ["myst.header", "myst.xref_missing", "ref.python"]
 nitpicky = False

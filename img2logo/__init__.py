@@ -25,35 +25,35 @@ from .errors import (
 __version__ = "0.1.0"
 
 _LAZY = {
-    "load_image": "loading",
-    "extract_feature_lines": "preprocessing",
-    "detect_kind": "preprocessing",
-    "LoadedImage": "loading",
-    "FeatureLines": "preprocessing",
-    "DownscaleWarning": "loading",
-    "PageWarning": "loading",
+    "load_image": "images.loading",
+    "extract_feature_lines": "features.preprocessing",
+    "detect_kind": "features.preprocessing",
+    "LoadedImage": "images.loading",
+    "FeatureLines": "features.preprocessing",
+    "DownscaleWarning": "images.loading",
+    "PageWarning": "images.loading",
     "build_segment_graph": "segment_graph",
     "SegmentGraph": "segment_graph",
-    "Circle": "geometry",
-    "Arc": "geometry",
-    "Abstraction": "geometry",
-    "plot_segment_graph": "plotting",
-    "plot_abstraction": "plotting",
-    "write_segment_graph_png": "writers",
-    "write_json": "writers",
-    "write_svg": "writers",
-    "write_png": "writers",
-    "read_json": "writers",
+    "Circle": "geometry.primitives",
+    "Arc": "geometry.primitives",
+    "Abstraction": "geometry.primitives",
+    "plot_segment_graph": "export.plotting",
+    "plot_abstraction": "export.plotting",
+    "write_segment_graph_png": "export.writers",
+    "write_json": "export.writers",
+    "write_svg": "export.writers",
+    "write_png": "export.writers",
+    "read_json": "export.writers",
     "abstract": "pipeline",
     "Result": "pipeline",
-    "optimize": "progressive",
-    "Progression": "progressive",
-    "GoldenLadder": "golden_ladder",
-    "FibonacciLadder": "golden_ladder",
-    "run_batch": "batch",
-    "load_mask": "loading",
+    "optimize": "fit.progressive",
+    "Progression": "fit.progressive",
+    "GoldenLadder": "geometry.golden_ladder",
+    "FibonacciLadder": "geometry.golden_ladder",
+    "run_batch": "app.batch.run",
+    "load_mask": "images.loading",
     "Options": "options",
-    "ConnectivityWarning": "recovery",
+    "ConnectivityWarning": "fit.recovery",
 }
 
 #: Submodules reachable as attributes, imported on first use.
@@ -118,14 +118,10 @@ def __dir__() -> list[str]:
 
 
 if TYPE_CHECKING:  # for type checkers and IDEs: the lazy names, eagerly
-    from .batch import run_batch
-    from .geometry import Abstraction, Arc, Circle
-    from .golden_ladder import FibonacciLadder, GoldenLadder
-    from .loading import PageWarning
-    from .options import Options
-    from .pipeline import Result, abstract
-    from .plotting import plot_abstraction, plot_segment_graph
-    from .preprocessing import (
+    from .app.batch.run import run_batch
+    from .export.plotting import plot_abstraction, plot_segment_graph
+    from .export.writers import read_json, write_json, write_png, write_segment_graph_png, write_svg
+    from .features.preprocessing import (
         DownscaleWarning,
         FeatureLines,
         LoadedImage,
@@ -134,7 +130,11 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the lazy names, eagerly
         load_image,
         load_mask,
     )
-    from .progressive import Progression, optimize
-    from .recovery import ConnectivityWarning
+    from .fit.progressive import Progression, optimize
+    from .fit.recovery import ConnectivityWarning
+    from .geometry.golden_ladder import FibonacciLadder, GoldenLadder
+    from .geometry.primitives import Abstraction, Arc, Circle
+    from .images.loading import PageWarning
+    from .options import Options
+    from .pipeline import Result, abstract
     from .segment_graph import SegmentGraph, build_segment_graph
-    from .writers import read_json, write_json, write_png, write_segment_graph_png, write_svg

@@ -63,7 +63,7 @@ MAX_IMAGE_PIXELS: int = 150_000_000
 #: 1 GB (estimated, 15 bytes a pixel), within issue 20's 1.5 GB (a 12000 px one: 5.13 GB, 26-29 s of
 #: CPU, measured with benchmarks/huge.py).
 MAX_FLOAT_IMAGE_PIXELS: int = 64_000_000
-#: Largest TIFF decoded whole (a layout img2logo._tiff does not decode a band at a time:
+#: Largest TIFF decoded whole (a layout img2logo.images.tiff does not decode a band at a time:
 #: JPEG-in-TIFF, floating-point samples, one compressed strip of the whole image), bytes of
 #: decoded samples (width x height x a pixel's bits / 8): OpenCV's libtiff then holds the
 #: decoded strip and the image, and the colour conversion another copy. Measured peaks: a 12000
@@ -514,17 +514,17 @@ SMOOTH_TANGENT_LENGTH: float = 30.0
 #: there by less than this, rad (issue 17's target: >= 90 % of the joins); two
 #: degrees is below what the eye sees at a stroke's join.
 TANGENT_JOIN_ANGLE: float = math.radians(2.0)
-#: A tangent join's junction slides along the input's line (img2logo.tangency), the
+#: A tangent join's junction slides along the input's line (img2logo.fit.tangency), the
 #: two groups' pixels split anew where it is: each keeps at least this many pixels,
 #: the fewest a circle is fitted to (three points fix a circle); a junction sliding
 #: farther would swallow the group, and the join is released instead.
 SLIDE_MIN_PIXELS: int = 3
 #: A tangent join whose circles cannot touch on their rungs tries at most this many
-#: choices of one rung up or down for the two circles (img2logo.tangency), those
+#: choices of one rung up or down for the two circles (img2logo.fit.tangency), those
 #: that bring the circles nearest to touching first: each costs a constrained fit,
 #: and the tangent pass must stay within issue 17's time budget (1.2x the pipeline).
 RUNG_CHOICES: int = 2
-#: The result's level (img2logo.tangency.tangent_level): a smooth join left kinked
+#: The result's level (img2logo.fit.tangency.tangent_level): a smooth join left kinked
 #: weighs this many arcs, and the level kept, the merge loop's last or one before it,
 #: has the fewest arcs plus weighted kinks after its tangent refit. A kink is a defect
 #: the eye sees, while an arc added where the joins are tangent flows into its
@@ -533,7 +533,7 @@ RUNG_CHOICES: int = 2
 #: 78 % and 42.4, 3 gives 83 % and 43.3 with two more near-miss gaps (held-out clip arts).
 KINK_WEIGHT: int = 2
 #: A smooth join that no refit from its circles makes tangent is fitted as one unit, a tangent
-#: biarc over its two groups' joined pixels (img2logo.tangency._biarc): its junction is tried
+#: biarc over its two groups' joined pixels (img2logo.fit.tangency._biarc): its junction is tried
 #: every this many pixels of the chain (every pixel around the best), every this many pixels
 #: measured ...
 BIARC_STEP: int = 6
@@ -639,7 +639,7 @@ SIMPLIFICATION_ERROR: float = 1.0
 PHOTO_MAX_ARC_FACTOR: float = 1.0
 #: A merge candidate whose new circle (radius fixed on the ladder) cannot pass within
 #: ``max_arc_distance`` + this of all its pixels, wherever its centre, is rejected
-#: before its fit (img2logo.merging, kernels_sqp.far_circle_kernel): the fit's arc,
+#: before its fit (img2logo.fit.merging, kernels_sqp.far_circle_kernel): the fit's arc,
 #: coupled to every pixel by the Fréchet distance, would be farther. The margin
 #: covers rounding: the arc's samples lie on their circle to ~1e-10 px (r <= 1e6 px),
 #: the proof's distances to ~1e-12 px; 1e-6 px is far above both.
@@ -720,7 +720,7 @@ GAP_MIN: float = 0.75
 #: eye closes it, the logo does not); farther, it is a free end, px.
 GAP_MAX: float = 6.0
 
-# --- Symmetric logos (img2logo.symmetry) --------------------------------------------
+# --- Symmetric logos (img2logo.fit.symmetry) --------------------------------------------
 #: Mirror-axis detection: a feature-line pixel is matched when its mirror image lies
 #: within this distance of a feature-line pixel, px. Two 1-px lines drawn from the two
 #: halves of a symmetric shape sit up to 1 px apart after thinning, and the reflection

@@ -3,8 +3,8 @@
 Every switch and setting of :func:`img2logo.abstract` is a field of
 :class:`Options`, declared once with its default, its check, its command-line
 flag and whether the levels record it in ``params``. Everything else reads it
-from there: :func:`img2logo.abstract` and :func:`img2logo.progressive.optimize`
-take an ``Options`` (or its keywords), :func:`img2logo.batch.run_batch` checks
+from there: :func:`img2logo.abstract` and :func:`img2logo.fit.progressive.optimize`
+take an ``Options`` (or its keywords), :func:`img2logo.app.batch.run.run_batch` checks
 one before its workers start (not once per image), the command line builds its
 flags from the fields (:func:`cli_fields`), and :meth:`Options.record` is what
 every level records. A new switch is one new field here.
@@ -134,17 +134,17 @@ class Options:
     min_length : float
         Free-hanging segments shorter than this are dropped, px (>= 0).
     foreground : {"auto", "none", "grabcut"}, path or ndarray of bool
-        Photos: the subject drawn (:func:`img2logo.subject.find_subject`).
+        Photos: the subject drawn (:func:`img2logo.features.photo.subject.find_subject`).
     subject : (x, y, w, h), "X,Y,W,H" or None
         Photos: a rectangle around the object that seeds its segmentation, px.
     stroke_width : float or None
         Width of the logo's strokes in the SVG and PNG, px (> 0), recorded in
         ``params``; None: a line drawing's measured median stroke width
-        (:attr:`img2logo.preprocessing.FeatureLines.stroke_width`), for the
+        (:attr:`img2logo.features.preprocessing.FeatureLines.stroke_width`), for the
         other kinds the writers' default
-        (:func:`img2logo.plotting.default_stroke_width`).
+        (:func:`img2logo.export.plotting.default_stroke_width`).
     symmetry : {"none", "auto", "vertical", "horizontal"} or float
-        A mirror-symmetric logo (:mod:`img2logo.symmetry`): ``auto`` keeps the
+        A mirror-symmetric logo (:mod:`img2logo.fit.symmetry`): ``auto`` keeps the
         best mirror axis of the feature lines if it scores well enough; the
         others force its direction (degrees from +x towards +y); ``none``: free.
         Not with a lock mask (:func:`check_lock_mask`).
@@ -290,7 +290,7 @@ class Options:
     def __post_init__(self) -> None:
         import numpy as np
 
-        from .golden_ladder import make_ladder
+        from .geometry.golden_ladder import make_ladder
 
         put = object.__setattr__
         put(self, "tolerance", _check_length(self.tolerance, "tolerance"))
@@ -301,11 +301,11 @@ class Options:
         check_choice(self.kind, "kind", ("auto", "photo", "clipart", "drawing"))
         # The photo modules load only for a value to check (the default "auto" needs none): a clip art's run skips them.
         if not (isinstance(self.foreground, str) and self.foreground == "auto"):
-            from .subject import check_foreground_option
+            from .features.photo.subject import check_foreground_option
 
             check_foreground_option(self.foreground)
         if self.subject is not None:
-            from .subject import subject_rectangle_numbers
+            from .features.photo.subject import subject_rectangle_numbers
 
             subject_rectangle_numbers(self.subject)
         if self.max_arc_distance is not None and not (
@@ -478,7 +478,7 @@ def check_abstract_options(options: Mapping[str, Any], allowed: frozenset[str] =
         ``max_arc_distance`` > 0 px, the switches True or False, ``symmetry``
         (and not with ``lock_mask``),
         ``arc_selection``, the ladder's ``ladder``, ``bias``, ``unit``,
-        ``exponents`` and ``rounding`` (as :func:`img2logo.golden_ladder.make_ladder`
+        ``exponents`` and ``rounding`` (as :func:`img2logo.geometry.golden_ladder.make_ladder`
         checks them).
     """
     checked = Options.from_keywords(options, also=allowed - ABSTRACT_OPTIONS_FIELDS)

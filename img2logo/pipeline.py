@@ -19,15 +19,15 @@ import numpy as np
 
 from .constants import MIN_STROKE_WIDTH, PHOTO_MAX_ARC_FACTOR, PHOTO_WORK_SIDE, SYNTHETIC_WORK_SIDE
 from .errors import InvalidParameterError
-from .geometry import Abstraction
-from .loading import downscale, mask_to_working_size, warn_downscaled
+from .features.preprocessing import FeatureLines, LoadedImage, extract_feature_lines, load_image, photo_reason
+from .fit.progressive import ProgressCallback, Progression, optimize
+from .geometry.primitives import Abstraction
+from .images.loading import downscale, mask_to_working_size, warn_downscaled
 from .options import AUTO, Options, check_lock_mask, check_symmetry_option
-from .preprocessing import FeatureLines, LoadedImage, extract_feature_lines, load_image, photo_reason
-from .progressive import ProgressCallback, Progression, optimize
 from .segment_graph import SegmentGraph, build_segment_graph
 
 if TYPE_CHECKING:  # the symmetry module loads only for a run that asks for an axis
-    from .symmetry import SymmetryChoice
+    from .fit.symmetry import SymmetryChoice
 
 #: ``abstract``'s ``tolerance`` and ``kind`` when not given: those of ``options`` (default 5 px, "auto").
 _DEFAULT: Any = type("Default", (), {"__repr__": lambda self: "<default>"})()
@@ -125,14 +125,14 @@ def abstract(
         A callback ``progress(t, n_arcs, similarity)``, called after every level
         the merge loop makes, then once more with the result's final level when
         the tangent joins chose it (its t may be earlier than the last reported:
-        :func:`img2logo.progressive.optimize`); the last call is always
+        :func:`img2logo.fit.progressive.optimize`); the last call is always
         ``Result.final``. ``True`` shows a progress bar on the terminal;
         ``None`` (default) shows one only when standard error is a terminal.
     **settings
         Any other field of :class:`~img2logo.options.Options`: ``rdp_tolerance``,
         ``min_length``, ``foreground``, ``subject``, ``symmetry`` (``"none"``,
         ``"auto"``, ``"vertical"``, ``"horizontal"`` or degrees: a mirror-symmetric
-        logo, :mod:`img2logo.symmetry`; what was decided is ``Result.symmetry``),
+        logo, :mod:`img2logo.fit.symmetry`; what was decided is ``Result.symmetry``),
         the ladder (``ladder``,
         ``bias``, ``unit``, ``exponents``, ``rounding``), the switches
         (``connectivity``, ``inner_junctions``, ``merging``,
@@ -165,7 +165,7 @@ def abstract(
         # in here (the subject rectangle by find_subject, which says it as given), and every level
         # is scaled back to the input's pixels below.
         lock_mask = mask_to_working_size(lock_mask, img, "lock_mask")
-        from .subject import FOREGROUND_CHOICES
+        from .features.photo.subject import FOREGROUND_CHOICES
 
         foreground = opts.foreground
         if isinstance(foreground, np.ndarray | Path) or (
@@ -200,7 +200,7 @@ def abstract(
     choice = None
     mode = check_symmetry_option(opts.symmetry)
     if mode is not None:
-        from .symmetry import choose_axis, optimize_symmetric
+        from .fit.symmetry import choose_axis, optimize_symmetric
 
         start = time.perf_counter()
         choice = choose_axis(lines.lines, mode)

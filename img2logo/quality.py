@@ -43,13 +43,6 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._validation import check_instance
-from .arc_extraction import (
-    RedundantIntersection,
-    arc_intersections,
-    arc_pairs_near,
-    nearest_on_arc,
-    redundant_intersections,
-)
 from .constants import (
     CROSSING_END_DISTANCE,
     GAP_MAX,
@@ -64,7 +57,14 @@ from .constants import (
     TANGENT_JOIN_ANGLE,
 )
 from .errors import InvalidParameterError
-from .geometry import Abstraction, Arc
+from .fit.arc_extraction import (
+    RedundantIntersection,
+    arc_intersections,
+    arc_pairs_near,
+    nearest_on_arc,
+    redundant_intersections,
+)
+from .geometry.primitives import Abstraction, Arc
 from .segment_graph import SegmentGraph
 
 #: Distances of the recall measures r3, r6, r10, px.
@@ -325,7 +325,7 @@ def junction_gaps(
 def level_redundant_intersections(abstraction: Abstraction) -> list[RedundantIntersection]:
     """The redundant intersections of a level (Sec. 5.2, Fig. 6c, 12).
 
-    :func:`~img2logo.arc_extraction.redundant_intersections` over all pairs of
+    :func:`~img2logo.fit.arc_extraction.redundant_intersections` over all pairs of
     its arcs, each arc owning the junctions it starts at, passes through and ends at.
     """
     owned = [list(t.ordered) for t in abstraction.arc_junctions]
@@ -408,10 +408,10 @@ def lost_ink_parts(
 def stroke_width_ratio(logo_width: float, ink: np.ndarray) -> float:
     """The logo's stroke width over the input's median stroke width; NaN without ink.
 
-    The input's width is :func:`img2logo.preprocessing.median_stroke_width` of
+    The input's width is :func:`img2logo.features.preprocessing.median_stroke_width` of
     ``ink`` (H, W) bool: twice the median distance from the ink's medial axis to its edge.
     """
-    from .preprocessing import median_stroke_width
+    from .features.preprocessing import median_stroke_width
 
     width = median_stroke_width(_check_map(ink, "ink"))
     return float(logo_width) / width if width > 0 else float("nan")

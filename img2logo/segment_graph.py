@@ -16,9 +16,7 @@ from functools import cached_property
 
 import numpy as np
 
-from . import _skeleton
 from ._validation import check_positive, readonly
-from .circle_fitting import fit_circle
 from .constants import (
     JUNCTION_MERGE_DISTANCE,
     MAX_RADIUS_FACTOR,
@@ -28,7 +26,9 @@ from .constants import (
     SMOOTH_TANGENT_LENGTH,
 )
 from .errors import FitError, InvalidParameterError
-from .geometry import cumulative_length, polyline_length
+from .geometry.circle_fitting import fit_circle
+from .geometry.primitives import cumulative_length, polyline_length
+from .images import skeleton as _skeleton
 
 
 @dataclass(frozen=True, eq=False)
@@ -99,7 +99,7 @@ class SegmentGraph:
         0 where the line runs straight on, pi where it folds back); NaN at end
         points, junctions of valence >= 3, and a node where one segment ends twice.
         """
-        from . import kernels
+        from ._compiled import kernels
 
         out = np.full(self.n_junctions, np.nan)
         at: dict[int, list[tuple[int, int]]] = {}
@@ -129,7 +129,7 @@ class SegmentGraph:
         """The nodes of valence 2 where the feature line turns by less than ``max_turn`` rad (:attr:`turns`).
 
         Where two arcs end at such a node the logo should not kink: the tangent
-        joins of the constrained fit (:mod:`img2logo.constrained_fit`) and of
+        joins of the constrained fit (:mod:`img2logo.fit.constrained_fit`) and of
         ``make quality`` (:func:`img2logo.quality.joins`).
         """
         turns = self.turns
@@ -246,7 +246,7 @@ def end_tangent(points: np.ndarray, at_start: bool, length: float = SMOOTH_TANGE
     """The unit tangent of a segment at one of its ends, pointing into the segment: shape (2,).
 
     The tangent at the end point of the circle fitted (algebraically,
-    :func:`img2logo.circle_fitting.fit_circle`) to the segment's pixels within
+    :func:`img2logo.geometry.circle_fitting.fit_circle`) to the segment's pixels within
     ``length`` px of arc length of that end: a circle follows the line's
     curvature, and over that length the 0.5 px steps of a raster line tilt it
     little (see ``SMOOTH_TANGENT_LENGTH``). A straight one (its circle capped)

@@ -14,7 +14,7 @@ import numpy as np
 from scipy import ndimage
 
 from img2logo.constants import PHI
-from img2logo.geometry import TAU, Abstraction, Arc, Circle
+from img2logo.geometry.primitives import TAU, Abstraction, Arc, Circle
 from img2logo.segment_graph import SegmentGraph
 
 DATA = Path(__file__).resolve().parents[1] / "data"
@@ -193,7 +193,7 @@ def svg_arc_center(x1, y1, r, large, sweep, x2, y2):
 
 def palette_fills(a: Abstraction) -> tuple:
     """Fills of ``a``'s faces from a three-colour palette."""
-    from img2logo import fills
+    from img2logo.design import fills
 
     return fills.fill_palette(a, ["#e63946", "#457b9d", "#f4a261"])
 
@@ -256,15 +256,15 @@ def golden_chain(noise: float = 0.0, seed: int = 0) -> tuple[SegmentGraph, list[
 
 
 def hand_built_state(graph: SegmentGraph, state_class: type | None = None, **settings):
-    """A :class:`~img2logo.fit_state.FitState` of ``graph`` on the ladder of ``BIAS``, one group per segment, unfitted.
+    """A :class:`~img2logo.fit.fit_state.FitState` of ``graph`` on ``BIAS``'s ladder, a group per segment, unfitted.
 
     ``state_class`` is FitState or a subclass of it (default FitState); ``settings`` are fields
     of :class:`~img2logo.options.Options` (``tolerance=0.5``, ...).
     """
-    from img2logo.fit_state import FitState
-    from img2logo.golden_ladder import make_ladder
+    from img2logo.fit.fit_state import FitState
+    from img2logo.fit.simplification import Group
+    from img2logo.geometry.golden_ladder import make_ladder
     from img2logo.options import Options
-    from img2logo.simplification import Group
 
     state = (state_class or FitState)(graph, Options.from_keywords(settings), make_ladder("phi", None, bias=BIAS))
     for i, seg in enumerate(graph.segments):

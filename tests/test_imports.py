@@ -78,23 +78,61 @@ def _cycle(graph: dict[str, set[str]]) -> list[str] | None:
 
 def test_no_import_cycle():
     graph = _imports()
-    assert {"fills", "plotting", "writers", "contract", "arrangement", "svg_path"} <= set(graph)
-    assert "plotting" in graph["writers"] and "fill_values" in graph["plotting"]  # the graph is read
+    assert {"design.fills", "export.plotting", "export.writers", "export.contract", "geometry.svg_path"} <= set(graph)
+    assert "export.plotting" in graph["export.writers"] and "design.fill_values" in graph["export.plotting"]  # read
     assert _cycle(graph) is None, " -> ".join(_cycle(graph) or [])
 
 
 def test_type_only_imports_and_the_kit_are_counted():
     graph = _imports()
-    assert "fit_state" in graph["tangency"]  # under TYPE_CHECKING only
+    assert "fit.fit_state" in graph["fit.tangency"]  # under TYPE_CHECKING only
     assert "experiments" in graph["experiments.ablations"]  # from . import Run: the kit's package
     assert "experiments.runner" in graph["experiments"]
 
 
 def test_the_optimizers_stages_import_its_state_not_each_other():
     graph = _imports()
-    for stage in ("merging", "recovery", "tangency"):
-        assert "fit_state" in graph[stage] and "progressive" not in graph[stage]
-    assert not {"merging", "recovery", "tangency", "progressive", "symmetry"} & graph["fit_state"]
+    for stage in ("fit.merging", "fit.recovery", "fit.tangency"):
+        assert "fit.fit_state" in graph[stage] and "fit.progressive" not in graph[stage]
+    assert (
+        not {"fit.merging", "fit.recovery", "fit.tangency", "fit.progressive", "fit.symmetry"} & graph["fit.fit_state"]
+    )
+
+
+#: The stage packages in the order data flows through them (image -> feature lines -> segment graph
+#: -> levels -> design -> export), then the applications above the library. A module imports only
+#: its own stage and earlier ones; the foundation (top-level modules: values, options, errors) is shared.
+STAGES = ("_compiled", "geometry", "images", "features", "segment_graph", "fit", "design", "export")
+APPS = ("app", "studio", "experiments")
+
+
+def _stage(module: str) -> str | None:
+    head = module.split(".")[0]
+    return head if head in STAGES or head in APPS else None
+
+
+def test_the_library_never_imports_the_applications():
+    for module, imported in _imports().items():
+        if _stage(module) in APPS or module in ("img2logo", "__main__"):  # the public API, python -m img2logo
+            continue
+        reached = {m for m in imported if _stage(m) in APPS}
+        assert not reached, f"{module} imports {sorted(reached)}"
+
+
+def test_the_stages_import_only_earlier_stages():
+    order = {name: i for i, name in enumerate(STAGES)}
+    for module, imported in _imports().items():
+        stage = _stage(module)
+        if stage not in order:
+            continue
+        later = {m for m in imported if _stage(m) in order and order[_stage(m)] > order[stage]}
+        assert not later, f"{module} ({stage}) imports later stages: {sorted(later)}"
+
+
+def test_export_never_imports_features_or_fit():
+    for module, imported in _imports().items():
+        if module.startswith("export."):
+            assert not {m for m in imported if m.startswith(("features.", "fit."))}, module
 
 
 def test_a_cycle_is_found():
@@ -109,22 +147,25 @@ CONTRACT_MODULES = {
     "img2logo._io",
     "img2logo._validation",
     "img2logo.constants",
-    "img2logo.contract",
-    "img2logo.errors",
-    "img2logo.fill_values",
+    "img2logo.export",
+    "img2logo.design",
     "img2logo.geometry",
-    "img2logo.golden_ladder",
-    "img2logo.mirror",
-    "img2logo.svg_path",
+    "img2logo.export.contract",
+    "img2logo.errors",
+    "img2logo.design.fill_values",
+    "img2logo.geometry.primitives",
+    "img2logo.geometry.golden_ladder",
+    "img2logo.geometry.mirror",
+    "img2logo.geometry.svg_path",
 }
 
 
 def test_the_file_format_loads_only_what_it_needs():
-    code = "import sys, img2logo.contract; print(sorted(m for m in sys.modules if m.startswith('img2logo')))"
+    code = "import sys, img2logo.export.contract; print(sorted(m for m in sys.modules if m.startswith('img2logo')))"
     out = subprocess.run([sys.executable, "-c", code], cwd=PACKAGE.parent, capture_output=True, text=True, check=True)
     loaded = set(ast.literal_eval(out.stdout))
     assert loaded <= CONTRACT_MODULES, sorted(loaded - CONTRACT_MODULES)
-    assert "img2logo.contract" in loaded and "img2logo.fill_values" in loaded  # the list is read
+    assert "img2logo.export.contract" in loaded and "img2logo.design.fill_values" in loaded  # the list is read
 
 
 def test_a_clip_art_run_of_the_command_loads_only_what_it_needs(tmp_path):
@@ -136,14 +177,17 @@ def test_a_clip_art_run_of_the_command_loads_only_what_it_needs(tmp_path):
     """
     code = (
         "import os, sys\n"
-        "from img2logo.cli import main\n"
+        "from img2logo.app.cli import main\n"
         "sys.argv = ['img2logo', sys.argv[1], '-q', '--svg', sys.argv[2]]\n"
         "assert main() == 0\n"
         "print(os.environ.get('OPENBLAS_NUM_THREADS'))\n"
         "print(sorted(m for m in sys.argv[3].split() if m in sys.modules))\n"
     )
-    unneeded = "numba scipy skimage PIL matplotlib numpy.ma img2logo.contract img2logo.photo img2logo.subject"
-    unneeded += " img2logo.batch img2logo.fills"
+    unneeded = (
+        "numba scipy skimage PIL matplotlib numpy.ma img2logo.export.contract img2logo.features.photo.lines "
+        "img2logo.features.photo.subject"
+    )
+    unneeded += " img2logo.app.batch.run img2logo.design.fills"
     pinned = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")
     env = {k: v for k, v in os.environ.items() if k not in pinned}
     svg = tmp_path / "fish.svg"

@@ -10,8 +10,9 @@ from pathlib import Path
 import pytest
 from helpers import make_abstraction
 
-from img2logo import _io, writers
+from img2logo import _io
 from img2logo.errors import InvalidParameterError, OutputError
+from img2logo.export import writers
 
 
 def leftovers(directory: Path) -> list[str]:

@@ -155,7 +155,7 @@ def test_the_kernel_runs_one_blas_thread_and_the_environment_is_restored(tmp_pat
     papermill = pytest.importorskip("papermill", reason="the notebook runner needs the extra [kit]")
     import os
 
-    from img2logo.cli import THREAD_VARIABLES
+    from img2logo.app.cli import THREAD_VARIABLES
     from img2logo.experiments.runner import PROGRESS_ENV
 
     seen = {}

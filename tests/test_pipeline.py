@@ -12,7 +12,7 @@ from helpers import DATA, drawing
 import img2logo
 from img2logo import InvalidParameterError, abstract
 from img2logo.constants import PHI
-from img2logo.contract import to_document, validate_document
+from img2logo.export.contract import to_document, validate_document
 
 
 @pytest.fixture(scope="module", params=["clipart-fish", "drawing-bird", "photo-cat"])
@@ -85,8 +85,8 @@ def test_the_options_value_and_its_errors_are_public():
     # The README passes options=img2logo.Options(...); the error and warning a caller catches
     # are reachable from the top level too.
     from img2logo.errors import UnknownOptionError
+    from img2logo.fit.recovery import ConnectivityWarning
     from img2logo.options import Options
-    from img2logo.recovery import ConnectivityWarning
 
     assert img2logo.Options is Options
     assert img2logo.UnknownOptionError is UnknownOptionError
@@ -157,7 +157,7 @@ def _downscaled_fish():
     """drawing-fish.png (512 px) loaded with a 256 px bound: the work at half size, as a 4096 px input at 2048."""
     import warnings
 
-    from img2logo.loading import DownscaleWarning, load_image
+    from img2logo.images.loading import DownscaleWarning, load_image
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", DownscaleWarning)
@@ -168,7 +168,7 @@ def test_a_downscaled_input_gets_its_result_in_its_own_pixels(tmp_path):
     import cv2
     from scipy import ndimage
 
-    from img2logo import contract, writers
+    from img2logo.export import contract, writers
 
     img = _downscaled_fish()
     assert (img.width, img.scale, img.input_width, img.input_height) == (256, 0.5, 512, 512)
@@ -204,8 +204,8 @@ def test_masks_of_a_downscaled_input_are_given_at_its_size():
 def test_a_symmetric_logo_of_a_downscaled_input_keeps_its_axis_in_its_pixels():
     import warnings
 
-    from img2logo.loading import DownscaleWarning, load_image
-    from img2logo.symmetry import is_symmetric
+    from img2logo.fit.symmetry import is_symmetric
+    from img2logo.images.loading import DownscaleWarning, load_image
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", DownscaleWarning)
@@ -222,9 +222,9 @@ def test_a_photo_over_the_photo_working_size_is_worked_at_it_and_drawn_in_its_ow
 
     import cv2
 
-    from img2logo import contract
     from img2logo.constants import PHOTO_WORK_SIDE
-    from img2logo.loading import DownscaleWarning
+    from img2logo.export import contract
+    from img2logo.images.loading import DownscaleWarning
 
     small = cv2.cvtColor(cv2.imread(str(DATA / "photo-flower.png")), cv2.COLOR_BGR2RGB)  # 512 x 342
     big = cv2.resize(small, (1024, 684), interpolation=cv2.INTER_CUBIC)
@@ -277,8 +277,9 @@ def test_a_clip_art_or_a_drawing_over_the_synthetic_working_size_is_worked_at_it
     import functools
     import warnings
 
-    from img2logo import contract, pipeline
-    from img2logo.loading import DownscaleWarning, LoadedImage
+    from img2logo import pipeline
+    from img2logo.export import contract
+    from img2logo.images.loading import DownscaleWarning, LoadedImage
 
     monkeypatch.setattr(pipeline, "SYNTHETIC_WORK_SIDE", 256)
     measured = []
@@ -316,7 +317,7 @@ def test_a_photo_over_the_synthetic_working_size_is_worked_at_the_photo_size_wit
     import warnings
 
     from img2logo import pipeline
-    from img2logo.loading import DownscaleWarning
+    from img2logo.images.loading import DownscaleWarning
 
     monkeypatch.setattr(pipeline, "SYNTHETIC_WORK_SIDE", 384)  # the cat is 451 x 300
     monkeypatch.setattr(pipeline, "PHOTO_WORK_SIDE", 256)

@@ -15,11 +15,11 @@ from helpers import abstraction_of, golden, svg_arc_center
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from img2logo.arc_extraction import frechet_distance
-from img2logo.circle_fitting import fit_circle
-from img2logo.contract import from_document, to_document
-from img2logo.geometry import TAU, Arc
-from img2logo.svg_path import arc_path
+from img2logo.export.contract import from_document, to_document
+from img2logo.fit.arc_extraction import frechet_distance
+from img2logo.geometry.circle_fitting import fit_circle
+from img2logo.geometry.primitives import TAU, Arc
+from img2logo.geometry.svg_path import arc_path
 
 # Derandomized (the same examples on every run and machine), bounded, and without a deadline:
 # part of make test, never flaky on a slow machine.

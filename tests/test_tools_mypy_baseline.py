@@ -14,16 +14,16 @@ mypy_baseline = importlib.util.module_from_spec(_SPEC)
 _SPEC.loader.exec_module(mypy_baseline)
 
 OUTPUT = """\
-img2logo/edits.py:156: error: Argument 1 to "enumerate" has incompatible type  [arg-type]
-img2logo/edits.py:157: error: Value of type "tuple[int | None, ...] | None" is not indexable  [index]
-img2logo/edits.py:157: note: a note is no error
+img2logo/design/edits.py:156: error: Argument 1 to "enumerate" has incompatible type  [arg-type]
+img2logo/design/edits.py:157: error: Value of type "tuple[int | None, ...] | None" is not indexable  [index]
+img2logo/design/edits.py:157: note: a note is no error
 img2logo/experiments/layout.py:12:5: error: Cannot infer type of lambda  [misc]
 Found 3 errors in 2 files (checked 60 source files)
 """
 
 
 def test_errors_are_counted_per_file_without_notes_or_the_summary():
-    assert mypy_baseline.count_errors(OUTPUT) == {"img2logo/edits.py": 2, "img2logo/experiments/layout.py": 1}
+    assert mypy_baseline.count_errors(OUTPUT) == {"img2logo/design/edits.py": 2, "img2logo/experiments/layout.py": 1}
     assert mypy_baseline.count_errors("Success: no issues found in 60 source files\n") == {}
 
 

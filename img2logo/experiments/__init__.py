@@ -26,7 +26,7 @@ from typing import TYPE_CHECKING, Any
 
 from ..constants import MIN_SEGMENT_LENGTH, RDP_TOLERANCE
 from ..errors import Img2LogoError, InvalidParameterError
-from ..preprocessing import FeatureLines, LoadedImage, extract_feature_lines
+from ..features.preprocessing import FeatureLines, LoadedImage, extract_feature_lines
 from ..segment_graph import SegmentGraph, build_segment_graph
 from .paths import (  # noqa: F401  (re-exported)
     ROOT_ENV,
@@ -44,9 +44,9 @@ from .runner import check_parameters as check_parameters
 if TYPE_CHECKING:
     import pandas as pd
 
-    from ..geometry import Abstraction
+    from ..fit.progressive import Progression
+    from ..geometry.primitives import Abstraction
     from ..pipeline import Result
-    from ..progressive import Progression
 
 
 # --------------------------------------------------------------------------- outputs shown
@@ -156,13 +156,13 @@ def make_legible(fig: Any, *, dpi: float = FIGURE_DPI) -> Any:
 
 
 def save_figure(fig: Any, path: str | os.PathLike[str], *, dpi: float | None = None) -> SavedFigure:
-    """Write ``fig`` with :func:`img2logo.writers.save_figure` and return it for display.
+    """Write ``fig`` with :func:`img2logo.export.writers.save_figure` and return it for display.
 
     The last expression of a notebook cell, it shows the written file inline.
     ``dpi`` None is ``FIGURE_DPI``. The figure's texts are first raised to a
     legible size (:func:`make_legible`).
     """
-    from .. import writers
+    from ..export import writers
 
     d = FIGURE_DPI if dpi is None else dpi
     # A browser shows an SVG's points at 96 / 72 px each, whatever the dpi.
@@ -171,8 +171,8 @@ def save_figure(fig: Any, path: str | os.PathLike[str], *, dpi: float | None = N
 
 
 def save_table(table: Any, path: str | os.PathLike[str]) -> SavedTable:
-    """Write a pandas DataFrame as CSV (:func:`img2logo.writers.write_table`) and return it for display."""
-    from .. import writers
+    """Write a pandas DataFrame as CSV (:func:`img2logo.export.writers.write_table`) and return it for display."""
+    from ..export import writers
 
     return SavedTable(Path(writers.write_table(table, path)), table)
 
@@ -204,7 +204,7 @@ class Run:
     variant : str
         The label of the run's variant (:func:`sweep`), or ``""``.
     settings : mapping (read-only)
-        The keywords of :func:`img2logo.progressive.optimize` (or of
+        The keywords of :func:`img2logo.fit.progressive.optimize` (or of
         :func:`img2logo.abstract`) the run was given, with the swept ones
         (``rdp_tolerance`` too when it was swept).
     seconds : tuple of float
@@ -312,7 +312,7 @@ def sweep(
         call in a process compiles the Fréchet kernel). The runs are
         deterministic: the last one is kept.
     pipeline : bool
-        False: every run is :func:`img2logo.progressive.optimize` on the
+        False: every run is :func:`img2logo.fit.progressive.optimize` on the
         image's segment graph. True: every run is :func:`img2logo.abstract`
         (a photo's arcs kept near its lines as on the command line; the feature
         lines found again for each run).
@@ -336,12 +336,12 @@ def sweep(
     ------
     InvalidParameterError
         ``repeats`` is not a positive integer; a keyword or value the run
-        refuses (:func:`img2logo.progressive.optimize`, :func:`img2logo.abstract`).
+        refuses (:func:`img2logo.fit.progressive.optimize`, :func:`img2logo.abstract`).
     """
     from itertools import product
 
+    from ..fit.progressive import optimize
     from ..pipeline import Result, abstract
-    from ..progressive import optimize
 
     if isinstance(repeats, bool) or not isinstance(repeats, int) or repeats < 1:
         raise InvalidParameterError(f"repeats must be an integer >= 1, got {repeats!r}")
@@ -448,7 +448,7 @@ def preprocessing_table(examples: Iterable[Run]) -> pd.DataFrame:
 
 def plot_preprocessing(examples: Sequence[Run], *, panel_size: float = 3.0) -> Any:
     """One row per example: input | feature lines | segment graph (paper Fig. 4a, 4b)."""
-    from ..plotting import plot_segment_graph
+    from ..export.plotting import plot_segment_graph
     from .layout import panel_grid, show_image
 
     fig, axes = panel_grid(len(examples), 3, panel_size)

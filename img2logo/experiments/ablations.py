@@ -13,11 +13,11 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ..arc_extraction import RedundantIntersection
 from ..constants import TOLERANCE
 from ..errors import InvalidParameterError
-from ..geometry import Abstraction, Arc
-from ..plotting import frame_image, plot_segment_graph
+from ..export.plotting import frame_image, plot_segment_graph
+from ..fit.arc_extraction import RedundantIntersection
+from ..geometry.primitives import Abstraction, Arc
 from ..quality import junction_gaps, level_redundant_intersections
 from ..segment_graph import SegmentGraph
 from . import Run, table
@@ -38,7 +38,7 @@ INTERSECTION_COLOR: str = "#d62728"
 WINDOW_FRAME: dict[str, Any] = {"color": "#555555", "linewidth": 0.8}
 
 #: The variants of Fig. 11 (b)-(e): a label and the switches of
-#: :func:`img2logo.progressive.optimize`. Panel (a) is the segment graph.
+#: :func:`img2logo.fit.progressive.optimize`. Panel (a) is the segment graph.
 CONNECTIVITY_VARIANTS: dict[str, dict[str, Any]] = {
     "(b) with connectivity": {},
     "(c) without connectivity": {"connectivity": False},

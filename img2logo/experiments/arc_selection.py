@@ -14,11 +14,11 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ..arc_extraction import ArcFit, admissible_arcs, extract_arc
 from ..errors import InvalidParameterError
-from ..geometry import Abstraction, Arc, Circle
-from ..plotting import frame_image
-from ..progressive import Progression
+from ..export.plotting import frame_image
+from ..fit.arc_extraction import ArcFit, admissible_arcs, extract_arc
+from ..fit.progressive import Progression
+from ..geometry.primitives import Abstraction, Arc, Circle
 from ..segment_graph import SegmentGraph
 from . import Run, table
 from .ablations import WINDOW_FRAME, arc_chain
@@ -62,7 +62,7 @@ class ArcSelectionComparison:
         The level whose circles and (displaced) junctions are used.
     frechet, sum_of_squares : tuple of ArcFit
         Per arc of the level, each rule's pick among the same candidates
-        (:func:`~img2logo.arc_extraction.extract_arc`), with its Fréchet distance, px.
+        (:func:`~img2logo.fit.arc_extraction.extract_arc`), with its Fréchet distance, px.
     table : pandas.DataFrame
         One row per arc: ``arc``, ``segments``, ``junctions``, ``candidates``
         (admissible arcs: a choice when > 1), ``sweep F``, ``sweep S`` (degrees),
@@ -93,7 +93,7 @@ def compare_arc_selection(abstraction: Abstraction, graph: SegmentGraph, name: s
     its junctions (the level's ``arc_nodes(i)``) in path order (projected on the
     circle for a run without the connectivity constraint, as the optimizer
     does) go to
-    :func:`~img2logo.arc_extraction.extract_arc` with each ``method``.
+    :func:`~img2logo.fit.arc_extraction.extract_arc` with each ``method``.
     """
     import pandas as pd
 

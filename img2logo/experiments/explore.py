@@ -20,8 +20,8 @@ import numpy as np
 
 from ..constants import RDP_TOLERANCE, TOLERANCE
 from ..errors import InvalidParameterError
-from ..geometry import Abstraction
-from ..plotting import plot_abstraction
+from ..export.plotting import plot_abstraction
+from ..geometry.primitives import Abstraction
 from . import table
 from .layout import frame_bounds, panel_grid
 from .paths import data_path, example_images, kit_module, load_example
@@ -126,7 +126,7 @@ class ExplorerSettings:
         ``"auto"``, ``"photo"``, ``"clipart"`` or ``"drawing"``.
     symmetry : str
         ``"none"``, ``"auto"``, ``"vertical"``, ``"horizontal"`` or an angle in
-        degrees: a mirror-symmetric logo (:mod:`img2logo.symmetry`).
+        degrees: a mirror-symmetric logo (:mod:`img2logo.fit.symmetry`).
     """
 
     image: str = "clipart-fish.png"

@@ -8,10 +8,10 @@ from typing import Any
 
 import numpy as np
 
-from ..arrangement import faces
-from ..fills import Fill, fill_auto, fill_gradient, fill_palette
-from ..geometry import Abstraction
-from ..plotting import plot_abstraction
+from ..design.arrangement import faces
+from ..design.fills import Fill, fill_auto, fill_gradient, fill_palette
+from ..export.plotting import plot_abstraction
+from ..geometry.primitives import Abstraction
 from .layout import panel_grid, show_image
 
 #: A designer's palette for the palette panel (fills cycle through it, largest face first).

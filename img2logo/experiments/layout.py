@@ -2,7 +2,7 @@
 
 What the notebooks' figures (:mod:`img2logo.experiments`) are laid out with; the
 library's own drawings (an abstraction, a segment graph, golden circles, the PNG
-writer's) are :mod:`img2logo.plotting`. Every drawing is in the input image's pixel
+writer's) are :mod:`img2logo.export.plotting`. Every drawing is in the input image's pixel
 frame: x to the right, y downwards, the image covering ``[0, width] x [0, height]``
 px; figures are :class:`matplotlib.figure.Figure` (never pyplot's), with constrained
 layout. Line widths are matplotlib points. Matplotlib is imported inside the functions.
@@ -15,13 +15,13 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ..plotting import ARC_COLOR, frame_image
+from ..export.plotting import ARC_COLOR, frame_image
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
-    from ..geometry import Arc
+    from ..geometry.primitives import Arc
     from ..segment_graph import SegmentGraph
 
 __all__ = [

@@ -9,7 +9,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import Img2LogoError
-from ..loading import LoadedImage, load_image
+from ..images.loading import LoadedImage, load_image
 
 #: Environment variable naming the repository root, when it cannot be found.
 ROOT_ENV = "IMG2LOGO_ROOT"

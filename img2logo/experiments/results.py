@@ -13,9 +13,9 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..errors import InvalidParameterError
-from ..geometry import Abstraction
-from ..plotting import frame_image, plot_abstraction, plot_circles, plot_segment_graph
-from ..progressive import Progression
+from ..export.plotting import frame_image, plot_abstraction, plot_circles, plot_segment_graph
+from ..fit.progressive import Progression
+from ..geometry.primitives import Abstraction
 from ..quality import junction_gaps, logo_points
 from . import RUN_COLUMNS, Run, by_image, sweep, table
 from .layout import (
@@ -129,7 +129,7 @@ def plot_arc_fitting(runs: Sequence[Run], *, fraction: float = 0.5, panel_size: 
 # --------------------------------------------------------------------------- Fig. 8
 #: The two stages of golden circle fitting (Fig. 8), as variants of a run without merging.
 # The constrained stage is the paper's Eqn. 13 alone: the tangent joins (beyond the paper,
-# img2logo.tangency) may move a circle to the next rung, and the figure compares equal radii.
+# img2logo.fit.tangency) may move a circle to the next rung, and the figure compares equal radii.
 # Neither splits a simplified group whose arc crosses another (avoid_intersections, beyond the
 # paper's A^0: progressive.split_crossed): the figure compares the same segment groups.
 CIRCLE_FITTING_STAGES: dict[str, dict[str, bool]] = {

@@ -264,7 +264,7 @@ def run_notebook(
     # A run for the record draws no progress bar into the executed notebook (sweep(progress=None)).
     # The kernel inherits the environment: one BLAS/OpenMP thread, as the command runs (cli.THREAD_VARIABLES:
     # the same bytes, without threads spinning beside the next notebook), unless the user set a count.
-    from img2logo.cli import THREAD_VARIABLES
+    from img2logo.app.cli import THREAD_VARIABLES
 
     settings = {PROGRESS_ENV: "0", **{var: os.environ.get(var, "1") for var in THREAD_VARIABLES}}
     previous = {name: os.environ.get(name) for name in settings}

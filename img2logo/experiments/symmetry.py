@@ -1,4 +1,4 @@
-"""Notebook 13: free against symmetric logos (:mod:`img2logo.symmetry`).
+"""Notebook 13: free against symmetric logos (:mod:`img2logo.fit.symmetry`).
 
 :func:`compare` runs every image twice, free and with ``symmetry="auto"``,
 and :func:`comparison_table` / :func:`plot_comparison` show the mirror axis
@@ -20,9 +20,9 @@ from typing import Any
 import numpy as np
 
 from ..errors import Img2LogoError
-from ..loading import load_mask
+from ..export.plotting import plot_abstraction
+from ..images.loading import load_mask
 from ..pipeline import Result, abstract
-from ..plotting import plot_abstraction
 from ..quality import feature_recall, logo_points
 from . import repo_relative
 

@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ..constants import TANGENT_JOIN_ANGLE
-from ..plotting import frame_image, plot_segment_graph
+from ..export.plotting import frame_image, plot_segment_graph
 from ..quality import Joins, joins
 from . import Run, table
 from .layout import draw_arcs, frame_window, mark_window, panel_grid, ring, square_window
@@ -26,7 +26,7 @@ if TYPE_CHECKING:
     import pandas as pd
     from matplotlib.figure import Figure
 
-#: The two variants: a label and the switches of :func:`img2logo.progressive.optimize`.
+#: The two variants: a label and the switches of :func:`img2logo.fit.progressive.optimize`.
 TANGENCY_VARIANTS: dict[str, dict[str, Any]] = {
     "with tangency": {},
     "without tangency (the paper)": {"tangency": False},

@@ -1,0 +1,1 @@
+"""Design exploration (paper Sec. 7): edits of a level, regions and fills."""

@@ -1,0 +1,594 @@
+"""Preprocessing (paper Sec. 4): an image's feature lines, by its kind.
+
+Three kinds of input, as in the paper:
+
+* **line drawing**: binarize, drop small specks, thin to a 1-px skeleton, prune
+  short spurs (here);
+* **clip art**: boundaries between flat-colour regions (:mod:`img2logo.features.clipart`);
+* **real photo**: a flow-based line drawing after Kang et al. [KD09]
+  (:mod:`img2logo.features.photo.lines`).
+
+Loading is :mod:`img2logo.images.loading`; its names are re-exported here.
+
+Arrays are indexed (row, column); points are (x, y) = (column + 0.5, row + 0.5)
+in px, x to the right, y downwards (``contract/README.md``).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from .._validation import check_choice, check_positive, readonly
+from ..constants import (
+    BLANK_IMAGE_RANGE,
+    CLIPART_RIM_RADIUS,
+    DOT_MIN_DIAMETER,
+    DOT_MIN_RADIUS,
+    DRAWING_MAX_STROKE_FRACTION,
+    INK_COLOUR_SPREAD,
+    INK_SHARE,
+    JUNCTION_MERGE_DISTANCE,
+    MIN_SPECK_AREA,
+    PHOTO_MIN_LINE_LENGTH,
+    PHOTO_SPUR_LENGTH,
+    SEAM_CONTRAST,
+    SEAM_LENGTH,
+    SEAM_RIM,
+    SEAM_WIDTH,
+    SPUR_LENGTH,
+    SYNTHETIC_FLAT_FRACTION,
+    SYNTHETIC_WORK_SIDE,
+)
+from ..images import skeleton as _skeleton
+from ..images.loading import DownscaleWarning, LoadedImage, downscale, load_image, load_mask
+from ..images.ndimage import median
+from .clipart import clipart_lines, clipart_regions, label_means
+
+if TYPE_CHECKING:
+    from .photo.lines import edge_tangent_flow, flow_dog
+    from .photo.subject import Subject
+
+# The photo modules (the flow-based lines, the subject's segmentation) load only for a
+# photo: a clip art's or a drawing's run does not import them.
+_PHOTO_NAMES = ("edge_tangent_flow", "flow_dog")
+
+
+def __getattr__(name: str) -> Any:
+    if name in _PHOTO_NAMES:
+        from .photo import lines as photo
+
+        return getattr(photo, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+__all__ = [
+    "KINDS",
+    "DownscaleWarning",
+    "FeatureLines",
+    "LoadedImage",
+    "detect_kind",
+    "edge_tangent_flow",
+    "extract_feature_lines",
+    "flow_dog",
+    "keep_dots",
+    "load_image",
+    "load_mask",
+    "median_stroke_width",
+    "photo_reason",
+]
+
+KINDS = ("photo", "clipart", "drawing")
+
+
+@dataclass(frozen=True, eq=False)
+class FeatureLines:
+    """Feature lines of an image: a 1-px-wide map and how it was made.
+
+    Attributes
+    ----------
+    lines : ndarray of bool, shape (H, W)
+        The 1-px-wide feature-line map.
+    kind : str
+        ``"photo"``, ``"clipart"`` or ``"drawing"``.
+    reason : str
+        Why this kind: ``"given"`` or what :func:`detect_kind` measured.
+    regions : ndarray of int, shape (H, W), or None
+        For clip art, the flat-colour region label of each pixel (0 = background).
+    subject : Subject or None
+        For photos, the part of the image drawn and how it was found
+        (:func:`img2logo.features.photo.subject.find_subject`).
+    stroke_width : float or None
+        For a line drawing, its median stroke width, px: twice the median
+        distance from the ink's skeleton to the paper
+        (:func:`median_stroke_width`); None for the other kinds.
+    """
+
+    lines: np.ndarray
+    kind: str
+    reason: str
+    regions: np.ndarray | None = None
+    subject: Subject | None = None
+    stroke_width: float | None = None
+
+    @property
+    def shape(self) -> tuple[int, int]:
+        return (int(self.lines.shape[0]), int(self.lines.shape[1]))
+
+
+# --------------------------------------------------------------------------- kinds
+def detect_kind(image: object) -> tuple[str, str]:
+    """Guess the kind of an image: ``(kind, reason)``, the reason one line of what was measured.
+
+    * A **photo** has camera noise and texture everywhere: few of its pixels
+      have four neighbours of exactly their colour. A clip art or a drawing is
+      made of flat fills, whose pixels do, even after JPEG compression (whose
+      flat blocks stay exactly flat): an image is synthetic when at least
+      ``SYNTHETIC_FLAT_FRACTION`` of its pixels are such.
+    * A synthetic image is a **line drawing** when, beside its background, it
+      has one colour only (the ink, any colour: its flat regions' colours are
+      within ``INK_COLOUR_SPREAD`` of their mean) drawn in strokes at most
+      ``DRAWING_MAX_STROKE_FRACTION`` of the image's shorter side wide;
+    * otherwise a **clip art**: several flat colours (a grey animal on white is
+      a clip art of greys, not a drawing).
+
+    Measured, as :func:`img2logo.abstract` does, on a copy at most
+    ``SYNTHETIC_WORK_SIDE`` px on its longer side (the size these tests were
+    chosen at: an upscaled drawing's strokes are ramps that read as a second
+    colour at 2048 px), so both tell the same kind.
+    """
+    kind, reason, _ = _detect(downscale(load_image(image), SYNTHETIC_WORK_SIDE))
+    return kind, reason
+
+
+def photo_reason(img: LoadedImage) -> str | None:
+    """Why ``img`` is a photo (:func:`detect_kind`'s first test: camera noise and texture), or None if it is not one.
+
+    Cheap (one pass over the pixels): the pipeline asks it first, since a
+    photo's work is done at ``PHOTO_WORK_SIDE`` (:func:`img2logo.pipeline.abstract`).
+    """
+    return _photo_reason(img.flat_fraction)
+
+
+def _photo_reason(flat: float) -> str | None:
+    if flat >= SYNTHETIC_FLAT_FRACTION:
+        return None
+    # A share under 1% would read "only 0%": said as it is.
+    share = (
+        "no pixel sits"
+        if flat == 0.0
+        else "under 1% of the pixels sit"
+        if flat < 0.01
+        else f"only {flat:.0%} of the pixels sit"
+    )
+    return f"{share} in flat fills (camera noise, texture): a photo"
+
+
+def _detect(img: LoadedImage) -> tuple[str, str, np.ndarray | None]:
+    """(kind, reason, clip-art regions or None): the regions are reused for a clip art."""
+    flat = img.flat_fraction
+    reason = _photo_reason(flat)
+    if reason is not None:
+        return "photo", reason, None
+    regions = clipart_regions(img)
+
+    area, means = label_means(regions, img.lab)
+    # Paper: the background and the regions of its colour it encloses (inside a wheel).
+    paper = np.linalg.norm(means - means[0], axis=1) <= INK_COLOUR_SPREAD
+    if paper.all():
+        return "clipart", "one flat colour: a clip art", regions
+    solid = ~paper
+    if not _one_ink(means[solid], area[solid]):
+        # Only then: a stroke's rim may be what makes a second colour.
+        solid &= ~_rim_regions(regions, img.rgb, means, paper)
+    colours = 1 + len(_distinct(means[solid]))
+    if _one_ink(means[solid], area[solid]):
+        inked = solid[regions]
+        stroke = median_stroke_width(inked)
+        if stroke <= DRAWING_MAX_STROKE_FRACTION * min(regions.shape):
+            return (
+                "drawing",
+                f"one ink colour on a plain background, {inked.mean():.0%} of the pixels, in strokes about "
+                f"{stroke:.0f} px wide: a line drawing",
+                None,
+            )
+        return "clipart", f"one flat colour on a plain background, in shapes {stroke:.0f} px wide: a clip art", regions
+    return "clipart", f"{flat:.0%} of the pixels sit in flat fills of {colours} colours: a clip art", regions
+
+
+def _one_ink(means: np.ndarray, area: np.ndarray) -> bool:
+    """Whether the regions' colours (n, 3) CIELAB all lie within ``INK_COLOUR_SPREAD`` of their mean."""
+    ink = np.average(means, axis=0, weights=area)
+    return bool(np.max(np.linalg.norm(means - ink, axis=1)) <= INK_COLOUR_SPREAD)
+
+
+def _rim_regions(regions: np.ndarray, rgb: np.ndarray, means: np.ndarray, paper: np.ndarray) -> np.ndarray:
+    """Which regions are an anti-aliased rim of the ink, not a colour: (n,) bool.
+
+    A narrow strip of paper between two strokes, or between a stroke and the
+    paper it encloses, is all rim: its pixels blend the ink and the paper and
+    none is far from either, so the clip-art regions make it a region of a grey
+    of its own (a 9 px erosion of ``data/drawing-bird.png`` has one of 691 px
+    at L* 81 between the wing and the body, and is no clip art of 3 colours).
+    The ink is the largest region that is not paper and the regions of its
+    colour (within ``INK_COLOUR_SPREAD``); another region is a rim when
+
+    * its mean colour is within ``INK_COLOUR_SPREAD`` of a blend (in sRGB, as
+      anti-aliasing mixes) of the paper's colour and the ink's;
+    * none of its pixels is farther than ``CLIPART_RIM_RADIUS`` px from its
+      edge (a rim is a few px wide; a grey fill has an inside);
+    * it touches the ink: it is the edge of a stroke, or a gap between two
+      strokes pinched shut (a 13 px erosion of the bird has one of 155 px at
+      L* 48 enclosed by ink).
+
+    A region at least ``INK_SHARE`` of whose pixels are of the ink's colour
+    is ink too, whatever its depth and neighbours: ink with its rims and the
+    paper it encloses, too little to seed a region of its own (a small ring of
+    a 4 px stroke whose hole is 6 px across, mean L* 30). A grey fill or a grey
+    line has none of the ink's colour.
+
+    A grey fill of a clip art is wide; a grey line on the paper touches no ink:
+    both stay colours of their own. As soon as one region is neither ink nor
+    such a rim the image has a second colour and the rest is not looked at.
+    """
+    from ..images.cielab import rgb2lab  # skimage.color.rgb2lab, without importing scipy.linalg
+
+    n = len(means)
+    out = np.zeros(n, dtype=bool)
+    labels = regions.ravel()
+    area = np.bincount(labels, minlength=n).astype(np.float64)
+    inked = np.flatnonzero(~paper)
+    if len(inked) < 2:
+        return out
+    largest = inked[np.argmax(area[inked])]
+    ink = ~paper & (np.linalg.norm(means - means[largest], axis=1) <= INK_COLOUR_SPREAD)
+    others = np.flatnonzero(~paper & ~ink)
+    rgb_means = label_means(regions, rgb)[1]  # np.bincount's sums by channel, divided by the areas
+    ink_rgb = np.average(rgb_means[ink], axis=0, weights=area[ink])
+    paper_rgb = np.average(rgb_means[paper], axis=0, weights=area[paper])
+    t = np.linspace(0.0, 1.0, 65)
+    blends = rgb2lab((paper_rgb[None] + t[:, None] * (ink_rgb - paper_rgb)[None])[:, None, :])[:, 0, :]
+    if any(np.min(np.linalg.norm(blends - means[r], axis=1)) > INK_COLOUR_SPREAD for r in others):
+        return out  # a colour of its own: no rim makes this one ink
+    import cv2
+
+    slices = _skeleton.bounding_slices(regions + 1)
+    eight = np.ones((3, 3), dtype=np.uint8)
+    ink_lab = rgb2lab(ink_rgb[None, None, :])[0, 0]
+    for r in others:
+        box = slices[r]
+        if box is None:  # no pixel: never, the labels are packed
+            continue
+        sl = tuple(slice(max(0, s.start - 1), s.stop + 1) for s in box)
+        own = regions[sl] == r
+        if np.mean(np.linalg.norm(rgb2lab(rgb[sl][own]) - ink_lab, axis=-1) <= INK_COLOUR_SPREAD) >= INK_SHARE:
+            out[r] = True  # ink with its rims and the paper it encloses (a small ring), not a grey
+            continue
+        if _skeleton.distance_to_background(np.pad(own, 1)).max() > CLIPART_RIM_RADIUS + 0.5:
+            return out
+        if not ink[regions[sl][(cv2.dilate(own.view(np.uint8), eight) > 0) & ~own]].any():
+            return out
+        out[r] = True
+    return out
+
+
+def _distinct(colours: np.ndarray) -> list[np.ndarray]:
+    """Colours (N, 3) CIELAB, clustered greedily at ``INK_COLOUR_SPREAD``: one per visible colour."""
+    out: list[np.ndarray] = []
+    for c in colours:
+        if all(np.linalg.norm(c - o) > INK_COLOUR_SPREAD for o in out):
+            out.append(c)
+    return out
+
+
+def median_stroke_width(ink: np.ndarray) -> float:
+    """The typical width of the strokes of ``ink`` (H, W) bool, px; 0 without ink.
+
+    Twice the median, over the ink's skeleton (its medial axis), of the distance
+    to the nearest pixel that is not ink: a stroke w px wide has its axis w / 2
+    from both edges (to within half a pixel).
+    """
+    return _median_stroke_width(ink, _distance(ink))
+
+
+def _median_stroke_width(ink: np.ndarray, dist: np.ndarray) -> float:
+    """:func:`median_stroke_width` of ``ink`` whose distance to the paper ``dist`` (:func:`_distance`) is known."""
+    skel = _skeleton.skeletonize(ink)
+    return float(2.0 * median(dist[skel])) if skel.any() else 0.0
+
+
+# --------------------------------------------------------------------------- feature lines
+def extract_feature_lines(
+    image: object,
+    kind: str = "auto",
+    *,
+    foreground: object = "auto",
+    subject: object = None,
+    spur_length: float | None = None,
+    min_line_length: float | None = None,
+) -> FeatureLines:
+    """Extract the object's feature lines as a 1-px-wide map (paper Sec. 4).
+
+    Parameters
+    ----------
+    image : path, ndarray or LoadedImage
+        The input, read by :func:`load_image`.
+    kind : {"auto", "photo", "clipart", "drawing"}
+        The kind of input; ``"auto"`` chooses with :func:`detect_kind` and says
+        why in the result's ``reason``.
+    foreground : {"auto", "none", "grabcut"}, path or ndarray of bool, shape (H, W), optional
+        Photos only: the subject whose outline and inner lines are drawn
+        (:func:`img2logo.features.photo.subject.find_subject`): found automatically (default;
+        an image with transparency uses its alpha), the whole image, GrabCut
+        kept whatever it finds, or a mask (white = object). None is ``"auto"``.
+    subject : (x, y, w, h) or "X,Y,W,H", optional
+        Photos only: a rectangle around the object, px of the input image (before
+        any downscale), that seeds GrabCut (:func:`img2logo.features.photo.subject.find_subject`).
+    spur_length : float, optional
+        Side spurs of the skeleton shorter than this are pruned, px (default
+        ``SPUR_LENGTH``; photos ``PHOTO_SPUR_LENGTH``).
+    min_line_length : float, optional
+        Isolated lines shorter than this are dropped, px (default:
+        ``spur_length`` for drawings and clip art, a longer bound for photos,
+        whose short lines are mostly texture).
+
+    Returns
+    -------
+    FeatureLines
+    """
+    img = load_image(image)
+    kind = check_choice(kind, "kind", ("auto", *KINDS))
+    if spur_length is not None:
+        spur_length = check_positive(spur_length, "spur_length", allow_zero=True)
+    regions = None
+    if kind == "auto":
+        kind, reason, regions = _detect(img)
+    else:
+        reason = "given"
+    found = dots = None
+    if spur_length is None:
+        spur_length = PHOTO_SPUR_LENGTH if kind == "photo" else SPUR_LENGTH
+    radius = stroke = None
+    if kind == "drawing":
+        ink = _drawing_lines(img)
+        radius = _half_width(ink)
+        axis = _skeleton.skeletonize(ink)
+        stroke = float(2.0 * median(radius[axis])) if axis.any() else 0.0
+        raw = _skeleton.join_line_ends(axis)
+        min_len = spur_length if min_line_length is None else min_line_length
+    elif kind == "clipart":
+        regions = clipart_regions(img) if regions is None else regions
+        raw = _join(clipart_lines(regions))
+        min_len = spur_length if min_line_length is None else min_line_length
+    else:
+        from .photo.lines import line_maps, photo_feature_lines, start_photo_line_maps, subject_dots, subject_pupils
+        from .photo.subject import find_subject
+
+        found = find_subject(img, foreground, subject, beside=start_photo_line_maps)  # the line maps beside the cuts
+        dots = subject_dots(img, found)  # the blob dots, while the line maps may still be under way
+        maps = line_maps(img)
+        dots = subject_pupils(img, found, maps, dots)  # and the pupils in the lines' closed loops
+        raw = photo_feature_lines(img, found, dots, maps)
+        min_len = PHOTO_MIN_LINE_LENGTH if min_line_length is None else min_line_length
+    min_len = check_positive(min_len, "min_line_length", allow_zero=True)
+    lines = _clean_skeleton(raw, spur_length=spur_length, min_length=min_len, radius=radius)
+    if dots is not None and dots.count:  # an eye's outline is shorter than a photo's shortest line
+        from .photo.lines import dot_lines
+
+        lines |= dot_lines(raw, dots)
+    if found is not None and found.faces:  # a face's eyes and mouth are shorter than a photo's shortest line
+        from .photo.lines import face_line_length, face_region
+
+        short = face_line_length(found.faces)
+        near_face = face_region(raw.shape, found.faces)
+        lines |= _clean_skeleton(raw & near_face, spur_length=min(spur_length, short / 2), min_length=short)
+    if kind == "drawing":
+        lines = keep_dots(lines, ink, stroke)
+    return FeatureLines(
+        readonly(lines), kind, reason, None if regions is None else readonly(regions), found, stroke_width=stroke
+    )
+
+
+def keep_dots(lines: np.ndarray, ink: np.ndarray, stroke_width: float) -> np.ndarray:
+    """Give every ink part left without a feature line a closed line at its centre: (H, W) bool.
+
+    A filled dot (an animal's eye) thins to a point or a stub, and a small ring
+    to a loop shorter than the length filters keep: both would vanish from the
+    logo. An 8-connected part of ``ink`` with no pixel of ``lines`` and a
+    diameter (that of the disc of its area) of at least ``DOT_MIN_DIAMETER``
+    (the speck filter's bound: smaller ink is noise) gets a 1-px circle at its
+    centroid, of the radius whose stroke covers it: (d - ``stroke_width``) / 2,
+    at least ``DOT_MIN_RADIUS``. The optimization fits it with one full golden
+    circle.
+
+    Parameters
+    ----------
+    lines : ndarray of bool, shape (H, W)
+        The cleaned feature lines.
+    ink : ndarray of bool, shape (H, W)
+        The drawing's ink.
+    stroke_width : float
+        The drawing's median stroke width, px.
+    """
+    labels = _skeleton.label(ink, connectivity=2)
+    n = int(labels.max())
+    if n == 0:
+        return lines
+    lined = np.bincount(labels[lines], minlength=n + 1) > 0
+    area = np.bincount(labels.ravel(), minlength=n + 1)
+    diameter = 2.0 * np.sqrt(area / np.pi)
+    bare = [k for k in range(1, n + 1) if not lined[k] and diameter[k] >= DOT_MIN_DIAMETER]
+    if not bare:
+        return lines
+    from skimage.draw import circle_perimeter  # only for a dot (skimage.draw imports scipy)
+
+    out = lines.copy()
+    # scipy.ndimage.center_of_mass(ink, labels, bare): the same sums, by label.
+    rows, cols = np.indices(ink.shape, dtype=np.float64)
+    mass = np.bincount(labels.ravel(), weights=ink.ravel())[bare]
+    centres = zip(
+        np.bincount(labels.ravel(), weights=(ink * rows).ravel())[bare] / mass,
+        np.bincount(labels.ravel(), weights=(ink * cols).ravel())[bare] / mass,
+        strict=True,
+    )
+    for k, (r, c) in zip(bare, centres, strict=True):
+        radius = max(DOT_MIN_RADIUS, (diameter[k] - stroke_width) / 2.0)
+        rr, cc = circle_perimeter(round(r), round(c), round(radius), shape=out.shape)
+        out[rr, cc] = True
+    return out
+
+
+def _join(raw: np.ndarray) -> np.ndarray:
+    """Thin a drawing's ink or a clip art's lines and join the ends that stop short of a line.
+
+    A stroke that ends a few px before another (a clip art's whisker by its
+    face's outline, a drawing's line that stops at a gap) would give an arc end
+    0.75-6 px from another arc: a near-miss gap. :func:`_skeleton.join_line_ends`
+    links it (the same rule as for photos).
+    """
+    return _skeleton.join_line_ends(_skeleton.skeletonize(raw))
+
+
+def _clean_skeleton(
+    mask: np.ndarray, *, spur_length: float, min_length: float, radius: np.ndarray | None = None
+) -> np.ndarray:
+    """Thin ``mask`` to 1 px and prune spurs, specks and tiny loops.
+
+    ``radius`` (H, W), px: a drawing's stroke half width, which lengthens the
+    spurs pruned at a junction by the stroke's half width there
+    (:func:`_skeleton.prune`).
+    """
+    skel = _skeleton.skeletonize(mask)
+    graph = _skeleton.trace(skel)
+    _skeleton.prune(
+        graph,
+        spur_length=spur_length,
+        min_length=min_length,
+        junction_merge=JUNCTION_MERGE_DISTANCE,
+        radius=radius,
+    )
+    return _skeleton.rasterize(graph, skel.shape)
+
+
+def _half_width(ink: np.ndarray) -> np.ndarray:
+    """The half width of a drawing's strokes at every pixel, px: the ink's distance to the paper.
+
+    Measured on the skeleton, where it is the radius of the stroke's inscribed
+    disc; 0 on the paper.
+    """
+    return _distance(ink).astype(np.float32)
+
+
+def _distance(mask: np.ndarray) -> np.ndarray:
+    """``scipy.ndimage.distance_transform_edt(mask)``, px, float64 (H, W), by :func:`_skeleton.distance_to_background`
+    (the same bits) unless ``mask`` has no background pixel."""
+    if np.all(mask):
+        from scipy import ndimage
+
+        return np.asarray(ndimage.distance_transform_edt(mask), dtype=np.float64)
+    return _skeleton.distance_to_background(mask)
+
+
+def _paper_seams(gray: np.ndarray, ink: np.ndarray) -> np.ndarray:
+    """The paper pinched between two strokes that run side by side: (H, W) bool.
+
+    Where two thick strokes nearly touch, the paper between them is a light line
+    only a pixel or two wide whose anti-aliased grey falls below the ink
+    threshold (a 13 px erosion of ``data/drawing-bird.png`` closes the gap
+    between its wing and its body so, L* 48): the strokes would be one blob,
+    thinned to one centre line between the two. Such a line is a light ridge of
+    ``gray`` (ink dark, 0-1): a white top-hat (Soille, Morphological Image
+    Analysis, 2003, Sec. 4.4) with a disc ``SEAM_WIDTH`` px across, above
+    ``SEAM_CONTRAST`` of the paper-ink contrast, within the ink. A stroke's edge
+    against open paper is no ridge, so nothing else changes.
+    """
+    import cv2
+
+    if not ink.any() or ink.all():
+        return np.zeros(ink.shape, dtype=bool)
+    g = np.asarray(gray, dtype=np.float32)
+    contrast = float(median(g[~ink]) - median(g[ink]))
+    disc = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (SEAM_WIDTH, SEAM_WIDTH))
+    ridge = cv2.morphologyEx(g, cv2.MORPH_TOPHAT, disc) > SEAM_CONTRAST * contrast
+    # Pinched paper lies inside the ink; the tip of a paper wedge where two strokes meet at an
+    # acute angle is a ridge too, but next to open paper: the junction stays where it is.
+    depth = _skeleton.distance_to_background(ink)  # _distance(ink): the ink has paper here
+    ridge &= depth > SEAM_WIDTH / 2
+    if not ridge.any():
+        return ridge
+    # Two strokes that only touch (an ear's base, a tail on a body) leave a ridge about as long
+    # as they are wide, where they are one in the drawing too; side by side, the pinch runs
+    # along them: a seam is at least SEAM_LENGTH stroke widths long.
+    parts = _skeleton.label(ridge, connectivity=2)
+    n = int(parts.max())
+    long = np.bincount(parts.ravel(), minlength=n + 1) >= SEAM_LENGTH * _median_stroke_width(ink, depth)
+    long[0] = False
+    ridge = long[parts].astype(np.uint8)
+    # A ridge 1 px wide runs diagonally in steps that 8-connected ink crosses: widened by the
+    # light pixels beside it (the strokes' rims), never into the ink itself.
+    light = g > median(g[ink]) + SEAM_RIM * contrast
+    return ink & light & (cv2.dilate(ridge, cv2.getStructuringElement(cv2.MORPH_CROSS, (3, 3))) > 0)
+
+
+def _drawing_lines(img: LoadedImage) -> np.ndarray:
+    """Ink of a line drawing: Otsu threshold, specks removed, holes of 1-2 px filled."""
+    gray = gaussian_blur(img.gray, 1.0)  # smooths the stroke edges: fewer spurs
+    if np.ptp(gray) < BLANK_IMAGE_RANGE:
+        return np.zeros(gray.shape, dtype=bool)
+    ink = gray < otsu_threshold(gray)
+    dark = ink.mean() <= 0.5
+    if not dark:  # light strokes on a dark ground
+        ink = ~ink
+    ink &= ~_paper_seams(img.gray if dark else 1.0 - img.gray, ink)
+    ink = _without_small_parts(ink, MIN_SPECK_AREA - 1)
+    return ~_without_small_parts(~ink, MIN_SPECK_AREA // 4)
+
+
+def gaussian_blur(image: np.ndarray, sigma: float) -> np.ndarray:
+    """``scipy.ndimage.gaussian_filter(image, sigma)`` of a 2-D image, to the bit, float64 (H, W).
+
+    :func:`img2logo.images.ndimage.gaussian` on the image as float64: scipy's kernel
+    (``truncate`` 4 standard deviations, mode ``reflect``) and its compiled 1-D
+    correlations, rows then columns, without importing ``scipy.ndimage``.
+    """
+    from ..images.ndimage import gaussian
+
+    return gaussian(np.asarray(image, dtype=np.float64), sigma)
+
+
+def otsu_threshold(gray: np.ndarray) -> float:
+    """Otsu's threshold of a grey image (Otsu 1979), as ``skimage.filters.threshold_otsu(gray)`` computes it.
+
+    The maximum of the between-class variance over a 256-bin histogram of the
+    image's range; the threshold is that bin's centre. Written out because
+    ``skimage.filters`` imports ``scipy.ndimage`` (about 0.1 s of CPU a run);
+    the same steps in the same float types give the same threshold.
+    """
+    values = np.asarray(gray).reshape(-1)
+    if np.all(values == values[0]):
+        return float(values[0])
+    hist, edges = np.histogram(values, bins=256)
+    centres = (edges[:-1] + edges[1:]) / 2.0
+    counts = hist.astype(np.float32)
+    below, above = np.cumsum(counts), np.cumsum(counts[::-1])[::-1]
+    mean_below = np.cumsum(counts * centres) / below
+    mean_above = (np.cumsum((counts * centres)[::-1]) / above[::-1])[::-1]
+    between = below[:-1] * above[1:] * (mean_below[:-1] - mean_above[1:]) ** 2
+    return float(centres[np.argmax(between)])
+
+
+def _without_small_parts(mask: np.ndarray, max_size: int) -> np.ndarray:
+    """``mask`` less its 4-connected parts of at most ``max_size`` px, bool (H, W).
+
+    What ``skimage.morphology.remove_small_objects(mask, max_size=max_size)``
+    does (and, on ``~mask``, ``remove_small_holes``), by OpenCV's component
+    labelling: importing ``skimage.morphology`` costs about 0.1 s of CPU a run.
+    """
+    import cv2
+
+    _, parts, stats, _ = cv2.connectedComponentsWithStats(mask.astype(np.uint8), connectivity=4)
+    keep = stats[:, cv2.CC_STAT_AREA] > max_size
+    keep[0] = False  # the background
+    return keep[parts]

@@ -1,0 +1,343 @@
+"""Progressive optimization (paper Sec. 5.2-5.4): a sequence of golden ratio abstractions.
+
+Starting from the segment graph L = {S, J}, every segment gets a golden circle
+(Sec. 5.3: a free fit, its radius snapped to the ladder by Eqn. 12, then the
+connectivity-constrained fit of Eqn. 13 moving centres and junctions) and an
+arc (the candidate with the smallest discrete Fréchet distance to its pixels).
+Then neighbouring segments are merged one pair at a time, the pair with the
+lowest merge error first, until the similarity error E^s (Eqn. 3) would exceed
+the tolerance T. Every iteration is kept: level t is the abstraction A^t.
+
+Two accelerations of Sec. 5.4 are switches: *line-segment simplification*
+(before the loop, neighbours that one arc fits with a mean error below 1 px are
+merged) and *localized fitting* (a merge refits only the new circle and its
+neighbours, the junctions it does not touch held fixed; when that window does
+not converge the global problem is solved instead). So are the ablations of
+Sec. 6.2: the connectivity constraint (Fig. 11c), constraints only at the ends
+of merged segments (Fig. 11d), no merging (Fig. 11e) and redundant-intersection
+avoidance (Fig. 12).
+
+The *merge error* of a candidate pair is the E^s that the abstraction would
+have after merging it, computed from the exact local refit. All candidates are
+compared on that one scale (|A| and |J'| of the state after the merge), which
+the changing weights 1/|A| and 1/|J'| would otherwise distort. A candidate's
+score is cached with the set of arcs its refit touched, and recomputed from
+the current state whenever one of them changed.
+
+This module holds the entry point :func:`optimize` and the initial fit; the
+optimizer's state (groups, golden circles, arcs, the constrained fit of a
+window, the levels) is :class:`img2logo.fit.fit_state.FitState`. The stages it
+runs are their own modules: the segment groups and the
+line-segment simplification (:mod:`img2logo.fit.simplification`), the recovery of
+an initial fit that fails (:mod:`img2logo.fit.recovery`), and the merge
+candidates, their evaluation and the loop (:mod:`img2logo.fit.merging`).
+
+Coordinates: px, x right, y down (``contract/README.md``).
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from ..errors import InvalidParameterError
+from ..geometry.golden_ladder import FibonacciLadder, Ladder, make_ladder
+from ..geometry.primitives import Abstraction, polyline_length
+from ..options import Options
+from ..segment_graph import SegmentGraph
+from .fit_state import AxisConstraints, FitState, FreeCircles, Seed
+from .merging import merge_loop
+from .recovery import check_reach, check_span, recover
+from .simplification import Group, hold_line
+from .simplification import simplify as simplify_groups
+from .tangency import snapshot, tangent_level
+
+#: Signature of a progress callback: (level t, number of arcs, E^s in px).
+ProgressCallback = Callable[[int, int, float], None]
+
+
+# --------------------------------------------------------------------------- results
+@dataclass(frozen=True, eq=False)
+class Progression:
+    """The output of :func:`optimize`: every level A^0 ... A^final.
+
+    Attributes
+    ----------
+    levels : tuple of Abstraction
+        ``levels[t]`` is A^t; each has fewer arcs than the one before. The last
+        one is the result: its E^s is within the tolerance (unless A^0 already
+        exceeds it, then A^0 is the only level).
+    bias : float
+        The ladder bias sigma used (Eqn. 14 from the longest segment, or given);
+        0.0 on the Fibonacci ladder (its unit is ``ladder.unit``).
+    simplified : tuple of tuple of int
+        The segments of the graph grouped by the line-segment simplification
+        (Sec. 5.4), in the order of A^0's arcs.
+    stopped_because : str
+        Why the loop stopped: ``"tolerance"``, ``"no mergeable pair"`` or ``"merging off"``.
+    stats : dict of str to int
+        The counts of :class:`~img2logo.fit.fit_state.Stats` by name, in its order:
+        merge candidates evaluated, local windows that failed, global solves,
+        candidates rejected (hopeless, redundant intersections, an arc too far,
+        a crossing), released junctions and tangencies, tangent joins.
+    timings : dict
+        Seconds spent in simplification, the initial fit, the loop and the tangent joins' refit.
+    ladder : GoldenLadder or FibonacciLadder or None
+        The ladder the radii were snapped to.
+    """
+
+    levels: tuple[Abstraction, ...]
+    bias: float
+    simplified: tuple[tuple[int, ...], ...]
+    stopped_because: str
+    stats: dict[str, int] = field(default_factory=dict)
+    timings: dict[str, float] = field(default_factory=dict)
+    ladder: Ladder | None = None
+
+    @property
+    def final(self) -> Abstraction:
+        """The result: the last level, the simplest within the tolerance."""
+        return self.levels[-1]
+
+    @property
+    def arc_counts(self) -> list[int]:
+        """|A^t| for every level t."""
+        return [len(a.arcs) for a in self.levels]
+
+    @property
+    def similarities(self) -> list[float]:
+        """E^s(A^t) for every level t, px."""
+        return [a.similarity for a in self.levels]
+
+
+# --------------------------------------------------------------------------- A^0
+def initial_fit(state: FitState) -> None:
+    """A^0: golden circles for every group of ``state``, fitted jointly (Sec. 5.3).
+
+    When the joint fit fails, :func:`~img2logo.fit.recovery.recover` fits each
+    connected part alone, releasing junctions as needed. With
+    redundant-intersection avoidance (Fig. 12), a group of several segments
+    (the line-segment simplification's, Sec. 5.4) whose arc meets another arc
+    at a redundant point is split into its segments again and A^0 fitted anew
+    (:func:`split_crossed`), until no simplified group is in a redundant intersection.
+    """
+    _fit_all(state)
+    while state.options.avoid_intersections and split_crossed(state):
+        _fit_all(state)
+
+
+def _fit_all(state: FitState) -> None:
+    """The joint fit of every group of ``state`` (or the recovery), into its fits and displacements."""
+    # Longest groups first: a straight group is a line unless a line already
+    # holds one of its junctions (see FitState.golden).
+    seeds: dict[int, Seed] = {}
+    held: dict[int, list[np.ndarray]] = {}
+    for gid in sorted(state.groups, key=lambda g: -polyline_length(state.groups[g].points)):
+        seeds[gid] = state.golden(state.groups[gid], held=held)
+        if seeds[gid].k is None:
+            hold_line(held, state.groups[gid], state.constrained_nodes(state.groups[gid]))
+    check_reach(state, seeds)
+    node_groups = state.node_groups()
+    out = state.solve_whole(
+        dict(state.groups), seeds, node_groups, n_groups_total=len(state.groups), n_junctions_total=len(node_groups)
+    )
+    if out is None:
+        out = recover(state, seeds)
+    fits, disp = out
+    state.fits = fits
+    for n, d in disp.items():
+        state.disp[n] = d
+
+
+def split_crossed(state: FitState) -> int:
+    """Split the fitted groups of several segments that are in a redundant intersection; how many were split.
+
+    The line-segment simplification (Sec. 5.4) merges neighbours that one
+    golden circle fits within ``SIMPLIFICATION_ERROR``, before any constrained
+    fit: an acceleration, standing for merges the loop would make first. But
+    the loop refuses a merge that leaves a redundant intersection (Sec. 5.2,
+    Fig. 12), and the simplification cannot see one: the arc through the
+    group's displaced end junctions can leave its pixels where they turn
+    sharply at a junction and cross the arc beside them (scikit-image's coffee
+    cup: a hairpin where the saucer's rim meets the spoon, a 20 px circle over
+    three segments bulging 3 px over the rim's arc). Such a group goes back to
+    its segments, one group each as before the simplification, and the loop
+    decides on their merges with its rule. The state is left with the groups
+    (all of them re-added in the order of their first segment, as
+    :func:`optimize` adds them) and without fits, for the fit of A^0 again;
+    the displacements are reset. Counted in ``stats.split_groups``.
+    """
+    crossed = {g for pair in state.redundant_pairs() for g in pair if len(state.groups[g].segments) > 1}
+    if not crossed:
+        return 0
+    graph = state.graph
+    groups = []
+    for gid, group in state.groups.items():
+        if gid not in crossed:
+            groups.append(group)
+            continue
+        for s in group.segments:
+            groups.append(Group((s,), (int(graph.ends[s][0]), int(graph.ends[s][1])), graph.segments[s], group.locked))
+    state.groups.clear()
+    state.fits = {}
+    state.disp[:] = 0.0
+    state.invalidate()
+    for g in sorted(groups, key=lambda g: min(g.segments)):
+        state.add_group(g)
+    state.stats.split_groups += len(crossed)
+    return len(crossed)
+
+
+# --------------------------------------------------------------------------- the entry point
+def optimize(
+    graph: SegmentGraph,
+    options: Options | None = None,
+    *,
+    lock_mask: np.ndarray | None = None,
+    progress: ProgressCallback | None = None,
+    params: Mapping[str, Any] | None = None,
+    symmetry: AxisConstraints | None = None,
+    **settings: Any,
+) -> Progression:
+    """Run the progressive optimization of Sec. 5.2 on a segment graph.
+
+    Parameters
+    ----------
+    graph : SegmentGraph
+        The line-segment graph L = {S, J}.
+    options : Options, optional
+        The settings and switches (:class:`~img2logo.options.Options`: the
+        tolerance T, the ladder, the ablations of Sec. 6, ...); default the
+        defaults. Its feature-line settings (``kind``, ``rdp_tolerance``, ...)
+        are not used here: the graph is made.
+    lock_mask : ndarray of bool, shape (H, W), optional
+        Segments mostly inside it are never merged (Sec. 7, Fig. 16).
+    progress : callable, optional
+        Called as ``progress(t, n_arcs, similarity)`` after every level the merge
+        loop makes (A^0 first), then, when the tangent joins were refitted
+        (``tangency``), once more with the result's final level: its t may be
+        smaller than the last reported (the later levels are dropped) and its
+        arcs and E^s are those after the refit. The last call is always the
+        result's ``final``.
+    params : mapping, optional
+        Extra entries recorded in every level's ``params``.
+    symmetry : img2logo.fit.symmetry.HalfAxis, optional
+        For a symmetric run (:func:`img2logo.fit.symmetry.optimize_symmetric`): the
+        graph is one half of a mirror-symmetric drawing in a frame whose axis is
+        the vertical line ``symmetry.x``; junctions ``symmetry.nodes`` stay on
+        it, circles ending square to it are centred on it, and no arc runs on
+        through it (Eqn. 13 with the symmetry constraints).
+    **settings
+        Fields of :class:`~img2logo.options.Options` (``tolerance=7.0``,
+        ``merging=False``, ...), replacing those of ``options``.
+
+    Returns
+    -------
+    Progression
+        Every level records :meth:`Options.record` in its ``params`` (with
+        ``locked_segments``, ``params``, and the ``bias``, or Fibonacci ``unit``,
+        used), and carries its ladder: phi with the bias of Eqn. 14 (or the one
+        given), or the Fibonacci grid with its unit (bias 0.0).
+
+    Raises
+    ------
+    InvalidParameterError
+        On an unknown setting or a value out of range (before any work), an
+        empty graph, or a lock mask of the wrong shape.
+    """
+    opts = Options.from_keywords(settings, base=options) if settings or options is None else options
+    if not isinstance(opts, Options):
+        raise InvalidParameterError(f"options must be an Options value, got {type(opts).__name__}")
+    if not isinstance(graph, SegmentGraph):
+        raise InvalidParameterError(f"graph must be a SegmentGraph, got {type(graph).__name__}")
+    if graph.n_segments == 0:
+        raise InvalidParameterError("the segment graph has no segments: nothing to abstract (no feature lines found)")
+    locked = _locked_segments(graph, lock_mask)
+    record = {**opts.record(), "locked_segments": int(locked.sum()), **(params or {})}
+    ladder, bias, unit, simplify = opts.ladder, opts.bias, opts.unit, opts.simplify
+
+    circles = FreeCircles(symmetry)
+    axis_nodes = symmetry.nodes if symmetry is not None else frozenset()
+    timings: dict[str, float] = {}
+    start = time.perf_counter()
+    groups = [
+        Group((i,), tuple(int(n) for n in graph.ends[i]), seg, bool(locked[i])) for i, seg in enumerate(graph.segments)
+    ]
+    # The bias comes from the longest segment after simplification (Eqn. 14), by
+    # free circles as in the paper. The simplification that the loop starts
+    # from then asks for a *golden* arc within 1 px: a free fit within 1 px can
+    # be far off once its radius is snapped up the ladder (by up to phi). The
+    # Fibonacci ladder's unit comes from the same radius (unit_from_radius).
+    longest = None
+    if (unit if ladder == "fibonacci" else bias) is None:
+        probe = simplify_groups(groups, circles.error, graph.valence, axis_nodes) if simplify else groups
+        longest = circles.circle(max(probe, key=lambda g: polyline_length(g.points)))[1]
+    golden = make_ladder(ladder, longest, bias=bias, unit=unit, exponents=opts.exponents, rounding=opts.rounding)
+    check_span(golden, graph.width, graph.height)
+    state = FitState(graph, opts, golden, symmetry, circles=circles)
+    if simplify:
+        groups = simplify_groups(groups, state.golden_error, graph.valence, axis_nodes)
+    for g in sorted(groups, key=lambda g: min(g.segments)):
+        state.add_group(g)
+    timings["simplification"] = time.perf_counter() - start
+
+    start = time.perf_counter()
+    initial_fit(state)
+    record["bias"] = float(golden.bias)
+    if isinstance(golden, FibonacciLadder):
+        record["unit"] = float(golden.unit)
+    levels = [state.abstraction(0, record)]
+    simplified = tuple(lv for lv in levels[0].arc_segments)
+    timings["initial_fit"] = time.perf_counter() - start
+    if progress:
+        progress(0, len(levels[0].arcs), levels[0].similarity)
+
+    history = [snapshot(state)] if state.smooth else []
+
+    def add_level(state: FitState) -> None:
+        """A merge was made: the state is level A^t, t = len(levels)."""
+        level = state.abstraction(len(levels), record)
+        levels.append(level)
+        if state.smooth:
+            history.append(snapshot(state))
+        if progress:
+            progress(level.level, len(level.arcs), level.similarity)
+
+    start = time.perf_counter()
+    stopped = "merging off"
+    if opts.merging:
+        stopped = merge_loop(state, opts.tolerance, add_level)
+    timings["loop"] = time.perf_counter() - start
+    start = time.perf_counter()
+    if state.smooth:
+        # The result, its circles touching at the smooth joins (beyond the paper); it may be
+        # a level before the loop's last, whose shorter arcs leave room for more tangencies.
+        back = tangent_level(state, opts.tolerance, history)
+        del levels[len(levels) - back :]
+        levels[-1] = state.abstraction(levels[-1].level, record)
+        if progress:  # the result: an earlier t than the last reported when levels were dropped
+            progress(levels[-1].level, len(levels[-1].arcs), levels[-1].similarity)
+    timings["tangency"] = time.perf_counter() - start
+    return Progression(tuple(levels), float(golden.bias), simplified, stopped, state.stats.as_dict(), timings, golden)
+
+
+def _locked_segments(graph: SegmentGraph, lock_mask: np.ndarray | None) -> np.ndarray:
+    """Segments with most of their points inside ``lock_mask`` (Sec. 7, Fig. 16)."""
+    if lock_mask is None:
+        return np.zeros(graph.n_segments, dtype=bool)
+    mask = np.asarray(lock_mask)
+    if mask.shape != (graph.height, graph.width):
+        raise InvalidParameterError(
+            f"lock_mask must have the image's shape {(graph.height, graph.width)}, got {mask.shape}"
+        )
+    mask = mask.astype(bool)
+    out = np.zeros(graph.n_segments, dtype=bool)
+    for i, seg in enumerate(graph.segments):
+        cols = np.clip((seg[:, 0] - 0.5).round().astype(int), 0, graph.width - 1)
+        rows = np.clip((seg[:, 1] - 0.5).round().astype(int), 0, graph.height - 1)
+        out[i] = mask[rows, cols].mean() > 0.5
+    return out

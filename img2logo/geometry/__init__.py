@@ -1,0 +1,1 @@
+"""Geometry values: circles, arcs, the abstraction, the golden ladder, the mirror axis, SVG path data, circle fits."""

@@ -1,0 +1,1 @@
+"""Images in: loading and decoding, colour (CIELAB), pixel operations (labels, distances, thinning)."""

@@ -1,0 +1,1 @@
+"""The designer's studio: a Voila page over the library (make studio)."""

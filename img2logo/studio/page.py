@@ -1,0 +1,641 @@
+"""The studio's page: ipywidgets and ipycanvas around a :class:`~.studio.Studio` (``make studio``, Voila).
+
+:class:`StudioPage` draws the logo shown on an :class:`ipycanvas.MultiCanvas`
+(vector arcs, drawn by the browser's canvas: a level or an edit redraws without
+rendering a PNG) over the faded input, and takes the mouse on it: a click selects
+an arc, a drag paints or erases the lock mask or draws the subject rectangle,
+by the tool chosen. Every control calls one method of the :class:`~.studio.Studio`
+and then redraws what changed; its one-line message is the page's status line.
+The downloads are ``<a download>`` anchors carrying the files as ``data:`` URLs
+(they work in Voila and in JupyterLab, with no JavaScript of ours), refreshed
+after every change.
+
+The canvas has twice the pixels of its size on screen (crisp on high-density
+screens); ipycanvas gives the mouse in canvas pixels.
+"""
+
+from __future__ import annotations
+
+import base64
+import html
+from typing import Any
+
+import numpy as np
+
+from ..constants import IMAGE_FADE
+from ..errors import Img2LogoError
+from ..experiments.paths import example_images, kit_module
+from ..export.plotting import ARC_COLOR, default_stroke_width
+from .session import PICK_DISTANCE, Studio
+
+#: Side of the square drawing on screen, CSS px: with two columns of controls of
+#: ``CONTROLS_WIDTH`` beside it the page fits a 1366 x 768 laptop screen.
+DRAWING_SIZE = 480
+#: Width of each column of controls, CSS px.
+CONTROLS_WIDTH = 400
+#: Canvas pixels per CSS px of the drawing.
+PIXEL_RATIO = 2
+#: Colours on screen: the selection, the lock mask (with its opacity) and the subject rectangle.
+SELECTION_COLOR = "#1f6fd1"
+MASK_RGBA = (230, 60, 40, 110)
+SUBJECT_COLOR = "#0a8a3a"
+#: Background around an image that is not square.
+FRAME_COLOR = "#eeeeee"
+#: Step of the move buttons, px of the image.
+MOVE_STEP = 2.0
+FILL_PRESETS = {
+    "none": "none",
+    "auto": "auto",
+    "palette": "palette:#264653,#2a9d8f,#e9c46a,#f4a261,#e76f51",
+    "gradient": "linear@90:#ffb347,#ff5e62",
+}
+CSS = """
+<style>
+body[data-voila] .jp-MarkdownCell { display: none; }
+body[data-voila] .jp-Cell { padding: 0; }
+body[data-voila] { padding: 6px 12px; }
+.img2logo-studio, .img2logo-studio .widget-label, .img2logo-studio .widget-button,
+.img2logo-studio .widget-toggle-button, .img2logo-studio select, .img2logo-studio input,
+.img2logo-studio .widget-readout { font-size: 13px; }
+.img2logo-studio .studio-head { font-size: 18px; font-weight: 600; }
+.img2logo-studio .studio-section { font-size: 13px; font-weight: 600; margin-top: 4px; color: #333; }
+.img2logo-studio a.studio-download { display: inline-block; margin: 2px 6px 2px 0; padding: 4px 10px;
+  border: 1px solid #1f6fd1; border-radius: 3px; color: #1f6fd1; text-decoration: none; font-size: 13px; }
+.img2logo-studio a.studio-download:hover { background: #e8f0fb; }
+.img2logo-studio .studio-status { font-size: 13px; }
+.img2logo-studio .studio-title { padding-right: 12px; box-sizing: border-box; }
+.img2logo-studio .studio-title b { white-space: normal; }
+.img2logo-studio .studio-hint { font-size: 12px; line-height: 1.4; color: #444; }
+.img2logo-studio .studio-error { color: #b00020; font-weight: 600; }
+</style>
+"""
+
+
+def _ipycanvas() -> Any:
+    """ipycanvas, or one line saying how to install it (the extra ``[studio]``)."""
+    try:
+        import ipycanvas
+    except ImportError:
+        raise Img2LogoError(
+            "ipycanvas is missing: the studio needs the extra [studio] (pip install -e '.[studio]'; make studio "
+            "installs it)"
+        ) from None
+    return ipycanvas
+
+
+class StudioPage:
+    """The widgets of the studio around ``studio``; :attr:`box` is the page.
+
+    Parameters
+    ----------
+    studio : Studio
+        The state (an image loaded, perhaps a run made).
+    size : int
+        Side of the square drawing on screen, CSS px.
+
+    Attributes
+    ----------
+    controls : dict
+        The widgets by name (``run``, ``level``, ``tolerance``, ``upload``, ``tool``, ...).
+    canvas : ipycanvas.MultiCanvas
+        Four layers: the faded image, the logo, the lock mask, the selection and subject.
+    """
+
+    def __init__(self, studio: Studio, *, size: int = DRAWING_SIZE) -> None:
+        self.studio = studio
+        self.size = int(size)
+        self.side = self.size * PIXEL_RATIO
+        self.controls: dict[str, Any] = {}
+        self._drag: list[tuple[float, float]] = []
+        self._syncing = False
+        self.box = self._build()
+        self.redraw(background=True)
+
+    # ------------------------------------------------------------------ geometry of the drawing
+    @property
+    def scale(self) -> float:
+        """Canvas pixels per image pixel."""
+        img = self.studio.image
+        return self.side / max(img.width, img.height) if img is not None else 1.0
+
+    @property
+    def offset(self) -> tuple[float, float]:
+        """Canvas position of the image's top-left corner (the image is centred in the square)."""
+        img = self.studio.image
+        if img is None:
+            return 0.0, 0.0
+        k = self.scale
+        return (self.side - img.width * k) / 2.0, (self.side - img.height * k) / 2.0
+
+    def to_image(self, x: float, y: float) -> tuple[float, float]:
+        """Canvas pixels to image pixels."""
+        ox, oy = self.offset
+        return (float(x) - ox) / self.scale, (float(y) - oy) / self.scale
+
+    # ------------------------------------------------------------------ building
+    def _build(self) -> Any:
+        w = kit_module("ipywidgets")
+        ipycanvas = _ipycanvas()
+        s, c = self.studio.settings, self.controls
+        style = {"description_width": "72px"}
+        wide = w.Layout(width=f"{CONTROLS_WIDTH - 10}px")
+
+        def labelled(kind: Any, description: str, layout: Any = wide, **kwargs: Any) -> Any:
+            kwargs.setdefault("style", style)
+            return kind(description=description, layout=layout, **kwargs)
+
+        self.canvas = ipycanvas.MultiCanvas(
+            4,
+            width=self.side,
+            height=self.side,
+            layout=w.Layout(width=f"{self.size}px", height=f"{self.size}px", flex="0 0 auto"),
+        )
+        # A canvas's drawing is the front end's: a page opened (or reloaded) after it was drawn gets it again.
+        for i, draw in enumerate((self._draw_background, self._draw_logo, self._draw_mask, self._draw_overlay)):
+            self.canvas[i].on_client_ready(lambda draw=draw: self._redraw_layer(draw))
+        top = self.canvas[3]
+        top.on_mouse_down(self._mouse_down)
+        top.on_mouse_move(self._mouse_move)
+        top.on_mouse_up(self._mouse_up)
+        top.on_mouse_out(self._mouse_up)
+        c["canvas"] = self.canvas
+
+        c["status"] = w.HTML(layout=w.Layout(width="100%")).add_class("studio-status")
+        c["title"] = w.HTML(layout=wide).add_class("studio-title")
+        c["tool"] = w.ToggleButtons(
+            options=[("Select", "select"), ("Brush", "brush"), ("Eraser", "eraser"), ("Subject", "subject")],
+            value="select",
+            tooltips=[
+                "click an arc to select it (click a second one to connect the two)",
+                "paint where merges are forbidden (the lock mask, Fig. 16)",
+                "erase the lock mask",
+                "drag a rectangle around the subject of a photo (GrabCut's seed)",
+            ],
+            style={"button_width": "72px"},
+        )
+        c["brush"] = labelled(w.IntSlider, "brush (px)", w.Layout(width="230px"), value=8, min=1, max=40)
+        c["clear_mask"] = w.Button(description="Clear mask", layout=w.Layout(width="110px"))
+        c["clear_subject"] = w.Button(description="Clear subject", layout=w.Layout(width="110px"))
+
+        images = [p.name for p in example_images()]
+        c["upload"] = w.FileUpload(
+            accept="image/*,.png,.jpg,.jpeg,.webp,.tif,.tiff,.bmp",
+            multiple=False,
+            description="Upload image",
+            layout=w.Layout(width="150px"),
+        )
+        c["example"] = w.Dropdown(
+            options=["(example)", *images],
+            value=self.studio.name if self.studio.name in images else "(example)",
+            layout=w.Layout(width=f"{CONTROLS_WIDTH - 170}px"),
+        )
+        c["kind"] = labelled(w.Dropdown, "kind", options=["auto", "photo", "clipart", "drawing"], value=s.kind)
+        c["tolerance"] = labelled(
+            w.FloatSlider, "T (px)", value=s.tolerance, min=0.5, max=30.0, step=0.5, continuous_update=False
+        )
+        c["bias"] = labelled(
+            w.FloatSlider,
+            "bias \u03c3",
+            w.Layout(width=f"{CONTROLS_WIDTH - 100}px"),
+            value=0.0 if s.bias is None else s.bias,
+            min=0.0,
+            max=0.99,
+            step=0.01,
+            disabled=s.bias is None,
+            continuous_update=False,
+        )
+        c["bias_auto"] = w.Checkbox(
+            value=s.bias is None, description="auto", indent=False, layout=w.Layout(width="80px")
+        )
+        c["rdp_tolerance"] = labelled(
+            w.FloatSlider, "RDP (px)", value=s.rdp_tolerance, min=0.5, max=8.0, step=0.25, continuous_update=False
+        )
+        c["symmetry"] = labelled(
+            w.Dropdown, "symmetry", options=["none", "auto", "vertical", "horizontal"], value=str(s.symmetry)
+        )
+        c["ladder"] = w.ToggleButtons(
+            options=[("golden", "phi"), ("Fibonacci", "fibonacci")],
+            value=s.ladder,
+            tooltips=["radii phi**(k + bias) (the paper)", "radii unit * F(k), the Fibonacci grid (Fig. 2b)"],
+            style={"button_width": "90px"},
+        )
+        c["lines"] = w.Checkbox(value=s.lines, description="straight lines", indent=False)
+        fill_mode = next((k for k, v in FILL_PRESETS.items() if v == s.fill), "palette")
+        c["fill"] = labelled(w.Dropdown, "fills", w.Layout(width="180px"), options=list(FILL_PRESETS), value=fill_mode)
+        c["fill_spec"] = w.Text(
+            value=s.fill, placeholder="--fill, e.g. palette:#264653,#e9c46a", layout=w.Layout(width="200px")
+        )
+        c["run"] = w.Button(description="Run", button_style="primary", icon="play", layout=w.Layout(width="90px"))
+        c["progress"] = labelled(
+            w.FloatProgress, "E\u02e2 \u2192 T", w.Layout(width="290px"), value=0.0, min=0.0, max=s.tolerance
+        )
+
+        c["level"] = labelled(w.IntSlider, "level t", value=0, min=0, max=0, continuous_update=True)
+        c["delete"] = w.Button(description="Delete arc", icon="trash", layout=w.Layout(width="120px"))
+        c["connect"] = w.Button(description="Connect", icon="link", layout=w.Layout(width="120px"))
+        c["undo"] = w.Button(description="Undo", icon="undo", layout=w.Layout(width="120px"))
+        arrows = {
+            "left": ("\u2190", -1, 0),
+            "up": ("\u2191", 0, -1),
+            "down": ("\u2193", 0, 1),
+            "right": ("\u2192", 1, 0),
+        }
+        for name, (label, dx, dy) in arrows.items():
+            b = w.Button(description=label, tooltip=f"move the circle {name}", layout=w.Layout(width="44px"))
+            b.on_click(
+                lambda _b, dx=dx, dy=dy: self._act(lambda: self.studio.move_selected(dx * MOVE_STEP, dy * MOVE_STEP))
+            )
+            c[f"move_{name}"] = b
+        c["rung_down"] = w.Button(
+            description="rung \u2212", tooltip="a smaller golden circle", layout=w.Layout(width="80px")
+        )
+        c["rung_up"] = w.Button(description="rung +", tooltip="a larger golden circle", layout=w.Layout(width="80px"))
+        c["downloads"] = w.HTML(layout=wide)
+
+        c["upload"].observe(self._uploaded, names="value")
+        c["example"].observe(self._example_chosen, names="value")
+        c["tool"].observe(lambda _ch: self._drag.clear(), names="value")
+        c["clear_mask"].on_click(lambda _b: self._act(self.studio.clear_mask, mask=True))
+        c["clear_subject"].on_click(lambda _b: self._act(self.studio.clear_subject, overlay=True))
+        c["bias_auto"].observe(lambda ch: setattr(c["bias"], "disabled", bool(ch["new"])), names="value")
+        c["run"].on_click(lambda _b: self.run())
+        c["level"].observe(self._level_changed, names="value")
+        c["tolerance"].observe(self._tolerance_changed, names="value")
+        c["fill"].observe(self._fill_mode_changed, names="value")
+        c["fill_spec"].observe(self._fill_spec_changed, names="value")
+        c["delete"].on_click(lambda _b: self._act(self.studio.delete_selected))
+        c["connect"].on_click(lambda _b: self._act(self.studio.connect_selected))
+        c["undo"].on_click(lambda _b: self._act(self.studio.undo))
+        c["rung_down"].on_click(lambda _b: self._act(lambda: self.studio.rung_selected(-1)))
+        c["rung_up"].on_click(lambda _b: self._act(lambda: self.studio.rung_selected(+1)))
+
+        def section(text: str) -> Any:
+            return w.HTML(f'<div class="studio-section">{html.escape(text)}</div>')
+
+        hint = w.HTML(
+            '<div class="studio-hint"><b>Select</b>: click an arc, a second one to connect them. <b>Brush</b> / '
+            "<b>Eraser</b>: paint where merges are forbidden, then Run. <b>Subject</b>: drag a rectangle around "
+            "a photo's subject, then Run (kind photo).</div>",
+            layout=w.Layout(width=f"{self.size}px"),
+        )
+        tools = w.VBox(
+            [c["tool"], w.HBox([c["brush"], c["clear_mask"], c["clear_subject"]]), hint],
+            layout=w.Layout(width=f"{self.size}px"),
+        )
+        left = w.VBox([self.canvas, tools], layout=w.Layout(flex="0 0 auto"))
+        middle = w.VBox(
+            [
+                section("Your image"),
+                w.HBox([c["upload"], c["example"]]),
+                section("Settings (Run applies them)"),
+                c["kind"],
+                c["tolerance"],
+                w.HBox([c["bias"], c["bias_auto"]]),
+                c["rdp_tolerance"],
+                c["symmetry"],
+                w.HBox([w.Label("ladder", layout=w.Layout(width="76px")), c["ladder"]]),
+                w.HBox([w.Label("", layout=w.Layout(width="76px")), c["lines"]]),
+                w.HBox([c["fill"], c["fill_spec"]]),
+                w.HBox([c["run"], c["progress"]]),
+            ],
+            layout=w.Layout(width=f"{CONTROLS_WIDTH}px", padding="0 0 0 14px", flex="0 0 auto"),
+        )
+        right = w.VBox(
+            [
+                section("Level"),
+                c["title"],
+                c["level"],
+                section("Edit the selected arc"),
+                w.HBox([c["delete"], c["connect"], c["undo"]]),
+                w.HBox(
+                    [
+                        w.Label("move", layout=w.Layout(width="44px")),
+                        c["move_left"],
+                        c["move_up"],
+                        c["move_down"],
+                        c["move_right"],
+                        c["rung_down"],
+                        c["rung_up"],
+                    ]
+                ),
+                section("Save what is shown"),
+                c["downloads"],
+            ],
+            layout=w.Layout(width=f"{CONTROLS_WIDTH}px", padding="0 0 0 14px", flex="0 0 auto"),
+        )
+        head = w.HTML(
+            CSS + '<span class="studio-head">img2logo studio</span> '
+            "<span>&mdash; your image to a golden ratio logo: circular arcs whose radii are "
+            "&phi;<sup>k+&sigma;</sup></span>"
+        )
+        page = w.VBox([head, c["status"], w.HBox([left, middle, right], layout=w.Layout(align_items="flex-start"))])
+        page.add_class("img2logo-studio")
+        c["box"] = page
+        return page
+
+    # ------------------------------------------------------------------ drawing
+    def redraw(self, *, background: bool = False, logo: bool = True, mask: bool = False, overlay: bool = True) -> None:
+        """Draw the layers asked for and refresh the title, status, level slider and downloads."""
+        ipycanvas = _ipycanvas()
+        with ipycanvas.hold_canvas():
+            if background:
+                self._draw_background()
+                mask = True
+            if logo:
+                self._draw_logo()
+            if mask:
+                self._draw_mask()
+            if overlay:
+                self._draw_overlay()
+        self._sync()
+
+    def _redraw_layer(self, draw: Any) -> None:
+        with _ipycanvas().hold_canvas():
+            draw()
+
+    def _draw_background(self) -> None:
+        layer = self.canvas[0]
+        layer.clear()
+        img = self.studio.image
+        if img is None:
+            return
+        import cv2
+
+        k, (ox, oy) = self.scale, self.offset
+        w, h = max(1, round(img.width * k)), max(1, round(img.height * k))
+        rgb = IMAGE_FADE + (1.0 - IMAGE_FADE) * img.rgb
+        shown = cv2.resize(rgb, (w, h), interpolation=cv2.INTER_AREA if k < 1 else cv2.INTER_NEAREST)
+        layer.fill_style = FRAME_COLOR
+        layer.fill_rect(0, 0, self.side, self.side)
+        layer.put_image_data(np.clip(shown * 255.0 + 0.5, 0, 255).astype(np.uint8), round(ox), round(oy))
+
+    def _stroke_arcs(self, layer: Any, arcs: Any, color: str, width: float) -> None:
+        k, (ox, oy) = self.scale, self.offset
+        layer.stroke_style = color
+        layer.line_width = width
+        layer.line_cap = "round"
+        layer.line_join = "round"
+        for arc in arcs:
+            layer.begin_path()
+            if arc.is_line:
+                layer.move_to(ox + arc.start[0] * k, oy + arc.start[1] * k)
+                layer.line_to(ox + arc.end[0] * k, oy + arc.end[1] * k)
+            else:
+                c = arc.circle
+                layer.arc(ox + c.cx * k, oy + c.cy * k, c.r * k, arc.theta0, arc.theta0 + arc.sweep, arc.sweep < 0)
+            layer.stroke()
+
+    def _draw_logo(self) -> None:
+        layer = self.canvas[1]
+        layer.clear()
+        a = self.studio.shown
+        if a is None:
+            return
+        try:
+            fills = self.studio.fills() or ()
+        except Img2LogoError as exc:  # a fill that fails is said, the arcs still drawn
+            self.studio.message, self.studio.ok, fills = f"error: fills: {exc}", False, ()
+        if fills:
+            self._draw_fills(layer, fills)
+        width = default_stroke_width(a.width, a.height) * self.scale
+        self._stroke_arcs(layer, a.arcs, ARC_COLOR, max(width, 2.0))
+
+    def _draw_fills(self, layer: Any, fills: Any) -> None:
+        """The fills drawn as the PNG writer draws them (:func:`img2logo.export.plotting.draw_fills`), as pixels."""
+        from matplotlib.backends.backend_agg import FigureCanvasAgg
+        from matplotlib.figure import Figure
+
+        from ..export.plotting import draw_fills, frame_image
+
+        a = self.studio.shown
+        k, (ox, oy) = self.scale, self.offset
+        w, h = max(1, round(a.width * k)), max(1, round(a.height * k))
+        fig = Figure(figsize=(w / 100.0, h / 100.0), dpi=100.0)
+        fig.patch.set_alpha(0.0)
+        agg = FigureCanvasAgg(fig)
+        ax = fig.add_axes((0.0, 0.0, 1.0, 1.0))
+        ax.patch.set_alpha(0.0)
+        draw_fills(list(fills), ax, width=a.width, height=a.height)
+        frame_image(ax, a.width, a.height)
+        agg.draw()
+        layer.put_image_data(np.asarray(agg.buffer_rgba()).copy(), round(ox), round(oy))
+
+    def _draw_mask(self) -> None:
+        layer = self.canvas[2]
+        layer.clear()
+        m = self.studio.mask
+        if not m.size or not m.any():
+            return
+        import cv2
+
+        k, (ox, oy) = self.scale, self.offset
+        w, h = max(1, round(m.shape[1] * k)), max(1, round(m.shape[0] * k))
+        big = cv2.resize(m.astype(np.uint8), (w, h), interpolation=cv2.INTER_NEAREST).astype(bool)
+        rgba = np.zeros((h, w, 4), dtype=np.uint8)
+        rgba[big] = MASK_RGBA
+        layer.put_image_data(rgba, round(ox), round(oy))
+
+    def _draw_overlay(self) -> None:
+        layer = self.canvas[3]
+        layer.clear()
+        a, s = self.studio.shown, self.studio
+        k, (ox, oy) = self.scale, self.offset
+        if a is not None and s.selected:
+            width = max(default_stroke_width(a.width, a.height) * k * 2.0, 6.0)
+            arcs = [a.arcs[i] for i in s.selected if i < len(a.arcs)]
+            self._stroke_arcs(layer, arcs[:-1], "#8db6ea", width)
+            self._stroke_arcs(layer, arcs[-1:], SELECTION_COLOR, width)
+        if s.subject is not None:
+            x, y, w, h = s.subject
+            layer.stroke_style = SUBJECT_COLOR
+            layer.line_width = 3.0
+            layer.set_line_dash([12, 6])
+            layer.stroke_rect(ox + x * k, oy + y * k, w * k, h * k)
+            layer.set_line_dash([])
+
+    def _sync(self) -> None:
+        """The title, status line, level slider, progress and downloads from the studio's state."""
+        c, s = self.controls, self.studio
+        self._syncing = True
+        try:
+            c["title"].value = "<b>" + html.escape(s.title).replace("E^s", "E<sup>s</sup>") + "</b>"
+            css = "studio-status" if s.ok else "studio-status studio-error"
+            c["status"].value = f'<div class="{css}">{html.escape(s.message)}</div>'
+            n = max(len(s.levels), 1)
+            if c["level"].max != n - 1 or c["level"].value != s.level:
+                c["level"].max = n - 1
+                c["level"].value = s.level
+            c["tolerance"].value = s.settings.tolerance
+            for name in ("delete", "connect", "undo"):
+                c[name].disabled = s.shown is None
+            c["downloads"].value = self._downloads_html()
+        finally:
+            self._syncing = False
+
+    def _downloads_html(self) -> str:
+        s = self.studio
+        if s.shown is None:
+            return "<i>Run first: the downloads are the logo shown.</i>"
+        try:
+            files = s.downloads()
+        except Img2LogoError as exc:  # said on the page; the drawing stays
+            return f'<span class="studio-error">{html.escape(str(exc))}</span>'
+        names = s.download_names()
+        kinds = {"svg": "image/svg+xml", "json": "application/json", "png": "image/png"}
+        links = []
+        for fmt in ("svg", "json", "png"):
+            data = base64.b64encode(files[fmt]).decode("ascii")
+            links.append(
+                f'<a class="studio-download" download="{html.escape(names[fmt])}" '
+                f'href="data:{kinds[fmt]};base64,{data}">Download {fmt.upper()}</a>'
+            )
+        return "".join(links)
+
+    # ------------------------------------------------------------------ events
+    def _act(self, action: Any, *, logo: bool = True, mask: bool = False, overlay: bool = True) -> None:
+        action()
+        self.redraw(logo=logo, mask=mask, overlay=overlay)
+
+    def run(self) -> bool:
+        """Run with the settings the controls hold (the Run button)."""
+        c = self.controls
+        fill = c["fill_spec"].value.strip() or "none"
+        changes = {
+            "kind": c["kind"].value,
+            "tolerance": float(c["tolerance"].value),
+            "bias": None if c["bias_auto"].value else float(c["bias"].value),
+            "rdp_tolerance": float(c["rdp_tolerance"].value),
+            "symmetry": c["symmetry"].value,
+            "lines": bool(c["lines"].value),
+            "ladder": c["ladder"].value,
+            "fill": fill,
+        }
+        return self._run(**changes)
+
+    def _run(self, **changes: Any) -> bool:
+        c = self.controls
+        bar = c["progress"]
+        bar.bar_style, bar.max, bar.value = "", float(changes.get("tolerance", self.studio.settings.tolerance)), 0.0
+        c["run"].disabled = True
+        c["status"].value = '<div class="studio-status">running&hellip;</div>'
+
+        def progress(t: int, n_arcs: int, similarity: float) -> None:
+            bar.value = min(float(similarity), bar.max)
+
+        try:
+            ok = self.studio.run(progress, **changes)
+        finally:
+            c["run"].disabled = False
+        bar.bar_style = "success" if ok else "danger"
+        if ok and self.studio.result is not None:
+            bar.value = min(float(self.studio.result.final.similarity), bar.max)
+        self.redraw()
+        return ok
+
+    def _uploaded(self, change: dict[str, Any]) -> None:
+        files = change["new"]
+        if not files:
+            return
+        f = files[0]
+        if self.studio.load_upload(f["name"], bytes(f["content"])):
+            self._syncing = True
+            self.controls["example"].value = "(example)"
+            self._syncing = False
+            self.redraw(background=True)
+        else:
+            self.redraw(logo=False, overlay=False)
+
+    def _example_chosen(self, change: dict[str, Any]) -> None:
+        if self._syncing or change["new"] == "(example)":
+            return
+        ok = self.studio.load_example(change["new"])
+        self.redraw(background=ok, logo=ok, overlay=ok)
+
+    def _level_changed(self, change: dict[str, Any]) -> None:
+        if not self._syncing:
+            self.studio.set_level(change["new"])
+            self.redraw()
+
+    def _tolerance_changed(self, change: dict[str, Any]) -> None:
+        if self._syncing:
+            return
+        s = self.studio
+        if s.result is not None and float(change["new"]) > s.result.levels[0].tolerance:
+            self._run(tolerance=float(change["new"]))
+        else:
+            s.set_tolerance(change["new"])
+            self.redraw()
+
+    def _fill_mode_changed(self, change: dict[str, Any]) -> None:
+        self.controls["fill_spec"].value = FILL_PRESETS[change["new"]]
+
+    def _fill_spec_changed(self, change: dict[str, Any]) -> None:
+        self.studio.set_fill(change["new"].strip() or "none")
+        self.redraw(overlay=False)
+
+    def _mouse_down(self, x: float, y: float) -> None:
+        tool = self.controls["tool"].value
+        ix, iy = self.to_image(x, y)
+        if tool == "select":
+            self.studio.select_at(ix, iy, PICK_DISTANCE * PIXEL_RATIO / self.scale)
+            self.redraw(logo=False)
+            return
+        self._drag = [(ix, iy)]
+        if tool in ("brush", "eraser"):
+            self._paint_segment()
+
+    def _mouse_move(self, x: float, y: float) -> None:
+        if not self._drag:
+            return
+        tool = self.controls["tool"].value
+        self._drag.append(self.to_image(x, y))
+        if tool in ("brush", "eraser"):
+            self._paint_segment()
+        elif tool == "subject":
+            (x0, y0), (x1, y1) = self._drag[0], self._drag[-1]
+            layer, k, (ox, oy) = self.canvas[3], self.scale, self.offset
+            with _ipycanvas().hold_canvas():
+                layer.clear()
+                layer.stroke_style = SUBJECT_COLOR
+                layer.line_width = 3.0
+                layer.stroke_rect(ox + min(x0, x1) * k, oy + min(y0, y1) * k, abs(x1 - x0) * k, abs(y1 - y0) * k)
+
+    def _mouse_up(self, x: float, y: float) -> None:
+        if not self._drag:
+            return
+        tool, drag = self.controls["tool"].value, self._drag
+        self._drag = []
+        if tool == "subject":
+            (x0, y0), (x1, y1) = drag[0], self.to_image(x, y)
+            self.studio.set_subject(x0, y0, x1, y1)
+            self.redraw(logo=False)
+        else:
+            self.redraw(logo=False, mask=True, overlay=False)
+
+    def _paint_segment(self) -> None:
+        """Paint the last piece of the stroke into the mask, and show it at once on the mask layer."""
+        erase = self.controls["tool"].value == "eraser"
+        radius = float(self.controls["brush"].value)
+        points = self._drag[-2:]
+        self.studio.paint(points, radius, erase=erase)
+        layer, k, (ox, oy) = self.canvas[2], self.scale, self.offset
+        with _ipycanvas().hold_canvas():
+            layer.global_composite_operation = "destination-out" if erase else "source-over"
+            layer.stroke_style = "rgba({}, {}, {}, {})".format(*MASK_RGBA[:3], MASK_RGBA[3] / 255.0)
+            layer.line_width = 2.0 * radius * k
+            layer.line_cap = "round"
+            layer.begin_path()
+            layer.move_to(ox + points[0][0] * k, oy + points[0][1] * k)
+            layer.line_to(ox + points[-1][0] * k, oy + points[-1][1] * k)
+            layer.stroke()
+            layer.global_composite_operation = "source-over"
+        self.controls["status"].value = f'<div class="studio-status">{html.escape(self.studio.message)}</div>'
+
+
+def studio_page(image: str | None = "clipart-fish.png", *, run: bool = False, **settings: Any) -> StudioPage:
+    """A :class:`StudioPage` on ``image`` (a file of ``data/``), run at once with ``run``."""
+    studio = Studio(image, **settings)
+    page = StudioPage(studio)
+    if run:
+        page.run()
+    return page

@@ -1,0 +1,328 @@
+"""img2logo.studio.session: the designer's studio (notebook 14), its state and callbacks without a browser."""
+
+from __future__ import annotations
+
+import json
+import shutil
+
+import numpy as np
+import pytest
+from helpers import DATA
+
+from img2logo import InvalidParameterError
+from img2logo.app import cli
+from img2logo.export.contract import from_document
+from img2logo.studio import serve as studio_serve
+from img2logo.studio import session as studio
+from img2logo.studio.session import Studio
+
+
+@pytest.fixture(scope="module")
+def ran():
+    """A studio on drawing-fish.png after one Run (shared: the tests copy what they change)."""
+    s = Studio("drawing-fish.png")
+    assert s.run(), s.message
+    return s
+
+
+def fresh(ran: Studio) -> Studio:
+    """A studio in the state of ``ran`` (the run is shared: it is immutable)."""
+    s = Studio()
+    s.image, s.name, s.settings = ran.image, ran.name, ran.settings
+    s.mask = np.zeros_like(ran.mask)
+    s.result, s.levels, s.level = ran.result, ran.levels, ran.level
+    return s
+
+
+def longest(s: Studio) -> int:
+    return max(range(len(s.shown.arcs)), key=lambda i: s.shown.arcs[i].length)
+
+
+# --------------------------------------------------------------------------- input and messages
+def test_an_example_is_loaded_and_named_for_the_downloads():
+    s = Studio("drawing-fish.png")
+    assert s.ok and s.message == "drawing-fish.png: 512x512 px; press Run"
+    assert s.stem == "drawing-fish" and s.shown is None
+    assert s.download_names() == {"svg": "drawing-fish.svg", "json": "drawing-fish.json", "png": "drawing-fish.png"}
+    assert s.mask.shape == (512, 512) and not s.mask.any()
+
+
+def test_an_unreadable_upload_is_one_line_and_keeps_the_image(ran):
+    s = fresh(ran)
+    shown = s.shown
+    assert not s.load_upload("logo.png", b"this is not a png")
+    assert s.message == "error: logo.png: not a readable image (expected PNG, JPEG, TIFF, BMP, WebP, ...)"
+    assert "\n" not in s.message and "/tmp" not in s.message
+    assert s.shown is shown and s.name == "drawing-fish.png"
+
+
+def test_a_blank_upload_says_so(ran, tmp_path):
+    from PIL import Image
+
+    Image.new("RGB", (64, 64), "white").save(tmp_path / "white.png")
+    s = fresh(ran)
+    assert not s.load_upload("white.png", (tmp_path / "white.png").read_bytes())
+    assert s.message == "error: white.png: image is blank (one colour, #ffffff, in every pixel); nothing to trace"
+    assert s.shown is not None
+
+
+def test_an_upload_is_read_as_the_file_it_was(ran):
+    s = Studio()
+    assert s.load_upload("My Fish.png", (DATA / "drawing-fish.png").read_bytes())
+    assert s.name == "My Fish.png" and s.stem == "My Fish" and s.image.source == "My Fish.png"
+    np.testing.assert_array_equal(s.image.rgb, ran.image.rgb)
+
+
+def test_run_needs_an_image_and_a_bad_fill_is_said_before_it():
+    s = Studio()
+    assert not s.run() and s.message.startswith("error: load an image first")
+    s.load_example("drawing-fish.png")
+    assert not s.run(fill="palette:")
+    assert "the palette is empty" in s.message and s.result is None
+
+
+# --------------------------------------------------------------------------- levels and T
+def test_the_final_level_is_shown_and_a_smaller_t_needs_no_run(ran):
+    s = fresh(ran)
+    n = len(s.levels)
+    assert s.level == n - 1 and s.title.startswith(f"drawing-fish: level t = {n - 1} of {n - 1}")
+    result = s.result
+    assert s.set_tolerance(2.0)
+    assert s.result is result  # read off the run
+    from img2logo.experiments.explore import levels_within
+
+    assert s.levels == levels_within(result, 2.0) and len(s.levels) < n and "(T = 2)" in s.title
+    assert s.set_level(0) and s.shown is s.levels[0]
+    assert not s.set_level(99) and s.message.startswith("error: level must be in [0,")
+
+
+# --------------------------------------------------------------------------- lock mask and subject
+def test_painting_fills_the_discs_and_the_gap_of_a_stroke():
+    s = Studio("drawing-fish.png")
+    s.paint([[100.0, 100.0], [140.0, 100.0]], 5.0)
+    m = s.mask
+    assert m[99, 99] and m[99, 139] and m[99, 120]  # both ends and the stroke between them
+    assert m[104, 120] and not m[106, 120] and not m[99, 146]
+    count = int(m.sum())
+    assert abs(count - (40 * 10 + np.pi * 25)) < 20  # a capsule of 40 x 10 px with round ends
+    s.paint([[120.0, 100.0]], 3.0, erase=True)
+    assert not m[99, 120] and m[99, 100]
+    assert "lock mask:" in s.message and "press Run" in s.message
+    s.paint([[-50.0, -50.0]], 3.0)  # outside: nothing, no error
+    s.clear_mask()
+    assert not s.mask.any()
+
+
+def test_a_painted_stroke_locks_its_segments_on_the_next_run(ran):
+    s = fresh(ran)
+    a = s.shown
+    arc = a.arcs[longest(s)]
+    s.paint(arc.sample(step=2.0), 6.0)
+    assert s.run(), s.message
+    assert s.result.final.params["locked_segments"] > 0
+    assert "segments locked" in s.message
+    # The run without the mask merges more (or as much): the lock forbids merges.
+    assert len(s.shown.arcs) >= len(a.arcs)
+
+
+def test_a_mask_over_everything_is_refused_and_the_result_kept(ran):
+    s = fresh(ran)
+    shown = s.shown
+    s.mask[:] = True
+    assert not s.run()
+    assert s.message.startswith("error: the lock mask covers all ") and "nothing could be merged" in s.message
+    assert s.shown is shown and s.result is ran.result
+
+
+def test_the_subject_rectangle_is_clipped_pixels_and_seeds_a_photo():
+    s = Studio("photo-cat.png", kind="photo")
+    h, w = s.mask.shape
+    assert s.set_subject(w + 10, 5.4, 20.6, 30.2) == (20, 5, w - 20, 26)
+    assert s.set_subject(10, 10, 11, 40) is None and s.subject is None  # too thin: cleared
+    box = (w // 4, h // 4, w // 2, h // 2)
+    s.set_subject(box[0], box[1], box[0] + box[2], box[1] + box[3])
+    assert s.subject == box
+    assert s.run(), s.message
+    assert s.result.lines.subject.method == "rectangle"
+    assert f"{box[0]},{box[1]},{box[2]},{box[3]}" in s.result.lines.subject.description
+    assert "subject: kept the object in" in s.message
+    s.clear_subject()
+    assert s.subject is None
+
+
+def test_a_lock_mask_with_symmetry_is_the_librarys_line(ran):
+    s = fresh(ran)
+    s.paint([[100.0, 100.0]], 10.0)
+    assert not s.run(symmetry="vertical")
+    assert s.message == "error: a lock mask cannot be combined with symmetry (use symmetry='none')"
+
+
+# --------------------------------------------------------------------------- selection, edits, undo
+def test_a_click_selects_the_nearest_arc_within_the_distance(ran):
+    s = fresh(ran)
+    i = longest(s)
+    p = s.shown.arcs[i].sample(step=1.0)
+    middle = p[len(p) // 2]
+    assert s.select_at(middle[0] + 2.0, middle[1], 5.0) == i and s.selected == [i]
+    assert s.message.startswith(f"arc {i} selected: circle ")
+    assert s.select_at(-100.0, -100.0, 5.0) is None and s.selected == []
+
+
+def test_delete_and_undo(ran):
+    s = fresh(ran)
+    before = s.shown
+    i = longest(s)
+    s.selected = [i]
+    assert s.delete_selected(), s.message
+    assert len(s.shown.arcs) == len(before.arcs) - 1
+    assert s.shown.params["edits"][-1] == f"delete_arc({i})"
+    assert s.n_edits == 1 and "1 edit" in s.title
+    assert s.undo() and s.shown is before and s.n_edits == 0
+    assert not s.undo() and s.message == "error: nothing to undo on this level"
+
+
+def test_edits_belong_to_their_level(ran):
+    s = fresh(ran)
+    top = s.level
+    s.selected = [0]
+    s.delete_selected()
+    edited = s.shown
+    s.set_level(0)
+    assert s.shown is s.levels[0]
+    s.set_level(top)
+    assert s.shown is edited
+
+
+def test_move_and_rung_keep_the_ladder(ran):
+    from img2logo.constants import PHI
+
+    s = fresh(ran)
+    i = longest(s)
+    s.selected = [i]
+    old = s.shown.arcs[i].circle
+    assert s.move_selected(2.0, 0.0), s.message
+    assert s.shown.arcs[i].circle.cx == pytest.approx(old.cx + 2.0)
+    assert s.rung_selected(+1), s.message
+    new = s.shown.arcs[i].circle
+    assert new.k == old.k + 1
+    assert new.r == pytest.approx(PHI ** (new.k + s.shown.bias))
+    assert s.n_edits == 2
+    s.undo()
+    s.undo()
+    assert s.shown is s.levels[s.level]
+
+
+def test_delete_then_connect_the_two_loose_ends(ran):
+    # Fig. 17's workflow: delete an arc of a chain, then join its two neighbours again with a new arc.
+    s = fresh(ran)
+    a = s.shown
+    ends = a.arc_junctions
+
+    def neighbour(i, j):
+        others = set(a.junction_arcs[j]) - {i}
+        return others.pop() if len(others) == 1 else None
+
+    chain = [
+        (i, neighbour(i, ends[i].start), neighbour(i, ends[i].end))
+        for i in range(len(a.arcs))
+        if ends[i].start is not None and ends[i].end is not None and ends[i].start != ends[i].end
+    ]
+    i, p, q = next((i, p, q) for i, p, q in chain if p is not None and q is not None and p != q)
+    s.selected = [i]
+    assert s.delete_selected(), s.message
+    shift = [x - (x > i) for x in (p, q)]
+    assert all(studio.free_ends(s.shown, x) for x in shift)
+    s.selected = shift
+    assert s.connect_selected(), s.message
+    assert len(s.shown.arcs) == len(a.arcs) and s.selected == [len(a.arcs) - 1]
+    assert s.shown.params["edits"][-1].startswith("connect(")
+    assert s.n_edits == 2
+
+
+def test_an_edit_that_cannot_be_done_is_one_line_and_changes_nothing(ran):
+    s = fresh(ran)
+    shown = s.shown
+    assert not s.delete_selected() and s.message == "error: select an arc first (click it)"
+    s.selected = [0]
+    assert not s.connect_selected() and s.message.startswith("error: connect needs two arcs")
+    s.selected = [0]
+    ok = s.rung_selected(-40)  # far below the ladder's smallest rung: refused by the edits API
+    assert not ok and s.message.startswith("error: ") and "\n" not in s.message
+    assert s.shown is shown and s.n_edits == 0
+
+
+def test_a_fibonacci_logo_refuses_edits_with_the_librarys_line():
+    s = Studio("drawing-fish.png")
+    assert s.run(ladder="fibonacci"), s.message
+    s.selected = [0]
+    assert not s.rung_selected(1)
+    assert "supports only the golden ratio ladder" in s.message
+
+
+# --------------------------------------------------------------------------- downloads
+def _cli_files(tmp_path, level: int, fill: str) -> dict[str, bytes]:
+    folder = tmp_path / "cli"
+    folder.mkdir()
+    shutil.copy(DATA / "drawing-fish.png", folder / "drawing-fish.png")
+    import os
+
+    here = os.getcwd()
+    os.chdir(folder)  # the document records the input as given: run it as `img2logo drawing-fish.png`
+    try:
+        args = ["drawing-fish.png", "--level", str(level), "--fill", fill, "-q"]
+        assert cli.main([*args, "--svg", "out.svg", "--json", "out.json", "--png", "out.png"]) == 0
+    finally:
+        os.chdir(here)
+    return {fmt: (folder / f"out.{fmt}").read_bytes() for fmt in ("svg", "json", "png")}
+
+
+@pytest.mark.parametrize("fill", ["none", "auto"])
+def test_downloads_are_the_command_lines_bytes(ran, tmp_path, fill):
+    s = fresh(ran)
+    assert s.set_fill(fill), s.message
+    s.set_level(len(s.levels) - 2)
+    assert s.downloads() == _cli_files(tmp_path, s.level, fill)
+
+
+def test_downloads_of_an_edited_logo_are_valid_documents(ran):
+    s = fresh(ran)
+    s.selected = [longest(s)]
+    s.delete_selected()
+    files = s.downloads()
+    doc = json.loads(files["json"])
+    a = from_document(doc)
+    assert len(a.arcs) == len(s.shown.arcs) and doc["params"]["edits"] == list(s.shown.params["edits"])
+    assert files["svg"].startswith(b"<?xml") and files["png"].startswith(b"\x89PNG")
+    from img2logo.export import writers
+
+    assert files["svg"] == writers.to_svg(s.shown).encode("utf-8")
+
+
+def test_nothing_to_download_before_a_run():
+    with pytest.raises(InvalidParameterError, match="nothing to download: press Run first"):
+        Studio("drawing-fish.png").downloads()
+
+
+# --------------------------------------------------------------------------- notebook, server
+def test_the_scripted_session_writes_the_downloads(tmp_path):
+    session = studio_serve.scripted_session("drawing-fish.png", tmp_path)
+    assert [p.name for p in session.files] == ["drawing-fish.svg", "drawing-fish.json", "drawing-fish.png"]
+    assert len(session.steps) == 3 and session.steps[1][2].any()
+    assert len(session.steps[2][1].arcs) == len(session.steps[1][1].arcs) - 1
+    from_document(json.loads((tmp_path / "drawing-fish.json").read_text()))
+    fig = studio_serve.plot_session(session)
+    assert len(fig.axes) >= 3
+
+
+def test_the_server_command_is_voila_on_localhost():
+    command = studio_serve.serve_command(8899)
+    assert command[1:3] == ["-m", "voila"] and command[3].endswith("notebooks/14_studio.ipynb")
+    assert "--port=8899" in command and "--Voila.ip=127.0.0.1" in command and "--no-browser" in command
+
+
+def test_papermill_is_no_live_front_end(monkeypatch):
+    monkeypatch.delenv("SERVER_SOFTWARE", raising=False)
+    monkeypatch.delenv("JPY_SESSION_NAME", raising=False)
+    assert not studio.front_end_live()
+    monkeypatch.setenv("SERVER_SOFTWARE", "voila/0.5.13")
+    assert studio.front_end_live()
