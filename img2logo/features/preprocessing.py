@@ -66,9 +66,7 @@ def __getattr__(name: str) -> Any:
 
 __all__ = [
     "KINDS",
-    "DownscaleWarning",
     "FeatureLines",
-    "LoadedImage",
     "detect_kind",
     "edge_tangent_flow",
     "extract_feature_lines",
