@@ -92,6 +92,36 @@ def timing_table(runs: Sequence[Run]) -> pd.DataFrame:
     )
 
 
+def timing_reading(table3: pd.DataFrame) -> str:
+    """What the run's Table 3 says, as Markdown sentences made from its numbers (:func:`timing_table`).
+
+    For each image: No/No's time as a multiple of Yes/Yes (the paper's: at least 110x), which of
+    the two middle cells is faster (in the paper, localized fitting alone, Yes/No), the initial arcs
+    with and without the simplification and the merge loop's levels, and the spread of the four
+    cells' final arcs and E^s.
+    """
+    paper_middle = "Yes/No" if PAPER_TABLE3[(True, False)][0] < PAPER_TABLE3[(False, True)][0] else "No/Yes"
+    paper_floor = PAPER_TABLE3[(False, False)][0] / PAPER_TABLE3[(True, True)][0]
+    sentences = []
+    for image, rows in table3.groupby("image", sort=False):
+        cell = {(r["localized"], r["simplify"]): r for _, r in rows.iterrows()}
+        if len(cell) < len(CELLS):
+            continue
+        nn, yn, ny, yy = (cell[(_YES_NO[a], _YES_NO[b])] for a, b in CELLS)
+        middle = "Yes/No" if yn["median (s)"] < ny["median (s)"] else "No/Yes"
+        order = "the paper's order" if middle == paper_middle else "the reverse of the paper's order"
+        sentences.append(
+            f"**{image}**: No/No takes {nn['ratio to Yes/Yes']:.1f}x the Yes/Yes time (the paper: at least "
+            f"{paper_floor:.0f}x); of the middle rows {middle} is the faster "
+            f"({yn['ratio to Yes/Yes']:.1f}x and {ny['ratio to Yes/Yes']:.1f}x for Yes/No and No/Yes), "
+            f"{order} (the paper: {paper_middle}). The simplification cuts $|A^0|$ from {nn['initial arcs']} to "
+            f"{ny['initial arcs']} arcs and the merge loop's levels from {nn['levels']} to {ny['levels']}. The "
+            f"four cells end at {rows['final arcs'].min()}-{rows['final arcs'].max()} arcs, $E^s$ "
+            f"{rows['final E^s (px)'].min():.2f}-{rows['final E^s (px)'].max():.2f} px."
+        )
+    return "\n\n".join(sentences)
+
+
 def _fmt_seconds(v: float) -> str:
     if not math.isfinite(v):
         return ""

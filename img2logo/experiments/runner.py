@@ -80,7 +80,14 @@ SMOKE: dict[str, dict[str, Any]] = {
     "13_symmetry": {"smoke": True, "images": ["clipart-fox.png"], "eval_images": ["drawing-umbrella.png"]},
     "14_studio": {"smoke": True, "image": "drawing-fish.png"},
     "15_tangency": {"smoke": True, "images": ["drawing-bird.png"]},
-    "16_limitations": {"smoke": True, "complex_image": "drawing-fish.png", "lock_box": [150, 150, 120, 120]},
+    "16_limitations": {
+        "smoke": True,
+        "images": ["drawing-fish.png"],
+        "tolerances": [5.0, 9.0],
+        "complex_image": "drawing-fish.png",
+        "search_tolerances": [5.0, 9.0],
+        "window_tolerance": 9.0,
+    },
 }
 
 #: What each notebook reproduces of the paper and what it shows: the notebooks index of the docs
@@ -181,11 +188,11 @@ PARAMETER_RULES: dict[str, Check] = {
     **dict.fromkeys(("smoke", "interactive", "tangency"), _rule(lambda v: isinstance(v, bool), "True or False")),
     **dict.fromkeys(("images", "fill_images"), _images),
     "eval_images": _rule(_listed(_evaluation_image), "a non-empty list of file names in benchmarks/data/"),
-    **dict.fromkeys(("image", "edit_image", "fig15_image", "lock_image", "bias_image"), _image),
+    **dict.fromkeys(("image", "edit_image", "fig15_image", "lock_image", "bias_image", "complex_image"), _image),
     "kind": _choice("auto", "photo", "clipart", "drawing"),
     "lock_form": _choice("disc", "square"),
     **dict.fromkeys(
-        ("tolerance", "rdp_tolerance", "zoom", "threshold", "lost_threshold", "beak_radius"),
+        ("tolerance", "rdp_tolerance", "zoom", "threshold", "lost_threshold", "beak_radius", "lock_radius", "window_tolerance"),
         _rule(_positive, "a positive number (px)"),
     ),
     "min_length": _rule(_number(0.0), "a number in [0, inf]"),
@@ -199,6 +206,7 @@ PARAMETER_RULES: dict[str, Check] = {
     "hook_angles": _rule(_listed(_number(0.0, 180.0)), "a non-empty list of angles in [0, 180] degrees"),
     **dict.fromkeys(("levels", "columns", "cases", "repeats", "n_exponents"), _rule(_integer(1), "an integer >= 1")),
     "zooms": _rule(_integer(0), "an integer >= 0"),
+    "max_exponent": _rule(_integer(-30), "an integer ladder exponent k >= -30"),
     "strip_levels": _rule(_integer(2), "an integer >= 2"),
     "user_exponents": _rule(
         lambda v: v is None or _listed(_integer(-math.inf))(v), "None or a non-empty list of integer ladder exponents k"
@@ -251,7 +259,8 @@ def run_notebook(
     output : path
         Where the executed copy goes (written also when a cell fails).
     parameters : mapping, optional
-        Values for names of the notebook's parameters cell.
+        Values for names of the notebook's parameters cell. A notebook's ``interactive`` is
+        False unless given: papermill has no front end to draw widgets.
 
     Returns
     -------
@@ -284,6 +293,10 @@ def run_notebook(
         raise NotebookParameterError(
             f"{nb.name}: no parameter {', '.join(unknown)}; its parameters are {', '.join(known)}"
         )
+    # papermill has no front end to draw widgets: a notebook's `interactive` (True when opened in
+    # JupyterLab) is False in a run for the record unless it is given.
+    if "interactive" in known:
+        parameters.setdefault("interactive", False)
     # A run for the record draws no progress bar into the executed notebook (sweep(progress=None)).
     # The kernel inherits the environment: one BLAS/OpenMP thread, as the command runs (cli.THREAD_VARIABLES:
     # the same bytes, without threads spinning beside the next notebook), unless the user set a count.
