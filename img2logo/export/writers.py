@@ -650,15 +650,24 @@ def _write_figure_png(
             ax.patch.set_alpha(0.0)
 
         def save(f: IO[bytes]) -> None:
-            fig.savefig(
-                f,
-                format="png",
-                dpi=save_dpi,
-                facecolor=paper,
-                edgecolor=paper,
-                transparent=transparent,
-                metadata={"Software": None},
-            )
+            if transparent:
+                fig.savefig(
+                    f,
+                    format="png",
+                    dpi=save_dpi,
+                    facecolor=paper,
+                    edgecolor=paper,
+                    transparent=True,
+                    metadata={"Software": None},
+                )
+                return
+            # On white every pixel is opaque: an RGB PNG, without an alpha channel of 255 everywhere.
+            from PIL import Image
+
+            fig.set_dpi(save_dpi)
+            fig.canvas.draw()
+            rgba = np.asarray(fig.canvas.buffer_rgba())
+            Image.fromarray(np.ascontiguousarray(rgba[..., :3])).save(f, format="png", dpi=(save_dpi, save_dpi))
 
         return atomic_write(target, save)
 
