@@ -68,7 +68,8 @@ _contents = [c for c in _contents if c != "performance" or (Path(__file__).paren
 # Math offline too: MathJax 2 from jupyter-server-mathjax (as make html), into _static/.
 import jupyter_server_mathjax  # noqa: E402
 
-html_static_path = [str(Path(jupyter_server_mathjax.__file__).parent / "static")]
+html_static_path = [str(Path(jupyter_server_mathjax.__file__).parent / "static"), "_static"]
+html_css_files = ["img2logo.css"]
 mathjax_path = "MathJax.js?config=TeX-AMS-MML_HTMLorMML-full"
 mathjax2_config = {"HTML-CSS": {"availableFonts": [], "preferredFont": None, "webFont": "STIX-Web"}}
 
