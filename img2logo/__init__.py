@@ -122,9 +122,7 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the lazy names, eagerly
     from .export.plotting import plot_abstraction, plot_segment_graph
     from .export.writers import read_json, write_json, write_png, write_segment_graph_png, write_svg
     from .features.preprocessing import (
-        DownscaleWarning,
         FeatureLines,
-        LoadedImage,
         detect_kind,
         extract_feature_lines,
         load_image,
@@ -134,7 +132,7 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the lazy names, eagerly
     from .fit.recovery import ConnectivityWarning
     from .geometry.golden_ladder import FibonacciLadder, GoldenLadder
     from .geometry.primitives import Abstraction, Arc, Circle
-    from .images.loading import PageWarning
+    from .images.loading import DownscaleWarning, LoadedImage, PageWarning
     from .options import Options
     from .pipeline import Result, abstract
     from .segment_graph import SegmentGraph, build_segment_graph

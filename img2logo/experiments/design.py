@@ -107,7 +107,7 @@ def timing_reading(table3: pd.DataFrame) -> str:
         cell = {(r["localized"], r["simplify"]): r for _, r in rows.iterrows()}
         if len(cell) < len(CELLS):
             continue
-        nn, yn, ny, yy = (cell[(_YES_NO[a], _YES_NO[b])] for a, b in CELLS)
+        nn, yn, ny, _ = (cell[(_YES_NO[a], _YES_NO[b])] for a, b in CELLS)
         middle = "Yes/No" if yn["median (s)"] < ny["median (s)"] else "No/Yes"
         order = "the paper's order" if middle == paper_middle else "the reverse of the paper's order"
         sentences.append(

@@ -42,6 +42,7 @@ __all__ = [
     "text_problems",
 ]
 
+
 class FigureTextError(Img2LogoError):
     """A figure's texts overlap or leave the figure (:func:`text_problems`): it would not read."""
 
@@ -233,7 +234,7 @@ def _wrap(text: Any, width: float, renderer: Any) -> bool:
     original = text.get_text()
     lines: list[str] = []
     for line in original.split("\n"):
-        words = line.split(" ")
+        words = _keep_together(line.split(" "))
         current = words[0]
         for word in words[1:]:
             text.set_text(f"{current} {word}")
@@ -248,14 +249,25 @@ def _wrap(text: Any, width: float, renderer: Any) -> bool:
     return wrapped != original
 
 
+def _keep_together(words: list[str]) -> list[str]:
+    """Join ``a = b`` into one word, so that a line is never broken around an equals sign."""
+    out: list[str] = []
+    for word in words:
+        if out and (word in ("=", "<=", ">=", "<", ">") or out[-1].endswith(("=", "<", ">"))):
+            out[-1] = f"{out[-1]} {word}"
+        else:
+            out.append(word)
+    return out
+
+
 def fit_titles(fig: Figure) -> Figure:
     """Break every title of ``fig`` onto more lines where it is wider than its axes (the suptitle:
     than the figure); return ``fig``.
 
     Titles are set in points and panels in inches, so a title that fits at one font size runs
     into its neighbour's at a larger one (:func:`img2logo.experiments.make_legible`); constrained
-    layout makes room for the added lines when the figure is drawn. Lines are broken at spaces, so
-    a title's math (``E$^s$``) stays whole.
+    layout makes room for the added lines when the figure is drawn. Lines are broken at spaces, never
+    around an equals sign, so ``|A| = 12`` and a title's math (``E$^s$``) stay whole.
     """
     for _ in range(3):  # the axes' widths may change once the titles take more lines
         renderer = _layout_renderer(fig)

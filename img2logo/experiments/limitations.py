@@ -38,8 +38,8 @@ __all__ = [
     "circle_table",
     "dashed_circle_image",
     "distinct_circles",
-    "logo_deviation",
     "limitations_reading",
+    "logo_deviation",
     "plot_limitation_runs",
     "straight_strokes_image",
     "straightness_table",
@@ -80,10 +80,12 @@ def dashed_circle_image(size: int = 512, *, pieces: int = 3, gap_degrees: float 
     step = 360.0 / pieces
     if not (0 < gap_degrees < step):
         raise InvalidParameterError(f"gap_degrees must be in (0, {step:g}), got {gap_degrees!r}")
-    centre, radius = (size // 2, size // 2), int(round(0.35 * size))
+    centre, radius = (size // 2, size // 2), round(0.35 * size)
     for i in range(pieces):
         start = i * step + gap_degrees / 2
-        cv2.ellipse(image, centre, (radius, radius), 0, start, start + step - gap_degrees, (0, 0, 0), stroke, cv2.LINE_AA)
+        cv2.ellipse(
+            image, centre, (radius, radius), 0, start, start + step - gap_degrees, (0, 0, 0), stroke, cv2.LINE_AA
+        )
     return image
 
 
@@ -181,7 +183,9 @@ def straightness_table(runs: Sequence[Run]) -> pd.DataFrame:
             "variant": lambda r: r.variant,
             "arcs": lambda r: sum(not a.is_line for a in r.final.arcs),
             "straight lines": lambda r: sum(a.is_line for a in r.final.arcs),
-            "largest radius (px)": lambda r: round(max((a.circle.r for a in r.final.arcs if not a.is_line), default=0.0), 1),
+            "largest radius (px)": lambda r: round(
+                max((a.circle.r for a in r.final.arcs if not a.is_line), default=0.0), 1
+            ),
             "E^s (px)": lambda r: round(r.final.similarity, 3),
             "largest deviation (px)": lambda r: round(logo_deviation(r.final, r.graph), 2),
         },

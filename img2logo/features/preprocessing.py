@@ -43,7 +43,7 @@ from ..constants import (
     SYNTHETIC_WORK_SIDE,
 )
 from ..images import skeleton as _skeleton
-from ..images.loading import DownscaleWarning, LoadedImage, downscale, load_image, load_mask
+from ..images.loading import LoadedImage, downscale, load_image, load_mask
 from ..images.ndimage import median
 from .clipart import clipart_lines, clipart_regions, label_means
 
