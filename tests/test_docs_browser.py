@@ -87,7 +87,8 @@ def test_the_api_pages_typeset_the_papers_symbols(site, browser):
         # The symbols outside code, scripts and MathJax's own copies: none left as plain text.
         raw = page.evaluate(
             "(() => { const b = document.body.cloneNode(true);"
-            " b.querySelectorAll('code, pre, script, .MathJax_Preview, .MathJax, .MathJax_SVG').forEach(e => e.remove());"
+            " b.querySelectorAll('code, pre, script, .MathJax_Preview, .MathJax, .MathJax_SVG')"
+            ".forEach(e => e.remove());"
             " return b.textContent.includes('E^s'); })()"
         )
         assert typeset > 0 and not raw

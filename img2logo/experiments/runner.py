@@ -109,7 +109,10 @@ PAPER_ITEMS: dict[str, tuple[str, str]] = {
     "13_symmetry": ("(beyond the paper)", "mirror axes; free and symmetric logos"),
     "14_studio": ("Sec. 7, 8, Fig. 16, 17", "the designer's studio (`make studio`)"),
     "15_tangency": ("(beyond the paper)", "with / without tangent joins"),
-    "16_limitations": ("Fig. 14, 20, 21", "simplicity a designer prefers; disconnected segments; straight lines; lost features"),
+    "16_limitations": (
+        "Fig. 14, 20, 21",
+        "simplicity a designer prefers; disconnected segments; straight lines; lost features",
+    ),
 }
 
 
@@ -192,7 +195,16 @@ PARAMETER_RULES: dict[str, Check] = {
     "kind": _choice("auto", "photo", "clipart", "drawing"),
     "lock_form": _choice("disc", "square"),
     **dict.fromkeys(
-        ("tolerance", "rdp_tolerance", "zoom", "threshold", "lost_threshold", "beak_radius", "lock_radius", "window_tolerance"),
+        (
+            "tolerance",
+            "rdp_tolerance",
+            "zoom",
+            "threshold",
+            "lost_threshold",
+            "beak_radius",
+            "lock_radius",
+            "window_tolerance",
+        ),
         _rule(_positive, "a positive number (px)"),
     ),
     "min_length": _rule(_number(0.0), "a number in [0, inf]"),

@@ -36,7 +36,18 @@ from img2logo.experiments import (
 )
 
 ROOT = Path(__file__).resolve().parents[2]
-KIT_MODULES = (experiments, ablations, arc_selection, design, explore, features, limitations, results, symmetry, tangency)
+KIT_MODULES = (
+    experiments,
+    ablations,
+    arc_selection,
+    design,
+    explore,
+    features,
+    limitations,
+    results,
+    symmetry,
+    tangency,
+)
 
 
 def _two_panels(title: str) -> Figure:
