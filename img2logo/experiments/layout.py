@@ -210,10 +210,11 @@ def emptiest_corner(points: np.ndarray, width: int, height: int, size: float) ->
     return corners[int(np.argmin(counts))]
 
 
-def _titles(fig: Figure) -> list[tuple[Any, float]]:
+def _titles(fig: Any) -> list[tuple[Any, float]]:
     """Each non-empty title of ``fig`` with the width it may take, display px: an axes' titles
     their axes' width, the figure's suptitle the figure's."""
     found = []
+    ax: Any
     for ax in fig.axes:
         if not ax.get_visible():
             continue
@@ -321,7 +322,7 @@ def text_problems(fig: Figure, *, tolerance: float = 0.5) -> list[str]:
     return problems
 
 
-def _layout_renderer(fig: Figure) -> Any:
+def _layout_renderer(fig: Any) -> Any:
     """Lay ``fig`` out (constrained layout) and return a renderer that measures its texts."""
     from matplotlib.backends.backend_agg import FigureCanvasAgg
 
@@ -331,25 +332,27 @@ def _layout_renderer(fig: Figure) -> Any:
     return fig.canvas.get_renderer()
 
 
-def _drawn_texts(fig: Figure) -> list[Any]:
+def _drawn_texts(fig: Any) -> list[Any]:
     """The texts a draw of ``fig`` shows: the figure's, and each visible axes' titles, axis labels,
     tick labels within the view, texts and legend entries."""
     texts = [t for t in (fig._suptitle, fig._supxlabel, fig._supylabel) if t is not None]
     texts += list(fig.texts)
     for legend in fig.legends:
         texts += [*legend.get_texts(), legend.get_title()]
+    ax: Any
     for ax in fig.axes:
         if not ax.get_visible():
             continue
         texts += [ax.title, ax._left_title, ax._right_title, *ax.texts]
         if ax.axison:
+            axis: Any
             for axis in (ax.xaxis, ax.yaxis):
                 if not axis.get_visible():
                     continue
                 texts += [axis.label, axis.offsetText]
                 for tick in axis._update_ticks():  # the ticks within the view, as drawn
                     texts += [tick.label1, tick.label2]
-        legend = ax.get_legend()
-        if legend is not None and legend.get_visible():
-            texts += [*legend.get_texts(), legend.get_title()]
+        shown = ax.get_legend()
+        if shown is not None and shown.get_visible():
+            texts += [*shown.get_texts(), shown.get_title()]
     return list({id(t): t for t in texts}.values())  # the suptitle is also one of fig.texts
