@@ -48,14 +48,14 @@ def test_the_readmes_links_exist():
 
 
 def test_the_quality_script_writes_the_docs_page(tmp_path):
-    # A run over a part (one tiny drawing) writes its tables, the command and the date to the page asked for.
+    # A run over a part (one thick drawing) writes its tables, the command and the date to the page asked for.
     page = tmp_path / "quality.md"
     done = subprocess.run(
         [
             sys.executable,
             str(ROOT / "benchmarks" / "quality.py"),
             "--only",
-            "drawing-leaf",
+            "thick/drawing-leaf-9",
             "--no-sheets",
             "--out",
             str(tmp_path),
@@ -70,6 +70,6 @@ def test_the_quality_script_writes_the_docs_page(tmp_path):
     assert done.returncode == 0, done.stderr[-2000:]
     text = page.read_text(encoding="utf-8")
     assert text.startswith("# Quality\n")
-    assert "`python benchmarks/quality.py --only drawing-leaf --no-sheets" in text
+    assert "`python benchmarks/quality.py --only thick/drawing-leaf-9 --no-sheets" in text
     assert re.search(r"on \d{4}-\d\d-\d\d;", text)
-    assert "| drawing-leaf | drawing | drawing | drawing |" in text
+    assert "| thick/drawing-leaf-9 | thick drawing | thick drawing | drawing |" in text
