@@ -271,8 +271,7 @@ def run_notebook(
     output : path
         Where the executed copy goes (written also when a cell fails).
     parameters : mapping, optional
-        Values for names of the notebook's parameters cell. A notebook's ``interactive`` is
-        False unless given: papermill has no front end to draw widgets.
+        Values for names of the notebook's parameters cell.
 
     Returns
     -------
@@ -305,10 +304,6 @@ def run_notebook(
         raise NotebookParameterError(
             f"{nb.name}: no parameter {', '.join(unknown)}; its parameters are {', '.join(known)}"
         )
-    # papermill has no front end to draw widgets: a notebook's `interactive` (True when opened in
-    # JupyterLab) is False in a run for the record unless it is given.
-    if "interactive" in known:
-        parameters.setdefault("interactive", False)
     # A run for the record draws no progress bar into the executed notebook (sweep(progress=None)).
     # The kernel inherits the environment: one BLAS/OpenMP thread, as the command runs (cli.THREAD_VARIABLES:
     # the same bytes, without threads spinning beside the next notebook), unless the user set a count.
