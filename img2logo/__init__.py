@@ -54,6 +54,7 @@ _LAZY = {
     "load_mask": "images.loading",
     "Options": "options",
     "ConnectivityWarning": "fit.recovery",
+    "TimeBudgetWarning": "fit.progressive",
 }
 
 #: Submodules reachable as attributes, imported on first use.
@@ -82,6 +83,7 @@ __all__ = [
     "Progression",
     "Result",
     "SegmentGraph",
+    "TimeBudgetWarning",
     "UnknownOptionError",
     "__version__",
     "abstract",
@@ -130,7 +132,7 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the lazy names, eagerly
         load_image,
         load_mask,
     )
-    from .fit.progressive import Progression, optimize
+    from .fit.progressive import Progression, TimeBudgetWarning, optimize
     from .fit.recovery import ConnectivityWarning
     from .geometry.golden_ladder import FibonacciLadder, GoldenLadder
     from .geometry.primitives import Abstraction, Arc, Circle

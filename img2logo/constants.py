@@ -626,6 +626,10 @@ KKT_COMPILED_MAX: int = 2500
 # --- Progressive optimization (progressive.py) -------------------------------------
 #: Default tolerance T on the similarity error E^s (Eqn. 1), px; the paper's default.
 TOLERANCE: float = 5.0
+#: Default time budget of the progressive optimization, s of CPU time of the thread running it (on an idle
+#: machine about the wall time): past it the merge loop stops at its last level (``Options.time_budget``).
+#: Every image of data/ and benchmarks/data/ finishes its optimization within 2 s of CPU.
+TIME_BUDGET: float = 10.0
 #: Line-segment simplification (Sec. 5.4): neighbours are merged before the loop when
 #: one circle fits them with a mean absolute error below this, px (the paper's 1.0).
 SIMPLIFICATION_ERROR: float = 1.0

@@ -39,6 +39,9 @@ from .simplification import Group, hold_line, merge_groups
 #: Called by :func:`merge_loop` after every merge, with the state (now one level further).
 MergeCallback: TypeAlias = Callable[[FitState], None]
 
+#: Why :func:`merge_loop` stopped when its time budget ran out.
+TIME_BUDGET_STOP = "time budget"
+
 #: A merge candidate: (group a, group b, their common end node).
 Pair: TypeAlias = "tuple[int, int, int]"  # a string: autodoc documents it as data, not as a class
 
@@ -595,7 +598,12 @@ def recheck_crossing(state: FitState, outcome: MergeOutcome) -> bool:
     return _runs_through_twice(state, outcome.pair, outcome.merged, outcome.fits, outcome.displacements, _level(state))
 
 
-def merge_loop(state: FitState, tolerance: float, merged: MergeCallback | None = None) -> str:
+def merge_loop(
+    state: FitState,
+    tolerance: float,
+    merged: MergeCallback | None = None,
+    over_budget: Callable[[], bool] | None = None,
+) -> str:
     """Merge the best pair until E^s would exceed ``tolerance`` (Sec. 5.2, steps 1-6).
 
     Scores are kept between iterations. After a merge, the pairs with the new
@@ -604,7 +612,10 @@ def merge_loop(state: FitState, tolerance: float, merged: MergeCallback | None =
     and is rescored from the current state when it comes out best: so the pair
     merged is always scored exactly (lazy greedy). After every merge it calls
     ``merged(state)`` (the progressive optimization records the level there);
-    returns why it stopped: ``"tolerance"`` or ``"no mergeable pair"``.
+    returns why it stopped: ``"tolerance"``, ``"no mergeable pair"`` or
+    ``"time budget"``: ``over_budget()`` was true before a candidate's refit,
+    and the state is the last level made (a refit is tentative: a level's
+    candidates stop wherever the budget ends, and nothing of them is kept).
 
     The chosen merge is checked before it is made, against the current arcs:
     for redundant intersections (scored with every candidate too, Fig. 12),
@@ -631,6 +642,8 @@ def merge_loop(state: FitState, tolerance: float, merged: MergeCallback | None =
             best, best_error = None, math.inf
             for pair in pairs:
                 if pair not in cache or (pair in stale and cache[pair] is None):
+                    if over_budget is not None and over_budget():
+                        return TIME_BUDGET_STOP
                     cache[pair] = evaluate(state, pair)
                     stale.discard(pair)
                 out = cache[pair]
@@ -642,6 +655,8 @@ def merge_loop(state: FitState, tolerance: float, merged: MergeCallback | None =
                     best, best_error = pair, error
             if best is None or best not in stale:
                 break
+            if over_budget is not None and over_budget():
+                return TIME_BUDGET_STOP
             cache[best] = evaluate(state, best)
             stale.discard(best)
         state.stats.rejected_intersections = sum(1 for o in cache.values() if o is not None and o.redundant)

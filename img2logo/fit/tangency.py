@@ -81,7 +81,7 @@ Coordinates: px, x right, y down (``contract/README.md``).
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Any, cast
 from weakref import WeakKeyDictionary
@@ -139,7 +139,9 @@ def tangent_joins(opt: FitState, tolerance: float) -> bool:
     return bool(made)
 
 
-def tangent_level(opt: FitState, tolerance: float, history: Sequence[tuple]) -> int:
+def tangent_level(
+    opt: FitState, tolerance: float, history: Sequence[tuple], over_budget: Callable[[], bool] | None = None
+) -> int:
     """Make the result's smooth joins tangent, on the last level or one before it; how many levels back.
 
     ``history`` holds :func:`snapshot` of every level of the merge loop, the
@@ -155,12 +157,13 @@ def tangent_level(opt: FitState, tolerance: float, history: Sequence[tuple]) -> 
     art with a dozen joins, 0.5 s at 2048 px), and trying every level made the
     search 20 passes long where many joins stay kinked (the polar bear, a clip
     art at 2048 px), while the kinks left fall slowly with the levels gone
-    back, so the levels between two tried ones seldom score better. ``opt`` is
-    left in the kept level's state, tangent where it could be made so.
+    back, so the levels between two tried ones seldom score better. Once
+    ``over_budget()`` is true no further level is tried (the last level always
+    is). ``opt`` is left in the kept level's state, tangent where it could be made so.
     """
     best: tuple[int, int, tuple, Stats] | None = None
     for back in _levels_back(len(history)):
-        if best is not None and back >= best[0]:
+        if best is not None and (back >= best[0] or (over_budget is not None and over_budget())):
             break
         if back:
             _restore(opt, history[-1 - back])
