@@ -196,8 +196,8 @@ class Options:
         input's line runs on smoothly, their circles touch there (an equality of
         the constrained fit, Eqn. 13). Off: the paper's kinks.
     time_budget : float or None
-        Seconds of CPU time (of the thread running it; on an idle machine about
-        the wall time) the progressive optimization may take, > 0; None: no bound.
+        Seconds of CPU time (of the process running it; on an idle machine
+        about the wall time) the progressive optimization may take, > 0; None: no bound.
         Past it the merge loop stops at its last level (every level is within T)
         and the tangent joins try no level before it, with a
         :class:`~img2logo.fit.progressive.TimeBudgetWarning` saying so in one line.

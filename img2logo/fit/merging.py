@@ -30,7 +30,14 @@ from weakref import WeakKeyDictionary
 
 import numpy as np
 
-from ..constants import FAR_ARC_BUDGET, FAR_ARC_MARGIN, GAP_MAX, JUNCTION_TOLERANCE, REDUNDANT_INTERSECTION_TOL
+from ..constants import (
+    FAR_ARC_BUDGET,
+    FAR_ARC_MARGIN,
+    GAP_MAX,
+    JUNCTION_TOLERANCE,
+    MERGE_FALLBACK_RINGS,
+    REDUNDANT_INTERSECTION_TOL,
+)
 from ..geometry.primitives import Arc
 from .arc_extraction import _distances_to_arcs, _redundant_arrays
 from .fit_state import FitState, GroupFit, Seed, Solution, near_miss
@@ -120,7 +127,7 @@ def evaluate(state: FitState, pair: Pair) -> MergeOutcome | None:
     global_solve = not state.options.localized
     out: Solution | None = None
 
-    def solve_window(fixed: set[int], tangent: bool | set[int] = False) -> Solution | None:
+    def solve_window(fixed: set[int], tangent: bool | set[int] = False, rings: int = 2) -> Solution | None:
         return state.solve(
             after,
             seeds,
@@ -130,7 +137,8 @@ def evaluate(state: FitState, pair: Pair) -> MergeOutcome | None:
             fixed=fixed,
             n_groups_total=n_groups,
             n_junctions_total=nj_after,
-            rings=2,
+            rings=rings,
+            first_ring=1 if rings == 2 else 3,  # the wider window: the first two rings failed
             order=lambda g: (g != -1, g),
             tangent=tangent,
             cap=cap,
@@ -142,8 +150,8 @@ def evaluate(state: FitState, pair: Pair) -> MergeOutcome | None:
     if not global_solve and out is None:
         # The window: the new circle and its neighbours, with the new circle's
         # junctions free (Sec. 5.4). If the fixed junctions leave no solution,
-        # a second ring (the neighbours' junctions and their circles) is freed
-        # before the global problem is solved. Without the connectivity
+        # a second ring (the neighbours' junctions and their circles) is freed,
+        # then further rings up to MERGE_FALLBACK_RINGS. Without the connectivity
         # constraint only the new circle moves.
         out = solve_window(set() if state.options.connectivity else set(after) - {-1})
         if out is None:
@@ -155,7 +163,13 @@ def evaluate(state: FitState, pair: Pair) -> MergeOutcome | None:
             if state.golden_error(merged) > state.options.tolerance:
                 state.stats.rejected_hopeless += 1
                 return None
-            global_solve = True
+            # The paper solves the global problem here; a window of a bounded number of
+            # rings costs the same however large the drawing (MERGE_FALLBACK_RINGS).
+            state.stats.wide_windows += 1
+            if hold:
+                out = solve_window(set(), tangent=hold, rings=MERGE_FALLBACK_RINGS)
+            if out is None:
+                out = solve_window(set(), rings=MERGE_FALLBACK_RINGS)
     if global_solve:
 
         def solve_global(tangent: bool | set[int] = False) -> Solution | None:
@@ -174,7 +188,7 @@ def evaluate(state: FitState, pair: Pair) -> MergeOutcome | None:
             out = solve_global(tangent=hold)
         if out is None:
             out = solve_global()
-    if out is None:  # the global problem has no solution either
+    if out is None:  # the wider window (or the global problem) has no solution either
         return None
     fits, disp = out
     if cap is not None and fits[-1].arc.frechet > cap:  # (then the window's other arcs were not extracted)

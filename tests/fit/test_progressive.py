@@ -221,7 +221,7 @@ def test_time_budget_stops_at_the_last_level_and_says_so(fish_progression, monke
     plain = optimize(graph, tolerance=5.0, tangency=False, time_budget=None)
     # A CPU clock that moves one second every time it is read: the loop reads it before every refit.
     clock = itertools.count()
-    monkeypatch.setattr(progressive.time, "thread_time", lambda: float(next(clock)))
+    monkeypatch.setattr(progressive.time, "process_time", lambda: float(next(clock)))
     budget = plain.stats["evaluated"] * 3 // 4  # past the first level's candidates, before the last level
     with pytest.warns(progressive.TimeBudgetWarning, match=rf"time budget \({budget} s of CPU\) and stopped merging"):
         prog = optimize(graph, tolerance=5.0, time_budget=budget, tangency=False)
