@@ -524,6 +524,9 @@ SLIDE_MIN_PIXELS: int = 3
 #: that bring the circles nearest to touching first: each costs a constrained fit,
 #: and the tangent pass must stay within issue 17's time budget (1.2x the pipeline).
 RUNG_CHOICES: int = 2
+#: The joint refit of a level's tangent joins (img2logo.fit.tangency._all_at_once) tries at most this
+#: many times, releasing one join after each failure: every try solves the whole drawing at once.
+ALL_AT_ONCE_TRIES: int = 2
 #: The result's level (img2logo.fit.tangency.tangent_level): a smooth join left kinked
 #: weighs this many arcs, and the level kept, the merge loop's last or one before it,
 #: has the fewest arcs plus weighted kinks after its tangent refit. A kink is a defect
