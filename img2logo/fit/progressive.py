@@ -53,8 +53,7 @@ from ..segment_graph import SegmentGraph
 from .fit_state import AxisConstraints, FitState, FreeCircles, Seed
 from .merging import TIME_BUDGET_STOP, merge_loop
 from .recovery import check_reach, check_span, recover
-from .simplification import Group, hold_line
-from .simplification import simplify as simplify_groups
+from .simplification import Group, hold_line, simplify as simplify_groups
 from .tangency import snapshot, tangent_level
 
 #: Signature of a progress callback: (level t, number of arcs, E^s in px).

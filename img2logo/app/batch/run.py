@@ -46,24 +46,24 @@ from typing import IO, Any
 from ..._validation import check_choice
 from ...errors import Img2LogoError, InvalidParameterError
 from ...options import Options
+
+# The command line checks a batch before it starts with these (kept importable from here).
 from .folder import (
     LOCK_NAME,
     MANIFEST_NAME,
     batch_lock,
     check_output_folder,
+    check_output_folder as _check_output_folder,  # noqa: F401
     check_targets,
+    check_targets as _check_targets,  # noqa: F401
+    check_unlocked as _check_unlocked,  # noqa: F401
     output_stems,
+    output_stems as _output_stems,  # noqa: F401
     read_manifest,
     remove_old_outputs,
     write_manifest,
+    written_by_img2logo as _written_by_img2logo,  # noqa: F401
 )
-
-# The command line checks a batch before it starts with these (kept importable from here).
-from .folder import check_output_folder as _check_output_folder  # noqa: F401
-from .folder import check_targets as _check_targets  # noqa: F401
-from .folder import check_unlocked as _check_unlocked  # noqa: F401
-from .folder import output_stems as _output_stems  # noqa: F401
-from .folder import written_by_img2logo as _written_by_img2logo  # noqa: F401
 from .pool import OUTPUT_FORMATS, BatchProgress, ignored_subject_options, process_image, run_tasks
 from .report import SUMMARY_COLUMNS, BatchFailure, BatchReport, BatchRow, csv_safe, report_of
 
