@@ -230,6 +230,11 @@ def test_time_budget_stops_at_the_last_level_and_says_so(fish_progression, monke
     for level, same in zip(prog.levels, plain.levels, strict=False):
         assert level.arcs == same.arcs
     assert prog.final.similarity <= 5.0
+    # Past the budget the tangent joins refit the last level only: no level before it is tried.
+    seen = []
+    with pytest.warns(progressive.TimeBudgetWarning):
+        optimize(graph, tolerance=5.0, time_budget=budget, progress=lambda t, n, e: seen.append(t))
+    assert seen[-1] == seen[-2]  # the result is the loop's last level, refitted
 
 
 def test_a_budget_not_reached_changes_nothing(fish_progression):
