@@ -684,13 +684,13 @@ def fit_window(
     touching = {} if tangencies is None else tangencies
     for ring in range(1, max(int(rings), 1) + 1):
         members = seeds | {c for n in free_j for c in junction_circles.get(n, ())}
+        window = tuple(sorted(members, key=order))
         if ring < first_ring:  # a window known to fail: only grown
-            grown = set(free_j).union(*(circle_junctions[c] for c in members))
+            grown = set(free_j).union(*(circle_junctions[c] for c in window))
             if grown == free_j:  # it holds its whole connected part already, and failed
-                return WindowFit(False, tuple(sorted(members, key=order)), (), frozenset(free_j), None)
+                return WindowFit(False, window, (), frozenset(free_j), None)
             free_j = grown
             continue
-        window = tuple(sorted(members, key=order))
         owned = [circle_junctions[c] for c in window]  # each circle's junctions, read once
         node_set = set(free_j)
         for js in owned:
