@@ -220,6 +220,15 @@ def run_batch(
 
     Examples
     --------
+    >>> import cv2, numpy as np
+    >>> image = np.full((160, 160, 3), 255, np.uint8)
+    >>> _ = cv2.circle(image, (80, 80), 50, (0, 0, 0), 3)  # a black ring, 50 px round
+    >>> from pathlib import Path
+    >>> from img2logo import run_batch
+    >>> _ = cv2.imwrite("ring.png", image)
+    >>> report = run_batch(["ring.png"], "logos", outputs=("svg",), jobs=1, progress=False)
+    >>> len(report.rows), len(report.failures), [p.name for p in Path("logos").glob("*.svg")]
+    (1, 0, ['ring.svg'])
     >>> report = run_batch(find_images("data"), "out", tolerance=7.0, ladder="fibonacci")  # doctest: +SKIP
     >>> from dask.distributed import Client  # doctest: +SKIP
     >>> with Client("scheduler:8786") as client:  # doctest: +SKIP
