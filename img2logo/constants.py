@@ -636,8 +636,8 @@ TOLERANCE: float = 5.0
 MERGE_FALLBACK_RINGS: int = 6
 #: Default time budget of the progressive optimization, s of CPU time of the process running it (on an
 #: idle machine about the wall time): past it the merge loop stops at its last level (``Options.time_budget``).
-#: The busiest image of benchmarks/data/ (openclipart/clipart-gallo, 299 arcs at A^0) takes about 6 s of CPU in all,
-#: the others at most 2 s (make bench's growth table): none of them reaches it.
+#: make bench's growth table: the busiest image of benchmarks/data/ (openclipart/clipart-gallo, 299 arcs at A^0)
+#: takes about 6 s of CPU in all, the others it lists at most 1.5 s.
 TIME_BUDGET: float = 10.0
 #: Line-segment simplification (Sec. 5.4): neighbours are merged before the loop when
 #: one circle fits them with a mean absolute error below this, px (the paper's 1.0).
