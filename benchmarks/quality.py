@@ -259,7 +259,7 @@ def write_page(path: Path, table, means, pooled: str, argv: list[str]) -> None:
 
     command = " ".join(["python benchmarks/quality.py", *map(shlex.quote, argv)])
     # Seconds are the performance page's (make bench): taken here, beside the others' work, they say little.
-    family_means = means.reset_index().drop(columns=["seconds"], errors="ignore")
+    family_means = means.reset_index().drop(columns=["seconds", "most seconds"], errors="ignore")
     front = ["family", "images", "kind right", "failed"]
     family_means = family_means[front + [c for c in family_means.columns if c not in front]]
     text = "\n\n".join(

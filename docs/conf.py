@@ -53,7 +53,7 @@ _pages = {p.stem for p in (ROOT / "build" / "html").glob("*.html")}
 html_extra_path = [str(ROOT / "build" / "html")] if _pages else []
 _rows = ["| notebook | reproduces | shows |", "| --- | --- | --- |"]
 for _name, (_item, _shows) in PAPER_ITEMS.items():
-    _cell = f"[`{_name}`](path:{_name}.html)" if _name in _pages else f"`{_name}`"
+    _cell = f'<a href="{_name}.html"><code>{_name}</code></a>' if _name in _pages else f"`{_name}`"
     _rows.append(f"| {_cell} | {_item} | {_shows} |")
 if not _pages:
     _rows.append("\nNo page built yet: run `make figures` and `make html`, then `make docs` again.")

@@ -96,7 +96,7 @@ PAPER_ITEMS: dict[str, tuple[str, str]] = {
     "00_segment_graphs": ("Fig. 4a-b", "feature lines and segment graphs of every example"),
     "01_overview": ("Fig. 1, 4, 7, 8", "input, lines, segments, levels, result; free vs connected golden circles"),
     "02_visual_results": ("Fig. 10", "final results of the 15 examples, input as inset"),
-    "03_simplicity": ("Table 1", "levels along a run; arcs and E^s against the iteration"),
+    "03_simplicity": ("Table 1", "levels along a run; arcs and $E^s$ against the iteration"),
     "04_tolerance_sweep": ("Table 2", "T = 4, 5, 9 side by side; arcs against T"),
     "05_connectivity_ablation": ("Fig. 11, 6", "with / without the connectivity constraint; gaps"),
     "06_redundant_intersections": ("Fig. 12", "with / without intersection avoidance"),
