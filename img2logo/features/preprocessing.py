@@ -30,8 +30,6 @@ from ..constants import (
     DRAWING_MAX_STROKE_FRACTION,
     INK_COLOUR_SPREAD,
     INK_SHARE,
-    SHADED_INK_MAX_LIGHTNESS,
-    SHADED_INK_SHARE,
     JUNCTION_MERGE_DISTANCE,
     MIN_SPECK_AREA,
     PHOTO_MIN_LINE_LENGTH,
@@ -40,6 +38,8 @@ from ..constants import (
     SEAM_LENGTH,
     SEAM_RIM,
     SEAM_WIDTH,
+    SHADED_INK_MAX_LIGHTNESS,
+    SHADED_INK_SHARE,
     SPUR_LENGTH,
     SYNTHETIC_FLAT_FRACTION,
     SYNTHETIC_WORK_SIDE,
@@ -242,11 +242,12 @@ def _shaded_ink(
     light grey, a swan's body in bands of grey. Its colours beside the paper are then all
     blends of the paper and the ink, each within ``INK_COLOUR_SPREAD`` of one (:func:`_blends`;
     a black ink's greys: a colour of its own is no shading), the ink being the drawn colour
-    farthest from the paper's, and dark (L* at most ``SHADED_INK_MAX_LIGHTNESS``). The regions nearer the ink than the paper on that blend are
-    ink, as a threshold halfway between them reads it (:func:`_drawing_lines`); the lighter
-    ones are shading. It is such a drawing when the ink is more than ``SHADED_INK_SHARE`` of
-    what is drawn (the ``solid`` regions, by area): its lines carry it, the shading is an
-    accent. A grey animal with a black outline is mostly fill: a clip art of greys.
+    farthest from the paper's, and dark (L* at most ``SHADED_INK_MAX_LIGHTNESS``). The regions
+    nearer the ink than the paper on that blend are ink, as a threshold halfway between them
+    reads it (:func:`_drawing_lines`); the lighter ones are shading. It is such a drawing when
+    the ink is more than ``SHADED_INK_SHARE`` of what is drawn (the ``solid`` regions, by
+    area): its lines carry it, the shading is an accent. A grey animal with a black outline
+    is mostly fill: a clip art of greys.
     """
     drawn = np.flatnonzero(solid)
     if len(drawn) < 2:

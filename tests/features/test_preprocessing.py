@@ -249,7 +249,8 @@ def test_shaded_openclipart_drawings_are_drawings(name):
 
 
 @pytest.mark.parametrize(
-    "name", ["clipart-beagle", "clipart-simbolo", "clipart-rubik", "clipart-nucleare", "clipart-farfalla", "clipart-gallo"]
+    "name",
+    ["clipart-beagle", "clipart-simbolo", "clipart-rubik", "clipart-nucleare", "clipart-farfalla", "clipart-gallo"],
 )
 def test_openclipart_clip_arts_stay_clip_arts(name):
     """Clip arts with black outlines, dark fills or pale grey hairlines are no shaded drawings."""
