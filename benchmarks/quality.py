@@ -21,7 +21,8 @@ than 10 px from the logo in red | logo.
 
 Columns: kind (true) and detected; arcs; r3, r6, r10 (fraction of the truth's
 feature pixels within 3, 6, 10 px of the logo's arcs and lines, sampled every
-0.5 px); sil6 (fraction of the object mask's outline within 6 px of the logo)
+0.5 px); sil6 (fraction of the object mask's outline within 6 px of the logo as drawn: for a
+detected drawing, of its stroke's edge, the logo being drawn at the drawing's own stroke weight)
 and outside (fraction of the logo's points farther than 12 px from the mask),
 for photo-likes, against the object's silhouette for the Openclipart families; crossings; gaps
 (near-miss gaps: open ends 0.75-6 px from another arc); free ends (arc ends, not of whole circles,
@@ -169,7 +170,9 @@ def run_case(case: dict) -> tuple[dict, object]:
     truth = load_mask(case["folder"] / case["gt"]) if "gt" in case else thin
     outline = case.get("mask") or case.get("silhouette")  # the object whose outline sil6 measures
     mask = load_mask(case["folder"] / outline) if outline else None
-    q = quality.measure(result.final, truth, mask)
+    # A line drawing's logo is drawn at its own stroke weight (recorded by abstract): sil6 measures that stroke's edge.
+    stroke = result.final.params.get("stroke_width", 0.0) if result.lines.kind == "drawing" else 0.0
+    q = quality.measure(result.final, truth, mask, stroke_width=stroke)
     found = quality.joins(result.final, result.graph)
     row.update(
         detected=result.lines.kind,
