@@ -26,7 +26,9 @@ detected drawing, of its stroke's edge, the logo being drawn at the drawing's ow
 and outside (fraction of the logo's points farther than 12 px from the mask),
 for photo-likes, against the object's silhouette for the Openclipart families; crossings; gaps
 (near-miss gaps: open ends 0.75-6 px from another arc); free ends (arc ends, not of whole circles,
-that no other arc comes within 0.75 px of: in a clip art, broken outlines); joins (junctions where
+that no other arc comes within 0.75 px of: in a clip art, broken outlines); line ends (the ends of
+the input's feature lines, nodes of valence 1 of the segment graph: a stroke that ends, a clip art's
+thin mark drawn as its centre line; free ends beyond them were made by the fit); joins (junctions where
 exactly two arcs end and the input's feature line turns by less than 10 degrees), tangent (the fraction of them where
 the two arcs kink by less than 2 degrees) and kink (their median kink, degrees);
 ink lost (dark parts of the input of at least 30 px with no logo
@@ -78,6 +80,7 @@ COLUMNS = (
     "crossings",
     "gaps",
     "free ends",
+    "line ends",
     "joins",
     "tangent",
     "kink",
@@ -184,7 +187,7 @@ def run_case(case: dict) -> tuple[dict, object]:
         outside=q.outside,
         crossings=q.crossings,
         gaps=q.gaps,
-        **{"free ends": q.free_ends},
+        **{"free ends": q.free_ends, "line ends": int(np.count_nonzero(result.graph.valence == 1))},
         joins=found.count,
         tangent=found.tangent_fraction(),
         kink=np.degrees(found.median_kink),
