@@ -22,8 +22,9 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tests"))
 
-from browser_support import CHROMIUM, CHROMIUM_ARGS, start_studio, stop_server  # noqa: E402
+from browser_support import CHROMIUM, CHROMIUM_ARGS, start_studio  # noqa: E402
 
+from img2logo.studio.serve import stop_server  # noqa: E402
 from img2logo.studio.session import Studio  # noqa: E402
 
 CANVAS = "document.querySelector('.img2logo-studio canvas').toDataURL()"

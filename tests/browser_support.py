@@ -72,7 +72,7 @@ def start_studio(folder: Path, root: Path, timeout: float, **command_options: in
     ``serve_command`` (``idle_timeout``, ``cull_interval``). Raises RuntimeError, with the log's end,
     when it does not answer within ``timeout`` s (the probe is a static path: ``/`` would start a kernel).
     """
-    from img2logo.studio.serve import new_token, serve_command, serve_environment, studio_url
+    from img2logo.studio.serve import new_token, serve_command, serve_environment, stop_server, studio_url
 
     port, token = free_port(), new_token()
     base = dict(
@@ -95,13 +95,3 @@ def start_studio(folder: Path, root: Path, timeout: float, **command_options: in
         stop_server(process)
         raise RuntimeError(f"Voila did not start; its log: {log.read_text()[-2000:]}")
     return StudioServer(process, port, token, log, studio_url(port, token))
-
-
-def stop_server(process: subprocess.Popen) -> None:
-    """Stop a server (SIGTERM: Voila and Jupyter shut their kernels down) and reap it; killed after 20 s."""
-    process.terminate()
-    try:
-        process.wait(timeout=20)
-    except subprocess.TimeoutExpired:
-        process.kill()
-        process.wait()

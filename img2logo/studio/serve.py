@@ -9,6 +9,7 @@ point: ``python -m img2logo.studio.serve [--port N]``.
 from __future__ import annotations
 
 import os
+import subprocess
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -195,10 +196,19 @@ def serve_environment(token: str, base: dict[str, str] | None = None) -> dict[st
     return {**(os.environ if base is None else base), TOKEN_VARIABLE: token}
 
 
+def stop_server(process: subprocess.Popen, timeout: float = 20.0) -> None:
+    """Stop a server and reap it: SIGTERM (Voila and Jupyter shut their kernels down), SIGKILL after ``timeout`` s."""
+    process.terminate()
+    try:
+        process.wait(timeout=timeout)
+    except subprocess.TimeoutExpired:
+        process.kill()
+        process.wait()
+
+
 def main(argv: list[str] | None = None) -> int:
     """``python -m img2logo.studio.serve [--port N]``: print the URL with its new token; serve until Ctrl-C."""
     import argparse
-    import subprocess
     import sys
 
     p = argparse.ArgumentParser(prog="make studio", description="Serve the img2logo studio (notebook 14) with Voila.")
@@ -215,12 +225,7 @@ def main(argv: list[str] | None = None) -> int:
     try:
         return server.wait()
     except KeyboardInterrupt:
-        server.terminate()
-        try:
-            server.wait(timeout=10)
-        except subprocess.TimeoutExpired:
-            server.kill()
-            server.wait()
+        stop_server(server)
         print("img2logo studio: stopped", flush=True)
         return 0
 

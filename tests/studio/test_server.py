@@ -17,7 +17,9 @@ import urllib.parse
 from pathlib import Path
 
 import pytest
-from browser_support import CHROMIUM, CHROMIUM_ARGS, start_studio, stop_server
+from browser_support import CHROMIUM, CHROMIUM_ARGS, start_studio
+
+from img2logo.studio.serve import stop_server
 
 pytestmark = pytest.mark.browser
 
