@@ -26,9 +26,9 @@ class StudioIdentityProvider(PasswordIdentityProvider):
       :data:`TOKEN_REQUIRED`, not jupyter_server's login form (whose hints name ``jupyter server list``
       and which offers to store a password in the user's Jupyter configuration).
     * An authenticated page request also gets tornado's ``_xsrf`` cookie: when the studio's tab closes,
-      Voila's page posts ``voila/api/shutdown/<kernel id>`` with the value of that cookie, which
-      Voila's page handler never sets, so the post was refused and the kernel lived on. The post is
-      checked as tornado checks any form (cookie and field agree), so other sites still cannot send it.
+      Voila's page posts ``voila/api/shutdown/<kernel id>`` with the value of that cookie; Voila's page
+      handler does not set it, and without it the post is refused (403) and the kernel lives on. The
+      post is checked as tornado checks any form (cookie and field agree): other sites cannot send it.
     """
 
     async def get_user(self, handler: RequestHandler) -> User | None:  # type: ignore[override]
