@@ -21,9 +21,10 @@ than 10 px from the logo in red | logo.
 
 Columns: kind (true) and detected; arcs; r3, r6, r10 (fraction of the truth's
 feature pixels within 3, 6, 10 px of the logo's arcs and lines, sampled every
-0.5 px); sil6 (fraction of the object mask's outline within 6 px of the logo as drawn: for a
-detected drawing, of its stroke's edge, the logo being drawn at the drawing's own stroke weight)
-and outside (fraction of the logo's points farther than 12 px from the mask),
+0.5 px); sil6 (fraction of the object mask's outline within 6 px of the logo's arcs) and sil6 drawn
+(the same within 6 px of the logo as drawn: for a detected drawing, of its stroke's edge, the logo
+being drawn at the drawing's own stroke weight; for every other kind, sil6) and outside (fraction
+of the logo's points farther than 12 px from the mask),
 for photo-likes, against the object's silhouette for the Openclipart families; crossings; gaps
 (near-miss gaps: open ends 0.75-6 px from another arc); free ends (arc ends, not of whole circles,
 that no other arc comes within 0.75 px of: in a clip art, broken outlines); line ends (the ends of
@@ -76,6 +77,7 @@ COLUMNS = (
     "r6",
     "r10",
     "sil6",
+    "sil6 drawn",
     "outside",
     "crossings",
     "gaps",
@@ -175,7 +177,10 @@ def run_case(case: dict) -> tuple[dict, object]:
     mask = load_mask(case["folder"] / outline) if outline else None
     # A line drawing's logo is drawn at its own stroke weight (recorded by abstract): sil6 measures that stroke's edge.
     stroke = result.final.params.get("stroke_width", 0.0) if result.lines.kind == "drawing" else 0.0
-    q = quality.measure(result.final, truth, mask, stroke_width=stroke)
+    q = quality.measure(result.final, truth, mask)
+    drawn = q.silhouette
+    if mask is not None and stroke > 0:
+        drawn = quality.silhouette_recall(quality.logo_points(result.final), mask, stroke_width=stroke)
     found = quality.joins(result.final, result.graph)
     row.update(
         detected=result.lines.kind,
@@ -184,6 +189,7 @@ def run_case(case: dict) -> tuple[dict, object]:
         r6=q.recall[1],
         r10=q.recall[2],
         sil6=q.silhouette,
+        **{"sil6 drawn": drawn},
         outside=q.outside,
         crossings=q.crossings,
         gaps=q.gaps,
