@@ -239,8 +239,8 @@ def _entry_points() -> dict[str, Any]:
         import time
 
         print(
-            "img2logo: compiling its kernels for this machine, once (about a minute; then each run starts in about"
-            " a second)...",
+            "img2logo: compiling its kernels for this machine, once (about a minute of CPU; later runs start in"
+            " about a second)...",
             file=sys.stderr,
             flush=True,
         )

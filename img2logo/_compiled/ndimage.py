@@ -15,7 +15,8 @@
   (its ties, and its answer for a mask without an outside pixel).
 
 The tests compare each with the library function (scipy and scikit-image are
-imported by the tests only). Written in the subset of Python that numba
+imported by the tests only); ``LICENSES/THIRD-PARTY.md`` holds the two libraries'
+notices. Written in the subset of Python that numba
 compiles; loaded through :mod:`img2logo._compiled.kernels`.
 """
 
@@ -28,7 +29,7 @@ from .jit import jit as _jit
 #: What Zhang-Suen thinning does with a set pixel, by its 8 neighbours coded as one byte (bit 0 north-west,
 #: then clockwise: N, NE, E, SE, S, SW, W): 1 removed in the first sub-pass, 2 in the second, 3 in both,
 #: 0 kept. The table of scikit-image's implementation (``skimage.morphology.skeletonize``, BSD-3-Clause;
-#: its licence in ``LICENSES/scikit-image.txt``), so that the skeletons are scikit-image's pixel for pixel.
+#: its notice in ``LICENSES/THIRD-PARTY.md``), so that the skeletons are scikit-image's pixel for pixel.
 ZHANG_SUEN_TABLE = np.frombuffer(
     bytes.fromhex(
         "0000000100000103000003010100010300000000000000000200020003000303"
