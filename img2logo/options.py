@@ -182,6 +182,13 @@ class Options:
     ------
     InvalidParameterError
         Naming the first value out of range (see :func:`check_abstract_options`).
+
+    Examples
+    --------
+    >>> from img2logo import Options
+    >>> opts = Options(tolerance=9.0, ladder="fibonacci")
+    >>> opts.tolerance, opts.ladder
+    (9.0, 'fibonacci')
     """
 
     # ----------------------------------------------------------------- feature lines, segment graph

@@ -52,8 +52,7 @@ from ..segment_graph import SegmentGraph
 from .fit_state import AxisConstraints, FitState, FreeCircles, Seed
 from .merging import merge_loop
 from .recovery import check_reach, check_span, recover
-from .simplification import Group, hold_line
-from .simplification import simplify as simplify_groups
+from .simplification import Group, hold_line, simplify as simplify_groups
 from .tangency import snapshot, tangent_level
 
 #: Signature of a progress callback: (level t, number of arcs, E^s in px).
@@ -88,6 +87,16 @@ class Progression:
         Seconds spent in simplification, the initial fit, the loop and the tangent joins' refit.
     ladder : GoldenLadder or FibonacciLadder or None
         The ladder the radii were snapped to.
+
+    Examples
+    --------
+    >>> import cv2, numpy as np
+    >>> image = np.full((160, 160, 3), 255, np.uint8)
+    >>> _ = cv2.circle(image, (80, 80), 50, (0, 0, 0), 3)  # a black ring, 50 px round
+    >>> from img2logo import build_segment_graph, extract_feature_lines, optimize
+    >>> progression = optimize(build_segment_graph(extract_feature_lines(image)))
+    >>> progression.final is progression.levels[-1], progression.stopped_because != ""
+    (True, True)
     """
 
     levels: tuple[Abstraction, ...]
@@ -248,6 +257,16 @@ def optimize(
     InvalidParameterError
         On an unknown setting or a value out of range (before any work), an
         empty graph, or a lock mask of the wrong shape.
+
+    Examples
+    --------
+    >>> import cv2, numpy as np
+    >>> image = np.full((160, 160, 3), 255, np.uint8)
+    >>> _ = cv2.circle(image, (80, 80), 50, (0, 0, 0), 3)  # a black ring, 50 px round
+    >>> from img2logo import build_segment_graph, extract_feature_lines, optimize
+    >>> progression = optimize(build_segment_graph(extract_feature_lines(image)))
+    >>> progression.arc_counts[-1], progression.final.arcs[0].circle.k
+    (1, 8)
     """
     opts = Options.from_keywords(settings, base=options) if settings or options is None else options
     if not isinstance(opts, Options):
