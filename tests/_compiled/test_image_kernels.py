@@ -5,8 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from img2logo._compiled import kernels
-from img2logo._compiled import ndimage as kernels_ndimage
+from img2logo._compiled import kernels, ndimage as kernels_ndimage
 
 
 def _blobs(seed: int, shape: tuple[int, int] | None = None, fill: float = 0.55) -> np.ndarray:
