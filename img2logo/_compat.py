@@ -46,7 +46,7 @@ def nonzero(mask: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """``np.nonzero(mask)`` of a 2-D ``mask``: the rows and columns of its set pixels, in raster order, int64."""
     mask = np.asarray(mask)
     if mask.size == 0:
-        return np.nonzero(mask)
+        return np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64)
     rows, cols = np.divmod(np.flatnonzero(mask), mask.shape[1])
     return rows, cols
 

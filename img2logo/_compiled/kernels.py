@@ -137,7 +137,7 @@ ENTRY_POINTS: dict[str, tuple[str, tuple[str, ...], str]] = {
     "png_reduce": ("png", ("u1[::1]", *["i8"] * 6, "b1", "b1", "i8", "!f8[:,::1]"), "i8"),
 }
 
-_DTYPES = {
+_DTYPES: dict[str, np.dtype[Any]] = {
     "f8": np.dtype(np.float64),
     "f4": np.dtype(np.float32),
     "i8": np.dtype(np.int64),
