@@ -29,6 +29,8 @@ class BuildWithKernels(build_py):
         if getattr(self, "editable_mode", False):
             return
         here = Path(self.build_lib) / "img2logo"
+        for stale in (here / "_compiled").glob("_kernels_*"):  # an earlier build's, of other sources
+            stale.unlink()
         # img2logo._compiled alone: its kernels need numpy and numba, not the package's other dependencies.
         package = types.ModuleType("img2logo")
         package.__path__ = [str(here)]
