@@ -13,24 +13,29 @@ function whose Python code stays as the reference the tests compare against, and
 reference is Pillow's decoding). This module gives them to their callers as attributes
 (``kernels.sqp_dense(...)``), loaded on first use:
 
-1. **Ahead of time.** On the first use in an install the entry points below are
-   compiled once, with numba's ``pycc``, into one extension module (seconds,
-   once), stored in ``img2logo/__pycache__`` or, when that is read-only, in
-   ``$XDG_CACHE_HOME/img2logo``; its name carries a hash of the kernels' source
-   and of numpy's version, so an edited kernel is never run stale. A later
-   process imports that module like any other: numba is not imported at all.
+1. **Ahead of time.** The entry points below are compiled with numba's ``pycc``
+   into one extension module whose name carries a hash of the kernels' source and
+   of numpy's major version, so an edited kernel is never run stale. A wheel ships
+   it beside this file (``setup.py`` builds it for the architecture's generic
+   processor); otherwise the first use in an install compiles it for this
+   machine's processor (about a minute of CPU, once, said in one line on stderr)
+   into ``img2logo/_compiled/__pycache__`` or, when that is read-only,
+   ``$XDG_CACHE_HOME/img2logo``. A run imports that module like any other:
+   numba is not imported at all.
    Its import and start-up were ~0.7 s of CPU of every run of the command (the
    library's import, then its typing and lowering registries when the first
    cached kernel loaded), more than the run's own work on a clip art.
 2. **Just in time**, where no such module can be built (no C compiler): numba's
    ``njit(cache=True)``, loaded from numba's disk cache.
 3. **Not at all** where numba cannot cache either (:data:`CACHED` False): the
-   callers run their Python reference, with the same results to the solver's
-   tolerance, rather than compile in every process.
+   optimizer's callers run their Python reference, with the same results to the
+   solver's tolerance, rather than compile in every process; the image
+   operations (:mod:`img2logo.images.ndimage`) have no second path and are
+   compiled by the JIT in the process.
 
-Both compiled forms are the same numba code with the same types, compiled for
-this machine's processor without fast-math: the same floating-point operations
-in the same order.
+The compiled forms are the same numba code with the same types, compiled
+without fast-math (so nothing is reordered or fused): the same floating-point
+operations in the same order for the generic processor and this one.
 """
 
 from __future__ import annotations
