@@ -6,6 +6,7 @@ and PyPI (pip installs the build's and the package's dependencies), and takes mi
 
 from __future__ import annotations
 
+import os
 import subprocess
 import sys
 import venv
@@ -19,8 +20,12 @@ ROOT = Path(__file__).resolve().parents[1]
 pytestmark = pytest.mark.wheel
 
 
+#: The environment of every command: without PYTHONPATH, which would show pip and Python the checkout's img2logo.
+ENV = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "PYTHONHOME")}
+
+
 def _run(cmd: list[str], cwd: Path, timeout: float = 3600) -> subprocess.CompletedProcess[str]:
-    out = subprocess.run(cmd, cwd=cwd, capture_output=True, text=True, timeout=timeout)
+    out = subprocess.run(cmd, cwd=cwd, capture_output=True, text=True, timeout=timeout, env=ENV)
     assert out.returncode == 0, f"{cmd[:4]} failed:\n{out.stdout[-3000:]}\n{out.stderr[-3000:]}"
     return out
 
@@ -46,7 +51,7 @@ def test_the_wheel_ships_its_kernels_and_the_first_run_uses_them(tmp_path):
     cache = tmp_path / "cache"  # an empty user cache: the kernels can only come from the wheel
     command = [str(env_dir / "bin" / "img2logo"), str(ROOT / "data" / "clipart-fish.png"), "--svg", str(svg)]
     out = subprocess.run(
-        command, cwd=tmp_path, capture_output=True, text=True, timeout=600, env={"XDG_CACHE_HOME": str(cache)}
+        command, cwd=tmp_path, capture_output=True, text=True, timeout=600, env={**ENV, "XDG_CACHE_HOME": str(cache)}
     )
     assert out.returncode == 0, out.stderr[-3000:]
     assert svg.read_text().startswith("<?xml") and "<path" in svg.read_text()
@@ -68,5 +73,6 @@ def test_the_wheel_ships_its_kernels_and_the_first_run_uses_them(tmp_path):
         cwd=tmp_path,
         check=True,
         timeout=600,
+        env=ENV,
     )
     assert _run([str(python), "-c", check, str(doc)], tmp_path).stdout.strip() == "valid"
