@@ -26,7 +26,7 @@ from .features.preprocessing import (
     detect_kind as detect_kind,
     extract_feature_lines as extract_feature_lines,
 )
-from .fit.progressive import Progression as Progression, optimize as optimize
+from .fit.progressive import Progression as Progression, TimeBudgetWarning as TimeBudgetWarning, optimize as optimize
 from .fit.recovery import ConnectivityWarning as ConnectivityWarning
 from .geometry.golden_ladder import FibonacciLadder as FibonacciLadder, GoldenLadder as GoldenLadder
 from .geometry.primitives import Abstraction as Abstraction, Arc as Arc, Circle as Circle

@@ -23,7 +23,8 @@ bytes), so that any :class:`concurrent.futures.Executor` can run it:
 - a :class:`~concurrent.futures.ThreadPoolExecutor` (mostly for tests: the work
   is Python-bound and holds the GIL);
 - a cluster: ``run_batch(paths, out, executor=client.get_executor())`` with a
-  ``dask.distributed.Client`` (or any other executor). The workers read the input
+  ``dask.distributed.Client`` (the ``[dask]`` extra: ``pip install 'img2logo[dask]'``;
+  on one machine ``Client(LocalCluster())``), or any other executor. The workers read the input
   images, so they must see the paths (a shared file system); the results come
   back as bytes and are written by the calling process, so the output folder need
   not be shared.
