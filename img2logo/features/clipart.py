@@ -40,6 +40,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .._compat import median
 from ..constants import (
     CLIPART_BLOCK_REACH,
     CLIPART_EDGE_CONTRAST,
@@ -60,7 +61,6 @@ from ..constants import (
 )
 from ..images.cielab import srgb_to_lab
 from ..images.loading import LoadedImage
-from ..images.ndimage import median
 
 #: The offsets whose colour differences :func:`colour_noise` measures: the 4-neighbours.
 _NOISE_PAIRS = ((0, 1), (1, 0))
@@ -226,7 +226,7 @@ def _palette_regions(
     tip). They seed entries too.
     """
     from .._compiled import kernels
-    from ..images.skeleton import label
+    from ..images.ndimage import components
 
     counts, lab_means, rgb_means = _label_means_of_two(areas, lab, rgb)
     seeds = np.flatnonzero(counts >= seed_area)
@@ -276,10 +276,10 @@ def _palette_regions(
     # their corners: tiny 4-connected pieces that are one 8-connected region.
     if kernels.usable():  # the steps below in one compiled call
         return kernels.palette_regions_kernel(index, CLIPART_MIN_REGION_AREA), ~rest
-    regions = label(index, connectivity=1, background=-1)
+    regions = components(index, connectivity=1, background=-1)
     tiny = np.bincount(regions.ravel())[regions] < CLIPART_MIN_REGION_AREA
     if tiny.any():
-        joined = label(np.where(tiny, index, -1), connectivity=2, background=-1)
+        joined = components(np.where(tiny, index, -1), connectivity=2, background=-1)
         regions = np.where(tiny, joined + regions.max() + 1, regions)
     return _relabel(regions), ~rest
 
@@ -294,8 +294,9 @@ def _near_entries(index: np.ndarray, n: int, rest: np.ndarray, radius: int = CLI
     """For each pixel of ``rest``, which of the ``n`` entries have seed pixels within ``radius`` px: (R, n) bool."""
     import cv2
 
+    from .._compat import nonzero
     from .._compiled import kernels
-    from ..images.skeleton import bounding_slices, nonzero
+    from ..images.ndimage import bounding_slices
 
     size = 2 * radius + 1
     disk = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (size, size))
@@ -356,13 +357,13 @@ def _unexplained_seeds(
     ``CLIPART_FILL_SPREAD`` times what lies within ``CLIPART_RIM_RADIUS`` px of
     them (thin strokes that cross, not a fill).
     """
-    from ..images.skeleton import label
+    from ..images.ndimage import components
 
     if not compressed:
         own = _unexplained(seed_of, areas_rgb, rgb, lab, contrast)
         if not own.any():
             return None
-        groups = label(own, connectivity=2)
+        groups = components(own, connectivity=2)
         # Over the unexplained pixels only (a few thousand): the same counts and the same zeros.
         at = np.flatnonzero(own)
         in_group = groups.ravel()[at]
@@ -382,12 +383,12 @@ def _unexplained_seeds(
         return None
     # A small fill's unexplained pixels are its inside and its rim, near its core; a core in a
     # network of thin strokes (where two 3 px lines of a JPEG drawing cross) is no small fill.
-    parts = label(own, connectivity=2)
+    parts = components(own, connectivity=2)
     size = 2 * CLIPART_RIM_RADIUS + 1
     near = (cv2.dilate(core.astype(np.uint8), np.ones((size, size), np.uint8)) > 0) & own
     spread = np.bincount(parts.ravel()) > CLIPART_FILL_SPREAD * np.bincount(parts[near], minlength=parts.max() + 1)
     core &= ~spread[parts]
-    groups = label(core, connectivity=2)
+    groups = components(core, connectivity=2)
     small = np.bincount(groups.ravel()) < CLIPART_SEED_AREA
     small[0] = False
     groups[small[groups]] = 0
@@ -481,7 +482,7 @@ def _reached_entries(
     """
     import cv2
 
-    from ..images.skeleton import nonzero
+    from .._compat import nonzero
 
     h, w = seed_of.shape
     n = len(singles)
@@ -545,9 +546,9 @@ def _flat_areas(lab: np.ndarray, link: float, *, most: np.ndarray | None = None)
     # Adjacent flat pixels are within the link of each other by definition, so the
     # flat areas are the 4-connected components of the flat mask; every other pixel
     # is an area of its own (labels after the components').
-    from ..images.skeleton import label
+    from ..images.ndimage import components
 
-    labels = label(flat, connectivity=1)
+    labels = components(flat, connectivity=1)
     n = int(labels.max())
     rest = ~flat
     labels[rest] = n + 1 + np.arange(int(rest.sum()))
@@ -627,20 +628,11 @@ def thin_regions(regions: np.ndarray) -> np.ndarray:
         The labels, sorted.
     """
     from .._compiled import kernels
-    from ..images.skeleton import bounding_slices, distance_to_background, skeletonize
+    from ..images.ndimage import bounding_slices, skeletonize
 
     # The distance to the nearest other region: pad with -1 so that the image
     # frame is an edge too.
-    if kernels.usable():  # the edges and their distance in one compiled call
-        depth = kernels.region_depth_kernel(regions)
-    else:
-        padded = np.pad(regions, 1, constant_values=-1)
-        edge = np.zeros(padded.shape, dtype=bool)
-        edge[:, :-1] |= padded[:, :-1] != padded[:, 1:]
-        edge[:, 1:] |= padded[:, :-1] != padded[:, 1:]
-        edge[:-1] |= padded[:-1] != padded[1:]
-        edge[1:] |= padded[:-1] != padded[1:]
-        depth = distance_to_background(~edge)
+    depth = kernels.region_depth_kernel(regions)  # the edges and their distance (ndimage.distance's) in one call
     dist = depth[1:-1, 1:-1] + 0.5
     out = []
     n = int(regions.max()) + 1

@@ -21,6 +21,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from .._compat import median
 from .._validation import check_choice, check_positive, readonly
 from ..constants import (
     BLANK_IMAGE_RANGE,
@@ -46,7 +47,7 @@ from ..constants import (
 )
 from ..images import skeleton as _skeleton
 from ..images.loading import DownscaleWarning, LoadedImage, downscale, load_image, load_mask
-from ..images.ndimage import median
+from ..images.ndimage import bounding_slices, components, distance, skeletonize
 from .clipart import clipart_lines, clipart_regions, label_means
 
 if TYPE_CHECKING:
@@ -330,7 +331,7 @@ def _rim_regions(regions: np.ndarray, rgb: np.ndarray, means: np.ndarray, paper:
         return out  # a colour of its own: no rim makes this one ink
     import cv2
 
-    slices = _skeleton.bounding_slices(regions + 1)
+    slices = bounding_slices(regions + 1)
     eight = np.ones((3, 3), dtype=np.uint8)
     ink_lab = blends[-1]  # the ink's own colour
     for r in others:
@@ -342,7 +343,7 @@ def _rim_regions(regions: np.ndarray, rgb: np.ndarray, means: np.ndarray, paper:
         if np.mean(np.linalg.norm(rgb2lab(rgb[sl][own]) - ink_lab, axis=-1) <= INK_COLOUR_SPREAD) >= INK_SHARE:
             out[r] = True  # ink with its rims and the paper it encloses (a small ring), not a grey
             continue
-        if _skeleton.distance_to_background(np.pad(own, 1)).max() > CLIPART_RIM_RADIUS + 0.5:
+        if distance(np.pad(own, 1)).max() > CLIPART_RIM_RADIUS + 0.5:
             return out
         if not ink[regions[sl][(cv2.dilate(own.view(np.uint8), eight) > 0) & ~own]].any():
             return out
@@ -366,12 +367,12 @@ def median_stroke_width(ink: np.ndarray) -> float:
     to the nearest pixel that is not ink: a stroke w px wide has its axis w / 2
     from both edges (to within half a pixel).
     """
-    return _median_stroke_width(ink, _distance(ink))
+    return _median_stroke_width(ink, distance(ink))
 
 
 def _median_stroke_width(ink: np.ndarray, dist: np.ndarray) -> float:
-    """:func:`median_stroke_width` of ``ink`` whose distance to the paper ``dist`` (:func:`_distance`) is known."""
-    skel = _skeleton.skeletonize(ink)
+    """:func:`median_stroke_width` of ``ink`` whose distance to the paper ``dist`` (``ndimage.distance``) is known."""
+    skel = skeletonize(ink)
     return float(2.0 * median(dist[skel])) if skel.any() else 0.0
 
 
@@ -440,7 +441,7 @@ def extract_feature_lines(
     if kind == "drawing":
         ink = _drawing_lines(img)
         radius = _half_width(ink)
-        axis = _skeleton.skeletonize(ink)
+        axis = skeletonize(ink)
         stroke = float(2.0 * median(radius[axis])) if axis.any() else 0.0
         raw = _skeleton.join_line_ends(axis)
         min_len = spur_length if min_line_length is None else min_line_length
@@ -498,7 +499,7 @@ def keep_dots(lines: np.ndarray, ink: np.ndarray, stroke_width: float) -> np.nda
     stroke_width : float
         The drawing's median stroke width, px.
     """
-    labels = _skeleton.label(ink, connectivity=2)
+    labels = components(ink, connectivity=2)
     n = int(labels.max())
     if n == 0:
         return lines
@@ -534,7 +535,7 @@ def _join(raw: np.ndarray) -> np.ndarray:
     0.75-6 px from another arc: a near-miss gap. :func:`_skeleton.join_line_ends`
     links it (the same rule as for photos).
     """
-    return _skeleton.join_line_ends(_skeleton.skeletonize(raw))
+    return _skeleton.join_line_ends(skeletonize(raw))
 
 
 def _clean_skeleton(
@@ -546,7 +547,7 @@ def _clean_skeleton(
     spurs pruned at a junction by the stroke's half width there
     (:func:`_skeleton.prune`).
     """
-    skel = _skeleton.skeletonize(mask)
+    skel = skeletonize(mask)
     graph = _skeleton.trace(skel)
     _skeleton.prune(
         graph,
@@ -564,17 +565,7 @@ def _half_width(ink: np.ndarray) -> np.ndarray:
     Measured on the skeleton, where it is the radius of the stroke's inscribed
     disc; 0 on the paper.
     """
-    return _distance(ink).astype(np.float32)
-
-
-def _distance(mask: np.ndarray) -> np.ndarray:
-    """``scipy.ndimage.distance_transform_edt(mask)``, px, float64 (H, W), by :func:`_skeleton.distance_to_background`
-    (the same bits) unless ``mask`` has no background pixel."""
-    if np.all(mask):
-        from scipy import ndimage
-
-        return np.asarray(ndimage.distance_transform_edt(mask), dtype=np.float64)
-    return _skeleton.distance_to_background(mask)
+    return distance(ink).astype(np.float32)
 
 
 def _paper_seams(gray: np.ndarray, ink: np.ndarray) -> np.ndarray:
@@ -600,14 +591,14 @@ def _paper_seams(gray: np.ndarray, ink: np.ndarray) -> np.ndarray:
     ridge = cv2.morphologyEx(g, cv2.MORPH_TOPHAT, disc) > SEAM_CONTRAST * contrast
     # Pinched paper lies inside the ink; the tip of a paper wedge where two strokes meet at an
     # acute angle is a ridge too, but next to open paper: the junction stays where it is.
-    depth = _skeleton.distance_to_background(ink)  # _distance(ink): the ink has paper here
+    depth = distance(ink)
     ridge &= depth > SEAM_WIDTH / 2
     if not ridge.any():
         return ridge
     # Two strokes that only touch (an ear's base, a tail on a body) leave a ridge about as long
     # as they are wide, where they are one in the drawing too; side by side, the pinch runs
     # along them: a seam is at least SEAM_LENGTH stroke widths long.
-    parts = _skeleton.label(ridge, connectivity=2)
+    parts = components(ridge, connectivity=2)
     n = int(parts.max())
     long = np.bincount(parts.ravel(), minlength=n + 1) >= SEAM_LENGTH * _median_stroke_width(ink, depth)
     long[0] = False
