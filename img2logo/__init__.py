@@ -31,6 +31,7 @@ _LAZY = {
     "LoadedImage": "images.loading",
     "FeatureLines": "features.preprocessing",
     "DownscaleWarning": "images.loading",
+    "DetailWarning": "features.detail",
     "PageWarning": "images.loading",
     "build_segment_graph": "segment_graph",
     "SegmentGraph": "segment_graph",
@@ -65,6 +66,7 @@ __all__ = [
     "Arc",
     "Circle",
     "ConnectivityWarning",
+    "DetailWarning",
     "DownscaleWarning",
     "FeatureLines",
     "FibonacciLadder",
@@ -121,6 +123,7 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the lazy names, eagerly
     from .app.batch.run import run_batch
     from .export.plotting import plot_abstraction, plot_segment_graph
     from .export.writers import read_json, write_json, write_png, write_segment_graph_png, write_svg
+    from .features.detail import DetailWarning
     from .features.preprocessing import (
         DownscaleWarning,
         FeatureLines,

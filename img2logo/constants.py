@@ -205,10 +205,29 @@ CLIPART_NOISE_FACTOR: float = 2.0
 #: Measured (``clipart.colour_noise``): clean clip arts at most 0.02, JPEGs of
 #: quality 70 at least 0.058; twice the clean maximum.
 CLIPART_NOISY_FRACTION: float = 0.04
+#: Clip art: the default ``detail`` (:func:`img2logo.features.detail.merge_by_importance`):
+#: the regions kept explain this share of the object's colour variance (CIELAB). Chosen for
+#: logos, not recall: the share where hatching, highlights and texture blotches (each a
+#: small part of the variance) are merged and the fills that make the object read stay.
+DETAIL: float = 0.95
 #: Clip art: a region at most this wide (twice the median distance from its medial
 #: axis to its edge) is a stroke, px: it gives its centreline, not two boundaries
 #: this close (less than the 6 px at which the segment graph merges junctions).
 CLIPART_STROKE_WIDTH: float = 6.0
+#: Clip art: a region is an ink outline when at least this share of its border is with
+#: regions lighter than it by CLIPART_EDGE_CONTRAST (L*): mostly, since a cartoon's outline
+#: also touches the odd pupil or dark shading; a grey between a white and a black (half
+#: and half) is none.
+CLIPART_INK_BORDER: float = 0.75
+#: Clip art: the most regions (the background included) the optimization is given at once.
+#: Where more remain at the detail asked, the least important are merged on, and a warning
+#: says so (:func:`img2logo.features.detail.merge_by_importance`).
+CLIPART_MAX_REGIONS: int = 40
+#: Clip art: an ink outline (a region darker than every region it touches: the cartoon
+#: style's outline between lighter fills) is a stroke up to this wide, px: its centre line
+#: is within 6 px of both its edges, the distance at which the segment graph merges
+#: junctions and at which sil6 counts the silhouette kept.
+CLIPART_OUTLINE_WIDTH: float = 12.0
 #: ... if its medial axis is at least this many times longer than its width (a
 #: stroke, not a dot) ...
 CLIPART_STROKE_ELONGATION: float = 3.0

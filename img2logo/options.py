@@ -22,7 +22,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from ._validation import check_choice, check_positive
-from .constants import MAX_ANGLE_DEGREES, MAX_LENGTH, MIN_LADDER_RADIUS, MIN_SEGMENT_LENGTH, RDP_TOLERANCE, TOLERANCE
+from .constants import DETAIL, MAX_ANGLE_DEGREES, MAX_LENGTH, MIN_LADDER_RADIUS, MIN_SEGMENT_LENGTH, RDP_TOLERANCE, TOLERANCE
 from .errors import InvalidParameterError, UnknownOptionError
 
 __all__ = [
@@ -137,6 +137,11 @@ class Options:
         Photos: the subject drawn (:func:`img2logo.features.photo.subject.find_subject`).
     subject : (x, y, w, h), "X,Y,W,H" or None
         Photos: a rectangle around the object that seeds its segmentation, px.
+    detail : float
+        Clip art: in (0, 1], the share of the object's colour variance (CIELAB)
+        the regions kept explain (:func:`img2logo.features.detail.merge_by_importance`):
+        1 keeps every region; less merges the least important first. The
+        silhouette is always kept. Other kinds: unused.
     stroke_width : float or None
         Width of the logo's strokes in the SVG and PNG, px (> 0), recorded in
         ``params``; None: a line drawing's measured median stroke width
@@ -224,6 +229,16 @@ class Options:
         "the threshold; said in one line), vertical, horizontal or the axis direction in degrees from +x towards "
         "+y (forced); none (default): free",
     )
+    detail: float = _option(
+        DETAIL,
+        stage="input",
+        flags=("--detail",),
+        type=float,
+        metavar="D",
+        help="clip art: the share of the object's colour variance the regions kept explain, in (0, 1]: 1 keeps "
+        f"every region, less merges the least important (hatching, highlights, blotches) into their neighbours "
+        f"first; the silhouette is always kept (default {DETAIL})",
+    )
     stroke_width: float | None = _option(
         None,
         stage="input",
@@ -296,6 +311,9 @@ class Options:
         put(self, "tolerance", _check_length(self.tolerance, "tolerance"))
         put(self, "rdp_tolerance", _check_length(self.rdp_tolerance, "rdp_tolerance"))
         put(self, "min_length", _check_length(self.min_length, "min_length", allow_zero=True))
+        from .features.detail import check_detail
+
+        put(self, "detail", check_detail(self.detail))
         if self.stroke_width is not None:
             put(self, "stroke_width", _check_length(self.stroke_width, "stroke_width"))
         check_choice(self.kind, "kind", ("auto", "photo", "clipart", "drawing"))

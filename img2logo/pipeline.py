@@ -173,7 +173,9 @@ def abstract(
         ):
             foreground = mask_to_working_size(foreground, img, "foreground")
         opts = dataclasses.replace(opts, foreground=foreground)
-    lines = extract_feature_lines(img, kind=work_kind, foreground=opts.foreground, subject=opts.subject)
+    lines = extract_feature_lines(
+        img, kind=work_kind, foreground=opts.foreground, subject=opts.subject, detail=opts.detail
+    )
     if reason is not None:  # what the photo test measured (_working_copy), not "given"
         lines = dataclasses.replace(lines, reason=reason)
     timings["feature_lines"] = time.perf_counter() - start

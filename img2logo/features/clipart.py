@@ -38,6 +38,8 @@ in px, x to the right, y downwards (``contract/README.md``).
 
 from __future__ import annotations
 
+from collections.abc import Iterator
+
 import numpy as np
 
 from ..constants import (
@@ -45,11 +47,13 @@ from ..constants import (
     CLIPART_EDGE_CONTRAST,
     CLIPART_FILL_SPREAD,
     CLIPART_FLAT_RADIUS,
+    CLIPART_INK_BORDER,
     CLIPART_LINK_DISTANCE,
     CLIPART_MIN_CONTRAST,
     CLIPART_MIN_REGION_AREA,
     CLIPART_NOISE_FACTOR,
     CLIPART_NOISY_FRACTION,
+    CLIPART_OUTLINE_WIDTH,
     CLIPART_RIM_RADIUS,
     CLIPART_RING_WIDTH,
     CLIPART_SEED_AREA,
@@ -612,7 +616,7 @@ def _background_first(regions: np.ndarray) -> np.ndarray:
     return _relabel(swap[regions])
 
 
-def thin_regions(regions: np.ndarray) -> np.ndarray:
+def thin_regions(regions: np.ndarray, lightness: np.ndarray | None = None) -> np.ndarray:
     """Labels of the thin regions: strokes drawn as filled shapes.
 
     A region (not the background) is thin when its typical width, twice the
@@ -620,6 +624,12 @@ def thin_regions(regions: np.ndarray) -> np.ndarray:
     ``CLIPART_STROKE_WIDTH`` px and its medial axis is at least
     ``CLIPART_STROKE_ELONGATION`` times longer than that width: a whisker or
     an outline, not a dot.
+
+    An **ink outline** (:func:`ink_outlines`, given the regions' mean L*
+    ``lightness`` (n,)), a region darker than what it touches, is a stroke up
+    to ``CLIPART_OUTLINE_WIDTH`` px wide: the cartoon style's dark line between
+    lighter fills, drawn once along its centre as a drawing's stroke is, not as
+    two edges.
 
     Returns
     -------
@@ -644,6 +654,9 @@ def thin_regions(regions: np.ndarray) -> np.ndarray:
     dist = depth[1:-1, 1:-1] + 0.5
     out = []
     n = int(regions.max()) + 1
+    widest = np.full(n, CLIPART_STROKE_WIDTH)
+    if lightness is not None:
+        widest[ink_outlines(regions, lightness)] = CLIPART_OUTLINE_WIDTH
     slices = bounding_slices(regions + 1)
     for label in range(1, n):
         sl = slices[label] if label < len(slices) else None
@@ -653,31 +666,56 @@ def thin_regions(regions: np.ndarray) -> np.ndarray:
         local = dist[sl][inside]
         # A stroke is thin everywhere: a region with a wide part (a balloon on its
         # string) keeps its outline.
-        if 2.0 * local.max() > CLIPART_STROKE_MAX_FACTOR * CLIPART_STROKE_WIDTH:
+        if 2.0 * local.max() > CLIPART_STROKE_MAX_FACTOR * widest[label]:
             continue
         axis = skeletonize(inside)
         if not axis.any():
             continue
         width = 2.0 * float(median(dist[sl][axis]))
-        if width <= CLIPART_STROKE_WIDTH and axis.sum() >= CLIPART_STROKE_ELONGATION * width:
+        if width <= widest[label] and axis.sum() >= CLIPART_STROKE_ELONGATION * width:
             out.append(label)
     return np.array(out, dtype=np.int64)
 
 
-def clipart_lines(regions: np.ndarray) -> np.ndarray:
+def ink_outlines(regions: np.ndarray, lightness: np.ndarray) -> np.ndarray:
+    """Labels of the ink outlines: regions darker than what they touch, sorted.
+
+    A region is one when at least ``CLIPART_INK_BORDER`` of its border (in
+    pixel pairs) is with regions lighter by ``CLIPART_EDGE_CONTRAST`` (L*,
+    ``lightness`` (n,) the regions' mean): a cartoon's outline runs between
+    lighter fills, and touches the odd dark detail (a pupil, a dark shading)
+    along a little of its length. The background is none.
+    """
+    n = int(regions.max()) + 1
+    border = _border_lengths(regions, n).astype(np.float64)
+    lighter = lightness[None, :] - lightness[:, None] >= CLIPART_EDGE_CONTRAST  # [i, j]: j lighter than i
+    share = (border * lighter).sum(axis=1) / np.maximum(border.sum(axis=1), 1.0)
+    dark = share >= CLIPART_INK_BORDER
+    dark[0] = False
+    return np.flatnonzero(dark)
+
+
+def clipart_lines(regions: np.ndarray, lightness: np.ndarray | None = None) -> np.ndarray:
     """A clip art's line map before thinning: region boundaries, and thin regions whole.
 
-    Thin regions (:func:`thin_regions`) are given to the neighbour they share
-    the longest border with before the boundaries are taken, and their pixels
-    are added to the map, so that thinning turns each into its centreline,
-    joined to the boundaries it touches.
+    ``lightness`` (n,): the regions' mean L*, for the ink outlines (None:
+    strokes up to ``CLIPART_STROKE_WIDTH`` only). Thin regions
+    (:func:`thin_regions`) are given to the neighbour they share the longest
+    border with before the boundaries are taken, and their pixels are added to
+    the map, so that thinning turns each into its centreline, joined to the
+    boundaries it touches. The thin parts of the other ink outlines
+    (:func:`ink_thin_parts`: a cartoon's outline network with its wider blobs)
+    are strokes too: each of their pixels is given to the region nearest to it
+    (so that the boundary between the stroke's two sides runs along its middle)
+    and added to the map.
 
     Returns
     -------
     ndarray of bool, shape (H, W)
     """
-    thin = thin_regions(regions)
-    if len(thin) == 0:
+    thin = thin_regions(regions, lightness)
+    parts = None if lightness is None else ink_thin_parts(regions, lightness, thin)
+    if len(thin) == 0 and parts is None:
         return region_boundaries(regions)
     stroke = np.isin(regions, thin)
     n = int(regions.max()) + 1
@@ -689,7 +727,83 @@ def clipart_lines(regions: np.ndarray) -> np.ndarray:
         if row.max() > 0:
             target[label] = int(np.argmax(row))
     merged = target[regions]
+    if parts is not None:
+        merged = _nearest_labels(merged, parts)
+        stroke |= parts
     return region_boundaries(merged) | (stroke & _interior(regions.shape))
+
+
+def ink_thin_parts(regions: np.ndarray, lightness: np.ndarray, thin: np.ndarray) -> np.ndarray | None:
+    """The thin parts of the ink outlines that are not thin regions whole: (H, W) bool, or None if there are none.
+
+    An ink outline (:func:`ink_outlines`) that is not a stroke everywhere (a
+    cartoon's outline network, joined to a black tail tip or a pupil) has
+    thin parts: its pixels that no disc ``CLIPART_OUTLINE_WIDTH`` + 1 px across
+    inside it covers (what a morphological opening by that disc removes, Soille
+    2003, Sec. 4.4). Of those, the 8-connected pieces of at least
+    ``CLIPART_MIN_REGION_AREA`` px are kept: a wide blob's corners are not
+    covered either, but are a few px each.
+    """
+    out = np.zeros(regions.shape, dtype=bool)
+    for _, sl, part in _ink_parts(regions, np.setdiff1d(ink_outlines(regions, lightness), thin)):
+        out[sl] |= part
+    return out if out.any() else None
+
+
+def outline_strokes(regions: np.ndarray, lightness: np.ndarray) -> np.ndarray:
+    """Labels of the ink outlines drawn as strokes: thin regions, or at least half thin parts; sorted.
+
+    :func:`ink_outlines` that are :func:`thin_regions` whole, or whose
+    :func:`ink_thin_parts` hold at least half their pixels (a cartoon's outline
+    network with a few wider blobs); a dark fill (a black disc) is none.
+    """
+    inks = ink_outlines(regions, lightness)
+    thin = np.intersect1d(thin_regions(regions, lightness), inks)
+    area = np.bincount(regions.ravel())
+    mostly = [
+        label for label, _, part in _ink_parts(regions, np.setdiff1d(inks, thin)) if 2 * part.sum() >= area[label]
+    ]
+    return np.union1d(thin, np.array(mostly, dtype=np.int64))
+
+
+def _ink_parts(regions: np.ndarray, labels: np.ndarray) -> Iterator[tuple[int, tuple[slice, slice], np.ndarray]]:
+    """(label, box, thin part within the box) of each of ``labels``: see :func:`ink_thin_parts`."""
+    import cv2
+
+    from ..images.skeleton import bounding_slices
+
+    if len(labels) == 0:
+        return
+    size = int(CLIPART_OUTLINE_WIDTH) + 1
+    disc = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (size, size))
+    slices = bounding_slices(regions + 1)
+    h, w = regions.shape
+    for label in labels:
+        box = slices[label]
+        if box is None:
+            continue
+        sl = (
+            slice(max(0, box[0].start - size), min(box[0].stop + size, h)),
+            slice(max(0, box[1].start - size), min(box[1].stop + size, w)),
+        )
+        own = (regions[sl] == label).astype(np.uint8)
+        part = own.astype(bool) & (cv2.morphologyEx(own, cv2.MORPH_OPEN, disc) == 0)
+        _, pieces, stats, _ = cv2.connectedComponentsWithStats(part.view(np.uint8), connectivity=8)
+        keep = stats[:, cv2.CC_STAT_AREA] >= CLIPART_MIN_REGION_AREA
+        keep[0] = False
+        yield int(label), sl, keep[pieces]
+
+
+def _nearest_labels(regions: np.ndarray, strokes: np.ndarray) -> np.ndarray:
+    """``regions`` with every pixel of ``strokes`` given the label of the nearest pixel outside them: (H, W) int."""
+    import cv2
+
+    free = np.where(strokes, 255, 0).astype(np.uint8)  # the zero pixels are the sources
+    _, nearest = cv2.distanceTransformWithLabels(free, cv2.DIST_L2, 5, labelType=cv2.DIST_LABEL_PIXEL)
+    rows, cols = np.nonzero(free == 0)
+    owner = np.zeros(int(nearest.max()) + 1, dtype=regions.dtype)
+    owner[nearest[rows, cols]] = regions[rows, cols]
+    return np.where(strokes, owner[nearest], regions)
 
 
 def _border_lengths(regions: np.ndarray, n: int) -> np.ndarray:

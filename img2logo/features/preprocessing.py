@@ -25,6 +25,7 @@ from .._validation import check_choice, check_positive, readonly
 from ..constants import (
     BLANK_IMAGE_RANGE,
     CLIPART_RIM_RADIUS,
+    DETAIL,
     DOT_MIN_DIAMETER,
     DOT_MIN_RADIUS,
     DRAWING_MAX_STROKE_FRACTION,
@@ -46,6 +47,7 @@ from ..images import skeleton as _skeleton
 from ..images.loading import DownscaleWarning, LoadedImage, downscale, load_image, load_mask
 from ..images.ndimage import median
 from .clipart import clipart_lines, clipart_regions, label_means
+from .detail import check_detail, merge_by_importance
 
 if TYPE_CHECKING:
     from .photo.lines import edge_tangent_flow, flow_dog
@@ -308,6 +310,7 @@ def extract_feature_lines(
     subject: object = None,
     spur_length: float | None = None,
     min_line_length: float | None = None,
+    detail: float = DETAIL,
 ) -> FeatureLines:
     """Extract the object's feature lines as a 1-px-wide map (paper Sec. 4).
 
@@ -333,6 +336,10 @@ def extract_feature_lines(
         Isolated lines shorter than this are dropped, px (default:
         ``spur_length`` for drawings and clip art, a longer bound for photos,
         whose short lines are mostly texture).
+    detail : float
+        Clip art only: in (0, 1], the share of the object's colour variance the
+        regions kept explain (:func:`img2logo.features.detail.merge_by_importance`;
+        default ``DETAIL``); 1 keeps every region.
 
     Returns
     -------
@@ -360,7 +367,8 @@ def extract_feature_lines(
         min_len = spur_length if min_line_length is None else min_line_length
     elif kind == "clipart":
         regions = clipart_regions(img) if regions is None else regions
-        raw = _join(clipart_lines(regions))
+        regions = merge_by_importance(regions, img.lab, check_detail(detail))
+        raw = _join(clipart_lines(regions, label_means(regions, img.lab)[1][:, 0]))
         min_len = spur_length if min_line_length is None else min_line_length
     else:
         from .photo.lines import line_maps, photo_feature_lines, start_photo_line_maps, subject_dots, subject_pupils
