@@ -206,7 +206,7 @@ CLIPART_NOISE_FACTOR: float = 2.0
 #: quality 70 at least 0.058; twice the clean maximum.
 CLIPART_NOISY_FRACTION: float = 0.04
 #: Clip art: the default ``detail`` (:func:`img2logo.features.detail.merge_by_importance`):
-#: the regions kept explain this share of the object's colour variance (CIELAB). Chosen for
+#: the regions kept explain this share of the picture's colour variance (CIELAB). Chosen for
 #: logos, not recall: the share where hatching, highlights and texture blotches (each a
 #: small part of the variance) are merged and the fills that make the object read stay.
 DETAIL: float = 0.95

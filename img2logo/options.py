@@ -138,7 +138,7 @@ class Options:
     subject : (x, y, w, h), "X,Y,W,H" or None
         Photos: a rectangle around the object that seeds its segmentation, px.
     detail : float
-        Clip art: in (0, 1], the share of the object's colour variance (CIELAB)
+        Clip art: in (0, 1], the share of the picture's colour variance (CIELAB)
         the regions kept explain (:func:`img2logo.features.detail.merge_by_importance`):
         1 keeps every region; less merges the least important first. The
         silhouette is always kept. Other kinds: unused.
@@ -235,7 +235,7 @@ class Options:
         flags=("--detail",),
         type=float,
         metavar="D",
-        help="clip art: the share of the object's colour variance the regions kept explain, in (0, 1]: 1 keeps "
+        help="clip art: the share of the picture's colour variance the regions kept explain, in (0, 1]: 1 keeps "
         f"every region, less merges the least important (hatching, highlights, blotches) into their neighbours "
         f"first; the silhouette is always kept (default {DETAIL})",
     )

@@ -18,7 +18,7 @@ which grows with its contrast and with the areas it separates (a thin region's
 area is its length times its width, so a long line weighs more than a short
 one of its contrast). The cheapest merge is done first, and the merged region's
 weights are taken anew, until the regions kept explain the share ``detail`` of
-the object's colour variance (the sum of a_i |c_i - c|^2 over its regions, c
+the picture's colour variance (the sum of a_i |c_i - c|^2 over its regions, c
 their mean colour): ``detail`` 1 merges nothing, a smaller ``detail`` keeps
 fewer regions, the weightiest.
 
@@ -81,7 +81,7 @@ class DetailWarning(UserWarning):
 
 def merge_by_importance(
     regions: np.ndarray, lab: np.ndarray, detail: float, *, max_regions: int = CLIPART_MAX_REGIONS
-) -> np.ndarray:
+) -> tuple[np.ndarray, float]:
     """Merge a clip art's least important regions into their neighbours: (H, W) int labels, 0 = background.
 
     Parameters
@@ -91,7 +91,7 @@ def merge_by_importance(
     lab : ndarray, shape (H, W, 3)
         The image's CIELAB colours.
     detail : float
-        In (0, 1]: the share of the object's colour variance the kept regions
+        In (0, 1]: the share of the picture's colour variance the kept regions
         explain (module docstring). 1 keeps every region (up to ``max_regions``).
     max_regions : int
         The most regions (the background included) the optimization is given
@@ -101,12 +101,16 @@ def merge_by_importance(
 
     Returns
     -------
-    ndarray of int, shape (H, W)
-        The merged regions, labels packed, the background still 0.
+    regions : ndarray of int, shape (H, W)
+        The merged regions, labels packed, the background still 0
+        (``regions`` itself when nothing was merged).
+    detail : float
+        The share of the picture's colour variance they explain: at least
+        ``detail``, less where ``max_regions`` coarsened it.
     """
     n = int(regions.max()) + 1
     if detail >= 1.0 and n <= max_regions:
-        return regions
+        return regions, 1.0
     target, used = merge_targets(regions, lab, detail, max_regions=max_regions)
     kept = len(np.unique(target))
     if used < detail:
@@ -119,11 +123,11 @@ def merge_by_importance(
             stacklevel=2,
         )
     if kept == n:
-        return regions
-    used = np.zeros(len(target), dtype=bool)
-    used[target] = True
-    packed = np.cumsum(used) - 1
-    return packed[target][regions].astype(np.int64)
+        return regions, used
+    alive = np.zeros(len(target), dtype=bool)
+    alive[target] = True
+    packed = np.cumsum(alive) - 1
+    return packed[target][regions].astype(np.int64), used
 
 
 def merge_targets(

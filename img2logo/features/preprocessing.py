@@ -106,6 +106,11 @@ class FeatureLines:
         For a line drawing, its median stroke width, px: twice the median
         distance from the ink's skeleton to the paper
         (:func:`median_stroke_width`); None for the other kinds.
+    detail : float or None
+        For a clip art, the share of the picture's colour variance its regions
+        explain (:func:`img2logo.features.detail.merge_by_importance`): the
+        ``detail`` asked, or less where there were too many regions; None for
+        the other kinds.
     """
 
     lines: np.ndarray
@@ -114,6 +119,7 @@ class FeatureLines:
     regions: np.ndarray | None = None
     subject: Subject | None = None
     stroke_width: float | None = None
+    detail: float | None = None
 
     @property
     def shape(self) -> tuple[int, int]:
@@ -337,7 +343,7 @@ def extract_feature_lines(
         ``spur_length`` for drawings and clip art, a longer bound for photos,
         whose short lines are mostly texture).
     detail : float
-        Clip art only: in (0, 1], the share of the object's colour variance the
+        Clip art only: in (0, 1], the share of the picture's colour variance the
         regions kept explain (:func:`img2logo.features.detail.merge_by_importance`;
         default ``DETAIL``); 1 keeps every region.
 
@@ -357,7 +363,7 @@ def extract_feature_lines(
     found = dots = None
     if spur_length is None:
         spur_length = PHOTO_SPUR_LENGTH if kind == "photo" else SPUR_LENGTH
-    radius = stroke = None
+    radius = stroke = detail_used = None
     if kind == "drawing":
         ink = _drawing_lines(img)
         radius = _half_width(ink)
@@ -367,7 +373,7 @@ def extract_feature_lines(
         min_len = spur_length if min_line_length is None else min_line_length
     elif kind == "clipart":
         regions = clipart_regions(img) if regions is None else regions
-        regions = merge_by_importance(regions, img.lab, check_detail(detail))
+        regions, detail_used = merge_by_importance(regions, img.lab, check_detail(detail))
         raw = _join(clipart_lines(regions, label_means(regions, img.lab)[1][:, 0]))
         min_len = spur_length if min_line_length is None else min_line_length
     else:
@@ -395,7 +401,13 @@ def extract_feature_lines(
     if kind == "drawing":
         lines = keep_dots(lines, ink, stroke)
     return FeatureLines(
-        readonly(lines), kind, reason, None if regions is None else readonly(regions), found, stroke_width=stroke
+        readonly(lines),
+        kind,
+        reason,
+        None if regions is None else readonly(regions),
+        found,
+        stroke_width=stroke,
+        detail=detail_used,
     )
 
 

@@ -26,7 +26,7 @@ def _disc(size: int = 200, radius: int = 70, fill: tuple[int, int, int] = ORANGE
 def _merged(im: np.ndarray, detail: float = Options().detail) -> tuple[np.ndarray, np.ndarray]:
     img = load_image(im)
     regions = clipart_regions(img)
-    return regions, merge_by_importance(regions, img.lab, detail)
+    return regions, merge_by_importance(regions, img.lab, detail)[0]
 
 
 def _circle_arcs(result) -> list:
@@ -108,10 +108,10 @@ def test_the_heavier_boundary_is_kept_first():
     cv2.circle(im, (160, 120), 8, DARK_ORANGE, -1, lineType=cv2.LINE_AA)
     regions, _ = _merged(im, 1.0)
     assert regions.max() == 3
-    counts = [int(merge_by_importance(regions, load_image(im).lab, d).max()) for d in (1.0, 0.99, 0.5, 0.01)]
+    counts = [int(merge_by_importance(regions, load_image(im).lab, d)[0].max()) for d in (1.0, 0.99, 0.5, 0.01)]
     assert counts == sorted(counts, reverse=True)
     img = load_image(im)
-    one_left = merge_by_importance(regions, img.lab, 0.97)
+    one_left, _ = merge_by_importance(regions, img.lab, 0.97)
     assert one_left.max() == 2
     assert one_left[120, 90] != one_left[120, 200]  # the strong blob stayed
 
@@ -128,8 +128,9 @@ def test_too_many_regions_are_coarsened_and_said_in_one_line():
     assert regions.max() + 1 > 40
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        merged = merge_by_importance(regions, img.lab, 1.0, max_regions=40)
+        merged, used = merge_by_importance(regions, img.lab, 1.0, max_regions=40)
     assert merged.max() + 1 == 40
+    assert 0.0 < used < 1.0
     (w,) = [c for c in caught if issubclass(c.category, DetailWarning)]
     message = str(w.message)
     assert "\n" not in message and f"{regions.max() + 1} regions" in message and "40 regions" in message
@@ -141,7 +142,7 @@ def test_few_regions_give_no_warning_and_detail_one_changes_nothing():
     regions = clipart_regions(img)
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        assert merge_by_importance(regions, img.lab, 1.0) is regions
+        assert merge_by_importance(regions, img.lab, 1.0) == (regions, 1.0)
 
 
 def test_region_adjacency_counts_pixel_pairs():
@@ -187,7 +188,7 @@ def test_detail_is_an_option_of_abstract_and_recorded_nowhere_it_should_not_be()
 def test_real_clip_art_keeps_its_silhouette_with_fewer_regions(name):
     img = load_image(OPENCLIPART / name)
     regions = clipart_regions(img)
-    merged = merge_by_importance(regions, img.lab, Options().detail)
+    merged, used = merge_by_importance(regions, img.lab, Options().detail)
     assert merged.max() < regions.max()
     assert merged.max() + 1 <= 40
     assert np.array_equal(merged > 0, regions > 0)
