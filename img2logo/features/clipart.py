@@ -696,28 +696,36 @@ def ink_outlines(regions: np.ndarray, lightness: np.ndarray) -> np.ndarray:
 
 
 def clipart_lines(regions: np.ndarray, lightness: np.ndarray | None = None) -> np.ndarray:
-    """A clip art's line map before thinning: region boundaries, and thin regions whole.
+    """A clip art's line map before thinning: region boundaries, and strokes drawn once.
 
-    ``lightness`` (n,): the regions' mean L*, for the ink outlines (None:
-    strokes up to ``CLIPART_STROKE_WIDTH`` only). Thin regions
-    (:func:`thin_regions`) are given to the neighbour they share the longest
-    border with before the boundaries are taken, and their pixels are added to
-    the map, so that thinning turns each into its centreline, joined to the
-    boundaries it touches. The thin parts of the other ink outlines
-    (:func:`ink_thin_parts`: a cartoon's outline network with its wider blobs)
-    are strokes too: each of their pixels is given to the region nearest to it
-    (so that the boundary between the stroke's two sides runs along its middle)
-    and added to the map.
+    Thin regions (:func:`thin_regions`) are given to the neighbour they share
+    the longest border with before the boundaries are taken, and their pixels
+    are added to the map, so that thinning turns each into its centreline,
+    joined to the boundaries it touches.
+
+    With ``lightness`` (n,), the regions' mean L*, the **ink outlines** are
+    drawn once, as a drawing's strokes (:func:`ink_strokes`: the thin ink
+    regions and the thin parts of the others, a cartoon's outline network).
+    Each of their pixels is given to the region nearest to it, so that the
+    boundary between a stroke's two sides runs along its middle; the pixels
+    are added to the map (a stroke that ends inside a fill, a whisker, keeps its
+    end). On the silhouette the stroke is the silhouette's line: a stroke pixel
+    within ``CLIPART_OUTLINE_WIDTH`` px of the background goes to the nearest
+    region of the object and is not added, so the line runs along the outline's
+    outer edge, where the object ends.
 
     Returns
     -------
     ndarray of bool, shape (H, W)
     """
+    strokes = None
     thin = thin_regions(regions, lightness)
-    parts = None if lightness is None else ink_thin_parts(regions, lightness, thin)
-    if len(thin) == 0 and parts is None:
+    if lightness is not None:
+        strokes = ink_strokes(regions, lightness, thin)
+        thin = np.setdiff1d(thin, ink_outlines(regions, lightness))
+    if len(thin) == 0 and strokes is None:
         return region_boundaries(regions)
-    stroke = np.isin(regions, thin)
+    drawn = np.isin(regions, thin)
     n = int(regions.max()) + 1
     border = _border_lengths(regions, n)
     target = np.arange(n)
@@ -727,25 +735,33 @@ def clipart_lines(regions: np.ndarray, lightness: np.ndarray | None = None) -> n
         if row.max() > 0:
             target[label] = int(np.argmax(row))
     merged = target[regions]
-    if parts is not None:
-        merged = _nearest_labels(merged, parts)
-        stroke |= parts
-    return region_boundaries(merged) | (stroke & _interior(regions.shape))
+    if strokes is not None:
+        import cv2
+
+        paper = merged == 0
+        to_paper = cv2.distanceTransform((~paper).astype(np.uint8), cv2.DIST_L2, 5)
+        near_paper = strokes & (to_paper <= CLIPART_OUTLINE_WIDTH)
+        far = strokes & ~near_paper
+        given = merged
+        if far.any():  # the nearest region of any kind: the boundary runs along the stroke's middle
+            given = np.where(far, _nearest_labels(merged, strokes), given)
+        if near_paper.any():  # the nearest region of the object: the line runs along the silhouette
+            given = np.where(near_paper, _nearest_labels(merged, strokes | paper), given)
+        merged = given
+        drawn |= far
+    return region_boundaries(merged) | (drawn & _interior(regions.shape))
 
 
-def ink_thin_parts(regions: np.ndarray, lightness: np.ndarray, thin: np.ndarray) -> np.ndarray | None:
-    """The thin parts of the ink outlines that are not thin regions whole: (H, W) bool, or None if there are none.
+def ink_strokes(regions: np.ndarray, lightness: np.ndarray, thin: np.ndarray) -> np.ndarray | None:
+    """The pixels of the ink outlines drawn as strokes: (H, W) bool, or None if there are none.
 
-    An ink outline (:func:`ink_outlines`) that is not a stroke everywhere (a
-    cartoon's outline network, joined to a black tail tip or a pupil) has
-    thin parts: its pixels that no disc ``CLIPART_OUTLINE_WIDTH`` + 1 px across
-    inside it covers (what a morphological opening by that disc removes, Soille
-    2003, Sec. 4.4). Of those, the 8-connected pieces of at least
-    ``CLIPART_MIN_REGION_AREA`` px are kept: a wide blob's corners are not
-    covered either, but are a few px each.
+    The :func:`ink_outlines` among the ``thin`` regions, whole, and the thin
+    parts of the other ink outlines: their pixels that no disc ``CLIPART_OUTLINE_WIDTH`` + 1 px
+    across inside them covers (:func:`_ink_parts`).
     """
-    out = np.zeros(regions.shape, dtype=bool)
-    for _, sl, part in _ink_parts(regions, np.setdiff1d(ink_outlines(regions, lightness), thin)):
+    inks = ink_outlines(regions, lightness)
+    out = np.isin(regions, np.intersect1d(thin, inks))
+    for _, sl, part in _ink_parts(regions, np.setdiff1d(inks, thin)):
         out[sl] |= part
     return out if out.any() else None
 
@@ -754,7 +770,7 @@ def outline_strokes(regions: np.ndarray, lightness: np.ndarray) -> np.ndarray:
     """Labels of the ink outlines drawn as strokes: thin regions, or at least half thin parts; sorted.
 
     :func:`ink_outlines` that are :func:`thin_regions` whole, or whose
-    :func:`ink_thin_parts` hold at least half their pixels (a cartoon's outline
+     thin parts (:func:`ink_strokes`) hold at least half their pixels (a cartoon's outline
     network with a few wider blobs); a dark fill (a black disc) is none.
     """
     inks = ink_outlines(regions, lightness)
@@ -767,7 +783,14 @@ def outline_strokes(regions: np.ndarray, lightness: np.ndarray) -> np.ndarray:
 
 
 def _ink_parts(regions: np.ndarray, labels: np.ndarray) -> Iterator[tuple[int, tuple[slice, slice], np.ndarray]]:
-    """(label, box, thin part within the box) of each of ``labels``: see :func:`ink_thin_parts`."""
+    """(label, box, thin part within the box) of each of ``labels``.
+
+    The thin part of a region: its pixels that no disc ``CLIPART_OUTLINE_WIDTH``
+    + 1 px across inside it covers (what a morphological opening by that disc
+    removes, Soille 2003, Sec. 4.4), in 8-connected pieces of at least
+    ``CLIPART_MIN_REGION_AREA`` px: a wide blob's corners are not covered
+    either, but are a few px each.
+    """
     import cv2
 
     from ..images.skeleton import bounding_slices
