@@ -209,7 +209,7 @@ CLIPART_NOISY_FRACTION: float = 0.04
 #: the regions kept explain this share of the picture's colour variance (CIELAB). Chosen for
 #: logos, not recall: the share where hatching, highlights and texture blotches (each a
 #: small part of the variance) are merged and the fills that make the object read stay.
-DETAIL: float = 0.95
+DETAIL: float = 0.98
 #: Clip art: a region at most this wide (twice the median distance from its medial
 #: axis to its edge) is a stroke, px: it gives its centreline, not two boundaries
 #: this close (less than the 6 px at which the segment graph merges junctions).

@@ -710,9 +710,10 @@ def clipart_lines(regions: np.ndarray, lightness: np.ndarray | None = None) -> n
     boundary between a stroke's two sides runs along its middle; the pixels
     are added to the map (a stroke that ends inside a fill, a whisker, keeps its
     end). On the silhouette the stroke is the silhouette's line: a stroke pixel
-    within ``CLIPART_OUTLINE_WIDTH`` px of the background goes to the nearest
-    region of the object and is not added, so the line runs along the outline's
-    outer edge, where the object ends.
+    within ``CLIPART_OUTLINE_WIDTH`` px of both the background and a fill of the
+    object goes to the nearest region of the object and is not added, so the
+    line runs along the outline's outer edge, where the object ends. A line on
+    the paper alone (a whisker beside the face) is drawn along its middle.
 
     Returns
     -------
@@ -739,8 +740,13 @@ def clipart_lines(regions: np.ndarray, lightness: np.ndarray | None = None) -> n
         import cv2
 
         paper = merged == 0
-        to_paper = cv2.distanceTransform((~paper).astype(np.uint8), cv2.DIST_L2, 5)
-        near_paper = strokes & (to_paper <= CLIPART_OUTLINE_WIDTH)
+        fill = ~paper & ~strokes
+
+        def within(mask: np.ndarray) -> np.ndarray:  # the pixels within an outline's width of ``mask``
+            return cv2.distanceTransform((~mask).astype(np.uint8), cv2.DIST_L2, 5) <= CLIPART_OUTLINE_WIDTH
+
+        # An outline between the paper and a fill of the object; a line on the paper alone is drawn as it is.
+        near_paper = strokes & within(paper) & within(fill) if fill.any() else np.zeros_like(strokes)
         far = strokes & ~near_paper
         given = merged
         if far.any():  # the nearest region of any kind: the boundary runs along the stroke's middle
