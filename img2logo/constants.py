@@ -219,6 +219,12 @@ CLIPART_STROKE_WIDTH: float = 6.0
 #: also touches the odd pupil or dark shading; a grey between a white and a black (half
 #: and half) is none.
 CLIPART_INK_BORDER: float = 0.75
+#: Clip art: a dark mark on the object's fills (an eye, a pupil, a spot, an inner outline:
+#: darker than CLIPART_INK_BORDER of the fills around it by at least this, L*) is never
+#: merged at the detail asked: a quarter of the lightness range, a black or dark mark on a
+#: mid or light fill. Hatching and shading drawn in a darker shade of their fill's colour
+#: (10-20 L* darker) merge.
+CLIPART_MARK_CONTRAST: float = 25.0
 #: Clip art: the most regions (the background included) the optimization is given at once.
 #: Where more remain at the detail asked, the least important are merged on, and a warning
 #: says so (:func:`img2logo.features.detail.merge_by_importance`).

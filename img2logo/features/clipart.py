@@ -677,18 +677,25 @@ def thin_regions(regions: np.ndarray, lightness: np.ndarray | None = None) -> np
     return np.array(out, dtype=np.int64)
 
 
-def ink_outlines(regions: np.ndarray, lightness: np.ndarray) -> np.ndarray:
+def ink_outlines(
+    regions: np.ndarray, lightness: np.ndarray, *, paper: bool = True, contrast: float = CLIPART_EDGE_CONTRAST
+) -> np.ndarray:
     """Labels of the ink outlines: regions darker than what they touch, sorted.
 
     A region is one when at least ``CLIPART_INK_BORDER`` of its border (in
-    pixel pairs) is with regions lighter by ``CLIPART_EDGE_CONTRAST`` (L*,
-    ``lightness`` (n,) the regions' mean): a cartoon's outline runs between
+    pixel pairs) is with regions lighter by ``contrast`` (L*, default
+    ``CLIPART_EDGE_CONTRAST``; ``lightness`` (n,) the regions' mean): a cartoon's outline runs between
     lighter fills, and touches the odd dark detail (a pupil, a dark shading)
-    along a little of its length. The background is none.
+    along a little of its length. The background is none. Without ``paper``
+    the border with the background does not count: a dark mark on the
+    object's lighter fills (an eye, a spot, an inner outline), and not a dark
+    shape alone on the paper.
     """
     n = int(regions.max()) + 1
     border = _border_lengths(regions, n).astype(np.float64)
-    lighter = lightness[None, :] - lightness[:, None] >= CLIPART_EDGE_CONTRAST  # [i, j]: j lighter than i
+    if not paper:
+        border[:, 0] = 0.0
+    lighter = lightness[None, :] - lightness[:, None] >= contrast  # [i, j]: j lighter than i
     share = (border * lighter).sum(axis=1) / np.maximum(border.sum(axis=1), 1.0)
     dark = share >= CLIPART_INK_BORDER
     dark[0] = False

@@ -37,9 +37,9 @@ import heapq
 
 import numpy as np
 
-from ..constants import CLIPART_MAX_REGIONS
+from ..constants import CLIPART_MARK_CONTRAST, CLIPART_MAX_REGIONS
 from ..errors import InvalidParameterError
-from .clipart import label_means, outline_strokes, thin_regions
+from .clipart import ink_outlines, label_means, outline_strokes, thin_regions
 
 
 def check_detail(value: object) -> float:
@@ -111,7 +111,9 @@ def merge_by_importance(
     n = int(regions.max()) + 1
     if detail >= 1.0 and n <= max_regions:
         return regions, 1.0
-    target, used = merge_targets(regions, lab, detail, max_regions=max_regions)
+    target, used = merge_targets(regions, lab, detail, max_regions=None)
+    if len(np.unique(target)) > max_regions:  # the dark marks too, down to the bound
+        target, used = merge_targets(regions, lab, detail, max_regions=max_regions)
     kept = len(np.unique(target))
     if used < detail:
         import warnings
@@ -131,9 +133,14 @@ def merge_by_importance(
 
 
 def merge_targets(
-    regions: np.ndarray, lab: np.ndarray, detail: float, *, max_regions: int = CLIPART_MAX_REGIONS
+    regions: np.ndarray, lab: np.ndarray, detail: float, *, max_regions: int | None = CLIPART_MAX_REGIONS
 ) -> tuple[np.ndarray, float]:
     """The region each label is merged into by :func:`merge_by_importance`, and the detail reached.
+
+    ``max_regions`` None: the dark marks on the object (:func:`ink_outlines`
+    without the paper) are kept, and merging stops at ``detail``; a number:
+    they may merge too, and merging goes on until at most that many regions
+    are left.
 
     Returns
     -------
@@ -162,6 +169,10 @@ def merge_targets(
     on_paper = np.zeros(n, dtype=bool)
     on_paper[[j for i, j in adjacency if i == 0]] = True
     fixed[np.intersect1d(outline_strokes(regions, means[:, 0]), np.flatnonzero(on_paper))] = True
+    # Nor does a dark mark on the object's lighter fills (an eye, a pupil, a spot, an inner
+    # outline): the first thing the eye finds in a picture, and what a designer keeps.
+    if max_regions is None:
+        fixed[ink_outlines(regions, means[:, 0], paper=False, contrast=CLIPART_MARK_CONTRAST)] = True
     for (i, j), length in adjacency.items():
         if fixed[i] or fixed[j]:
             continue
@@ -183,7 +194,7 @@ def merge_targets(
         c, i, j, vi, vj = heapq.heappop(heap)
         if vi != version[i] or vj != version[j] or target[i] != i or target[j] != j:
             continue  # stale: a side was merged since
-        if spent + c > budget and left <= max_regions:
+        if spent + c > budget and left <= (n if max_regions is None else max_regions):
             break
         spent += c
         left -= 1
