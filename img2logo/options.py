@@ -22,7 +22,15 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from ._validation import check_choice, check_positive
-from .constants import DETAIL, MAX_ANGLE_DEGREES, MAX_LENGTH, MIN_LADDER_RADIUS, MIN_SEGMENT_LENGTH, RDP_TOLERANCE, TOLERANCE
+from .constants import (
+    DETAIL,
+    MAX_ANGLE_DEGREES,
+    MAX_LENGTH,
+    MIN_LADDER_RADIUS,
+    MIN_SEGMENT_LENGTH,
+    RDP_TOLERANCE,
+    TOLERANCE,
+)
 from .errors import InvalidParameterError, UnknownOptionError
 
 __all__ = [

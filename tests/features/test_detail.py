@@ -200,7 +200,7 @@ def test_detail_is_an_option_of_abstract_and_recorded_nowhere_it_should_not_be()
 def test_real_clip_art_keeps_its_silhouette_with_fewer_regions(name):
     img = load_image(OPENCLIPART / name)
     regions = clipart_regions(img)
-    merged, used = merge_by_importance(regions, img.lab, Options().detail)
+    merged, _ = merge_by_importance(regions, img.lab, Options().detail)
     assert merged.max() < regions.max()
     assert merged.max() + 1 <= 40
     assert np.array_equal(merged > 0, regions > 0)
