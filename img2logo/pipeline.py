@@ -130,8 +130,7 @@ def abstract(
         ``None`` (default) shows one only when standard error is a terminal.
     **settings
         Any other field of :class:`~img2logo.options.Options`: ``detail`` (clip
-        art: the share of the picture's colour variance the regions kept explain,
-        in (0, 1]; :mod:`img2logo.features.detail`), ``rdp_tolerance``,
+        art: the regions kept besides the background; :mod:`img2logo.features.detail`), ``rdp_tolerance``,
         ``min_length``, ``foreground``, ``subject``, ``symmetry`` (``"none"``,
         ``"auto"``, ``"vertical"``, ``"horizontal"`` or degrees: a mirror-symmetric
         logo, :mod:`img2logo.fit.symmetry`; what was decided is ``Result.symmetry``),
@@ -191,8 +190,8 @@ def abstract(
         "min_length": float(opts.min_length),
         "scale": img.scale,
     }
-    if lines.detail is not None:  # a clip art's detail, as used (coarsened where there were too many regions)
-        params["detail"] = float(lines.detail)
+    if lines.detail is not None:  # a clip art's regions kept (coarsened where there were too many)
+        params["detail"] = int(lines.detail)
     # The logo's stroke weight: the one asked for, else a drawing's own (clip arts and
     # photos are drawn with the writers' default, which is not recorded).
     stroke = opts.stroke_width if opts.stroke_width is not None else lines.stroke_width

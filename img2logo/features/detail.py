@@ -17,16 +17,13 @@ to the picture's squared colour error: the weight of the boundary between them,
 which grows with its contrast and with the areas it separates (a thin region's
 area is its length times its width, so a long line weighs more than a short
 one of its contrast). The cheapest merge is done first, and the merged region's
-weights are taken anew, until the regions kept explain the share ``detail`` of
-the picture's colour variance (the sum of a_i |c_i - c|^2 over its regions, c
-their mean colour): ``detail`` 1 merges nothing, a smaller ``detail`` keeps
-fewer regions, the weightiest.
+weights are taken anew, until ``detail`` regions are left besides the
+background: the weightiest.
 
-The **silhouette** is never touched: the background (label 0, the region that
-covers most of the image's frame) takes part in no merge, so the boundary
-between it and the object is kept whole, whatever its contrast or thinness (a
-thin outer outline stroke stays a region of its own as long as it weighs more
-than what is merged).
+Never merged: the background (label 0, the region that covers most of the
+image's frame), so the **silhouette** is kept whole, whatever its contrast; an
+ink outline on it (the cartoon style's outer outline); and, at the detail
+asked, the dark marks on the object's fills (an eye, a pupil, a spot).
 
 Arrays are indexed (row, column).
 """
@@ -42,20 +39,20 @@ from ..errors import InvalidParameterError
 from .clipart import ink_outlines, label_means, outline_strokes, thin_regions
 
 
-def check_detail(value: object) -> float:
-    """The ``detail`` option checked: a number in (0, 1], as float.
+def check_detail(value: object) -> int:
+    """The ``detail`` option checked: a whole number of regions, at least 1, as int.
 
     Raises
     ------
     InvalidParameterError
-        For anything else (a bool, a string, NaN, 0 or less, above 1).
+        For anything else (a bool, a string, a fraction, 0 or less).
     """
     if isinstance(value, bool | np.bool_ | str) or not isinstance(value, int | float | np.integer | np.floating):
-        raise InvalidParameterError(f"detail must be a number in (0, 1], got {value!r}")
+        raise InvalidParameterError(f"detail must be a whole number of regions, at least 1, got {value!r}")
     v = float(value)
-    if not (0.0 < v <= 1.0):
-        raise InvalidParameterError(f"detail must be a number in (0, 1], got {value!r}")
-    return v
+    if not (np.isfinite(v) and v >= 1.0 and v == int(v)):
+        raise InvalidParameterError(f"detail must be a whole number of regions, at least 1, got {value!r}")
+    return int(v)
 
 
 def region_adjacency(regions: np.ndarray) -> dict[tuple[int, int], int]:
@@ -80,8 +77,8 @@ class DetailWarning(UserWarning):
 
 
 def merge_by_importance(
-    regions: np.ndarray, lab: np.ndarray, detail: float, *, max_regions: int = CLIPART_MAX_REGIONS
-) -> tuple[np.ndarray, float]:
+    regions: np.ndarray, lab: np.ndarray, detail: int, *, max_regions: int = CLIPART_MAX_REGIONS
+) -> tuple[np.ndarray, int]:
     """Merge a clip art's least important regions into their neighbours: (H, W) int labels, 0 = background.
 
     Parameters
@@ -90,13 +87,14 @@ def merge_by_importance(
         Flat-colour regions, 0 = background (:func:`img2logo.features.clipart.clipart_regions`).
     lab : ndarray, shape (H, W, 3)
         The image's CIELAB colours.
-    detail : float
-        In (0, 1]: the share of the picture's colour variance the kept regions
-        explain (module docstring). 1 keeps every region (up to ``max_regions``).
+    detail : int
+        The regions kept besides the background (module docstring), at least
+        1; the silhouette's pieces and its ink outline, and the dark marks on
+        the object's fills, are kept beyond it.
     max_regions : int
         The most regions (the background included) the optimization is given
-        at once (default ``CLIPART_MAX_REGIONS``): where more remain at
-        ``detail``, merging goes on in the same order down to this many, and a
+        at once (default ``CLIPART_MAX_REGIONS``): where more remain, merging
+        goes on with the dark marks too, down to this many, and a
         :class:`DetailWarning` says so in one line, with the detail used.
 
     Returns
@@ -104,60 +102,46 @@ def merge_by_importance(
     regions : ndarray of int, shape (H, W)
         The merged regions, labels packed, the background still 0
         (``regions`` itself when nothing was merged).
-    detail : float
-        The share of the picture's colour variance they explain: at least
-        ``detail``, less where ``max_regions`` coarsened it.
+    detail : int
+        The regions kept besides the background: ``detail``, or more where
+        what is never merged is more, or fewer where ``max_regions`` asked it.
     """
     n = int(regions.max()) + 1
-    if detail >= 1.0 and n <= max_regions:
-        return regions, 1.0
-    target, used = merge_targets(regions, lab, detail, max_regions=None)
+    if n - 1 <= detail:
+        return regions, n - 1
+    target = merge_targets(regions, lab, detail, marks=True)
     if len(np.unique(target)) > max_regions:  # the dark marks too, down to the bound
-        target, used = merge_targets(regions, lab, detail, max_regions=max_regions)
-    kept = len(np.unique(target))
-    if used < detail:
+        target = merge_targets(regions, lab, min(detail, max_regions - 1), marks=False)
         import warnings
 
         warnings.warn(
-            f"{n} regions at detail {detail:g} are more than the optimization takes at once ({max_regions}): "
-            f"coarsened to detail {used:.3f}, {kept} regions",
+            f"{n} regions at detail {detail} are more than the optimization takes at once ({max_regions}): "
+            f"coarsened to detail {len(np.unique(target)) - 1}, {len(np.unique(target))} regions",
             DetailWarning,
             stacklevel=2,
         )
+    kept = len(np.unique(target))
     if kept == n:
-        return regions, used
+        return regions, n - 1
     alive = np.zeros(len(target), dtype=bool)
     alive[target] = True
     packed = np.cumsum(alive) - 1
-    return packed[target][regions].astype(np.int64), used
+    return packed[target][regions].astype(np.int64), kept - 1
 
 
-def merge_targets(
-    regions: np.ndarray, lab: np.ndarray, detail: float, *, max_regions: int | None = CLIPART_MAX_REGIONS
-) -> tuple[np.ndarray, float]:
-    """The region each label is merged into by :func:`merge_by_importance`, and the detail reached.
+def merge_targets(regions: np.ndarray, lab: np.ndarray, detail: int, *, marks: bool = True) -> np.ndarray:
+    """The region each label is merged into by :func:`merge_by_importance`: (n,) int, the identity where kept.
 
-    ``max_regions`` None: the dark marks on the object (:func:`ink_outlines`
-    without the paper) are kept, and merging stops at ``detail``; a number:
-    they may merge too, and merging goes on until at most that many regions
-    are left.
-
-    Returns
-    -------
-    target : ndarray of int, shape (n,)
-        The label each label's pixels take; the identity where kept.
-    detail : float
-        The share of the picture's colour variance the regions kept explain:
-        at least ``detail``, unless ``max_regions`` asked for fewer regions.
+    Merges in Ward's order until ``detail`` regions are left besides the
+    background, or no merge is allowed. ``marks``: the dark marks on the
+    object's fills (:func:`ink_outlines` without the paper, by
+    ``CLIPART_MARK_CONTRAST``) take part in no merge.
     """
     counts, means = label_means(regions, lab)
     n = len(counts)
     target = np.arange(n)
     if n < 3:  # the background and at most one region: nothing to merge
-        return target, 1.0
-    centre = np.average(means, axis=0, weights=counts)
-    total = float(np.sum(counts * np.sum((means - centre) ** 2, axis=1)))
-    budget = (1.0 - detail) * total
+        return target
     area = counts.astype(np.float64).copy()
     colour = means.astype(np.float64).copy()
     nbrs: list[dict[int, int]] = [{} for _ in range(n)]
@@ -171,7 +155,7 @@ def merge_targets(
     fixed[np.intersect1d(outline_strokes(regions, means[:, 0]), np.flatnonzero(on_paper))] = True
     # Nor does a dark mark on the object's lighter fills (an eye, a pupil, a spot, an inner
     # outline): the first thing the eye finds in a picture, and what a designer keeps.
-    if max_regions is None:
+    if marks:
         fixed[ink_outlines(regions, means[:, 0], paper=False, contrast=CLIPART_MARK_CONTRAST)] = True
     for (i, j), length in adjacency.items():
         if fixed[i] or fixed[j]:
@@ -188,15 +172,11 @@ def merge_targets(
 
     heap = [(cost(i, j), i, j, 0, 0) for i in range(1, n) for j in nbrs[i] if i < j]
     heapq.heapify(heap)
-    spent = 0.0
-    left = int(np.count_nonzero(counts))
-    while heap:
-        c, i, j, vi, vj = heapq.heappop(heap)
+    left = int(np.count_nonzero(counts[1:]))  # besides the background
+    while heap and left > detail:
+        _, i, j, vi, vj = heapq.heappop(heap)
         if vi != version[i] or vj != version[j] or target[i] != i or target[j] != j:
             continue  # stale: a side was merged since
-        if spent + c > budget and left <= (n if max_regions is None else max_regions):
-            break
-        spent += c
         left -= 1
         # j into i: a stroke into its fill, never a fill into a stroke (which would widen it
         # past a stroke's width, and its one centre line would become two edges); else the
@@ -223,4 +203,4 @@ def merge_targets(
         while target[t] != t:
             t = target[t]
         target[r] = t
-    return target, 1.0 - spent / total if total > 0 else 1.0
+    return target

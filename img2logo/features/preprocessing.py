@@ -106,11 +106,11 @@ class FeatureLines:
         For a line drawing, its median stroke width, px: twice the median
         distance from the ink's skeleton to the paper
         (:func:`median_stroke_width`); None for the other kinds.
-    detail : float or None
-        For a clip art, the share of the picture's colour variance its regions
-        explain (:func:`img2logo.features.detail.merge_by_importance`): the
-        ``detail`` asked, or less where there were too many regions; None for
-        the other kinds.
+    detail : int or None
+        For a clip art, the regions kept besides the background
+        (:func:`img2logo.features.detail.merge_by_importance`): the ``detail``
+        asked, more where what is never merged is more, fewer where there were
+        too many regions; None for the other kinds.
     """
 
     lines: np.ndarray
@@ -119,7 +119,7 @@ class FeatureLines:
     regions: np.ndarray | None = None
     subject: Subject | None = None
     stroke_width: float | None = None
-    detail: float | None = None
+    detail: int | None = None
 
     @property
     def shape(self) -> tuple[int, int]:
@@ -316,7 +316,7 @@ def extract_feature_lines(
     subject: object = None,
     spur_length: float | None = None,
     min_line_length: float | None = None,
-    detail: float = DETAIL,
+    detail: int = DETAIL,
 ) -> FeatureLines:
     """Extract the object's feature lines as a 1-px-wide map (paper Sec. 4).
 
@@ -342,10 +342,9 @@ def extract_feature_lines(
         Isolated lines shorter than this are dropped, px (default:
         ``spur_length`` for drawings and clip art, a longer bound for photos,
         whose short lines are mostly texture).
-    detail : float
-        Clip art only: in (0, 1], the share of the picture's colour variance the
-        regions kept explain (:func:`img2logo.features.detail.merge_by_importance`;
-        default ``DETAIL``); 1 keeps every region.
+    detail : int
+        Clip art only: the regions kept besides the background
+        (:func:`img2logo.features.detail.merge_by_importance`; default ``DETAIL``).
 
     Returns
     -------

@@ -23,7 +23,7 @@ def _disc(size: int = 200, radius: int = 70, fill: tuple[int, int, int] = ORANGE
     return im
 
 
-def _merged(im: np.ndarray, detail: float = Options().detail) -> tuple[np.ndarray, np.ndarray]:
+def _merged(im: np.ndarray, detail: int = 1) -> tuple[np.ndarray, np.ndarray]:
     img = load_image(im)
     regions = clipart_regions(img)
     return regions, merge_by_importance(regions, img.lab, detail)[0]
@@ -39,13 +39,13 @@ def test_a_hatching_line_inside_a_disc_is_merged_and_one_circle_kept():
     cv2.line(im, (60, 80), (140, 120), DARK_ORANGE, 1, lineType=cv2.LINE_AA)
     regions, merged = _merged(im)
     assert regions.max() == 2  # the line is a region of its own ...
-    assert merged.max() == 1  # ... merged into the disc
-    result = abstract(im, progress=False)
+    assert merged.max() == 1  # ... merged into the disc at detail 1 (one region kept)
+    result = abstract(im, progress=False, detail=1)
     (cx, cy, r), *more = _circle_arcs(result)
     assert not more
     assert abs(cx - 100) < 2 and abs(cy - 100) < 2 and abs(r - 70) < 3
-    # detail 1 keeps everything: the line is drawn
-    kept = extract_feature_lines(im, detail=1.0).lines
+    # the default keeps a picture of so few regions whole: the line is drawn
+    kept = extract_feature_lines(im).lines
     assert kept[100, 95:106].any()
 
 
@@ -59,7 +59,7 @@ def test_a_ring_of_forty_blotches_goes_and_the_silhouette_stays():
     assert regions.max() >= 2  # the blotches are regions
     assert merged.max() == 1  # only the square is left
     assert np.array_equal(merged > 0, regions > 0)  # the silhouette is the same
-    lines = extract_feature_lines(im).lines
+    lines = extract_feature_lines(im, detail=1).lines
     rows, cols = np.nonzero(lines)
     off_outline = np.minimum.reduce([np.abs(rows - 40), np.abs(rows - 200), np.abs(cols - 40), np.abs(cols - 200)])
     assert off_outline.max() <= 2  # every line is the square's outline
@@ -95,37 +95,45 @@ def test_an_inner_boundary_is_dropped_whole_not_half():
     cv2.ellipse(im, (110, 90), (25, 12), 30, 0, 360, (215, 110, 40), -1, lineType=cv2.LINE_AA)
     regions, merged = _merged(im)
     assert regions.max() == 2 and merged.max() == 1
-    lines = extract_feature_lines(im).lines
+    lines = extract_feature_lines(im, detail=1).lines
     yy, xx = np.nonzero(lines)
     assert np.hypot(yy + 0.5 - 100, xx + 0.5 - 100).min() > 66  # no piece of the ellipse is left
-    kept = extract_feature_lines(im, detail=1.0).lines
+    kept = extract_feature_lines(im, detail=2).lines
     yy, xx = np.nonzero(kept)
     inner = np.hypot(yy + 0.5 - 100, xx + 0.5 - 100) < 50
-    assert inner.sum() > 100  # at detail 1 the ellipse is drawn, whole (about 120 px round)
+    assert inner.sum() > 100  # at detail 2 the ellipse is drawn, whole (about 120 px round)
 
 
 def test_the_silhouette_is_kept_at_any_detail():
     im = _disc()
     cv2.circle(im, (100, 100), 30, (40, 90, 220), -1, lineType=cv2.LINE_AA)
     cv2.circle(im, (100, 100), 10, (250, 250, 250), -1, lineType=cv2.LINE_AA)
-    regions, merged = _merged(im, 0.01)
-    assert merged.max() == 1
+    regions, merged = _merged(im, 1)
+    assert regions.max() == 3 and merged.max() == 1
     assert np.array_equal(merged > 0, regions > 0)
 
 
-def test_the_heavier_boundary_is_kept_first():
-    # Two blobs on one disc: a large one of strong contrast and a small faint one.
+def test_the_heavier_region_is_kept_first():
+    # Two blobs on one disc: a large one of strong colour contrast (not darker: no mark) and a small faint one.
     im = _disc(240, 100)
-    cv2.circle(im, (90, 120), 30, (40, 40, 160), -1, lineType=cv2.LINE_AA)
+    cv2.circle(im, (90, 120), 30, (120, 200, 250), -1, lineType=cv2.LINE_AA)
     cv2.circle(im, (160, 120), 8, DARK_ORANGE, -1, lineType=cv2.LINE_AA)
-    regions, _ = _merged(im, 1.0)
+    regions, kept = _merged(im, 3)
+    assert regions.max() == 3 and kept.max() == 3
+    two, n = merge_by_importance(regions, load_image(im).lab, 2)
+    assert n == 2 and two.max() == 2
+    assert two[120, 90] != two[120, 200]  # the strong blob stayed
+    assert two[120, 160] == two[120, 200]  # the faint one went into the disc
+
+
+def test_a_dark_mark_is_kept_whatever_its_size():
+    im = _disc(240, 100)
+    cv2.circle(im, (100, 100), 4, (0, 0, 0), -1, lineType=cv2.LINE_AA)  # an eye
+    cv2.circle(im, (150, 130), 20, (250, 200, 140), -1, lineType=cv2.LINE_AA)  # a larger light patch
+    regions, merged = _merged(im, 1)
     assert regions.max() == 3
-    counts = [int(merge_by_importance(regions, load_image(im).lab, d)[0].max()) for d in (1.0, 0.99, 0.5, 0.01)]
-    assert counts == sorted(counts, reverse=True)
-    img = load_image(im)
-    one_left, _ = merge_by_importance(regions, img.lab, 0.97)
-    assert one_left.max() == 2
-    assert one_left[120, 90] != one_left[120, 200]  # the strong blob stayed
+    assert merged.max() == 2
+    assert merged[100, 100] != merged[60, 120]  # the eye stayed, the patch went
 
 
 def test_too_many_regions_are_coarsened_and_said_in_one_line():
@@ -140,9 +148,9 @@ def test_too_many_regions_are_coarsened_and_said_in_one_line():
     assert regions.max() + 1 > 40
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        merged, used = merge_by_importance(regions, img.lab, 1.0, max_regions=40)
+        merged, kept = merge_by_importance(regions, img.lab, 60, max_regions=40)
     assert merged.max() + 1 == 40
-    assert 0.0 < used < 1.0
+    assert kept == 39
     (w,) = [c for c in caught if issubclass(c.category, DetailWarning)]
     message = str(w.message)
     assert "\n" not in message and f"{regions.max() + 1} regions" in message and "40 regions" in message
@@ -154,7 +162,7 @@ def test_few_regions_give_no_warning_and_detail_one_changes_nothing():
     regions = clipart_regions(img)
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        assert merge_by_importance(regions, img.lab, 1.0) == (regions, 1.0)
+        assert merge_by_importance(regions, img.lab, Options().detail) == (regions, int(regions.max()))
 
 
 def test_region_adjacency_counts_pixel_pairs():
@@ -183,16 +191,23 @@ def test_an_ink_outline_is_a_stroke_but_a_light_band_of_its_width_is_not():
 
 
 # --------------------------------------------------------------------------- the option
-@pytest.mark.parametrize("bad", [0, 0.0, -0.5, 1.5, float("nan"), "0.5", True, None])
-def test_detail_must_be_a_number_in_0_1(bad):
-    with pytest.raises(InvalidParameterError, match="detail must be a number in"):
+@pytest.mark.parametrize("bad", [0, -3, 2.5, float("nan"), float("inf"), "5", True, None])
+def test_detail_must_be_a_whole_number_of_regions(bad):
+    with pytest.raises(InvalidParameterError, match="detail must be a whole number of regions"):
         Options(detail=bad)
 
 
-def test_detail_is_an_option_of_abstract_and_recorded_nowhere_it_should_not_be():
-    assert Options(detail=1).detail == 1.0
+def test_detail_is_an_option_of_abstract():
+    assert Options(detail=5.0).detail == 5
     assert Options().keywords() == {}
-    assert Options(detail=0.5).keywords() == {"detail": 0.5}
+    assert Options(detail=5).keywords() == {"detail": 5}
+
+
+def test_the_detail_kept_is_recorded():
+    im = _disc()
+    cv2.line(im, (60, 80), (140, 120), DARK_ORANGE, 1, lineType=cv2.LINE_AA)
+    assert abstract(im, progress=False, detail=1).final.params["detail"] == 1
+    assert abstract(im, progress=False).final.params["detail"] == 2
 
 
 # --------------------------------------------------------------------------- real clip art
@@ -200,7 +215,9 @@ def test_detail_is_an_option_of_abstract_and_recorded_nowhere_it_should_not_be()
 def test_real_clip_art_keeps_its_silhouette_with_fewer_regions(name):
     img = load_image(OPENCLIPART / name)
     regions = clipart_regions(img)
-    merged, _ = merge_by_importance(regions, img.lab, Options().detail)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", DetailWarning)  # the tramway's 68 regions are coarsened
+        merged, kept = merge_by_importance(regions, img.lab, Options().detail)
     assert merged.max() < regions.max()
-    assert merged.max() + 1 <= 40
+    assert merged.max() == kept and merged.max() + 1 <= 40
     assert np.array_equal(merged > 0, regions > 0)
