@@ -801,8 +801,9 @@ def _ink_parts(regions: np.ndarray, labels: np.ndarray) -> Iterator[tuple[int, t
     The thin part of a region: its pixels that no disc ``CLIPART_OUTLINE_WIDTH``
     + 1 px across inside it covers (what a morphological opening by that disc
     removes, Soille 2003, Sec. 4.4), in 8-connected pieces of at least
-    ``CLIPART_MIN_REGION_AREA`` px: a wide blob's corners are not covered
-    either, but are a few px each.
+    ``CLIPART_MIN_REGION_AREA`` px (a wide blob's corners are not covered
+    either, but are a few px each) and at least ``CLIPART_STROKE_ELONGATION``
+    times longer than wide (a dot, an eye, is no stroke).
     """
     import cv2
 
@@ -824,8 +825,14 @@ def _ink_parts(regions: np.ndarray, labels: np.ndarray) -> Iterator[tuple[int, t
         )
         own = (regions[sl] == label).astype(np.uint8)
         part = own.astype(bool) & (cv2.morphologyEx(own, cv2.MORPH_OPEN, disc) == 0)
-        _, pieces, stats, _ = cv2.connectedComponentsWithStats(part.view(np.uint8), connectivity=8)
-        keep = stats[:, cv2.CC_STAT_AREA] >= CLIPART_MIN_REGION_AREA
+        count, pieces, stats, _ = cv2.connectedComponentsWithStats(part.view(np.uint8), connectivity=8)
+        # A stroke, not a dot: at least CLIPART_STROKE_ELONGATION times longer than wide (its
+        # area over its width, twice its largest inner distance), as thin_regions asks.
+        depth = cv2.distanceTransform(part.view(np.uint8), cv2.DIST_L2, 5)
+        half = np.zeros(count)
+        np.maximum.at(half, pieces.ravel(), depth.ravel())
+        area = stats[:, cv2.CC_STAT_AREA]
+        keep = (area >= CLIPART_MIN_REGION_AREA) & (area >= CLIPART_STROKE_ELONGATION * (2.0 * half) ** 2)
         keep[0] = False
         yield int(label), sl, keep[pieces]
 
