@@ -127,6 +127,18 @@ INK_COLOUR_SPREAD: float = 4.6
 #: encloses (a small ring of a 4 px stroke: about half its pixels), not a grey of its own
 #: (a grey fill or line has no pixel of the ink's colour).
 INK_SHARE: float = 0.25
+#: Kind detection: an image of one ink with shading (its other colours all blends of the
+#: paper and the ink: greys for black ink) is a line drawing when the ink is more than this
+#: share of what is drawn, the ink's regions over all non-paper regions by area: the lines
+#: are then what the image is made of, the shading an accent between them. Measured on
+#: Openclipart's shaded drawings: the ink 0.67 (a feather's light grey vane) to 0.93 (an ice
+#: cream cone); a clip art of dark outlines around grey fills (X11's eyes) 0.50, the grey
+#: clip arts of benchmarks/data (a ewe, a seal) have a grey darker than their largest colour.
+SHADED_INK_SHARE: float = 0.6
+#: ... and its ink is dark: CIELAB L* at most this (half the paper's), so that greys lie
+#: between it and the paper. Measured: the shaded drawings' inks L* 1-10; the darkest
+#: colour of a clip art of pale grey hairlines (Openclipart's caduceus) L* 82.
+SHADED_INK_MAX_LIGHTNESS: float = 50.0
 #: Kind detection: a one-ink image is a line drawing when its strokes (twice the
 #: median distance from the ink's medial axis to its edge) are at most this fraction
 #: of the shorter image side wide; wider, it is a flat silhouette (a clip art).

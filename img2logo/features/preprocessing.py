@@ -39,6 +39,8 @@ from ..constants import (
     SEAM_LENGTH,
     SEAM_RIM,
     SEAM_WIDTH,
+    SHADED_INK_MAX_LIGHTNESS,
+    SHADED_INK_SHARE,
     SPUR_LENGTH,
     SYNTHETIC_FLAT_FRACTION,
     SYNTHETIC_WORK_SIDE,
@@ -223,6 +225,18 @@ def _detect(img: LoadedImage) -> tuple[str, str, np.ndarray | None]:
                 None,
             )
         return "clipart", f"one flat colour on a plain background, in shapes {stroke:.0f} px wide: a clip art", regions
+    ink = _shaded_ink(regions, img.rgb, means, solid, paper)
+    if ink is not None:
+        inked = ink[regions]
+        stroke = median_stroke_width(inked)
+        if stroke <= DRAWING_MAX_STROKE_FRACTION * min(regions.shape):
+            share = area[ink].sum() / area[solid].sum()
+            return (
+                "drawing",
+                f"one ink colour with grey shading on a plain background, the ink {share:.0%} of what is drawn, in "
+                f"strokes about {stroke:.0f} px wide: a line drawing",
+                None,
+            )
     return "clipart", f"{flat:.0%} of the pixels sit in flat fills of {colours} colours: a clip art", regions
 
 
@@ -230,6 +244,53 @@ def _one_ink(means: np.ndarray, area: np.ndarray) -> bool:
     """Whether the regions' colours (n, 3) CIELAB all lie within ``INK_COLOUR_SPREAD`` of their mean."""
     ink = np.average(means, axis=0, weights=area)
     return bool(np.max(np.linalg.norm(means - ink, axis=1)) <= INK_COLOUR_SPREAD)
+
+
+def _blends(regions: np.ndarray, rgb: np.ndarray, ink: np.ndarray, paper: np.ndarray) -> np.ndarray:
+    """The blends of the paper's colour and the ink's, (65, 3) CIELAB, from the paper (first) to the ink (last).
+
+    ``ink`` and ``paper`` (n,) bool pick the regions of ``regions`` whose mean sRGB colours,
+    weighted by area, are mixed: in sRGB, as anti-aliasing and a grey tint of the ink do.
+    """
+    from ..images.cielab import rgb2lab  # skimage.color.rgb2lab, without importing scipy.linalg
+
+    area, rgb_means = label_means(regions, rgb)  # np.bincount's sums by channel, divided by the areas
+    ink_rgb = np.average(rgb_means[ink], axis=0, weights=area[ink])
+    paper_rgb = np.average(rgb_means[paper], axis=0, weights=area[paper])
+    t = np.linspace(0.0, 1.0, 65)
+    return rgb2lab((paper_rgb[None] + t[:, None] * (ink_rgb - paper_rgb)[None])[:, None, :])[:, 0, :]
+
+
+def _shaded_ink(
+    regions: np.ndarray, rgb: np.ndarray, means: np.ndarray, solid: np.ndarray, paper: np.ndarray
+) -> np.ndarray | None:
+    """The ink's regions of a drawing in one ink with grey shading, (n,) bool; None when the image is not one.
+
+    A pencil or ink drawing is often shaded: a telescope's tube filled grey, a feather's vane
+    light grey, a swan's body in bands of grey. Its colours beside the paper are then all
+    blends of the paper and the ink, each within ``INK_COLOUR_SPREAD`` of one (:func:`_blends`;
+    a black ink's greys: a colour of its own is no shading), the ink being the drawn colour
+    farthest from the paper's, and dark (L* at most ``SHADED_INK_MAX_LIGHTNESS``). The regions
+    nearer the ink than the paper on that blend are ink, as a threshold halfway between them
+    reads it (:func:`_drawing_lines`); the lighter ones are shading. It is such a drawing when
+    the ink is more than ``SHADED_INK_SHARE`` of what is drawn (the ``solid`` regions, by
+    area): its lines carry it, the shading is an accent. A grey animal with a black outline
+    is mostly fill: a clip art of greys.
+    """
+    drawn = np.flatnonzero(solid)
+    if len(drawn) < 2:
+        return None
+    area = np.bincount(regions.ravel(), minlength=len(means)).astype(np.float64)
+    darkest = drawn[np.argmax(np.linalg.norm(means[drawn] - means[0], axis=1))]
+    if means[darkest, 0] > SHADED_INK_MAX_LIGHTNESS:
+        return None  # no dark ink: light greys on white are a clip art's, or a drawing's in one ink
+    blends = _blends(regions, rgb, np.arange(len(means)) == darkest, paper)
+    gap = np.linalg.norm(means[drawn][:, None, :] - blends[None, :, :], axis=2)
+    if np.any(gap.min(axis=1) > INK_COLOUR_SPREAD):
+        return None
+    ink = np.zeros(len(means), dtype=bool)
+    ink[drawn[np.argmin(gap, axis=1) >= len(blends) // 2]] = True
+    return ink if area[ink].sum() > SHADED_INK_SHARE * area[solid].sum() else None
 
 
 def _rim_regions(regions: np.ndarray, rgb: np.ndarray, means: np.ndarray, paper: np.ndarray) -> np.ndarray:
@@ -265,26 +326,21 @@ def _rim_regions(regions: np.ndarray, rgb: np.ndarray, means: np.ndarray, paper:
 
     n = len(means)
     out = np.zeros(n, dtype=bool)
-    labels = regions.ravel()
-    area = np.bincount(labels, minlength=n).astype(np.float64)
     inked = np.flatnonzero(~paper)
     if len(inked) < 2:
         return out
+    area = np.bincount(regions.ravel(), minlength=n).astype(np.float64)
     largest = inked[np.argmax(area[inked])]
     ink = ~paper & (np.linalg.norm(means - means[largest], axis=1) <= INK_COLOUR_SPREAD)
+    blends = _blends(regions, rgb, ink, paper)
     others = np.flatnonzero(~paper & ~ink)
-    rgb_means = label_means(regions, rgb)[1]  # np.bincount's sums by channel, divided by the areas
-    ink_rgb = np.average(rgb_means[ink], axis=0, weights=area[ink])
-    paper_rgb = np.average(rgb_means[paper], axis=0, weights=area[paper])
-    t = np.linspace(0.0, 1.0, 65)
-    blends = rgb2lab((paper_rgb[None] + t[:, None] * (ink_rgb - paper_rgb)[None])[:, None, :])[:, 0, :]
     if any(np.min(np.linalg.norm(blends - means[r], axis=1)) > INK_COLOUR_SPREAD for r in others):
         return out  # a colour of its own: no rim makes this one ink
     import cv2
 
     slices = _skeleton.bounding_slices(regions + 1)
     eight = np.ones((3, 3), dtype=np.uint8)
-    ink_lab = rgb2lab(ink_rgb[None, None, :])[0, 0]
+    ink_lab = blends[-1]  # the ink's own colour
     for r in others:
         box = slices[r]
         if box is None:  # no pixel: never, the labels are packed
