@@ -26,6 +26,7 @@ from .._validation import check_choice, check_positive, readonly
 from ..constants import (
     BLANK_IMAGE_RANGE,
     CLIPART_RIM_RADIUS,
+    DETAIL,
     DOT_MIN_DIAMETER,
     DOT_MIN_RADIUS,
     DRAWING_MAX_STROKE_FRACTION,
@@ -49,6 +50,7 @@ from ..images import skeleton as _skeleton
 from ..images.loading import DownscaleWarning, LoadedImage, downscale, load_image, load_mask
 from ..images.ndimage import bounding_slices, components, distance, skeletonize
 from .clipart import clipart_lines, clipart_regions, label_means
+from .detail import check_detail, merge_by_importance
 
 if TYPE_CHECKING:
     from .photo.lines import edge_tangent_flow, flow_dog
@@ -107,6 +109,11 @@ class FeatureLines:
         For a line drawing, its median stroke width, px: twice the median
         distance from the ink's skeleton to the paper
         (:func:`median_stroke_width`); None for the other kinds.
+    detail : int or None
+        For a clip art, the regions kept besides the background
+        (:func:`img2logo.features.detail.merge_by_importance`): the ``detail``
+        asked, more where what is never merged is more, fewer where there were
+        too many regions; None for the other kinds.
 
     Examples
     --------
@@ -125,6 +132,7 @@ class FeatureLines:
     regions: np.ndarray | None = None
     subject: Subject | None = None
     stroke_width: float | None = None
+    detail: int | None = None
 
     @property
     def shape(self) -> tuple[int, int]:
@@ -385,6 +393,7 @@ def extract_feature_lines(
     subject: object = None,
     spur_length: float | None = None,
     min_line_length: float | None = None,
+    detail: int = DETAIL,
 ) -> FeatureLines:
     """Extract the object's feature lines as a 1-px-wide map (paper Sec. 4).
 
@@ -410,6 +419,9 @@ def extract_feature_lines(
         Isolated lines shorter than this are dropped, px (default:
         ``spur_length`` for drawings and clip art, a longer bound for photos,
         whose short lines are mostly texture).
+    detail : int
+        Clip art only: the regions kept besides the background
+        (:func:`img2logo.features.detail.merge_by_importance`; default ``DETAIL``).
 
     Returns
     -------
@@ -437,7 +449,7 @@ def extract_feature_lines(
     found = dots = None
     if spur_length is None:
         spur_length = PHOTO_SPUR_LENGTH if kind == "photo" else SPUR_LENGTH
-    radius = stroke = None
+    radius = stroke = detail_used = None
     if kind == "drawing":
         ink = _drawing_lines(img)
         radius = _half_width(ink)
@@ -447,7 +459,8 @@ def extract_feature_lines(
         min_len = spur_length if min_line_length is None else min_line_length
     elif kind == "clipart":
         regions = clipart_regions(img) if regions is None else regions
-        raw = _join(clipart_lines(regions))
+        regions, detail_used = merge_by_importance(regions, img.lab, check_detail(detail))
+        raw = _join(clipart_lines(regions, label_means(regions, img.lab)[1][:, 0]))
         min_len = spur_length if min_line_length is None else min_line_length
     else:
         from .photo.lines import line_maps, photo_feature_lines, start_photo_line_maps, subject_dots, subject_pupils
@@ -474,7 +487,13 @@ def extract_feature_lines(
     if kind == "drawing":
         lines = keep_dots(lines, ink, stroke)
     return FeatureLines(
-        readonly(lines), kind, reason, None if regions is None else readonly(regions), found, stroke_width=stroke
+        readonly(lines),
+        kind,
+        reason,
+        None if regions is None else readonly(regions),
+        found,
+        stroke_width=stroke,
+        detail=detail_used,
     )
 
 
