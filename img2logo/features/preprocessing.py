@@ -21,10 +21,12 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from .._compat import median
 from .._validation import check_choice, check_positive, readonly
 from ..constants import (
     BLANK_IMAGE_RANGE,
     CLIPART_RIM_RADIUS,
+    DETAIL,
     DOT_MIN_DIAMETER,
     DOT_MIN_RADIUS,
     DRAWING_MAX_STROKE_FRACTION,
@@ -46,8 +48,9 @@ from ..constants import (
 )
 from ..images import skeleton as _skeleton
 from ..images.loading import LoadedImage, downscale, load_image, load_mask
-from ..images.ndimage import median
+from ..images.ndimage import bounding_slices, components, distance, skeletonize
 from .clipart import clipart_lines, clipart_regions, label_means
+from .detail import check_detail, merge_by_importance
 
 if TYPE_CHECKING:
     from .photo.lines import edge_tangent_flow, flow_dog
@@ -104,6 +107,11 @@ class FeatureLines:
         For a line drawing, its median stroke width, px: twice the median
         distance from the ink's skeleton to the paper
         (:func:`median_stroke_width`); None for the other kinds.
+    detail : int or None
+        For a clip art, the regions kept besides the background
+        (:func:`img2logo.features.detail.merge_by_importance`): the ``detail``
+        asked, more where what is never merged is more, fewer where there were
+        too many regions; None for the other kinds.
 
     Examples
     --------
@@ -122,6 +130,7 @@ class FeatureLines:
     regions: np.ndarray | None = None
     subject: Subject | None = None
     stroke_width: float | None = None
+    detail: int | None = None
 
     @property
     def shape(self) -> tuple[int, int]:
@@ -328,7 +337,7 @@ def _rim_regions(regions: np.ndarray, rgb: np.ndarray, means: np.ndarray, paper:
         return out  # a colour of its own: no rim makes this one ink
     import cv2
 
-    slices = _skeleton.bounding_slices(regions + 1)
+    slices = bounding_slices(regions + 1)
     eight = np.ones((3, 3), dtype=np.uint8)
     ink_lab = blends[-1]  # the ink's own colour
     for r in others:
@@ -340,7 +349,7 @@ def _rim_regions(regions: np.ndarray, rgb: np.ndarray, means: np.ndarray, paper:
         if np.mean(np.linalg.norm(rgb2lab(rgb[sl][own]) - ink_lab, axis=-1) <= INK_COLOUR_SPREAD) >= INK_SHARE:
             out[r] = True  # ink with its rims and the paper it encloses (a small ring), not a grey
             continue
-        if _skeleton.distance_to_background(np.pad(own, 1)).max() > CLIPART_RIM_RADIUS + 0.5:
+        if distance(np.pad(own, 1)).max() > CLIPART_RIM_RADIUS + 0.5:
             return out
         if not ink[regions[sl][(cv2.dilate(own.view(np.uint8), eight) > 0) & ~own]].any():
             return out
@@ -364,12 +373,12 @@ def median_stroke_width(ink: np.ndarray) -> float:
     to the nearest pixel that is not ink: a stroke w px wide has its axis w / 2
     from both edges (to within half a pixel).
     """
-    return _median_stroke_width(ink, _distance(ink))
+    return _median_stroke_width(ink, distance(ink))
 
 
 def _median_stroke_width(ink: np.ndarray, dist: np.ndarray) -> float:
-    """:func:`median_stroke_width` of ``ink`` whose distance to the paper ``dist`` (:func:`_distance`) is known."""
-    skel = _skeleton.skeletonize(ink)
+    """:func:`median_stroke_width` of ``ink`` whose distance to the paper ``dist`` (``ndimage.distance``) is known."""
+    skel = skeletonize(ink)
     return float(2.0 * median(dist[skel])) if skel.any() else 0.0
 
 
@@ -382,6 +391,7 @@ def extract_feature_lines(
     subject: object = None,
     spur_length: float | None = None,
     min_line_length: float | None = None,
+    detail: int = DETAIL,
 ) -> FeatureLines:
     """Extract the object's feature lines as a 1-px-wide map (paper Sec. 4).
 
@@ -407,6 +417,9 @@ def extract_feature_lines(
         Isolated lines shorter than this are dropped, px (default:
         ``spur_length`` for drawings and clip art, a longer bound for photos,
         whose short lines are mostly texture).
+    detail : int
+        Clip art only: the regions kept besides the background
+        (:func:`img2logo.features.detail.merge_by_importance`; default ``DETAIL``).
 
     Returns
     -------
@@ -434,17 +447,18 @@ def extract_feature_lines(
     found = dots = None
     if spur_length is None:
         spur_length = PHOTO_SPUR_LENGTH if kind == "photo" else SPUR_LENGTH
-    radius = stroke = None
+    radius = stroke = detail_used = None
     if kind == "drawing":
         ink = _drawing_lines(img)
         radius = _half_width(ink)
-        axis = _skeleton.skeletonize(ink)
+        axis = skeletonize(ink)
         stroke = float(2.0 * median(radius[axis])) if axis.any() else 0.0
         raw = _skeleton.join_line_ends(axis)
         min_len = spur_length if min_line_length is None else min_line_length
     elif kind == "clipart":
         regions = clipart_regions(img) if regions is None else regions
-        raw = _join(clipart_lines(regions))
+        regions, detail_used = merge_by_importance(regions, img.lab, check_detail(detail))
+        raw = _join(clipart_lines(regions, label_means(regions, img.lab)[1][:, 0]))
         min_len = spur_length if min_line_length is None else min_line_length
     else:
         from .photo.lines import line_maps, photo_feature_lines, start_photo_line_maps, subject_dots, subject_pupils
@@ -471,7 +485,13 @@ def extract_feature_lines(
     if kind == "drawing":
         lines = keep_dots(lines, ink, stroke)
     return FeatureLines(
-        readonly(lines), kind, reason, None if regions is None else readonly(regions), found, stroke_width=stroke
+        readonly(lines),
+        kind,
+        reason,
+        None if regions is None else readonly(regions),
+        found,
+        stroke_width=stroke,
+        detail=detail_used,
     )
 
 
@@ -496,7 +516,7 @@ def keep_dots(lines: np.ndarray, ink: np.ndarray, stroke_width: float) -> np.nda
     stroke_width : float
         The drawing's median stroke width, px.
     """
-    labels = _skeleton.label(ink, connectivity=2)
+    labels = components(ink, connectivity=2)
     n = int(labels.max())
     if n == 0:
         return lines
@@ -532,7 +552,7 @@ def _join(raw: np.ndarray) -> np.ndarray:
     0.75-6 px from another arc: a near-miss gap. :func:`_skeleton.join_line_ends`
     links it (the same rule as for photos).
     """
-    return _skeleton.join_line_ends(_skeleton.skeletonize(raw))
+    return _skeleton.join_line_ends(skeletonize(raw))
 
 
 def _clean_skeleton(
@@ -544,7 +564,7 @@ def _clean_skeleton(
     spurs pruned at a junction by the stroke's half width there
     (:func:`_skeleton.prune`).
     """
-    skel = _skeleton.skeletonize(mask)
+    skel = skeletonize(mask)
     graph = _skeleton.trace(skel)
     _skeleton.prune(
         graph,
@@ -562,17 +582,7 @@ def _half_width(ink: np.ndarray) -> np.ndarray:
     Measured on the skeleton, where it is the radius of the stroke's inscribed
     disc; 0 on the paper.
     """
-    return _distance(ink).astype(np.float32)
-
-
-def _distance(mask: np.ndarray) -> np.ndarray:
-    """``scipy.ndimage.distance_transform_edt(mask)``, px, float64 (H, W), by :func:`_skeleton.distance_to_background`
-    (the same bits) unless ``mask`` has no background pixel."""
-    if np.all(mask):
-        from scipy import ndimage
-
-        return np.asarray(ndimage.distance_transform_edt(mask), dtype=np.float64)
-    return _skeleton.distance_to_background(mask)
+    return distance(ink).astype(np.float32)
 
 
 def _paper_seams(gray: np.ndarray, ink: np.ndarray) -> np.ndarray:
@@ -598,14 +608,14 @@ def _paper_seams(gray: np.ndarray, ink: np.ndarray) -> np.ndarray:
     ridge = cv2.morphologyEx(g, cv2.MORPH_TOPHAT, disc) > SEAM_CONTRAST * contrast
     # Pinched paper lies inside the ink; the tip of a paper wedge where two strokes meet at an
     # acute angle is a ridge too, but next to open paper: the junction stays where it is.
-    depth = _skeleton.distance_to_background(ink)  # _distance(ink): the ink has paper here
+    depth = distance(ink)
     ridge &= depth > SEAM_WIDTH / 2
     if not ridge.any():
         return ridge
     # Two strokes that only touch (an ear's base, a tail on a body) leave a ridge about as long
     # as they are wide, where they are one in the drawing too; side by side, the pinch runs
     # along them: a seam is at least SEAM_LENGTH stroke widths long.
-    parts = _skeleton.label(ridge, connectivity=2)
+    parts = components(ridge, connectivity=2)
     n = int(parts.max())
     long = np.bincount(parts.ravel(), minlength=n + 1) >= SEAM_LENGTH * _median_stroke_width(ink, depth)
     long[0] = False

@@ -529,7 +529,7 @@ def test_skeleton_label_matches_skimage_and_ndimage() -> None:
     from scipy import ndimage
     from skimage.measure import label as sk_label
 
-    from img2logo.images.skeleton import label
+    from img2logo.images.ndimage import components as label
 
     rng = np.random.default_rng(3)
     for mask in _random_masks(150, 1):
@@ -549,18 +549,18 @@ def test_skeleton_label_matches_skimage_and_ndimage() -> None:
 def test_skeleton_distance_and_slices_match_ndimage() -> None:
     from scipy import ndimage
 
-    from img2logo.images.skeleton import bounding_slices, distance_to_background
+    from img2logo.images.ndimage import bounding_slices, distance
 
     for mask in _random_masks(150, 2):
         if mask.all():
             mask[0, 0] = False
         expected = ndimage.distance_transform_edt(mask)
-        got = distance_to_background(mask)
+        got = distance(mask)
         assert got.dtype == expected.dtype and np.array_equal(got, expected)
         labels = (mask.cumsum(axis=1) % 5).astype(np.int64) * mask
         assert bounding_slices(labels) == ndimage.find_objects(labels)
-    with pytest.raises(ValueError, match="background pixel"):
-        distance_to_background(np.ones((3, 3), dtype=bool))
+    full = np.ones((5, 4), dtype=bool)  # no pixel outside: scipy's answer too
+    assert np.array_equal(distance(full), ndimage.distance_transform_edt(full))
 
 
 def test_skeleton_thinning_and_joins_match_skimage_and_cKDTree() -> None:
@@ -570,7 +570,8 @@ def test_skeleton_thinning_and_joins_match_skimage_and_cKDTree() -> None:
     from skimage.draw import line
     from skimage.morphology import skeletonize as sk_skeletonize
 
-    from img2logo.images.skeleton import _branch, _walk, classify, join_line_ends, skeletonize
+    from img2logo.images.ndimage import skeletonize
+    from img2logo.images.skeleton import _branch, _walk, classify, join_line_ends
 
     def joined_by_tree(skel: np.ndarray, distance: float) -> tuple[np.ndarray, bool]:
         """join_line_ends as it was written with a k-d tree over the line pixels; whether a tie was met."""
