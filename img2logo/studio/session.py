@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import dataclasses
 import os
+import re
 import tempfile
 import time
 import warnings
@@ -54,6 +55,14 @@ PICK_DISTANCE = 10.0
 #: Largest upload accepted, bytes: the command line reads any size, but the page receives the file
 #: through the kernel's websocket, whose messages Tornado caps at 10 MiB; 9 MB holds a 12-megapixel JPEG.
 MAX_UPLOAD_BYTES = 9_000_000
+#: Longest name of an upload kept, characters (file systems allow 255 bytes; UTF-8 takes up to 4 a character).
+MAX_NAME_CHARS = 60
+
+
+#: The kinds of image in a designer's words.
+KIND_WORDS = {"photo": "photo", "clipart": "clip art", "drawing": "drawing"}
+#: The downloads, by key: SVG, JSON, PDF, PNG on white, PNG on nothing (transparent), PNG over the faded input.
+DOWNLOAD_FORMATS: tuple[str, ...] = ("svg", "json", "pdf", "png", "png-transparent", "png-input")
 
 
 @dataclass(frozen=True)
@@ -102,7 +111,25 @@ def front_end_live() -> bool:
     return os.environ.get("SERVER_SOFTWARE", "").startswith("voila") or bool(os.environ.get("JPY_SESSION_NAME"))
 
 
-def _one_line(exc: BaseException, folder: str | None = None) -> str:
+def upload_name(filename: object) -> str:
+    """The name an uploaded file is shown and downloaded by: the browser's name, cleaned.
+
+    Only its last path component, printable characters, at most ``MAX_NAME_CHARS``
+    characters (a longer stem is cut, its suffix kept); ``"upload"`` when nothing is left
+    (an empty name, ``.`` or ``..``).
+    """
+    text = "".join(ch for ch in str(filename) if ch.isprintable()).replace("\\", "/")
+    name = text.rsplit("/", 1)[-1].strip()
+    if name in ("", ".", ".."):
+        return "upload"
+    if len(name) > MAX_NAME_CHARS:
+        stem, dot, suffix = name.rpartition(".")
+        suffix = dot + suffix if dot and stem and len(suffix) <= 10 else ""
+        name = name[: MAX_NAME_CHARS - len(suffix)] + suffix
+    return name
+
+
+def _one_line(exc: BaseException | Warning | str, folder: str | None = None) -> str:
     """The message of ``exc`` on one line, without the temporary folder an upload was read from."""
     text = str(exc)
     if folder:
@@ -154,6 +181,7 @@ class Studio:
         self.ok = True
         self.last_run_seconds = 0.0
         self._history: dict[int, list[Abstraction]] = {}
+        self._redo: dict[int, list[Abstraction]] = {}
         self._cache: dict[str, Any] = {}
         if image is not None:
             self.load_example(image)
@@ -163,15 +191,28 @@ class Studio:
         self.message, self.ok = text, ok
         return ok
 
-    def _attempt(self, action: Callable[[], str], folder: str | None = None) -> bool:
-        """Run ``action`` (it returns its message); an img2logo error becomes the message, nothing changed."""
+    def _attempt(
+        self, action: Callable[[], str], folder: str | None = None, names: dict[str, str] | None = None
+    ) -> bool:
+        """Run ``action`` (it returns its message); an img2logo error becomes the message, nothing changed.
+
+        ``folder`` is left out of the messages and each key of ``names`` (a temporary file's name)
+        becomes its value (the name the file came with).
+        """
+
+        def line(text: BaseException | Warning | str) -> str:
+            out = _one_line(text, folder)  # type: ignore[arg-type]
+            for old, new in (names or {}).items():
+                out = out.replace(old, new)
+            return out
+
         try:
             with warnings.catch_warnings(record=True) as caught:
                 warnings.simplefilter("always")
                 text = action()
         except Img2LogoError as exc:
-            return self._say(f"error: {_one_line(exc, folder)}", ok=False)
-        notes = [_one_line(w.message, folder) for w in caught if issubclass(w.category, UserWarning)]
+            return self._say(f"error: {line(exc)}", ok=False)
+        notes = [line(w.message) for w in caught if issubclass(w.category, UserWarning)]
         return self._say("; ".join([text, *[f"warning: {n}" for n in notes]]))
 
     # ------------------------------------------------------------------ the input
@@ -180,7 +221,7 @@ class Studio:
 
         An unreadable or blank file keeps the previous image and says why.
         """
-        name = Path(str(filename)).name or "upload"
+        name = upload_name(filename)
         data = bytes(content)
         if len(data) > MAX_UPLOAD_BYTES:
             return self._say(
@@ -189,9 +230,11 @@ class Studio:
                 ok=False,
             )
         with tempfile.TemporaryDirectory(prefix="img2logo-upload-") as folder:
-            path = Path(folder) / name
+            # The browser's name is shown, never used as a path: "..", a NUL byte or 300 bytes are names too.
+            suffix = Path(name).suffix
+            path = Path(folder) / ("upload" + (suffix if re.fullmatch(r"\.[A-Za-z0-9]{1,10}", suffix) else ""))
             path.write_bytes(data)
-            return self._attempt(lambda: self._take(path, name), folder)
+            return self._attempt(lambda: self._take(path, name), folder, {path.name: name})
 
     def load_example(self, name: str) -> bool:
         """Take a file of ``data/`` (or a path) as the input."""
@@ -207,11 +250,12 @@ class Studio:
 
         img = dataclasses.replace(load_image(path), source=name)
         self.image, self.name = img, name
-        self.mask = np.zeros((img.height, img.width), dtype=bool)
+        # In the input's pixels, as abstract() takes it (an input over MAX_IMAGE_SIDE is worked smaller).
+        self.mask = np.zeros((img.input_height, img.input_width), dtype=bool)
         self.subject = None
         self.result, self.levels, self.level = None, (), 0
         self._reset_edits()
-        return f"{name}: {img.width}x{img.height} px; press Run"
+        return f"{name}: {img.input_width}x{img.input_height} px; press Run"
 
     @property
     def stem(self) -> str:
@@ -336,7 +380,8 @@ class Studio:
             found = result.lines.subject
             subject = f"; subject: {found.description}" if found is not None else ""
             return (
-                f"done: kind {result.lines.kind}, {len(self.levels)} levels, |A| = {len(result.final.arcs)}"
+                f"done: {KIND_WORDS.get(result.lines.kind, result.lines.kind)}, {len(self.levels)} levels, "
+                f"{len(result.final.arcs)} arcs"
                 f"{lock}, {self.last_run_seconds:.2f} s{subject}"
             )
 
@@ -358,13 +403,22 @@ class Studio:
         if self.result is None:
             self.settings = dataclasses.replace(self.settings, tolerance=float(tolerance))
             return self._say(f"T = {float(tolerance):g} px; press Run")
-        if 0 < float(tolerance) <= self.result.levels[0].tolerance:
+        if 0 < float(tolerance) <= self.run_tolerance * (1.0 + 1e-9):  # the same T, scaled there and back
             self.settings = dataclasses.replace(self.settings, tolerance=float(tolerance))
-            self.levels = levels_within(self.result, float(tolerance))
+            self.levels = levels_within(
+                self.result, min(float(tolerance) / self.work_scale, self.result.levels[0].tolerance)
+            )
             self.level = len(self.levels) - 1
             self.selected = []
             return self._say(self.title)
         return self.run(progress, tolerance=float(tolerance))
+
+    @property
+    def run_tolerance(self) -> float:
+        """T of the run made, px of the working copy (a smaller T is read off it); 0 before a Run."""
+        if self.result is None:
+            return 0.0
+        return float(self.result.levels[0].tolerance) * self.work_scale
 
     def update_settings(self, **changes: Any) -> None:
         """Record settings for the next Run (``fill`` takes effect at once: it only colours)."""
@@ -380,16 +434,33 @@ class Studio:
 
     @property
     def title(self) -> str:
-        """One line about the logo shown: level, |A|, E^s, T, the edits."""
+        """One line about the logo shown, in a designer's words: the level t, |A| arcs, the error E^s, T, the edits.
+
+        ``fish: level 12 of 30, 25 arcs, error 3.21 px (tolerance 5 px), 1 edit``.
+        """
         a = self.shown
         if a is None:
             return "no result yet: press Run"
         n_edits = len(self._history.get(self.level, []))
         edits = f", {n_edits} edit{'s' if n_edits != 1 else ''}" if n_edits else ""
+        # E^s in the pixels T is given in: those of the working copy when the input was worked smaller.
+        k = self.work_scale
+        size = f" of the {self.result.image.width}x{self.result.image.height} px working copy" if k != 1.0 else ""
         return (
-            f"{self.stem}: level t = {self.level} of {len(self.levels) - 1}, |A| = {len(a.arcs)}, "
-            f"E^s = {a.similarity:.2f} px (T = {self.settings.tolerance:g}){edits}"
+            f"{self.stem}: level {self.level} of {len(self.levels) - 1}, {len(a.arcs)} arcs, "
+            f"error {a.similarity * k:.2f} px (tolerance {self.settings.tolerance:g} px{size}){edits}"
         )
+
+    @property
+    def work_scale(self) -> float:
+        """Working-copy pixels per input pixel of the run (1.0 unless the input was worked smaller).
+
+        T, the progress bar and E^s in the title are in working pixels, as :func:`img2logo.abstract`
+        takes T; the logo, the mask, the subject and the clicks are in the input's pixels.
+        """
+        if self.result is None:
+            return 1.0
+        return float(self.result.final.params.get("scale", 1.0))
 
     # ------------------------------------------------------------------ selection and edits
     def pick(self, x: float, y: float, distance: float) -> int | None:
@@ -403,12 +474,19 @@ class Studio:
         i = int(np.argmin(gaps))
         return i if gaps[i] <= distance else None
 
-    def select_at(self, x: float, y: float, distance: float) -> int | None:
+    def select_at(self, x: float, y: float, distance: float, *, add: bool = False) -> int | None:
         """Click at (x, y), px: select the nearest arc within ``distance`` px (the last two clicked stay selected).
 
-        A click on the selected arc, or off every arc, clears the selection.
+        A click on the selected arc, or off every arc, clears the selection. With ``add``
+        (a shift-click) the arc joins the selection, or leaves it when it was in it, and
+        nothing else is dropped.
         """
         i = self.pick(x, y, distance)
+        if add and i is not None:
+            self.selected = [s for s in self.selected if s != i] + ([] if i in self.selected else [i])
+            n = len(self.selected)
+            self._say(f"{n} arc{'s' if n != 1 else ''} selected: {', '.join(map(str, self.selected))}")
+            return i
         if i is None or (self.selected and self.selected[-1] == i):
             self.selected = []
             self._say("nothing selected")
@@ -433,6 +511,7 @@ class Studio:
         def act() -> str:
             new = make(a)
             self._history.setdefault(self.level, []).append(new)
+            self._redo.pop(self.level, None)
             self.selected = keep(new)
             self._cache.clear()
             return f"{what}; {len(new.arcs)} arcs (Undo takes it back)"
@@ -440,11 +519,18 @@ class Studio:
         return self._attempt(act)
 
     def delete_selected(self) -> bool:
-        """Delete the selected arc (:func:`img2logo.design.edits.delete_arc`)."""
+        """Delete the selected arcs (:func:`img2logo.design.edits.delete_arc`), as one edit."""
         from ..design.edits import delete_arc
 
-        i = self.selected[-1] if self.selected else -1
-        return self._edit(lambda a: delete_arc(a, i), f"arc {i} deleted", lambda new: [])
+        chosen = sorted(set(self.selected), reverse=True)  # the last first: the others keep their indices
+
+        def make(a: Abstraction) -> Abstraction:
+            for i in chosen:
+                a = delete_arc(a, i)
+            return a
+
+        what = f"arc {chosen[0]} deleted" if len(chosen) == 1 else f"arcs {', '.join(map(str, chosen[::-1]))} deleted"
+        return self._edit(make, what, lambda new: [])
 
     def _circle_of_selected(self, a: Abstraction, op: str) -> int:
         arc = a.arcs[self.selected[-1]]
@@ -501,10 +587,20 @@ class Studio:
         history = self._history.get(self.level)
         if not history:
             return self._say("error: nothing to undo on this level", ok=False)
-        history.pop()
+        self._redo.setdefault(self.level, []).append(history.pop())
         self.selected = []
         self._cache.clear()
         return self._say(f"edit undone; {self.title}")
+
+    def redo(self) -> bool:
+        """Make the last edit undone on the level shown again (a new edit forgets what was undone)."""
+        undone = self._redo.get(self.level)
+        if not undone:
+            return self._say("error: nothing to redo on this level", ok=False)
+        self._history.setdefault(self.level, []).append(undone.pop())
+        self.selected = []
+        self._cache.clear()
+        return self._say(f"edit redone; {self.title}")
 
     @property
     def n_edits(self) -> int:
@@ -512,7 +608,7 @@ class Studio:
         return len(self._history.get(self.level, []))
 
     def _reset_edits(self) -> None:
-        self._history = {}
+        self._history, self._redo = {}, {}
         self.selected = []
         self._cache.clear()
 
@@ -552,39 +648,58 @@ class Studio:
 
         return self._attempt(act)
 
-    def download_names(self) -> dict[str, str]:
-        """The file name of each download, by format: ``<stem>.svg``, ``.json``, ``.png``."""
-        return {fmt: f"{self.stem}.{fmt}" for fmt in ("svg", "json", "png")}
+    @property
+    def download_stem(self) -> str:
+        """The downloads' name without suffix: the image's stem, the level, and ``-edited`` after an edit.
 
-    def downloads(self, formats: tuple[str, ...] = ("svg", "json", "png")) -> dict[str, bytes]:
+        ``hedgehog-level12-edited``: the variants a designer saves do not overwrite each other.
+        """
+        if not self.levels:
+            return self.stem
+        return f"{self.stem}-level{self.level}" + ("-edited" if self.n_edits else "")
+
+    def download_names(self, formats: tuple[str, ...] = DOWNLOAD_FORMATS) -> dict[str, str]:
+        """The file name of each download, by format (:data:`DOWNLOAD_FORMATS`)."""
+        check = set(formats) - set(DOWNLOAD_FORMATS)
+        if check:
+            raise InvalidParameterError(f"format must be one of {', '.join(DOWNLOAD_FORMATS)}, got {sorted(check)}")
+        ends = {"png-transparent": "-transparent.png", "png-input": "-over-input.png"}
+        return {fmt: self.download_stem + ends.get(fmt, "." + fmt) for fmt in formats}
+
+    def downloads(self, formats: tuple[str, ...] = DOWNLOAD_FORMATS) -> dict[str, bytes]:
         """The files of the logo shown, by format: the bytes the command line's writers give.
 
-        ``img2logo INPUT --level t --fill F --svg/--json/--png`` writes these files for the level
-        without edits (the writers :func:`~img2logo.export.writers.write_svg`,
-        :func:`~img2logo.export.writers.write_json`
-        and :func:`~img2logo.export.writers.write_png` are called as the command line calls them, into a
-        temporary folder).
+        ``img2logo INPUT --level t --fill F --svg/--json/--pdf/--png [--png-background B]`` writes
+        these files for the level without edits: ``png`` is on white, ``png-transparent`` on
+        nothing, ``png-input`` over the faded input (the writers
+        :func:`~img2logo.export.writers.write_svg`, :func:`~img2logo.export.writers.write_json`,
+        :func:`~img2logo.export.writers.write_pdf` and :func:`~img2logo.export.writers.write_png`
+        are called as the command line calls them, into a temporary folder).
         """
         from ..export import writers
 
         a = self.shown
         if a is None:
             raise InvalidParameterError("nothing to download: press Run first")
+        names = self.download_names(formats)
         fills = self.fills()
+        backgrounds = {"png": "white", "png-transparent": "transparent", "png-input": "input"}
 
         def make() -> dict[str, bytes]:
             out: dict[str, bytes] = {}
             with tempfile.TemporaryDirectory(prefix="img2logo-studio-") as folder:
                 for fmt in formats:
-                    path = Path(folder) / f"logo.{fmt}"
+                    path = Path(folder) / names[fmt]
                     if fmt == "json":
                         writers.write_json(a, path, fills=fills)
                     elif fmt == "svg":
                         writers.write_svg(a, path, fills=fills)
-                    elif fmt == "png":
-                        writers.write_png(a, path, image=self.result.image.rgb, fills=fills)
+                    elif fmt == "pdf":
+                        writers.write_pdf(a, path, fills=fills)
                     else:
-                        raise InvalidParameterError(f"format must be svg, json or png, got {fmt!r}")
+                        writers.write_png(
+                            a, path, image=self.result.image.rgb, fills=fills, background=backgrounds[fmt]
+                        )
                     out[fmt] = path.read_bytes()
             return out
 
@@ -601,4 +716,14 @@ def free_ends(a: Abstraction, arc: int) -> list[int]:
     return out
 
 
-__all__ = ["MAX_UPLOAD_BYTES", "PICK_DISTANCE", "Studio", "StudioSettings", "free_ends", "front_end_live"]
+__all__ = [
+    "DOWNLOAD_FORMATS",
+    "MAX_NAME_CHARS",
+    "MAX_UPLOAD_BYTES",
+    "PICK_DISTANCE",
+    "Studio",
+    "StudioSettings",
+    "free_ends",
+    "front_end_live",
+    "upload_name",
+]
