@@ -773,8 +773,9 @@ class StudioPage:
     def _key_down(self, key: str, shift: bool, ctrl: bool, meta: bool) -> None:
         """The drawing's keys (it has the focus once clicked): undo, redo, delete, nudge, select several."""
         s, command = self.studio, ctrl or meta
+        # Shift alone marks the next click; Shift as part of a shortcut (Ctrl+Shift+Z, Shift+arrow) does not.
+        self._add_next = key == "Shift"
         if key == "Shift":
-            self._add_next = True
             return
         if command and key.lower() == "z":
             self._act(s.redo if shift else s.undo)
