@@ -256,7 +256,7 @@ def optimize(
         raise InvalidParameterError(f"graph must be a SegmentGraph, got {type(graph).__name__}")
     if graph.n_segments == 0:
         raise InvalidParameterError("the segment graph has no segments: nothing to abstract (no feature lines found)")
-    locked = _locked_segments(graph, lock_mask)
+    locked = locked_segments(graph, lock_mask)
     record = {**opts.record(), "locked_segments": int(locked.sum()), **(params or {})}
     ladder, bias, unit, simplify = opts.ladder, opts.bias, opts.unit, opts.simplify
 
@@ -325,7 +325,7 @@ def optimize(
     return Progression(tuple(levels), float(golden.bias), simplified, stopped, state.stats.as_dict(), timings, golden)
 
 
-def _locked_segments(graph: SegmentGraph, lock_mask: np.ndarray | None) -> np.ndarray:
+def locked_segments(graph: SegmentGraph, lock_mask: np.ndarray | None) -> np.ndarray:
     """Segments with most of their points inside ``lock_mask`` (Sec. 7, Fig. 16)."""
     if lock_mask is None:
         return np.zeros(graph.n_segments, dtype=bool)

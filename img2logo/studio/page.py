@@ -9,7 +9,9 @@ and then redraws what changed; its one-line message is the page's status line.
 The golden circles of the level shown can be drawn under it (the SVG's
 construction layer), the selected arc's circle and centre always are; dragging
 that centre moves the circle (:func:`img2logo.design.edits.move_circle`, on
-release). With the drawing focused (click it) the keys edit: Ctrl+Z and
+release). The wheel zooms about the mouse (the + and - keys too, 0 fits the
+image again), the Hand tool drags the zoomed drawing; only the part in view
+of the input, the fills and the mask is drawn. With the drawing focused (click it) the keys edit: Ctrl+Z and
 Ctrl+Shift+Z (or Ctrl+Y) undo and redo, Delete removes the selected arcs, the
 arrows nudge the selected circle (with Shift ten times as far), Escape clears
 the selection; a click with Shift held adds an arc to the selection or takes it out
@@ -42,6 +44,8 @@ from .session import PICK_DISTANCE, Studio
 #: Side of the square drawing on screen, CSS px: with two columns of controls of
 #: ``CONTROLS_WIDTH`` beside it the page fits a 1366 x 768 laptop screen.
 DRAWING_SIZE = 480
+#: Width of the controls' labels (the designer's words), CSS px.
+LABEL_WIDTH = "122px"
 #: Width of each column of controls, CSS px.
 CONTROLS_WIDTH = 400
 #: Canvas pixels per CSS px of the drawing.
@@ -49,11 +53,16 @@ PIXEL_RATIO = 2
 #: Colours on screen: the selection, the lock mask (with its opacity) and the subject rectangle.
 SELECTION_COLOR = "#1f6fd1"
 MASK_RGBA = (230, 60, 40, 110)
+#: The segments a lock stroke covers (what the next Run keeps unmerged).
+LOCKED_COLOR = "#8b0a50"
 SUBJECT_COLOR = "#0a8a3a"
 #: Background around an image that is not square.
 FRAME_COLOR = "#eeeeee"
 #: Step of the move buttons and arrow keys, px of the image.
 MOVE_STEP = 2.0
+#: The largest zoom (times the fitted drawing) and the step of a wheel notch or a + / - key.
+MAX_ZOOM = 16.0
+ZOOM_STEP = 1.25
 ARROW_KEYS = {"ArrowLeft": (-1, 0), "ArrowUp": (0, -1), "ArrowDown": (0, 1), "ArrowRight": (1, 0)}
 #: How much the input under the logo is faded towards white: as the PNG writer's, more, or hidden.
 INPUT_FADES = {"faded": IMAGE_FADE, "dim": 0.88, "hidden": 1.0}
@@ -143,26 +152,87 @@ class StudioPage:
         self.controls: dict[str, Any] = {}
         self._drag: list[tuple[float, float]] = []
         self._moving: tuple[float, float] | None = None  # the centre being dragged, image px
+        self._view: tuple[float, float, float] | None = None  # (scale, x, y) when zoomed; None: fitted
+        self._pointer = (self.size * PIXEL_RATIO / 2.0,) * 2  # the mouse's last canvas position: the wheel's centre
         self._add_next = False
         self._syncing = False
         self.box = self._build()
         self.redraw(background=True)
 
     # ------------------------------------------------------------------ geometry of the drawing
+    def _fit(self) -> tuple[float, float, float]:
+        """(scale, x, y) of the whole image centred in the square: canvas px per image px, its corner's position."""
+        img = self.studio.image
+        if img is None:
+            return 1.0, 0.0, 0.0
+        k = self.side / max(img.input_width, img.input_height)
+        return k, (self.side - img.input_width * k) / 2.0, (self.side - img.input_height * k) / 2.0
+
     @property
     def scale(self) -> float:
-        """Canvas pixels per image pixel."""
-        img = self.studio.image
-        return self.side / max(img.input_width, img.input_height) if img is not None else 1.0
+        """Canvas pixels per image pixel (the whole image fitted, times the zoom)."""
+        return (self._view or self._fit())[0]
 
     @property
     def offset(self) -> tuple[float, float]:
-        """Canvas position of the image's top-left corner (the image is centred in the square)."""
-        img = self.studio.image
-        if img is None:
-            return 0.0, 0.0
-        k = self.scale
-        return (self.side - img.input_width * k) / 2.0, (self.side - img.input_height * k) / 2.0
+        """Canvas position of the image's top-left corner (centred when fitted; zoom and pan move it)."""
+        _, x, y = self._view or self._fit()
+        return x, y
+
+    @property
+    def zoom(self) -> float:
+        """The drawing's zoom: 1 when the whole image is fitted."""
+        return self.scale / self._fit()[0]
+
+    def zoom_at(self, x: float, y: float, factor: float) -> None:
+        """Zoom by ``factor`` about canvas point (x, y) (the image point under it stays), within 1..``MAX_ZOOM``."""
+        fit, _, _ = self._fit()
+        k = min(max(self.scale * float(factor), fit), fit * MAX_ZOOM)
+        ix, iy = self.to_image(x, y)
+        self._view = None if k <= fit * (1.0 + 1e-9) else (k, float(x) - ix * k, float(y) - iy * k)
+        self._redraw_view()
+
+    def pan_by(self, dx: float, dy: float) -> None:
+        """Move the zoomed drawing by (dx, dy), canvas px (the image keeps a quarter of the square in view)."""
+        if self._view is None:
+            return
+        img, (k, x, y) = self.studio.image, self._view
+        w, h = img.input_width * k, img.input_height * k
+        keep = self.side / 4.0
+        x = min(max(x + float(dx), keep - w), self.side - keep)
+        y = min(max(y + float(dy), keep - h), self.side - keep)
+        self._view = (k, x, y)
+        self._redraw_view()
+
+    def fit_view(self) -> None:
+        """The whole image in the square again."""
+        self._view = None
+        self._redraw_view()
+
+    def _redraw_view(self) -> None:
+        """Every layer again at the view's zoom and pan (the files do not change)."""
+        with _ipycanvas().hold_canvas():
+            for draw in (self._draw_background, self._draw_circles, self._draw_logo, self._draw_mask):
+                draw()
+            self._draw_overlay()
+        self.controls["zoom"].value = f"{self.zoom:.0%}" if self._view is not None else "fit"
+
+    def _visible(self, height: int, width: int, per_px: float) -> tuple[slice, slice, int, int, int, int] | None:
+        """The part of a raster of ``height`` x ``width`` cells, ``per_px`` cells per image px, that is in view.
+
+        Returns (rows, cols, x, y, w, h): the cells to draw and the canvas rectangle they fill;
+        None when none is in view (a raster larger than the view is cut, not drawn whole).
+        """
+        k, (ox, oy) = self.scale, self.offset
+        c0 = max(0, int(np.floor(-ox / k * per_px)))
+        r0 = max(0, int(np.floor(-oy / k * per_px)))
+        c1 = min(width, int(np.ceil((self.side - ox) / k * per_px)))
+        r1 = min(height, int(np.ceil((self.side - oy) / k * per_px)))
+        if c1 <= c0 or r1 <= r0:
+            return None
+        x, y = round(ox + c0 / per_px * k), round(oy + r0 / per_px * k)
+        w, h = round(ox + c1 / per_px * k) - x, round(oy + r1 / per_px * k) - y
+        return slice(r0, r1), slice(c0, c1), x, y, max(1, w), max(1, h)
 
     def to_image(self, x: float, y: float) -> tuple[float, float]:
         """Canvas pixels to image pixels."""
@@ -174,7 +244,7 @@ class StudioPage:
         w = kit_module("ipywidgets")
         ipycanvas = _ipycanvas()
         s, c = self.studio.settings, self.controls
-        style = {"description_width": "122px"}
+        style = {"description_width": LABEL_WIDTH}
         wide = w.Layout(width=f"{CONTROLS_WIDTH - 10}px")
 
         def labelled(kind: Any, description: str, layout: Any = wide, **kwargs: Any) -> Any:
@@ -197,21 +267,31 @@ class StudioPage:
         top.on_mouse_up(self._mouse_up)
         top.on_mouse_out(self._mouse_up)
         top.on_key_down(self._key_down)
+        top.on_mouse_wheel(self._wheel)
         c["canvas"] = self.canvas
 
         c["status"] = w.HTML(layout=w.Layout(width="100%")).add_class("studio-status")
         c["title"] = w.HTML(layout=wide).add_class("studio-title")
         c["tool"] = w.ToggleButtons(
-            options=[("Select", "select"), ("Brush", "brush"), ("Eraser", "eraser"), ("Subject", "subject")],
+            options=[
+                ("Select", "select"),
+                ("Hand", "hand"),
+                ("Brush", "brush"),
+                ("Eraser", "eraser"),
+                ("Subject", "subject"),
+            ],
             value="select",
             tooltips=[
                 "click an arc to select it (a second one to connect the two); drag the selected circle's centre",
+                "drag to move the zoomed drawing (the wheel zooms)",
                 "paint where merges are forbidden (the lock mask, Fig. 16)",
                 "erase the lock mask",
                 "drag a rectangle around the subject of a photo (GrabCut's seed)",
             ],
-            style={"button_width": "72px"},
+            style={"button_width": "62px"},
         )
+        c["fit"] = w.Button(description="Fit", tooltip="the whole image (key 0)", layout=w.Layout(width="50px"))
+        c["zoom"] = w.Label("fit", layout=w.Layout(width="46px"))
         c["brush"] = labelled(
             w.IntSlider, "Brush (px)", w.Layout(width="230px"), value=8, min=1, max=40, tooltip="on screen"
         )
@@ -314,15 +394,8 @@ class StudioPage:
             tooltip="E^s, the similarity error of the level being merged, filling towards T",
         )
 
-        c["level"] = labelled(
-            w.IntSlider,
-            "Level",
-            value=0,
-            min=0,
-            max=0,
-            continuous_update=True,
-            tooltip="t: the level A^t of the run, 0 the first fit, the last the simplest (Sec. 5.2)",
-        )
+        c["level"] = self._level_slider(0)
+        c["level_box"] = w.Box([c["level"]])
         c["circles"] = w.Checkbox(
             value=False,
             description="Golden circles",
@@ -374,8 +447,21 @@ class StudioPage:
         c["rung_up"] = w.Button(
             description="Larger", tooltip="the next larger golden circle: k + 1", layout=w.Layout(width="80px")
         )
+        c["add"] = w.Button(
+            description="Add other side",
+            tooltip="Fig. 17 add: an arc on the selected arc's circle between its two ends, around the other way",
+            layout=w.Layout(width="130px"),
+        )
+        c["sizes"] = labelled(
+            w.Text,
+            "Only circle sizes",
+            value="" if s.exponents is None else ", ".join(map(str, s.exponents)),
+            placeholder="all (or k, e.g. 5, 7, 8)",
+            tooltip="Fig. 15: only the golden circles of these rungs k, radii \u03c6^(k + \u03c3) (--radii)",
+        )
         c["downloads"] = w.HTML(layout=wide)
 
+        c["fit"].on_click(lambda _b: self.fit_view())
         c["circles"].observe(lambda _ch: self._redraw_layer(self._draw_circles), names="value")
         c["input"].observe(lambda _ch: self._redraw_layer(self._draw_background), names="value")
         c["upload"].observe(self._uploaded, names="value")
@@ -385,7 +471,6 @@ class StudioPage:
         c["clear_subject"].on_click(lambda _b: self._act(self.studio.clear_subject, overlay=True))
         c["bias_auto"].observe(lambda ch: setattr(c["bias"], "disabled", bool(ch["new"])), names="value")
         c["run"].on_click(lambda _b: self.run())
-        c["level"].observe(self._level_changed, names="value")
         c["tolerance"].observe(self._tolerance_changed, names="value")
         c["fill"].observe(self._fill_mode_changed, names="value")
         c["fill_spec"].observe(self._fill_spec_changed, names="value")
@@ -395,6 +480,7 @@ class StudioPage:
         c["redo"].on_click(lambda _b: self._act(self.studio.redo))
         c["rung_down"].on_click(lambda _b: self._act(lambda: self.studio.rung_selected(-1)))
         c["rung_up"].on_click(lambda _b: self._act(lambda: self.studio.rung_selected(+1)))
+        c["add"].on_click(lambda _b: self._act(self.studio.add_other_side))
 
         def section(text: str) -> Any:
             return w.HTML(f'<div class="studio-section">{html.escape(text)}</div>')
@@ -408,7 +494,7 @@ class StudioPage:
         )
         tools = w.VBox(
             [
-                c["tool"],
+                w.HBox([c["tool"], c["fit"], c["zoom"]]),
                 w.HBox([c["brush"], c["clear_mask"], c["clear_subject"]]),
                 w.HBox([c["circles"], w.Label("Input", layout=w.Layout(width="40px")), c["input"]]),
                 hint,
@@ -426,7 +512,8 @@ class StudioPage:
                 w.HBox([c["bias"], c["bias_auto"]]),
                 c["rdp_tolerance"],
                 c["symmetry"],
-                w.HBox([w.Label("Circle sizes", layout=w.Layout(width="126px")), c["ladder"]]),
+                w.HBox([w.Label("Ladder", layout=w.Layout(width="126px")), c["ladder"]]),
+                c["sizes"],
                 w.HBox([w.Label("", layout=w.Layout(width="126px")), c["lines"]]),
                 w.HBox([c["fill"], c["fill_spec"]]),
                 w.HBox([c["run"], c["progress"]]),
@@ -437,7 +524,7 @@ class StudioPage:
             [
                 section("Level"),
                 c["title"],
-                c["level"],
+                c["level_box"],
                 section("Edit the selected arc"),
                 w.HBox([c["delete"], c["connect"], c["undo"], c["redo"]]),
                 w.HBox(
@@ -451,6 +538,7 @@ class StudioPage:
                         c["rung_up"],
                     ]
                 ),
+                c["add"],
                 section("Save what is shown"),
                 c["downloads"],
             ],
@@ -465,6 +553,22 @@ class StudioPage:
         page.add_class("img2logo-studio")
         c["box"] = page
         return page
+
+    def _level_slider(self, last: int, value: int = 0) -> Any:
+        """The level slider, 0..``last``."""
+        w = kit_module("ipywidgets")
+        slider = w.IntSlider(
+            description="Level",
+            value=value,
+            min=0,
+            max=last,
+            continuous_update=True,
+            tooltip="t: the level A^t of the run, 0 the first fit, the last the simplest (Sec. 5.2)",
+            style={"description_width": LABEL_WIDTH},
+            layout=w.Layout(width=f"{CONTROLS_WIDTH - 10}px"),
+        )
+        slider.observe(self._level_changed, names="value")
+        return slider
 
     # ------------------------------------------------------------------ drawing
     def redraw(self, *, background: bool = False, logo: bool = True, mask: bool = False, overlay: bool = True) -> None:
@@ -500,20 +604,23 @@ class StudioPage:
             return
         import cv2
 
-        k, (ox, oy) = self.scale, self.offset
         layer.fill_style = FRAME_COLOR
         layer.fill_rect(0, 0, self.side, self.side)
-        # The loaded copy (at most MAX_IMAGE_SIDE px) drawn over the input's frame.
-        w, h = max(1, round(img.input_width * k)), max(1, round(img.input_height * k))
+        # The loaded copy (at most MAX_IMAGE_SIDE px) drawn over the input's frame, the part in view.
+        view = self._visible(img.height, img.width, img.width / img.input_width)
+        if view is None:
+            return
+        rows, cols, x, y, w, h = view
         fade = INPUT_FADES[self.controls["input"].value]
         if fade >= 1.0:
             layer.fill_style = "#ffffff"
-            layer.fill_rect(round(ox), round(oy), w, h)
+            layer.fill_rect(x, y, w, h)
             return
-        rgb = fade + (1.0 - fade) * img.rgb
-        shrink = w < img.width
+        part = img.rgb[rows, cols]
+        rgb = fade + (1.0 - fade) * part
+        shrink = w < part.shape[1]
         shown = cv2.resize(rgb, (w, h), interpolation=cv2.INTER_AREA if shrink else cv2.INTER_NEAREST)
-        layer.put_image_data(np.clip(shown * 255.0 + 0.5, 0, 255).astype(np.uint8), round(ox), round(oy))
+        layer.put_image_data(np.clip(shown * 255.0 + 0.5, 0, 255).astype(np.uint8), x, y)
 
     def _stroke_arcs(self, layer: Any, arcs: Any, color: str, width: float) -> None:
         k, (ox, oy) = self.scale, self.offset
@@ -567,8 +674,10 @@ class StudioPage:
         from ..export.plotting import draw_fills, frame_image
 
         a = self.studio.shown
-        k, (ox, oy) = self.scale, self.offset
-        w, h = max(1, round(a.width * k)), max(1, round(a.height * k))
+        view = self._visible(a.height, a.width, 1.0)
+        if view is None:
+            return
+        rows, cols, x, y, w, h = view
         fig = Figure(figsize=(w / 100.0, h / 100.0), dpi=100.0)
         fig.patch.set_alpha(0.0)
         agg = FigureCanvasAgg(fig)
@@ -576,8 +685,10 @@ class StudioPage:
         ax.patch.set_alpha(0.0)
         draw_fills(list(fills), ax, width=a.width, height=a.height)
         frame_image(ax, a.width, a.height)
+        ax.set_xlim(cols.start, cols.stop)  # the part in view
+        ax.set_ylim(rows.stop, rows.start)
         agg.draw()
-        layer.put_image_data(np.asarray(agg.buffer_rgba()).copy(), round(ox), round(oy))
+        layer.put_image_data(np.asarray(agg.buffer_rgba()).copy(), x, y)
 
     def _draw_mask(self) -> None:
         layer = self.canvas[3]
@@ -587,12 +698,21 @@ class StudioPage:
             return
         import cv2
 
-        k, (ox, oy) = self.scale, self.offset
-        w, h = max(1, round(m.shape[1] * k)), max(1, round(m.shape[0] * k))
-        big = cv2.resize(m.astype(np.uint8), (w, h), interpolation=cv2.INTER_NEAREST).astype(bool)
+        view = self._visible(m.shape[0], m.shape[1], 1.0)
+        if view is None:
+            return
+        rows, cols, x, y, w, h = view
+        big = cv2.resize(m[rows, cols].astype(np.uint8), (w, h), interpolation=cv2.INTER_NEAREST).astype(bool)
         rgba = np.zeros((h, w, 4), dtype=np.uint8)
         rgba[big] = MASK_RGBA
-        layer.put_image_data(rgba, round(ox), round(oy))
+        layer.put_image_data(rgba, x, y)
+        # What the next Run locks: the segments of the last run under the mask, highlighted.
+        k, (ox, oy) = self.scale, self.offset
+        layer.stroke_style = LOCKED_COLOR
+        layer.line_width = 4.0
+        layer.line_cap = "round"
+        for seg in self.studio.lock_preview():
+            layer.stroke_lines(np.column_stack([ox + seg[:, 0] * k, oy + seg[:, 1] * k]))
 
     def _draw_overlay(self, moved: tuple[float, float] = (0.0, 0.0)) -> None:
         """The selected arcs, the last one's golden circle and centre (moved by ``moved``, image px), the subject."""
@@ -637,11 +757,19 @@ class StudioPage:
             css = "studio-status" if s.ok else "studio-status studio-error"
             c["status"].value = f'<div class="{css}">{html.escape(s.message)}</div>'
             n = max(len(s.levels), 1)
-            if c["level"].max != n - 1 or c["level"].value != s.level:
-                c["level"].max = n - 1
+            if c["level"].max != n - 1:
+                # A new slider: the browser's keeps the range it was first drawn with for its End key.
+                c["level"] = self._level_slider(n - 1, s.level)
+                c["level_box"].children = (c["level"],)
+            elif c["level"].value != s.level:
                 c["level"].value = s.level
             c["tolerance"].value = s.settings.tolerance
-            for name in ("delete", "connect", "undo", "redo"):
+            used = ", ".join(map(str, s.rungs_used)) or "none yet"
+            c["sizes"].tooltip = (
+                "Fig. 15: only the golden circles of these rungs k, radii \u03c6^(k + \u03c3) (--radii); "
+                f"the run's first level uses k = {used}"
+            )
+            for name in ("delete", "connect", "undo", "redo", "add"):
                 c[name].disabled = s.shown is None
             c["downloads"].value = self._downloads_html()
         finally:
@@ -682,6 +810,9 @@ class StudioPage:
     def run(self) -> bool:
         """Run with the settings the controls hold (the Run button)."""
         c = self.controls
+        if not self.studio.set_exponents(c["sizes"].value):
+            self.redraw(logo=False, overlay=False)
+            return False
         fill = c["fill_spec"].value.strip() or "none"
         changes = {
             "kind": c["kind"].value,
@@ -742,6 +873,8 @@ class StudioPage:
         if not ok:
             self.redraw(logo=False, overlay=False)
             return
+        self._view = None
+        self.controls["zoom"].value = "fit"
         self.redraw(background=True)
         self.run()
 
@@ -787,6 +920,12 @@ class StudioPage:
             dx, dy = ARROW_KEYS[key]
             step = MOVE_STEP * (10.0 if shift else 1.0)
             self._act(lambda: s.move_selected(dx * step, dy * step))
+        elif key == "0":
+            self.fit_view()
+        elif key in ("+", "="):
+            self.zoom_at(*self._pointer, ZOOM_STEP)
+        elif key == "-":
+            self.zoom_at(*self._pointer, 1.0 / ZOOM_STEP)
         elif key == "Escape":
             s.selected = []
             s.message, s.ok = "nothing selected", True
@@ -811,11 +950,24 @@ class StudioPage:
             self.studio.select_at(ix, iy, PICK_DISTANCE * PIXEL_RATIO / self.scale, add=add)
             self.redraw(logo=False)
             return
+        if tool == "hand":
+            self._drag = [(float(x), float(y))]  # canvas px: the view moves under the mouse
+            return
         self._drag = [(ix, iy)]
         if tool in ("brush", "eraser"):
             self._paint_segment()
 
+    def _wheel(self, dx: float, dy: float) -> None:
+        """The wheel zooms about the mouse: a step of ``ZOOM_STEP`` a notch, in towards the screen."""
+        if dy:
+            self.zoom_at(*self._pointer, ZOOM_STEP ** (-np.sign(dy)))
+
     def _mouse_move(self, x: float, y: float) -> None:
+        self._pointer = (float(x), float(y))
+        if self._drag and self.controls["tool"].value == "hand":
+            (x0, y0), self._drag = self._drag[-1], [(float(x), float(y))]
+            self.pan_by(float(x) - x0, float(y) - y0)
+            return
         if self._moving is not None:
             ix, iy = self.to_image(x, y)
             with _ipycanvas().hold_canvas():
@@ -849,12 +1001,18 @@ class StudioPage:
             return
         tool, drag = self.controls["tool"].value, self._drag
         self._drag = []
+        if tool == "hand":
+            return
         if tool == "subject":
             (x0, y0), (x1, y1) = drag[0], self.to_image(x, y)
             self.studio.set_subject(x0, y0, x1, y1)
             self.redraw(logo=False)
         else:
             self.redraw(logo=False, mask=True, overlay=False)
+            n = len(self.studio.lock_preview())
+            if self.studio.result is not None:  # said after the stroke, not at every move
+                self.studio.message += f"; the next Run locks {n} segment{'s' if n != 1 else ''} (highlighted)"
+                self._sync()
 
     def _paint_segment(self) -> None:
         """Paint the last piece of the stroke into the mask, and show it at once on the mask layer.

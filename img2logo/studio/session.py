@@ -85,6 +85,9 @@ class StudioSettings:
         Nearly straight segments become straight lines (Sec. 9, Fig. 20b).
     ladder : str
         ``"phi"`` (golden) or ``"fibonacci"`` (Fig. 2b).
+    exponents : tuple of int or None
+        Only these ladder exponents k (the subset of golden circles of Fig. 15, ``--radii``);
+        None: every rung.
     fill : str
         The command line's ``--fill`` option: ``none``, ``auto``,
         ``palette:#rrggbb,...``, ``linear[@DEG]:...`` or ``radial:...``
@@ -99,6 +102,7 @@ class StudioSettings:
     symmetry: str = "none"
     lines: bool = False
     ladder: str = "phi"
+    exponents: tuple[int, ...] | None = None
     fill: str = "none"
 
 
@@ -361,6 +365,7 @@ class Studio:
                 symmetry=settings.symmetry,
                 lines=settings.lines,
                 ladder=settings.ladder,
+                exponents=settings.exponents,
                 subject=self.subject,
                 lock_mask=self.mask.copy() if self.mask.any() else None,
                 progress=progress or False,
@@ -560,6 +565,62 @@ class Studio:
 
         i = self.selected[-1] if self.selected else -1
         return self._edit(make, f"circle of arc {i}: rung {int(delta):+d}", lambda new: [min(i, len(new.arcs) - 1)])
+
+    def add_other_side(self) -> bool:
+        """Add the other side of the selected arc's circle, between the arc's two ends (Fig. 17 "add").
+
+        :func:`img2logo.design.edits.add_arc` on the arc's own circle from its start junction to its
+        end junction, around the other way.
+        """
+        from ..design.edits import add_arc
+
+        def make(a: Abstraction) -> Abstraction:
+            i = self.selected[-1]
+            arc = a.arcs[i]
+            self._circle_of_selected(a, "add")
+            ends = a.arc_junctions[i]
+            if ends.start is None or ends.end is None or ends.start == ends.end:
+                raise InvalidParameterError(f"add: arc {i} does not end at two junctions (a closed circle?)")
+            return add_arc(a, arc.circle, ends.start, ends.end, sweep_sign=-1 if arc.sweep > 0 else +1)
+
+        i = self.selected[-1] if self.selected else -1
+        return self._edit(make, f"the other side of arc {i}'s circle added", lambda new: [len(new.arcs) - 1])
+
+    def lock_preview(self) -> list[np.ndarray]:
+        """The segments of the last run that the lock mask covers, each (N, 2) points, px: what the next Run locks.
+
+        The rule of the run (:func:`img2logo.fit.progressive.locked_segments`: most of a
+        segment's points inside the mask), applied to the last run's segment graph, with the
+        mask at its working size (a Run with other settings may find other segments).
+        """
+        if self.result is None or not self.mask.any():
+            return []
+        from ..fit.progressive import locked_segments
+        from ..images.loading import mask_to_working_size
+
+        graph = self.result.graph
+        mask = mask_to_working_size(self.mask, self.result.image, "lock mask")
+        locked = locked_segments(graph, mask)
+        k = self.work_scale
+        return [np.asarray(graph.segments[i], dtype=np.float64) / k for i in np.flatnonzero(locked)]
+
+    def set_exponents(self, text: str) -> bool:
+        """The golden circles to use at the next Run (Fig. 15): exponents k as ``"3, 5, 8"``; empty for all."""
+        words = [w for w in str(text).replace(",", " ").split() if w]
+        try:
+            exponents = tuple(sorted({int(w) for w in words})) if words else None
+        except ValueError:
+            return self._say(f"error: circle sizes must be whole numbers k separated by commas, got {text!r}", False)
+        self.settings = dataclasses.replace(self.settings, exponents=exponents)
+        chosen = "all" if exponents is None else "k = " + ", ".join(map(str, exponents))
+        return self._say(f"circle sizes: {chosen}; press Run")
+
+    @property
+    def rungs_used(self) -> tuple[int, ...]:
+        """The exponents k of the golden circles of the first level of the run (the candidates of Fig. 15)."""
+        if not self.levels:
+            return ()
+        return tuple(sorted({int(c.k) for c in self.levels[0].golden_circles if c.k is not None}))
 
     def connect_selected(self) -> bool:
         """Join the two selected arcs at their nearest free ends (:func:`~img2logo.design.edits.connect`)."""

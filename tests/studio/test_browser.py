@@ -350,6 +350,30 @@ def test_the_golden_circles_are_shown_and_the_input_hidden(page, fish):
     _click_button(page, "Faded")
 
 
+def test_the_wheel_zooms_the_hand_pans_and_fit_comes_back(page):
+    box = _canvas_box(page)
+    zoom = page.locator(".img2logo-studio .widget-label", has_text="fit").first
+    centre = (box["x"] + box["width"] / 2, box["y"] + box["height"] / 2)
+    before = _logo_pixels(page)
+    page.mouse.move(*centre)
+    page.mouse.wheel(0, -100)
+    page.wait_for_function(
+        "() => [...document.querySelectorAll('.img2logo-studio .widget-label')].some(e => e.innerText === '125%')"
+    )
+    page.wait_for_function("old => document.querySelector('.img2logo-studio canvas').toDataURL() !== old", arg=before)
+    _tool(page, "Hand")
+    zoomed = _logo_pixels(page)
+    page.mouse.move(*centre)
+    page.mouse.down()
+    page.mouse.move(centre[0] + 40, centre[1] + 30)
+    page.mouse.up()
+    page.wait_for_function("old => document.querySelector('.img2logo-studio canvas').toDataURL() !== old", arg=zoomed)
+    _click_button(page, "Fit")
+    page.wait_for_function("old => document.querySelector('.img2logo-studio canvas').toDataURL() === old", arg=before)
+    assert zoom.inner_text() == "fit"
+    _tool(page, "Select")
+
+
 def test_the_labels_are_a_designers_words_with_the_papers_symbol_in_a_tooltip(page):
     box = page.locator(".img2logo-studio")
     for label, symbol in (
@@ -508,13 +532,12 @@ def test_a_long_name_is_shown_cut(page):
 
 
 def test_the_end_key_goes_to_the_last_level_of_the_image_shown(page):
-    """After a run with fewer levels than the one before, End is this run's last level."""
-    _, before = _level(page)
-    page.locator(".img2logo-studio select").first.select_option("drawing-fish.png")
-    _wait_title(page, "drawing-fish: level")
-    _run_if_asked(page)
+    """After runs with fewer and then more levels than the first one shown, End is this run's last level."""
+    for name in ("drawing-fish", "clipart-cat"):
+        page.locator(".img2logo-studio select").first.select_option(f"{name}.png")
+        _wait_title(page, f"{name}: level")
+        _run_if_asked(page)
     _, n = _level(page)
-    assert n != before
     handle = _level_handle(page)
     handle.focus()
     handle.press("Home")

@@ -433,3 +433,42 @@ def test_papermill_is_no_live_front_end(monkeypatch):
     assert not studio.front_end_live()
     monkeypatch.setenv("SERVER_SOFTWARE", "voila/0.5.13")
     assert studio.front_end_live()
+
+
+# --------------------------------------------------------------------------- the paper's tool: Fig. 15, 16, 17
+def test_add_the_other_side_of_the_selected_arcs_circle(ran):
+    s = fresh(ran)
+    a = s.shown
+    i = next(
+        j
+        for j, arc in enumerate(a.arcs)
+        if not arc.is_line and None not in (a.arc_junctions[j].start, a.arc_junctions[j].end)
+    )
+    s.selected = [i]
+    assert s.add_other_side(), s.message
+    new = s.shown
+    assert len(new.arcs) == len(a.arcs) + 1 and new.arcs[-1].circle == a.arcs[i].circle
+    assert abs(abs(new.arcs[-1].sweep) + abs(a.arcs[i].sweep) - 2 * np.pi) < 1e-6
+    assert s.selected == [len(a.arcs)] and s.download_stem.endswith("-edited")
+
+
+def test_a_lock_stroke_shows_the_segments_the_next_run_locks(ran):
+    s = fresh(ran)
+    assert s.lock_preview() == []
+    arc = s.shown.arcs[longest(s)]
+    s.paint(arc.sample(step=4.0), 6.0)
+    preview = s.lock_preview()
+    assert preview and all(p.ndim == 2 and p.shape[1] == 2 for p in preview)
+    assert s.run(), s.message
+    assert int(s.result.final.params["locked_segments"]) == len(preview)
+
+
+def test_the_circle_sizes_of_fig_15(ran):
+    s = fresh(ran)
+    assert not s.set_exponents("5, seven") and s.message.startswith("error: circle sizes must be whole numbers")
+    assert s.settings.exponents is None
+    chosen = s.rungs_used[-3:]
+    assert s.set_exponents(" ".join(map(str, chosen))) and s.settings.exponents == chosen
+    assert s.run(), s.message
+    assert {c.k for c in s.shown.golden_circles} <= set(chosen)
+    assert s.set_exponents("") and s.settings.exponents is None
