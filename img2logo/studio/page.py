@@ -288,12 +288,18 @@ class StudioPage:
                 "erase the lock mask",
                 "drag a rectangle around the subject of a photo (GrabCut's seed)",
             ],
-            style={"button_width": "62px"},
+            style={"button_width": "68px"},
         )
-        c["fit"] = w.Button(description="Fit", tooltip="the whole image (key 0)", layout=w.Layout(width="50px"))
+        c["fit"] = w.Button(description="Fit", tooltip="the whole image (key 0)", layout=w.Layout(width="44px"))
         c["zoom"] = w.Label("fit", layout=w.Layout(width="46px"))
-        c["brush"] = labelled(
-            w.IntSlider, "Brush (px)", w.Layout(width="230px"), value=8, min=1, max=40, tooltip="on screen"
+        c["brush"] = w.IntSlider(
+            description="Brush (px)",
+            value=8,
+            min=1,
+            max=40,
+            tooltip="the brush's radius on screen",
+            style={"description_width": "70px"},
+            layout=w.Layout(width="230px"),
         )
         c["clear_mask"] = w.Button(description="Clear mask", layout=w.Layout(width="110px"))
         c["clear_subject"] = w.Button(description="Clear subject", layout=w.Layout(width="110px"))
@@ -375,13 +381,13 @@ class StudioPage:
         c["fill"] = labelled(
             w.Dropdown,
             "Fills",
-            w.Layout(width="180px"),
+            w.Layout(width="236px"),
             options=list(FILL_PRESETS),
             value=fill_mode,
             tooltip="colour the regions between the arcs (Fig. 18; --fill)",
         )
         c["fill_spec"] = w.Text(
-            value=s.fill, placeholder="--fill, e.g. palette:#264653,#e9c46a", layout=w.Layout(width="200px")
+            value=s.fill, placeholder="--fill, e.g. palette:#264653,#e9c46a", layout=w.Layout(width="144px")
         )
         c["run"] = w.Button(description="Run", button_style="primary", icon="play", layout=w.Layout(width="90px"))
         c["progress"] = labelled(

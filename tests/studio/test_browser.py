@@ -350,6 +350,38 @@ def test_the_golden_circles_are_shown_and_the_input_hidden(page, fish):
     _click_button(page, "Faded")
 
 
+def test_add_the_other_side_of_a_selected_arcs_circle(page, fish):
+    a = fish.shown
+    i = next(
+        j
+        for j in sorted(range(len(a.arcs)), key=lambda j: -a.arcs[j].length)
+        if not a.arcs[j].is_line and None not in (a.arc_junctions[j].start, a.arc_junctions[j].end)
+    )
+    _select_arc(page, fish, i)
+    _wait_status(page, f"arc {i} selected")
+    _click_button(page, "Add other side")
+    _wait_status(page, f"the other side of arc {i}'s circle added; {len(a.arcs) + 1} arcs")
+    _click_button(page, "Undo")
+    _wait_status(page, "edit undone")
+
+
+def test_only_some_circle_sizes(page, fish):
+    ks = sorted({c.k for c in fish.levels[0].golden_circles})[-4:]
+    sizes = page.locator(".img2logo-studio .widget-text", has_text="Only circle sizes").locator("input")
+    sizes.fill(", ".join(map(str, ks)))
+    _click_button(page, "Run")
+    _wait_status(page, "done:")
+    with page.expect_download() as info:
+        page.locator(".img2logo-studio a.studio-download", has_text="JSON").first.click()
+    doc = json.loads(Path(info.value.path()).read_text())
+    assert {c["k"] for c in doc["circles"] if c.get("k") is not None} <= set(ks)
+    sizes.fill("")
+    _click_button(page, "Delete arc")  # nothing selected: a line that is not "done:", to wait for the Run's
+    _wait_status(page, "error: select an arc first")
+    _click_button(page, "Run")
+    _wait_status(page, "done:")
+
+
 def test_the_wheel_zooms_the_hand_pans_and_fit_comes_back(page):
     box = _canvas_box(page)
     zoom = page.locator(".img2logo-studio .widget-label", has_text="fit").first
@@ -427,6 +459,7 @@ def test_paint_a_lock_stroke_and_run_again(page, fish):
         page.mouse.move(*_to_screen(page, *p, (a.width, a.height)))
     page.mouse.up()
     _wait_status(page, "lock mask:")
+    _wait_status(page, "the next Run locks")  # the segments under the stroke, highlighted before Run
     assert _logo_pixels(page) != before  # the stroke is shown
     _click_button(page, "Run")
     _wait_status(page, "segments locked")
