@@ -20,8 +20,9 @@ on the focused drawing, marks the next click).
 The downloads are ``<a download>`` anchors carrying the files as ``data:`` URLs
 (they work in Voila and in JupyterLab, with no JavaScript of ours), named after
 the image, the level and whether it was edited. Every change first replaces them
-by their names without a link, and they come back made from what is drawn: a
-click can never save a file of a level no longer shown.
+by their names without a link, and they come back made from what is drawn once the
+page has been still for a moment: a click can never save a file of a level no
+longer shown, and a scrub through the levels makes no files on the way.
 
 The canvas has twice the pixels of its size on screen (crisp on high-density
 screens); ipycanvas gives the mouse in canvas pixels.
@@ -29,6 +30,7 @@ screens); ipycanvas gives the mouse in canvas pixels.
 
 from __future__ import annotations
 
+import asyncio
 import base64
 import html
 from typing import Any
@@ -60,6 +62,8 @@ SUBJECT_COLOR = "#0a8a3a"
 FRAME_COLOR = "#eeeeee"
 #: Step of the move buttons and arrow keys, px of the image.
 MOVE_STEP = 2.0
+#: Seconds the page must be still before the download links are made (a scrub makes none on the way).
+DOWNLOADS_DELAY = 0.25
 #: The largest zoom (times the fitted drawing) and the step of a wheel notch or a + / - key.
 MAX_ZOOM = 16.0
 ZOOM_STEP = 1.25
@@ -152,6 +156,7 @@ class StudioPage:
         self.controls: dict[str, Any] = {}
         self._drag: list[tuple[float, float]] = []
         self._moving: tuple[float, float] | None = None  # the centre being dragged, image px
+        self._pending_downloads: asyncio.TimerHandle | None = None
         self._view: tuple[float, float, float] | None = None  # (scale, x, y) when zoomed; None: fitted
         self._pointer = (self.size * PIXEL_RATIO / 2.0,) * 2  # the mouse's last canvas position: the wheel's centre
         self._add_next = False
@@ -777,12 +782,37 @@ class StudioPage:
             )
             for name in ("delete", "connect", "undo", "redo", "add"):
                 c[name].disabled = s.shown is None
-            c["downloads"].value = self._downloads_html()
+            self._schedule_downloads()
         finally:
             self._syncing = False
 
+    def _schedule_downloads(self) -> None:
+        """Make the download links once the page has been still for ``DOWNLOADS_DELAY`` s.
+
+        In a kernel (Voila, Jupyter) a change made meanwhile (the next level of a scrub) cancels
+        the files of this one: the drawing follows the slider without waiting for files nobody
+        saves. Without an event loop they are made at once.
+        """
+        if self._pending_downloads is not None:
+            self._pending_downloads.cancel()
+            self._pending_downloads = None
+        try:
+            loop = asyncio.get_running_loop()
+        except RuntimeError:
+            self.controls["downloads"].value = self._downloads_html()
+            return
+
+        def make() -> None:
+            self._pending_downloads = None
+            self.controls["downloads"].value = self._downloads_html()
+
+        self._pending_downloads = loop.call_later(DOWNLOADS_DELAY, make)
+
     def _downloads_pending(self) -> None:
         """The download links replaced by their names, greyed: what they hold is being made anew."""
+        if self._pending_downloads is not None:  # the files of the state being left are not wanted
+            self._pending_downloads.cancel()
+            self._pending_downloads = None
         names = DOWNLOAD_LABELS.values()
         self.controls["downloads"].value = "".join(
             f'<span class="studio-download studio-pending" title="being made">{html.escape(n)}</span>' for n in names

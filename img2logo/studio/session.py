@@ -5,10 +5,14 @@
 upload or an example image, paint the lock mask (paper Sec. 7, Fig. 16), drag
 the subject rectangle of a photo (GrabCut's seed, ``--subject``), Run, choose a
 level and T (:func:`~img2logo.experiments.explore.levels_within`: a smaller T
-is read off the largest run), click an arc, edit it with
-:mod:`img2logo.design.edits` (Fig. 17) and undo, and download the SVG, JSON and PNG
-of what is shown: the bytes the command line's writers give for that level and
-those edits (:meth:`Studio.downloads`). The page itself (ipywidgets and
+is read off the largest run), choose only some circle sizes k (Fig. 15), click
+arcs (several with ``add``), edit them with :mod:`img2logo.design.edits` (Fig. 17:
+delete, connect, add the other side of a circle, move, change the rung), undo
+and redo, see which segments a lock stroke covers before the Run
+(:meth:`Studio.lock_preview`), and download the SVG, JSON, PDF and PNGs (on white,
+transparent, over the input) of what is shown: the bytes the command line's
+writers give for that level and those edits (:meth:`Studio.downloads`), named by
+the image, the level and whether it was edited. The page itself (ipywidgets and
 ipycanvas, served by Voila: ``make studio``) is :mod:`.studio_page`.
 
 Every action returns True when it changed the state; on bad input (an
@@ -19,7 +23,9 @@ own message (:class:`~img2logo.errors.Img2LogoError`), as the command line
 prints it.
 
 Coordinates are input-image pixels (x right, y down; pixel (i, j) covers
-[j, j + 1) x [i, i + 1), centred at (j + 0.5, i + 0.5)).
+[j, j + 1) x [i, i + 1), centred at (j + 0.5, i + 0.5)), also for an input over
+``MAX_IMAGE_SIDE`` that is worked smaller; T and the error E^s are in the
+working copy's pixels, as :func:`img2logo.abstract` takes T (:attr:`Studio.work_scale`).
 """
 
 from __future__ import annotations
@@ -645,23 +651,23 @@ class Studio:
 
     def undo(self) -> bool:
         """Take the last edit of the level shown back."""
-        history = self._history.get(self.level)
-        if not history:
-            return self._say("error: nothing to undo on this level", ok=False)
-        self._redo.setdefault(self.level, []).append(history.pop())
-        self.selected = []
-        self._cache.clear()
-        return self._say(f"edit undone; {self.title}")
+        return self._shift_edit(self._history, self._redo, "undo", "undone")
 
     def redo(self) -> bool:
         """Make the last edit undone on the level shown again (a new edit forgets what was undone)."""
-        undone = self._redo.get(self.level)
-        if not undone:
-            return self._say("error: nothing to redo on this level", ok=False)
-        self._history.setdefault(self.level, []).append(undone.pop())
+        return self._shift_edit(self._redo, self._history, "redo", "redone")
+
+    def _shift_edit(
+        self, source: dict[int, list[Abstraction]], target: dict[int, list[Abstraction]], verb: str, done: str
+    ) -> bool:
+        """Move the last logo of the level shown from one stack (edits, or edits undone) to the other."""
+        stack = source.get(self.level)
+        if not stack:
+            return self._say(f"error: nothing to {verb} on this level", ok=False)
+        target.setdefault(self.level, []).append(stack.pop())
         self.selected = []
         self._cache.clear()
-        return self._say(f"edit redone; {self.title}")
+        return self._say(f"edit {done}; {self.title}")
 
     @property
     def n_edits(self) -> int:
