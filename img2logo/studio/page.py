@@ -199,9 +199,10 @@ class StudioPage:
 
     def pan_by(self, dx: float, dy: float) -> None:
         """Move the zoomed drawing by (dx, dy), canvas px (the image keeps a quarter of the square in view)."""
-        if self._view is None:
+        img = self.studio.image
+        if self._view is None or img is None:
             return
-        img, (k, x, y) = self.studio.image, self._view
+        k, x, y = self._view
         w, h = img.input_width * k, img.input_height * k
         keep = self.side / 4.0
         x = min(max(x + float(dx), keep - w), self.side - keep)
@@ -685,8 +686,8 @@ class StudioPage:
         from ..export.plotting import draw_fills, frame_image
 
         a = self.studio.shown
-        view = self._visible(a.height, a.width, 1.0)
-        if view is None:
+        view = None if a is None else self._visible(a.height, a.width, 1.0)
+        if a is None or view is None:
             return
         rows, cols, x, y, w, h = view
         fig = Figure(figsize=(w / 100.0, h / 100.0), dpi=100.0)

@@ -456,7 +456,8 @@ class Studio:
         edits = f", {n_edits} edit{'s' if n_edits != 1 else ''}" if n_edits else ""
         # E^s in the pixels T is given in: those of the working copy when the input was worked smaller.
         k = self.work_scale
-        size = f" of the {self.result.image.width}x{self.result.image.height} px working copy" if k != 1.0 else ""
+        work = self.result.image if self.result is not None and k != 1.0 else None
+        size = f" of the {work.width}x{work.height} px working copy" if work is not None else ""
         return (
             f"{self.stem}: level {self.level} of {len(self.levels) - 1}, {len(a.arcs)} arcs, "
             f"error {a.similarity * k:.2f} px (tolerance {self.settings.tolerance:g} px{size}){edits}"
@@ -584,6 +585,8 @@ class Studio:
             i = self.selected[-1]
             arc = a.arcs[i]
             self._circle_of_selected(a, "add")
+            if a.arc_junctions is None:
+                raise InvalidParameterError("add: this logo records no junctions")
             ends = a.arc_junctions[i]
             if ends.start is None or ends.end is None or ends.start == ends.end:
                 raise InvalidParameterError(f"add: arc {i} does not end at two junctions (a closed circle?)")
