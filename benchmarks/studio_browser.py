@@ -201,11 +201,15 @@ def main() -> int:
                 page.locator(".img2logo-studio button", has_text="Clear mask").first.click()
                 page.wait_for_timeout(500)
                 status = "document.querySelector('.img2logo-studio .studio-status').innerText"
+                # Done: the Run button was disabled (running) and is enabled again (two runs may say the same line).
+                ran = (
+                    "() => { const b = [...document.querySelectorAll('.img2logo-studio button')]"
+                    ".find(e => e.innerText.trim() === 'Run'); if (b.disabled) window.__ran = true;"
+                    f" return window.__ran === true && !b.disabled && {status}.startsWith('done:'); }}"
+                )
                 for _ in range(max(3, args.repeats // 2)):
-                    old = page.evaluate(f"() => {status}")
-                    times.setdefault("Run, 512 px clip art", []).append(
-                        _timed(page, run.click, f"a => {status}.startsWith('done:') && {status} !== a[1]", old)
-                    )
+                    page.evaluate("() => { window.__ran = false; }")
+                    times.setdefault("Run, 512 px clip art", []).append(_timed(page, run.click, ran))
                 shot("7-run")
                 # A level step with a gradient fill: the drawing, then the downloads' links made.
                 fills = page.locator(".img2logo-studio .widget-dropdown", has_text="Fills").locator("select")
@@ -232,6 +236,7 @@ def main() -> int:
                 circles.click()
                 page.mouse.click(*at(*pts[len(pts) // 2]))
                 page.wait_for_function(f"() => {status}.includes('selected')")
+                page.wait_for_function(f"() => {links} > 0", timeout=120_000)
                 page.wait_for_timeout(800)
                 shot("8-studio")
                 browser.close()

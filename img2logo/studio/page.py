@@ -105,7 +105,7 @@ body[data-voila] { padding: 6px 12px; }
 .img2logo-studio .widget-readout { font-size: 13px; }
 .img2logo-studio .studio-head { font-size: 18px; font-weight: 600; }
 .img2logo-studio .studio-section { font-size: 13px; font-weight: 600; margin-top: 4px; color: #333; }
-.img2logo-studio a.studio-download { display: inline-block; margin: 2px 6px 2px 0; padding: 4px 10px;
+.img2logo-studio .studio-download { display: inline-block; margin: 2px 6px 2px 0; padding: 4px 10px;
   border: 1px solid #1f6fd1; border-radius: 3px; color: #1f6fd1; text-decoration: none; font-size: 13px; }
 .img2logo-studio a.studio-download:hover { background: #e8f0fb; }
 .img2logo-studio .studio-download.studio-pending { border-color: #bbb; color: #999; }
