@@ -12,7 +12,6 @@ STUDIO := $(VENV)/.installed-studio
 PORT   ?= 8866
 HTMLKIT := $(VENV)/.installed-html
 DOCSKIT := $(VENV)/.installed-docs
-BENCH  := $(VENV)/.installed-bench
 LIB    := $(shell find img2logo -name '*.py') pyproject.toml
 DATA   := $(wildcard data/*.png)
 NB     ?= $(basename $(notdir $(wildcard notebooks/*.ipynb)))
@@ -93,12 +92,10 @@ format: $(STAMP)
 	$(BIN)/ruff format img2logo tests benchmarks tools
 	$(BIN)/ruff check --fix img2logo tests benchmarks tools
 
-# [bench] (vtracer, the plain vectorizer the command line is timed against), installed on first use.
-$(BENCH): pyproject.toml $(STAMP)
-	$(BIN)/python -m pip install --quiet -e '.[dev,bench]'
-	@touch $@
-
-bench: $(BENCH)
+# Speed against vtracer (and Debian's potrace on drawings, when installed), growth with the drawing; writes
+# docs/performance.md. vtracer runs from its own venv, build/bench-venv/ (made on first use, pip install vtracer),
+# started as a user starts it (python -I), not from the project's.
+bench: $(STAMP)
 	$(BIN)/python -m compileall -q img2logo  # the edited sources' bytecode: what an installed copy runs
 	$(BIN)/python benchmarks/bench.py
 

@@ -322,8 +322,7 @@ def band_kernels(pixel_bytes: int) -> tuple[Any, Any]:
 
     if pixel_bytes >= PNG_NOGIL_BYTES:
         try:
-            from . import jit as kernels_jit
-            from . import png as kernels_png
+            from . import jit as kernels_jit, png as kernels_png
 
             if kernels_jit.CACHED:
                 return kernels_png.png_unfilter, kernels_png.png_reduce
@@ -340,8 +339,7 @@ def _warm_png_jit() -> None:
     run does not wait seconds for it. Nothing happens where numba cannot cache them.
     """
     try:
-        from . import jit as kernels_jit
-        from . import png as kernels_png
+        from . import jit as kernels_jit, png as kernels_png
     except Exception:  # numba missing or unusable: the ahead-of-time kernels decode every PNG
         return
     if not kernels_jit.CACHED:

@@ -376,9 +376,7 @@ def test_a_huge_png_is_decoded_by_the_kernels_that_release_the_gil_with_the_same
     # GIL and so kept the inflating thread waiting: the same source, the same result to the bit.
     pytest.importorskip("numba")
     from img2logo import constants
-    from img2logo._compiled import jit as kernels_jit
-    from img2logo._compiled import kernels
-    from img2logo._compiled import png as kernels_png
+    from img2logo._compiled import jit as kernels_jit, kernels, png as kernels_png
     from img2logo.constants import PNG_NOGIL_BYTES
     from img2logo.images import loading
 
@@ -794,8 +792,7 @@ def test_a_large_tiff_decoded_whole_is_refused_over_its_byte_budget(tmp_path, mo
     # OpenCV, 2.9x its samples at the peak: refused above MAX_WHOLE_TIFF_BYTES, read below it.
     import tifffile
 
-    from img2logo.images import loading
-    from img2logo.images import tiff as _tiff
+    from img2logo.images import loading, tiff as _tiff
 
     path = tmp_path / "float.tif"
     tifffile.imwrite(path, _noisy(200, 300, 3, np.uint8).astype(np.float32) / 255, photometric="rgb")

@@ -12,8 +12,7 @@ from helpers import DATA
 from img2logo import InvalidParameterError
 from img2logo.app import cli
 from img2logo.export.contract import from_document
-from img2logo.studio import serve as studio_serve
-from img2logo.studio import session as studio
+from img2logo.studio import serve as studio_serve, session as studio
 from img2logo.studio.session import Studio
 
 
