@@ -68,7 +68,7 @@ $(STUDIO): pyproject.toml $(KIT)
 # The level explorer (notebook 11) in JupyterLab and the studio (notebook 14) in Voila, driven by Debian's
 # chromium (apt-get install chromium) through playwright; skipped, with the reason, where chromium is missing.
 test-browser: $(BROWSER)
-	$(BIN)/python -m pytest -m browser -rs tests/experiments/test_explore_browser.py tests/studio/test_browser.py
+	$(BIN)/python -m pytest -m browser -rs tests/experiments/test_explore_browser.py tests/studio/test_browser.py tests/studio/test_server.py
 
 # The designer's studio (notebook 14) as a page, served by Voila on this machine only; Ctrl-C stops it.
 # Another port: make studio PORT=8870
