@@ -59,8 +59,12 @@ if TYPE_CHECKING:
 PICK_DISTANCE = 10.0
 
 #: Largest upload accepted, bytes: the command line reads any size, but the page receives the file
-#: through the kernel's websocket, whose messages Tornado caps at 10 MiB; 9 MB holds a 12-megapixel JPEG.
+#: through the kernel's websocket in one message; 9 MB holds a 12-megapixel JPEG.
 MAX_UPLOAD_BYTES = 9_000_000
+#: Largest websocket message the studio's server takes, bytes (``websocket_max_message_size`` in its
+#: ``voila.json``): Tornado's default, 10 MiB, dropped a larger upload without a word; up to this size
+#: a file too large for the studio reaches the kernel and gets :data:`MAX_UPLOAD_BYTES`'s line.
+WEBSOCKET_MAX_MESSAGE_BYTES = 128 * 1024 * 1024
 #: Longest name of an upload kept, characters (file systems allow 255 bytes; UTF-8 takes up to 4 a character).
 MAX_NAME_CHARS = 60
 
@@ -791,6 +795,7 @@ __all__ = [
     "MAX_NAME_CHARS",
     "MAX_UPLOAD_BYTES",
     "PICK_DISTANCE",
+    "WEBSOCKET_MAX_MESSAGE_BYTES",
     "Studio",
     "StudioSettings",
     "free_ends",

@@ -535,6 +535,18 @@ def test_a_bad_upload_is_one_line_and_the_result_stays(page, uploaded, tmp_path)
     assert _title(page) == title
 
 
+def test_an_upload_over_10_mb_is_refused_in_one_line(page):
+    from img2logo.studio.session import MAX_UPLOAD_BYTES
+
+    title = _title(page)
+    size = 11 * 2**20  # over Tornado's default websocket message cap of 10 MiB
+    with page.expect_file_chooser() as chooser:
+        page.locator(".img2logo-studio button", has_text="Upload image").first.click()
+    chooser.value.set_files({"name": "huge.png", "mimeType": "image/png", "buffer": b"\x89PNG" + bytes(size - 4)})
+    _wait_status(page, f"error: huge.png: the file has {size} bytes, more than the studio takes ({MAX_UPLOAD_BYTES})")
+    assert _title(page) == title
+
+
 def test_a_long_name_is_shown_cut(page):
     name = "a-very-long-name-" * 20 + ".png"
     with page.expect_file_chooser() as chooser:

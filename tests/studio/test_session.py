@@ -435,6 +435,7 @@ def test_the_server_command_is_voila_on_localhost_with_the_studios_settings():
         "allow_remote_access": False,
         "local_hostnames": ["localhost"],
         "allow_origin": "",
+        "websocket_max_message_size": studio.WEBSOCKET_MAX_MESSAGE_BYTES,
     }
     assert config["VoilaConfiguration"]["file_allowlist"] == []
     assert config["MappingKernelManager"]["cull_connected"] is False
@@ -529,3 +530,13 @@ def test_the_circle_sizes_of_fig_15(ran):
     assert s.run(), s.message
     assert {c.k for c in s.shown.golden_circles} <= set(chosen)
     assert s.set_exponents("") and s.settings.exponents is None
+
+
+def test_the_server_takes_an_upload_too_large_for_the_studio_to_say_so():
+    """Tornado's 10 MiB websocket cap dropped a 10 MB upload without a word: the server's config raises it."""
+    config = json.loads(studio_serve.VOILA_CONFIG.read_text())
+    assert config["Voila"]["tornado_settings"]["websocket_max_message_size"] == studio.WEBSOCKET_MAX_MESSAGE_BYTES
+    assert studio.WEBSOCKET_MAX_MESSAGE_BYTES > 10 * studio.MAX_UPLOAD_BYTES
+    s = Studio()
+    assert not s.load_upload("huge.jpg", b"\xff" * (11 * 2**20))
+    assert s.message.startswith(f"error: huge.jpg: the file has {11 * 2**20} bytes, more than the studio takes")
