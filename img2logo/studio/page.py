@@ -285,6 +285,7 @@ class StudioPage:
                 ("Brush", "brush"),
                 ("Eraser", "eraser"),
                 ("Subject", "subject"),
+                ("Colour", "colour"),
             ],
             value="select",
             tooltips=[
@@ -293,8 +294,12 @@ class StudioPage:
                 "paint where merges are forbidden (the lock mask, Fig. 16)",
                 "erase the lock mask",
                 "drag a rectangle around the subject of a photo (GrabCut's seed)",
+                "click a filled region to give it the colour beside (fills on)",
             ],
             style={"button_width": "68px"},
+        )
+        c["colour"] = w.ColorPicker(
+            value="#e76f51", concise=True, tooltip="the Colour tool's colour", layout=w.Layout(width="36px")
         )
         c["fit"] = w.Button(description="Fit", tooltip="the whole image (key 0)", layout=w.Layout(width="44px"))
         c["zoom"] = w.Label("fit", layout=w.Layout(width="46px"))
@@ -419,7 +424,7 @@ class StudioPage:
             options=[("Faded", "faded"), ("Dim", "dim"), ("Hidden", "hidden")],
             value="faded",
             tooltips=["the input under the logo, as in the PNG", "fainter", "no input: the logo alone"],
-            style={"button_width": "64px"},
+            style={"button_width": "60px"},
         )
         c["delete"] = w.Button(
             description="Delete arc",
@@ -506,9 +511,11 @@ class StudioPage:
         )
         tools = w.VBox(
             [
-                w.HBox([c["tool"], c["fit"], c["zoom"]]),
+                w.HBox([c["tool"], c["colour"]]),
                 w.HBox([c["brush"], c["clear_mask"], c["clear_subject"]]),
-                w.HBox([c["circles"], w.Label("Input", layout=w.Layout(width="40px")), c["input"]]),
+                w.HBox(
+                    [c["circles"], w.Label("Input", layout=w.Layout(width="40px")), c["input"], c["fit"], c["zoom"]]
+                ),
                 hint,
             ],
             layout=w.Layout(width=f"{self.size}px"),
@@ -989,6 +996,9 @@ class StudioPage:
             return
         if tool == "hand":
             self._drag = [(float(x), float(y))]  # canvas px: the view moves under the mouse
+            return
+        if tool == "colour":
+            self._act(lambda: self.studio.colour_region_at(ix, iy, self.controls["colour"].value))
             return
         self._drag = [(ix, iy)]
         if tool in ("brush", "eraser"):

@@ -196,6 +196,8 @@ class Studio:
         self.last_run_seconds = 0.0
         self._history: dict[int, list[Abstraction]] = {}
         self._redo: dict[int, list[Abstraction]] = {}
+        # The logo (kept, so that its id names it) and its regions' own colours, by the logo's id.
+        self._colours: dict[int, tuple[Abstraction, dict[int, str]]] = {}
         self._cache: dict[str, Any] = {}
         if image is not None:
             self.load_example(image)
@@ -682,27 +684,74 @@ class Studio:
         return len(self._history.get(self.level, []))
 
     def _reset_edits(self) -> None:
-        self._history, self._redo = {}, {}
+        self._history, self._redo, self._colours = {}, {}, {}
         self.selected = []
         self._cache.clear()
 
     def _cached(self, key: str, make: Callable[[], Any]) -> Any:
         """``make()`` once per logo shown and fill option (the cache is keyed on both)."""
-        full = (key, id(self.shown), self.settings.fill)
+        full = (key, id(self.shown), self.settings.fill, tuple(sorted(self._colours_of_shown().items())))
         if full not in self._cache:
             self._cache[full] = make()
         return self._cache[full]
 
     # ------------------------------------------------------------------ fills and downloads
     def fills(self) -> tuple[Fill, ...] | None:
-        """The fills of the logo shown (None for ``fill = "none"``), as the command line makes them."""
+        """The fills of the logo shown (None for ``fill = "none"``), as the command line makes them.
+
+        A region given its own colour (:meth:`colour_region_at`) has that colour, flat.
+        """
         from ..design.fills import parse_fill_option
 
         a = self.shown
         spec = parse_fill_option(self.settings.fill)
         if a is None or spec.mode == "none":
             return None
-        return self._cached("fills", lambda: spec.make(a, self.result.image))
+
+        def make() -> tuple[Fill, ...]:
+            made = spec.make(a, self.result.image)
+            own = self._colours_of_shown()
+            return tuple(
+                dataclasses.replace(f, color=own[i], gradient=None) if i in own else f for i, f in enumerate(made)
+            )
+
+        return self._cached("fills", make)
+
+    def _colours_of_shown(self) -> dict[int, str]:
+        """The regions of the logo shown given their own colour: fill index -> ``#rrggbb``."""
+        entry = self._colours.get(id(self.shown))
+        return entry[1] if entry is not None else {}
+
+    def region_at(self, x: float, y: float) -> int | None:
+        """The index of the fill region of the logo shown that holds point (x, y), px (even-odd rule); else None."""
+        import shapely
+
+        fills = self.fills()
+        for i, f in enumerate(fills or ()):
+            inside = sum(bool(shapely.contains_xy(shapely.Polygon(r), float(x), float(y))) for r in f.rings())
+            if inside % 2:
+                return i
+        return None
+
+    def colour_region_at(self, x: float, y: float, colour: str) -> bool:
+        """Give the fill region at (x, y), px, its own flat colour ``colour`` (``#rrggbb``) in the drawing and files."""
+        from ..design.fill_values import parse_color
+
+        if self.fills() is None:
+            return self._say("error: choose fills first (a region's colour changes a fill)", ok=False)
+
+        def act() -> str:
+            value = parse_color(colour, "colour")
+            i = self.region_at(x, y)
+            if i is None:
+                raise InvalidParameterError(f"no region at ({x:.0f}, {y:.0f}) px: click inside a filled region")
+            a = self.shown
+            own = dict(self._colours_of_shown())
+            own[i] = value
+            self._colours[id(a)] = (a, own)
+            return f"region {i}: {value}"
+
+        return self._attempt(act)
 
     def set_fill(self, fill: str) -> bool:
         """Colour the logo with the command line's ``--fill`` option ``fill`` (no new Run)."""
@@ -713,6 +762,7 @@ class Studio:
             parse_fill_option(fill)
             old = self.settings
             self.settings = dataclasses.replace(old, fill=fill)
+            self._colours = {}  # another fill option: other regions, or the same in another order
             try:
                 fills = self.fills()
             except Img2LogoError:

@@ -364,6 +364,38 @@ def test_only_some_circle_sizes(page, fish):
     _wait_status(page, "done:")
 
 
+def test_click_a_region_to_give_it_its_own_colour(page, fish):
+    import shapely
+
+    from img2logo.studio.page import FILL_PRESETS
+    from img2logo.studio.session import Studio
+
+    s = Studio("clipart-fish.png")
+    s.result, s.levels, s.level = fish.result, fish.levels, fish.level
+    assert s.set_fill(FILL_PRESETS["palette"]), s.message
+    fills = s.fills()
+    order = sorted(range(len(fills)), key=lambda j: -shapely.Polygon(fills[j].rings()[0]).area)
+    point = next(
+        p
+        for j in order
+        for p in [np.array(shapely.Polygon(fills[j].rings()[0]).representative_point().coords[0])]
+        if s.region_at(*p) == j
+    )
+    a = fish.shown
+    fills_menu = page.locator(".img2logo-studio .widget-dropdown", has_text="Fills").locator("select")
+    fills_menu.select_option("palette")
+    _wait_status(page, "regions")
+    _tool(page, "Colour")
+    page.locator(".img2logo-studio input[type=color]").first.fill("#ff0000")
+    x, y = _to_screen(page, *point, (a.width, a.height))
+    page.mouse.click(x, y)
+    _wait_status(page, ": #ff0000")
+    _wait_pixels(page, x, y, 0, "d[0] > 200 && d[1] < 80 && d[2] < 80")
+    fills_menu.select_option("none")
+    _wait_status(page, "no fill")
+    _tool(page, "Select")
+
+
 def test_the_wheel_zooms_the_hand_pans_and_fit_comes_back(page):
     box = _canvas_box(page)
     zoom = page.locator(".img2logo-studio .widget-label", has_text="fit").first

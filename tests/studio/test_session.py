@@ -540,3 +540,21 @@ def test_the_server_takes_an_upload_too_large_for_the_studio_to_say_so():
     s = Studio()
     assert not s.load_upload("huge.jpg", b"\xff" * (11 * 2**20))
     assert s.message.startswith(f"error: huge.jpg: the file has {11 * 2**20} bytes, more than the studio takes")
+
+
+def test_a_region_gets_its_own_colour_in_the_drawing_and_the_files(ran):
+    s = fresh(ran)
+    assert not s.colour_region_at(10.0, 10.0, "#ff0000") and s.message.startswith("error: choose fills first")
+    assert s.set_fill("palette:#264653,#2a9d8f"), s.message
+    fills = s.fills()
+    point = fills[0].rings()[0].mean(axis=0)
+    i = s.region_at(*point)
+    assert i is not None
+    assert s.colour_region_at(*point, "#FF0000"), s.message
+    assert s.message == f"region {i}: #ff0000" and s.fills()[i].color == "#ff0000"
+    doc = json.loads(s.downloads(("json",))["json"])
+    assert doc["fills"][i]["color"] == "#ff0000"
+    assert not s.colour_region_at(*point, "red-ish") and s.fills()[i].color == "#ff0000"
+    assert not s.colour_region_at(-50.0, -50.0, "#00ff00") and s.message.startswith("error: no region at")
+    s.set_level(s.level - 1)
+    assert all(f.color != "#ff0000" for f in s.fills() or ())  # another logo: its own regions
