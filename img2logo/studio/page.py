@@ -417,14 +417,14 @@ class StudioPage:
             value=False,
             description="Golden circles",
             indent=False,
-            layout=w.Layout(width="130px"),
+            layout=w.Layout(width="118px"),
             tooltip="the circles of the level shown, the SVG's construction layer",
         )
         c["input"] = w.ToggleButtons(
             options=[("Faded", "faded"), ("Dim", "dim"), ("Hidden", "hidden")],
             value="faded",
             tooltips=["the input under the logo, as in the PNG", "fainter", "no input: the logo alone"],
-            style={"button_width": "60px"},
+            style={"button_width": "62px"},
         )
         c["delete"] = w.Button(
             description="Delete arc",
@@ -505,8 +505,9 @@ class StudioPage:
         hint = w.HTML(
             '<div class="studio-hint"><b>Select</b>: click an arc (a second one to connect them; Shift-click: '
             "several); drag its circle's centre to move it; keys: Ctrl+Z, Ctrl+Shift+Z, Delete, arrows. "
-            "<b>Brush</b> / <b>Eraser</b>: paint where merges are forbidden, then Run. <b>Subject</b>: drag a "
-            "rectangle around a photo's subject, then Run.</div>",
+            "<b>Hand</b>: drag the zoomed drawing (the wheel zooms). <b>Brush</b> / <b>Eraser</b>: paint where "
+            "merges are forbidden, then Run. <b>Subject</b>: a photo's subject. <b>Colour</b>: click a filled "
+            "region.</div>",
             layout=w.Layout(width=f"{self.size}px"),
         )
         tools = w.VBox(
