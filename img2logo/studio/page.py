@@ -469,6 +469,15 @@ class StudioPage:
             tooltip="Fig. 17 add: an arc on the selected arc's circle between its two ends, around the other way",
             layout=w.Layout(width="130px"),
         )
+        c["detail"] = labelled(
+            w.IntSlider,
+            "Detail",
+            value=s.detail,
+            min=1,
+            max=60,
+            continuous_update=False,
+            tooltip="clip art: the regions kept besides the background (--detail); fewer, the least important merge",
+        )
         c["sizes"] = labelled(
             w.Text,
             "Only circle sizes",
@@ -531,6 +540,7 @@ class StudioPage:
                 c["tolerance"],
                 w.HBox([c["bias"], c["bias_auto"]]),
                 c["rdp_tolerance"],
+                c["detail"],
                 c["symmetry"],
                 w.HBox([w.Label("Ladder", layout=w.Layout(width="126px")), c["ladder"]]),
                 c["sizes"],
@@ -866,6 +876,7 @@ class StudioPage:
             "rdp_tolerance": float(c["rdp_tolerance"].value),
             "symmetry": c["symmetry"].value,
             "lines": bool(c["lines"].value),
+            "detail": int(c["detail"].value),
             "ladder": c["ladder"].value,
             "fill": fill,
         }

@@ -43,7 +43,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ..constants import RDP_TOLERANCE, TOLERANCE
+from ..constants import DETAIL, RDP_TOLERANCE, TOLERANCE
 from ..errors import Img2LogoError, InvalidParameterError
 from ..experiments.explore import levels_within
 from ..experiments.paths import data_path
@@ -95,6 +95,8 @@ class StudioSettings:
         Nearly straight segments become straight lines (Sec. 9, Fig. 20b).
     ladder : str
         ``"phi"`` (golden) or ``"fibonacci"`` (Fig. 2b).
+    detail : int
+        Clip art: the regions kept besides the background (``--detail``).
     exponents : tuple of int or None
         Only these ladder exponents k (the subset of golden circles of Fig. 15, ``--radii``);
         None: every rung.
@@ -113,6 +115,7 @@ class StudioSettings:
     lines: bool = False
     ladder: str = "phi"
     exponents: tuple[int, ...] | None = None
+    detail: int = DETAIL
     fill: str = "none"
 
 
@@ -378,6 +381,7 @@ class Studio:
                 lines=settings.lines,
                 ladder=settings.ladder,
                 exponents=settings.exponents,
+                detail=settings.detail,
                 subject=self.subject,
                 lock_mask=self.mask.copy() if self.mask.any() else None,
                 progress=progress or False,

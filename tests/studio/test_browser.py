@@ -427,6 +427,7 @@ def test_the_labels_are_a_designers_words_with_the_papers_symbol_in_a_tooltip(pa
         ("Circle size offset", "\u03c3"),
         ("Simplify lines (px)", "Ramer-Douglas-Peucker"),
         ("Level", "A^t"),
+        ("Detail", "--detail"),
     ):
         widget = box.locator(".widget-slider", has_text=label).first
         assert widget.is_visible(), label

@@ -558,3 +558,11 @@ def test_a_region_gets_its_own_colour_in_the_drawing_and_the_files(ran):
     assert not s.colour_region_at(-50.0, -50.0, "#00ff00") and s.message.startswith("error: no region at")
     s.set_level(s.level - 1)
     assert all(f.color != "#ff0000" for f in s.fills() or ())  # another logo: its own regions
+
+
+def test_the_detail_of_a_clip_art_is_a_setting_of_the_run():
+    s = Studio("clipart-cat.png")
+    assert s.run(), s.message
+    many = len(s.shown.arcs)
+    assert s.run(detail=2), s.message
+    assert s.settings.detail == 2 and len(s.shown.arcs) < many
