@@ -750,6 +750,8 @@ class Studio:
             if i is None:
                 raise InvalidParameterError(f"no region at ({x:.0f}, {y:.0f}) px: click inside a filled region")
             a = self.shown
+            if a is None:
+                raise InvalidParameterError("press Run first")
             own = dict(self._colours_of_shown())
             own[i] = value
             self._colours[id(a)] = (a, own)
