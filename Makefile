@@ -58,17 +58,19 @@ $(DOCSKIT): pyproject.toml $(KIT)
 	@touch $@
 
 $(BROWSER): pyproject.toml $(KIT)
-	$(BIN)/python -m pip install --quiet -e '.[dev,kit,browser]'
+	$(BIN)/python -m pip install --quiet -e '.[dev,kit,browser,docs]'
 	@touch $@
 
 $(STUDIO): pyproject.toml $(KIT)
 	$(BIN)/python -m pip install --quiet -e '.[dev,kit,studio]'
 	@touch $@
 
-# The level explorer (notebook 11) in JupyterLab and the studio (notebook 14) in Voila, driven by Debian's
+# The level explorer (notebook 11) in JupyterLab, the studio (notebook 14) in Voila and the docs site (make docs's
+# pages at 1366 px: no sideways scroll, math typeset), driven by Debian's
 # chromium (apt-get install chromium) through playwright; skipped, with the reason, where chromium is missing.
 test-browser: $(BROWSER)
-	$(BIN)/python -m pytest -m browser -rs tests/experiments/test_explore_browser.py tests/studio/test_browser.py tests/studio/test_server.py
+	$(BIN)/python -m pytest -m browser -rs tests/experiments/test_explore_browser.py tests/studio/test_browser.py \
+	  tests/studio/test_server.py tests/test_docs_browser.py
 
 # The wheel as a user gets it: built (with its compiled kernels), installed in a fresh venv outside the
 # repository, its first run checked (tests/test_wheel.py; needs a C compiler and PyPI, minutes).
@@ -134,10 +136,11 @@ build/html/%.html: build/notebooks/%.ipynb | $(HTMLKIT)
 	@mkdir -p $(dir $@)
 	@$(BIN)/python -m img2logo.experiments.html $< $(dir $@)
 
-# The docs site in build/docs/ (Sphinx, numpydoc, myst-parser: the extra [docs]): the README as the
-# guide, the API reference from the docstrings, and the pages of make html when they exist.
+# The docs site in build/docs/ (Sphinx, numpydoc, myst-parser: the extra [docs]): the guide, how it
+# works, the design notes, the quality and performance pages, the API reference from the docstrings,
+# and the pages of make html when they exist. A warning fails the build.
 docs: | $(DOCSKIT)
-	$(BIN)/sphinx-build -q -b html docs build/docs
+	$(BIN)/sphinx-build -q -W --keep-going -b html docs build/docs
 	@echo "wrote build/docs/index.html"
 
 # The same notebooks with their smoke parameters (img2logo.experiments.runner.SMOKE): small and

@@ -67,6 +67,8 @@ HELDOUT_PHOTO = EVAL / "heldout-photo"
 #: ``openclipart clipart`` and ``openclipart drawing``; sil6 is measured against each object's silhouette.
 OPENCLIPART = EVAL / "openclipart"
 OUT = ROOT / "build" / "quality"
+#: The docs site's quality page, rewritten by a full run (no ``--only``).
+DOCS_PAGE = ROOT / "docs" / "quality.md"
 COLUMNS = (
     "name",
     "family",
@@ -247,11 +249,60 @@ def contact_sheet(kind: str, runs: list[tuple[dict, object]], path: Path) -> Non
     save_figure(fig, path, dpi=60)
 
 
+def markdown_table(frame) -> str:
+    """A pandas table as a Markdown pipe table, numbers to 2 decimals, empty cells for NaN."""
+
+    def cell(value) -> str:
+        if isinstance(value, float):
+            return "" if np.isnan(value) else f"{value:.2f}"
+        return str(value).replace("|", "\\|")
+
+    lines = ["| " + " | ".join(str(c) for c in frame.columns) + " |", "|" + " --- |" * len(frame.columns)]
+    lines += ["| " + " | ".join(cell(v) for v in row) + " |" for row in frame.itertuples(index=False)]
+    return "\n".join(lines)
+
+
+def write_page(path: Path, table, means, pooled: str, argv: list[str]) -> None:
+    """Write the docs page of a run: the means per family, the pooled joins, one row per image.
+
+    The page says the date and the command that reproduces it; it is written whole or not at all.
+    """
+    import shlex
+
+    command = " ".join(["python benchmarks/quality.py", *map(shlex.quote, argv)])
+    # Seconds are the performance page's (make bench): taken here, beside the others' work, they say little.
+    family_means = means.reset_index().drop(columns=["seconds", "most seconds"], errors="ignore")
+    front = ["family", "images", "kind right", "failed"]
+    family_means = family_means[front + [c for c in family_means.columns if c not in front]]
+    text = "\n\n".join(
+        [
+            "# Quality",
+            f"Written by `{command}` (or `make quality`) on {time.strftime('%Y-%m-%d', time.gmtime())}; "
+            "the measures are those of `img2logo.quality` and the families those of the script's docstring "
+            "(`benchmarks/quality.py`). Contact sheets of each family go to `build/quality/`.",
+            "## Means per family",
+            markdown_table(family_means),
+            *([pooled + "."] if pooled else []),
+            "## One row per image",
+            markdown_table(table.drop(columns=["error", "seconds"], errors="ignore")),
+        ]
+    )
+    partial = path.with_name(path.name + ".part")
+    partial.write_text(text + "\n", encoding="utf-8")
+    partial.replace(path)
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--only", default="*", help="run the images whose name matches this glob (e.g. 'clipart-*')")
     parser.add_argument("--no-sheets", action="store_true", help="skip the contact sheets")
     parser.add_argument("--out", type=Path, default=OUT, help="output folder (default build/quality)")
+    parser.add_argument(
+        "--docs",
+        type=Path,
+        default=None,
+        help="write the tables as the docs page PATH (default: docs/quality.md on a full run, none with --only)",
+    )
     args = parser.parse_args(argv)
 
     import pandas as pd
@@ -292,11 +343,17 @@ def main(argv: list[str] | None = None) -> int:
     kinks = np.concatenate(
         [r["kinks"] for r, _ in runs if r["family"] in ("clipart", "drawing") and "kinks" in r] or [np.zeros(0)]
     )
+    pooled = ""
     if len(kinks):
-        print(
-            f"\nJoins on smooth input, clip arts and drawings pooled: {len(kinks)} joins, "
+        pooled = (
+            f"Joins on smooth input, clip arts and drawings pooled: {len(kinks)} joins, "
             f"{100 * np.mean(kinks < 2.0):.0f} % tangent (< 2 degrees), median kink {np.median(kinks):.1f} degrees"
         )
+        print("\n" + pooled)
+    page = args.docs if args.docs is not None else (DOCS_PAGE if args.only == "*" else None)
+    if page is not None:
+        write_page(page, table, means, pooled, argv if argv is not None else sys.argv[1:])
+        print(f"wrote {page}")
     if not args.no_sheets:
         for kind in sorted(table["family"].unique()):
             chosen = [(r, run) for r, run in runs if r["family"] == kind]

@@ -55,6 +55,7 @@ def test_failed_replace_leaves_nothing(tmp_path, monkeypatch):
 
 def test_failure_midway_keeps_the_old_file(tmp_path, monkeypatch):
     from matplotlib.figure import Figure
+    from PIL import Image
 
     target = tmp_path / "a.png"
     target.write_bytes(b"old")
@@ -63,7 +64,8 @@ def test_failure_midway_keeps_the_old_file(tmp_path, monkeypatch):
         f.write(b"\x89PNG half")
         raise RuntimeError("renderer crashed")
 
-    monkeypatch.setattr(Figure, "savefig", half_then_fail)
+    monkeypatch.setattr(Figure, "savefig", half_then_fail)  # a transparent PNG's writer
+    monkeypatch.setattr(Image.Image, "save", half_then_fail)  # an opaque (RGB) PNG's
     with pytest.raises(RuntimeError, match="renderer crashed"):
         writers.write_png(make_abstraction(), target)
     assert target.read_bytes() == b"old"
@@ -71,6 +73,9 @@ def test_failure_midway_keeps_the_old_file(tmp_path, monkeypatch):
     with pytest.raises(RuntimeError, match="renderer crashed"):
         writers.write_png(make_abstraction(), tmp_path / "new.png")
     assert leftovers(tmp_path) == ["a.png"]
+    with pytest.raises(RuntimeError, match="renderer crashed"):
+        writers.write_png(make_abstraction(), target, background="transparent")
+    assert target.read_bytes() == b"old" and leftovers(tmp_path) == ["a.png"]
 
 
 def test_atomic_write_helper(tmp_path):

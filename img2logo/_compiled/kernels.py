@@ -66,7 +66,7 @@ ENTRY_POINTS: dict[str, tuple[str, tuple[str, ...], str]] = {
         ),
         "Tuple((i8, b1, f8, f8))",
     ),
-    # (loop, session 9) the same SQP with the KKT system in a band: a global solve, compiled.
+    # (loop) the same SQP with the KKT system in a band: a global solve, compiled.
     "sqp_banded": (
         "sqp",
         tuple(
@@ -75,7 +75,7 @@ ENTRY_POINTS: dict[str, tuple[str, tuple[str, ...], str]] = {
         ),
         "Tuple((i8, b1, f8, f8))",
     ),
-    # (loop, session 10) a photo's merged arc that no circle of its radius can bring within the bound.
+    # (loop) a photo's merged arc that no circle of its radius can bring within the bound.
     "far_circle_kernel": ("sqp", ("f8[:,::1]", "f8", "f8", "f8", "f8", "i8"), "b1"),
     "extract_arc_kernel": (
         "arcs",

@@ -160,13 +160,26 @@ def save_figure(fig: Any, path: str | os.PathLike[str], *, dpi: float | None = N
 
     The last expression of a notebook cell, it shows the written file inline.
     ``dpi`` None is ``FIGURE_DPI``. The figure's texts are first raised to a
-    legible size (:func:`make_legible`).
+    legible size (:func:`make_legible`), then titles wider than their panels are
+    broken onto more lines (:func:`img2logo.experiments.layout.fit_titles`).
+
+    Raises
+    ------
+    FigureTextError
+        If texts of the figure still overlap or leave it
+        (:func:`img2logo.experiments.layout.text_problems`); nothing is written.
     """
     from ..export import writers
+    from .layout import FigureTextError, fit_titles, text_problems
 
     d = FIGURE_DPI if dpi is None else dpi
     # A browser shows an SVG's points at 96 / 72 px each, whatever the dpi.
     make_legible(fig, dpi=d if Path(path).suffix.lower() != ".svg" else 96.0)
+    fit_titles(fig)
+    problems = text_problems(fig)
+    if problems:
+        more = f" (and {len(problems) - 1} more)" if len(problems) > 1 else ""
+        raise FigureTextError(f"{Path(path).name}: the figure would not read: {problems[0]}{more}")
     return SavedFigure(Path(writers.save_figure(fig, path, dpi=d)))
 
 
@@ -175,6 +188,24 @@ def save_table(table: Any, path: str | os.PathLike[str]) -> SavedTable:
     from ..export import writers
 
     return SavedTable(Path(writers.write_table(table, path)), table)
+
+
+@dataclass(frozen=True)
+class Prose:
+    """Markdown a notebook computes from its run (numbers in its reading), shown as text by Jupyter."""
+
+    markdown: str
+
+    def _repr_markdown_(self) -> str:
+        return self.markdown
+
+    def __repr__(self) -> str:
+        return self.markdown
+
+
+def show_prose(markdown: str) -> Prose:
+    """Show ``markdown`` as formatted text in a notebook: the sentences whose numbers come from the run."""
+    return Prose(str(markdown))
 
 
 def show_table(table: Any) -> SavedTable:

@@ -334,7 +334,7 @@ def plot_connectivity_ablation(
                 mark_window(ax, win, str(j + 1))
             max_gap = float(g["gap"].max()) if len(g) else 0.0
             ax.set_title(
-                f"{v}\n|A| = {len(run.final.arcs)}, E$^s$ = {run.final.similarity:.2f}, "
+                f"{v}\n|A| = {len(run.final.arcs)}, E$^s$ = {run.final.similarity:.2f}\n"
                 f"max gap {max_gap:.2f} px, {len(big)} > {threshold:g}",
                 fontsize=7,
             )
@@ -471,8 +471,8 @@ def plot_rdp_sweep(runs: Sequence[Run], *, panel_size: float = 3.0, inset: float
             frame_image(ax, run.image.width, run.image.height)
             draw_arcs(ax, run.final.arcs, linewidth=1.2)
             ax.set_title(
-                f"{name}: |A$^0$| = {len(run.levels[0].arcs)}, "
-                f"|A| = {len(run.final.arcs)}\nE$^s$ = {run.final.similarity:.2f} px",
+                f"{name}\n|A$^0$| = {len(run.levels[0].arcs)}, "
+                f"|A| = {len(run.final.arcs)}, E$^s$ = {run.final.similarity:.2f} px",
                 fontsize=7,
             )
     fig.suptitle("Robustness to the initial segmentation (Fig. 13): segments (small) and results", fontsize=9)

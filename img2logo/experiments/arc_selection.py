@@ -359,7 +359,7 @@ def plot_hook_example(example: HookExample, table: pd.DataFrame | None = None, *
         if fit is not None:
             color = DIFFERENCE_COLORS[0] if fit is example.frechet else DIFFERENCE_COLORS[1]
             draw_arcs(ax, [fit.arc], colors=color, linewidth=3.0)
-            title += f": sweep {math.degrees(abs(fit.arc.sweep)):.0f}°, Fréchet {fit.frechet:.1f} px"
+            title += f"\nsweep {math.degrees(abs(fit.arc.sweep)):.0f}°, Fréchet {fit.frechet:.1f} px"
         j = example.junctions
         ax.plot(j[:, 0], j[:, 1], "o", color="#d62728", ms=5, zorder=5)
         frame_window(ax, box, **WINDOW_FRAME)

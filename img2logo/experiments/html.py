@@ -7,7 +7,9 @@ already), the template's CSS is inline, the math is typeset by a local MathJax
 (2.7, from the ``jupyter-server-mathjax`` package, copied once to
 ``build/html/mathjax/``) drawing SVG paths (no web font to fetch), and the
 scripts a page of plots does not need (require.js, jQuery, the widget manager:
-the level explorer's widgets need a kernel anyway) are left out. nbconvert and
+the level explorer's widgets need a kernel anyway) are left out. A line at the
+top links back to the docs site's notebooks index (``make docs`` puts the pages
+beside it) and names the paper figure or table the notebook reproduces. nbconvert and
 jupyter-server-mathjax are the extra ``[html]``, installed by ``make html``.
 """
 
@@ -101,10 +103,25 @@ def export_html(notebook: str | os.PathLike[str], output_dir: str | os.PathLike[
     body, _ = exporter.from_notebook_node(nb)
     body = _strip_network_scripts(body)
     body = body.replace("<head>", "<head>\n" + _FONT_CONFIG, 1)
+    body = re.sub(r"(<body[^>]*>)", lambda m: m.group(1) + "\n" + _back_link(source.stem), body, count=1)
     left = external_references(body)
     if left:
         raise InvalidParameterError(f"{source.name}: the page would still load from the network: {left[0]}")
     return atomic_write(out / f"{source.stem}.html", lambda f: f.write(body.encode("utf-8")))
+
+
+def _back_link(name: str) -> str:
+    """The line at a page's top: back to the docs site's notebooks index, and what the notebook reproduces."""
+    from html import escape
+
+    from .runner import PAPER_ITEMS
+
+    item = PAPER_ITEMS.get(name)
+    what = f" · {escape(name)} reproduces {escape(item[0])} of the paper" if item else ""
+    return (
+        '<p style="font: 14px sans-serif; margin: 8px 16px;">'
+        f'<a href="notebooks.html">← the notebooks of img2logo</a>{what}</p>'
+    )
 
 
 def _strip_network_scripts(html: str) -> str:

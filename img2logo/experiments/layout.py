@@ -15,6 +15,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from ..errors import Img2LogoError
 from ..export.plotting import ARC_COLOR, frame_image
 
 if TYPE_CHECKING:
@@ -26,9 +27,11 @@ if TYPE_CHECKING:
 
 __all__ = [
     "GROUP_COLORS",
+    "FigureTextError",
     "draw_arcs",
     "draw_segment_groups",
     "emptiest_corner",
+    "fit_titles",
     "frame_bounds",
     "frame_window",
     "mark_window",
@@ -36,7 +39,13 @@ __all__ = [
     "ring",
     "show_image",
     "square_window",
+    "text_problems",
 ]
+
+
+class FigureTextError(Img2LogoError):
+    """A figure's texts overlap or leave the figure (:func:`text_problems`): it would not read."""
+
 
 #: Colours cycled over groups told apart in a figure (the segment groups S_i of Fig. 7, one line per image).
 GROUP_COLORS: tuple[str, ...] = tuple(
@@ -199,3 +208,151 @@ def emptiest_corner(points: np.ndarray, width: int, height: int, size: float) ->
     corners = [(1.0 - size, 0.0), (1.0 - size, 1.0 - size), (0.0, 0.0), (0.0, 1.0 - size)]
     counts = [int(np.sum((fx >= x) & (fx <= x + size) & (fy >= y) & (fy <= y + size))) for x, y in corners]
     return corners[int(np.argmin(counts))]
+
+
+def _titles(fig: Any) -> list[tuple[Any, float]]:
+    """Each non-empty title of ``fig`` with the width it may take, display px: an axes' titles
+    their axes' width, the figure's suptitle the figure's."""
+    found = []
+    ax: Any
+    for ax in fig.axes:
+        if not ax.get_visible():
+            continue
+        width = ax.get_window_extent().width
+        for text in (ax.title, ax._left_title, ax._right_title):
+            if text.get_text() and text.get_visible():
+                found.append((text, width))
+    if fig._suptitle is not None and fig._suptitle.get_text():
+        found.append((fig._suptitle, fig.bbox.width))
+    return found
+
+
+def _wrap(text: Any, width: float, renderer: Any) -> bool:
+    """Re-break ``text``'s lines at spaces so that each fits ``width`` display px; True if it changed.
+
+    A word wider than ``width`` stays whole on its line (it is reported by :func:`text_problems`).
+    """
+    original = text.get_text()
+    lines: list[str] = []
+    for line in original.split("\n"):
+        words = _keep_together(line.split(" "))
+        current = words[0]
+        for word in words[1:]:
+            text.set_text(f"{current} {word}")
+            if text.get_window_extent(renderer).width <= width:
+                current = f"{current} {word}"
+            else:
+                lines.append(current)
+                current = word
+        lines.append(current)
+    wrapped = "\n".join(lines)
+    text.set_text(wrapped)
+    return wrapped != original
+
+
+def _keep_together(words: list[str]) -> list[str]:
+    """Join ``a = b`` into one word, so that a line is never broken around an equals sign."""
+    out: list[str] = []
+    for word in words:
+        if out and (word in ("=", "<=", ">=", "<", ">") or out[-1].endswith(("=", "<", ">"))):
+            out[-1] = f"{out[-1]} {word}"
+        else:
+            out.append(word)
+    return out
+
+
+def fit_titles(fig: Figure) -> Figure:
+    """Break every title of ``fig`` onto more lines where it is wider than its axes (the suptitle:
+    than the figure); return ``fig``.
+
+    Titles are set in points and panels in inches, so a title that fits at one font size runs
+    into its neighbour's at a larger one (:func:`img2logo.experiments.make_legible`); constrained
+    layout makes room for the added lines when the figure is drawn. Lines are broken at spaces, never
+    around an equals sign, so ``|A| = 12`` and a title's math (``E$^s$``) stay whole.
+    """
+    for _ in range(3):  # the axes' widths may change once the titles take more lines
+        renderer = _layout_renderer(fig)
+        changed = False
+        for text, width in _titles(fig):
+            if text.get_window_extent(renderer).width > width:
+                changed |= _wrap(text, width, renderer)
+        if not changed:
+            break
+    return fig
+
+
+def text_problems(fig: Figure, *, tolerance: float = 0.5) -> list[str]:
+    """What makes a figure's text unreadable: texts that overlap, and texts cut by the figure's edge.
+
+    The figure is drawn (its layout done) and every visible, non-empty text measured in display
+    pixels: titles, axis labels, tick labels, legend entries, texts placed in an axes or on the
+    figure. Two texts overlap when their boxes share more than ``tolerance`` px each way; a text is
+    clipped when its box leaves the figure by more than ``tolerance`` px.
+
+    Returns
+    -------
+    list of str
+        One line per problem, naming the texts; empty when every text reads.
+    """
+    renderer = _layout_renderer(fig)
+    boxes = []
+    for text in _drawn_texts(fig):
+        label = text.get_text().strip()
+        if not label or not text.get_visible():
+            continue
+        box = text.get_window_extent(renderer)
+        if box.width > 0 and box.height > 0:
+            boxes.append((label.replace("\n", " / "), box))
+    problems = []
+    frame = fig.bbox
+    for label, box in boxes:
+        if (
+            box.x0 < frame.x0 - tolerance
+            or box.y0 < frame.y0 - tolerance
+            or box.x1 > frame.x1 + tolerance
+            or box.y1 > frame.y1 + tolerance
+        ):
+            problems.append(f"clipped by the figure's edge: {label!r}")
+    for i, (a, box_a) in enumerate(boxes):
+        for b, box_b in boxes[i + 1 :]:
+            dx = min(box_a.x1, box_b.x1) - max(box_a.x0, box_b.x0)
+            dy = min(box_a.y1, box_b.y1) - max(box_a.y0, box_b.y0)
+            if dx > tolerance and dy > tolerance:
+                problems.append(f"overlap: {a!r} and {b!r}")
+    return problems
+
+
+def _layout_renderer(fig: Any) -> Any:
+    """Lay ``fig`` out (constrained layout) and return a renderer that measures its texts."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    if not hasattr(fig.canvas, "get_renderer"):  # a Figure made without pyplot has no renderer yet
+        FigureCanvasAgg(fig)
+    fig.draw_without_rendering()
+    return fig.canvas.get_renderer()
+
+
+def _drawn_texts(fig: Any) -> list[Any]:
+    """The texts a draw of ``fig`` shows: the figure's, and each visible axes' titles, axis labels,
+    tick labels within the view, texts and legend entries."""
+    texts = [t for t in (fig._suptitle, fig._supxlabel, fig._supylabel) if t is not None]
+    texts += list(fig.texts)
+    for legend in fig.legends:
+        texts += [*legend.get_texts(), legend.get_title()]
+    ax: Any
+    for ax in fig.axes:
+        if not ax.get_visible():
+            continue
+        texts += [ax.title, ax._left_title, ax._right_title, *ax.texts]
+        if ax.axison:
+            axis: Any
+            for axis in (ax.xaxis, ax.yaxis):
+                if not axis.get_visible():
+                    continue
+                texts += [axis.label, axis.offsetText]
+                for tick in axis._update_ticks():  # the ticks within the view, as drawn
+                    texts += [tick.label1, tick.label2]
+        shown = ax.get_legend()
+        if shown is not None and shown.get_visible():
+            texts += [*shown.get_texts(), shown.get_title()]
+    return list({id(t): t for t in texts}.values())  # the suptitle is also one of fig.texts

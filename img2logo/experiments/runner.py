@@ -80,6 +80,39 @@ SMOKE: dict[str, dict[str, Any]] = {
     "13_symmetry": {"smoke": True, "images": ["clipart-fox.png"], "eval_images": ["drawing-umbrella.png"]},
     "14_studio": {"smoke": True, "image": "drawing-fish.png"},
     "15_tangency": {"smoke": True, "images": ["drawing-bird.png"]},
+    "16_limitations": {
+        "smoke": True,
+        "images": ["drawing-fish.png"],
+        "tolerances": [5.0, 9.0],
+        "complex_image": "drawing-fish.png",
+        "search_tolerances": [5.0, 9.0],
+        "window_tolerance": 9.0,
+    },
+}
+
+#: What each notebook reproduces of the paper and what it shows: the notebooks index of the docs
+#: site and the README's table are made from it (a test compares the README).
+PAPER_ITEMS: dict[str, tuple[str, str]] = {
+    "00_segment_graphs": ("Fig. 4a-b", "feature lines and segment graphs of every example"),
+    "01_overview": ("Fig. 1, 4, 7, 8", "input, lines, segments, levels, result; free vs connected golden circles"),
+    "02_visual_results": ("Fig. 10", "final results of the 15 examples, input as inset"),
+    "03_simplicity": ("Table 1", "levels along a run; arcs and $E^s$ against the iteration"),
+    "04_tolerance_sweep": ("Table 2", "T = 4, 5, 9 side by side; arcs against T"),
+    "05_connectivity_ablation": ("Fig. 11, 6", "with / without the connectivity constraint; gaps"),
+    "06_redundant_intersections": ("Fig. 12", "with / without intersection avoidance"),
+    "07_arc_extraction": ("Fig. 9", "Fréchet vs sum-of-squares arc choice"),
+    "08_rdp_robustness": ("Fig. 13", "RDP tolerances 1-8 px: segments and results"),
+    "09_timing": ("Table 3", "localized fitting x simplification, the paper's timings beside ours"),
+    "10_design_exploration": ("Fig. 15, 16", "chosen radii; a lock mask keeps the bird's beak; the bias"),
+    "11_explore_levels": ("(interactive)", "a slider over the levels, T, bias, RDP, image, kind"),
+    "12_designer_features": ("Fig. 17, 18", "user edits; colour fills"),
+    "13_symmetry": ("(beyond the paper)", "mirror axes; free and symmetric logos"),
+    "14_studio": ("Sec. 7, 8, Fig. 16, 17", "the designer's studio (`make studio`)"),
+    "15_tangency": ("(beyond the paper)", "with / without tangent joins"),
+    "16_limitations": (
+        "Fig. 14, 20, 21",
+        "simplicity a designer prefers; disconnected segments; straight lines; lost features",
+    ),
 }
 
 
@@ -158,11 +191,20 @@ PARAMETER_RULES: dict[str, Check] = {
     **dict.fromkeys(("smoke", "interactive", "tangency"), _rule(lambda v: isinstance(v, bool), "True or False")),
     **dict.fromkeys(("images", "fill_images"), _images),
     "eval_images": _rule(_listed(_evaluation_image), "a non-empty list of file names in benchmarks/data/"),
-    **dict.fromkeys(("image", "edit_image", "fig15_image", "lock_image", "bias_image"), _image),
+    **dict.fromkeys(("image", "edit_image", "fig15_image", "lock_image", "bias_image", "complex_image"), _image),
     "kind": _choice("auto", "photo", "clipart", "drawing"),
     "lock_form": _choice("disc", "square"),
     **dict.fromkeys(
-        ("tolerance", "rdp_tolerance", "zoom", "threshold", "lost_threshold", "beak_radius"),
+        (
+            "tolerance",
+            "rdp_tolerance",
+            "zoom",
+            "threshold",
+            "lost_threshold",
+            "beak_radius",
+            "lock_radius",
+            "window_tolerance",
+        ),
         _rule(_positive, "a positive number (px)"),
     ),
     "min_length": _rule(_number(0.0), "a number in [0, inf]"),
@@ -176,6 +218,7 @@ PARAMETER_RULES: dict[str, Check] = {
     "hook_angles": _rule(_listed(_number(0.0, 180.0)), "a non-empty list of angles in [0, 180] degrees"),
     **dict.fromkeys(("levels", "columns", "cases", "repeats", "n_exponents"), _rule(_integer(1), "an integer >= 1")),
     "zooms": _rule(_integer(0), "an integer >= 0"),
+    "max_exponent": _rule(_integer(-30), "an integer ladder exponent k >= -30"),
     "strip_levels": _rule(_integer(2), "an integer >= 2"),
     "user_exponents": _rule(
         lambda v: v is None or _listed(_integer(-math.inf))(v), "None or a non-empty list of integer ladder exponents k"

@@ -696,22 +696,31 @@ def _write_figure_png(
     with matplotlib.style.context("default"):
         # The figure is out_w x out_h px at save_dpi, in inches of the input's size at dpi.
         fig = Figure(figsize=(out_w / save_dpi, out_h / save_dpi), dpi=dpi, facecolor=paper)
-        FigureCanvasAgg(fig)
+        canvas = FigureCanvasAgg(fig)
         ax = fig.add_axes((0.0, 0.0, 1.0, 1.0))
         draw(ax)
         if transparent:
             ax.patch.set_alpha(0.0)
 
         def save(f: IO[bytes]) -> None:
-            fig.savefig(
-                f,
-                format="png",
-                dpi=save_dpi,
-                facecolor=paper,
-                edgecolor=paper,
-                transparent=transparent,
-                metadata={"Software": None},
-            )
+            if transparent:
+                fig.savefig(
+                    f,
+                    format="png",
+                    dpi=save_dpi,
+                    facecolor=paper,
+                    edgecolor=paper,
+                    transparent=True,
+                    metadata={"Software": None},
+                )
+                return
+            # On white every pixel is opaque: an RGB PNG, without an alpha channel of 255 everywhere.
+            from PIL import Image
+
+            fig.set_dpi(save_dpi)
+            canvas.draw()
+            rgba = np.asarray(canvas.buffer_rgba())
+            Image.fromarray(np.ascontiguousarray(rgba[..., :3])).save(f, format="png", dpi=(save_dpi, save_dpi))
 
         return atomic_write(target, save)
 

@@ -775,7 +775,7 @@ def outline_strokes(regions: np.ndarray, lightness: np.ndarray) -> np.ndarray:
     """Labels of the ink outlines drawn as strokes: thin regions, or at least half thin parts; sorted.
 
     :func:`ink_outlines` that are :func:`thin_regions` whole, or whose
-     thin parts (:func:`ink_strokes`) hold at least half their pixels (a cartoon's outline
+    thin parts (:func:`ink_strokes`) hold at least half their pixels (a cartoon's outline
     network with a few wider blobs); a dark fill (a black disc) is none.
     """
     inks = ink_outlines(regions, lightness)

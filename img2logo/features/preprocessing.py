@@ -47,7 +47,7 @@ from ..constants import (
     SYNTHETIC_WORK_SIDE,
 )
 from ..images import skeleton as _skeleton
-from ..images.loading import DownscaleWarning, LoadedImage, downscale, load_image, load_mask
+from ..images.loading import LoadedImage, downscale, load_image, load_mask
 from ..images.ndimage import bounding_slices, components, distance, skeletonize
 from .clipart import clipart_lines, clipart_regions, label_means
 from .detail import check_detail, merge_by_importance
@@ -71,9 +71,7 @@ def __getattr__(name: str) -> Any:
 
 __all__ = [
     "KINDS",
-    "DownscaleWarning",
     "FeatureLines",
-    "LoadedImage",
     "detect_kind",
     "edge_tangent_flow",
     "extract_feature_lines",

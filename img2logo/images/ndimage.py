@@ -6,19 +6,19 @@ cv2``, /usr/bin/time), as much as a clip art's whole run. So each operation is
 the compiled kernel or the OpenCV call that gives the library's result, and the
 tests compare the two:
 
-=========================  =======================================================  ==========================
-operation                  its result                                               by
-=========================  =======================================================  ==========================
-:func:`gaussian`           ``scipy.ndimage.gaussian_filter``, to the bit            kernel: 1-D correlation
-:func:`sobel`              ``scipy.ndimage.sobel`` (zero outside), to the bit       kernel: 1-D correlation
-:func:`distance`           ``scipy.ndimage.distance_transform_edt``, to the bit     kernel: Meijster's EDT
-:func:`nearest_background` ``distance_transform_edt(..., return_indices=True)``     kernel: Maurer's transform
-:func:`components`         ``skimage.measure.label``                                kernel: union-find
-:func:`label`              ``scipy.ndimage.label`` (the same labels)                :func:`components`
-:func:`bounding_slices`    ``scipy.ndimage.find_objects``                           kernel: one pass
-:func:`skeletonize`        ``skimage.morphology.skeletonize`` (Zhang-Suen)          kernel: thinning
-:func:`erode`, :func:`dilate`  ``scipy.ndimage.binary_erosion`` / ``_dilation``     OpenCV
-=========================  =======================================================  ==========================
+=============================  ====================================================  ==========================
+operation                      its result                                            by
+=============================  ====================================================  ==========================
+:func:`gaussian`               ``scipy.ndimage.gaussian_filter``, to the bit         kernel: 1-D correlation
+:func:`sobel`                  ``scipy.ndimage.sobel`` (zero outside), to the bit    kernel: 1-D correlation
+:func:`distance`               ``scipy.ndimage.distance_transform_edt``, to the bit  kernel: Meijster's EDT
+:func:`nearest_background`     ``distance_transform_edt(..., return_indices=True)``  kernel: Maurer's transform
+:func:`components`             ``skimage.measure.label``                             kernel: union-find
+:func:`label`                  ``scipy.ndimage.label`` (the same labels)             :func:`components`
+:func:`bounding_slices`        ``scipy.ndimage.find_objects``                        kernel: one pass
+:func:`skeletonize`            ``skimage.morphology.skeletonize`` (Zhang-Suen)       kernel: thinning
+:func:`erode`, :func:`dilate`  ``scipy.ndimage.binary_erosion`` / ``_dilation``      OpenCV
+=============================  ====================================================  ==========================
 
 The kernels are :mod:`img2logo._compiled.front` and :mod:`img2logo._compiled.ndimage`, loaded by
 :mod:`img2logo._compiled.kernels`. Arrays are indexed (row, column); distances in px.

@@ -37,6 +37,12 @@ def test_the_page_loads_nothing_from_the_network(tmp_path):
     assert 'src="mathjax/MathJax.js?config=' in text and (tmp_path / "html" / "mathjax" / "MathJax.js").is_file()
     assert "data:image/png;base64," in text  # the figure is in the page
     assert "cdnjs" not in text and "require.min.js" not in text
+    assert '<a href="notebooks.html">' in text  # back to the docs site's notebooks index
+
+
+def test_a_notebook_page_names_what_it_reproduces(tmp_path):
+    text = export_html(notebook(tmp_path / "05_connectivity_ablation.ipynb"), tmp_path / "html").read_text("utf-8")
+    assert "05_connectivity_ablation reproduces Fig. 11, 6 of the paper" in text
 
 
 def test_external_references_finds_loads_not_links():

@@ -43,7 +43,7 @@ def test_a_result_document_names_its_input_relative_to_the_repository(tmp_path):
 
 
 def test_save_figure_shows_the_written_file(tmp_path):
-    fig = Figure(figsize=(2, 1))
+    fig = Figure(figsize=(2, 1), layout="constrained")  # as the kit's: its tick labels inside the figure
     fig.subplots().plot([0, 1], [1, 0])
     shown = save_figure(fig, tmp_path / "f.png", dpi=50)
     assert shown.path.is_file()
