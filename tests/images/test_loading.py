@@ -441,11 +441,10 @@ def test_a_cut_or_damaged_png_is_one_line_at_any_size(tmp_path, damage, message,
 
 
 def test_a_large_interlaced_png_is_its_box_reduce(tmp_path):
+    import pyvips
     from PIL import Image
 
     from img2logo.images import loading
-
-    import pyvips
 
     arr = _noisy(40, 50, 3, np.uint8)
     path = tmp_path / "adam7.png"
@@ -581,7 +580,9 @@ def test_a_tiff_of_tiles_in_separate_planes_is_refused_in_one_line(tmp_path):
     path = tmp_path / "big.tif"
     planes = np.ascontiguousarray(np.moveaxis(_noisy(301, 517, 3, np.uint16), 2, 0))
     tifffile.imwrite(path, planes, photometric="rgb", tile=(32, 32), planarconfig="separate")
-    with pytest.raises(InvalidImageError, match=r"big\.tif: not a readable image: .*tiled separate planes not supported"):
+    with pytest.raises(
+        InvalidImageError, match=r"big\.tif: not a readable image: .*tiled separate planes not supported"
+    ):
         load_image(path)
 
 
@@ -758,3 +759,110 @@ def test_a_large_ppm_is_read_by_libvips_as_its_box_reduce(tmp_path, channels, dt
             warnings.simplefilter("ignore", DownscaleWarning)
             load_image(cut, max_side=64)
     assert "\n" not in str(caught.value)
+
+
+# --------------------------------------------------------------------------- hostile and unusual files
+def _classic_tiff(entries: list[tuple[int, int, int]], pixels: bytes) -> bytes:
+    """A little-endian TIFF of one IFD: ``entries`` (tag, type, value) in the given order (SHORT 3 or LONG 4,
+    one value each), StripOffsets pointing at ``pixels`` after the IFD."""
+    at = 8 + 2 + 12 * (len(entries) + 1) + 4
+    ifd = struct.pack("<H", len(entries) + 1)
+    for tag, kind, value in [*entries, (273, 4, at)]:
+        ifd += struct.pack("<HHI", tag, kind, 1) + struct.pack("<H2x" if kind == 3 else "<I", value)
+    return b"II*\x00" + struct.pack("<I", 8) + ifd + struct.pack("<I", 0) + pixels
+
+
+def test_a_large_tiff_with_a_second_compression_tag_of_another_type_is_read_or_one_line(tmp_path):
+    # The hand-written band parser raised KeyError: 2 for such a file over 2048 px; libvips reads it.
+    width, height = 2100, 16
+    pixels = np.zeros((height, width), np.uint8)
+    pixels[4:12, 100:2000] = 255
+    entries = [(256, 3, width), (257, 3, height), (258, 3, 8), (259, 3, 1), (259, 4, 2), (262, 3, 1)]
+    entries += [(277, 3, 1), (278, 3, height), (279, 4, width * height)]
+    path = tmp_path / "two-compressions.tif"
+    path.write_bytes(_classic_tiff(entries, pixels.tobytes()))
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", DownscaleWarning)
+            img = load_image(path)
+    except InvalidImageError as exc:
+        assert "not a readable image" in str(exc) and "\n" not in str(exc)
+    else:
+        assert img.input_size == (width, height) and img.gray.min() < 0.1 < 0.9 < img.gray.max()
+
+
+@pytest.mark.parametrize("tag", [256, 257, 258, 273, 277, 278, 279, 322, 323, 324, 325, 338])
+def test_an_88_byte_bigtiff_of_hostile_counts_is_not_a_readable_image(tmp_path, tag):
+    # A BigTIFF header and three 20-byte entries, the last one's count 2**40: no "out of memory", one line.
+    data = b"II" + struct.pack("<HHHQ", 43, 8, 0, 16) + struct.pack("<Q", 3)
+    for t, kind, count, value in [(256, 4, 1, 2**31), (257, 4, 1, 3000), (tag, 16, 2**40, 16)]:
+        data += struct.pack("<HHQQ", t, kind, count, value)
+    data += bytes(4)
+    assert len(data) == 88
+    path = tmp_path / "bigtiff.tif"
+    path.write_bytes(data)
+    with pytest.raises(
+        InvalidImageError, match=r"bigtiff\.tif: (not a readable image|image is .* more than)"
+    ) as caught:
+        load_image(path)
+    assert "\n" not in str(caught.value)
+
+
+@pytest.mark.parametrize("depth", [8, 16])
+def test_an_rgba_tiff_has_its_alpha_applied_once(tmp_path, depth):
+    # OpenCV's libtiff read of an 8-bit RGBA TIFF premultiplied the colour: a 50 % grey of 200 came out 177.
+    import tifffile
+
+    full = 255 if depth == 8 else 65535
+    arr = np.zeros((32, 40, 4), np.uint8 if depth == 8 else np.uint16)
+    arr[..., :3] = 200 * full // 255
+    arr[..., 3] = full // 2 + 1
+    arr[:8, :8] = (0, 0, 0, full)  # not blank
+    path = tmp_path / "grey.tif"
+    tifffile.imwrite(path, arr, photometric="rgb", extrasamples=["unassalpha"])
+    img = load_image(path)
+    expected = 200 / 255 * img.alpha[20, 20] + (1 - img.alpha[20, 20])
+    assert img.has_alpha and img.alpha[20, 20] == pytest.approx(0.5, abs=0.01)
+    assert img.rgb[20, 20] * 255 == pytest.approx([expected * 255] * 3, abs=0.5)  # 227.5, not 177
+
+
+def _progressive_jpeg(repeat: int) -> bytes:
+    """A progressive JPEG (Pillow's) whose last scan is repeated ``repeat`` more times before EOI."""
+    import io
+
+    from PIL import Image
+
+    buf = io.BytesIO()
+    Image.fromarray(_noisy(96, 128, 3, np.uint8)).save(buf, "JPEG", quality=90, progressive=True)
+    data = buf.getvalue()
+    last = data.rindex(b"\xff\xda")
+    return data[:-2] + data[last:-2] * repeat + data[-2:]
+
+
+def test_a_progressive_jpeg_with_a_repeated_scan_is_refused_before_decoding(tmp_path, monkeypatch):
+    # A 113 KB file of repeated scans decoded for 31 s (each scan is a pass over every block).
+    path = tmp_path / "repeated.jpg"
+    path.write_bytes(_progressive_jpeg(40))
+    decoded = []
+    monkeypatch.setattr(cv2, "imdecode", lambda *a: decoded.append(a) or None)
+    message = r"repeated\.jpg: not a readable image: scan \d+ of the JPEG codes again what an earlier scan coded"
+    with pytest.raises(InvalidImageError, match=message) as caught:
+        load_image(path)
+    assert "\n" not in str(caught.value) and decoded == []
+    monkeypatch.undo()
+    good = tmp_path / "good.jpg"
+    good.write_bytes(_progressive_jpeg(0))
+    assert load_image(good).input_size == (128, 96)
+
+
+def test_a_jpeg_of_too_many_scans_is_refused(tmp_path, monkeypatch):
+    from img2logo.images import loading
+
+    path = tmp_path / "scans.jpg"
+    path.write_bytes(_progressive_jpeg(0))
+    scans = path.read_bytes().count(b"\xff\xda")
+    monkeypatch.setattr(loading, "MAX_JPEG_SCANS", scans - 1)
+    with pytest.raises(
+        InvalidImageError, match=rf"scans\.jpg: not a readable image: the JPEG has more than {scans - 1}"
+    ):
+        load_image(path)
