@@ -7,8 +7,8 @@ Fréchet distance, the tangent biarcs' searches), :mod:`img2logo._compiled.circl
 golden circle's centre, the biarc search's worst distances), :mod:`img2logo._compiled.graph`
 (the skeleton's shortest paths, the global KKT solve in a band) and
 :mod:`img2logo._compiled.front` (the clip-art regions' label sums), each beneath a public
-function whose Python code stays as the reference the tests compare against,. This module gives them to their callers as attributes
-(``kernels.sqp_dense(...)``), loaded on first use:
+function whose Python code stays as the reference the tests compare against. This module gives
+them to their callers as attributes (``kernels.sqp_dense(...)``), loaded on first use:
 
 1. **Ahead of time.** On the first use in an install the entry points below are
    compiled once, with numba's ``pycc``, into one extension module (seconds,

@@ -119,8 +119,10 @@ def read_json(path: str | os.PathLike[str]) -> Abstraction:
         raise InvalidParameterError(f"{p}: cannot read the file: {exc.strerror or exc}") from exc
     try:
         doc = json.loads(text)
-    except json.JSONDecodeError as exc:
+    except ValueError as exc:  # JSONDecodeError, or an integer of more than 4300 digits
         raise InvalidParameterError(f"{p} is not JSON: {exc}") from exc
+    except RecursionError as exc:  # arrays or objects nested thousands deep
+        raise InvalidParameterError(f"{p} is not a valid document: JSON nested too deeply") from exc
     return from_document(doc)
 
 
