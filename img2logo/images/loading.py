@@ -377,7 +377,10 @@ def _read_file(path: Path, *, max_side: int = MAX_IMAGE_SIDE, max_pixels: int = 
             reduced = {2: cv2.IMREAD_REDUCED_COLOR_2, 4: cv2.IMREAD_REDUCED_COLOR_4, 8: cv2.IMREAD_REDUCED_COLOR_8}
             flags = reduced[factor] | cv2.IMREAD_IGNORE_ORIENTATION
         small = None
-        if fmt in _VIPS_LOADERS and (max(w, h) > max_side or fmt == "TIFF"):
+        # An animated PNG (an acTL chunk) is read as its default image, the IDAT's, by libvips: OpenCV
+        # composes its first frame from the fcTL chunks and gave a damaged one's as all black.
+        animated = fmt == "PNG" and (pages > 1 or _png_has_chunk(path, b"acTL", before_pixels=True))
+        if fmt in _VIPS_LOADERS and (max(w, h) > max_side or fmt == "TIFF" or animated):
             with _decoder_stderr():  # libtiff's "TIFFReadDirectory: ..." lines, libvips' warnings
                 small = _read_with_vips(path, fmt, max(1, max(w, h) // max_side))
         elif fmt == "PPM" and max(w, h) > max_side:
@@ -738,7 +741,7 @@ def _check_png_end(path: Path) -> bytes | None:
     except OSError:
         return None  # the decode says why
     end = tail.rfind(_PNG_IEND)
-    if end < 0 and _plain_png_size(path) is None and not _has_iend(path):
+    if end < 0 and not _png_has_chunk(path, b"IEND"):
         raise InvalidImageError(
             f"{path}: not a readable image: the PNG ends before its IEND chunk (the file cut short?)"
         )
@@ -751,13 +754,16 @@ def _check_png_end(path: Path) -> bytes | None:
     return tail[found + 4 : found + 4 + int.from_bytes(tail[found - 4 : found], "big")] if at == end else None
 
 
-def _has_iend(path: Path) -> bool:
-    """Whether walking a PNG's chunks by their lengths from its start reaches an IEND chunk."""
+def _png_has_chunk(path: Path, kind: bytes, *, before_pixels: bool = False) -> bool:
+    """Whether walking a PNG's chunks by their lengths from its start meets a ``kind`` chunk (before IEND, or
+    with ``before_pixels`` before the first IDAT: where acTL must be, PNG specification, Sec. 11.3.4)."""
     with contextlib.suppress(OSError), open(path, "rb") as f:
         f.seek(8)
         while len(chunk := f.read(8)) == 8:
-            if chunk[4:] == b"IEND":
+            if chunk[4:] == kind:
                 return True
+            if chunk[4:] == b"IEND" or (before_pixels and chunk[4:] == b"IDAT"):
+                return False
             f.seek(int.from_bytes(chunk[:4], "big") + 4, os.SEEK_CUR)
     return False
 

@@ -866,3 +866,26 @@ def test_a_jpeg_of_too_many_scans_is_refused(tmp_path, monkeypatch):
         InvalidImageError, match=rf"scans\.jpg: not a readable image: the JPEG has more than {scans - 1}"
     ):
         load_image(path)
+
+
+@pytest.mark.parametrize("frames", ["none", "zero-size", "wider than the image"])
+def test_a_malformed_animated_png_is_read_as_its_default_image_not_all_black(tmp_path, frames):
+    # An acTL chunk promising frames whose fcTL is missing or malformed: OpenCV gave all black ("blank").
+    def chunk(kind: bytes, data: bytes) -> bytes:
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+
+    arr = np.full((40, 50, 3), 255, np.uint8)
+    arr[10:30, 10:40] = (0, 0, 200)
+    png = cv2.imencode(".png", arr)[1].tobytes()
+    width = {"none": 0, "zero-size": 0, "wider than the image": 500}[frames]
+    fctl = (
+        b""
+        if frames == "none"
+        else chunk(b"fcTL", struct.pack(">IIIIIHHBB", 0, width, width and 40, 0, 0, 1, 10, 0, 0))
+    )
+    path = tmp_path / "animated.png"
+    path.write_bytes(png[:33] + chunk(b"acTL", struct.pack(">II", 2, 0)) + fctl + png[33:])
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", PageWarning)
+        img = load_image(path)
+    assert np.abs(img.rgb - composite_on_white(arr, bgr=True)[0]).max() < 1e-9  # the IDAT's picture
