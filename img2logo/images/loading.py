@@ -592,9 +592,12 @@ def _upright(arr: np.ndarray, orientation: int) -> np.ndarray:
     return np.ascontiguousarray(turns[orientation](arr))
 
 
-#: Lines a C image decoder writes to standard error itself (libpng, libjpeg, libtiff, OpenCV).
+#: Lines a C image decoder writes to standard error itself (libpng, libjpeg's warnings (its JWRN_ messages),
+#: libtiff, OpenCV).
 _DECODER_LINE = re.compile(
-    rb"^(libpng (warning|error)|Corrupt JPEG data|Premature end of JPEG|Invalid JPEG|Warning: |TIFF\w*: |\[ ?WARN)"
+    rb"^(libpng (warning|error)|Corrupt JPEG data|Premature end of JPEG|Invalid JPEG|Invalid SOS parameters|"
+    rb"Inconsistent progression sequence|Unknown Adobe color transform|Application transferred too|"
+    rb"Unsupported marker type|JPEG datastream contains no image|Warning: |TIFF\w*: |\[ ?WARN)"
 )
 
 

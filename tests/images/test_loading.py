@@ -889,3 +889,25 @@ def test_a_malformed_animated_png_is_read_as_its_default_image_not_all_black(tmp
         warnings.simplefilter("ignore", PageWarning)
         img = load_image(path)
     assert np.abs(img.rgb - composite_on_white(arr, bgr=True)[0]).max() < 1e-9  # the IDAT's picture
+
+
+def test_no_libjpeg_warning_reaches_standard_error(tmp_path, capfd):
+    # A sequential JPEG whose scan header names a spectral band (Se = 62): libjpeg decodes it and prints
+    # "Invalid SOS parameters for sequential JPEG" to standard error itself, which -q must not show.
+    import io
+
+    from PIL import Image
+
+    buf = io.BytesIO()
+    Image.fromarray(_noisy(64, 80, 3, np.uint8)).save(buf, "JPEG", quality=90)
+    data = bytearray(buf.getvalue())
+    sos = data.index(b"\xff\xda")
+    n = data[sos + 4]
+    assert data[sos + 5 + 2 * n + 1] == 63  # Se
+    data[sos + 5 + 2 * n + 1] = 62
+    path = tmp_path / "sos.jpg"
+    path.write_bytes(bytes(data))
+    img = load_image(path)
+    assert (img.width, img.height) == (80, 64)
+    captured = capfd.readouterr()
+    assert captured.err == "" and captured.out == ""
