@@ -12,7 +12,6 @@ STUDIO := $(VENV)/.installed-studio
 PORT   ?= 8866
 HTMLKIT := $(VENV)/.installed-html
 DOCSKIT := $(VENV)/.installed-docs
-BENCH  := $(VENV)/.installed-bench
 LIB    := $(shell find img2logo -name '*.py') pyproject.toml
 DATA   := $(wildcard data/*.png)
 NB     ?= $(basename $(notdir $(wildcard notebooks/*.ipynb)))
@@ -69,7 +68,7 @@ $(STUDIO): pyproject.toml $(KIT)
 # The level explorer (notebook 11) in JupyterLab and the studio (notebook 14) in Voila, driven by Debian's
 # chromium (apt-get install chromium) through playwright; skipped, with the reason, where chromium is missing.
 test-browser: $(BROWSER)
-	$(BIN)/python -m pytest -m browser -rs tests/experiments/test_explore_browser.py tests/studio/test_browser.py
+	$(BIN)/python -m pytest -m browser -rs tests/experiments/test_explore_browser.py tests/studio/test_browser.py tests/studio/test_server.py
 
 # The designer's studio (notebook 14) as a page, served by Voila on this machine only; Ctrl-C stops it.
 # Another port: make studio PORT=8870
@@ -93,12 +92,10 @@ format: $(STAMP)
 	$(BIN)/ruff format img2logo tests benchmarks tools
 	$(BIN)/ruff check --fix img2logo tests benchmarks tools
 
-# [bench] (vtracer, the plain vectorizer the command line is timed against), installed on first use.
-$(BENCH): pyproject.toml $(STAMP)
-	$(BIN)/python -m pip install --quiet -e '.[dev,bench]'
-	@touch $@
-
-bench: $(BENCH)
+# Speed against vtracer (and Debian's potrace on drawings, when installed), growth with the drawing; writes
+# docs/performance.md. vtracer runs from its own venv, build/bench-venv/ (made on first use, pip install vtracer),
+# started as a user starts it (python -I), not from the project's.
+bench: $(STAMP)
 	$(BIN)/python -m compileall -q img2logo  # the edited sources' bytecode: what an installed copy runs
 	$(BIN)/python benchmarks/bench.py
 

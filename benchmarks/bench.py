@@ -12,16 +12,29 @@ run by run so that a machine's load falls on both alike (issue 19).
 from __future__ import annotations
 
 import argparse
+import datetime
+import json
 import os
+import platform
 import resource
+import shutil
 import statistics
 import subprocess
 import sys
 import tempfile
 import time
+from collections.abc import Sequence
 from pathlib import Path
+from typing import TextIO
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))  # growth.py beside this file
+
+import growth
 
 from img2logo import build_segment_graph, extract_feature_lines, load_image
+from img2logo.constants import TIME_BUDGET
 from img2logo.fit.progressive import optimize
 from img2logo.pipeline import abstract
 
@@ -40,14 +53,33 @@ PHOTO_PIPELINE_BUDGET = 5.0
 #: Issue 19's in-process budgets: the clip-art fish, and a clip art of about 56 arcs (the giraffe), s.
 FISH_BUDGET = 0.15
 MANY_ARCS_BUDGET = 0.4
-#: Issue 19: the command line on a 512 px clip art or drawing at most this many times vtracer's time (goal 5).
-VTRACER_RATIO_BUDGET = 10.0
-#: The command line against vtracer: 512 px clip arts and drawings (the giraffe: about 56 arcs).
-VTRACER_IMAGES = (
-    DATA / "clipart-fish.png",
-    ROOT / "benchmarks" / "data" / "clipart-giraffe.png",
+#: The command line against vtracer over ``CLI_IMAGES``: targets for the worst and the median ratio.
+WORST_RATIO_TARGET = 8.0
+MEDIAN_RATIO_TARGET = 6.0
+BENCHMARK_DATA = ROOT / "benchmarks" / "data"
+#: The command line against vtracer and the growth table: ten 512 px drawings and clip arts of the examples
+#: and the evaluation set, 10 to 58 final arcs (the most any of them has), held-out ones among them.
+CLI_IMAGES = (
+    BENCHMARK_DATA / "drawing-bike.png",
+    DATA / "drawing-fish.png",
     DATA / "drawing-rabbit.png",
+    BENCHMARK_DATA / "drawing-deer.png",
+    DATA / "clipart-fish.png",
+    BENCHMARK_DATA / "heldout" / "clipart-critter-d.png",
+    BENCHMARK_DATA / "clipart-honeybee.png",
+    BENCHMARK_DATA / "clipart-polar-bear.png",
+    BENCHMARK_DATA / "clipart-giraffe.png",
+    BENCHMARK_DATA / "clipart-cactus.png",
 )
+#: Busier clip arts for the growth table only (Openclipart, hundreds of arcs at A^0, over 100 in the logo).
+BUSY_IMAGES = (
+    BENCHMARK_DATA / "openclipart" / "clipart-farfalla.png",
+    BENCHMARK_DATA / "openclipart" / "clipart-gallo.png",
+)
+#: The yardsticks' own venv (vtracer alone), made by the benchmark when missing.
+BENCH_VENV = ROOT / "build" / "bench-venv"
+#: The page ``make bench`` writes.
+PAGE = ROOT / "docs" / "performance.md"
 #: Issue 23: a 512 px photo through the command line, as a whole process, at most this long, s.
 PHOTO_CLI_BUDGET = 2.0
 #: The photos the command is timed on: 512 px on the longer side.
@@ -186,45 +218,210 @@ def _load() -> str:
     return f"load {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores"
 
 
-def bench_cli_vs_vtracer(repeat: int) -> None:
-    """The ``img2logo`` command and vtracer (spline mode) on the same images, as whole processes, alternated."""
-    try:
-        import vtracer  # noqa: F401
-    except ImportError:
-        print("\nvtracer is not installed (pip install -e '.[bench]'): the command-line comparison is skipped")
-        return
-    print(
-        f"\nThe command line against vtracer (whole processes, alternated, median of {repeat}), "
-        f"budget {VTRACER_RATIO_BUDGET:.0f}x; {_load()} at the start"
-    )
-    head = ("image", "img2logo", "vtracer", "ratio", "of budget", "CPU ours", "CPU theirs", "CPU ratio")
-    print(f"{head[0]:16s} " + " ".join(f"{h:>10s}" for h in head[1:]))
-    with tempfile.TemporaryDirectory() as tmp:
-        for path in VTRACER_IMAGES:
-            ours_cmd = [
-                sys.executable,
-                "-m",
-                "img2logo.app.cli",
-                str(path),
-                "-q",
-                "--svg",
-                os.path.join(tmp, "ours.svg"),
-            ]
-            code = "import sys, vtracer; vtracer.convert_image_to_svg_py(sys.argv[1], sys.argv[2], mode='spline')"
-            theirs_cmd = [sys.executable, "-c", code, str(path), os.path.join(tmp, "vtracer.svg")]
-            _process_seconds(ours_cmd)  # warm-up: the compiled kernels (built once per install), the file system's
-            _process_seconds(theirs_cmd)
-            ours, theirs = [], []
-            for _ in range(repeat):
-                ours.append(_process_times(ours_cmd))
-                theirs.append(_process_times(theirs_cmd))
-            t_ours, t_theirs = statistics.median(w for w, _ in ours), statistics.median(w for w, _ in theirs)
-            c_ours, c_theirs = statistics.median(c for _, c in ours), statistics.median(c for _, c in theirs)
-            ratio = t_ours / t_theirs
-            print(
-                f"{path.stem:16s} {t_ours:9.2f}s {t_theirs:9.3f}s {ratio:9.0f}x {ratio / VTRACER_RATIO_BUDGET:10.1f}"
-                f" {c_ours:9.2f}s {c_theirs:9.3f}s {c_ours / c_theirs:9.0f}x"
+def bench_venv() -> Path | None:
+    """The interpreter of the yardsticks' own venv (``build/bench-venv``, made with vtracer if missing), or None.
+
+    vtracer is started as a user starts it: a plain interpreter (``python -I``
+    of a venv that holds vtracer alone), not the project's (whose editable
+    install adds about 13 ms to every start).
+    """
+    python = BENCH_VENV / "bin" / "python"
+    if not python.exists() or subprocess.run([python, "-I", "-c", "import vtracer"], capture_output=True).returncode:
+        base = shutil.which("python3") or sys.executable
+        print(f"making {BENCH_VENV.relative_to(ROOT)} ({base} -m venv; pip install vtracer) ...", flush=True)
+        made = subprocess.run([base, "-m", "venv", "--clear", BENCH_VENV], capture_output=True, text=True)
+        if made.returncode == 0:
+            made = subprocess.run(
+                [python, "-m", "pip", "install", "--quiet", "vtracer"], capture_output=True, text=True
             )
+        if made.returncode:
+            print(f"could not make the venv with vtracer: {(made.stderr.strip().splitlines() or ['?'])[-1]}")
+            return None
+    return python
+
+
+def _kind(path: Path) -> str:
+    return "drawing" if path.stem.startswith("drawing") else "clipart"
+
+
+def _pbm(path: Path, out: Path) -> None:
+    """The image as a plain bitmap for potrace (ink: mean RGB below 0.5), made once before the timing."""
+    ink = load_image(path).rgb.mean(axis=2) < 0.5
+    rows = "\n".join(" ".join("1" if v else "0" for v in row) for row in ink)
+    out.write_text(f"P1\n{ink.shape[1]} {ink.shape[0]}\n{rows}\n")
+
+
+def bench_cli_vs_vtracer(repeat: int, page: Page) -> None:
+    """The ``img2logo`` command against vtracer (and potrace on drawings) on ``CLI_IMAGES``, whole processes.
+
+    Alternated run by run (ours, vtracer, potrace), so that a machine's load
+    falls on all alike; wall and CPU (user + sys of the child) medians. vtracer
+    runs in colour mode on clip arts and binary mode on drawings (what a user
+    tracing a line drawing picks), from its own venv (:func:`bench_venv`).
+    potrace (Debian's ``potrace``) reads a PBM made before the timing.
+    """
+    python = bench_venv()
+    if python is None:
+        page.say("\nvtracer is not available (no network for pip?): the command-line comparison is skipped")
+        return
+    potrace = shutil.which("potrace")
+    page.say(
+        f"\nThe command line against vtracer (whole processes, alternated, median of {repeat}); {_load()} at the "
+        "start" + ("" if potrace else "; potrace is not installed (apt-get install potrace): its column is empty")
+    )
+    head = ("image", "kind", "arcs", "img2logo", "vtracer", "ratio", "CPU ours", "CPU vtr", "CPU ratio", "potrace")
+    page.say(f"{head[0]:24s} {head[1]:8s} {head[2]:>5s} " + " ".join(f"{h:>9s}" for h in head[3:]))
+    rows = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for path in CLI_IMAGES:
+            kind = _kind(path)
+            ours_cmd = [sys.executable, "-m", "img2logo.app.cli", str(path), "-q", "--svg", os.path.join(tmp, "o.svg")]
+            mode = "binary" if kind == "drawing" else "color"
+            code = (
+                "import sys, vtracer; "
+                f"vtracer.convert_image_to_svg_py(sys.argv[1], sys.argv[2], colormode='{mode}', mode='spline')"
+            )
+            theirs_cmd = [str(python), "-I", "-c", code, str(path), os.path.join(tmp, "v.svg")]
+            cmds = [ours_cmd, theirs_cmd]
+            if potrace and kind == "drawing":
+                pbm = Path(tmp) / f"{path.stem}.pbm"
+                _pbm(path, pbm)
+                cmds.append([potrace, "-s", "-o", os.path.join(tmp, "p.svg"), str(pbm)])
+            subprocess.run([*ours_cmd[:-2], "--json", os.path.join(tmp, "o.json")], check=True, capture_output=True)
+            arcs = len(json.loads(Path(tmp, "o.json").read_text())["arcs"])
+            for cmd in cmds:  # warm-up: the compiled kernels (built once per install), the file system's caches
+                _process_times(cmd)
+            times: list[list[tuple[float, float]]] = [[] for _ in cmds]
+            for _ in range(repeat):
+                for i, cmd in enumerate(cmds):
+                    times[i].append(_process_times(cmd))
+            wall = [statistics.median(w for w, _ in t) for t in times]
+            cpu = [statistics.median(c for _, c in t) for t in times]
+            row = {
+                "image": path.stem,
+                "kind": kind,
+                "arcs": arcs,
+                "ours": wall[0],
+                "vtracer": wall[1],
+                "ratio": wall[0] / wall[1],
+                "cpu_ours": cpu[0],
+                "cpu_vtracer": cpu[1],
+                "cpu_ratio": cpu[0] / cpu[1],
+                "potrace": wall[2] if len(wall) > 2 else None,
+            }
+            rows.append(row)
+            pot = f"{row['potrace']:8.3f}s" if row["potrace"] is not None else f"{'-':>9s}"
+            page.say(
+                f"{row['image']:24s} {kind:8s} {arcs:5d} {wall[0]:8.2f}s {wall[1]:8.3f}s {row['ratio']:8.1f}x"
+                f" {cpu[0]:8.2f}s {cpu[1]:8.3f}s {row['cpu_ratio']:8.1f}x {pot}"
+            )
+    ratios = [r["ratio"] for r in rows]
+    cpu_ratios = [r["cpu_ratio"] for r in rows]
+    page.say(
+        f"worst ratio {max(ratios):.1f}x, median {statistics.median(ratios):.1f}x (targets: worst <= "
+        f"{WORST_RATIO_TARGET:g}x, median <= {MEDIAN_RATIO_TARGET:g}x); CPU: worst {max(cpu_ratios):.1f}x, "
+        f"median {statistics.median(cpu_ratios):.1f}x; {_load()} at the end"
+    )
+    page.table(
+        "The command line against vtracer",
+        ("image", "kind", "final arcs", "img2logo (s)", "vtracer (s)", "ratio", "CPU ratio", "potrace (s)"),
+        [
+            (
+                r["image"],
+                r["kind"],
+                r["arcs"],
+                f"{r['ours']:.2f}",
+                f"{r['vtracer']:.3f}",
+                f"{r['ratio']:.1f}x",
+                f"{r['cpu_ratio']:.1f}x",
+                "-" if r["potrace"] is None else f"{r['potrace']:.3f}",
+            )
+            for r in rows
+        ],
+        f"Whole processes, alternated run by run, medians of {repeat}. Worst ratio **{max(ratios):.1f}x**, median "
+        f"**{statistics.median(ratios):.1f}x** (CPU time: worst {max(cpu_ratios):.1f}x, median "
+        f"{statistics.median(cpu_ratios):.1f}x). vtracer: colour mode on clip arts, binary mode on drawings, "
+        "spline paths, from its own venv started with `python -I`; potrace (drawings only) reads a PBM made before "
+        "the timing.",
+    )
+
+
+def bench_growth(repeat: int, page: Page) -> None:
+    """In-process time against |A^0| and the final arcs (``CLI_IMAGES``, ``BUSY_IMAGES``); the tiled series."""
+    page.say(f"\nGrowth: abstract() in process (CPU s, median of {repeat} after a warm-up), against |A^0| and arcs")
+    page.say(
+        f"{'image':24s} {'|A^0|':>6s} {'final':>6s} {'CPU':>8s} {'loop':>8s} {'tangency':>8s} {'global':>7s} "
+        f"{'wide':>5s}  stopped"
+    )
+    rows = []
+    for path in (*CLI_IMAGES, *BUSY_IMAGES):
+        abstract(path, progress=False)
+        cpu, runs = [], []
+        for _ in range(repeat):
+            start = time.process_time()
+            runs.append(abstract(path, progress=False))
+            cpu.append(time.process_time() - start)
+        r = runs[0]
+        wall = sum(r.timings.values())
+        row = (
+            path.stem,
+            r.progression.arc_counts[0],
+            r.progression.arc_counts[-1],
+            statistics.median(cpu),
+            r.timings["loop"] / wall,
+            r.timings["tangency"] / wall,
+            r.progression.stats["global_solves"],
+            r.progression.stats["wide_windows"],
+            r.progression.stopped_because,
+        )
+        rows.append(row)
+        page.say(
+            f"{row[0]:24s} {row[1]:6d} {row[2]:6d} {row[3]:7.3f}s {row[4]:8.0%} {row[5]:8.0%} {row[6]:7d} {row[7]:5d}"
+            f"  {row[8]}"
+        )
+    ten = rows[: len(CLI_IMAGES)]  # the line through the ten images (the busier ones grow faster: see their rows)
+    arcs = np.array([r[2] for r in ten], dtype=float)
+    a0 = np.array([r[1] for r in ten], dtype=float)
+    cpu = np.array([r[3] for r in ten])
+    slope, fixed = np.polyfit(arcs, cpu, 1)
+    slope0, fixed0 = np.polyfit(a0, cpu, 1)
+    fit = (
+        f"least-squares line through the ten images of the comparison: {fixed * 1e3:.0f} ms + {slope * 1e3:.1f} ms "
+        f"per final arc; {fixed0 * 1e3:.0f} ms + {slope0 * 1e3:.2f} ms per arc of A^0"
+    )
+    page.say(fit)
+    page.table(
+        "Growth with the drawing",
+        ("image", "A^0 arcs", "final arcs", "CPU (s)", "merge loop", "tangent joins", "global solves", "wide windows"),
+        [(r[0], r[1], r[2], f"{r[3]:.3f}", f"{r[4]:.0%}", f"{r[5]:.0%}", r[6], r[7]) for r in rows],
+        f"`abstract()` in process, CPU time, medians of {repeat} after a warm-up; the loop's and the tangent "
+        "joins' shares of its wall time; global solves (the initial fit, the tangent joins' joint refit) and "
+        "merge candidates refitted in the wider window (`MERGE_FALLBACK_RINGS`) after their local window failed. "
+        f"The last two rows are busier Openclipart clip arts (not in the comparison above). A {fit}.",
+    )
+    page.say(f"\nTiled: {growth.TILED_IMAGE.name} at {growth.TILE_SIDE} px, copies side by side, optimize() only")
+    page.say(growth.HEADER)
+    tiled = growth.tiled_rows()
+    page.table(
+        "Growth on a tiled clip art",
+        ("copies", "size", "A^0 arcs", "final arcs", "CPU (s)", "per copy", "global solves", "stopped"),
+        [
+            (
+                t["copies"],
+                t["size"],
+                t["a0"],
+                t["final"],
+                f"{t['cpu']:.2f}",
+                f"{t['cpu'] / t['copies'] / tiled[0]['cpu']:.2f}",
+                t["global_solves"],
+                t["stopped"],
+            )
+            for t in tiled
+        ],
+        f"`python benchmarks/growth.py`: {growth.TILED_IMAGE.name} at {growth.TILE_SIDE} px, n copies side by side, "
+        "the segment graph optimized as it is (no downscale, no time budget), CPU time; 'per copy' is CPU per copy "
+        "over one copy's (1.00: linear).",
+    )
 
 
 def bench_cli_photo(repeat: int) -> None:
@@ -254,20 +451,105 @@ def bench_cli_photo(repeat: int) -> None:
             print(f"{path.stem:20s} {wall:7.2f}s {statistics.median(cpus):7.2f}s {wall / PHOTO_CLI_BUDGET:7.2f}")
 
 
+class Page:
+    """What a run printed, and its main tables, for the docs' performance page (:data:`PAGE`)."""
+
+    def __init__(self) -> None:
+        self.text: list[str] = []
+        self.tables: list[str] = []
+
+    def say(self, text: str) -> None:
+        print(text, flush=True)
+
+    def table(self, title: str, head: Sequence[str], rows: Sequence[Sequence[object]], note: str) -> None:
+        lines = [f"## {title}", "", note, "", "| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
+        lines += ["| " + " | ".join(str(v) for v in row) + " |" for row in rows]
+        self.tables.append("\n".join(lines))
+
+    def write(self, path: Path, command: str, started: datetime.datetime, repeat: int, load: float) -> None:
+        cores = os.cpu_count() or 1
+        busy = (
+            f"The machine was busy (load average {load:.1f} at the start, {os.getloadavg()[0]:.1f} at the end, "
+            f"on {cores} cores): the wall times are inflated, compare the CPU columns."
+            if max(load, os.getloadavg()[0]) > 0.5 * cores
+            else f"Load average {load:.1f} at the start, {os.getloadavg()[0]:.1f} at the end, on {cores} cores."
+        )
+        head = [
+            "# Performance",
+            "",
+            f"Generated by `{command}` on {started:%Y-%m-%d %H:%M} UTC (do not edit: `make bench` writes it again), "
+            f"{platform.processor() or platform.machine()}, Python {platform.python_version()}, medians of "
+            f"{repeat}. {busy} A run's optimization stops at its time budget (`--time-budget`, default "
+            f"{TIME_BUDGET:g} s of CPU) with a warning; the 'stopped' column of the growth output says whether "
+            "it did here.",
+            "",
+        ]
+        body = "\n\n".join(self.tables)
+        out = "\n".join([*head, body, "", "## The whole output", "", "```text", "".join(self.text).rstrip(), "```", ""])
+        part = path.with_suffix(".md.part")
+        part.write_text(out)
+        part.replace(path)  # whole or not at all
+
+
+class _Tee:
+    """Standard output that the page keeps a copy of."""
+
+    def __init__(self, out: TextIO, page: Page) -> None:
+        self.out, self.page = out, page
+
+    def write(self, text: str) -> int:
+        self.page.text.append(text)
+        return self.out.write(text)
+
+    def flush(self) -> None:
+        self.out.flush()
+
+
+SECTIONS = ("preprocessing", "pipeline", "table3", "startup", "cli", "growth", "photo")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeat", type=int, default=5)
+    parser.add_argument(
+        "--only",
+        default=",".join(SECTIONS),
+        help=f"sections, comma-separated, of {','.join(SECTIONS)}; "
+        f"the page ({PAGE.relative_to(ROOT)}) is written only when every section ran",
+    )
     args = parser.parse_args()
-    bench_preprocessing(["clipart-fish", "clipart-cat", "drawing-fish", "drawing-rabbit", "photo-cat"], args.repeat)
-    bench_pipeline("clipart-fish", args.repeat, budget=FISH_BUDGET)
-    giraffe = ROOT / "benchmarks" / "data" / "clipart-giraffe.png"
-    bench_pipeline(giraffe.stem, args.repeat, giraffe, MANY_ARCS_BUDGET)
-    for photo in (ROOT / "benchmarks" / "data" / "photo-teddy-bear.png", DATA / "photo-flower.png"):
-        bench_pipeline(photo.stem, args.repeat, photo, PHOTO_PIPELINE_BUDGET)
-    bench_table3("clipart-fish", max(1, args.repeat // 2))
-    bench_startup(args.repeat)
-    bench_cli_vs_vtracer(args.repeat)
-    bench_cli_photo(args.repeat)
+    only = set(args.only.split(","))
+    if only - set(SECTIONS):
+        parser.error(f"--only takes sections of {','.join(SECTIONS)}, got {args.only!r}")
+    started, load = datetime.datetime.now(datetime.UTC), os.getloadavg()[0]
+    page = Page()
+    stdout, sys.stdout = sys.stdout, _Tee(sys.stdout, page)  # type: ignore[assignment]
+    try:
+        if "preprocessing" in only:
+            names = ["clipart-fish", "clipart-cat", "drawing-fish", "drawing-rabbit", "photo-cat"]
+            bench_preprocessing(names, args.repeat)
+        if "pipeline" in only:
+            bench_pipeline("clipart-fish", args.repeat, budget=FISH_BUDGET)
+            giraffe = BENCHMARK_DATA / "clipart-giraffe.png"
+            bench_pipeline(giraffe.stem, args.repeat, giraffe, MANY_ARCS_BUDGET)
+            for photo in (BENCHMARK_DATA / "photo-teddy-bear.png", DATA / "photo-flower.png"):
+                bench_pipeline(photo.stem, args.repeat, photo, PHOTO_PIPELINE_BUDGET)
+        if "table3" in only:
+            bench_table3("clipart-fish", max(1, args.repeat // 2))
+        if "startup" in only:
+            bench_startup(args.repeat)
+        if "cli" in only:
+            bench_cli_vs_vtracer(args.repeat, page)
+        if "growth" in only:
+            bench_growth(args.repeat, page)
+        if "photo" in only:
+            bench_cli_photo(args.repeat)
+    finally:
+        sys.stdout = stdout
+    if only == set(SECTIONS):
+        command = "make bench" if args.repeat == 5 else f"python benchmarks/bench.py --repeat {args.repeat}"
+        page.write(PAGE, command, started, args.repeat, load)
+        print(f"wrote {PAGE.relative_to(ROOT)}")
 
 
 if __name__ == "__main__":

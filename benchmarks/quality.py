@@ -23,9 +23,10 @@ Columns: kind (true) and detected; arcs; r3, r6, r10 (fraction of the truth's
 feature pixels within 3, 6, 10 px of the logo's arcs and lines, sampled every
 0.5 px); sil6 (fraction of the object mask's outline within 6 px of the logo)
 and outside (fraction of the logo's points farther than 12 px from the mask),
-for photo-likes; crossings; gaps (near-miss gaps: open ends 0.75-6 px from
-another arc); joins (junctions where exactly two arcs end and the input's
-feature line turns by less than 10 degrees), tangent (the fraction of them where
+for photo-likes, against the object's silhouette for the Openclipart families; crossings; gaps
+(near-miss gaps: open ends 0.75-6 px from another arc); free ends (arc ends, not of whole circles,
+that no other arc comes within 0.75 px of: in a clip art, broken outlines); joins (junctions where
+exactly two arcs end and the input's feature line turns by less than 10 degrees), tangent (the fraction of them where
 the two arcs kink by less than 2 degrees) and kink (their median kink, degrees);
 ink lost (dark parts of the input of at least 30 px with no logo
 point within 3 px, for clip arts and drawings: an eye the skeleton truth hides
@@ -58,6 +59,9 @@ PHOTO2 = EVAL / "photo2"
 HELDOUT = EVAL / "heldout"
 #: The held-out photo-likes (``benchmarks/make_photo2.py``'s ``HELDOUT_CASES``): family ``heldout photo``.
 HELDOUT_PHOTO = EVAL / "heldout-photo"
+#: Real clip art and line art from Openclipart (``benchmarks/data/openclipart/README.md``): families
+#: ``openclipart clipart`` and ``openclipart drawing``; sil6 is measured against each object's silhouette.
+OPENCLIPART = EVAL / "openclipart"
 OUT = ROOT / "build" / "quality"
 COLUMNS = (
     "name",
@@ -72,6 +76,7 @@ COLUMNS = (
     "outside",
     "crossings",
     "gaps",
+    "free ends",
     "joins",
     "tangent",
     "kink",
@@ -90,9 +95,12 @@ def cases() -> list[dict]:
     of ``data/`` (``data``): the means are per family.
     """
     out = []
-    for folder in (EVAL, PHOTO2, HELDOUT, HELDOUT_PHOTO):
+    for folder in (EVAL, PHOTO2, HELDOUT, HELDOUT_PHOTO, OPENCLIPART):
         manifest = json.loads((folder / "manifest.json").read_text(encoding="utf-8"))
-        out += [dict(m, family=m.get("family", m["kind"]), path=folder / m["file"], folder=folder) for m in manifest]
+        for m in manifest:
+            family = f"openclipart {m['kind']}" if folder == OPENCLIPART else m.get("family", m["kind"])
+            name = f"openclipart/{m['name']}" if folder == OPENCLIPART else m["name"]
+            out.append(dict(m, name=name, family=family, path=folder / m["file"], folder=folder))
     for path in sorted((ROOT / "data").glob("photo-*.png")):
         out.append({"name": f"data/{path.stem}", "kind": "photo", "family": "data", "path": path, "folder": EVAL})
     for path in real_photos():
@@ -159,7 +167,8 @@ def run_case(case: dict) -> tuple[dict, object]:
         return row, None
     row["seconds"] = time.perf_counter() - start
     truth = load_mask(case["folder"] / case["gt"]) if "gt" in case else thin
-    mask = load_mask(case["folder"] / case["mask"]) if "mask" in case else None
+    outline = case.get("mask") or case.get("silhouette")  # the object whose outline sil6 measures
+    mask = load_mask(case["folder"] / outline) if outline else None
     q = quality.measure(result.final, truth, mask)
     found = quality.joins(result.final, result.graph)
     row.update(
@@ -172,6 +181,7 @@ def run_case(case: dict) -> tuple[dict, object]:
         outside=q.outside,
         crossings=q.crossings,
         gaps=q.gaps,
+        **{"free ends": q.free_ends},
         joins=found.count,
         tangent=found.tangent_fraction(),
         kink=np.degrees(found.median_kink),
@@ -248,12 +258,16 @@ def main(argv: list[str] | None = None) -> int:
     table = table[[*COLUMNS, *INK_COLUMNS, *(["error"] if "error" in table else [])]]
     args.out.mkdir(parents=True, exist_ok=True)
     table.to_csv(args.out / "quality.csv", index=False, float_format="%.3f")
-    with pd.option_context("display.width", 200, "display.max_columns", 20, "display.max_colwidth", 60):
+    with pd.option_context("display.width", 200, "display.max_columns", 40, "display.max_colwidth", 60):
         print(table.drop(columns=["error"], errors="ignore").to_string(index=False, float_format="%.2f"))
         numeric = [*COLUMNS[COLUMNS.index("arcs") :], *INK_COLUMNS]  # every measured column
         by = table["family"]
         means = table.groupby(by)[numeric].mean()
         means["least sil6"] = table.groupby(by)["sil6"].min()
+        for col in ("free ends", "arcs"):  # a patchwork shows in the median and the worst image
+            means[f"median {col}"] = table.groupby(by)[col].median()
+            means[f"most {col}"] = table.groupby(by)[col].max()
+        means["most seconds"] = table.groupby(by)["seconds"].max()
         means["images"] = table.groupby(by).size()
         means["failed"] = table.groupby(by)["detected"].apply(lambda s: int((s == "-").sum()))
         expected = table["kind"].replace({THICK: "drawing"})

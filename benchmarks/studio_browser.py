@@ -2,7 +2,7 @@
 
     .venv/bin/python benchmarks/studio_browser.py [--repeats 7] [--shots DIR]
 
-Serves notebook 14 as ``make studio`` does (Voila, a free port), drives Debian's chromium with
+Serves notebook 14 as ``make studio`` does (Voila, a free port, its token), drives Debian's chromium with
 playwright and times, from the key press or click to the drawing changed on the page
 (``wait_for_function`` polls every animation frame): a level change, a T change below the run's
 T (read off the run), an edit (delete an arc; undo), and a Run on a 512 px clip art (from the click
@@ -14,9 +14,7 @@ Timings depend on the machine's load: say what else was running.
 from __future__ import annotations
 
 import argparse
-import os
 import statistics
-import subprocess
 import sys
 import time
 from pathlib import Path
@@ -24,22 +22,12 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tests"))
 
-from browser_support import CHROMIUM, CHROMIUM_ARGS, free_port, wait_until_up  # noqa: E402
+from browser_support import CHROMIUM, CHROMIUM_ARGS, start_studio  # noqa: E402
 
-from img2logo.studio.serve import serve_command  # noqa: E402
+from img2logo.studio.serve import stop_server  # noqa: E402
 from img2logo.studio.session import Studio  # noqa: E402
 
 CANVAS = "document.querySelector('.img2logo-studio canvas').toDataURL()"
-
-
-def _serve(folder: Path) -> tuple[subprocess.Popen, str]:
-    port = free_port()
-    env = dict(os.environ, JUPYTER_RUNTIME_DIR=str(folder / "rt"), IMG2LOGO_ROOT=str(ROOT))
-    log = (folder / "voila.log").open("w")
-    process = subprocess.Popen(serve_command(port, ROOT), env=env, stdout=log, stderr=subprocess.STDOUT)
-    url = f"http://127.0.0.1:{port}/"
-    wait_until_up(f"{url}voila/static/none", process, 60.0, any_answer=True)  # the steps say it if not
-    return process, url
 
 
 def _timed(page, action, condition: str, arg=None) -> float:
@@ -76,7 +64,8 @@ def main() -> int:
     pts = a.arcs[i].sample(step=1.0)
     times: dict[str, list[float]] = {}
     with tempfile.TemporaryDirectory() as tmp:
-        server, url = _serve(Path(tmp))
+        studio = start_studio(Path(tmp), ROOT, 60.0)
+        url = studio.url
         try:
             with sync_playwright() as pw:
                 browser = pw.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_ARGS)
@@ -172,8 +161,7 @@ def main() -> int:
                 shot("8-studio")
                 browser.close()
         finally:
-            server.terminate()
-            server.wait(timeout=20)
+            stop_server(studio.process)
     for name, values in times.items():
         print(
             f"{name:42s} median {statistics.median(values):6.3f} s  "

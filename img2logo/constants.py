@@ -521,6 +521,9 @@ SLIDE_MIN_PIXELS: int = 3
 #: that bring the circles nearest to touching first: each costs a constrained fit,
 #: and the tangent pass must stay within issue 17's time budget (1.2x the pipeline).
 RUNG_CHOICES: int = 2
+#: The joint refit of a level's tangent joins (img2logo.fit.tangency._all_at_once) tries at most this
+#: many times, releasing one join after each failure: every try solves the whole drawing at once.
+ALL_AT_ONCE_TRIES: int = 2
 #: The result's level (img2logo.fit.tangency.tangent_level): a smooth join left kinked
 #: weighs this many arcs, and the level kept, the merge loop's last or one before it,
 #: has the fewest arcs plus weighted kinks after its tangent refit. A kink is a defect
@@ -623,6 +626,16 @@ KKT_COMPILED_MAX: int = 2500
 # --- Progressive optimization (progressive.py) -------------------------------------
 #: Default tolerance T on the similarity error E^s (Eqn. 1), px; the paper's default.
 TOLERANCE: float = 5.0
+#: Rings of the wider window a merge candidate is refitted in when its local window (two rings) fails: the
+#: new circle's junctions free, then those of the circles through them, ... (Sec. 5.4). Bounded, so that a
+#: candidate's refit costs the same on a large drawing as on a small one; the whole graph solved instead
+#: (the paper's fallback) cost 96 % of the time of a 512 px clip art with 544 arcs at A^0.
+MERGE_FALLBACK_RINGS: int = 6
+#: Default time budget of the progressive optimization, s of CPU time of the process running it (on an
+#: idle machine about the wall time): past it the merge loop stops at its last level (``Options.time_budget``).
+#: make bench's growth table: the busiest image of benchmarks/data/ (openclipart/clipart-gallo, 299 arcs at A^0)
+#: takes about 6 s of CPU in all, the others it lists at most 1.5 s.
+TIME_BUDGET: float = 10.0
 #: Line-segment simplification (Sec. 5.4): neighbours are merged before the loop when
 #: one circle fits them with a mean absolute error below this, px (the paper's 1.0).
 SIMPLIFICATION_ERROR: float = 1.0

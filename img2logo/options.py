@@ -22,7 +22,15 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from ._validation import check_choice, check_positive
-from .constants import MAX_ANGLE_DEGREES, MAX_LENGTH, MIN_LADDER_RADIUS, MIN_SEGMENT_LENGTH, RDP_TOLERANCE, TOLERANCE
+from .constants import (
+    MAX_ANGLE_DEGREES,
+    MAX_LENGTH,
+    MIN_LADDER_RADIUS,
+    MIN_SEGMENT_LENGTH,
+    RDP_TOLERANCE,
+    TIME_BUDGET,
+    TOLERANCE,
+)
 from .errors import InvalidParameterError, UnknownOptionError
 
 __all__ = [
@@ -102,6 +110,16 @@ def _check_length(value: object, name: str, *, allow_zero: bool = False, low: fl
     return v
 
 
+def _parse_budget(text: str | float | None) -> float | None:
+    """``--time-budget S`` as seconds, or None for ``none`` (no bound)."""
+    if text is None or (isinstance(text, str) and text.strip().lower() == "none"):
+        return None
+    try:
+        return float(text)
+    except ValueError as exc:
+        raise InvalidParameterError(f"--time-budget must be a number of seconds or none, got {text!r}") from exc
+
+
 def _parse_radii(text: str | None) -> tuple[int, ...] | None:
     """``--radii K1,K2,...`` as exponents."""
     if text is None:
@@ -177,11 +195,26 @@ class Options:
         Tangent joins (beyond the paper): where two arcs end at a node where the
         input's line runs on smoothly, their circles touch there (an equality of
         the constrained fit, Eqn. 13). Off: the paper's kinks.
+    time_budget : float or None
+        Seconds of CPU time (of the process running it; on an idle machine
+        about the wall time) the progressive optimization may take, > 0; None: no bound.
+        Past it the merge loop stops at its last level (every level is within T)
+        and the tangent joins try no level before it, with a
+        :class:`~img2logo.fit.progressive.TimeBudgetWarning` saying so in one line.
+        A run that stays within it is the same as an unbounded one; not recorded in
+        ``params``. CPU time, not wall time: other processes' load does not shorten it.
 
     Raises
     ------
     InvalidParameterError
         Naming the first value out of range (see :func:`check_abstract_options`).
+
+    Examples
+    --------
+    >>> from img2logo import Options
+    >>> opts = Options(tolerance=9.0, ladder="fibonacci")
+    >>> opts.tolerance, opts.ladder
+    (9.0, 'fibonacci')
     """
 
     # ----------------------------------------------------------------- feature lines, segment graph
@@ -286,6 +319,14 @@ class Options:
     tangency: bool = _switch(
         "--no-tangency", "tangent joins: circles that touch where the input's line runs on smoothly (beyond the paper)"
     )
+    time_budget: float | None = _option(
+        TIME_BUDGET,
+        flags=("--time-budget",),
+        parse=_parse_budget,
+        metavar="S|none",
+        help="seconds of CPU time the optimization may take; past them merging stops at the last level, which "
+        f"is within T, and says so in one line; none: no bound (default {TIME_BUDGET:g})",
+    )
 
     def __post_init__(self) -> None:
         import numpy as np
@@ -314,6 +355,11 @@ class Options:
             put(self, "max_arc_distance", _check_length(self.max_arc_distance, "max_arc_distance"))
         if self.unit is not None:
             put(self, "unit", _check_length(self.unit, "unit", low=MIN_LADDER_RADIUS))
+        if self.time_budget is not None:
+            if isinstance(self.time_budget, bool | np.bool_ | str):
+                what = f"{self.time_budget!r}"
+                raise InvalidParameterError(f"time_budget must be a number of seconds or None, got {what}")
+            put(self, "time_budget", check_positive(self.time_budget, "time_budget"))
         if isinstance(self.bias, bool | np.bool_ | str):
             raise InvalidParameterError(f"bias must be a number in [0, 1), got {self.bias!r}")
         for name in SWITCHES:
@@ -408,6 +454,8 @@ class Options:
             elif f.name == "max_arc_distance":
                 if value is not None and value != AUTO:
                     out["max_arc_distance"] = value
+            elif f.name == "time_budget":
+                continue  # how long a run may take, not what it makes (a run within it is an unbounded run)
             else:
                 out[f.name] = value
         return out

@@ -54,6 +54,16 @@ class Result:
         What the ``symmetry`` option decided (None for ``"none"``); when it
         kept an axis, ``graph`` is the symmetric segment graph and every level
         is mirror-symmetric.
+
+    Examples
+    --------
+    >>> import cv2, numpy as np
+    >>> image = np.full((160, 160, 3), 255, np.uint8)
+    >>> _ = cv2.circle(image, (80, 80), 50, (0, 0, 0), 3)  # a black ring, 50 px round
+    >>> from img2logo import abstract
+    >>> result = abstract(image, progress=False)  # a Result
+    >>> result.final is result.levels[-1], result.image.width, result.graph.n_components()
+    (True, 160, 1)
     """
 
     image: LoadedImage
@@ -149,6 +159,16 @@ def abstract(
     InvalidParameterError
         Before any work, if a keyword is unknown or a value out of range
         (:class:`~img2logo.options.Options`).
+
+    Examples
+    --------
+    >>> import cv2, numpy as np
+    >>> image = np.full((160, 160, 3), 255, np.uint8)
+    >>> _ = cv2.circle(image, (80, 80), 50, (0, 0, 0), 3)  # a black ring, 50 px round
+    >>> from img2logo import abstract
+    >>> result = abstract(image, progress=False)
+    >>> result.lines.kind, len(result.final.arcs), result.final.arcs[0].is_full_circle
+    ('drawing', 1, True)
     """
     given = {name: value for name, value in (("tolerance", tolerance), ("kind", kind)) if value is not _DEFAULT}
     if not (progress is None or isinstance(progress, bool) or callable(progress)):

@@ -89,6 +89,9 @@ class Quality:
         Arcs crossing away from their ends.
     gaps : int
         Near-miss gaps: open ends 0.75-6 px from another arc.
+    free_ends : int
+        Open ends: ends of arcs (not whole circles) that no other arc comes within 0.75 px of. Every
+        colour region of a clip art has a closed outline, so there an open end is a broken outline.
     """
 
     arcs: int
@@ -97,6 +100,7 @@ class Quality:
     outside: float
     crossings: int
     gaps: int
+    free_ends: int = 0
 
 
 @dataclass(frozen=True, eq=False)
@@ -268,18 +272,50 @@ def near_miss_gaps(arcs: Abstraction | Sequence[Arc], low: float = GAP_MIN, high
     ndarray, shape (K, 2)
         The ends, px.
     """
-    arcs = _arcs(arcs)
-    found = []
+    ends, nearest = _end_distances(_arcs(arcs))
+    return ends[(nearest >= low) & (nearest <= high)]
+
+
+def free_ends(arcs: Abstraction | Sequence[Arc], low: float = GAP_MIN) -> np.ndarray:
+    """Open arc ends: ends of arcs (not whole circles) that no other arc passes within ``low`` px of.
+
+    Both a near-miss gap and a dangling end (a broken outline, a whisker's tip) are open. An end on
+    another arc (a T-junction) or at another arc's end is not.
+
+    Returns
+    -------
+    ndarray, shape (K, 2)
+        The ends, px.
+
+    Examples
+    --------
+    >>> from img2logo.geometry.primitives import Arc, Circle
+    >>> top = Arc(Circle(0.0, 0.0, 10.0), 0.0, 3.141592653589793)
+    >>> bottom = Arc(Circle(0.0, 0.0, 10.0), 3.141592653589793, 3.141592653589793)
+    >>> len(free_ends([top])), len(free_ends([top, bottom]))
+    (2, 0)
+    """
+    ends, nearest = _end_distances(_arcs(arcs))
+    return ends[nearest >= low]
+
+
+def _end_distances(arcs: list[Arc]) -> tuple[np.ndarray, np.ndarray]:
+    """The end points of the arcs that are not whole circles, (K, 2) px, and each one's distance to the
+    nearest other arc, (K,) px (inf where there is no other arc)."""
+    ends, nearest = [], []
     for i, arc in enumerate(arcs):
         if arc.is_full_circle:
             continue
-        ends = np.array([arc.start, arc.end])
-        nearest = np.full(2, np.inf)
+        pair = np.array([arc.start, arc.end])
+        near = np.full(2, np.inf)
         for j, other in enumerate(arcs):
             if j != i:
-                nearest = np.minimum(nearest, nearest_on_arc(other, ends)[0])
-        found.extend(ends[(nearest >= low) & (nearest <= high)])
-    return np.array(found).reshape(-1, 2)
+                near = np.minimum(near, nearest_on_arc(other, pair)[0])
+        ends.append(pair)
+        nearest.append(near)
+    if not ends:
+        return np.zeros((0, 2)), np.zeros(0)
+    return np.vstack(ends), np.concatenate(nearest)
 
 
 def junction_gaps(
@@ -359,7 +395,9 @@ def measure(
     recall = feature_recall(points, truth) if truth is not None else tuple(np.nan for _ in RECALL_DISTANCES)
     sil = silhouette_recall(points, mask) if mask is not None else np.nan
     out = outside_fraction(points, mask) if mask is not None else np.nan
-    return Quality(len(arcs), recall, sil, out, len(crossings(arcs)), len(near_miss_gaps(arcs)))
+    _, nearest = _end_distances(arcs)
+    gaps = int(np.count_nonzero((nearest >= GAP_MIN) & (nearest <= GAP_MAX)))
+    return Quality(len(arcs), recall, sil, out, len(crossings(arcs)), gaps, int(np.count_nonzero(nearest >= GAP_MIN)))
 
 
 def lost_ink_parts(

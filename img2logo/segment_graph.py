@@ -48,6 +48,16 @@ class SegmentGraph:
         ``k0 != k1`` always: closed loops are split.
     width, height : int
         Size of the image the graph was built from, px.
+
+    Examples
+    --------
+    >>> import cv2, numpy as np
+    >>> image = np.full((160, 160, 3), 255, np.uint8)
+    >>> _ = cv2.circle(image, (80, 80), 50, (0, 0, 0), 3)  # a black ring, 50 px round
+    >>> from img2logo import build_segment_graph, extract_feature_lines
+    >>> graph = build_segment_graph(extract_feature_lines(image))
+    >>> graph.width, graph.height, graph.segments[0].shape[1]
+    (160, 160, 2)
     """
 
     segments: tuple[np.ndarray, ...]
@@ -198,6 +208,16 @@ def build_segment_graph(
     ------
     InvalidParameterError
         If ``lines`` is not a 2-D map or a parameter is out of range.
+
+    Examples
+    --------
+    >>> import cv2, numpy as np
+    >>> image = np.full((160, 160, 3), 255, np.uint8)
+    >>> _ = cv2.circle(image, (80, 80), 50, (0, 0, 0), 3)  # a black ring, 50 px round
+    >>> from img2logo import build_segment_graph, extract_feature_lines
+    >>> graph = build_segment_graph(extract_feature_lines(image))
+    >>> graph.n_components(), graph.width, graph.height
+    (1, 160, 160)
     """
     rdp_tolerance = check_positive(rdp_tolerance, "rdp_tolerance")
     min_length = check_positive(min_length, "min_length", allow_zero=True)

@@ -1,4 +1,4 @@
-"""What the browser tests share: a free port, a server's start, Debian's chromium and its flags."""
+"""What the browser tests share: a free port, a server's start, the studio's server, Debian's chromium and its flags."""
 
 from __future__ import annotations
 
@@ -9,6 +9,8 @@ import subprocess
 import time
 import urllib.error
 import urllib.request
+from dataclasses import dataclass
+from pathlib import Path
 
 
 def free_port() -> int:
@@ -50,3 +52,46 @@ CHROMIUM_ARGS = [
     "--disable-sync",
     "--no-first-run",
 ]
+
+
+@dataclass(frozen=True)
+class StudioServer:
+    """``make studio``'s Voila, started by :func:`start_studio`: its process, port, token, log and page address."""
+
+    process: subprocess.Popen
+    port: int
+    token: str
+    log: Path
+    url: str
+
+
+def start_studio(folder: Path, root: Path, timeout: float, **command_options: int) -> StudioServer:
+    """``make studio``'s server (:func:`img2logo.studio.serve.serve_command`) on a free port with a new token.
+
+    Its Jupyter folders and its log (``voila.log``) go into ``folder``; ``command_options`` go to
+    ``serve_command`` (``idle_timeout``, ``cull_interval``). Raises RuntimeError, with the log's end,
+    when it does not answer within ``timeout`` s (the probe is a static path: ``/`` would start a kernel).
+    """
+    from img2logo.studio.serve import new_token, serve_command, serve_environment, stop_server, studio_url
+
+    port, token = free_port(), new_token()
+    base = dict(
+        os.environ,
+        JUPYTER_RUNTIME_DIR=str(folder / ".runtime"),
+        JUPYTER_CONFIG_DIR=str(folder / ".config"),
+        JUPYTER_DATA_DIR=str(folder / ".data"),
+        IMG2LOGO_ROOT=str(root),
+    )
+    log = folder / "voila.log"
+    with log.open("w") as out:
+        process = subprocess.Popen(
+            serve_command(port, root, **command_options),
+            env=serve_environment(token, base),
+            stdout=out,
+            stderr=subprocess.STDOUT,
+            cwd=folder,
+        )
+    if not wait_until_up(f"http://127.0.0.1:{port}/voila/static/none", process, timeout, any_answer=True):
+        stop_server(process)
+        raise RuntimeError(f"Voila did not start; its log: {log.read_text()[-2000:]}")
+    return StudioServer(process, port, token, log, studio_url(port, token))

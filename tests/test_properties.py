@@ -12,8 +12,7 @@ import math
 
 import numpy as np
 from helpers import abstraction_of, golden, svg_arc_center
-from hypothesis import HealthCheck, given, settings
-from hypothesis import strategies as st
+from hypothesis import HealthCheck, given, settings, strategies as st
 
 from img2logo.export.contract import from_document, to_document
 from img2logo.fit.arc_extraction import frechet_distance

@@ -222,3 +222,16 @@ def test_stroke_width_ratio_of_a_12_px_bar():
     ink[44:56, 10:90] = True
     assert quality.stroke_width_ratio(6.0, ink) == pytest.approx(0.5, abs=0.05)
     assert math.isnan(quality.stroke_width_ratio(6.0, np.zeros((10, 10), bool)))
+
+
+def test_free_ends_are_the_open_ends_of_arcs():
+    circle = Circle(50.0, 50.0, 20.0)
+    top, bottom = Arc(circle, 0.0, np.pi), Arc(circle, np.pi, np.pi)
+    assert len(quality.free_ends([top])) == 2  # a half circle alone: a broken outline
+    assert len(quality.free_ends([top, bottom])) == 0  # two halves close the circle
+    assert len(quality.free_ends([Arc(circle, 0.0, 2 * np.pi)])) == 0  # a whole circle has no end
+    near = Arc(circle, np.pi, np.pi - 0.2)  # stops 4 px short of the top's start: two ends, a near-miss gap
+    far = Arc(circle, np.pi, np.pi - 1.0)  # stops 19 px short: two dangling ends, no gap
+    for other, gaps in ((near, 2), (far, 0)):
+        found = quality.measure([top, other])
+        assert (found.free_ends, found.gaps) == (2, gaps)

@@ -649,7 +649,7 @@ def _batch(args: argparse.Namespace, say) -> int:
         paths,
         args.output_dir,
         jobs=args.jobs,
-        progress=None if not args.quiet else False,
+        progress=_batch_progress(args.quiet, say),
         fill=args.fill,
         options=options,
     )
@@ -664,6 +664,19 @@ def _batch(args: argparse.Namespace, say) -> int:
     for f in report.failures:
         print(f"img2logo: error: {printable(f.line)}", file=sys.stderr)
     return EXIT_FAILED if report.failures else 0
+
+
+def _batch_progress(quiet: bool, say):
+    """A batch's progress: none under ``-q``, a bar on a terminal, else one line per image done (a log's progress)."""
+    if quiet:
+        return False
+    if sys.stderr.isatty():
+        return None
+
+    def line(done: int, total: int, image: str) -> None:
+        say(f"{done}/{total} done: {image}")
+
+    return line
 
 
 def _pick_level(result, n: int | None):

@@ -135,6 +135,18 @@ def plot_abstraction(
     -------
     matplotlib.axes.Axes
         The axes drawn into, in image pixels with y down.
+
+    Examples
+    --------
+    >>> import cv2, numpy as np
+    >>> image = np.full((160, 160, 3), 255, np.uint8)
+    >>> _ = cv2.circle(image, (80, 80), 50, (0, 0, 0), 3)  # a black ring, 50 px round
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> from img2logo import abstract, plot_abstraction
+    >>> ax = plot_abstraction(abstract(image, progress=False).final, image=image, show_circles=True)
+    >>> [float(x) for x in ax.get_xlim()]
+    [0.0, 160.0]
     """
     from matplotlib.collections import LineCollection
 
@@ -215,6 +227,18 @@ def plot_segment_graph(
     -------
     matplotlib.axes.Axes
         The axes drawn into, in image pixels with y down.
+
+    Examples
+    --------
+    >>> import cv2, numpy as np
+    >>> image = np.full((160, 160, 3), 255, np.uint8)
+    >>> _ = cv2.circle(image, (80, 80), 50, (0, 0, 0), 3)  # a black ring, 50 px round
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> from img2logo import build_segment_graph, extract_feature_lines, plot_segment_graph
+    >>> ax = plot_segment_graph(build_segment_graph(extract_feature_lines(image)))
+    >>> [float(y) for y in ax.get_ylim()]  # image rows grow downwards
+    [160.0, 0.0]
     """
     import matplotlib
     from matplotlib.collections import LineCollection

@@ -99,6 +99,17 @@ def read_json(path: str | os.PathLike[str]) -> Abstraction:
     InvalidParameterError
         If it is a folder, cannot be read, is not UTF-8 JSON or not a valid document
         (see :func:`img2logo.export.contract.from_document`).
+
+    Examples
+    --------
+    >>> import cv2, numpy as np
+    >>> image = np.full((160, 160, 3), 255, np.uint8)
+    >>> _ = cv2.circle(image, (80, 80), 50, (0, 0, 0), 3)  # a black ring, 50 px round
+    >>> from img2logo import abstract, read_json, write_json
+    >>> path = write_json(abstract(image, progress=False).final, "ring.json")
+    >>> logo = read_json("ring.json")
+    >>> round(logo.arcs[0].circle.r, 1), logo.arcs[0].circle.k
+    (50.0, 8)
     """
     import json  # the JSON document's modules load with its first reader or writer, not for an SVG
 
@@ -173,6 +184,18 @@ def write_json(
     -------
     pathlib.Path
         The path written.
+
+    Examples
+    --------
+    >>> import cv2, numpy as np
+    >>> image = np.full((160, 160, 3), 255, np.uint8)
+    >>> _ = cv2.circle(image, (80, 80), 50, (0, 0, 0), 3)  # a black ring, 50 px round
+    >>> from img2logo import abstract, read_json, write_json
+    >>> result = abstract(image, progress=False)
+    >>> write_json(result.final, "ring.json", result.params).name
+    'ring.json'
+    >>> len(read_json("ring.json").arcs)
+    1
     """
     import json
 
@@ -332,6 +355,16 @@ def write_svg(
     -------
     pathlib.Path
         The path written.
+
+    Examples
+    --------
+    >>> import cv2, numpy as np
+    >>> image = np.full((160, 160, 3), 255, np.uint8)
+    >>> _ = cv2.circle(image, (80, 80), 50, (0, 0, 0), 3)  # a black ring, 50 px round
+    >>> from img2logo import abstract, write_svg
+    >>> path = write_svg(abstract(image, progress=False).final, "ring.svg")
+    >>> path.read_text(encoding="utf-8").startswith("<?xml")
+    True
     """
     check_format_suffix(path, "svg")
     text = to_svg(
@@ -404,6 +437,16 @@ def write_png(
     -------
     pathlib.Path
         The path written.
+
+    Examples
+    --------
+    >>> import cv2, numpy as np
+    >>> image = np.full((160, 160, 3), 255, np.uint8)
+    >>> _ = cv2.circle(image, (80, 80), 50, (0, 0, 0), 3)  # a black ring, 50 px round
+    >>> from img2logo import abstract, load_image, write_png
+    >>> path = write_png(abstract(image, progress=False).final, "ring.png", image=image)
+    >>> load_image(path).width
+    160
     """
     check_format_suffix(path, "png")
     fill_list, width, height, sw = _drawing(abstraction, fills, stroke_width)
@@ -565,6 +608,16 @@ def write_segment_graph_png(
     -------
     pathlib.Path
         The path written.
+
+    Examples
+    --------
+    >>> import cv2, numpy as np
+    >>> image = np.full((160, 160, 3), 255, np.uint8)
+    >>> _ = cv2.circle(image, (80, 80), 50, (0, 0, 0), 3)  # a black ring, 50 px round
+    >>> from img2logo import build_segment_graph, extract_feature_lines, load_image, write_segment_graph_png
+    >>> path = write_segment_graph_png(build_segment_graph(extract_feature_lines(image)), "graph.png")
+    >>> load_image(path).height
+    160
     """
     check_format_suffix(path, "png")
     from ..segment_graph import SegmentGraph  # lazily: it loads scipy

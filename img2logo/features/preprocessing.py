@@ -104,6 +104,16 @@ class FeatureLines:
         For a line drawing, its median stroke width, px: twice the median
         distance from the ink's skeleton to the paper
         (:func:`median_stroke_width`); None for the other kinds.
+
+    Examples
+    --------
+    >>> import cv2, numpy as np
+    >>> image = np.full((160, 160, 3), 255, np.uint8)
+    >>> _ = cv2.circle(image, (80, 80), 50, (0, 0, 0), 3)  # a black ring, 50 px round
+    >>> from img2logo import extract_feature_lines
+    >>> lines = extract_feature_lines(image)  # FeatureLines
+    >>> lines.shape, bool(lines.lines.any())
+    ((160, 160), True)
     """
 
     lines: np.ndarray
@@ -138,6 +148,16 @@ def detect_kind(image: object) -> tuple[str, str]:
     ``SYNTHETIC_WORK_SIDE`` px on its longer side (the size these tests were
     chosen at: an upscaled drawing's strokes are ramps that read as a second
     colour at 2048 px), so both tell the same kind.
+
+    Examples
+    --------
+    >>> import cv2, numpy as np
+    >>> image = np.full((160, 160, 3), 255, np.uint8)
+    >>> _ = cv2.circle(image, (80, 80), 50, (0, 0, 0), 3)  # a black ring, 50 px round
+    >>> from img2logo import detect_kind
+    >>> kind, why = detect_kind(image)
+    >>> kind
+    'drawing'
     """
     kind, reason, _ = _detect(downscale(load_image(image), SYNTHETIC_WORK_SIDE))
     return kind, reason
@@ -337,6 +357,16 @@ def extract_feature_lines(
     Returns
     -------
     FeatureLines
+
+    Examples
+    --------
+    >>> import cv2, numpy as np
+    >>> image = np.full((160, 160, 3), 255, np.uint8)
+    >>> _ = cv2.circle(image, (80, 80), 50, (0, 0, 0), 3)  # a black ring, 50 px round
+    >>> from img2logo import extract_feature_lines
+    >>> lines = extract_feature_lines(image)
+    >>> lines.kind, lines.lines.shape, lines.lines.dtype
+    ('drawing', (160, 160), dtype('bool'))
     """
     img = load_image(image)
     kind = check_choice(kind, "kind", ("auto", *KINDS))

@@ -571,8 +571,10 @@ class WindowFit:
     free_junctions : frozenset
         The junctions that were free in it.
     fit : ConstrainedFit or None
-        The fit of the last window (None only for an empty window: no circle
-        and no junction, nothing to solve, ``ok`` is True). A window of circles
+        The fit of the last window (None for an empty window: no circle
+        and no junction, nothing to solve, ``ok`` is True; and for a window
+        that ``first_ring`` of :func:`fit_window` grew over its whole connected
+        part without solving it, ``ok`` False). A window of circles
         that no junction touches (every junction released, a closed curve
         alone) is still fitted: each free centre moves to its best position
         for its fixed radius.
@@ -607,6 +609,7 @@ def fit_window(
     free_junctions: Iterable[Hashable] = (),
     fixed: Container[Hashable] = frozenset(),
     rings: int = 2,
+    first_ring: int = 1,
     order: Callable[[Hashable], Any] | None = None,
     displacements0: np.ndarray | None = None,
     n_circles: int | None = None,
@@ -648,6 +651,9 @@ def fit_window(
         Circles of the window that keep their centre (straight lines, a moved circle).
     rings : int
         Most windows tried.
+    first_ring : int
+        The first window solved (1: the first; a larger one when the windows
+        before it are known to fail): the windows before it only grow it.
     order : callable, optional
         Sort key of the window's circles (the order of the fit's unknowns).
     displacements0 : ndarray, shape (N, 2), optional
@@ -676,9 +682,15 @@ def fit_window(
     seeds = set(changed)
     last: WindowFit | None = None
     touching = {} if tangencies is None else tangencies
-    for _ring in range(max(int(rings), 1)):
+    for ring in range(1, max(int(rings), 1) + 1):
         members = seeds | {c for n in free_j for c in junction_circles.get(n, ())}
         window = tuple(sorted(members, key=order))
+        if ring < first_ring:  # a window known to fail: only grown
+            grown = set(free_j).union(*(circle_junctions[c] for c in window))
+            if grown == free_j:  # it holds its whole connected part already, and failed
+                return WindowFit(False, window, (), frozenset(free_j), None)
+            free_j = grown
+            continue
         owned = [circle_junctions[c] for c in window]  # each circle's junctions, read once
         node_set = set(free_j)
         for js in owned:

@@ -138,6 +138,9 @@ class Stats:
     split_groups : int
         Groups of the line-segment simplification split into their segments again because
         their arc in A^0 made a redundant intersection (:func:`img2logo.fit.progressive.split_crossed`).
+    wide_windows : int
+        Merge candidates whose local window failed, refitted in the wider window of
+        ``MERGE_FALLBACK_RINGS`` rings instead (:func:`img2logo.fit.merging.evaluate`).
     """
 
     evaluated: int = 0
@@ -152,6 +155,7 @@ class Stats:
     rejected_crossing: int = 0
     rejected_gaps: int = 0
     split_groups: int = 0
+    wide_windows: int = 0
 
     def as_dict(self) -> dict[str, int]:
         """The counts by name, in the order of the fields."""
@@ -670,6 +674,7 @@ class FitState:
         n_groups_total: int,
         n_junctions_total: int,
         rings: int = 1,
+        first_ring: int = 1,
         order: Callable[[int], Any] | None = None,
         tangent: bool | Collection[int] = False,
         cap: float | None = None,
@@ -680,7 +685,7 @@ class FitState:
         """Eqn. 13 over a window of ``groups`` (:func:`~img2logo.fit.constrained_fit.fit_window`), then their arcs.
 
         The window is the ``changed`` groups and those through ``free_nodes``,
-        grown by up to ``rings`` rings; the ``fixed`` groups keep their circles,
+        grown by up to ``rings`` rings (solved from ring ``first_ring`` on); the ``fixed`` groups keep their circles,
         and so do straight lines (a huge free circle is nearly singular along
         its chord: their junctions slide onto them). With ``tangent``, the
         circles of :meth:`tangencies` touch at their junctions too. With ``cap``
@@ -705,6 +710,7 @@ class FitState:
             free_junctions=free_nodes,
             fixed=fixed,
             rings=rings,
+            first_ring=first_ring,
             order=cast(Callable[[Hashable], Any] | None, order),
             displacements0=self.disp,
             n_circles=n_groups_total,

@@ -30,7 +30,14 @@ from weakref import WeakKeyDictionary
 
 import numpy as np
 
-from ..constants import FAR_ARC_BUDGET, FAR_ARC_MARGIN, GAP_MAX, JUNCTION_TOLERANCE, REDUNDANT_INTERSECTION_TOL
+from ..constants import (
+    FAR_ARC_BUDGET,
+    FAR_ARC_MARGIN,
+    GAP_MAX,
+    JUNCTION_TOLERANCE,
+    MERGE_FALLBACK_RINGS,
+    REDUNDANT_INTERSECTION_TOL,
+)
 from ..geometry.primitives import Arc
 from .arc_extraction import _distances_to_arcs, _redundant_arrays
 from .fit_state import FitState, GroupFit, Seed, Solution, near_miss
@@ -38,6 +45,9 @@ from .simplification import Group, hold_line, merge_groups
 
 #: Called by :func:`merge_loop` after every merge, with the state (now one level further).
 MergeCallback: TypeAlias = Callable[[FitState], None]
+
+#: Why :func:`merge_loop` stopped when its time budget ran out.
+TIME_BUDGET_STOP = "time budget"
 
 #: A merge candidate: (group a, group b, their common end node).
 Pair: TypeAlias = "tuple[int, int, int]"  # a string: autodoc documents it as data, not as a class
@@ -117,7 +127,7 @@ def evaluate(state: FitState, pair: Pair) -> MergeOutcome | None:
     global_solve = not state.options.localized
     out: Solution | None = None
 
-    def solve_window(fixed: set[int], tangent: bool | set[int] = False) -> Solution | None:
+    def solve_window(fixed: set[int], tangent: bool | set[int] = False, rings: int = 2) -> Solution | None:
         return state.solve(
             after,
             seeds,
@@ -127,7 +137,8 @@ def evaluate(state: FitState, pair: Pair) -> MergeOutcome | None:
             fixed=fixed,
             n_groups_total=n_groups,
             n_junctions_total=nj_after,
-            rings=2,
+            rings=rings,
+            first_ring=1 if rings == 2 else 3,  # the wider window: the first two rings failed
             order=lambda g: (g != -1, g),
             tangent=tangent,
             cap=cap,
@@ -139,8 +150,8 @@ def evaluate(state: FitState, pair: Pair) -> MergeOutcome | None:
     if not global_solve and out is None:
         # The window: the new circle and its neighbours, with the new circle's
         # junctions free (Sec. 5.4). If the fixed junctions leave no solution,
-        # a second ring (the neighbours' junctions and their circles) is freed
-        # before the global problem is solved. Without the connectivity
+        # a second ring (the neighbours' junctions and their circles) is freed,
+        # then further rings up to MERGE_FALLBACK_RINGS. Without the connectivity
         # constraint only the new circle moves.
         out = solve_window(set() if state.options.connectivity else set(after) - {-1})
         if out is None:
@@ -152,7 +163,13 @@ def evaluate(state: FitState, pair: Pair) -> MergeOutcome | None:
             if state.golden_error(merged) > state.options.tolerance:
                 state.stats.rejected_hopeless += 1
                 return None
-            global_solve = True
+            # The paper solves the global problem here; a window of a bounded number of
+            # rings costs the same however large the drawing (MERGE_FALLBACK_RINGS).
+            state.stats.wide_windows += 1
+            if hold:
+                out = solve_window(set(), tangent=hold, rings=MERGE_FALLBACK_RINGS)
+            if out is None:
+                out = solve_window(set(), rings=MERGE_FALLBACK_RINGS)
     if global_solve:
 
         def solve_global(tangent: bool | set[int] = False) -> Solution | None:
@@ -171,7 +188,7 @@ def evaluate(state: FitState, pair: Pair) -> MergeOutcome | None:
             out = solve_global(tangent=hold)
         if out is None:
             out = solve_global()
-    if out is None:  # the global problem has no solution either
+    if out is None:  # the wider window (or the global problem) has no solution either
         return None
     fits, disp = out
     if cap is not None and fits[-1].arc.frechet > cap:  # (then the window's other arcs were not extracted)
@@ -595,7 +612,12 @@ def recheck_crossing(state: FitState, outcome: MergeOutcome) -> bool:
     return _runs_through_twice(state, outcome.pair, outcome.merged, outcome.fits, outcome.displacements, _level(state))
 
 
-def merge_loop(state: FitState, tolerance: float, merged: MergeCallback | None = None) -> str:
+def merge_loop(
+    state: FitState,
+    tolerance: float,
+    merged: MergeCallback | None = None,
+    over_budget: Callable[[], bool] | None = None,
+) -> str:
     """Merge the best pair until E^s would exceed ``tolerance`` (Sec. 5.2, steps 1-6).
 
     Scores are kept between iterations. After a merge, the pairs with the new
@@ -604,7 +626,10 @@ def merge_loop(state: FitState, tolerance: float, merged: MergeCallback | None =
     and is rescored from the current state when it comes out best: so the pair
     merged is always scored exactly (lazy greedy). After every merge it calls
     ``merged(state)`` (the progressive optimization records the level there);
-    returns why it stopped: ``"tolerance"`` or ``"no mergeable pair"``.
+    returns why it stopped: ``"tolerance"``, ``"no mergeable pair"`` or
+    ``"time budget"``: ``over_budget()`` was true before a candidate's refit,
+    and the state is the last level made (a refit is tentative: a level's
+    candidates stop wherever the budget ends, and nothing of them is kept).
 
     The chosen merge is checked before it is made, against the current arcs:
     for redundant intersections (scored with every candidate too, Fig. 12),
@@ -631,6 +656,8 @@ def merge_loop(state: FitState, tolerance: float, merged: MergeCallback | None =
             best, best_error = None, math.inf
             for pair in pairs:
                 if pair not in cache or (pair in stale and cache[pair] is None):
+                    if over_budget is not None and over_budget():
+                        return TIME_BUDGET_STOP
                     cache[pair] = evaluate(state, pair)
                     stale.discard(pair)
                 out = cache[pair]
@@ -642,6 +669,8 @@ def merge_loop(state: FitState, tolerance: float, merged: MergeCallback | None =
                     best, best_error = pair, error
             if best is None or best not in stale:
                 break
+            if over_budget is not None and over_budget():
+                return TIME_BUDGET_STOP
             cache[best] = evaluate(state, best)
             stale.discard(best)
         state.stats.rejected_intersections = sum(1 for o in cache.values() if o is not None and o.redundant)

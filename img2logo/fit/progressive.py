@@ -38,6 +38,7 @@ Coordinates: px, x right, y down (``contract/README.md``).
 from __future__ import annotations
 
 import time
+import warnings
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import Any
@@ -50,14 +51,17 @@ from ..geometry.primitives import Abstraction, polyline_length
 from ..options import Options
 from ..segment_graph import SegmentGraph
 from .fit_state import AxisConstraints, FitState, FreeCircles, Seed
-from .merging import merge_loop
+from .merging import TIME_BUDGET_STOP, merge_loop
 from .recovery import check_reach, check_span, recover
-from .simplification import Group, hold_line
-from .simplification import simplify as simplify_groups
+from .simplification import Group, hold_line, simplify as simplify_groups
 from .tangency import snapshot, tangent_level
 
 #: Signature of a progress callback: (level t, number of arcs, E^s in px).
 ProgressCallback = Callable[[int, int, float], None]
+
+
+class TimeBudgetWarning(UserWarning):
+    """The optimization reached its time budget (``Options.time_budget``): merging stopped at the last level."""
 
 
 # --------------------------------------------------------------------------- results
@@ -78,7 +82,8 @@ class Progression:
         The segments of the graph grouped by the line-segment simplification
         (Sec. 5.4), in the order of A^0's arcs.
     stopped_because : str
-        Why the loop stopped: ``"tolerance"``, ``"no mergeable pair"`` or ``"merging off"``.
+        Why the loop stopped: ``"tolerance"``, ``"no mergeable pair"``, ``"merging off"``
+        or ``"time budget"`` (``Options.time_budget``; a :class:`TimeBudgetWarning` says so).
     stats : dict of str to int
         The counts of :class:`~img2logo.fit.fit_state.Stats` by name, in its order:
         merge candidates evaluated, local windows that failed, global solves,
@@ -88,6 +93,16 @@ class Progression:
         Seconds spent in simplification, the initial fit, the loop and the tangent joins' refit.
     ladder : GoldenLadder or FibonacciLadder or None
         The ladder the radii were snapped to.
+
+    Examples
+    --------
+    >>> import cv2, numpy as np
+    >>> image = np.full((160, 160, 3), 255, np.uint8)
+    >>> _ = cv2.circle(image, (80, 80), 50, (0, 0, 0), 3)  # a black ring, 50 px round
+    >>> from img2logo import build_segment_graph, extract_feature_lines, optimize
+    >>> progression = optimize(build_segment_graph(extract_feature_lines(image)))
+    >>> progression.final is progression.levels[-1], progression.stopped_because != ""
+    (True, True)
     """
 
     levels: tuple[Abstraction, ...]
@@ -248,6 +263,16 @@ def optimize(
     InvalidParameterError
         On an unknown setting or a value out of range (before any work), an
         empty graph, or a lock mask of the wrong shape.
+
+    Examples
+    --------
+    >>> import cv2, numpy as np
+    >>> image = np.full((160, 160, 3), 255, np.uint8)
+    >>> _ = cv2.circle(image, (80, 80), 50, (0, 0, 0), 3)  # a black ring, 50 px round
+    >>> from img2logo import build_segment_graph, extract_feature_lines, optimize
+    >>> progression = optimize(build_segment_graph(extract_feature_lines(image)))
+    >>> progression.arc_counts[-1], progression.final.arcs[0].circle.k
+    (1, 8)
     """
     opts = Options.from_keywords(settings, base=options) if settings or options is None else options
     if not isinstance(opts, Options):
@@ -263,6 +288,7 @@ def optimize(
     circles = FreeCircles(symmetry)
     axis_nodes = symmetry.nodes if symmetry is not None else frozenset()
     timings: dict[str, float] = {}
+    over_budget = _budget(opts.time_budget)
     start = time.perf_counter()
     groups = [
         Group((i,), tuple(int(n) for n in graph.ends[i]), seg, bool(locked[i])) for i, seg in enumerate(graph.segments)
@@ -310,19 +336,48 @@ def optimize(
     start = time.perf_counter()
     stopped = "merging off"
     if opts.merging:
-        stopped = merge_loop(state, opts.tolerance, add_level)
+        stopped = merge_loop(state, opts.tolerance, add_level, over_budget)
     timings["loop"] = time.perf_counter() - start
     start = time.perf_counter()
     if state.smooth:
         # The result, its circles touching at the smooth joins (beyond the paper); it may be
         # a level before the loop's last, whose shorter arcs leave room for more tangencies.
-        back = tangent_level(state, opts.tolerance, history)
+        back = tangent_level(state, opts.tolerance, history, over_budget)
         del levels[len(levels) - back :]
         levels[-1] = state.abstraction(levels[-1].level, record)
         if progress:  # the result: an earlier t than the last reported when levels were dropped
             progress(levels[-1].level, len(levels[-1].arcs), levels[-1].similarity)
     timings["tangency"] = time.perf_counter() - start
+    if stopped == TIME_BUDGET_STOP:
+        final = levels[-1]
+        warnings.warn(
+            TimeBudgetWarning(
+                f"the optimization reached its time budget ({opts.time_budget:g} s of CPU) and stopped merging at "
+                f"level {final.level}: {len(final.arcs)} arcs, E^s {final.similarity:.2f} px within T = "
+                f"{opts.tolerance:g} px (fewer arcs may fit: give it longer with --time-budget S or none)"
+            ),
+            stacklevel=2,
+        )
     return Progression(tuple(levels), float(golden.bias), simplified, stopped, state.stats.as_dict(), timings, golden)
+
+
+def _budget(seconds: float | None) -> Callable[[], bool] | None:
+    """Whether ``seconds`` of this process's CPU time have passed since now (None: no bound).
+
+    CPU time, not wall time: other processes' load does not shorten it (a run
+    stops at about the same merge on an idle and on a busy machine). The
+    process's, not the thread's: reading a thread's CPU clock took 4-5 ms a
+    read on a loaded machine here, the process's about 1 us; in a pool of
+    threads the threads' work counts together.
+    """
+    if seconds is None:
+        return None
+    deadline = time.process_time() + seconds
+
+    def over() -> bool:
+        return time.process_time() > deadline
+
+    return over
 
 
 def _locked_segments(graph: SegmentGraph, lock_mask: np.ndarray | None) -> np.ndarray:

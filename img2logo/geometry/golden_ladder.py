@@ -97,6 +97,13 @@ class GoldenLadder:
     InvalidParameterError
         If ``bias`` is not a finite number in [0, 1), or ``exponents`` is empty
         or holds a value that is not an integer.
+
+    Examples
+    --------
+    >>> from img2logo import PHI, GoldenLadder
+    >>> ladder = GoldenLadder(0.0)
+    >>> ladder.radius(3) == PHI**3, ladder.snap(4.0)[0]  # 4 px is nearest to phi^3
+    (True, 3)
     """
 
     bias: float
@@ -278,6 +285,13 @@ class FibonacciLadder:
     InvalidParameterError
         If ``unit`` is not a finite number > 0, ``rounding`` is not one of the
         two, or ``exponents`` is empty or holds a value that is not an integer >= 2.
+
+    Examples
+    --------
+    >>> from img2logo import FibonacciLadder
+    >>> ladder = FibonacciLadder(1.0)
+    >>> [ladder.radius(k) for k in range(1, 7)]
+    [1.0, 1.0, 2.0, 3.0, 5.0, 8.0]
     """
 
     unit: float

@@ -50,6 +50,13 @@ class Circle:
         Radius, px; for a golden circle ``r == phi ** (k + bias)`` (Eqn. 10).
     k : int or None
         Integer ladder exponent, or None for a circle not (yet) on the ladder.
+
+    Examples
+    --------
+    >>> from img2logo import Circle
+    >>> c = Circle(10.0, 20.0, 5.0)
+    >>> c.center, c.point_at(0.0)
+    (array([10., 20.]), array([15., 20.]))
     """
 
     cx: float
@@ -95,6 +102,14 @@ class Arc:
     A point of the arc is ``(cx + r cos t, cy + r sin t)`` for t from ``theta0``
     to ``theta0 + sweep`` (the contract's definition). ``0 < |sweep| <= 2 pi``;
     ``|sweep| == 2 pi`` is a whole circle.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from img2logo import Arc, Circle
+    >>> quarter = Arc(Circle(0.0, 0.0, 10.0), 0.0, np.pi / 2)
+    >>> round(quarter.length, 3), quarter.end.round(6)
+    (15.708, array([ 0., 10.]))
     """
 
     circle: Circle
@@ -373,6 +388,16 @@ class Abstraction:
         and ``arc_junctions`` disagreeing, or (when connected) a junction farther
         than ``JUNCTION_TOLERANCE`` from its arcs' circles, end points, or from
         inside the arcs that pass through it.
+
+    Examples
+    --------
+    >>> import cv2, numpy as np
+    >>> image = np.full((160, 160, 3), 255, np.uint8)
+    >>> _ = cv2.circle(image, (80, 80), 50, (0, 0, 0), 3)  # a black ring, 50 px round
+    >>> from img2logo import abstract
+    >>> logo = abstract(image, progress=False).final  # an Abstraction: the arcs of one level
+    >>> logo.level, len(logo.arcs), len(logo.golden_circles)
+    (0, 1, 1)
     """
 
     level: int

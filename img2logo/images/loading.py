@@ -73,6 +73,16 @@ class LoadedImage:
         The path it was read from, or ``"<array>"``.
     input_size : (int, int) or None
         (width, height) of the input before the downscale, px; None: this size.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from img2logo import load_image
+    >>> pixels = np.full((30, 20, 3), 255, np.uint8)
+    >>> pixels[10:20, 5:15] = 0  # a black square on white
+    >>> img = load_image(pixels)  # a LoadedImage
+    >>> img.gray.shape, round(float(img.gray.min()), 3), round(float(img.gray.max()), 3)
+    ((30, 20), 0.0, 1.0)
     """
 
     rgb: np.ndarray
@@ -181,6 +191,16 @@ def load_image(source: object, *, max_side: int = MAX_IMAGE_SIDE, max_pixels: in
     InvalidImageError
         Not an image, empty, more than ``max_pixels`` px, fewer than 16 px on a
         side (after the downscale to ``max_side``), or blank (one colour).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from img2logo import load_image
+    >>> pixels = np.zeros((40, 60, 3), np.uint8)
+    >>> pixels[10:20, 10:30] = 255  # a white bar on black
+    >>> img = load_image(pixels)
+    >>> img.width, img.height, img.rgb.dtype, img.has_alpha
+    (60, 40, dtype('float64'), False)
     """
     if isinstance(source, LoadedImage):
         return source
@@ -313,6 +333,14 @@ def load_mask(source: object, shape: tuple[int, int] | None = None) -> np.ndarra
     Returns
     -------
     ndarray of bool, shape (H, W)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from img2logo import load_mask
+    >>> mask = load_mask(np.eye(4))
+    >>> mask.dtype, int(mask.sum())
+    (dtype('bool'), 4)
     """
     if isinstance(source, (str, Path)):
         # A mask is never downscaled: it must have the (loaded) image's shape.

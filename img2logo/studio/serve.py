@@ -9,6 +9,7 @@ point: ``python -m img2logo.studio.serve [--port N]``.
 from __future__ import annotations
 
 import os
+import subprocess
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -117,18 +118,59 @@ def plot_session(session: Session, *, panel_size: float = 3.2) -> Any:
 STUDIO_NOTEBOOK = "notebooks/14_studio.ipynb"
 #: ``make studio``'s port.
 STUDIO_PORT = 8866
+#: The environment variable that hands the server its token (jupyter_server reads it; the command line
+#: would show it to every user of the machine in ``ps``).
+TOKEN_VARIABLE = "JUPYTER_TOKEN"
+#: The server's security settings (a Voila configuration file): the token (:data:`TOKEN_VARIABLE`) through
+#: :class:`~.identity.StudioIdentityProvider`; only the Host names 127.0.0.1, [::1] and localhost
+#: (jupyter_server's ``allow_remote_access=False``, ``local_hostnames``: a page whose DNS name was rebound
+#: to 127.0.0.1 sends its own name and is refused); kernel websockets only from the same origin (an empty
+#: ``allow_origin``); no files of the notebook folder; no other port than the printed one.
+VOILA_CONFIG = Path(__file__).with_name("voila.json")
+#: Seconds a kernel with no page connected may stay idle before it is ended (a tab closed without its
+#: shutdown reaching the server, a plain ``GET /``), and how often the server looks for such kernels.
+KERNEL_IDLE_TIMEOUT = 300
+KERNEL_CULL_INTERVAL = 60
 
 
-def serve_command(port: int = STUDIO_PORT, root: str | os.PathLike[str] | None = None) -> list[str]:
+def new_token() -> str:
+    """A fresh secret for one run of the studio (256 random bits, URL-safe)."""
+    import secrets
+
+    return secrets.token_urlsafe(32)
+
+
+def studio_url(port: int, token: str) -> str:
+    """The address to open: the page on 127.0.0.1:``port`` with its ``token`` (as Jupyter prints it)."""
+    from urllib.parse import quote
+
+    return f"http://127.0.0.1:{int(port)}/?token={quote(token, safe='')}"
+
+
+def serve_command(
+    port: int = STUDIO_PORT,
+    root: str | os.PathLike[str] | None = None,
+    *,
+    idle_timeout: int = KERNEL_IDLE_TIMEOUT,
+    cull_interval: int = KERNEL_CULL_INTERVAL,
+) -> list[str]:
     """The Voila command serving the studio on 127.0.0.1:``port`` (what ``make studio`` runs; the browser tests too).
 
-    Only this machine can reach it; no browser is opened; an error in a cell shows its one line,
-    not the traceback (``show_tracebacks=False``).
+    Run it with the token in the environment variable :data:`TOKEN_VARIABLE`
+    (:func:`serve_environment`): a request without it gets 403 and starts no kernel. The server takes
+    the settings of :data:`VOILA_CONFIG`: only this machine's Host names, kernel websockets only from
+    the page's own origin, no files of the notebook folder, no port but ``port``. A closed page ends
+    its kernel (its shutdown post carries the XSRF cookie :class:`~.identity.StudioIdentityProvider`
+    sets); a kernel that no page is connected to ends after ``idle_timeout`` s idle, looked for every
+    ``cull_interval`` s. No browser is opened; an error in a cell shows its one line, not the traceback.
     """
     import sys
 
     from ..experiments.paths import project_root
 
+    for name, seconds in (("idle_timeout", idle_timeout), ("cull_interval", cull_interval)):
+        if isinstance(seconds, bool) or not isinstance(seconds, int) or seconds < 1:
+            raise InvalidParameterError(f"{name} must be a whole number of seconds >= 1, got {seconds!r}")
     folder = Path(root) if root is not None else project_root()
     return [
         sys.executable,
@@ -140,13 +182,33 @@ def serve_command(port: int = STUDIO_PORT, root: str | os.PathLike[str] | None =
         "--no-browser",
         "--theme=light",
         "--show_tracebacks=False",
+        "--Voila.config_file_paths",
+        str(VOILA_CONFIG.parent),
+        f"--MappingKernelManager.cull_idle_timeout={idle_timeout}",
+        f"--MappingKernelManager.cull_interval={cull_interval}",
     ]
 
 
+def serve_environment(token: str, base: dict[str, str] | None = None) -> dict[str, str]:
+    """The environment of :func:`serve_command`: ``base`` (default: this process's) with the ``token``."""
+    if not token:
+        raise InvalidParameterError("the studio's token must not be empty")
+    return {**(os.environ if base is None else base), TOKEN_VARIABLE: token}
+
+
+def stop_server(process: subprocess.Popen, timeout: float = 20.0) -> None:
+    """Stop a server and reap it: SIGTERM (Voila and Jupyter shut their kernels down), SIGKILL after ``timeout`` s."""
+    process.terminate()
+    try:
+        process.wait(timeout=timeout)
+    except subprocess.TimeoutExpired:
+        process.kill()
+        process.wait()
+
+
 def main(argv: list[str] | None = None) -> int:
-    """``python -m img2logo.studio.session [--port N]``: print the URL and serve the studio until Ctrl-C."""
+    """``python -m img2logo.studio.serve [--port N]``: print the URL with its new token; serve until Ctrl-C."""
     import argparse
-    import subprocess
     import sys
 
     p = argparse.ArgumentParser(prog="make studio", description="Serve the img2logo studio (notebook 14) with Voila.")
@@ -157,17 +219,13 @@ def main(argv: list[str] | None = None) -> int:
     except ImportError:
         print("img2logo: error: voila is missing: make studio installs the extra [studio]", file=sys.stderr)
         return 2
-    print(f"img2logo studio: open http://127.0.0.1:{args.port}/ (Ctrl-C stops it)", flush=True)
-    server = subprocess.Popen(serve_command(args.port))
+    token = new_token()
+    print(f"img2logo studio: open {studio_url(args.port, token)} (Ctrl-C stops it)", flush=True)
+    server = subprocess.Popen(serve_command(args.port), env=serve_environment(token))
     try:
         return server.wait()
     except KeyboardInterrupt:
-        server.terminate()
-        try:
-            server.wait(timeout=10)
-        except subprocess.TimeoutExpired:
-            server.kill()
-            server.wait()
+        stop_server(server)
         print("img2logo studio: stopped", flush=True)
         return 0
 

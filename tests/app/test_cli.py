@@ -271,7 +271,11 @@ def test_batch_command_reports_a_bad_file_and_exits_one(tmp_path, capsys):
     err = capsys.readouterr().err
     lines = err.strip().splitlines()
     assert lines[-1].startswith("img2logo: error: ") and "corrupt.png: not a readable image" in lines[-1]
-    assert err.count("corrupt.png") == 1 and "Traceback" not in err
+    assert err.count("corrupt.png: not a readable image") == 1 and "Traceback" not in err
+    # Off a terminal, one line per image done says the batch's progress (in the order they finish).
+    assert sorted(line.split(": ", 1)[1] for line in lines if " done: " in line) == sorted(
+        ["corrupt.png", "drawing-leaf.png", "drawing-snail.png"]
+    )
     assert "drawing-leaf.png" in err and "E^s (px)" in err and "2 of 3 images done" in err
     names = sorted(p.name for p in out.iterdir())
     logos = [f"drawing-{n}.{f}" for n in ("leaf", "snail") for f in ("svg", "json", "png")]

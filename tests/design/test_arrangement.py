@@ -7,8 +7,7 @@ import math
 import numpy as np
 import pytest
 from helpers import BIAS, A, B, abstraction_of, four_arcs, full, golden, svg_arc_center, two_circles
-from hypothesis import HealthCheck, given, settings
-from hypothesis import strategies as st
+from hypothesis import HealthCheck, given, settings, strategies as st
 
 from img2logo.constants import PHI
 from img2logo.design import arrangement

@@ -380,6 +380,19 @@ def test_window_grows_by_a_ring_when_it_does_not_solve_and_keeps_fixed_circles()
     assert empty.ok and empty.fit is None and empty.displacements() == {}
 
 
+def test_window_from_a_later_ring_is_the_one_the_rings_before_grow_to():
+    """``first_ring``: the windows before it are only grown (they failed already), the later ones solved."""
+    args = _chain_of_three()
+    grown = cfit.fit_window(*args, changed=[0], free_junctions=[0], rings=2, first_ring=2)
+    assert grown.ok and grown.circles == (0, 1, 2) and grown.free_junctions == {0, 1}
+    whole = cfit.fit_window(*args, changed=[0], free_junctions=[0, 1], rings=2)  # ring 2's window solved alone
+    for c in (0, 1, 2):
+        np.testing.assert_array_equal(grown.center(c), whole.center(c))
+    # Past the whole connected part there is nothing left to grow: the window failed, unsolved again.
+    past = cfit.fit_window(*args, changed=[0], free_junctions=[0], rings=4, first_ring=4)
+    assert not past.ok and past.fit is None and past.circles == (0, 1, 2)
+
+
 def test_window_that_no_junction_touches_is_still_fitted():
     # Every junction released (or a closed curve alone): the circles have no constraint, yet
     # their centres still go where their points are (issue 20, item 1: this window had no fit).

@@ -28,6 +28,7 @@ STATS = (
     "rejected_crossing",
     "rejected_gaps",
     "split_groups",
+    "wide_windows",
 )
 
 

@@ -9,6 +9,7 @@ import pytest
 from helpers import DATA, golden_chain, golden_radius, hand_built_state, sampled_arc
 
 from img2logo import build_segment_graph, extract_feature_lines, quality
+from img2logo.constants import MERGE_FALLBACK_RINGS
 from img2logo.fit.arc_extraction import ArcFit, redundant_intersections
 from img2logo.fit.fit_state import FitState, GroupFit
 from img2logo.fit.merging import _new_gaps, candidates, evaluate, merge_loop
@@ -28,7 +29,14 @@ class _Unsolvable(FitState):
     failing = False
 
     def solve(self, *args, **kwargs):
-        return None if self.failing else super().solve(*args, **kwargs)
+        if self.failing:
+            self.tried.append((kwargs.get("rings", 1), kwargs.get("first_ring", 1), bool(kwargs.get("tangent"))))
+            return None
+        return super().solve(*args, **kwargs)
+
+    @property
+    def tried(self):  # the (rings, first ring, tangent) of every failed solve
+        return self.__dict__.setdefault("_tried", [])
 
 
 def _fitted_chain(cls=FitState, **settings):
@@ -107,22 +115,25 @@ def test_a_hopeless_merge_is_rejected_without_a_global_solve():
     assert state.stats.global_solves == solves
 
 
-def test_a_merge_whose_global_problem_fails_is_rejected():
+def test_a_merge_whose_wider_window_fails_is_rejected_without_a_global_solve():
     state = _fitted_chain(_Unsolvable, tolerance=100.0, tangency=False)
     solves = state.stats.global_solves
     state.failing = True
     assert evaluate(state, (0, 1, 1)) is None
-    assert state.stats.local_failed == 1 and state.stats.rejected_hopeless == 0
-    assert state.stats.global_solves == solves + 1
-    # With a smooth join held tangent (node 2), the global problem is tried with it, then without.
+    assert state.stats.local_failed == 1 and state.stats.rejected_hopeless == 0 and state.stats.wide_windows == 1
+    # The two rings of the local window, then the wider window from its third ring on; never the whole graph.
+    assert state.tried == [(2, 1, False), (MERGE_FALLBACK_RINGS, 3, False)]
+    assert state.stats.global_solves == solves
+    # With a smooth join held tangent (node 2), each window is tried with it, then without.
     state = _fitted_chain(_Unsolvable, tolerance=100.0)
-    solves = state.stats.global_solves
     state.failing = True
-    assert evaluate(state, (0, 1, 1)) is None and state.stats.global_solves == solves + 2
+    assert evaluate(state, (0, 1, 1)) is None
+    wide = MERGE_FALLBACK_RINGS
+    assert state.tried == [(2, 1, True), (2, 1, False), (wide, 3, True), (wide, 3, False)]
     # Without localized fitting the global problem is the only one solved.
     state = _fitted_chain(_Unsolvable, localized=False)
     state.failing = True
-    assert evaluate(state, (0, 1, 1)) is None and state.stats.local_failed == 0
+    assert evaluate(state, (0, 1, 1)) is None and state.stats.local_failed == 0 and state.stats.wide_windows == 0
 
 
 def test_a_merged_arc_farther_than_the_bound_is_rejected():

@@ -212,6 +212,39 @@ def test_deterministic():
         assert la.arcs == lb.arcs
 
 
+def test_time_budget_stops_at_the_last_level_and_says_so(fish_progression, monkeypatch):
+    """Past its budget the loop stops at the last level made: a prefix of the unbounded run's levels, within T."""
+    import img2logo.fit.progressive as progressive
+
+    graph, unbounded = fish_progression
+    assert unbounded.stopped_because == "tolerance"  # the default budget is far from reached here
+    plain = optimize(graph, tolerance=5.0, tangency=False, time_budget=None)
+    # A CPU clock that moves one second every time it is read: the loop reads it before every refit.
+    clock = itertools.count()
+    monkeypatch.setattr(progressive.time, "process_time", lambda: float(next(clock)))
+    budget = plain.stats["evaluated"] * 3 // 4  # past the first level's candidates, before the last level
+    with pytest.warns(progressive.TimeBudgetWarning, match=rf"time budget \({budget} s of CPU\) and stopped merging"):
+        prog = optimize(graph, tolerance=5.0, time_budget=budget, tangency=False)
+    assert prog.stopped_because == "time budget"
+    assert 1 < len(prog.levels) < len(plain.levels)
+    for level, same in zip(prog.levels, plain.levels, strict=False):
+        assert level.arcs == same.arcs
+    assert prog.final.similarity <= 5.0
+    # Past the budget the tangent joins refit the last level only: no level before it is tried.
+    seen = []
+    with pytest.warns(progressive.TimeBudgetWarning):
+        optimize(graph, tolerance=5.0, time_budget=budget, progress=lambda t, n, e: seen.append(t))
+    assert seen[-1] == seen[-2]  # the result is the loop's last level, refitted
+
+
+def test_a_budget_not_reached_changes_nothing(fish_progression):
+    graph, unbounded = fish_progression
+    prog = optimize(graph, tolerance=5.0, time_budget=None)
+    assert prog.arc_counts == unbounded.arc_counts
+    assert prog.final.arcs == unbounded.final.arcs
+    assert "time_budget" not in prog.final.params  # how long a run may take is no property of its result
+
+
 # --------------------------------------------------------------------------- errors
 @pytest.mark.parametrize(
     ("kw", "message"),
@@ -222,6 +255,8 @@ def test_deterministic():
         ({"bias": 1.5}, r"bias must be in \[0, 1\), got 1.5"),
         ({"lock_mask": np.zeros((3, 3), bool)}, r"lock_mask must have the image's shape \(600, 600\), got \(3, 3\)"),
         ({"arc_selection": "closest"}, "arc_selection must be one of 'frechet', 'sum_of_squares'"),
+        ({"time_budget": 0}, "time_budget must be > 0, got 0.0"),
+        ({"time_budget": "10"}, "time_budget must be a number of seconds or None, got '10'"),
     ],
 )
 def test_bad_parameters(kw, message):

@@ -1,7 +1,7 @@
 """The studio (notebook 14) as its page: served by Voila as ``make studio`` serves it, driven by chromium.
 
 ``make test-browser`` runs it: the Voila command of ``make studio``
-(:func:`img2logo.studio.serve.serve_command`) on a free port of 127.0.0.1, Debian's
+(:func:`img2logo.studio.serve.serve_command`) on a free port of 127.0.0.1 with its token, Debian's
 chromium driven by playwright through its ``executable_path``, a 1366 x 768 window. The tests
 share one page and run in order, as a designer would: the layout, the level, an arc deleted and
 undone, a lock stroke painted and Run, an upload and Run, the downloads, a bad upload, the
@@ -13,11 +13,12 @@ from __future__ import annotations
 import json
 import os
 import shutil
-import subprocess
 from pathlib import Path
 
 import pytest
-from browser_support import CHROMIUM, CHROMIUM_ARGS, free_port, wait_until_up
+from browser_support import CHROMIUM, CHROMIUM_ARGS, start_studio
+
+from img2logo.studio.serve import stop_server
 
 pytestmark = pytest.mark.browser
 
@@ -42,38 +43,19 @@ def _requirements() -> str | None:
 
 @pytest.fixture(scope="module")
 def server(tmp_path_factory):
-    """``make studio``'s Voila on a free port; stopped and reaped at the end."""
+    """``make studio``'s Voila on a free port with its token; stopped and reaped at the end."""
     reason = _requirements()
     if reason:
         pytest.skip(reason)
-    from img2logo.studio.serve import serve_command
-
     folder = tmp_path_factory.mktemp("studio")
-    port = free_port()
-    env = dict(
-        os.environ,
-        JUPYTER_RUNTIME_DIR=str(folder / ".runtime"),
-        JUPYTER_CONFIG_DIR=str(folder / ".config"),
-        JUPYTER_DATA_DIR=str(folder / ".data"),
-        IMG2LOGO_ROOT=str(ROOT),
-    )
-    log_path = folder / "voila.log"
-    log = log_path.open("w")
-    process = subprocess.Popen(serve_command(port, ROOT), env=env, stdout=log, stderr=subprocess.STDOUT, cwd=folder)
     try:
-        url = f"http://127.0.0.1:{port}/"
-        # Any answer will do: / would start a kernel and run the notebook.
-        if not wait_until_up(f"{url}voila/static/none", process, START_TIMEOUT, any_answer=True):
-            pytest.fail(f"Voila did not start; its log: {log_path.read_text()[-2000:]}")
-        yield url, folder, log_path
+        studio = start_studio(folder, ROOT, START_TIMEOUT)
+    except RuntimeError as e:
+        pytest.fail(str(e))
+    try:
+        yield studio.url, folder, studio.log
     finally:
-        process.terminate()
-        try:
-            process.wait(timeout=20)
-        except subprocess.TimeoutExpired:
-            process.kill()
-            process.wait()
-        log.close()
+        stop_server(studio.process)
 
 
 @pytest.fixture(scope="module")

@@ -12,8 +12,7 @@ from helpers import DATA
 from img2logo import InvalidParameterError
 from img2logo.app import cli
 from img2logo.export.contract import from_document
-from img2logo.studio import serve as studio_serve
-from img2logo.studio import session as studio
+from img2logo.studio import serve as studio_serve, session as studio
 from img2logo.studio.session import Studio
 
 
@@ -314,10 +313,68 @@ def test_the_scripted_session_writes_the_downloads(tmp_path):
     assert len(fig.axes) >= 3
 
 
-def test_the_server_command_is_voila_on_localhost():
+def test_the_server_command_is_voila_on_localhost_with_the_studios_settings():
     command = studio_serve.serve_command(8899)
     assert command[1:3] == ["-m", "voila"] and command[3].endswith("notebooks/14_studio.ipynb")
     assert "--port=8899" in command and "--Voila.ip=127.0.0.1" in command and "--no-browser" in command
+    assert command[command.index("--Voila.config_file_paths") + 1] == str(studio_serve.VOILA_CONFIG.parent)
+    assert "--MappingKernelManager.cull_idle_timeout=300" in command
+    assert "--MappingKernelManager.cull_interval=60" in command
+    config = json.loads(studio_serve.VOILA_CONFIG.read_text())
+    assert config["Voila"]["auto_token"] is True
+    assert config["Voila"]["identity_provider_class"] == "img2logo.studio.identity.StudioIdentityProvider"
+    assert config["Voila"]["port_retries"] == 0
+    assert config["Voila"]["tornado_settings"] == {
+        "allow_remote_access": False,
+        "local_hostnames": ["localhost"],
+        "allow_origin": "",
+    }
+    assert config["VoilaConfiguration"]["file_allowlist"] == []
+    assert config["MappingKernelManager"]["cull_connected"] is False
+
+
+@pytest.mark.parametrize("seconds", [0, -5, 2.5, True, "60"])
+def test_the_server_command_refuses_a_culling_time_that_is_not_whole_seconds(seconds):
+    with pytest.raises(InvalidParameterError, match="idle_timeout must be a whole number of seconds >= 1"):
+        studio_serve.serve_command(8899, idle_timeout=seconds)
+
+
+def test_the_studio_url_and_environment_carry_the_token():
+    assert studio_serve.studio_url(8866, "a/b+c") == "http://127.0.0.1:8866/?token=a%2Fb%2Bc"
+    assert studio_serve.serve_environment("t0k", {"HOME": "/h"}) == {"HOME": "/h", "JUPYTER_TOKEN": "t0k"}
+    with pytest.raises(InvalidParameterError, match="token must not be empty"):
+        studio_serve.serve_environment("")
+    tokens = {studio_serve.new_token() for _ in range(3)}
+    assert len(tokens) == 3 and all(len(t) >= 43 for t in tokens)
+
+
+def test_the_url_make_studio_prints_carries_the_token_and_main_hides_it_from_ps(monkeypatch, capsys):
+    import re
+    import subprocess
+    import sys
+    import types
+    import urllib.parse
+
+    started = {}
+
+    class Server:
+        def __init__(self, command, env):
+            started.update(command=command, env=env)
+
+        def wait(self):
+            return 0
+
+    monkeypatch.setitem(sys.modules, "voila", types.ModuleType("voila"))
+    monkeypatch.setattr(subprocess, "Popen", Server)
+    assert studio_serve.main(["--port", "8871"]) == 0
+    line = capsys.readouterr().out
+    url = re.search(r"open (\S+) \(Ctrl-C", line).group(1)
+    token = urllib.parse.parse_qs(urllib.parse.urlsplit(url).query)["token"][0]
+    assert url.startswith("http://127.0.0.1:8871/?token=") and len(token) >= 32
+    assert started["env"][studio_serve.TOKEN_VARIABLE] == token
+    assert not any(token in part for part in started["command"])  # the command line is visible to all users
+    assert studio_serve.main(["--port", "8871"]) == 0  # a new token for every run
+    assert started["env"][studio_serve.TOKEN_VARIABLE] != token
 
 
 def test_papermill_is_no_live_front_end(monkeypatch):

@@ -378,11 +378,30 @@ def _default_pool(workers: int) -> Executor:
     """A ProcessPoolExecutor of ``workers`` processes, by the platform's default start method.
 
     That is fork on Linux before Python 3.14: a script without an ``if __name__ ==
-    "__main__":`` guard works. Where it is spawn or forkserver, the guard is needed.
+    "__main__":`` guard works, and the workers start warm (:func:`_warm`). Where it
+    is spawn or forkserver, the guard is needed.
     """
+    import multiprocessing
     from concurrent.futures import ProcessPoolExecutor
 
+    if multiprocessing.get_start_method() == "fork":
+        _warm()
     return ProcessPoolExecutor(max_workers=workers, initializer=_init_worker, initargs=(os.getpid(),))
+
+
+def _warm() -> None:
+    """Load in this process what every image's run loads (the pipeline, the writers, the compiled kernels, OpenCV).
+
+    The workers forked from it start with them loaded: each saves their load
+    (about 0.15 s of CPU; 10 small drawings on two workers: 4.2 -> 3.9 s of CPU in all).
+    """
+    import cv2  # noqa: F401
+
+    from ..._compiled import kernels
+    from ...export import writers  # noqa: F401
+    from ...pipeline import abstract  # noqa: F401
+
+    kernels.usable()
 
 
 def _progress(progress: BatchProgress | bool | None, total: int) -> tuple[BatchProgress, Callable[[], None]]:

@@ -23,7 +23,8 @@ bytes), so that any :class:`concurrent.futures.Executor` can run it:
 - a :class:`~concurrent.futures.ThreadPoolExecutor` (mostly for tests: the work
   is Python-bound and holds the GIL);
 - a cluster: ``run_batch(paths, out, executor=client.get_executor())`` with a
-  ``dask.distributed.Client`` (or any other executor). The workers read the input
+  ``dask.distributed.Client`` (the ``[dask]`` extra: ``pip install 'img2logo[dask]'``;
+  on one machine ``Client(LocalCluster())``), or any other executor. The workers read the input
   images, so they must see the paths (a shared file system); the results come
   back as bytes and are written by the calling process, so the output folder need
   not be shared.
@@ -45,24 +46,24 @@ from typing import IO, Any
 from ..._validation import check_choice
 from ...errors import Img2LogoError, InvalidParameterError
 from ...options import Options
+
+# The command line checks a batch before it starts with these (kept importable from here).
 from .folder import (
     LOCK_NAME,
     MANIFEST_NAME,
     batch_lock,
     check_output_folder,
+    check_output_folder as _check_output_folder,  # noqa: F401
     check_targets,
+    check_targets as _check_targets,  # noqa: F401
+    check_unlocked as _check_unlocked,  # noqa: F401
     output_stems,
+    output_stems as _output_stems,  # noqa: F401
     read_manifest,
     remove_old_outputs,
     write_manifest,
+    written_by_img2logo as _written_by_img2logo,  # noqa: F401
 )
-
-# The command line checks a batch before it starts with these (kept importable from here).
-from .folder import check_output_folder as _check_output_folder  # noqa: F401
-from .folder import check_targets as _check_targets  # noqa: F401
-from .folder import check_unlocked as _check_unlocked  # noqa: F401
-from .folder import output_stems as _output_stems  # noqa: F401
-from .folder import written_by_img2logo as _written_by_img2logo  # noqa: F401
 from .pool import OUTPUT_FORMATS, BatchProgress, ignored_subject_options, process_image, run_tasks
 from .report import SUMMARY_COLUMNS, BatchFailure, BatchReport, BatchRow, csv_safe, report_of
 
@@ -219,6 +220,15 @@ def run_batch(
 
     Examples
     --------
+    >>> import cv2, numpy as np
+    >>> image = np.full((160, 160, 3), 255, np.uint8)
+    >>> _ = cv2.circle(image, (80, 80), 50, (0, 0, 0), 3)  # a black ring, 50 px round
+    >>> from pathlib import Path
+    >>> from img2logo import run_batch
+    >>> _ = cv2.imwrite("ring.png", image)
+    >>> report = run_batch(["ring.png"], "logos", outputs=("svg",), jobs=1, progress=False)
+    >>> len(report.rows), len(report.failures), [p.name for p in Path("logos").glob("*.svg")]
+    (1, 0, ['ring.svg'])
     >>> report = run_batch(find_images("data"), "out", tolerance=7.0, ladder="fibonacci")  # doctest: +SKIP
     >>> from dask.distributed import Client  # doctest: +SKIP
     >>> with Client("scheduler:8786") as client:  # doctest: +SKIP
