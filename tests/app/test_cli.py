@@ -568,8 +568,8 @@ def test_messages_name_the_input_and_carry_no_third_party_lines(tmp_path):
     )
     assert done.returncode == EXIT_ERROR
     assert (
-        done.stderr
-        == f"img2logo: error: {truncated}: not a readable image (expected PNG, JPEG, TIFF, BMP, WebP, ...)\n"
+        done.stderr == f"img2logo: error: {truncated}: not a readable image: the PNG ends before its IEND chunk "
+        "(the file cut short?)\n"
     )
 
 
