@@ -18,7 +18,7 @@ NB     ?= $(basename $(notdir $(wildcard notebooks/*.ipynb)))
 RUNS   := $(patsubst %,build/notebooks/%.ipynb,$(NB))
 
 .DELETE_ON_ERROR:
-.PHONY: install test test-browser lab studio lint format bench quality figures figures-smoke html docs clean FORCE
+.PHONY: install test test-browser test-wheel lab studio lint format bench quality figures figures-smoke html docs clean FORCE
 
 install: $(STAMP)
 
@@ -31,7 +31,7 @@ $(STAMP): pyproject.toml
 	@touch $@
 
 test: $(KIT)
-	$(BIN)/python -m pytest -m "not browser"
+	$(BIN)/python -m pytest -m "not browser and not wheel"
 
 # Optional extras, installed on first use: [kit] (papermill, ipywidgets: the notebooks) for make test,
 # make figures and make lab; [lab] (JupyterLab) for make lab; [browser] (JupyterLab and playwright) for
@@ -69,6 +69,11 @@ $(STUDIO): pyproject.toml $(KIT)
 # chromium (apt-get install chromium) through playwright; skipped, with the reason, where chromium is missing.
 test-browser: $(BROWSER)
 	$(BIN)/python -m pytest -m browser -rs tests/experiments/test_explore_browser.py tests/studio/test_browser.py tests/studio/test_server.py
+
+# The wheel as a user gets it: built (with its compiled kernels), installed in a fresh venv outside the
+# repository, its first run checked (tests/test_wheel.py; needs a C compiler and PyPI, minutes).
+test-wheel: $(KIT)
+	$(BIN)/python -m pytest -m wheel -rs tests/test_wheel.py
 
 # The designer's studio (notebook 14) as a page, served by Voila on this machine only; Ctrl-C stops it.
 # Another port: make studio PORT=8870

@@ -21,6 +21,7 @@ from .export.writers import (
     write_segment_graph_png as write_segment_graph_png,
     write_svg as write_svg,
 )
+from .features.detail import DetailWarning as DetailWarning
 from .features.preprocessing import (
     FeatureLines as FeatureLines,
     detect_kind as detect_kind,

@@ -124,6 +124,18 @@ INK_COLOUR_SPREAD: float = 4.6
 #: encloses (a small ring of a 4 px stroke: about half its pixels), not a grey of its own
 #: (a grey fill or line has no pixel of the ink's colour).
 INK_SHARE: float = 0.25
+#: Kind detection: an image of one ink with shading (its other colours all blends of the
+#: paper and the ink: greys for black ink) is a line drawing when the ink is more than this
+#: share of what is drawn, the ink's regions over all non-paper regions by area: the lines
+#: are then what the image is made of, the shading an accent between them. Measured on
+#: Openclipart's shaded drawings: the ink 0.67 (a feather's light grey vane) to 0.93 (an ice
+#: cream cone); a clip art of dark outlines around grey fills (X11's eyes) 0.50, the grey
+#: clip arts of benchmarks/data (a ewe, a seal) have a grey darker than their largest colour.
+SHADED_INK_SHARE: float = 0.6
+#: ... and its ink is dark: CIELAB L* at most this (half the paper's), so that greys lie
+#: between it and the paper. Measured: the shaded drawings' inks L* 1-10; the darkest
+#: colour of a clip art of pale grey hairlines (Openclipart's caduceus) L* 82.
+SHADED_INK_MAX_LIGHTNESS: float = 50.0
 #: Kind detection: a one-ink image is a line drawing when its strokes (twice the
 #: median distance from the ink's medial axis to its edge) are at most this fraction
 #: of the shorter image side wide; wider, it is a flat silhouette (a clip art).
@@ -202,10 +214,37 @@ CLIPART_NOISE_FACTOR: float = 2.0
 #: Measured (``clipart.colour_noise``): clean clip arts at most 0.02, JPEGs of
 #: quality 70 at least 0.058; twice the clean maximum.
 CLIPART_NOISY_FRACTION: float = 0.04
+#: Clip art: the default ``detail`` (:func:`img2logo.features.detail.merge_by_importance`):
+#: the regions kept besides the background, the weightiest by Ward's criterion. The
+#: icon-style clip arts whose logos are already good (the evaluation and held-out families:
+#: emoji, icons, critters, 8-24 regions besides the background) are left whole; busier clip
+#: art (cartoon animals, vehicles, emblems: 20-70) keeps its 24 weightiest regions, plus
+#: what is never merged (the silhouette, its ink outline, dark marks).
+DETAIL: int = 24
 #: Clip art: a region at most this wide (twice the median distance from its medial
 #: axis to its edge) is a stroke, px: it gives its centreline, not two boundaries
 #: this close (less than the 6 px at which the segment graph merges junctions).
 CLIPART_STROKE_WIDTH: float = 6.0
+#: Clip art: a region is an ink outline when at least this share of its border is with
+#: regions lighter than it by CLIPART_EDGE_CONTRAST (L*): mostly, since a cartoon's outline
+#: also touches the odd pupil or dark shading; a grey between a white and a black (half
+#: and half) is none.
+CLIPART_INK_BORDER: float = 0.75
+#: Clip art: a dark mark on the object's fills (an eye, a pupil, a spot, an inner outline:
+#: darker than CLIPART_INK_BORDER of the fills around it by at least this, L*) is never
+#: merged at the detail asked: a quarter of the lightness range, a black or dark mark on a
+#: mid or light fill. Hatching and shading drawn in a darker shade of their fill's colour
+#: (10-20 L* darker) merge.
+CLIPART_MARK_CONTRAST: float = 25.0
+#: Clip art: the most regions (the background included) the optimization is given at once.
+#: Where more remain at the detail asked, the least important are merged on, and a warning
+#: says so (:func:`img2logo.features.detail.merge_by_importance`).
+CLIPART_MAX_REGIONS: int = 40
+#: Clip art: an ink outline (a region darker than every region it touches: the cartoon
+#: style's outline between lighter fills) is a stroke up to this wide, px: its centre line
+#: is within 6 px of both its edges, the distance at which the segment graph merges
+#: junctions and at which sil6 counts the silhouette kept.
+CLIPART_OUTLINE_WIDTH: float = 12.0
 #: ... if its medial axis is at least this many times longer than its width (a
 #: stroke, not a dot) ...
 CLIPART_STROKE_ELONGATION: float = 3.0

@@ -23,6 +23,7 @@ from typing import Any
 
 from ._validation import check_choice, check_positive
 from .constants import (
+    DETAIL,
     MAX_ANGLE_DEGREES,
     MAX_LENGTH,
     MIN_LADDER_RADIUS,
@@ -155,6 +156,12 @@ class Options:
         Photos: the subject drawn (:func:`img2logo.features.photo.subject.find_subject`).
     subject : (x, y, w, h), "X,Y,W,H" or None
         Photos: a rectangle around the object that seeds its segmentation, px.
+    detail : int
+        Clip art: the regions kept besides the background, at least 1
+        (:func:`img2logo.features.detail.merge_by_importance`): the least
+        important (by Ward's criterion: contrast, length, area) merge into their
+        neighbours first. The silhouette, its ink outline and the dark marks on
+        the object (eyes) are always kept. Other kinds: unused.
     stroke_width : float or None
         Width of the logo's strokes in the SVG and PNG, px (> 0), recorded in
         ``params``; None: a line drawing's measured median stroke width
@@ -257,6 +264,16 @@ class Options:
         "the threshold; said in one line), vertical, horizontal or the axis direction in degrees from +x towards "
         "+y (forced); none (default): free",
     )
+    detail: int = _option(
+        DETAIL,
+        stage="input",
+        flags=("--detail",),
+        type=int,
+        metavar="N",
+        help="clip art: the regions kept besides the background; the least important (hatching, highlights, "
+        "blotches, tiny fills) merge into their neighbours first; the silhouette and dark marks such as eyes are "
+        f"always kept (default {DETAIL})",
+    )
     stroke_width: float | None = _option(
         None,
         stage="input",
@@ -337,6 +354,9 @@ class Options:
         put(self, "tolerance", _check_length(self.tolerance, "tolerance"))
         put(self, "rdp_tolerance", _check_length(self.rdp_tolerance, "rdp_tolerance"))
         put(self, "min_length", _check_length(self.min_length, "min_length", allow_zero=True))
+        from .features.detail import check_detail
+
+        put(self, "detail", check_detail(self.detail))
         if self.stroke_width is not None:
             put(self, "stroke_width", _check_length(self.stroke_width, "stroke_width"))
         check_choice(self.kind, "kind", ("auto", "photo", "clipart", "drawing"))

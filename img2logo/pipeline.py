@@ -139,7 +139,8 @@ def abstract(
         ``Result.final``. ``True`` shows a progress bar on the terminal;
         ``None`` (default) shows one only when standard error is a terminal.
     **settings
-        Any other field of :class:`~img2logo.options.Options`: ``rdp_tolerance``,
+        Any other field of :class:`~img2logo.options.Options`: ``detail`` (clip
+        art: the regions kept besides the background; :mod:`img2logo.features.detail`), ``rdp_tolerance``,
         ``min_length``, ``foreground``, ``subject``, ``symmetry`` (``"none"``,
         ``"auto"``, ``"vertical"``, ``"horizontal"`` or degrees: a mirror-symmetric
         logo, :mod:`img2logo.fit.symmetry`; what was decided is ``Result.symmetry``),
@@ -193,7 +194,9 @@ def abstract(
         ):
             foreground = mask_to_working_size(foreground, img, "foreground")
         opts = dataclasses.replace(opts, foreground=foreground)
-    lines = extract_feature_lines(img, kind=work_kind, foreground=opts.foreground, subject=opts.subject)
+    lines = extract_feature_lines(
+        img, kind=work_kind, foreground=opts.foreground, subject=opts.subject, detail=opts.detail
+    )
     if reason is not None:  # what the photo test measured (_working_copy), not "given"
         lines = dataclasses.replace(lines, reason=reason)
     timings["feature_lines"] = time.perf_counter() - start
@@ -212,6 +215,8 @@ def abstract(
         "min_length": float(opts.min_length),
         "scale": img.scale,
     }
+    if lines.detail is not None:  # a clip art's regions kept (coarsened where there were too many)
+        params["detail"] = int(lines.detail)
     # The logo's stroke weight: the one asked for, else a drawing's own (clip arts and
     # photos are drawn with the writers' default, which is not recorded).
     stroke = opts.stroke_width if opts.stroke_width is not None else lines.stroke_width

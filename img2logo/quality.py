@@ -6,7 +6,8 @@ level of any run:
 * **recall** r_d: the fraction of ground-truth feature pixels within d px of the
   logo (its arcs and lines, sampled every ``QUALITY_SAMPLE_STEP`` px);
 * **silhouette recall** sil6: the fraction of an object mask's outline pixels
-  within 6 px of the logo;
+  within 6 px of the logo as drawn (the edge of its stroke, when a stroke width is
+  given: a line drawing's logo is drawn at the input's weight);
 * **outside**: the fraction of the logo's sample points farther than 12 px from
   the object mask (a logo of the background);
 * **crossings**: points where two arcs meet farther than
@@ -42,7 +43,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._validation import check_instance
+from ._validation import check_instance, check_positive
 from .constants import (
     CROSSING_END_DISTANCE,
     GAP_MAX,
@@ -214,13 +215,23 @@ def feature_recall(
     return tuple(float(np.mean(d <= limit)) for limit in distances)
 
 
-def silhouette_recall(points: np.ndarray, mask: np.ndarray, distance: float = SILHOUETTE_DISTANCE) -> float:
-    """sil6: the fraction of the outline pixels of ``mask`` (H, W) within ``distance`` px of ``points``."""
+def silhouette_recall(
+    points: np.ndarray, mask: np.ndarray, distance: float = SILHOUETTE_DISTANCE, stroke_width: float = 0.0
+) -> float:
+    """sil6: the fraction of the outline pixels of ``mask`` (H, W) within ``distance`` px of the logo as drawn.
+
+    ``points`` (N, 2) px sample the logo's arcs; drawn with a stroke ``stroke_width`` px wide
+    (default 0: the arcs alone), the logo covers half of it on each side: an outline pixel counts
+    within ``distance`` of that stroke's edge. A line drawing's logo is drawn at the input's own
+    stroke weight (:func:`img2logo.abstract` records it): the centre line of an outline stroke w px
+    wide lies w / 2 px inside the object's silhouette, which the stroke covers.
+    """
     from skimage.segmentation import find_boundaries
 
     mask = _check_map(mask, "mask")
+    stroke_width = check_positive(stroke_width, "stroke_width", allow_zero=True)
     outline = find_boundaries(mask, mode="inner")
-    return feature_recall(points, outline, (distance,))[0]
+    return feature_recall(points, outline, (distance + stroke_width / 2.0,))[0]
 
 
 def outside_fraction(points: np.ndarray, mask: np.ndarray, distance: float = OUTSIDE_DISTANCE) -> float:
@@ -387,13 +398,20 @@ def detail_error(abstraction: Abstraction, graph: SegmentGraph, mask: np.ndarray
 
 
 def measure(
-    arcs: Abstraction | Sequence[Arc], truth: np.ndarray | None = None, mask: np.ndarray | None = None
+    arcs: Abstraction | Sequence[Arc],
+    truth: np.ndarray | None = None,
+    mask: np.ndarray | None = None,
+    *,
+    stroke_width: float = 0.0,
 ) -> Quality:
-    """Every measure of a logo against a feature truth and an object mask (both optional)."""
+    """Every measure of a logo against a feature truth and an object mask (both optional).
+
+    ``stroke_width``: the width the logo is drawn with, px, for sil6 (:func:`silhouette_recall`).
+    """
     arcs = _arcs(arcs)
     points = logo_points(arcs)
     recall = feature_recall(points, truth) if truth is not None else tuple(np.nan for _ in RECALL_DISTANCES)
-    sil = silhouette_recall(points, mask) if mask is not None else np.nan
+    sil = silhouette_recall(points, mask, stroke_width=stroke_width) if mask is not None else np.nan
     out = outside_fraction(points, mask) if mask is not None else np.nan
     _, nearest = _end_distances(arcs)
     gaps = int(np.count_nonzero((nearest >= GAP_MIN) & (nearest <= GAP_MAX)))

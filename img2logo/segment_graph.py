@@ -29,6 +29,7 @@ from .errors import FitError, InvalidParameterError
 from .geometry.circle_fitting import fit_circle
 from .geometry.primitives import cumulative_length, polyline_length
 from .images import skeleton as _skeleton
+from .images.ndimage import skeletonize
 
 
 @dataclass(frozen=True, eq=False)
@@ -225,7 +226,7 @@ def build_segment_graph(
     arr = np.asarray(line_map)
     if arr.ndim != 2:
         raise InvalidParameterError(f"lines must be a 2-D map of shape (H, W), got shape {arr.shape}")
-    skel = _skeleton.skeletonize(arr.astype(bool))
+    skel = skeletonize(arr.astype(bool))
     graph = _skeleton.trace(skel)
     _skeleton.prune(graph, spur_length=min_length, min_length=min_length, junction_merge=JUNCTION_MERGE_DISTANCE)
 

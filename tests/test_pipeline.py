@@ -382,3 +382,39 @@ def test_stroke_width_option_overrides_and_is_checked():
     assert "stroke_width" not in abstract(DATA / "clipart-fish.png", progress=False).params  # the default
     with pytest.raises(InvalidParameterError, match="stroke_width must be > 0, got -1"):
         abstract(_ring_and_dot(ring=True, dot=False), stroke_width=-1)
+
+
+def _free_ends_at_line_ends(result) -> tuple[int, int]:
+    """(free ends of the logo, how many of them lie within 3 px of an end of the input's lines)."""
+    from img2logo.quality import free_ends
+
+    ends = free_ends(result.final)
+    line_ends = result.graph.junctions[result.graph.valence == 1]
+    if len(ends) == 0:
+        return 0, 0
+    if len(line_ends) == 0:
+        return len(ends), 0
+    near = np.hypot(*(ends[:, None, :] - line_ends[None, :, :]).transpose(2, 0, 1)).min(axis=1) <= 3.0
+    return len(ends), int(near.sum())
+
+
+def test_closed_outlines_stay_whole_and_a_stroke_keeps_only_its_own_ends():
+    """Known answers: the two discs' region boundaries are closed, so the logo has no free end; a Y
+    drawn in strokes has three line ends, and the logo's free ends are those three."""
+    from helpers import two_discs
+
+    found, at_ends = _free_ends_at_line_ends(abstract(two_discs(), progress=False))
+    assert found == at_ends == 0
+    found, at_ends = _free_ends_at_line_ends(abstract(drawing("Y"), progress=False))
+    assert found == at_ends == 3
+
+
+@pytest.mark.parametrize("name", ["clipart-beagle", "drawing-toque"])
+def test_every_free_end_of_a_real_logo_is_an_end_of_the_input_s_lines(name):
+    """Openclipart: the merges, the simplification and the tangent joins leave no dangling end where
+    the input's line runs on; the free ends are the ends of its strokes (a clip art's thin marks
+    drawn as centre lines, a drawing's fold lines)."""
+    result = abstract(DATA.parent / "benchmarks" / "data" / "openclipart" / f"{name}.png", progress=False)
+    found, at_ends = _free_ends_at_line_ends(result)
+    assert found > 0
+    assert at_ends == found

@@ -51,6 +51,20 @@ def test_silhouette_and_outside_of_a_disc():
     assert quality.silhouette_recall(background, mask) == 0.0
 
 
+def test_silhouette_of_a_logo_drawn_with_a_wide_stroke():
+    """Known answer: a circle 8 px inside a disc's outline misses sil6 as a hairline, and keeps it drawn
+    8 px wide (its stroke's edge 4 px from the outline); 2 px wide, its edge is still 7 px away."""
+    mask = np.zeros((120, 120), bool)
+    mask[disk((60, 60), 40)] = True
+    inside = quality.logo_points([_circle(60.5, 60.5, 31.5)])
+    assert quality.silhouette_recall(inside, mask) == 0.0
+    assert quality.silhouette_recall(inside, mask, stroke_width=8.0) == 1.0
+    assert quality.silhouette_recall(inside, mask, stroke_width=2.0) == 0.0
+    assert quality.measure([_circle(60.5, 60.5, 31.5)], mask=mask, stroke_width=8.0).silhouette == 1.0
+    with pytest.raises(InvalidParameterError, match="stroke_width must be >= 0"):
+        quality.silhouette_recall(inside, mask, stroke_width=-1.0)
+
+
 def test_crossing_in_the_middle_counts_and_meeting_at_ends_does_not():
     a = line_arc(np.array([0.0, 50.0]), np.array([100.0, 50.0]))
     b = line_arc(np.array([50.0, 0.0]), np.array([50.0, 100.0]))

@@ -9,7 +9,7 @@ to its neighbours at given offsets, for one or two sets of them (``clipart._flat
 same differences, squares and sums in the same order, so the same bits, in one
 pass instead of a dozen of temporary images. :func:`label_kernel` numbers the
 connected components of equal values by their first pixel in raster order
-(``_skeleton.label``'s numbering), in two passes with a union-find instead of OpenCV's
+(``skimage.measure.label``'s numbering), in two passes with a union-find instead of OpenCV's
 labelling of each value's mask and a renumbering. :func:`colour_table_kernel` is
 ``_cielab.srgb_to_lab``'s table of an 8-bit image's colours: the 24-bit code of
 every pixel (when every value is k / 255), the codes present in ascending
@@ -360,9 +360,16 @@ def edt_kernel(inside):  # pragma: no cover - compiled
     integers (each column's distance to its nearest outside pixel, then each
     row's lower envelope of parabolas), then the square root of the integer
     squared distance, as ``scipy.ndimage.distance_transform_edt`` gives it.
-    Outside pixels are 0. ``inside`` must hold an outside pixel.
+    Outside pixels are 0. Without any outside pixel, the distance to the pixel (-1, 0) just
+    above the first corner: scipy's answer then (its nearest features are (-1, 0)).
     """
     h, w = inside.shape
+    if np.all(inside != 0):
+        lone = np.empty((h, w))
+        for y in range(h):
+            for x in range(w):
+                lone[y, x] = np.sqrt(np.float64((y + 1) * (y + 1) + x * x))
+        return lone
     big = h + w  # farther than any pixel: a column without an outside pixel
     g = np.empty((h, w), dtype=np.int64)
     for x in range(w):  # the columns' passes row by row (the memory's order)

@@ -6,28 +6,34 @@ intersections, the redundant-intersection test, the arc extraction with its
 Fréchet distance, the tangent biarcs' searches), :mod:`img2logo._compiled.circle` (the free circle fit, a
 golden circle's centre, the biarc search's worst distances), :mod:`img2logo._compiled.graph`
 (the skeleton's shortest paths, the global KKT solve in a band) and
-:mod:`img2logo._compiled.front` (the clip-art regions' label sums), each beneath a public
-function whose Python code stays as the reference the tests compare against. This module gives
-them to their callers as attributes (``kernels.sqp_dense(...)``), loaded on first use:
+:mod:`img2logo._compiled.front` (the clip-art regions' label sums, labelling, the distance transform),
+:mod:`img2logo._compiled.ndimage` (thinning, scipy's 1-D correlation and feature transform), each beneath a
+public function whose Python code stays as the reference the tests compare against. This module gives them
+to their callers as attributes (``kernels.sqp_dense(...)``), loaded on first use:
 
-1. **Ahead of time.** On the first use in an install the entry points below are
-   compiled once, with numba's ``pycc``, into one extension module (seconds,
-   once), stored in ``img2logo/__pycache__`` or, when that is read-only, in
-   ``$XDG_CACHE_HOME/img2logo``; its name carries a hash of the kernels' source
-   and of numpy's version, so an edited kernel is never run stale. A later
-   process imports that module like any other: numba is not imported at all.
+1. **Ahead of time.** The entry points below are compiled with numba's ``pycc``
+   into one extension module whose name carries a hash of the kernels' source and
+   of numpy's major version, so an edited kernel is never run stale. A wheel ships
+   it beside this file (``setup.py`` builds it for the architecture's generic
+   processor); otherwise the first use in an install compiles it for this
+   machine's processor (about a minute of CPU, once, said in one line on stderr)
+   into ``img2logo/_compiled/__pycache__`` or, when that is read-only,
+   ``$XDG_CACHE_HOME/img2logo``. A run imports that module like any other:
+   numba is not imported at all.
    Its import and start-up were ~0.7 s of CPU of every run of the command (the
    library's import, then its typing and lowering registries when the first
    cached kernel loaded), more than the run's own work on a clip art.
 2. **Just in time**, where no such module can be built (no C compiler): numba's
    ``njit(cache=True)``, loaded from numba's disk cache.
 3. **Not at all** where numba cannot cache either (:data:`CACHED` False): the
-   callers run their Python reference, with the same results to the solver's
-   tolerance, rather than compile in every process.
+   optimizer's callers run their Python reference, with the same results to the
+   solver's tolerance, rather than compile in every process; the image
+   operations (:mod:`img2logo.images.ndimage`) have no second path and are
+   compiled by the JIT in the process.
 
-Both compiled forms are the same numba code with the same types, compiled for
-this machine's processor without fast-math: the same floating-point operations
-in the same order.
+The compiled forms are the same numba code with the same types, compiled
+without fast-math (so nothing is reordered or fused): the same floating-point
+operations in the same order for the generic processor and this one.
 """
 
 from __future__ import annotations
@@ -126,15 +132,26 @@ ENTRY_POINTS: dict[str, tuple[str, tuple[str, ...], str]] = {
         tuple("f8[:,::1] i8[::1] i8[::1] f8[:,:,:,::1] f8[:,:,:,::1] f8 f8".split()),
         "Tuple((f8, i8, i8, i8))",
     ),
+    "thin_kernel": ("ndimage", ("u1[:,::1]",), "b1[:,::1]"),
+    "correlate_kernel": ("ndimage", ("f8[:,:,::1]", "f8[::1]", "i8", "f8", "!f8[:,:,::1]"), "i8"),
+    "correlate32_kernel": ("ndimage", ("f4[:,:,::1]", "f8[::1]", "i8", "f8", "!f4[:,:,::1]"), "i8"),
+    "feature_transform_kernel": ("ndimage", ("u1[:,::1]",), "i4[:,:,::1]"),
 }
 
-_DTYPES = {"f8": np.dtype(np.float64), "i8": np.dtype(np.int64), "b1": np.dtype(np.bool_), "u1": np.dtype(np.uint8)}
+_DTYPES: dict[str, np.dtype[Any]] = {
+    "f8": np.dtype(np.float64),
+    "f4": np.dtype(np.float32),
+    "i8": np.dtype(np.int64),
+    "b1": np.dtype(np.bool_),
+    "u1": np.dtype(np.uint8),
+}
 _SOURCES = (
     "sqp.py",
     "arcs.py",
     "circle.py",
     "graph.py",
     "front.py",
+    "ndimage.py",
     "jit.py",
 )
 _loaded: dict[str, Any] = {}
@@ -158,8 +175,12 @@ def __getattr__(name: str) -> Any:
 
 
 def module_name() -> str:
-    """The ahead-of-time module's name: ``_kernels_`` and a hash of the kernels' source, signatures, numpy's version."""
-    digest = _sha256(f"{np.__version__} {ENTRY_POINTS}".encode())
+    """The ahead-of-time module's name: ``_kernels_`` and a hash of the kernels' source, signatures, numpy's ABI.
+
+    numpy's major version stands for its ABI: a module built against a numpy runs with any later one of the same
+    major version, and one built against a later numpy than the running one fails to import (then it is rebuilt).
+    """
+    digest = _sha256(f"numpy {np.__version__.split('.')[0]} {ENTRY_POINTS}".encode())
     here = Path(__file__).parent
     for name in _SOURCES:
         digest.update((here / name).read_bytes())
@@ -179,9 +200,13 @@ def _sha256(data: bytes) -> Any:
 
 
 def _directories() -> list[Path]:
-    """Where the ahead-of-time module may live: next to the package's bytecode, else the user's cache."""
+    """Where the ahead-of-time module may live: next to the package's bytecode, else the user's cache.
+
+    A wheel ships the module beside this file (``setup.py`` builds it); it is looked for there first.
+    """
     cache = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
-    return [Path(__file__).parent / "__pycache__", Path(cache) / "img2logo"]
+    here = Path(__file__).parent
+    return [here, here / "__pycache__", Path(cache) / "img2logo"]
 
 
 def _load() -> dict[str, Any]:
@@ -204,15 +229,30 @@ def _entry_points() -> dict[str, Any]:
     module = None
     for directory in _directories():
         if (directory / filename).is_file():
-            module = _import(name, directory / filename)
-            break
+            try:
+                module = _import(name, directory / filename)
+                break
+            except ImportError:  # built against a later numpy than this one: built again below
+                continue
     if module is None:
-        for directory in _directories():
+        import sys
+        import time
+
+        print(
+            "img2logo: compiling its kernels for this machine, once (about a minute of CPU; later runs start in"
+            " about a second)...",
+            file=sys.stderr,
+            flush=True,
+        )
+        start = time.perf_counter()
+        for directory in _directories()[1:]:
             try:
                 module = _import(name, build(directory))
                 break
             except Exception:  # no compiler, a read-only directory, ...: the next place, then the JIT
                 continue
+        took = f"compiled in {time.perf_counter() - start:.0f} s" if module is not None else "no C compiler"
+        print(f"img2logo: kernels {took}", file=sys.stderr, flush=True)
     if module is not None:
         source = str(module.__file__)
         return {entry: _checked(getattr(module, entry), args) for entry, (_, args, _) in ENTRY_POINTS.items()}
@@ -264,11 +304,17 @@ def _checked(fn: Any, args: tuple[str, ...]) -> Any:
     return call
 
 
-def build(directory: Path) -> Path:
+def build(directory: Path, cpu: str = "host") -> Path:
     """Compile the entry points ahead of time into ``directory`` (numba's ``pycc``); the module's path.
 
-    The module is written under a temporary name and renamed into place, so that
-    processes building at once never load a half-written file.
+    ``cpu``: LLVM's processor name; ``"host"`` this machine's (as numba's JIT compiles), ``""`` the
+    architecture's generic processor (a wheel's, which runs on any machine of the architecture). The
+    module is written under a temporary name and renamed into place, so that processes building at
+    once never load a half-written file.
+
+    numba's ``pycc`` is pending deprecation; when a numba release drops it, the kernels keep to numba's
+    JIT (:func:`_entry_points`' second way) until they are built by its successor (numba's planned
+    ahead-of-time compiler), and ``numba`` is pinned below that release in ``pyproject.toml`` meanwhile.
     """
     import warnings
 
@@ -281,7 +327,7 @@ def build(directory: Path) -> Path:
         with tempfile.TemporaryDirectory(dir=directory) as tmp:
             cc = CC(name)
             cc.output_dir = tmp
-            cc.target_cpu = "host"  # as numba's JIT does
+            cc.target_cpu = cpu
             cc.verbose = False
             for entry, (source, args, result) in ENTRY_POINTS.items():
                 module = importlib.import_module(f".{source}", __package__)

@@ -184,8 +184,8 @@ def to_document(
 def from_document(doc: Mapping[str, Any]) -> Abstraction:
     """The abstraction stored in an ``img2logo.abstraction/1`` document.
 
-    The document is validated first: against the packaged JSON Schema when
-    jsonschema is installed, and always against the contract's invariants.
+    The document is validated first: against the packaged JSON Schema (with
+    jsonschema) and against the contract's invariants.
     Round trip: ``from_document(to_document(a))`` has the same circles, arcs,
     ``arc_segments``, parameters and ladder as ``a``, and its junctions are those of
     ``a`` that had an arc ending there, each listing those arcs. The ladder is the
@@ -214,7 +214,7 @@ def from_document(doc: Mapping[str, Any]) -> Abstraction:
     d = dict(doc)
     _check_counts(d)
     try:
-        _check_schema(d, required=False)
+        _check_schema(d)
         _check_invariants(d)
         circles = [Circle(float(c["cx"]), float(c["cy"]), float(c["r"]), int(c["k"])) for c in d["circles"]]
         arcs = tuple(Arc(circles[int(a["circle"])], float(a["theta0"]), float(a["sweep"])) for a in d["arcs"])
@@ -287,14 +287,12 @@ def validate_document(doc: Mapping[str, Any]) -> None:
     InvalidParameterError
         With jsonschema's message and the failing path, or naming the first
         violated invariant, e.g. ``circle 3: r=12.0 is not phi**(k+bias) = 11.09 ...``.
-    ImportError
-        If jsonschema (a development dependency) is not installed.
     """
     if not isinstance(doc, Mapping):
         raise InvalidParameterError(f"document must be a JSON object (mapping), got {type(doc).__name__}")
     d = dict(doc)
     _check_counts(d)
-    _check_schema(d, required=True)
+    _check_schema(d)
     try:
         _check_invariants(d)
     except OverflowError as exc:
@@ -360,17 +358,10 @@ def _schema() -> dict[str, Any]:
     return json.loads(text)
 
 
-def _check_schema(doc: dict[str, Any], *, required: bool) -> None:
-    """Validate ``doc`` against the packaged schema; without jsonschema raise or skip."""
-    try:
-        import jsonschema
-    except ImportError as exc:
-        if not required:
-            return
-        raise ImportError(
-            "validating an img2logo document against its JSON Schema needs the optional package "
-            "jsonschema (a development dependency): pip install jsonschema"
-        ) from exc
+def _check_schema(doc: dict[str, Any]) -> None:
+    """Validate ``doc`` against the packaged schema (jsonschema is imported here: only reading a document needs it)."""
+    import jsonschema
+
     validator = jsonschema.Draft202012Validator(_schema())
     error = jsonschema.exceptions.best_match(validator.iter_errors(doc))
     if error is not None:

@@ -38,18 +38,23 @@ in px, x to the right, y downwards (``contract/README.md``).
 
 from __future__ import annotations
 
+from collections.abc import Iterator
+
 import numpy as np
 
+from .._compat import median
 from ..constants import (
     CLIPART_BLOCK_REACH,
     CLIPART_EDGE_CONTRAST,
     CLIPART_FILL_SPREAD,
     CLIPART_FLAT_RADIUS,
+    CLIPART_INK_BORDER,
     CLIPART_LINK_DISTANCE,
     CLIPART_MIN_CONTRAST,
     CLIPART_MIN_REGION_AREA,
     CLIPART_NOISE_FACTOR,
     CLIPART_NOISY_FRACTION,
+    CLIPART_OUTLINE_WIDTH,
     CLIPART_RIM_RADIUS,
     CLIPART_RING_WIDTH,
     CLIPART_SEED_AREA,
@@ -60,7 +65,6 @@ from ..constants import (
 )
 from ..images.cielab import srgb_to_lab
 from ..images.loading import LoadedImage
-from ..images.ndimage import median
 
 #: The offsets whose colour differences :func:`colour_noise` measures: the 4-neighbours.
 _NOISE_PAIRS = ((0, 1), (1, 0))
@@ -226,7 +230,7 @@ def _palette_regions(
     tip). They seed entries too.
     """
     from .._compiled import kernels
-    from ..images.skeleton import label
+    from ..images.ndimage import components
 
     counts, lab_means, rgb_means = _label_means_of_two(areas, lab, rgb)
     seeds = np.flatnonzero(counts >= seed_area)
@@ -276,10 +280,10 @@ def _palette_regions(
     # their corners: tiny 4-connected pieces that are one 8-connected region.
     if kernels.usable():  # the steps below in one compiled call
         return kernels.palette_regions_kernel(index, CLIPART_MIN_REGION_AREA), ~rest
-    regions = label(index, connectivity=1, background=-1)
+    regions = components(index, connectivity=1, background=-1)
     tiny = np.bincount(regions.ravel())[regions] < CLIPART_MIN_REGION_AREA
     if tiny.any():
-        joined = label(np.where(tiny, index, -1), connectivity=2, background=-1)
+        joined = components(np.where(tiny, index, -1), connectivity=2, background=-1)
         regions = np.where(tiny, joined + regions.max() + 1, regions)
     return _relabel(regions), ~rest
 
@@ -294,8 +298,9 @@ def _near_entries(index: np.ndarray, n: int, rest: np.ndarray, radius: int = CLI
     """For each pixel of ``rest``, which of the ``n`` entries have seed pixels within ``radius`` px: (R, n) bool."""
     import cv2
 
+    from .._compat import nonzero
     from .._compiled import kernels
-    from ..images.skeleton import bounding_slices, nonzero
+    from ..images.ndimage import bounding_slices
 
     size = 2 * radius + 1
     disk = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (size, size))
@@ -356,13 +361,13 @@ def _unexplained_seeds(
     ``CLIPART_FILL_SPREAD`` times what lies within ``CLIPART_RIM_RADIUS`` px of
     them (thin strokes that cross, not a fill).
     """
-    from ..images.skeleton import label
+    from ..images.ndimage import components
 
     if not compressed:
         own = _unexplained(seed_of, areas_rgb, rgb, lab, contrast)
         if not own.any():
             return None
-        groups = label(own, connectivity=2)
+        groups = components(own, connectivity=2)
         # Over the unexplained pixels only (a few thousand): the same counts and the same zeros.
         at = np.flatnonzero(own)
         in_group = groups.ravel()[at]
@@ -382,12 +387,12 @@ def _unexplained_seeds(
         return None
     # A small fill's unexplained pixels are its inside and its rim, near its core; a core in a
     # network of thin strokes (where two 3 px lines of a JPEG drawing cross) is no small fill.
-    parts = label(own, connectivity=2)
+    parts = components(own, connectivity=2)
     size = 2 * CLIPART_RIM_RADIUS + 1
     near = (cv2.dilate(core.astype(np.uint8), np.ones((size, size), np.uint8)) > 0) & own
     spread = np.bincount(parts.ravel()) > CLIPART_FILL_SPREAD * np.bincount(parts[near], minlength=parts.max() + 1)
     core &= ~spread[parts]
-    groups = label(core, connectivity=2)
+    groups = components(core, connectivity=2)
     small = np.bincount(groups.ravel()) < CLIPART_SEED_AREA
     small[0] = False
     groups[small[groups]] = 0
@@ -481,7 +486,7 @@ def _reached_entries(
     """
     import cv2
 
-    from ..images.skeleton import nonzero
+    from .._compat import nonzero
 
     h, w = seed_of.shape
     n = len(singles)
@@ -545,9 +550,9 @@ def _flat_areas(lab: np.ndarray, link: float, *, most: np.ndarray | None = None)
     # Adjacent flat pixels are within the link of each other by definition, so the
     # flat areas are the 4-connected components of the flat mask; every other pixel
     # is an area of its own (labels after the components').
-    from ..images.skeleton import label
+    from ..images.ndimage import components
 
-    labels = label(flat, connectivity=1)
+    labels = components(flat, connectivity=1)
     n = int(labels.max())
     rest = ~flat
     labels[rest] = n + 1 + np.arange(int(rest.sum()))
@@ -612,7 +617,7 @@ def _background_first(regions: np.ndarray) -> np.ndarray:
     return _relabel(swap[regions])
 
 
-def thin_regions(regions: np.ndarray) -> np.ndarray:
+def thin_regions(regions: np.ndarray, lightness: np.ndarray | None = None) -> np.ndarray:
     """Labels of the thin regions: strokes drawn as filled shapes.
 
     A region (not the background) is thin when its typical width, twice the
@@ -621,29 +626,29 @@ def thin_regions(regions: np.ndarray) -> np.ndarray:
     ``CLIPART_STROKE_ELONGATION`` times longer than that width: a whisker or
     an outline, not a dot.
 
+    An **ink outline** (:func:`ink_outlines`, given the regions' mean L*
+    ``lightness`` (n,)), a region darker than what it touches, is a stroke up
+    to ``CLIPART_OUTLINE_WIDTH`` px wide: the cartoon style's dark line between
+    lighter fills, drawn once along its centre as a drawing's stroke is, not as
+    two edges.
+
     Returns
     -------
     ndarray of int
         The labels, sorted.
     """
     from .._compiled import kernels
-    from ..images.skeleton import bounding_slices, distance_to_background, skeletonize
+    from ..images.ndimage import bounding_slices, skeletonize
 
     # The distance to the nearest other region: pad with -1 so that the image
     # frame is an edge too.
-    if kernels.usable():  # the edges and their distance in one compiled call
-        depth = kernels.region_depth_kernel(regions)
-    else:
-        padded = np.pad(regions, 1, constant_values=-1)
-        edge = np.zeros(padded.shape, dtype=bool)
-        edge[:, :-1] |= padded[:, :-1] != padded[:, 1:]
-        edge[:, 1:] |= padded[:, :-1] != padded[:, 1:]
-        edge[:-1] |= padded[:-1] != padded[1:]
-        edge[1:] |= padded[:-1] != padded[1:]
-        depth = distance_to_background(~edge)
+    depth = kernels.region_depth_kernel(regions)  # the edges and their distance (ndimage.distance's) in one call
     dist = depth[1:-1, 1:-1] + 0.5
     out = []
     n = int(regions.max()) + 1
+    widest = np.full(n, CLIPART_STROKE_WIDTH)
+    if lightness is not None:
+        widest[ink_outlines(regions, lightness)] = CLIPART_OUTLINE_WIDTH
     slices = bounding_slices(regions + 1)
     for label in range(1, n):
         sl = slices[label] if label < len(slices) else None
@@ -653,33 +658,74 @@ def thin_regions(regions: np.ndarray) -> np.ndarray:
         local = dist[sl][inside]
         # A stroke is thin everywhere: a region with a wide part (a balloon on its
         # string) keeps its outline.
-        if 2.0 * local.max() > CLIPART_STROKE_MAX_FACTOR * CLIPART_STROKE_WIDTH:
+        if 2.0 * local.max() > CLIPART_STROKE_MAX_FACTOR * widest[label]:
             continue
         axis = skeletonize(inside)
         if not axis.any():
             continue
         width = 2.0 * float(median(dist[sl][axis]))
-        if width <= CLIPART_STROKE_WIDTH and axis.sum() >= CLIPART_STROKE_ELONGATION * width:
+        if width <= widest[label] and axis.sum() >= CLIPART_STROKE_ELONGATION * width:
             out.append(label)
     return np.array(out, dtype=np.int64)
 
 
-def clipart_lines(regions: np.ndarray) -> np.ndarray:
-    """A clip art's line map before thinning: region boundaries, and thin regions whole.
+def ink_outlines(
+    regions: np.ndarray, lightness: np.ndarray, *, paper: bool = True, contrast: float = CLIPART_EDGE_CONTRAST
+) -> np.ndarray:
+    """Labels of the ink outlines: regions darker than what they touch, sorted.
+
+    A region is one when at least ``CLIPART_INK_BORDER`` of its border (in
+    pixel pairs) is with regions lighter by ``contrast`` (L*, default
+    ``CLIPART_EDGE_CONTRAST``; ``lightness`` (n,) the regions' mean): a cartoon's outline runs between
+    lighter fills, and touches the odd dark detail (a pupil, a dark shading)
+    along a little of its length. The background is none. Without ``paper``
+    the border with the background does not count: a dark mark on the
+    object's lighter fills (an eye, a spot, an inner outline), and not a dark
+    shape alone on the paper.
+    """
+    n = int(regions.max()) + 1
+    border = _border_lengths(regions, n).astype(np.float64)
+    if not paper:
+        border[:, 0] = 0.0
+    lighter = lightness[None, :] - lightness[:, None] >= contrast  # [i, j]: j lighter than i
+    share = (border * lighter).sum(axis=1) / np.maximum(border.sum(axis=1), 1.0)
+    dark = share >= CLIPART_INK_BORDER
+    dark[0] = False
+    return np.flatnonzero(dark)
+
+
+def clipart_lines(regions: np.ndarray, lightness: np.ndarray | None = None) -> np.ndarray:
+    """A clip art's line map before thinning: region boundaries, and strokes drawn once.
 
     Thin regions (:func:`thin_regions`) are given to the neighbour they share
     the longest border with before the boundaries are taken, and their pixels
     are added to the map, so that thinning turns each into its centreline,
     joined to the boundaries it touches.
 
+    With ``lightness`` (n,), the regions' mean L*, the **ink outlines** are
+    drawn once, as a drawing's strokes (:func:`ink_strokes`: the thin ink
+    regions and the thin parts of the others, a cartoon's outline network).
+    Each of their pixels is given to the region nearest to it, so that the
+    boundary between a stroke's two sides runs along its middle; the pixels
+    are added to the map (a stroke that ends inside a fill, a whisker, keeps its
+    end). On the silhouette the stroke is the silhouette's line: a stroke pixel
+    within ``CLIPART_OUTLINE_WIDTH`` px of both the background and a fill of the
+    object goes to the nearest region of the object and is not added, so the
+    line runs along the outline's outer edge, where the object ends. A line on
+    the paper alone (a whisker beside the face) is drawn along its middle.
+
     Returns
     -------
     ndarray of bool, shape (H, W)
     """
-    thin = thin_regions(regions)
-    if len(thin) == 0:
+    strokes = None
+    thin = thin_regions(regions, lightness)
+    if lightness is not None:
+        strokes = ink_strokes(regions, lightness, thin)
+        thin = np.setdiff1d(thin, ink_outlines(regions, lightness))
+    if len(thin) == 0 and strokes is None:
         return region_boundaries(regions)
-    stroke = np.isin(regions, thin)
+    drawn = np.isin(regions, thin)
     n = int(regions.max()) + 1
     border = _border_lengths(regions, n)
     target = np.arange(n)
@@ -689,7 +735,110 @@ def clipart_lines(regions: np.ndarray) -> np.ndarray:
         if row.max() > 0:
             target[label] = int(np.argmax(row))
     merged = target[regions]
-    return region_boundaries(merged) | (stroke & _interior(regions.shape))
+    if strokes is not None:
+        import cv2
+
+        paper = merged == 0
+        fill = ~paper & ~strokes
+
+        def within(mask: np.ndarray) -> np.ndarray:  # the pixels within an outline's width of ``mask``
+            return cv2.distanceTransform((~mask).astype(np.uint8), cv2.DIST_L2, 5) <= CLIPART_OUTLINE_WIDTH
+
+        # An outline between the paper and a fill of the object; a line on the paper alone is drawn as it is.
+        near_paper = strokes & within(paper) & within(fill) if fill.any() else np.zeros_like(strokes)
+        far = strokes & ~near_paper
+        given = merged
+        if far.any():  # the nearest region of any kind: the boundary runs along the stroke's middle
+            given = np.where(far, _nearest_labels(merged, strokes), given)
+        if near_paper.any():  # the nearest region of the object: the line runs along the silhouette
+            given = np.where(near_paper, _nearest_labels(merged, strokes | paper), given)
+        merged = given
+        drawn |= far
+    return region_boundaries(merged) | (drawn & _interior(regions.shape))
+
+
+def ink_strokes(regions: np.ndarray, lightness: np.ndarray, thin: np.ndarray) -> np.ndarray | None:
+    """The pixels of the ink outlines drawn as strokes: (H, W) bool, or None if there are none.
+
+    The :func:`ink_outlines` among the ``thin`` regions, whole, and the thin
+    parts of the other ink outlines: their pixels that no disc ``CLIPART_OUTLINE_WIDTH`` + 1 px
+    across inside them covers (:func:`_ink_parts`).
+    """
+    inks = ink_outlines(regions, lightness)
+    out = np.isin(regions, np.intersect1d(thin, inks))
+    for _, sl, part in _ink_parts(regions, np.setdiff1d(inks, thin)):
+        out[sl] |= part
+    return out if out.any() else None
+
+
+def outline_strokes(regions: np.ndarray, lightness: np.ndarray) -> np.ndarray:
+    """Labels of the ink outlines drawn as strokes: thin regions, or at least half thin parts; sorted.
+
+    :func:`ink_outlines` that are :func:`thin_regions` whole, or whose
+     thin parts (:func:`ink_strokes`) hold at least half their pixels (a cartoon's outline
+    network with a few wider blobs); a dark fill (a black disc) is none.
+    """
+    inks = ink_outlines(regions, lightness)
+    thin = np.intersect1d(thin_regions(regions, lightness), inks)
+    area = np.bincount(regions.ravel())
+    mostly = [
+        label for label, _, part in _ink_parts(regions, np.setdiff1d(inks, thin)) if 2 * part.sum() >= area[label]
+    ]
+    return np.union1d(thin, np.array(mostly, dtype=np.int64))
+
+
+def _ink_parts(regions: np.ndarray, labels: np.ndarray) -> Iterator[tuple[int, tuple[slice, slice], np.ndarray]]:
+    """(label, box, thin part within the box) of each of ``labels``.
+
+    The thin part of a region: its pixels that no disc ``CLIPART_OUTLINE_WIDTH``
+    + 1 px across inside it covers (what a morphological opening by that disc
+    removes, Soille 2003, Sec. 4.4), in 8-connected pieces of at least
+    ``CLIPART_MIN_REGION_AREA`` px (a wide blob's corners are not covered
+    either, but are a few px each) and at least ``CLIPART_STROKE_ELONGATION``
+    times longer than wide (a dot, an eye, is no stroke).
+    """
+    import cv2
+
+    from ..images.skeleton import bounding_slices
+
+    if len(labels) == 0:
+        return
+    size = int(CLIPART_OUTLINE_WIDTH) + 1
+    disc = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (size, size))
+    slices = bounding_slices(regions + 1)
+    h, w = regions.shape
+    for label in labels:
+        box = slices[label]
+        if box is None:
+            continue
+        sl = (
+            slice(max(0, box[0].start - size), min(box[0].stop + size, h)),
+            slice(max(0, box[1].start - size), min(box[1].stop + size, w)),
+        )
+        own = (regions[sl] == label).astype(np.uint8)
+        part = own.astype(bool) & (cv2.morphologyEx(own, cv2.MORPH_OPEN, disc) == 0)
+        count, pieces, stats, _ = cv2.connectedComponentsWithStats(part.view(np.uint8), connectivity=8)
+        # A stroke, not a dot: at least CLIPART_STROKE_ELONGATION times longer than wide (its
+        # area over its width, twice its largest inner distance), as thin_regions asks.
+        depth = cv2.distanceTransform(part.view(np.uint8), cv2.DIST_L2, 5)
+        half = np.zeros(count)
+        np.maximum.at(half, pieces.ravel(), depth.ravel())
+        area = stats[:, cv2.CC_STAT_AREA]
+        keep = (area >= CLIPART_MIN_REGION_AREA) & (area >= CLIPART_STROKE_ELONGATION * (2.0 * half) ** 2)
+        keep[0] = False
+        yield int(label), sl, keep[pieces]
+
+
+def _nearest_labels(regions: np.ndarray, strokes: np.ndarray) -> np.ndarray:
+    """``regions`` with every pixel of ``strokes`` given the label of the nearest pixel outside them: (H, W) int."""
+    import cv2
+
+    free = np.where(strokes, 255, 0).astype(np.uint8)  # the zero pixels are the sources
+    _, nearest = cv2.distanceTransformWithLabels(free, cv2.DIST_L2, 5, labelType=cv2.DIST_LABEL_PIXEL)
+    rows, cols = np.nonzero(free == 0)
+    owner = np.zeros(int(nearest.max()) + 1, dtype=regions.dtype)
+    owner[nearest[rows, cols]] = regions[rows, cols]
+    return np.where(strokes, owner[nearest], regions)
 
 
 def _border_lengths(regions: np.ndarray, n: int) -> np.ndarray:

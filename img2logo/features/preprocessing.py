@@ -21,10 +21,12 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from .._compat import median
 from .._validation import check_choice, check_positive, readonly
 from ..constants import (
     BLANK_IMAGE_RANGE,
     CLIPART_RIM_RADIUS,
+    DETAIL,
     DOT_MIN_DIAMETER,
     DOT_MIN_RADIUS,
     DRAWING_MAX_STROKE_FRACTION,
@@ -38,14 +40,17 @@ from ..constants import (
     SEAM_LENGTH,
     SEAM_RIM,
     SEAM_WIDTH,
+    SHADED_INK_MAX_LIGHTNESS,
+    SHADED_INK_SHARE,
     SPUR_LENGTH,
     SYNTHETIC_FLAT_FRACTION,
     SYNTHETIC_WORK_SIDE,
 )
 from ..images import skeleton as _skeleton
 from ..images.loading import DownscaleWarning, LoadedImage, downscale, load_image, load_mask
-from ..images.ndimage import median
+from ..images.ndimage import bounding_slices, components, distance, skeletonize
 from .clipart import clipart_lines, clipart_regions, label_means
+from .detail import check_detail, merge_by_importance
 
 if TYPE_CHECKING:
     from .photo.lines import edge_tangent_flow, flow_dog
@@ -104,6 +109,11 @@ class FeatureLines:
         For a line drawing, its median stroke width, px: twice the median
         distance from the ink's skeleton to the paper
         (:func:`median_stroke_width`); None for the other kinds.
+    detail : int or None
+        For a clip art, the regions kept besides the background
+        (:func:`img2logo.features.detail.merge_by_importance`): the ``detail``
+        asked, more where what is never merged is more, fewer where there were
+        too many regions; None for the other kinds.
 
     Examples
     --------
@@ -122,6 +132,7 @@ class FeatureLines:
     regions: np.ndarray | None = None
     subject: Subject | None = None
     stroke_width: float | None = None
+    detail: int | None = None
 
     @property
     def shape(self) -> tuple[int, int]:
@@ -215,6 +226,18 @@ def _detect(img: LoadedImage) -> tuple[str, str, np.ndarray | None]:
                 None,
             )
         return "clipart", f"one flat colour on a plain background, in shapes {stroke:.0f} px wide: a clip art", regions
+    ink = _shaded_ink(regions, img.rgb, means, solid, paper)
+    if ink is not None:
+        inked = ink[regions]
+        stroke = median_stroke_width(inked)
+        if stroke <= DRAWING_MAX_STROKE_FRACTION * min(regions.shape):
+            share = area[ink].sum() / area[solid].sum()
+            return (
+                "drawing",
+                f"one ink colour with grey shading on a plain background, the ink {share:.0%} of what is drawn, in "
+                f"strokes about {stroke:.0f} px wide: a line drawing",
+                None,
+            )
     return "clipart", f"{flat:.0%} of the pixels sit in flat fills of {colours} colours: a clip art", regions
 
 
@@ -222,6 +245,53 @@ def _one_ink(means: np.ndarray, area: np.ndarray) -> bool:
     """Whether the regions' colours (n, 3) CIELAB all lie within ``INK_COLOUR_SPREAD`` of their mean."""
     ink = np.average(means, axis=0, weights=area)
     return bool(np.max(np.linalg.norm(means - ink, axis=1)) <= INK_COLOUR_SPREAD)
+
+
+def _blends(regions: np.ndarray, rgb: np.ndarray, ink: np.ndarray, paper: np.ndarray) -> np.ndarray:
+    """The blends of the paper's colour and the ink's, (65, 3) CIELAB, from the paper (first) to the ink (last).
+
+    ``ink`` and ``paper`` (n,) bool pick the regions of ``regions`` whose mean sRGB colours,
+    weighted by area, are mixed: in sRGB, as anti-aliasing and a grey tint of the ink do.
+    """
+    from ..images.cielab import rgb2lab  # skimage.color.rgb2lab, without importing scipy.linalg
+
+    area, rgb_means = label_means(regions, rgb)  # np.bincount's sums by channel, divided by the areas
+    ink_rgb = np.average(rgb_means[ink], axis=0, weights=area[ink])
+    paper_rgb = np.average(rgb_means[paper], axis=0, weights=area[paper])
+    t = np.linspace(0.0, 1.0, 65)
+    return rgb2lab((paper_rgb[None] + t[:, None] * (ink_rgb - paper_rgb)[None])[:, None, :])[:, 0, :]
+
+
+def _shaded_ink(
+    regions: np.ndarray, rgb: np.ndarray, means: np.ndarray, solid: np.ndarray, paper: np.ndarray
+) -> np.ndarray | None:
+    """The ink's regions of a drawing in one ink with grey shading, (n,) bool; None when the image is not one.
+
+    A pencil or ink drawing is often shaded: a telescope's tube filled grey, a feather's vane
+    light grey, a swan's body in bands of grey. Its colours beside the paper are then all
+    blends of the paper and the ink, each within ``INK_COLOUR_SPREAD`` of one (:func:`_blends`;
+    a black ink's greys: a colour of its own is no shading), the ink being the drawn colour
+    farthest from the paper's, and dark (L* at most ``SHADED_INK_MAX_LIGHTNESS``). The regions
+    nearer the ink than the paper on that blend are ink, as a threshold halfway between them
+    reads it (:func:`_drawing_lines`); the lighter ones are shading. It is such a drawing when
+    the ink is more than ``SHADED_INK_SHARE`` of what is drawn (the ``solid`` regions, by
+    area): its lines carry it, the shading is an accent. A grey animal with a black outline
+    is mostly fill: a clip art of greys.
+    """
+    drawn = np.flatnonzero(solid)
+    if len(drawn) < 2:
+        return None
+    area = np.bincount(regions.ravel(), minlength=len(means)).astype(np.float64)
+    darkest = drawn[np.argmax(np.linalg.norm(means[drawn] - means[0], axis=1))]
+    if means[darkest, 0] > SHADED_INK_MAX_LIGHTNESS:
+        return None  # no dark ink: light greys on white are a clip art's, or a drawing's in one ink
+    blends = _blends(regions, rgb, np.arange(len(means)) == darkest, paper)
+    gap = np.linalg.norm(means[drawn][:, None, :] - blends[None, :, :], axis=2)
+    if np.any(gap.min(axis=1) > INK_COLOUR_SPREAD):
+        return None
+    ink = np.zeros(len(means), dtype=bool)
+    ink[drawn[np.argmin(gap, axis=1) >= len(blends) // 2]] = True
+    return ink if area[ink].sum() > SHADED_INK_SHARE * area[solid].sum() else None
 
 
 def _rim_regions(regions: np.ndarray, rgb: np.ndarray, means: np.ndarray, paper: np.ndarray) -> np.ndarray:
@@ -257,26 +327,21 @@ def _rim_regions(regions: np.ndarray, rgb: np.ndarray, means: np.ndarray, paper:
 
     n = len(means)
     out = np.zeros(n, dtype=bool)
-    labels = regions.ravel()
-    area = np.bincount(labels, minlength=n).astype(np.float64)
     inked = np.flatnonzero(~paper)
     if len(inked) < 2:
         return out
+    area = np.bincount(regions.ravel(), minlength=n).astype(np.float64)
     largest = inked[np.argmax(area[inked])]
     ink = ~paper & (np.linalg.norm(means - means[largest], axis=1) <= INK_COLOUR_SPREAD)
+    blends = _blends(regions, rgb, ink, paper)
     others = np.flatnonzero(~paper & ~ink)
-    rgb_means = label_means(regions, rgb)[1]  # np.bincount's sums by channel, divided by the areas
-    ink_rgb = np.average(rgb_means[ink], axis=0, weights=area[ink])
-    paper_rgb = np.average(rgb_means[paper], axis=0, weights=area[paper])
-    t = np.linspace(0.0, 1.0, 65)
-    blends = rgb2lab((paper_rgb[None] + t[:, None] * (ink_rgb - paper_rgb)[None])[:, None, :])[:, 0, :]
     if any(np.min(np.linalg.norm(blends - means[r], axis=1)) > INK_COLOUR_SPREAD for r in others):
         return out  # a colour of its own: no rim makes this one ink
     import cv2
 
-    slices = _skeleton.bounding_slices(regions + 1)
+    slices = bounding_slices(regions + 1)
     eight = np.ones((3, 3), dtype=np.uint8)
-    ink_lab = rgb2lab(ink_rgb[None, None, :])[0, 0]
+    ink_lab = blends[-1]  # the ink's own colour
     for r in others:
         box = slices[r]
         if box is None:  # no pixel: never, the labels are packed
@@ -286,7 +351,7 @@ def _rim_regions(regions: np.ndarray, rgb: np.ndarray, means: np.ndarray, paper:
         if np.mean(np.linalg.norm(rgb2lab(rgb[sl][own]) - ink_lab, axis=-1) <= INK_COLOUR_SPREAD) >= INK_SHARE:
             out[r] = True  # ink with its rims and the paper it encloses (a small ring), not a grey
             continue
-        if _skeleton.distance_to_background(np.pad(own, 1)).max() > CLIPART_RIM_RADIUS + 0.5:
+        if distance(np.pad(own, 1)).max() > CLIPART_RIM_RADIUS + 0.5:
             return out
         if not ink[regions[sl][(cv2.dilate(own.view(np.uint8), eight) > 0) & ~own]].any():
             return out
@@ -310,12 +375,12 @@ def median_stroke_width(ink: np.ndarray) -> float:
     to the nearest pixel that is not ink: a stroke w px wide has its axis w / 2
     from both edges (to within half a pixel).
     """
-    return _median_stroke_width(ink, _distance(ink))
+    return _median_stroke_width(ink, distance(ink))
 
 
 def _median_stroke_width(ink: np.ndarray, dist: np.ndarray) -> float:
-    """:func:`median_stroke_width` of ``ink`` whose distance to the paper ``dist`` (:func:`_distance`) is known."""
-    skel = _skeleton.skeletonize(ink)
+    """:func:`median_stroke_width` of ``ink`` whose distance to the paper ``dist`` (``ndimage.distance``) is known."""
+    skel = skeletonize(ink)
     return float(2.0 * median(dist[skel])) if skel.any() else 0.0
 
 
@@ -328,6 +393,7 @@ def extract_feature_lines(
     subject: object = None,
     spur_length: float | None = None,
     min_line_length: float | None = None,
+    detail: int = DETAIL,
 ) -> FeatureLines:
     """Extract the object's feature lines as a 1-px-wide map (paper Sec. 4).
 
@@ -353,6 +419,9 @@ def extract_feature_lines(
         Isolated lines shorter than this are dropped, px (default:
         ``spur_length`` for drawings and clip art, a longer bound for photos,
         whose short lines are mostly texture).
+    detail : int
+        Clip art only: the regions kept besides the background
+        (:func:`img2logo.features.detail.merge_by_importance`; default ``DETAIL``).
 
     Returns
     -------
@@ -380,17 +449,18 @@ def extract_feature_lines(
     found = dots = None
     if spur_length is None:
         spur_length = PHOTO_SPUR_LENGTH if kind == "photo" else SPUR_LENGTH
-    radius = stroke = None
+    radius = stroke = detail_used = None
     if kind == "drawing":
         ink = _drawing_lines(img)
         radius = _half_width(ink)
-        axis = _skeleton.skeletonize(ink)
+        axis = skeletonize(ink)
         stroke = float(2.0 * median(radius[axis])) if axis.any() else 0.0
         raw = _skeleton.join_line_ends(axis)
         min_len = spur_length if min_line_length is None else min_line_length
     elif kind == "clipart":
         regions = clipart_regions(img) if regions is None else regions
-        raw = _join(clipart_lines(regions))
+        regions, detail_used = merge_by_importance(regions, img.lab, check_detail(detail))
+        raw = _join(clipart_lines(regions, label_means(regions, img.lab)[1][:, 0]))
         min_len = spur_length if min_line_length is None else min_line_length
     else:
         from .photo.lines import line_maps, photo_feature_lines, start_photo_line_maps, subject_dots, subject_pupils
@@ -417,7 +487,13 @@ def extract_feature_lines(
     if kind == "drawing":
         lines = keep_dots(lines, ink, stroke)
     return FeatureLines(
-        readonly(lines), kind, reason, None if regions is None else readonly(regions), found, stroke_width=stroke
+        readonly(lines),
+        kind,
+        reason,
+        None if regions is None else readonly(regions),
+        found,
+        stroke_width=stroke,
+        detail=detail_used,
     )
 
 
@@ -442,7 +518,7 @@ def keep_dots(lines: np.ndarray, ink: np.ndarray, stroke_width: float) -> np.nda
     stroke_width : float
         The drawing's median stroke width, px.
     """
-    labels = _skeleton.label(ink, connectivity=2)
+    labels = components(ink, connectivity=2)
     n = int(labels.max())
     if n == 0:
         return lines
@@ -478,7 +554,7 @@ def _join(raw: np.ndarray) -> np.ndarray:
     0.75-6 px from another arc: a near-miss gap. :func:`_skeleton.join_line_ends`
     links it (the same rule as for photos).
     """
-    return _skeleton.join_line_ends(_skeleton.skeletonize(raw))
+    return _skeleton.join_line_ends(skeletonize(raw))
 
 
 def _clean_skeleton(
@@ -490,7 +566,7 @@ def _clean_skeleton(
     spurs pruned at a junction by the stroke's half width there
     (:func:`_skeleton.prune`).
     """
-    skel = _skeleton.skeletonize(mask)
+    skel = skeletonize(mask)
     graph = _skeleton.trace(skel)
     _skeleton.prune(
         graph,
@@ -508,17 +584,7 @@ def _half_width(ink: np.ndarray) -> np.ndarray:
     Measured on the skeleton, where it is the radius of the stroke's inscribed
     disc; 0 on the paper.
     """
-    return _distance(ink).astype(np.float32)
-
-
-def _distance(mask: np.ndarray) -> np.ndarray:
-    """``scipy.ndimage.distance_transform_edt(mask)``, px, float64 (H, W), by :func:`_skeleton.distance_to_background`
-    (the same bits) unless ``mask`` has no background pixel."""
-    if np.all(mask):
-        from scipy import ndimage
-
-        return np.asarray(ndimage.distance_transform_edt(mask), dtype=np.float64)
-    return _skeleton.distance_to_background(mask)
+    return distance(ink).astype(np.float32)
 
 
 def _paper_seams(gray: np.ndarray, ink: np.ndarray) -> np.ndarray:
@@ -544,14 +610,14 @@ def _paper_seams(gray: np.ndarray, ink: np.ndarray) -> np.ndarray:
     ridge = cv2.morphologyEx(g, cv2.MORPH_TOPHAT, disc) > SEAM_CONTRAST * contrast
     # Pinched paper lies inside the ink; the tip of a paper wedge where two strokes meet at an
     # acute angle is a ridge too, but next to open paper: the junction stays where it is.
-    depth = _skeleton.distance_to_background(ink)  # _distance(ink): the ink has paper here
+    depth = distance(ink)
     ridge &= depth > SEAM_WIDTH / 2
     if not ridge.any():
         return ridge
     # Two strokes that only touch (an ear's base, a tail on a body) leave a ridge about as long
     # as they are wide, where they are one in the drawing too; side by side, the pinch runs
     # along them: a seam is at least SEAM_LENGTH stroke widths long.
-    parts = _skeleton.label(ridge, connectivity=2)
+    parts = components(ridge, connectivity=2)
     n = int(parts.max())
     long = np.bincount(parts.ravel(), minlength=n + 1) >= SEAM_LENGTH * _median_stroke_width(ink, depth)
     long[0] = False

@@ -34,6 +34,7 @@ from typing import Literal
 
 import numpy as np
 
+from .._compat import unique
 from .._validation import check_choice, check_points, check_positive, readonly
 from ..constants import (
     ARC_CANDIDATE_LENGTH_RATIO,
@@ -45,7 +46,6 @@ from ..constants import (
 )
 from ..errors import FitError, InvalidParameterError
 from ..geometry.primitives import TAU, Arc, Circle, polyline_length
-from ..images.skeleton import unique
 
 __all__ = [
     "ArcFit",

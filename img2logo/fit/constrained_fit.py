@@ -23,6 +23,7 @@ from typing import Any
 
 import numpy as np
 
+from .._compat import unique
 from .._validation import check_finite, check_points, check_positive, readonly
 from ..constants import (
     CONSTRAINED_FIT_FTOL,
@@ -34,7 +35,6 @@ from ..constants import (
     KKT_DENSE_MAX,
 )
 from ..errors import InvalidParameterError
-from ..images.skeleton import unique
 from .constrained_sqp import Problem, solve_kkt
 
 __all__ = [

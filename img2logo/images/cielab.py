@@ -60,22 +60,16 @@ def srgb_to_lab(rgb: np.ndarray) -> np.ndarray:
     each distinct colour is converted once, by :func:`rgb2lab` on
     the (1, U, 3) array of them (the same row-by-row arithmetic as on the whole
     image), and spread back to its pixels. Any other image is converted whole.
-    The table is compiled where the kernels are usable
-    (:func:`img2logo._compiled.front.colour_table_kernel`: the same colours in the
-    same order, without sorting the pixels).
+    The table is :func:`img2logo._compiled.front.colour_table_kernel`'s: the
+    colours in ascending order of their 24-bit codes and each pixel's place among
+    them, as ``np.unique(codes, return_inverse=True)`` gives them, without sorting the pixels.
     """
     from .._compiled import kernels
 
-    if rgb.ndim == 3 and rgb.shape[2] == 3 and rgb.dtype == np.float64 and kernels.usable():
-        ok, colours, index = kernels.colour_table_kernel(np.ascontiguousarray(rgb))
-        if not ok:
-            return np.asarray(rgb2lab(rgb))
-    else:
-        values = np.rint(rgb * 255.0)
-        if rgb.ndim != 3 or rgb.shape[2] != 3 or not np.array_equal(values / 255.0, rgb):
-            return np.asarray(rgb2lab(rgb))
-        v = values.astype(np.int32)
-        key = ((v[..., 0] << 16) | (v[..., 1] << 8) | v[..., 2]).ravel()
-        colours, index = np.unique(key, return_inverse=True)
+    if rgb.ndim != 3 or rgb.shape[2] != 3:
+        return np.asarray(rgb2lab(rgb))
+    ok, colours, index = kernels.colour_table_kernel(np.ascontiguousarray(rgb, dtype=np.float64))
+    if not ok:  # not every value k / 255
+        return np.asarray(rgb2lab(rgb))
     table = np.stack([(colours >> 16) & 255, (colours >> 8) & 255, colours & 255], axis=1) / 255.0
     return np.asarray(rgb2lab(table[None]))[0].take(index, axis=0).reshape(rgb.shape)  # take: a quarter of [index]

@@ -16,229 +16,18 @@ Touching node pixels are clustered into one node.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Any
 
 import numpy as np
 
+from .._compat import line, nonzero
+from .._compiled import kernels
 from ..constants import LINE_JOIN_DISTANCE
 from ..geometry.primitives import polyline_length
 
 # The 8 neighbours in circular order: N, NE, E, SE, S, SW, W, NW (row, column).
 _RING = ((-1, 0), (-1, 1), (0, 1), (1, 1), (1, 0), (1, -1), (0, -1), (-1, -1))
 _EIGHT = np.ones((3, 3), dtype=bool)
-
-
-def compiled_module(package: str, folder: str, name: str) -> Any:
-    """A compiled module of ``package`` (in its ``folder``), loaded by its file without the package's imports.
-
-    ``skimage.morphology`` and ``scipy.ndimage`` import all their submodules on
-    import (``scipy.ndimage`` brings ``scipy.special``; ``skimage.morphology``
-    ``scipy.spatial``): about 0.1 s of CPU a run each. The function a run needs
-    is one compiled module that needs only numpy, and loading that module runs
-    the very code the public function runs. Raises ImportError when the module
-    is not where it was (another version of the package): the caller then uses
-    the public function.
-    """
-    import importlib.machinery
-    import importlib.util
-    import sys
-    from pathlib import Path
-
-    full = f"{package}.{folder}.{name}"
-    if full in sys.modules:  # the package is loaded already (a photo's run)
-        return sys.modules[full]
-    try:
-        spec = importlib.util.find_spec(package)
-        if spec is None or spec.origin is None:
-            raise ImportError(f"{package} not found")
-        where = Path(spec.origin).parent / folder
-        found = [where / f"{name}{suffix}" for suffix in importlib.machinery.EXTENSION_SUFFIXES]
-        found = [f for f in found if f.is_file()]
-        if not found:
-            raise ImportError(f"no compiled {full} in {where}")
-        mod_spec = importlib.util.spec_from_file_location(full, found[0])
-        if mod_spec is None or mod_spec.loader is None:
-            raise ImportError(f"cannot load {found[0]}")
-        module = importlib.util.module_from_spec(mod_spec)
-        mod_spec.loader.exec_module(module)
-        return module
-    except OSError as err:
-        raise ImportError(str(err)) from err
-
-
-def _load_zhang_suen() -> Callable[[np.ndarray], np.ndarray]:
-    """scikit-image's compiled Zhang-Suen thinning (:func:`compiled_module`), or its public function."""
-    try:
-        return compiled_module("skimage", "morphology", "_skeletonize_various_cy")._fast_skeletonize
-    except (ImportError, AttributeError):
-        from skimage.morphology import skeletonize as public
-
-        return public
-
-
-_ZHANG_SUEN: Callable[[np.ndarray], np.ndarray] | None = None
-
-
-def skeletonize(mask: np.ndarray) -> np.ndarray:
-    """1-px skeleton of a 2-D binary ``mask`` (Zhang-Suen thinning), bool (H, W).
-
-    The same pixels as ``skimage.morphology.skeletonize(mask)`` (its default,
-    Zhang-Suen, method for 2-D images), without importing ``skimage.morphology``
-    (see :func:`_load_zhang_suen`).
-    """
-    global _ZHANG_SUEN
-    if _ZHANG_SUEN is None:
-        _ZHANG_SUEN = _load_zhang_suen()
-    image = np.asarray(mask).astype(bool, order="C", copy=False)
-    if image.ndim != 2:
-        raise ValueError(f"skeletonize needs a 2-D mask, got shape {image.shape}")
-    return np.asarray(_ZHANG_SUEN(image), dtype=bool)
-
-
-def nonzero(mask: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """``np.nonzero(mask)`` of a 2-D ``mask``: the rows and columns of its set pixels, in raster order, int64.
-
-    By ``np.flatnonzero`` and a division: numpy's 2-D ``nonzero`` takes about 0.4 ms
-    on 512 x 512 px whatever the count, the flat one a twentieth of that.
-    """
-    mask = np.asarray(mask)
-    if mask.size == 0:
-        return np.nonzero(mask)
-    rows, cols = np.divmod(np.flatnonzero(mask), mask.shape[1])
-    return rows, cols
-
-
-def unique(values: np.ndarray) -> np.ndarray:
-    """``np.unique(values)``: the distinct values of an integer array, sorted, 1-D, of its type.
-
-    ``np.unique`` imports ``numpy.ma`` on its first call (about 0.02 s of CPU a
-    run); a sort and a comparison of neighbours give the same array.
-    """
-    a = np.sort(np.asarray(values).ravel())
-    if a.size > 1:
-        a = a[np.concatenate(([True], a[1:] != a[:-1]))]
-    return a
-
-
-def label(image: np.ndarray, connectivity: int, background: int = 0) -> np.ndarray:
-    """Connected components of equal values, numbered 1.. in raster order, int (H, W).
-
-    What ``skimage.measure.label(image, background=background,
-    connectivity=connectivity)`` returns (``connectivity`` 1: 4-neighbours, 2: 8;
-    background pixels 0; int32 for a bool image, int64 otherwise), by OpenCV's
-    labelling of each value's mask: ``skimage.measure.label`` imports
-    ``skimage.morphology`` and ``scipy.spatial`` (about 0.1 s of CPU a run).
-    A component is numbered by its first pixel in raster order, as scikit-image
-    does (and ``scipy.ndimage.label``, whose int32 labels a bool image gets too).
-    Compiled where the kernels are usable (:func:`img2logo._compiled.front.label_kernel`,
-    two passes with a union-find: the same labels).
-    """
-    from .._compiled import kernels
-
-    out_type = np.int32 if image.dtype == bool else np.int64
-    if kernels.usable():
-        if image.dtype == bool:  # the mask's bytes as they are
-            mask = np.ascontiguousarray(image).view(np.uint8)
-            return kernels.label_mask_kernel(mask, int(background), connectivity != 1).astype(out_type, copy=False)
-        values = np.ascontiguousarray(image, dtype=np.int64)
-        return kernels.label_kernel(values, int(background), connectivity != 1).astype(out_type, copy=False)
-    import cv2
-
-    eight = 4 if connectivity == 1 else 8
-    if image.dtype == bool and background == 0:
-        n, labels = cv2.connectedComponents(np.ascontiguousarray(image).view(np.uint8), connectivity=eight)
-        n -= 1
-    else:
-        lo, hi = int(image.min()), int(image.max())
-        if hi - lo < 65536:  # small labels (a palette's entries): counted, not sorted
-            values = lo + np.flatnonzero(np.bincount((image - lo).ravel(), minlength=hi - lo + 1))
-        else:
-            values = unique(image)
-        values = values[values != background]
-        labels = np.zeros(image.shape, dtype=np.int32)
-        offset = np.zeros(image.shape, dtype=np.int32)
-        n = 0
-        for v in values:
-            mask = image == v
-            count, parts = cv2.connectedComponents(mask.view(np.uint8), connectivity=eight)
-            labels += parts  # the masks are disjoint
-            offset[mask] = n
-            n += count - 1
-        labels += offset
-    if n == 0:
-        return labels.astype(out_type)
-    # OpenCV numbers in its own scan order (blocks of 2 x 2 px): renumber by
-    # each component's first pixel in raster order.
-    flat = np.asarray(labels, dtype=np.int32).ravel()
-    at = np.flatnonzero(flat)
-    first = np.full(n + 1, flat.size, dtype=np.int64)
-    np.minimum.at(first, flat[at], at)
-    order = np.zeros(n + 1, dtype=np.int32)
-    order[1 + np.argsort(first[1:], kind="stable")] = np.arange(1, n + 1, dtype=np.int32)
-    if not np.array_equal(order, np.arange(n + 1)):
-        labels = order[labels]
-    return labels.astype(out_type)
-
-
-def distance_to_background(mask: np.ndarray) -> np.ndarray:
-    """Euclidean distance of every pixel of ``mask`` to the nearest pixel outside it, px, float64 (H, W).
-
-    ``scipy.ndimage.distance_transform_edt(mask)``, to the bit: OpenCV's exact
-    transform (``DIST_MASK_PRECISE``) returns float32, whose square rounds back to
-    the integer squared distance (below 2**22 px^2, well within float32's 24-bit
-    mantissa), and its float64 square root is what scipy computes. Importing
-    ``scipy.ndimage`` costs about 0.06 s of CPU a run. ``mask`` must hold a pixel
-    outside it (as every caller's does: an image frame or a padding). Where the
-    kernels are usable, :func:`img2logo._compiled.front.edt_kernel` (Meijster's exact
-    algorithm in integers, a third faster than OpenCV's): the same distances.
-    """
-    import cv2
-
-    from .._compiled import kernels
-
-    inside = np.asarray(mask, dtype=bool)
-    if inside.all():
-        raise ValueError("distance_to_background needs a background pixel")
-    if kernels.usable() and inside.ndim == 2:  # exact in integers, compiled: the same distances
-        return kernels.edt_kernel(np.ascontiguousarray(inside).view(np.uint8))
-    root = cv2.distanceTransform(inside.astype(np.uint8), cv2.DIST_L2, cv2.DIST_MASK_PRECISE)
-    squared = np.rint(root.astype(np.float64) ** 2)
-    return np.sqrt(squared)
-
-
-def bounding_slices(labels: np.ndarray) -> list[tuple[slice, slice] | None]:
-    """``scipy.ndimage.find_objects(labels)``: entry ``i`` bounds the pixels labelled ``i + 1``, None where none are.
-
-    Compiled where the kernels are usable (:func:`img2logo._compiled.front.bounds_kernel`,
-    one pass over the pixels: the same boxes).
-    """
-    flat = np.asarray(labels).ravel()
-    n = int(flat.max()) if flat.size else 0
-    if n <= 0:
-        return []
-    from .._compiled import kernels
-
-    if kernels.usable():  # one pass over the pixels
-        top, bottom, left, right = kernels.bounds_kernel(np.asarray(labels), n).T.tolist()
-    else:
-        h, w = labels.shape
-        at = np.flatnonzero(flat > 0)
-        lab = flat[at]
-        rows, cols = np.divmod(at, w)
-        top = np.full(n + 1, h)
-        bottom = np.full(n + 1, -1)
-        left = np.full(n + 1, w)
-        right = np.full(n + 1, -1)
-        np.minimum.at(top, lab, rows)
-        np.maximum.at(bottom, lab, rows)
-        np.minimum.at(left, lab, cols)
-        np.maximum.at(right, lab, cols)
-    return [
-        (slice(int(top[i]), int(bottom[i]) + 1), slice(int(left[i]), int(right[i]) + 1)) if bottom[i] >= 0 else None
-        for i in range(1, n + 1)
-    ]
 
 
 @dataclass
@@ -391,16 +180,11 @@ def trace(skel: np.ndarray) -> PixelGraph:
 
 
 def _sparse_label(mask: np.ndarray, rows: np.ndarray, cols: np.ndarray) -> np.ndarray:
-    """``label(mask, connectivity=2)`` of a sparse ``mask`` whose set pixels are (rows, cols), in raster order.
+    """The 8-connected components of a sparse ``mask`` whose set pixels are (rows, cols), in raster order.
 
-    Compiled over those pixels alone where the kernels are usable
-    (:func:`img2logo._compiled.front.sparse_label_kernel`): the same numbers,
-    int64, written into an image of zeros.
+    :func:`img2logo.images.ndimage.components` ``(mask, connectivity=2)``'s numbers, int64, by
+    :func:`img2logo._compiled.front.sparse_label_kernel` over those pixels alone.
     """
-    from .._compiled import kernels
-
-    if not kernels.usable():
-        return label(mask, connectivity=2)
     out = np.zeros(mask.shape, dtype=np.int64)
     if len(rows):
         out[rows, cols] = kernels.sparse_label_kernel(rows, cols, mask.shape[0], mask.shape[1])
@@ -778,35 +562,6 @@ def join_line_ends(skel: np.ndarray, distance: float = LINE_JOIN_DISTANCE) -> np
             rr, cc = line(end[0], end[1], best[0], best[1])
             out[np.clip(rr, 0, h - 1), np.clip(cc, 0, w - 1)] = True
     return out
-
-
-def line(r0: int, c0: int, r1: int, c1: int) -> tuple[np.ndarray, np.ndarray]:
-    """The pixels (rows, columns) of the digital line from (r0, c0) to (r1, c1), ends included.
-
-    ``skimage.draw.line`` pixel for pixel (Bresenham's algorithm as scikit-image
-    writes it; the tests compare the two), without importing ``skimage.draw``,
-    which imports scikit-image and scipy (about 0.05 s of CPU a run).
-    """
-    r, c = r0, c0
-    dr, dc = abs(r1 - r0), abs(c1 - c0)
-    sc = 1 if c1 - c > 0 else -1
-    sr = 1 if r1 - r > 0 else -1
-    steep = dr > dc
-    if steep:
-        r, c, dr, dc, sr, sc = c, r, dc, dr, sc, sr
-    d = 2 * dr - dc
-    rr, cc = [], []
-    for _ in range(dc):
-        rr.append(c if steep else r)
-        cc.append(r if steep else c)
-        while d >= 0:
-            r += sr
-            d -= 2 * dc
-        c += sc
-        d += 2 * dr
-    rr.append(r1)
-    cc.append(c1)
-    return np.array(rr, dtype=np.intp), np.array(cc, dtype=np.intp)
 
 
 def _pixels_within(pixels: np.ndarray, at: tuple[int, int], distance: float) -> list[tuple[int, int]]:

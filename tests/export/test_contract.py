@@ -234,12 +234,8 @@ def test_round_trip_without_arc_segments():
         contract.from_document(doc)
 
 
-def test_without_jsonschema(monkeypatch):
-    monkeypatch.setitem(sys.modules, "jsonschema", None)  # import jsonschema -> ImportError
+def test_reading_checks_the_invariants_and_the_structure():
     doc = contract.to_document(make_abstraction())
-    with pytest.raises(ImportError, match="needs the optional package jsonschema"):
-        contract.validate_document(doc)
-    # Reading still works, and still checks the invariants and the structure.
     assert contract.from_document(doc).arcs == make_abstraction().arcs
     bad = copy.deepcopy(doc)
     bad["circles"][0]["r"] = 1.0
@@ -247,7 +243,7 @@ def test_without_jsonschema(monkeypatch):
         contract.from_document(bad)
     bad = copy.deepcopy(doc)
     del bad["arcs"][0]["theta0"]
-    with pytest.raises(InvalidParameterError, match=f"not a valid {FORMAT_NAME} document: KeyError"):
+    with pytest.raises(InvalidParameterError, match=f"does not match the {FORMAT_NAME} schema at arcs/0"):
         contract.from_document(bad)
 
 

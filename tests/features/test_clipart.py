@@ -278,7 +278,7 @@ def test_flat_areas_match_the_padded_window():
     from img2logo.features.clipart import _flat_areas
 
     def reference(lab: np.ndarray, link: float) -> np.ndarray:
-        from img2logo.images.skeleton import label
+        from img2logo.images.ndimage import components as label
 
         h, w = lab.shape[:2]
         lab32 = lab.astype(np.float32)
@@ -345,7 +345,7 @@ def test_regions_are_the_same_without_the_compiled_kernels(monkeypatch, path):
 
     img = load_image(path)
     compiled = clipart_regions(img)
-    thin = thin_regions(compiled)  # the edges' distances compiled too
+    thin = thin_regions(compiled)  # (its edges' distances are compiled either way)
     monkeypatch.setattr(kernels, "CACHED", False)
     assert np.array_equal(compiled, clipart_regions(img))
     assert np.array_equal(thin, thin_regions(compiled))

@@ -54,14 +54,17 @@ def test_srgb_to_lab_is_scikit_images_rgb2lab():
         assert np.array_equal(srgb_to_lab(rgb), rgb2lab(rgb))
 
 
-def test_the_colour_table_kernel_is_numpys_unique(monkeypatch):
-    # The compiled table of an 8-bit image's colours: the same colours, order and bits as np.unique's.
+def test_the_colour_table_kernel_is_numpys_unique():
+    # The compiled table of an 8-bit image's colours: the same colours, order and places as np.unique's.
     from img2logo._compiled import kernels
 
     rng = np.random.default_rng(7)
     images = [rng.integers(0, 256, (40, 50, 3)) / 255.0, load_image(DATA / "photo-cat.png").rgb]
-    images.append(cv2.GaussianBlur(images[0], (5, 5), 1.0))  # not 8-bit: converted whole
-    compiled = [srgb_to_lab(rgb) for rgb in images]
-    monkeypatch.setattr(kernels, "CACHED", False)
-    for rgb, got in zip(images, compiled, strict=True):
-        assert np.array_equal(got, srgb_to_lab(rgb))
+    images.append(rng.integers(0, 4, (9, 7, 3)) / 255.0)
+    for rgb in images:
+        ok, colours, index = kernels.colour_table_kernel(np.ascontiguousarray(rgb))
+        v = np.rint(rgb * 255.0).astype(np.int64)
+        want, want_index = np.unique(((v[..., 0] << 16) | (v[..., 1] << 8) | v[..., 2]).ravel(), return_inverse=True)
+        assert ok and np.array_equal(colours, want) and np.array_equal(index, want_index)
+    blurred = cv2.GaussianBlur(images[0], (5, 5), 1.0)  # not 8-bit
+    assert not kernels.colour_table_kernel(np.ascontiguousarray(blurred))[0]

@@ -68,7 +68,8 @@ from ...constants import (
     STEP_SIDE_CONTRAST,
 )
 from ...images.loading import LoadedImage
-from ...images.skeleton import distance_to_background, join_line_ends
+from ...images.ndimage import distance
+from ...images.skeleton import join_line_ends
 from .dots import Dots, cielab_lightness, dark_dots, with_enclosed_dots
 from .subject import Subject
 
@@ -131,8 +132,7 @@ def photo_feature_lines(
     maps : LineMaps, optional
         Its line maps (:func:`line_maps`, made or taken here by default).
     """
-    from ...images.ndimage import dilate, erode  # scipy.ndimage's binary morphology, without importing it
-    from ...images.skeleton import skeletonize  # skimage's thinning, without importing skimage.morphology
+    from ...images.ndimage import dilate, erode, skeletonize
 
     mask = subject.mask
     if maps is None:
@@ -182,7 +182,7 @@ def _chosen_lines(
     kept within ``face_budget`` (a face's eyes and mouth are short), the rest by
     :func:`salient_lines` within ``budget`` less the faces' lines.
     """
-    from ...images.skeleton import skeletonize  # skimage's thinning, without importing skimage.morphology
+    from ...images.ndimage import skeletonize
 
     chosen = np.zeros(lines.shape, bool)
     if faces:
@@ -209,8 +209,7 @@ def clear_steps(gray: np.ndarray, steps: np.ndarray, lines: np.ndarray) -> np.nd
     """
     import cv2
 
-    from ...images.ndimage import dilate, label  # scipy.ndimage's, without importing it
-    from ...images.skeleton import skeletonize  # skimage's thinning, without importing skimage.morphology
+    from ...images.ndimage import dilate, label, skeletonize
 
     out = np.zeros(steps.shape, bool)
     new = steps & ~dilate(lines, math.ceil(LINE_JOIN_DISTANCE / 2.0)) if lines.any() else steps
@@ -255,8 +254,9 @@ def reach_outline(lines: np.ndarray, outline: np.ndarray) -> np.ndarray:
     within the same distance, the end is joined to the outline there by a
     straight run. A line running beside the outline is left alone.
     """
-    from ...images.ndimage import label, nearest_background  # scipy.ndimage's, without importing it
-    from ...images.skeleton import classify, line  # skimage.draw.line, without importing skimage.draw
+    from ..._compat import line
+    from ...images.ndimage import label, nearest_background
+    from ...images.skeleton import classify
 
     out = np.asarray(lines, dtype=bool).copy()
     if not out.any() or not outline.any():
@@ -319,8 +319,7 @@ def salient_lines(
     before joining could link them into a network. Of those, the longest are
     kept while their pixels add up to at most ``budget``.
     """
-    from ...images.ndimage import label
-    from ...images.skeleton import bounding_slices  # scipy.ndimage.find_objects, without importing it
+    from ...images.ndimage import bounding_slices, label
 
     skel = np.asarray(skel, dtype=bool)
     lab, n = label(skel, eight=True)
@@ -350,8 +349,8 @@ def subject_outline(mask: np.ndarray, frame_margin: float = OUTLINE_FRAME_MARGIN
     """
     from skimage.measure import find_contours
 
-    from ...images.ndimage import gaussian  # scipy.ndimage's, without importing it
-    from ...images.skeleton import line  # skimage.draw.line, without importing skimage.draw
+    from ..._compat import line
+    from ...images.ndimage import gaussian
 
     h, w = mask.shape
     out = np.zeros((h, w), bool)
@@ -417,7 +416,7 @@ def photo_line_maps(img: LoadedImage) -> tuple[np.ndarray, np.ndarray]:
     maps = line_maps(img)
     colour_lines = maps.colour
     if maps.edges.any() and colour_lines.any():
-        colour_lines = colour_lines & (distance_to_background(~maps.edges) > COLOUR_LINE_GATE)  # edges.any(): EDT
+        colour_lines = colour_lines & (distance(~maps.edges) > COLOUR_LINE_GATE)  # edges.any(): EDT
     return maps.lightness, colour_lines
 
 
@@ -525,16 +524,16 @@ def new_colour_lines(
     drawn = np.asarray(drawn, dtype=bool)
     if not colour.any():
         return colour.copy()
-    sides = drawn | (maps.edges & (distance_to_background(~drawn) <= EDGE_SIDE_REACH)) if drawn.any() else drawn
+    sides = drawn | (maps.edges & (distance(~drawn) <= EDGE_SIDE_REACH)) if drawn.any() else drawn
     reach = math.ceil(COLOUR_LINE_GATE)
     disc = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (2 * reach + 1, 2 * reach + 1))
     undrawn = cv2.dilate(np.where(sides, np.float32(0.0), maps.lightness_step), disc)
     own = colour & (maps.colour_step > undrawn)
     if maps.edges.any():
-        own |= colour & (distance_to_background(~maps.edges) > COLOUR_LINE_GATE)
+        own |= colour & (distance(~maps.edges) > COLOUR_LINE_GATE)
     if not sides.any():
         return own & deep if deep is not None else own
-    away = distance_to_background(~sides).astype(np.float32)
+    away = distance(~sides).astype(np.float32)
     out = own & (away > COLOUR_LINE_GATE)
     if deep is not None:
         out &= deep

@@ -65,6 +65,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ..._compat import median
 from ..._validation import readonly
 from ...constants import (
     FACE_MIN_NEIGHBOURS,
@@ -88,7 +89,7 @@ from ...constants import (
 )
 from ...errors import InvalidParameterError
 from ...images.loading import LoadedImage, load_mask
-from ...images.ndimage import dilate, distance, erode, label, median
+from ...images.ndimage import dilate, distance, erode, label
 from .subject_cues import (
     FocusSeeds,
     clean_mask,

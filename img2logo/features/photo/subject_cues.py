@@ -33,6 +33,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..._compat import median
 from ..._validation import readonly
 from ...constants import (
     FOCUS_BLURRED,
@@ -61,7 +62,7 @@ from ...constants import (
     SUBJECT_WORK_SIDE,
 )
 from ...images.loading import LoadedImage
-from ...images.ndimage import distance, erode, gaussian, label, median
+from ...images.ndimage import distance, erode, gaussian, label
 
 #: sRGB's linear RGB to CIE XYZ (D65), as scikit-image's ``skimage.color.colorconv.xyz_from_rgb``.
 _XYZ_FROM_RGB = np.array(
@@ -453,7 +454,7 @@ def thin_parts(img: LoadedImage, mask: np.ndarray) -> np.ndarray:
     """
     import cv2
 
-    from ...images.skeleton import skeletonize  # skimage's thinning, without importing skimage.morphology
+    from ...images.ndimage import skeletonize
 
     h, w = mask.shape
     found = np.zeros((h, w), bool)

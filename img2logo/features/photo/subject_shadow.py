@@ -33,6 +33,7 @@ from functools import partial
 
 import numpy as np
 
+from ..._compat import median, unique
 from ...constants import (
     FOCUS_DETAIL_SIGMA,
     FOCUS_WINDOW,
@@ -44,8 +45,7 @@ from ...constants import (
     SUBJECT_MIN_CONTRAST,
 )
 from ...images.loading import LoadedImage
-from ...images.ndimage import dilate, distance, gaussian, label, median
-from ...images.skeleton import unique
+from ...images.ndimage import dilate, distance, gaussian, label
 from .subject_cues import clean_mask, mask_box, outline_contrast, work_scale
 
 #: Fewest pixels in the ring and the core for their statistics to mean something.
