@@ -5,9 +5,12 @@
 Serves notebook 14 as ``make studio`` does (Voila, a free port, its token), drives Debian's chromium with
 playwright and times, from the key press or click to the drawing changed on the page
 (``wait_for_function`` polls every animation frame): a level change, a T change below the run's
-T (read off the run), an edit (delete an arc; undo), and a Run on a 512 px clip art (from the click
-on Run to its drawing). Prints the median and the range of each; with ``--shots`` saves a
-screenshot after each step (``8-studio.png`` is the README's ``docs/studio.png``).
+T (read off the run), an edit (delete an arc; undo; Ctrl+Z), a drag of the selected circle's centre
+(each mouse move to its drawing; the release to the re-fitted logo), the golden circles shown, a
+level change with a gradient fill (to the drawing, and to the downloads' links made), and a Run
+on a 512 px clip art (from the click on Run to its drawing). Prints the median and the range of
+each; with ``--shots`` saves a screenshot after each step (``8-studio.png`` is the README's
+``docs/studio.png``).
 Timings depend on the machine's load: say what else was running.
 """
 
@@ -93,7 +96,7 @@ def main() -> int:
                 def at(x: float, y: float) -> tuple[float, float]:
                     return box["x"] + x * k, box["y"] + y * k
 
-                level = page.locator(".img2logo-studio .widget-slider", has_text="level t").locator(".noUi-handle")
+                level = page.locator(".img2logo-studio .widget-slider", has_text="Level").locator(".noUi-handle")
                 for r in range(args.repeats):
                     key = "ArrowLeft" if r % 2 == 0 else "ArrowRight"
                     level.first.focus()
@@ -101,11 +104,11 @@ def main() -> int:
                         _timed(page, lambda key=key: level.first.press(key), _changed())
                     )
                 shot("2-level")
-                tol = page.locator(".img2logo-studio .widget-slider", has_text="T (px)").locator(".noUi-handle")
+                tol = page.locator(".img2logo-studio .widget-slider", has_text="Tolerance (px)").locator(".noUi-handle")
                 for r in range(args.repeats):
                     key = "ArrowLeft" if r % 2 == 0 else "ArrowRight"
                     tol.first.focus()
-                    want = "(T = 4.5)" if key == "ArrowLeft" else "(T = 5)"
+                    want = "(tolerance 4.5 px)" if key == "ArrowLeft" else "(tolerance 5 px)"
                     times.setdefault("T change (below the run's T)", []).append(
                         _timed(
                             page,
@@ -127,6 +130,49 @@ def main() -> int:
                     shot("4-deleted")
                     undo = page.locator(".img2logo-studio button", has_text="Undo").first
                     times.setdefault("edit: undo", []).append(_timed(page, undo.click, _changed("undone")))
+                    page.mouse.click(*at(*pts[len(pts) // 2]))
+                    page.wait_for_function(
+                        "t => document.querySelector('.img2logo-studio .studio-status').innerText.includes(t)",
+                        arg=f"arc {i} selected",
+                    )
+                    page.keyboard.press("Delete")
+                    page.wait_for_function(
+                        "() => document.querySelector('.img2logo-studio .studio-status').innerText.includes('deleted')"
+                    )
+                    times.setdefault("edit: undo by Ctrl+Z", []).append(
+                        _timed(page, lambda: page.keyboard.press("Control+z"), _changed("undone"))
+                    )
+                # Drag the selected circle's centre: each move redraws the circle there; the release re-fits.
+                c = a.arcs[i].circle
+                page.mouse.click(*at(*pts[len(pts) // 2]))
+                page.wait_for_function(
+                    "t => document.querySelector('.img2logo-studio .studio-status').innerText.includes(t)",
+                    arg=f"arc {i} selected",
+                )
+                x0, y0 = at(c.cx, c.cy)
+                for _ in range(args.repeats):
+                    page.mouse.move(x0, y0)
+                    page.mouse.down()
+                    for step in range(1, 6):
+                        times.setdefault("drag a centre: one move drawn", []).append(
+                            _timed(page, lambda step=step: page.mouse.move(x0 + 3 * step, y0 + 2 * step), _changed())
+                        )
+                    shot("4b-drag")
+                    times.setdefault("drag a centre: release, logo re-fitted", []).append(
+                        _timed(page, page.mouse.up, _changed("moved by"))
+                    )
+                    page.keyboard.press("Control+z")
+                    page.wait_for_function(
+                        "() => document.querySelector('.img2logo-studio .studio-status').innerText.includes('undone')"
+                    )
+                    page.mouse.click(*at(*pts[len(pts) // 2]))
+                    page.wait_for_function(
+                        "t => document.querySelector('.img2logo-studio .studio-status').innerText.includes(t)",
+                        arg=f"arc {i} selected",
+                    )
+                circles = page.locator(".img2logo-studio").get_by_text("Golden circles", exact=True)
+                for _ in range(args.repeats):
+                    times.setdefault("golden circles on or off", []).append(_timed(page, circles.click, _changed()))
                 page.locator(".img2logo-studio .widget-toggle-button", has_text="Brush").first.click()
                 stroke = a.arcs[i].sample(step=8.0)
                 page.mouse.move(*at(*stroke[0]))
@@ -144,19 +190,42 @@ def main() -> int:
                 page.locator(".img2logo-studio button", has_text="Clear mask").first.click()
                 page.wait_for_timeout(500)
                 status = "document.querySelector('.img2logo-studio .studio-status').innerText"
+                # Done: the Run button was disabled (running) and is enabled again (two runs may say the same line).
+                ran = (
+                    "() => { const b = [...document.querySelectorAll('.img2logo-studio button')]"
+                    ".find(e => e.innerText.trim() === 'Run'); if (b.disabled) window.__ran = true;"
+                    f" return window.__ran === true && !b.disabled && {status}.startsWith('done:'); }}"
+                )
                 for _ in range(max(3, args.repeats // 2)):
-                    old = page.evaluate(f"() => {status}")
-                    times.setdefault("Run, 512 px clip art", []).append(
-                        _timed(page, run.click, f"a => {status}.startsWith('done:') && {status} !== a[1]", old)
-                    )
+                    page.evaluate("() => { window.__ran = false; }")
+                    times.setdefault("Run, 512 px clip art", []).append(_timed(page, run.click, ran))
                 shot("7-run")
-                # The README's screenshot: palette fills, the longest arc selected.
-                fills = page.locator(".img2logo-studio .widget-dropdown", has_text="fills").locator("select")
+                # A level step with a gradient fill: the drawing, then the downloads' links made.
+                fills = page.locator(".img2logo-studio .widget-dropdown", has_text="Fills").locator("select")
+                fills.select_option("gradient")
+                page.wait_for_function(f"() => {status}.includes('regions')")
+                links = "document.querySelectorAll('.img2logo-studio a.studio-download').length"
+                for r in range(args.repeats):
+                    key = "ArrowLeft" if r % 2 == 0 else "ArrowRight"
+                    level.first.focus()
+                    start = time.perf_counter()
+                    times.setdefault("level change, gradient fill: drawing", []).append(
+                        _timed(page, lambda key=key: level.first.press(key), _changed())
+                    )
+                    page.wait_for_function(f"() => {links} > 0", polling="raf", timeout=120_000)
+                    times.setdefault("level change, gradient fill: downloads ready", []).append(
+                        time.perf_counter() - start
+                    )
+                fills.select_option("none")
+                page.wait_for_function(f"() => {status}.includes('no fill')")
+                # The README's screenshot: palette fills, the golden circles, the longest arc selected.
                 fills.select_option("palette")
                 page.wait_for_function(f"() => {status}.includes('regions')")
                 page.locator(".img2logo-studio .widget-toggle-button", has_text="Select").first.click()
+                circles.click()
                 page.mouse.click(*at(*pts[len(pts) // 2]))
                 page.wait_for_function(f"() => {status}.includes('selected')")
+                page.wait_for_function(f"() => {links} > 0", timeout=120_000)
                 page.wait_for_timeout(800)
                 shot("8-studio")
                 browser.close()

@@ -799,7 +799,7 @@ def _ink_parts(regions: np.ndarray, labels: np.ndarray) -> Iterator[tuple[int, t
     """
     import cv2
 
-    from ..images.skeleton import bounding_slices
+    from ..images.ndimage import bounding_slices
 
     if len(labels) == 0:
         return

@@ -281,7 +281,7 @@ def optimize(
         raise InvalidParameterError(f"graph must be a SegmentGraph, got {type(graph).__name__}")
     if graph.n_segments == 0:
         raise InvalidParameterError("the segment graph has no segments: nothing to abstract (no feature lines found)")
-    locked = _locked_segments(graph, lock_mask)
+    locked = locked_segments(graph, lock_mask)
     record = {**opts.record(), "locked_segments": int(locked.sum()), **(params or {})}
     ladder, bias, unit, simplify = opts.ladder, opts.bias, opts.unit, opts.simplify
 
@@ -380,7 +380,7 @@ def _budget(seconds: float | None) -> Callable[[], bool] | None:
     return over
 
 
-def _locked_segments(graph: SegmentGraph, lock_mask: np.ndarray | None) -> np.ndarray:
+def locked_segments(graph: SegmentGraph, lock_mask: np.ndarray | None) -> np.ndarray:
     """Segments with most of their points inside ``lock_mask`` (Sec. 7, Fig. 16)."""
     if lock_mask is None:
         return np.zeros(graph.n_segments, dtype=bool)

@@ -5,10 +5,14 @@
 upload or an example image, paint the lock mask (paper Sec. 7, Fig. 16), drag
 the subject rectangle of a photo (GrabCut's seed, ``--subject``), Run, choose a
 level and T (:func:`~img2logo.experiments.explore.levels_within`: a smaller T
-is read off the largest run), click an arc, edit it with
-:mod:`img2logo.design.edits` (Fig. 17) and undo, and download the SVG, JSON and PNG
-of what is shown: the bytes the command line's writers give for that level and
-those edits (:meth:`Studio.downloads`). The page itself (ipywidgets and
+is read off the largest run), choose only some circle sizes k (Fig. 15), click
+arcs (several with ``add``), edit them with :mod:`img2logo.design.edits` (Fig. 17:
+delete, connect, add the other side of a circle, move, change the rung), undo
+and redo, see which segments a lock stroke covers before the Run
+(:meth:`Studio.lock_preview`), and download the SVG, JSON, PDF and PNGs (on white,
+transparent, over the input) of what is shown: the bytes the command line's
+writers give for that level and those edits (:meth:`Studio.downloads`), named by
+the image, the level and whether it was edited. The page itself (ipywidgets and
 ipycanvas, served by Voila: ``make studio``) is :mod:`.studio_page`.
 
 Every action returns True when it changed the state; on bad input (an
@@ -19,13 +23,16 @@ own message (:class:`~img2logo.errors.Img2LogoError`), as the command line
 prints it.
 
 Coordinates are input-image pixels (x right, y down; pixel (i, j) covers
-[j, j + 1) x [i, i + 1), centred at (j + 0.5, i + 0.5)).
+[j, j + 1) x [i, i + 1), centred at (j + 0.5, i + 0.5)), also for an input over
+``MAX_IMAGE_SIDE`` that is worked smaller; T and the error E^s are in the
+working copy's pixels, as :func:`img2logo.abstract` takes T (:attr:`Studio.work_scale`).
 """
 
 from __future__ import annotations
 
 import dataclasses
 import os
+import re
 import tempfile
 import time
 import warnings
@@ -36,7 +43,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ..constants import RDP_TOLERANCE, TOLERANCE
+from ..constants import DETAIL, RDP_TOLERANCE, TOLERANCE
 from ..errors import Img2LogoError, InvalidParameterError
 from ..experiments.explore import levels_within
 from ..experiments.paths import data_path
@@ -52,8 +59,20 @@ if TYPE_CHECKING:
 PICK_DISTANCE = 10.0
 
 #: Largest upload accepted, bytes: the command line reads any size, but the page receives the file
-#: through the kernel's websocket, whose messages Tornado caps at 10 MiB; 9 MB holds a 12-megapixel JPEG.
+#: through the kernel's websocket in one message; 9 MB holds a 12-megapixel JPEG.
 MAX_UPLOAD_BYTES = 9_000_000
+#: Largest websocket message the studio's server takes, bytes (``websocket_max_message_size`` in its
+#: ``voila.json``): Tornado's default, 10 MiB, dropped a larger upload without a word; up to this size
+#: a file too large for the studio reaches the kernel and gets :data:`MAX_UPLOAD_BYTES`'s line.
+WEBSOCKET_MAX_MESSAGE_BYTES = 128 * 1024 * 1024
+#: Longest name of an upload kept, characters (file systems allow 255 bytes; UTF-8 takes up to 4 a character).
+MAX_NAME_CHARS = 60
+
+
+#: The kinds of image in a designer's words.
+KIND_WORDS = {"photo": "photo", "clipart": "clip art", "drawing": "drawing"}
+#: The downloads, by key: SVG, JSON, PDF, PNG on white, PNG on nothing (transparent), PNG over the faded input.
+DOWNLOAD_FORMATS: tuple[str, ...] = ("svg", "json", "pdf", "png", "png-transparent", "png-input")
 
 
 @dataclass(frozen=True)
@@ -76,6 +95,11 @@ class StudioSettings:
         Nearly straight segments become straight lines (Sec. 9, Fig. 20b).
     ladder : str
         ``"phi"`` (golden) or ``"fibonacci"`` (Fig. 2b).
+    detail : int
+        Clip art: the regions kept besides the background (``--detail``).
+    exponents : tuple of int or None
+        Only these ladder exponents k (the subset of golden circles of Fig. 15, ``--radii``);
+        None: every rung.
     fill : str
         The command line's ``--fill`` option: ``none``, ``auto``,
         ``palette:#rrggbb,...``, ``linear[@DEG]:...`` or ``radial:...``
@@ -90,6 +114,8 @@ class StudioSettings:
     symmetry: str = "none"
     lines: bool = False
     ladder: str = "phi"
+    exponents: tuple[int, ...] | None = None
+    detail: int = DETAIL
     fill: str = "none"
 
 
@@ -102,7 +128,25 @@ def front_end_live() -> bool:
     return os.environ.get("SERVER_SOFTWARE", "").startswith("voila") or bool(os.environ.get("JPY_SESSION_NAME"))
 
 
-def _one_line(exc: BaseException, folder: str | None = None) -> str:
+def upload_name(filename: object) -> str:
+    """The name an uploaded file is shown and downloaded by: the browser's name, cleaned.
+
+    Only its last path component, printable characters, at most ``MAX_NAME_CHARS``
+    characters (a longer stem is cut, its suffix kept); ``"upload"`` when nothing is left
+    (an empty name, ``.`` or ``..``).
+    """
+    text = "".join(ch for ch in str(filename) if ch.isprintable()).replace("\\", "/")
+    name = text.rsplit("/", 1)[-1].strip()
+    if name in ("", ".", ".."):
+        return "upload"
+    if len(name) > MAX_NAME_CHARS:
+        stem, dot, suffix = name.rpartition(".")
+        suffix = dot + suffix if dot and stem and len(suffix) <= 10 else ""
+        name = name[: MAX_NAME_CHARS - len(suffix)] + suffix
+    return name
+
+
+def _one_line(exc: BaseException | Warning | str, folder: str | None = None) -> str:
     """The message of ``exc`` on one line, without the temporary folder an upload was read from."""
     text = str(exc)
     if folder:
@@ -154,6 +198,9 @@ class Studio:
         self.ok = True
         self.last_run_seconds = 0.0
         self._history: dict[int, list[Abstraction]] = {}
+        self._redo: dict[int, list[Abstraction]] = {}
+        # The logo (kept, so that its id names it) and its regions' own colours, by the logo's id.
+        self._colours: dict[int, tuple[Abstraction, dict[int, str]]] = {}
         self._cache: dict[str, Any] = {}
         if image is not None:
             self.load_example(image)
@@ -163,15 +210,28 @@ class Studio:
         self.message, self.ok = text, ok
         return ok
 
-    def _attempt(self, action: Callable[[], str], folder: str | None = None) -> bool:
-        """Run ``action`` (it returns its message); an img2logo error becomes the message, nothing changed."""
+    def _attempt(
+        self, action: Callable[[], str], folder: str | None = None, names: dict[str, str] | None = None
+    ) -> bool:
+        """Run ``action`` (it returns its message); an img2logo error becomes the message, nothing changed.
+
+        ``folder`` is left out of the messages and each key of ``names`` (a temporary file's name)
+        becomes its value (the name the file came with).
+        """
+
+        def line(text: BaseException | Warning | str) -> str:
+            out = _one_line(text, folder)  # type: ignore[arg-type]
+            for old, new in (names or {}).items():
+                out = out.replace(old, new)
+            return out
+
         try:
             with warnings.catch_warnings(record=True) as caught:
                 warnings.simplefilter("always")
                 text = action()
         except Img2LogoError as exc:
-            return self._say(f"error: {_one_line(exc, folder)}", ok=False)
-        notes = [_one_line(w.message, folder) for w in caught if issubclass(w.category, UserWarning)]
+            return self._say(f"error: {line(exc)}", ok=False)
+        notes = [line(w.message) for w in caught if issubclass(w.category, UserWarning)]
         return self._say("; ".join([text, *[f"warning: {n}" for n in notes]]))
 
     # ------------------------------------------------------------------ the input
@@ -180,7 +240,7 @@ class Studio:
 
         An unreadable or blank file keeps the previous image and says why.
         """
-        name = Path(str(filename)).name or "upload"
+        name = upload_name(filename)
         data = bytes(content)
         if len(data) > MAX_UPLOAD_BYTES:
             return self._say(
@@ -189,9 +249,11 @@ class Studio:
                 ok=False,
             )
         with tempfile.TemporaryDirectory(prefix="img2logo-upload-") as folder:
-            path = Path(folder) / name
+            # The browser's name is shown, never used as a path: "..", a NUL byte or 300 bytes are names too.
+            suffix = Path(name).suffix
+            path = Path(folder) / ("upload" + (suffix if re.fullmatch(r"\.[A-Za-z0-9]{1,10}", suffix) else ""))
             path.write_bytes(data)
-            return self._attempt(lambda: self._take(path, name), folder)
+            return self._attempt(lambda: self._take(path, name), folder, {path.name: name})
 
     def load_example(self, name: str) -> bool:
         """Take a file of ``data/`` (or a path) as the input."""
@@ -207,11 +269,12 @@ class Studio:
 
         img = dataclasses.replace(load_image(path), source=name)
         self.image, self.name = img, name
-        self.mask = np.zeros((img.height, img.width), dtype=bool)
+        # In the input's pixels, as abstract() takes it (an input over MAX_IMAGE_SIDE is worked smaller).
+        self.mask = np.zeros((img.input_height, img.input_width), dtype=bool)
         self.subject = None
         self.result, self.levels, self.level = None, (), 0
         self._reset_edits()
-        return f"{name}: {img.width}x{img.height} px; press Run"
+        return f"{name}: {img.input_width}x{img.input_height} px; press Run"
 
     @property
     def stem(self) -> str:
@@ -317,6 +380,8 @@ class Studio:
                 symmetry=settings.symmetry,
                 lines=settings.lines,
                 ladder=settings.ladder,
+                exponents=settings.exponents,
+                detail=settings.detail,
                 subject=self.subject,
                 lock_mask=self.mask.copy() if self.mask.any() else None,
                 progress=progress or False,
@@ -336,7 +401,8 @@ class Studio:
             found = result.lines.subject
             subject = f"; subject: {found.description}" if found is not None else ""
             return (
-                f"done: kind {result.lines.kind}, {len(self.levels)} levels, |A| = {len(result.final.arcs)}"
+                f"done: {KIND_WORDS.get(result.lines.kind, result.lines.kind)}, {len(self.levels)} levels, "
+                f"{len(result.final.arcs)} arcs"
                 f"{lock}, {self.last_run_seconds:.2f} s{subject}"
             )
 
@@ -358,13 +424,22 @@ class Studio:
         if self.result is None:
             self.settings = dataclasses.replace(self.settings, tolerance=float(tolerance))
             return self._say(f"T = {float(tolerance):g} px; press Run")
-        if 0 < float(tolerance) <= self.result.levels[0].tolerance:
+        if 0 < float(tolerance) <= self.run_tolerance * (1.0 + 1e-9):  # the same T, scaled there and back
             self.settings = dataclasses.replace(self.settings, tolerance=float(tolerance))
-            self.levels = levels_within(self.result, float(tolerance))
+            self.levels = levels_within(
+                self.result, min(float(tolerance) / self.work_scale, self.result.levels[0].tolerance)
+            )
             self.level = len(self.levels) - 1
             self.selected = []
             return self._say(self.title)
         return self.run(progress, tolerance=float(tolerance))
+
+    @property
+    def run_tolerance(self) -> float:
+        """T of the run made, px of the working copy (a smaller T is read off it); 0 before a Run."""
+        if self.result is None:
+            return 0.0
+        return float(self.result.levels[0].tolerance) * self.work_scale
 
     def update_settings(self, **changes: Any) -> None:
         """Record settings for the next Run (``fill`` takes effect at once: it only colours)."""
@@ -380,16 +455,34 @@ class Studio:
 
     @property
     def title(self) -> str:
-        """One line about the logo shown: level, |A|, E^s, T, the edits."""
+        """One line about the logo shown, in a designer's words: the level t, |A| arcs, the error E^s, T, the edits.
+
+        ``fish: level 12 of 30, 25 arcs, error 3.21 px (tolerance 5 px), 1 edit``.
+        """
         a = self.shown
         if a is None:
             return "no result yet: press Run"
         n_edits = len(self._history.get(self.level, []))
         edits = f", {n_edits} edit{'s' if n_edits != 1 else ''}" if n_edits else ""
+        # E^s in the pixels T is given in: those of the working copy when the input was worked smaller.
+        k = self.work_scale
+        work = self.result.image if self.result is not None and k != 1.0 else None
+        size = f" of the {work.width}x{work.height} px working copy" if work is not None else ""
         return (
-            f"{self.stem}: level t = {self.level} of {len(self.levels) - 1}, |A| = {len(a.arcs)}, "
-            f"E^s = {a.similarity:.2f} px (T = {self.settings.tolerance:g}){edits}"
+            f"{self.stem}: level {self.level} of {len(self.levels) - 1}, {len(a.arcs)} arcs, "
+            f"error {a.similarity * k:.2f} px (tolerance {self.settings.tolerance:g} px{size}){edits}"
         )
+
+    @property
+    def work_scale(self) -> float:
+        """Working-copy pixels per input pixel of the run (1.0 unless the input was worked smaller).
+
+        T, the progress bar and E^s in the title are in working pixels, as :func:`img2logo.abstract`
+        takes T; the logo, the mask, the subject and the clicks are in the input's pixels.
+        """
+        if self.result is None:
+            return 1.0
+        return float(self.result.final.params.get("scale", 1.0))
 
     # ------------------------------------------------------------------ selection and edits
     def pick(self, x: float, y: float, distance: float) -> int | None:
@@ -403,12 +496,19 @@ class Studio:
         i = int(np.argmin(gaps))
         return i if gaps[i] <= distance else None
 
-    def select_at(self, x: float, y: float, distance: float) -> int | None:
+    def select_at(self, x: float, y: float, distance: float, *, add: bool = False) -> int | None:
         """Click at (x, y), px: select the nearest arc within ``distance`` px (the last two clicked stay selected).
 
-        A click on the selected arc, or off every arc, clears the selection.
+        A click on the selected arc, or off every arc, clears the selection. With ``add``
+        (a shift-click) the arc joins the selection, or leaves it when it was in it, and
+        nothing else is dropped.
         """
         i = self.pick(x, y, distance)
+        if add and i is not None:
+            self.selected = [s for s in self.selected if s != i] + ([] if i in self.selected else [i])
+            n = len(self.selected)
+            self._say(f"{n} arc{'s' if n != 1 else ''} selected: {', '.join(map(str, self.selected))}")
+            return i
         if i is None or (self.selected and self.selected[-1] == i):
             self.selected = []
             self._say("nothing selected")
@@ -433,6 +533,7 @@ class Studio:
         def act() -> str:
             new = make(a)
             self._history.setdefault(self.level, []).append(new)
+            self._redo.pop(self.level, None)
             self.selected = keep(new)
             self._cache.clear()
             return f"{what}; {len(new.arcs)} arcs (Undo takes it back)"
@@ -440,11 +541,18 @@ class Studio:
         return self._attempt(act)
 
     def delete_selected(self) -> bool:
-        """Delete the selected arc (:func:`img2logo.design.edits.delete_arc`)."""
+        """Delete the selected arcs (:func:`img2logo.design.edits.delete_arc`), as one edit."""
         from ..design.edits import delete_arc
 
-        i = self.selected[-1] if self.selected else -1
-        return self._edit(lambda a: delete_arc(a, i), f"arc {i} deleted", lambda new: [])
+        chosen = sorted(set(self.selected), reverse=True)  # the last first: the others keep their indices
+
+        def make(a: Abstraction) -> Abstraction:
+            for i in chosen:
+                a = delete_arc(a, i)
+            return a
+
+        what = f"arc {chosen[0]} deleted" if len(chosen) == 1 else f"arcs {', '.join(map(str, chosen[::-1]))} deleted"
+        return self._edit(make, what, lambda new: [])
 
     def _circle_of_selected(self, a: Abstraction, op: str) -> int:
         arc = a.arcs[self.selected[-1]]
@@ -475,6 +583,64 @@ class Studio:
         i = self.selected[-1] if self.selected else -1
         return self._edit(make, f"circle of arc {i}: rung {int(delta):+d}", lambda new: [min(i, len(new.arcs) - 1)])
 
+    def add_other_side(self) -> bool:
+        """Add the other side of the selected arc's circle, between the arc's two ends (Fig. 17 "add").
+
+        :func:`img2logo.design.edits.add_arc` on the arc's own circle from its start junction to its
+        end junction, around the other way.
+        """
+        from ..design.edits import add_arc
+
+        def make(a: Abstraction) -> Abstraction:
+            i = self.selected[-1]
+            arc = a.arcs[i]
+            self._circle_of_selected(a, "add")
+            if a.arc_junctions is None:
+                raise InvalidParameterError("add: this logo records no junctions")
+            ends = a.arc_junctions[i]
+            if ends.start is None or ends.end is None or ends.start == ends.end:
+                raise InvalidParameterError(f"add: arc {i} does not end at two junctions (a closed circle?)")
+            return add_arc(a, arc.circle, ends.start, ends.end, sweep_sign=-1 if arc.sweep > 0 else +1)
+
+        i = self.selected[-1] if self.selected else -1
+        return self._edit(make, f"the other side of arc {i}'s circle added", lambda new: [len(new.arcs) - 1])
+
+    def lock_preview(self) -> list[np.ndarray]:
+        """The segments of the last run that the lock mask covers, each (N, 2) points, px: what the next Run locks.
+
+        The rule of the run (:func:`img2logo.fit.progressive.locked_segments`: most of a
+        segment's points inside the mask), applied to the last run's segment graph, with the
+        mask at its working size (a Run with other settings may find other segments).
+        """
+        if self.result is None or not self.mask.any():
+            return []
+        from ..fit.progressive import locked_segments
+        from ..images.loading import mask_to_working_size
+
+        graph = self.result.graph
+        mask = mask_to_working_size(self.mask, self.result.image, "lock mask")
+        locked = locked_segments(graph, mask)
+        k = self.work_scale
+        return [np.asarray(graph.segments[i], dtype=np.float64) / k for i in np.flatnonzero(locked)]
+
+    def set_exponents(self, text: str) -> bool:
+        """The golden circles to use at the next Run (Fig. 15): exponents k as ``"3, 5, 8"``; empty for all."""
+        words = [w for w in str(text).replace(",", " ").split() if w]
+        try:
+            exponents = tuple(sorted({int(w) for w in words})) if words else None
+        except ValueError:
+            return self._say(f"error: circle sizes must be whole numbers k separated by commas, got {text!r}", False)
+        self.settings = dataclasses.replace(self.settings, exponents=exponents)
+        chosen = "all" if exponents is None else "k = " + ", ".join(map(str, exponents))
+        return self._say(f"circle sizes: {chosen}; press Run")
+
+    @property
+    def rungs_used(self) -> tuple[int, ...]:
+        """The exponents k of the golden circles of the first level of the run (the candidates of Fig. 15)."""
+        if not self.levels:
+            return ()
+        return tuple(sorted({int(c.k) for c in self.levels[0].golden_circles if c.k is not None}))
+
     def connect_selected(self) -> bool:
         """Join the two selected arcs at their nearest free ends (:func:`~img2logo.design.edits.connect`)."""
         from ..design.edits import connect
@@ -498,13 +664,23 @@ class Studio:
 
     def undo(self) -> bool:
         """Take the last edit of the level shown back."""
-        history = self._history.get(self.level)
-        if not history:
-            return self._say("error: nothing to undo on this level", ok=False)
-        history.pop()
+        return self._shift_edit(self._history, self._redo, "undo", "undone")
+
+    def redo(self) -> bool:
+        """Make the last edit undone on the level shown again (a new edit forgets what was undone)."""
+        return self._shift_edit(self._redo, self._history, "redo", "redone")
+
+    def _shift_edit(
+        self, source: dict[int, list[Abstraction]], target: dict[int, list[Abstraction]], verb: str, done: str
+    ) -> bool:
+        """Move the last logo of the level shown from one stack (edits, or edits undone) to the other."""
+        stack = source.get(self.level)
+        if not stack:
+            return self._say(f"error: nothing to {verb} on this level", ok=False)
+        target.setdefault(self.level, []).append(stack.pop())
         self.selected = []
         self._cache.clear()
-        return self._say(f"edit undone; {self.title}")
+        return self._say(f"edit {done}; {self.title}")
 
     @property
     def n_edits(self) -> int:
@@ -512,27 +688,76 @@ class Studio:
         return len(self._history.get(self.level, []))
 
     def _reset_edits(self) -> None:
-        self._history = {}
+        self._history, self._redo, self._colours = {}, {}, {}
         self.selected = []
         self._cache.clear()
 
     def _cached(self, key: str, make: Callable[[], Any]) -> Any:
         """``make()`` once per logo shown and fill option (the cache is keyed on both)."""
-        full = (key, id(self.shown), self.settings.fill)
+        full = (key, id(self.shown), self.settings.fill, tuple(sorted(self._colours_of_shown().items())))
         if full not in self._cache:
             self._cache[full] = make()
         return self._cache[full]
 
     # ------------------------------------------------------------------ fills and downloads
     def fills(self) -> tuple[Fill, ...] | None:
-        """The fills of the logo shown (None for ``fill = "none"``), as the command line makes them."""
+        """The fills of the logo shown (None for ``fill = "none"``), as the command line makes them.
+
+        A region given its own colour (:meth:`colour_region_at`) has that colour, flat.
+        """
         from ..design.fills import parse_fill_option
 
         a = self.shown
         spec = parse_fill_option(self.settings.fill)
         if a is None or spec.mode == "none":
             return None
-        return self._cached("fills", lambda: spec.make(a, self.result.image))
+
+        def make() -> tuple[Fill, ...]:
+            made = spec.make(a, self.result.image)
+            own = self._colours_of_shown()
+            return tuple(
+                dataclasses.replace(f, color=own[i], gradient=None) if i in own else f for i, f in enumerate(made)
+            )
+
+        return self._cached("fills", make)
+
+    def _colours_of_shown(self) -> dict[int, str]:
+        """The regions of the logo shown given their own colour: fill index -> ``#rrggbb``."""
+        entry = self._colours.get(id(self.shown))
+        return entry[1] if entry is not None else {}
+
+    def region_at(self, x: float, y: float) -> int | None:
+        """The index of the fill region of the logo shown that holds point (x, y), px (even-odd rule); else None."""
+        import shapely
+
+        fills = self.fills()
+        for i, f in enumerate(fills or ()):
+            inside = sum(bool(shapely.contains_xy(shapely.Polygon(r), float(x), float(y))) for r in f.rings())
+            if inside % 2:
+                return i
+        return None
+
+    def colour_region_at(self, x: float, y: float, colour: str) -> bool:
+        """Give the fill region at (x, y), px, its own flat colour ``colour`` (``#rrggbb``) in the drawing and files."""
+        from ..design.fill_values import parse_color
+
+        if self.fills() is None:
+            return self._say("error: choose fills first (a region's colour changes a fill)", ok=False)
+
+        def act() -> str:
+            value = parse_color(colour, "colour")
+            i = self.region_at(x, y)
+            if i is None:
+                raise InvalidParameterError(f"no region at ({x:.0f}, {y:.0f}) px: click inside a filled region")
+            a = self.shown
+            if a is None:
+                raise InvalidParameterError("press Run first")
+            own = dict(self._colours_of_shown())
+            own[i] = value
+            self._colours[id(a)] = (a, own)
+            return f"region {i}: {value}"
+
+        return self._attempt(act)
 
     def set_fill(self, fill: str) -> bool:
         """Colour the logo with the command line's ``--fill`` option ``fill`` (no new Run)."""
@@ -543,6 +768,7 @@ class Studio:
             parse_fill_option(fill)
             old = self.settings
             self.settings = dataclasses.replace(old, fill=fill)
+            self._colours = {}  # another fill option: other regions, or the same in another order
             try:
                 fills = self.fills()
             except Img2LogoError:
@@ -552,39 +778,58 @@ class Studio:
 
         return self._attempt(act)
 
-    def download_names(self) -> dict[str, str]:
-        """The file name of each download, by format: ``<stem>.svg``, ``.json``, ``.png``."""
-        return {fmt: f"{self.stem}.{fmt}" for fmt in ("svg", "json", "png")}
+    @property
+    def download_stem(self) -> str:
+        """The downloads' name without suffix: the image's stem, the level, and ``-edited`` after an edit.
 
-    def downloads(self, formats: tuple[str, ...] = ("svg", "json", "png")) -> dict[str, bytes]:
+        ``hedgehog-level12-edited``: the variants a designer saves do not overwrite each other.
+        """
+        if not self.levels:
+            return self.stem
+        return f"{self.stem}-level{self.level}" + ("-edited" if self.n_edits else "")
+
+    def download_names(self, formats: tuple[str, ...] = DOWNLOAD_FORMATS) -> dict[str, str]:
+        """The file name of each download, by format (:data:`DOWNLOAD_FORMATS`)."""
+        check = set(formats) - set(DOWNLOAD_FORMATS)
+        if check:
+            raise InvalidParameterError(f"format must be one of {', '.join(DOWNLOAD_FORMATS)}, got {sorted(check)}")
+        ends = {"png-transparent": "-transparent.png", "png-input": "-over-input.png"}
+        return {fmt: self.download_stem + ends.get(fmt, "." + fmt) for fmt in formats}
+
+    def downloads(self, formats: tuple[str, ...] = DOWNLOAD_FORMATS) -> dict[str, bytes]:
         """The files of the logo shown, by format: the bytes the command line's writers give.
 
-        ``img2logo INPUT --level t --fill F --svg/--json/--png`` writes these files for the level
-        without edits (the writers :func:`~img2logo.export.writers.write_svg`,
-        :func:`~img2logo.export.writers.write_json`
-        and :func:`~img2logo.export.writers.write_png` are called as the command line calls them, into a
-        temporary folder).
+        ``img2logo INPUT --level t --fill F --svg/--json/--pdf/--png [--png-background B]`` writes
+        these files for the level without edits: ``png`` is on white, ``png-transparent`` on
+        nothing, ``png-input`` over the faded input (the writers
+        :func:`~img2logo.export.writers.write_svg`, :func:`~img2logo.export.writers.write_json`,
+        :func:`~img2logo.export.writers.write_pdf` and :func:`~img2logo.export.writers.write_png`
+        are called as the command line calls them, into a temporary folder).
         """
         from ..export import writers
 
         a = self.shown
         if a is None:
             raise InvalidParameterError("nothing to download: press Run first")
+        names = self.download_names(formats)
         fills = self.fills()
+        backgrounds = {"png": "white", "png-transparent": "transparent", "png-input": "input"}
 
         def make() -> dict[str, bytes]:
             out: dict[str, bytes] = {}
             with tempfile.TemporaryDirectory(prefix="img2logo-studio-") as folder:
                 for fmt in formats:
-                    path = Path(folder) / f"logo.{fmt}"
+                    path = Path(folder) / names[fmt]
                     if fmt == "json":
                         writers.write_json(a, path, fills=fills)
                     elif fmt == "svg":
                         writers.write_svg(a, path, fills=fills)
-                    elif fmt == "png":
-                        writers.write_png(a, path, image=self.result.image.rgb, fills=fills)
+                    elif fmt == "pdf":
+                        writers.write_pdf(a, path, fills=fills)
                     else:
-                        raise InvalidParameterError(f"format must be svg, json or png, got {fmt!r}")
+                        writers.write_png(
+                            a, path, image=self.result.image.rgb, fills=fills, background=backgrounds[fmt]
+                        )
                     out[fmt] = path.read_bytes()
             return out
 
@@ -601,4 +846,15 @@ def free_ends(a: Abstraction, arc: int) -> list[int]:
     return out
 
 
-__all__ = ["MAX_UPLOAD_BYTES", "PICK_DISTANCE", "Studio", "StudioSettings", "free_ends", "front_end_live"]
+__all__ = [
+    "DOWNLOAD_FORMATS",
+    "MAX_NAME_CHARS",
+    "MAX_UPLOAD_BYTES",
+    "PICK_DISTANCE",
+    "WEBSOCKET_MAX_MESSAGE_BYTES",
+    "Studio",
+    "StudioSettings",
+    "free_ends",
+    "front_end_live",
+    "upload_name",
+]

@@ -4,8 +4,11 @@
 (:func:`img2logo.studio.serve.serve_command`) on a free port of 127.0.0.1 with its token, Debian's
 chromium driven by playwright through its ``executable_path``, a 1366 x 768 window. The tests
 share one page and run in order, as a designer would: the layout, the level, an arc deleted and
-undone, a lock stroke painted and Run, an upload and Run, the downloads, a bad upload, the
-subject of a photo. It skips, saying why, where chromium, playwright or Voila is missing.
+undone, the keys, several arcs selected, a circle's centre dragged, the golden circles shown,
+the input hidden, the labels, downloads that are always the level shown, a lock stroke painted
+and Run, an upload that runs by itself (and again with the same file), the downloads, a bad
+upload, the End key of the level slider, an input over 2048 px, the subject of a photo. It
+skips, saying why, where chromium, playwright or Voila is missing.
 """
 
 from __future__ import annotations
@@ -15,6 +18,7 @@ import os
 import shutil
 from pathlib import Path
 
+import numpy as np
 import pytest
 from browser_support import CHROMIUM, CHROMIUM_ARGS, start_studio
 
@@ -26,7 +30,7 @@ ROOT = Path(__file__).resolve().parents[2]
 DATA = ROOT / "data"
 #: Seconds to wait for Voila to answer; ms for a step in the page (a Run on a loaded machine is slow).
 START_TIMEOUT = 60.0
-STEP_TIMEOUT_MS = 90_000
+STEP_TIMEOUT_MS = int(os.environ.get("IMG2LOGO_BROWSER_STEP_MS", "300000"))
 VIEWPORT = {"width": 1366, "height": 768}
 
 
@@ -106,6 +110,48 @@ def _wait_title(page, text: str) -> None:
     )
 
 
+def _level(page) -> tuple[int, int]:
+    """(t, last t) of the title ``name: level t of n, ...``."""
+    words = _title(page).split(": level ", 1)[1].split(",")[0].split(" of ")
+    return int(words[0]), int(words[1])
+
+
+#: JS: the RGBA values of the (2 r + 1) px square of the drawing around page point (x, y), as composited on screen.
+PIXELS = """([x, y, r]) => {
+    const c = document.querySelector('.img2logo-studio canvas'); const box = c.getBoundingClientRect();
+    const t = document.createElement('canvas'); t.width = c.width; t.height = c.height;
+    const g = t.getContext('2d'); g.drawImage(c, 0, 0);
+    const px = Math.round((x - box.left) * c.width / box.width), py = Math.round((y - box.top) * c.height / box.height);
+    return Array.from(g.getImageData(px - r, py - r, 2 * r + 1, 2 * r + 1).data); }"""
+
+
+def _pixel(page, x: float, y: float) -> list[int]:
+    """The RGBA of the drawing at page point (x, y) (the layers as composited on screen)."""
+    return page.evaluate(PIXELS, [x, y, 0])
+
+
+def _wait_pixels(page, x: float, y: float, r: int, condition: str) -> None:
+    """Wait until ``condition`` (JS on ``d``, the RGBA values around (x, y)) holds."""
+    page.wait_for_function(f"a => {{ const d = ({PIXELS})(a); return {condition}; }}", arg=[x, y, r])
+
+
+def _level_handle(page):
+    return page.locator(".img2logo-studio .widget-slider", has_text="Level").locator(".noUi-handle").first
+
+
+def _focus_drawing(page) -> None:
+    """Give the drawing the keyboard (a click on its frame's corner, off the logo, selects nothing)."""
+    box = _canvas_box(page)
+    page.mouse.click(box["x"] + 2, box["y"] + 2)
+    _wait_status(page, "nothing selected")
+
+
+def _select_arc(page, fish, i: int) -> None:
+    a = fish.shown
+    points = a.arcs[i].sample(step=1.0)
+    page.mouse.click(*_to_screen(page, *points[len(points) // 2], (a.width, a.height)))
+
+
 def _canvas_box(page) -> dict:
     return page.locator(".img2logo-studio canvas").first.bounding_box()
 
@@ -161,21 +207,21 @@ def test_the_page_fits_a_laptop_screen_with_a_large_drawing(page):
         "els => els.filter(e => e.offsetParent).map(e => parseFloat(getComputedStyle(e).fontSize))"
     )
     assert sizes and min(sizes) >= 12
-    for name in ("Run", "Delete arc", "Connect", "Undo", "Download SVG", "Download JSON", "Download PNG"):
+    names = ("Run", "Delete arc", "Connect", "Undo", "Redo", "Golden circles", "SVG", "PDF", "PNG (white)")
+    for name in (*names, "PNG (transparent)", "JSON"):
         assert page.locator(".img2logo-studio").get_by_text(name, exact=True).first.is_visible(), name
 
 
 def test_moving_the_level_redraws_the_drawing(page):
     before = _logo_pixels(page)
-    title = _title(page)
-    n = int(title.split(" of ")[1].split(",")[0])
-    handle = page.locator(".img2logo-studio .widget-slider", has_text="level t").locator(".noUi-handle").first
+    _, n = _level(page)
+    handle = _level_handle(page)
     handle.focus()
     handle.press("ArrowLeft")
-    _wait_title(page, f"level t = {n - 1} of {n}")
+    _wait_title(page, f"level {n - 1} of {n}")
     page.wait_for_function("old => document.querySelector('.img2logo-studio canvas').toDataURL() !== old", arg=before)
     handle.press("ArrowRight")
-    _wait_title(page, f"level t = {n} of {n}")
+    _wait_title(page, f"level {n} of {n}")
 
 
 def test_click_an_arc_delete_it_and_undo(page, fish):
@@ -193,7 +239,227 @@ def test_click_an_arc_delete_it_and_undo(page, fish):
     assert _logo_pixels(page) != before
     _click_button(page, "Undo")
     _wait_status(page, "edit undone")
-    assert f"|A| = {len(a.arcs)}" in _title(page) and "edit" not in _title(page)
+    assert f", {len(a.arcs)} arcs," in _title(page) and "edit" not in _title(page)
+
+
+def test_the_keys_undo_redo_delete_and_nudge(page, fish):
+    a = fish.shown
+    i = max(range(len(a.arcs)), key=lambda j: a.arcs[j].length)
+    _select_arc(page, fish, i)
+    _wait_status(page, f"arc {i} selected")
+    page.keyboard.press("Delete")
+    _wait_status(page, f"arc {i} deleted; {len(a.arcs) - 1} arcs")
+    page.keyboard.press("Control+z")
+    _wait_status(page, "edit undone")
+    page.keyboard.press("Control+Shift+Z")
+    _wait_status(page, "edit redone")
+    assert f", {len(a.arcs) - 1} arcs," in _title(page)
+    page.keyboard.press("Control+z")
+    _wait_status(page, "edit undone")
+    _select_arc(page, fish, i)
+    _wait_status(page, f"arc {i} selected")
+    page.keyboard.press("ArrowRight")
+    _wait_status(page, f"circle of arc {i} moved by (2, 0) px")
+    page.keyboard.press("Shift+ArrowUp")
+    _wait_status(page, f"circle of arc {i} moved by (0, -20) px")
+    assert "2 edits" in _title(page)
+    page.keyboard.press("Control+z")
+    page.keyboard.press("Control+z")
+    _wait_title(page, f", {len(a.arcs)} arcs,")
+    page.wait_for_function("() => !document.querySelector('.img2logo-studio .studio-title').innerText.includes('edit')")
+
+
+def test_shift_click_selects_several_arcs_and_delete_removes_them(page, fish):
+    a = fish.shown
+    longest = sorted(range(len(a.arcs)), key=lambda j: -a.arcs[j].length)[:3]
+    _focus_drawing(page)
+    for i in longest:
+        page.keyboard.down("Shift")
+        _select_arc(page, fish, i)
+        page.keyboard.up("Shift")
+        _wait_status(page, f"{longest.index(i) + 1} arc")
+    _wait_status(page, f"3 arcs selected: {', '.join(map(str, longest))}")
+    page.keyboard.press("Delete")
+    _wait_status(page, f"; {len(a.arcs) - 3} arcs")
+    assert "1 edit" in _title(page)
+    _click_button(page, "Undo")
+    _wait_status(page, "edit undone")
+
+
+def test_drag_the_selected_circles_centre_to_move_it(page, fish):
+    a = fish.shown
+    i = max((j for j in range(len(a.arcs)) if not a.arcs[j].is_line), key=lambda j: a.arcs[j].length)
+    c = a.arcs[i].circle
+    _select_arc(page, fish, i)
+    _wait_status(page, f"arc {i} selected")
+    x, y = _to_screen(page, c.cx, c.cy, (a.width, a.height))
+    assert _pixel(page, x, y)[:3] == [0x1F, 0x6F, 0xD1]  # the centre is drawn, in the selection's colour
+    before = _logo_pixels(page)
+    page.mouse.move(x, y)
+    page.mouse.down()
+    for step in range(1, 6):
+        page.mouse.move(x + 4 * step, y + 2 * step)
+    page.mouse.up()
+    _wait_status(page, f"circle of arc {i} moved by (")
+    assert "1 edit" in _title(page) and _logo_pixels(page) != before
+    _click_button(page, "Undo")
+    _wait_status(page, "edit undone")
+
+
+def test_the_golden_circles_are_shown_and_the_input_hidden(page, fish):
+    a = fish.shown
+    # A point on a golden circle away from every arc: the circles layer draws it.
+    far = None
+    for arc in a.arcs:
+        if arc.is_line:
+            continue
+        c = arc.circle
+        for t in np.linspace(0.0, 2.0 * np.pi, 72, endpoint=False):
+            q = np.array([c.cx + c.r * np.cos(t), c.cy + c.r * np.sin(t)])
+            inside = 8 < q[0] < a.width - 8 and 8 < q[1] < a.height - 8
+            if inside and min(np.hypot(*(s.sample(step=1.0) - q).T).min() for s in a.arcs) > 12:
+                far = q
+                break
+        if far is not None:
+            break
+    assert far is not None
+    x, y = _to_screen(page, *far, (a.width, a.height))
+    _click_button(page, "Hidden")
+    _wait_pixels(page, x, y, 0, "d[0] === 255 && d[1] === 255 && d[2] === 255")  # white: no input under it
+    page.locator(".img2logo-studio").get_by_text("Golden circles", exact=True).click()
+    _wait_pixels(page, x, y, 2, "d.some((v, i) => i % 4 === 2 && v < 200)")  # the circle's gold is there
+    page.locator(".img2logo-studio").get_by_text("Golden circles", exact=True).click()
+    _click_button(page, "Faded")
+
+
+def test_add_the_other_side_of_a_selected_arcs_circle(page, fish):
+    a = fish.shown
+    i = next(
+        j
+        for j in sorted(range(len(a.arcs)), key=lambda j: -a.arcs[j].length)
+        if not a.arcs[j].is_line and None not in (a.arc_junctions[j].start, a.arc_junctions[j].end)
+    )
+    _select_arc(page, fish, i)
+    _wait_status(page, f"arc {i} selected")
+    _click_button(page, "Add other side")
+    _wait_status(page, f"the other side of arc {i}'s circle added; {len(a.arcs) + 1} arcs")
+    _click_button(page, "Undo")
+    _wait_status(page, "edit undone")
+
+
+def test_only_some_circle_sizes(page, fish):
+    ks = sorted({c.k for c in fish.levels[0].golden_circles})[-4:]
+    sizes = page.locator(".img2logo-studio .widget-text", has_text="Only circle sizes").locator("input")
+    sizes.fill(", ".join(map(str, ks)))
+    _click_button(page, "Run")
+    _wait_status(page, "done:")
+    with page.expect_download() as info:
+        page.locator(".img2logo-studio a.studio-download", has_text="JSON").first.click()
+    doc = json.loads(Path(info.value.path()).read_text())
+    assert {c["k"] for c in doc["circles"] if c.get("k") is not None} <= set(ks)
+    sizes.fill("")
+    _click_button(page, "Delete arc")  # nothing selected: a line that is not "done:", to wait for the Run's
+    _wait_status(page, "error: select an arc first")
+    _click_button(page, "Run")
+    _wait_status(page, "done:")
+
+
+def test_click_a_region_to_give_it_its_own_colour(page, fish):
+    import shapely
+
+    from img2logo.studio.page import FILL_PRESETS
+    from img2logo.studio.session import Studio
+
+    s = Studio("clipart-fish.png")
+    s.result, s.levels, s.level = fish.result, fish.levels, fish.level
+    assert s.set_fill(FILL_PRESETS["palette"]), s.message
+    fills = s.fills()
+    order = sorted(range(len(fills)), key=lambda j: -shapely.Polygon(fills[j].rings()[0]).area)
+    point = next(
+        p
+        for j in order
+        for p in [np.array(shapely.Polygon(fills[j].rings()[0]).representative_point().coords[0])]
+        if s.region_at(*p) == j
+    )
+    a = fish.shown
+    fills_menu = page.locator(".img2logo-studio .widget-dropdown", has_text="Fills").locator("select")
+    fills_menu.select_option("palette")
+    _wait_status(page, "regions")
+    _tool(page, "Colour")
+    page.locator(".img2logo-studio input[type=color]").first.fill("#ff0000")
+    x, y = _to_screen(page, *point, (a.width, a.height))
+    page.mouse.click(x, y)
+    _wait_status(page, ": #ff0000")
+    _wait_pixels(page, x, y, 0, "d[0] > 200 && d[1] < 80 && d[2] < 80")
+    fills_menu.select_option("none")
+    _wait_status(page, "no fill")
+    _tool(page, "Select")
+
+
+def test_the_wheel_zooms_the_hand_pans_and_fit_comes_back(page):
+    box = _canvas_box(page)
+    zoom = page.locator(".img2logo-studio .widget-label", has_text="fit").first
+    centre = (box["x"] + box["width"] / 2, box["y"] + box["height"] / 2)
+    before = _logo_pixels(page)
+    page.mouse.move(*centre)
+    page.mouse.wheel(0, -100)
+    page.wait_for_function(
+        "() => [...document.querySelectorAll('.img2logo-studio .widget-label')].some(e => e.innerText === '125%')"
+    )
+    page.wait_for_function("old => document.querySelector('.img2logo-studio canvas').toDataURL() !== old", arg=before)
+    _tool(page, "Hand")
+    zoomed = _logo_pixels(page)
+    page.mouse.move(*centre)
+    page.mouse.down()
+    page.mouse.move(centre[0] + 40, centre[1] + 30)
+    page.mouse.up()
+    page.wait_for_function("old => document.querySelector('.img2logo-studio canvas').toDataURL() !== old", arg=zoomed)
+    _click_button(page, "Fit")
+    page.wait_for_function("old => document.querySelector('.img2logo-studio canvas').toDataURL() === old", arg=before)
+    assert zoom.inner_text() == "fit"
+    _tool(page, "Select")
+
+
+def test_the_labels_are_a_designers_words_with_the_papers_symbol_in_a_tooltip(page):
+    box = page.locator(".img2logo-studio")
+    for label, symbol in (
+        ("Tolerance (px)", "T:"),
+        ("Circle size offset", "\u03c3"),
+        ("Simplify lines (px)", "Ramer-Douglas-Peucker"),
+        ("Level", "A^t"),
+        ("Detail", "--detail"),
+    ):
+        widget = box.locator(".widget-slider", has_text=label).first
+        assert widget.is_visible(), label
+        titles = widget.evaluate("e => [e, ...e.querySelectorAll('[title]')].map(x => x.title).join(' ')")
+        assert symbol in titles, (label, titles)
+    assert "E^s" in box.locator(".studio-title b").first.get_attribute("title")
+    assert "error " in _title(page) and "tolerance " in _title(page) and "|A|" not in _title(page)
+
+
+def test_a_download_is_always_the_level_shown(page):
+    """With a slow fill the files are made after the drawing: until then there is no link to click."""
+    fills = page.locator(".img2logo-studio .widget-dropdown", has_text="Fills").locator("select")
+    fills.select_option("gradient")
+    _wait_status(page, "regions")
+    page.evaluate("() => { window.__stale = []; }")
+    watch = """() => { const t = document.querySelector('.img2logo-studio .studio-title').innerText;
+        const level = Number(t.split(': level ')[1].split(' of ')[0]);
+        const a = document.querySelector('.img2logo-studio a.studio-download[download$=".json"]');
+        if (!a) return false;
+        const doc = JSON.parse(atob(a.href.split(',')[1]));
+        if (doc.level !== level) { window.__stale.push([doc.level, level]); return false; }
+        return true; }"""
+    handle = _level_handle(page)
+    for key in ("ArrowLeft", "ArrowLeft", "ArrowRight", "ArrowRight"):
+        t, _ = _level(page)
+        handle.focus()
+        handle.press(key)
+        _wait_title(page, f"level {t + (1 if key == 'ArrowRight' else -1)} of")
+        page.wait_for_function(watch, polling="raf")
+    assert page.evaluate("() => window.__stale") == []
+    fills.select_option("none")
+    _wait_status(page, "no fill")
 
 
 def test_paint_a_lock_stroke_and_run_again(page, fish):
@@ -208,6 +474,7 @@ def test_paint_a_lock_stroke_and_run_again(page, fish):
         page.mouse.move(*_to_screen(page, *p, (a.width, a.height)))
     page.mouse.up()
     _wait_status(page, "lock mask:")
+    _wait_status(page, "the next Run locks")  # the segments under the stroke, highlighted before Run
     assert _logo_pixels(page) != before  # the stroke is shown
     _click_button(page, "Run")
     _wait_status(page, "segments locked")
@@ -215,22 +482,40 @@ def test_paint_a_lock_stroke_and_run_again(page, fish):
     _wait_status(page, "lock mask cleared")
 
 
+def _run_if_asked(page) -> None:
+    """Press Run when the page asks for it (an upload runs by itself: then this waits for its result)."""
+    page.wait_for_function(
+        "() => { const s = document.querySelector('.img2logo-studio .studio-status').innerText;"
+        " return s.includes('press Run') || s.startsWith('done:') || s.startsWith('error'); }"
+    )
+    if "press Run" in _status(page):
+        _click_button(page, "Run")
+    _wait_status(page, "done:")
+
+
 @pytest.fixture(scope="module")
 def uploaded(page, tmp_path_factory):
-    """clipart-cat.png uploaded as my-cat.png, and Run."""
+    """clipart-cat.png uploaded as my-cat.png: it runs by itself."""
     folder = tmp_path_factory.mktemp("upload")
     path = folder / "my-cat.png"
     shutil.copy(DATA / "clipart-cat.png", path)
     _upload(page, path)
-    _wait_status(page, "my-cat.png: 512x512 px; press Run")
-    _click_button(page, "Run")
+    _wait_title(page, "my-cat: level ")
     _wait_status(page, "done:")
     return path
 
 
-def test_upload_an_image_and_run(page, uploaded):
-    assert _title(page).startswith("my-cat: level t = ")
+def test_an_upload_runs_by_itself(page, uploaded):
+    assert _title(page).startswith("my-cat: level ")
     assert "error" not in _status(page)
+
+
+def test_the_same_file_uploaded_again_is_read_again(page, uploaded):
+    _click_button(page, "Delete arc")  # nothing selected: the page says so, the logo stays
+    _wait_status(page, "error: select an arc first")
+    _upload(page, uploaded)
+    _wait_status(page, "done:")
+    assert _title(page).startswith("my-cat: level ")
 
 
 def test_download_the_svg_and_json_of_the_logo_shown(page, uploaded, tmp_path):
@@ -239,11 +524,19 @@ def test_download_the_svg_and_json_of_the_logo_shown(page, uploaded, tmp_path):
     from img2logo.export.contract import from_document
 
     files = {}
-    for fmt in ("svg", "json", "png"):
+    t, _ = _level(page)
+    links = {
+        "svg": ("SVG", f"my-cat-level{t}.svg"),
+        "json": ("JSON", f"my-cat-level{t}.json"),
+        "pdf": ("PDF", f"my-cat-level{t}.pdf"),
+        "png": ("PNG (white)", f"my-cat-level{t}.png"),
+        "png-transparent": ("PNG (transparent)", f"my-cat-level{t}-transparent.png"),
+    }
+    for fmt, (label, name) in links.items():
         with page.expect_download() as info:
-            page.locator(".img2logo-studio").get_by_text(f"Download {fmt.upper()}", exact=True).click()
+            page.locator(".img2logo-studio a.studio-download", has_text=label).first.click()
         download = info.value
-        assert download.suggested_filename == f"my-cat.{fmt}"
+        assert download.suggested_filename == name
         target = tmp_path / download.suggested_filename
         download.save_as(target)
         files[fmt] = target.read_bytes()
@@ -253,9 +546,16 @@ def test_download_the_svg_and_json_of_the_logo_shown(page, uploaded, tmp_path):
     image = load_image(uploaded)
     assert (logo.width, logo.height) == (image.width, image.height)
     assert doc["params"]["source"] == "my-cat.png"
-    assert f"|A| = {len(logo.arcs)}" in _title(page)
+    assert f", {len(logo.arcs)} arcs," in _title(page)
     assert files["svg"] == writers.to_svg(logo).encode("utf-8")  # the SVG of that very logo
-    assert files["png"].startswith(b"\x89PNG")
+    assert files["pdf"].startswith(b"%PDF")
+    from io import BytesIO
+
+    from PIL import Image
+
+    white, clear = (Image.open(BytesIO(files[f])) for f in ("png", "png-transparent"))
+    assert white.size == clear.size == (image.width, image.height)
+    assert white.getpixel((0, 0))[:3] == (255, 255, 255) and clear.getpixel((0, 0))[3] == 0
 
 
 def test_a_bad_upload_is_one_line_and_the_result_stays(page, uploaded, tmp_path):
@@ -268,10 +568,78 @@ def test_a_bad_upload_is_one_line_and_the_result_stays(page, uploaded, tmp_path)
     assert _title(page) == title
 
 
+def test_an_upload_over_10_mb_is_refused_in_one_line(page):
+    from img2logo.studio.session import MAX_UPLOAD_BYTES
+
+    title = _title(page)
+    size = 11 * 2**20  # over Tornado's default websocket message cap of 10 MiB
+    with page.expect_file_chooser() as chooser:
+        page.locator(".img2logo-studio button", has_text="Upload image").first.click()
+    chooser.value.set_files({"name": "huge.png", "mimeType": "image/png", "buffer": b"\x89PNG" + bytes(size - 4)})
+    _wait_status(page, f"error: huge.png: the file has {size} bytes, more than the studio takes ({MAX_UPLOAD_BYTES})")
+    assert _title(page) == title
+
+
+def test_a_long_name_is_shown_cut(page):
+    name = "a-very-long-name-" * 20 + ".png"
+    with page.expect_file_chooser() as chooser:
+        page.locator(".img2logo-studio button", has_text="Upload image").first.click()
+    chooser.value.set_files({"name": name, "mimeType": "image/png", "buffer": (DATA / "clipart-cat.png").read_bytes()})
+    from img2logo.studio.session import MAX_NAME_CHARS
+
+    _wait_title(page, name[: MAX_NAME_CHARS - len(".png")] + ": level")
+    _wait_status(page, "done:")
+
+
+def test_the_end_key_goes_to_the_last_level_of_the_image_shown(page):
+    """After runs with fewer and then more levels than the first one shown, End is this run's last level."""
+    for name in ("drawing-fish", "clipart-cat"):
+        page.locator(".img2logo-studio select").first.select_option(f"{name}.png")
+        _wait_title(page, f"{name}: level")
+        _run_if_asked(page)
+    _, n = _level(page)
+    handle = _level_handle(page)
+    handle.focus()
+    handle.press("Home")
+    _wait_title(page, f"level 0 of {n}")
+    handle.press("End")
+    _wait_title(page, f"level {n} of {n}")
+    page.wait_for_timeout(500)
+    assert _level(page) == (n, n)
+
+
+def test_an_input_over_2048_px_shows_its_logo_in_one_unit(page, tmp_path):
+    import cv2
+
+    big = tmp_path / "big-fish.png"
+    rgb = cv2.imread(str(DATA / "clipart-fish.png"))
+    cv2.imwrite(str(big), cv2.resize(rgb, (2600, 2600), interpolation=cv2.INTER_NEAREST))
+    _upload(page, big)
+    _wait_title(page, "big-fish")
+    _run_if_asked(page)
+    title = _title(page)
+    error = float(title.split("error ")[1].split(" px")[0])
+    tolerance = float(title.split("(tolerance ")[1].split(" px")[0])
+    assert error <= tolerance and "working copy" in title, title
+    from img2logo.studio.session import Studio
+
+    s = Studio(str(big))
+    assert s.run(), s.message
+    a = s.shown
+    i = max(range(len(a.arcs)), key=lambda j: a.arcs[j].length)
+    points = a.arcs[i].sample(step=4.0)
+    x, y = _to_screen(page, *points[len(points) // 2], (a.width, a.height))
+    assert _pixel(page, x, y)[:3] == [0, 0, 0] or sum(_pixel(page, x, y)[:3]) < 200  # the logo is drawn there
+    _tool(page, "Select")
+    page.mouse.click(x, y)
+    _wait_status(page, f"arc {i} selected")
+
+
 def test_drag_a_subject_rectangle_on_a_photo_and_run(page):
     page.locator(".img2logo-studio select").first.select_option("photo-cat.png")
-    _wait_status(page, "photo-cat.png: 451x300 px; press Run")
-    page.locator(".img2logo-studio .widget-dropdown", has_text="kind").locator("select").select_option("photo")
+    _wait_title(page, "photo-cat: level")
+    _wait_status(page, "done:")
+    page.locator(".img2logo-studio .widget-dropdown", has_text="Image type").locator("select").select_option("photo")
     _tool(page, "Subject")
     size = (451, 300)
     page.mouse.move(*_to_screen(page, 110, 70, size))
@@ -282,4 +650,4 @@ def test_drag_a_subject_rectangle_on_a_photo_and_run(page):
     _wait_status(page, "subject: x=")
     _click_button(page, "Run")
     _wait_status(page, "subject: kept the object in")
-    assert _title(page).startswith("photo-cat: level t = ")
+    assert _title(page).startswith("photo-cat: level ")

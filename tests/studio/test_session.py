@@ -42,8 +42,103 @@ def test_an_example_is_loaded_and_named_for_the_downloads():
     s = Studio("drawing-fish.png")
     assert s.ok and s.message == "drawing-fish.png: 512x512 px; press Run"
     assert s.stem == "drawing-fish" and s.shown is None
-    assert s.download_names() == {"svg": "drawing-fish.svg", "json": "drawing-fish.json", "png": "drawing-fish.png"}
+    assert s.download_names(("svg", "png")) == {"svg": "drawing-fish.svg", "png": "drawing-fish.png"}
     assert s.mask.shape == (512, 512) and not s.mask.any()
+
+
+def test_the_downloads_are_named_by_level_and_edit(ran):
+    s = fresh(ran)
+    t = s.level
+    assert s.download_names() == {
+        "svg": f"drawing-fish-level{t}.svg",
+        "json": f"drawing-fish-level{t}.json",
+        "pdf": f"drawing-fish-level{t}.pdf",
+        "png": f"drawing-fish-level{t}.png",
+        "png-transparent": f"drawing-fish-level{t}-transparent.png",
+        "png-input": f"drawing-fish-level{t}-over-input.png",
+    }
+    s.selected = [longest(s)]
+    assert s.delete_selected(), s.message
+    assert s.download_names(("svg",)) == {"svg": f"drawing-fish-level{t}-edited.svg"}
+    s.set_level(t - 1)
+    assert s.download_names(("svg",)) == {"svg": f"drawing-fish-level{t - 1}.svg"}
+    with pytest.raises(InvalidParameterError, match="format must be one of svg, json, pdf"):
+        s.download_names(("gif",))
+
+
+@pytest.mark.parametrize(
+    ("given", "shown"),
+    [
+        ("..", "upload"),
+        (".", "upload"),
+        ("", "upload"),
+        ("lo\x00go.png", "logo.png"),
+        ("x" * 300 + ".png", "x" * (studio.MAX_NAME_CHARS - 4) + ".png"),
+        ("\u00e9" * 200, "\u00e9" * studio.MAX_NAME_CHARS),
+        ("../../etc/passwd", "passwd"),
+        ("C:\\Users\\me\\cat.png", "cat.png"),
+    ],
+)
+def test_any_name_of_an_upload_is_read_and_shown_cleaned(given, shown):
+    s = Studio()
+    assert s.load_upload(given, (DATA / "clipart-cat.png").read_bytes()), s.message
+    assert s.name == shown and s.message == f"{shown}: 512x512 px; press Run"
+
+
+def test_an_unreadable_upload_with_a_hostile_name_is_one_line():
+    s = Studio()
+    assert not s.load_upload("..", b"not an image")
+    assert s.message == "error: upload: not a readable image (expected PNG, JPEG, TIFF, BMP, WebP, ...)"
+
+
+def test_an_input_over_the_working_size_is_shown_and_edited_in_its_own_pixels(tmp_path):
+    import cv2
+
+    big = tmp_path / "big-fish.png"
+    rgb = cv2.imread(str(DATA / "clipart-fish.png"))
+    cv2.imwrite(str(big), cv2.resize(rgb, (2600, 2600), interpolation=cv2.INTER_NEAREST))
+    s = Studio(str(big))
+    assert s.message.startswith("big-fish.png: 2600x2600 px") and s.mask.shape == (2600, 2600)
+    s.paint([(1300.0, 1300.0)], 40.0)
+    assert s.run(), s.message
+    a = s.shown
+    assert (a.width, a.height) == (2600, 2600) and s.work_scale < 1.0
+    # T and the error in one unit: the working copy's pixels, as abstract() takes T.
+    assert f"error {a.similarity * s.work_scale:.2f} px (tolerance 5 px of the " in s.title
+    assert a.similarity * s.work_scale <= 5.0 and s.run_tolerance == pytest.approx(5.0)
+    assert s.set_tolerance(4.0) and s.settings.tolerance == 4.0 and s.result is not None
+    assert max(lv.similarity for lv in s.levels[1:]) * s.work_scale <= 4.0
+    i = longest(s)
+    middle = s.shown.arcs[i].sample(step=4.0)[len(s.shown.arcs[i].sample(step=4.0)) // 2]
+    assert s.select_at(*middle, 20.0) == i
+
+
+def test_undo_and_redo(ran):
+    s = fresh(ran)
+    n = len(s.shown.arcs)
+    s.selected = [longest(s)]
+    assert s.delete_selected()
+    assert s.undo() and len(s.shown.arcs) == n
+    assert s.redo() and len(s.shown.arcs) == n - 1 and s.message.startswith("edit redone")
+    assert not s.redo() and s.message == "error: nothing to redo on this level"
+    assert s.undo()
+    s.selected = [0]
+    assert s.delete_selected()  # a new edit forgets what was undone
+    assert not s.redo()
+
+
+def test_shift_click_selects_several_and_delete_removes_them_in_one_edit(ran):
+    s = fresh(ran)
+    a = s.shown
+    picks = [a.arcs[i].sample(step=1.0) for i in (0, 1, 2)]
+    for p in picks:
+        s.select_at(*p[len(p) // 2], 3.0, add=True)
+    assert s.selected == [0, 1, 2] and s.message == "3 arcs selected: 0, 1, 2"
+    s.select_at(*picks[1][len(picks[1]) // 2], 3.0, add=True)
+    assert s.selected == [0, 2]
+    assert s.delete_selected(), s.message
+    assert len(s.shown.arcs) == len(a.arcs) - 2 and s.n_edits == 1
+    assert list(s.shown.params["edits"][-2:]) == ["delete_arc(2)", "delete_arc(0)"]
 
 
 def test_an_unreadable_upload_is_one_line_and_keeps_the_image(ran):
@@ -84,13 +179,13 @@ def test_run_needs_an_image_and_a_bad_fill_is_said_before_it():
 def test_the_final_level_is_shown_and_a_smaller_t_needs_no_run(ran):
     s = fresh(ran)
     n = len(s.levels)
-    assert s.level == n - 1 and s.title.startswith(f"drawing-fish: level t = {n - 1} of {n - 1}")
+    assert s.level == n - 1 and s.title.startswith(f"drawing-fish: level {n - 1} of {n - 1}")
     result = s.result
     assert s.set_tolerance(2.0)
     assert s.result is result  # read off the run
     from img2logo.experiments.explore import levels_within
 
-    assert s.levels == levels_within(result, 2.0) and len(s.levels) < n and "(T = 2)" in s.title
+    assert s.levels == levels_within(result, 2.0) and len(s.levels) < n and "(tolerance 2 px)" in s.title
     assert s.set_level(0) and s.shown is s.levels[0]
     assert not s.set_level(99) and s.message.startswith("error: level must be in [0,")
 
@@ -260,6 +355,7 @@ def test_a_fibonacci_logo_refuses_edits_with_the_librarys_line():
 
 # --------------------------------------------------------------------------- downloads
 def _cli_files(tmp_path, level: int, fill: str) -> dict[str, bytes]:
+    """The SVG, JSON, PDF and PNG (on white) the command line writes for ``level``."""
     folder = tmp_path / "cli"
     folder.mkdir()
     shutil.copy(DATA / "drawing-fish.png", folder / "drawing-fish.png")
@@ -269,10 +365,11 @@ def _cli_files(tmp_path, level: int, fill: str) -> dict[str, bytes]:
     os.chdir(folder)  # the document records the input as given: run it as `img2logo drawing-fish.png`
     try:
         args = ["drawing-fish.png", "--level", str(level), "--fill", fill, "-q"]
-        assert cli.main([*args, "--svg", "out.svg", "--json", "out.json", "--png", "out.png"]) == 0
+        outputs = ["--svg", "out.svg", "--json", "out.json", "--pdf", "out.pdf", "--png", "out.png"]
+        assert cli.main([*args, *outputs, "--png-background", "white"]) == 0
     finally:
         os.chdir(here)
-    return {fmt: (folder / f"out.{fmt}").read_bytes() for fmt in ("svg", "json", "png")}
+    return {fmt: (folder / f"out.{fmt}").read_bytes() for fmt in ("svg", "json", "pdf", "png")}
 
 
 @pytest.mark.parametrize("fill", ["none", "auto"])
@@ -280,7 +377,7 @@ def test_downloads_are_the_command_lines_bytes(ran, tmp_path, fill):
     s = fresh(ran)
     assert s.set_fill(fill), s.message
     s.set_level(len(s.levels) - 2)
-    assert s.downloads() == _cli_files(tmp_path, s.level, fill)
+    assert s.downloads(("svg", "json", "pdf", "png")) == _cli_files(tmp_path, s.level, fill)
 
 
 def test_downloads_of_an_edited_logo_are_valid_documents(ran):
@@ -292,6 +389,13 @@ def test_downloads_of_an_edited_logo_are_valid_documents(ran):
     a = from_document(doc)
     assert len(a.arcs) == len(s.shown.arcs) and doc["params"]["edits"] == list(s.shown.params["edits"])
     assert files["svg"].startswith(b"<?xml") and files["png"].startswith(b"\x89PNG")
+    assert files["pdf"].startswith(b"%PDF")
+    from io import BytesIO
+
+    from PIL import Image
+
+    white, clear = (Image.open(BytesIO(files[f])) for f in ("png", "png-transparent"))
+    assert white.getpixel((0, 0))[:3] == (255, 255, 255) and clear.mode == "RGBA" and clear.getpixel((0, 0))[3] == 0
     from img2logo.export import writers
 
     assert files["svg"] == writers.to_svg(s.shown).encode("utf-8")
@@ -305,10 +409,13 @@ def test_nothing_to_download_before_a_run():
 # --------------------------------------------------------------------------- notebook, server
 def test_the_scripted_session_writes_the_downloads(tmp_path):
     session = studio_serve.scripted_session("drawing-fish.png", tmp_path)
-    assert [p.name for p in session.files] == ["drawing-fish.svg", "drawing-fish.json", "drawing-fish.png"]
+    stem = f"drawing-fish-level{session.steps[2][1].level}-edited"
+    assert [p.name for p in session.files] == [
+        f"{stem}{end}" for end in (".svg", ".json", ".pdf", ".png", "-transparent.png", "-over-input.png")
+    ]
     assert len(session.steps) == 3 and session.steps[1][2].any()
     assert len(session.steps[2][1].arcs) == len(session.steps[1][1].arcs) - 1
-    from_document(json.loads((tmp_path / "drawing-fish.json").read_text()))
+    from_document(json.loads((tmp_path / f"{stem}.json").read_text()))
     fig = studio_serve.plot_session(session)
     assert len(fig.axes) >= 3
 
@@ -328,6 +435,7 @@ def test_the_server_command_is_voila_on_localhost_with_the_studios_settings():
         "allow_remote_access": False,
         "local_hostnames": ["localhost"],
         "allow_origin": "",
+        "websocket_max_message_size": studio.WEBSOCKET_MAX_MESSAGE_BYTES,
     }
     assert config["VoilaConfiguration"]["file_allowlist"] == []
     assert config["MappingKernelManager"]["cull_connected"] is False
@@ -383,3 +491,78 @@ def test_papermill_is_no_live_front_end(monkeypatch):
     assert not studio.front_end_live()
     monkeypatch.setenv("SERVER_SOFTWARE", "voila/0.5.13")
     assert studio.front_end_live()
+
+
+# --------------------------------------------------------------------------- the paper's tool: Fig. 15, 16, 17
+def test_add_the_other_side_of_the_selected_arcs_circle(ran):
+    s = fresh(ran)
+    a = s.shown
+    i = next(
+        j
+        for j, arc in enumerate(a.arcs)
+        if not arc.is_line and None not in (a.arc_junctions[j].start, a.arc_junctions[j].end)
+    )
+    s.selected = [i]
+    assert s.add_other_side(), s.message
+    new = s.shown
+    assert len(new.arcs) == len(a.arcs) + 1 and new.arcs[-1].circle == a.arcs[i].circle
+    assert abs(abs(new.arcs[-1].sweep) + abs(a.arcs[i].sweep) - 2 * np.pi) < 1e-6
+    assert s.selected == [len(a.arcs)] and s.download_stem.endswith("-edited")
+
+
+def test_a_lock_stroke_shows_the_segments_the_next_run_locks(ran):
+    s = fresh(ran)
+    assert s.lock_preview() == []
+    arc = s.shown.arcs[longest(s)]
+    s.paint(arc.sample(step=4.0), 6.0)
+    preview = s.lock_preview()
+    assert preview and all(p.ndim == 2 and p.shape[1] == 2 for p in preview)
+    assert s.run(), s.message
+    assert int(s.result.final.params["locked_segments"]) == len(preview)
+
+
+def test_the_circle_sizes_of_fig_15(ran):
+    s = fresh(ran)
+    assert not s.set_exponents("5, seven") and s.message.startswith("error: circle sizes must be whole numbers")
+    assert s.settings.exponents is None
+    chosen = s.rungs_used[-3:]
+    assert s.set_exponents(" ".join(map(str, chosen))) and s.settings.exponents == chosen
+    assert s.run(), s.message
+    assert {c.k for c in s.shown.golden_circles} <= set(chosen)
+    assert s.set_exponents("") and s.settings.exponents is None
+
+
+def test_the_server_takes_an_upload_too_large_for_the_studio_to_say_so():
+    """Tornado's 10 MiB websocket cap dropped a 10 MB upload without a word: the server's config raises it."""
+    config = json.loads(studio_serve.VOILA_CONFIG.read_text())
+    assert config["Voila"]["tornado_settings"]["websocket_max_message_size"] == studio.WEBSOCKET_MAX_MESSAGE_BYTES
+    assert studio.WEBSOCKET_MAX_MESSAGE_BYTES > 10 * studio.MAX_UPLOAD_BYTES
+    s = Studio()
+    assert not s.load_upload("huge.jpg", b"\xff" * (11 * 2**20))
+    assert s.message.startswith(f"error: huge.jpg: the file has {11 * 2**20} bytes, more than the studio takes")
+
+
+def test_a_region_gets_its_own_colour_in_the_drawing_and_the_files(ran):
+    s = fresh(ran)
+    assert not s.colour_region_at(10.0, 10.0, "#ff0000") and s.message.startswith("error: choose fills first")
+    assert s.set_fill("palette:#264653,#2a9d8f"), s.message
+    fills = s.fills()
+    point = fills[0].rings()[0].mean(axis=0)
+    i = s.region_at(*point)
+    assert i is not None
+    assert s.colour_region_at(*point, "#FF0000"), s.message
+    assert s.message == f"region {i}: #ff0000" and s.fills()[i].color == "#ff0000"
+    doc = json.loads(s.downloads(("json",))["json"])
+    assert doc["fills"][i]["color"] == "#ff0000"
+    assert not s.colour_region_at(*point, "red-ish") and s.fills()[i].color == "#ff0000"
+    assert not s.colour_region_at(-50.0, -50.0, "#00ff00") and s.message.startswith("error: no region at")
+    s.set_level(s.level - 1)
+    assert all(f.color != "#ff0000" for f in s.fills() or ())  # another logo: its own regions
+
+
+def test_the_detail_of_a_clip_art_is_a_setting_of_the_run():
+    s = Studio("clipart-cat.png")
+    assert s.run(), s.message
+    many = len(s.shown.arcs)
+    assert s.run(detail=2), s.message
+    assert s.settings.detail == 2 and len(s.shown.arcs) < many
