@@ -63,13 +63,10 @@ MAX_IMAGE_PIXELS: int = 150_000_000
 #: 1 GB (estimated, 15 bytes a pixel), within issue 20's 1.5 GB (a 12000 px one: 5.13 GB, 26-29 s of
 #: CPU, measured with benchmarks/huge.py).
 MAX_FLOAT_IMAGE_PIXELS: int = 64_000_000
-#: Largest TIFF decoded whole (a layout img2logo.images.tiff does not decode a band at a time:
-#: JPEG-in-TIFF, floating-point samples, one compressed strip of the whole image), bytes of
-#: decoded samples (width x height x a pixel's bits / 8): OpenCV's libtiff then holds the
-#: decoded strip and the image, and the colour conversion another copy. Measured peaks: a 12000
-#: px 16-bit RGBA TIFF (1.15 GB of samples) 3.35 GB, 2.9x; a 12000 px 8-bit RGB one in one
-#: deflated strip (432 MB) 1.46 GB, 3.4x, 14.8 s. 350 MB keeps the peak near 1.2 GB, within
-#: issue 20's 1.5 GB (8-bit RGB up to about 117 Mpx in one strip).
+#: Largest strip (or tile) of a TIFF, bytes of decoded samples (its width x rows x a pixel's bits / 8):
+#: libtiff decodes a strip whole, so a file in one strip of the whole image is the whole image in
+#: memory however it is read (a 12000 px 16-bit RGBA TIFF: 1.15 GB of samples). 350 MB keeps the
+#: peak within issue 20's 1.5 GB (8-bit RGB up to about 117 Mpx in one strip).
 MAX_WHOLE_TIFF_BYTES: int = 350_000_000
 #: The largest length an option takes (``tolerance``, ``rdp_tolerance``,
 #: ``min_length``, ``max_arc_distance``, the Fibonacci ``unit``) and the largest
@@ -839,15 +836,3 @@ COLOUR_LINE_GATE: float = 3.0 * 1.6 * FDOG_SIGMA_C * COLOUR_LINE_SUBSAMPLE
 #: edge within this of it, px: 3 x the lightness FDoG's surround sigma (1.6 FDOG_SIGMA_C), the
 #: reach of its DoG across the edge.
 EDGE_SIDE_REACH: float = 3.0 * 1.6 * FDOG_SIGMA_C
-#: Inflated bytes of one strip when a PNG larger than the working size is decoded strip by strip
-#: (loading._read_png_strips): rows of the file, a multiple of the reduce factor, about this many
-#: bytes (one strip of a 12000 px 16-bit RGBA file: 170 rows). Bounds the decode's memory to a strip
-#: and the reduced image (the full-size 16-bit image was 1.15 GB); larger strips save only calls.
-PNG_STRIP_BYTES: int = 16 << 20
-#: Inflated bytes of a PNG from which its strips are unfiltered and reduced by numba's JIT kernels,
-#: which release the GIL (kernels.band_kernels), instead of the ahead-of-time ones, which hold it:
-#: then the inflating thread runs beside them on the second core. Importing numba and loading its
-#: cached kernels costs about 0.5-1 s of CPU (the first run after an install compiles them once,
-#: a few seconds); zlib inflates 100-200 MB a second of such data, so from 256 MB on the overlap
-#: (seconds) wins: a 12000 px 16-bit RGBA PNG has 1.15 GB.
-PNG_NOGIL_BYTES: int = 256 << 20

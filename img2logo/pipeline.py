@@ -203,6 +203,11 @@ def abstract(
     start = time.perf_counter()
     graph = build_segment_graph(lines, rdp_tolerance=opts.rdp_tolerance, min_length=opts.min_length)
     timings["segment_graph"] = time.perf_counter() - start
+    if graph.n_segments == 0 and np.any(lines.lines):  # lines there were: the option removed them all
+        raise InvalidParameterError(
+            f"min_length (--min-length) = {opts.min_length:g} px removes every feature line: none is that long "
+            f"(the image is {img.width}x{img.height} px at work); nothing to abstract"
+        )
     params = {
         "source": img.source,
         "kind": lines.kind,

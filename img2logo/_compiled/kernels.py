@@ -7,11 +7,9 @@ Fréchet distance, the tangent biarcs' searches), :mod:`img2logo._compiled.circl
 golden circle's centre, the biarc search's worst distances), :mod:`img2logo._compiled.graph`
 (the skeleton's shortest paths, the global KKT solve in a band) and
 :mod:`img2logo._compiled.front` (the clip-art regions' label sums, labelling, the distance transform),
-:mod:`img2logo._compiled.ndimage` (thinning, scipy's 1-D correlation and feature transform), each beneath a public
-function whose Python code stays as the reference the tests compare against, and
-:mod:`img2logo._compiled.png` (a large PNG's unfiltering and box reduce, strip by strip; its
-reference is Pillow's decoding). This module gives them to their callers as attributes
-(``kernels.sqp_dense(...)``), loaded on first use:
+:mod:`img2logo._compiled.ndimage` (thinning, scipy's 1-D correlation and feature transform), each beneath a
+public function whose Python code stays as the reference the tests compare against. This module gives them
+to their callers as attributes (``kernels.sqp_dense(...)``), loaded on first use:
 
 1. **Ahead of time.** The entry points below are compiled with numba's ``pycc``
    into one extension module whose name carries a hash of the kernels' source and
@@ -138,8 +136,6 @@ ENTRY_POINTS: dict[str, tuple[str, tuple[str, ...], str]] = {
     "correlate_kernel": ("ndimage", ("f8[:,:,::1]", "f8[::1]", "i8", "f8", "!f8[:,:,::1]"), "i8"),
     "correlate32_kernel": ("ndimage", ("f4[:,:,::1]", "f8[::1]", "i8", "f8", "!f4[:,:,::1]"), "i8"),
     "feature_transform_kernel": ("ndimage", ("u1[:,::1]",), "i4[:,:,::1]"),
-    "png_unfilter": ("png", ("!u1[::1]", "i8", "i8", "i8", "!u1[::1]"), "i8"),
-    "png_reduce": ("png", ("u1[::1]", *["i8"] * 6, "b1", "b1", "i8", "!f8[:,::1]"), "i8"),
 }
 
 _DTYPES: dict[str, np.dtype[Any]] = {
@@ -156,7 +152,6 @@ _SOURCES = (
     "graph.py",
     "front.py",
     "ndimage.py",
-    "png.py",
     "jit.py",
 )
 _loaded: dict[str, Any] = {}
@@ -349,51 +344,7 @@ def main(argv: list[str] | None = None) -> int:
     """``python -m img2logo._compiled.kernels``: build (if need be) and load the kernels; print where from."""
     _load()
     print(f"img2logo kernels: {source}" + ("" if CACHED else " (no disk cache: the Python reference runs)"))
-    _warm_png_jit()
     return 0
-
-
-def band_kernels(pixel_bytes: int) -> tuple[Any, Any]:
-    """The unfiltering and reducing kernels for an image of ``pixel_bytes`` decoded a band at a time.
-
-    ``(png_unfilter, png_reduce)``, for a large PNG (:func:`img2logo.images.loading.load_image`'s
-    strips) or TIFF (:mod:`img2logo.images.tiff`). The ahead-of-time kernels hold the GIL while
-    they run, so the thread inflating the next band waits for them (a 12000 px 16-bit
-    RGBA PNG: 17.7 s wall for 17.6 s of CPU, measured). From ``PNG_NOGIL_BYTES`` on,
-    numba's JIT kernels of the same source (:mod:`img2logo._compiled.png`, compiled
-    ``nogil``, cached on disk at install) run instead, where numba can cache them: the
-    threads then share the cores.
-    """
-    from ..constants import PNG_NOGIL_BYTES
-
-    if pixel_bytes >= PNG_NOGIL_BYTES:
-        try:
-            from . import jit as kernels_jit, png as kernels_png
-
-            if kernels_jit.CACHED:
-                return kernels_png.png_unfilter, kernels_png.png_reduce
-        except Exception:  # numba missing or unusable here: the ahead-of-time kernels do it
-            pass
-    return __getattr__("png_unfilter"), __getattr__("png_reduce")
-
-
-def _warm_png_jit() -> None:
-    """Compile numba's JIT PNG kernels into their disk cache, with the argument types the loader gives.
-
-    A PNG of at least ``PNG_NOGIL_BYTES`` is decoded by them (they release the GIL,
-    :func:`band_kernels`); compiled here, at install, the first such
-    run does not wait seconds for it. Nothing happens where numba cannot cache them.
-    """
-    try:
-        from . import jit as kernels_jit, png as kernels_png
-    except Exception:  # numba missing or unusable: the ahead-of-time kernels decode every PNG
-        return
-    if not kernels_jit.CACHED:
-        return
-    rows = np.zeros(2 * 5, dtype=np.uint8)  # two rows of one filter byte and 4 samples
-    kernels_png.png_unfilter(rows, 2, 4, 1, np.zeros(4, dtype=np.uint8))
-    for alpha in (False, True):
-        kernels_png.png_reduce(rows, 2, 5, 1, 2, 2, 8, False, alpha, 2, np.zeros((1, 2)))
 
 
 if __name__ == "__main__":

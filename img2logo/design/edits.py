@@ -48,7 +48,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from .._validation import check_instance
-from ..constants import JUNCTION_TOLERANCE, LOG_PHI
+from ..constants import JUNCTION_TOLERANCE, LOG_PHI, MAX_LENGTH, MIN_LADDER_RADIUS
 from ..errors import FitError, InvalidParameterError
 from ..geometry.golden_ladder import GoldenLadder
 from ..geometry.primitives import TAU, Abstraction, Arc, ArcJunctions, Circle
@@ -453,7 +453,16 @@ def change_rung(abstraction: Abstraction, circle: int, delta: int = +1) -> Abstr
     if old.k is None:
         raise InvalidParameterError(f"circle {ci} has no ladder exponent k: change_rung needs a golden circle")
     k = old.k + int(delta)
-    changed = Circle(old.cx, old.cy, ladder.radius(k), k)
+    # Within the radii a ladder may offer (what the contract reads back), checked in log space before any
+    # work: a circle of 1e15 px was written and then refused, and its arcs, sampled per pixel, exhaust memory.
+    log_r = (k + ladder.bias) * LOG_PHI
+    if not math.log(MIN_LADDER_RADIUS) <= log_r <= math.log(MAX_LENGTH):
+        raise InvalidParameterError(
+            f"change_rung: circle {ci} moved {int(delta)} rungs would have r = phi**{k + ladder.bias:.6g} px; "
+            f"a ladder offers {MIN_LADDER_RADIUS:g} to {MAX_LENGTH:g} px"
+        )
+    r = ladder.radius(k)
+    changed = Circle(old.cx, old.cy, r, k)
     edit = f"change_rung({ci}, delta={int(delta)})"
     return _change_circle(a, ci, changed, fixed=False, carry=False, edit=edit)
 

@@ -130,8 +130,10 @@ def read_json(path: str | os.PathLike[str]) -> Abstraction:
         raise InvalidParameterError(f"{p}: cannot read the file: {exc.strerror or exc}") from exc
     try:
         doc = json.loads(text)
-    except json.JSONDecodeError as exc:
+    except ValueError as exc:  # JSONDecodeError, or an integer of more than 4300 digits
         raise InvalidParameterError(f"{p} is not JSON: {exc}") from exc
+    except RecursionError as exc:  # arrays or objects nested thousands deep
+        raise InvalidParameterError(f"{p} is not a valid document: JSON nested too deeply") from exc
     return from_document(doc)
 
 
@@ -201,7 +203,10 @@ def write_json(
 
     check_format_suffix(path, "json")
     doc = to_document(abstraction, params, check=check, fills=fills)
-    data = (json.dumps(doc, indent=2, sort_keys=True, allow_nan=False, ensure_ascii=False) + "\n").encode("utf-8")
+    text = json.dumps(doc, indent=2, sort_keys=True, allow_nan=False, ensure_ascii=False) + "\n"
+    # A file name of bytes that are not UTF-8 holds surrogate escapes (PEP 383): written as JSON's own
+    # escape (\udce9), valid UTF-8 that json.loads reads back as the same name.
+    data = text.encode("utf-8", errors="backslashreplace")
     return atomic_write(path, lambda f: f.write(data))
 
 
@@ -748,9 +753,12 @@ def save_figure(fig: Any, path: str | os.PathLike[str], *, dpi: float = PNG_DPI)
 
 
 def write_table(table: Any, path: str | os.PathLike[str]) -> Path:
-    """Write a pandas DataFrame as CSV (no index), whole or not at all."""
+    """Write a pandas DataFrame as CSV (no index), whole or not at all.
+
+    UTF-8; a file name of bytes that are not UTF-8 (surrogate escapes, PEP 383) is written as its own bytes.
+    """
     text = table.to_csv(index=False, lineterminator="\n", float_format="%.6g")
-    return atomic_write(path, lambda f: f.write(text.encode("utf-8")))
+    return atomic_write(path, lambda f: f.write(text.encode("utf-8", "surrogateescape")))
 
 
 def _escape(text: str) -> str:

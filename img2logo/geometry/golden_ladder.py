@@ -49,7 +49,7 @@ __all__ = [
 FIBONACCI_MAX_UNIT: float = 1.0
 
 #: Largest Fibonacci index whose F(k) is a finite float64 (F(1476) ~ 1.3e308).
-_FIBONACCI_MAX_INDEX: int = 1476
+FIBONACCI_MAX_INDEX: int = 1476
 
 
 def _check_radius(r: object) -> float:
@@ -230,9 +230,9 @@ def fibonacci(k: int) -> int:
 
 @lru_cache(maxsize=1)
 def _fibonacci_table() -> np.ndarray:
-    """F(0) ... F(_FIBONACCI_MAX_INDEX) as float64, each the float nearest the exact integer (read-only)."""
+    """F(0) ... F(FIBONACCI_MAX_INDEX) as float64, each the float nearest the exact integer (read-only)."""
     values = [0, 1]
-    while len(values) <= _FIBONACCI_MAX_INDEX:
+    while len(values) <= FIBONACCI_MAX_INDEX:
         values.append(values[-1] + values[-2])
     table = np.array([float(v) for v in values])
     table.setflags(write=False)
@@ -240,12 +240,12 @@ def _fibonacci_table() -> np.ndarray:
 
 
 def _check_index(k: object) -> int:
-    """``k`` as a Fibonacci ladder index: an integer in 1 .. _FIBONACCI_MAX_INDEX."""
+    """``k`` as a Fibonacci ladder index: an integer in 1 .. FIBONACCI_MAX_INDEX."""
     if isinstance(k, bool) or not isinstance(k, numbers.Integral):
         raise InvalidParameterError(f"k must be an integer, got {k!r}")
-    if not 1 <= k <= _FIBONACCI_MAX_INDEX:
+    if not 1 <= k <= FIBONACCI_MAX_INDEX:
         raise InvalidParameterError(
-            f"k must be in 1..{_FIBONACCI_MAX_INDEX} on the Fibonacci ladder (F(1) = F(2) = 1 is the unit), got {k}"
+            f"k must be in 1..{FIBONACCI_MAX_INDEX} on the Fibonacci ladder (F(1) = F(2) = 1 is the unit), got {k}"
         )
     return int(k)
 
@@ -339,10 +339,10 @@ class FibonacciLadder:
         table = _fibonacci_table()
         first = int(np.searchsorted(table, r_max / self.unit, side="left"))
         top = max(first + 1, 3)
-        if top > _FIBONACCI_MAX_INDEX:
+        if top > FIBONACCI_MAX_INDEX:
             raise InvalidParameterError(
                 f"radius {r_max!r} px is beyond the Fibonacci ladder of unit {self.unit!r} px "
-                f"(F({_FIBONACCI_MAX_INDEX}) units at most)"
+                f"(F({FIBONACCI_MAX_INDEX}) units at most)"
             )
         ks = np.arange(2, top + 1, dtype=np.int64)
         return ks, self.unit * table[ks]
@@ -428,7 +428,7 @@ def unit_from_radius(r: float, max_unit: float = FIBONACCI_MAX_UNIT) -> float:
     m = check_positive(max_unit, "max_unit")
     table = _fibonacci_table()
     k = max(2, int(np.searchsorted(table, r / m, side="left")))
-    while k < _FIBONACCI_MAX_INDEX and r / table[k] > m:  # a rounding guard
+    while k < FIBONACCI_MAX_INDEX and r / table[k] > m:  # a rounding guard
         k += 1
     return float(r / table[k])
 

@@ -21,7 +21,7 @@ import warnings
 from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, BinaryIO
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -35,12 +35,16 @@ from ..constants import (
     MAX_IMAGE_SIDE,
     MAX_WHOLE_TIFF_BYTES,
     MIN_IMAGE_SIDE,
-    PNG_STRIP_BYTES,
 )
 from ..errors import ImageNotFoundError, InvalidImageError, InvalidParameterError
 
 if TYPE_CHECKING:
     from PIL import Image
+
+
+#: Files of at least this many bytes (with an ASCII name) are decoded by OpenCV from the file, not from
+#: their bytes read into memory first: its decoders stream a file.
+STREAM_DECODE_BYTES = 64 << 20
 
 
 class DownscaleWarning(UserWarning):
@@ -388,43 +392,42 @@ def _read_file(path: Path, *, max_side: int = MAX_IMAGE_SIDE, max_pixels: int = 
         _working_size(w, h, max_side, str(path))
         if pages > 1:
             warnings.warn(f"{path}: the file has {pages} pages; only the first is used", PageWarning, stacklevel=3)
+        if fmt == "PNG":
+            exif_after = _check_png_end(path)
+            if exif_after is not None and orientation == 1:
+                orientation = _exif_orientation(exif_after)
+        elif fmt in ("JPEG", "MPO"):
+            _check_jpeg_scans(path)
+        elif fmt == "TIFF":
+            _check_tiff_strips(path)
         factor = max([f for f in (2, 4, 8) if max(w, h) / f >= max_side], default=1)
-        if fmt == "JPEG" and factor > 1:
+        if fmt in ("JPEG", "MPO") and factor > 1:
             reduced = {2: cv2.IMREAD_REDUCED_COLOR_2, 4: cv2.IMREAD_REDUCED_COLOR_4, 8: cv2.IMREAD_REDUCED_COLOR_8}
             flags = reduced[factor] | cv2.IMREAD_IGNORE_ORIENTATION
         small = None
-        if fmt == "PNG" and max(w, h) > max_side:
-            reduce_by = max(1, max(w, h) // max_side)
-            exif: list[bytes] = []
-            small = _read_png_strips(path, reduce_by, exif)
-            if small is None:  # interlaced, or no compiled kernels: Pillow decodes it whole
-                small = _read_png_reduced(path, reduce_by)
-                if orientation == 1:  # the probe stopped at the pixels: an eXIf chunk after them
-                    with contextlib.suppress(Exception):  # a damaged EXIF block: as stored
-                        orientation = int(_png_exif(path).get(0x0112, 1))
-            elif exif and orientation == 1:
-                orientation = _exif_orientation(exif[-1])
-        elif fmt == "PPM" and max(w, h) > max_side:
-            small = _read_netpbm_strips(path, max(1, max(w, h) // max_side))
+        # An animated PNG (an acTL chunk) is read as its default image, the IDAT's, by libvips: OpenCV
+        # composes its first frame from the fcTL chunks and gave a damaged one's as all black.
+        animated = fmt == "PNG" and (pages > 1 or _png_has_chunk(path, b"acTL", before_pixels=True))
+        if fmt in _VIPS_LOADERS and (max(w, h) > max_side or fmt == "TIFF" or animated):
+            with _decoder_stderr():  # libtiff's "TIFFReadDirectory: ..." lines, libvips' warnings
+                small = _read_with_vips(path, fmt, max(1, max(w, h) // max_side))
         elif fmt in ("GIF", "AVIF") and max(w, h) > max_side:
+            # Pillow holds a GIF as its palette indices (libvips' GIF loader: an RGBA canvas, 1.50 GB at the
+            # peak for a 12000 px one, measured; Pillow's 0.32 GB)
             small = _read_pillow_reduced(path, max(1, max(w, h) // max_side))
+        elif fmt == "PPM" and max(w, h) > max_side:
+            small = _read_netpbm_reduced(path, max(1, max(w, h) // max_side))
         elif fmt == "JPEG2000" and max(w, h) >= 2 * max_side:
             small = _read_jpeg2000_reduced(path, max(w, h), max_side)
-        elif fmt == "TIFF" and max(w, h) > max_side:
-            from .tiff import read_tiff_reduced
-
-            with _decoder_stderr():  # libtiff's "TIFFReadDirectory: ..." lines and the like
-                small = read_tiff_reduced(path, max(1, max(w, h) // max_side))  # None: OpenCV decodes it whole
         if small is not None:
             if orientation in (5, 6, 7, 8):
                 w, h = h, w
             return _upright(small, orientation), (w, h)
-    _check_whole_tiff(path)
     try:
         # A file of 64 MB or more with a plain name is decoded from the file (OpenCV's decoders stream it):
         # a 12000 px BMP's 576 MB were in memory twice (1.75 GB at the peak, measured). Otherwise from
         # its bytes (imdecode: unicode-safe, unlike imread; the same decoders).
-        stream = path.stat().st_size >= 4 * PNG_STRIP_BYTES and str(path).isascii()
+        stream = path.stat().st_size >= STREAM_DECODE_BYTES and str(path).isascii()
         data = np.zeros(1, dtype=np.uint8) if stream else np.fromfile(path, dtype=np.uint8)
     except OSError as exc:
         raise InvalidImageError(f"{path}: cannot read the file: {exc.strerror or exc}") from exc
@@ -448,393 +451,123 @@ def _read_file(path: Path, *, max_side: int = MAX_IMAGE_SIDE, max_pixels: int = 
     return arr, (w, h)
 
 
-#: Samples a pixel by PNG colour type, and the bit depths each allows (PNG specification, Table 11.1).
-_PNG_TYPES = {0: (1, (1, 2, 4, 8, 16)), 2: (3, (8, 16)), 3: (1, (1, 2, 4, 8)), 4: (2, (8, 16)), 6: (4, (8, 16))}
+#: Formats (as Pillow's probe names them) read through libvips (``pyvips``): every TIFF, the others when
+#: larger than the working size (shrink-on-load); its loader for each, which must be the one that reads it.
+_VIPS_LOADERS = {
+    "PNG": "pngload",
+    "TIFF": "tiffload",
+    "WEBP": "webpload",
+}
+#: libvips' sample formats and the largest value of each (the alpha of full opacity).
+_VIPS_FULL = {"uchar": 255.0, "ushort": 65535.0, "float": 1.0}
 
 
-def _read_png_strips(path: Path, factor: int, exif: list[bytes] | None = None) -> np.ndarray | None:
-    """A PNG that will be downscaled, decoded and box-reduced by ``factor`` a strip of rows at a time; BGR(A), or None.
+def _read_with_vips(path: Path, fmt: str, factor: int) -> np.ndarray:
+    """A PNG, TIFF or WebP decoded by libvips and box-reduced by ``factor``; BGR(A) or grey, as OpenCV's.
 
-    The full-size image is never in memory: the IDAT chunks are read in turn, their
-    deflate stream inflated by zlib (``zlib_ng`` where it is installed: the same bytes,
-    faster) into a strip of ``factor`` x k rows (about ``PNG_STRIP_BYTES``), which is
-    unfiltered and box-reduced by the compiled kernels (:mod:`img2logo._compiled.png`)
-    while a thread inflates the next (:class:`_InflatedStrips`); the reduced strips
-    make the result (12000 x 12000 px 16-bit RGBA: 0.2 GB, where the whole image
-    decoded was 1.15 GB at 16 bits, 0.58 GB at 8). Colour is averaged premultiplied by alpha, as
-    Pillow's ``reduce`` (the path before: :func:`_read_png_reduced`), but at the file's
-    depth: a 16-bit file gives 16-bit samples. Grey, grey + alpha, RGB, RGBA at 8 or
-    16 bits, a palette, 1-4 bit grey and a ``tRNS`` colour key are read; an interlaced
-    file, or where the compiled kernels are not usable, gives None (Pillow then
-    decodes it whole). Chunks other than IHDR, PLTE, tRNS and IDAT are skipped
-    unread (text of any size, a bogus iCCP: nothing is printed). The data of an eXIf
-    chunk after the pixels is appended to ``exif`` (given): its orientation applies.
+    libvips decodes the file a band of rows at a time (``access="sequential"``) and reduces each
+    band as it comes, so the full-size image is never in memory; a WebP is decoded at
+    1/``factor`` of its size by libwebp itself. Colour is averaged premultiplied by alpha
+    (the average of the composite over any background), at the file's depth: 8 or 16-bit
+    integers, or float. A CMYK or CIELAB file is converted to sRGB. The file is read
+    through its open descriptor (any file name); libvips' loader must be the format's.
+    A file whose decoder reports an error (damaged data, cut short) is refused
+    (``fail_on="error"``), as OpenCV's decoders refuse it at the working size, not
+    read with the rest of the image left blank.
 
     Raises
     ------
     InvalidImageError
-        The file ends before its last row, or its compressed data or row filters
-        are damaged: one line saying so.
+        The file is damaged or cut short, or not of the format its header says: one line.
     """
-    import struct
+    import pyvips
 
-    from .._compiled import kernels
-
-    with open(path, "rb", buffering=PNG_STRIP_BYTES // 16) as f:
-        head = f.read(33)
-        if len(head) < 33 or head[:8] != b"\x89PNG\r\n\x1a\n" or head[12:16] != b"IHDR":
-            return None
-        width, height, depth, ctype, method, filtering, interlace = struct.unpack(">IIBBBBB", head[16:29])
-        if ctype not in _PNG_TYPES or depth not in _PNG_TYPES[ctype][1] or (method, filtering, interlace) != (0, 0, 0):
-            return None  # interlaced (Adam7), or not a valid header: Pillow or OpenCV decide
-        if width == 0 or height == 0 or not kernels.usable():
-            return None
-        samples = _PNG_TYPES[ctype][0]
-        stride = (width * samples * depth + 7) // 8
-        png_unfilter, png_reduce = kernels.band_kernels((stride + 1) * height)
-        palette = key = None
-        chunks = _png_chunks(f)
-        for kind, data in chunks:
-            if kind == b"PLTE":
-                palette = data
-            elif kind == b"tRNS":
-                key = data
-            elif kind == b"IDAT":
-                first = data
-                break
-        else:
-            raise InvalidImageError(f"{path}: not a readable image: the PNG has no pixel data (no IDAT chunk)")
-        if ctype == 3 and palette is None:
-            raise InvalidImageError(f"{path}: not a readable image: the palette PNG has no palette (no PLTE chunk)")
-        rows_per = factor * max(1, PNG_STRIP_BYTES // ((stride + 1) * factor))
-        prior = np.zeros(stride, dtype=np.uint8)
-        expand = _png_expander(ctype, depth, width, palette, key)
-        channels = samples if expand is None else expand.channels
-        out_depth = 16 if depth == 16 else 8
-        result = np.empty(
-            ((height + factor - 1) // factor, (width + factor - 1) // factor, channels),
-            dtype=np.uint16 if out_depth == 16 else np.uint8,
-        )
-        pitch = stride + 1
-        # Rows per kernel call: about a megabyte, so that the inflating thread waits little for the GIL.
-        piece_rows = factor * max(1, (1 << 20) // (pitch * factor))
-        strips = _InflatedStrips(path, chunks, first, height, rows_per, pitch)
-        try:
-            for y, rows, buf in strips:
-                for r0 in range(0, rows, piece_rows):
-                    r1 = min(rows, r0 + piece_rows)
-                    block = buf[r0 * pitch : r1 * pitch]
-                    bad = png_unfilter(block, r1 - r0, stride, max(1, samples * depth // 8), prior)
-                    if bad >= 0:
-                        raise InvalidImageError(
-                            f"{path}: not a readable image: its pixel data is damaged "
-                            f"(row {y + r0 + bad + 1} has filter type {block[bad * pitch]})"
-                        )
-                    if expand is None:
-                        strip, step, offset, alpha = block, pitch, 1, ctype in (4, 6)
-                    else:
-                        pixels = np.ascontiguousarray(expand(block.reshape(r1 - r0, pitch)[:, 1:]))
-                        strip = pixels.view(np.uint8).reshape(-1)
-                        step, offset, alpha = width * channels * (out_depth // 8), 0, expand.alpha
-                    small = np.empty(((r1 - r0 + factor - 1) // factor, result.shape[1] * channels))
-                    n = png_reduce(
-                        strip, r1 - r0, step, offset, width, channels, out_depth, False, alpha, factor, small
-                    )
-                    top = (y + r0) // factor
-                    result[top : top + n] = np.rint(small).reshape(n, -1, channels)
-                strips.done(buf)
-        finally:
-            strips.close()
-        for kind, data in chunks:  # what follows the last row: an eXIf chunk, IEND
-            if kind == b"eXIf" and exif is not None:
-                exif.append(data)
-        if exif is not None:
-            exif.extend(strips.exif)
-    if channels == 1:
-        return result[:, :, 0]
-    if channels >= 3:  # OpenCV's channel order, as the rest of loading expects
-        result = np.ascontiguousarray(result[:, :, [2, 1, 0, *range(3, channels)]])
-    return result
-
-
-class _InflatedStrips:
-    """A PNG's inflated rows, a strip at a time, inflated by a thread of their own.
-
-    zlib releases the GIL while it inflates, so on two cores the next strip is
-    inflated while the compiled kernels unfilter and reduce this one (which hold
-    the GIL, in calls of about a megabyte). Iterating gives (first row, rows,
-    buffer) in order; :meth:`done` hands a buffer back, :meth:`close` stops the
-    thread and waits for it. An error of the thread (a file cut short, damaged
-    data: :class:`InvalidImageError`) is raised by the iteration.
-    """
-
-    BUFFERS = 3
-
-    def __init__(
-        self, path: Path, chunks: Iterator[tuple[bytes, bytes]], first: bytes, height: int, rows_per: int, pitch: int
-    ) -> None:
-        import queue
-        import threading
-
-        self._free: queue.Queue = queue.Queue()
-        self._full: queue.Queue = queue.Queue()
-        for _ in range(self.BUFFERS):
-            self._free.put(np.empty(rows_per * pitch, dtype=np.uint8))
-        self._stop = False
-        self.exif: list[bytes] = []  # the data of eXIf chunks met among the pixel data's
-        args = (path, chunks, first, height, rows_per, pitch)
-        self._thread = threading.Thread(target=self._run, args=args, name="img2logo-inflate", daemon=True)
-        self._thread.start()
-
-    def _run(
-        self, path: Path, chunks: Iterator[tuple[bytes, bytes]], tail: bytes, height: int, rows_per: int, pitch: int
-    ) -> None:
-        try:
-            inflater = _inflater()
-            for y in range(0, height, rows_per):
-                buf = self._free.get()
-                if buf is None or self._stop:
-                    return
-                view, need, have = memoryview(buf), min(rows_per, height - y) * pitch, 0
-                try:
-                    while have < need:
-                        piece = inflater.decompress(tail, need - have)
-                        tail = inflater.unconsumed_tail
-                        if piece:
-                            view[have : have + len(piece)] = piece
-                            have += len(piece)
-                            continue
-                        nxt = None if tail or inflater.eof else next(chunks, None)
-                        while nxt is not None and nxt[0] == b"eXIf":  # between the pixel data's chunks
-                            self.exif.append(nxt[1])
-                            nxt = next(chunks, None)
-                        if nxt is None or nxt[0] != b"IDAT":
-                            raise InvalidImageError(
-                                f"{path}: not a readable image: its pixel data ends before the last row "
-                                f"(row {y + have // pitch + 1} of {height}; the file cut short?)"
-                            )
-                        tail = nxt[1]
-                except _zlib_errors() as exc:
-                    raise InvalidImageError(
-                        f"{path}: not a readable image: its compressed pixel data is damaged ({exc})"
-                    ) from exc
-                self._full.put((y, need // pitch, buf))
-            self._full.put(None)
-        except BaseException as exc:  # handed to the reading thread, which raises it
-            self._full.put(exc)
-
-    def __iter__(self) -> Iterator[tuple[int, int, np.ndarray]]:
-        while (item := self._full.get()) is not None:
-            if isinstance(item, BaseException):
-                raise item
-            yield item
-
-    def done(self, buf: np.ndarray) -> None:
-        """Hand ``buf`` back for a later strip."""
-        self._free.put(buf)
-
-    def close(self) -> None:
-        """Stop the inflating thread (after its current call) and wait for it."""
-        self._stop = True
-        self._free.put(None)
-        self._thread.join()
-
-
-def _png_chunks(f: BinaryIO) -> Iterator[tuple[bytes, bytes]]:
-    """(type, data) of the chunks after IHDR, until IEND or the end of the file.
-
-    Chunks other than PLTE, tRNS, IDAT and eXIf are skipped without reading their data;
-    consecutive IDAT chunks (8 KB each from libpng) come joined, about 1 MB at a
-    time, so that the inflater is called per megabyte, not per chunk. CRCs are not
-    checked (as Pillow): damaged pixel data fails zlib's own checksum.
-    """
-    head = f.read(8)
-    batch: list[bytes] = []
-    size = 0
-    while len(head) == 8:
-        length, kind = int.from_bytes(head[:4], "big"), head[4:]
-        if kind != b"IDAT" and batch:
-            yield b"IDAT", b"".join(batch)
-            batch, size = [], 0
-        if kind == b"IEND":
-            return
-        if kind not in (b"PLTE", b"tRNS", b"IDAT", b"eXIf"):
-            f.seek(length + 4, os.SEEK_CUR)
-            head = f.read(8)
-            continue
-        if kind == b"IDAT" and length > 1 << 20:  # one large chunk (some encoders write one): a megabyte at a time
-            if batch:
-                yield b"IDAT", b"".join(batch)
-                batch, size = [], 0
-            left = length
-            while left > 0 and (part := f.read(min(left, 1 << 20))):
-                left -= len(part)
-                yield b"IDAT", part
-            if left > 0:  # cut short
-                return
-            head = f.read(12)[4:]
-            continue
-        block = f.read(length + 12)  # the data, its CRC and the next chunk's length and type
-        data, head = block[:length], block[length + 4 :]
-        if kind != b"IDAT":
-            yield kind, data
-            continue
-        batch.append(data)
-        size += len(data)
-        if size >= 1 << 20:
-            yield b"IDAT", b"".join(batch)
-            batch, size = [], 0
-    if batch:  # cut short: what there is
-        yield b"IDAT", b"".join(batch)
-
-
-class _Expander:
-    """Turns a strip's unfiltered rows (rows, stride) uint8 into pixels (rows, width, channels), 8 or 16-bit
-    big-endian, for a palette, grey of 1-4 bits or a ``tRNS`` colour key (the alpha it gives is the last channel)."""
-
-    def __init__(self, ctype: int, depth: int, width: int, palette: bytes | None, key: bytes | None) -> None:
-        self.ctype, self.depth, self.width = ctype, depth, width
-        self.lut = None
-        self.key = None
-        if ctype == 3:
-            entries = np.frombuffer(palette or b"", dtype=np.uint8)[: 3 * 256]
-            entries = entries[: len(entries) // 3 * 3].reshape(-1, 3)
-            self.alpha = key is not None
-            lut = np.zeros((256, 4 if self.alpha else 3), dtype=np.uint8)  # an index past the palette: black
-            lut[: len(entries), :3] = entries
-            if self.alpha:
-                lut[:, 3] = 255
-                opacities = np.frombuffer(key or b"", dtype=np.uint8)[:256]
-                lut[: len(opacities), 3] = opacities
-            self.lut = lut
-            self.channels = lut.shape[1]
-            return
-        samples = _PNG_TYPES[ctype][0]
-        if key is not None and ctype in (0, 2) and len(key) >= 2 * samples:
-            self.key = np.frombuffer(key[: 2 * samples], dtype=">u2")  # 16-bit values, whatever the depth
-        self.alpha = self.key is not None
-        self.channels = samples + (1 if self.alpha else 0)
-
-    def __call__(self, rows: np.ndarray) -> np.ndarray:
-        n = rows.shape[0]
-        if self.depth < 8:
-            bits = np.unpackbits(rows, axis=1).reshape(n, -1, self.depth)
-            weights = (1 << np.arange(self.depth - 1, -1, -1)).astype(np.uint8)
-            values = (bits @ weights).astype(np.uint8)[:, : self.width, None]  # (rows, width, 1), 0 .. 2**depth - 1
-        elif self.depth == 16:
-            values = np.ascontiguousarray(rows).view(">u2").reshape(n, self.width, -1)
-        else:
-            values = np.ascontiguousarray(rows).reshape(n, self.width, -1)
-        if self.lut is not None:
-            return np.ascontiguousarray(self.lut[values[:, :, 0]])
-        if self.key is not None:
-            clear = np.all(values == self.key[: values.shape[2]], axis=2)
-        if self.depth < 8:  # grey of 1, 2 or 4 bits to 8 bits: 255 / (2**depth - 1) is whole
-            values = values * np.uint8(255 // ((1 << self.depth) - 1))
-        if self.key is None:
-            return values
-        full = np.iinfo(values.dtype).max
-        opacity = np.where(clear, 0, full).astype(values.dtype)[:, :, None]
-        return np.ascontiguousarray(np.concatenate([values, opacity], axis=2))
-
-
-def _png_expander(ctype: int, depth: int, width: int, palette: bytes | None, key: bytes | None) -> _Expander | None:
-    """What a strip's rows need before the box reduce (:class:`_Expander`), or None: the samples as they are."""
-    if ctype == 3 or depth < 8 or (key is not None and ctype in (0, 2)):
-        return _Expander(ctype, depth, width, palette, key)
-    return None
-
-
-def _inflater() -> Any:
-    """A streaming zlib decompressor: ``zlib_ng``'s where it is installed (the same bytes, about 1.7 times
-    faster on a photo's 16-bit noise), else the standard library's."""
+    options: dict[str, Any] = {"access": "sequential", "fail_on": "error"}
+    if fmt == "WEBP" and factor > 1:
+        options["scale"] = 1.0 / factor
     try:
-        from zlib_ng import zlib_ng
-
-        return zlib_ng.decompressobj()
-    except ImportError:
-        import zlib
-
-        return zlib.decompressobj()
-
-
-def _zlib_errors() -> tuple[type[Exception], ...]:
-    """The exceptions a decompressor of :func:`_inflater` raises on damaged data."""
-    import zlib
-
-    errors: list[type[Exception]] = [zlib.error]
-    with contextlib.suppress(ImportError):
-        from zlib_ng import zlib_ng
-
-        errors.append(zlib_ng.error)  # type: ignore[arg-type]  # a class, typed as an instance in its stub
-    return tuple(errors)
-
-
-def _read_png_reduced(path: Path, factor: int) -> np.ndarray | None:
-    """A PNG that will be downscaled, decoded by Pillow and box-reduced by ``factor`` there; BGR(A), or None.
-
-    OpenCV decodes a 16-bit RGBA PNG through a second full-size buffer (12000 x
-    12000 px: 2.4 GB at its peak); Pillow decodes it once, in 8 bits per channel
-    (576 MB; 8 bits are plenty for a picture downscaled to 2048 px), and its
-    ``reduce`` averages colour premultiplied by alpha, as compositing over white
-    then averaging does. Only the modes L, LA, RGB and RGBA (others: None, and
-    OpenCV decodes the file); any failure gives None too (OpenCV then says why).
-    """
-    try:
-        from PIL import Image
-
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")
-            with Image.open(path) as im:
-                if im.mode not in ("L", "LA", "RGB", "RGBA") or "transparency" in im.info:
-                    return None  # a palette, 16-bit grey, a tRNS colour key: OpenCV reads them as they are
-                im.load()
-                arr = _reduce_by_strips(im, factor)
-    except Exception:
-        return None
+        with open(path, "rb") as f:  # the descriptor, not the name: a name of any bytes
+            im = pyvips.Image.new_from_source(pyvips.Source.new_from_descriptor(f.fileno()), "", **options)
+            loader = str(im.get("vips-loader"))
+            if not loader.startswith(_VIPS_LOADERS[fmt]):
+                raise InvalidImageError(f"{path}: not a readable image: its header says {fmt}, its content not")
+            if im.interpretation in ("cmyk", "lab", "labs", "labq", "xyz", "scrgb", "hsv", "lch", "cmc", "yxy"):
+                im = im.colourspace("srgb")
+            if im.format not in _VIPS_FULL:
+                raise InvalidImageError(
+                    f"{path}: not a readable image: samples of {im.format} (expected 8 or 16-bit integers or float)"
+                )
+            if factor > 1 and "scale" not in options:
+                im = _box_reduce(im, factor)
+            arr = im.numpy()
+    except pyvips.Error as exc:
+        lines = [line.strip() for line in str(exc).splitlines() if line.strip()]
+        raise InvalidImageError(f"{path}: not a readable image: {(lines or ['libvips failed'])[-1][-200:]}") from exc
     if arr.ndim == 3 and arr.shape[2] >= 3:  # OpenCV's channel order, as the rest of loading expects
         arr = np.ascontiguousarray(arr[:, :, [2, 1, 0, *range(3, arr.shape[2])]])
     return arr
 
 
-def _read_netpbm_strips(path: Path, factor: int) -> np.ndarray | None:
-    """A binary PGM or PPM (P5, P6) of maxval 255 or 65535 box-reduced by ``factor``, read a strip at a time; BGR.
+def _box_reduce(im: Any, factor: int) -> Any:
+    """A libvips image reduced by ``factor`` (int) in boxes of ``factor`` x ``factor`` pixels, at its sample format.
 
-    Its samples are stored raw (16 bits big-endian, as a PNG's), so strips of rows are read
-    and reduced by the PNG path's kernel: OpenCV decoded a 12000 px 16-bit PPM whole through
-    a second full-size buffer (1.75 GB at the run's peak, measured). Another kind (text
-    samples, another maxval, PAM): None, and OpenCV decodes it whole.
+    Colour is averaged premultiplied by alpha (the average of the composite over any
+    background); the last row and column of boxes take the image's edge pixels again
+    (``extend="copy"``) where the size is not a multiple of ``factor``, so every box
+    is whole. Integers are rounded to the nearest.
     """
-    from .._compiled import kernels
+    width, height = -(-im.width // factor) * factor, -(-im.height // factor) * factor
+    if (width, height) != (im.width, im.height):
+        im = im.embed(0, 0, width, height, extend="copy")
+    kind, full = im.format, _VIPS_FULL.get(im.format, 1.0)
+    im = im.cast("double")  # sums in double, one rounding at the end (integer shrinks round twice)
+    if im.hasalpha():
+        im = im.premultiply(max_alpha=full).shrink(factor, factor).unpremultiply(max_alpha=full)
+    else:
+        im = im.shrink(factor, factor)
+    return im.rint().cast(kind) if kind != "float" else im.cast(kind)
+
+
+def _read_netpbm_reduced(path: Path, factor: int) -> np.ndarray | None:
+    """A binary PGM or PPM (P5, P6) of maxval 255 or 65535 box-reduced by ``factor`` by libvips; grey or BGR.
+
+    Its samples are stored raw (16 bits big-endian), so libvips maps them as they are
+    (``rawload``) and reduces them a band of rows at a time: OpenCV decodes a 12000 px
+    16-bit PPM whole through a second full-size buffer (1.75 GB at the run's peak,
+    measured). Another kind (text samples, another maxval, PAM): None, and OpenCV
+    decodes it whole.
+    """
+    import pyvips
 
     with open(path, "rb") as f:
         head = f.read(512)
-        found = re.match(rb"(P[56])(?:\s+|#[^\n]*\n)+(\d+)(?:\s+|#[^\n]*\n)+(\d+)(?:\s+|#[^\n]*\n)+(\d+)\s", head)
-        if found is None or not kernels.usable():
-            return None
-        kind, width, height, maxval = found.group(1), *(int(g) for g in found.groups()[1:])
-        if maxval not in (255, 65535) or width <= 0 or height <= 0:
-            return None
-        channels, depth = (3 if kind == b"P6" else 1), (16 if maxval == 65535 else 8)
-        pitch = width * channels * depth // 8
-        reduce = kernels.band_kernels(pitch * height)[1]
-        rows_per = factor * max(1, PNG_STRIP_BYTES // (pitch * factor))
-        result = np.empty((-(-height // factor), -(-width // factor), channels), np.uint16 if depth == 16 else np.uint8)
-        buf = np.empty(rows_per * pitch, dtype=np.uint8)
-        f.seek(found.end())
-        for y in range(0, height, rows_per):
-            rows = min(rows_per, height - y)
-            if f.readinto(buf.data[: rows * pitch]) < rows * pitch:
-                raise InvalidImageError(
-                    f"{path}: not a readable image: its pixel data ends before the last row "
-                    f"(row {y + 1} of {height}; the file cut short?)"
-                )
-            small = np.empty((-(-rows // factor), result.shape[1] * channels))
-            n = reduce(buf, rows, pitch, 0, width, channels, depth, False, False, factor, small)
-            result[y // factor : y // factor + n] = np.rint(small).reshape(n, -1, channels)
-    if channels == 1:
-        return result[:, :, 0]
-    return np.ascontiguousarray(result[:, :, ::-1])  # OpenCV's channel order
+    found = re.match(rb"(P[56])(?:\s+|#[^\n]*\n)+(\d+)(?:\s+|#[^\n]*\n)+(\d+)(?:\s+|#[^\n]*\n)+(\d+)\s", head)
+    if found is None:
+        return None
+    kind, width, height, maxval = found.group(1), *(int(g) for g in found.groups()[1:])
+    if maxval not in (255, 65535) or width <= 0 or height <= 0:
+        return None
+    channels, depth = (3 if kind == b"P6" else 1), (2 if maxval == 65535 else 1)
+    if path.stat().st_size < found.end() + width * height * channels * depth:
+        raise InvalidImageError(f"{path}: not a readable image: its pixel data ends before the last row (cut short?)")
+    try:
+        im = pyvips.Image.rawload(
+            os.fsencode(path).decode("utf-8", "surrogateescape"),
+            width,
+            height,
+            channels,
+            offset=found.end(),
+            format="ushort" if depth == 2 else "uchar",
+        )
+        if depth == 2 and sys.byteorder == "little":  # the file's samples are big-endian
+            im = im.byteswap()
+        arr = _box_reduce(im, factor).numpy()
+    except pyvips.Error as exc:
+        lines = [line.strip() for line in str(exc).splitlines() if line.strip()]
+        raise InvalidImageError(f"{path}: not a readable image: {(lines or ['libvips failed'])[-1][-200:]}") from exc
+    if arr.ndim == 3 and arr.shape[2] == 3:
+        arr = np.ascontiguousarray(arr[:, :, ::-1])  # OpenCV's channel order
+    return arr
 
 
 def _read_pillow_reduced(path: Path, factor: int) -> np.ndarray | None:
@@ -862,6 +595,27 @@ def _read_pillow_reduced(path: Path, factor: int) -> np.ndarray | None:
     if arr.ndim == 3 and arr.shape[2] >= 3:  # OpenCV's channel order, as the rest of loading expects
         arr = np.ascontiguousarray(arr[:, :, [2, 1, 0, *range(3, arr.shape[2])]])
     return arr
+
+
+def _reduce_by_strips(im: Image.Image, factor: int, mode: str | None = None) -> np.ndarray:
+    """``np.array(im.reduce(factor))``, one strip of rows at a time: no second full-size image.
+
+    Pillow's ``reduce`` of an RGBA image first converts all of it to premultiplied
+    alpha (a copy as large as the decoded image: 576 MB at 12000 x 12000 px);
+    a strip of ``factor`` x k rows cropped and reduced gives the same pixels, the
+    copy a strip's size. With ``mode``, each strip is converted to it first (a palette's).
+    """
+    if factor <= 1:
+        return np.array(im if mode is None or im.mode == mode else im.convert(mode))
+    w, h = im.size
+    rows = factor * max(1, DOWNSCALE_STRIP_ROWS // factor)
+
+    def strip(y: int) -> Image.Image:
+        part = im.crop((0, y, w, min(h, y + rows)))
+        return part if mode is None or part.mode == mode else part.convert(mode)
+
+    strips = [np.array(strip(y).reduce(factor)) for y in range(0, h, rows)]
+    return np.concatenate(strips, axis=0)
 
 
 def _read_jpeg2000_reduced(path: Path, side: int, max_side: int) -> np.ndarray | None:
@@ -895,27 +649,6 @@ def _read_jpeg2000_reduced(path: Path, side: int, max_side: int) -> np.ndarray |
     return arr
 
 
-def _reduce_by_strips(im: Image.Image, factor: int, mode: str | None = None) -> np.ndarray:
-    """``np.array(im.reduce(factor))``, one strip of rows at a time: no second full-size image.
-
-    Pillow's ``reduce`` of an RGBA image first converts all of it to premultiplied
-    alpha (a copy as large as the decoded image: 576 MB at 12000 x 12000 px);
-    a strip of ``factor`` x k rows cropped and reduced gives the same pixels, the
-    copy a strip's size. With ``mode``, each strip is converted to it first (a palette's).
-    """
-    if factor <= 1:
-        return np.array(im if mode is None or im.mode == mode else im.convert(mode))
-    w, h = im.size
-    rows = factor * max(1, DOWNSCALE_STRIP_ROWS // factor)
-
-    def strip(y: int) -> Image.Image:
-        part = im.crop((0, y, w, min(h, y + rows)))
-        return part if mode is None or part.mode == mode else part.convert(mode)
-
-    strips = [np.array(strip(y).reduce(factor)) for y in range(0, h, rows)]
-    return np.concatenate(strips, axis=0)
-
-
 def _upright(arr: np.ndarray, orientation: int) -> np.ndarray:
     """The image as every viewer shows it: EXIF ``Orientation`` (1..8) applied, as ``PIL.ImageOps.exif_transpose``.
 
@@ -937,9 +670,12 @@ def _upright(arr: np.ndarray, orientation: int) -> np.ndarray:
     return np.ascontiguousarray(turns[orientation](arr))
 
 
-#: Lines a C image decoder writes to standard error itself (libpng, libjpeg, libtiff, OpenCV).
+#: Lines a C image decoder writes to standard error itself (libpng, libjpeg's warnings (its JWRN_ messages),
+#: libtiff, OpenCV).
 _DECODER_LINE = re.compile(
-    rb"^(libpng (warning|error)|Corrupt JPEG data|Premature end of JPEG|Invalid JPEG|Warning: |TIFF\w*: |\[ ?WARN)"
+    rb"^(libpng (warning|error)|Corrupt JPEG data|Premature end of JPEG|Invalid JPEG|Invalid SOS parameters|"
+    rb"Inconsistent progression sequence|Unknown Adobe color transform|Application transferred too|"
+    rb"Unsupported marker type|JPEG datastream contains no image|Warning: |TIFF\w*: |\[ ?WARN)"
 )
 
 
@@ -1025,30 +761,180 @@ def _probe(path: Path, max_pixels: int, max_side: int | None = None) -> tuple[in
     return w, h, pages, fmt, orientation
 
 
-def _check_whole_tiff(path: Path) -> None:
-    """Refuse a TIFF that would be decoded whole with more than ``MAX_WHOLE_TIFF_BYTES`` of samples.
+def _check_tiff_strips(path: Path) -> None:
+    """Refuse a TIFF whose strips (or tiles) each hold more than ``MAX_WHOLE_TIFF_BYTES`` of decoded samples.
 
-    Its bytes are width x height x the bits of a pixel / 8, from its first IFD
-    (:func:`img2logo.images.tiff.sample_bytes`). Where the compiled kernels are not
-    usable every large file is decoded whole: those are read as before.
+    libtiff decodes a strip or a tile whole, so one strip of the whole image (a layout
+    some writers use) is the whole image in memory however it is read. Its bytes are the
+    strip's (tile's) width x rows x the bits of a pixel / 8, from the first image file
+    directory as Pillow reads it (TIFF 6.0, Sec. 8 and 15); a file Pillow cannot read is
+    left to the decoder, which says why.
+    """
+    from PIL import Image
+
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            with Image.open(path) as im:
+                tags = im.tag_v2  # type: ignore[attr-defined]  # a TIFF's
+                width, height = im.size
+                bits = tags.get(258, (1,))
+                bits = sum(bits) if isinstance(bits, tuple) else int(bits) * int(tags.get(277, 1))
+                if 322 in tags and 323 in tags:
+                    size, what = int(tags[322]) * int(tags[323]) * bits // 8, "tiles"
+                else:
+                    size, what = width * min(int(tags.get(278, height)), height) * bits // 8, "strips"
+    except Exception:
+        return
+    if size > MAX_WHOLE_TIFF_BYTES:
+        raise InvalidImageError(
+            f"{path}: image is a TIFF in {what} of {size / 1e6:,.0f} MB of samples each, and a strip or tile is "
+            f"decoded whole; img2logo reads such a file up to {MAX_WHOLE_TIFF_BYTES / 1e6:,.0f} MB a strip (its "
+            "memory limit): downscale it, or save it in smaller strips or tiles"
+        )
+
+
+#: The last chunk of every PNG: IEND, its length (0) before it and its CRC after (PNG specification, Sec. 11.2.5).
+_PNG_IEND = b"\x00\x00\x00\x00IEND\xaeB`\x82"
+
+
+def _check_png_end(path: Path) -> bytes | None:
+    """Refuse a PNG without its IEND chunk; the data of an eXIf chunk between its pixels and IEND, or None.
+
+    A PNG ends with IEND (PNG specification, Sec. 5.6); without it the file was cut
+    short, whatever its size, so it is refused at every size (libpng through OpenCV
+    refuses it at the working size, libvips would read the rows it has). Only the
+    file's last 64 KB are read: an eXIf chunk after the pixel data is found there
+    by following the chunks' lengths from it to IEND exactly (a huge file's 100 000
+    pixel data chunks are not walked).
+
+    Raises
+    ------
+    InvalidImageError
+        The file has no IEND chunk.
     """
     try:
         with open(path, "rb") as f:
-            if f.read(2) not in (b"II", b"MM"):  # not a TIFF (nor a BigTIFF)
-                return
+            size = f.seek(0, os.SEEK_END)
+            start = max(0, size - (64 << 10))
+            f.seek(start)
+            tail = f.read()
+    except OSError:
+        return None  # the decode says why
+    end = tail.rfind(_PNG_IEND)
+    if end < 0 and not _png_has_chunk(path, b"IEND"):
+        raise InvalidImageError(
+            f"{path}: not a readable image: the PNG ends before its IEND chunk (the file cut short?)"
+        )
+    found = tail.rfind(b"eXIf", 0, max(end, 0))
+    if found < 4 or end < 0:
+        return None
+    at = found - 4
+    while at < end:  # the chunks from the eXIf on: each length must lead to the next, and the last to IEND
+        at += 12 + int.from_bytes(tail[at : at + 4], "big")
+    return tail[found + 4 : found + 4 + int.from_bytes(tail[found - 4 : found], "big")] if at == end else None
+
+
+def _png_has_chunk(path: Path, kind: bytes, *, before_pixels: bool = False) -> bool:
+    """Whether walking a PNG's chunks by their lengths from its start meets a ``kind`` chunk (before IEND, or
+    with ``before_pixels`` before the first IDAT: where acTL must be, PNG specification, Sec. 11.3.4)."""
+    with contextlib.suppress(OSError), open(path, "rb") as f:
+        f.seek(8)
+        while len(chunk := f.read(8)) == 8:
+            if chunk[4:] == kind:
+                return True
+            if chunk[4:] == b"IEND" or (before_pixels and chunk[4:] == b"IDAT"):
+                return False
+            f.seek(int.from_bytes(chunk[:4], "big") + 4, os.SEEK_CUR)
+    return False
+
+
+#: JPEG markers that start a frame (SOF0-SOF15 but DHT, JPG and DAC): progressive for SOF2, 6, 10, 14.
+_JPEG_FRAMES = frozenset(range(0xC0, 0xD0)) - {0xC4, 0xC8, 0xCC}
+#: The most scans a JPEG may have: libjpeg-turbo's suggested limit for untrusted files (its ``-maxscans``).
+MAX_JPEG_SCANS = 500
+#: A marker after entropy-coded data: 0xFF (and fill bytes 0xFF) then neither 0x00 (a stuffed byte) nor RST0-7.
+_JPEG_MARKER = re.compile(rb"\xff+[^\x00\xd0-\xd7\xff]")
+
+
+def _check_jpeg_scans(path: Path) -> None:
+    """Refuse a JPEG whose scans repeat (or exceed ``MAX_JPEG_SCANS``) before any decoding.
+
+    A progressive JPEG refines each coefficient of each component once per bit
+    (ITU-T T.81, Sec. G.1.1.1: a first scan with Ah = 0, then each refinement's Ah is
+    the previous scan's Al); a sequential JPEG codes each component in one scan.
+    libjpeg decodes a scan that breaks this order anyway (it warns "Inconsistent
+    progression sequence") and each scan costs a pass over every block of the image,
+    so a small file of repeated scans decoded for minutes. The markers are walked
+    from the frame header on: each scan's components (Cs), its spectral band
+    (Ss..Se) and bits (Ah, Al) are checked against what came before.
+
+    Raises
+    ------
+    InvalidImageError
+        A scan repeats what an earlier one coded, or the file has more than
+        ``MAX_JPEG_SCANS`` scans: one line.
+    """
+    try:
+        data = path.read_bytes()
     except OSError:
         return  # the decode says why
-    from .._compiled import kernels
-    from .tiff import sample_bytes
-
-    size = sample_bytes(path)
-    if size is None or size <= MAX_WHOLE_TIFF_BYTES or not kernels.usable():
-        return
-    raise InvalidImageError(
-        f"{path}: image is a TIFF of {size / 1e6:,.0f} MB of samples in a layout decoded whole (JPEG-compressed, "
-        f"floating-point, or one strip of the whole image); img2logo reads such a file up to "
-        f"{MAX_WHOLE_TIFF_BYTES / 1e6:,.0f} MB (its memory limit): downscale it, or save it in strips or tiles"
-    )
+    pos, progressive, ids = 2, False, []
+    coded: dict[int, list[int]] = {}  # component id: the next bit expected of each coefficient (-1: not yet coded)
+    scans = 0
+    while pos + 4 <= len(data):
+        if data[pos] != 0xFF:
+            return  # not a marker where one should be: the decoder says what is wrong
+        marker = data[pos + 1]
+        if marker == 0xFF:  # a fill byte before the marker
+            pos += 1
+            continue
+        if marker in (0xD8, 0x01) or 0xD0 <= marker <= 0xD7:
+            pos += 2
+            continue
+        if marker == 0xD9:  # EOI
+            return
+        length = int.from_bytes(data[pos + 2 : pos + 4], "big")
+        segment = data[pos + 4 : pos + 2 + length]
+        if marker in _JPEG_FRAMES and len(segment) >= 6:
+            progressive = marker in (0xC2, 0xC6, 0xCA, 0xCE)
+            ids = [segment[6 + 3 * k] for k in range(segment[5]) if 6 + 3 * k < len(segment)]
+            coded = {c: [-1] * 64 for c in ids}
+        if marker == 0xDA and len(segment) >= 1:
+            scans += 1
+            n = segment[0]
+            comps = [segment[1 + 2 * k] for k in range(n) if 1 + 2 * k < len(segment)]
+            tail = segment[1 + 2 * n : 4 + 2 * n]
+            if len(tail) < 3:
+                return
+            ss, se, ah, al = tail[0], tail[1], tail[2] >> 4, tail[2] & 15
+            if scans > MAX_JPEG_SCANS:
+                raise InvalidImageError(
+                    f"{path}: not a readable image: the JPEG has more than {MAX_JPEG_SCANS} scans (a damaged or "
+                    "hostile file: each scan is a pass over the whole image)"
+                )
+            for c in comps:
+                bits = coded.get(c)
+                if bits is None:
+                    continue  # a component the frame does not have: the decoder refuses it
+                band = range(ss, min(se, 63) + 1) if progressive else range(64)
+                for k in band:
+                    expected = -1 if ah == 0 else ah
+                    if bits[k] != expected or (progressive and al >= (ah if ah else 99)):
+                        raise InvalidImageError(
+                            f"{path}: not a readable image: scan {scans} of the JPEG codes again what an earlier "
+                            f"scan coded (component {c}, coefficient {k}; a damaged or hostile file)"
+                        )
+                    bits[k] = al
+            # The entropy-coded data runs to the next marker: 0xFF followed by neither 0x00 (a stuffed
+            # byte) nor a restart marker.
+            found = _JPEG_MARKER.search(data, pos + 2 + length)
+            if found is None:
+                return
+            at = found.end() - 2
+            pos = at
+            continue
+        pos += 2 + length
 
 
 def _float_image_size(path: Path) -> tuple[int, int, str] | None:
@@ -1121,8 +1007,8 @@ def _plain_png_size(path: Path, *, pixels_first: bool = False) -> tuple[int, int
     length fields, as in :func:`_png_exif`; a file without an IEND chunk (cut short)
     is left to Pillow and OpenCV to judge. With ``pixels_first`` the walk stops at the
     first IDAT chunk (the size of a PNG with neither chunk before its pixels): a huge
-    PNG's 100 000 IDAT chunks of 8 KB took 1.5 s to walk, and its strip decoder walks
-    them anyway, and reads an eXIf chunk after them (:func:`_read_png_strips`).
+    PNG's 100 000 IDAT chunks of 8 KB took 1.5 s to walk
+    (an eXIf chunk after them is read from the file's end, :func:`_check_png_end`).
     """
     try:
         with open(path, "rb") as f:

@@ -568,8 +568,8 @@ def test_messages_name_the_input_and_carry_no_third_party_lines(tmp_path):
     )
     assert done.returncode == EXIT_ERROR
     assert (
-        done.stderr
-        == f"img2logo: error: {truncated}: not a readable image (expected PNG, JPEG, TIFF, BMP, WebP, ...)\n"
+        done.stderr == f"img2logo: error: {truncated}: not a readable image: the PNG ends before its IEND chunk "
+        "(the file cut short?)\n"
     )
 
 
@@ -1003,3 +1003,31 @@ def test_the_command_freezes_its_heap_and_main_with_argv_does_not(tmp_path, monk
         assert gc.get_freeze_count() > 0 and out.read_text().startswith("<?xml")
     finally:
         gc.unfreeze()
+
+
+@pytest.mark.skipif(sys.platform == "win32" or sys.getfilesystemencoding() != "utf-8", reason="POSIX byte names")
+def test_a_file_name_that_is_not_utf8_works_in_the_command_and_the_batch(tmp_path, capsys):
+    # caf\xe9.png (Latin-1 bytes) gave a UnicodeEncodeError with --json, and a batch crashed writing summary.csv.
+    from img2logo.export.writers import read_json
+
+    name = os.fsdecode(b"caf\xe9.png")  # a surrogate escape (PEP 383)
+    folder = tmp_path / "in"
+    folder.mkdir()
+    (folder / name).write_bytes((DATA / "drawing-leaf.png").read_bytes())
+    out = tmp_path / "o.json"
+    assert main([str(folder / name), "-q", "--json", str(out), "--svg", str(tmp_path / "o.svg")]) == 0
+    assert read_json(out).params["source"] == str(folder / name)  # the same name back
+    out.read_bytes().decode("utf-8")  # the JSON stays UTF-8 (the name as JSON's \udce9 escape)
+    batch = tmp_path / "out"
+    assert main(["batch", str(folder), str(batch), "-q"]) == 0
+    assert os.fsencode(batch / "caf\udce9.svg") in [os.fsencode(p) for p in batch.iterdir()]
+    assert b"caf\xe9.png,drawing," in (batch / "summary.csv").read_bytes()  # the name's own bytes
+    gallery = (batch / "index.html").read_bytes().decode("utf-8")
+    assert 'src="caf%E9.svg"' in gallery and "caf\ufffd.png" in gallery
+    assert capsys.readouterr().err == ""
+
+
+def test_min_length_that_removes_every_line_names_the_option(tmp_path, capsys):
+    assert main([str(DATA / "drawing-leaf.png"), "--min-length", "1e7", "--json", str(tmp_path / "o.json")]) == 2
+    err = capsys.readouterr().err
+    assert "img2logo: error: " in err and "min_length (--min-length) = 1e+07 px removes every feature line" in err

@@ -542,3 +542,12 @@ def test_full_circle_stays_full() -> None:
         assert b.arcs[0].sweep == 2 * math.pi
         np.testing.assert_allclose(b.arcs[0].start, b.junctions[0], atol=TOL)
         assert end_junctions(b, 1) == (0, 1)
+
+
+@pytest.mark.parametrize("delta", [60, -60, 10**6])
+def test_change_rung_keeps_the_radius_where_the_contract_reads_it_back(lens: Abstraction, delta: int) -> None:
+    # change_rung(a, c, 60) gave r = 8.7e14 px: write_json wrote a file read_json refused.
+    with pytest.raises(InvalidParameterError, match=r"^change_rung: circle 0 moved -?\d+ rungs would have r = phi\*\*"):
+        edits.change_rung(lens, 0, delta)
+    b = edits.change_rung(lens, 0, 20)  # 4.4e4 times larger: still a ladder radius
+    validate_document(to_document(b))

@@ -387,3 +387,70 @@ def test_a_document_of_an_absurd_size_is_refused(tmp_path, width, message):
     (tmp_path / "big.json").write_text(json.dumps(doc))
     with pytest.raises(InvalidParameterError, match=message):
         writers.read_json(tmp_path / "big.json")
+
+
+# --------------------------------------------------------------------------- hostile documents
+def _nested(depth: int) -> dict:
+    inner: dict = {}
+    for _ in range(depth):
+        inner = {"a": inner}
+    return inner
+
+
+@pytest.mark.parametrize(
+    ("mutate", "message"),
+    [
+        (
+            lambda d: d["circles"][0].update(k=2000),
+            r"circle 0: k=2000 gives phi\*\*\(k\+bias\) beyond any float radius",
+        ),
+        (lambda d: d["circles"][0].update(k=10**400), r"circle 0: k=about 10\*\*400 gives phi\*\*\(k\+bias\) beyond"),
+        (lambda d: d.update(width=10**400), r"not a valid img2logo.abstraction/1 document: OverflowError"),
+        (lambda d: d["params"].update(deep=_nested(500)), r"not a valid img2logo.abstraction/1 document: nested too"),
+    ],
+)
+def test_a_hostile_document_is_one_line_not_an_overflow_or_recursion(tmp_path, mutate, message):
+    # OverflowError and RecursionError went through read_json (31 of 2,058 malformed documents).
+    doc = contract.to_document(make_abstraction())
+    mutate(doc)
+    path = tmp_path / "hostile.json"
+    path.write_text(json.dumps(doc), encoding="utf-8")
+    with pytest.raises(InvalidParameterError, match=message) as caught:
+        writers.read_json(path)
+    assert "\n" not in str(caught.value)
+
+
+def test_a_json_nested_thousands_deep_or_an_integer_of_thousands_of_digits_is_one_line(tmp_path):
+    path = tmp_path / "deep.json"
+    path.write_text("[" * 100_000 + "]" * 100_000, encoding="utf-8")
+    with pytest.raises(InvalidParameterError, match=r"deep\.json is not a valid document: JSON nested too deeply"):
+        writers.read_json(path)
+    path.write_text('{"width": ' + "9" * 5000 + "}", encoding="utf-8")
+    with pytest.raises(InvalidParameterError, match=r"deep\.json is not JSON: Exceeds the limit"):
+        writers.read_json(path)
+
+
+@pytest.mark.parametrize("k", [10**6, 2**31])
+def test_a_huge_fibonacci_index_is_refused_before_any_work(k):
+    # fibonacci(k)'s exact integer is quadratic in k: a document of k = 10**6 hung.
+    from img2logo.geometry.golden_ladder import FibonacciLadder
+
+    c1 = Circle(50.0, 50.0, 15.0, 5)
+    fields = dict(arc_segments=((0,),), junctions=np.zeros((0, 2)), junction_arcs=(), bias=0.0)
+    doc = contract.to_document(make_abstraction(arcs=(Arc(c1, 0.0, 1.0),), ladder=FibonacciLadder(3.0), **fields))
+    doc["circles"][0]["k"] = k
+    with pytest.raises(InvalidParameterError, match=rf"^circle 0: k={k} is not a Fibonacci index of a float radius"):
+        contract.from_document(doc)
+
+
+def test_a_document_of_too_many_circles_is_refused_before_any_work(monkeypatch):
+    # 10**5 circles took 29 s to check.
+    doc = contract.to_document(make_abstraction())
+    doc["circles"] = doc["circles"] * (contract.MAX_DOCUMENT_ITEMS // len(doc["circles"]) + 1)
+    checked = []
+    monkeypatch.setattr(contract, "_check_invariants", lambda d: checked.append(d))
+    with pytest.raises(InvalidParameterError, match=r"^circles must have at most 10,000 entries"):
+        contract.from_document(doc)
+    with pytest.raises(InvalidParameterError, match=r"^circles must have at most 10,000 entries"):
+        contract.validate_document(doc)
+    assert checked == []

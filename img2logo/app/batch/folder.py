@@ -96,6 +96,7 @@ def batch_lock(out_dir: Path) -> Iterator[None]:
 
     made = _Stage()  # records the folders created
     lock = out_dir / LOCK_NAME
+    fd, held = -1, False
     try:
         _make_parents(out_dir, made)
         for _ in range(100):
@@ -109,11 +110,23 @@ def batch_lock(out_dir: Path) -> Iterator[None]:
             except FileNotFoundError:
                 same = False
             if same:
+                held = True
                 break
             os.close(fd)  # the holder removed that file as we took it: take the new one
+            fd = -1
         os.ftruncate(fd, 0)
         os.pwrite(fd, f"{os.getpid()}\n".encode(), 0)
     except OSError as exc:
+        # Nothing of this batch stays behind (a full disk left an empty lock file): the lock it holds,
+        # and the folders it made.
+        if held:
+            with contextlib.suppress(OSError):
+                os.unlink(lock)
+        if fd >= 0:
+            os.close(fd)
+        for folder in reversed(made.folders):
+            with contextlib.suppress(OSError):
+                folder.rmdir()
         raise OutputError(os_message(lock, exc)) from exc
     try:
         yield

@@ -83,7 +83,7 @@ td.error { color: #a00; }
 def _link(target: str | os.PathLike[str], folder: Path) -> str:
     """``target`` as a URL relative to ``folder`` (forward slashes, escaped)."""
     rel = os.path.relpath(os.path.abspath(target), os.path.abspath(folder))
-    return quote(Path(rel).as_posix())
+    return quote(os.fsencode(Path(rel).as_posix()))  # a name's own bytes, UTF-8 or not, %-escaped
 
 
 def gallery_html(report: GalleryReport, output_dir: str | os.PathLike[str], *, title: str | None = None) -> str:
@@ -165,5 +165,8 @@ def gallery_html(report: GalleryReport, output_dir: str | os.PathLike[str], *, t
 
 def write_gallery(report: GalleryReport, output_dir: str | os.PathLike[str], *, title: str | None = None) -> Path:
     """Write :func:`gallery_html` to ``output_dir/index.html``, whole or not at all; return its path."""
-    data = gallery_html(report, output_dir, title=title).encode("utf-8")
+    # A file name of bytes that are not UTF-8 (surrogate escapes) is shown with U+FFFD for them; its links
+    # carry its bytes (_link).
+    data = gallery_html(report, output_dir, title=title).encode("utf-8", "surrogateescape")
+    data = data.decode("utf-8", "replace").encode("utf-8")
     return atomic_write(Path(output_dir) / GALLERY_NAME, lambda f: f.write(data))

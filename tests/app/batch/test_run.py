@@ -496,3 +496,26 @@ def test_a_planted_lock_file_never_writes_over_a_users_file(tmp_path, link):
     with pytest.raises(InvalidParameterError, match=rf"output folder .*out: \{LOCK_NAME}"):
         run_batch(find_images(src), out, jobs=1, progress=False)
     assert mine.read_text() == "my text\n" and sorted(p.name for p in out.iterdir()) == [LOCK_NAME]
+
+
+@pytest.mark.parametrize("existing", [False, True])
+def test_a_batch_into_a_full_disk_leaves_no_lock_file(tmp_path, monkeypatch, existing):
+    # A full disk made the lock's process id unwritable: an empty lock file stayed behind.
+    import errno
+    import os
+
+    from img2logo.app.batch.folder import batch_lock
+    from img2logo.errors import OutputError
+
+    out = tmp_path / "out"
+    if existing:
+        out.mkdir()
+
+    def full(fd, data, offset):
+        raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+
+    monkeypatch.setattr(os, "pwrite", full)
+    with pytest.raises(OutputError, match=r"No space left on device"):
+        with batch_lock(out):
+            pass
+    assert (sorted(out.iterdir()) == []) if existing else not out.exists()
