@@ -6,7 +6,7 @@ excluded), on one core of whatever machine runs it; the ratio column compares a
 median with its budget (below 1 is within budget). The command line is timed
 as whole processes (start-up, imports and numba's cached kernels included)
 against vtracer, a plain vectorizer (the ``bench`` extra), the two alternated
-run by run so that a machine's load falls on both alike (issue 19).
+run by run so that a machine's load falls on both alike.
 """
 
 from __future__ import annotations
@@ -44,13 +44,13 @@ DATA = ROOT / "data"
 PREPROCESS_BUDGET = 1.0
 #: Budget for the command line's start-up (import), s.
 STARTUP_BUDGET = 0.5
-#: Issue 19's budget for ``import img2logo`` and ``img2logo --version`` as whole processes, s.
+#: The budget for ``import img2logo`` and ``img2logo --version`` as whole processes, s.
 VERSION_BUDGET = 0.15
 #: Budget for the whole pipeline on the 512 px clip-art fish (issue: under 2 s), s.
 PIPELINE_BUDGET = 2.0
-#: Budget for the whole pipeline on a 512 px photo (issue 9: at most 5 s), s.
+#: Budget for the whole pipeline on a 512 px photo (at most 5 s), s.
 PHOTO_PIPELINE_BUDGET = 5.0
-#: Issue 19's in-process budgets: the clip-art fish, and a clip art of about 56 arcs (the giraffe), s.
+#: The in-process budgets: the clip-art fish, and a clip art of about 56 arcs (the giraffe), s.
 FISH_BUDGET = 0.15
 MANY_ARCS_BUDGET = 0.4
 #: The command line against vtracer over ``CLI_IMAGES``: targets for the worst and the median ratio.
@@ -80,7 +80,7 @@ BUSY_IMAGES = (
 BENCH_VENV = ROOT / "build" / "bench-venv"
 #: The page ``make bench`` writes.
 PAGE = ROOT / "docs" / "performance.md"
-#: Issue 23: a 512 px photo through the command line, as a whole process, at most this long, s.
+#: a 512 px photo through the command line, as a whole process, at most this long, s.
 PHOTO_CLI_BUDGET = 2.0
 #: The photos the command is timed on: 512 px on the longer side.
 PHOTO_CLI_IMAGES = (

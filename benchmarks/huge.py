@@ -4,7 +4,7 @@
 where they are kept and reused) from the repository's 512 px ``data/`` images and runs
 ``/usr/bin/time -f '%e %U %S %M' python -m img2logo IN -q --svg o.svg --json o.json`` on each,
 printing one row per run: wall, user and sys seconds, peak resident memory (GB), the arcs of
-the logo. Issue 20, item 12's target: at most 1.5 GB and 15 s for any accepted image.
+the logo. The target: at most 1.5 GB and 15 s for any accepted image.
 
 The images (16-bit RGBA PNGs unless said; the largest accepted input is MAX_IMAGE_PIXELS):
 

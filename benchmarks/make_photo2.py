@@ -10,7 +10,7 @@ the objects are the Fluent Emoji Flat clip arts of ``benchmarks/data/`` (their w
 removed: the object is what is not the white connected to the border; their inner feature
 lines are those clip arts' ground truth, carried through the same resize), with a shading
 gradient of their own so that they are not flat. The cases include the three hard ones of
-issue 23: an object of the background's own hue but another texture (a green cactus on
+an object of the background's own hue but another texture (a green cactus on
 green grass), a grey object on grey gravel (the seal) and a soft cast shadow on wood (the
 giraffe).
 

@@ -33,7 +33,7 @@ MAX_IMAGE_SIDE: int = 2048
 #: measured on photos of 300-512 px (the evaluation set, data/), and a logo of 20-60 arcs
 #: of a photo's subject needs no finer texture: worked at this size, a photo gives the
 #: logo those defaults were measured for, whatever its resolution. At the 2048 px
-#: working size the noisy 12000 px flower of issue 20 gave 103 arcs, its outline in
+#: working size the noisy 12000 px flower gave 103 arcs, its outline in
 #: pieces, and took 25 s of CPU; at 1024 px 60 arcs, at 512 px 33 arcs, whole.
 #: Clip art and drawings: SYNTHETIC_WORK_SIDE.
 PHOTO_WORK_SIDE: int = 512
@@ -60,13 +60,13 @@ SYNTHETIC_WORK_SIDE: int = 512
 MAX_IMAGE_PIXELS: int = 150_000_000
 #: Largest accepted floating-point image (Radiance HDR, PFM), pixels: OpenCV decodes it whole
 #: into float32 RGB, 12 bytes a pixel, and the range check adds 3 more; at 64 Mpx that is about
-#: 1 GB (estimated, 15 bytes a pixel), within issue 20's 1.5 GB (a 12000 px one: 5.13 GB, 26-29 s of
+#: 1 GB (estimated, 15 bytes a pixel), within the 1.5 GB bound (a 12000 px one: 5.13 GB, 26-29 s of
 #: CPU, measured with benchmarks/huge.py).
 MAX_FLOAT_IMAGE_PIXELS: int = 64_000_000
 #: Largest strip (or tile) of a TIFF, bytes of decoded samples (its width x rows x a pixel's bits / 8):
 #: libtiff decodes a strip whole, so a file in one strip of the whole image is the whole image in
 #: memory however it is read (a 12000 px 16-bit RGBA TIFF: 1.15 GB of samples). 350 MB keeps the
-#: peak within issue 20's 1.5 GB (8-bit RGB up to about 117 Mpx in one strip).
+#: peak within the 1.5 GB bound on any accepted image (8-bit RGB up to about 117 Mpx in one strip).
 MAX_WHOLE_TIFF_BYTES: int = 350_000_000
 #: The largest length an option takes (``tolerance``, ``rdp_tolerance``,
 #: ``min_length``, ``max_arc_distance``, the Fibonacci ``unit``) and the largest
@@ -537,7 +537,7 @@ JUNCTION_MERGE_DISTANCE: float = 6.0
 #: valence 2 when the two segments' end tangents turn by less than this, rad. Ten degrees:
 #: the tangent of a 1-px raster line is known to about +-4 degrees (SMOOTH_TANGENT_LENGTH),
 #: so two such estimates differ by up to ~8 degrees on a smooth line, while the corners a
-#: designer draws turn by 20 degrees or more (issue 17). There the constrained fit makes
+#: designer draws turn by 20 degrees or more. There the constrained fit makes
 #: the two circles touch (TANGENCY), and ``make quality`` counts the join.
 SMOOTH_JOIN_ANGLE: float = math.radians(10.0)
 #: A segment's end tangent is that of the circle fitted to its pixels within this
@@ -547,7 +547,7 @@ SMOOTH_JOIN_ANGLE: float = math.radians(10.0)
 #: 15-150 px and polygons), and a circle, unlike a line, is not biased by the curvature.
 SMOOTH_TANGENT_LENGTH: float = 30.0
 #: ``make quality``: a join on smooth input is tangent when the logo's two arcs kink
-#: there by less than this, rad (issue 17's target: >= 90 % of the joins); two
+#: there by less than this, rad (the target: >= 90 % of the joins); two
 #: degrees is below what the eye sees at a stroke's join.
 TANGENT_JOIN_ANGLE: float = math.radians(2.0)
 #: A tangent join's junction slides along the input's line (img2logo.fit.tangency), the
@@ -558,7 +558,7 @@ SLIDE_MIN_PIXELS: int = 3
 #: A tangent join whose circles cannot touch on their rungs tries at most this many
 #: choices of one rung up or down for the two circles (img2logo.fit.tangency), those
 #: that bring the circles nearest to touching first: each costs a constrained fit,
-#: and the tangent pass must stay within issue 17's time budget (1.2x the pipeline).
+#: and the tangent pass must stay within a time budget of 1.2x the pipeline.
 RUNG_CHOICES: int = 2
 #: The joint refit of a level's tangent joins (img2logo.fit.tangency._all_at_once) tries at most this
 #: many times, releasing one join after each failure: every try solves the whole drawing at once.
@@ -568,7 +568,7 @@ ALL_AT_ONCE_TRIES: int = 2
 #: has the fewest arcs plus weighted kinks after its tangent refit. A kink is a defect
 #: the eye sees, while an arc added where the joins are tangent flows into its
 #: neighbours: two arcs for a kink. Measured on the clip arts and drawings (``make
-#: quality``, issue 17): 1 gives 72 % of the joins tangent and 42.1 clip-art arcs, 2 gives
+#: quality``): 1 gives 72 % of the joins tangent and 42.1 clip-art arcs, 2 gives
 #: 78 % and 42.4, 3 gives 83 % and 43.3 with two more near-miss gaps (held-out clip arts).
 KINK_WEIGHT: int = 2
 #: A smooth join that no refit from its circles makes tangent is fitted as one unit, a tangent

@@ -145,7 +145,7 @@ def arc_direction(arc: Arc, at_start: bool) -> np.ndarray:
 
 
 def joins(abstraction: Abstraction, graph: SegmentGraph, max_turn: float = SMOOTH_JOIN_ANGLE) -> Joins:
-    """The joins of ``abstraction`` on smooth input and their kinks (issue 17, beyond the paper).
+    """The joins of ``abstraction`` on smooth input and their kinks.
 
     A join is a junction of the level where exactly two arcs end and none
     passes through, at a node of ``graph`` (the segment graph the level was

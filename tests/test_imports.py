@@ -169,7 +169,7 @@ def test_the_file_format_loads_only_what_it_needs():
 
 
 def test_a_clip_art_run_of_the_command_loads_only_what_it_needs(tmp_path):
-    """The command on a clip art, writing SVG, with one BLAS thread (issue 19).
+    """The command on a clip art, writing SVG, with one BLAS thread.
 
     Not numba (the kernels are compiled ahead of time), scipy, scikit-image (not
     even their compiled modules: their operations are kernels), Pillow, matplotlib, numpy.ma, the JSON

@@ -123,7 +123,7 @@ def test_output_set_writes_all_or_nothing(tmp_path):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["a.json", "a.svg"]
 
 
-# --------------------------------------------------------------------------- issue 20
+# --------------------------------------------------------------------------- hostile targets
 @pytest.mark.parametrize(
     ("text", "shown"),
     [
@@ -204,7 +204,7 @@ def test_check_output_paths(tmp_path):
         check({}, [src], {"--levels-dir": tmp_path / "file"})
 
 
-# --- a target that is no regular file: a FIFO, a device (issue 20, item 4) -------------------
+# --- a target that is no regular file: a FIFO, a device -------------------
 def _special_targets(tmp_path):
     fifo = tmp_path / "pipe.out"  # a suffix of no format: each writer may be aimed at it
     os.mkfifo(fifo)

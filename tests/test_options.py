@@ -116,7 +116,7 @@ def test_the_command_line_flags_come_from_the_fields():
     }
 
 
-# --- bounds and types at the boundary (issue 20, items 5, 21, 22) ------------------------------
+# --- bounds and types at the boundary ------------------------------
 @pytest.mark.parametrize(
     ("keywords", "message"),
     [

@@ -105,7 +105,7 @@ def test_keywords_are_checked_before_any_work(tmp_path):
 
 
 def test_tolerance_and_progress_of_the_wrong_type_are_refused_before_any_work(tmp_path):
-    # issue 20, item 21: '5', True and 'yes' were taken as 5.0, 1.0 and a progress bar.
+    # '5', True and 'yes' were taken as 5.0, 1.0 and a progress bar.
     missing = tmp_path / "missing.png"
     for value in ("5", True):
         with pytest.raises(InvalidParameterError, match=rf"^tolerance must be a number of px, got {value!r}$"):
@@ -152,7 +152,7 @@ def test_images_whose_initial_fit_did_not_converge_give_a_logo(name):
     assert res.progression.stats["released_junctions"] == 0  # exact connectivity, nothing released
 
 
-# --- an input over the size bound: results in its pixels (issue 20, item 10) --------------------
+# --- an input over the size bound: results in its pixels --------------------
 def _downscaled_fish():
     """drawing-fish.png (512 px) loaded with a 256 px bound: the work at half size, as a 4096 px input at 2048."""
     import warnings
@@ -217,7 +217,7 @@ def test_a_symmetric_logo_of_a_downscaled_input_keeps_its_axis_in_its_pixels():
 
 
 def test_a_photo_over_the_photo_working_size_is_worked_at_it_and_drawn_in_its_own_pixels():
-    """A photo is worked at PHOTO_WORK_SIDE px, the size its defaults were chosen at (issue 20, item 12)."""
+    """A photo is worked at PHOTO_WORK_SIDE px, the size its defaults were chosen at."""
     import warnings
 
     import cv2
@@ -273,7 +273,7 @@ def test_an_upscaled_clip_art_gives_the_logo_of_its_original():
 
 def test_a_clip_art_or_a_drawing_over_the_synthetic_working_size_is_worked_at_it(monkeypatch):
     """Clip art and drawings are worked at SYNTHETIC_WORK_SIDE px (here made 256 to stay small), with one warning,
-    their results in the input's pixels; the photo test runs once, on that working copy (issue 20, item 12)."""
+    their results in the input's pixels; the photo test runs once, on that working copy."""
     import functools
     import warnings
 

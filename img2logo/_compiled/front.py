@@ -16,7 +16,7 @@ every pixel (when every value is k / 255), the codes present in ascending
 order and each pixel's place among them, as ``np.unique(..., return_inverse=True)``
 gives them, by a bit set of the 2**24 codes instead of a sort.
 
-The rest are the front's other full-image passes in one loop each (issue 19),
+The rest are the front's other full-image passes in one loop each,
 every one the same numbers as the numpy or OpenCV steps it replaces (the tests
 compare them): :func:`colour_distance_kernel` (a CIELAB distance image),
 :func:`spreads_kernel` (two sets of spreads in one pass), :func:`label_sums2_kernel`,

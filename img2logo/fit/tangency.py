@@ -44,7 +44,7 @@ the input turns) are never constrained.
 
 Where the tangencies are made, and why there. With the radii fixed on the
 ladder, a chain of tangent circles is rigid, and the first levels join every
-short piece of the over-segmentation. Measured (``make quality``, issue 17):
+short piece of the over-segmentation. Measured (``make quality``):
 enforcing every tangency in A^0 and every merge's window raises E^s(A^0) of the
 clip-art fish from 2.36 to 9.77 px (no merge fits under T = 5 any more), and on
 the evaluation set's clip arts gives 47.1 arcs instead of 40.0 and one failed

@@ -181,7 +181,7 @@ def test_radii_option_restricts_the_circles(tmp_path):
     ],
 )
 def test_huge_lengths_and_radii_are_one_line_with_nothing_on_stdout(tmp_path, capfd, args, message):
-    # issue 20, items 5 and 22: a cv2.error, LAPACK lines on stdout, numpy overflow warnings before.
+    # a cv2.error, LAPACK lines on stdout, numpy overflow warnings before.
     out = tmp_path / "x.json"
     args = [str(tmp_path / a) if a == "o.png" else a for a in args]
     assert main([str(DATA / "drawing-leaf.png"), "-q", "--json", str(out), *args]) == EXIT_ERROR
@@ -585,7 +585,7 @@ def test_downscale_is_reported_before_the_run(tmp_path, capsys):
 
 
 def test_png_of_an_input_over_the_working_size_is_drawn_at_the_working_size(tmp_path, capsys):
-    """A 12000 px input's PNG at its full size took 12 GB and minutes (issue 20): by default it is 2048 px."""
+    """A 12000 px input's PNG at its full size took 12 GB and minutes: by default it is 2048 px."""
     import json
 
     import cv2
@@ -705,7 +705,7 @@ def test_batch_workers_end_with_their_parent(tmp_path, sig):
                 os.kill(w, signal.SIGKILL)
 
 
-# --------------------------------------------------------------------------- issue 20: the command line
+# --------------------------------------------------------------------------- the command line
 @pytest.mark.parametrize(
     ("args", "message"),
     [
@@ -956,7 +956,7 @@ def test_a_second_batch_on_the_same_output_folder_is_refused(tmp_path, capsys):
 
 def test_version_and_help_load_no_numeric_library():
     # Start-up: `img2logo --version` and `--help` only parse flags; numpy, scipy, OpenCV, numba
-    # and pillow are loaded by the run that needs them (issue 19).
+    # and pillow are loaded by the run that needs them.
     code = (
         "import sys, contextlib, io\n"
         "from img2logo.app.cli import main\n"

@@ -379,7 +379,7 @@ def test_reading_a_document_loads_no_part_of_the_pipeline():
     ],
 )
 def test_a_document_of_an_absurd_size_is_refused(tmp_path, width, message):
-    # issue 20, item 20: write_png then raised matplotlib's TypeError or asked for 40 GB.
+    # write_png then raised matplotlib's TypeError or asked for 40 GB.
     doc = contract.to_document(make_abstraction())
     doc["width"] = width
     with pytest.raises(InvalidParameterError, match=message):

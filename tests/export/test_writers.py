@@ -59,7 +59,7 @@ def test_write_json_deterministic_and_readable(tmp_path):
 
 
 def test_read_json_errors_are_img2logo_errors(tmp_path):
-    # issue 20, item 21: a missing file was a bare FileNotFoundError.
+    # a missing file was a bare FileNotFoundError.
     from img2logo.errors import Img2LogoError, InputNotFoundError
 
     with pytest.raises(InputNotFoundError, match=r"^JSON file not found: .*nope\.json$") as info:
@@ -327,7 +327,7 @@ def test_svg_fill_layer_is_under_the_arcs(tmp_path):
 
 
 def test_fill_path_that_is_not_path_data_is_refused_and_never_lands_unescaped(tmp_path):
-    # issue 20, item 14: a '"' in Fill.path ended the d attribute: onload="..." landed in the file.
+    # a '"' in Fill.path ended the d attribute: onload="..." landed in the file.
     evil = 'M 0 0 L 10 0 L 10 10 Z" onload="alert(1)'
     with pytest.raises(InvalidParameterError, match=r"fill path is not SVG path data: '\"' at character 22"):
         fills.Fill(evil, "#ff0000")
@@ -571,7 +571,7 @@ def test_inkscape_opens_the_svg_and_renders_it_like_resvg(tmp_path, discs_result
     ],
 )
 def test_a_suffix_that_names_another_format_is_refused(tmp_path, write, name, fmt):
-    """``write_svg(a, "logo.pdf")`` put SVG into a .pdf (issue 20, "Also"); a suffix of no format is the user's."""
+    """``write_svg(a, "logo.pdf")`` put SVG into a .pdf; a suffix of no format is the user's."""
     level = make_abstraction()
     with pytest.raises(InvalidParameterError, match=rf"names another format \(this writes {fmt}\); give a file name"):
         getattr(writers, write)(level, tmp_path / name)

@@ -395,7 +395,7 @@ def test_window_from_a_later_ring_is_the_one_the_rings_before_grow_to():
 
 def test_window_that_no_junction_touches_is_still_fitted():
     # Every junction released (or a closed curve alone): the circles have no constraint, yet
-    # their centres still go where their points are (issue 20, item 1: this window had no fit).
+    # their centres still go where their points are (this window had no fit).
     points, radii, centers, _, _, junctions = _chain_of_three()
     alone = {c: () for c in points}
     w = cfit.fit_window(points, radii, centers, alone, {}, junctions, changed=[0, 1, 2], free_junctions=[])

@@ -108,7 +108,7 @@ def test_a_junction_the_fit_cannot_meet_is_released(monkeypatch):
 
 def test_a_part_with_every_junction_released_still_gets_its_arcs(monkeypatch):
     # No fit with any constraint succeeds: recovery releases every junction, and the last
-    # solve (a window no junction touches) fits each circle alone (issue 20, item 1).
+    # solve (a window no junction touches) fits each circle alone.
     from img2logo.fit import fit_state, recovery
 
     graph, truth = golden_chain()

@@ -182,7 +182,7 @@ def test_replace_checks_again():
 
 
 def test_scaled_abstraction_stays_on_the_ladder_and_scales_back():
-    # issue 20, item 10: a result of a downscaled input is written in the input's pixels.
+    # a result of a downscaled input is written in the input's pixels.
     from helpers import make_abstraction
 
     from img2logo.constants import LOG_PHI

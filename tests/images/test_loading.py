@@ -123,7 +123,7 @@ def test_not_a_regular_file_is_named_as_such(tmp_path):
     ("bgr", "hex_colour"), [((0, 0, 255), "#ff0000"), ((200, 120, 30), "#1e78c8"), ((0, 0, 0), "#000000")]
 )
 def test_an_image_of_one_colour_is_blank_whatever_the_colour(tmp_path, bgr, hex_colour):
-    # issue 20, item 18: a red image passed the blank check (its channels differ) and failed later.
+    # a red image passed the blank check (its channels differ) and failed later.
     path = tmp_path / "one.png"
     cv2.imwrite(str(path), np.full((64, 80, 3), bgr, np.uint8))
     message = rf"one\.png: image is blank \(one colour, {hex_colour}, in every pixel\); nothing to trace"
@@ -136,7 +136,7 @@ def test_an_image_of_one_colour_is_blank_whatever_the_colour(tmp_path, bgr, hex_
     assert load_image(rgb).width == 80
 
 
-# --- third-party lines and EXIF orientation (issue 20, items 6 and 7) ------------------------
+# --- third-party lines and EXIF orientation ------------------------
 def _png_with(tmp_path, name: str, *chunks: tuple[bytes, bytes]):
     """A 64 x 64 px line drawing as a PNG with extra chunks (kind, data) after its IHDR."""
 
@@ -213,7 +213,7 @@ def test_exif_orientation_is_applied_as_every_viewer_does(tmp_path, orientation)
 
 @pytest.mark.parametrize("where", ["before", "after"])
 def test_a_png_exif_orientation_is_read_without_decoding_the_pixels(tmp_path, monkeypatch, where):
-    """issue 20, item 12: Pillow's PNG getexif() decoded the whole image to look past the pixels (4 s at 144 Mpx)."""
+    """Pillow's PNG getexif() decoded the whole image to look past the pixels (4 s at 144 Mpx)."""
     from PIL import Image, ImageOps, PngImagePlugin
 
     from img2logo.images import loading
@@ -257,7 +257,7 @@ def test_a_phone_photo_stored_sideways_is_upright_when_downscaled(tmp_path):
 
 
 def test_a_large_16_bit_rgba_png_is_decoded_once_and_reduced_like_the_area_resize(tmp_path):
-    # issue 20, item 12: OpenCV decoded it through a second full-size buffer; Pillow reduces it in 8 bits.
+    # OpenCV decoded it through a second full-size buffer; Pillow reduces it in 8 bits.
     arr = _shapes(2600, 4300, True).astype(np.uint16) * np.uint16(257)
     path = tmp_path / "big16.png"
     cv2.imwrite(str(path), arr)
@@ -455,7 +455,7 @@ def test_a_large_interlaced_png_is_its_box_reduce(tmp_path):
 
 
 def test_a_large_png_is_probed_up_to_its_pixels_and_its_exif_after_them_still_turns_it(tmp_path, monkeypatch):
-    # issue 20, item 12: the probe walked a huge PNG's 100 000 IDAT chunks (1.5 s) before the strip
+    # the probe walked a huge PNG's 100 000 IDAT chunks (1.5 s) before the strip
     # decoder walked them again; it stops at the first IDAT, and the strip decoder reads an eXIf after them.
     from PIL import Image, ImageOps
 
@@ -655,7 +655,7 @@ def test_a_tiff_in_strips_over_the_byte_budget_is_refused(tmp_path, monkeypatch)
 
 
 def test_a_large_jpeg_2000_is_decoded_at_a_reduced_resolution(tmp_path):
-    # issue 20, item 12: OpenJPEG decoded a 12000 px file whole (2.3 GB); Pillow stops wavelet levels short.
+    # OpenJPEG decoded a 12000 px file whole (2.3 GB); Pillow stops wavelet levels short.
     from PIL import Image
 
     arr = _shapes(1000, 1400, False)
@@ -715,7 +715,7 @@ def test_a_large_file_is_decoded_from_the_file_with_the_same_bits(tmp_path, monk
 
 @pytest.mark.parametrize("transparent", [False, True])
 def test_a_large_gif_is_decoded_as_its_palette_and_reduced_by_strips(tmp_path, transparent):
-    # issue 20, item 12: OpenCV decoded a 12000 px GIF through full-size BGRA canvases (1.8 GB).
+    # OpenCV decoded a 12000 px GIF through full-size BGRA canvases (1.8 GB).
     from PIL import Image
 
     im = Image.fromarray(_shapes(600, 700, False)[:, :, ::-1]).quantize(16)
@@ -915,7 +915,7 @@ def test_no_libjpeg_warning_reaches_standard_error(tmp_path, capfd):
 
 @pytest.mark.parametrize(("mode", "factor"), [("RGBA", 5), ("RGBA", 2), ("LA", 3), ("RGB", 7), ("L", 1)])
 def test_the_strip_by_strip_reduce_gives_pillows_reduce_exactly(mode, factor):
-    """issue 20, item 12: Pillow's reduce of RGBA copies the image (premultiplied); strips give the same pixels."""
+    """Pillow's reduce of RGBA copies the image (premultiplied); strips give the same pixels."""
     from PIL import Image
 
     from img2logo.images.loading import _reduce_by_strips

@@ -313,7 +313,7 @@ def test_workers_start_after_opencv_ran_multithreaded(folder, tmp_path):
     assert done.stdout.split() == ["2", "2"]  # both images, and the parent's OpenCV setting restored
 
 
-# --------------------------------------------------------------------------- issue 20: batches never lose data
+# --------------------------------------------------------------------------- batches never lose data
 def _two_images(tmp_path: Path, names=("a.png", "b.png")) -> Path:
     src = tmp_path / "in"
     src.mkdir()

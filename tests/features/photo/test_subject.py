@@ -243,7 +243,7 @@ def test_focus_step_tells_a_sharp_subject_from_a_cut_through_it():
 def same_hue_photo(size=(240, 320), seed=0):
     """A flat green ellipse on grass-like texture of the same mean green: RGB float image, true mask.
 
-    Only texture tells them apart (the crocodile on grass of issue 23): the
+    Only texture tells them apart (a crocodile on grass): the
     background is green modulated by fine blurred noise (blades), the object
     the same green, softly shaded.
     """
@@ -265,7 +265,7 @@ def test_auto_finds_an_object_of_the_backgrounds_own_hue_by_its_texture():
 
     rgb, truth = same_hue_photo()
     img = load_image(rgb)
-    assert not _grabcut(img).any()  # colour alone finds nothing (the code before issue 23 kept the whole image)
+    assert not _grabcut(img).any()  # colour alone finds nothing (colour alone kept the whole image)
     subject = find_subject(img)
     assert subject.mask is not None, subject.description
     assert (subject.mask & truth).sum() / (subject.mask | truth).sum() > 0.9
@@ -312,7 +312,7 @@ def disc_photo(size=400, margin=3, seed=0):
 
 
 def test_a_disc_that_almost_fills_the_picture_keeps_its_round_outline():
-    # Issue 23: GrabCut from the frame took the strip along it for certain background, so the disc's rim
+    # GrabCut from the frame took the strip along it for certain background, so the disc's rim
     # there was lost, and the background model, having learnt the rim's colours, ate into the disc inside
     # too (mask IoU 0.94, flat sides). Let into the strip where its colours say so, the disc is whole.
     from img2logo.features.photo.subject import _cut_small, _reach_frame, _SmallCut
