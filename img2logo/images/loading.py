@@ -501,11 +501,23 @@ def _read_with_vips(path: Path, fmt: str, factor: int) -> np.ndarray:
                 im = _box_reduce(im, factor)
             arr = im.numpy()
     except pyvips.Error as exc:
-        lines = [line.strip() for line in str(exc).splitlines() if line.strip()]
-        raise InvalidImageError(f"{path}: not a readable image: {(lines or ['libvips failed'])[-1][-200:]}") from exc
+        raise InvalidImageError(f"{path}: not a readable image: {_vips_reason(exc)}") from exc
     if arr.ndim == 3 and arr.shape[2] >= 3:  # OpenCV's channel order, as the rest of loading expects
         arr = np.ascontiguousarray(arr[:, :, [2, 1, 0, *range(3, arr.shape[2])]])
     return arr
+
+
+def _vips_reason(exc: Exception) -> str:
+    """The line of a libvips error that says why, at most 200 characters.
+
+    libvips stacks its messages in one buffer, and a loader's closing "load error"
+    or "unable to write to memory" lands before or after the reason depending on
+    which of its threads finished first: the reason is the last line that is not
+    one of those.
+    """
+    lines = [line.strip() for line in str(exc).splitlines() if line.strip()]
+    reasons = [line for line in lines if not re.search(r"(: load error|unable to write to memory)$", line)]
+    return (reasons or lines or ["libvips failed"])[-1][-200:]
 
 
 def _box_reduce(im: Any, factor: int) -> Any:
@@ -563,8 +575,7 @@ def _read_netpbm_reduced(path: Path, factor: int) -> np.ndarray | None:
             im = im.byteswap()
         arr = _box_reduce(im, factor).numpy()
     except pyvips.Error as exc:
-        lines = [line.strip() for line in str(exc).splitlines() if line.strip()]
-        raise InvalidImageError(f"{path}: not a readable image: {(lines or ['libvips failed'])[-1][-200:]}") from exc
+        raise InvalidImageError(f"{path}: not a readable image: {_vips_reason(exc)}") from exc
     if arr.ndim == 3 and arr.shape[2] == 3:
         arr = np.ascontiguousarray(arr[:, :, ::-1])  # OpenCV's channel order
     return arr
