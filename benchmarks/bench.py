@@ -228,6 +228,20 @@ def _process_times(cmd: list[str]) -> tuple[float, float]:
     return wall, (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
 
 
+def _alternated(cmds: Sequence[list[str]], repeat: int) -> tuple[list[float], list[float]]:
+    """Each command's median wall and CPU time over ``repeat`` whole processes, the commands alternated run by run.
+
+    One warm-up run of each first: the compiled kernels (built once per install), the file system's caches.
+    """
+    for cmd in cmds:
+        _process_times(cmd)
+    times: list[list[tuple[float, float]]] = [[] for _ in cmds]
+    for _ in range(repeat):
+        for i, cmd in enumerate(cmds):
+            times[i].append(_process_times(cmd))
+    return [statistics.median(w for w, _ in t) for t in times], [statistics.median(c for _, c in t) for t in times]
+
+
 def _load() -> str:
     """The machine's load average over the last minute, and its cores, as text."""
     return f"load {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores"
@@ -304,14 +318,7 @@ def bench_cli_vs_vtracer(repeat: int, page: Page) -> None:
                 cmds.append([potrace, "-s", "-o", os.path.join(tmp, "p.svg"), str(pbm)])
             subprocess.run([*ours_cmd[:-2], "--json", os.path.join(tmp, "o.json")], check=True, capture_output=True)
             arcs = len(json.loads(Path(tmp, "o.json").read_text())["arcs"])
-            for cmd in cmds:  # warm-up: the compiled kernels (built once per install), the file system's caches
-                _process_times(cmd)
-            times: list[list[tuple[float, float]]] = [[] for _ in cmds]
-            for _ in range(repeat):
-                for i, cmd in enumerate(cmds):
-                    times[i].append(_process_times(cmd))
-            wall = [statistics.median(w for w, _ in t) for t in times]
-            cpu = [statistics.median(c for _, c in t) for t in times]
+            wall, cpu = _alternated(cmds, repeat)
             row = {
                 "image": path.stem,
                 "kind": kind,
@@ -481,14 +488,7 @@ def bench_batch(repeat: int, page: Page) -> None:
             (Path(tmp) / "vout").mkdir()
             cmds.append([str(python), "-I", str(script), str(folder), os.path.join(tmp, "vout")])
         page.say(f"\nBatch: {n} images, `img2logo batch --jobs 2` (median of {repeat}); {_load()} at the start")
-        for cmd in cmds:  # warm-up
-            _process_times(cmd)
-        times: list[list[tuple[float, float]]] = [[] for _ in cmds]
-        for _ in range(repeat):
-            for i, cmd in enumerate(cmds):
-                times[i].append(_process_times(cmd))
-    wall = [statistics.median(w for w, _ in t) for t in times]
-    cpu = [statistics.median(c for _, c in t) for t in times]
+        wall, cpu = _alternated(cmds, repeat)
     rate = n / wall[0]
     line = (
         f"img2logo batch --jobs 2: {wall[0]:.1f} s for {n} images, {rate:.1f} images/s (target >= {BATCH_TARGET:g}), "

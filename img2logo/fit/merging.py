@@ -172,7 +172,8 @@ def evaluate(state: FitState, pair: Pair, tried: set[int] | None = None) -> Merg
             # solve (measured: such windows fail globally too).
             if state.golden_error(merged) > state.options.tolerance:
                 state.stats.rejected_hopeless += 1
-                return _failed(pair, windows, tried)
+                _tried(pair, windows, tried)
+                return None
             # The paper solves the global problem here; a window of a bounded number of
             # rings costs the same however large the drawing (MERGE_FALLBACK_RINGS).
             state.stats.wide_windows += 1
@@ -199,7 +200,8 @@ def evaluate(state: FitState, pair: Pair, tried: set[int] | None = None) -> Merg
         if out is None:
             out = solve_global()
     if out is None:  # the wider window (or the global problem) has no solution either
-        return _failed(pair, windows, tried)
+        _tried(pair, windows, tried)
+        return None
     fits, disp = out
     if cap is not None and fits[-1].arc.frechet > cap:  # (then the window's other arcs were not extracted)
         state.stats.rejected_far_arc += 1
@@ -222,11 +224,10 @@ def evaluate(state: FitState, pair: Pair, tried: set[int] | None = None) -> Merg
     )
 
 
-def _failed(pair: Pair, windows: set[int], tried: set[int] | None) -> None:
-    """:func:`evaluate`'s None for a refit that failed: ``tried`` receives the state's groups of ``windows``."""
+def _tried(pair: Pair, windows: set[int], tried: set[int] | None) -> None:
+    """For a refit of :func:`evaluate` that failed: ``tried`` receives the groups of ``windows`` (-1: the pair's)."""
     if tried is not None:
         tried.update(windows - {-1}, pair[:2] if -1 in windows else ())
-    return None
 
 
 #: A fit's :func:`_overshoots`, by the fit (its arc was extracted through its junctions' points then:
