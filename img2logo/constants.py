@@ -692,6 +692,9 @@ SIMPLIFICATION_ERROR: float = 1.0
 #: photo-likes, sil6 least / mean: 0.76 / 0.90 unbounded, 0.79 / 0.91 at 2 T,
 #: 0.85 / 0.93 at 1 T (15-22 arcs).
 PHOTO_MAX_ARC_FACTOR: float = 1.0
+#: A segment of a clip art is on the object's silhouette when most of its points lie within this
+#: many px of the background (its line runs on the object's pixels next to the paper), px.
+OUTLINE_DISTANCE: float = 2.0
 #: A merge candidate whose new circle (radius fixed on the ladder) cannot pass within
 #: ``max_arc_distance`` + this of all its pixels, wherever its centre, is rejected
 #: before its fit (img2logo.fit.merging, kernels_sqp.far_circle_kernel): the fit's arc,

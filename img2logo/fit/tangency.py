@@ -296,7 +296,12 @@ def _all_at_once(
             opt.fits.update(fits)
             for n, d in disp.items():
                 opt.disp[n] = d
-            if opt.similarity() <= bound and _redundant(opt, set(groups)) <= crossings and opt.gap_ends() <= gaps:
+            if (
+                opt.similarity() <= bound
+                and not opt.strays(fits, groups, before[0])
+                and _redundant(opt, set(groups)) <= crossings
+                and opt.gap_ends() <= gaps
+            ):
                 return touching
             loose = set(opt.loose)
             _restore(opt, before)
@@ -537,8 +542,7 @@ def _try(
                 fits[g] = replace(f, arc=opt.arc_for(group, f.center, f.radius, f.k, opt.disp.__getitem__))
         opt.groups.update(groups)
         opt.off_line.update(off_line)
-        cap = opt.options.arc_bound
-        if cap is not None and any(f.arc.frechet > max(cap, saved[0][g].arc.frechet) for g, f in fits.items()):
+        if opt.strays(fits, opt.groups, saved[0]):
             return None
         opt.fits.update(fits)
         similarity = opt.similarity()
