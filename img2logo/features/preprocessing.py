@@ -218,14 +218,9 @@ def _detect(img: LoadedImage) -> tuple[str, str, np.ndarray | None]:
     if _one_ink(means[solid], area[solid]):
         inked = solid[regions]
         stroke = median_stroke_width(inked)
-        band = outline_band_width(inked)
-        if band is not None and band > CLIPART_OUTLINE_WIDTH:
-            return (
-                "clipart",
-                f"one ink colour in closed outlines {band:.0f} px wide, each round paper with nothing in it: "
-                "outlined shapes, a clip art",
-                regions,
-            )
+        outlined = _outlined_shapes(inked)
+        if outlined is not None:
+            return "clipart", outlined, regions
         if stroke <= DRAWING_MAX_STROKE_FRACTION * min(regions.shape):
             return (
                 "drawing",
@@ -238,6 +233,9 @@ def _detect(img: LoadedImage) -> tuple[str, str, np.ndarray | None]:
     if ink is not None:
         inked = ink[regions]
         stroke = median_stroke_width(inked)
+        outlined = _outlined_shapes(inked)
+        if outlined is not None:
+            return "clipart", outlined, regions
         if stroke <= DRAWING_MAX_STROKE_FRACTION * min(regions.shape):
             share = area[ink].sum() / area[solid].sum()
             return (
@@ -247,6 +245,17 @@ def _detect(img: LoadedImage) -> tuple[str, str, np.ndarray | None]:
                 None,
             )
     return "clipart", f"{flat:.0%} of the pixels sit in flat fills of {colours} colours: a clip art", regions
+
+
+def _outlined_shapes(ink: np.ndarray) -> str | None:
+    """Why the one ink ``ink`` (H, W) bool is outlined shapes, a clip art (:func:`outline_band_width`); else None."""
+    band = outline_band_width(ink)
+    if band is None or band <= CLIPART_OUTLINE_WIDTH:
+        return None
+    return (
+        f"one ink colour in closed outlines {band:.0f} px wide, each round paper with nothing in it: "
+        "outlined shapes, a clip art"
+    )
 
 
 def outline_band_width(ink: np.ndarray) -> float | None:
