@@ -402,27 +402,31 @@ def outline_segments(graph: SegmentGraph, silhouette: np.ndarray | None) -> np.n
     """
     if silhouette is None:
         return np.zeros(graph.n_segments, dtype=bool)
-    mask = np.asarray(silhouette)
-    if mask.shape != (graph.height, graph.width):
-        raise InvalidParameterError(
-            f"silhouette must have the image's shape {(graph.height, graph.width)}, got {mask.shape}"
-        )
     from ..images.ndimage import distance
 
-    paper = mask.astype(bool)
-    return locked_segments(graph, ~paper & (distance(~paper) <= OUTLINE_DISTANCE))
+    paper = _image_mask(graph, silhouette, "silhouette")
+    return _mostly_inside(graph, ~paper & (distance(~paper) <= OUTLINE_DISTANCE))
 
 
 def locked_segments(graph: SegmentGraph, lock_mask: np.ndarray | None) -> np.ndarray:
     """Segments with most of their points inside ``lock_mask`` (Sec. 7, Fig. 16)."""
     if lock_mask is None:
         return np.zeros(graph.n_segments, dtype=bool)
-    mask = np.asarray(lock_mask)
-    if mask.shape != (graph.height, graph.width):
+    return _mostly_inside(graph, _image_mask(graph, lock_mask, "lock_mask"))
+
+
+def _image_mask(graph: SegmentGraph, mask: np.ndarray, name: str) -> np.ndarray:
+    """``mask`` as (H, W) bool of the graph's image; a clear error for another shape."""
+    arr = np.asarray(mask)
+    if arr.shape != (graph.height, graph.width):
         raise InvalidParameterError(
-            f"lock_mask must have the image's shape {(graph.height, graph.width)}, got {mask.shape}"
+            f"{name} must have the image's shape {(graph.height, graph.width)}, got {arr.shape}"
         )
-    mask = mask.astype(bool)
+    return arr.astype(bool)
+
+
+def _mostly_inside(graph: SegmentGraph, mask: np.ndarray) -> np.ndarray:
+    """Which segments have more than half of their points on ``mask`` (H, W) bool: (n_segments,) bool."""
     out = np.zeros(graph.n_segments, dtype=bool)
     for i, seg in enumerate(graph.segments):
         cols = np.clip((seg[:, 0] - 0.5).round().astype(int), 0, graph.width - 1)
