@@ -537,6 +537,10 @@ class FitState:
         """Mean distance of the group's pixels to its free circle, px."""
         return self.circles.error(group)
 
+    def on_outline(self, group: Group) -> bool:
+        """Whether ``group`` runs through a segment of the object's silhouette (:attr:`outline`)."""
+        return bool(self.outline) and not self.outline.isdisjoint(group.segments)
+
     def arc_cap(self, group: Group) -> float | None:
         """The farthest an arc of ``group`` may lie from its pixels (discrete Fréchet), px; None: no bound.
 
@@ -544,7 +548,7 @@ class FitState:
         segment of :attr:`outline`) the tolerance T, whichever is less.
         """
         cap = self.options.arc_bound
-        if self.outline and not self.outline.isdisjoint(group.segments):
+        if self.on_outline(group):
             tolerance = float(self.options.tolerance)
             cap = tolerance if cap is None else min(cap, tolerance)
         return cap

@@ -327,7 +327,7 @@ def _strays_from_outline(state: FitState, groups: Mapping[int, Group], fits: Map
     """
     if not state.outline:
         return False
-    beside = {g: f for g, f in fits.items() if g != -1 and state.outline.intersection(groups[g].segments)}
+    beside = {g: f for g, f in fits.items() if g != -1 and state.on_outline(groups[g])}
     return state.strays(beside, groups, state.fits)
 
 
