@@ -256,10 +256,17 @@ def test_a_photo_over_the_photo_working_size_is_worked_at_it_and_drawn_in_its_ow
 
 
 def test_an_upscaled_clip_art_gives_the_logo_of_its_original():
-    """Worked at SYNTHETIC_WORK_SIDE = 512 px, a clip art upscaled to 700 px is its 512 px original again."""
+    """Worked at SYNTHETIC_WORK_SIDE = 512 px, a clip art upscaled to 700 px is its 512 px original again.
+
+    The resampled copy has other regions (5 where the original has 8: its edges are blends), so the
+    two logos differ in detail: 20 and 25 arcs since the silhouette's arcs are held to T (23 and 23
+    before), their points within 6 px of each other for 0.78 and 0.95 of them (0.79 and 0.94 before).
+    """
     import cv2
+    from scipy.spatial import cKDTree
 
     from img2logo.constants import SYNTHETIC_WORK_SIDE
+    from img2logo.quality import logo_points
 
     small = cv2.imread(str(DATA / "clipart-fish.png"))
     big = cv2.resize(small, (700, 700), interpolation=cv2.INTER_NEAREST)
@@ -268,7 +275,10 @@ def test_an_upscaled_clip_art_gives_the_logo_of_its_original():
     assert SYNTHETIC_WORK_SIDE == 512 and result.lines.kind == "clipart"
     assert (result.image.width, result.final.width) == (512, 700)
     original = abstract(small[:, :, ::-1], progress=False).final
-    assert abs(len(result.final.arcs) - len(original.arcs)) <= 2
+    assert abs(len(result.final.arcs) - len(original.arcs)) <= 5
+    ours, theirs = logo_points(result.final) * 512 / 700, logo_points(original)
+    assert np.mean(cKDTree(ours).query(theirs)[0] <= 6.0) >= 0.75
+    assert np.mean(cKDTree(theirs).query(ours)[0] <= 6.0) >= 0.9
 
 
 def test_a_clip_art_or_a_drawing_over_the_synthetic_working_size_is_worked_at_it(monkeypatch):
