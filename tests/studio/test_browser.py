@@ -367,7 +367,7 @@ def test_only_some_circle_sizes(page, fish):
 def test_click_a_region_to_give_it_its_own_colour(page, fish):
     import shapely
 
-    from img2logo.studio.page import FILL_PRESETS
+    from img2logo.studio.controls import FILL_PRESETS
     from img2logo.studio.session import Studio
 
     s = Studio("clipart-fish.png")

@@ -1,0 +1,310 @@
+"""The studio's drawing: the logo shown on an :class:`ipycanvas.MultiCanvas`, its zoom and pan.
+
+:class:`StudioDrawing` draws the layers of the drawing (the faded input, the golden
+circles, the logo with its fills, the lock mask with the segments it covers, the
+selection with its circle and centre, and the subject) as vector commands of the
+browser's canvas: a level or an edit redraws without rendering a PNG. Only the part in
+view of the input, the fills and the mask is drawn. The canvas has twice the pixels of
+its size on screen (crisp on high-density screens); ipycanvas gives the mouse in canvas
+pixels.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from ..constants import IMAGE_FADE
+from ..errors import Img2LogoError
+from ..export.plotting import ARC_COLOR, default_stroke_width
+from .session import Studio
+
+#: Side of the square drawing on screen, CSS px: with two columns of controls of
+#: ``CONTROLS_WIDTH`` beside it the page fits a 1366 x 768 laptop screen.
+DRAWING_SIZE = 480
+#: Canvas pixels per CSS px of the drawing.
+PIXEL_RATIO = 2
+#: Colours on screen: the selection, the lock mask (with its opacity) and the subject rectangle.
+SELECTION_COLOR = "#1f6fd1"
+MASK_RGBA = (230, 60, 40, 110)
+#: The segments a lock stroke covers (what the next Run keeps unmerged).
+LOCKED_COLOR = "#8b0a50"
+SUBJECT_COLOR = "#0a8a3a"
+#: Background around an image that is not square.
+FRAME_COLOR = "#eeeeee"
+#: The largest zoom (times the fitted drawing) and the step of a wheel notch or a + / - key.
+MAX_ZOOM = 16.0
+ZOOM_STEP = 1.25
+#: How much the input under the logo is faded towards white: as the PNG writer's, more, or hidden.
+INPUT_FADES = {"faded": IMAGE_FADE, "dim": 0.88, "hidden": 1.0}
+#: The golden circles on screen (the SVG's construction layer), and the selected arc's circle and centre.
+CIRCLE_RGBA = "rgba(192, 151, 58, 0.55)"
+CENTRE_RADIUS = 7.0
+
+
+def ipycanvas_module() -> Any:
+    """ipycanvas, or one line saying how to install it (the extra ``[studio]``)."""
+    try:
+        import ipycanvas
+    except ImportError:
+        raise Img2LogoError(
+            "ipycanvas is missing: the studio needs the extra [studio] (pip install -e '.[studio]'; make studio "
+            "installs it)"
+        ) from None
+    return ipycanvas
+
+
+class StudioDrawing:
+    """The drawing of ``studio``'s logo shown on ``canvas``, ``side`` canvas px square, zoomed and panned.
+
+    Attributes
+    ----------
+    studio : Studio
+        What is drawn.
+    canvas : ipycanvas.MultiCanvas
+        Five layers: the faded image, the golden circles, the logo, the lock mask, the selection
+        (its circle and centre) and the subject.
+    controls : dict
+        The page's widgets by name: the drawing reads ``input`` and ``circles`` and sets ``zoom``.
+    """
+
+    studio: Studio
+    canvas: Any
+    controls: dict[str, Any]
+    side: int
+    _view: tuple[float, float, float] | None
+
+    def _fit(self) -> tuple[float, float, float]:
+        """(scale, x, y) of the whole image centred in the square: canvas px per image px, its corner's position."""
+        img = self.studio.image
+        if img is None:
+            return 1.0, 0.0, 0.0
+        k = self.side / max(img.input_width, img.input_height)
+        return k, (self.side - img.input_width * k) / 2.0, (self.side - img.input_height * k) / 2.0
+
+    @property
+    def scale(self) -> float:
+        """Canvas pixels per image pixel (the whole image fitted, times the zoom)."""
+        return (self._view or self._fit())[0]
+
+    @property
+    def offset(self) -> tuple[float, float]:
+        """Canvas position of the image's top-left corner (centred when fitted; zoom and pan move it)."""
+        _, x, y = self._view or self._fit()
+        return x, y
+
+    @property
+    def zoom(self) -> float:
+        """The drawing's zoom: 1 when the whole image is fitted."""
+        return self.scale / self._fit()[0]
+
+    def zoom_at(self, x: float, y: float, factor: float) -> None:
+        """Zoom by ``factor`` about canvas point (x, y) (the image point under it stays), within 1..``MAX_ZOOM``."""
+        fit, _, _ = self._fit()
+        k = min(max(self.scale * float(factor), fit), fit * MAX_ZOOM)
+        ix, iy = self.to_image(x, y)
+        self._view = None if k <= fit * (1.0 + 1e-9) else (k, float(x) - ix * k, float(y) - iy * k)
+        self._redraw_view()
+
+    def pan_by(self, dx: float, dy: float) -> None:
+        """Move the zoomed drawing by (dx, dy), canvas px (the image keeps a quarter of the square in view)."""
+        img = self.studio.image
+        if self._view is None or img is None:
+            return
+        k, x, y = self._view
+        w, h = img.input_width * k, img.input_height * k
+        keep = self.side / 4.0
+        x = min(max(x + float(dx), keep - w), self.side - keep)
+        y = min(max(y + float(dy), keep - h), self.side - keep)
+        self._view = (k, x, y)
+        self._redraw_view()
+
+    def fit_view(self) -> None:
+        """The whole image in the square again."""
+        self._view = None
+        self._redraw_view()
+
+    def _redraw_view(self) -> None:
+        """Every layer again at the view's zoom and pan (the files do not change)."""
+        with ipycanvas_module().hold_canvas():
+            for draw in (self._draw_background, self._draw_circles, self._draw_logo, self._draw_mask):
+                draw()
+            self._draw_overlay()
+        self.controls["zoom"].value = f"{self.zoom:.0%}" if self._view is not None else "fit"
+
+    def _visible(self, height: int, width: int, per_px: float) -> tuple[slice, slice, int, int, int, int] | None:
+        """The part of a raster of ``height`` x ``width`` cells, ``per_px`` cells per image px, that is in view.
+
+        Returns (rows, cols, x, y, w, h): the cells to draw and the canvas rectangle they fill;
+        None when none is in view (a raster larger than the view is cut, not drawn whole).
+        """
+        k, (ox, oy) = self.scale, self.offset
+        c0 = max(0, int(np.floor(-ox / k * per_px)))
+        r0 = max(0, int(np.floor(-oy / k * per_px)))
+        c1 = min(width, int(np.ceil((self.side - ox) / k * per_px)))
+        r1 = min(height, int(np.ceil((self.side - oy) / k * per_px)))
+        if c1 <= c0 or r1 <= r0:
+            return None
+        x, y = round(ox + c0 / per_px * k), round(oy + r0 / per_px * k)
+        w, h = round(ox + c1 / per_px * k) - x, round(oy + r1 / per_px * k) - y
+        return slice(r0, r1), slice(c0, c1), x, y, max(1, w), max(1, h)
+
+    def to_image(self, x: float, y: float) -> tuple[float, float]:
+        """Canvas pixels to image pixels."""
+        ox, oy = self.offset
+        return (float(x) - ox) / self.scale, (float(y) - oy) / self.scale
+
+    def _redraw_layer(self, draw: Any) -> None:
+        with ipycanvas_module().hold_canvas():
+            draw()
+
+    def _draw_background(self) -> None:
+        layer = self.canvas[0]
+        layer.clear()
+        img = self.studio.image
+        if img is None:
+            return
+        import cv2
+
+        layer.fill_style = FRAME_COLOR
+        layer.fill_rect(0, 0, self.side, self.side)
+        # The loaded copy (at most MAX_IMAGE_SIDE px) drawn over the input's frame, the part in view.
+        view = self._visible(img.height, img.width, img.width / img.input_width)
+        if view is None:
+            return
+        rows, cols, x, y, w, h = view
+        fade = INPUT_FADES[self.controls["input"].value]
+        if fade >= 1.0:
+            layer.fill_style = "#ffffff"
+            layer.fill_rect(x, y, w, h)
+            return
+        part = img.rgb[rows, cols]
+        rgb = fade + (1.0 - fade) * part
+        shrink = w < part.shape[1]
+        shown = cv2.resize(rgb, (w, h), interpolation=cv2.INTER_AREA if shrink else cv2.INTER_NEAREST)
+        layer.put_image_data(np.clip(shown * 255.0 + 0.5, 0, 255).astype(np.uint8), x, y)
+
+    def _stroke_arcs(self, layer: Any, arcs: Any, color: str, width: float) -> None:
+        k, (ox, oy) = self.scale, self.offset
+        layer.stroke_style = color
+        layer.line_width = width
+        layer.line_cap = "round"
+        layer.line_join = "round"
+        for arc in arcs:
+            layer.begin_path()
+            if arc.is_line:
+                layer.move_to(ox + arc.start[0] * k, oy + arc.start[1] * k)
+                layer.line_to(ox + arc.end[0] * k, oy + arc.end[1] * k)
+            else:
+                c = arc.circle
+                layer.arc(ox + c.cx * k, oy + c.cy * k, c.r * k, arc.theta0, arc.theta0 + arc.sweep, arc.sweep < 0)
+            layer.stroke()
+
+    def _draw_circles(self) -> None:
+        """The golden circles of the logo shown (the SVG's hidden construction layer), when asked for."""
+        layer = self.canvas[1]
+        layer.clear()
+        a = self.studio.shown
+        if a is None or not self.controls["circles"].value:
+            return
+        k, (ox, oy) = self.scale, self.offset
+        layer.stroke_style = CIRCLE_RGBA
+        layer.line_width = 1.5
+        for c in a.golden_circles:
+            layer.stroke_circle(ox + c.cx * k, oy + c.cy * k, c.r * k)
+
+    def _draw_logo(self) -> None:
+        layer = self.canvas[2]
+        layer.clear()
+        a = self.studio.shown
+        if a is None:
+            return
+        try:
+            fills = self.studio.fills() or ()
+        except Img2LogoError as exc:  # a fill that fails is said, the arcs still drawn
+            self.studio.message, self.studio.ok, fills = f"error: fills: {exc}", False, ()
+        if fills:
+            self._draw_fills(layer, fills)
+        width = default_stroke_width(a.width, a.height) * self.scale
+        self._stroke_arcs(layer, a.arcs, ARC_COLOR, max(width, 2.0))
+
+    def _draw_fills(self, layer: Any, fills: Any) -> None:
+        """The fills drawn as the PNG writer draws them (:func:`img2logo.export.plotting.draw_fills`), as pixels."""
+        from matplotlib.backends.backend_agg import FigureCanvasAgg
+        from matplotlib.figure import Figure
+
+        from ..export.plotting import draw_fills, frame_image
+
+        a = self.studio.shown
+        view = None if a is None else self._visible(a.height, a.width, 1.0)
+        if a is None or view is None:
+            return
+        rows, cols, x, y, w, h = view
+        fig = Figure(figsize=(w / 100.0, h / 100.0), dpi=100.0)
+        fig.patch.set_alpha(0.0)
+        agg = FigureCanvasAgg(fig)
+        ax = fig.add_axes((0.0, 0.0, 1.0, 1.0))
+        ax.patch.set_alpha(0.0)
+        draw_fills(list(fills), ax, width=a.width, height=a.height)
+        frame_image(ax, a.width, a.height)
+        ax.set_xlim(cols.start, cols.stop)  # the part in view
+        ax.set_ylim(rows.stop, rows.start)
+        agg.draw()
+        layer.put_image_data(np.asarray(agg.buffer_rgba()).copy(), x, y)
+
+    def _draw_mask(self) -> None:
+        layer = self.canvas[3]
+        layer.clear()
+        m = self.studio.mask
+        if not m.size or not m.any():
+            return
+        import cv2
+
+        view = self._visible(m.shape[0], m.shape[1], 1.0)
+        if view is None:
+            return
+        rows, cols, x, y, w, h = view
+        big = cv2.resize(m[rows, cols].astype(np.uint8), (w, h), interpolation=cv2.INTER_NEAREST).astype(bool)
+        rgba = np.zeros((h, w, 4), dtype=np.uint8)
+        rgba[big] = MASK_RGBA
+        layer.put_image_data(rgba, x, y)
+        # What the next Run locks: the segments of the last run under the mask, highlighted.
+        k, (ox, oy) = self.scale, self.offset
+        layer.stroke_style = LOCKED_COLOR
+        layer.line_width = 4.0
+        layer.line_cap = "round"
+        for seg in self.studio.lock_preview():
+            layer.stroke_lines(np.column_stack([ox + seg[:, 0] * k, oy + seg[:, 1] * k]))
+
+    def _draw_overlay(self, moved: tuple[float, float] = (0.0, 0.0)) -> None:
+        """The selected arcs, the last one's golden circle and centre (moved by ``moved``, image px), the subject."""
+        layer = self.canvas[4]
+        layer.clear()
+        a, s = self.studio.shown, self.studio
+        k, (ox, oy) = self.scale, self.offset
+        if a is not None and s.selected:
+            width = max(default_stroke_width(a.width, a.height) * k * 2.0, 6.0)
+            arcs = [a.arcs[i] for i in s.selected if i < len(a.arcs)]
+            self._stroke_arcs(layer, arcs[:-1], "#8db6ea", width)
+            if moved == (0.0, 0.0):
+                self._stroke_arcs(layer, arcs[-1:], SELECTION_COLOR, width)
+            if arcs and not arcs[-1].is_line:
+                c = arcs[-1].circle
+                x, y = ox + (c.cx + moved[0]) * k, oy + (c.cy + moved[1]) * k
+                layer.stroke_style = SELECTION_COLOR
+                layer.line_width = 2.0
+                layer.set_line_dash([10, 6])
+                layer.stroke_circle(x, y, c.r * k)
+                layer.set_line_dash([])
+                layer.fill_style = SELECTION_COLOR
+                layer.fill_circle(x, y, CENTRE_RADIUS)
+                layer.stroke_style = "#ffffff"
+                layer.stroke_circle(x, y, CENTRE_RADIUS)
+        if s.subject is not None:
+            x, y, w, h = s.subject
+            layer.stroke_style = SUBJECT_COLOR
+            layer.line_width = 3.0
+            layer.set_line_dash([12, 6])
+            layer.stroke_rect(ox + x * k, oy + y * k, w * k, h * k)
+            layer.set_line_dash([])

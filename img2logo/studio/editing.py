@@ -1,0 +1,237 @@
+"""The studio's selection and edits of the logo shown (paper Sec. 7, Fig. 17), with undo and redo.
+
+:class:`StudioEdits` clicks arcs (several with ``add``) and edits them with
+:mod:`img2logo.design.edits` (delete, connect, add the other side of a circle, move,
+change the rung), one edit at a time per level, undone and redone; it also says which
+segments a lock stroke covers (:meth:`StudioEdits.lock_preview`) and which circle
+sizes the next Run uses (Fig. 15).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Callable
+
+import numpy as np
+
+from ..errors import InvalidParameterError
+from ..geometry.primitives import Abstraction
+from .state import StudioState
+
+#: Distance from a click to an arc that still selects it, CSS px of the drawing on screen (a
+#: fingertip's width on a touch pad; the arcs of a logo are rarely closer than that).
+PICK_DISTANCE = 10.0
+
+
+class StudioEdits(StudioState):
+    """The selection and the edits of the logo shown; every action returns True when it changed something."""
+
+    def pick(self, x: float, y: float, distance: float) -> int | None:
+        """The arc of :attr:`shown` nearest (x, y), px, if it is within ``distance`` px; else None."""
+        a = self.shown
+        if a is None or not a.arcs:
+            return None
+        samples = self._cached("samples", lambda: [arc.sample(step=1.0) for arc in a.arcs])
+        point = np.array([float(x), float(y)])
+        gaps = [float(np.min(np.hypot(*(s - point).T))) for s in samples]
+        i = int(np.argmin(gaps))
+        return i if gaps[i] <= distance else None
+
+    def select_at(self, x: float, y: float, distance: float, *, add: bool = False) -> int | None:
+        """Click at (x, y), px: select the nearest arc within ``distance`` px (the last two clicked stay selected).
+
+        A click on the selected arc, or off every arc, clears the selection. With ``add``
+        (a shift-click) the arc joins the selection, or leaves it when it was in it, and
+        nothing else is dropped.
+        """
+        i = self.pick(x, y, distance)
+        if add and i is not None:
+            self.selected = [s for s in self.selected if s != i] + ([] if i in self.selected else [i])
+            n = len(self.selected)
+            self._say(f"{n} arc{'s' if n != 1 else ''} selected: {', '.join(map(str, self.selected))}")
+            return i
+        if i is None or (self.selected and self.selected[-1] == i):
+            self.selected = []
+            self._say("nothing selected")
+            return None
+        self.selected = [*[s for s in self.selected if s != i][-1:], i]
+        a = self.shown
+        arc = a.arcs[i]
+        what = "a straight line" if arc.is_line else f"circle {a.circles.index(arc.circle)}, k = {arc.circle.k}"
+        pair = f" (and arc {self.selected[0]}: Connect joins them)" if len(self.selected) == 2 else ""
+        self._say(f"arc {i} selected: {what}, {arc.length:.0f} px long{pair}")
+        return i
+
+    def _edit(
+        self, make: Callable[[Abstraction], Abstraction], what: str, keep: Callable[[Abstraction], list[int]]
+    ) -> bool:
+        a = self.shown
+        if a is None:
+            return self._say("error: press Run first", ok=False)
+        if not self.selected:
+            return self._say("error: select an arc first (click it)", ok=False)
+
+        def act() -> str:
+            new = make(a)
+            self._history.setdefault(self.level, []).append(new)
+            self._redo.pop(self.level, None)
+            self.selected = keep(new)
+            self._cache.clear()
+            return f"{what}; {len(new.arcs)} arcs (Undo takes it back)"
+
+        return self._attempt(act)
+
+    def delete_selected(self) -> bool:
+        """Delete the selected arcs (:func:`img2logo.design.edits.delete_arc`), as one edit."""
+        from ..design.edits import delete_arc
+
+        chosen = sorted(set(self.selected), reverse=True)  # the last first: the others keep their indices
+
+        def make(a: Abstraction) -> Abstraction:
+            for i in chosen:
+                a = delete_arc(a, i)
+            return a
+
+        what = f"arc {chosen[0]} deleted" if len(chosen) == 1 else f"arcs {', '.join(map(str, chosen[::-1]))} deleted"
+        return self._edit(make, what, lambda new: [])
+
+    def _circle_of_selected(self, a: Abstraction, op: str) -> int:
+        arc = a.arcs[self.selected[-1]]
+        if arc.is_line:
+            raise InvalidParameterError(f"{op}: arc {self.selected[-1]} is a straight line, it has no golden circle")
+        return a.circles.index(arc.circle)
+
+    def move_selected(self, dx: float, dy: float) -> bool:
+        """Move the circle of the selected arc by (dx, dy), px (:func:`img2logo.design.edits.move_circle`)."""
+        from ..design.edits import move_circle
+
+        def make(a: Abstraction) -> Abstraction:
+            c = self._circle_of_selected(a, "move")
+            return move_circle(a, c, a.circles[c].center + np.array([float(dx), float(dy)]))
+
+        i = self.selected[-1] if self.selected else -1
+        return self._edit(
+            make, f"circle of arc {i} moved by ({dx:g}, {dy:g}) px", lambda new: [min(i, len(new.arcs) - 1)]
+        )
+
+    def rung_selected(self, delta: int) -> bool:
+        """Move the selected arc's circle ``delta`` rungs (:func:`~img2logo.design.edits.change_rung`)."""
+        from ..design.edits import change_rung
+
+        def make(a: Abstraction) -> Abstraction:
+            return change_rung(a, self._circle_of_selected(a, "change rung"), int(delta))
+
+        i = self.selected[-1] if self.selected else -1
+        return self._edit(make, f"circle of arc {i}: rung {int(delta):+d}", lambda new: [min(i, len(new.arcs) - 1)])
+
+    def add_other_side(self) -> bool:
+        """Add the other side of the selected arc's circle, between the arc's two ends (Fig. 17 "add").
+
+        :func:`img2logo.design.edits.add_arc` on the arc's own circle from its start junction to its
+        end junction, around the other way.
+        """
+        from ..design.edits import add_arc
+
+        def make(a: Abstraction) -> Abstraction:
+            i = self.selected[-1]
+            arc = a.arcs[i]
+            self._circle_of_selected(a, "add")
+            if a.arc_junctions is None:
+                raise InvalidParameterError("add: this logo records no junctions")
+            ends = a.arc_junctions[i]
+            if ends.start is None or ends.end is None or ends.start == ends.end:
+                raise InvalidParameterError(f"add: arc {i} does not end at two junctions (a closed circle?)")
+            return add_arc(a, arc.circle, ends.start, ends.end, sweep_sign=-1 if arc.sweep > 0 else +1)
+
+        i = self.selected[-1] if self.selected else -1
+        return self._edit(make, f"the other side of arc {i}'s circle added", lambda new: [len(new.arcs) - 1])
+
+    def lock_preview(self) -> list[np.ndarray]:
+        """The segments of the last run that the lock mask covers, each (N, 2) points, px: what the next Run locks.
+
+        The rule of the run (:func:`img2logo.fit.progressive.locked_segments`: most of a
+        segment's points inside the mask), applied to the last run's segment graph, with the
+        mask at its working size (a Run with other settings may find other segments).
+        """
+        if self.result is None or not self.mask.any():
+            return []
+        from ..fit.progressive import locked_segments
+        from ..images.loading import mask_to_working_size
+
+        graph = self.result.graph
+        mask = mask_to_working_size(self.mask, self.result.image, "lock mask")
+        locked = locked_segments(graph, mask)
+        k = self.work_scale
+        return [np.asarray(graph.segments[i], dtype=np.float64) / k for i in np.flatnonzero(locked)]
+
+    def set_exponents(self, text: str) -> bool:
+        """The golden circles to use at the next Run (Fig. 15): exponents k as ``"3, 5, 8"``; empty for all."""
+        words = [w for w in str(text).replace(",", " ").split() if w]
+        try:
+            exponents = tuple(sorted({int(w) for w in words})) if words else None
+        except ValueError:
+            return self._say(f"error: circle sizes must be whole numbers k separated by commas, got {text!r}", False)
+        self.settings = dataclasses.replace(self.settings, exponents=exponents)
+        chosen = "all" if exponents is None else "k = " + ", ".join(map(str, exponents))
+        return self._say(f"circle sizes: {chosen}; press Run")
+
+    @property
+    def rungs_used(self) -> tuple[int, ...]:
+        """The exponents k of the golden circles of the first level of the run (the candidates of Fig. 15)."""
+        if not self.levels:
+            return ()
+        return tuple(sorted({int(c.k) for c in self.levels[0].golden_circles if c.k is not None}))
+
+    def connect_selected(self) -> bool:
+        """Join the two selected arcs at their nearest free ends (:func:`~img2logo.design.edits.connect`)."""
+        from ..design.edits import connect
+
+        if len(self.selected) != 2:
+            return self._say("error: connect needs two arcs: click one, then the other", ok=False)
+
+        def make(a: Abstraction) -> Abstraction:
+            ends = [free_ends(a, i) for i in self.selected]
+            for i, e in zip(self.selected, ends, strict=True):
+                if not e:
+                    raise InvalidParameterError(f"connect: arc {i} has no free end (both its ends meet other arcs)")
+            pairs = [(j0, j1) for j0 in ends[0] for j1 in ends[1] if j0 != j1]
+            if not pairs:
+                raise InvalidParameterError("connect: the two arcs share their only free end")
+            j0, j1 = min(pairs, key=lambda p: float(np.hypot(*(a.junctions[p[0]] - a.junctions[p[1]]))))
+            return connect(a, j0, j1)
+
+        pair = tuple(self.selected)
+        return self._edit(make, f"arcs {pair[0]} and {pair[1]} connected", lambda new: [len(new.arcs) - 1])
+
+    def undo(self) -> bool:
+        """Take the last edit of the level shown back."""
+        return self._shift_edit(self._history, self._redo, "undo", "undone")
+
+    def redo(self) -> bool:
+        """Make the last edit undone on the level shown again (a new edit forgets what was undone)."""
+        return self._shift_edit(self._redo, self._history, "redo", "redone")
+
+    def _shift_edit(
+        self, source: dict[int, list[Abstraction]], target: dict[int, list[Abstraction]], verb: str, done: str
+    ) -> bool:
+        """Move the last logo of the level shown from one stack (edits, or edits undone) to the other."""
+        stack = source.get(self.level)
+        if not stack:
+            return self._say(f"error: nothing to {verb} on this level", ok=False)
+        target.setdefault(self.level, []).append(stack.pop())
+        self.selected = []
+        self._cache.clear()
+        return self._say(f"edit {done}; {self.title}")
+
+
+def free_ends(a: Abstraction, arc: int) -> list[int]:
+    """The ends of arc ``arc`` where no other arc meets it (free ends, :func:`img2logo.design.edits.connect`)."""
+    ends = a.arc_junctions[arc]
+    out = []
+    for j in (ends.start, ends.end):
+        if j is not None and set(a.junction_arcs[j]) == {arc} and j not in out:
+            out.append(j)
+    return out
+
+
+__all__ = ["PICK_DISTANCE", "StudioEdits", "free_ends"]
