@@ -54,8 +54,10 @@ class StudioEdits(StudioState):
             self.selected = []
             self._say("nothing selected")
             return None
-        self.selected = [*[s for s in self.selected if s != i][-1:], i]
         a = self.shown
+        if a is None:  # pick found an arc: a logo is shown
+            return None
+        self.selected = [*[s for s in self.selected if s != i][-1:], i]
         arc = a.arcs[i]
         what = "a straight line" if arc.is_line else f"circle {a.circles.index(arc.circle)}, k = {arc.circle.k}"
         pair = f" (and arc {self.selected[0]}: Connect joins them)" if len(self.selected) == 2 else ""
@@ -226,6 +228,8 @@ class StudioEdits(StudioState):
 
 def free_ends(a: Abstraction, arc: int) -> list[int]:
     """The ends of arc ``arc`` where no other arc meets it (free ends, :func:`img2logo.design.edits.connect`)."""
+    if a.arc_junctions is None:
+        return []
     ends = a.arc_junctions[arc]
     out = []
     for j in (ends.start, ends.end):

@@ -32,13 +32,13 @@ class StudioFiles(StudioState):
         """
         from ..design.fills import parse_fill_option
 
-        a = self.shown
+        a, result = self.shown, self.result
         spec = parse_fill_option(self.settings.fill)
-        if a is None or spec.mode == "none":
+        if a is None or result is None or spec.mode == "none":
             return None
 
         def make() -> tuple[Fill, ...]:
-            made = spec.make(a, self.result.image)
+            made = spec.make(a, result.image)
             own = self._colours_of_shown()
             return tuple(
                 dataclasses.replace(f, color=own[i], gradient=None) if i in own else f for i, f in enumerate(made)
@@ -128,8 +128,8 @@ class StudioFiles(StudioState):
         """
         from ..export import writers
 
-        a = self.shown
-        if a is None:
+        a, result = self.shown, self.result
+        if a is None or result is None:
             raise InvalidParameterError("nothing to download: press Run first")
         names = self.download_names(formats)
         fills = self.fills()
@@ -147,9 +147,7 @@ class StudioFiles(StudioState):
                     elif fmt == "pdf":
                         writers.write_pdf(a, path, fills=fills)
                     else:
-                        writers.write_png(
-                            a, path, image=self.result.image.rgb, fills=fills, background=backgrounds[fmt]
-                        )
+                        writers.write_png(a, path, image=result.image.rgb, fills=fills, background=backgrounds[fmt])
                     out[fmt] = path.read_bytes()
             return out
 

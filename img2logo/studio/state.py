@@ -105,7 +105,7 @@ class StudioState:
         self._redo: dict[int, list[Abstraction]] = {}
         # The logo (kept, so that its id names it) and its regions' own colours, by the logo's id.
         self._colours: dict[int, tuple[Abstraction, dict[int, str]]] = {}
-        self._cache: dict[str, Any] = {}
+        self._cache: dict[tuple[Any, ...], Any] = {}
 
     # ------------------------------------------------------------------ messages
     def _say(self, text: str, ok: bool = True) -> bool:
