@@ -16,8 +16,9 @@ from typing import Any
 import numpy as np
 
 from ..constants import IMAGE_FADE
+from ..design.fill_values import Gradient
 from ..errors import Img2LogoError
-from ..export.plotting import ARC_COLOR, default_stroke_width
+from ..export.plotting import ARC_COLOR, default_stroke_width, evenodd_orient
 from .session import Studio
 
 #: Side of the square drawing on screen, CSS px: with two columns of controls of
@@ -41,6 +42,23 @@ INPUT_FADES = {"faded": IMAGE_FADE, "dim": 0.88, "hidden": 1.0}
 #: The golden circles on screen (the SVG's construction layer), and the selected arc's circle and centre.
 CIRCLE_RGBA = "rgba(192, 151, 58, 0.55)"
 CENTRE_RADIUS = 7.0
+#: The free ends (rings, canvas px) and the arc that would join the two chosen (Fig. 17 "add").
+END_RADIUS = 5.0
+END_ARC_COLOR = "#d1461f"
+#: Canvas gradients kept (one per gradient of the fills shown; more means another fill option).
+MAX_GRADIENTS = 16
+
+
+def one_outline(rings: list[np.ndarray]) -> np.ndarray:
+    """The loops ``rings`` (each (N, 2), px) as one closed polygon, (M, 2): the fill of all of them.
+
+    Each loop is closed at its first point; the polygon goes from loop to loop by their
+    first points and comes back the same way, so the links add nothing to the winding
+    number at any point (a canvas fills one polygon per call).
+    """
+    closed = [np.vstack([r, r[:1]]) for r in rings]
+    back = [r[:1] for r in rings[-2::-1]]
+    return np.vstack([*closed, *back])
 
 
 def ipycanvas_module() -> Any:
@@ -74,6 +92,9 @@ class StudioDrawing:
     controls: dict[str, Any]
     side: int
     _view: tuple[float, float, float] | None
+    #: The image whose loaded copy the undisplayed canvas holds, and that canvas (:meth:`_input_canvas`).
+    _input_source: tuple[Any, Any] | None
+    _gradients: dict[Gradient, Any]
 
     def _fit(self) -> tuple[float, float, float]:
         """(scale, x, y) of the whole image centred in the square: canvas px per image px, its corner's position."""
@@ -160,30 +181,53 @@ class StudioDrawing:
             draw()
 
     def _draw_background(self) -> None:
+        """The input under the logo, faded towards white (:data:`INPUT_FADES`), in its frame.
+
+        The loaded copy (at most ``MAX_IMAGE_SIDE`` px) is sent once to an undisplayed canvas
+        (:meth:`_input_canvas`); a zoom or pan draws it scaled there, sending no pixels.
+        """
         layer = self.canvas[0]
         layer.clear()
         img = self.studio.image
         if img is None:
             return
-        import cv2
-
         layer.fill_style = FRAME_COLOR
         layer.fill_rect(0, 0, self.side, self.side)
-        # The loaded copy (at most MAX_IMAGE_SIDE px) drawn over the input's frame, the part in view.
-        view = self._visible(img.height, img.width, img.width / img.input_width)
-        if view is None:
-            return
-        rows, cols, x, y, w, h = view
+        k, (x, y) = self.scale, self.offset
+        w, h = img.input_width * k, img.input_height * k
+        layer.fill_style = "#ffffff"
+        layer.fill_rect(x, y, w, h)
         fade = INPUT_FADES[self.controls["input"].value]
         if fade >= 1.0:
-            layer.fill_style = "#ffffff"
-            layer.fill_rect(x, y, w, h)
             return
-        part = img.rgb[rows, cols]
-        rgb = fade + (1.0 - fade) * part
-        shrink = w < part.shape[1]
-        shown = cv2.resize(rgb, (w, h), interpolation=cv2.INTER_AREA if shrink else cv2.INTER_NEAREST)
-        layer.put_image_data(np.clip(shown * 255.0 + 0.5, 0, 255).astype(np.uint8), x, y)
+        # Over white at opacity 1 - fade: fade + (1 - fade) * rgb, the PNG writer's faded input.
+        layer.global_alpha = 1.0 - fade
+        # Enlarged, the loaded pixels stay square; shrunk, the browser averages them.
+        layer.image_smoothing_enabled = bool(w < img.width)
+        layer.draw_image(self._input_canvas(), x, y, w, h)
+        layer.global_alpha = 1.0
+
+    def _input_canvas(self) -> Any:
+        """The undisplayed canvas holding the loaded input at its own size (made anew for a new image)."""
+        img = self.studio.image
+        if self._input_source is not None and self._input_source[0] is img:
+            return self._input_source[1]
+        if self._input_source is not None:
+            self._input_source[1].close()
+        source = ipycanvas_module().Canvas(width=img.width, height=img.height)
+        pixels = np.clip(img.rgb * 255.0 + 0.5, 0, 255).astype(np.uint8)
+
+        def send() -> None:
+            with ipycanvas_module().hold_canvas():
+                source.put_image_data(pixels, 0, 0)
+                if self._input_source is not None and self._input_source[1] is source:
+                    self._draw_background()
+
+        source.put_image_data(pixels, 0, 0)
+        # A page opened (or reloaded) later gets an empty canvas: the pixels again, then the drawing.
+        source.on_client_ready(send)
+        self._input_source = (img, source)
+        return source
 
     def _stroke_arcs(self, layer: Any, arcs: Any, color: str, width: float) -> None:
         k, (ox, oy) = self.scale, self.offset
@@ -230,28 +274,46 @@ class StudioDrawing:
         self._stroke_arcs(layer, a.arcs, ARC_COLOR, max(width, 2.0))
 
     def _draw_fills(self, layer: Any, fills: Any) -> None:
-        """The fills drawn as the PNG writer draws them (:func:`img2logo.export.plotting.draw_fills`), as pixels."""
-        from matplotlib.backends.backend_agg import FigureCanvasAgg
-        from matplotlib.figure import Figure
+        """The fills as the SVG paints them, as vectors the browser fills: each region in its colour or gradient.
 
-        from ..export.plotting import draw_fills, frame_image
-
+        A region's loops are one polygon (:func:`one_outline`) oriented so that the canvas's
+        non-zero rule fills it as SVG's ``evenodd`` does; the coordinates and gradients are
+        image px (a canvas transform maps them), so a gradient widget serves every view.
+        """
         a = self.studio.shown
-        view = None if a is None else self._visible(a.height, a.width, 1.0)
-        if a is None or view is None:
+        if a is None:
             return
-        rows, cols, x, y, w, h = view
-        fig = Figure(figsize=(w / 100.0, h / 100.0), dpi=100.0)
-        fig.patch.set_alpha(0.0)
-        agg = FigureCanvasAgg(fig)
-        ax = fig.add_axes((0.0, 0.0, 1.0, 1.0))
-        ax.patch.set_alpha(0.0)
-        draw_fills(list(fills), ax, width=a.width, height=a.height)
-        frame_image(ax, a.width, a.height)
-        ax.set_xlim(cols.start, cols.stop)  # the part in view
-        ax.set_ylim(rows.stop, rows.start)
-        agg.draw()
-        layer.put_image_data(np.asarray(agg.buffer_rgba()).copy(), x, y)
+        k, (ox, oy) = self.scale, self.offset
+        layer.save()
+        layer.set_transform(k, 0.0, 0.0, k, ox, oy)
+        layer.begin_path()
+        layer.rect(0, 0, a.width, a.height)  # the image's frame, as the files' view box
+        layer.clip()
+        for fill in fills:
+            rings = evenodd_orient(fill.rings())
+            if not rings:
+                continue
+            layer.fill_style = fill.color if fill.gradient is None else self._canvas_gradient(fill.gradient)
+            layer.fill_polygon(one_outline(rings))
+        layer.restore()
+
+    def _canvas_gradient(self, gradient: Gradient) -> Any:
+        """The canvas gradient of ``gradient`` (image px), made once per gradient."""
+        if gradient not in self._gradients:
+            if len(self._gradients) >= MAX_GRADIENTS:  # another fill option: the old ones are not drawn again
+                for old in self._gradients.values():
+                    old.close()
+                self._gradients.clear()
+            layer = self.canvas[2]
+            (x0, y0), (x1, y1) = gradient.start, gradient.end
+            stops = [(float(o), c) for o, c in gradient.stops]
+            if gradient.kind == "linear":
+                made = layer.create_linear_gradient(x0, y0, x1, y1, stops)
+            else:
+                r = float(np.hypot(x1 - x0, y1 - y0))
+                made = layer.create_radial_gradient(x0, y0, 0.0, x0, y0, r, stops)
+            self._gradients[gradient] = made
+        return self._gradients[gradient]
 
     def _draw_mask(self) -> None:
         layer = self.canvas[3]
@@ -301,6 +363,8 @@ class StudioDrawing:
                 layer.fill_circle(x, y, CENTRE_RADIUS)
                 layer.stroke_style = "#ffffff"
                 layer.stroke_circle(x, y, CENTRE_RADIUS)
+        if a is not None:
+            self._draw_ends(layer)
         if s.subject is not None:
             x, y, w, h = s.subject
             layer.stroke_style = SUBJECT_COLOR
@@ -308,3 +372,24 @@ class StudioDrawing:
             layer.set_line_dash([12, 6])
             layer.stroke_rect(ox + x * k, oy + y * k, w * k, h * k)
             layer.set_line_dash([])
+
+    def _draw_ends(self, layer: Any) -> None:
+        """The free ends of the logo shown as small rings, the two chosen filled, and the arc that would join them."""
+        a, s = self.studio.shown, self.studio
+        k, (ox, oy) = self.scale, self.offset
+        chosen = s.ends
+        arc = s.end_arc()
+        if arc is not None:
+            self._stroke_arcs(layer, [arc], END_ARC_COLOR, 3.0)
+            layer.stroke_style = END_ARC_COLOR
+            layer.line_width = 1.5
+            layer.set_line_dash([10, 6])
+            layer.stroke_circle(ox + arc.circle.cx * k, oy + arc.circle.cy * k, arc.circle.r * k)
+            layer.set_line_dash([])
+        layer.line_width = 2.0
+        for j in s.free_end_junctions():
+            x, y = ox + a.junctions[j][0] * k, oy + a.junctions[j][1] * k
+            layer.fill_style = SELECTION_COLOR if j in chosen else "#ffffff"
+            layer.fill_circle(x, y, END_RADIUS)
+            layer.stroke_style = SELECTION_COLOR
+            layer.stroke_circle(x, y, END_RADIUS)
