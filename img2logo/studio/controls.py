@@ -84,7 +84,7 @@ def make_controls(studio: Studio, size: int) -> dict[str, Any]:
         value="select",
         tooltips=[
             "click an arc to select it (a second one to connect the two); drag the selected circle's centre",
-            "drag to move the zoomed drawing (the wheel zooms)",
+            "drag to move the zoomed drawing (or hold Space and drag, with any tool; the wheel zooms)",
             "paint where merges are forbidden (the lock mask, Fig. 16)",
             "erase the lock mask",
             "drag a rectangle around the subject of a photo (GrabCut's seed)",
@@ -251,6 +251,16 @@ def make_controls(studio: Studio, size: int) -> dict[str, Any]:
         tooltip="Fig. 17 add: an arc on the selected arc's circle between its two ends, around the other way",
         layout=w.Layout(width="130px"),
     )
+    c["add_arc"] = w.Button(
+        description="Add arc",
+        tooltip="Fig. 17 add: the dashed arc between the two free ends clicked (the rings), as an edit",
+        layout=w.Layout(width="90px"),
+    )
+    c["other_circle"] = w.Button(
+        description="Other circle",
+        tooltip="another golden circle through the two free ends: a circle of the logo, or rung k, either side",
+        layout=w.Layout(width="110px"),
+    )
     c["detail"] = labelled(
         w.IntSlider,
         "Detail",
@@ -280,8 +290,9 @@ def page_layout(c: dict[str, Any], size: int) -> Any:
 
     hint = w.HTML(
         '<div class="studio-hint"><b>Select</b>: click an arc (a second one to connect them; Shift-click: '
-        "several); drag its circle's centre to move it; keys: Ctrl+Z, Ctrl+Shift+Z, Delete, arrows. "
-        "<b>Hand</b>: drag the zoomed drawing (the wheel zooms). <b>Brush</b> / <b>Eraser</b>: paint where "
+        "several); drag its circle's centre to move it; click two free ends (rings), then Add arc; keys: "
+        "Ctrl+Z, Ctrl+Shift+Z, Delete, arrows. <b>Hand</b> (or Space held): drag the zoomed drawing (the "
+        "wheel zooms). <b>Brush</b> / <b>Eraser</b>: paint where "
         "merges are forbidden, then Run. <b>Subject</b>: a photo's subject. <b>Colour</b>: click a filled "
         "region.</div>",
         layout=w.Layout(width=f"{size}px"),
@@ -333,7 +344,7 @@ def page_layout(c: dict[str, Any], size: int) -> Any:
                     c["rung_up"],
                 ]
             ),
-            c["add"],
+            w.HBox([c["add"], c["add_arc"], c["other_circle"]]),
             section("Save what is shown"),
             c["downloads"],
         ],

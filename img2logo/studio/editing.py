@@ -15,7 +15,7 @@ from collections.abc import Callable
 import numpy as np
 
 from ..errors import InvalidParameterError
-from ..geometry.primitives import Abstraction
+from ..geometry.primitives import Abstraction, Arc
 from .state import StudioState
 
 #: Distance from a click to an arc that still selects it, CSS px of the drawing on screen (a
@@ -74,14 +74,17 @@ class StudioEdits(StudioState):
             return self._say("error: select an arc first (click it)", ok=False)
 
         def act() -> str:
-            new = make(a)
-            self._history.setdefault(self.level, []).append(new)
-            self._redo.pop(self.level, None)
-            self.selected = keep(new)
-            self._cache.clear()
-            return f"{what}; {len(new.arcs)} arcs (Undo takes it back)"
+            return self._push(make(a), what, keep)
 
         return self._attempt(act)
+
+    def _push(self, new: Abstraction, what: str, keep: Callable[[Abstraction], list[int]]) -> str:
+        """``new`` becomes the logo shown, one edit (undone by :meth:`undo`); returns the message."""
+        self._history.setdefault(self.level, []).append(new)
+        self._redo.pop(self.level, None)
+        self.selected = keep(new)
+        self._cache.clear()
+        return f"{what}; {len(new.arcs)} arcs (Undo takes it back)"
 
     def delete_selected(self) -> bool:
         """Delete the selected arcs (:func:`img2logo.design.edits.delete_arc`), as one edit."""
@@ -204,6 +207,131 @@ class StudioEdits(StudioState):
 
         pair = tuple(self.selected)
         return self._edit(make, f"arcs {pair[0]} and {pair[1]} connected", lambda new: [len(new.arcs) - 1])
+
+    # ------------------------------------------------------------------ an arc between two free ends
+    @property
+    def ends(self) -> list[int]:
+        """The free ends chosen on the logo shown (junction indices, the last clicked last; at most two)."""
+        chosen = self._ends
+        return list(chosen[1]) if chosen is not None and chosen[0] is self.shown else []
+
+    def free_end_junctions(self) -> list[int]:
+        """The free ends of the logo shown: junctions where one arc ends and no other meets (sorted)."""
+        a = self.shown
+        if a is None or a.arc_junctions is None:
+            return []
+        return self._cached("free ends", lambda: sorted({j for i in range(len(a.arcs)) for j in free_ends(a, i)}))
+
+    def select_end_at(self, x: float, y: float, distance: float) -> int | None:
+        """Click at (x, y), px: choose the free end nearest it within ``distance`` px (the last two stay chosen).
+
+        A click on a chosen end takes it out. Two ends chosen, :meth:`end_arc` is the arc that
+        :meth:`add_arc_at_ends` would add between them (Fig. 17 "add"). Returns the junction, or
+        None when no free end is that near (the click is then an arc's).
+        """
+        a, js = self.shown, self.free_end_junctions()
+        if a is None or not js:
+            return None
+        gaps = np.hypot(*(a.junctions[js] - np.array([float(x), float(y)])).T)
+        n = int(np.argmin(gaps))
+        if gaps[n] > distance:
+            return None
+        j, ends = js[n], self.ends
+        ends = [e for e in ends if e != j] if j in ends else [*ends[-1:], j]
+        self._ends, self._end_choice, self.selected = (a, ends), 0, []
+        if len(ends) < 2:
+            self._say(f"free end {j} chosen: click another free end" if ends else "no free end chosen")
+            return j
+        self._say(f"free ends {ends[0]} and {ends[1]} chosen: {self._end_words()}")
+        return j
+
+    def _end_options(self) -> list[tuple[str, int, int]]:
+        """The circles an arc between the two chosen ends can lie on, in the order Other circle shows them.
+
+        ``("circle", c, sweep_sign)``: circle c of the logo passes through both ends
+        (:func:`~img2logo.design.edits.add_arc`, either way round); ``("rung", k, side)``: a new
+        golden circle of rung k through both (:func:`~img2logo.design.edits.connect`), from the
+        smallest rung whose diameter spans the ends, three rungs up, both sides.
+        """
+        from ..constants import JUNCTION_TOLERANCE
+        from ..design.edits import connect
+
+        a, ends = self.shown, self.ends
+        if a is None or len(ends) != 2:
+            return []
+        points = a.junctions[ends]
+        options = [
+            ("circle", ci, sign)
+            for ci, c in enumerate(a.circles)
+            if float(np.abs(c.distance(points)).max()) <= JUNCTION_TOLERANCE
+            for sign in (+1, -1)
+        ]
+        try:
+            k0 = connect(a, ends[0], ends[1]).arcs[-1].circle.k
+        except InvalidParameterError:  # a Fibonacci ladder, or no rung allowed spans the ends
+            return options
+        rungs = sorted(int(e) for e in a.ladder.exponents if int(e) >= k0) if a.ladder.exponents else []
+        for k in (rungs or list(range(int(k0), int(k0) + 3)))[:3]:
+            options += [("rung", k, side) for side in (+1, -1)]
+        return options
+
+    def _end_words(self) -> str:
+        options = self._end_options()
+        if not options:
+            return "no golden circle passes through both"
+        kind, value, _sign = options[self._end_choice % len(options)]
+        what = f"circle {value} of the logo" if kind == "circle" else f"a new golden circle k = {value}"
+        return (
+            f"the dashed arc joins them on {what} (option {self._end_choice % len(options) + 1} of "
+            f"{len(options)}); Add arc adds it, Other circle shows the next"
+        )
+
+    def end_logo(self) -> Abstraction:
+        """The logo shown with the arc between the two chosen ends on the circle chosen (not yet an edit).
+
+        Raises InvalidParameterError (one line) without two free ends chosen or when the edit cannot be made.
+        """
+        from ..design.edits import add_arc, connect
+
+        a, ends, options = self.shown, self.ends, self._end_options()
+        if a is None or len(ends) != 2:
+            raise InvalidParameterError("add arc: click two free ends first (the small rings at the open ends)")
+        if not options:
+            raise InvalidParameterError(f"add arc: no golden circle passes through free ends {ends[0]} and {ends[1]}")
+        kind, value, sign = options[self._end_choice % len(options)]
+
+        def make() -> Abstraction:
+            if kind == "circle":
+                return add_arc(a, value, ends[0], ends[1], sweep_sign=sign)
+            return connect(a, ends[0], ends[1], k=value, side=sign)
+
+        return self._cached(f"end arc {ends} {kind} {value} {sign}", make)
+
+    def end_arc(self) -> Arc | None:
+        """The arc :meth:`add_arc_at_ends` would add (drawn dashed), or None."""
+        try:
+            return self.end_logo().arcs[-1] if len(self.ends) == 2 else None
+        except InvalidParameterError:
+            return None
+
+    def other_end_circle(self) -> bool:
+        """The next circle the arc between the two chosen ends may lie on (:meth:`end_arc`)."""
+        if len(self.ends) != 2:
+            return self._say("error: click two free ends first (the small rings at the open ends)", ok=False)
+        self._end_choice += 1
+        ends = self.ends
+        return self._say(f"free ends {ends[0]} and {ends[1]}: {self._end_words()}")
+
+    def add_arc_at_ends(self) -> bool:
+        """Add the arc between the two chosen free ends on the circle chosen (Fig. 17 "add"), as one edit."""
+        ends = self.ends
+
+        def act() -> str:
+            new = self.end_logo()
+            self._ends = None
+            return self._push(new, f"arc added between free ends {ends[0]} and {ends[1]}", lambda n: [len(n.arcs) - 1])
+
+        return self._attempt(act)
 
     def undo(self) -> bool:
         """Take the last edit of the level shown back."""

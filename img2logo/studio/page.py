@@ -33,6 +33,7 @@ from __future__ import annotations
 
 import asyncio
 import html
+import time
 from typing import Any
 
 import numpy as np
@@ -55,6 +56,9 @@ from .session import PICK_DISTANCE, Studio
 MOVE_STEP = 2.0
 #: Seconds the page must be still before the download links are made (a scrub makes none on the way).
 DOWNLOADS_DELAY = 0.25
+#: A key held repeats its press every ~33 ms after ~0.5 s: a drag that starts within this many seconds of
+#: the Space key's last press is a pan (Space held, as in Illustrator and Inkscape).
+SPACE_HELD = 0.6
 ARROW_KEYS = {"ArrowLeft": (-1, 0), "ArrowUp": (0, -1), "ArrowDown": (0, 1), "ArrowRight": (1, 0)}
 
 
@@ -85,8 +89,12 @@ class StudioPage(StudioDrawing):
         self._moving: tuple[float, float] | None = None  # the centre being dragged, image px
         self._pending_downloads: asyncio.TimerHandle | None = None
         self._view = None  # (scale, x, y) when zoomed; None: fitted
+        self._input_source = None
+        self._gradients = {}
         self._pointer = (self.size * PIXEL_RATIO / 2.0,) * 2  # the mouse's last canvas position: the wheel's centre
         self._add_next = False
+        self._space_at = -np.inf  # when the Space key last came (ipycanvas sends no key release)
+        self._panning = False
         self._syncing = False
         self.controls = make_controls(studio, self.size)
         self.canvas = self.controls["canvas"]
@@ -133,6 +141,8 @@ class StudioPage(StudioDrawing):
         c["rung_down"].on_click(lambda _b: self._act(lambda: self.studio.rung_selected(-1)))
         c["rung_up"].on_click(lambda _b: self._act(lambda: self.studio.rung_selected(+1)))
         c["add"].on_click(lambda _b: self._act(self.studio.add_other_side))
+        c["add_arc"].on_click(lambda _b: self._act(self.studio.add_arc_at_ends))
+        c["other_circle"].on_click(lambda _b: self._act(self.studio.other_end_circle, logo=False))
 
     # ------------------------------------------------------------------ drawing
     def redraw(self, *, background: bool = False, logo: bool = True, mask: bool = False, overlay: bool = True) -> None:
@@ -186,6 +196,8 @@ class StudioPage(StudioDrawing):
             )
             for name in ("delete", "connect", "undo", "redo", "add"):
                 c[name].disabled = s.shown is None
+            for name in ("add_arc", "other_circle"):
+                c[name].disabled = len(s.ends) != 2
             self._schedule_downloads()
         finally:
             self._syncing = False
@@ -329,6 +341,9 @@ class StudioPage(StudioDrawing):
         self._add_next = key == "Shift"
         if key == "Shift":
             return
+        if key == " ":  # held, it repeats: a drag that starts now pans, whatever the tool
+            self._space_at = time.monotonic()
+            return
         if command and key.lower() == "z":
             self._act(s.redo if shift else s.undo)
         elif command and key.lower() == "y":
@@ -360,13 +375,20 @@ class StudioPage(StudioDrawing):
 
     def _mouse_down(self, x: float, y: float) -> None:
         tool = self.controls["tool"].value
+        if time.monotonic() - self._space_at <= SPACE_HELD:
+            tool = "hand"
+        self._panning = tool == "hand"
         ix, iy = self.to_image(x, y)
         add, self._add_next = self._add_next, False
         if tool == "select":
             if not add and self._centre_hit(ix, iy):
                 self._moving = (ix, iy)
                 return
-            self.studio.select_at(ix, iy, PICK_DISTANCE * PIXEL_RATIO / self.scale, add=add)
+            reach = PICK_DISTANCE * PIXEL_RATIO / self.scale
+            if not add and self.studio.select_end_at(ix, iy, reach) is not None:
+                self.redraw(logo=False)
+                return
+            self.studio.select_at(ix, iy, reach, add=add)
             self.redraw(logo=False)
             return
         if tool == "hand":
@@ -386,7 +408,7 @@ class StudioPage(StudioDrawing):
 
     def _mouse_move(self, x: float, y: float) -> None:
         self._pointer = (float(x), float(y))
-        if self._drag and self.controls["tool"].value == "hand":
+        if self._drag and self._panning:
             (x0, y0), self._drag = self._drag[-1], [(float(x), float(y))]
             self.pan_by(float(x) - x0, float(y) - y0)
             return
@@ -423,7 +445,8 @@ class StudioPage(StudioDrawing):
             return
         tool, drag = self.controls["tool"].value, self._drag
         self._drag = []
-        if tool == "hand":
+        if self._panning:
+            self._panning = False
             return
         if tool == "subject":
             (x0, y0), (x1, y1) = drag[0], self.to_image(x, y)

@@ -106,6 +106,9 @@ class StudioState:
         # The logo (kept, so that its id names it) and its regions' own colours, by the logo's id.
         self._colours: dict[int, tuple[Abstraction, dict[int, str]]] = {}
         self._cache: dict[tuple[Any, ...], Any] = {}
+        # The free ends chosen, with the logo they are ends of, and which circle joins them (editing).
+        self._ends: tuple[Abstraction, list[int]] | None = None
+        self._end_choice = 0
 
     # ------------------------------------------------------------------ messages
     def _say(self, text: str, ok: bool = True) -> bool:
