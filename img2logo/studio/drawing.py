@@ -95,6 +95,7 @@ class StudioDrawing:
     #: The image whose loaded copy the undisplayed canvas holds, and that canvas (:meth:`_input_canvas`).
     _input_source: tuple[Any, Any] | None
     _gradients: dict[Gradient, Any]
+    _fill_outlines: tuple[Any, list[tuple[Any, np.ndarray]]] | None
 
     def _fit(self) -> tuple[float, float, float]:
         """(scale, x, y) of the whole image centred in the square: canvas px per image px, its corner's position."""
@@ -289,13 +290,17 @@ class StudioDrawing:
         layer.begin_path()
         layer.rect(0, 0, a.width, a.height)  # the image's frame, as the files' view box
         layer.clip()
-        for fill in fills:
-            rings = evenodd_orient(fill.rings())
-            if not rings:
-                continue
+        for fill, outline in self._outlines(fills):
             layer.fill_style = fill.color if fill.gradient is None else self._canvas_gradient(fill.gradient)
-            layer.fill_polygon(one_outline(rings))
+            layer.fill_polygon(outline)
         layer.restore()
+
+    def _outlines(self, fills: Any) -> list[tuple[Any, np.ndarray]]:
+        """Each fill with its outline (:func:`one_outline`, image px), kept for the fills last drawn (a pan)."""
+        if self._fill_outlines is None or self._fill_outlines[0] is not fills:
+            made = [(f, evenodd_orient(f.rings())) for f in fills]
+            self._fill_outlines = (fills, [(f, one_outline(rings)) for f, rings in made if rings])
+        return self._fill_outlines[1]
 
     def _canvas_gradient(self, gradient: Gradient) -> Any:
         """The canvas gradient of ``gradient`` (image px), made once per gradient."""

@@ -245,67 +245,75 @@ class StudioEdits(StudioState):
         self._say(f"free ends {ends[0]} and {ends[1]} chosen: {self._end_words()}")
         return j
 
-    def _end_options(self) -> list[tuple[str, int, int]]:
-        """The circles an arc between the two chosen ends can lie on, in the order Other circle shows them.
+    def _end_options(self) -> list[tuple[str, int, int, Abstraction]]:
+        """The arcs that can join the two chosen ends, in the order Other circle shows them, each with its logo.
 
-        ``("circle", c, sweep_sign)``: circle c of the logo passes through both ends
-        (:func:`~img2logo.design.edits.add_arc`, either way round); ``("rung", k, side)``: a new
-        golden circle of rung k through both (:func:`~img2logo.design.edits.connect`), from the
-        smallest rung whose diameter spans the ends, three rungs up, both sides.
+        ``("circle", c, sweep_sign, logo)``: circle c of the logo passes through both ends
+        (:func:`~img2logo.design.edits.add_arc`, either way round, unless an arc already runs
+        there that way); ``("rung", k, side, logo)``: a new golden circle of rung k through
+        both (:func:`~img2logo.design.edits.connect`), from the smallest rung whose diameter
+        spans the ends, three rungs up, both sides. An edit the library refuses is no option.
         """
         from ..constants import JUNCTION_TOLERANCE
-        from ..design.edits import connect
+        from ..design.edits import add_arc, connect
 
         a, ends = self.shown, self.ends
         if a is None or len(ends) != 2:
             return []
-        points = a.junctions[ends]
-        options = [
-            ("circle", ci, sign)
-            for ci, c in enumerate(a.circles)
-            if float(np.abs(c.distance(points)).max()) <= JUNCTION_TOLERANCE
-            for sign in (+1, -1)
-        ]
-        try:
-            k0 = connect(a, ends[0], ends[1]).arcs[-1].circle.k
-        except InvalidParameterError:  # a Fibonacci ladder, or no rung allowed spans the ends
+
+        def make() -> list[tuple[str, int, int, Abstraction]]:
+            j0, j1 = ends
+            points = a.junctions[ends]
+            tries = [
+                ("circle", ci, sign, lambda ci=ci, sign=sign: add_arc(a, ci, j0, j1, sweep_sign=sign))
+                for ci, c in enumerate(a.circles)
+                if float(np.abs(c.distance(points)).max()) <= JUNCTION_TOLERANCE
+                for sign in (+1, -1)
+            ]
+            try:
+                k0 = int(connect(a, j0, j1).arcs[-1].circle.k)
+            except InvalidParameterError:  # a Fibonacci ladder, or no rung allowed spans the ends
+                k0 = None
+            if k0 is not None:
+                allowed = sorted(int(e) for e in a.ladder.exponents if int(e) >= k0) if a.ladder.exponents else []
+                for k in (allowed or list(range(k0, k0 + 3)))[:3]:
+                    tries += [
+                        ("rung", k, side, lambda k=k, side=side: connect(a, j0, j1, k=k, side=side))
+                        for side in (+1, -1)
+                    ]
+            options = []
+            for kind, value, sign, edit in tries:
+                try:
+                    options.append((kind, value, sign, edit()))
+                except InvalidParameterError:
+                    continue
             return options
-        rungs = sorted(int(e) for e in a.ladder.exponents if int(e) >= k0) if a.ladder.exponents else []
-        for k in (rungs or list(range(int(k0), int(k0) + 3)))[:3]:
-            options += [("rung", k, side) for side in (+1, -1)]
-        return options
+
+        return self._cached(f"end options {ends}", make)
 
     def _end_words(self) -> str:
         options = self._end_options()
         if not options:
             return "no golden circle passes through both"
-        kind, value, _sign = options[self._end_choice % len(options)]
+        n = self._end_choice % len(options)
+        kind, value = options[n][:2]
         what = f"circle {value} of the logo" if kind == "circle" else f"a new golden circle k = {value}"
         return (
-            f"the dashed arc joins them on {what} (option {self._end_choice % len(options) + 1} of "
-            f"{len(options)}); Add arc adds it, Other circle shows the next"
+            f"the dashed arc joins them on {what} (option {n + 1} of {len(options)}); Add arc adds it, "
+            "Other circle shows the next"
         )
 
     def end_logo(self) -> Abstraction:
         """The logo shown with the arc between the two chosen ends on the circle chosen (not yet an edit).
 
-        Raises InvalidParameterError (one line) without two free ends chosen or when the edit cannot be made.
+        Raises InvalidParameterError (one line) without two free ends chosen or when no circle can join them.
         """
-        from ..design.edits import add_arc, connect
-
-        a, ends, options = self.shown, self.ends, self._end_options()
-        if a is None or len(ends) != 2:
+        ends, options = self.ends, self._end_options()
+        if len(ends) != 2:
             raise InvalidParameterError("add arc: click two free ends first (the small rings at the open ends)")
         if not options:
             raise InvalidParameterError(f"add arc: no golden circle passes through free ends {ends[0]} and {ends[1]}")
-        kind, value, sign = options[self._end_choice % len(options)]
-
-        def make() -> Abstraction:
-            if kind == "circle":
-                return add_arc(a, value, ends[0], ends[1], sweep_sign=sign)
-            return connect(a, ends[0], ends[1], k=value, side=sign)
-
-        return self._cached(f"end arc {ends} {kind} {value} {sign}", make)
+        return options[self._end_choice % len(options)][3]
 
     def end_arc(self) -> Arc | None:
         """The arc :meth:`add_arc_at_ends` would add (drawn dashed), or None."""
