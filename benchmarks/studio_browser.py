@@ -237,42 +237,30 @@ def main() -> int:
                 for _ in range(2):
                     page.mouse.wheel(0, -100)
                 page.wait_for_timeout(500)
-                page.locator(".img2logo-studio .widget-toggle-button", has_text="Hand").first.click()
-                for r in range(args.repeats):
-                    page.mouse.move(*centre)
-                    page.mouse.down()
-                    for step in range(1, 6):
+
+                def pan(name: str, space: bool) -> None:
+                    """Drag from the centre, back and forth: each move timed to its drawing."""
+                    for r in range(args.repeats):
                         sign = 1 if r % 2 == 0 else -1
-                        times.setdefault("pan (Hand): one move drawn", []).append(
-                            _timed(
-                                page,
-                                lambda step=step, sign=sign: page.mouse.move(
-                                    centre[0] + sign * 6 * step, centre[1] + sign * 4 * step
-                                ),
-                                _changed(),
+                        page.mouse.move(*centre)
+                        if space:
+                            page.keyboard.down(" ")
+                        page.mouse.down()
+                        for step in range(1, 6):
+                            to = (centre[0] + sign * 6 * step, centre[1] + sign * 4 * step)
+                            times.setdefault(name, []).append(
+                                _timed(page, lambda to=to: page.mouse.move(*to), _changed())
                             )
-                        )
-                    page.mouse.up()
+                        page.mouse.up()
+                        if space:
+                            page.keyboard.up(" ")
+
+                page.locator(".img2logo-studio .widget-toggle-button", has_text="Hand").first.click()
+                pan("pan (Hand): one move drawn", space=False)
                 page.locator(".img2logo-studio .widget-toggle-button", has_text="Select").first.click()
                 page.mouse.click(box["x"] + 2, box["y"] + 2)  # the keyboard to the drawing; selects nothing
                 page.wait_for_function(f"() => {status}.includes('nothing selected')")
-                for r in range(args.repeats):
-                    page.mouse.move(*centre)
-                    page.keyboard.down(" ")
-                    page.mouse.down()
-                    for step in range(1, 6):
-                        sign = 1 if r % 2 == 0 else -1
-                        times.setdefault("pan (Space held): one move drawn", []).append(
-                            _timed(
-                                page,
-                                lambda step=step, sign=sign: page.mouse.move(
-                                    centre[0] + sign * 6 * step, centre[1] + sign * 4 * step
-                                ),
-                                _changed(),
-                            )
-                        )
-                    page.mouse.up()
-                    page.keyboard.up(" ")
+                pan("pan (Space held): one move drawn", space=True)
                 shot("7b-zoomed-gradient")
                 page.locator(".img2logo-studio button", has_text="Fit").first.click()
                 page.wait_for_timeout(300)

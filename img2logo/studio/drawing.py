@@ -11,7 +11,7 @@ pixels.
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -20,6 +20,10 @@ from ..design.fill_values import Gradient
 from ..errors import Img2LogoError
 from ..export.plotting import ARC_COLOR, default_stroke_width, evenodd_orient
 from .session import Studio
+
+if TYPE_CHECKING:
+    from ..geometry.primitives import Abstraction
+    from ..images.loading import LoadedImage
 
 #: Side of the square drawing on screen, CSS px: with two columns of controls of
 #: ``CONTROLS_WIDTH`` beside it the page fits a 1366 x 768 laptop screen.
@@ -205,12 +209,11 @@ class StudioDrawing:
         layer.global_alpha = 1.0 - fade
         # Enlarged, the loaded pixels stay square; shrunk, the browser averages them.
         layer.image_smoothing_enabled = bool(w < img.width)
-        layer.draw_image(self._input_canvas(), x, y, w, h)
+        layer.draw_image(self._input_canvas(img), x, y, w, h)
         layer.global_alpha = 1.0
 
-    def _input_canvas(self) -> Any:
-        """The undisplayed canvas holding the loaded input at its own size (made anew for a new image)."""
-        img = self.studio.image
+    def _input_canvas(self, img: LoadedImage) -> Any:
+        """The undisplayed canvas holding the loaded input ``img`` at its own size (made anew for a new image)."""
         if self._input_source is not None and self._input_source[0] is img:
             return self._input_source[1]
         if self._input_source is not None:
@@ -369,7 +372,7 @@ class StudioDrawing:
                 layer.stroke_style = "#ffffff"
                 layer.stroke_circle(x, y, CENTRE_RADIUS)
         if a is not None:
-            self._draw_ends(layer)
+            self._draw_ends(layer, a)
         if s.subject is not None:
             x, y, w, h = s.subject
             layer.stroke_style = SUBJECT_COLOR
@@ -378,9 +381,9 @@ class StudioDrawing:
             layer.stroke_rect(ox + x * k, oy + y * k, w * k, h * k)
             layer.set_line_dash([])
 
-    def _draw_ends(self, layer: Any) -> None:
-        """The free ends of the logo shown as small rings, the two chosen filled, and the arc that would join them."""
-        a, s = self.studio.shown, self.studio
+    def _draw_ends(self, layer: Any, a: Abstraction) -> None:
+        """The free ends of the logo shown ``a`` as rings, the two chosen filled, and the arc that would join them."""
+        s = self.studio
         k, (ox, oy) = self.scale, self.offset
         chosen = s.ends
         arc = s.end_arc()

@@ -271,11 +271,13 @@ class StudioEdits(StudioState):
                 for sign in (+1, -1)
             ]
             try:
-                k0 = int(connect(a, j0, j1).arcs[-1].circle.k)
+                k0 = connect(a, j0, j1).arcs[-1].circle.k
             except InvalidParameterError:  # a Fibonacci ladder, or no rung allowed spans the ends
                 k0 = None
             if k0 is not None:
-                allowed = sorted(int(e) for e in a.ladder.exponents if int(e) >= k0) if a.ladder.exponents else []
+                k0 = int(k0)
+                exponents = a.ladder.exponents if a.ladder is not None else None
+                allowed = sorted(int(e) for e in exponents if int(e) >= k0) if exponents else []
                 for k in (allowed or list(range(k0, k0 + 3)))[:3]:
                     tries += [
                         ("rung", k, side, lambda k=k, side=side: connect(a, j0, j1, k=k, side=side))
