@@ -1,17 +1,18 @@
 """The studio's page: ipywidgets and ipycanvas around a :class:`~.studio.Studio` (``make studio``, Voila).
 
 :class:`StudioPage` draws the logo shown on an :class:`ipycanvas.MultiCanvas`
-(vector arcs, drawn by the browser's canvas: a level or an edit redraws without
-rendering a PNG) over the faded input, and takes the mouse on it: a click selects
-an arc, a drag paints or erases the lock mask or draws the subject rectangle,
-by the tool chosen. Every control calls one method of the :class:`~.studio.Studio`
+(vector arcs and fills, drawn by the browser's canvas: a level or an edit redraws
+without rendering a PNG) over the faded input, and takes the mouse on it: a click
+selects an arc or a free end (two free ends chosen, Add arc joins them on the circle
+Other circle picks: Fig. 17 "add"), a drag paints or erases the lock mask or draws
+the subject rectangle, by the tool chosen. Every control calls one method of the :class:`~.studio.Studio`
 and then redraws what changed; its one-line message is the page's status line.
 The golden circles of the level shown can be drawn under it (the SVG's
 construction layer), the selected arc's circle and centre always are; dragging
 that centre moves the circle (:func:`img2logo.design.edits.move_circle`, on
 release). The wheel zooms about the mouse (the + and - keys too, 0 fits the
-image again), the Hand tool drags the zoomed drawing; only the part in view
-of the input, the fills and the mask is drawn. With the drawing focused (click it) the keys edit: Ctrl+Z and
+image again), the Hand tool (or any tool with Space held) drags the zoomed drawing.
+With the drawing focused (click it) the keys edit: Ctrl+Z and
 Ctrl+Shift+Z (or Ctrl+Y) undo and redo, Delete removes the selected arcs, the
 arrows nudge the selected circle (with Shift ten times as far), Escape clears
 the selection; a click with Shift held adds an arc to the selection or takes it out
