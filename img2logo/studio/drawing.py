@@ -3,14 +3,15 @@
 :class:`StudioDrawing` draws the layers of the drawing (the faded input, the golden
 circles, the logo with its fills, the lock mask with the segments it covers, the
 selection with its circle and centre, and the subject) as vector commands of the
-browser's canvas: a level or an edit redraws without rendering a PNG. Only the part in
-view of the input, the fills and the mask is drawn. The canvas has twice the pixels of
-its size on screen (crisp on high-density screens); ipycanvas gives the mouse in canvas
-pixels.
+browser's canvas: a level or an edit redraws without rendering a PNG. The input and the
+mask are sent once each (to undisplayed canvases at their own size) and drawn scaled, so
+a zoom or pan sends no pixels. The canvas has twice the pixels of its size on screen
+(crisp on high-density screens); ipycanvas gives the mouse in canvas pixels.
 """
 
 from __future__ import annotations
 
+import zlib
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -100,6 +101,9 @@ class StudioDrawing:
     _input_source: tuple[Any, Any] | None
     _gradients: dict[Gradient, Any]
     _fill_outlines: tuple[Any, list[tuple[Any, np.ndarray]]] | None
+    #: The mask's key (shape, checksum) and its undisplayed canvas; the segments it locks, by mask and run.
+    _mask_source: tuple[tuple[Any, ...], Any] | None
+    _locked: tuple[tuple[Any, ...], list[np.ndarray]] | None
 
     def _fit(self) -> tuple[float, float, float]:
         """(scale, x, y) of the whole image centred in the square: canvas px per image px, its corner's position."""
@@ -158,23 +162,6 @@ class StudioDrawing:
                 draw()
             self._draw_overlay()
         self.controls["zoom"].value = f"{self.zoom:.0%}" if self._view is not None else "fit"
-
-    def _visible(self, height: int, width: int, per_px: float) -> tuple[slice, slice, int, int, int, int] | None:
-        """The part of a raster of ``height`` x ``width`` cells, ``per_px`` cells per image px, that is in view.
-
-        Returns (rows, cols, x, y, w, h): the cells to draw and the canvas rectangle they fill;
-        None when none is in view (a raster larger than the view is cut, not drawn whole).
-        """
-        k, (ox, oy) = self.scale, self.offset
-        c0 = max(0, int(np.floor(-ox / k * per_px)))
-        r0 = max(0, int(np.floor(-oy / k * per_px)))
-        c1 = min(width, int(np.ceil((self.side - ox) / k * per_px)))
-        r1 = min(height, int(np.ceil((self.side - oy) / k * per_px)))
-        if c1 <= c0 or r1 <= r0:
-            return None
-        x, y = round(ox + c0 / per_px * k), round(oy + r0 / per_px * k)
-        w, h = round(ox + c1 / per_px * k) - x, round(oy + r1 / per_px * k) - y
-        return slice(r0, r1), slice(c0, c1), x, y, max(1, w), max(1, h)
 
     def to_image(self, x: float, y: float) -> tuple[float, float]:
         """Canvas pixels to image pixels."""
@@ -324,28 +311,44 @@ class StudioDrawing:
         return self._gradients[gradient]
 
     def _draw_mask(self) -> None:
+        """The lock mask, translucent, and the segments of the last run it locks, highlighted.
+
+        The mask goes to an undisplayed canvas at its own size once it changed (a stroke ended,
+        it was cleared, a new image); a zoom or pan draws that canvas scaled, its pixels square.
+        """
         layer = self.canvas[3]
         layer.clear()
         m = self.studio.mask
         if not m.size or not m.any():
             return
-        import cv2
-
-        view = self._visible(m.shape[0], m.shape[1], 1.0)
-        if view is None:
-            return
-        rows, cols, x, y, w, h = view
-        big = cv2.resize(m[rows, cols].astype(np.uint8), (w, h), interpolation=cv2.INTER_NEAREST).astype(bool)
-        rgba = np.zeros((h, w, 4), dtype=np.uint8)
-        rgba[big] = MASK_RGBA
-        layer.put_image_data(rgba, x, y)
-        # What the next Run locks: the segments of the last run under the mask, highlighted.
+        key = (m.shape, zlib.crc32(np.packbits(m)), id(self.studio.result))
         k, (ox, oy) = self.scale, self.offset
+        layer.image_smoothing_enabled = False
+        layer.draw_image(self._mask_canvas(m, key[:2]), ox, oy, m.shape[1] * k, m.shape[0] * k)
+        if self._locked is None or self._locked[0] != key:
+            self._locked = (key, self.studio.lock_preview())
         layer.stroke_style = LOCKED_COLOR
         layer.line_width = 4.0
         layer.line_cap = "round"
-        for seg in self.studio.lock_preview():
+        for seg in self._locked[1]:
             layer.stroke_lines(np.column_stack([ox + seg[:, 0] * k, oy + seg[:, 1] * k]))
+
+    def _mask_canvas(self, m: np.ndarray, key: tuple[Any, ...]) -> Any:
+        """The undisplayed canvas holding mask ``m`` (H, W) as RGBA pixels, sent again when ``key`` changed."""
+        if self._mask_source is not None and self._mask_source[0] == key:
+            return self._mask_source[1]
+        rgba = np.zeros((*m.shape, 4), dtype=np.uint8)
+        rgba[m] = MASK_RGBA
+        if self._mask_source is not None and self._mask_source[0][0] == m.shape:
+            source = self._mask_source[1]
+            source.clear()  # its pixels are drawn over what it holds
+        else:
+            if self._mask_source is not None:
+                self._mask_source[1].close()
+            source = ipycanvas_module().Canvas(width=m.shape[1], height=m.shape[0])
+        source.put_image_data(rgba, 0, 0)
+        self._mask_source = (key, source)
+        return source
 
     def _draw_overlay(self, moved: tuple[float, float] = (0.0, 0.0)) -> None:
         """The selected arcs, the last one's golden circle and centre (moved by ``moved``, image px), the subject."""

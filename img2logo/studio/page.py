@@ -93,6 +93,8 @@ class StudioPage(StudioDrawing):
         self._input_source = None
         self._gradients = {}
         self._fill_outlines = None
+        self._mask_source = None
+        self._locked = None
         self._pointer = (self.size * PIXEL_RATIO / 2.0,) * 2  # the mouse's last canvas position: the wheel's centre
         self._add_next = False
         self._space_at = -np.inf  # when the Space key last came (ipycanvas sends no key release)
