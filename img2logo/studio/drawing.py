@@ -321,7 +321,7 @@ class StudioDrawing:
         m = self.studio.mask
         if not m.size or not m.any():
             return
-        key = (m.shape, zlib.crc32(np.packbits(m)), id(self.studio.result))
+        key = (m.shape, zlib.crc32(np.packbits(m).tobytes()), id(self.studio.result))
         k, (ox, oy) = self.scale, self.offset
         layer.image_smoothing_enabled = False
         layer.draw_image(self._mask_canvas(m, key[:2]), ox, oy, m.shape[1] * k, m.shape[0] * k)
