@@ -291,7 +291,7 @@ SUBJECT_FRAME_INSET: float = 0.05
 #: ... but an object found that comes within this many strip widths of the strip (it
 #: runs into it: a disc almost filling the picture, a portrait's shoulders) has the
 #: strip near it reopened as probable background, for the colour models to decide
-#: (subject._reach_frame). Two: an object cut back a strip width short of the strip
+#: (subject.reach_frame). Two: an object cut back a strip width short of the strip
 #: (by a background model that learnt its colours there) reopens the strip's whole
 #: depth beside it. Measured: skimage's retina (a disc 2 px from the frame) mask IoU
 #: 0.83 -> 0.99; at three the astronaut's arm also let in the red stripes of the flag
@@ -572,7 +572,7 @@ ALL_AT_ONCE_TRIES: int = 2
 #: 78 % and 42.4, 3 gives 83 % and 43.3 with two more near-miss gaps (held-out clip arts).
 KINK_WEIGHT: int = 2
 #: A smooth join that no refit from its circles makes tangent is fitted as one unit, a tangent
-#: biarc over its two groups' joined pixels (img2logo.fit.tangency._biarc): its junction is tried
+#: biarc over its two groups' joined pixels (img2logo.fit.tangency.closest_biarcs): its junction is tried
 #: every this many pixels of the chain (every pixel around the best), every this many pixels
 #: measured ...
 BIARC_STEP: int = 6

@@ -128,7 +128,7 @@ class _Parser(argparse.ArgumentParser):
 _NUMBER = re.compile(r"-\d+(\.\d*)?([eE][-+]?\d+)?|-\.\d+([eE][-+]?\d+)?|-inf|-nan", re.IGNORECASE)
 
 
-def _parser() -> argparse.ArgumentParser:
+def build_parser() -> argparse.ArgumentParser:
     p = _Parser(
         prog="img2logo",
         usage="%(prog)s INPUT [options]\n       %(prog)s batch INPUT_DIR OUTPUT_DIR [options]",
@@ -171,7 +171,7 @@ def _parser() -> argparse.ArgumentParser:
     return p
 
 
-def _batch_parser() -> argparse.ArgumentParser:
+def build_batch_parser() -> argparse.ArgumentParser:
     p = _Parser(
         prog="img2logo batch",
         description="Turn every image of a folder (png, jpg, jpeg, tif, tiff, bmp, webp; sorted by name) into a "
@@ -260,9 +260,9 @@ def _main(argv: Sequence[str] | None, command: bool) -> int:
     args_list = list(sys.argv[1:] if argv is None else argv)
     batch = bool(args_list) and args_list[0] == "batch"
     if batch:
-        args = _batch_parser().parse_args(args_list[1:])
+        args = build_batch_parser().parse_args(args_list[1:])
     else:
-        args = _parser().parse_args(args_list)
+        args = build_parser().parse_args(args_list)
 
     def say(text: object) -> None:
         """Print one line on standard error; a control character in a name cannot start another one."""
@@ -493,10 +493,10 @@ def _naming(path: str, call, *a, **kw):
 
 
 def _foreground_file(foreground: object):
-    """:func:`img2logo.app.batch.run._foreground_file`; the batch module (and its pool's) loads only for a mask."""
+    """:func:`img2logo.app.batch.run.foreground_file`; the batch module (and its pool's) loads only for a mask."""
     if foreground == "auto":  # the default: no file
         return None
-    from .batch.run import _foreground_file as of_batch
+    from .batch.run import foreground_file as of_batch
 
     return of_batch(foreground)
 
@@ -623,27 +623,18 @@ def _batch(args: argparse.Namespace, say) -> int:
     """``img2logo batch``: every image of a folder (:func:`img2logo.app.batch.run.run_batch`)."""
     from pathlib import Path
 
-    from .batch.run import (
-        OUTPUT_FORMATS,
-        _check_options,
-        _check_output_folder,
-        _check_targets,
-        _check_unlocked,
-        _foreground_file,
-        _output_stems,
-        find_images,
-        run_batch,
-    )
+    from .batch.folder import check_output_folder, check_targets, check_unlocked, output_stems
+    from .batch.run import OUTPUT_FORMATS, check_options, find_images, foreground_file, run_batch
 
-    options = _check_options({}, args.fill, _abstract_options(args, batch=True))  # the --foreground mask read
+    options = check_options({}, args.fill, _abstract_options(args, batch=True))  # the --foreground mask read
     if args.jobs is not None and args.jobs < 1:
         raise InvalidParameterError(f"--jobs must be >= 1, got {args.jobs}")
     paths = find_images(args.input_dir)
     out_dir = Path(args.output_dir)
-    mask = _foreground_file(options.foreground)
-    _check_targets([*paths, *([mask] if mask else [])], out_dir, _output_stems(paths), OUTPUT_FORMATS, True)
-    _check_output_folder(paths, out_dir)
-    _check_unlocked(out_dir)  # all before the count
+    mask = foreground_file(options.foreground)
+    check_targets([*paths, *([mask] if mask else [])], out_dir, output_stems(paths), OUTPUT_FORMATS, True)
+    check_output_folder(paths, out_dir)
+    check_unlocked(out_dir)  # all before the count
     say(f"{args.input_dir}: {len(paths)} images")
     report = run_batch(
         paths,
@@ -751,14 +742,14 @@ def _stale_level_files(folder, keep: set[str]) -> list:
     file (no link), its content says so (an ``img2logo.abstraction/1`` JSON
     document, an SVG that img2logo describes as its own): never a file of the user's.
     """
-    from .batch.run import _written_by_img2logo
+    from .batch.folder import written_by_img2logo
 
     if not folder.is_dir():
         return []
     return sorted(
         p
         for p in folder.iterdir()
-        if LEVEL_FILE.fullmatch(p.name) and p.name not in keep and _written_by_img2logo(p, set())
+        if LEVEL_FILE.fullmatch(p.name) and p.name not in keep and written_by_img2logo(p, set())
     )
 
 

@@ -73,6 +73,7 @@ __all__ = [
     "KINDS",
     "FeatureLines",
     "detect_kind",
+    "detect_kind_and_regions",
     "edge_tangent_flow",
     "extract_feature_lines",
     "flow_dog",
@@ -81,6 +82,7 @@ __all__ = [
     "load_mask",
     "median_stroke_width",
     "photo_reason",
+    "without_small_parts",
 ]
 
 KINDS = ("photo", "clipart", "drawing")
@@ -168,7 +170,7 @@ def detect_kind(image: object) -> tuple[str, str]:
     >>> kind
     'drawing'
     """
-    kind, reason, _ = _detect(downscale(load_image(image), SYNTHETIC_WORK_SIDE))
+    kind, reason, _ = detect_kind_and_regions(downscale(load_image(image), SYNTHETIC_WORK_SIDE))
     return kind, reason
 
 
@@ -195,7 +197,7 @@ def _photo_reason(flat: float) -> str | None:
     return f"{share} in flat fills (camera noise, texture): a photo"
 
 
-def _detect(img: LoadedImage) -> tuple[str, str, np.ndarray | None]:
+def detect_kind_and_regions(img: LoadedImage) -> tuple[str, str, np.ndarray | None]:
     """(kind, reason, clip-art regions or None): the regions are reused for a clip art."""
     flat = img.flat_fraction
     reason = _photo_reason(flat)
@@ -441,7 +443,7 @@ def extract_feature_lines(
         spur_length = check_positive(spur_length, "spur_length", allow_zero=True)
     regions = None
     if kind == "auto":
-        kind, reason, regions = _detect(img)
+        kind, reason, regions = detect_kind_and_regions(img)
     else:
         reason = "given"
     found = dots = None
@@ -636,8 +638,8 @@ def _drawing_lines(img: LoadedImage) -> np.ndarray:
     if not dark:  # light strokes on a dark ground
         ink = ~ink
     ink &= ~_paper_seams(img.gray if dark else 1.0 - img.gray, ink)
-    ink = _without_small_parts(ink, MIN_SPECK_AREA - 1)
-    return ~_without_small_parts(~ink, MIN_SPECK_AREA // 4)
+    ink = without_small_parts(ink, MIN_SPECK_AREA - 1)
+    return ~without_small_parts(~ink, MIN_SPECK_AREA // 4)
 
 
 def gaussian_blur(image: np.ndarray, sigma: float) -> np.ndarray:
@@ -673,7 +675,7 @@ def otsu_threshold(gray: np.ndarray) -> float:
     return float(centres[np.argmax(between)])
 
 
-def _without_small_parts(mask: np.ndarray, max_size: int) -> np.ndarray:
+def without_small_parts(mask: np.ndarray, max_size: int) -> np.ndarray:
     """``mask`` less its 4-connected parts of at most ``max_size`` px, bool (H, W).
 
     What ``skimage.morphology.remove_small_objects(mask, max_size=max_size)``

@@ -42,7 +42,7 @@ from ..geometry.golden_ladder import Ladder
 from ..geometry.primitives import Abstraction, ArcJunctions, Circle, Line, line_arc
 from ..options import Options
 from ..segment_graph import SegmentGraph
-from .arc_extraction import ArcFit, _distances_to_arcs, _extract, _redundant_arrays
+from .arc_extraction import ArcFit, _extract, _redundant_arrays, distances_to_arcs
 from .constrained_fit import WindowFit, fit_window
 from .simplification import Group, straight_line
 
@@ -354,7 +354,7 @@ class FitState:
         #: Tangent joins whose junction slides along the input's line (img2logo.fit.tangency):
         #: node -> its distance off the line, px, which E^s counts instead of |d_k|.
         self.off_line: dict[int, float] = {}
-        #: What the merge loop keeps of one level for all its candidates (img2logo.fit.merging._level).
+        #: What the merge loop keeps of one level for all its candidates (img2logo.fit.merging.level_view).
         self.merge_cache: object | None = None
         #: (merged group's segments, nodes, radius) -> whether no circle of that radius comes within
         #: the arc bound of its pixels (img2logo.fit.merging._too_far): asked again at every level.
@@ -969,7 +969,7 @@ class FitState:
         """
         nodes = np.array([n for n, _ in ends], dtype=np.intp)
         points = (self.graph.junctions[nodes] + self.disp[nodes]).reshape(-1, 2)
-        distances = _distances_to_arcs(points, rows, GAP_MAX)
+        distances = distances_to_arcs(points, rows, GAP_MAX)
         distances[np.arange(len(ends)), np.asarray(own, dtype=np.intp)] = np.inf
         return points, distances
 

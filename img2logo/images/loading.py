@@ -587,7 +587,7 @@ def _read_pillow_reduced(path: Path, factor: int) -> np.ndarray | None:
     OpenCV decodes a 12000 x 12000 px GIF through full-size BGRA canvases (1.80 GB at the
     run's peak, measured) and an AVIF through 16-bit ones (2.42 GB); Pillow holds a GIF as
     its palette indices (144 MB) and an AVIF as 8-bit RGB(A), and each strip of rows is
-    converted to RGB(A) and reduced (:func:`_reduce_by_strips`): 0.22 GB and 2.0 s for the
+    converted to RGB(A) and reduced (:func:`reduce_by_strips`): 0.22 GB and 2.0 s for the
     GIF's load, 1.32 GB and 8.4 s of CPU for the AVIF's (measured). BGR(A); None where
     Pillow cannot (OpenCV then decodes the file whole); a damaged file, one line.
     """
@@ -600,7 +600,7 @@ def _read_pillow_reduced(path: Path, factor: int) -> np.ndarray | None:
                 im.load()
                 alpha = im.mode in ("RGBA", "LA", "PA") or "transparency" in im.info
                 mode = ("RGBA" if alpha else "RGB") if im.mode not in ("L", "LA") else im.mode
-                arr = _reduce_by_strips(im, factor, mode)
+                arr = reduce_by_strips(im, factor, mode)
     except (OSError, ValueError, SyntaxError, EOFError) as exc:
         raise InvalidImageError(f"{path}: not a readable image: {' '.join(str(exc).split())[-200:]}") from exc
     if arr.ndim == 3 and arr.shape[2] >= 3:  # OpenCV's channel order, as the rest of loading expects
@@ -608,7 +608,7 @@ def _read_pillow_reduced(path: Path, factor: int) -> np.ndarray | None:
     return arr
 
 
-def _reduce_by_strips(im: Image.Image, factor: int, mode: str | None = None) -> np.ndarray:
+def reduce_by_strips(im: Image.Image, factor: int, mode: str | None = None) -> np.ndarray:
     """``np.array(im.reduce(factor))``, one strip of rows at a time: no second full-size image.
 
     Pillow's ``reduce`` of an RGBA image first converts all of it to premultiplied

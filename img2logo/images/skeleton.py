@@ -26,7 +26,7 @@ from ..constants import LINE_JOIN_DISTANCE
 from ..geometry.primitives import polyline_length
 
 # The 8 neighbours in circular order: N, NE, E, SE, S, SW, W, NW (row, column).
-_RING = ((-1, 0), (-1, 1), (0, 1), (1, 1), (1, 0), (1, -1), (0, -1), (-1, -1))
+RING = ((-1, 0), (-1, 1), (0, 1), (1, 1), (1, 0), (1, -1), (0, -1), (-1, -1))
 _EIGHT = np.ones((3, 3), dtype=bool)
 
 
@@ -69,10 +69,10 @@ class PixelGraph:
         return polyline_length(self.polyline(c))
 
 
-# Every pixel's 8 neighbours as one byte (bit k: _RING[k] is set), and the crossing number
+# Every pixel's 8 neighbours as one byte (bit k: RING[k] is set), and the crossing number
 # and neighbour count of each of the 256 bytes.
 _CODE_WEIGHTS = np.zeros((3, 3), dtype=np.float32)
-for _k, (_dr, _dc) in enumerate(_RING):
+for _k, (_dr, _dc) in enumerate(RING):
     _CODE_WEIGHTS[1 + _dr, 1 + _dc] = 1 << _k
 _BITS = (np.arange(256)[:, None] >> np.arange(8)) & 1
 _CROSSINGS = np.sum((_BITS == 0) & (np.roll(_BITS, -1, axis=1) == 1), axis=1).astype(np.uint8)
@@ -140,7 +140,7 @@ def trace(skel: np.ndarray) -> PixelGraph:
     # Weighted 8-neighbour adjacency of chain pixels, and their contacts with nodes.
     h, w = skel.shape
     src, dst, wts, c_pix, c_node = [], [], [], [], []
-    for dr, dc in _RING:
+    for dr, dc in RING:
         r2, c2 = rows + dr, cols + dc
         inside = (r2 >= 0) & (r2 < h) & (c2 >= 0) & (c2 < w)
         i = np.flatnonzero(inside)
@@ -539,7 +539,7 @@ def join_line_ends(skel: np.ndarray, distance: float = LINE_JOIN_DISTANCE) -> np
         end = (int(r), int(c))
         if not out[end]:
             continue
-        own = _walk(out, end, near_steps)
+        own = pixels_within_steps(out, end, near_steps)
         best, best_d, tied = None, math.inf, []
         for q in _pixels_within(first, end, distance):
             if q in own or not out[q]:
@@ -553,8 +553,8 @@ def join_line_ends(skel: np.ndarray, distance: float = LINE_JOIN_DISTANCE) -> np
             best = _straightest(end, own, tied)
         if best is None or best_d <= 1.5:
             continue
-        if best in _walk(out, end, reach):
-            spur = _branch(out, end)
+        if best in pixels_within_steps(out, end, reach):
+            spur = branch_to_fork(out, end)
             if spur is not None and len(spur) <= reach:
                 for q in spur:
                     out[q] = False
@@ -589,7 +589,7 @@ def _straightest(end: tuple[int, int], own: set[tuple[int, int]], tied: list[tup
     return max(tied, key=lambda q: (q[0] - end[0]) * dr + (q[1] - end[1]) * dc)  # equal lengths: the cosine
 
 
-def _branch(skel: np.ndarray, end: tuple[int, int]) -> list[tuple[int, int]] | None:
+def branch_to_fork(skel: np.ndarray, end: tuple[int, int]) -> list[tuple[int, int]] | None:
     """The pixels from ``end`` along ``skel`` up to (not including) the first fork; None without a fork."""
     h, w = skel.shape
     path = [end]
@@ -612,7 +612,7 @@ def _branch(skel: np.ndarray, end: tuple[int, int]) -> list[tuple[int, int]] | N
         path.append(cur)
 
 
-def _walk(skel: np.ndarray, start: tuple[int, int], steps: int) -> set[tuple[int, int]]:
+def pixels_within_steps(skel: np.ndarray, start: tuple[int, int], steps: int) -> set[tuple[int, int]]:
     """Pixels of ``skel`` within ``steps`` 8-connected steps of ``start`` along it."""
     h, w = skel.shape
     seen = {start}

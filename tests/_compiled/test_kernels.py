@@ -14,11 +14,11 @@ from img2logo.constants import CONSTRAINED_FIT_MAX_ITER, CONSTRAINED_FIT_TOL, IN
 from img2logo.errors import FitError
 from img2logo.fit.arc_extraction import (
     _arc_pairs_reference,
-    _arc_params,
     _extract_reference,
     _redundant_reference,
     arc_intersections,
     arc_pairs_near,
+    arc_params,
     extract_arc,
     redundant_intersections,
 )
@@ -270,7 +270,7 @@ def test_intersection_kernel_matches_arc_intersections():
         for j in range(len(arcs)):
             want = arc_intersections(arcs[i], arcs[j])
             k = kernels.arc_intersections_kernel(
-                _arc_params([arcs[i]])[0], _arc_params([arcs[j]])[0], INTERSECTION_TOL, out
+                arc_params([arcs[i]])[0], arc_params([arcs[j]])[0], INTERSECTION_TOL, out
             )
             assert out[:k] == pytest.approx(want, abs=1e-9), (i, j)
             pairs += k > 0

@@ -920,10 +920,10 @@ def test_the_strip_by_strip_reduce_gives_pillows_reduce_exactly(mode, factor):
     """Pillow's reduce of RGBA copies the image (premultiplied); strips give the same pixels."""
     from PIL import Image
 
-    from img2logo.images.loading import _reduce_by_strips
+    from img2logo.images.loading import reduce_by_strips
 
     rng = np.random.default_rng(12)
     channels = {"RGBA": 4, "LA": 2, "RGB": 3, "L": 1}[mode]
     arr = rng.integers(0, 256, (1303, 517, channels), dtype=np.uint8)  # 1303 rows: a partial last strip and block
     im = Image.fromarray(arr[:, :, 0] if channels == 1 else arr, mode)
-    assert np.array_equal(_reduce_by_strips(im, factor), np.array(im.reduce(factor)))
+    assert np.array_equal(reduce_by_strips(im, factor), np.array(im.reduce(factor)))
