@@ -694,29 +694,20 @@ def _write_outputs(result, level, args: argparse.Namespace, say, fill_spec) -> N
     with writers.output_set():
         if args.segments_png:
             done.append(writers.write_segment_graph_png(result.graph, args.segments_png, image=result.image.rgb))
-        if args.json:
-            done.append(writers.write_json(level, args.json, fills=fills))
-        if args.svg:
-            done.append(writers.write_svg(level, args.svg, fills=fills))
-        if args.png:
-            done.append(
-                writers.write_png(
-                    level,
-                    args.png,
-                    image=result.image.rgb,
-                    fills=fills,
-                    background=args.png_background,
-                    scale=args.png_scale,
+        for fmt in ("json", "svg", "png", "pdf"):
+            if getattr(args, fmt):  # the PNG's image, background and scale are ignored by the other formats
+                image, background, scale = result.image.rgb, args.png_background, args.png_scale
+                done.append(
+                    writers.write(
+                        level, getattr(args, fmt), fmt, fills=fills, image=image, background=background, scale=scale
+                    )
                 )
-            )
-        if args.pdf:
-            done.append(writers.write_pdf(level, args.pdf, fills=fills))
         if args.levels_dir:
             folder = Path(args.levels_dir)
             names = set()
             for lv in result.levels:
-                for fmt, write in (("json", writers.write_json), ("svg", writers.write_svg)):
-                    names.add(write(lv, folder / f"level-{lv.level:04d}.{fmt}").name)
+                for fmt in ("json", "svg"):
+                    names.add(writers.write(lv, folder / f"level-{lv.level:04d}.{fmt}", fmt).name)
             stale = _stale_level_files(folder, names)
             for path in stale:  # an earlier run's levels past this run's last: removed with the set
                 remove_file(path)

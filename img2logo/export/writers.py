@@ -67,6 +67,7 @@ __all__ = [
     "read_json",
     "save_figure",
     "to_svg",
+    "write",
     "write_json",
     "write_pdf",
     "write_png",
@@ -470,6 +471,55 @@ def write_png(
         )
 
     return _write_figure_png(path, width, height, d, draw, size=size, transparent=background == "transparent")
+
+
+#: The formats :func:`write` writes a level in.
+LEVEL_FORMATS: tuple[str, ...] = ("json", "svg", "pdf", "png")
+
+
+def write(
+    level: Abstraction,
+    path: str | os.PathLike[str],
+    format: str,
+    *,
+    fills: Sequence[Fill] | None = None,
+    image: np.ndarray | None = None,
+    background: str | None = None,
+    scale: float | None = None,
+) -> Path:
+    """Write ``level`` to ``path`` in ``format``: the one way the command line, the batch and the studio write a level.
+
+    Parameters
+    ----------
+    level : Abstraction
+        The level to write.
+    path : str or path-like
+        Target file, its suffix the format's; parent directories are created.
+    format : {"json", "svg", "pdf", "png"}
+        :func:`write_json`, :func:`write_svg`, :func:`write_pdf` or :func:`write_png`.
+    fills : sequence of img2logo.design.fills.Fill, optional
+        Coloured regions (paper Fig. 18).
+    image, background, scale
+        The PNG's (:func:`write_png`); the other formats do not draw the input.
+
+    Returns
+    -------
+    pathlib.Path
+        The path written.
+
+    Raises
+    ------
+    InvalidParameterError
+        If ``format`` is none of ``LEVEL_FORMATS``, or the writer refuses a value.
+    """
+    check_choice(format, "format", LEVEL_FORMATS)
+    if format == "json":
+        return write_json(level, path, fills=fills)
+    if format == "svg":
+        return write_svg(level, path, fills=fills)
+    if format == "pdf":
+        return write_pdf(level, path, fills=fills)
+    return write_png(level, path, image=image, fills=fills, background=background, scale=scale)
 
 
 def png_size(width: float, height: float, scale: float | None = None, background: str = "white") -> tuple[int, int]:

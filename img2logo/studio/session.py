@@ -45,7 +45,7 @@ import numpy as np
 
 from ..constants import DETAIL, RDP_TOLERANCE, TOLERANCE
 from ..errors import Img2LogoError, InvalidParameterError
-from ..experiments.explore import levels_within
+from ..experiments.explore import abstract_with_settings, levels_within
 from ..experiments.paths import data_path
 from ..geometry.primitives import Abstraction
 
@@ -366,22 +366,13 @@ class Studio:
 
         def act() -> str:
             from ..design.fills import parse_fill_option
-            from ..pipeline import abstract
 
             settings = dataclasses.replace(self.settings, **changes)
             parse_fill_option(settings.fill)  # a bad --fill is said before the run
             start = time.perf_counter()
-            result = abstract(
+            result = abstract_with_settings(
                 self.image,
-                tolerance=settings.tolerance,
-                kind=settings.kind,
-                rdp_tolerance=settings.rdp_tolerance,
-                bias=settings.bias,
-                symmetry=settings.symmetry,
-                lines=settings.lines,
-                ladder=settings.ladder,
-                exponents=settings.exponents,
-                detail=settings.detail,
+                settings,
                 subject=self.subject,
                 lock_mask=self.mask.copy() if self.mask.any() else None,
                 progress=progress or False,
@@ -819,18 +810,15 @@ class Studio:
             out: dict[str, bytes] = {}
             with tempfile.TemporaryDirectory(prefix="img2logo-studio-") as folder:
                 for fmt in formats:
-                    path = Path(folder) / names[fmt]
-                    if fmt == "json":
-                        writers.write_json(a, path, fills=fills)
-                    elif fmt == "svg":
-                        writers.write_svg(a, path, fills=fills)
-                    elif fmt == "pdf":
-                        writers.write_pdf(a, path, fills=fills)
-                    else:
-                        writers.write_png(
-                            a, path, image=self.result.image.rgb, fills=fills, background=backgrounds[fmt]
-                        )
-                    out[fmt] = path.read_bytes()
+                    written = writers.write(
+                        a,
+                        Path(folder) / names[fmt],
+                        fmt.split("-")[0],
+                        fills=fills,
+                        image=self.result.image.rgb,
+                        background=backgrounds.get(fmt),
+                    )
+                    out[fmt] = written.read_bytes()
             return out
 
         return self._cached("downloads:" + ",".join(formats), make)
