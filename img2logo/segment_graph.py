@@ -17,19 +17,15 @@ from functools import cached_property
 import numpy as np
 
 from ._validation import check_positive, readonly
-from .constants import (
-    JUNCTION_MERGE_DISTANCE,
-    MAX_RADIUS_FACTOR,
-    MIN_SEGMENT_LENGTH,
-    RDP_TOLERANCE,
-    SMOOTH_JOIN_ANGLE,
-    SMOOTH_TANGENT_LENGTH,
-)
+from .constants import JUNCTION_MERGE_DISTANCE, MAX_RADIUS_FACTOR, MIN_SEGMENT_LENGTH, RDP_TOLERANCE, SMOOTH_JOIN_ANGLE
 from .errors import FitError, InvalidParameterError
 from .geometry.circle_fitting import fit_circle
 from .geometry.primitives import cumulative_length, polyline_length
 from .images import skeleton as _skeleton
 from .images.ndimage import skeletonize
+
+#: A segment's end tangent is that of the circle fitted to its pixels within this arc length of the node, px.
+SMOOTH_TANGENT_LENGTH: float = 30.0
 
 
 @dataclass(frozen=True, eq=False)

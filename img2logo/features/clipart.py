@@ -43,7 +43,9 @@ from collections.abc import Iterator
 import numpy as np
 
 from .._compat import median
-from ..constants import (
+from ..images.cielab import srgb_to_lab
+from ..images.loading import LoadedImage
+from .constants import (
     CLIPART_BLOCK_REACH,
     CLIPART_EDGE_CONTRAST,
     CLIPART_FILL_SPREAD,
@@ -63,8 +65,6 @@ from ..constants import (
     CLIPART_STROKE_MAX_FACTOR,
     CLIPART_STROKE_WIDTH,
 )
-from ..images.cielab import srgb_to_lab
-from ..images.loading import LoadedImage
 
 #: The offsets whose colour differences :func:`colour_noise` measures: the 4-neighbours.
 _NOISE_PAIRS = ((0, 1), (1, 0))

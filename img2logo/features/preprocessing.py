@@ -23,16 +23,18 @@ import numpy as np
 
 from .._compat import median
 from .._validation import check_choice, check_positive, readonly
-from ..constants import (
-    BLANK_IMAGE_RANGE,
+from ..constants import BLANK_IMAGE_RANGE, DETAIL, JUNCTION_MERGE_DISTANCE, SYNTHETIC_WORK_SIDE
+from ..images import skeleton as _skeleton
+from ..images.loading import LoadedImage, downscale, load_image, load_mask
+from ..images.ndimage import bounding_slices, components, distance, skeletonize
+from .clipart import clipart_lines, clipart_regions, label_means
+from .constants import (
     CLIPART_RIM_RADIUS,
-    DETAIL,
     DOT_MIN_DIAMETER,
     DOT_MIN_RADIUS,
     DRAWING_MAX_STROKE_FRACTION,
     INK_COLOUR_SPREAD,
     INK_SHARE,
-    JUNCTION_MERGE_DISTANCE,
     MIN_SPECK_AREA,
     PHOTO_MIN_LINE_LENGTH,
     PHOTO_SPUR_LENGTH,
@@ -44,12 +46,7 @@ from ..constants import (
     SHADED_INK_SHARE,
     SPUR_LENGTH,
     SYNTHETIC_FLAT_FRACTION,
-    SYNTHETIC_WORK_SIDE,
 )
-from ..images import skeleton as _skeleton
-from ..images.loading import LoadedImage, downscale, load_image, load_mask
-from ..images.ndimage import bounding_slices, components, distance, skeletonize
-from .clipart import clipart_lines, clipart_regions, label_means
 from .detail import check_detail, merge_by_importance
 
 if TYPE_CHECKING:

@@ -36,16 +36,15 @@ import numpy as np
 
 from .._compat import unique
 from .._validation import check_choice, check_points, check_positive, readonly
-from ..constants import (
+from ..constants import INTERSECTION_TOL, JUNCTION_TOLERANCE
+from ..errors import FitError, InvalidParameterError
+from ..geometry.primitives import TAU, Arc, Circle, polyline_length
+from .constants import (
     ARC_CANDIDATE_LENGTH_RATIO,
     ARC_CANDIDATE_LENGTH_SLACK,
     FRECHET_SAMPLE_STEP,
-    INTERSECTION_TOL,
-    JUNCTION_TOLERANCE,
     REDUNDANT_INTERSECTION_TOL,
 )
-from ..errors import FitError, InvalidParameterError
-from ..geometry.primitives import TAU, Arc, Circle, polyline_length
 
 __all__ = [
     "ArcFit",

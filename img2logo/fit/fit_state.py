@@ -27,22 +27,14 @@ from typing import Any, NamedTuple, Protocol, TypeAlias, cast
 
 import numpy as np
 
-from ..constants import (
-    CONSTRAINED_FIT_TOL,
-    CUT_MARGIN,
-    GAP_MAX,
-    GAP_MIN,
-    JUNCTION_TOLERANCE,
-    LINE_MIN_ANGLE,
-    REDUNDANT_INTERSECTION_TOL,
-    SYMMETRY_FIT_STALL,
-)
+from ..constants import GAP_MAX, GAP_MIN, JUNCTION_TOLERANCE
 from ..geometry.circle_fitting import fit_center, fit_circle, mean_abs_error
 from ..geometry.golden_ladder import Ladder
 from ..geometry.primitives import Abstraction, ArcJunctions, Circle, Line, line_arc
 from ..options import Options
 from ..segment_graph import SegmentGraph
 from .arc_extraction import ArcFit, _extract, _redundant_arrays, distances_to_arcs
+from .constants import CONSTRAINED_FIT_TOL, CUT_MARGIN, LINE_MIN_ANGLE, REDUNDANT_INTERSECTION_TOL, SYMMETRY_FIT_STALL
 from .constrained_fit import WindowFit, fit_window
 from .simplification import Group, straight_line
 

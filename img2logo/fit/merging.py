@@ -30,16 +30,10 @@ from weakref import WeakKeyDictionary
 
 import numpy as np
 
-from ..constants import (
-    FAR_ARC_BUDGET,
-    FAR_ARC_MARGIN,
-    GAP_MAX,
-    JUNCTION_TOLERANCE,
-    MERGE_FALLBACK_RINGS,
-    REDUNDANT_INTERSECTION_TOL,
-)
+from ..constants import GAP_MAX, JUNCTION_TOLERANCE
 from ..geometry.primitives import Arc
 from .arc_extraction import _redundant_arrays, distances_to_arcs
+from .constants import FAR_ARC_BUDGET, FAR_ARC_MARGIN, MERGE_FALLBACK_RINGS, REDUNDANT_INTERSECTION_TOL
 from .fit_state import FitState, GroupFit, Seed, Solution, near_miss
 from .simplification import Group, hold_line, merge_groups
 

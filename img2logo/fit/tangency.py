@@ -88,7 +88,8 @@ from weakref import WeakKeyDictionary
 
 import numpy as np
 
-from ..constants import (
+from ..geometry.golden_ladder import FibonacciLadder
+from .constants import (
     ALL_AT_ONCE_TRIES,
     BIARC_STARTS,
     BIARC_STEP,
@@ -99,7 +100,6 @@ from ..constants import (
     RUNG_CHOICES,
     SLIDE_MIN_PIXELS,
 )
-from ..geometry.golden_ladder import FibonacciLadder
 from .fit_state import Seed
 from .simplification import Group, merge_groups
 

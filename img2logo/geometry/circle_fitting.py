@@ -27,8 +27,9 @@ from typing import Any
 import numpy as np
 
 from .._validation import check_points, check_positive, readonly
-from ..constants import CIRCLE_REFINE_MAX_ITER, MAX_RADIUS_FACTOR
+from ..constants import MAX_RADIUS_FACTOR
 from ..errors import FitError, InvalidParameterError
+from .constants import CIRCLE_REFINE_MAX_ITER
 
 __all__ = [
     "CircleFit",

@@ -18,8 +18,9 @@ from typing import Any, cast
 import numpy as np
 
 from .._validation import check_finite, check_integer, check_positive, readonly
-from ..constants import JUNCTION_TOLERANCE, LINE_RADIUS, MAX_IMAGE_PIXELS, PHI, RADIUS_RELATIVE_TOLERANCE
+from ..constants import JUNCTION_TOLERANCE, MAX_IMAGE_PIXELS, PHI, RADIUS_RELATIVE_TOLERANCE
 from ..errors import InvalidParameterError
+from .constants import LINE_RADIUS
 from .golden_ladder import FibonacciLadder, GoldenLadder, Ladder
 
 TAU = 2.0 * math.pi

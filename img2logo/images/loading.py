@@ -26,17 +26,9 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from .._validation import readonly
-from ..constants import (
-    BLANK_IMAGE_RANGE,
-    DOWNSCALE_STRIP_ROWS,
-    LUMA_WEIGHTS,
-    MAX_FLOAT_IMAGE_PIXELS,
-    MAX_IMAGE_PIXELS,
-    MAX_IMAGE_SIDE,
-    MAX_WHOLE_TIFF_BYTES,
-    MIN_IMAGE_SIDE,
-)
+from ..constants import BLANK_IMAGE_RANGE, LUMA_WEIGHTS, MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE
 from ..errors import ImageNotFoundError, InvalidImageError, InvalidParameterError
+from .constants import DOWNSCALE_STRIP_ROWS, MAX_FLOAT_IMAGE_PIXELS, MAX_WHOLE_TIFF_BYTES, MIN_IMAGE_SIDE
 
 if TYPE_CHECKING:
     from PIL import Image

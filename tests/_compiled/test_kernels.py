@@ -10,7 +10,7 @@ import pytest
 from helpers import arc_through
 
 import img2logo.fit.constrained_fit as cfit
-from img2logo.constants import CONSTRAINED_FIT_MAX_ITER, CONSTRAINED_FIT_TOL, INTERSECTION_TOL, PHI
+from img2logo.constants import INTERSECTION_TOL, PHI
 from img2logo.errors import FitError
 from img2logo.fit.arc_extraction import (
     _arc_pairs_reference,
@@ -22,6 +22,7 @@ from img2logo.fit.arc_extraction import (
     extract_arc,
     redundant_intersections,
 )
+from img2logo.fit.constants import CONSTRAINED_FIT_MAX_ITER, CONSTRAINED_FIT_TOL
 from img2logo.fit.constrained_fit import fit_constrained
 from img2logo.geometry import circle_fitting
 from img2logo.geometry.circle_fitting import fit_center, fit_circle, mean_abs_error

@@ -274,8 +274,8 @@ def test_near_entries_match_a_whole_image_dilation():
 def test_flat_areas_match_the_padded_window():
     # Each pixel pair is measured once (a speed-up): the same areas as the window's
     # largest difference over an edge-padded image, as first written.
-    from img2logo.constants import CLIPART_FLAT_RADIUS as rad
     from img2logo.features.clipart import flat_areas
+    from img2logo.features.constants import CLIPART_FLAT_RADIUS as rad
 
     def reference(lab: np.ndarray, link: float) -> np.ndarray:
         from img2logo.images.ndimage import components as label

@@ -501,7 +501,7 @@ def test_a_filled_dot_is_kept_as_a_closed_line_at_its_centre():
 
 
 def test_a_speck_below_the_dot_size_is_still_dropped():
-    from img2logo.constants import DOT_MIN_DIAMETER
+    from img2logo.features.constants import DOT_MIN_DIAMETER
 
     im = drawing("Y")
     im[150:154, 150:154] = 0  # 16 px: a disc 4.5 px wide, below the dot size

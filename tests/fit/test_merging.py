@@ -9,8 +9,8 @@ import pytest
 from helpers import DATA, golden_chain, golden_radius, hand_built_state, sampled_arc
 
 from img2logo import build_segment_graph, extract_feature_lines, quality
-from img2logo.constants import MERGE_FALLBACK_RINGS
 from img2logo.fit.arc_extraction import ArcFit, redundant_intersections
+from img2logo.fit.constants import MERGE_FALLBACK_RINGS
 from img2logo.fit.fit_state import FitState, GroupFit
 from img2logo.fit.merging import candidates, evaluate, merge_loop, new_gaps
 from img2logo.fit.progressive import initial_fit, optimize

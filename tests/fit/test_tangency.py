@@ -222,7 +222,7 @@ def test_biarc_coarse_search_is_the_grids_choice():
     # The compiled coarse search stops measuring a biarc once it cannot win: for every pair of
     # radii the same sides and place as the smallest of the four grids' minima (numpy's
     # maximum of the two sides' grids), and its argmin, the first on a tie.
-    from img2logo.constants import BIARC_STEP
+    from img2logo.fit.constants import BIARC_STEP
     from img2logo.fit.tangency import biarc_coarse, biarc_normals, biarc_worst
 
     sides = ((-1.0, -1.0), (-1.0, 1.0), (1.0, -1.0), (1.0, 1.0))

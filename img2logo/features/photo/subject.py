@@ -67,7 +67,10 @@ import numpy as np
 
 from ..._compat import median
 from ..._validation import readonly
-from ...constants import (
+from ...errors import InvalidParameterError
+from ...images.loading import LoadedImage, load_mask
+from ...images.ndimage import dilate, distance, erode, label
+from ..constants import (
     FACE_MIN_NEIGHBOURS,
     FACE_MIN_SIDE,
     FACE_SCALE_STEP,
@@ -87,9 +90,6 @@ from ...constants import (
     SUBJECT_REFINE_BAND,
     SUBJECT_TEXTURE_WEIGHT,
 )
-from ...errors import InvalidParameterError
-from ...images.loading import LoadedImage, load_mask
-from ...images.ndimage import dilate, distance, erode, label
 from .subject_cues import (
     FocusSeeds,
     clean_mask,

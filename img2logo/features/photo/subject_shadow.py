@@ -34,18 +34,18 @@ from functools import partial
 import numpy as np
 
 from ..._compat import median, unique
-from ...constants import (
+from ...constants import LUMA_WEIGHTS
+from ...images.loading import LoadedImage
+from ...images.ndimage import dilate, distance, gaussian, label
+from ..constants import (
     FOCUS_DETAIL_SIGMA,
     FOCUS_WINDOW,
-    LUMA_WEIGHTS,
     SHADOW_CHROMA_SIGMA,
     SHADOW_CORE,
     SHADOW_MAX_CHROMA_DISTANCE,
     SHADOW_RING,
     SUBJECT_MIN_CONTRAST,
 )
-from ...images.loading import LoadedImage
-from ...images.ndimage import dilate, distance, gaussian, label
 from .subject_cues import clean_mask, mask_box, outline_contrast, work_scale
 
 #: Fewest pixels in the ring and the core for their statistics to mean something.
