@@ -22,7 +22,7 @@ from .errors import InvalidParameterError
 from .export.constants import MIN_STROKE_WIDTH
 from .features.preprocessing import FeatureLines, LoadedImage, extract_feature_lines, load_image, photo_reason
 from .fit.progressive import ProgressCallback, Progression, optimize
-from .geometry.primitives import Abstraction
+from .geometry.abstraction import Abstraction
 from .images.loading import downscale, mask_to_working_size, warn_downscaled
 from .options import AUTO, Options, check_lock_mask, check_symmetry_option
 from .segment_graph import SegmentGraph, build_segment_graph

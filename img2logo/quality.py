@@ -53,7 +53,8 @@ from .fit.arc_extraction import (
     nearest_on_arc,
     redundant_intersections,
 )
-from .geometry.primitives import Abstraction, Arc
+from .geometry.abstraction import Abstraction
+from .geometry.primitives import Arc
 from .segment_graph import SegmentGraph
 
 #: Spacing of the points sampled along a logo's arcs to measure it, px: well under the 3 px of the finest recall

@@ -154,6 +154,7 @@ CONTRACT_MODULES = {
     "img2logo.errors",
     "img2logo.design.fill_values",
     "img2logo.geometry.primitives",
+    "img2logo.geometry.abstraction",
     "img2logo.geometry.constants",
     "img2logo.geometry.golden_ladder",
     "img2logo.geometry.mirror",

@@ -21,7 +21,7 @@ import numpy as np
 from ..constants import RDP_TOLERANCE, TOLERANCE
 from ..errors import InvalidParameterError
 from ..export.plotting import plot_abstraction
-from ..geometry.primitives import Abstraction
+from ..geometry.abstraction import Abstraction
 from . import table
 from .layout import frame_bounds, panel_grid
 from .paths import data_path, example_images, kit_module, load_example

@@ -25,7 +25,8 @@ from .._validation import check_instance, check_positive
 from ..constants import ARC_SAMPLE_STEP, IMAGE_FADE
 from ..design.fill_values import check_fills
 from ..errors import InvalidParameterError
-from ..geometry.primitives import Abstraction, Circle
+from ..geometry.abstraction import Abstraction
+from ..geometry.primitives import Circle
 from ..images.loading import composite_on_white
 from .constants import MIN_STROKE_WIDTH, STROKE_WIDTH_FRACTION
 

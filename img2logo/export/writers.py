@@ -41,9 +41,10 @@ from .._validation import check_choice, check_instance, check_integer, check_pos
 from ..constants import FORMAT_NAME, MAX_IMAGE_SIDE, MAX_PNG_IMAGE_SIDE, MAX_PNG_SIDE
 from ..design.fill_values import Fill, check_fills
 from ..errors import InputNotFoundError, InvalidParameterError
+from ..geometry.abstraction import Abstraction
 from ..geometry.golden_ladder import FibonacciLadder
 from ..geometry.mirror import axis_segment
-from ..geometry.primitives import Abstraction, Circle
+from ..geometry.primitives import Circle
 from ..geometry.svg_path import arc_path, svg_number
 from .constants import CONSTRUCTION_MARGIN, PNG_DPI
 from .plotting import (

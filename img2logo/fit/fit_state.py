@@ -28,9 +28,10 @@ from typing import Any, NamedTuple, Protocol, TypeAlias, cast
 import numpy as np
 
 from ..constants import GAP_MAX, GAP_MIN, JUNCTION_TOLERANCE
+from ..geometry.abstraction import Abstraction
 from ..geometry.circle_fitting import fit_center, fit_circle, mean_abs_error
 from ..geometry.golden_ladder import Ladder
-from ..geometry.primitives import Abstraction, ArcJunctions, Circle, Line, line_arc
+from ..geometry.primitives import ArcJunctions, Circle, Line, line_arc
 from ..options import Options
 from ..segment_graph import SegmentGraph
 from .arc_extraction import ArcFit, _extract, _redundant_arrays, distances_to_arcs

@@ -46,8 +46,9 @@ from typing import Any
 import numpy as np
 
 from ..errors import InvalidParameterError
+from ..geometry.abstraction import Abstraction
 from ..geometry.golden_ladder import FibonacciLadder, Ladder, make_ladder
-from ..geometry.primitives import Abstraction, polyline_length
+from ..geometry.primitives import polyline_length
 from ..options import Options
 from ..segment_graph import SegmentGraph
 from .fit_state import AxisConstraints, FitState, FreeCircles, Seed

@@ -41,8 +41,9 @@ import numpy as np
 
 from ..constants import SYMMETRY_PAIR_TOLERANCE
 from ..errors import InvalidParameterError
+from ..geometry.abstraction import Abstraction
 from ..geometry.mirror import Axis, axis_segment, circle_pairs, is_symmetric, symmetry_extra
-from ..geometry.primitives import TAU, Abstraction, Arc, Circle, cumulative_length, polyline_length
+from ..geometry.primitives import TAU, Arc, Circle, cumulative_length, polyline_length
 from ..options import check_symmetry_option, refuse_lock_mask  # the options are checked with the others
 from .constants import (
     SYMMETRY_ANGLE_STEP,

@@ -47,7 +47,7 @@ from ..constants import DETAIL, RDP_TOLERANCE, TOLERANCE
 from ..errors import Img2LogoError, InvalidParameterError
 from ..experiments.explore import abstract_with_settings, levels_within
 from ..experiments.paths import data_path
-from ..geometry.primitives import Abstraction
+from ..geometry.abstraction import Abstraction
 
 if TYPE_CHECKING:
     from ..design.fills import Fill
