@@ -79,7 +79,7 @@ def _cycle(graph: dict[str, set[str]]) -> list[str] | None:
 def test_no_import_cycle():
     graph = _imports()
     assert {"design.fills", "export.plotting", "export.writers", "export.contract", "geometry.svg_path"} <= set(graph)
-    assert "export.plotting" in graph["export.writers"] and "design.fill_values" in graph["export.plotting"]  # read
+    assert "export.plotting" in graph["export.figures"] and "design.fill_values" in graph["export.plotting"]  # read
     assert _cycle(graph) is None, " -> ".join(_cycle(graph) or [])
 
 
