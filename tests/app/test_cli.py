@@ -403,7 +403,7 @@ def test_a_photo_without_an_object_says_how_to_choose_one(tmp_path, capsys):
     import cv2
     from helpers import textured_photo
 
-    from img2logo.app.cli import SUBJECT_HINT
+    from img2logo.app.commands import SUBJECT_HINT
 
     rgb, _ = textured_photo([])  # pure texture: no dominant object, the whole image is drawn
     path = tmp_path / "texture.png"
