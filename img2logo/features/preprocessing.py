@@ -25,6 +25,7 @@ from .._compat import median
 from .._validation import check_choice, check_positive, readonly
 from ..constants import BLANK_IMAGE_RANGE, DETAIL, JUNCTION_MERGE_DISTANCE, SYNTHETIC_WORK_SIDE
 from ..images import skeleton as _skeleton
+from ..images.line_ends import join_line_ends
 from ..images.loading import LoadedImage, downscale, load_image, load_mask
 from ..images.ndimage import bounding_slices, components, distance, skeletonize
 from .clipart import clipart_lines, clipart_regions, label_means
@@ -452,7 +453,7 @@ def extract_feature_lines(
         radius = _half_width(ink)
         axis = skeletonize(ink)
         stroke = float(2.0 * median(radius[axis])) if axis.any() else 0.0
-        raw = _skeleton.join_line_ends(axis)
+        raw = join_line_ends(axis)
         min_len = spur_length if min_line_length is None else min_line_length
     elif kind == "clipart":
         regions = clipart_regions(img) if regions is None else regions
@@ -548,10 +549,10 @@ def _join(raw: np.ndarray) -> np.ndarray:
 
     A stroke that ends a few px before another (a clip art's whisker by its
     face's outline, a drawing's line that stops at a gap) would give an arc end
-    0.75-6 px from another arc: a near-miss gap. :func:`_skeleton.join_line_ends`
+    0.75-6 px from another arc: a near-miss gap. :func:`~img2logo.images.line_ends.join_line_ends`
     links it (the same rule as for photos).
     """
-    return _skeleton.join_line_ends(skeletonize(raw))
+    return join_line_ends(skeletonize(raw))
 
 
 def _clean_skeleton(

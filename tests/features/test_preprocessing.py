@@ -570,8 +570,9 @@ def test_skeleton_thinning_and_joins_match_skimage_and_cKDTree() -> None:
     from skimage.draw import line
     from skimage.morphology import skeletonize as sk_skeletonize
 
+    from img2logo.images.line_ends import branch_to_fork, join_line_ends, pixels_within_steps
     from img2logo.images.ndimage import skeletonize
-    from img2logo.images.skeleton import branch_to_fork, classify, join_line_ends, pixels_within_steps
+    from img2logo.images.skeleton import classify
 
     def joined_by_tree(skel: np.ndarray, distance: float) -> tuple[np.ndarray, bool]:
         """join_line_ends as it was written with a k-d tree over the line pixels; whether a tie was met."""
@@ -624,7 +625,7 @@ def test_skeleton_thinning_and_joins_match_skimage_and_cKDTree() -> None:
 
 
 def test_a_line_end_with_equally_near_pixels_joins_the_one_it_points_at() -> None:
-    from img2logo.images.skeleton import join_line_ends
+    from img2logo.images.line_ends import join_line_ends
 
     skel = np.zeros((30, 40), bool)
     skel[10, 0:11] = True  # a line along +x, ending at (10, 10)

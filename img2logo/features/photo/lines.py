@@ -48,9 +48,9 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ...constants import LINE_JOIN_DISTANCE
+from ...images.line_ends import join_line_ends
 from ...images.loading import LoadedImage
 from ...images.ndimage import distance
-from ...images.skeleton import join_line_ends
 from ..constants import (
     BILATERAL_DIAMETER,
     BILATERAL_SIGMA_COLOR,
