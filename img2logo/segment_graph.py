@@ -114,7 +114,7 @@ class SegmentGraph:
             at.setdefault(a, []).append((i, 0))
             at.setdefault(b, []).append((i, 1))
         pairs = [(k, ends) for k, ends in at.items() if len(ends) == 2 and ends[0][0] != ends[1][0]]
-        if kernels.usable() and pairs:
+        if pairs:
             # Every end's tangent in one compiled call (the same steps as end_tangent's).
             sizes = np.array([len(s) for s in self.segments], dtype=np.int64)
             stops = np.cumsum(sizes)
@@ -126,10 +126,6 @@ class SegmentGraph:
             )
             for m, (k, _) in enumerate(pairs):
                 out[k] = float(np.arccos(np.clip(-np.dot(tangents[2 * m], tangents[2 * m + 1]), -1.0, 1.0)))
-            return readonly(out)
-        for k, ends in pairs:
-            t0, t1 = (end_tangent(self.segments[i], e == 0) for i, e in ends)
-            out[k] = float(np.arccos(np.clip(-np.dot(t0, t1), -1.0, 1.0)))
         return readonly(out)
 
     def smooth_nodes(self, max_turn: float = SMOOTH_JOIN_ANGLE) -> frozenset[int]:

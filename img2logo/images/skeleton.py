@@ -15,7 +15,6 @@ Touching node pixels are clustered into one node.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -241,42 +240,14 @@ def _dijkstra(graph: _Graph, sources: list[int]) -> tuple[np.ndarray, np.ndarray
     return_predecessors=True)`` to the bit, the same path among equally short
     ones (the tests compare the two), without importing ``scipy.sparse`` (its
     array-API layer and ``csgraph`` cost a run about 0.25 s of CPU): the compiled
-    kernel (:func:`img2logo._compiled.graph.dijkstra_kernel`), else
-    :func:`_dijkstra_reference`.
+    kernel :func:`img2logo._compiled.graph.dijkstra_kernel`.
     """
     from .._compiled import kernels
 
-    if not kernels.usable():
-        return _dijkstra_reference(graph, sources)
     dist = np.empty(graph.n)
     pred = np.empty(graph.n, dtype=np.int64)
     kernels.dijkstra_kernel(graph.indptr, graph.indices, graph.weights, np.asarray(sources, dtype=np.int64), dist, pred)
     return dist, pred
-
-
-def _dijkstra_reference(graph: _Graph, sources: list[int]) -> tuple[np.ndarray, np.ndarray]:
-    """:func:`_dijkstra` in Python: nearest node first, the larger index first among equal ones (scipy's order)."""
-    import heapq
-
-    dist = [math.inf] * graph.n
-    pred = [-9999] * graph.n
-    heap = []
-    for s in sources:
-        dist[s] = 0.0
-        heapq.heappush(heap, (0.0, -s))
-    indptr, indices, weights = graph.indptr.tolist(), graph.indices.tolist(), graph.weights.tolist()
-    while heap:
-        d, v = heapq.heappop(heap)
-        v = -v
-        if dist[v] < d:
-            continue
-        for e in range(indptr[v], indptr[v + 1]):
-            j, nd = indices[e], d + weights[e]
-            if dist[j] > nd:
-                dist[j] = nd
-                pred[j] = v
-                heapq.heappush(heap, (nd, -j))
-    return np.array(dist), np.array(pred, dtype=np.int64)
 
 
 def _contact_groups(
