@@ -366,11 +366,11 @@ class Abstraction:
                         f"junction {k}: ({p[0]:.6g}, {p[1]:.6g}) is {off:.3g} px off the circle of arc {i}, "
                         f"more than {tol:g} px"
                     )
-            for k, end in ((t.start, arc.start), (t.end, arc.end)):
-                if k is not None and not math.dist(self.junctions[k], end) <= tol:
+            for jend, end in ((t.start, arc.start), (t.end, arc.end)):
+                if jend is not None and not math.dist(self.junctions[jend], end) <= tol:
                     raise InvalidParameterError(
-                        f"junction {k}: arc {i} has no end point at ({self.junctions[k][0]:.6g}, "
-                        f"{self.junctions[k][1]:.6g}): it is {math.dist(self.junctions[k], end):.3g} px from it, "
+                        f"junction {jend}: arc {i} has no end point at ({self.junctions[jend][0]:.6g}, "
+                        f"{self.junctions[jend][1]:.6g}): it is {math.dist(self.junctions[jend], end):.3g} px from it, "
                         f"more than {tol:g} px"
                     )
             if t.through:
@@ -395,6 +395,7 @@ class Abstraction:
         """
         f = check_positive(factor, "factor")
         ladder = self.ladder
+        new_ladder: Ladder
         if isinstance(ladder, FibonacciLadder):
             shift, new_ladder = 0, FibonacciLadder(ladder.unit * f, ladder.exponents, ladder.rounding)
         else:
