@@ -394,7 +394,7 @@ class Abstraction:
         the Fibonacci grid the unit is multiplied by ``factor`` and k stays.
         """
         f = check_positive(factor, "factor")
-        ladder = self.ladder
+        ladder = cast(Ladder, self.ladder)  # __post_init__ always sets it
         new_ladder: Ladder
         if isinstance(ladder, FibonacciLadder):
             shift, new_ladder = 0, FibonacciLadder(ladder.unit * f, ladder.exponents, ladder.rounding)
@@ -459,11 +459,17 @@ class Abstraction:
 
     def arc_nodes(self, arc: int) -> tuple[int | None, ...]:
         """The graph nodes of an arc's junctions in order along it (start, passed through, end): J' on its path."""
-        return tuple(self.junction_nodes[j] for j in self.arc_junctions[arc].ordered)
+        nodes, ends = self._filled()
+        return tuple(nodes[j] for j in ends[arc].ordered)
 
     def arcs_at(self, junction: int) -> tuple[int, ...]:
         """The arcs with an end point at ``junction`` (those passing through it left out), in index order."""
-        return tuple(i for i in self.junction_arcs[junction] if junction in self.arc_junctions[i].ends)
+        ends = self._filled()[1]
+        return tuple(i for i in self.junction_arcs[junction] if junction in ends[i].ends)
+
+    def _filled(self) -> tuple[tuple[int | None, ...], tuple[ArcJunctions, ...]]:
+        """``junction_nodes`` and ``arc_junctions``, which ``__post_init__`` always fills (None only as arguments)."""
+        return cast(tuple[int | None, ...], self.junction_nodes), cast(tuple[ArcJunctions, ...], self.arc_junctions)
 
 
 def _int_tuples(values: Sequence[Sequence[int]], name: str) -> tuple[tuple[int, ...], ...]:
