@@ -101,6 +101,9 @@ CLIPART_INK_BORDER: float = 0.75
 CLIPART_MARK_CONTRAST: float = 25.0
 #: Clip art: the most regions (the background included) the optimization is given at once.
 CLIPART_MAX_REGIONS: int = 40
+#: Kinds: an image in one ink is outlined shapes (a speech bubble, a badge) when its ink is closed bands round the
+#: paper they enclose, every ink pixel within this many times the bands' width of that paper.
+OUTLINE_BAND_REACH: float = 2.0
 #: Clip art: an ink outline (a region darker than every region it touches: the cartoon style's outline between
 #: lighter fills) is a stroke up to this wide, px.
 CLIPART_OUTLINE_WIDTH: float = 12.0
