@@ -120,7 +120,7 @@ def test_the_heavier_region_is_kept_first():
     cv2.circle(im, (160, 120), 8, DARK_ORANGE, -1, lineType=cv2.LINE_AA)
     regions, kept = _merged(im, 3)
     assert regions.max() == 3 and kept.max() == 3
-    two, n = merge_by_importance(regions, load_image(im).lab, 2)
+    two, n, _ = merge_by_importance(regions, load_image(im).lab, 2)
     assert n == 2 and two.max() == 2
     assert two[120, 90] != two[120, 200]  # the strong blob stayed
     assert two[120, 160] == two[120, 200]  # the faint one went into the disc
@@ -148,7 +148,7 @@ def test_too_many_regions_are_coarsened_and_said_in_one_line():
     assert regions.max() + 1 > 40
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        merged, kept = merge_by_importance(regions, img.lab, 60, max_regions=40)
+        merged, kept, _ = merge_by_importance(regions, img.lab, 60, max_regions=40)
     assert merged.max() + 1 == 40
     assert kept == 39
     (w,) = [c for c in caught if issubclass(c.category, DetailWarning)]
@@ -162,7 +162,7 @@ def test_few_regions_give_no_warning_and_detail_one_changes_nothing():
     regions = clipart_regions(img)
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        assert merge_by_importance(regions, img.lab, Options().detail) == (regions, int(regions.max()))
+        assert merge_by_importance(regions, img.lab, Options().detail) == (regions, int(regions.max()), 0.0)
 
 
 def test_region_adjacency_counts_pixel_pairs():
@@ -217,7 +217,7 @@ def test_real_clip_art_keeps_its_silhouette_with_fewer_regions(name):
     regions = clipart_regions(img)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", DetailWarning)  # the tramway's 68 regions are coarsened
-        merged, kept = merge_by_importance(regions, img.lab, Options().detail)
+        merged, kept, _ = merge_by_importance(regions, img.lab, Options().detail)
     assert merged.max() < regions.max()
     assert merged.max() == kept and merged.max() + 1 <= 40
     assert np.array_equal(merged > 0, regions > 0)
