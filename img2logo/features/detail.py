@@ -117,9 +117,9 @@ def merge_by_importance(
         merge made (0 when none was), squared Delta E times px.
     """
     n = int(regions.max()) + 1
-    if n - 1 <= detail:
-        return Merged(regions, n - 1, 0.0)
     target, budget = merge_targets(regions, lab, detail, marks=True)
+    if n - 1 <= detail:
+        return Merged(regions, n - 1, budget)
     if len(np.unique(target)) > max_regions:  # the dark marks too, down to the bound
         target, budget = merge_targets(regions, lab, min(detail, max_regions - 1), marks=False)
         import warnings
@@ -171,18 +171,25 @@ def merge_targets(regions: np.ndarray, lab: np.ndarray, detail: int, *, marks: b
     on_paper = np.zeros(n, dtype=bool)
     on_paper[[j for i, j in adjacency if i == 0]] = True
     fixed[np.intersect1d(outline_strokes(regions, means[:, 0]), np.flatnonzero(on_paper))] = True
-    # Nor does a dark mark on the object's lighter fills (an eye, a pupil, a spot, an inner
-    # outline): the first thing the eye finds in a picture, and what a designer keeps.
+    # Nor is a dark mark on the object's lighter fills (an eye, a pupil, a spot, an inner
+    # outline), the first thing the eye finds in a picture and what a designer keeps, ever
+    # painted over: it only takes in smaller regions (a pupil's highlight, the light spots
+    # enclosed by a wing's black), which take its colour, and no other mark.
+    dark = np.zeros(n, dtype=bool)
     if marks:
-        fixed[ink_outlines(regions, means[:, 0], paper=False, contrast=CLIPART_MARK_CONTRAST)] = True
+        dark[ink_outlines(regions, means[:, 0], paper=False, contrast=CLIPART_MARK_CONTRAST)] = True
+    stroke = np.zeros(n, dtype=bool)
+    stroke[thin_regions(regions, means[:, 0])] = True
     for (i, j), length in adjacency.items():
-        if fixed[i] or fixed[j]:
+        if fixed[i] or fixed[j] or (dark[i] and dark[j]):
             continue
         nbrs[i][j] = length
         nbrs[j][i] = length
     version = np.zeros(n, dtype=np.int64)
-    stroke = np.zeros(n, dtype=bool)
-    stroke[thin_regions(regions, means[:, 0])] = True
+
+    def allowed(i: int, j: int) -> bool:  # a mark, never a stroke, takes in only what is smaller than it
+        mark, other = (i, j) if dark[i] else (j, i)
+        return not dark[mark] or (not dark[other] and not stroke[mark] and area[other] < area[mark])
 
     def cost(i: int, j: int) -> float:
         d = colour[i] - colour[j]
@@ -196,6 +203,8 @@ def merge_targets(regions: np.ndarray, lab: np.ndarray, detail: int, *, marks: b
         weight, i, j, vi, vj = heapq.heappop(heap)
         if vi != version[i] or vj != version[j] or target[i] != i or target[j] != j:
             continue  # stale: a side was merged since
+        if not allowed(i, j):
+            continue  # taken anew when either side grows
         left -= 1
         budget = max(budget, weight)
         # j into i: a stroke into its fill, never a fill into a stroke (which would widen it
@@ -218,6 +227,12 @@ def merge_targets(regions: np.ndarray, lab: np.ndarray, detail: int, *, marks: b
         for k in nbrs[i]:
             a, b = (i, k) if i < k else (k, i)
             heapq.heappush(heap, (cost(a, b), a, b, int(version[a]), int(version[b])))
+    # The detail budget: the weight of the next merge the ranking would make, the lightest
+    # boundary it kept (the heaviest it made where none is left to make).
+    for weight, i, j, vi, vj in sorted(heap):
+        if vi == version[i] and vj == version[j] and target[i] == i and target[j] == j and allowed(i, j):
+            budget = max(budget, weight)
+            break
     for r in range(n):  # follow chains of merges to their end
         t = r
         while target[t] != t:
