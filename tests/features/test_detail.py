@@ -136,6 +136,21 @@ def test_a_dark_mark_is_kept_whatever_its_size():
     assert merged[100, 100] != merged[60, 120]  # the eye stayed, the patch went
 
 
+def test_a_dark_mark_takes_in_the_light_spots_it_encloses():
+    # A wing's black with six light spots in it, on an orange disc: the spots touch the black
+    # alone, and at a low detail they go into it (the black, larger, is never painted over).
+    im = _disc(240, 100)
+    cv2.circle(im, (120, 120), 60, (10, 10, 10), -1, lineType=cv2.LINE_AA)
+    for k in range(6):
+        a = 2 * np.pi * k / 6
+        cv2.circle(im, (int(120 + 35 * np.cos(a)), int(120 + 35 * np.sin(a))), 9, (250, 230, 150), -1)
+    cv2.circle(im, (120, 120), 7, (200, 220, 255), -1)  # and a highlight in its middle
+    regions, merged = _merged(im, 1)
+    assert regions.max() == 9
+    assert merged.max() == 2  # the disc and the black, whole
+    assert merged[120, 155] == merged[120, 120] == merged[120, 100] != merged[120, 30]
+
+
 def test_too_many_regions_are_coarsened_and_said_in_one_line():
     im = blank(400)
     rng = np.random.default_rng(3)
