@@ -23,7 +23,14 @@ background: the weightiest.
 Never merged: the background (label 0, the region that covers most of the
 image's frame), so the **silhouette** is kept whole, whatever its contrast; an
 ink outline on it (the cartoon style's outer outline); and, at the detail
-asked, the dark marks on the object's fills (an eye, a pupil, a spot).
+asked, the dark marks on the object's fills (an eye, a pupil, a spot), which
+only take in smaller regions (a pupil's highlight, the spots a wing's black
+encloses).
+
+:func:`close_line_ends` then makes every line of the map whole: a line end,
+the end of a mark drawn as its centre line inside one fill, is joined to the
+line it stops short of, or the mark is dropped whole when it weighs less than
+the detail budget (the lightest boundary the ranking kept).
 
 Arrays are indexed (row, column).
 """
