@@ -473,7 +473,7 @@ def extract_feature_lines(
         min_len = PHOTO_MIN_LINE_LENGTH if min_line_length is None else min_line_length
     min_len = check_positive(min_len, "min_line_length", allow_zero=True)
     lines = _clean_skeleton(raw, spur_length=spur_length, min_length=min_len, radius=radius)
-    if kind == "clipart":  # every line whole: each end joined, or its mark dropped whole
+    if kind == "clipart" and regions is not None:  # every line whole: each end joined, or its mark dropped whole
         closed = close_line_ends(lines, regions, img.lab, budget)
         lines = _clean_skeleton(closed, spur_length=spur_length, min_length=min_len)
     if dots is not None and dots.count:  # an eye's outline is shorter than a photo's shortest line
