@@ -81,10 +81,17 @@ def test_an_end_at_the_image_frame_is_left_alone():
 # --------------------------------------------------------------------------- real clip art
 @pytest.mark.parametrize(
     ("name", "most"),
-    [("clipart-gallo.png", 3), ("clipart-tramway.png", 3), ("clipart-simbolo.png", 3), ("clipart-farfalla.png", 4)],
+    [
+        ("clipart-gallo.png", 3),
+        ("clipart-tramway.png", 3),
+        ("clipart-simbolo.png", 3),
+        ("clipart-farfalla.png", 4),
+        ("clipart-beagle.png", 6),
+    ],
 )
 def test_real_clip_art_has_few_line_ends(name, most):
-    # Before, these had 20, 8, 8 and 9 line ends (nodes of valence 1 of the segment graph): broken outlines.
+    # Before, these had 20, 8, 8, 9 and 14 line ends (nodes of valence 1 of the segment graph): broken
+    # outlines. The beagle keeps its eye's and ear's black strokes, as weighty as the boundaries kept.
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         lines = extract_feature_lines(load_image(OPENCLIPART / name))
