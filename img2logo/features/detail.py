@@ -273,7 +273,8 @@ def close_line_ends(lines: np.ndarray, regions: np.ndarray, lab: np.ndarray, bud
     3. else kept as it is (a mark as weighty as the regions kept).
 
     Ends within 2 px of the image frame are where a boundary leaves the
-    picture and are left alone.
+    picture and are left alone; a mark on the background (a whisker, an
+    eyelash) is part of the silhouette and is never dropped.
 
     Parameters
     ----------
@@ -328,6 +329,8 @@ def close_line_ends(lines: np.ndarray, regions: np.ndarray, lab: np.ndarray, bud
         if ink == 0.0 or len(others) == 0:
             continue
         fill = int(np.bincount(others).argmax())
+        if fill == 0:
+            continue  # a mark on the paper (a whisker, an eyelash) is part of the silhouette
         d = means[mark] - means[fill]
         weight = ink * counts[fill] / (ink + counts[fill]) * float(d @ d)
         if weight < budget:

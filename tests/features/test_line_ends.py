@@ -98,3 +98,25 @@ def test_real_clip_art_has_few_line_ends(name, most):
     assert lines.kind == "clipart"
     graph = build_segment_graph(lines)
     assert np.count_nonzero(graph.valence == 1) <= most
+
+
+def test_a_mark_on_the_paper_is_part_of_the_silhouette_and_kept():
+    # A whisker on the paper beside a disc: the fill it lies on is the background, whatever the budget.
+    lines, regions, lab = _paper_mark()
+    assert len(_ends(lines)) == 1
+    assert np.array_equal(close_line_ends(lines, regions, lab, budget=1e12), lines)
+
+
+def _paper_mark() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """A disc's outline and a 30 px whisker on the paper beside it: line map, regions, colours."""
+    paint = np.zeros((120, 120), dtype=np.uint8)
+    cv2.circle(paint, (50, 60), 30, 1, -1)
+    cv2.line(paint, (80, 60), (110, 60), 2, 3)
+    lab = np.zeros((120, 120, 3))
+    lab[paint == 0] = (100.0, 0.0, 0.0)
+    lab[paint == 1] = (60.0, 40.0, 60.0)
+    lab[paint == 2] = (10.0, 5.0, 5.0)
+    lines = np.zeros((120, 120), dtype=np.uint8)
+    cv2.circle(lines, (50, 60), 30, 1, 1)
+    cv2.line(lines, (80, 60), (110, 60), 1, 1)
+    return lines.astype(bool), paint.astype(np.int64), lab
