@@ -240,6 +240,12 @@ CLIPART_MARK_CONTRAST: float = 25.0
 #: Where more remain at the detail asked, the least important are merged on, and a warning
 #: says so (:func:`img2logo.features.detail.merge_by_importance`).
 CLIPART_MAX_REGIONS: int = 40
+#: Kinds: an image in one ink is outlined shapes (a speech bubble, a badge) when its ink is
+#: closed bands round the paper they enclose, every ink pixel within this many times the
+#: bands' width of that paper: a band's pixels are within one width of it (a rounded
+#: corner's about 1.4), a stroke running off an outline (a stem, a string) many
+#: (``img2logo.features.preprocessing.outline_band_width``).
+OUTLINE_BAND_REACH: float = 2.0
 #: Clip art: an ink outline (a region darker than every region it touches: the cartoon
 #: style's outline between lighter fills) is a stroke up to this wide, px: its centre line
 #: is within 6 px of both its edges, the distance at which the segment graph merges
@@ -686,6 +692,9 @@ SIMPLIFICATION_ERROR: float = 1.0
 #: photo-likes, sil6 least / mean: 0.76 / 0.90 unbounded, 0.79 / 0.91 at 2 T,
 #: 0.85 / 0.93 at 1 T (15-22 arcs).
 PHOTO_MAX_ARC_FACTOR: float = 1.0
+#: A segment of a clip art is on the object's silhouette when most of its points lie within this
+#: many px of the background (its line runs on the object's pixels next to the paper), px.
+OUTLINE_DISTANCE: float = 2.0
 #: A merge candidate whose new circle (radius fixed on the ladder) cannot pass within
 #: ``max_arc_distance`` + this of all its pixels, wherever its centre, is rejected
 #: before its fit (img2logo.fit.merging, kernels_sqp.far_circle_kernel): the fit's arc,

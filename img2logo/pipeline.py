@@ -241,7 +241,9 @@ def abstract(
                 graph, choice.axis, choice=choice, options=opts, progress=callback, params=params
             )
         else:
-            progression = optimize(graph, opts, lock_mask=lock_mask, progress=callback, params=params)
+            # A clip art's background is the paper round the object: its silhouette is held (optimize).
+            paper = lines.regions == 0 if lines.kind == "clipart" and lines.regions is not None else None
+            progression = optimize(graph, opts, lock_mask=lock_mask, silhouette=paper, progress=callback, params=params)
     finally:
         if bar is not None:
             bar.close()

@@ -256,10 +256,17 @@ def test_a_photo_over_the_photo_working_size_is_worked_at_it_and_drawn_in_its_ow
 
 
 def test_an_upscaled_clip_art_gives_the_logo_of_its_original():
-    """Worked at SYNTHETIC_WORK_SIDE = 512 px, a clip art upscaled to 700 px is its 512 px original again."""
+    """Worked at SYNTHETIC_WORK_SIDE = 512 px, a clip art upscaled to 700 px is its 512 px original again.
+
+    The resampled copy has other regions (5 where the original has 8: its edges are blends), so the
+    two logos differ in detail: 20 and 25 arcs since the silhouette's arcs are held to T (23 and 23
+    before), their points within 6 px of each other for 0.78 and 0.95 of them (0.79 and 0.94 before).
+    """
     import cv2
+    from scipy.spatial import cKDTree
 
     from img2logo.constants import SYNTHETIC_WORK_SIDE
+    from img2logo.quality import logo_points
 
     small = cv2.imread(str(DATA / "clipart-fish.png"))
     big = cv2.resize(small, (700, 700), interpolation=cv2.INTER_NEAREST)
@@ -268,7 +275,10 @@ def test_an_upscaled_clip_art_gives_the_logo_of_its_original():
     assert SYNTHETIC_WORK_SIDE == 512 and result.lines.kind == "clipart"
     assert (result.image.width, result.final.width) == (512, 700)
     original = abstract(small[:, :, ::-1], progress=False).final
-    assert abs(len(result.final.arcs) - len(original.arcs)) <= 2
+    assert abs(len(result.final.arcs) - len(original.arcs)) <= 5
+    ours, theirs = logo_points(result.final) * 512 / 700, logo_points(original)
+    assert np.mean(cKDTree(ours).query(theirs)[0] <= 6.0) >= 0.75
+    assert np.mean(cKDTree(theirs).query(ours)[0] <= 6.0) >= 0.9
 
 
 def test_a_clip_art_or_a_drawing_over_the_synthetic_working_size_is_worked_at_it(monkeypatch):
@@ -418,3 +428,53 @@ def test_every_free_end_of_a_real_logo_is_an_end_of_the_input_s_lines(name):
     found, at_ends = _free_ends_at_line_ends(result)
     assert found > 0
     assert at_ends == found
+
+
+@pytest.mark.parametrize(("name", "least"), [("clipart-pansement", 0.97), ("clipart-beagle", 0.95)])
+def test_a_real_clip_art_s_silhouette_survives_the_fit(name, least):
+    """Openclipart: the silhouette is in the segment graph whole (sil6 of the first level about 1.0) and the
+    merges and tangent joins no longer cut it (final sil6 0.84 for the bandage, whose rounded ends were
+    cut by single arcs, and 0.89 for the beagle, before its arcs were held to T)."""
+    import cv2
+
+    from img2logo.quality import logo_points, silhouette_recall
+
+    folder = DATA.parent / "benchmarks" / "data" / "openclipart"
+    result = abstract(folder / f"{name}.png", progress=False)
+    mask = cv2.imread(str(folder / f"{name}.silhouette.png"), cv2.IMREAD_GRAYSCALE) > 127
+    assert silhouette_recall(logo_points(result.final), mask) >= least
+
+
+def _several_regions() -> np.ndarray:
+    """An ellipse with three round bumps, each bump and a square on the body of a colour of its own, at 4x, reduced."""
+    import cv2
+
+    s = 4
+    big = np.full((256 * s, 256 * s, 3), 255, np.uint8)
+    cv2.ellipse(big, (128 * s, 128 * s), (90 * s, 60 * s), 0, 0, 360, (200, 120, 40), -1)
+    colours = [(40, 120, 200), (60, 170, 80), (150, 60, 160)]
+    for angle, colour in zip(np.radians([40, 150, 260]), colours, strict=True):
+        centre = (int((128 + 90 * np.cos(angle)) * s), int((128 + 60 * np.sin(angle)) * s))
+        cv2.circle(big, centre, 12 * s, colour, -1)
+    cv2.rectangle(big, (100 * s, 90 * s), (156 * s, 166 * s), (230, 200, 90), -1)
+    return cv2.resize(big, (256, 256), interpolation=cv2.INTER_AREA)
+
+
+@pytest.mark.parametrize("detail", [24, 1])
+def test_a_silhouette_made_of_several_regions_is_kept_whole(detail):
+    """Known answer: the outline runs through four regions (the body and three bumps); whether they stay
+    (detail 24) or merge into one (detail 1), every pixel of it is within T (and the pixel between the
+    line and the mask's edge) of the logo: 18.0 and 14.4 px at the farthest when its arcs were held
+    to T only on average, the bumps cut off."""
+    import cv2
+    from scipy.spatial import cKDTree
+
+    from img2logo.quality import logo_points
+
+    image = _several_regions()
+    edge = cv2.Canny((image < 245).any(axis=2).astype(np.uint8) * 255, 50, 100) > 0
+    outline = np.argwhere(edge)[:, ::-1] + 0.5  # (x, y) px
+    result = abstract(image, progress=False, detail=detail)
+    assert int(result.lines.regions.max()) + 1 == (6 if detail == 24 else 2)
+    farthest = cKDTree(logo_points(result.final)).query(outline)[0].max()
+    assert farthest <= result.final.params["tolerance"] + 2.0

@@ -43,6 +43,7 @@ __all__ = [
     "SPLIT_POINT_COLOR",
     "default_stroke_width",
     "draw_fills",
+    "evenodd_orient",
     "frame_image",
     "level_stroke_width",
     "plot_abstraction",
@@ -407,7 +408,7 @@ def draw_fills(
     h = int(check_positive(height, "height"))
     gradients: dict[object, np.ndarray] = {}
     for fill in fill_list:
-        rings = _evenodd_orient(fill.rings(ARC_SAMPLE_STEP))
+        rings = evenodd_orient(fill.rings(ARC_SAMPLE_STEP))
         if not rings:
             continue
         vertices = np.concatenate([np.vstack([r, r[:1]]) for r in rings])
@@ -438,7 +439,7 @@ def draw_fills(
 # --- helpers -----------------------------------------------------------------------
 
 
-def _evenodd_orient(rings: list[np.ndarray]) -> list[np.ndarray]:
+def evenodd_orient(rings: list[np.ndarray]) -> list[np.ndarray]:
     """Orient loops so that the non-zero rule fills like even-odd: outer loops positive, holes negative.
 
     A loop's depth is the number of other loops around its first point; loops

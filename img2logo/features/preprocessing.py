@@ -25,6 +25,7 @@ from .._compat import median
 from .._validation import check_choice, check_positive, readonly
 from ..constants import (
     BLANK_IMAGE_RANGE,
+    CLIPART_OUTLINE_WIDTH,
     CLIPART_RIM_RADIUS,
     DETAIL,
     DOT_MIN_DIAMETER,
@@ -34,6 +35,7 @@ from ..constants import (
     INK_SHARE,
     JUNCTION_MERGE_DISTANCE,
     MIN_SPECK_AREA,
+    OUTLINE_BAND_REACH,
     PHOTO_MIN_LINE_LENGTH,
     PHOTO_SPUR_LENGTH,
     SEAM_CONTRAST,
@@ -49,7 +51,7 @@ from ..constants import (
 from ..images import skeleton as _skeleton
 from ..images.loading import LoadedImage, downscale, load_image, load_mask
 from ..images.ndimage import bounding_slices, components, distance, skeletonize
-from .clipart import clipart_lines, clipart_regions, label_means
+from .clipart import clipart_lines, clipart_regions, enclosed_paper, label_means
 from .detail import check_detail, close_line_ends, merge_by_importance
 
 if TYPE_CHECKING:
@@ -216,6 +218,9 @@ def _detect(img: LoadedImage) -> tuple[str, str, np.ndarray | None]:
     if _one_ink(means[solid], area[solid]):
         inked = solid[regions]
         stroke = median_stroke_width(inked)
+        outlined = _outlined_shapes(inked)
+        if outlined is not None:
+            return "clipart", outlined, regions
         if stroke <= DRAWING_MAX_STROKE_FRACTION * min(regions.shape):
             return (
                 "drawing",
@@ -228,6 +233,9 @@ def _detect(img: LoadedImage) -> tuple[str, str, np.ndarray | None]:
     if ink is not None:
         inked = ink[regions]
         stroke = median_stroke_width(inked)
+        outlined = _outlined_shapes(inked)
+        if outlined is not None:
+            return "clipart", outlined, regions
         if stroke <= DRAWING_MAX_STROKE_FRACTION * min(regions.shape):
             share = area[ink].sum() / area[solid].sum()
             return (
@@ -237,6 +245,73 @@ def _detect(img: LoadedImage) -> tuple[str, str, np.ndarray | None]:
                 None,
             )
     return "clipart", f"{flat:.0%} of the pixels sit in flat fills of {colours} colours: a clip art", regions
+
+
+def _outlined_shapes(ink: np.ndarray) -> str | None:
+    """Why the one ink ``ink`` (H, W) bool is outlined shapes, a clip art (:func:`outline_band_width`); else None."""
+    band = outline_band_width(ink)
+    if band is None or band <= CLIPART_OUTLINE_WIDTH:
+        return None
+    return (
+        f"one ink colour in closed outlines {band:.0f} px wide, each round paper with nothing in it: "
+        "outlined shapes, a clip art"
+    )
+
+
+def outline_band_width(ink: np.ndarray) -> float | None:
+    """The width of ``ink`` (H, W) bool, px, when it is only closed outlines; None when it is not.
+
+    A speech or thought bubble, a badge, a sticker: shapes filled with the
+    paper's colour, each drawn by its outline alone. Their ink is closed bands,
+    each round one hole of paper with nothing in it (no ink inside, no second
+    hole), every pixel of each within ``OUTLINE_BAND_REACH`` times the bands'
+    width of the paper it encloses: no stroke runs off an outline (a balloon's
+    string, a stem, an umbrella's handle reaches many widths away). A line
+    drawing's strokes end, or enclose other strokes, or part the paper into
+    several holes (a wheel's spokes, a face's features); a single ring is
+    ambiguous, and its width decides (below).
+
+    The width is the bands' area over their length (the mean of their outer
+    and inner edges' lengths: a band's centre line), over all of them.
+    :func:`detect_kind` reads the outlines as a clip art's when they are wider
+    than ``CLIPART_OUTLINE_WIDTH``: their centre line is then more than 6 px
+    (the distance at which sil6 counts a silhouette kept and the segment graph
+    merges junctions) from both edges, and stands for neither the shape's
+    silhouette nor its fill's edge; a narrower outline's centre line stands for
+    both, and the drawing, drawn at its stroke width, is the picture.
+    Ink parts smaller than ``MIN_SPECK_AREA`` px are specks and not looked at.
+    """
+    import cv2
+
+    u8 = _without_small_parts(ink, MIN_SPECK_AREA - 1).view(np.uint8)
+    contours, hierarchy = cv2.findContours(u8, cv2.RETR_TREE, cv2.CHAIN_APPROX_NONE)
+    if hierarchy is None:
+        return None
+    tree = hierarchy[0]  # (next, previous, first child, parent) per contour
+    depth = np.zeros(len(tree), dtype=np.int64)
+    for i in range(len(tree)):
+        parent = tree[i][3]
+        while parent >= 0:
+            depth[i] += 1
+            parent = tree[parent][3]
+    if depth.max() != 1:
+        return None  # no hole, or ink inside a hole
+    outer = np.flatnonzero(depth == 0)
+    holes = np.bincount(tree[depth == 1][:, 3], minlength=len(tree))
+    if np.any(holes[outer] != 1):
+        return None
+    area = sum(cv2.contourArea(c) * (1 if d == 0 else -1) for c, d in zip(contours, depth, strict=True))
+    length = sum(cv2.arcLength(c, True) for c in contours) / 2.0
+    if length <= 0.0:
+        return None
+    width = area / length
+    # A stroke that runs off an outline (a balloon's string, a stem, a whisker) reaches farther
+    # from the paper the outlines enclose than a band's width: a band's every pixel is within it.
+    enclosed = np.zeros(u8.shape, dtype=np.uint8)
+    cv2.drawContours(enclosed, [c for c, d in zip(contours, depth, strict=True) if d == 1], -1, 1, cv2.FILLED)
+    enclosed &= 1 - u8
+    reach = cv2.distanceTransform(1 - enclosed, cv2.DIST_L2, cv2.DIST_MASK_PRECISE)[u8 > 0]
+    return float(width) if reach.max() <= OUTLINE_BAND_REACH * width else None
 
 
 def _one_ink(means: np.ndarray, area: np.ndarray) -> bool:
@@ -457,7 +532,7 @@ def extract_feature_lines(
         raw = _skeleton.join_line_ends(axis)
         min_len = spur_length if min_line_length is None else min_line_length
     elif kind == "clipart":
-        regions = clipart_regions(img) if regions is None else regions
+        regions = enclosed_paper(clipart_regions(img) if regions is None else regions, img)
         regions, detail_used, budget = merge_by_importance(regions, img.lab, check_detail(detail))
         raw = _join(clipart_lines(regions, label_means(regions, img.lab)[1][:, 0]))
         min_len = spur_length if min_line_length is None else min_line_length

@@ -331,6 +331,9 @@ class FitState:
         self.disp = np.zeros((graph.n_junctions, 2))
         self.next_id = 0
         self.stats = Stats()
+        #: The segments of the object's silhouette: an arc through any of them is held to the tolerance
+        #: (:func:`img2logo.fit.progressive.optimize`'s ``silhouette``).
+        self.outline: frozenset[int] = frozenset()
         self.released: set[int] = set()
         self._path_cache: dict[tuple[int, ...], tuple[int, ...]] = {}
         self._constrained: dict[tuple[int, ...], tuple[int, ...]] = {}
@@ -533,6 +536,38 @@ class FitState:
     def free_error(self, group: Group) -> float:
         """Mean distance of the group's pixels to its free circle, px."""
         return self.circles.error(group)
+
+    def on_outline(self, group: Group) -> bool:
+        """Whether ``group`` runs through a segment of the object's silhouette (:attr:`outline`)."""
+        return bool(self.outline) and not self.outline.isdisjoint(group.segments)
+
+    def arc_cap(self, group: Group) -> float | None:
+        """The farthest an arc of ``group`` may lie from its pixels (discrete Fréchet), px; None: no bound.
+
+        ``Options.arc_bound``, and on the object's silhouette (a group through a
+        segment of :attr:`outline`) the tolerance T, whichever is less.
+        """
+        cap = self.options.arc_bound
+        if self.on_outline(group):
+            tolerance = float(self.options.tolerance)
+            cap = tolerance if cap is None else min(cap, tolerance)
+        return cap
+
+    def strays(self, fits: Mapping[int, GroupFit], groups: Mapping[int, Group], before: Mapping[int, GroupFit]) -> bool:
+        """Whether a refit's arc lies farther from its pixels than its :meth:`arc_cap` and than before.
+
+        ``fits`` are the refit's arcs by group id, ``groups`` their groups, ``before`` the fits
+        they replace (a group missing there is held to its cap alone).
+        """
+        for g, fit in fits.items():
+            cap = self.arc_cap(groups[g])
+            if (
+                cap is not None
+                and fit.arc.frechet > cap
+                and (g not in before or fit.arc.frechet > before[g].arc.frechet)
+            ):
+                return True
+        return False
 
     def golden_error(self, group: Group) -> float:
         """Mean distance of the group's pixels to its golden circle, px.

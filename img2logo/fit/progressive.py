@@ -45,6 +45,7 @@ from typing import Any
 
 import numpy as np
 
+from ..constants import OUTLINE_DISTANCE
 from ..errors import InvalidParameterError
 from ..geometry.golden_ladder import FibonacciLadder, Ladder, make_ladder
 from ..geometry.primitives import Abstraction, polyline_length
@@ -213,6 +214,7 @@ def optimize(
     options: Options | None = None,
     *,
     lock_mask: np.ndarray | None = None,
+    silhouette: np.ndarray | None = None,
     progress: ProgressCallback | None = None,
     params: Mapping[str, Any] | None = None,
     symmetry: AxisConstraints | None = None,
@@ -231,6 +233,16 @@ def optimize(
         are not used here: the graph is made.
     lock_mask : ndarray of bool, shape (H, W), optional
         Segments mostly inside it are never merged (Sec. 7, Fig. 16).
+    silhouette : ndarray of bool, shape (H, W), optional
+        The paper around the object (a clip art's background region): the
+        segments along its edge (:func:`outline_segments`) are the object's
+        silhouette, and a merge whose new arc would stray farther than the
+        tolerance T (discrete Fréchet) from their pixels is rejected. E^s is a
+        mean over the arcs, so without it one merge can cut across a corner of
+        the silhouette by far more than T (a bandage's rounded end, a leg)
+        while the mean stays within T; the silhouette is the first line of a
+        logo, and each of its arcs is held to T, as every arc of a photo is
+        (``PHOTO_MAX_ARC_FACTOR``). Inner lines merge as before.
     progress : callable, optional
         Called as ``progress(t, n_arcs, similarity)`` after every level the merge
         loop makes (A^0 first), then, when the tangent joins were refitted
@@ -305,6 +317,7 @@ def optimize(
     golden = make_ladder(ladder, longest, bias=bias, unit=unit, exponents=opts.exponents, rounding=opts.rounding)
     check_span(golden, graph.width, graph.height)
     state = FitState(graph, opts, golden, symmetry, circles=circles)
+    state.outline = frozenset(np.flatnonzero(outline_segments(graph, silhouette)).tolist())
     if simplify:
         groups = simplify_groups(groups, state.golden_error, graph.valence, axis_nodes)
     for g in sorted(groups, key=lambda g: min(g.segments)):
@@ -380,16 +393,40 @@ def _budget(seconds: float | None) -> Callable[[], bool] | None:
     return over
 
 
+def outline_segments(graph: SegmentGraph, silhouette: np.ndarray | None) -> np.ndarray:
+    """Segments along the edge of ``silhouette`` (H, W) bool, the paper around the object: (n_segments,) bool.
+
+    Those with most of their points within ``OUTLINE_DISTANCE`` px of the paper and
+    not on it: a clip art's line between the background and the object runs on the
+    object's pixels next to the paper (:func:`img2logo.features.clipart.region_boundaries`).
+    """
+    if silhouette is None:
+        return np.zeros(graph.n_segments, dtype=bool)
+    from ..images.ndimage import distance
+
+    paper = _image_mask(graph, silhouette, "silhouette")
+    return _mostly_inside(graph, ~paper & (distance(~paper) <= OUTLINE_DISTANCE))
+
+
 def locked_segments(graph: SegmentGraph, lock_mask: np.ndarray | None) -> np.ndarray:
     """Segments with most of their points inside ``lock_mask`` (Sec. 7, Fig. 16)."""
     if lock_mask is None:
         return np.zeros(graph.n_segments, dtype=bool)
-    mask = np.asarray(lock_mask)
-    if mask.shape != (graph.height, graph.width):
+    return _mostly_inside(graph, _image_mask(graph, lock_mask, "lock_mask"))
+
+
+def _image_mask(graph: SegmentGraph, mask: np.ndarray, name: str) -> np.ndarray:
+    """``mask`` as (H, W) bool of the graph's image; a clear error for another shape."""
+    arr = np.asarray(mask)
+    if arr.shape != (graph.height, graph.width):
         raise InvalidParameterError(
-            f"lock_mask must have the image's shape {(graph.height, graph.width)}, got {mask.shape}"
+            f"{name} must have the image's shape {(graph.height, graph.width)}, got {arr.shape}"
         )
-    mask = mask.astype(bool)
+    return arr.astype(bool)
+
+
+def _mostly_inside(graph: SegmentGraph, mask: np.ndarray) -> np.ndarray:
+    """Which segments have more than half of their points on ``mask`` (H, W) bool: (n_segments,) bool."""
     out = np.zeros(graph.n_segments, dtype=bool)
     for i, seg in enumerate(graph.segments):
         cols = np.clip((seg[:, 0] - 0.5).round().astype(int), 0, graph.width - 1)

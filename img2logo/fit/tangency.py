@@ -116,8 +116,10 @@ def tangent_joins(opt: FitState, tolerance: float) -> bool:
     refit with every tangency at once is tried too (:func:`_all_at_once`),
     and the result with more tangent joins is kept (on a tie the lower E^s):
     one join's refit may spend the slack under T that a joint refit shares.
-    Both keep E^s (Eqn. 3) within ``max(tolerance, E^s now)`` and add no
-    redundant intersection and no near-miss gap. Counts go to ``opt.stats.tangent_joins`` and
+    Both keep E^s (Eqn. 3) within ``max(tolerance, E^s now)``, move no arc of
+    the object's silhouette farther than T from its pixels (or than it was:
+    :meth:`~img2logo.fit.fit_state.FitState.strays`) and add no redundant
+    intersection and no near-miss gap. Counts go to ``opt.stats.tangent_joins`` and
     ``["released_tangencies"]``.
     """
     seeds = {g: f.seed for g, f in opt.fits.items()}
@@ -219,7 +221,8 @@ def _one_at_a_time(opt: FitState, joins: dict[int, tuple[int, int]], bound: floa
     choices of :func:`_rung_choices`, the one of lowest E^s kept; the junction
     slides along the line (:func:`_slide`). A choice is kept only if the fit
     converges, E^s stays within ``bound``, no arc moves farther from its
-    pixels than ``arc_bound`` (or than it was), the tangencies made before
+    pixels than its cap (:meth:`~img2logo.fit.fit_state.FitState.arc_cap`:
+    ``arc_bound``, and T on the silhouette) or than it was, the tangencies made before
     still hold, and no redundant intersection or near-miss gap
     (:meth:`~img2logo.fit.fit_state.FitState.gap_ends`) is added; otherwise the join is
     released (``opt.loose``), a kink is left there, and the next join is tried.
@@ -296,7 +299,12 @@ def _all_at_once(
             opt.fits.update(fits)
             for n, d in disp.items():
                 opt.disp[n] = d
-            if opt.similarity() <= bound and _redundant(opt, set(groups)) <= crossings and opt.gap_ends() <= gaps:
+            if (
+                opt.similarity() <= bound
+                and not opt.strays({g: f for g, f in fits.items() if opt.on_outline(groups[g])}, groups, before[0])
+                and _redundant(opt, set(groups)) <= crossings
+                and opt.gap_ends() <= gaps
+            ):
                 return touching
             loose = set(opt.loose)
             _restore(opt, before)
@@ -537,8 +545,7 @@ def _try(
                 fits[g] = replace(f, arc=opt.arc_for(group, f.center, f.radius, f.k, opt.disp.__getitem__))
         opt.groups.update(groups)
         opt.off_line.update(off_line)
-        cap = opt.options.arc_bound
-        if cap is not None and any(f.arc.frechet > max(cap, saved[0][g].arc.frechet) for g, f in fits.items()):
+        if opt.strays(fits, opt.groups, saved[0]):
             return None
         opt.fits.update(fits)
         similarity = opt.similarity()

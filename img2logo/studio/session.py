@@ -13,7 +13,11 @@ and redo, see which segments a lock stroke covers before the Run
 transparent, over the input) of what is shown: the bytes the command line's
 writers give for that level and those edits (:meth:`Studio.downloads`), named by
 the image, the level and whether it was edited. The page itself (ipywidgets and
-ipycanvas, served by Voila: ``make studio``) is :mod:`.studio_page`.
+ipycanvas, served by Voila: ``make studio``) is :mod:`.page`.
+
+:class:`Studio` is the runs (the input, the mask and subject, Run, levels and T); its
+selection and edits are :class:`~.editing.StudioEdits`, its fills and downloads
+:class:`~.outputs.StudioFiles`, what they share :class:`~.state.StudioState`.
 
 Every action returns True when it changed the state; on bad input (an
 unreadable upload, a blank image, a mask that locks everything, an edit that
@@ -35,28 +39,18 @@ import os
 import re
 import tempfile
 import time
-import warnings
 from collections.abc import Callable
-from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 
-from ..constants import DETAIL, RDP_TOLERANCE, TOLERANCE
-from ..errors import Img2LogoError, InvalidParameterError
+from ..errors import InvalidParameterError
 from ..experiments.explore import levels_within
 from ..experiments.paths import data_path
-from ..geometry.primitives import Abstraction
-
-if TYPE_CHECKING:
-    from ..design.fills import Fill
-    from ..images.loading import LoadedImage
-    from ..pipeline import Result
-
-#: Distance from a click to an arc that still selects it, CSS px of the drawing on screen (a
-#: fingertip's width on a touch pad; the arcs of a logo are rarely closer than that).
-PICK_DISTANCE = 10.0
+from .editing import PICK_DISTANCE, StudioEdits, free_ends
+from .outputs import DOWNLOAD_FORMATS, StudioFiles
+from .state import StudioSettings
 
 #: Largest upload accepted, bytes: the command line reads any size, but the page receives the file
 #: through the kernel's websocket in one message; 9 MB holds a 12-megapixel JPEG.
@@ -71,52 +65,6 @@ MAX_NAME_CHARS = 60
 
 #: The kinds of image in a designer's words.
 KIND_WORDS = {"photo": "photo", "clipart": "clip art", "drawing": "drawing"}
-#: The downloads, by key: SVG, JSON, PDF, PNG on white, PNG on nothing (transparent), PNG over the faded input.
-DOWNLOAD_FORMATS: tuple[str, ...] = ("svg", "json", "pdf", "png", "png-transparent", "png-input")
-
-
-@dataclass(frozen=True)
-class StudioSettings:
-    """The inputs of a Run.
-
-    Attributes
-    ----------
-    tolerance : float
-        T, px.
-    bias : float or None
-        The phi ladder bias sigma; None: automatic (Eqn. 14).
-    rdp_tolerance : float
-        Ramer-Douglas-Peucker tolerance, px.
-    kind : str
-        ``"auto"``, ``"photo"``, ``"clipart"`` or ``"drawing"``.
-    symmetry : str
-        ``"none"``, ``"auto"``, ``"vertical"``, ``"horizontal"`` or degrees.
-    lines : bool
-        Nearly straight segments become straight lines (Sec. 9, Fig. 20b).
-    ladder : str
-        ``"phi"`` (golden) or ``"fibonacci"`` (Fig. 2b).
-    detail : int
-        Clip art: the regions kept besides the background (``--detail``).
-    exponents : tuple of int or None
-        Only these ladder exponents k (the subset of golden circles of Fig. 15, ``--radii``);
-        None: every rung.
-    fill : str
-        The command line's ``--fill`` option: ``none``, ``auto``,
-        ``palette:#rrggbb,...``, ``linear[@DEG]:...`` or ``radial:...``
-        (:func:`img2logo.design.fills.parse_fill_option`); it colours what is shown
-        and the downloads, without a new Run.
-    """
-
-    tolerance: float = TOLERANCE
-    bias: float | None = None
-    rdp_tolerance: float = RDP_TOLERANCE
-    kind: str = "auto"
-    symmetry: str = "none"
-    lines: bool = False
-    ladder: str = "phi"
-    exponents: tuple[int, ...] | None = None
-    detail: int = DETAIL
-    fill: str = "none"
 
 
 def front_end_live() -> bool:
@@ -146,15 +94,7 @@ def upload_name(filename: object) -> str:
     return name
 
 
-def _one_line(exc: BaseException | Warning | str, folder: str | None = None) -> str:
-    """The message of ``exc`` on one line, without the temporary folder an upload was read from."""
-    text = str(exc)
-    if folder:
-        text = text.replace(folder + os.sep, "")
-    return " ".join(text.split())
-
-
-class Studio:
+class Studio(StudioEdits, StudioFiles):
     """The studio's state: an image, its lock mask and subject, a run, the level shown and its edits.
 
     Parameters
@@ -185,54 +125,9 @@ class Studio:
     """
 
     def __init__(self, image: str | None = None, settings: StudioSettings | None = None, **overrides: Any) -> None:
-        self.settings = dataclasses.replace(settings or StudioSettings(), **overrides)
-        self.image: LoadedImage | None = None
-        self.name = ""
-        self.mask = np.zeros((0, 0), dtype=bool)
-        self.subject: tuple[int, int, int, int] | None = None
-        self.result: Result | None = None
-        self.levels: tuple[Abstraction, ...] = ()
-        self.level = 0
-        self.selected: list[int] = []
-        self.message = ""
-        self.ok = True
-        self.last_run_seconds = 0.0
-        self._history: dict[int, list[Abstraction]] = {}
-        self._redo: dict[int, list[Abstraction]] = {}
-        # The logo (kept, so that its id names it) and its regions' own colours, by the logo's id.
-        self._colours: dict[int, tuple[Abstraction, dict[int, str]]] = {}
-        self._cache: dict[str, Any] = {}
+        super().__init__(settings, **overrides)
         if image is not None:
             self.load_example(image)
-
-    # ------------------------------------------------------------------ messages
-    def _say(self, text: str, ok: bool = True) -> bool:
-        self.message, self.ok = text, ok
-        return ok
-
-    def _attempt(
-        self, action: Callable[[], str], folder: str | None = None, names: dict[str, str] | None = None
-    ) -> bool:
-        """Run ``action`` (it returns its message); an img2logo error becomes the message, nothing changed.
-
-        ``folder`` is left out of the messages and each key of ``names`` (a temporary file's name)
-        becomes its value (the name the file came with).
-        """
-
-        def line(text: BaseException | Warning | str) -> str:
-            out = _one_line(text, folder)  # type: ignore[arg-type]
-            for old, new in (names or {}).items():
-                out = out.replace(old, new)
-            return out
-
-        try:
-            with warnings.catch_warnings(record=True) as caught:
-                warnings.simplefilter("always")
-                text = action()
-        except Img2LogoError as exc:
-            return self._say(f"error: {line(exc)}", ok=False)
-        notes = [line(w.message) for w in caught if issubclass(w.category, UserWarning)]
-        return self._say("; ".join([text, *[f"warning: {n}" for n in notes]]))
 
     # ------------------------------------------------------------------ the input
     def load_upload(self, filename: str, content: bytes) -> bool:
@@ -275,11 +170,6 @@ class Studio:
         self.result, self.levels, self.level = None, (), 0
         self._reset_edits()
         return f"{name}: {img.input_width}x{img.input_height} px; press Run"
-
-    @property
-    def stem(self) -> str:
-        """The downloads' name: the input's file name without its suffix."""
-        return Path(self.name).stem or "logo"
 
     # ------------------------------------------------------------------ lock mask and subject
     def paint(self, points: Any, radius: float, *, erase: bool = False) -> int:
@@ -444,406 +334,6 @@ class Studio:
     def update_settings(self, **changes: Any) -> None:
         """Record settings for the next Run (``fill`` takes effect at once: it only colours)."""
         self.settings = dataclasses.replace(self.settings, **changes)
-
-    @property
-    def shown(self) -> Abstraction | None:
-        """The logo on screen: the level shown, with its edits."""
-        if not self.levels:
-            return None
-        history = self._history.get(self.level)
-        return history[-1] if history else self.levels[self.level]
-
-    @property
-    def title(self) -> str:
-        """One line about the logo shown, in a designer's words: the level t, |A| arcs, the error E^s, T, the edits.
-
-        ``fish: level 12 of 30, 25 arcs, error 3.21 px (tolerance 5 px), 1 edit``.
-        """
-        a = self.shown
-        if a is None:
-            return "no result yet: press Run"
-        n_edits = len(self._history.get(self.level, []))
-        edits = f", {n_edits} edit{'s' if n_edits != 1 else ''}" if n_edits else ""
-        # E^s in the pixels T is given in: those of the working copy when the input was worked smaller.
-        k = self.work_scale
-        work = self.result.image if self.result is not None and k != 1.0 else None
-        size = f" of the {work.width}x{work.height} px working copy" if work is not None else ""
-        return (
-            f"{self.stem}: level {self.level} of {len(self.levels) - 1}, {len(a.arcs)} arcs, "
-            f"error {a.similarity * k:.2f} px (tolerance {self.settings.tolerance:g} px{size}){edits}"
-        )
-
-    @property
-    def work_scale(self) -> float:
-        """Working-copy pixels per input pixel of the run (1.0 unless the input was worked smaller).
-
-        T, the progress bar and E^s in the title are in working pixels, as :func:`img2logo.abstract`
-        takes T; the logo, the mask, the subject and the clicks are in the input's pixels.
-        """
-        if self.result is None:
-            return 1.0
-        return float(self.result.final.params.get("scale", 1.0))
-
-    # ------------------------------------------------------------------ selection and edits
-    def pick(self, x: float, y: float, distance: float) -> int | None:
-        """The arc of :attr:`shown` nearest (x, y), px, if it is within ``distance`` px; else None."""
-        a = self.shown
-        if a is None or not a.arcs:
-            return None
-        samples = self._cached("samples", lambda: [arc.sample(step=1.0) for arc in a.arcs])
-        point = np.array([float(x), float(y)])
-        gaps = [float(np.min(np.hypot(*(s - point).T))) for s in samples]
-        i = int(np.argmin(gaps))
-        return i if gaps[i] <= distance else None
-
-    def select_at(self, x: float, y: float, distance: float, *, add: bool = False) -> int | None:
-        """Click at (x, y), px: select the nearest arc within ``distance`` px (the last two clicked stay selected).
-
-        A click on the selected arc, or off every arc, clears the selection. With ``add``
-        (a shift-click) the arc joins the selection, or leaves it when it was in it, and
-        nothing else is dropped.
-        """
-        i = self.pick(x, y, distance)
-        if add and i is not None:
-            self.selected = [s for s in self.selected if s != i] + ([] if i in self.selected else [i])
-            n = len(self.selected)
-            self._say(f"{n} arc{'s' if n != 1 else ''} selected: {', '.join(map(str, self.selected))}")
-            return i
-        if i is None or (self.selected and self.selected[-1] == i):
-            self.selected = []
-            self._say("nothing selected")
-            return None
-        self.selected = [*[s for s in self.selected if s != i][-1:], i]
-        a = self.shown
-        arc = a.arcs[i]
-        what = "a straight line" if arc.is_line else f"circle {a.circles.index(arc.circle)}, k = {arc.circle.k}"
-        pair = f" (and arc {self.selected[0]}: Connect joins them)" if len(self.selected) == 2 else ""
-        self._say(f"arc {i} selected: {what}, {arc.length:.0f} px long{pair}")
-        return i
-
-    def _edit(
-        self, make: Callable[[Abstraction], Abstraction], what: str, keep: Callable[[Abstraction], list[int]]
-    ) -> bool:
-        a = self.shown
-        if a is None:
-            return self._say("error: press Run first", ok=False)
-        if not self.selected:
-            return self._say("error: select an arc first (click it)", ok=False)
-
-        def act() -> str:
-            new = make(a)
-            self._history.setdefault(self.level, []).append(new)
-            self._redo.pop(self.level, None)
-            self.selected = keep(new)
-            self._cache.clear()
-            return f"{what}; {len(new.arcs)} arcs (Undo takes it back)"
-
-        return self._attempt(act)
-
-    def delete_selected(self) -> bool:
-        """Delete the selected arcs (:func:`img2logo.design.edits.delete_arc`), as one edit."""
-        from ..design.edits import delete_arc
-
-        chosen = sorted(set(self.selected), reverse=True)  # the last first: the others keep their indices
-
-        def make(a: Abstraction) -> Abstraction:
-            for i in chosen:
-                a = delete_arc(a, i)
-            return a
-
-        what = f"arc {chosen[0]} deleted" if len(chosen) == 1 else f"arcs {', '.join(map(str, chosen[::-1]))} deleted"
-        return self._edit(make, what, lambda new: [])
-
-    def _circle_of_selected(self, a: Abstraction, op: str) -> int:
-        arc = a.arcs[self.selected[-1]]
-        if arc.is_line:
-            raise InvalidParameterError(f"{op}: arc {self.selected[-1]} is a straight line, it has no golden circle")
-        return a.circles.index(arc.circle)
-
-    def move_selected(self, dx: float, dy: float) -> bool:
-        """Move the circle of the selected arc by (dx, dy), px (:func:`img2logo.design.edits.move_circle`)."""
-        from ..design.edits import move_circle
-
-        def make(a: Abstraction) -> Abstraction:
-            c = self._circle_of_selected(a, "move")
-            return move_circle(a, c, a.circles[c].center + np.array([float(dx), float(dy)]))
-
-        i = self.selected[-1] if self.selected else -1
-        return self._edit(
-            make, f"circle of arc {i} moved by ({dx:g}, {dy:g}) px", lambda new: [min(i, len(new.arcs) - 1)]
-        )
-
-    def rung_selected(self, delta: int) -> bool:
-        """Move the selected arc's circle ``delta`` rungs (:func:`~img2logo.design.edits.change_rung`)."""
-        from ..design.edits import change_rung
-
-        def make(a: Abstraction) -> Abstraction:
-            return change_rung(a, self._circle_of_selected(a, "change rung"), int(delta))
-
-        i = self.selected[-1] if self.selected else -1
-        return self._edit(make, f"circle of arc {i}: rung {int(delta):+d}", lambda new: [min(i, len(new.arcs) - 1)])
-
-    def add_other_side(self) -> bool:
-        """Add the other side of the selected arc's circle, between the arc's two ends (Fig. 17 "add").
-
-        :func:`img2logo.design.edits.add_arc` on the arc's own circle from its start junction to its
-        end junction, around the other way.
-        """
-        from ..design.edits import add_arc
-
-        def make(a: Abstraction) -> Abstraction:
-            i = self.selected[-1]
-            arc = a.arcs[i]
-            self._circle_of_selected(a, "add")
-            if a.arc_junctions is None:
-                raise InvalidParameterError("add: this logo records no junctions")
-            ends = a.arc_junctions[i]
-            if ends.start is None or ends.end is None or ends.start == ends.end:
-                raise InvalidParameterError(f"add: arc {i} does not end at two junctions (a closed circle?)")
-            return add_arc(a, arc.circle, ends.start, ends.end, sweep_sign=-1 if arc.sweep > 0 else +1)
-
-        i = self.selected[-1] if self.selected else -1
-        return self._edit(make, f"the other side of arc {i}'s circle added", lambda new: [len(new.arcs) - 1])
-
-    def lock_preview(self) -> list[np.ndarray]:
-        """The segments of the last run that the lock mask covers, each (N, 2) points, px: what the next Run locks.
-
-        The rule of the run (:func:`img2logo.fit.progressive.locked_segments`: most of a
-        segment's points inside the mask), applied to the last run's segment graph, with the
-        mask at its working size (a Run with other settings may find other segments).
-        """
-        if self.result is None or not self.mask.any():
-            return []
-        from ..fit.progressive import locked_segments
-        from ..images.loading import mask_to_working_size
-
-        graph = self.result.graph
-        mask = mask_to_working_size(self.mask, self.result.image, "lock mask")
-        locked = locked_segments(graph, mask)
-        k = self.work_scale
-        return [np.asarray(graph.segments[i], dtype=np.float64) / k for i in np.flatnonzero(locked)]
-
-    def set_exponents(self, text: str) -> bool:
-        """The golden circles to use at the next Run (Fig. 15): exponents k as ``"3, 5, 8"``; empty for all."""
-        words = [w for w in str(text).replace(",", " ").split() if w]
-        try:
-            exponents = tuple(sorted({int(w) for w in words})) if words else None
-        except ValueError:
-            return self._say(f"error: circle sizes must be whole numbers k separated by commas, got {text!r}", False)
-        self.settings = dataclasses.replace(self.settings, exponents=exponents)
-        chosen = "all" if exponents is None else "k = " + ", ".join(map(str, exponents))
-        return self._say(f"circle sizes: {chosen}; press Run")
-
-    @property
-    def rungs_used(self) -> tuple[int, ...]:
-        """The exponents k of the golden circles of the first level of the run (the candidates of Fig. 15)."""
-        if not self.levels:
-            return ()
-        return tuple(sorted({int(c.k) for c in self.levels[0].golden_circles if c.k is not None}))
-
-    def connect_selected(self) -> bool:
-        """Join the two selected arcs at their nearest free ends (:func:`~img2logo.design.edits.connect`)."""
-        from ..design.edits import connect
-
-        if len(self.selected) != 2:
-            return self._say("error: connect needs two arcs: click one, then the other", ok=False)
-
-        def make(a: Abstraction) -> Abstraction:
-            ends = [free_ends(a, i) for i in self.selected]
-            for i, e in zip(self.selected, ends, strict=True):
-                if not e:
-                    raise InvalidParameterError(f"connect: arc {i} has no free end (both its ends meet other arcs)")
-            pairs = [(j0, j1) for j0 in ends[0] for j1 in ends[1] if j0 != j1]
-            if not pairs:
-                raise InvalidParameterError("connect: the two arcs share their only free end")
-            j0, j1 = min(pairs, key=lambda p: float(np.hypot(*(a.junctions[p[0]] - a.junctions[p[1]]))))
-            return connect(a, j0, j1)
-
-        pair = tuple(self.selected)
-        return self._edit(make, f"arcs {pair[0]} and {pair[1]} connected", lambda new: [len(new.arcs) - 1])
-
-    def undo(self) -> bool:
-        """Take the last edit of the level shown back."""
-        return self._shift_edit(self._history, self._redo, "undo", "undone")
-
-    def redo(self) -> bool:
-        """Make the last edit undone on the level shown again (a new edit forgets what was undone)."""
-        return self._shift_edit(self._redo, self._history, "redo", "redone")
-
-    def _shift_edit(
-        self, source: dict[int, list[Abstraction]], target: dict[int, list[Abstraction]], verb: str, done: str
-    ) -> bool:
-        """Move the last logo of the level shown from one stack (edits, or edits undone) to the other."""
-        stack = source.get(self.level)
-        if not stack:
-            return self._say(f"error: nothing to {verb} on this level", ok=False)
-        target.setdefault(self.level, []).append(stack.pop())
-        self.selected = []
-        self._cache.clear()
-        return self._say(f"edit {done}; {self.title}")
-
-    @property
-    def n_edits(self) -> int:
-        """Edits made on the level shown."""
-        return len(self._history.get(self.level, []))
-
-    def _reset_edits(self) -> None:
-        self._history, self._redo, self._colours = {}, {}, {}
-        self.selected = []
-        self._cache.clear()
-
-    def _cached(self, key: str, make: Callable[[], Any]) -> Any:
-        """``make()`` once per logo shown and fill option (the cache is keyed on both)."""
-        full = (key, id(self.shown), self.settings.fill, tuple(sorted(self._colours_of_shown().items())))
-        if full not in self._cache:
-            self._cache[full] = make()
-        return self._cache[full]
-
-    # ------------------------------------------------------------------ fills and downloads
-    def fills(self) -> tuple[Fill, ...] | None:
-        """The fills of the logo shown (None for ``fill = "none"``), as the command line makes them.
-
-        A region given its own colour (:meth:`colour_region_at`) has that colour, flat.
-        """
-        from ..design.fills import parse_fill_option
-
-        a = self.shown
-        spec = parse_fill_option(self.settings.fill)
-        if a is None or spec.mode == "none":
-            return None
-
-        def make() -> tuple[Fill, ...]:
-            made = spec.make(a, self.result.image)
-            own = self._colours_of_shown()
-            return tuple(
-                dataclasses.replace(f, color=own[i], gradient=None) if i in own else f for i, f in enumerate(made)
-            )
-
-        return self._cached("fills", make)
-
-    def _colours_of_shown(self) -> dict[int, str]:
-        """The regions of the logo shown given their own colour: fill index -> ``#rrggbb``."""
-        entry = self._colours.get(id(self.shown))
-        return entry[1] if entry is not None else {}
-
-    def region_at(self, x: float, y: float) -> int | None:
-        """The index of the fill region of the logo shown that holds point (x, y), px (even-odd rule); else None."""
-        import shapely
-
-        fills = self.fills()
-        for i, f in enumerate(fills or ()):
-            inside = sum(bool(shapely.contains_xy(shapely.Polygon(r), float(x), float(y))) for r in f.rings())
-            if inside % 2:
-                return i
-        return None
-
-    def colour_region_at(self, x: float, y: float, colour: str) -> bool:
-        """Give the fill region at (x, y), px, its own flat colour ``colour`` (``#rrggbb``) in the drawing and files."""
-        from ..design.fill_values import parse_color
-
-        if self.fills() is None:
-            return self._say("error: choose fills first (a region's colour changes a fill)", ok=False)
-
-        def act() -> str:
-            value = parse_color(colour, "colour")
-            i = self.region_at(x, y)
-            if i is None:
-                raise InvalidParameterError(f"no region at ({x:.0f}, {y:.0f}) px: click inside a filled region")
-            a = self.shown
-            if a is None:
-                raise InvalidParameterError("press Run first")
-            own = dict(self._colours_of_shown())
-            own[i] = value
-            self._colours[id(a)] = (a, own)
-            return f"region {i}: {value}"
-
-        return self._attempt(act)
-
-    def set_fill(self, fill: str) -> bool:
-        """Colour the logo with the command line's ``--fill`` option ``fill`` (no new Run)."""
-
-        def act() -> str:
-            from ..design.fills import parse_fill_option
-
-            parse_fill_option(fill)
-            old = self.settings
-            self.settings = dataclasses.replace(old, fill=fill)
-            self._colours = {}  # another fill option: other regions, or the same in another order
-            try:
-                fills = self.fills()
-            except Img2LogoError:
-                self.settings = old
-                raise
-            return f"fill {fill}: {len(fills)} regions" if fills is not None else "no fill"
-
-        return self._attempt(act)
-
-    @property
-    def download_stem(self) -> str:
-        """The downloads' name without suffix: the image's stem, the level, and ``-edited`` after an edit.
-
-        ``hedgehog-level12-edited``: the variants a designer saves do not overwrite each other.
-        """
-        if not self.levels:
-            return self.stem
-        return f"{self.stem}-level{self.level}" + ("-edited" if self.n_edits else "")
-
-    def download_names(self, formats: tuple[str, ...] = DOWNLOAD_FORMATS) -> dict[str, str]:
-        """The file name of each download, by format (:data:`DOWNLOAD_FORMATS`)."""
-        check = set(formats) - set(DOWNLOAD_FORMATS)
-        if check:
-            raise InvalidParameterError(f"format must be one of {', '.join(DOWNLOAD_FORMATS)}, got {sorted(check)}")
-        ends = {"png-transparent": "-transparent.png", "png-input": "-over-input.png"}
-        return {fmt: self.download_stem + ends.get(fmt, "." + fmt) for fmt in formats}
-
-    def downloads(self, formats: tuple[str, ...] = DOWNLOAD_FORMATS) -> dict[str, bytes]:
-        """The files of the logo shown, by format: the bytes the command line's writers give.
-
-        ``img2logo INPUT --level t --fill F --svg/--json/--pdf/--png [--png-background B]`` writes
-        these files for the level without edits: ``png`` is on white, ``png-transparent`` on
-        nothing, ``png-input`` over the faded input (the writers
-        :func:`~img2logo.export.writers.write_svg`, :func:`~img2logo.export.writers.write_json`,
-        :func:`~img2logo.export.writers.write_pdf` and :func:`~img2logo.export.writers.write_png`
-        are called as the command line calls them, into a temporary folder).
-        """
-        from ..export import writers
-
-        a = self.shown
-        if a is None:
-            raise InvalidParameterError("nothing to download: press Run first")
-        names = self.download_names(formats)
-        fills = self.fills()
-        backgrounds = {"png": "white", "png-transparent": "transparent", "png-input": "input"}
-
-        def make() -> dict[str, bytes]:
-            out: dict[str, bytes] = {}
-            with tempfile.TemporaryDirectory(prefix="img2logo-studio-") as folder:
-                for fmt in formats:
-                    path = Path(folder) / names[fmt]
-                    if fmt == "json":
-                        writers.write_json(a, path, fills=fills)
-                    elif fmt == "svg":
-                        writers.write_svg(a, path, fills=fills)
-                    elif fmt == "pdf":
-                        writers.write_pdf(a, path, fills=fills)
-                    else:
-                        writers.write_png(
-                            a, path, image=self.result.image.rgb, fills=fills, background=backgrounds[fmt]
-                        )
-                    out[fmt] = path.read_bytes()
-            return out
-
-        return self._cached("downloads:" + ",".join(formats), make)
-
-
-def free_ends(a: Abstraction, arc: int) -> list[int]:
-    """The ends of arc ``arc`` where no other arc meets it (free ends, :func:`img2logo.design.edits.connect`)."""
-    ends = a.arc_junctions[arc]
-    out = []
-    for j in (ends.start, ends.end):
-        if j is not None and set(a.junction_arcs[j]) == {arc} and j not in out:
-            out.append(j)
-    return out
 
 
 __all__ = [

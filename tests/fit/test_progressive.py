@@ -454,3 +454,55 @@ def test_a_simplified_group_whose_arc_crosses_another_is_split_on_a_photo_like()
     assert result.progression.stats["split_groups"] >= 1
     for level in (result.levels[0], result.final):
         assert len(quality.crossings(level)) == 0 and len(quality.near_miss_gaps(level)) == 0
+
+
+# --------------------------------------------------------------------------- the silhouette held to T
+def _bumpy(bump: int = 10) -> np.ndarray:
+    """A clip art: an ellipse with three round bumps on its edge and an inner fill, drawn at 4x and reduced."""
+    s = 4
+    big = np.full((256 * s, 256 * s, 3), 255, np.uint8)
+    cv2.ellipse(big, (128 * s, 128 * s), (90 * s, 60 * s), 0, 0, 360, (200, 120, 40), -1)
+    for angle in np.radians([40, 150, 260]):
+        centre = (int((128 + 90 * np.cos(angle)) * s), int((128 + 60 * np.sin(angle)) * s))
+        cv2.circle(big, centre, bump * s, (200, 120, 40), -1)
+    cv2.ellipse(big, (128 * s, 128 * s), (40 * s, 25 * s), 0, 0, 360, (60, 160, 90), -1)
+    return cv2.resize(big, (256, 256), interpolation=cv2.INTER_AREA)
+
+
+def test_the_silhouette_is_held_within_the_tolerance_through_the_merges():
+    """Known answer: E^s is a mean, so without the silhouette the merges cut the bumps off the ellipse's
+    outline (its farthest pixel 11.8 px from the logo); with it, every arc of the outline stays within T
+    of its pixels, and the outline within T and the pixel between the line and the region edge."""
+    from scipy.spatial import cKDTree
+
+    from img2logo.quality import logo_points
+
+    lines = extract_feature_lines(_bumpy())
+    graph = build_segment_graph(lines)
+    edge = cv2.Canny(np.where(lines.regions != 0, 255, 0).astype(np.uint8), 50, 100) > 0
+    outline = np.argwhere(edge)[:, ::-1] + 0.5  # (x, y) px of the object's edge
+
+    def farthest(progression) -> float:
+        return float(cKDTree(logo_points(progression.final)).query(outline)[0].max())
+
+    free = optimize(graph)
+    held = optimize(graph, silhouette=lines.regions == 0)
+    tolerance = held.final.params["tolerance"]
+    assert farthest(free) > 2 * tolerance
+    assert farthest(held) <= tolerance + 1.0
+    assert len(held.final.arcs) <= len(free.final.arcs) + 4  # three bumps kept, not a patchwork
+
+
+def test_outline_segments_are_those_along_the_paper():
+    from img2logo.fit.progressive import outline_segments
+
+    lines = extract_feature_lines(_bumpy())
+    graph = build_segment_graph(lines)
+    on = outline_segments(graph, lines.regions == 0)
+    assert on.any() and not on.all()  # the outline, not the inner fill's edge
+    for i, seg in enumerate(graph.segments):
+        x, y = seg[len(seg) // 2]
+        assert on[i] == (np.hypot(x - 128, y - 128) > 45)  # the inner fill is 25-40 px round, the outline 60-100
+    assert not outline_segments(graph, None).any()
+    with pytest.raises(InvalidParameterError, match="silhouette must have the image's shape"):
+        outline_segments(graph, np.zeros((3, 3), bool))

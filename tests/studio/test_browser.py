@@ -367,7 +367,7 @@ def test_only_some_circle_sizes(page, fish):
 def test_click_a_region_to_give_it_its_own_colour(page, fish):
     import shapely
 
-    from img2logo.studio.page import FILL_PRESETS
+    from img2logo.studio.controls import FILL_PRESETS
     from img2logo.studio.session import Studio
 
     s = Studio("clipart-fish.png")
@@ -418,6 +418,77 @@ def test_the_wheel_zooms_the_hand_pans_and_fit_comes_back(page):
     page.wait_for_function("old => document.querySelector('.img2logo-studio canvas').toDataURL() === old", arg=before)
     assert zoom.inner_text() == "fit"
     _tool(page, "Select")
+
+
+def test_space_held_pans_the_zoomed_drawing_with_any_tool(page):
+    _tool(page, "Select")
+    _focus_drawing(page)
+    box = _canvas_box(page)
+    centre = (box["x"] + box["width"] / 2, box["y"] + box["height"] / 2)
+    before = _logo_pixels(page)
+    page.mouse.move(*centre)
+    page.mouse.wheel(0, -100)
+    page.wait_for_function("old => document.querySelector('.img2logo-studio canvas').toDataURL() !== old", arg=before)
+    zoomed = _logo_pixels(page)
+    page.keyboard.down(" ")
+    page.mouse.down()
+    page.mouse.move(centre[0] + 40, centre[1] + 30, steps=4)
+    page.mouse.up()
+    page.keyboard.up(" ")
+    page.wait_for_function("old => document.querySelector('.img2logo-studio canvas').toDataURL() !== old", arg=zoomed)
+    assert "selected:" not in _status(page)  # the drag panned: it selected nothing
+    # Space released (no press since): a drag with Select is a click again, not a pan.
+    page.wait_for_timeout(800)
+    panned = _logo_pixels(page)
+    page.mouse.move(box["x"] + 3, box["y"] + 3)
+    page.mouse.down()
+    page.mouse.move(box["x"] + 30, box["y"] + 20, steps=3)
+    page.mouse.up()
+    _wait_status(page, "nothing selected")
+    assert _logo_pixels(page) == panned
+    _click_button(page, "Fit")
+    page.wait_for_function("old => document.querySelector('.img2logo-studio canvas').toDataURL() === old", arg=before)
+
+
+def test_click_two_free_ends_and_add_an_arc_on_a_chosen_circle(page, fish):
+    from img2logo.studio.session import Studio
+
+    a = fish.shown
+    i = max(range(len(a.arcs)), key=lambda j: a.arcs[j].length)
+    # The same edits in Python: the free ends the deletion leaves, and the arcs that would join two of them.
+    s = Studio("clipart-fish.png")
+    s.result, s.levels, s.level, s.selected = fish.result, fish.levels, fish.level, [i]
+    assert s.delete_selected(), s.message
+    b = s.shown
+    ends = s.free_end_junctions()
+    assert len(ends) >= 2
+    j0, j1 = ends[0], ends[-1]  # any two, not a pair the page offers
+    _select_arc(page, fish, i)
+    _wait_status(page, f"arc {i} selected")
+    page.keyboard.press("Delete")
+    _wait_status(page, f"arc {i} deleted")
+    for j in (j0, j1):
+        page.mouse.click(*_to_screen(page, *b.junctions[j], (a.width, a.height)))
+        s.select_end_at(*b.junctions[j], 1.0)
+    _wait_status(page, f"free ends {j0} and {j1} chosen")
+    _click_button(page, "Other circle")
+    _wait_status(page, "(option 2 of")
+    s.other_end_circle()
+    arc = s.end_arc()
+    assert arc is not None
+    points = arc.sample(step=1.0)
+    x, y = _to_screen(page, *points[len(points) // 2], (a.width, a.height))
+    _wait_pixels(page, x, y, 2, "d.some((v, i) => i % 4 === 0 && v > 180 && d[i + 1] < 120 && d[i + 2] < 90)")
+    _click_button(page, "Add arc")
+    _wait_status(page, f"arc added between free ends {j0} and {j1}; {len(b.arcs) + 1} arcs")
+    assert "2 edits" in _title(page)
+    with page.expect_download() as info:
+        page.locator(".img2logo-studio a.studio-download", has_text="JSON").first.click()
+    doc = json.loads(Path(info.value.path()).read_text())
+    assert len(doc["arcs"]) == len(b.arcs) + 1
+    for _ in range(2):
+        _click_button(page, "Undo")
+        _wait_status(page, "edit undone")
 
 
 def test_the_labels_are_a_designers_words_with_the_papers_symbol_in_a_tooltip(page):

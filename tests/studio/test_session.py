@@ -566,3 +566,43 @@ def test_the_detail_of_a_clip_art_is_a_setting_of_the_run():
     many = len(s.shown.arcs)
     assert s.run(detail=2), s.message
     assert s.settings.detail == 2 and len(s.shown.arcs) < many
+
+
+def test_any_two_free_ends_clicked_are_joined_on_the_circle_chosen(ran):
+    # Fig. 17 "add" between two ends the designer picks: the open ends of the drawing's strokes.
+    from img2logo.constants import JUNCTION_TOLERANCE
+
+    s = fresh(ran)
+    a = s.shown
+    ends = s.free_end_junctions()
+    assert len(ends) >= 2 and all(len(set(a.junction_arcs[j])) == 1 for j in ends)
+    j0, j1 = ends[0], ends[-1]
+    assert s.select_end_at(*a.junctions[j0] + 2.0, 4.0) == j0 and s.ends == [j0]
+    assert s.end_arc() is None and not s.add_arc_at_ends() and "click two free ends" in s.message
+    assert s.select_end_at(*a.junctions[j1], 4.0) == j1 and s.ends == [j0, j1]
+    assert f"free ends {j0} and {j1} chosen" in s.message and "option 1 of" in s.message
+    seen = []
+    for _ in range(3):  # each option is another circle through both ends
+        arc = s.end_arc()
+        assert arc is not None and np.abs(arc.circle.distance(a.junctions[[j0, j1]])).max() <= JUNCTION_TOLERANCE
+        seen.append((arc.circle.cx, arc.circle.cy, arc.circle.r))
+        assert s.other_end_circle()
+    assert len(set(seen)) == 3
+    chosen = s.end_arc()
+    assert s.add_arc_at_ends(), s.message
+    b = s.shown
+    assert len(b.arcs) == len(a.arcs) + 1 and b.arcs[-1] == chosen and s.selected == [len(a.arcs)]
+    assert b.arc_junctions[-1].start == j0 and b.arc_junctions[-1].end == j1 and s.ends == []
+    assert j0 not in s.free_end_junctions() and j1 not in s.free_end_junctions()
+    assert s.undo() and s.shown is a
+
+
+def test_a_click_away_from_every_free_end_chooses_none(ran):
+    s = fresh(ran)
+    a = s.shown
+    far = a.junctions[s.free_end_junctions()].min(axis=0) - 50.0
+    assert s.select_end_at(*far, 4.0) is None and s.ends == []
+    j = s.free_end_junctions()[0]
+    assert s.select_end_at(*a.junctions[j], 4.0) == j
+    assert s.select_end_at(*a.junctions[j], 4.0) == j and s.ends == [] and s.message == "no free end chosen"
+    assert not s.other_end_circle() and s.message.startswith("error: click two free ends")
