@@ -716,6 +716,8 @@ class FitState:
         lines: Collection[int] | None = None,
         bound: float | None = None,
         regroup: Regroup | None = None,
+        tried: set[int] | None = None,
+        stop_when_stuck: bool = False,
     ) -> Solution | None:
         """Eqn. 13 over a window of ``groups`` (:func:`~img2logo.fit.constrained_fit.fit_window`), then their arcs.
 
@@ -730,7 +732,9 @@ class FitState:
         from its level's); default found in ``seeds``. With ``bound`` (px), None
         as soon as E^s (Eqn. 3) of the state with the new fits and displacements
         must exceed it, and ``regroup`` may split groups anew before their arcs
-        are extracted (:meth:`_fits_within`; a tangent join's slide). None if it fails.
+        are extracted (:meth:`_fits_within`; a tangent join's slide). None if it fails;
+        then ``tried``, when given, receives the groups of the last (widest) window solved.
+        ``stop_when_stuck``: that of :func:`~img2logo.fit.constrained_fit.fit_window`.
         """
         fixed = set(fixed)
         fixed.update({g for g in groups if seeds[g].k is None} if lines is None else lines)
@@ -757,8 +761,11 @@ class FitState:
             tangencies=cast(Mapping[Hashable, tuple[Hashable, Hashable]], self._touching(groups, seeds, tangent))
             if tangent
             else None,
+            stop_when_stuck=stop_when_stuck,
         )
         if not window.ok:
+            if tried is not None:
+                tried.update(cast(Collection[int], window.circles))
             return None
         if bound is not None:
             return self._fits_within(window, groups, seeds, fixed, node_groups, bound, regroup)

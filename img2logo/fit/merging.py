@@ -86,8 +86,15 @@ def candidates(state: FitState) -> list[Pair]:
     return out
 
 
-def evaluate(state: FitState, pair: Pair) -> MergeOutcome | None:
-    """Merge ``pair`` tentatively, refit, and score it; None if infeasible."""
+def evaluate(state: FitState, pair: Pair, tried: set[int] | None = None) -> MergeOutcome | None:
+    """Merge ``pair`` tentatively, refit, and score it; None if infeasible.
+
+    ``tried``: when given and the refit fails (its windows, or the global
+    problem, have no solution), it receives the groups of the state whose
+    circles the windows held (the pair's two for the merged group): the
+    problem they solved, but for the weights 1/|A| and 1/|J'|, stays as it is
+    until a merge changes one of them (:func:`merge_loop`).
+    """
     state.stats.evaluated += 1
     a, b, node = pair
     level = _level(state)
@@ -126,6 +133,7 @@ def evaluate(state: FitState, pair: Pair) -> MergeOutcome | None:
         lines.append(-1)
     global_solve = not state.options.localized
     out: Solution | None = None
+    windows: set[int] = set()  # the groups of the windows that failed
 
     def solve_window(fixed: set[int], tangent: bool | set[int] = False, rings: int = 2) -> Solution | None:
         return state.solve(
@@ -143,6 +151,8 @@ def evaluate(state: FitState, pair: Pair) -> MergeOutcome | None:
             tangent=tangent,
             cap=cap,
             lines=lines,
+            tried=windows,
+            stop_when_stuck=rings > 2,
         )
 
     if not global_solve and hold:
@@ -162,6 +172,7 @@ def evaluate(state: FitState, pair: Pair) -> MergeOutcome | None:
             # solve (measured: such windows fail globally too).
             if state.golden_error(merged) > state.options.tolerance:
                 state.stats.rejected_hopeless += 1
+                _tried(pair, windows, tried)
                 return None
             # The paper solves the global problem here; a window of a bounded number of
             # rings costs the same however large the drawing (MERGE_FALLBACK_RINGS).
@@ -189,6 +200,7 @@ def evaluate(state: FitState, pair: Pair) -> MergeOutcome | None:
         if out is None:
             out = solve_global()
     if out is None:  # the wider window (or the global problem) has no solution either
+        _tried(pair, windows, tried)
         return None
     fits, disp = out
     if cap is not None and fits[-1].arc.frechet > cap:  # (then the window's other arcs were not extracted)
@@ -213,6 +225,12 @@ def evaluate(state: FitState, pair: Pair) -> MergeOutcome | None:
     return MergeOutcome(
         pair, merged, fits, disp, window_ids, delta_f, delta_d, nj_after - len(old_nodes), redundant, global_solve
     )
+
+
+def _tried(pair: Pair, windows: set[int], tried: set[int] | None) -> None:
+    """For a refit of :func:`evaluate` that failed: ``tried`` receives the groups of ``windows`` (-1: the pair's)."""
+    if tried is not None:
+        tried.update(windows - {-1}, pair[:2] if -1 in windows else ())
 
 
 #: A fit's :func:`_overshoots`, by the fit (its arc was extracted through its junctions' points then:
@@ -663,6 +681,20 @@ def merge_loop(
     """
     cache: dict[Pair, MergeOutcome | None] = {}
     stale: set[Pair] = set()
+    # A candidate whose refit failed, by the groups its windows held (evaluate's ``tried``): it is
+    # tried again once a merge changed one of them, like a candidate with a score (the windows'
+    # constraints are the same until then; only the weights 1/|A|, 1/|J'| of their objective move).
+    failed: dict[Pair, frozenset[int]] = {}
+
+    def score(pair: Pair) -> None:
+        tried: set[int] = set()
+        cache[pair] = out = evaluate(state, pair, tried)
+        stale.discard(pair)
+        if out is None and tried:
+            failed[pair] = frozenset(tried)
+        else:
+            failed.pop(pair, None)
+
     while True:
         pairs = candidates(state)
         if not pairs:
@@ -675,8 +707,7 @@ def merge_loop(
                 if pair not in cache or (pair in stale and cache[pair] is None):
                     if over_budget is not None and over_budget():
                         return TIME_BUDGET_STOP
-                    cache[pair] = evaluate(state, pair)
-                    stale.discard(pair)
+                    score(pair)
                 out = cache[pair]
                 if out is None or ((out.redundant or out.gaps) and pair not in stale):
                     continue
@@ -688,8 +719,7 @@ def merge_loop(
                 break
             if over_budget is not None and over_budget():
                 return TIME_BUDGET_STOP
-            cache[best] = evaluate(state, best)
-            stale.discard(best)
+            score(best)
         state.stats.rejected_intersections = sum(1 for o in cache.values() if o is not None and o.redundant)
         state.stats.rejected_gaps = sum(1 for o in cache.values() if o is not None and o.gaps)
         if best is None:
@@ -712,8 +742,10 @@ def merge_loop(
             state.held = state.touching_joins(state.held | set(outcome.merged.ends))
         changed = outcome.window | {outcome.pair[0], outcome.pair[1]}
         cache = {p: o for p, o in cache.items() if p[0] in state.groups and p[1] in state.groups}
+        failed = {p: w for p, w in failed.items() if p in cache}
         for p, o in cache.items():
-            if outcome.global_solve or o is None or (o.window & changed):
+            window = o.window if o is not None else failed.get(p)
+            if outcome.global_solve or window is None or (window & changed):
                 stale.add(p)
         stale &= set(cache)
         if merged is not None:

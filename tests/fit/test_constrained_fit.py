@@ -434,3 +434,22 @@ def test_window_problem_is_what_fit_constrained_solves(chain):
     assert np.array_equal(cfit._fit(problem).centers, public.centers)  # the same arithmetic
     with pytest.raises(dataclasses.FrozenInstanceError):
         problem.tol = 1.0  # type: ignore[misc]
+
+
+def test_window_stops_growing_when_a_ring_leaves_the_violation_as_it_was():
+    """``stop_when_stuck``: two fixed circles 10 px apart share junction 0; no ring can close that gap."""
+    radii = {c: 10.0 for c in range(5)}
+    centers = {0: np.array([-10.0, 0.0]), **{c: np.array([20.0 * c, 0.0]) for c in range(1, 5)}}
+    t = np.linspace(-1.0, 1.0, 21)
+    points = {c: np.stack([centers[c][0] + 10 * np.cos(t), 10 * np.sin(t) + 10.0], axis=1) for c in range(5)}
+    circle_junctions = {0: (0,), 1: (0, 1), 2: (1, 2), 3: (2, 3), 4: (3,)}
+    junction_circles = {0: [0, 1], 1: [1, 2], 2: [2, 3], 3: [3, 4]}
+    junctions = np.array([[5.0, 0.0], [30.0, 0.0], [50.0, 0.0], [70.0, 0.0]])
+    args = (points, radii, centers, circle_junctions, junction_circles, junctions)
+    kwargs = {"changed": [0], "free_junctions": [0], "fixed": {0, 1}, "rings": 4}
+    every = cfit.fit_window(*args, **kwargs)
+    assert not every.ok and every.circles == (0, 1, 2, 3, 4)  # four rings, all failed
+    stuck = cfit.fit_window(*args, **kwargs, stop_when_stuck=True)
+    assert not stuck.ok and stuck.circles == (0, 1, 2)  # the second ring ended as the first: no third
+    assert stuck.fit.violation == pytest.approx(every.fit.violation, rel=cfit.STUCK_VIOLATION_CHANGE)
+    assert cfit._stuck(1.0, 1.005, 1e-6) and not cfit._stuck(1.0, 0.9, 1e-6) and cfit._stuck(1e-7, 5e-7, 1e-6)

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import dataclasses
+import itertools
 
 import numpy as np
 import pytest
@@ -248,8 +249,8 @@ def test_the_loop_refuses_a_merge_that_would_leave_a_near_miss_gap(monkeypatch):
     # Every refit of the line sags 3 px (as the coffee cup's rim's did), then the loop must not merge.
     real = merging.evaluate
 
-    def sagging(state, pair):
-        out = real(state, pair)
+    def sagging(state, pair, tried=None):
+        out = real(state, pair, tried)
         if out is None or pair[:2] != (0, 1):
             return out
         fits = {**out.fits, -1: _sagging(3.0)}
@@ -406,3 +407,37 @@ def test_the_levels_arrays_are_made_again_after_a_merge():
     again = _level(state)
     assert again is not first and again.gids == (2, 3) and again.inner == {1: [3]}
     assert again.flat.tolist() == [n for g in state.groups.values() for n in state.constrained_nodes(g)]
+
+
+def _four_arcs_chain() -> SegmentGraph:
+    """Four arcs of one golden circle (k = 9) end to end over 270 degrees, nodes 0 ... 4."""
+    c, r = np.array([300.0, 300.0]), golden_radius(9)
+    cuts = np.linspace(0.0, 1.5 * np.pi, 5)
+    arcs = tuple(sampled_arc(c, r, t0, t1) for t0, t1 in itertools.pairwise(cuts))
+    junctions = np.array([arcs[0][0], *(a[-1] for a in arcs)])
+    return SegmentGraph(arcs, junctions, np.array([[i, i + 1] for i in range(4)]), 600, 600)
+
+
+@pytest.mark.parametrize("whole", [False, True])
+def test_a_failed_candidate_is_tried_again_only_once_a_merge_changed_its_windows(monkeypatch, whole):
+    # (1, 2) and (2, 3) fail; (0, 1) is merged first. The refit of (2, 3) held group 3 alone
+    # (whole False): merging (0, 1) left it as it was, and it is not tried again; holding every
+    # group (whole True), the merge changed its windows and it is.
+    from img2logo.fit import merging
+
+    real, calls = merging.evaluate, []
+
+    def evaluate_(state, pair, tried=None):
+        calls.append(pair)
+        if pair[:2] in ((1, 2), (2, 3)):
+            state.stats.evaluated += 1
+            tried.update(set(state.groups) if whole else {pair[1]})
+            return None
+        return real(state, pair, tried)
+
+    monkeypatch.setattr(merging, "evaluate", evaluate_)
+    state = hand_built_state(_four_arcs_chain(), tangency=False)
+    initial_fit(state)
+    merging.merge_loop(state, 5.0)
+    assert calls[:3] == [(0, 1, 1), (1, 2, 2), (2, 3, 3)]
+    assert calls.count((2, 3, 3)) == (2 if whole else 1)
