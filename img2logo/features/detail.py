@@ -42,9 +42,10 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ..constants import CLIPART_MARK_CONTRAST, CLIPART_MAX_REGIONS, CLIPART_OUTLINE_WIDTH, LINE_JOIN_DISTANCE
+from ..constants import LINE_JOIN_DISTANCE
 from ..errors import InvalidParameterError
 from .clipart import ink_outlines, label_means, outline_strokes, thin_regions
+from .constants import CLIPART_MARK_CONTRAST, CLIPART_MAX_REGIONS, CLIPART_OUTLINE_WIDTH
 
 
 def check_detail(value: object) -> int:
@@ -257,7 +258,7 @@ def close_line_ends(lines: np.ndarray, regions: np.ndarray, lab: np.ndarray, bud
 
     1. **joined** to the line it stops short of, when one is within
        ``CLIPART_OUTLINE_WIDTH`` + ``LINE_JOIN_DISTANCE`` px
-       (:func:`img2logo.images.skeleton.join_line_ends`): a stroke that meets
+       (:func:`img2logo.images.line_ends.join_line_ends`): a stroke that meets
        the silhouette in the input stops an outline's width short of it in the
        map (its pixels there are the silhouette's line,
        :func:`img2logo.features.clipart.clipart_lines`), and one that meets an
@@ -296,8 +297,9 @@ def close_line_ends(lines: np.ndarray, regions: np.ndarray, lab: np.ndarray, bud
     import cv2
 
     from ..images import skeleton
+    from ..images.line_ends import join_line_ends
 
-    out = skeleton.join_line_ends(np.asarray(lines, dtype=bool), CLIPART_OUTLINE_WIDTH + LINE_JOIN_DISTANCE)
+    out = join_line_ends(np.asarray(lines, dtype=bool), CLIPART_OUTLINE_WIDTH + LINE_JOIN_DISTANCE)
     if budget <= 0.0:
         return out
     graph = skeleton.trace(out)
