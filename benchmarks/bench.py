@@ -34,8 +34,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))  # growth.py beside thi
 import growth
 
 from img2logo import build_segment_graph, extract_feature_lines, load_image
-from img2logo.constants import TIME_BUDGET
 from img2logo.fit.progressive import optimize
+from img2logo.options import TIME_BUDGET
 from img2logo.pipeline import abstract
 
 ROOT = Path(__file__).resolve().parents[1]

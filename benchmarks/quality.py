@@ -208,8 +208,8 @@ def run_case(case: dict) -> tuple[dict, object]:
 def ink_columns(case: dict, result) -> dict:
     """Ink parts lost (clip arts, drawings) and the stroke width ratio (drawings) of one run."""
     from img2logo import quality
-    from img2logo.constants import INK_PART_GRAY
     from img2logo.export.plotting import level_stroke_width
+    from img2logo.quality import INK_PART_GRAY
 
     out = dict.fromkeys(INK_COLUMNS, np.nan)
     if case["kind"] in ("clipart", "drawing", THICK):

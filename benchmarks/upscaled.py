@@ -4,7 +4,7 @@
 512 px image of ``benchmarks/data/`` (bicubic) to N px and works it at W px (each N:W pair), then
 prints one row per run: the kind detected, arcs, r3/r6/r10 of the logo scaled back to the 512 px
 ground truth (so 10 px of the original at any N), near-miss gaps, crossings and the CPU seconds
-of ``abstract``. How ``SYNTHETIC_WORK_SIDE`` (``img2logo/constants.py``) was chosen. A
+of ``abstract``. How ``SYNTHETIC_WORK_SIDE`` (``img2logo/constants.py``, ``docs/design/defaults.md``) was chosen. A
 benchmark, not a test.
 """
 

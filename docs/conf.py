@@ -40,7 +40,7 @@ html_title = f"img2logo {release}"
 # A wider page than alabaster's 940 px, still within a 1366 px window.
 html_theme_options = {"page_width": "1200px"}
 # The site reads offline: MathJax from the notebooks' local copy when make html made it.
-# The package re-exports its values (img2logo.Abstraction is img2logo.geometry.primitives.Abstraction):
+# The package re-exports its values (img2logo.Abstraction is img2logo.geometry.abstraction.Abstraction):
 # a cross-reference finds both; either is right.
 suppress_warnings = ["ref.python"]
 nitpicky = False

@@ -29,8 +29,9 @@ from .features.preprocessing import (
 )
 from .fit.progressive import Progression as Progression, TimeBudgetWarning as TimeBudgetWarning, optimize as optimize
 from .fit.recovery import ConnectivityWarning as ConnectivityWarning
+from .geometry.abstraction import Abstraction as Abstraction
 from .geometry.golden_ladder import FibonacciLadder as FibonacciLadder, GoldenLadder as GoldenLadder
-from .geometry.primitives import Abstraction as Abstraction, Arc as Arc, Circle as Circle
+from .geometry.primitives import Arc as Arc, Circle as Circle
 from .images.loading import (
     DownscaleWarning as DownscaleWarning,
     LoadedImage as LoadedImage,

@@ -25,7 +25,16 @@ from typing import IO
 
 from .errors import InvalidParameterError, OutputError
 
-__all__ = ["as_path", "atomic_write", "check_output_paths", "os_message", "output_set", "printable", "remove_file"]
+__all__ = [
+    "as_path",
+    "atomic_write",
+    "check_output_paths",
+    "make_folders",
+    "os_message",
+    "output_set",
+    "printable",
+    "remove_file",
+]
 
 
 def printable(text: object) -> str:
@@ -262,7 +271,7 @@ def atomic_write(path: str | os.PathLike[str], write: Callable[[IO[bytes]], obje
     try:
         if target.is_dir():
             raise IsADirectoryError(errno.EISDIR, "is a directory", str(target))
-        _make_parents(target.parent, stage)
+        make_folders(target.parent, None if stage is None else stage.folders)
         _remove_stale_temporaries(target)
         fd, tmp = _open_temporary(target)
     except OSError as exc:
@@ -357,8 +366,12 @@ def _process_alive(pid: int) -> bool:
     return True
 
 
-def _make_parents(folder: Path, stage: _Stage | None) -> None:
-    """Create ``folder`` and its missing parents; a stage records those it created."""
+def make_folders(folder: Path, made: list[Path] | None = None) -> None:
+    """Create ``folder`` and its missing parents, appending each one created to ``made`` as it is made.
+
+    ``made`` is filled as the folders appear, so that a caller can remove them
+    again (deepest first) when a later step fails, even if this call failed part way.
+    """
     missing = []
     p = folder
     while not p.exists() and p != p.parent:
@@ -371,8 +384,8 @@ def _make_parents(folder: Path, stage: _Stage | None) -> None:
             if not p.is_dir():
                 raise
             continue
-        if stage is not None:
-            stage.folders.append(p)
+        if made is not None:
+            made.append(p)
 
 
 def os_message(target: Path, exc: OSError) -> str:

@@ -22,16 +22,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from ._validation import check_choice, check_positive
-from .constants import (
-    DETAIL,
-    MAX_ANGLE_DEGREES,
-    MAX_LENGTH,
-    MIN_LADDER_RADIUS,
-    MIN_SEGMENT_LENGTH,
-    RDP_TOLERANCE,
-    TIME_BUDGET,
-    TOLERANCE,
-)
+from .constants import DETAIL, MAX_LENGTH, MIN_LADDER_RADIUS, MIN_SEGMENT_LENGTH, RDP_TOLERANCE, TOLERANCE
 from .errors import InvalidParameterError, UnknownOptionError
 
 __all__ = [
@@ -45,6 +36,13 @@ __all__ = [
     "cli_fields",
     "refuse_lock_mask",
 ]
+
+#: The largest angle an option takes, degrees (``symmetry``'s axis direction, either sign).
+MAX_ANGLE_DEGREES: float = 360.0
+
+#: Default time budget of the progressive optimization, s of CPU time of the process running it (on an idle machine
+#: about the wall time): past it the merge loop stops at its last level (``Options.time_budget``).
+TIME_BUDGET: float = 10.0
 
 #: ``max_arc_distance``'s default: ``PHOTO_MAX_ARC_FACTOR * tolerance`` for a photo, no bound otherwise.
 AUTO: str = "auto"

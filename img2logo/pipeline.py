@@ -17,17 +17,26 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .constants import MIN_STROKE_WIDTH, PHOTO_MAX_ARC_FACTOR, PHOTO_WORK_SIDE, SYNTHETIC_WORK_SIDE
+from .constants import SYNTHETIC_WORK_SIDE
 from .errors import InvalidParameterError
+from .export.constants import MIN_STROKE_WIDTH
 from .features.preprocessing import FeatureLines, LoadedImage, extract_feature_lines, load_image, photo_reason
 from .fit.progressive import ProgressCallback, Progression, optimize
-from .geometry.primitives import Abstraction
+from .geometry.abstraction import Abstraction
 from .images.loading import downscale, mask_to_working_size, warn_downscaled
 from .options import AUTO, Options, check_lock_mask, check_symmetry_option
 from .segment_graph import SegmentGraph, build_segment_graph
 
 if TYPE_CHECKING:  # the symmetry module loads only for a run that asks for an axis
     from .fit.symmetry import SymmetryChoice
+
+#: A photo is worked at most this size on its longer side, px (the result is scaled back to the input's pixels, as
+#: for MAX_IMAGE_SIDE).
+PHOTO_WORK_SIDE: int = 512
+
+#: Photos: a merge whose new arc lies farther than this many T (discrete Fréchet distance) from its pixels is
+#: rejected: T bounds every arc, not only their mean E^s.
+PHOTO_MAX_ARC_FACTOR: float = 1.0
 
 #: ``abstract``'s ``tolerance`` and ``kind`` when not given: those of ``options`` (default 5 px, "auto").
 _DEFAULT: Any = type("Default", (), {"__repr__": lambda self: "<default>"})()

@@ -44,19 +44,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._validation import check_instance, check_positive
-from .constants import (
-    CROSSING_END_DISTANCE,
-    GAP_MAX,
-    GAP_MIN,
-    INK_PART_DISTANCE,
-    INK_PART_GRAY,
-    INK_PART_MIN_AREA,
-    OUTSIDE_DISTANCE,
-    QUALITY_SAMPLE_STEP,
-    SILHOUETTE_DISTANCE,
-    SMOOTH_JOIN_ANGLE,
-    TANGENT_JOIN_ANGLE,
-)
+from .constants import GAP_MAX, GAP_MIN, SMOOTH_JOIN_ANGLE, TANGENT_JOIN_ANGLE
 from .errors import InvalidParameterError
 from .fit.arc_extraction import (
     RedundantIntersection,
@@ -65,8 +53,29 @@ from .fit.arc_extraction import (
     nearest_on_arc,
     redundant_intersections,
 )
-from .geometry.primitives import Abstraction, Arc
+from .geometry.abstraction import Abstraction
+from .geometry.primitives import Arc
 from .segment_graph import SegmentGraph
+
+#: Spacing of the points sampled along a logo's arcs to measure it, px: well under the 3 px of the finest recall
+#: measure.
+QUALITY_SAMPLE_STEP: float = 0.5
+#: Ink parts lost (``quality.lost_ink_parts``): a pixel of the input darker than this gray (0..1, mid-grey) is ink:
+#: the black or coloured strokes, outlines and dots of a drawing or a clip art, not its light fills nor the paper.
+INK_PART_GRAY: float = 0.5
+#: ... an 8-connected part of ink of at least this many px is content (an eye of a 6 px dot has 28 px); smaller
+#: ones are specks of anti-aliasing or JPEG ringing ...
+INK_PART_MIN_AREA: int = 30
+#: ... and it is lost when no logo point is within this of any of its pixels, px: the finest recall distance (r3).
+INK_PART_DISTANCE: float = 3.0
+#: sil6: an object outline pixel within this of the logo is kept, px.
+SILHOUETTE_DISTANCE: float = 6.0
+#: A logo point farther than this from the object mask is on the background, px: twice the silhouette distance, so
+#: a slightly loose outline does not count.
+OUTSIDE_DISTANCE: float = 12.0
+#: Two arcs meeting farther than this from all their end points cross, px: arcs that meet at a junction end there
+#: (to 1e-3 px); 1.5 px leaves room for the two nearby crossings of circles that touch at a shared junction.
+CROSSING_END_DISTANCE: float = 1.5
 
 #: Distances of the recall measures r3, r6, r10, px.
 RECALL_DISTANCES: tuple[float, ...] = (3.0, 6.0, 10.0)

@@ -17,19 +17,15 @@ from functools import cached_property
 import numpy as np
 
 from ._validation import check_positive, readonly
-from .constants import (
-    JUNCTION_MERGE_DISTANCE,
-    MAX_RADIUS_FACTOR,
-    MIN_SEGMENT_LENGTH,
-    RDP_TOLERANCE,
-    SMOOTH_JOIN_ANGLE,
-    SMOOTH_TANGENT_LENGTH,
-)
+from .constants import JUNCTION_MERGE_DISTANCE, MAX_RADIUS_FACTOR, MIN_SEGMENT_LENGTH, RDP_TOLERANCE, SMOOTH_JOIN_ANGLE
 from .errors import FitError, InvalidParameterError
 from .geometry.circle_fitting import fit_circle
 from .geometry.primitives import cumulative_length, polyline_length
 from .images import skeleton as _skeleton
 from .images.ndimage import skeletonize
+
+#: A segment's end tangent is that of the circle fitted to its pixels within this arc length of the node, px.
+SMOOTH_TANGENT_LENGTH: float = 30.0
 
 
 @dataclass(frozen=True, eq=False)
@@ -118,7 +114,7 @@ class SegmentGraph:
             at.setdefault(a, []).append((i, 0))
             at.setdefault(b, []).append((i, 1))
         pairs = [(k, ends) for k, ends in at.items() if len(ends) == 2 and ends[0][0] != ends[1][0]]
-        if kernels.usable() and pairs:
+        if pairs:
             # Every end's tangent in one compiled call (the same steps as end_tangent's).
             sizes = np.array([len(s) for s in self.segments], dtype=np.int64)
             stops = np.cumsum(sizes)
@@ -130,10 +126,6 @@ class SegmentGraph:
             )
             for m, (k, _) in enumerate(pairs):
                 out[k] = float(np.arccos(np.clip(-np.dot(tangents[2 * m], tangents[2 * m + 1]), -1.0, 1.0)))
-            return readonly(out)
-        for k, ends in pairs:
-            t0, t1 = (end_tangent(self.segments[i], e == 0) for i, e in ends)
-            out[k] = float(np.arccos(np.clip(-np.dot(t0, t1), -1.0, 1.0)))
         return readonly(out)
 
     def smooth_nodes(self, max_turn: float = SMOOTH_JOIN_ANGLE) -> frozenset[int]:

@@ -14,7 +14,8 @@ import numpy as np
 from scipy import ndimage
 
 from img2logo.constants import PHI
-from img2logo.geometry.primitives import TAU, Abstraction, Arc, Circle
+from img2logo.geometry.abstraction import Abstraction
+from img2logo.geometry.primitives import TAU, Arc, Circle
 from img2logo.segment_graph import SegmentGraph
 
 DATA = Path(__file__).resolve().parents[1] / "data"

@@ -79,7 +79,7 @@ def _cycle(graph: dict[str, set[str]]) -> list[str] | None:
 def test_no_import_cycle():
     graph = _imports()
     assert {"design.fills", "export.plotting", "export.writers", "export.contract", "geometry.svg_path"} <= set(graph)
-    assert "export.plotting" in graph["export.writers"] and "design.fill_values" in graph["export.plotting"]  # read
+    assert "export.plotting" in graph["export.figures"] and "design.fill_values" in graph["export.plotting"]  # read
     assert _cycle(graph) is None, " -> ".join(_cycle(graph) or [])
 
 
@@ -154,6 +154,8 @@ CONTRACT_MODULES = {
     "img2logo.errors",
     "img2logo.design.fill_values",
     "img2logo.geometry.primitives",
+    "img2logo.geometry.abstraction",
+    "img2logo.geometry.constants",
     "img2logo.geometry.golden_ladder",
     "img2logo.geometry.mirror",
     "img2logo.geometry.svg_path",
@@ -197,3 +199,63 @@ def test_a_clip_art_run_of_the_command_loads_only_what_it_needs(tmp_path):
     assert blas == "1"
     assert ast.literal_eval(loaded) == []
     assert svg.read_text().startswith("<?xml")
+
+
+def _private_imports(path: Path, root: Path = PACKAGE.parent) -> list[str]:
+    """``from img2logo.x import _name`` in ``path`` where ``_name`` belongs to another package: "line: x._name".
+
+    A module may use the private names of its own package (a library module's
+    folder); anything else (another package, a test, a benchmark) uses public
+    names. A submodule (``from img2logo import _io``) is a module, not a name,
+    and a compiled kernel's Python reference (``*_reference``), its oracle, is
+    the tests' to import.
+    """
+    rel = path.relative_to(root)
+    in_library = rel.parts[0] == "img2logo"
+    package = list(rel.parent.parts)
+    found = []
+    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        if not isinstance(node, ast.ImportFrom):
+            continue
+        module = (node.module or "").split(".") if node.module else []
+        target = package[: len(package) - (node.level - 1)] + module if node.level else module
+        if target[:1] != ["img2logo"]:
+            continue
+        for alias in node.names:
+            name = alias.name
+            if not name.startswith("_") or name.startswith("__"):
+                continue
+            folder = root.joinpath(*target)
+            if (folder / f"{name}.py").exists() or (folder / name / "__init__.py").exists():
+                continue  # a private module, imported as a module
+            if not in_library and name.endswith("_reference"):
+                continue
+            own_package = target[:-1] if (root.joinpath(*target).with_suffix(".py")).exists() else target
+            if in_library and own_package == package:
+                continue
+            found.append(f"{rel}:{node.lineno}: {'.'.join(target)}.{name}")
+    return found
+
+
+def test_no_module_imports_another_packages_private_names():
+    root = PACKAGE.parent
+    files = [p for folder in ("img2logo", "tests", "benchmarks", "tools") for p in (root / folder).rglob("*.py")]
+    assert len(files) > 100
+    found = [hit for p in sorted(files) for hit in _private_imports(p)]
+    assert not found, "\n".join(found)
+
+
+def test_a_private_name_of_another_package_is_found(tmp_path):
+    (tmp_path / "img2logo" / "fit").mkdir(parents=True)
+    (tmp_path / "tests").mkdir()
+    for name in ("__init__.py", "_io.py", "fit/__init__.py", "fit/a.py", "fit/b.py"):
+        (tmp_path / "img2logo" / name).write_text("")
+    (tmp_path / "img2logo" / "fit" / "b.py").write_text("from .a import _own\nfrom .._io import _Stage\n")
+    probe = tmp_path / "tests" / "test_probe.py"
+    probe.write_text(
+        "from img2logo._io import _Stage\nfrom img2logo import _io\nfrom img2logo.fit.a import _x_reference\n"
+    )
+    assert _private_imports(probe, tmp_path) == ["tests/test_probe.py:1: img2logo._io._Stage"]
+    assert _private_imports(tmp_path / "img2logo" / "fit" / "b.py", tmp_path) == [
+        "img2logo/fit/b.py:2: img2logo._io._Stage"
+    ]

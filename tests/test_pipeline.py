@@ -222,9 +222,9 @@ def test_a_photo_over_the_photo_working_size_is_worked_at_it_and_drawn_in_its_ow
 
     import cv2
 
-    from img2logo.constants import PHOTO_WORK_SIDE
     from img2logo.export import contract
     from img2logo.images.loading import DownscaleWarning
+    from img2logo.pipeline import PHOTO_WORK_SIDE
 
     small = cv2.cvtColor(cv2.imread(str(DATA / "photo-flower.png")), cv2.COLOR_BGR2RGB)  # 512 x 342
     big = cv2.resize(small, (1024, 684), interpolation=cv2.INTER_CUBIC)

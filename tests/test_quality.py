@@ -11,7 +11,8 @@ from skimage.draw import circle_perimeter, disk
 from img2logo import InvalidParameterError, quality
 from img2logo.constants import PHI
 from img2logo.fit.arc_extraction import nearest_on_arc
-from img2logo.geometry.primitives import Abstraction, Arc, Circle, line_arc
+from img2logo.geometry.abstraction import Abstraction
+from img2logo.geometry.primitives import Arc, Circle, line_arc
 from img2logo.quality import junction_gaps, level_redundant_intersections
 from img2logo.segment_graph import SegmentGraph
 

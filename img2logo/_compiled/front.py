@@ -4,7 +4,7 @@
 channel in one pass over the pixels: each label's count and its sums, added
 in the pixels' order as ``np.bincount`` adds them, so the same bits.
 :func:`spreads_kernel` is the largest squared colour difference of every pixel
-to its neighbours at given offsets, for one or two sets of them (``clipart._flat_areas``' window,
+to its neighbours at given offsets, for one or two sets of them (``clipart.flat_areas``' window,
 ``clipart.colour_noise``'s 4-neighbours), in float32 as numpy computed it: the
 same differences, squares and sums in the same order, so the same bits, in one
 pass instead of a dozen of temporary images. :func:`label_kernel` numbers the

@@ -40,7 +40,8 @@ import numpy as np
 
 from .._validation import check_instance, check_positive
 from ..constants import ARC_SAMPLE_STEP, INTERSECTION_TOL
-from ..geometry.primitives import TAU, Abstraction, Circle
+from ..geometry.abstraction import Abstraction
+from ..geometry.primitives import TAU, Circle
 from ..geometry.svg_path import loop_path
 
 if TYPE_CHECKING:

@@ -21,8 +21,9 @@ import numpy as np
 
 from ..errors import FitError
 from ..fit.constrained_fit import fit_window
+from ..geometry.abstraction import Abstraction
 from ..geometry.circle_fitting import fit_center
-from ..geometry.primitives import TAU, Abstraction, Arc, ArcJunctions, Circle
+from ..geometry.primitives import TAU, Arc, ArcJunctions, Circle
 
 __all__ = [
     "EDIT_TOLERANCE",

@@ -1,6 +1,6 @@
 """User edits of a golden ratio logo (paper Sec. 7 "User edits", Fig. 17).
 
-Starting from an automated result (an :class:`~img2logo.geometry.primitives.Abstraction`,
+Starting from an automated result (an :class:`~img2logo.geometry.abstraction.Abstraction`,
 e.g. ``img2logo.abstract(image).final``) the user deletes, adds, connects and
 perturbs arcs "based on their underlying circles ... while still satisfying the
 golden ratio constraint" (Sec. 7). Every operation here returns a NEW
@@ -50,8 +50,9 @@ import numpy as np
 from .._validation import check_instance
 from ..constants import JUNCTION_TOLERANCE, LOG_PHI, MAX_LENGTH, MIN_LADDER_RADIUS
 from ..errors import FitError, InvalidParameterError
+from ..geometry.abstraction import Abstraction
 from ..geometry.golden_ladder import GoldenLadder
-from ..geometry.primitives import TAU, Abstraction, Arc, ArcJunctions, Circle
+from ..geometry.primitives import TAU, Arc, ArcJunctions, Circle
 from .edit_refit import EDIT_TOLERANCE, changed_indices, distinct_circles, edited, format_number, incidence, refit
 
 __all__ = ["EDIT_TOLERANCE", "add_arc", "change_rung", "connect", "delete_arc", "move_circle"]

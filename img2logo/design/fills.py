@@ -37,7 +37,7 @@ import numpy as np
 
 from .._validation import check_choice, check_instance, check_positive
 from ..errors import InvalidParameterError
-from ..geometry.primitives import Abstraction
+from ..geometry.abstraction import Abstraction
 from ..images.loading import composite_on_white
 from .arrangement import Face, face_adjacency, faces
 from .fill_values import HEX_COLOR, Fill, Gradient, check_fills, hex_to_rgb, parse_color, rgb_to_hex

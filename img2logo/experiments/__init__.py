@@ -45,7 +45,7 @@ if TYPE_CHECKING:
     import pandas as pd
 
     from ..fit.progressive import Progression
-    from ..geometry.primitives import Abstraction
+    from ..geometry.abstraction import Abstraction
     from ..pipeline import Result
 
 

@@ -17,7 +17,8 @@ from ..constants import TOLERANCE
 from ..errors import InvalidParameterError
 from ..export.plotting import frame_image, plot_segment_graph
 from ..fit.arc_extraction import RedundantIntersection
-from ..geometry.primitives import Abstraction, Arc
+from ..geometry.abstraction import Abstraction
+from ..geometry.primitives import Arc
 from ..quality import junction_gaps, level_redundant_intersections
 from ..segment_graph import SegmentGraph
 from . import Run, table

@@ -18,7 +18,8 @@ from ..errors import InvalidParameterError
 from ..export.plotting import frame_image
 from ..fit.arc_extraction import ArcFit, admissible_arcs, extract_arc
 from ..fit.progressive import Progression
-from ..geometry.primitives import Abstraction, Arc, Circle
+from ..geometry.abstraction import Abstraction
+from ..geometry.primitives import Arc, Circle
 from ..segment_graph import SegmentGraph
 from . import Run, table
 from .ablations import WINDOW_FRAME, arc_chain

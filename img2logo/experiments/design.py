@@ -20,7 +20,7 @@ import numpy as np
 from ..constants import PHI, TOLERANCE
 from ..errors import InvalidParameterError
 from ..export.plotting import plot_abstraction, plot_segment_graph
-from ..geometry.primitives import Abstraction
+from ..geometry.abstraction import Abstraction
 from ..quality import detail_error
 from . import Run, sweep, table
 from .layout import frame_bounds, frame_window, panel_grid

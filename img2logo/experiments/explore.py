@@ -21,7 +21,7 @@ import numpy as np
 from ..constants import RDP_TOLERANCE, TOLERANCE
 from ..errors import InvalidParameterError
 from ..export.plotting import plot_abstraction
-from ..geometry.primitives import Abstraction
+from ..geometry.abstraction import Abstraction
 from . import table
 from .layout import frame_bounds, panel_grid
 from .paths import data_path, example_images, kit_module, load_example
@@ -36,6 +36,35 @@ if TYPE_CHECKING:
 #: Longest side of the level explorer's drawing on screen, CSS px: beside its controls (about 400 px)
 #: it fits a 1440 x 900 laptop screen in JupyterLab, and it is the size a logo is judged at.
 EXPLORER_SIZE = 440
+
+
+def abstract_with_settings(image: object, settings: Any, **extra: Any) -> Result:
+    """:func:`img2logo.abstract` of ``image`` with the fields of ``settings`` that are :class:`~img2logo.Options`'s.
+
+    The one call of the explorer (:class:`ExplorerSettings`) and the studio
+    (:class:`img2logo.studio.session.StudioSettings`): a setting added to their
+    dataclass under an option's name reaches the run without a second edit.
+
+    Parameters
+    ----------
+    image : path, ndarray or LoadedImage
+        The input (:func:`img2logo.load_image`).
+    settings : dataclass instance
+        Its fields named as :class:`~img2logo.options.Options` fields are passed;
+        the others (the explorer's image name, the studio's fill) are not.
+    **extra
+        Further keywords of :func:`img2logo.abstract` (``lock_mask``, ``subject``, ``progress``).
+
+    Returns
+    -------
+    Result
+    """
+    from ..options import Options
+    from ..pipeline import abstract
+
+    options = {f.name for f in dataclasses.fields(Options)}
+    given = {f.name: getattr(settings, f.name) for f in dataclasses.fields(settings) if f.name in options}
+    return abstract(image, **given, **extra)
 
 
 def levels_within(result: Result, tolerance: float | None = None) -> tuple[Abstraction, ...]:
@@ -291,8 +320,6 @@ class LevelExplorer:
         return buf.getvalue()
 
     def _compute(self, settings: ExplorerSettings) -> Result:
-        from ..pipeline import abstract
-
         image = settings.image
         path = Path(image) if os.sep in image or Path(image).is_file() else data_path(image)
         self.progress_text = "running"
@@ -302,15 +329,7 @@ class LevelExplorer:
             bar.max = float(settings.tolerance)
             bar.value = 0.0
             self.controls["status"].value = "running"
-        result = abstract(
-            load_example(path),
-            tolerance=settings.tolerance,
-            kind=settings.kind,
-            rdp_tolerance=settings.rdp_tolerance,
-            bias=settings.bias,
-            symmetry=settings.symmetry,
-            progress=self.on_progress,
-        )
+        result = abstract_with_settings(load_example(path), settings, progress=self.on_progress)
         self.progress_text = (
             f"done: {len(result.levels)} levels, |A| = {len(result.final.arcs)}, "
             f"{sum(result.timings.values()):.2f} s ({result.progression.stopped_because})"

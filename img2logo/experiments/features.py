@@ -11,7 +11,7 @@ import numpy as np
 from ..design.arrangement import faces
 from ..design.fills import Fill, fill_auto, fill_gradient, fill_palette
 from ..export.plotting import plot_abstraction
-from ..geometry.primitives import Abstraction
+from ..geometry.abstraction import Abstraction
 from .layout import panel_grid, show_image
 
 #: A designer's palette for the palette panel (fills cycle through it, largest face first).

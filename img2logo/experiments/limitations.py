@@ -22,7 +22,7 @@ import numpy as np
 
 from ..errors import InvalidParameterError
 from ..export.plotting import plot_abstraction, plot_segment_graph
-from ..geometry.primitives import Abstraction
+from ..geometry.abstraction import Abstraction
 from ..quality import logo_points
 from . import Run, table
 from .layout import panel_grid

@@ -15,7 +15,7 @@ import numpy as np
 from ..errors import InvalidParameterError
 from ..export.plotting import frame_image, plot_abstraction, plot_circles, plot_segment_graph
 from ..fit.progressive import Progression
-from ..geometry.primitives import Abstraction
+from ..geometry.abstraction import Abstraction
 from ..quality import junction_gaps, logo_points
 from . import RUN_COLUMNS, Run, by_image, sweep, table
 from .layout import (

@@ -334,11 +334,11 @@ def run_notebook(
                 os.environ.pop(name, None)
             else:
                 os.environ[name] = value
-    _name_the_kernel(Path(output), kernel_name)
+    name_the_kernel(Path(output), kernel_name)
     return Path(output)
 
 
-def _name_the_kernel(executed: Path, kernel_name: str | None) -> None:
+def name_the_kernel(executed: Path, kernel_name: str | None) -> None:
     """Give the executed copy the kernelspec's display name, as JupyterLab does when it opens it.
 
     papermill keeps the source's ``"display_name"``; JupyterLab sets the running

@@ -32,9 +32,10 @@ from .._validation import check_instance
 from ..constants import FORMAT_NAME, JUNCTION_TOLERANCE, PHI, RADIUS_RELATIVE_TOLERANCE
 from ..design.fill_values import Fill, check_fills
 from ..errors import InvalidParameterError
+from ..geometry.abstraction import Abstraction
 from ..geometry.golden_ladder import FIBONACCI_MAX_INDEX, FibonacciLadder, GoldenLadder, Ladder, fibonacci
 from ..geometry.mirror import symmetry_extra
-from ..geometry.primitives import TAU, Abstraction, Arc, Circle, line_arc
+from ..geometry.primitives import TAU, Arc, Circle, line_arc
 from ..geometry.svg_path import sample_path
 
 __all__ = ["SCHEMA_RESOURCE", "from_document", "read_fills", "to_document", "validate_document"]

@@ -22,11 +22,13 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .._validation import check_instance, check_positive
-from ..constants import ARC_SAMPLE_STEP, IMAGE_FADE, MIN_STROKE_WIDTH, STROKE_WIDTH_FRACTION
+from ..constants import ARC_SAMPLE_STEP, IMAGE_FADE
 from ..design.fill_values import check_fills
 from ..errors import InvalidParameterError
-from ..geometry.primitives import Abstraction, Circle
+from ..geometry.abstraction import Abstraction
+from ..geometry.primitives import Circle
 from ..images.loading import composite_on_white
+from .constants import MIN_STROKE_WIDTH, STROKE_WIDTH_FRACTION
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -70,7 +72,7 @@ def default_stroke_width(width: int, height: int) -> float:
     """The default stroke width of arcs in a ``width`` x ``height`` px drawing, px.
 
     ``STROKE_WIDTH_FRACTION`` of the longer side, at least ``MIN_STROKE_WIDTH``
-    (both in :mod:`img2logo.constants`).
+    (both in :mod:`img2logo.export.constants`).
     """
     return max(MIN_STROKE_WIDTH, STROKE_WIDTH_FRACTION * max(int(width), int(height)))
 

@@ -43,7 +43,9 @@ from collections.abc import Iterator
 import numpy as np
 
 from .._compat import median
-from ..constants import (
+from ..images.cielab import srgb_to_lab
+from ..images.loading import LoadedImage
+from .constants import (
     CLIPART_BLOCK_REACH,
     CLIPART_EDGE_CONTRAST,
     CLIPART_FILL_SPREAD,
@@ -63,15 +65,13 @@ from ..constants import (
     CLIPART_STROKE_MAX_FACTOR,
     CLIPART_STROKE_WIDTH,
 )
-from ..images.cielab import srgb_to_lab
-from ..images.loading import LoadedImage
 
 #: The offsets whose colour differences :func:`colour_noise` measures: the 4-neighbours.
 _NOISE_PAIRS = ((0, 1), (1, 0))
 
 
 def _window_pairs() -> list[tuple[int, int]]:
-    """The offsets of :func:`_flat_areas`' window, each pair of its pixels once (see there)."""
+    """The offsets of :func:`flat_areas`' window, each pair of its pixels once (see there)."""
     rad = CLIPART_FLAT_RADIUS
     return [(dr, dc) for dr in range(rad + 1) for dc in range(-rad, rad + 1) if dr > 0 or dc > 0]
 
@@ -107,10 +107,10 @@ def colour_noise(lab: np.ndarray, *, most: np.ndarray | None = None) -> tuple[fl
 
     The background is left out because a white background stays exactly flat
     even in a JPEG and would hide the fills' noise. ``most``: those largest
-    squared differences, if known (:func:`_spreads`).
+    squared differences, if known (:func:`lab_spreads`).
     """
     if most is None:
-        most = _spread(lab, list(_NOISE_PAIRS))  # squared, until the end
+        most = lab_spread(lab, list(_NOISE_PAIRS))  # squared, until the end
     border = np.concatenate([lab[0], lab[-1], lab[:, 0], lab[:, -1]])
     paper = np.array([median(border[:, c]) for c in range(border.shape[1])])  # np.median(border, axis=0)
     fill = colour_distance(lab, paper) > CLIPART_MIN_CONTRAST
@@ -145,7 +145,7 @@ def clipart_regions(img: LoadedImage) -> np.ndarray:
     lab = img.lab
     # The noise's and the flat areas' colour differences in one pass (the latter kept for a clean image).
     window_most: np.ndarray | None
-    noise_most, window_most = _spreads(lab, list(_NOISE_PAIRS), _window_pairs())
+    noise_most, window_most = lab_spreads(lab, list(_NOISE_PAIRS), _window_pairs())
     noise, fraction = colour_noise(lab, most=noise_most)
     # A clean clip art's fills are exactly flat: any flat 3x3 block is a fill. In a
     # compressed one, a flat patch smaller than a JPEG block (8 x 8 px) can be an
@@ -161,7 +161,7 @@ def clipart_regions(img: LoadedImage) -> np.ndarray:
         window_most = None  # of the filtered colours, below
     link = max(CLIPART_LINK_DISTANCE, CLIPART_NOISE_FACTOR * noise)
     contrast = max(CLIPART_MIN_CONTRAST, CLIPART_NOISE_FACTOR * noise)
-    areas = _flat_areas(lab, link, most=window_most)
+    areas = flat_areas(lab, link, most=window_most)
     regions, seeded = _palette_regions(areas, rgb, lab, seed_area, contrast, compressed=not clean)
     # A region without a single seed pixel is made of rims only: a sliver along an
     # edge (JPEG ringing), not a fill.
@@ -211,7 +211,7 @@ def enclosed_paper(regions: np.ndarray, img: LoadedImage) -> np.ndarray:
         else max(CLIPART_MIN_CONTRAST, CLIPART_NOISE_FACTOR * noise)
     )
     background = regions == 0
-    frame = ~_interior(regions.shape) & background
+    frame = ~frame_interior(regions.shape) & background
     if not frame.any():
         return regions
     on_frame = lab[frame]
@@ -336,7 +336,7 @@ def _palette_regions(
     index = np.append(entry_of, -1)[seed_of]  # a seed's entry; -1 (the last) for the rest
     rest = index < 0
     if rest.any():
-        near = _near_entries(index, len(pal), rest)
+        near = near_entries(index, len(pal), rest)
         colours = lab.reshape(-1, 3)[np.flatnonzero(rest)]
         cost = np.full(near.shape, np.inf)
         for e in range(len(pal)):  # the entries near each pixel only (a few of them)
@@ -357,13 +357,13 @@ def _palette_regions(
     return _relabel(regions), ~rest
 
 
-#: :func:`_near_entries` looks round each pixel (compiled) while that reads at most this many
+#: :func:`near_entries` looks round each pixel (compiled) while that reads at most this many
 #: pixels per pixel of the image; beyond (a JPEG's many rim pixels, the 16 px reach) it dilates
 #: each entry's pixels instead. Both give the same answer; this only picks the faster.
 _NEAR_PIXEL_WORK = 4
 
 
-def _near_entries(index: np.ndarray, n: int, rest: np.ndarray, radius: int = CLIPART_RIM_RADIUS) -> np.ndarray:
+def near_entries(index: np.ndarray, n: int, rest: np.ndarray, radius: int = CLIPART_RIM_RADIUS) -> np.ndarray:
     """For each pixel of ``rest``, which of the ``n`` entries have seed pixels within ``radius`` px: (R, n) bool."""
     import cv2
 
@@ -495,7 +495,7 @@ def _unexplained(
     if not rest.any():
         return out
     n = len(areas_rgb)
-    near = _near_entries(seed_of, n, rest)
+    near = near_entries(seed_of, n, rest)
     at = np.flatnonzero(rest)  # by index: a third of the time of the mask on (H, W, 3)
     colours, colours_lab = rgb.reshape(-1, 3)[at], lab.reshape(-1, 3)[at]
     best = np.full(len(colours), np.inf)
@@ -559,7 +559,7 @@ def _reached_entries(
 
     h, w = seed_of.shape
     n = len(singles)
-    within = _near_entries(seed_of, n, rest, CLIPART_BLOCK_REACH)[alone]
+    within = near_entries(seed_of, n, rest, CLIPART_BLOCK_REACH)[alone]
     out = np.zeros(within.shape, dtype=bool)
     pix_rows, pix_cols = nonzero(rest)
     pix_rows, pix_cols = pix_rows[alone], pix_cols[alone]
@@ -598,7 +598,7 @@ def _mean_shift(rgb: np.ndarray, colour_radius: float) -> tuple[np.ndarray, np.n
     return out, srgb_to_lab(out)
 
 
-def _flat_areas(lab: np.ndarray, link: float, *, most: np.ndarray | None = None) -> np.ndarray:
+def flat_areas(lab: np.ndarray, link: float, *, most: np.ndarray | None = None) -> np.ndarray:
     """Connected components of flat pixels: (H, W) labels.
 
     A pixel is flat when every pixel within ``CLIPART_FLAT_RADIUS`` px of it
@@ -608,13 +608,13 @@ def _flat_areas(lab: np.ndarray, link: float, *, most: np.ndarray | None = None)
     little from one pixel to the next, and joining such pixels would bridge the
     two sides, but across the window such a pixel sees more than ``link`` of
     the edge's contrast. Every other pixel is an area of its own. ``most``: the
-    window's largest squared differences (:func:`_spread` of :func:`_window_pairs`), if known.
+    window's largest squared differences (:func:`lab_spread` of :func:`_window_pairs`), if known.
     """
     # Each pair of pixels of a window once, for both its ends: (dr, dc) from one is
     # (-dr, -dc) from the other, and the squared difference is the same number. Beyond
     # the image's edge a window is the edge pixels repeated, pixels of the window
     # already, so the pixels inside the image give its largest difference.
-    spread = np.sqrt(_spread(lab, _window_pairs()) if most is None else most)
+    spread = np.sqrt(lab_spread(lab, _window_pairs()) if most is None else most)
     flat = spread <= link
     # Adjacent flat pixels are within the link of each other by definition, so the
     # flat areas are the 4-connected components of the flat mask; every other pixel
@@ -628,17 +628,17 @@ def _flat_areas(lab: np.ndarray, link: float, *, most: np.ndarray | None = None)
     return labels - 1
 
 
-def _spreads(
+def lab_spreads(
     lab: np.ndarray, pairs_a: list[tuple[int, int]], pairs_b: list[tuple[int, int]]
 ) -> tuple[np.ndarray, np.ndarray]:
-    """:func:`_spread` of ``lab`` for two sets of offsets: two (H, W) float32, the same bits.
+    """:func:`lab_spread` of ``lab`` for two sets of offsets: two (H, W) float32, the same bits.
 
     Compiled, in one pass (:func:`img2logo._compiled.front.spreads_kernel`), where the kernels are usable.
     """
     from .._compiled import kernels
 
     if not kernels.usable():
-        return _spread(lab, pairs_a), _spread(lab, pairs_b)
+        return lab_spread(lab, pairs_a), lab_spread(lab, pairs_b)
     both = sorted(set(pairs_a) | set(pairs_b))
     return kernels.spreads_kernel(
         np.ascontiguousarray(lab, dtype=np.float64),
@@ -648,7 +648,7 @@ def _spreads(
     )
 
 
-def _spread(lab: np.ndarray, pairs: list[tuple[int, int]]) -> np.ndarray:
+def lab_spread(lab: np.ndarray, pairs: list[tuple[int, int]]) -> np.ndarray:
     """Largest squared CIELAB difference of every pixel to the pixels at ``pairs`` (dr, dc) from it and to it.
 
     (H, W) float32. Squared distances in float32 (a third of the time of
@@ -823,7 +823,7 @@ def clipart_lines(regions: np.ndarray, lightness: np.ndarray | None = None) -> n
             given = np.where(near_paper, _nearest_labels(merged, strokes | paper), given)
         merged = given
         drawn |= far
-    return region_boundaries(merged) | (drawn & _interior(regions.shape))
+    return region_boundaries(merged) | (drawn & frame_interior(regions.shape))
 
 
 def ink_strokes(regions: np.ndarray, lightness: np.ndarray, thin: np.ndarray) -> np.ndarray | None:
@@ -979,10 +979,10 @@ def region_boundaries(regions: np.ndarray) -> np.ndarray:
     values = regions.astype(np.float64)
     cross = cv2.getStructuringElement(cv2.MORPH_CROSS, (3, 3))
     edge = cv2.dilate(values, cross) != cv2.erode(values, cross)
-    return edge & (regions != 0) & _interior(regions.shape)
+    return edge & (regions != 0) & frame_interior(regions.shape)
 
 
-def _interior(shape: tuple[int, int]) -> np.ndarray:
+def frame_interior(shape: tuple[int, int]) -> np.ndarray:
     """Everything but the 1-px image frame, where a region edge is no feature."""
     out = np.zeros(shape, dtype=bool)
     out[1:-1, 1:-1] = True

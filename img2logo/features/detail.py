@@ -34,9 +34,9 @@ import heapq
 
 import numpy as np
 
-from ..constants import CLIPART_MARK_CONTRAST, CLIPART_MAX_REGIONS
 from ..errors import InvalidParameterError
 from .clipart import ink_outlines, label_means, outline_strokes, thin_regions
+from .constants import CLIPART_MARK_CONTRAST, CLIPART_MAX_REGIONS
 
 
 def check_detail(value: object) -> int:

@@ -23,17 +23,20 @@ import numpy as np
 
 from .._compat import median
 from .._validation import check_choice, check_positive, readonly
-from ..constants import (
-    BLANK_IMAGE_RANGE,
+from ..constants import BLANK_IMAGE_RANGE, DETAIL, JUNCTION_MERGE_DISTANCE, SYNTHETIC_WORK_SIDE
+from ..images import skeleton as _skeleton
+from ..images.line_ends import join_line_ends
+from ..images.loading import LoadedImage, downscale, load_image, load_mask
+from ..images.ndimage import bounding_slices, components, distance, skeletonize
+from .clipart import clipart_lines, clipart_regions, enclosed_paper, label_means
+from .constants import (
     CLIPART_OUTLINE_WIDTH,
     CLIPART_RIM_RADIUS,
-    DETAIL,
     DOT_MIN_DIAMETER,
     DOT_MIN_RADIUS,
     DRAWING_MAX_STROKE_FRACTION,
     INK_COLOUR_SPREAD,
     INK_SHARE,
-    JUNCTION_MERGE_DISTANCE,
     MIN_SPECK_AREA,
     OUTLINE_BAND_REACH,
     PHOTO_MIN_LINE_LENGTH,
@@ -46,12 +49,7 @@ from ..constants import (
     SHADED_INK_SHARE,
     SPUR_LENGTH,
     SYNTHETIC_FLAT_FRACTION,
-    SYNTHETIC_WORK_SIDE,
 )
-from ..images import skeleton as _skeleton
-from ..images.loading import LoadedImage, downscale, load_image, load_mask
-from ..images.ndimage import bounding_slices, components, distance, skeletonize
-from .clipart import clipart_lines, clipart_regions, enclosed_paper, label_means
 from .detail import check_detail, merge_by_importance
 
 if TYPE_CHECKING:
@@ -75,6 +73,7 @@ __all__ = [
     "KINDS",
     "FeatureLines",
     "detect_kind",
+    "detect_kind_and_regions",
     "edge_tangent_flow",
     "extract_feature_lines",
     "flow_dog",
@@ -83,6 +82,7 @@ __all__ = [
     "load_mask",
     "median_stroke_width",
     "photo_reason",
+    "without_small_parts",
 ]
 
 KINDS = ("photo", "clipart", "drawing")
@@ -170,7 +170,7 @@ def detect_kind(image: object) -> tuple[str, str]:
     >>> kind
     'drawing'
     """
-    kind, reason, _ = _detect(downscale(load_image(image), SYNTHETIC_WORK_SIDE))
+    kind, reason, _ = detect_kind_and_regions(downscale(load_image(image), SYNTHETIC_WORK_SIDE))
     return kind, reason
 
 
@@ -197,7 +197,7 @@ def _photo_reason(flat: float) -> str | None:
     return f"{share} in flat fills (camera noise, texture): a photo"
 
 
-def _detect(img: LoadedImage) -> tuple[str, str, np.ndarray | None]:
+def detect_kind_and_regions(img: LoadedImage) -> tuple[str, str, np.ndarray | None]:
     """(kind, reason, clip-art regions or None): the regions are reused for a clip art."""
     flat = img.flat_fraction
     reason = _photo_reason(flat)
@@ -283,7 +283,7 @@ def outline_band_width(ink: np.ndarray) -> float | None:
     """
     import cv2
 
-    u8 = _without_small_parts(ink, MIN_SPECK_AREA - 1).view(np.uint8)
+    u8 = without_small_parts(ink, MIN_SPECK_AREA - 1).view(np.uint8)
     contours, hierarchy = cv2.findContours(u8, cv2.RETR_TREE, cv2.CHAIN_APPROX_NONE)
     if hierarchy is None:
         return None
@@ -516,7 +516,7 @@ def extract_feature_lines(
         spur_length = check_positive(spur_length, "spur_length", allow_zero=True)
     regions = None
     if kind == "auto":
-        kind, reason, regions = _detect(img)
+        kind, reason, regions = detect_kind_and_regions(img)
     else:
         reason = "given"
     found = dots = None
@@ -528,7 +528,7 @@ def extract_feature_lines(
         radius = _half_width(ink)
         axis = skeletonize(ink)
         stroke = float(2.0 * median(radius[axis])) if axis.any() else 0.0
-        raw = _skeleton.join_line_ends(axis)
+        raw = join_line_ends(axis)
         min_len = spur_length if min_line_length is None else min_line_length
     elif kind == "clipart":
         regions = enclosed_paper(clipart_regions(img) if regions is None else regions, img)
@@ -624,10 +624,10 @@ def _join(raw: np.ndarray) -> np.ndarray:
 
     A stroke that ends a few px before another (a clip art's whisker by its
     face's outline, a drawing's line that stops at a gap) would give an arc end
-    0.75-6 px from another arc: a near-miss gap. :func:`_skeleton.join_line_ends`
+    0.75-6 px from another arc: a near-miss gap. :func:`~img2logo.images.line_ends.join_line_ends`
     links it (the same rule as for photos).
     """
-    return _skeleton.join_line_ends(skeletonize(raw))
+    return join_line_ends(skeletonize(raw))
 
 
 def _clean_skeleton(
@@ -711,8 +711,8 @@ def _drawing_lines(img: LoadedImage) -> np.ndarray:
     if not dark:  # light strokes on a dark ground
         ink = ~ink
     ink &= ~_paper_seams(img.gray if dark else 1.0 - img.gray, ink)
-    ink = _without_small_parts(ink, MIN_SPECK_AREA - 1)
-    return ~_without_small_parts(~ink, MIN_SPECK_AREA // 4)
+    ink = without_small_parts(ink, MIN_SPECK_AREA - 1)
+    return ~without_small_parts(~ink, MIN_SPECK_AREA // 4)
 
 
 def gaussian_blur(image: np.ndarray, sigma: float) -> np.ndarray:
@@ -748,7 +748,7 @@ def otsu_threshold(gray: np.ndarray) -> float:
     return float(centres[np.argmax(between)])
 
 
-def _without_small_parts(mask: np.ndarray, max_size: int) -> np.ndarray:
+def without_small_parts(mask: np.ndarray, max_size: int) -> np.ndarray:
     """``mask`` less its 4-connected parts of at most ``max_size`` px, bool (H, W).
 
     What ``skimage.morphology.remove_small_objects(mask, max_size=max_size)``

@@ -36,16 +36,15 @@ import numpy as np
 
 from .._compat import unique
 from .._validation import check_choice, check_points, check_positive, readonly
-from ..constants import (
+from ..constants import INTERSECTION_TOL, JUNCTION_TOLERANCE
+from ..errors import FitError, InvalidParameterError
+from ..geometry.primitives import TAU, Arc, Circle, polyline_length
+from .constants import (
     ARC_CANDIDATE_LENGTH_RATIO,
     ARC_CANDIDATE_LENGTH_SLACK,
     FRECHET_SAMPLE_STEP,
-    INTERSECTION_TOL,
-    JUNCTION_TOLERANCE,
     REDUNDANT_INTERSECTION_TOL,
 )
-from ..errors import FitError, InvalidParameterError
-from ..geometry.primitives import TAU, Arc, Circle, polyline_length
 
 __all__ = [
     "ArcFit",
@@ -53,7 +52,10 @@ __all__ = [
     "admissible_arcs",
     "arc_intersections",
     "arc_pairs_near",
+    "arc_params",
     "candidate_arcs",
+    "discrete_frechet",
+    "distances_to_arcs",
     "extract_arc",
     "frechet_distance",
     "nearest_on_arc",
@@ -91,10 +93,10 @@ def frechet_distance(p: np.ndarray, q: np.ndarray) -> float:
     """
     p = check_points(p, "p")
     q = check_points(q, "q")
-    return _frechet(p, q)
+    return discrete_frechet(p, q)
 
 
-def _frechet(p: np.ndarray, q: np.ndarray, bound: float = math.inf) -> float:
+def discrete_frechet(p: np.ndarray, q: np.ndarray, bound: float = math.inf) -> float:
     """Exact discrete Fréchet distance; ``inf`` as soon as it is known to be >= ``bound``."""
     kernel = _frechet_kernel()
     return float(kernel(np.ascontiguousarray(p, dtype=np.float64), np.ascontiguousarray(q, dtype=np.float64), bound))
@@ -313,7 +315,7 @@ def _best_by_frechet(arcs: Sequence[Arc], seg: np.ndarray, cap: float) -> ArcFit
     for lower, _, oriented, pts in options:
         if lower >= best:
             break
-        value = _frechet(seg, pts, bound=best)
+        value = discrete_frechet(seg, pts, bound=best)
         if value < best:
             best, best_arc = value, oriented
     return ArcFit(best_arc, best)
@@ -350,7 +352,7 @@ def nearest_on_arc(arc: Arc, points: np.ndarray) -> tuple[np.ndarray, np.ndarray
     return (d[0], q[0]) if single else (d, q)
 
 
-def _distances_to_arcs(points: np.ndarray, params: np.ndarray, limit: float = math.inf) -> np.ndarray:
+def distances_to_arcs(points: np.ndarray, params: np.ndarray, limit: float = math.inf) -> np.ndarray:
     """Distances from ``points`` (m, 2) to arcs given as rows (cx, cy, r, theta0, sweep) (n, 5): (m, n), px.
 
     :func:`nearest_on_arc`'s distances for every point and arc at once: the
@@ -556,7 +558,7 @@ def _redundant_arrays(
 
     Arc i's junctions are ``flat[ptr[i]:ptr[i + 1]]`` (int64, indices into
     ``junctions``); ``rows`` the sorted candidate arcs; ``params`` the arcs'
-    rows of :func:`_arc_params` when the caller has them. The merge loop calls
+    rows of :func:`arc_params` when the caller has them. The merge loop calls
     it directly with arrays it builds (every candidate merge is checked).
     """
     if len(arcs) < 2 or len(rows) == 0:
@@ -572,7 +574,7 @@ def _redundant_arrays(
             np.array([r.point for r in found], dtype=np.float64).reshape(-1, 2),
         )
     if params is None:
-        params = _arc_params(arcs)
+        params = arc_params(arcs)
     return kernels.redundant_kernel(params, rows, junctions, ptr, flat, INTERSECTION_TOL, tol)
 
 
@@ -590,7 +592,7 @@ def _redundant_reference(
     return out
 
 
-def _arc_params(arcs: Sequence[Arc]) -> np.ndarray:
+def arc_params(arcs: Sequence[Arc]) -> np.ndarray:
     """Arcs as rows (cx, cy, r, theta0, sweep), shape (n, 5)."""
     return np.array(
         [(a.circle.cx, a.circle.cy, a.circle.r, a.theta0, a.sweep) for a in arcs], dtype=np.float64
@@ -608,12 +610,12 @@ def arc_pairs_near(arcs: Sequence[Arc], rows: np.ndarray, tol: float) -> list[tu
     rows = unique(np.asarray(rows, dtype=np.int64))
     if not kernels.usable():
         return _arc_pairs_reference(arcs, rows, tol)
-    return [(i, j) for i, j in kernels.arc_pairs_kernel(_arc_params(arcs), rows, float(tol)).tolist()]
+    return [(i, j) for i, j in kernels.arc_pairs_kernel(arc_params(arcs), rows, float(tol)).tolist()]
 
 
 def _arc_pairs_reference(arcs: Sequence[Arc], rows: np.ndarray, tol: float) -> list[tuple[int, int]]:
     """:func:`arc_pairs_near` in numpy (the reference of its compiled kernel)."""
-    params = _arc_params(arcs)
+    params = arc_params(arcs)
     centers, radii = params[:, :2], params[:, 2]
     boxes = _bounding_boxes(params)  # (n, 4): xmin, ymin, xmax, ymax
     n = len(arcs)

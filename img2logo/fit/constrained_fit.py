@@ -25,7 +25,8 @@ import numpy as np
 
 from .._compat import unique
 from .._validation import check_finite, check_points, check_positive, readonly
-from ..constants import (
+from ..errors import InvalidParameterError
+from .constants import (
     CONSTRAINED_FIT_FTOL,
     CONSTRAINED_FIT_MAX_ITER,
     CONSTRAINED_FIT_STALL,
@@ -34,7 +35,6 @@ from ..constants import (
     KKT_DAMPING,
     KKT_DENSE_MAX,
 )
-from ..errors import InvalidParameterError
 from .constrained_sqp import Problem, solve_kkt
 
 #: fit_window(stop_when_stuck=True): a ring whose fit ends at the constraint violation of the

@@ -22,7 +22,7 @@ from typing import NamedTuple, Protocol
 
 import numpy as np
 
-from ..constants import KKT_DAMPING, KKT_DENSE_MAX
+from .constants import KKT_DAMPING, KKT_DENSE_MAX
 
 __all__ = ["Problem", "ProblemArrays", "SparseKKT", "solve_kkt"]
 

@@ -27,22 +27,15 @@ from typing import Any, NamedTuple, Protocol, TypeAlias, cast
 
 import numpy as np
 
-from ..constants import (
-    CONSTRAINED_FIT_TOL,
-    CUT_MARGIN,
-    GAP_MAX,
-    GAP_MIN,
-    JUNCTION_TOLERANCE,
-    LINE_MIN_ANGLE,
-    REDUNDANT_INTERSECTION_TOL,
-    SYMMETRY_FIT_STALL,
-)
+from ..constants import GAP_MAX, GAP_MIN, JUNCTION_TOLERANCE
+from ..geometry.abstraction import Abstraction
 from ..geometry.circle_fitting import fit_center, fit_circle, mean_abs_error
 from ..geometry.golden_ladder import Ladder
-from ..geometry.primitives import Abstraction, ArcJunctions, Circle, Line, line_arc
+from ..geometry.primitives import ArcJunctions, Circle, Line, line_arc
 from ..options import Options
 from ..segment_graph import SegmentGraph
-from .arc_extraction import ArcFit, _distances_to_arcs, _extract, _redundant_arrays
+from .arc_extraction import ArcFit, _extract, _redundant_arrays, distances_to_arcs
+from .constants import CONSTRAINED_FIT_TOL, CUT_MARGIN, LINE_MIN_ANGLE, REDUNDANT_INTERSECTION_TOL, SYMMETRY_FIT_STALL
 from .constrained_fit import WindowFit, fit_window
 from .simplification import Group, straight_line
 
@@ -357,7 +350,7 @@ class FitState:
         #: Tangent joins whose junction slides along the input's line (img2logo.fit.tangency):
         #: node -> its distance off the line, px, which E^s counts instead of |d_k|.
         self.off_line: dict[int, float] = {}
-        #: What the merge loop keeps of one level for all its candidates (img2logo.fit.merging._level).
+        #: What the merge loop keeps of one level for all its candidates (img2logo.fit.merging.level_view).
         self.merge_cache: object | None = None
         #: (merged group's segments, nodes, radius) -> whether no circle of that radius comes within
         #: the arc bound of its pixels (img2logo.fit.merging._too_far): asked again at every level.
@@ -1011,7 +1004,7 @@ class FitState:
         """
         nodes = np.array([n for n, _ in ends], dtype=np.intp)
         points = (self.graph.junctions[nodes] + self.disp[nodes]).reshape(-1, 2)
-        distances = _distances_to_arcs(points, rows, GAP_MAX)
+        distances = distances_to_arcs(points, rows, GAP_MAX)
         distances[np.arange(len(ends)), np.asarray(own, dtype=np.intp)] = np.inf
         return points, distances
 

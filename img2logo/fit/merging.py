@@ -11,7 +11,7 @@ that reject a merge (an X through a junction, a hopeless window, an arc
 farther than the bound, redundant intersections, Fig. 12). The merge the loop
 chooses is checked once more before it is made, against the current arcs: for
 redundant intersections, for near-miss gaps it would make (a free end brought
-0.75-6 px from an arc, :func:`_new_gaps`) and for an arc running on past the
+0.75-6 px from an arc, :func:`new_gaps`) and for an arc running on past the
 end of its path through a junction another arc runs on through (:func:`_runs_through_twice`).
 
 Coordinates: px, x right, y down (``contract/README.md``).
@@ -30,16 +30,10 @@ from weakref import WeakKeyDictionary
 
 import numpy as np
 
-from ..constants import (
-    FAR_ARC_BUDGET,
-    FAR_ARC_MARGIN,
-    GAP_MAX,
-    JUNCTION_TOLERANCE,
-    MERGE_FALLBACK_RINGS,
-    REDUNDANT_INTERSECTION_TOL,
-)
+from ..constants import GAP_MAX, JUNCTION_TOLERANCE
 from ..geometry.primitives import Arc
-from .arc_extraction import _distances_to_arcs, _redundant_arrays
+from .arc_extraction import _redundant_arrays, distances_to_arcs
+from .constants import FAR_ARC_BUDGET, FAR_ARC_MARGIN, MERGE_FALLBACK_RINGS, REDUNDANT_INTERSECTION_TOL
 from .fit_state import FitState, GroupFit, Seed, Solution, near_miss
 from .simplification import Group, hold_line, merge_groups
 
@@ -78,7 +72,7 @@ def candidates(state: FitState) -> list[Pair]:
     """
     out: list[Pair] = []
     sym = state.symmetry
-    for node, gids in sorted(_level(state).ends.items()):  # the level's, made once for its candidates too
+    for node, gids in sorted(level_view(state).ends.items()):  # the level's, made once for its candidates too
         if sym is not None and node in sym.nodes:
             continue  # an arc never runs on through the mirror axis: its mirror image would cross it
         ok = [g for g in sorted(gids) if not state.groups[g].locked and not state.groups[g].closed]
@@ -97,7 +91,7 @@ def evaluate(state: FitState, pair: Pair, tried: set[int] | None = None) -> Merg
     """
     state.stats.evaluated += 1
     a, b, node = pair
-    level = _level(state)
+    level = level_view(state)
     # Two arcs that both run on through one junction cross there (an X): one
     # of them ends at the junction instead, so that arcs meet only at their
     # ends or where one ends on the other (a T), and no crossing is left.
@@ -127,7 +121,7 @@ def evaluate(state: FitState, pair: Pair, tried: set[int] | None = None) -> Merg
         return None
 
     merged_nodes = set(state.constrained_nodes(merged))
-    hold = _hold(state, seeds, merged, pair, level)
+    hold = held_joins(state, seeds, merged, pair, level)
     lines = [g for g in level.lines if g != a and g != b]  # the groups after the merge that are straight
     if seeds[-1].k is None:
         lines.append(-1)
@@ -385,7 +379,9 @@ def _too_far(state: FitState, merged: Group, seed: Seed, cap: float) -> bool:
     return hit
 
 
-def _hold(state: FitState, seeds: dict[int, Seed], merged: Group, pair: Pair, level: _Level | None = None) -> set[int]:
+def held_joins(
+    state: FitState, seeds: dict[int, Seed], merged: Group, pair: Pair, level: _Level | None = None
+) -> set[int]:
     """The smooth joins a merge's refit holds tangent (beyond the paper, :mod:`img2logo.fit.tangency`).
 
     Those the loop made tangent before (``state.held``) and those at the merged
@@ -397,7 +393,7 @@ def _hold(state: FitState, seeds: dict[int, Seed], merged: Group, pair: Pair, le
     if not state.smooth:
         return set()
     a, b, node = pair
-    ends = (_level(state) if level is None else level).ends
+    ends = (level_view(state) if level is None else level).ends
     out = set()
     for n in state.held | set(merged.ends):
         if n == node or n not in state.smooth or n in state.loose or n in state.released:
@@ -413,7 +409,7 @@ def _hold(state: FitState, seeds: dict[int, Seed], merged: Group, pair: Pair, le
 
 @dataclass(frozen=True, eq=False)
 class _Level:
-    """What every candidate of one level reads of the current groups (made once a level, :func:`_level`).
+    """What every candidate of one level reads of the current groups (made once a level, :func:`level_view`).
 
     ``groups``, ``fits``, ``released``: what it was made from (compared by
     identity). ``gids``: the groups in ``state.groups``'s order; ``arcs`` and
@@ -444,7 +440,7 @@ class _Level:
     memo: dict[str, object] = field(default_factory=dict)
 
 
-def _level(state: FitState) -> _Level:
+def level_view(state: FitState) -> _Level:
     """The current level's :class:`_Level`, made again when a group, a fit or a released junction changed."""
     # Compared element by element by identity in C (map, operator.is_): ~10^3 calls a run.
     gids = tuple(state.groups)
@@ -495,14 +491,14 @@ def _redundant(
 ) -> int:
     """Redundant intersections that involve the arcs a merge changed.
 
-    The arcs are the level's (:func:`_level`) without the pair's two, in the
+    The arcs are the level's (:func:`level_view`) without the pair's two, in the
     state's order, with the merged group's (id -1) last, as ``after`` of
     :func:`evaluate`. The junctions are indexed by node (every node of the
     graph, displaced; the window's new d_k over the state's): the kernel reads
     only the junctions the arcs own.
     """
     a, b, _ = pair
-    level = _level(state) if level is None else level
+    level = level_view(state) if level is None else level
     pos = level.pos
     pa, pb = pos[a], pos[b]
     keep = np.ones(len(level.gids), dtype=bool)
@@ -576,7 +572,7 @@ def _open_ends(state: FitState, level: _Level) -> _OpenEnds:
     return out
 
 
-def _new_gaps(
+def new_gaps(
     state: FitState,
     pair: Pair,
     fits: dict[int, GroupFit],
@@ -602,7 +598,7 @@ def _new_gaps(
     measured again) and the arcs of ``fits`` (the merged group's, id -1, and
     the window's refitted ones).
     """
-    level = _level(state) if level is None else level
+    level = level_view(state) if level is None else level
     ends = _open_ends(state, level)
     if not ends.nodes:
         return 0
@@ -616,12 +612,12 @@ def _new_gaps(
         points = points.copy()
         at = np.array([ends.nodes[i] for i in moved], dtype=np.intp)
         points[moved] = state.graph.junctions[at] + np.array([disp[int(n)] for n in at]).reshape(-1, 2)
-        old[moved] = _distances_to_arcs(points[moved], level.params, GAP_MAX)
+        old[moved] = distances_to_arcs(points[moved], level.params, GAP_MAX)
         old[moved, ends.columns[moved]] = np.inf
     old[:, stale] = np.inf
     nearest = old.min(axis=1)
     gids = np.fromiter(fits, dtype=np.int64, count=len(fits))
-    new = _distances_to_arcs(points, np.array([f.arc_row for f in fits.values()], dtype=np.float64), GAP_MAX)
+    new = distances_to_arcs(points, np.array([f.arc_row for f in fits.values()], dtype=np.float64), GAP_MAX)
     owners = np.where((ends.owners == a) | (ends.owners == b), -1, ends.owners)
     new[owners[:, None] == gids[None, :]] = np.inf
     nearest = np.minimum(nearest, new.min(axis=1))
@@ -638,13 +634,15 @@ def recheck_redundant(state: FitState, outcome: MergeOutcome) -> int:
 
 
 def recheck_gaps(state: FitState, outcome: MergeOutcome) -> int:
-    """Near-miss gaps (:func:`_new_gaps`) a cached outcome would make against the *current* arcs."""
-    return _new_gaps(state, outcome.pair, outcome.fits, outcome.displacements)
+    """Near-miss gaps (:func:`new_gaps`) a cached outcome would make against the *current* arcs."""
+    return new_gaps(state, outcome.pair, outcome.fits, outcome.displacements)
 
 
 def recheck_crossing(state: FitState, outcome: MergeOutcome) -> bool:
     """Whether a cached outcome would leave two arcs running on through one junction (:func:`_runs_through_twice`)."""
-    return _runs_through_twice(state, outcome.pair, outcome.merged, outcome.fits, outcome.displacements, _level(state))
+    return _runs_through_twice(
+        state, outcome.pair, outcome.merged, outcome.fits, outcome.displacements, level_view(state)
+    )
 
 
 def merge_loop(
@@ -668,7 +666,7 @@ def merge_loop(
 
     The chosen merge is checked before it is made, against the current arcs:
     for redundant intersections (scored with every candidate too, Fig. 12),
-    and, for it alone, for the near-miss gaps it would make (:func:`_new_gaps`)
+    and, for it alone, for the near-miss gaps it would make (:func:`new_gaps`)
     and an arc it would let run on through a junction another arc runs on
     through (:func:`_runs_through_twice`). One that fails is set aside like a
     candidate with a redundant intersection (with a crossing: like one that

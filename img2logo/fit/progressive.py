@@ -45,12 +45,13 @@ from typing import Any
 
 import numpy as np
 
-from ..constants import OUTLINE_DISTANCE
 from ..errors import InvalidParameterError
+from ..geometry.abstraction import Abstraction
 from ..geometry.golden_ladder import FibonacciLadder, Ladder, make_ladder
-from ..geometry.primitives import Abstraction, polyline_length
+from ..geometry.primitives import polyline_length
 from ..options import Options
 from ..segment_graph import SegmentGraph
+from .constants import OUTLINE_DISTANCE
 from .fit_state import AxisConstraints, FitState, FreeCircles, Seed
 from .merging import TIME_BUDGET_STOP, merge_loop
 from .recovery import check_reach, check_span, recover

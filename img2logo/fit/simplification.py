@@ -18,8 +18,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..constants import LINE_END_SKIP, LINE_TOLERANCE, SIMPLIFICATION_ERROR
 from ..geometry.primitives import cumulative_length
+from .constants import LINE_END_SKIP, LINE_TOLERANCE, SIMPLIFICATION_ERROR
 
 
 @dataclass(frozen=True, eq=False)

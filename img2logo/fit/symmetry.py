@@ -39,12 +39,17 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ..constants import (
+from ..constants import SYMMETRY_PAIR_TOLERANCE
+from ..errors import InvalidParameterError
+from ..geometry.abstraction import Abstraction
+from ..geometry.mirror import Axis, axis_segment, circle_pairs, is_symmetric, symmetry_extra
+from ..geometry.primitives import TAU, Arc, Circle, cumulative_length, polyline_length
+from ..options import check_symmetry_option, refuse_lock_mask  # the options are checked with the others
+from .constants import (
     SYMMETRY_ANGLE_STEP,
     SYMMETRY_MATCH_DISTANCE,
     SYMMETRY_OFFSET_RANGE,
     SYMMETRY_OFFSET_STEP,
-    SYMMETRY_PAIR_TOLERANCE,
     SYMMETRY_SAMPLE_POINTS,
     SYMMETRY_SMOOTH_ANGLE,
     SYMMETRY_SNAP_ANGLE,
@@ -53,10 +58,6 @@ from ..constants import (
     SYMMETRY_TANGENT_LENGTH,
     SYMMETRY_THRESHOLD,
 )
-from ..errors import InvalidParameterError
-from ..geometry.mirror import Axis, axis_segment, circle_pairs, is_symmetric, symmetry_extra
-from ..geometry.primitives import TAU, Abstraction, Arc, Circle, cumulative_length, polyline_length
-from ..options import check_symmetry_option, refuse_lock_mask  # the options are checked with the others
 
 if TYPE_CHECKING:
     from ..segment_graph import SegmentGraph

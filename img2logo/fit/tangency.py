@@ -27,7 +27,7 @@ it rigid:
 * **the two circles are fitted as one unit** (:func:`_biarc_starts`): when no
   refit from the current circles touches within T, the tangent biarc closest
   to the two groups' joined pixels (rungs of both and one up or down for each,
-  its junction anywhere on the pixels, :func:`_biarc`) is the refit's start,
+  its junction anywhere on the pixels, :func:`closest_biarcs`) is the refit's start,
   the junction's rest point moved there for the fit. Where a smooth line's
   curvature changes from one rung to the next is seldom where the
   over-segmentation put the node: on the polar bear's kinked joins the best
@@ -88,7 +88,8 @@ from weakref import WeakKeyDictionary
 
 import numpy as np
 
-from ..constants import (
+from ..geometry.golden_ladder import FibonacciLadder
+from .constants import (
     ALL_AT_ONCE_TRIES,
     BIARC_STARTS,
     BIARC_STEP,
@@ -99,7 +100,6 @@ from ..constants import (
     RUNG_CHOICES,
     SLIDE_MIN_PIXELS,
 )
-from ..geometry.golden_ladder import FibonacciLadder
 from .fit_state import Seed
 from .simplification import Group, merge_groups
 
@@ -358,7 +358,7 @@ def _one_at_a_time(opt: FitState, joins: dict[int, tuple[int, int]], bound: floa
         if best is None:
             # No start near the current circles touches within T: fit the pair as one unit
             # (a tangent biarc over the two groups' joined pixels, the junction anywhere on
-            # them, :func:`_biarc`) and start the refit from there.
+            # them, :func:`closest_biarcs`) and start the refit from there.
             for combo, start in _biarc_starts(opt, node, (a, b)):
                 trial = _try(opt, made, node, combo, bound, start, before=before, gaps=gaps)
                 if trial is not None and (best is None or trial.similarity < best.similarity):
@@ -575,7 +575,7 @@ def _try(
 
     The rules are those of :func:`tangent_joins`. After the fit, the pixels of
     the two groups at every tangent join in the window are split anew where the
-    junction now is (:func:`_split`), and their arcs extracted and scored
+    junction now is (:func:`split_chain`), and their arcs extracted and scored
     against them: in the solve, before any arc is extracted, which stops
     extracting once E^s must exceed ``bound`` (``FitState.solve``'s ``bound``
     and ``regroup``; measured, the arcs extracted in the tangent pass 286 -> 212
@@ -709,7 +709,7 @@ def _biarc_starts(opt: FitState, node: int, pair: tuple[int, int]) -> list[tuple
     1.5-3 px of its circles (the two arcs now: 1-4 px), while the refit from the
     current circles keeps the junction within a few px of the node (its
     displacement term) and each group's pixels on their own circle. So the two
-    circles are fitted as one unit (:func:`_biarc`) on the rungs of both and one
+    circles are fitted as one unit (:func:`closest_biarcs`) on the rungs of both and one
     rung up or down for each, and the ``BIARC_STARTS`` of smallest largest
     pixel distance are returned. None for a straight line (fixed) or a closed group.
     """
@@ -728,7 +728,7 @@ def _biarc_starts(opt: FitState, node: int, pair: tuple[int, int]) -> list[tuple
     key = (ga.segments, gb.segments, node, len(chain), *chain[0], *chain[-1], *radii)
     cache = _BIARCS.setdefault(opt, {})
     if key not in cache:
-        cache[key] = _biarc(chain, [r for _, _, r in rungs[a]], [r for _, _, r in rungs[b]])
+        cache[key] = closest_biarcs(chain, [r for _, _, r in rungs[a]], [r for _, _, r in rungs[b]])
     found = cache[key]
     out = []
     for _, ia, ib, i, ca, cb in found[:BIARC_STARTS]:
@@ -743,12 +743,12 @@ def _biarc_starts(opt: FitState, node: int, pair: tuple[int, int]) -> list[tuple
     return out
 
 
-#: The biarcs of a run's smooth joins (:func:`_biarc`), by the joined pixels and the radii:
+#: The biarcs of a run's smooth joins (:func:`closest_biarcs`), by the joined pixels and the radii:
 #: the levels that :func:`tangent_level` tries share most of their groups.
 _BIARCS: WeakKeyDictionary[FitState, dict[tuple, list]] = WeakKeyDictionary()
 
 
-def _biarc(
+def closest_biarcs(
     chain: np.ndarray, radii_a: Sequence[float], radii_b: Sequence[float]
 ) -> list[tuple[float, int, int, int, np.ndarray, np.ndarray]]:
     """The tangent biarcs closest to a pixel chain (n, 2), one per pair of radii: best first.
@@ -774,7 +774,7 @@ def _biarc(
     splits = np.arange(lo, hi, BIARC_STEP)
     turns = np.arange(-BIARC_TURN_STEPS, BIARC_TURN_STEPS + 1) * step
     sides = ((-1.0, -1.0), (-1.0, 1.0), (1.0, -1.0), (1.0, 1.0))
-    coarse = _biarc_coarse(chain, splits, turns, radii_a, radii_b)
+    coarse = biarc_coarse(chain, splits, turns, radii_a, radii_b)
     out = []
     for ia, ra in enumerate(radii_a):
         for ib, rb in enumerate(radii_b):
@@ -783,18 +783,18 @@ def _biarc(
             # Around the best on the coarse grid: every pixel and a finer turn, every pixel measured.
             fine = np.arange(max(lo, splits[s] - BIARC_STEP), min(hi, splits[s] + BIARC_STEP + 1))
             near = turns[t] + np.arange(-4, 5) * (step / 4.0)
-            worst, s2, t2 = _biarc_fine(chain, fine, near, (ra, sa), (rb, sb))
+            worst, s2, t2 = biarc_fine(chain, fine, near, (ra, sa), (rb, sb))
             i = int(fine[s2])
-            normal = _biarc_normal(chain, np.array([i]), np.array([near[t2]]))[0, 0]
+            normal = biarc_normals(chain, np.array([i]), np.array([near[t2]]))[0, 0]
             out.append((worst, ia, ib, i, chain[i] + sa * ra * normal, chain[i] + sb * rb * normal))
     out.sort(key=lambda t: t[0])
     return out
 
 
-def _biarc_coarse(
+def biarc_coarse(
     chain: np.ndarray, splits: np.ndarray, turns: np.ndarray, radii_a: Sequence[float], radii_b: Sequence[float]
 ) -> dict[tuple[int, int], tuple[int, int, int]]:
-    """The best biarc of :func:`_biarc`'s coarse grid for every pair of radii: (ia, ib) -> (sides, split, turn).
+    """The best biarc of :func:`closest_biarcs`'s coarse grid for every pair of radii: (ia, ib) -> (sides, split, turn).
 
     Sides index ``((-1, -1), (-1, 1), (1, -1), (1, 1))`` (the head's circle's and
     the tail's); every ``BIARC_STEP``-th pixel measured. The smallest largest
@@ -802,9 +802,9 @@ def _biarc_coarse(
     Compiled (:func:`img2logo._compiled.arcs.biarc_coarse_kernel`), a biarc's
     pixels stop being measured once it cannot beat the best so far: the same
     choice as the smallest of numpy's minima over the four grids of the two
-    sides' :func:`_biarc_worst`, and its argmin.
+    sides' :func:`biarc_worst`, and its argmin.
     """
-    normal = _biarc_normal(chain, splits, turns)  # shared by every radius and side
+    normal = biarc_normals(chain, splits, turns)  # shared by every radius and side
     from .._compiled import kernels
 
     out = {}
@@ -821,11 +821,10 @@ def _biarc_coarse(
         return out
     sides = ((-1.0, -1.0), (-1.0, 1.0), (1.0, -1.0), (1.0, 1.0))
     head = [
-        {sa: _biarc_worst(chain, splits, turns, r, sa, True, BIARC_STEP, normal) for sa in (-1.0, 1.0)} for r in radii_a
+        {sa: biarc_worst(chain, splits, turns, r, sa, True, BIARC_STEP, normal) for sa in (-1.0, 1.0)} for r in radii_a
     ]
     tail = [
-        {sb: _biarc_worst(chain, splits, turns, r, sb, False, BIARC_STEP, normal) for sb in (-1.0, 1.0)}
-        for r in radii_b
+        {sb: biarc_worst(chain, splits, turns, r, sb, False, BIARC_STEP, normal) for sb in (-1.0, 1.0)} for r in radii_b
     ]
     for ia in range(len(radii_a)):
         for ib in range(len(radii_b)):
@@ -836,14 +835,14 @@ def _biarc_coarse(
     return out
 
 
-def _biarc_fine(
+def biarc_fine(
     chain: np.ndarray, splits: np.ndarray, turns: np.ndarray, head: tuple[float, float], tail: tuple[float, float]
 ) -> tuple[float, int, int]:
     """The best biarc of a grid of ``splits`` and ``turns``: (largest pixel distance px, split index, turn index).
 
     ``head`` and ``tail`` are the two circles' (radius, side); every pixel is
     measured. The smallest over the grid of the larger of the head's and the
-    tail's :func:`_biarc_worst`, the first in row-major order on a tie. Compiled
+    tail's :func:`biarc_worst`, the first in row-major order on a tie. Compiled
     (:func:`img2logo._compiled.arcs.biarc_best_kernel`), a biarc's pixels stop
     being measured once it cannot beat the best so far: the same numbers as the
     two grids, a third of the work on the clip arts' joins.
@@ -852,20 +851,20 @@ def _biarc_fine(
     from .._compiled import kernels
 
     if kernels.usable():
-        normal = _biarc_normal(chain, splits, turns)
+        normal = biarc_normals(chain, splits, turns)
         base = chain[splits][:, None, :]
         worst, s, t = kernels.biarc_best_kernel(
             chain, base + sa * ra * normal, base + sb * rb * normal, np.asarray(splits, dtype=np.int64), ra, rb
         )
         return float(worst), int(s), int(t)
     w = np.maximum(
-        _biarc_worst(chain, splits, turns, ra, sa, True, 1), _biarc_worst(chain, splits, turns, rb, sb, False, 1)
+        biarc_worst(chain, splits, turns, ra, sa, True, 1), biarc_worst(chain, splits, turns, rb, sb, False, 1)
     )
     s, t = np.unravel_index(int(np.argmin(w)), w.shape)
     return float(w[s, t]), int(s), int(t)
 
 
-def _biarc_normal(chain: np.ndarray, splits: np.ndarray, turns: np.ndarray) -> np.ndarray:
+def biarc_normals(chain: np.ndarray, splits: np.ndarray, turns: np.ndarray) -> np.ndarray:
     """Unit normals (S, A, 2) of the chain's direction at pixels ``splits`` turned by ``turns`` rad."""
     n = len(chain)
     d = chain[np.minimum(splits + 3, n - 1)] - chain[np.maximum(splits - 3, 0)]
@@ -873,7 +872,7 @@ def _biarc_normal(chain: np.ndarray, splits: np.ndarray, turns: np.ndarray) -> n
     return np.stack([-np.sin(theta), np.cos(theta)], axis=-1)
 
 
-def _biarc_worst(
+def biarc_worst(
     chain: np.ndarray,
     splits: np.ndarray,
     turns: np.ndarray,
@@ -887,10 +886,10 @@ def _biarc_worst(
 
     The circle touches the chain's turned direction at ``chain[split]``, its
     centre on the ``side`` (+1 or -1) of it; every ``stride``-th pixel measured.
-    ``normal`` is :func:`_biarc_normal` of ``splits`` and ``turns`` when known.
+    ``normal`` is :func:`biarc_normals` of ``splits`` and ``turns`` when known.
     """
     if normal is None:
-        normal = _biarc_normal(chain, splits, turns)
+        normal = biarc_normals(chain, splits, turns)
     centre = chain[splits][:, None, :] + side * r * normal  # (S, A, 2)
     index = np.arange(0, len(chain), stride)
     from .._compiled import kernels
@@ -903,7 +902,7 @@ def _biarc_worst(
 def _biarc_worst_reference(
     chain: np.ndarray, centre: np.ndarray, index: np.ndarray, splits: np.ndarray, r: float, head: bool
 ) -> np.ndarray:
-    """:func:`_biarc_worst` in numpy past the centres (S, A, 2): the compiled kernel's reference."""
+    """:func:`biarc_worst` in numpy past the centres (S, A, 2): the compiled kernel's reference."""
     sample = chain[index]
     dist = np.abs(np.hypot(sample[:, 0] - centre[..., :1], sample[:, 1] - centre[..., 1:]) - r)  # (S, A, m)
     mine = index[None, :] <= splits[:, None] if head else index[None, :] >= splits[:, None]
@@ -919,7 +918,7 @@ def _slide(
     split one smooth feature line: a junction that slides along the line to
     where the two circles touch moves the logo away from nothing. So the two
     groups' pixels are split where the displaced junction projects on their
-    joined pixel chain (:func:`_split`), and E^s counts the junction's distance
+    joined pixel chain (:func:`split_chain`), and E^s counts the junction's distance
     off the line instead of its displacement (``opt.off_line``). (None, {}) if
     a junction slid past the end of one of the groups (fewer than
     ``SLIDE_MIN_PIXELS`` left): the join would swallow it. ``disp``: node ->
@@ -933,7 +932,7 @@ def _slide(
             continue
         ga, gb = groups.get(a, opt.groups[a]), groups.get(b, opt.groups[b])
         chain = merge_groups(ga, gb, n).points
-        split = _split(chain, opt.graph.junctions[n] + disp(n))
+        split = split_chain(chain, opt.graph.junctions[n] + disp(n))
         if split is None:
             return None, {}
         pa, pb, off[n] = split
@@ -942,7 +941,7 @@ def _slide(
     return groups, off
 
 
-def _split(chain: np.ndarray, q: np.ndarray) -> tuple[np.ndarray, np.ndarray, float] | None:
+def split_chain(chain: np.ndarray, q: np.ndarray) -> tuple[np.ndarray, np.ndarray, float] | None:
     """Split a pixel chain (n, 2) px at the point nearest ``q``: (head, tail, distance of q from the chain, px).
 
     The nearest point of the polyline ends the head and starts the tail. None

@@ -27,8 +27,9 @@ from typing import Any
 import numpy as np
 
 from .._validation import check_points, check_positive, readonly
-from ..constants import CIRCLE_REFINE_MAX_ITER, MAX_RADIUS_FACTOR
+from ..constants import MAX_RADIUS_FACTOR
 from ..errors import FitError, InvalidParameterError
+from .constants import CIRCLE_REFINE_MAX_ITER
 
 __all__ = [
     "CircleFit",
@@ -179,22 +180,20 @@ def fit_circle(points: object, *, max_radius: float | None = None, refine: bool 
         raise FitError(f"a circle fit needs at least 3 points, got {len(p)}")
     if max_radius is not None:
         check_positive(max_radius, "max_radius")
-    if not refine:
-        kernels = _kernels()  # the compiled kernels load on the first fit, not at import
-        if kernels is not None:
-            status, cx, cy, radius, rms, capped = kernels["fit_circle_kernel"](
-                p, 0.0 if max_radius is None else float(max_radius), MAX_RADIUS_FACTOR
-            )
-            if status == 1:
-                raise FitError(f"a circle fit needs at least 3 distinct points, got {int(cx)}")
-            if status == 2:
-                raise FitError(f"max_radius {cx:g} is less than half the points' extent {cy:g}")
-            return CircleFit(readonly(np.array([cx, cy])), radius, rms, capped)
-    return _fit_circle_reference(p, max_radius, refine)
+    if refine:
+        return _fit_circle_svd(p, max_radius, refine)
+    status, cx, cy, radius, rms, capped = _kernels()["fit_circle_kernel"](  # loaded on the first fit, not at import
+        p, 0.0 if max_radius is None else float(max_radius), MAX_RADIUS_FACTOR
+    )
+    if status == 1:
+        raise FitError(f"a circle fit needs at least 3 distinct points, got {int(cx)}")
+    if status == 2:
+        raise FitError(f"max_radius {cx:g} is less than half the points' extent {cy:g}")
+    return CircleFit(readonly(np.array([cx, cy])), radius, rms, capped)
 
 
-def _fit_circle_reference(p: np.ndarray, max_radius: float | None, refine: bool) -> CircleFit:
-    """:func:`fit_circle` in numpy, the Hyper fit by SVD: the compiled kernel's reference."""
+def _fit_circle_svd(p: np.ndarray, max_radius: float | None, refine: bool) -> CircleFit:
+    """:func:`fit_circle` in numpy, the Hyper fit by SVD: the refined fit, and the compiled kernel's oracle."""
     # Count distinct points up to 3 (np.unique(axis=0) is slow): any circle through
     # two points would fit them exactly.
     not_first = np.any(p != p[0], axis=1)
@@ -251,10 +250,7 @@ def mean_abs_error(points: object, center: object, radius: float) -> float:
     if not (math.isfinite(cx) and math.isfinite(cy)):
         raise InvalidParameterError(f"center must be a finite array of shape (2,), got {o.shape}")
     r = check_positive(radius, "radius")
-    kernels = _kernels()
-    if kernels is not None:
-        return float(kernels["mean_abs_error_kernel"](p, cx, cy, r))
-    return float(np.mean(np.abs(np.hypot(p[:, 0] - o[0], p[:, 1] - o[1]) - r)))
+    return float(_kernels()["mean_abs_error_kernel"](p, cx, cy, r))
 
 
 def fit_center(points: object, radius: float, center0: object, *, iterations: int = 8) -> np.ndarray:
@@ -268,10 +264,7 @@ def fit_center(points: object, radius: float, center0: object, *, iterations: in
     p = _points(points)
     o = np.array(center0, dtype=np.float64).reshape(2)
     r = check_positive(radius, "radius")
-    kernels = _kernels()
-    if kernels is not None:
-        return np.array(kernels["fit_center_kernel"](p, r, float(o[0]), float(o[1]), int(iterations)))
-    return _fit_center_reference(p, r, o, iterations)
+    return np.array(_kernels()["fit_center_kernel"](p, r, float(o[0]), float(o[1]), int(iterations)))
 
 
 _FLOAT64 = np.dtype(np.float64)
@@ -300,27 +293,11 @@ def _points(points: object) -> np.ndarray:
 _KERNELS: Any = None  # img2logo._compiled.kernels, once a fit asked for it (its import is not every run's)
 
 
-def _kernels() -> dict[str, Any] | None:
-    """The compiled kernels by name (:mod:`img2logo._compiled.kernels`), or None where the Python reference runs."""
+def _kernels() -> dict[str, Any]:
+    """The compiled kernels by name (:mod:`img2logo._compiled.kernels`; numba's JIT where none can be cached)."""
     global _KERNELS
     if _KERNELS is None:
         from .._compiled import kernels
 
         _KERNELS = kernels
-    return _KERNELS._load() if _KERNELS.usable() else None
-
-
-def _fit_center_reference(p: np.ndarray, r: float, o: np.ndarray, iterations: int) -> np.ndarray:
-    """:func:`fit_center` in numpy: the compiled kernel's reference."""
-    for _ in range(iterations):
-        vx, vy = o[0] - p[:, 0], o[1] - p[:, 1]
-        dist = np.sqrt(vx * vx + vy * vy)  # np.hypot is ~5x slower; px cannot overflow
-        dist[dist == 0] = 1e-12
-        ux, uy = vx / dist, vy / dist
-        e = dist - r
-        jtj = np.array([[ux @ ux, ux @ uy], [ux @ uy, uy @ uy]])
-        step = np.linalg.lstsq(jtj, -np.array([ux @ e, uy @ e]), rcond=None)[0]
-        o += step
-        if float(np.abs(step).max()) < 1e-9:
-            break
-    return o
+    return _KERNELS._load()

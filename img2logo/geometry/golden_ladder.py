@@ -30,8 +30,9 @@ from functools import lru_cache
 import numpy as np
 
 from .._validation import check_choice, check_positive
-from ..constants import LADDER_SNAP_RTOL, LOG_PHI, MAX_LENGTH, MIN_LADDER_RADIUS, PHI
+from ..constants import LOG_PHI, MAX_LENGTH, MIN_LADDER_RADIUS, PHI
 from ..errors import InvalidParameterError
+from .constants import LADDER_SNAP_RTOL
 
 __all__ = [
     "FIBONACCI_MAX_UNIT",

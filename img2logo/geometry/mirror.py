@@ -23,7 +23,8 @@ import numpy as np
 
 from .._validation import readonly
 from ..constants import SYMMETRY_PAIR_TOLERANCE
-from .primitives import Abstraction, Circle
+from .abstraction import Abstraction
+from .primitives import Circle
 
 __all__ = ["Axis", "axis_segment", "circle_pairs", "is_symmetric", "symmetry_extra"]
 

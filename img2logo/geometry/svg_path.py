@@ -21,8 +21,9 @@ from typing import Protocol
 import numpy as np
 
 from .._validation import check_positive
-from ..constants import ARC_SAMPLE_STEP, LINE_RADIUS, SVG_DECIMALS, SVG_NEAR_FULL_SWEEP
+from ..constants import ARC_SAMPLE_STEP
 from ..errors import InvalidParameterError
+from .constants import LINE_RADIUS, SVG_DECIMALS, SVG_NEAR_FULL_SWEEP
 from .primitives import TAU, Arc, Circle
 
 __all__ = ["LoopPiece", "arc_path", "loop_path", "sample_path", "svg_number"]

@@ -15,18 +15,18 @@ Touching node pixels are clustered into one node.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from .._compat import line, nonzero
+from .._compat import nonzero
 from .._compiled import kernels
-from ..constants import LINE_JOIN_DISTANCE
 from ..geometry.primitives import polyline_length
 
 # The 8 neighbours in circular order: N, NE, E, SE, S, SW, W, NW (row, column).
-_RING = ((-1, 0), (-1, 1), (0, 1), (1, 1), (1, 0), (1, -1), (0, -1), (-1, -1))
+RING = ((-1, 0), (-1, 1), (0, 1), (1, 1), (1, 0), (1, -1), (0, -1), (-1, -1))
+
+
 _EIGHT = np.ones((3, 3), dtype=bool)
 
 
@@ -69,13 +69,21 @@ class PixelGraph:
         return polyline_length(self.polyline(c))
 
 
-# Every pixel's 8 neighbours as one byte (bit k: _RING[k] is set), and the crossing number
+# Every pixel's 8 neighbours as one byte (bit k: RING[k] is set), and the crossing number
 # and neighbour count of each of the 256 bytes.
 _CODE_WEIGHTS = np.zeros((3, 3), dtype=np.float32)
-for _k, (_dr, _dc) in enumerate(_RING):
+
+
+for _k, (_dr, _dc) in enumerate(RING):
     _CODE_WEIGHTS[1 + _dr, 1 + _dc] = 1 << _k
+
+
 _BITS = (np.arange(256)[:, None] >> np.arange(8)) & 1
+
+
 _CROSSINGS = np.sum((_BITS == 0) & (np.roll(_BITS, -1, axis=1) == 1), axis=1).astype(np.uint8)
+
+
 _COUNTS = _BITS.sum(axis=1).astype(np.uint8)
 
 
@@ -140,7 +148,7 @@ def trace(skel: np.ndarray) -> PixelGraph:
     # Weighted 8-neighbour adjacency of chain pixels, and their contacts with nodes.
     h, w = skel.shape
     src, dst, wts, c_pix, c_node = [], [], [], [], []
-    for dr, dc in _RING:
+    for dr, dc in RING:
         r2, c2 = rows + dr, cols + dc
         inside = (r2 >= 0) & (r2 < h) & (c2 >= 0) & (c2 < w)
         i = np.flatnonzero(inside)
@@ -232,42 +240,14 @@ def _dijkstra(graph: _Graph, sources: list[int]) -> tuple[np.ndarray, np.ndarray
     return_predecessors=True)`` to the bit, the same path among equally short
     ones (the tests compare the two), without importing ``scipy.sparse`` (its
     array-API layer and ``csgraph`` cost a run about 0.25 s of CPU): the compiled
-    kernel (:func:`img2logo._compiled.graph.dijkstra_kernel`), else
-    :func:`_dijkstra_reference`.
+    kernel :func:`img2logo._compiled.graph.dijkstra_kernel`.
     """
     from .._compiled import kernels
 
-    if not kernels.usable():
-        return _dijkstra_reference(graph, sources)
     dist = np.empty(graph.n)
     pred = np.empty(graph.n, dtype=np.int64)
     kernels.dijkstra_kernel(graph.indptr, graph.indices, graph.weights, np.asarray(sources, dtype=np.int64), dist, pred)
     return dist, pred
-
-
-def _dijkstra_reference(graph: _Graph, sources: list[int]) -> tuple[np.ndarray, np.ndarray]:
-    """:func:`_dijkstra` in Python: nearest node first, the larger index first among equal ones (scipy's order)."""
-    import heapq
-
-    dist = [math.inf] * graph.n
-    pred = [-9999] * graph.n
-    heap = []
-    for s in sources:
-        dist[s] = 0.0
-        heapq.heappush(heap, (0.0, -s))
-    indptr, indices, weights = graph.indptr.tolist(), graph.indices.tolist(), graph.weights.tolist()
-    while heap:
-        d, v = heapq.heappop(heap)
-        v = -v
-        if dist[v] < d:
-            continue
-        for e in range(indptr[v], indptr[v + 1]):
-            j, nd = indices[e], d + weights[e]
-            if dist[j] > nd:
-                dist[j] = nd
-                pred[j] = v
-                heapq.heappush(heap, (nd, -j))
-    return np.array(dist), np.array(pred, dtype=np.int64)
 
 
 def _contact_groups(
@@ -506,127 +486,3 @@ def rasterize(graph: PixelGraph, shape: tuple[int, int]) -> np.ndarray:
         if len(pix):
             out[pix[:, 0], pix[:, 1]] = True
     return out
-
-
-# --------------------------------------------------------------------------- joining line ends
-def join_line_ends(skel: np.ndarray, distance: float = LINE_JOIN_DISTANCE) -> np.ndarray:
-    """Link every end of a 1-px line map that stops near another line to it, (H, W) bool.
-
-    For an end (a pixel with one 8-neighbour), the nearest line pixel at most
-    ``distance`` px away that is not on its own stretch of line (the pixels
-    within ``1.5 * distance`` steps along it):
-
-    * on another line, or far along its own: the end is joined to it by a
-      straight run of pixels (a junction; no near-miss gap);
-    * within ``3 * distance`` steps along the line (the other branch of a fork
-      just behind the end): the end's branch is a spur that would run beside
-      its sibling, and is removed back to the fork.
-
-    Of nearest pixels at the same distance, the one the line points at most
-    nearly (:func:`_straightest`). Ends are taken in raster order; a new run is
-    itself a line for the ends after it.
-    """
-    out = np.asarray(skel, dtype=bool).copy()
-    if not out.any():
-        return out
-    ends = np.column_stack(nonzero(out & (classify(out)[1] == 1)))  # np.argwhere
-    if len(ends) == 0:
-        return out
-    first = out.copy()  # the line pixels searched: those of the map as given
-    near_steps, reach = math.ceil(1.5 * distance), math.ceil(3.0 * distance)
-    h, w = out.shape
-    for r, c in ends:
-        end = (int(r), int(c))
-        if not out[end]:
-            continue
-        own = _walk(out, end, near_steps)
-        best, best_d, tied = None, math.inf, []
-        for q in _pixels_within(first, end, distance):
-            if q in own or not out[q]:
-                continue
-            d = math.hypot(q[0] - end[0], q[1] - end[1])
-            if d < best_d:
-                best, best_d, tied = q, d, [q]
-            elif d == best_d:
-                tied.append(q)
-        if len(tied) > 1:
-            best = _straightest(end, own, tied)
-        if best is None or best_d <= 1.5:
-            continue
-        if best in _walk(out, end, reach):
-            spur = _branch(out, end)
-            if spur is not None and len(spur) <= reach:
-                for q in spur:
-                    out[q] = False
-        else:
-            rr, cc = line(end[0], end[1], best[0], best[1])
-            out[np.clip(rr, 0, h - 1), np.clip(cc, 0, w - 1)] = True
-    return out
-
-
-def _pixels_within(pixels: np.ndarray, at: tuple[int, int], distance: float) -> list[tuple[int, int]]:
-    """The set pixels of ``pixels`` (H, W) at most ``distance`` px from ``at`` (row, col)."""
-    reach = math.floor(distance)
-    r0, c0 = max(at[0] - reach, 0), max(at[1] - reach, 0)
-    rows, cols = np.nonzero(pixels[r0 : at[0] + reach + 1, c0 : at[1] + reach + 1])
-    rows += r0
-    cols += c0
-    inside = (rows - at[0]) ** 2 + (cols - at[1]) ** 2 <= distance * distance
-    return list(zip(rows[inside].tolist(), cols[inside].tolist(), strict=True))
-
-
-def _straightest(end: tuple[int, int], own: set[tuple[int, int]], tied: list[tuple[int, int]]) -> tuple[int, int]:
-    """Of line pixels ``tied`` equally near ``end``, the one the line reaching ``end`` points at most nearly.
-
-    A join continues its stroke: the line's direction at the end is from the
-    centroid of its own stretch (``own``, the pixels just behind the end) to the
-    end; the pixel whose direction from the end turns least from it is taken,
-    the first in raster order among equal turns.
-    """
-    back_r = sum(p[0] for p in own) / len(own)
-    back_c = sum(p[1] for p in own) / len(own)
-    dr, dc = end[0] - back_r, end[1] - back_c
-    return max(tied, key=lambda q: (q[0] - end[0]) * dr + (q[1] - end[1]) * dc)  # equal lengths: the cosine
-
-
-def _branch(skel: np.ndarray, end: tuple[int, int]) -> list[tuple[int, int]] | None:
-    """The pixels from ``end`` along ``skel`` up to (not including) the first fork; None without a fork."""
-    h, w = skel.shape
-    path = [end]
-    seen = {end}
-    cur = end
-    while True:
-        nbrs = [
-            (cur[0] + dr, cur[1] + dc)
-            for dr in (-1, 0, 1)
-            for dc in (-1, 0, 1)
-            if (dr or dc) and 0 <= cur[0] + dr < h and 0 <= cur[1] + dc < w and skel[cur[0] + dr, cur[1] + dc]
-        ]
-        if len(nbrs) > 2:
-            return path[:-1]
-        nxt = [q for q in nbrs if q not in seen]
-        if not nxt or (cur != end and len(nbrs) != 2):
-            return None
-        cur = nxt[0]
-        seen.add(cur)
-        path.append(cur)
-
-
-def _walk(skel: np.ndarray, start: tuple[int, int], steps: int) -> set[tuple[int, int]]:
-    """Pixels of ``skel`` within ``steps`` 8-connected steps of ``start`` along it."""
-    h, w = skel.shape
-    seen = {start}
-    frontier = [start]
-    for _ in range(steps):
-        nxt = []
-        for r, c in frontier:
-            for dr in (-1, 0, 1):
-                for dc in (-1, 0, 1):
-                    q = (r + dr, c + dc)
-                    if 0 <= q[0] < h and 0 <= q[1] < w and skel[q] and q not in seen:
-                        seen.add(q)
-                        nxt.append(q)
-        if not nxt:
-            break
-        frontier = nxt
-    return seen

@@ -23,7 +23,7 @@ from ..export.plotting import ARC_COLOR, default_stroke_width, evenodd_orient
 from .session import Studio
 
 if TYPE_CHECKING:
-    from ..geometry.primitives import Abstraction
+    from ..geometry.abstraction import Abstraction
     from ..images.loading import LoadedImage
 
 #: Side of the square drawing on screen, CSS px: with two columns of controls of

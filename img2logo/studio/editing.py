@@ -15,7 +15,8 @@ from collections.abc import Callable
 import numpy as np
 
 from ..errors import InvalidParameterError
-from ..geometry.primitives import Abstraction, Arc
+from ..geometry.abstraction import Abstraction
+from ..geometry.primitives import Arc
 from .state import StudioState
 
 #: Distance from a click to an arc that still selects it, CSS px of the drawing on screen (a

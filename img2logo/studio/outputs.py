@@ -139,16 +139,15 @@ class StudioFiles(StudioState):
             out: dict[str, bytes] = {}
             with tempfile.TemporaryDirectory(prefix="img2logo-studio-") as folder:
                 for fmt in formats:
-                    path = Path(folder) / names[fmt]
-                    if fmt == "json":
-                        writers.write_json(a, path, fills=fills)
-                    elif fmt == "svg":
-                        writers.write_svg(a, path, fills=fills)
-                    elif fmt == "pdf":
-                        writers.write_pdf(a, path, fills=fills)
-                    else:
-                        writers.write_png(a, path, image=result.image.rgb, fills=fills, background=backgrounds[fmt])
-                    out[fmt] = path.read_bytes()
+                    written = writers.write(
+                        a,
+                        Path(folder) / names[fmt],
+                        fmt.split("-")[0],
+                        fills=fills,
+                        image=result.image.rgb,
+                        background=backgrounds.get(fmt),
+                    )
+                    out[fmt] = written.read_bytes()
             return out
 
         return self._cached("downloads:" + ",".join(formats), make)

@@ -18,7 +18,7 @@ import numpy as np
 
 from ..constants import TOLERANCE
 from ..errors import InvalidParameterError
-from ..geometry.primitives import Abstraction
+from ..geometry.abstraction import Abstraction
 from .session import PICK_DISTANCE, Studio
 
 

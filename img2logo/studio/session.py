@@ -46,7 +46,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import InvalidParameterError
-from ..experiments.explore import levels_within
+from ..experiments.explore import abstract_with_settings, levels_within
 from ..experiments.paths import data_path
 from .editing import PICK_DISTANCE, StudioEdits, free_ends
 from .outputs import DOWNLOAD_FORMATS, StudioFiles
@@ -256,22 +256,13 @@ class Studio(StudioEdits, StudioFiles):
 
         def act() -> str:
             from ..design.fills import parse_fill_option
-            from ..pipeline import abstract
 
             settings = dataclasses.replace(self.settings, **changes)
             parse_fill_option(settings.fill)  # a bad --fill is said before the run
             start = time.perf_counter()
-            result = abstract(
+            result = abstract_with_settings(
                 self.image,
-                tolerance=settings.tolerance,
-                kind=settings.kind,
-                rdp_tolerance=settings.rdp_tolerance,
-                bias=settings.bias,
-                symmetry=settings.symmetry,
-                lines=settings.lines,
-                ladder=settings.ladder,
-                exponents=settings.exponents,
-                detail=settings.detail,
+                settings,
                 subject=self.subject,
                 lock_mask=self.mask.copy() if self.mask.any() else None,
                 progress=progress or False,

@@ -20,7 +20,7 @@ import numpy as np
 
 from ..constants import DETAIL, RDP_TOLERANCE, TOLERANCE
 from ..errors import Img2LogoError
-from ..geometry.primitives import Abstraction
+from ..geometry.abstraction import Abstraction
 
 if TYPE_CHECKING:
     from ..images.loading import LoadedImage

@@ -365,10 +365,10 @@ def test_help_has_examples_for_designers(capsys):
     for line in ("img2logo cat.png --svg cat.svg", "--png-background transparent", "--pdf cat.pdf", "img2logo batch"):
         assert line in examples
     # Each example is a command the parser accepts.
-    from img2logo.app.cli import _parser
+    from img2logo.app.cli import build_parser
 
     for command in re.findall(r"^  (img2logo (?!batch).*)$", examples, re.M):
-        _parser().parse_args(command.split()[1:])
+        build_parser().parse_args(command.split()[1:])
 
 
 def test_help_mentions_batch(capsys):
@@ -403,7 +403,7 @@ def test_a_photo_without_an_object_says_how_to_choose_one(tmp_path, capsys):
     import cv2
     from helpers import textured_photo
 
-    from img2logo.app.cli import SUBJECT_HINT
+    from img2logo.app.commands import SUBJECT_HINT
 
     rgb, _ = textured_photo([])  # pure texture: no dominant object, the whole image is drawn
     path = tmp_path / "texture.png"

@@ -15,8 +15,9 @@ from img2logo.constants import PHI
 from img2logo.design import edits
 from img2logo.errors import FitError, InvalidParameterError
 from img2logo.export.contract import to_document, validate_document
+from img2logo.geometry.abstraction import Abstraction
 from img2logo.geometry.golden_ladder import FibonacciLadder, GoldenLadder
-from img2logo.geometry.primitives import Abstraction, Arc, Circle, line_arc
+from img2logo.geometry.primitives import Arc, Circle, line_arc
 
 pytest.importorskip("jsonschema")
 

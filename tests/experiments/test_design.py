@@ -12,7 +12,8 @@ from helpers import DATA
 
 from img2logo import InvalidParameterError, abstract
 from img2logo.experiments import design, preprocess, sweep
-from img2logo.geometry.primitives import Abstraction, Arc, Circle
+from img2logo.geometry.abstraction import Abstraction
+from img2logo.geometry.primitives import Arc, Circle
 
 #: The beak of drawing-bird.png (Fig. 16): centre (x, y) and radius, px.
 BEAK = ((375.0, 155.0), 40.0)

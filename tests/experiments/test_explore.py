@@ -156,3 +156,18 @@ def test_explorer_symmetry_toggle_runs_a_symmetric_logo():
     assert explorer.settings.symmetry == "auto" and explorer.result.symmetry.axis is not None
     record = explorer.result.final.params["symmetry"]
     assert all(is_symmetric(level, record["point"], record["direction"]) for level in explorer.levels)
+
+
+def test_a_settings_value_runs_as_its_option_fields():
+    import cv2
+
+    from img2logo.studio.session import StudioSettings
+
+    image = np.full((120, 120, 3), 255, np.uint8)
+    cv2.circle(image, (60, 60), 40, (0, 0, 0), 3)
+    settings = StudioSettings(tolerance=7.0, ladder="fibonacci", lines=True, fill="auto")  # fill: no option
+    got = explore.abstract_with_settings(image, settings, progress=False)
+    want = abstract(image, tolerance=7.0, ladder="fibonacci", lines=True, progress=False)
+    assert got.final.arcs == want.final.arcs and dict(got.params) == dict(want.params)
+    shown = explore.abstract_with_settings(image, explore.ExplorerSettings(image="ring.png"), progress=False)
+    assert dict(shown.params) == dict(abstract(image, progress=False).params)

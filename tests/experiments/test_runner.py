@@ -105,12 +105,12 @@ def test_executed_notebook_names_its_kernel_as_jupyterlab_does(tmp_path):
     pytest.importorskip("jupyter_client")
     from jupyter_client.kernelspec import KernelSpecManager
 
-    from img2logo.experiments.runner import _name_the_kernel
+    from img2logo.experiments.runner import name_the_kernel
 
     nb = nbformat.v4.new_notebook(metadata={"kernelspec": {"name": "python3", "display_name": "Python 3"}})
     path = tmp_path / "run.ipynb"
     nbformat.write(nb, path)
-    _name_the_kernel(path, "python3")
+    name_the_kernel(path, "python3")
     shown = KernelSpecManager().get_kernel_spec("python3").display_name
     assert nbformat.read(path, as_version=4).metadata.kernelspec.display_name == shown
 

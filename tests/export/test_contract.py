@@ -17,7 +17,8 @@ from img2logo.constants import FORMAT_NAME, PHI
 from img2logo.design import fills
 from img2logo.errors import InvalidParameterError
 from img2logo.export import contract, writers
-from img2logo.geometry.primitives import Abstraction, Arc, Circle
+from img2logo.geometry.abstraction import Abstraction
+from img2logo.geometry.primitives import Arc, Circle
 
 jsonschema = pytest.importorskip("jsonschema")
 

@@ -17,10 +17,12 @@ from matplotlib.collections import LineCollection
 from matplotlib.image import AxesImage
 from matplotlib.patches import Circle as CirclePatch
 
-from img2logo.constants import MIN_STROKE_WIDTH, PHI
+from img2logo.constants import PHI
 from img2logo.errors import InvalidImageError, InvalidParameterError
 from img2logo.export import plotting
-from img2logo.geometry.primitives import Abstraction, Arc, Circle
+from img2logo.export.constants import MIN_STROKE_WIDTH
+from img2logo.geometry.abstraction import Abstraction
+from img2logo.geometry.primitives import Arc, Circle
 from img2logo.segment_graph import SegmentGraph
 
 W, H = 120, 90

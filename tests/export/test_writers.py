@@ -577,3 +577,22 @@ def test_a_suffix_that_names_another_format_is_refused(tmp_path, write, name, fm
         getattr(writers, write)(level, tmp_path / name)
     assert not (tmp_path / name).exists()
     assert getattr(writers, write)(level, tmp_path / "logo.out").is_file()
+
+
+def test_write_is_the_formats_own_writer(tmp_path):
+    a = make_abstraction()
+    image = np.full((HEIGHT, WIDTH, 3), 200, np.uint8)
+    own = {
+        "json": lambda p: writers.write_json(a, p),
+        "svg": lambda p: writers.write_svg(a, p),
+        "pdf": lambda p: writers.write_pdf(a, p),
+        "png": lambda p: writers.write_png(a, p, image=image, background="transparent", scale=0.5),
+    }
+    assert set(own) == set(writers.LEVEL_FORMATS)
+    for fmt, write in own.items():
+        got = writers.write(a, tmp_path / f"one.{fmt}", fmt, image=image, background="transparent", scale=0.5)
+        assert got == tmp_path / f"one.{fmt}"
+        assert got.read_bytes() == write(tmp_path / f"two.{fmt}").read_bytes(), fmt
+    with pytest.raises(InvalidParameterError, match="format"):
+        writers.write(a, tmp_path / "a.gif", "gif")
+    assert not (tmp_path / "a.gif").exists()

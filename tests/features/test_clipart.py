@@ -254,7 +254,7 @@ def test_a_jpeg_of_an_example_draws_the_same_lines(name):
 def test_near_entries_match_a_whole_image_dilation():
     # The entries are dilated within their boxes (a speed-up): the same answer as dilating
     # each entry's mask over the whole image, at the image's edges too.
-    from img2logo.features.clipart import _near_entries
+    from img2logo.features.clipart import near_entries
 
     rng = np.random.default_rng(7)
     for _ in range(40):
@@ -268,14 +268,14 @@ def test_near_entries_match_a_whole_image_dilation():
             expected = np.stack(
                 [cv2.dilate((index == e).astype(np.uint8), disk)[rest] > 0 for e in range(n)], axis=1
             ).reshape(int(rest.sum()), n)
-            assert np.array_equal(_near_entries(index, n, rest, radius), expected)
+            assert np.array_equal(near_entries(index, n, rest, radius), expected)
 
 
 def test_flat_areas_match_the_padded_window():
     # Each pixel pair is measured once (a speed-up): the same areas as the window's
     # largest difference over an edge-padded image, as first written.
-    from img2logo.constants import CLIPART_FLAT_RADIUS as rad
-    from img2logo.features.clipart import _flat_areas
+    from img2logo.features.clipart import flat_areas
+    from img2logo.features.constants import CLIPART_FLAT_RADIUS as rad
 
     def reference(lab: np.ndarray, link: float) -> np.ndarray:
         from img2logo.images.ndimage import components as label
@@ -298,9 +298,9 @@ def test_flat_areas_match_the_padded_window():
         h, w = (int(v) for v in rng.integers(1, 30, 2))
         lab = np.round(rng.random((h, w, 3)) * rng.choice([1.0, 5.0, 50.0]), int(rng.integers(0, 3)))
         for link in (0.0, 1.0, 3.0):
-            assert np.array_equal(_flat_areas(lab, link), reference(lab, link))
+            assert np.array_equal(flat_areas(lab, link), reference(lab, link))
     lab = load_image(DATA / "clipart-fish.png").lab
-    assert np.array_equal(_flat_areas(lab, 1.15), reference(lab, 1.15))
+    assert np.array_equal(flat_areas(lab, 1.15), reference(lab, 1.15))
 
 
 def test_label_means_match_bincount():
@@ -323,17 +323,17 @@ def test_label_means_match_bincount():
 def test_spread_kernel_is_the_numpy_reference(monkeypatch):
     # The colour spreads of the flat areas and the noise, compiled: the same float32 bits as numpy's.
     from img2logo._compiled import kernels
-    from img2logo.features.clipart import _spread
+    from img2logo.features.clipart import lab_spread
 
     window = [(dr, dc) for dr in range(3) for dc in range(-2, 3) if dr > 0 or dc > 0]
     rng = np.random.default_rng(5)
     labs = [rng.random((h, w, 3)) * 100.0 for h, w in ((1, 1), (2, 7), (9, 3), (40, 33))]
     labs.append(load_image(DATA / "clipart-fish.png").lab)
-    compiled = [(_spread(lab, window), _spread(lab, [(0, 1), (1, 0)])) for lab in labs]
+    compiled = [(lab_spread(lab, window), lab_spread(lab, [(0, 1), (1, 0)])) for lab in labs]
     monkeypatch.setattr(kernels, "CACHED", False)
     for lab, (a, b) in zip(labs, compiled, strict=True):
-        assert a.dtype == np.float32 and np.array_equal(a, _spread(lab, window))
-        assert np.array_equal(b, _spread(lab, [(0, 1), (1, 0)]))
+        assert a.dtype == np.float32 and np.array_equal(a, lab_spread(lab, window))
+        assert np.array_equal(b, lab_spread(lab, [(0, 1), (1, 0)]))
 
 
 @pytest.mark.parametrize("path", [DATA / "clipart-fish.png", EVAL / "clipart-giraffe-jpeg.jpg"])
@@ -358,25 +358,25 @@ def test_near_entries_look_round_or_dilate_alike(monkeypatch):
     rng = np.random.default_rng(3)
     index = np.where(rng.random((60, 80)) < 0.2, -1, rng.integers(0, 5, (60, 80)))
     rest = index < 0
-    looked = clipart._near_entries(index, 5, rest)
+    looked = clipart.near_entries(index, 5, rest)
     monkeypatch.setattr(clipart, "_NEAR_PIXEL_WORK", -1)  # never look round: dilate
-    assert np.array_equal(looked, clipart._near_entries(index, 5, rest))
+    assert np.array_equal(looked, clipart.near_entries(index, 5, rest))
     assert looked.any() and not looked.all()
 
 
 def test_colour_distance_and_spreads_are_numpys(monkeypatch):
     from img2logo._compiled import kernels
-    from img2logo.features.clipart import _spread, _spreads, colour_distance
+    from img2logo.features.clipart import colour_distance, lab_spread, lab_spreads
 
     rng = np.random.default_rng(4)
     labs = [rng.random((h, w, 3)) * 100.0 for h, w in ((1, 1), (2, 7), (9, 3), (40, 33))]
     pairs_a, pairs_b = [(0, 1), (1, 0)], [(0, 1), (1, -1), (1, 0), (1, 1), (2, 2)]
-    compiled = [(colour_distance(lab, lab[0, 0]), _spreads(lab, pairs_a, pairs_b)) for lab in labs]
+    compiled = [(colour_distance(lab, lab[0, 0]), lab_spreads(lab, pairs_a, pairs_b)) for lab in labs]
     monkeypatch.setattr(kernels, "CACHED", False)
     for lab, (dist, (a, b)) in zip(labs, compiled, strict=True):
         assert np.array_equal(dist, np.linalg.norm(lab - lab[0, 0], axis=2))
-        assert a.dtype == np.float32 and np.array_equal(a, _spread(lab, pairs_a))
-        assert np.array_equal(b, _spread(lab, pairs_b))
+        assert a.dtype == np.float32 and np.array_equal(a, lab_spread(lab, pairs_a))
+        assert np.array_equal(b, lab_spread(lab, pairs_b))
 
 
 # --------------------------------------------------------------------------- the silhouette, JPEG parity

@@ -264,7 +264,7 @@ def test_detect_kind_of_an_upscaled_drawing_is_a_drawing():
 
     import cv2
 
-    from img2logo.features.preprocessing import _detect
+    from img2logo.features.preprocessing import detect_kind_and_regions
 
     small = cv2.imread(str(DATA.parent / "benchmarks" / "data" / "drawing-deer.png"))[:, :, ::-1]
     big = np.ascontiguousarray(cv2.resize(small, (2048, 2048), interpolation=cv2.INTER_CUBIC))
@@ -272,7 +272,7 @@ def test_detect_kind_of_an_upscaled_drawing_is_a_drawing():
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         # At 2048 px the stroke ramps are wide bands of grey: blends of the paper and the ink, read as shading.
-        kind, reason = _detect(load_image(big))[:2]
+        kind, reason = detect_kind_and_regions(load_image(big))[:2]
     assert kind == "drawing" and "grey shading" in reason, reason
 
 
@@ -501,7 +501,7 @@ def test_a_filled_dot_is_kept_as_a_closed_line_at_its_centre():
 
 
 def test_a_speck_below_the_dot_size_is_still_dropped():
-    from img2logo.constants import DOT_MIN_DIAMETER
+    from img2logo.features.constants import DOT_MIN_DIAMETER
 
     im = drawing("Y")
     im[150:154, 150:154] = 0  # 16 px: a disc 4.5 px wide, below the dot size
@@ -570,8 +570,9 @@ def test_skeleton_thinning_and_joins_match_skimage_and_cKDTree() -> None:
     from skimage.draw import line
     from skimage.morphology import skeletonize as sk_skeletonize
 
+    from img2logo.images.line_ends import branch_to_fork, join_line_ends, pixels_within_steps
     from img2logo.images.ndimage import skeletonize
-    from img2logo.images.skeleton import _branch, _walk, classify, join_line_ends
+    from img2logo.images.skeleton import classify
 
     def joined_by_tree(skel: np.ndarray, distance: float) -> tuple[np.ndarray, bool]:
         """join_line_ends as it was written with a k-d tree over the line pixels; whether a tie was met."""
@@ -586,7 +587,7 @@ def test_skeleton_thinning_and_joins_match_skimage_and_cKDTree() -> None:
             end = (int(r), int(c))
             if not out[end]:
                 continue
-            own = _walk(out, end, math.ceil(1.5 * distance))
+            own = pixels_within_steps(out, end, math.ceil(1.5 * distance))
             best, best_d = None, math.inf
             dists = []
             for k in tree.query_ball_point((r, c), distance):
@@ -601,8 +602,8 @@ def test_skeleton_thinning_and_joins_match_skimage_and_cKDTree() -> None:
             if best is None or best_d <= 1.5:
                 continue
             reach = math.ceil(3.0 * distance)
-            if best in _walk(out, end, reach):
-                spur = _branch(out, end)
+            if best in pixels_within_steps(out, end, reach):
+                spur = branch_to_fork(out, end)
                 if spur is not None and len(spur) <= reach:
                     for q in spur:
                         out[q] = False
@@ -624,7 +625,7 @@ def test_skeleton_thinning_and_joins_match_skimage_and_cKDTree() -> None:
 
 
 def test_a_line_end_with_equally_near_pixels_joins_the_one_it_points_at() -> None:
-    from img2logo.images.skeleton import join_line_ends
+    from img2logo.images.line_ends import join_line_ends
 
     skel = np.zeros((30, 40), bool)
     skel[10, 0:11] = True  # a line along +x, ending at (10, 10)
@@ -645,16 +646,16 @@ def test_clipart_boundaries_and_small_parts_match_skimage() -> None:
     from skimage.morphology import remove_small_holes, remove_small_objects
     from skimage.segmentation import find_boundaries
 
-    from img2logo.features.clipart import _interior, region_boundaries
-    from img2logo.features.preprocessing import _without_small_parts
+    from img2logo.features.clipart import frame_interior, region_boundaries
+    from img2logo.features.preprocessing import without_small_parts
 
     for mask in _random_masks(150, 5):
         regions = (mask.cumsum(axis=0) % 4).astype(np.int64)
-        expected = find_boundaries(regions, connectivity=1, mode="inner") & _interior(regions.shape)
+        expected = find_boundaries(regions, connectivity=1, mode="inner") & frame_interior(regions.shape)
         assert np.array_equal(region_boundaries(regions), expected)
         for size in (0, 2, 7):
-            assert np.array_equal(_without_small_parts(mask, size), remove_small_objects(mask, max_size=size))
-            assert np.array_equal(~_without_small_parts(~mask, size), remove_small_holes(mask, max_size=size))
+            assert np.array_equal(without_small_parts(mask, size), remove_small_objects(mask, max_size=size))
+            assert np.array_equal(~without_small_parts(~mask, size), remove_small_holes(mask, max_size=size))
 
 
 def test_drawing_blur_and_threshold_match_ndimage_and_skimage() -> None:
@@ -692,14 +693,14 @@ def test_a_drawing_run_imports_no_ndimage(tmp_path) -> None:
 def test_classify_matches_the_ring_of_shifted_copies():
     # The neighbours coded as a byte and read from tables (a speed-up): the same crossing
     # numbers and counts as walking the 8 shifted copies of the padded map, at the edges too.
-    from img2logo.images.skeleton import _RING, classify
+    from img2logo.images.skeleton import RING, classify
 
     rng = np.random.default_rng(11)
     for _ in range(30):
         h, w = (int(v) for v in rng.integers(1, 40, 2))
         skel = rng.random((h, w)) < rng.uniform(0.0, 1.0)
         pad = np.pad(skel, 1)
-        ring = np.stack([pad[1 + dr : 1 + dr + h, 1 + dc : 1 + dc + w] for dr, dc in _RING])
+        ring = np.stack([pad[1 + dr : 1 + dr + h, 1 + dc : 1 + dc + w] for dr, dc in RING])
         crossings, count = classify(skel)
         assert np.array_equal(crossings, np.sum(~ring & np.roll(ring, -1, axis=0), axis=0))
         assert np.array_equal(count, ring.sum(axis=0))

@@ -10,8 +10,8 @@ import pytest
 from img2logo.errors import FitError, InvalidParameterError
 from img2logo.fit.arc_extraction import (
     ArcFit,
-    _frechet,
     arc_intersections,
+    discrete_frechet,
     extract_arc,
     frechet_distance,
     redundant_intersections,
@@ -103,8 +103,8 @@ def test_bounded_frechet_stops_early_only_when_it_cannot_win() -> None:
     rng = np.random.default_rng(9)
     p, q = rng.normal(size=(60, 2)), rng.normal(size=(70, 2)) * 3
     exact = frechet_reference(p, q)
-    assert _frechet(p, q, bound=exact + 1e-9) == pytest.approx(exact)
-    assert _frechet(p, q, bound=exact * 0.5) == math.inf
+    assert discrete_frechet(p, q, bound=exact + 1e-9) == pytest.approx(exact)
+    assert discrete_frechet(p, q, bound=exact * 0.5) == math.inf
 
 
 def frechet_table(p: np.ndarray, q: np.ndarray) -> float:
@@ -143,9 +143,9 @@ def test_banded_frechet_is_the_whole_table_bit_for_bit(seed) -> None:
         if trial % 4 == 0:
             p, q = np.round(p), np.round(q)
         exact = frechet_table(p, q)
-        assert _frechet(p, q) == exact
+        assert discrete_frechet(p, q) == exact
         for bound in (exact, exact * 1.5 + 1e-9, exact * rng.uniform(0.0, 1.0)):
-            got = _frechet(p, q, bound=bound)
+            got = discrete_frechet(p, q, bound=bound)
             assert got == exact if exact < bound else got >= bound
 
 
@@ -161,7 +161,7 @@ def test_extract_arc_with_a_far_first_candidate_matches_the_whole_table(monkeypa
     junctions = circle.point_at(np.array([0.0, -2.1]))
     tried = []
     monkeypatch.setattr(
-        extraction, "_frechet", lambda p, q, bound=math.inf: tried.append(len(q)) or frechet_table(p, q)
+        extraction, "discrete_frechet", lambda p, q, bound=math.inf: tried.append(len(q)) or frechet_table(p, q)
     )
     want = extraction._extract_reference(circle, seg, junctions)
     assert tried[0] > 150  # the long way round first
@@ -451,7 +451,7 @@ def test_redundant_intersections_of_fewer_than_two_arcs_are_none() -> None:
 
 
 def test_distances_to_many_arcs_are_nearest_on_arcs_and_bounded_beyond_the_limit():
-    from img2logo.fit.arc_extraction import _arc_params, _distances_to_arcs, nearest_on_arc
+    from img2logo.fit.arc_extraction import arc_params, distances_to_arcs, nearest_on_arc
 
     rng = np.random.default_rng(3)
     arcs = [
@@ -462,8 +462,8 @@ def test_distances_to_many_arcs_are_nearest_on_arcs_and_bounded_beyond_the_limit
     points = rng.uniform(-50, 150, (60, 2))
     points[0] = arcs[0].circle.center  # the centre itself: the nearer end
     exact = np.stack([nearest_on_arc(a, points)[0] for a in arcs], axis=1)
-    np.testing.assert_allclose(_distances_to_arcs(points, _arc_params(arcs)), exact, rtol=0, atol=1e-9)
-    near = _distances_to_arcs(points, _arc_params(arcs), 6.0)
+    np.testing.assert_allclose(distances_to_arcs(points, arc_params(arcs)), exact, rtol=0, atol=1e-9)
+    near = distances_to_arcs(points, arc_params(arcs), 6.0)
     within = exact <= 6.0
     np.testing.assert_allclose(near[within], exact[within], rtol=0, atol=1e-9)
     assert np.all(near[~within] > 6.0) and np.all(near <= exact + 1e-9)  # beyond it, a lower bound above it

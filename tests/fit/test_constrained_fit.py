@@ -10,8 +10,9 @@ import pytest
 from helpers import arc_through
 
 import img2logo.fit.constrained_fit as cfit
-from img2logo.constants import CONSTRAINED_FIT_MAX_ITER, PHI
+from img2logo.constants import PHI
 from img2logo.errors import InvalidParameterError
+from img2logo.fit.constants import CONSTRAINED_FIT_MAX_ITER
 from img2logo.fit.constrained_fit import fit_constrained
 from img2logo.geometry.circle_fitting import fit_center
 

@@ -10,10 +10,10 @@ import pytest
 from helpers import DATA, golden_chain, golden_radius, hand_built_state, sampled_arc
 
 from img2logo import build_segment_graph, extract_feature_lines, quality
-from img2logo.constants import MERGE_FALLBACK_RINGS
 from img2logo.fit.arc_extraction import ArcFit, redundant_intersections
+from img2logo.fit.constants import MERGE_FALLBACK_RINGS
 from img2logo.fit.fit_state import FitState, GroupFit
-from img2logo.fit.merging import _new_gaps, candidates, evaluate, merge_loop
+from img2logo.fit.merging import candidates, evaluate, merge_loop, new_gaps
 from img2logo.fit.progressive import initial_fit, optimize
 from img2logo.fit.simplification import Group, merge_groups
 from img2logo.fit.symmetry import HalfAxis
@@ -227,16 +227,16 @@ def test_a_merge_that_brings_a_free_end_within_a_near_miss_is_counted_and_not_ma
     state = hand_built_state(_line_and_a_stroke_below(7.5))
     initial_fit(state)
     assert state.gap_ends() == set()
-    assert _new_gaps(state, (0, 1, 1), {-1: _sagging(3.0)}, {}) == 1
-    assert _new_gaps(state, (0, 1, 1), {-1: _sagging(0.5)}, {}) == 0  # 7 px: still a free end
-    assert _new_gaps(state, (0, 1, 1), {-1: _sagging(7.2)}, {}) == 0  # 0.3 px: joined
+    assert new_gaps(state, (0, 1, 1), {-1: _sagging(3.0)}, {}) == 1
+    assert new_gaps(state, (0, 1, 1), {-1: _sagging(0.5)}, {}) == 0  # 7 px: still a free end
+    assert new_gaps(state, (0, 1, 1), {-1: _sagging(7.2)}, {}) == 0  # 0.3 px: joined
     # The refit moving the free end itself counts too: the stroke's tip 3 px nearer.
     stroke = dataclasses.replace(state.fits[2])
-    assert _new_gaps(state, (0, 1, 1), {-1: _sagging(0.5), 2: stroke}, {4: np.array([0.0, -3.0])}) == 1
+    assert new_gaps(state, (0, 1, 1), {-1: _sagging(0.5), 2: stroke}, {4: np.array([0.0, -3.0])}) == 1
     # A gap the input has already is no reason to refuse the merge.
     state = hand_built_state(_line_and_a_stroke_below(3.0))
     initial_fit(state)
-    assert state.gap_ends() == {4} and _new_gaps(state, (0, 1, 1), {-1: _sagging(0.5)}, {}) == 0
+    assert state.gap_ends() == {4} and new_gaps(state, (0, 1, 1), {-1: _sagging(0.5)}, {}) == 0
     out = evaluate(state, (0, 1, 1))
     assert out is not None and out.gaps == 0 and out.redundant == 0
 
@@ -254,7 +254,7 @@ def test_the_loop_refuses_a_merge_that_would_leave_a_near_miss_gap(monkeypatch):
         if out is None or pair[:2] != (0, 1):
             return out
         fits = {**out.fits, -1: _sagging(3.0)}
-        return dataclasses.replace(out, fits=fits, gaps=_new_gaps(state, pair, fits, out.displacements))
+        return dataclasses.replace(out, fits=fits, gaps=new_gaps(state, pair, fits, out.displacements))
 
     monkeypatch.setattr(merging, "evaluate", sagging)
     assert merge_loop(state, 50.0) == "no mergeable pair"
@@ -355,14 +355,14 @@ def _arc_then_bend(**settings):
 
 
 def test_a_merge_is_judged_with_the_smooth_join_it_ends_at_tangent():
-    from img2logo.fit.merging import _hold
+    from img2logo.fit.merging import held_joins
 
     state = _arc_then_bend()
     assert state.smooth == {1, 2}
     after = {-1: merge_groups(state.groups[0], state.groups[1], 1), 2: state.groups[2]}
     seeds = {2: state.fits[2].seed, -1: state.golden(after[-1])}
     # The merged arc ends at node 2, a smooth join with group 2; node 1 is inside it now.
-    assert _hold(state, seeds, after[-1], (0, 1, 1)) == {2}
+    assert held_joins(state, seeds, after[-1], (0, 1, 1)) == {2}
     out = evaluate(state, (0, 1, 1))
     assert out is not None and not out.global_solve
     assert _touch(state, out, 2, (-1, 2)) <= 1e-6
@@ -396,15 +396,15 @@ def test_a_far_merged_arc_is_found_before_the_windows_other_arcs():
 
 
 def test_the_levels_arrays_are_made_again_after_a_merge():
-    from img2logo.fit.merging import _level
+    from img2logo.fit.merging import level_view
 
     state = _fitted_chain()
-    first = _level(state)
-    assert _level(state) is first and first.gids == (0, 1, 2) and first.inner == {}
+    first = level_view(state)
+    assert level_view(state) is first and first.gids == (0, 1, 2) and first.inner == {}
     assert first.ends == state.end_groups()
     out = evaluate(state, (0, 1, 1))
     state.merge(0, 1, out.merged, out.fits, out.displacements)
-    again = _level(state)
+    again = level_view(state)
     assert again is not first and again.gids == (2, 3) and again.inner == {1: [3]}
     assert again.flat.tolist() == [n for g in state.groups.values() for n in state.constrained_nodes(g)]
 

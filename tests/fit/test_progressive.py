@@ -15,7 +15,7 @@ from img2logo.constants import PHI
 from img2logo.fit.arc_extraction import redundant_intersections
 from img2logo.fit.progressive import initial_fit, optimize
 from img2logo.fit.simplification import merge_groups
-from img2logo.geometry.primitives import Abstraction
+from img2logo.geometry.abstraction import Abstraction
 
 
 # --------------------------------------------------------------------------- known answers

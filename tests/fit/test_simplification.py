@@ -6,7 +6,7 @@ import numpy as np
 from helpers import DATA
 
 from img2logo import build_segment_graph, extract_feature_lines
-from img2logo.constants import SIMPLIFICATION_ERROR
+from img2logo.fit.constants import SIMPLIFICATION_ERROR
 from img2logo.fit.progressive import optimize
 from img2logo.fit.simplification import Group, is_straight, merge_groups, simplify, straight_line
 

@@ -15,9 +15,9 @@ from helpers import blank
 import img2logo
 from img2logo import InvalidParameterError
 from img2logo.app.cli import main
-from img2logo.constants import SYMMETRY_THRESHOLD
 from img2logo.export.contract import to_document
 from img2logo.export.writers import to_svg
+from img2logo.fit.constants import SYMMETRY_THRESHOLD
 from img2logo.fit.constrained_fit import fit_constrained
 from img2logo.fit.symmetry import (
     Axis,

@@ -66,28 +66,28 @@ def test_a_right_angle_corner_stays_a_corner(tmp_path):
 
 
 def test_split_a_chain_where_the_junction_slid():
-    from img2logo.fit.tangency import _split
+    from img2logo.fit.tangency import split_chain
 
     chain = np.column_stack([np.arange(10.0), np.zeros(10)])
-    head, tail, off = _split(chain, np.array([4.25, 0.5]))
+    head, tail, off = split_chain(chain, np.array([4.25, 0.5]))
     # The foot of the junction on the chain ends the head and starts the tail; its distance off the line.
     assert np.allclose(head[-1], (4.25, 0.0)) and np.allclose(tail[0], (4.25, 0.0))
     assert len(head) == 6 and len(tail) == 6 and off == pytest.approx(0.5)
     assert np.array_equal(np.vstack([head[:-1], tail[1:]]), chain)
     # Slid so far that one group would keep fewer than SLIDE_MIN_PIXELS pixels: no split.
-    assert _split(chain, np.array([1.5, 0.0])) is None
-    assert _split(chain, np.array([8.5, 0.0])) is None
+    assert split_chain(chain, np.array([1.5, 0.0])) is None
+    assert split_chain(chain, np.array([8.5, 0.0])) is None
 
 
 def test_a_biarc_is_found_where_its_two_circles_touch():
-    from img2logo.fit.tangency import _biarc
+    from img2logo.fit.tangency import closest_biarcs
 
     # A smooth line of two tangent circles, radii 50 and 80 px, touching at (0, 0) with the
     # common tangent along x: the head on the circle centred (0, 50), the tail on (0, -80).
     head = np.column_stack([50 * np.sin(t := np.linspace(-1.2, 0.0, 61)), 50 - 50 * np.cos(t)])
     tail = np.column_stack([80 * np.sin(u := np.linspace(0.0, 0.75, 61)[1:]), -80 + 80 * np.cos(u)])
     chain = np.vstack([head, tail])
-    found = _biarc(chain, [30.0, 50.0, 80.0], [50.0, 80.0, 130.0])
+    found = closest_biarcs(chain, [30.0, 50.0, 80.0], [50.0, 80.0, 130.0])
     worst, ia, ib, i, ca, cb = found[0]
     # The radii of the line, the junction at the touching point, the circles where they are.
     assert (ia, ib) == (1, 1) and i == 60 and worst < 0.5  # the finer grid turns by 1 degree
@@ -96,7 +96,7 @@ def test_a_biarc_is_found_where_its_two_circles_touch():
     assert np.hypot(*(ca - chain[i])) == pytest.approx(50.0) and np.hypot(*(cb - chain[i])) == pytest.approx(80.0)
     assert found == sorted(found, key=lambda f: f[0]) and found[-1][0] > 1.0
     # Too short a chain for a junction with SLIDE_MIN_PIXELS on both sides: none.
-    assert _biarc(chain[:6], [50.0], [80.0]) == []
+    assert closest_biarcs(chain[:6], [50.0], [80.0]) == []
 
 
 @pytest.fixture(scope="module")
@@ -179,7 +179,7 @@ def _at(levels, n):
 
 def test_biarc_worst_kernel_matches_the_numpy_reference():
     # The compiled kernel measures each side's pixels only: the same bits as the reference.
-    from img2logo.fit.tangency import _biarc_normal, _biarc_worst, _biarc_worst_reference
+    from img2logo.fit.tangency import _biarc_worst_reference, biarc_normals, biarc_worst
 
     rng = np.random.default_rng(5)
     for _ in range(40):
@@ -191,17 +191,17 @@ def test_biarc_worst_kernel_matches_the_numpy_reference():
         for head in (True, False):
             for stride in (1, 3):
                 r, side = rng.uniform(5.0, 300.0), float(rng.choice([-1.0, 1.0]))
-                centre = chain[splits][:, None, :] + side * r * _biarc_normal(chain, splits, turns)
+                centre = chain[splits][:, None, :] + side * r * biarc_normals(chain, splits, turns)
                 index = np.arange(0, n, stride)
                 expected = _biarc_worst_reference(chain, centre, index, splits, r, head)
-                assert np.array_equal(_biarc_worst(chain, splits, turns, r, side, head, stride), expected)
+                assert np.array_equal(biarc_worst(chain, splits, turns, r, side, head, stride), expected)
 
 
 def test_biarc_fine_search_is_the_grids_argmin():
     # The compiled search stops measuring a biarc once it cannot win: the same value and the
     # same place as numpy's argmin over the two grids' maximum, the first one on a tie
     # (repeated splits and turns make ties).
-    from img2logo.fit.tangency import _biarc_fine, _biarc_worst
+    from img2logo.fit.tangency import biarc_fine, biarc_worst
 
     rng = np.random.default_rng(11)
     for _ in range(40):
@@ -214,18 +214,18 @@ def test_biarc_fine_search_is_the_grids_argmin():
         head = (rng.uniform(5.0, 300.0), float(rng.choice([-1.0, 1.0])))
         tail = (rng.uniform(5.0, 300.0), float(rng.choice([-1.0, 1.0])))
         w = np.maximum(
-            _biarc_worst(chain, splits, turns, *head, True, 1), _biarc_worst(chain, splits, turns, *tail, False, 1)
+            biarc_worst(chain, splits, turns, *head, True, 1), biarc_worst(chain, splits, turns, *tail, False, 1)
         )
         s, a = np.unravel_index(int(np.argmin(w)), w.shape)
-        assert _biarc_fine(chain, splits, turns, head, tail) == (float(w[s, a]), int(s), int(a))
+        assert biarc_fine(chain, splits, turns, head, tail) == (float(w[s, a]), int(s), int(a))
 
 
 def test_biarc_coarse_search_is_the_grids_choice():
     # The compiled coarse search stops measuring a biarc once it cannot win: for every pair of
     # radii the same sides and place as the smallest of the four grids' minima (numpy's
     # maximum of the two sides' grids), and its argmin, the first on a tie.
-    from img2logo.constants import BIARC_STEP
-    from img2logo.fit.tangency import _biarc_coarse, _biarc_normal, _biarc_worst
+    from img2logo.fit.constants import BIARC_STEP
+    from img2logo.fit.tangency import biarc_coarse, biarc_normals, biarc_worst
 
     sides = ((-1.0, -1.0), (-1.0, 1.0), (1.0, -1.0), (1.0, 1.0))
     rng = np.random.default_rng(12)
@@ -237,14 +237,14 @@ def test_biarc_coarse_search_is_the_grids_choice():
         splits = np.arange(5, n - 5, 4)
         turns = np.sort(np.concatenate([rng.uniform(-0.4, 0.4, 6), [0.0, 0.0]]))
         radii_a, radii_b = list(rng.uniform(5.0, 300.0, 2)), [radius, *rng.uniform(5.0, 300.0, 2)]
-        normal = _biarc_normal(chain, splits, turns)
-        got = _biarc_coarse(chain, splits, turns, radii_a, radii_b)
+        normal = biarc_normals(chain, splits, turns)
+        got = biarc_coarse(chain, splits, turns, radii_a, radii_b)
         for ia, ra in enumerate(radii_a):
             for ib, rb in enumerate(radii_b):
                 w = [
                     np.maximum(
-                        _biarc_worst(chain, splits, turns, ra, sa, True, BIARC_STEP, normal),
-                        _biarc_worst(chain, splits, turns, rb, sb, False, BIARC_STEP, normal),
+                        biarc_worst(chain, splits, turns, ra, sa, True, BIARC_STEP, normal),
+                        biarc_worst(chain, splits, turns, rb, sb, False, BIARC_STEP, normal),
                     )
                     for sa, sb in sides
                 ]

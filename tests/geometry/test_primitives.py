@@ -12,8 +12,9 @@ import pytest
 
 from img2logo.constants import PHI
 from img2logo.errors import InvalidParameterError
+from img2logo.geometry.abstraction import Abstraction
 from img2logo.geometry.golden_ladder import FibonacciLadder, GoldenLadder
-from img2logo.geometry.primitives import Abstraction, Arc, ArcJunctions, Circle, Line, Params, line_arc
+from img2logo.geometry.primitives import Arc, ArcJunctions, Circle, Line, Params, line_arc
 
 BIAS = 0.3
 

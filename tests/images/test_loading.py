@@ -13,6 +13,7 @@ import pytest
 
 from img2logo.constants import MAX_IMAGE_SIDE
 from img2logo.errors import ImageNotFoundError, InvalidImageError
+from img2logo.images import file_checks, reading
 from img2logo.images.loading import DownscaleWarning, PageWarning, composite_on_white, load_image
 
 
@@ -216,8 +217,6 @@ def test_a_png_exif_orientation_is_read_without_decoding_the_pixels(tmp_path, mo
     """Pillow's PNG getexif() decoded the whole image to look past the pixels (4 s at 144 Mpx)."""
     from PIL import Image, ImageOps, PngImagePlugin
 
-    from img2logo.images import loading
-
     arr = np.full((60, 90, 3), 255, np.uint8)
     arr[5:15, 5:40] = 0
     exif = Image.Exif()
@@ -236,7 +235,7 @@ def test_a_png_exif_orientation_is_read_without_decoding_the_pixels(tmp_path, mo
 
     with monkeypatch.context() as m:
         m.setattr(PngImagePlugin.PngImageFile, "load", no_decode)
-        assert loading._probe(path, 10**9) == (90, 60, 1, "PNG", 6)
+        assert file_checks.probe(path, 10**9) == (90, 60, 1, "PNG", 6)
     img = load_image(path)
     assert img.rgb.shape == expected.shape and np.abs(img.rgb - expected).max() < 1e-9
 
@@ -272,7 +271,6 @@ def test_a_large_16_bit_rgba_png_is_decoded_once_and_reduced_like_the_area_resiz
 def test_a_plain_png_is_probed_without_pillow(tmp_path, monkeypatch):
     # A PNG with neither EXIF nor frames is read without importing Pillow (0.03 s of CPU a run):
     # the same answer as Pillow's probe, and an animation or a cut-short file still goes to Pillow.
-    from img2logo.images import loading
 
     arr = np.zeros((40, 70, 3), dtype=np.uint8)
     png = cv2.imencode(".png", arr)[1].tobytes()
@@ -281,12 +279,12 @@ def test_a_plain_png_is_probed_without_pillow(tmp_path, monkeypatch):
     cut.write_bytes(png[:-12])
     actl = b"acTL" + struct.pack(">II", 2, 0)
     animated.write_bytes(png[:33] + struct.pack(">I", 8) + actl + struct.pack(">I", zlib.crc32(actl)) + png[33:])
-    assert loading._plain_png_size(plain) == (70, 40)
-    assert loading._plain_png_size(cut) is None and loading._plain_png_size(animated) is None
-    with_pillow = {p: loading._probe(p, 10**9) for p in (plain, cut)}
-    monkeypatch.setattr(loading, "_plain_png_size", lambda path: None)
+    assert file_checks._plain_png_size(plain) == (70, 40)
+    assert file_checks._plain_png_size(cut) is None and file_checks._plain_png_size(animated) is None
+    with_pillow = {p: file_checks.probe(p, 10**9) for p in (plain, cut)}
+    monkeypatch.setattr(file_checks, "_plain_png_size", lambda path: None)
     assert (
-        {p: loading._probe(p, 10**9) for p in (plain, cut)}
+        {p: file_checks.probe(p, 10**9) for p in (plain, cut)}
         == with_pillow
         == {
             plain: (70, 40, 1, "PNG", 1),
@@ -294,7 +292,7 @@ def test_a_plain_png_is_probed_without_pillow(tmp_path, monkeypatch):
         }
     )
     with pytest.raises(InvalidImageError, match=r"70x40 px, more than the limit"):
-        loading._probe(plain, 100)
+        file_checks.probe(plain, 100)
 
 
 # --------------------------------------------------------------------------- a large PNG, strip by strip
@@ -337,7 +335,6 @@ def _noisy(h: int, w: int, channels: int, dtype: type, seed: int = 3) -> np.ndar
 def test_a_large_png_read_through_libvips_is_its_box_reduce(tmp_path, channels, dtype, factor, png_filter):
     # The full-size image is never in memory; the result is the box mean to rounding, at the file's depth,
     # whatever the row filters.
-    from img2logo.images import loading
 
     arr = _noisy(301, 517, channels, dtype)
     path = tmp_path / "big.png"
@@ -347,7 +344,7 @@ def test_a_large_png_read_through_libvips_is_its_box_reduce(tmp_path, channels, 
         else []
     )
     cv2.imwrite(str(path), arr[:, :, 0] if channels == 1 else arr, filters)
-    got = loading._read_with_vips(path, "PNG", factor)
+    got = reading._read_with_vips(path, "PNG", factor)
     assert got.dtype == dtype
     expected = _box_mean(arr, factor, channels == 4)
     assert got.reshape(expected.shape).shape == expected.shape
@@ -356,8 +353,6 @@ def test_a_large_png_read_through_libvips_is_its_box_reduce(tmp_path, channels, 
 
 def test_a_large_palette_low_depth_or_colour_key_png_is_its_box_reduce(tmp_path):
     from PIL import Image
-
-    from img2logo.images import loading
 
     arr = _noisy(207, 333, 3, np.uint8)
     arr[50:80, 20:90] = (10, 20, 30)
@@ -371,7 +366,7 @@ def test_a_large_palette_low_depth_or_colour_key_png_is_its_box_reduce(tmp_path)
     for name, (im, options) in cases.items():
         path = tmp_path / name
         im.save(path, **options)
-        got = loading._read_with_vips(path, "PNG", 3)
+        got = reading._read_with_vips(path, "PNG", 3)
         rgba = np.array(Image.open(path).convert("RGBA"))[:, :, [2, 1, 0, 3]]
         expected = _box_mean(rgba, 3, True)
         if got.ndim == 2:
@@ -386,12 +381,10 @@ def test_a_large_palette_low_depth_or_colour_key_png_is_its_box_reduce(tmp_path)
 def test_a_large_png_stored_sideways_is_upright_through_libvips(tmp_path, monkeypatch):
     from PIL import Image
 
-    from img2logo.images import loading
-
     calls = []
-    vips = loading._read_with_vips
+    vips = reading._read_with_vips
     monkeypatch.setattr(
-        loading, "_read_with_vips", lambda path, fmt, factor: calls.append(factor) or vips(path, fmt, factor)
+        reading, "_read_with_vips", lambda path, fmt, factor: calls.append(factor) or vips(path, fmt, factor)
     )
     arr = np.full((240, 440, 3), 255, np.uint8)  # stored landscape, viewed portrait
     arr[10:40, 10:120] = 0
@@ -444,13 +437,11 @@ def test_a_large_interlaced_png_is_its_box_reduce(tmp_path):
     import pyvips
     from PIL import Image
 
-    from img2logo.images import loading
-
     arr = _noisy(40, 50, 3, np.uint8)
     path = tmp_path / "adam7.png"
     pyvips.Image.new_from_array(arr).copy(interpretation="srgb").pngsave(str(path), interlace=True)
     assert Image.open(path).info.get("interlace") == 1
-    got = loading._read_with_vips(path, "PNG", 2)
+    got = reading._read_with_vips(path, "PNG", 2)
     assert np.abs(got.astype(float) - _box_mean(arr[:, :, ::-1], 2, False)).max() <= 0.5
 
 
@@ -458,8 +449,6 @@ def test_a_large_png_is_probed_up_to_its_pixels_and_its_exif_after_them_still_tu
     # the probe walked a huge PNG's 100 000 IDAT chunks (1.5 s) before the strip
     # decoder walked them again; it stops at the first IDAT, and the strip decoder reads an eXIf after them.
     from PIL import Image, ImageOps
-
-    from img2logo.images import loading
 
     arr = _noisy(240, 440, 3, np.uint8)
     exif = Image.Exif()
@@ -471,11 +460,11 @@ def test_a_large_png_is_probed_up_to_its_pixels_and_its_exif_after_them_still_tu
     path.write_bytes(png[:-12] + chunk + png[-12:])
     before.write_bytes(png[:33] + chunk + png[33:])  # the probe reads it (Pillow), the strip decoder decodes it
     walked = []
-    seek = loading._plain_png_size
+    seek = file_checks._plain_png_size
     monkeypatch.setattr(
-        loading, "_plain_png_size", lambda p, **kw: walked.append(kw.get("pixels_first", False)) or seek(p, **kw)
+        file_checks, "_plain_png_size", lambda p, **kw: walked.append(kw.get("pixels_first", False)) or seek(p, **kw)
     )
-    assert loading._probe(path, 10**9, max_side=64) == (440, 240, 1, "PNG", 1)
+    assert file_checks.probe(path, 10**9, max_side=64) == (440, 240, 1, "PNG", 1)
     assert walked == [True]  # no second walk over the pixel data's chunks
     with pytest.warns(DownscaleWarning, match=r"image is 240x440 px"):
         img = load_image(path, max_side=64)
@@ -528,12 +517,11 @@ def test_a_large_tiff_read_through_libvips_is_its_box_reduce(
 ):
     # The whole image is never in memory; the result is the box mean of the whole image to rounding, at
     # the file's depth (tifffile's decode, the oracle).
-    from img2logo.images import loading
 
     arr = _noisy(301, 517, channels, dtype)
     path = tmp_path / "big.tif"
     _cv_tiff(path, arr, compression, rows, predictor)
-    got = loading._read_with_vips(path, "TIFF", factor)
+    got = reading._read_with_vips(path, "TIFF", factor)
     assert got.dtype == dtype
     whole = arr  # what was written, without loss
     expected = _box_mean(whole, factor, channels == 4)
@@ -554,8 +542,6 @@ def test_a_large_tiff_read_through_libvips_is_its_box_reduce(
 def test_a_large_tiled_planar_or_big_endian_tiff_is_its_box_reduce(tmp_path, channels, dtype, layout, factor):
     import tifffile
 
-    from img2logo.images import loading
-
     arr = _noisy(301, 517, channels, dtype)
     rgb = arr[:, :, 0] if channels == 1 else arr  # RGB(A) as tifffile writes it
     if layout.get("planarconfig") == "separate":
@@ -563,7 +549,7 @@ def test_a_large_tiled_planar_or_big_endian_tiff_is_its_box_reduce(tmp_path, cha
     path = tmp_path / "big.tif"
     extra = {"extrasamples": ["unassalpha"]} if channels == 4 else {}
     tifffile.imwrite(path, rgb, photometric="minisblack" if channels == 1 else "rgb", **extra, **layout)
-    got = loading._read_with_vips(path, "TIFF", factor)
+    got = reading._read_with_vips(path, "TIFF", factor)
     assert got.dtype == dtype
     reference = _tiff_reference(path)
     assert np.array_equal(
@@ -592,14 +578,12 @@ def test_a_tiff_of_tiles_in_separate_planes_is_refused_in_one_line(tmp_path):
 def test_a_large_palette_or_grey_tiff_is_pillows_decode_box_reduced(tmp_path, compression):
     from PIL import Image
 
-    from img2logo.images import loading
-
     rgb = Image.fromarray(_noisy(301, 517, 3, np.uint8)[:, :, ::-1])
     for mode in ("P", "L"):
         im = rgb.quantize(64) if mode == "P" else rgb.convert("L")
         path = tmp_path / f"{mode}.tif"
         im.save(path, compression=compression)
-        got = loading._read_with_vips(path, "TIFF", 3)
+        got = reading._read_with_vips(path, "TIFF", 3)
         full = np.asarray(im.convert("RGB"))[:, :, ::-1] if mode == "P" else np.asarray(im)[:, :, None]
         expected = _box_mean(full, 3, False)
         assert np.abs(got.reshape(expected.shape) - expected).max() <= 0.5
@@ -635,11 +619,9 @@ def test_a_tiff_in_strips_over_the_byte_budget_is_refused(tmp_path, monkeypatch)
     # libtiff decodes a strip whole: one strip of the whole image is the whole image in memory.
     import tifffile
 
-    from img2logo.images import loading
-
     path = tmp_path / "one-strip.tif"  # 16-bit RGBA in one deflated strip: 8 bytes a pixel
     tifffile.imwrite(path, _noisy(50, 70, 4, np.uint16), photometric="rgb", compression="zlib", extrasamples=[2])
-    monkeypatch.setattr(loading, "MAX_WHOLE_TIFF_BYTES", 50 * 70 * 8 - 1)
+    monkeypatch.setattr(file_checks, "MAX_WHOLE_TIFF_BYTES", 50 * 70 * 8 - 1)
     message = (
         r"one-strip\.tif: image is a TIFF in strips of 0 MB of samples each, and a strip or tile is decoded whole; "
         r"img2logo reads such a file up to 0 MB a strip \(its memory limit\): downscale it, or save it in smaller "
@@ -647,11 +629,11 @@ def test_a_tiff_in_strips_over_the_byte_budget_is_refused(tmp_path, monkeypatch)
     )
     with pytest.raises(InvalidImageError, match=message):
         load_image(path)
-    monkeypatch.setattr(loading, "MAX_WHOLE_TIFF_BYTES", 50 * 70 * 8)
+    monkeypatch.setattr(file_checks, "MAX_WHOLE_TIFF_BYTES", 50 * 70 * 8)
     assert load_image(path).input_size == (70, 50)
     tiled = tmp_path / "tiled.tif"
     tifffile.imwrite(tiled, _noisy(50, 70, 3, np.uint8), photometric="rgb", tile=(32, 32))
-    monkeypatch.setattr(loading, "MAX_WHOLE_TIFF_BYTES", 32 * 32 * 3 - 1)
+    monkeypatch.setattr(file_checks, "MAX_WHOLE_TIFF_BYTES", 32 * 32 * 3 - 1)
     with pytest.raises(InvalidImageError, match=r"tiled\.tif: image is a TIFF in tiles of"):
         load_image(tiled)
 
@@ -683,12 +665,11 @@ def test_a_large_jpeg_2000_is_decoded_at_a_reduced_resolution(tmp_path):
 
 @pytest.mark.parametrize("suffix", [".hdr", ".pfm"])
 def test_a_floating_point_image_over_its_limit_is_refused_before_decoding(tmp_path, monkeypatch, suffix):
-    from img2logo.images import loading
 
     path = tmp_path / f"big{suffix}"
     assert cv2.imwrite(str(path), np.full((30, 50, 3), 0.5, np.float32))
-    assert loading._float_image_size(path)[:2] == (50, 30)
-    monkeypatch.setattr(loading, "MAX_FLOAT_IMAGE_PIXELS", 1000)
+    assert reading._float_image_size(path)[:2] == (50, 30)
+    monkeypatch.setattr(reading, "MAX_FLOAT_IMAGE_PIXELS", 1000)
     decoded = []
     monkeypatch.setattr(cv2, "imdecode", lambda *a: decoded.append(a) or None)
     kind = "Radiance HDR" if suffix == ".hdr" else "PFM"
@@ -701,13 +682,12 @@ def test_a_floating_point_image_over_its_limit_is_refused_before_decoding(tmp_pa
 
 def test_a_large_file_is_decoded_from_the_file_with_the_same_bits(tmp_path, monkeypatch):
     # From STREAM_DECODE_BYTES (64 MB) on OpenCV reads the file itself rather than a copy of its bytes.
-    from img2logo.images import loading
 
     arr = _shapes(300, 400, True)
     path = tmp_path / "big.bmp"
     assert cv2.imwrite(str(path), arr)
     small = load_image(path)
-    monkeypatch.setattr(loading, "STREAM_DECODE_BYTES", 1000)
+    monkeypatch.setattr(reading, "STREAM_DECODE_BYTES", 1000)
     read = []
     imread = cv2.imread
     monkeypatch.setattr(cv2, "imread", lambda *a: read.append(a) or imread(*a))
@@ -744,12 +724,11 @@ def test_a_large_gif_is_decoded_as_its_palette_and_reduced_by_strips(tmp_path, t
 @pytest.mark.parametrize(("channels", "dtype", "factor"), [(3, np.uint16, 3), (1, np.uint8, 4), (3, np.uint8, 2)])
 def test_a_large_ppm_is_read_by_libvips_as_its_box_reduce(tmp_path, channels, dtype, factor):
     # OpenCV decoded a 12000 px 16-bit PPM through a second full-size buffer (1.75 GB).
-    from img2logo.images import loading
 
     arr = _noisy(301, 517, channels, dtype)
     path = tmp_path / ("big.ppm" if channels == 3 else "big.pgm")
     assert cv2.imwrite(str(path), arr if channels == 3 else arr[:, :, 0])
-    got = loading._read_netpbm_reduced(path, factor)
+    got = reading._read_netpbm_reduced(path, factor)
     assert got is not None and got.dtype == dtype
     whole = cv2.imread(str(path), cv2.IMREAD_UNCHANGED)
     expected = _box_mean(whole if whole.ndim == 3 else whole[:, :, None], factor, False)
@@ -858,12 +837,11 @@ def test_a_progressive_jpeg_with_a_repeated_scan_is_refused_before_decoding(tmp_
 
 
 def test_a_jpeg_of_too_many_scans_is_refused(tmp_path, monkeypatch):
-    from img2logo.images import loading
 
     path = tmp_path / "scans.jpg"
     path.write_bytes(_progressive_jpeg(0))
     scans = path.read_bytes().count(b"\xff\xda")
-    monkeypatch.setattr(loading, "MAX_JPEG_SCANS", scans - 1)
+    monkeypatch.setattr(file_checks, "MAX_JPEG_SCANS", scans - 1)
     with pytest.raises(
         InvalidImageError, match=rf"scans\.jpg: not a readable image: the JPEG has more than {scans - 1}"
     ):
@@ -920,10 +898,10 @@ def test_the_strip_by_strip_reduce_gives_pillows_reduce_exactly(mode, factor):
     """Pillow's reduce of RGBA copies the image (premultiplied); strips give the same pixels."""
     from PIL import Image
 
-    from img2logo.images.loading import _reduce_by_strips
+    from img2logo.images.reading import reduce_by_strips
 
     rng = np.random.default_rng(12)
     channels = {"RGBA": 4, "LA": 2, "RGB": 3, "L": 1}[mode]
     arr = rng.integers(0, 256, (1303, 517, channels), dtype=np.uint8)  # 1303 rows: a partial last strip and block
     im = Image.fromarray(arr[:, :, 0] if channels == 1 else arr, mode)
-    assert np.array_equal(_reduce_by_strips(im, factor), np.array(im.reduce(factor)))
+    assert np.array_equal(reduce_by_strips(im, factor), np.array(im.reduce(factor)))

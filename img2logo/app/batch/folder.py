@@ -91,14 +91,14 @@ def batch_lock(out_dir: Path) -> Iterator[None]:
     except ImportError:  # pragma: no cover - not POSIX
         yield
         return
-    from ..._io import _make_parents, _Stage, os_message
+    from ..._io import make_folders, os_message
     from ...errors import OutputError
 
-    made = _Stage()  # records the folders created
+    made: list[Path] = []  # the folders created
     lock = out_dir / LOCK_NAME
     fd, held = -1, False
     try:
-        _make_parents(out_dir, made)
+        make_folders(out_dir, made)
         for _ in range(100):
             fd = _open_lock(lock, os.O_RDWR | os.O_CREAT)
             try:
@@ -124,7 +124,7 @@ def batch_lock(out_dir: Path) -> Iterator[None]:
                 os.unlink(lock)
         if fd >= 0:
             os.close(fd)
-        for folder in reversed(made.folders):
+        for folder in reversed(made):
             with contextlib.suppress(OSError):
                 folder.rmdir()
         raise OutputError(os_message(lock, exc)) from exc
@@ -134,7 +134,7 @@ def batch_lock(out_dir: Path) -> Iterator[None]:
         with contextlib.suppress(OSError):
             os.unlink(lock)
         os.close(fd)
-        for folder in reversed(made.folders):
+        for folder in reversed(made):
             with contextlib.suppress(OSError):
                 folder.rmdir()  # only if empty: nothing was written
 

@@ -112,13 +112,7 @@ def _process(
     if outputs:
         with _WRITE_LOCK, tempfile.TemporaryDirectory(prefix="img2logo-") as tmp:
             for fmt in outputs:
-                target = Path(tmp) / f"logo.{fmt}"
-                if fmt == "svg":
-                    writers.write_svg(final, target, fills=fills)
-                elif fmt == "json":
-                    writers.write_json(final, target, fills=fills)
-                else:
-                    writers.write_png(final, target, image=result.image.rgb, fills=fills)
+                target = writers.write(final, Path(tmp) / f"logo.{fmt}", fmt, fills=fills, image=result.image.rgb)
                 files[fmt] = target.read_bytes()
     return {
         "kind": result.lines.kind,

@@ -46,23 +46,16 @@ from typing import IO, Any
 from ..._validation import check_choice
 from ...errors import Img2LogoError, InvalidParameterError
 from ...options import Options
-
-# The command line checks a batch before it starts with these (kept importable from here).
 from .folder import (
     LOCK_NAME,
     MANIFEST_NAME,
     batch_lock,
     check_output_folder,
-    check_output_folder as _check_output_folder,  # noqa: F401
     check_targets,
-    check_targets as _check_targets,  # noqa: F401
-    check_unlocked as _check_unlocked,  # noqa: F401
     output_stems,
-    output_stems as _output_stems,  # noqa: F401
     read_manifest,
     remove_old_outputs,
     write_manifest,
-    written_by_img2logo as _written_by_img2logo,  # noqa: F401
 )
 from .pool import OUTPUT_FORMATS, BatchProgress, ignored_subject_options, process_image, run_tasks
 from .report import SUMMARY_COLUMNS, BatchFailure, BatchReport, BatchRow, csv_safe, report_of
@@ -78,7 +71,9 @@ __all__ = [
     "BatchReport",
     "BatchRow",
     "SkippedEntryWarning",
+    "check_options",
     "find_images",
+    "foreground_file",
     "ignored_subject_options",
     "process_image",
     "run_batch",
@@ -238,10 +233,10 @@ def run_batch(
     if not inputs:
         raise InvalidParameterError("paths must name at least one image, got none")
     formats = _check_outputs(outputs)
-    opts = _check_options(settings, fill, options)
+    opts = check_options(settings, fill, options)
     out_dir = Path(output_dir)
     stems = output_stems(inputs)
-    mask = _foreground_file(opts.foreground)
+    mask = foreground_file(opts.foreground)
     check_targets([*inputs, *([mask] if mask else [])], out_dir, stems, formats, summary)
     check_output_folder(inputs, out_dir)
     tasks = [(str(p), opts, formats, fill) for p in inputs]
@@ -300,13 +295,35 @@ def _check_outputs(outputs: Sequence[str]) -> tuple[str, ...]:
     return formats
 
 
-def _check_options(settings: Mapping[str, Any], fill: str, base: Options | None = None) -> Options:
-    """The options, checked before any work: a bad value should not fail every image one by one."""
+def check_options(settings: Mapping[str, Any], fill: str, base: Options | None = None) -> Options:
+    """The options of a batch, checked before any work: a bad value should not fail every image one by one.
+
+    Parameters
+    ----------
+    settings : mapping of str to object
+        Fields of :class:`~img2logo.options.Options`, replacing those of ``base``.
+    fill : str
+        The ``--fill`` option (:func:`img2logo.design.fills.parse_fill_option`).
+    base : Options, optional
+        The options the settings replace fields of; default ``Options()``.
+
+    Returns
+    -------
+    Options
+        The checked options; a ``--foreground`` mask file has been read once.
+
+    Raises
+    ------
+    InvalidParameterError
+        If a setting or ``fill`` is unknown or out of range.
+    Img2LogoError
+        If the foreground mask file cannot be read (the message names ``--foreground``).
+    """
     from ...design.fills import parse_fill_option
 
     options = Options.from_keywords(settings, base=base)
     parse_fill_option(fill)
-    mask = _foreground_file(options.foreground)
+    mask = foreground_file(options.foreground)
     if mask is not None:  # read once here: a missing or unreadable mask would fail every image
         from ...images.loading import load_mask
 
@@ -317,8 +334,12 @@ def _check_options(settings: Mapping[str, Any], fill: str, base: Options | None 
     return options
 
 
-def _foreground_file(foreground: object) -> Path | None:
-    """The mask file a ``foreground`` option names (``--foreground MASK.png``), or None (a choice or an array)."""
+def foreground_file(foreground: object) -> Path | None:
+    """The mask file a ``foreground`` option names (``--foreground MASK.png``), or None (a choice or an array).
+
+    A batch checks and reads it before any image, and names it among its inputs
+    (an output must not overwrite it).
+    """
     from ...features.photo.subject import FOREGROUND_CHOICES
 
     if isinstance(foreground, Path) or (isinstance(foreground, str) and foreground not in FOREGROUND_CHOICES):

@@ -67,7 +67,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ...constants import (
+from ..constants import (
     DOT_MAX_RADIUS_FRACTION,
     DOT_MIN_CONTRAST,
     DOT_MIN_RADIUS,

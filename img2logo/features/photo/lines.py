@@ -47,7 +47,11 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ...constants import (
+from ...constants import LINE_JOIN_DISTANCE
+from ...images.line_ends import join_line_ends
+from ...images.loading import LoadedImage
+from ...images.ndimage import distance
+from ..constants import (
     BILATERAL_DIAMETER,
     BILATERAL_SIGMA_COLOR,
     COLOUR_LINE_GATE,
@@ -62,14 +66,10 @@ from ...constants import (
     INNER_LINE_MARGIN,
     INNER_MIN_LENGTH,
     INNER_MIN_SPAN,
-    LINE_JOIN_DISTANCE,
     OUTLINE_FRAME_MARGIN,
     PHOTO_LINE_BUDGET,
     STEP_SIDE_CONTRAST,
 )
-from ...images.loading import LoadedImage
-from ...images.ndimage import distance
-from ...images.skeleton import join_line_ends
 from .dots import Dots, cielab_lightness, dark_dots, with_enclosed_dots
 from .subject import Subject
 

@@ -31,7 +31,7 @@ only (paper Fig. 1, 10). :func:`find_subject` finds it without user input
   different texture joined by a thin neck (a pagoda and the trees beside
   it) keeps its dominant part (:func:`dominant_part`). Before that, a kept
   candidate from the frame that comes near the frame strip is let into the
-  strip where its colours say so (:func:`_reach_frame`: a disc that almost
+  strip where its colours say so (:func:`reach_frame`: a disc that almost
   fills the picture, a portrait's shoulders that run off its foot), if it is
   then still one dominant object with an object's outline. Last, the thin
   parts that leave it, which GrabCut at the working size and the smoothing
@@ -67,7 +67,10 @@ import numpy as np
 
 from ..._compat import median
 from ..._validation import readonly
-from ...constants import (
+from ...errors import InvalidParameterError
+from ...images.loading import LoadedImage, load_mask
+from ...images.ndimage import dilate, distance, erode, label
+from ..constants import (
     FACE_MIN_NEIGHBOURS,
     FACE_MIN_SIDE,
     FACE_SCALE_STEP,
@@ -87,9 +90,6 @@ from ...constants import (
     SUBJECT_REFINE_BAND,
     SUBJECT_TEXTURE_WEIGHT,
 )
-from ...errors import InvalidParameterError
-from ...images.loading import LoadedImage, load_mask
-from ...images.ndimage import dilate, distance, erode, label
 from .subject_cues import (
     FocusSeeds,
     clean_mask,
@@ -264,7 +264,7 @@ def _find_subject(
         said = parse_subject_rectangle(subject, (img.input_height, img.input_width))  # the input's pixels
         rect = said if img.scale == 1.0 else _at_working_size(said, img)
         _start_beside(img, pool, beside)  # one cut: the other core makes the line maps
-        mask = clean_mask(_grabcut(img, rect=rect))
+        mask = clean_mask(grab_cut(img, rect=rect))
         if not mask.any():
             raise InvalidParameterError(f"no object found in the subject rectangle {','.join(map(str, said))}")
         x, y, w, h = said
@@ -278,16 +278,16 @@ def _find_subject(
             mask = img.foreground
             return Subject(readonly(mask.copy()), "alpha", f"kept the opaque pixels (alpha): {mask.mean():.0%}")
         texture = None
-        small_cuts: list[_SmallCut] = []  # the colours' and the texture's cuts at the working scale
+        small_cuts: list[SmallCut] = []  # the colours' and the texture's cuts at the working scale
         taken = 0  # which of them the mask is
         if foreground == "auto":  # the same cut with texture: take the candidate whose outline is the sharper edge
-            mask, texture, textured, lab = _both_cuts(img, pool, beside, keep=small_cuts)
+            mask, texture, textured, lab = both_cuts(img, pool, beside, keep=small_cuts)
             if lab is not None:  # texture_lab of the texture, once for both candidates
                 if outline_contrast(img, textured, lab=lab) > outline_contrast(img, mask, lab=lab):
                     mask, taken = textured, 1
         else:
             _start_beside(img, pool, beside)
-            mask = clean_mask(_grabcut(img))
+            mask = clean_mask(grab_cut(img))
         if foreground == "grabcut":
             if not mask.any():
                 return Subject(None, "grabcut", "GrabCut found no object: kept the whole image")
@@ -304,7 +304,7 @@ def _find_subject(
             else:
                 why = f"{why}, texture step {step:.2f} decades"
         if seeds is not None:  # a close-up in focus that runs off the picture: try depth of field
-            focused = clean_mask(_grabcut(img, seeds=seeds))
+            focused = clean_mask(grab_cut(img, seeds=seeds))
             why_focus = _not_dominant(focused, frame=False) or _weak_focus_outline(img, seeds, focused)
             if not why_focus:
                 mask, why, how = focused, "", "found by GrabCut from the sharp subject and the blurred background"
@@ -314,15 +314,15 @@ def _find_subject(
             return Subject(None, "auto", f"kept the whole image: no dominant object ({why})")
         if how.startswith("found by GrabCut from the image frame") and _near_frame_strip(mask):
             # one dominant object, found with the frame strip as certain background: it runs into the strip,
-            # so its cut goes on with the strip near it open (_reach_frame); kept if it is still one object
-            cut = _reach_frame(small_cuts[taken])
-            reached = None if cut is None else clean_mask(_refine(img, cut))
+            # so its cut goes on with the strip near it open (reach_frame); kept if it is still one object
+            cut = reach_frame(small_cuts[taken])
+            reached = None if cut is None else clean_mask(refine_cut(img, cut))
             if (
                 reached is not None
                 and (reached & frame_strip(mask.shape) & ~mask).any()
                 and not _not_dominant(reached)
                 and _object_outline(img, texture, reached)
-                and _moved_outline(img, mask, reached) >= SUBJECT_MIN_CONTRAST
+                and moved_outline(img, mask, reached) >= SUBJECT_MIN_CONTRAST
             ):
                 mask, how = reached, f"{how}; its part in the frame strip kept"
         kept = dominant_part(mask, texture)
@@ -383,11 +383,11 @@ def _start_beside(img: LoadedImage, pool: Executor | None, beside: _Beside | Non
         beside(img, pool)
 
 
-def _both_cuts(
+def both_cuts(
     img: LoadedImage,
     pool: Executor | None = None,
     beside: _Beside | None = None,
-    keep: list[_SmallCut] | None = None,
+    keep: list[SmallCut] | None = None,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray | None]:
     """GrabCut on the colours and on colour and texture, run side by side: (mask, texture, textured mask, lab).
 
@@ -403,19 +403,19 @@ def _both_cuts(
     ``beside``), the other cut runs in it, and once this thread's cut is
     done ``beside`` is started in its second thread. Given a list ``keep``,
     the two cuts at the working scale are appended to it, the colours' first
-    (:func:`_grabcut`).
+    (:func:`grab_cut`).
     """
     import threading
     from concurrent.futures import ThreadPoolExecutor
 
     lab_ready = threading.Event()
-    kept_colour: list[_SmallCut] = []
-    kept_texture: list[_SmallCut] = []
+    kept_colour: list[SmallCut] = []
+    kept_texture: list[SmallCut] = []
 
     def textured() -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
         texture = texture_map(img.rgb, work_scale(img))
         lab_ready.wait()
-        cut = clean_mask(_grabcut(img, texture=texture, keep=kept_texture))
+        cut = clean_mask(grab_cut(img, texture=texture, keep=kept_texture))
         return texture, cut, texture_lab(img, texture) if cut.any() else None
 
     own = ThreadPoolExecutor(max_workers=1) if pool is None else None
@@ -427,7 +427,7 @@ def _both_cuts(
             _ = img.smooth_lab  # computed once, here, while the other thread makes the texture map
         finally:
             lab_ready.set()
-        mask = clean_mask(_grabcut(img, keep=kept_colour))
+        mask = clean_mask(grab_cut(img, keep=kept_colour))
         _start_beside(img, pool, beside)  # a core is free now, or will be as soon as the other cut is done
         texture, cut, lab = other.result()
     finally:
@@ -616,21 +616,21 @@ def _object_outline(img: LoadedImage, texture: np.ndarray | None, mask: np.ndarr
 
     The tests a candidate from the image frame passes (:func:`_weak_outline`,
     :func:`~img2logo.features.photo.subject_cues.texture_step`), asked again of it once it
-    has reached into the frame strip (:func:`_reach_frame`).
+    has reached into the frame strip (:func:`reach_frame`).
     """
     if not _weak_outline(img, mask):
         return True
     return texture is not None and texture_step(img, texture, mask) >= SUBJECT_MIN_TEXTURE_STEP
 
 
-def _moved_outline(img: LoadedImage, before: np.ndarray, after: np.ndarray) -> float:
+def moved_outline(img: LoadedImage, before: np.ndarray, after: np.ndarray) -> float:
     """How sharp an edge the outline of ``after`` is where it moved from that of ``before``, unit-free.
 
     :func:`~img2logo.features.photo.subject_cues.outline_contrast` of the outline of
     ``after`` (H, W) bool within 2 px of the pixels where the two masks
     differ, and farther than two ``SUBJECT_CONTRAST_STEP`` from the image
     frame (nearer, its samples fall off the picture; on the frame the outline
-    is the picture's edge, not the object's). A part that :func:`_reach_frame`
+    is the picture's edge, not the object's). A part that :func:`reach_frame`
     let into the frame strip is the object's when the outline it moved to is
     an edge, as every object's outline is (at least ``SUBJECT_MIN_CONTRAST``):
     a disc's rim, a portrait's arm against the backdrop. Measured: skimage's
@@ -662,7 +662,7 @@ def _weak_focus_outline(img: LoadedImage, seeds: FocusSeeds, mask: np.ndarray) -
 
 
 @dataclass(frozen=True, eq=False)
-class _SmallCut:
+class SmallCut:
     """GrabCut's result at the working scale, and what its full-size refinement starts from.
 
     Attributes
@@ -687,37 +687,37 @@ class _SmallCut:
     rect: tuple[int, int, int, int] | None
 
 
-def _grabcut(
+def grab_cut(
     img: LoadedImage,
     rect: tuple[int, int, int, int] | None = None,
     seeds: FocusSeeds | None = None,
     texture: np.ndarray | None = None,
-    keep: list[_SmallCut] | None = None,
+    keep: list[SmallCut] | None = None,
 ) -> np.ndarray:
     """GrabCut from a rectangle (default: the frame inset by ``SUBJECT_FRAME_INSET``) or focus seeds, (H, W) bool.
 
     Run on a copy whose longer side is ``SUBJECT_WORK_SIDE`` px
     (``SUBJECT_GRABCUT_ITERATIONS`` iterations from a rectangle,
     ``FOCUS_GRABCUT_ITERATIONS`` from focus seeds), then once more at full
-    size (:func:`_refine`).
+    size (:func:`refine_cut`).
     Given the photo's :func:`~img2logo.features.photo.subject_cues.texture_map` ``texture``, it cuts on
     :func:`~img2logo.features.photo.subject_cues.texture_colour_image` instead of the colours alone.
     Given a list ``keep``, the cut at the working scale is appended to it (for
-    :func:`_reach_frame`). Deterministic (OpenCV's random generator is seeded).
+    :func:`reach_frame`). Deterministic (OpenCV's random generator is seeded).
     """
-    cut = _cut_small(img, rect, seeds, texture)
+    cut = cut_small(img, rect, seeds, texture)
     if keep is not None:
         keep.append(cut)
-    return _refine(img, cut)
+    return refine_cut(img, cut)
 
 
-def _cut_small(
+def cut_small(
     img: LoadedImage,
     rect: tuple[int, int, int, int] | None = None,
     seeds: FocusSeeds | None = None,
     texture: np.ndarray | None = None,
-) -> _SmallCut:
-    """:func:`_grabcut`'s cut at the working scale."""
+) -> SmallCut:
+    """:func:`grab_cut`'s cut at the working scale."""
     import cv2
 
     h, w = img.height, img.width
@@ -743,11 +743,11 @@ def _cut_small(
             box = (bx0, by0, max(2, bx1 - bx0), max(2, by1 - by0))
         label = np.zeros((sh, sw), np.uint8)
         cv2.grabCut(small8, label, box, bgd, fgd, SUBJECT_GRABCUT_ITERATIONS, cv2.GC_INIT_WITH_RECT)
-    return _SmallCut(label, bgd, fgd, full8, small8, rect)
+    return SmallCut(label, bgd, fgd, full8, small8, rect)
 
 
-def _refine(img: LoadedImage, cut: _SmallCut) -> np.ndarray:
-    """A cut at the working scale (:func:`_cut_small`) refined at full size, (H, W) bool.
+def refine_cut(img: LoadedImage, cut: SmallCut) -> np.ndarray:
+    """A cut at the working scale (:func:`cut_small`) refined at full size, (H, W) bool.
 
     GrabCut once more at full size, only in a band of ``SUBJECT_REFINE_BAND`` px
     (at the working scale) around the boundary found, on the band's bounding
@@ -789,7 +789,7 @@ def _refine(img: LoadedImage, cut: _SmallCut) -> np.ndarray:
     return (full == cv2.GC_FGD) | (full == cv2.GC_PR_FGD)
 
 
-def _reach_frame(cut: _SmallCut) -> _SmallCut | None:
+def reach_frame(cut: SmallCut) -> SmallCut | None:
     """The object of a cut from the frame let into the frame strip where its colours say so.
 
     GrabCut from the frame (:func:`~img2logo.features.photo.subject_cues.frame_box`) takes the strip of

@@ -35,7 +35,10 @@ import numpy as np
 
 from ..._compat import median
 from ..._validation import readonly
-from ...constants import (
+from ...constants import LUMA_WEIGHTS
+from ...images.loading import LoadedImage
+from ...images.ndimage import distance, erode, gaussian, label
+from ..constants import (
     FOCUS_BLURRED,
     FOCUS_DETAIL_SIGMA,
     FOCUS_MIN_BLURRED_FRAME,
@@ -48,7 +51,6 @@ from ...constants import (
     FOCUS_SOFT_WINDOW,
     FOCUS_STEP,
     FOCUS_WINDOW,
-    LUMA_WEIGHTS,
     SUBJECT_CONTRAST_STEP,
     SUBJECT_FRAME_INSET,
     SUBJECT_MAX_HOLE,
@@ -61,8 +63,6 @@ from ...constants import (
     SUBJECT_THIN_WINDOW,
     SUBJECT_WORK_SIDE,
 )
-from ...images.loading import LoadedImage
-from ...images.ndimage import distance, erode, gaussian, label
 
 #: sRGB's linear RGB to CIE XYZ (D65), as scikit-image's ``skimage.color.colorconv.xyz_from_rgb``.
 _XYZ_FROM_RGB = np.array(

@@ -34,18 +34,18 @@ from functools import partial
 import numpy as np
 
 from ..._compat import median, unique
-from ...constants import (
+from ...constants import LUMA_WEIGHTS
+from ...images.loading import LoadedImage
+from ...images.ndimage import dilate, distance, gaussian, label
+from ..constants import (
     FOCUS_DETAIL_SIGMA,
     FOCUS_WINDOW,
-    LUMA_WEIGHTS,
     SHADOW_CHROMA_SIGMA,
     SHADOW_CORE,
     SHADOW_MAX_CHROMA_DISTANCE,
     SHADOW_RING,
     SUBJECT_MIN_CONTRAST,
 )
-from ...images.loading import LoadedImage
-from ...images.ndimage import dilate, distance, gaussian, label
 from .subject_cues import clean_mask, mask_box, outline_contrast, work_scale
 
 #: Fewest pixels in the ring and the core for their statistics to mean something.
@@ -73,7 +73,7 @@ def shadow_features(rgb: np.ndarray, scale: float = 1.0) -> tuple[np.ndarray, np
     return np.dstack([chroma, texture]), gaussian(log_lum, sigma)
 
 
-def _local_mean(features: np.ndarray, where: np.ndarray, sigma: float) -> np.ndarray:
+def local_mean(features: np.ndarray, where: np.ndarray, sigma: float) -> np.ndarray:
     """The Gaussian-weighted mean (sigma px) of the feature vectors (H, W, d) of the pixels ``where`` (H, W) bool
     around each pixel, (H, W, d): normalized convolution. Pixels beyond the Gaussian's reach of all of them take
     their mean over all. Channel by channel, so the first channels' means are those of the first features alone.
@@ -90,19 +90,19 @@ def _local_mean(features: np.ndarray, where: np.ndarray, sigma: float) -> np.nda
     return mean
 
 
-def _mahalanobis(
+def mahalanobis(
     features: np.ndarray, where: np.ndarray, sigma: float | None = None, mean: np.ndarray | None = None
 ) -> np.ndarray:
     """Mahalanobis distance of every feature vector (H, W, d) to those of the pixels ``where`` (H, W) bool.
 
-    With ``sigma`` (px), to their local mean (:func:`_local_mean`; or ``mean``
+    With ``sigma`` (px), to their local mean (:func:`local_mean`; or ``mean``
     (H, W, d) if given, that mean computed once for several feature sets) and their
     spread about it: a shadow is compared with the background beside it, not
     with every colour of the background (a brick wall's mortar is no match for
     a shadow on its bricks).
     """
     if mean is None:
-        mean = features[where].mean(axis=0) if sigma is None else _local_mean(features, where, sigma)
+        mean = features[where].mean(axis=0) if sigma is None else local_mean(features, where, sigma)
     diff = features - mean
     sample = diff[where]
     cov = np.atleast_2d(np.cov(sample.T)) + 1e-9 * np.eye(sample.shape[1])
@@ -139,12 +139,12 @@ def cast_shadow(img: LoadedImage, mask: np.ndarray) -> np.ndarray | None:
     if not seeds.any():
         return None
     local = SHADOW_RING[1] / scale
-    ring_mean = _local_mean(features, ring_b, local)  # the chromaticity's is its first two channels
-    seeds &= _mahalanobis(features, ring_b, mean=ring_mean) < _mahalanobis(features, core_b, local)
+    ring_mean = local_mean(features, ring_b, local)  # the chromaticity's is its first two channels
+    seeds &= mahalanobis(features, ring_b, mean=ring_mean) < mahalanobis(features, core_b, local)
     if not seeds.any():
         return None
     chroma = features[..., :2]
-    grown = darker & (_mahalanobis(chroma, ring_b, mean=ring_mean[..., :2]) < SHADOW_MAX_CHROMA_DISTANCE)
+    grown = darker & (mahalanobis(chroma, ring_b, mean=ring_mean[..., :2]) < SHADOW_MAX_CHROMA_DISTANCE)
     labels, _ = label(grown | seeds)
     hit = unique(labels[seeds])
     shadow = np.zeros(mask.shape, bool)

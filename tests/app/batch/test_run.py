@@ -14,11 +14,11 @@ import pandas as pd
 import pytest
 from helpers import DATA
 
+from img2logo.app.batch.folder import output_stems
 from img2logo.app.batch.run import (
     MANIFEST_NAME,
     SUMMARY_COLUMNS,
     BatchReport,
-    _output_stems,
     find_images,
     process_image,
     run_batch,
@@ -224,7 +224,7 @@ def test_no_paths(tmp_path):
 
 def test_output_stems_never_collide():
     paths = [Path("a.png"), Path("a.jpg"), Path("b.png"), Path("x/a.png")]
-    assert _output_stems(paths) == ["a-png", "a-jpg", "b", "a-png-2"]
+    assert output_stems(paths) == ["a-png", "a-jpg", "b", "a-png-2"]
 
 
 def test_a_missing_foreground_mask_is_refused_before_any_worker_starts(tmp_path):

@@ -261,42 +261,44 @@ def same_hue_photo(size=(240, 320), seed=0):
 
 
 def test_auto_finds_an_object_of_the_backgrounds_own_hue_by_its_texture():
-    from img2logo.features.photo.subject import _grabcut
+    from img2logo.features.photo.subject import grab_cut
 
     rgb, truth = same_hue_photo()
     img = load_image(rgb)
-    assert not _grabcut(img).any()  # colour alone finds nothing (colour alone kept the whole image)
+    assert not grab_cut(img).any()  # colour alone finds nothing (colour alone kept the whole image)
     subject = find_subject(img)
     assert subject.mask is not None, subject.description
     assert (subject.mask & truth).sum() / (subject.mask | truth).sum() > 0.9
 
 
 def test_the_two_cuts_side_by_side_are_those_made_one_after_the_other():
-    from img2logo.features.photo.subject import _both_cuts, _grabcut
+    from img2logo.features.photo.subject import both_cuts, grab_cut
     from img2logo.features.photo.subject_cues import clean_mask, texture_lab, texture_map, work_scale
 
     rgb, (truth,) = textured_photo([(170, 120, 80, 60, (0.95, 0.75, 0.2))], size=(300, 400))
     img = load_image(rgb)  # 400 px: the working copy is smaller, so the full-size refinement runs
-    mask, texture, textured, lab = _both_cuts(img)
+    mask, texture, textured, lab = both_cuts(img)
     again = load_image(rgb)
-    np.testing.assert_array_equal(mask, clean_mask(_grabcut(again)))
+    np.testing.assert_array_equal(mask, clean_mask(grab_cut(again)))
     np.testing.assert_array_equal(texture, texture_map(again.rgb, work_scale(again)))
-    np.testing.assert_array_equal(textured, clean_mask(_grabcut(again, texture=texture)))
+    np.testing.assert_array_equal(textured, clean_mask(grab_cut(again, texture=texture)))
     np.testing.assert_array_equal(lab, texture_lab(again, texture))
     assert outline_distance(mask, truth) <= 3.0  # the refinement on the band's box keeps the outline
 
 
 def test_the_cuts_kept_at_the_working_scale_refine_to_the_same_masks():
-    from img2logo.features.photo.subject import _both_cuts, _refine
+    from img2logo.features.photo.subject import both_cuts, refine_cut
     from img2logo.features.photo.subject_cues import clean_mask
 
     rgb, _ = textured_photo([(170, 120, 80, 60, (0.95, 0.75, 0.2))], size=(300, 400))
     img = load_image(rgb)
     keep = []
-    mask, _, textured, _ = _both_cuts(img, keep=keep)
+    mask, _, textured, _ = both_cuts(img, keep=keep)
     assert len(keep) == 2
-    np.testing.assert_array_equal(mask, clean_mask(_refine(img, keep[0])))
-    np.testing.assert_array_equal(textured, clean_mask(_refine(img, keep[1])))  # _refine left the models as they were
+    np.testing.assert_array_equal(mask, clean_mask(refine_cut(img, keep[0])))
+    np.testing.assert_array_equal(
+        textured, clean_mask(refine_cut(img, keep[1]))
+    )  # refine_cut left the models as they were
 
 
 def disc_photo(size=400, margin=3, seed=0):
@@ -315,7 +317,7 @@ def test_a_disc_that_almost_fills_the_picture_keeps_its_round_outline():
     # GrabCut from the frame took the strip along it for certain background, so the disc's rim
     # there was lost, and the background model, having learnt the rim's colours, ate into the disc inside
     # too (mask IoU 0.94, flat sides). Let into the strip where its colours say so, the disc is whole.
-    from img2logo.features.photo.subject import _cut_small, _reach_frame, _SmallCut
+    from img2logo.features.photo.subject import SmallCut, cut_small, reach_frame
 
     rgb, truth = disc_photo()
     img = load_image(rgb)
@@ -324,9 +326,9 @@ def test_a_disc_that_almost_fills_the_picture_keeps_its_round_outline():
     assert (subject.mask & truth).sum() / (subject.mask | truth).sum() > 0.99
     assert outline_distance(subject.mask, truth) <= 2.0
     assert "its part in the frame strip kept" in subject.description
-    cut = _cut_small(img)
-    before = _SmallCut(cut.label.copy(), cut.bgd.copy(), cut.fgd.copy(), cut.full8, cut.small8, None)
-    reached = _reach_frame(cut)
+    cut = cut_small(img)
+    before = SmallCut(cut.label.copy(), cut.bgd.copy(), cut.fgd.copy(), cut.full8, cut.small8, None)
+    reached = reach_frame(cut)
     assert reached is not None
     for name in ("label", "bgd", "fgd"):  # the cut is left as it was
         np.testing.assert_array_equal(getattr(cut, name), getattr(before, name))
@@ -347,7 +349,7 @@ def test_an_object_away_from_the_frame_strip_is_not_cut_again(monkeypatch):
     def fail(cut):
         raise AssertionError("cut again")
 
-    monkeypatch.setattr(subject_module, "_reach_frame", fail)
+    monkeypatch.setattr(subject_module, "reach_frame", fail)
     rgb, (truth,) = textured_photo([(160, 120, 60, 45, (0.95, 0.75, 0.2))])
     subject = find_subject(load_image(rgb))
     assert subject.mask is not None
@@ -355,17 +357,17 @@ def test_an_object_away_from_the_frame_strip_is_not_cut_again(monkeypatch):
 
 
 def test_the_outline_moved_into_the_strip_must_be_an_edge():
-    from img2logo.features.photo.subject import _moved_outline
+    from img2logo.features.photo.subject import moved_outline
 
     rgb, (body,) = textured_photo([(160, 110, 80, 60, (0.95, 0.75, 0.2))], size=(240, 320))
     img = load_image(rgb)
     cut = body.copy()
     cut[140:] = False  # the object cut straight, as by the frame strip
-    assert _moved_outline(img, cut, body) > 2.8  # its own rim: an edge (9.5)
+    assert moved_outline(img, cut, body) > 2.8  # its own rim: an edge (9.5)
     yy, xx = np.mgrid[0:240, 0:320]
     clutter = body | ((yy > 60) & (yy < 200) & (xx > 200) & (xx < 300))  # and a block of the background
-    assert _moved_outline(img, body, clutter) < 2.8  # a cut through texture (0.7)
-    assert _moved_outline(img, body, body) == 0.0
+    assert moved_outline(img, body, clutter) < 2.8  # a cut through texture (0.7)
+    assert moved_outline(img, body, body) == 0.0
 
 
 def test_the_shelves_behind_the_motorcycle_are_not_let_into_the_frame_strip():

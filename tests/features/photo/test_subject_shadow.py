@@ -82,12 +82,12 @@ def test_the_giraffe_s_shadow_between_its_legs_is_background():
 
 
 def test_the_chromaticity_s_local_mean_is_the_first_two_channels_of_the_features_one():
-    from img2logo.features.photo.subject_shadow import _local_mean, _mahalanobis
+    from img2logo.features.photo.subject_shadow import local_mean, mahalanobis
 
     rgb, _, gap = arch_on_wood("shadow")
     features, _ = shadow_features(rgb)
     ring = ndimage.binary_dilation(gap, iterations=12) & ~ndimage.binary_dilation(gap, iterations=3)
-    mean = _local_mean(features, ring, 20.0)
+    mean = local_mean(features, ring, 20.0)
     chroma = np.ascontiguousarray(features[..., :2])
-    np.testing.assert_array_equal(mean[..., :2], _local_mean(chroma, ring, 20.0))  # cast_shadow shares it
-    np.testing.assert_array_equal(_mahalanobis(chroma, ring, mean=mean[..., :2]), _mahalanobis(chroma, ring, 20.0))
+    np.testing.assert_array_equal(mean[..., :2], local_mean(chroma, ring, 20.0))  # cast_shadow shares it
+    np.testing.assert_array_equal(mahalanobis(chroma, ring, mean=mean[..., :2]), mahalanobis(chroma, ring, 20.0))
