@@ -255,7 +255,7 @@ def _split_group(opt: FitState, gid: int, node: int, bound: float) -> bool:
     """
     group = opt.groups[gid]
     i = group.nodes.index(node)
-    cut = _split(group.points, opt.graph.junctions[node] + opt.disp[node])
+    cut = split_chain(group.points, opt.graph.junctions[node] + opt.disp[node])
     if cut is None:
         return False
     head = Group(group.segments[:i], group.nodes[: i + 1], cut[0], group.locked)

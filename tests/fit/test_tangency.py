@@ -9,7 +9,7 @@ import pytest
 from helpers import DATA
 
 from img2logo import abstract, quality
-from img2logo.constants import KINK_WEIGHT
+from img2logo.fit.constants import KINK_WEIGHT
 from img2logo.quality import arc_direction
 
 
