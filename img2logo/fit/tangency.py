@@ -49,13 +49,16 @@ enforcing every tangency in A^0 and every merge's window raises E^s(A^0) of the
 clip-art fish from 2.36 to 9.77 px (no merge fits under T = 5 any more), and on
 the evaluation set's clip arts gives 47.1 arcs instead of 40.0 and one failed
 run; enforcing all of a window's tangencies in the merges gives 41.6 arcs and
-33 % tangent. So three narrower steps:
+33 % tangent. So four narrower steps:
 
 * a merge is judged with the tangencies it leaves in place
   (:func:`img2logo.fit.merging.evaluate`): the smooth joins at the merged arc's
   two ends, and those earlier merges made tangent (``FitState.held``), are held
   in its local refit, so the merge error is the E^s of the logo with them;
 * after the loop, this pass (:func:`tangent_joins`) on the last level;
+* a kinked join of the object's silhouette, where no two circles on their
+  rungs touch with both arcs within T, has one of its arcs split beside the
+  kink (:func:`split_kinks`): a short arc rounds the corner;
 * the result may be a level before the last (:func:`tangent_level`): the merge
   loop stops where E^s is within a few tenths of a px of T (the polar bear:
   4.59 of 5), and a tangency there costs 0.1-1 px of E^s (its long arcs move
