@@ -395,7 +395,12 @@ def test_stroke_width_option_overrides_and_is_checked():
 
 
 def _free_ends_at_line_ends(result) -> tuple[int, int]:
-    """(free ends of the logo, how many of them lie within 3 px of an end of the input's lines)."""
+    """(free ends of the logo, how many of them lie within GAP_MAX px of an end of the input's lines).
+
+    The fit may stop an arc a few px short of a stroke's tip (the beagle's forehead stroke: 3.3 px);
+    a break where the input's line runs on has no line end within the near-miss distance.
+    """
+    from img2logo.constants import GAP_MAX
     from img2logo.quality import free_ends
 
     ends = free_ends(result.final)
@@ -404,7 +409,7 @@ def _free_ends_at_line_ends(result) -> tuple[int, int]:
         return 0, 0
     if len(line_ends) == 0:
         return len(ends), 0
-    near = np.hypot(*(ends[:, None, :] - line_ends[None, :, :]).transpose(2, 0, 1)).min(axis=1) <= 3.0
+    near = np.hypot(*(ends[:, None, :] - line_ends[None, :, :]).transpose(2, 0, 1)).min(axis=1) <= GAP_MAX
     return len(ends), int(near.sum())
 
 

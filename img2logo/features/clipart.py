@@ -777,7 +777,8 @@ def clipart_lines(regions: np.ndarray, lightness: np.ndarray | None = None) -> n
     Each of their pixels is given to the region nearest to it, so that the
     boundary between a stroke's two sides runs along its middle; the pixels
     are added to the map (a stroke that ends inside a fill, a whisker, keeps its
-    end). On the silhouette the stroke is the silhouette's line: a stroke pixel
+    end here; :func:`img2logo.features.detail.close_line_ends` joins it or drops
+    it later). On the silhouette the stroke is the silhouette's line: a stroke pixel
     within ``CLIPART_OUTLINE_WIDTH`` px of both the background and a fill of the
     object goes to the nearest region of the object and is not added, so the
     line runs along the outline's outer edge, where the object ends. A line on

@@ -23,7 +23,14 @@ background: the weightiest.
 Never merged: the background (label 0, the region that covers most of the
 image's frame), so the **silhouette** is kept whole, whatever its contrast; an
 ink outline on it (the cartoon style's outer outline); and, at the detail
-asked, the dark marks on the object's fills (an eye, a pupil, a spot).
+asked, the dark marks on the object's fills (an eye, a pupil, a spot), which
+only take in smaller regions (a pupil's highlight, the spots a wing's black
+encloses).
+
+:func:`close_line_ends` then makes every line of the map whole: a line end,
+the end of a mark drawn as its centre line inside one fill, is joined to the
+line it stops short of, or the mark is dropped whole when it weighs less than
+the detail budget (the lightest boundary the ranking kept).
 
 Arrays are indexed (row, column).
 """
@@ -31,12 +38,14 @@ Arrays are indexed (row, column).
 from __future__ import annotations
 
 import heapq
+from typing import NamedTuple
 
 import numpy as np
 
+from ..constants import LINE_JOIN_DISTANCE
 from ..errors import InvalidParameterError
 from .clipart import ink_outlines, label_means, outline_strokes, thin_regions
-from .constants import CLIPART_MARK_CONTRAST, CLIPART_MAX_REGIONS
+from .constants import CLIPART_MARK_CONTRAST, CLIPART_MAX_REGIONS, CLIPART_OUTLINE_WIDTH
 
 
 def check_detail(value: object) -> int:
@@ -72,13 +81,21 @@ def region_adjacency(regions: np.ndarray) -> dict[tuple[int, int], int]:
     return {(int(p // n), int(p % n)): int(c) for p, c in zip(pairs, counts, strict=True)}
 
 
+class Merged(NamedTuple):
+    """What :func:`merge_by_importance` gives: the merged regions, the detail kept, the detail budget."""
+
+    regions: np.ndarray
+    detail: int
+    budget: float
+
+
 class DetailWarning(UserWarning):
     """A clip art had more regions than the optimization takes at once: its detail was coarsened."""
 
 
 def merge_by_importance(
     regions: np.ndarray, lab: np.ndarray, detail: int, *, max_regions: int = CLIPART_MAX_REGIONS
-) -> tuple[np.ndarray, int]:
+) -> Merged:
     """Merge a clip art's least important regions into their neighbours: (H, W) int labels, 0 = background.
 
     Parameters
@@ -99,19 +116,20 @@ def merge_by_importance(
 
     Returns
     -------
-    regions : ndarray of int, shape (H, W)
-        The merged regions, labels packed, the background still 0
-        (``regions`` itself when nothing was merged).
-    detail : int
-        The regions kept besides the background: ``detail``, or more where
-        what is never merged is more, or fewer where ``max_regions`` asked it.
+    Merged
+        ``regions`` (H, W) int, the merged regions, labels packed, the
+        background still 0 (``regions`` itself when nothing was merged);
+        ``detail``, the regions kept besides the background: ``detail``, or
+        more where what is never merged is more, or fewer where
+        ``max_regions`` asked it; ``budget``, the Ward weight of the heaviest
+        merge made (0 when none was), squared Delta E times px.
     """
     n = int(regions.max()) + 1
+    target, budget = merge_targets(regions, lab, detail, marks=True)
     if n - 1 <= detail:
-        return regions, n - 1
-    target = merge_targets(regions, lab, detail, marks=True)
+        return Merged(regions, n - 1, budget)
     if len(np.unique(target)) > max_regions:  # the dark marks too, down to the bound
-        target = merge_targets(regions, lab, min(detail, max_regions - 1), marks=False)
+        target, budget = merge_targets(regions, lab, min(detail, max_regions - 1), marks=False)
         import warnings
 
         warnings.warn(
@@ -122,26 +140,34 @@ def merge_by_importance(
         )
     kept = len(np.unique(target))
     if kept == n:
-        return regions, n - 1
+        return Merged(regions, n - 1, budget)
     alive = np.zeros(len(target), dtype=bool)
     alive[target] = True
     packed = np.cumsum(alive) - 1
-    return packed[target][regions].astype(np.int64), kept - 1
+    return Merged(packed[target][regions].astype(np.int64), kept - 1, budget)
 
 
-def merge_targets(regions: np.ndarray, lab: np.ndarray, detail: int, *, marks: bool = True) -> np.ndarray:
-    """The region each label is merged into by :func:`merge_by_importance`: (n,) int, the identity where kept.
+def merge_targets(regions: np.ndarray, lab: np.ndarray, detail: int, *, marks: bool = True) -> tuple[np.ndarray, float]:
+    """The region each label is merged into by :func:`merge_by_importance`, and the detail budget.
 
     Merges in Ward's order until ``detail`` regions are left besides the
     background, or no merge is allowed. ``marks``: the dark marks on the
     object's fills (:func:`ink_outlines` without the paper, by
     ``CLIPART_MARK_CONTRAST``) take part in no merge.
+
+    Returns
+    -------
+    target : ndarray of int, shape (n,)
+        The label each label is merged into, the identity where kept.
+    budget : float
+        The Ward weight of the heaviest merge made (0 when none was): what
+        the detail asked painted over, squared Delta E times px.
     """
     counts, means = label_means(regions, lab)
     n = len(counts)
     target = np.arange(n)
     if n < 3:  # the background and at most one region: nothing to merge
-        return target
+        return target, 0.0
     area = counts.astype(np.float64).copy()
     colour = means.astype(np.float64).copy()
     nbrs: list[dict[int, int]] = [{} for _ in range(n)]
@@ -153,18 +179,25 @@ def merge_targets(regions: np.ndarray, lab: np.ndarray, detail: int, *, marks: b
     on_paper = np.zeros(n, dtype=bool)
     on_paper[[j for i, j in adjacency if i == 0]] = True
     fixed[np.intersect1d(outline_strokes(regions, means[:, 0]), np.flatnonzero(on_paper))] = True
-    # Nor does a dark mark on the object's lighter fills (an eye, a pupil, a spot, an inner
-    # outline): the first thing the eye finds in a picture, and what a designer keeps.
+    # Nor is a dark mark on the object's lighter fills (an eye, a pupil, a spot, an inner
+    # outline), the first thing the eye finds in a picture and what a designer keeps, ever
+    # painted over: it only takes in smaller regions (a pupil's highlight, the light spots
+    # enclosed by a wing's black), which take its colour, and no other mark.
+    dark = np.zeros(n, dtype=bool)
     if marks:
-        fixed[ink_outlines(regions, means[:, 0], paper=False, contrast=CLIPART_MARK_CONTRAST)] = True
+        dark[ink_outlines(regions, means[:, 0], paper=False, contrast=CLIPART_MARK_CONTRAST)] = True
+    stroke = np.zeros(n, dtype=bool)
+    stroke[thin_regions(regions, means[:, 0])] = True
     for (i, j), length in adjacency.items():
-        if fixed[i] or fixed[j]:
+        if fixed[i] or fixed[j] or (dark[i] and dark[j]):
             continue
         nbrs[i][j] = length
         nbrs[j][i] = length
     version = np.zeros(n, dtype=np.int64)
-    stroke = np.zeros(n, dtype=bool)
-    stroke[thin_regions(regions, means[:, 0])] = True
+
+    def allowed(i: int, j: int) -> bool:  # a mark, never a stroke, takes in only what is smaller than it
+        mark, other = (i, j) if dark[i] else (j, i)
+        return not dark[mark] or (not dark[other] and not stroke[mark] and area[other] < area[mark])
 
     def cost(i: int, j: int) -> float:
         d = colour[i] - colour[j]
@@ -173,11 +206,15 @@ def merge_targets(regions: np.ndarray, lab: np.ndarray, detail: int, *, marks: b
     heap = [(cost(i, j), i, j, 0, 0) for i in range(1, n) for j in nbrs[i] if i < j]
     heapq.heapify(heap)
     left = int(np.count_nonzero(counts[1:]))  # besides the background
+    budget = 0.0
     while heap and left > detail:
-        _, i, j, vi, vj = heapq.heappop(heap)
+        weight, i, j, vi, vj = heapq.heappop(heap)
         if vi != version[i] or vj != version[j] or target[i] != i or target[j] != j:
             continue  # stale: a side was merged since
+        if not allowed(i, j):
+            continue  # taken anew when either side grows
         left -= 1
+        budget = max(budget, weight)
         # j into i: a stroke into its fill, never a fill into a stroke (which would widen it
         # past a stroke's width, and its one centre line would become two edges); else the
         # larger keeps its label (the same picture either way).
@@ -198,9 +235,106 @@ def merge_targets(regions: np.ndarray, lab: np.ndarray, detail: int, *, marks: b
         for k in nbrs[i]:
             a, b = (i, k) if i < k else (k, i)
             heapq.heappush(heap, (cost(a, b), a, b, int(version[a]), int(version[b])))
+    # The detail budget: the weight of the next merge the ranking would make, the lightest
+    # boundary it kept (the heaviest it made where none is left to make).
+    for weight, i, j, vi, vj in sorted(heap):
+        if vi == version[i] and vj == version[j] and target[i] == i and target[j] == j and allowed(i, j):
+            budget = max(budget, weight)
+            break
     for r in range(n):  # follow chains of merges to their end
         t = r
         while target[t] != t:
             t = target[t]
         target[r] = t
-    return target
+    return target, budget
+
+
+def close_line_ends(lines: np.ndarray, regions: np.ndarray, lab: np.ndarray, budget: float) -> np.ndarray:
+    """A clip art's line map with every line whole: each line end joined, or its mark dropped whole.
+
+    Every region boundary of a clip art is closed, so a line end inside the
+    picture is a **mark** drawn as its centre line (a stroke's tapered tip, a
+    hatching line, a whisker) that ends inside one fill. Each is, in turn:
+
+    1. **joined** to the line it stops short of, when one is within
+       ``CLIPART_OUTLINE_WIDTH`` + ``LINE_JOIN_DISTANCE`` px
+       (:func:`img2logo.images.line_ends.join_line_ends`): a stroke that meets
+       the silhouette in the input stops an outline's width short of it in the
+       map (its pixels there are the silhouette's line,
+       :func:`img2logo.features.clipart.clipart_lines`), and one that meets an
+       inner boundary stops about its half width short, plus a near-miss;
+    2. else **dropped whole** (a branch back to the junction it hangs on, an
+       open line entirely) when its visual weight is below the detail
+       ``budget``: its Ward weight, the squared colour error of painting its
+       ink (the mark's region within ``CLIPART_OUTLINE_WIDTH`` / 2 px of the
+       line) in the colour of the fill it lies on, a_m a_f / (a_m + a_f)
+       |c_m - c_f|^2 (:func:`merge_targets`), against the weight of the
+       heaviest merge the ranking made at the detail asked: the mark is what
+       the ranking would have painted over had it been a region of its own;
+    3. else kept as it is (a mark as weighty as the regions kept).
+
+    Ends within 2 px of the image frame are where a boundary leaves the
+    picture and are left alone; a mark on the background (a whisker, an
+    eyelash) is part of the silhouette and is never dropped.
+
+    Parameters
+    ----------
+    lines : ndarray of bool, shape (H, W)
+        The clip art's 1-px line map.
+    regions : ndarray of int, shape (H, W)
+        Its regions after :func:`merge_by_importance`, 0 = background.
+    lab : ndarray, shape (H, W, 3)
+        The image's CIELAB colours.
+    budget : float
+        :attr:`Merged.budget`, squared Delta E times px.
+
+    Returns
+    -------
+    ndarray of bool, shape (H, W)
+        The map (thin it and prune it again: a join or a drop leaves a node
+        of valence 2 or a short spur).
+    """
+    import cv2
+
+    from ..images import skeleton
+    from ..images.line_ends import join_line_ends
+
+    out = join_line_ends(np.asarray(lines, dtype=bool), CLIPART_OUTLINE_WIDTH + LINE_JOIN_DISTANCE)
+    if budget <= 0.0:
+        return out
+    graph = skeleton.trace(out)
+    valence = graph.valence()
+    counts, means = label_means(regions, lab)
+    h, w = out.shape
+    size = 2 * int(CLIPART_OUTLINE_WIDTH // 2) + 1
+    disc = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (size, size))
+    drop = np.zeros_like(out)
+    for c, (a, b) in enumerate(graph.ends):
+        free = [k for k in (a, b) if valence[k] == 1 and a != b]
+        if not free:
+            continue
+        pixels = np.vstack([graph.chains[c].reshape(-1, 2)] + [graph.node_pixels[k] for k in free])
+        if (pixels.min(axis=0) < 2).any() or (pixels.max(axis=0) >= (h - 2, w - 2)).any():
+            continue  # a boundary leaving the picture
+        rows, cols = pixels[:, 0], pixels[:, 1]
+        mark = int(np.bincount(regions[rows, cols]).argmax())
+        box = (
+            slice(max(rows.min() - size, 0), rows.max() + size + 1),
+            slice(max(cols.min() - size, 0), cols.max() + size + 1),
+        )
+        on = np.zeros(out[box].shape, dtype=np.uint8)
+        on[rows - box[0].start, cols - box[1].start] = 1
+        near = cv2.dilate(on, disc) > 0
+        local = regions[box]
+        ink = float(np.count_nonzero(near & (local == mark)))
+        others = local[near & (local != mark)]
+        if ink == 0.0 or len(others) == 0:
+            continue
+        fill = int(np.bincount(others).argmax())
+        if fill == 0:
+            continue  # a mark on the paper (a whisker, an eyelash) is part of the silhouette
+        d = means[mark] - means[fill]
+        weight = ink * counts[fill] / (ink + counts[fill]) * float(d @ d)
+        if weight < budget:
+            drop[rows, cols] = True
+    return out & ~drop

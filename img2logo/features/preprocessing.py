@@ -50,7 +50,7 @@ from .constants import (
     SPUR_LENGTH,
     SYNTHETIC_FLAT_FRACTION,
 )
-from .detail import check_detail, merge_by_importance
+from .detail import check_detail, close_line_ends, merge_by_importance
 
 if TYPE_CHECKING:
     from .photo.lines import edge_tangent_flow, flow_dog
@@ -523,6 +523,7 @@ def extract_feature_lines(
     if spur_length is None:
         spur_length = PHOTO_SPUR_LENGTH if kind == "photo" else SPUR_LENGTH
     radius = stroke = detail_used = None
+    budget = 0.0
     if kind == "drawing":
         ink = _drawing_lines(img)
         radius = _half_width(ink)
@@ -532,7 +533,7 @@ def extract_feature_lines(
         min_len = spur_length if min_line_length is None else min_line_length
     elif kind == "clipart":
         regions = enclosed_paper(clipart_regions(img) if regions is None else regions, img)
-        regions, detail_used = merge_by_importance(regions, img.lab, check_detail(detail))
+        regions, detail_used, budget = merge_by_importance(regions, img.lab, check_detail(detail))
         raw = _join(clipart_lines(regions, label_means(regions, img.lab)[1][:, 0]))
         min_len = spur_length if min_line_length is None else min_line_length
     else:
@@ -547,6 +548,9 @@ def extract_feature_lines(
         min_len = PHOTO_MIN_LINE_LENGTH if min_line_length is None else min_line_length
     min_len = check_positive(min_len, "min_line_length", allow_zero=True)
     lines = _clean_skeleton(raw, spur_length=spur_length, min_length=min_len, radius=radius)
+    if kind == "clipart" and regions is not None:  # every line whole: each end joined, or its mark dropped whole
+        closed = close_line_ends(lines, regions, img.lab, budget)
+        lines = _clean_skeleton(closed, spur_length=spur_length, min_length=min_len)
     if dots is not None and dots.count:  # an eye's outline is shorter than a photo's shortest line
         from .photo.lines import dot_lines
 

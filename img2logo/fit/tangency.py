@@ -49,13 +49,16 @@ enforcing every tangency in A^0 and every merge's window raises E^s(A^0) of the
 clip-art fish from 2.36 to 9.77 px (no merge fits under T = 5 any more), and on
 the evaluation set's clip arts gives 47.1 arcs instead of 40.0 and one failed
 run; enforcing all of a window's tangencies in the merges gives 41.6 arcs and
-33 % tangent. So three narrower steps:
+33 % tangent. So four narrower steps:
 
 * a merge is judged with the tangencies it leaves in place
   (:func:`img2logo.fit.merging.evaluate`): the smooth joins at the merged arc's
   two ends, and those earlier merges made tangent (``FitState.held``), are held
   in its local refit, so the merge error is the E^s of the logo with them;
 * after the loop, this pass (:func:`tangent_joins`) on the last level;
+* a kinked join of the object's silhouette, where no two circles on their
+  rungs touch with both arcs within T, has one of its arcs split beside the
+  kink (:func:`split_kinks`): a short arc rounds the corner;
 * the result may be a level before the last (:func:`tangent_level`): the merge
   loop stops where E^s is within a few tenths of a px of T (the polar bear:
   4.59 of 5), and a tangency there costs 0.1-1 px of E^s (its long arcs move
@@ -202,7 +205,118 @@ def tangent_level(
     assert best is not None  # the last level is always tried
     _restore(opt, best[2])
     opt.stats = best[3]
+    split_kinks(opt, tolerance)
     return best[1]
+
+
+def split_kinks(opt: FitState, tolerance: float) -> int:
+    """Split an arc at a kinked join of the silhouette where that makes the joins tangent; how many split.
+
+    A join of two arcs of the object's silhouette is left kinked when no two
+    circles on their rungs (one up or down) touch there with both arcs within T
+    of their pixels: the two groups' joined pixels are no tangent biarc within
+    T (on the evaluation clip arts the best one lies 6-27 px off them). Three
+    arcs may be: one of the two groups is split at a smooth inner node (where
+    the over-segmentation had split it), the nearest to the kink
+    (:func:`_split_node`), the two halves refitted in their window, and the
+    tangent pass run again (every join, its refits held to the same rules). The split
+    is kept when it lowers the score :func:`tangent_level` ranks levels by (arcs
+    plus ``KINK_WEIGHT`` x kinked joins) with E^s within ``max(T, E^s now)``
+    and no arc of the silhouette moved farther than T from its pixels (or than it was).
+    """
+    splits = 0
+    if not opt.outline or not opt.loose or opt.symmetry is not None:  # a mirror pairs the groups as they are
+        return splits
+    tried: set[tuple[int, ...]] = set()
+    while True:
+        seeds = {g: f.seed for g, f in opt.fits.items()}
+        loose, opt.loose = opt.loose, set()
+        joins = opt.tangencies(opt.groups, seeds)  # the released joins too
+        opt.loose = loose
+        kinked = sorted(n for n in opt.loose if n in joins and any(opt.on_outline(opt.groups[g]) for g in joins[n]))
+        score = len(opt.fits) + KINK_WEIGHT * len(opt.loose)
+        bound = max(float(tolerance), opt.similarity())
+        done = False
+        for node in kinked:
+            for g in joins[node]:
+                group = opt.groups[g]
+                inner = _split_node(opt, group, node)
+                if inner is None or group.nodes in tried:
+                    continue
+                tried.add(group.nodes)
+                before, stats = _state(opt), replace(opt.stats)
+                if _split_group(opt, g, inner, bound):
+                    opt.loose = set()
+                    tangent_joins(opt, tolerance)
+                    if len(opt.fits) + KINK_WEIGHT * len(opt.loose) < score and opt.similarity() <= bound:
+                        splits += 1
+                        done = True
+                        break
+                _restore(opt, before)
+                opt.stats = stats
+            if done:
+                break
+        if not done:
+            return splits
+
+
+def _split_node(opt: FitState, group: Group, join: int) -> int | None:
+    """The smooth inner node of ``group``'s path nearest to its end at ``join``; None if it has none.
+
+    The arc added there is a short one beside the kink: it can turn the tangent
+    between the two long arcs, as a fillet does, while they keep their pixels.
+    """
+    inner = [i for i in range(1, len(group.nodes) - 1) if group.nodes[i] in opt.smooth]
+    if not inner or group.closed:
+        return None
+    return group.nodes[min(inner) if group.nodes[0] == join else max(inner)]
+
+
+def _split_group(opt: FitState, gid: int, node: int, bound: float) -> bool:
+    """Replace group ``gid`` by its two halves at inner ``node``, refitted in their window; whether it fits.
+
+    The halves start on their golden circles (Eqn. 12); the fit (Eqn. 13,
+    with the state's tangencies) must converge, keep E^s within ``bound`` and
+    each half within its :meth:`~img2logo.fit.fit_state.FitState.arc_cap`. On
+    failure the state may be left changed: the caller restores it.
+    """
+    group = opt.groups[gid]
+    i = group.nodes.index(node)
+    cut = split_chain(group.points, opt.graph.junctions[node] + opt.disp[node])
+    if cut is None:
+        return False
+    head = Group(group.segments[:i], group.nodes[: i + 1], cut[0], group.locked)
+    tail = Group(group.segments[i:], group.nodes[i:], cut[1], group.locked)
+    del opt.groups[gid]
+    opt.fits.pop(gid)
+    opt.invalidate()
+    halves = [opt.add_group(head), opt.add_group(tail)]
+    seeds = {g: f.seed for g, f in opt.fits.items()}
+    for h in halves:
+        seeds[h] = opt.golden(opt.groups[h])
+        if seeds[h].k is None:
+            return False
+    node_groups = opt.node_groups()
+    out = opt.solve(
+        dict(opt.groups),
+        seeds,
+        node_groups,
+        changed=halves,
+        free_nodes=sorted({n for h in halves for n in opt.constrained_nodes(opt.groups[h])}),
+        fixed=set(),
+        n_groups_total=len(opt.groups),
+        n_junctions_total=len(node_groups),
+        rings=2,
+    )
+    if out is None or not all(h in out[0] for h in halves):
+        return False
+    fits, disp = out
+    if opt.strays(fits, opt.groups, opt.fits):
+        return False
+    opt.fits.update(fits)
+    for n, d in disp.items():
+        opt.disp[n] = d
+    return opt.similarity() <= bound
 
 
 def _levels_back(n: int) -> list[int]:

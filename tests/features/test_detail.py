@@ -120,7 +120,7 @@ def test_the_heavier_region_is_kept_first():
     cv2.circle(im, (160, 120), 8, DARK_ORANGE, -1, lineType=cv2.LINE_AA)
     regions, kept = _merged(im, 3)
     assert regions.max() == 3 and kept.max() == 3
-    two, n = merge_by_importance(regions, load_image(im).lab, 2)
+    two, n, _ = merge_by_importance(regions, load_image(im).lab, 2)
     assert n == 2 and two.max() == 2
     assert two[120, 90] != two[120, 200]  # the strong blob stayed
     assert two[120, 160] == two[120, 200]  # the faint one went into the disc
@@ -136,6 +136,21 @@ def test_a_dark_mark_is_kept_whatever_its_size():
     assert merged[100, 100] != merged[60, 120]  # the eye stayed, the patch went
 
 
+def test_a_dark_mark_takes_in_the_light_spots_it_encloses():
+    # A wing's black with six light spots in it, on an orange disc: the spots touch the black
+    # alone, and at a low detail they go into it (the black, larger, is never painted over).
+    im = _disc(240, 100)
+    cv2.circle(im, (120, 120), 60, (10, 10, 10), -1, lineType=cv2.LINE_AA)
+    for k in range(6):
+        a = 2 * np.pi * k / 6
+        cv2.circle(im, (int(120 + 35 * np.cos(a)), int(120 + 35 * np.sin(a))), 9, (250, 230, 150), -1)
+    cv2.circle(im, (120, 120), 7, (200, 220, 255), -1)  # and a highlight in its middle
+    regions, merged = _merged(im, 1)
+    assert regions.max() == 9
+    assert merged.max() == 2  # the disc and the black, whole
+    assert merged[120, 155] == merged[120, 120] == merged[120, 100] != merged[120, 30]
+
+
 def test_too_many_regions_are_coarsened_and_said_in_one_line():
     im = blank(400)
     rng = np.random.default_rng(3)
@@ -148,7 +163,7 @@ def test_too_many_regions_are_coarsened_and_said_in_one_line():
     assert regions.max() + 1 > 40
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        merged, kept = merge_by_importance(regions, img.lab, 60, max_regions=40)
+        merged, kept, _ = merge_by_importance(regions, img.lab, 60, max_regions=40)
     assert merged.max() + 1 == 40
     assert kept == 39
     (w,) = [c for c in caught if issubclass(c.category, DetailWarning)]
@@ -162,7 +177,7 @@ def test_few_regions_give_no_warning_and_detail_one_changes_nothing():
     regions = clipart_regions(img)
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        assert merge_by_importance(regions, img.lab, Options().detail) == (regions, int(regions.max()))
+        assert merge_by_importance(regions, img.lab, Options().detail) == (regions, int(regions.max()), 0.0)
 
 
 def test_region_adjacency_counts_pixel_pairs():
@@ -217,7 +232,7 @@ def test_real_clip_art_keeps_its_silhouette_with_fewer_regions(name):
     regions = clipart_regions(img)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", DetailWarning)  # the tramway's 68 regions are coarsened
-        merged, kept = merge_by_importance(regions, img.lab, Options().detail)
+        merged, kept, _ = merge_by_importance(regions, img.lab, Options().detail)
     assert merged.max() < regions.max()
     assert merged.max() == kept and merged.max() + 1 <= 40
     assert np.array_equal(merged > 0, regions > 0)

@@ -9,6 +9,7 @@ import pytest
 from helpers import DATA
 
 from img2logo import abstract, quality
+from img2logo.fit.constants import KINK_WEIGHT
 from img2logo.quality import arc_direction
 
 
@@ -134,6 +135,7 @@ class _Levels:
         self.kinks, self.passes = kinks, []
         self.fits, self.disp, self.groups = {}, np.zeros((1, 2)), dict.fromkeys(range(len(kinks)))
         self.off_line, self.loose, self.held, self.stats = {}, set(), set(), Stats()
+        self.outline = frozenset()  # no silhouette: no arc is split at a kink (split_kinks)
 
     def invalidate(self):
         pass
@@ -286,6 +288,37 @@ def test_the_tangent_joins_make_no_near_miss_gap():
     result = abstract(seal, tolerance=7.0, progress=False)
     assert result.progression.stats["tangent_joins"] >= 1
     assert len(quality.near_miss_gaps(result.final)) == 0 and len(quality.crossings(result.final)) == 0
+
+
+@pytest.fixture(scope="module")
+def warning_sign():
+    """Openclipart's warning sign, with and without :func:`~img2logo.fit.tangency.split_kinks`."""
+    import img2logo.fit.tangency as tangency
+
+    path = DATA.parent / "benchmarks" / "data" / "openclipart" / "clipart-charge.png"
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(tangency, "split_kinks", lambda opt, tolerance: 0)
+        kinked = abstract(path, progress=False)
+    return path, kinked, abstract(path, progress=False)
+
+
+def test_a_short_arc_at_a_kinked_silhouette_join_makes_it_tangent_within_t(warning_sign):
+    """The sign's rounded corners: two long arcs of the silhouette meet at a smooth node and no two circles
+    on their rungs touch there within T of the pixels. Split beside the kink, a short arc turns the
+    tangent between them: every smooth join tangent, the silhouette kept (sil6 0.90 before)."""
+    import cv2
+
+    from img2logo.quality import logo_points, silhouette_recall
+
+    path, kinked, split = warning_sign
+    before = quality.joins(kinked.final, kinked.graph)
+    after = quality.joins(split.final, split.graph)
+    assert np.any(np.degrees(before.kinks) >= 2.0)
+    assert after.count > before.count and np.all(np.degrees(after.kinks) < 2.0)
+    assert len(kinked.final.arcs) < len(split.final.arcs) <= len(kinked.final.arcs) + KINK_WEIGHT * before.count
+    mask = cv2.imread(str(path.with_suffix(".silhouette.png")), cv2.IMREAD_GRAYSCALE) > 127
+    assert silhouette_recall(logo_points(split.final), mask) >= silhouette_recall(logo_points(kinked.final), mask)
+    assert split.final.similarity <= split.final.params["tolerance"]
 
 
 @pytest.fixture(scope="module")
