@@ -247,8 +247,12 @@ def split_kinks(opt: FitState, tolerance: float) -> int:
                 before, stats = _state(opt), replace(opt.stats)
                 if _split_group(opt, g, inner, bound):
                     opt.loose = set()
-                    tangent_joins(opt, tolerance)
-                    if len(opt.fits) + KINK_WEIGHT * len(opt.loose) < score and opt.similarity() <= bound:
+                    try:  # kept only below ``score``: the pass stops once it cannot be
+                        tangent_joins(opt, tolerance, (score - len(opt.fits) - 1) // KINK_WEIGHT)
+                        kept = len(opt.fits) + KINK_WEIGHT * len(opt.loose) < score and opt.similarity() <= bound
+                    except _Outscored:
+                        kept = False
+                    if kept:
                         splits += 1
                         done = True
                         break
