@@ -330,6 +330,8 @@ class FitState:
         self.released: set[int] = set()
         self._path_cache: dict[tuple[int, ...], tuple[int, ...]] = {}
         self._constrained: dict[tuple[int, ...], tuple[int, ...]] = {}
+        #: group path -> (the junctions' rest points it was measured on, :meth:`reach`).
+        self._reach: dict[tuple[int, ...], tuple[np.ndarray, float]] = {}
         #: group path -> (released junctions when made, straight_line, the arc's Seed or None): :meth:`golden`.
         self._golden: dict[tuple[tuple[int, ...], tuple[int, ...]], tuple[int, Any, Seed | None]] = {}
         #: group path -> (released junctions when made, :meth:`golden_error`).
@@ -393,6 +395,7 @@ class FitState:
         self.released.add(node)
         self._node_groups = None
         self._constrained.clear()
+        self._reach.clear()
 
     def tangencies(self, groups: Mapping[int, Group], seeds: Mapping[int, Seed]) -> dict[int, tuple[int, int]]:
         """Smooth node -> the two groups of ``groups`` that end there, whose circles must touch at it.
@@ -663,11 +666,19 @@ class FitState:
         cannot reach its own ends, and the constrained fit (Eqn. 13) would have
         to drag them together. Its radius goes up to the first rung that reaches.
         """
+        # Asked again for the same groups at every level the tangent passes try: cached by the
+        # node path while the rest points are the same array (a biarc's start moves them).
+        junctions = self.graph.junctions
+        hit = self._reach.get(group.nodes)
+        if hit is not None and hit[0] is junctions:
+            return hit[1]
         nodes = self.constrained_nodes(group)
-        if len(nodes) < 2:
-            return 0.0
-        pts = self.graph.junctions[list(nodes)]
-        return 0.5 * float(np.max(np.hypot(*(pts[:, None, :] - pts[None, :, :]).transpose(2, 0, 1))))
+        reach = 0.0
+        if len(nodes) >= 2:
+            pts = junctions[list(nodes)]
+            reach = 0.5 * float(np.max(np.hypot(*(pts[:, None, :] - pts[None, :, :]).transpose(2, 0, 1))))
+        self._reach[group.nodes] = (junctions, reach)
+        return reach
 
     # ----------------------------------------------------------------- arcs
     def arc_for(self, group: Group, center: np.ndarray, radius: float, k: int | None, disp: Any) -> ArcFit:

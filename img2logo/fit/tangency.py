@@ -111,7 +111,7 @@ if TYPE_CHECKING:
     from .fit_state import FitState, GroupFit, Stats
 
 
-def tangent_joins(opt: FitState, tolerance: float) -> bool:
+def tangent_joins(opt: FitState, tolerance: float, most_loose: int | None = None) -> bool:
     """Make the circles of the current state touch at its smooth joins; whether the state changed.
 
     The joins of ``opt.tangencies`` are made tangent one at a time
@@ -124,6 +124,12 @@ def tangent_joins(opt: FitState, tolerance: float) -> bool:
     :meth:`~img2logo.fit.fit_state.FitState.strays`) and add no redundant
     intersection and no near-miss gap. Counts go to ``opt.stats.tangent_joins`` and
     ``["released_tangencies"]``.
+
+    With ``most_loose``, a pass that cannot end with at most that many joins
+    kinked raises :class:`_Outscored` as soon as that is known, the state left
+    half made: once one join at a time has released more, the refit of all at
+    once is run (from the state as it came, as it would be after) and, if it
+    too leaves more, the joins not yet tried are not.
     """
     seeds = {g: f.seed for g, f in opt.fits.items()}
     joins = opt.tangencies(opt.groups, seeds)
@@ -131,7 +137,21 @@ def tangent_joins(opt: FitState, tolerance: float) -> bool:
         return False
     bound = max(float(tolerance), opt.similarity())
     start = _state(opt)
-    made = _one_at_a_time(opt, joins, bound)
+    whole_enough: list[bool] = []
+
+    def give_up(released: int) -> bool:
+        """Whether neither way can leave at most ``most_loose`` joins kinked, ``released`` by one at a time."""
+        if most_loose is None or released <= most_loose:
+            return False
+        if not whole_enough:
+            now = _state(opt)
+            _restore(opt, start)
+            # Nonempty only if it leaves at most ``most_loose`` of the joins kinked.
+            whole_enough.append(bool(_all_at_once(opt, joins, bound, least=len(joins) - most_loose)))
+            _restore(opt, now)
+        return not whole_enough[0]
+
+    made = _one_at_a_time(opt, joins, bound, give_up)
     if len(made) < len(joins):
         one = _state(opt), opt.similarity()
         _restore(opt, start)
@@ -174,7 +194,11 @@ def tangent_level(
         if back:
             _restore(opt, history[-1 - back])
         opt.loose, opt.off_line = set(), {}
-        tangent_joins(opt, tolerance)
+        try:
+            # A level back wins only with fewer kinks than this: its pass stops once it cannot.
+            tangent_joins(opt, tolerance, None if best is None else (best[0] - back - 1) // KINK_WEIGHT)
+        except _Outscored:
+            continue
         score = back + KINK_WEIGHT * len(opt.loose)
         if best is None or score < best[0]:
             best = (score, back, _state(opt), replace(opt.stats))
@@ -223,8 +247,12 @@ def split_kinks(opt: FitState, tolerance: float) -> int:
                 before, stats = _state(opt), replace(opt.stats)
                 if _split_group(opt, g, inner, bound):
                     opt.loose = set()
-                    tangent_joins(opt, tolerance)
-                    if len(opt.fits) + KINK_WEIGHT * len(opt.loose) < score and opt.similarity() <= bound:
+                    try:  # kept only below ``score``: the pass stops once it cannot be
+                        tangent_joins(opt, tolerance, (score - len(opt.fits) - 1) // KINK_WEIGHT)
+                        kept = len(opt.fits) + KINK_WEIGHT * len(opt.loose) < score and opt.similarity() <= bound
+                    except _Outscored:
+                        kept = False
+                    if kept:
                         splits += 1
                         done = True
                         break
@@ -324,7 +352,16 @@ def _restore(opt: FitState, state: tuple) -> None:
     opt.off_line, opt.loose, opt.held = dict(off_line), set(loose), set(held)
 
 
-def _one_at_a_time(opt: FitState, joins: dict[int, tuple[int, int]], bound: float) -> dict[int, tuple[int, int]]:
+class _Outscored(Exception):
+    """A tangent pass of :func:`tangent_level` stopped: its level cannot score better than one tried before."""
+
+
+def _one_at_a_time(
+    opt: FitState,
+    joins: dict[int, tuple[int, int]],
+    bound: float,
+    give_up: Callable[[int], bool] | None = None,
+) -> dict[int, tuple[int, int]]:
     """Make ``joins`` tangent one at a time; the joins made.
 
     Taken in order of their kink now (the nearest to touching first). For each,
@@ -339,12 +376,14 @@ def _one_at_a_time(opt: FitState, joins: dict[int, tuple[int, int]], bound: floa
     ``arc_bound``, and T on the silhouette) or than it was, the tangencies made before
     still hold, and no redundant intersection or near-miss gap
     (:meth:`~img2logo.fit.fit_state.FitState.gap_ends`) is added; otherwise the join is
-    released (``opt.loose``), a kink is left there, and the next join is tried.
+    released (``opt.loose``), a kink is left there, and the next join is tried;
+    :class:`_Outscored` is raised once ``give_up`` of the number released is true.
     """
     seeds = {g: f.seed for g, f in opt.fits.items()}
     order = sorted(joins, key=lambda n: (_apart(opt, seeds, n, joins[n]), n))
     opt.loose |= set(joins)
     made: dict[int, tuple[int, int]] = {}
+    released = 0
     for node in order:
         a, b = joins[node]
         opt.loose.discard(node)
@@ -369,6 +408,9 @@ def _one_at_a_time(opt: FitState, joins: dict[int, tuple[int, int]], bound: floa
         if best is None:
             del made[node]
             opt.loose.add(node)
+            released += 1
+            if give_up is not None and give_up(released):
+                raise _Outscored
             continue
         opt.fits.update(best.fits)
         for n, d in best.disp.items():

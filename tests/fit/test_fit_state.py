@@ -235,3 +235,22 @@ def test_redundant_pairs_are_the_groups_whose_arcs_cross_away_from_their_junctio
     state = hand_built_state(_line_and_a_stroke_towards_it(3.0))
     initial_fit(state)
     assert state.redundant_pairs() == []
+
+
+def test_reach_is_half_the_widest_span_of_the_junctions_a_circle_must_pass():
+    # Cached by the group's path: the same answer asked again, a new one once a junction is released
+    # or the rest points are another array (a biarc's start moves them for one fit).
+    graph, _ = golden_chain()
+    state = hand_built_state(graph)
+    merged = merge_groups(merge_groups(state.groups[0], state.groups[1], 1), state.groups[2], 2)
+    j = graph.junctions
+    assert state.reach(merged) == 0.5 * float(np.hypot(*(j[0] - j[3])))  # nodes 1 and 2 are inner, of valence 2
+    moved = j.copy()
+    moved[3] += (0.0, 40.0)
+    state.graph = dataclasses.replace(graph, junctions=moved)
+    assert state.reach(merged) == 0.5 * float(np.hypot(*(j[0] - moved[3])))
+    state.graph = graph
+    assert state.reach(merged) == 0.5 * float(np.hypot(*(j[0] - j[3])))
+    assert state.reach(state.groups[2]) == 0.5 * float(np.hypot(*(j[2] - j[3])))
+    state.release(3)  # node 2 is all its circle must pass now: no span
+    assert state.reach(state.groups[2]) == 0.0

@@ -152,16 +152,22 @@ class _Levels:
         ((1, 0, 0), 2, 1, 2),  # ... and one more arc for it wins
     ],
 )
-def test_the_level_kept_has_the_fewest_arcs_plus_weighted_kinks(monkeypatch, kinks, weight, back, passes):
+@pytest.mark.parametrize("stops", [False, True])
+def test_the_level_kept_has_the_fewest_arcs_plus_weighted_kinks(monkeypatch, kinks, weight, back, passes, stops):
     import img2logo.fit.tangency as tangency
 
     levels = _Levels(kinks)
     history = [tangency.snapshot(_at(levels, len(kinks) - k)) for k in range(len(kinks))][::-1]
     levels.groups = dict.fromkeys(range(len(kinks)))  # the last level is the current state
 
-    def fake_pass(opt, tolerance):
+    def fake_pass(opt, tolerance, most_loose=None):
         k = len(kinks) - len(opt.groups)  # levels back
         opt.passes.append(k)
+        assert (most_loose is None) == (k == 0)  # the last level's pass is never stopped
+        # A pass that stops once it cannot win: the same level kept.
+        if stops and most_loose is not None and kinks[k] > most_loose:
+            opt.loose = set(range(most_loose + 1))  # what it left half made
+            raise tangency._Outscored
         opt.loose = set(range(kinks[k]))
         return True
 
@@ -313,3 +319,43 @@ def test_a_short_arc_at_a_kinked_silhouette_join_makes_it_tangent_within_t(warni
     mask = cv2.imread(str(path.with_suffix(".silhouette.png")), cv2.IMREAD_GRAYSCALE) > 127
     assert silhouette_recall(logo_points(split.final), mask) >= silhouette_recall(logo_points(kinked.final), mask)
     assert split.final.similarity <= split.final.params["tolerance"]
+
+
+@pytest.fixture(scope="module")
+def polar_bear_passes():
+    """The polar bear's result with its tangent passes stopped once they cannot win, and run to the end."""
+    import img2logo.fit.tangency as tangency
+
+    path = DATA.parent / "benchmarks" / "data" / "clipart-polar-bear.png"
+    stopped = []
+    original = tangency.tangent_joins
+
+    def counted(opt, tolerance, most_loose=None):
+        try:
+            return original(opt, tolerance, most_loose)
+        except tangency._Outscored:
+            stopped.append(most_loose)
+            raise
+
+    def to_the_end(opt, tolerance, most_loose=None):
+        return original(opt, tolerance)
+
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(tangency, "tangent_joins", counted)
+        fast = abstract(path, progress=False)
+        mp.setattr(tangency, "tangent_joins", to_the_end)
+        full = abstract(path, progress=False)
+    return fast, full, stopped
+
+
+def test_a_tangent_pass_that_cannot_win_stops_and_the_result_is_the_same(polar_bear_passes):
+    # Its last level leaves joins kinked, so levels back are searched; the passes that cannot
+    # beat the best level stop early, and the level kept and its arcs are the same to the bit.
+    fast, full, stopped = polar_bear_passes
+    assert stopped, "some pass stopped early"
+    assert fast.final.level == full.final.level and len(fast.levels) == len(full.levels)
+    assert fast.final.similarity == full.final.similarity
+    for a, b in zip(fast.final.arcs, full.final.arcs, strict=True):
+        assert a == b
+    for key in ("tangent_joins", "released_tangencies"):
+        assert fast.progression.stats[key] == full.progression.stats[key]
