@@ -202,7 +202,7 @@ def bench_startup(repeat: int) -> None:
     code = (
         "import img2logo.app.cli as c; c._start_command(); "
         "import img2logo.pipeline, img2logo.export.writers, img2logo._compiled.kernels as k, cv2; "
-        "k.usable(); c._freeze_heap()"
+        "import img2logo.app.commands as m; k.usable(); m.freeze_heap()"
     )
     times = [_process_times([sys.executable, "-c", code]) for _ in range(repeat)]
     med, cpu = statistics.median(w for w, _ in times), statistics.median(c for _, c in times)
