@@ -549,6 +549,19 @@ class FitState:
             cap = tolerance if cap is None else min(cap, tolerance)
         return cap
 
+    def outline_strays(
+        self, fits: Mapping[int, GroupFit], groups: Mapping[int, Group], before: Mapping[int, GroupFit]
+    ) -> bool:
+        """:meth:`strays` of those of ``fits`` whose groups run on the object's silhouette (:meth:`on_outline`).
+
+        A refit moves the junctions, so the arcs beside the ones it was for
+        change too; one of the silhouette's moved farther than T is the
+        silhouette cut as the refitted arc would cut it.
+        """
+        if not self.outline:
+            return False
+        return self.strays({g: f for g, f in fits.items() if self.on_outline(groups[g])}, groups, before)
+
     def strays(self, fits: Mapping[int, GroupFit], groups: Mapping[int, Group], before: Mapping[int, GroupFit]) -> bool:
         """Whether a refit's arc lies farther from its pixels than its :meth:`arc_cap` and than before.
 

@@ -22,7 +22,7 @@ from __future__ import annotations
 import dataclasses
 import math
 import operator
-from collections.abc import Callable, Mapping
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from itertools import chain
 from typing import TypeAlias, cast
@@ -200,7 +200,8 @@ def evaluate(state: FitState, pair: Pair, tried: set[int] | None = None) -> Merg
     if cap is not None and fits[-1].arc.frechet > cap:  # (then the window's other arcs were not extracted)
         state.stats.rejected_far_arc += 1
         return None
-    if _strays_from_outline(state, after, fits):
+    # The merged arc (id -1) is held to its cap above; the silhouette's arcs beside it, moved by the refit, here.
+    if state.outline_strays({g: f for g, f in fits.items() if g != -1}, after, state.fits):
         state.stats.rejected_far_arc += 1
         return None
 
@@ -327,20 +328,6 @@ def _runs_through_twice(
         if len(gs) + sum(1 for g in through.get(n, ()) if g not in changed) > 1:
             return True
     return False
-
-
-def _strays_from_outline(state: FitState, groups: Mapping[int, Group], fits: Mapping[int, GroupFit]) -> bool:
-    """Whether a merge's refit moves an arc of the silhouette beside it farther than T from its pixels, and than before.
-
-    The window's refit moves the junctions, so the arcs beside a merge change
-    too; one of the silhouette's (``FitState.outline``) moved so is the
-    silhouette cut as the merged arc would cut it (:meth:`FitState.strays`).
-    The merged group (id -1) is held to its cap before.
-    """
-    if not state.outline:
-        return False
-    beside = {g: f for g, f in fits.items() if g != -1 and state.on_outline(groups[g])}
-    return state.strays(beside, groups, state.fits)
 
 
 def _too_far(state: FitState, merged: Group, seed: Seed, cap: float) -> bool:

@@ -457,7 +457,7 @@ def _all_at_once(
                 opt.disp[n] = d
             if (
                 opt.similarity() <= bound
-                and not opt.strays({g: f for g, f in fits.items() if opt.on_outline(groups[g])}, groups, before[0])
+                and not opt.outline_strays(fits, groups, before[0])
                 and _redundant(opt, set(groups)) <= crossings
                 and opt.gap_ends() <= gaps
             ):
