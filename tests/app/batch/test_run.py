@@ -549,3 +549,31 @@ def test_workers_start_warm_with_their_inherited_heap_frozen(outputs, drawn):
         [sys.executable, "-c", _WORKER_PROBE, outputs], capture_output=True, text=True, env=env, timeout=300, check=True
     )
     assert done.stdout.strip() == repr([repr((drawn, True, True))])
+
+
+def _report(rows: int, failures: int) -> BatchReport:
+    """A report of ``rows`` images done and ``failures`` failed, interleaved, with names that need quoting."""
+    from img2logo.app.batch.report import BatchFailure, BatchRow
+
+    names = ["=SUM(1).png", 'a "quoted", name.png', "plain.png", "@at.png", "-minus.png", "tab\tname.png", "x.png"]
+    done, failed, inputs = [], [], []
+    for i in range(rows + failures):
+        name = names[i % len(names)] if i < len(names) else f"img{i}.png"
+        path = f"in/{name}"
+        inputs.append(path)
+        if (i % 2 and len(failed) < failures) or len(done) == rows:
+            failed.append(BatchFailure(name, path, f'{path}: not a readable image, 3.5 MB, "odd" {i}'))
+        else:
+            seconds, similarity = 10.0 ** (i - 3) / 3.0, 4.0 / (i + 1)
+            done.append(BatchRow(name, path, "clipart", 10 + i, 3 + i, similarity, seconds, (), "" if i % 3 else "+90"))
+    return BatchReport(tuple(done), tuple(failed), tuple(inputs))
+
+
+@pytest.mark.parametrize(("rows", "failures"), [(4, 3), (5, 0), (0, 2)])
+def test_summary_csv_text_is_that_of_pandas(rows, failures):
+    """``summary.csv`` is written without pandas, as pandas writes the safe table (``csv_safe(to_frame())``)."""
+    from img2logo.app.batch.report import csv_safe
+
+    report = _report(rows, failures)
+    expected = csv_safe(report.to_frame()).to_csv(index=False, lineterminator="\n", float_format="%.6g")
+    assert report.summary_csv() == expected
