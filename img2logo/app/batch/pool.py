@@ -114,7 +114,7 @@ def _process(
     return {
         "kind": result.lines.kind,
         "arcs": len(final.arcs),
-        "levels": len(result.levels),
+        "levels": len(result.progression.levels),  # without making every level
         "similarity": float(final.similarity),
         "symmetry": _symmetry_cell(result.symmetry),
         "files": files,
