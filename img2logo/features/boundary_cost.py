@@ -28,6 +28,8 @@ Arrays are indexed (row, column).
 
 from __future__ import annotations
 
+from collections.abc import Iterator
+
 import numpy as np
 
 from ..constants import RDP_TOLERANCE
@@ -88,12 +90,12 @@ def boundary_arcs(
                 if other < 0 or other == label:
                     continue
                 if len(run) < 2.0 * tolerance:
-                    continue  # a run shorter than 2 T (a corner's pixel, an antialiased step) is no line of its own
-                chords = len(cv2.approxPolyDP(run.reshape(-1, 1, 2).astype(np.int32), tolerance, False)) - 1
-                chords = max(chords, ARC_CHORDS)  # a run between two junctions is at least one arc
+                    continue  # shorter than twice the tolerance (a corner's pixel, an antialiased step): no line
+                polyline = cv2.approxPolyDP(run.reshape(-1, 1, 2).astype(np.int32), tolerance, False)
+                chords = max(float(len(polyline) - 1), ARC_CHORDS)  # a run between two junctions: at least one arc
                 key = (min(label, other), max(label, other))
                 seen.setdefault(key, [0.0, 0.0])[0 if label == key[0] else 1] += chords
-    out = {}
+    out: dict[tuple[int, int], float] = {}
     for key, (a, b) in seen.items():
         both = [v for v in (a, b) if v > 0]
         out[key] = float(np.mean(both)) * min(half[key[0]], half[key[1]]) / ARC_CHORDS
@@ -112,7 +114,7 @@ def _across(padded: np.ndarray, xy: np.ndarray, label: int) -> np.ndarray:
     return out
 
 
-def _runs(xy: np.ndarray, across: np.ndarray):
+def _runs(xy: np.ndarray, across: np.ndarray) -> Iterator[tuple[int, np.ndarray]]:
     """The outline cut into maximal runs of one label across: (label, (k, 2) points) pairs; a closed run wraps."""
     cuts = np.flatnonzero(across != np.roll(across, 1))
     if len(cuts) == 0:  # one neighbour all round: a closed run
