@@ -67,10 +67,8 @@ class Result:
 
     Examples
     --------
-    >>> import cv2, numpy as np
-    >>> image = np.full((160, 160, 3), 255, np.uint8)
-    >>> _ = cv2.circle(image, (80, 80), 50, (0, 0, 0), 3)  # a black ring, 50 px round
-    >>> from img2logo import abstract
+    >>> from img2logo import abstract, data
+    >>> image = data.ring()  # a black ring, 50 px round, on 160 x 160 px
     >>> result = abstract(image, progress=False)  # a Result
     >>> result.final is result.levels[-1], result.image.width, result.graph.n_components()
     (True, 160, 1)
@@ -150,7 +148,8 @@ def abstract(
         ``None`` (default) shows one only when standard error is a terminal.
     **settings
         Any other field of :class:`~img2logo.options.Options`: ``detail`` (clip
-        art: the regions kept besides the background; :mod:`img2logo.features.detail`), ``rdp_tolerance``,
+        art: the regions kept besides the background; :mod:`img2logo.features.detail`), ``arcs`` (clip art:
+        an arc budget), ``rdp_tolerance``,
         ``min_length``, ``foreground``, ``subject``, ``symmetry`` (``"none"``,
         ``"auto"``, ``"vertical"``, ``"horizontal"`` or degrees: a mirror-symmetric
         logo, :mod:`img2logo.fit.symmetry`; what was decided is ``Result.symmetry``),
@@ -173,10 +172,8 @@ def abstract(
 
     Examples
     --------
-    >>> import cv2, numpy as np
-    >>> image = np.full((160, 160, 3), 255, np.uint8)
-    >>> _ = cv2.circle(image, (80, 80), 50, (0, 0, 0), 3)  # a black ring, 50 px round
-    >>> from img2logo import abstract
+    >>> from img2logo import abstract, data
+    >>> image = data.ring()  # a black ring, 50 px round, on 160 x 160 px
     >>> result = abstract(image, progress=False)
     >>> result.lines.kind, len(result.final.arcs), result.final.arcs[0].is_full_circle
     ('drawing', 1, True)
@@ -205,7 +202,7 @@ def abstract(
             foreground = mask_to_working_size(foreground, img, "foreground")
         opts = dataclasses.replace(opts, foreground=foreground)
     lines = extract_feature_lines(
-        img, kind=work_kind, foreground=opts.foreground, subject=opts.subject, detail=opts.detail
+        img, kind=work_kind, foreground=opts.foreground, subject=opts.subject, detail=opts.detail, arcs=opts.arcs
     )
     if reason is not None:  # what the photo test measured (_working_copy), not "given"
         lines = dataclasses.replace(lines, reason=reason)
