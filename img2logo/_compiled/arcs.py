@@ -446,13 +446,13 @@ def extract_arc_kernel(cx, cy, r, seg, junctions, theta, junction_tol, ratio, sl
 
 
 # --------------------------------------------------------------------------------
-# Tangent biarcs (img2logo.fit.tangency.closest_biarcs): the fine search around the coarse grid's best
+# Tangent biarcs (img2logo.fit.biarcs.closest_biarcs): the fine search around the coarse grid's best
 # --------------------------------------------------------------------------------
 
 
 @_jit
 def biarc_best_kernel(chain, centre_a, centre_b, splits, radius_a, radius_b):  # pragma: no cover - compiled
-    """The best biarc of a grid of splits and turns (``tangency.biarc_fine``): (distance px, s, a).
+    """The best biarc of a grid of splits and turns (``biarcs.biarc_fine``): (distance px, s, a).
 
     For split ``splits[s]`` and turn ``a``, the head's pixels ``chain[:split + 1]``
     go with the circle of centre ``centre_a[s, a]`` and radius ``radius_a``, the
@@ -495,7 +495,7 @@ def biarc_best_kernel(chain, centre_a, centre_b, splits, radius_a, radius_b):  #
 
 @_jit
 def biarc_coarse_kernel(chain, index, splits, heads, tails, radius_a, radius_b):  # pragma: no cover - compiled
-    """The best biarc of the coarse grid for one pair of radii (``tangency.biarc_coarse``): (distance, j, s, a).
+    """The best biarc of the coarse grid for one pair of radii (``biarcs.biarc_coarse``): (distance, j, s, a).
 
     ``heads[side_a, s, a]`` and ``tails[side_b, s, a]`` are the centres of the
     head's and the tail's circles (sides -1, +1) at split ``splits[s]`` and turn

@@ -1,7 +1,8 @@
 """The compiled kernels of the optimizer's inner loop, loaded without numba at run time.
 
 The kernels themselves are written in :mod:`img2logo._compiled.sqp` (the SQP of
-Eqn. 13 for a local window), :mod:`img2logo._compiled.arcs` (arc-arc
+Eqn. 13 for a local window, with its terms in :mod:`img2logo._compiled.sqp_terms` and its KKT
+systems in :mod:`img2logo._compiled.kkt`), :mod:`img2logo._compiled.arcs` (arc-arc
 intersections, the redundant-intersection test, the arc extraction with its
 Fréchet distance, the tangent biarcs' searches), :mod:`img2logo._compiled.circle` (the free circle fit, a
 golden circle's centre, the biarc search's worst distances), :mod:`img2logo._compiled.graph`
@@ -147,6 +148,8 @@ _DTYPES: dict[str, np.dtype[Any]] = {
 }
 _SOURCES = (
     "sqp.py",
+    "sqp_terms.py",
+    "kkt.py",
     "arcs.py",
     "circle.py",
     "graph.py",

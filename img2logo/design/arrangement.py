@@ -284,7 +284,7 @@ class _Arrangement:
     """The planar graph of the pieces of the arcs (the arcs split where they meet)."""
 
     def __init__(self, abstraction: Abstraction, snap: float) -> None:
-        from ..fit.arc_extraction import arc_intersections
+        from ..fit.intersections import arc_intersections
 
         arcs = abstraction.arcs
         self.snap = snap

@@ -12,18 +12,17 @@ from helpers import arc_through
 import img2logo.fit.constrained_fit as cfit
 from img2logo.constants import INTERSECTION_TOL, PHI
 from img2logo.errors import FitError
-from img2logo.fit.arc_extraction import (
+from img2logo.fit.arc_extraction import _extract_reference, extract_arc
+from img2logo.fit.constants import CONSTRAINED_FIT_MAX_ITER, CONSTRAINED_FIT_TOL
+from img2logo.fit.constrained_fit import fit_constrained
+from img2logo.fit.intersections import (
     _arc_pairs_reference,
-    _extract_reference,
     _redundant_reference,
     arc_intersections,
     arc_pairs_near,
     arc_params,
-    extract_arc,
     redundant_intersections,
 )
-from img2logo.fit.constants import CONSTRAINED_FIT_MAX_ITER, CONSTRAINED_FIT_TOL
-from img2logo.fit.constrained_fit import fit_constrained
 from img2logo.geometry import circle_fitting
 from img2logo.geometry.circle_fitting import fit_center, fit_circle, mean_abs_error
 from img2logo.geometry.primitives import TAU, Arc, Circle
@@ -50,7 +49,7 @@ def _both(monkeypatch, *args, **kwargs):
     """The fit by the compiled kernel and by the Python reference."""
     compiled = fit_constrained(*args, **kwargs)
     with monkeypatch.context() as m:
-        m.setattr(cfit, "_fit", functools.partial(cfit._fit, compiled=False))
+        m.setattr(cfit, "solve_sqp", functools.partial(cfit.solve_sqp, compiled=False))
         reference = fit_constrained(*args, **kwargs)
     return compiled, reference
 

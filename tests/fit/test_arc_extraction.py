@@ -8,14 +8,8 @@ import numpy as np
 import pytest
 
 from img2logo.errors import FitError, InvalidParameterError
-from img2logo.fit.arc_extraction import (
-    ArcFit,
-    arc_intersections,
-    discrete_frechet,
-    extract_arc,
-    frechet_distance,
-    redundant_intersections,
-)
+from img2logo.fit.arc_extraction import ArcFit, discrete_frechet, extract_arc, frechet_distance
+from img2logo.fit.intersections import arc_intersections, redundant_intersections
 from img2logo.geometry.primitives import TAU, Arc, Circle
 
 
@@ -451,7 +445,8 @@ def test_redundant_intersections_of_fewer_than_two_arcs_are_none() -> None:
 
 
 def test_distances_to_many_arcs_are_nearest_on_arcs_and_bounded_beyond_the_limit():
-    from img2logo.fit.arc_extraction import arc_params, distances_to_arcs, nearest_on_arc
+    from img2logo.fit.arc_extraction import distances_to_arcs, nearest_on_arc
+    from img2logo.fit.intersections import arc_params
 
     rng = np.random.default_rng(3)
     arcs = [
