@@ -26,11 +26,10 @@ to their callers as attributes (``kernels.sqp_dense(...)``), loaded on first use
    cached kernel loaded), more than the run's own work on a clip art.
 2. **Just in time**, where no such module can be built (no C compiler): numba's
    ``njit(cache=True)``, loaded from numba's disk cache.
-3. **Not at all** where numba cannot cache either (:data:`CACHED` False): the
-   optimizer's callers run their Python reference, with the same results to the
-   solver's tolerance, rather than compile in every process; the image
-   operations (:mod:`img2logo.images.ndimage`) have no second path and are
-   compiled by the JIT in the process.
+3. **Just in time, in the process**, where numba cannot cache either (:data:`CACHED` False): every
+   process compiles the kernels it calls (seconds, said once in one line on stderr), with the same
+   results: the fit has no second path through the pipeline, and the Python references of its
+   kernels live in the tests, as their oracles.
 
 The compiled forms are the same numba code with the same types, compiled
 without fast-math (so nothing is reordered or fused): the same floating-point
@@ -267,6 +266,14 @@ def _entry_points() -> dict[str, Any]:
     }
     CACHED = CACHED and kernels_jit.CACHED
     source = "numba's JIT"
+    if not CACHED:
+        import sys
+
+        print(
+            "img2logo: no disk cache for its kernels: numba compiles them in this process (seconds, every run)",
+            file=sys.stderr,
+            flush=True,
+        )
     return entries
 
 
@@ -346,7 +353,7 @@ def build(directory: Path, cpu: str = "host") -> Path:
 def main(argv: list[str] | None = None) -> int:
     """``python -m img2logo._compiled.kernels``: build (if need be) and load the kernels; print where from."""
     _load()
-    print(f"img2logo kernels: {source}" + ("" if CACHED else " (no disk cache: the Python reference runs)"))
+    print(f"img2logo kernels: {source}" + ("" if CACHED else " (no disk cache: compiled in every process)"))
     return 0
 
 

@@ -47,6 +47,7 @@ from .constants import (
 __all__ = [
     "ArcFit",
     "admissible_arcs",
+    "best_by_frechet",
     "candidate_arcs",
     "discrete_frechet",
     "distances_to_arcs",
@@ -195,12 +196,9 @@ def _extract(circle: Circle, seg: np.ndarray, junctions: np.ndarray, method: str
         _check_on_circle(circle, junctions)
         kept, cap = admissible_arcs(circle, seg, junctions)
         chosen = min(kept, key=lambda a: float(np.sum(nearest_on_arc(a, seg)[0] ** 2)))
-        return _best_by_frechet([chosen], seg, cap)
+        return best_by_frechet([chosen], seg, cap)
     from .._compiled import kernels  # the compiled kernels load on the first extraction, not at import
 
-    if not kernels.usable():
-        _check_on_circle(circle, junctions)
-        return _extract_reference(circle, seg, junctions)
     found, theta0, sweep, reverse, frechet, near_tol = kernels.extract_arc_kernel(
         circle.cx,
         circle.cy,
@@ -235,12 +233,6 @@ def _check_on_circle(circle: Circle, junctions: np.ndarray) -> None:
         raise FitError(
             f"junction point {worst} is {off[worst]:.3g} px off the circle (tolerance {JUNCTION_TOLERANCE} px)"
         )
-
-
-def _extract_reference(circle: Circle, seg: np.ndarray, junctions: np.ndarray) -> ArcFit:
-    """:func:`extract_arc` (method "frechet") in Python, the reference of its compiled kernel."""
-    kept, cap = admissible_arcs(circle, seg, junctions)
-    return _best_by_frechet(kept, seg, cap)
 
 
 def _wrap(theta: float) -> float:
@@ -289,7 +281,7 @@ def admissible_arcs(circle: Circle, segment_points: np.ndarray, junctions: np.nd
     return (kept or [min(candidates, key=lambda a: a.length)]), cap
 
 
-def _best_by_frechet(arcs: Sequence[Arc], seg: np.ndarray, cap: float) -> ArcFit:
+def best_by_frechet(arcs: Sequence[Arc], seg: np.ndarray, cap: float) -> ArcFit:
     """Of ``arcs`` in both orientations, the one with the smallest Fréchet distance to ``seg``.
 
     Candidates are tried in increasing order of a lower bound (the distance

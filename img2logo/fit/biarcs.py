@@ -83,31 +83,16 @@ def biarc_coarse(
     normal = biarc_normals(chain, splits, turns)  # shared by every radius and side
     from .._compiled import kernels
 
+    base = chain[splits][:, None, :]
+    heads = [np.stack([base + side * r * normal for side in (-1.0, 1.0)]) for r in radii_a]
+    tails = [np.stack([base + side * r * normal for side in (-1.0, 1.0)]) for r in radii_b]
+    index = np.arange(0, len(chain), BIARC_STEP)
+    at = np.asarray(splits, dtype=np.int64)
     out = {}
-    if kernels.usable():
-        base = chain[splits][:, None, :]
-        heads = [np.stack([base + side * r * normal for side in (-1.0, 1.0)]) for r in radii_a]
-        tails = [np.stack([base + side * r * normal for side in (-1.0, 1.0)]) for r in radii_b]
-        index = np.arange(0, len(chain), BIARC_STEP)
-        at = np.asarray(splits, dtype=np.int64)
-        for ia, ra in enumerate(radii_a):
-            for ib, rb in enumerate(radii_b):
-                _, j, s, t = kernels.biarc_coarse_kernel(chain, index, at, heads[ia], tails[ib], ra, rb)
-                out[ia, ib] = (int(j), int(s), int(t))
-        return out
-    sides = ((-1.0, -1.0), (-1.0, 1.0), (1.0, -1.0), (1.0, 1.0))
-    head = [
-        {sa: biarc_worst(chain, splits, turns, r, sa, True, BIARC_STEP, normal) for sa in (-1.0, 1.0)} for r in radii_a
-    ]
-    tail = [
-        {sb: biarc_worst(chain, splits, turns, r, sb, False, BIARC_STEP, normal) for sb in (-1.0, 1.0)} for r in radii_b
-    ]
-    for ia in range(len(radii_a)):
-        for ib in range(len(radii_b)):
-            w = [np.maximum(head[ia][sa], tail[ib][sb]) for sa, sb in sides]
-            j = min(range(4), key=lambda j: float(w[j].min()))
-            s, t = np.unravel_index(int(np.argmin(w[j])), w[j].shape)
-            out[ia, ib] = (j, int(s), int(t))
+    for ia, ra in enumerate(radii_a):
+        for ib, rb in enumerate(radii_b):
+            _, j, s, t = kernels.biarc_coarse_kernel(chain, index, at, heads[ia], tails[ib], ra, rb)
+            out[ia, ib] = (int(j), int(s), int(t))
     return out
 
 
@@ -126,18 +111,12 @@ def biarc_fine(
     (ra, sa), (rb, sb) = head, tail
     from .._compiled import kernels
 
-    if kernels.usable():
-        normal = biarc_normals(chain, splits, turns)
-        base = chain[splits][:, None, :]
-        worst, s, t = kernels.biarc_best_kernel(
-            chain, base + sa * ra * normal, base + sb * rb * normal, np.asarray(splits, dtype=np.int64), ra, rb
-        )
-        return float(worst), int(s), int(t)
-    w = np.maximum(
-        biarc_worst(chain, splits, turns, ra, sa, True, 1), biarc_worst(chain, splits, turns, rb, sb, False, 1)
+    normal = biarc_normals(chain, splits, turns)
+    base = chain[splits][:, None, :]
+    worst, s, t = kernels.biarc_best_kernel(
+        chain, base + sa * ra * normal, base + sb * rb * normal, np.asarray(splits, dtype=np.int64), ra, rb
     )
-    s, t = np.unravel_index(int(np.argmin(w)), w.shape)
-    return float(w[s, t]), int(s), int(t)
+    return float(worst), int(s), int(t)
 
 
 def biarc_normals(chain: np.ndarray, splits: np.ndarray, turns: np.ndarray) -> np.ndarray:
@@ -170,16 +149,4 @@ def biarc_worst(
     index = np.arange(0, len(chain), stride)
     from .._compiled import kernels
 
-    if kernels.usable():  # the same numbers, without the (S, A, m) distances of both sides
-        return kernels.biarc_worst_kernel(chain, centre, index, np.asarray(splits, dtype=np.int64), float(r), head)
-    return _biarc_worst_reference(chain, centre, index, splits, r, head)
-
-
-def _biarc_worst_reference(
-    chain: np.ndarray, centre: np.ndarray, index: np.ndarray, splits: np.ndarray, r: float, head: bool
-) -> np.ndarray:
-    """:func:`biarc_worst` in numpy past the centres (S, A, 2): the compiled kernel's reference."""
-    sample = chain[index]
-    dist = np.abs(np.hypot(sample[:, 0] - centre[..., :1], sample[:, 1] - centre[..., 1:]) - r)  # (S, A, m)
-    mine = index[None, :] <= splits[:, None] if head else index[None, :] >= splits[:, None]
-    return np.where(mine[:, None, :], dist, 0.0).max(axis=-1)
+    return kernels.biarc_worst_kernel(chain, centre, index, np.asarray(splits, dtype=np.int64), float(r), head)

@@ -429,8 +429,7 @@ def solve_sqp(problem: WindowProblem, compiled: bool = True, size: int | None = 
     entries in the reference's order eliminated in a band (the giraffe's global
     solves: about 3.5x faster than the Python loop, the same iterates to ~1e-11 px).
     ``compiled=False`` always runs the Python reference :func:`_fit_reference`
-    (the tests compare them), as does a system above ``KKT_COMPILED_MAX`` and an
-    install where numba cannot cache the kernels (:data:`img2logo._compiled.kernels.CACHED`).
+    (the tests compare them), as does a system above ``KKT_COMPILED_MAX``.
     ``size``: the problem's :meth:`WindowProblem.kkt_size` when the caller counted it.
     """
     from .._compiled import kernels  # the compiled kernels load on the first fit, not at import
@@ -438,7 +437,7 @@ def solve_sqp(problem: WindowProblem, compiled: bool = True, size: int | None = 
     p = problem
     if size is None:
         size = p.kkt_size()
-    if compiled and size <= KKT_COMPILED_MAX and kernels.usable():
+    if compiled and size <= KKT_COMPILED_MAX:
         kernel = kernels.sqp_dense if size <= KKT_DENSE_MAX else kernels.sqp_banded
         centers, disp = np.array(p.centers, dtype=np.float64), np.array(p.disp, dtype=np.float64)
         held_mask = np.zeros(2 * (len(p.free_c) + len(p.free_j)), dtype=bool)

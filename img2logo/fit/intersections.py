@@ -23,7 +23,7 @@ from .._compat import unique
 from .._validation import check_points, check_positive, readonly
 from ..constants import INTERSECTION_TOL
 from ..errors import InvalidParameterError
-from ..geometry.primitives import TAU, Arc
+from ..geometry.primitives import Arc
 from .constants import (
     REDUNDANT_INTERSECTION_TOL,
 )
@@ -164,7 +164,7 @@ def redundant_intersections(
     discarded by a prefilter (:func:`arc_pairs_near`); only the rest get the
     exact test of :func:`arc_intersections`. Both run compiled
     (:func:`img2logo._compiled.arcs.redundant_kernel`, the same arithmetic as the
-    Python reference ``_redundant_reference``).
+    Python reference in the tests, ``redundant_reference``).
     """
     arcs = list(arcs)
     for i, arc in enumerate(arcs):
@@ -214,30 +214,9 @@ def redundant_arrays(
 
     from .._compiled import kernels  # the compiled kernels load on the first check, not at import
 
-    if not kernels.usable():
-        owned = [flat[ptr[i] : ptr[i + 1]] for i in range(len(arcs))]
-        found = _redundant_reference(arcs, junctions, owned, rows, tol)
-        return (
-            np.array([(r.arc_a, r.arc_b) for r in found], dtype=np.int64).reshape(-1, 2),
-            np.array([r.point for r in found], dtype=np.float64).reshape(-1, 2),
-        )
     if params is None:
         params = arc_params(arcs)
     return kernels.redundant_kernel(params, rows, junctions, ptr, flat, INTERSECTION_TOL, tol)
-
-
-def _redundant_reference(
-    arcs: Sequence[Arc], junctions: np.ndarray, owned: Sequence[np.ndarray], rows: np.ndarray, tol: float
-) -> list[RedundantIntersection]:
-    """The test of :func:`redundant_intersections` in Python (the reference of its compiled kernel)."""
-    out = []
-    for i, j in _arc_pairs_reference(arcs, rows, INTERSECTION_TOL):
-        shared = junctions[np.intersect1d(owned[i], owned[j])]
-        for p in _intersections(arcs[i], arcs[j], INTERSECTION_TOL):
-            if len(shared) and np.min(np.hypot(*(shared - p).T)) <= tol:
-                continue
-            out.append(RedundantIntersection(int(i), int(j), readonly(p.copy())))
-    return out
 
 
 def arc_params(arcs: Sequence[Arc]) -> np.ndarray:
@@ -256,45 +235,4 @@ def arc_pairs_near(arcs: Sequence[Arc], rows: np.ndarray, tol: float) -> list[tu
     from .._compiled import kernels
 
     rows = unique(np.asarray(rows, dtype=np.int64))
-    if not kernels.usable():
-        return _arc_pairs_reference(arcs, rows, tol)
     return [(i, j) for i, j in kernels.arc_pairs_kernel(arc_params(arcs), rows, float(tol)).tolist()]
-
-
-def _arc_pairs_reference(arcs: Sequence[Arc], rows: np.ndarray, tol: float) -> list[tuple[int, int]]:
-    """:func:`arc_pairs_near` in numpy (the reference of its compiled kernel)."""
-    params = arc_params(arcs)
-    centers, radii = params[:, :2], params[:, 2]
-    boxes = _bounding_boxes(params)  # (n, 4): xmin, ymin, xmax, ymax
-    n = len(arcs)
-    d = np.hypot(*(centers[rows, None, :] - centers[None, :, :]).transpose(2, 0, 1))
-    rr, rc = radii[rows, None], radii[None, :]
-    meet = (d <= rr + rc + tol) & (d >= np.abs(rr - rc) - tol)
-    br, bc = boxes[rows, None, :], boxes[None, :, :]
-    overlap = (br[..., 0] <= bc[..., 2] + tol) & (bc[..., 0] <= br[..., 2] + tol)
-    overlap &= (br[..., 1] <= bc[..., 3] + tol) & (bc[..., 1] <= br[..., 3] + tol)
-    mask = meet & overlap
-    mask[np.arange(len(rows)), rows] = False
-    r_idx, c_idx = np.nonzero(mask)
-    i, j = rows[r_idx], c_idx
-    lo, hi = np.minimum(i, j), np.maximum(i, j)
-    key = unique(lo * n + hi)  # a pair of two candidates appears twice
-    return [(int(k // n), int(k % n)) for k in key]
-
-
-def _bounding_boxes(params: np.ndarray) -> np.ndarray:
-    """Axis-aligned bounding boxes of arcs given as rows (cx, cy, r, theta0, sweep): (n, 4).
-
-    Columns xmin, ymin, xmax, ymax, px: the extremes of the end points and of the
-    points at angles 0, pi/2, pi, 3 pi/2 that lie on the arc.
-    """
-    cx, cy, r, t0, sw = params.T
-    ang = np.empty((len(params), 6))
-    ang[:, 0], ang[:, 1], ang[:, 2:] = t0, t0 + sw, np.arange(4) * (math.pi / 2)
-    offset = np.mod((ang - t0[:, None]) * np.sign(sw)[:, None], TAU)
-    on = (offset <= np.abs(sw)[:, None]) | (np.abs(sw)[:, None] >= TAU - 1e-9)
-    on[:, :2] = True
-    x = cx[:, None] + r[:, None] * np.cos(ang)
-    y = cy[:, None] + r[:, None] * np.sin(ang)
-    inf = np.where(on, 0.0, np.inf)
-    return np.stack([(x + inf).min(1), (y + inf).min(1), (x - inf).max(1), (y - inf).max(1)], axis=1)

@@ -148,7 +148,7 @@ def too_far(state: FitState, merged: Group, seed: Seed, cap: float) -> bool:
     rejected as too far, or the fit fail: the candidate is rejected without it,
     with the same outcome. Made once per merged group and radius (the loop asks
     again at every level); never for a straight line (its centre is fixed far
-    away), nor without the compiled kernels.
+    away).
     """
     if seed.k is None:
         return False
@@ -157,18 +157,16 @@ def too_far(state: FitState, merged: Group, seed: Seed, cap: float) -> bool:
     if hit is None:
         from .._compiled import kernels  # loaded by the first fit already
 
-        hit = False
-        if kernels.usable():
-            hit = bool(
-                kernels.far_circle_kernel(
-                    np.ascontiguousarray(merged.points, dtype=np.float64).reshape(-1, 2),
-                    float(seed.radius),
-                    float(seed.center[0]),
-                    float(seed.center[1]),
-                    cap + FAR_ARC_MARGIN,
-                    FAR_ARC_BUDGET,
-                )
+        hit = bool(
+            kernels.far_circle_kernel(
+                np.ascontiguousarray(merged.points, dtype=np.float64).reshape(-1, 2),
+                float(seed.radius),
+                float(seed.center[0]),
+                float(seed.center[1]),
+                cap + FAR_ARC_MARGIN,
+                FAR_ARC_BUDGET,
             )
+        )
         state.far_arcs[key] = hit
     return hit
 

@@ -171,8 +171,6 @@ def test_a_merged_arc_no_circle_of_its_radius_brings_near_is_rejected_before_its
 def test_the_far_circle_proof_never_excludes_a_circle_that_comes_near():
     from img2logo._compiled import kernels
 
-    if not kernels.usable():
-        pytest.skip("no compiled kernels")
     rng = np.random.default_rng(7)
     # Points on a circle of radius 40 (a 2 rad arc), with noise.
     t = np.linspace(0.0, 2.0, 60)
