@@ -376,7 +376,7 @@ def junction_gaps(
 def level_redundant_intersections(abstraction: Abstraction) -> list[RedundantIntersection]:
     """The redundant intersections of a level (Sec. 5.2, Fig. 6c, 12).
 
-    :func:`~img2logo.fit.arc_extraction.redundant_intersections` over all pairs of
+    :func:`~img2logo.fit.intersections.redundant_intersections` over all pairs of
     its arcs, each arc owning the junctions it starts at, passes through and ends at.
     """
     owned = [list(t.ordered) for t in abstraction.arc_junctions]

@@ -392,7 +392,7 @@ def redundant_pairs(state: FitState, of: Collection[int] | None = None) -> list[
 
     Two arcs meet redundantly at a point farther than ``REDUNDANT_INTERSECTION_TOL``
     from every junction they both pass (their constrained nodes, displaced);
-    :func:`~img2logo.fit.arc_extraction.redundant_intersections` on arrays the
+    :func:`~img2logo.fit.intersections.redundant_intersections` on arrays the
     state already has (the fits' arc rows, every junction's p_k + d_k at
     once), past its checks: the same test on the same numbers. Only pairs
     with a group of ``of`` (default all), in the state's order of groups;
