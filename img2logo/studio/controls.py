@@ -14,6 +14,7 @@ from typing import Any
 from ..experiments.paths import example_images, kit_module
 from .drawing import PIXEL_RATIO, ipycanvas_module
 from .session import Studio
+from .zoom_pan import ZoomPan
 
 #: Width of the controls' labels (the designer's words), CSS px.
 LABEL_WIDTH = "122px"
@@ -52,7 +53,7 @@ body[data-voila] { padding: 6px 12px; }
 
 
 def make_controls(studio: Studio, size: int) -> dict[str, Any]:
-    """The page's widgets by name (``canvas``, ``run``, ``level``, ``tolerance``, ``upload``, ``tool``, ...), not wired.
+    """The page's widgets by name (``canvas``, its ``zoom_pan``, ``run``, ``level``, ``tool``, ...), not wired.
 
     ``size`` is the side of the square drawing on screen, CSS px (its canvas has ``PIXEL_RATIO`` times the pixels).
     """
@@ -66,9 +67,12 @@ def make_controls(studio: Studio, size: int) -> dict[str, Any]:
         return kind(description=description, layout=layout, **kwargs)
 
     side = size * PIXEL_RATIO
-    c["canvas"] = ipycanvas_module().MultiCanvas(
+    ipycanvas = ipycanvas_module()
+    c["canvas"] = ipycanvas.MultiCanvas(
         5, width=side, height=side, layout=w.Layout(width=f"{size}px", height=f"{size}px", flex="0 0 auto")
     )
+    c["view_marker"] = ipycanvas.Canvas(width=1, height=1)
+    c["zoom_pan"] = ZoomPan(canvas=c["canvas"], marker=c["view_marker"], layout=w.Layout(display="none"))
 
     c["status"] = w.HTML(layout=w.Layout(width="100%")).add_class("studio-status")
     c["title"] = w.HTML(layout=wide).add_class("studio-title")
@@ -92,6 +96,9 @@ def make_controls(studio: Studio, size: int) -> dict[str, Any]:
         ],
         style={"button_width": "68px"},
     )
+    # The browser knows the tool at once (a Hand drag pans there: zoom_pan.js), not after a round trip.
+    c["zoom_pan"].pan_tool = [value for _label, value in c["tool"].options].index("hand")
+    w.jslink((c["tool"], "index"), (c["zoom_pan"], "tool_index"))
     c["colour"] = w.ColorPicker(
         value="#e76f51", concise=True, tooltip="the Colour tool's colour", layout=w.Layout(width="36px")
     )
@@ -306,7 +313,7 @@ def page_layout(c: dict[str, Any], size: int) -> Any:
         ],
         layout=w.Layout(width=f"{size}px"),
     )
-    left = w.VBox([c["canvas"], tools], layout=w.Layout(flex="0 0 auto"))
+    left = w.VBox([c["canvas"], c["zoom_pan"], tools], layout=w.Layout(flex="0 0 auto"))
     middle = w.VBox(
         [
             section("Your image"),
