@@ -66,6 +66,21 @@ def make_controls(studio: Studio, size: int) -> dict[str, Any]:
         kwargs.setdefault("style", style)
         return kind(description=description, layout=layout, **kwargs)
 
+    def setting(description: str, value: float, bounds: tuple[float, float, float], tooltip: str, **kwargs: Any) -> Any:
+        """The slider of a Run's setting, ``bounds`` (min, max, step): its value is taken when it is let go."""
+        low, high, step = bounds
+        return labelled(
+            w.FloatSlider,
+            description,
+            value=value,
+            min=low,
+            max=high,
+            step=step,
+            continuous_update=False,
+            tooltip=tooltip,
+            **kwargs,
+        )
+
     side = size * PIXEL_RATIO
     ipycanvas = ipycanvas_module()
     c["canvas"] = ipycanvas.MultiCanvas(
@@ -135,38 +150,26 @@ def make_controls(studio: Studio, size: int) -> dict[str, Any]:
         value=s.kind,
         tooltip="kind (--kind): how the feature lines are found (Sec. 4)",
     )
-    c["tolerance"] = labelled(
-        w.FloatSlider,
+    c["tolerance"] = setting(
         "Tolerance (px)",
-        value=s.tolerance,
-        min=0.5,
-        max=30.0,
-        step=0.5,
-        continuous_update=False,
-        tooltip="T: merging stops before a level whose error E^s exceeds it (Sec. 5.2); larger, fewer arcs",
+        s.tolerance,
+        (0.5, 30.0, 0.5),
+        "T: merging stops before a level whose error E^s exceeds it (Sec. 5.2); larger, fewer arcs",
     )
-    c["bias"] = labelled(
-        w.FloatSlider,
+    c["bias"] = setting(
         "Circle size offset",
-        w.Layout(width=f"{CONTROLS_WIDTH - 100}px"),
-        value=0.0 if s.bias is None else s.bias,
-        min=0.0,
-        max=0.99,
-        step=0.01,
+        0.0 if s.bias is None else s.bias,
+        (0.0, 0.99, 0.01),
+        "\u03c3: the radii are \u03c6^(k + \u03c3) (Eqn. 10); automatic: the best fit (Eqn. 14)",
+        layout=w.Layout(width=f"{CONTROLS_WIDTH - 100}px"),
         disabled=s.bias is None,
-        continuous_update=False,
-        tooltip="\u03c3: the radii are \u03c6^(k + \u03c3) (Eqn. 10); automatic: the best fit (Eqn. 14)",
     )
     c["bias_auto"] = w.Checkbox(value=s.bias is None, description="auto", indent=False, layout=w.Layout(width="80px"))
-    c["rdp_tolerance"] = labelled(
-        w.FloatSlider,
+    c["rdp_tolerance"] = setting(
         "Simplify lines (px)",
-        value=s.rdp_tolerance,
-        min=0.5,
-        max=8.0,
-        step=0.25,
-        continuous_update=False,
-        tooltip="the Ramer-Douglas-Peucker tolerance of the feature lines (Sec. 4); larger, less detail",
+        s.rdp_tolerance,
+        (0.5, 8.0, 0.25),
+        "the Ramer-Douglas-Peucker tolerance of the feature lines (Sec. 4); larger, less detail",
     )
     c["symmetry"] = labelled(
         w.Dropdown,

@@ -217,6 +217,7 @@ class StudioDrawing:
         return (float(x) - ox) / self.scale, (float(y) - oy) / self.scale
 
     def _redraw_layer(self, draw: Any) -> None:
+        """One layer again (``draw``, one of the ``_draw_*`` methods), in one message to the browser."""
         with ipycanvas_module().hold_canvas():
             draw()
 

@@ -168,10 +168,6 @@ class StudioPage(StudioDrawing):
                 self._draw_overlay()
         self._sync()
 
-    def _redraw_layer(self, draw: Any) -> None:
-        with ipycanvas_module().hold_canvas():
-            draw()
-
     def _sync(self) -> None:
         """The title, status line, level slider, progress and downloads from the studio's state."""
         c, s = self.controls, self.studio

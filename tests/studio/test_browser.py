@@ -146,10 +146,19 @@ def _focus_drawing(page) -> None:
     _wait_status(page, "nothing selected")
 
 
+def _longest_arc(a) -> int:
+    """The index of the longest arc of the logo ``a``."""
+    return max(range(len(a.arcs)), key=lambda j: a.arcs[j].length)
+
+
+def _middle_on_screen(page, a, arc) -> tuple[float, float]:
+    """The middle of ``arc``, an arc on the logo ``a``, in page coordinates (the drawing fitted)."""
+    points = arc.sample(step=1.0)
+    return _to_screen(page, *points[len(points) // 2], (a.width, a.height))
+
+
 def _select_arc(page, fish, i: int) -> None:
-    a = fish.shown
-    points = a.arcs[i].sample(step=1.0)
-    page.mouse.click(*_to_screen(page, *points[len(points) // 2], (a.width, a.height)))
+    page.mouse.click(*_middle_on_screen(page, fish.shown, fish.shown.arcs[i]))
 
 
 def _canvas_box(page) -> dict:
@@ -226,9 +235,8 @@ def test_moving_the_level_redraws_the_drawing(page):
 
 def test_click_an_arc_delete_it_and_undo(page, fish):
     a = fish.shown
-    i = max(range(len(a.arcs)), key=lambda j: a.arcs[j].length)
-    points = a.arcs[i].sample(step=1.0)
-    x, y = _to_screen(page, *points[len(points) // 2], (a.width, a.height))
+    i = _longest_arc(a)
+    x, y = _middle_on_screen(page, a, a.arcs[i])
     _tool(page, "Select")
     page.mouse.click(x, y)
     _wait_status(page, f"arc {i} selected")
@@ -244,7 +252,7 @@ def test_click_an_arc_delete_it_and_undo(page, fish):
 
 def test_the_keys_undo_redo_delete_and_nudge(page, fish):
     a = fish.shown
-    i = max(range(len(a.arcs)), key=lambda j: a.arcs[j].length)
+    i = _longest_arc(a)
     _select_arc(page, fish, i)
     _wait_status(page, f"arc {i} selected")
     page.keyboard.press("Delete")
@@ -467,9 +475,8 @@ def test_a_wheel_notch_zooms_about_the_mouse_and_a_click_after_a_pan_selects_the
     from img2logo.studio.drawing import ZOOM_STEP
 
     a = fish.shown
-    i = max(range(len(a.arcs)), key=lambda j: a.arcs[j].length)
-    points = a.arcs[i].sample(step=1.0)
-    x, y = _to_screen(page, *points[len(points) // 2], (a.width, a.height))
+    i = _longest_arc(a)
+    x, y = _middle_on_screen(page, a, a.arcs[i])
     _tool(page, "Select")
     _click_button(page, "Hidden")  # the arcs alone on white
     box = _canvas_box(page)
@@ -537,7 +544,7 @@ def test_click_two_free_ends_and_add_an_arc_on_a_chosen_circle(page, fish):
     from img2logo.studio.session import Studio
 
     a = fish.shown
-    i = max(range(len(a.arcs)), key=lambda j: a.arcs[j].length)
+    i = _longest_arc(a)
     # The same edits in Python: the free ends the deletion leaves, and the arcs that would join two of them.
     s = Studio("clipart-fish.png")
     s.result, s.levels, s.level, s.selected = fish.result, fish.levels, fish.level, [i]
@@ -559,8 +566,7 @@ def test_click_two_free_ends_and_add_an_arc_on_a_chosen_circle(page, fish):
     s.other_end_circle()
     arc = s.end_arc()
     assert arc is not None
-    points = arc.sample(step=1.0)
-    x, y = _to_screen(page, *points[len(points) // 2], (a.width, a.height))
+    x, y = _middle_on_screen(page, a, arc)
     _wait_pixels(page, x, y, 2, "d.some((v, i) => i % 4 === 0 && v > 180 && d[i + 1] < 120 && d[i + 2] < 90)")
     _click_button(page, "Add arc")
     _wait_status(page, f"arc added between free ends {j0} and {j1}; {len(b.arcs) + 1} arcs")
@@ -618,7 +624,7 @@ def test_a_download_is_always_the_level_shown(page):
 
 def test_paint_a_lock_stroke_and_run_again(page, fish):
     a = fish.shown
-    i = max(range(len(a.arcs)), key=lambda j: a.arcs[j].length)
+    i = _longest_arc(a)
     points = a.arcs[i].sample(step=8.0)
     _tool(page, "Brush")
     before = _logo_pixels(page)
@@ -780,9 +786,8 @@ def test_an_input_over_2048_px_shows_its_logo_in_one_unit(page, tmp_path):
     s = Studio(str(big))
     assert s.run(), s.message
     a = s.shown
-    i = max(range(len(a.arcs)), key=lambda j: a.arcs[j].length)
-    points = a.arcs[i].sample(step=4.0)
-    x, y = _to_screen(page, *points[len(points) // 2], (a.width, a.height))
+    i = _longest_arc(a)
+    x, y = _middle_on_screen(page, a, a.arcs[i])
     assert _pixel(page, x, y)[:3] == [0, 0, 0] or sum(_pixel(page, x, y)[:3]) < 200  # the logo is drawn there
     _tool(page, "Select")
     page.mouse.click(x, y)
