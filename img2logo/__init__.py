@@ -9,11 +9,8 @@ stays fast for the command line.
 
 Examples
 --------
->>> import numpy as np
 >>> import img2logo
->>> image = np.full((160, 160, 3), 255, np.uint8)
->>> yy, xx = np.mgrid[:160, :160]
->>> image[np.abs(np.hypot(xx - 80, yy - 80) - 50) < 1.5] = 0  # a black ring, 50 px round
+>>> image = img2logo.data.ring()  # a black ring, 50 px round, on 160 x 160 px
 >>> result = img2logo.abstract(image, progress=False)
 >>> [(round(arc.circle.r, 1), arc.is_full_circle) for arc in result.final.arcs]
 [(50.0, True)]

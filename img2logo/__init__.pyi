@@ -1,6 +1,6 @@
 # The public API of img2logo: one list, read by type checkers and, through lazy_loader.attach_stub,
 # by the package itself, which imports each name on first use.
-from . import quality as quality
+from . import data as data, quality as quality
 from .app.batch.run import run_batch as run_batch
 from .constants import PHI as PHI
 from .errors import (

@@ -66,10 +66,8 @@ class Result:
 
     Examples
     --------
-    >>> import cv2, numpy as np
-    >>> image = np.full((160, 160, 3), 255, np.uint8)
-    >>> _ = cv2.circle(image, (80, 80), 50, (0, 0, 0), 3)  # a black ring, 50 px round
-    >>> from img2logo import abstract
+    >>> from img2logo import abstract, data
+    >>> image = data.ring()  # a black ring, 50 px round, on 160 x 160 px
     >>> result = abstract(image, progress=False)  # a Result
     >>> result.final is result.levels[-1], result.image.width, result.graph.n_components()
     (True, 160, 1)
@@ -172,10 +170,8 @@ def abstract(
 
     Examples
     --------
-    >>> import cv2, numpy as np
-    >>> image = np.full((160, 160, 3), 255, np.uint8)
-    >>> _ = cv2.circle(image, (80, 80), 50, (0, 0, 0), 3)  # a black ring, 50 px round
-    >>> from img2logo import abstract
+    >>> from img2logo import abstract, data
+    >>> image = data.ring()  # a black ring, 50 px round, on 160 x 160 px
     >>> result = abstract(image, progress=False)
     >>> result.lines.kind, len(result.final.arcs), result.final.arcs[0].is_full_circle
     ('drawing', 1, True)

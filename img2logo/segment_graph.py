@@ -48,10 +48,8 @@ class SegmentGraph:
 
     Examples
     --------
-    >>> import cv2, numpy as np
-    >>> image = np.full((160, 160, 3), 255, np.uint8)
-    >>> _ = cv2.circle(image, (80, 80), 50, (0, 0, 0), 3)  # a black ring, 50 px round
-    >>> from img2logo import build_segment_graph, extract_feature_lines
+    >>> from img2logo import build_segment_graph, data, extract_feature_lines
+    >>> image = data.ring()  # a black ring, 50 px round, on 160 x 160 px
     >>> graph = build_segment_graph(extract_feature_lines(image))
     >>> graph.width, graph.height, graph.segments[0].shape[1]
     (160, 160, 2)
@@ -204,10 +202,8 @@ def build_segment_graph(
 
     Examples
     --------
-    >>> import cv2, numpy as np
-    >>> image = np.full((160, 160, 3), 255, np.uint8)
-    >>> _ = cv2.circle(image, (80, 80), 50, (0, 0, 0), 3)  # a black ring, 50 px round
-    >>> from img2logo import build_segment_graph, extract_feature_lines
+    >>> from img2logo import build_segment_graph, data, extract_feature_lines
+    >>> image = data.ring()  # a black ring, 50 px round, on 160 x 160 px
     >>> graph = build_segment_graph(extract_feature_lines(image))
     >>> graph.n_components(), graph.width, graph.height
     (1, 160, 160)

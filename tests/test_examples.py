@@ -1,9 +1,9 @@
 """The examples in the docstrings of the public API run, and say what they show.
 
 Every public class and function of ``img2logo`` (``img2logo/__init__.pyi``) has an example
-(numpydoc's Examples section) on a tiny image drawn in the example itself; this runs them
+(numpydoc's Examples section) on the sample image :func:`img2logo.data.ring`; this runs them
 as doctests in a temporary folder, with the package's own example and those of
-``img2logo.quality``.
+``img2logo.data`` and ``img2logo.quality``.
 """
 
 from __future__ import annotations
@@ -14,7 +14,7 @@ import inspect
 import pytest
 
 import img2logo
-from img2logo import quality
+from img2logo import data, quality
 
 FLAGS = doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE
 
@@ -49,7 +49,7 @@ def test_every_public_name_has_an_example_that_runs(name, obj, tmp_path, monkeyp
     assert not failures, "".join(failures)
 
 
-@pytest.mark.parametrize("module", [img2logo, quality], ids=["img2logo", "img2logo.quality"])
+@pytest.mark.parametrize("module", [img2logo, data, quality], ids=["img2logo", "img2logo.data", "img2logo.quality"])
 def test_the_module_examples_run(module, tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     tests = [t for t in doctest.DocTestFinder().find(module, module.__name__) if t.examples]

@@ -503,6 +503,12 @@ def write_provenance(executed: str | os.PathLike[str]) -> Path:
     reader needs to know where a committed figure came from; and the
     :func:`environment` it ran in (Python, the numerical packages, the
     platform), what explains a figure that differs in its last digits elsewhere.
+
+    The folder then holds what this run wrote and nothing else: a file older
+    than the run's start (papermill's ``start_time``), left by an earlier run
+    whose outputs were named otherwise, is removed, so no committed figure
+    outlives the code that made it. ``outputs`` lists the files kept,
+    ``removed`` those removed.
     """
     import datetime
     import json
@@ -532,7 +538,19 @@ def write_provenance(executed: str | os.PathLike[str]) -> Path:
         "duration_s": round(float(meta.get("duration") or 0.0), 1),
         **environment(),
     }
-    target = figure_dir(path.stem) / "provenance.json"
+    folder = figure_dir(path.stem)
+    target = folder / "provenance.json"
+    started = meta.get("start_time")
+    removed: list[str] = []
+    if started:
+        # One second of slack: a file system may keep mtimes coarser than the clock.
+        since = datetime.datetime.fromisoformat(started).timestamp() - 1.0
+        for old in sorted(folder.iterdir()):
+            if old != target and old.is_file() and old.stat().st_mtime < since:
+                old.unlink()
+                removed.append(old.name)
+    record["outputs"] = sorted(p.name for p in folder.iterdir() if p.is_file() and p != target)
+    record["removed"] = removed
     text = json.dumps(record, indent=2, sort_keys=True) + "\n"
     return atomic_write(target, lambda f: f.write(text.encode("utf-8")))
 

@@ -92,14 +92,12 @@ def write_png(
     Returns
     -------
     pathlib.Path
-        The path written.
+        The path of the PNG written (whole, or nothing on failure).
 
     Examples
     --------
-    >>> import cv2, numpy as np
-    >>> image = np.full((160, 160, 3), 255, np.uint8)
-    >>> _ = cv2.circle(image, (80, 80), 50, (0, 0, 0), 3)  # a black ring, 50 px round
-    >>> from img2logo import abstract, load_image, write_png
+    >>> from img2logo import abstract, data, load_image, write_png
+    >>> image = data.ring()  # a black ring, 50 px round, on 160 x 160 px
     >>> path = write_png(abstract(image, progress=False).final, "ring.png", image=image)
     >>> load_image(path).width
     160
@@ -191,7 +189,7 @@ def write_pdf(
     Returns
     -------
     pathlib.Path
-        The path written.
+        The path of the PDF written.
     """
     check_format_suffix(path, "pdf")
     import matplotlib.style
@@ -263,14 +261,12 @@ def write_segment_graph_png(
     Returns
     -------
     pathlib.Path
-        The path written.
+        The path of the segment graph's PNG.
 
     Examples
     --------
-    >>> import cv2, numpy as np
-    >>> image = np.full((160, 160, 3), 255, np.uint8)
-    >>> _ = cv2.circle(image, (80, 80), 50, (0, 0, 0), 3)  # a black ring, 50 px round
-    >>> from img2logo import build_segment_graph, extract_feature_lines, load_image, write_segment_graph_png
+    >>> from img2logo import build_segment_graph, data, extract_feature_lines, load_image, write_segment_graph_png
+    >>> image = data.ring()  # a black ring, 50 px round, on 160 x 160 px
     >>> path = write_segment_graph_png(build_segment_graph(extract_feature_lines(image)), "graph.png")
     >>> load_image(path).height
     160

@@ -141,12 +141,10 @@ def plot_abstraction(
 
     Examples
     --------
-    >>> import cv2, numpy as np
-    >>> image = np.full((160, 160, 3), 255, np.uint8)
-    >>> _ = cv2.circle(image, (80, 80), 50, (0, 0, 0), 3)  # a black ring, 50 px round
     >>> import matplotlib
     >>> matplotlib.use("Agg")
-    >>> from img2logo import abstract, plot_abstraction
+    >>> from img2logo import abstract, data, plot_abstraction
+    >>> image = data.ring()  # a black ring, 50 px round, on 160 x 160 px
     >>> ax = plot_abstraction(abstract(image, progress=False).final, image=image, show_circles=True)
     >>> [float(x) for x in ax.get_xlim()]
     [0.0, 160.0]
@@ -229,16 +227,14 @@ def plot_segment_graph(
     Returns
     -------
     matplotlib.axes.Axes
-        The axes drawn into, in image pixels with y down.
+        The axes of the segment graph: image pixels, y down.
 
     Examples
     --------
-    >>> import cv2, numpy as np
-    >>> image = np.full((160, 160, 3), 255, np.uint8)
-    >>> _ = cv2.circle(image, (80, 80), 50, (0, 0, 0), 3)  # a black ring, 50 px round
     >>> import matplotlib
     >>> matplotlib.use("Agg")
-    >>> from img2logo import build_segment_graph, extract_feature_lines, plot_segment_graph
+    >>> from img2logo import build_segment_graph, data, extract_feature_lines, plot_segment_graph
+    >>> image = data.ring()  # a black ring, 50 px round, on 160 x 160 px
     >>> ax = plot_segment_graph(build_segment_graph(extract_feature_lines(image)))
     >>> [float(y) for y in ax.get_ylim()]  # image rows grow downwards
     [160.0, 0.0]

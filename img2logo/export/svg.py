@@ -190,14 +190,12 @@ def write_svg(
     Returns
     -------
     pathlib.Path
-        The path written.
+        The path of the SVG written (whole, or nothing on failure).
 
     Examples
     --------
-    >>> import cv2, numpy as np
-    >>> image = np.full((160, 160, 3), 255, np.uint8)
-    >>> _ = cv2.circle(image, (80, 80), 50, (0, 0, 0), 3)  # a black ring, 50 px round
-    >>> from img2logo import abstract, write_svg
+    >>> from img2logo import abstract, data, write_svg
+    >>> image = data.ring()  # a black ring, 50 px round, on 160 x 160 px
     >>> path = write_svg(abstract(image, progress=False).final, "ring.svg")
     >>> path.read_text(encoding="utf-8").startswith("<?xml")
     True

@@ -86,10 +86,8 @@ def read_json(path: str | os.PathLike[str]) -> Abstraction:
 
     Examples
     --------
-    >>> import cv2, numpy as np
-    >>> image = np.full((160, 160, 3), 255, np.uint8)
-    >>> _ = cv2.circle(image, (80, 80), 50, (0, 0, 0), 3)  # a black ring, 50 px round
-    >>> from img2logo import abstract, read_json, write_json
+    >>> from img2logo import abstract, data, read_json, write_json
+    >>> image = data.ring()  # a black ring, 50 px round, on 160 x 160 px
     >>> path = write_json(abstract(image, progress=False).final, "ring.json")
     >>> logo = read_json("ring.json")
     >>> round(logo.arcs[0].circle.r, 1), logo.arcs[0].circle.k
@@ -139,14 +137,12 @@ def write_json(
     Returns
     -------
     pathlib.Path
-        The path written.
+        The path of the JSON document.
 
     Examples
     --------
-    >>> import cv2, numpy as np
-    >>> image = np.full((160, 160, 3), 255, np.uint8)
-    >>> _ = cv2.circle(image, (80, 80), 50, (0, 0, 0), 3)  # a black ring, 50 px round
-    >>> from img2logo import abstract, read_json, write_json
+    >>> from img2logo import abstract, data, read_json, write_json
+    >>> image = data.ring()  # a black ring, 50 px round, on 160 x 160 px
     >>> result = abstract(image, progress=False)
     >>> write_json(result.final, "ring.json", result.params).name
     'ring.json'
@@ -198,7 +194,7 @@ def write(
     Returns
     -------
     pathlib.Path
-        The path written.
+        The path of the file in ``format``.
 
     Raises
     ------

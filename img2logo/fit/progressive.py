@@ -98,10 +98,8 @@ class Progression:
 
     Examples
     --------
-    >>> import cv2, numpy as np
-    >>> image = np.full((160, 160, 3), 255, np.uint8)
-    >>> _ = cv2.circle(image, (80, 80), 50, (0, 0, 0), 3)  # a black ring, 50 px round
-    >>> from img2logo import build_segment_graph, extract_feature_lines, optimize
+    >>> from img2logo import build_segment_graph, data, extract_feature_lines, optimize
+    >>> image = data.ring()  # a black ring, 50 px round, on 160 x 160 px
     >>> progression = optimize(build_segment_graph(extract_feature_lines(image)))
     >>> progression.final is progression.levels[-1], progression.stopped_because != ""
     (True, True)
@@ -279,10 +277,8 @@ def optimize(
 
     Examples
     --------
-    >>> import cv2, numpy as np
-    >>> image = np.full((160, 160, 3), 255, np.uint8)
-    >>> _ = cv2.circle(image, (80, 80), 50, (0, 0, 0), 3)  # a black ring, 50 px round
-    >>> from img2logo import build_segment_graph, extract_feature_lines, optimize
+    >>> from img2logo import build_segment_graph, data, extract_feature_lines, optimize
+    >>> image = data.ring()  # a black ring, 50 px round, on 160 x 160 px
     >>> progression = optimize(build_segment_graph(extract_feature_lines(image)))
     >>> progression.arc_counts[-1], progression.final.arcs[0].circle.k
     (1, 8)

@@ -80,10 +80,8 @@ class Abstraction:
 
     Examples
     --------
-    >>> import cv2, numpy as np
-    >>> image = np.full((160, 160, 3), 255, np.uint8)
-    >>> _ = cv2.circle(image, (80, 80), 50, (0, 0, 0), 3)  # a black ring, 50 px round
-    >>> from img2logo import abstract
+    >>> from img2logo import abstract, data
+    >>> image = data.ring()  # a black ring, 50 px round, on 160 x 160 px
     >>> logo = abstract(image, progress=False).final  # an Abstraction: the arcs of one level
     >>> logo.level, len(logo.arcs), len(logo.golden_circles)
     (0, 1, 1)

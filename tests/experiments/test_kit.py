@@ -218,3 +218,40 @@ def test_sweep_shows_progress_unless_papermill_runs_it(monkeypatch, capsys):
     monkeypatch.setenv(PROGRESS_ENV, "0")
     experiments.sweep(runs[:1], {"tolerance": [9.0]})
     assert capsys.readouterr().err == ""
+
+
+def test_provenance_removes_what_an_earlier_run_left_and_lists_the_outputs(tmp_path, monkeypatch):
+    import datetime
+    import json
+    import os
+
+    from img2logo.experiments import write_provenance
+    from img2logo.experiments.paths import ROOT_ENV
+
+    (tmp_path / "data").mkdir()
+    (tmp_path / "data" / "ATTRIBUTION.md").write_text("examples\n")
+    monkeypatch.setenv(ROOT_ENV, str(tmp_path))
+    folder = tmp_path / "figures" / "99_demo"
+    folder.mkdir(parents=True)
+    start = datetime.datetime.now(datetime.UTC)
+    stale = folder / "level11.svg"  # an earlier run's name for an output
+    stale.write_text("<svg/>")
+    os.utime(stale, (start.timestamp() - 3600, start.timestamp() - 3600))
+    (folder / "level8.svg").write_text("<svg/>")  # this run's
+    executed = tmp_path / "99_demo.ipynb"
+    executed.write_text(
+        json.dumps(
+            {
+                "cells": [{"cell_type": "code", "metadata": {"tags": ["parameters"]}, "source": ["level = 8\n"]}],
+                "metadata": {"papermill": {"start_time": start.isoformat(), "duration": 1.5, "parameters": {}}},
+            }
+        )
+    )
+
+    record = json.loads(write_provenance(executed).read_text(encoding="utf-8"))
+
+    assert not stale.exists()
+    assert (folder / "level8.svg").exists()
+    assert record["removed"] == ["level11.svg"]
+    assert record["outputs"] == ["level8.svg"]
+    assert record["parameters_cell"] == "level = 8\n"
