@@ -19,7 +19,7 @@ from typing import Any
 
 from .drawing import studio_module
 
-anywidget = studio_module("anywidget")
+AnyWidget: Any = studio_module("anywidget").AnyWidget
 ipycanvas = studio_module("ipycanvas")
 traitlets = studio_module("traitlets")
 widgets = studio_module("ipywidgets")
@@ -28,7 +28,7 @@ widgets = studio_module("ipywidgets")
 OPERATIONS = {"zoom": 3, "pan": 2}
 
 
-class ZoomPan(anywidget.AnyWidget):  # type: ignore[misc]
+class ZoomPan(AnyWidget):
     """The front end of the drawing's zoom and pan (shown as nothing; it acts on ``canvas``).
 
     Attributes
