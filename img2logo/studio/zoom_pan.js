@@ -127,7 +127,9 @@ export default {
       geometry = msg.geometry;
       answered = msg.view;
       announced.push(concrete(msg.geometry, msg.view));
-      send();
+      if (!sent.length) {
+        send(); // what came meanwhile, together
+      }
     }
     function onMarkerFrame() {
       drawn = announced.length ? announced.shift() : concrete(geometry, answered);
