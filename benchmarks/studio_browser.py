@@ -47,18 +47,25 @@ TARGETS = {
 }
 CANVAS = "document.querySelector('.img2logo-studio canvas').toDataURL()"
 #: JS: a clock in the page, started now, for the input about to come: the animation frame that first shows the
-#: drawing changed (``frame``), and when the drawing shown is the kernel's exact one again (``exact``: the canvas's
-#: ``data-view`` is set to ``exact``; a page that draws every frame in the kernel has none: its frame is exact), ms.
+#: drawing changed (``frame``: any of its pixels, compared each frame as numbers, cheaper than the PNG of
+#: ``CANVAS``), and when the drawing shown is the kernel's exact one again (``exact``: the canvas's ``data-view`` is
+#: set to ``exact``; a page that draws every frame in the kernel has none: its frame is exact), ms.
 WATCH = """() => {
     const el = document.querySelector('.img2logo-studio canvas');
-    const before = el.toDataURL();
+    const pixels = () => new Uint32Array(el.getContext('2d').getImageData(0, 0, el.width, el.height).data.buffer);
+    const before = pixels();
+    const changed = () => {
+        const now = pixels();
+        for (let i = 0; i < now.length; i++) if (now[i] !== before[i]) return true;
+        return false;
+    };
     const w = window.__watch = { start: performance.now(), frame: null, exact: null };
     const seen = new MutationObserver(() => {
         if (w.frame !== null && w.exact === null && el.dataset.view === 'exact') w.exact = performance.now() - w.start;
     });
     seen.observe(el, { attributes: true, attributeFilter: ['data-view'] });
     const step = (ts) => {
-        if (w.frame === null && el.toDataURL() !== before) {
+        if (w.frame === null && changed()) {
             w.frame = Math.max(ts - w.start, 0);
             if (el.dataset.view !== 'moved') w.exact = w.frame;
         }
