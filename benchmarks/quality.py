@@ -160,7 +160,8 @@ def thick_case(case: dict):
     return np.ascontiguousarray(cv2.erode(image, kernel)), extract_feature_lines(case["original"]).lines
 
 
-def run_case(case: dict) -> tuple[dict, object]:
+def run_case(case: dict, **settings) -> tuple[dict, object]:
+    """One image's row of measures and its (result, truth); ``settings`` go to :func:`img2logo.abstract`."""
     from img2logo import Img2LogoError, abstract, load_mask, quality
 
     row: dict = {"name": case["name"], "family": case["family"], "kind": case["kind"]}
@@ -169,7 +170,7 @@ def run_case(case: dict) -> tuple[dict, object]:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             image, thin = thick_case(case) if case["kind"] == THICK else (case["path"], None)
-            result = abstract(image, progress=False)
+            result = abstract(image, progress=False, **settings)
     except Img2LogoError as exc:
         row.update(detected="-", error=str(exc), seconds=time.perf_counter() - start)
         return row, None
@@ -303,14 +304,24 @@ def main(argv: list[str] | None = None) -> int:
         default=None,
         help="write the tables as the docs page PATH (default: docs/quality.md on a full run, none with --only)",
     )
+    parser.add_argument(
+        "--arcs",
+        type=int,
+        default=None,
+        metavar="N",
+        help="run with abstract(..., arcs=N), the clip arts' arc budget (default: the default options)",
+    )
     args = parser.parse_args(argv)
+    settings = {} if args.arcs is None else {"arcs": args.arcs}
+    if settings and args.docs is None and args.only == "*":
+        parser.error("--arcs measures options other than the defaults: give --only or --docs")
 
     import pandas as pd
 
     selected = [c for c in cases() if fnmatch.fnmatch(c["name"], args.only)]
     runs = []
     for case in selected:
-        row, run = run_case(case)
+        row, run = run_case(case, **settings)
         runs.append((row, run))
         status = f"failed: {row['error']}" if run is None else f"{row['arcs']} arcs, r10 {row['r10']:.2f}"
         print(f"  {row['name']:28s} {row['seconds']:6.1f} s  {status}", file=sys.stderr, flush=True)

@@ -160,6 +160,12 @@ class Options:
         important (by Ward's criterion: contrast, length, area) merge into their
         neighbours first. The silhouette, its ink outline and the dark marks on
         the object (eyes) are always kept. Other kinds: unused.
+    arcs : int or None
+        Clip art: an arc budget, at least 1, or None (default: none)
+        (:func:`img2logo.features.detail.merge_by_importance`): after ``detail``,
+        the regions of least Ward weight per predicted arc merge until the
+        logo's predicted arcs (:func:`img2logo.features.boundary_cost.boundary_arcs`)
+        are at most this; the silhouette and the eyes are kept beyond it.
     stroke_width : float or None
         Width of the logo's strokes in the SVG and PNG, px (> 0), recorded in
         ``params``; None: a line drawing's measured median stroke width
@@ -272,6 +278,16 @@ class Options:
         "blotches, tiny fills) merge into their neighbours first; the silhouette and dark marks such as eyes are "
         f"always kept (default {DETAIL})",
     )
+    arcs: int | None = _option(
+        None,
+        stage="input",
+        flags=("--arcs",),
+        type=int,
+        metavar="N",
+        help="clip art: an arc budget; after --detail, regions go on merging, the least visual weight (contrast "
+        "times area) per predicted arc first, until the logo is predicted to take at most about N arcs; the "
+        "silhouette and dark marks such as eyes are always kept (default: none)",
+    )
     stroke_width: float | None = _option(
         None,
         stage="input",
@@ -355,6 +371,8 @@ class Options:
         from .features.detail import check_detail
 
         put(self, "detail", check_detail(self.detail))
+        if self.arcs is not None:
+            put(self, "arcs", check_detail(self.arcs, "arcs", "arcs"))
         if self.stroke_width is not None:
             put(self, "stroke_width", _check_length(self.stroke_width, "stroke_width"))
         check_choice(self.kind, "kind", ("auto", "photo", "clipart", "drawing"))

@@ -147,7 +147,8 @@ def abstract(
         ``None`` (default) shows one only when standard error is a terminal.
     **settings
         Any other field of :class:`~img2logo.options.Options`: ``detail`` (clip
-        art: the regions kept besides the background; :mod:`img2logo.features.detail`), ``rdp_tolerance``,
+        art: the regions kept besides the background; :mod:`img2logo.features.detail`), ``arcs`` (clip art:
+        an arc budget), ``rdp_tolerance``,
         ``min_length``, ``foreground``, ``subject``, ``symmetry`` (``"none"``,
         ``"auto"``, ``"vertical"``, ``"horizontal"`` or degrees: a mirror-symmetric
         logo, :mod:`img2logo.fit.symmetry`; what was decided is ``Result.symmetry``),
@@ -200,7 +201,7 @@ def abstract(
             foreground = mask_to_working_size(foreground, img, "foreground")
         opts = dataclasses.replace(opts, foreground=foreground)
     lines = extract_feature_lines(
-        img, kind=work_kind, foreground=opts.foreground, subject=opts.subject, detail=opts.detail
+        img, kind=work_kind, foreground=opts.foreground, subject=opts.subject, detail=opts.detail, arcs=opts.arcs
     )
     if reason is not None:  # what the photo test measured (_working_copy), not "given"
         lines = dataclasses.replace(lines, reason=reason)

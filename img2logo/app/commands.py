@@ -243,6 +243,8 @@ def run_image(args: argparse.Namespace, say, *, freeze: bool = False) -> int:
     result = _naming(args.input, abstract, image, options=options, lock_mask=lock_mask, progress=progress)
     graph, prog = result.graph, result.progression
     say(f"kind {result.lines.kind} ({result.lines.reason})")
+    if result.lines.detail is not None and options.arcs is not None:  # what the arc budget kept
+        say(f"detail: {result.lines.detail} regions kept besides the background, for about {options.arcs} arcs")
     given = [f"--subject {args.subject}"] if args.subject is not None else []
     given += [f"--foreground {args.foreground}"] if args.foreground != "auto" else []
     ignored = None

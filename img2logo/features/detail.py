@@ -27,6 +27,11 @@ asked, the dark marks on the object's fills (an eye, a pupil, a spot), which
 only take in smaller regions (a pupil's highlight, the spots a wing's black
 encloses).
 
+With an arc budget (``arcs``, :func:`merge_by_importance`) merging then goes
+on, the least Ward weight per predicted arc saved first
+(:mod:`img2logo.features.boundary_cost`), until the logo's predicted arcs
+are within it.
+
 :func:`close_line_ends` then makes every line of the map whole: a line end,
 the end of a mark drawn as its centre line inside one fill, is joined to the
 line it stops short of, or the mark is dropped whole when it weighs less than
@@ -44,23 +49,25 @@ import numpy as np
 
 from ..constants import LINE_JOIN_DISTANCE
 from ..errors import InvalidParameterError
+from .boundary_cost import boundary_arcs
 from .clipart import ink_outlines, label_means, outline_strokes, thin_regions
 from .constants import CLIPART_MARK_CONTRAST, CLIPART_MAX_REGIONS, CLIPART_OUTLINE_WIDTH
 
 
-def check_detail(value: object) -> int:
-    """The ``detail`` option checked: a whole number of regions, at least 1, as int.
+def check_detail(value: object, name: str = "detail", unit: str = "regions") -> int:
+    """The ``detail`` option (or ``arcs``: ``name``, ``unit``) checked: a whole number, at least 1, as int.
 
     Raises
     ------
     InvalidParameterError
         For anything else (a bool, a string, a fraction, 0 or less).
     """
+    message = f"{name} must be a whole number of {unit}, at least 1, got {value!r}"
     if isinstance(value, bool | np.bool_ | str) or not isinstance(value, int | float | np.integer | np.floating):
-        raise InvalidParameterError(f"detail must be a whole number of regions, at least 1, got {value!r}")
+        raise InvalidParameterError(message)
     v = float(value)
     if not (np.isfinite(v) and v >= 1.0 and v == int(v)):
-        raise InvalidParameterError(f"detail must be a whole number of regions, at least 1, got {value!r}")
+        raise InvalidParameterError(message)
     return int(v)
 
 
@@ -109,7 +116,12 @@ class DetailWarning(UserWarning):
 
 
 def merge_by_importance(
-    regions: np.ndarray, lab: np.ndarray, detail: int, *, max_regions: int = CLIPART_MAX_REGIONS
+    regions: np.ndarray,
+    lab: np.ndarray,
+    detail: int,
+    *,
+    arcs: float | None = None,
+    max_regions: int = CLIPART_MAX_REGIONS,
 ) -> Merged:
     """Merge a clip art's least important regions into their neighbours: (H, W) int labels, 0 = background.
 
@@ -123,6 +135,12 @@ def merge_by_importance(
         The regions kept besides the background (module docstring), at least
         1; the silhouette's pieces and its ink outline, and the dark marks on
         the object's fills, are kept beyond it.
+    arcs : float or None
+        An arc budget (None, the default: none): after the count, regions go
+        on merging, the least Ward weight per predicted arc saved first, until
+        the logo's predicted arcs (:func:`img2logo.features.boundary_cost.boundary_arcs`
+        of every boundary kept, the silhouette's included) are at most
+        ``arcs``; what is never merged is kept beyond it.
     max_regions : int
         The most regions (the background included) the optimization is given
         at once (default ``CLIPART_MAX_REGIONS``): where more remain, merging
@@ -140,11 +158,11 @@ def merge_by_importance(
         merge made (0 when none was), squared Delta E times px.
     """
     n = int(regions.max()) + 1
-    target, budget = merge_targets(regions, lab, detail, marks=True)
-    if n - 1 <= detail:
+    target, budget = merge_targets(regions, lab, detail, marks=True, arcs=arcs)
+    if n - 1 <= detail and len(np.unique(target)) == n:
         return Merged(regions, n - 1, budget)
     if len(np.unique(target)) > max_regions:  # the dark marks too, down to the bound
-        target, budget = merge_targets(regions, lab, min(detail, max_regions - 1), marks=False)
+        target, budget = merge_targets(regions, lab, min(detail, max_regions - 1), marks=False, arcs=arcs)
         import warnings
 
         warnings.warn(
@@ -162,13 +180,20 @@ def merge_by_importance(
     return Merged(packed[target][regions].astype(np.int64), kept - 1, budget)
 
 
-def merge_targets(regions: np.ndarray, lab: np.ndarray, detail: int, *, marks: bool = True) -> tuple[np.ndarray, float]:
+def merge_targets(
+    regions: np.ndarray, lab: np.ndarray, detail: int, *, marks: bool = True, arcs: float | None = None
+) -> tuple[np.ndarray, float]:
     """The region each label is merged into by :func:`merge_by_importance`, and the detail budget.
 
     Merges in Ward's order until ``detail`` regions are left besides the
     background, or no merge is allowed. ``marks``: the dark marks on the
     object's fills (:func:`ink_outlines` without the paper, by
-    ``CLIPART_MARK_CONTRAST``) take part in no merge.
+    ``CLIPART_MARK_CONTRAST``) take part in no merge. ``arcs``: then, while
+    the predicted arcs of the boundaries kept exceed it, the allowed merge of the
+    least Ward weight per predicted arc of the boundary it removes (a
+    rate-distortion order: the least colour error per arc saved); its merges
+    do not raise the returned budget, which the marks' line ends are weighed
+    against (:func:`close_line_ends`).
 
     Returns
     -------
@@ -218,18 +243,8 @@ def merge_targets(regions: np.ndarray, lab: np.ndarray, detail: int, *, marks: b
         d = colour[i] - colour[j]
         return float(ward_weight(area[i], area[j], d @ d))
 
-    heap = [(cost(i, j), i, j, 0, 0) for i in range(1, n) for j in nbrs[i] if i < j]
-    heapq.heapify(heap)
-    left = int(np.count_nonzero(counts[1:]))  # besides the background
-    budget = 0.0
-    while heap and left > detail:
-        weight, i, j, vi, vj = heapq.heappop(heap)
-        if vi != version[i] or vj != version[j] or target[i] != i or target[j] != j:
-            continue  # stale: a side was merged since
-        if not allowed(i, j):
-            continue  # taken anew when either side grows
-        left -= 1
-        budget = max(budget, weight)
+    def merge(i: int, j: int) -> tuple[int, int]:
+        """Merge the pair; (kept, gone) labels."""
         # j into i: a stroke into its fill, never a fill into a stroke (which would widen it
         # past a stroke's width, and its one centre line would become two edges); else the
         # larger keeps its label (the same picture either way).
@@ -247,21 +262,81 @@ def merge_targets(regions: np.ndarray, lab: np.ndarray, detail: int, *, marks: b
             nbrs[k][i] = nbrs[i][k]
         nbrs[i].pop(j, None)
         nbrs[j] = {}
+        return i, j
+
+    heap = [(cost(i, j), i, j, 0, 0) for i in range(1, n) for j in nbrs[i] if i < j]
+    heapq.heapify(heap)
+    left = int(np.count_nonzero(counts[1:]))  # besides the background
+    budget = 0.0
+    while heap and left > detail:
+        weight, i, j, vi, vj = heapq.heappop(heap)
+        if vi != version[i] or vj != version[j] or target[i] != i or target[j] != j:
+            continue  # stale: a side was merged since
+        if not allowed(i, j):
+            continue  # taken anew when either side grows
+        left -= 1
+        budget = max(budget, weight)
+        i, _ = merge(i, j)
         for k in nbrs[i]:
             a, b = (i, k) if i < k else (k, i)
             heapq.heappush(heap, (cost(a, b), a, b, int(version[a]), int(version[b])))
+    if arcs is not None:  # then down to the arc budget, the least weight per arc first
+        inner = _boundary_arcs(regions, stroke, target)
+
+        def key(i: int, j: int, c: float) -> float:  # the colour error painted over per arc saved
+            return cost(i, j) / c
+
+        rate = [(key(i, j, c), i, j, int(version[i]), int(version[j])) for (i, j), c in inner.items() if j in nbrs[i]]
+        heapq.heapify(rate)
+        total = sum(inner.values())
+        while rate and total > arcs:
+            _, i, j, vi, vj = heapq.heappop(rate)
+            if vi != version[i] or vj != version[j] or target[i] != i or target[j] != j or not allowed(i, j):
+                continue  # stale, or taken anew when either side grows
+            total -= inner.pop((i, j))
+            i, j = merge(i, j)
+            for (a, b), c in [(p, c) for p, c in inner.items() if j in p]:  # j's boundaries are now i's
+                del inner[a, b]
+                k = b if a == j else a
+                pair = (min(i, k), max(i, k))
+                inner[pair] = inner.get(pair, 0.0) + c
+            for k in nbrs[i]:
+                a, b = (i, k) if i < k else (k, i)
+                if (a, b) in inner:
+                    heapq.heappush(rate, (key(a, b, inner[a, b]), a, b, int(version[a]), int(version[b])))
     # The detail budget: the weight of the next merge the ranking would make, the lightest
     # boundary it kept (the heaviest it made where none is left to make).
     for weight, i, j, vi, vj in sorted(heap):
         if vi == version[i] and vj == version[j] and target[i] == i and target[j] == j and allowed(i, j):
             budget = max(budget, weight)
             break
-    for r in range(n):  # follow chains of merges to their end
+    _follow(target)
+    return target, budget
+
+
+def _follow(target: np.ndarray) -> None:
+    """Follow each label's chain of merges to its end, in place."""
+    for r in range(len(target)):
         t = r
         while target[t] != t:
             t = target[t]
         target[r] = t
-    return target, budget
+
+
+def _boundary_arcs(regions: np.ndarray, stroke: np.ndarray, target: np.ndarray) -> dict[tuple[int, int], float]:
+    """The predicted arcs of each boundary between the regions merged so far, the silhouette's included.
+
+    :func:`img2logo.features.boundary_cost.boundary_arcs` of ``regions``, summed
+    over the labels each label is merged into (``target``, chains followed on a copy).
+    """
+    ends = target.copy()
+    _follow(ends)
+    out: dict[tuple[int, int], float] = {}
+    for (i, j), c in boundary_arcs(regions, np.flatnonzero(stroke)).items():
+        a, b = sorted((int(ends[i]), int(ends[j])))
+        if a != b:
+            out[a, b] = out.get((a, b), 0.0) + c
+    return out
 
 
 def close_line_ends(lines: np.ndarray, regions: np.ndarray, lab: np.ndarray, budget: float) -> np.ndarray:

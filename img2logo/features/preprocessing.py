@@ -467,6 +467,7 @@ def extract_feature_lines(
     spur_length: float | None = None,
     min_line_length: float | None = None,
     detail: int = DETAIL,
+    arcs: int | None = None,
 ) -> FeatureLines:
     """Extract the object's feature lines as a 1-px-wide map (paper Sec. 4).
 
@@ -495,6 +496,9 @@ def extract_feature_lines(
     detail : int
         Clip art only: the regions kept besides the background
         (:func:`img2logo.features.detail.merge_by_importance`; default ``DETAIL``).
+    arcs : int or None
+        Clip art only: an arc budget, the logo's predicted arcs at most this
+        (:func:`img2logo.features.detail.merge_by_importance`; default None: none).
 
     Returns
     -------
@@ -533,7 +537,9 @@ def extract_feature_lines(
         min_len = spur_length if min_line_length is None else min_line_length
     elif kind == "clipart":
         regions = enclosed_paper(clipart_regions(img) if regions is None else regions, img)
-        regions, detail_used, budget = merge_by_importance(regions, img.lab, check_detail(detail))
+        regions, detail_used, budget = merge_by_importance(
+            regions, img.lab, check_detail(detail), arcs=None if arcs is None else check_detail(arcs, "arcs", "arcs")
+        )
         raw = _join(clipart_lines(regions, label_means(regions, img.lab)[1][:, 0]))
         min_len = spur_length if min_line_length is None else min_line_length
     else:
