@@ -60,16 +60,7 @@ from ..constants import (
     STEP_SIDE_CONTRAST,
 )
 from .dots import Dots, cielab_lightness, dark_dots, with_enclosed_dots
-
-# edge_tangent_flow, flow_dog, start_photo_line_maps: read here by features.preprocessing (for a photo only).
-from .line_maps import (
-    LineMaps,
-    edge_tangent_flow as edge_tangent_flow,
-    flow_dog as flow_dog,
-    line_maps,
-    new_colour_lines,
-    start_photo_line_maps as start_photo_line_maps,
-)
+from .line_maps import LineMaps, line_maps, new_colour_lines
 from .subject import Subject
 
 
