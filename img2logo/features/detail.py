@@ -52,6 +52,7 @@ from ..errors import InvalidParameterError
 from .boundary_cost import boundary_arcs
 from .clipart import ink_outlines, label_means, outline_strokes, thin_regions
 from .constants import CLIPART_MARK_CONTRAST, CLIPART_MAX_REGIONS, CLIPART_OUTLINE_WIDTH
+from .stroke_sides import StrokeSides, across_strokes, open_strokes, stroke_sides
 
 
 def check_detail(value: object, name: str = "detail", unit: str = "regions") -> int:
@@ -158,11 +159,12 @@ def merge_by_importance(
         merge made (0 when none was), squared Delta E times px.
     """
     n = int(regions.max()) + 1
-    target, budget = merge_targets(regions, lab, detail, marks=True, arcs=arcs)
+    sides = outline_sides(regions, lab)
+    target, budget = merge_targets(regions, lab, detail, marks=True, arcs=arcs, sides=sides)
     if n - 1 <= detail and len(np.unique(target)) == n:
         return Merged(regions, n - 1, budget)
     if len(np.unique(target)) > max_regions:  # the dark marks too, down to the bound
-        target, budget = merge_targets(regions, lab, min(detail, max_regions - 1), marks=False, arcs=arcs)
+        target, budget = merge_targets(regions, lab, min(detail, max_regions - 1), marks=False, arcs=arcs, sides=sides)
         import warnings
 
         warnings.warn(
@@ -174,14 +176,34 @@ def merge_by_importance(
     kept = len(np.unique(target))
     if kept == n:
         return Merged(regions, n - 1, budget)
+    if sides is not None:  # the stroke between fills merged into one goes, as a shared boundary would
+        regions = open_strokes(regions, sides, target)
     alive = np.zeros(len(target), dtype=bool)
     alive[target] = True
     packed = np.cumsum(alive) - 1
     return Merged(packed[target][regions].astype(np.int64), kept - 1, budget)
 
 
+def outline_sides(regions: np.ndarray, lab: np.ndarray) -> StrokeSides | None:
+    """The sides of the strokes of the ink outlines on the paper (:func:`img2logo.features.stroke_sides.stroke_sides`).
+
+    ``regions`` (H, W) int, 0 = background; ``lab`` (H, W, 3) CIELAB. None when there are none.
+    """
+    _, means = label_means(regions, lab)
+    n = len(means)
+    on_paper = np.zeros(n, dtype=bool)
+    on_paper[[j for i, j in region_adjacency(regions) if i == 0]] = True
+    return stroke_sides(regions, means[:, 0], thin_regions(regions, means[:, 0]), on_paper)
+
+
 def merge_targets(
-    regions: np.ndarray, lab: np.ndarray, detail: int, *, marks: bool = True, arcs: float | None = None
+    regions: np.ndarray,
+    lab: np.ndarray,
+    detail: int,
+    *,
+    marks: bool = True,
+    arcs: float | None = None,
+    sides: StrokeSides | None = None,
 ) -> tuple[np.ndarray, float]:
     """The region each label is merged into by :func:`merge_by_importance`, and the detail budget.
 
@@ -193,7 +215,10 @@ def merge_targets(
     least Ward weight per predicted arc of the boundary it removes (a
     rate-distortion order: the least colour error per arc saved); its merges
     do not raise the returned budget, which the marks' line ends are weighed
-    against (:func:`close_line_ends`).
+    against (:func:`close_line_ends`). ``sides``: the strokes of the ink
+    outlines on the paper (:func:`outline_sides`): the fills facing each other
+    across them are neighbours too (:func:`img2logo.features.stroke_sides.across_strokes`),
+    the side-border's length their border.
 
     Returns
     -------
@@ -228,11 +253,14 @@ def merge_targets(
         dark[ink_outlines(regions, means[:, 0], paper=False, contrast=CLIPART_MARK_CONTRAST)] = True
     stroke = np.zeros(n, dtype=bool)
     stroke[thin_regions(regions, means[:, 0])] = True
-    for (i, j), length in adjacency.items():
+    # Fills facing each other across a stroke of the outline on the paper are neighbours too,
+    # the stroke between them their boundary (stroke_sides).
+    across = {} if sides is None else across_strokes(sides, fixed)
+    for (i, j), length in [*adjacency.items(), *across.items()]:
         if fixed[i] or fixed[j] or (dark[i] and dark[j]):
             continue
-        nbrs[i][j] = length
-        nbrs[j][i] = length
+        nbrs[i][j] = nbrs[i].get(j, 0) + length
+        nbrs[j][i] = nbrs[i][j]
     version = np.zeros(n, dtype=np.int64)
 
     def allowed(i: int, j: int) -> bool:  # a mark, never a stroke, takes in only what is smaller than it
@@ -281,7 +309,7 @@ def merge_targets(
             a, b = (i, k) if i < k else (k, i)
             heapq.heappush(heap, (cost(a, b), a, b, int(version[a]), int(version[b])))
     if arcs is not None:  # then down to the arc budget, the least weight per arc first
-        inner = _boundary_arcs(regions, stroke, target)
+        inner = _boundary_arcs(regions if sides is None else sides.given, stroke, target)
 
         def key(i: int, j: int, c: float) -> float:  # the colour error painted over per arc saved
             return cost(i, j) / c

@@ -1,0 +1,51 @@
+"""Fills facing each other across a cartoon's outline stroke: known answers (features.stroke_sides, features.detail)."""
+
+from __future__ import annotations
+
+import cv2
+import numpy as np
+from helpers import blank
+
+from img2logo import extract_feature_lines, load_image
+from img2logo.features.clipart import clipart_regions
+from img2logo.features.detail import merge_targets, outline_sides, region_adjacency
+
+ORANGE, YELLOW = (230, 120, 40), (240, 200, 60)
+
+
+def _two_discs() -> np.ndarray:
+    """Two coloured discs side by side inside one black outline 10 px wide, a stroke of it between them."""
+    im = blank(300)
+    for cx in (95, 205):
+        cv2.circle(im, (cx, 150), 60, (0, 0, 0), -1, lineType=cv2.LINE_AA)
+    for cx, colour in ((95, ORANGE), (205, YELLOW)):
+        cv2.circle(im, (cx, 150), 50, colour, -1, lineType=cv2.LINE_AA)
+    return im
+
+
+def _lines_near(lines: np.ndarray, x: int, y: int, reach: int = 8) -> int:
+    return int(lines[y - reach : y + reach + 1, x - reach : x + reach + 1].sum())
+
+
+def test_fills_across_a_stroke_are_neighbours():
+    img = load_image(_two_discs())
+    regions = clipart_regions(img)
+    left, right = int(regions[150, 95]), int(regions[150, 205])
+    assert (min(left, right), max(left, right)) not in region_adjacency(regions)  # they touch only the outline
+    sides = outline_sides(regions, img.lab)
+    assert sides is not None
+    target, _ = merge_targets(regions, img.lab, 1, sides=sides)
+    assert target[left] == target[right]  # merged across the stroke
+
+
+def test_merged_fills_lose_the_stroke_between_them_and_the_outline_stays():
+    image = _two_discs()
+    kept = extract_feature_lines(image)  # the default detail keeps both discs and the stroke between them
+    assert kept.kind == "clipart"
+    assert kept.regions[150, 95] != kept.regions[150, 205]
+    assert _lines_near(kept.lines, 150, 150) > 0
+    one = extract_feature_lines(image, detail=1)
+    assert one.regions[150, 95] == one.regions[150, 205]  # one region
+    assert _lines_near(one.lines, 150, 150, reach=20) == 0  # the stroke between them is no line
+    for x, y in ((35, 150), (265, 150), (95, 90), (205, 210)):  # the silhouette, at the outline's outer edge
+        assert _lines_near(one.lines, x, y) > 0, (x, y)
