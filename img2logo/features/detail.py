@@ -255,8 +255,10 @@ def merge_targets(
     stroke[thin_regions(regions, means[:, 0])] = True
     # Fills facing each other across a stroke of the outline on the paper are neighbours too,
     # the stroke between them their boundary (stroke_sides).
-    across = {} if sides is None else across_strokes(sides, fixed)
-    for (i, j), length in [*adjacency.items(), *across.items()]:
+    across = None if sides is None else across_strokes(sides, fixed, lab)
+    ink: dict[tuple[int, int], float] = {} if across is None else {k: float(v) for k, v in across.ink.items()}
+    touch = {pair for pair in adjacency if not (fixed[pair[0]] or fixed[pair[1]])}  # a shared border
+    for (i, j), length in [*adjacency.items(), *([] if across is None else across.border.items())]:
         if fixed[i] or fixed[j] or (dark[i] and dark[j]):
             continue
         nbrs[i][j] = nbrs[i].get(j, 0) + length
@@ -269,7 +271,13 @@ def merge_targets(
 
     def cost(i: int, j: int) -> float:
         d = colour[i] - colour[j]
-        return float(ward_weight(area[i], area[j], d @ d))
+        weight = ward_weight(area[i], area[j], d @ d)
+        painted = ink.get((i, j) if i < j else (j, i), 0.0)
+        if painted and across is not None:  # and the stroke between them, painted in their mean colour
+            both = (area[i] * colour[i] + area[j] * colour[j]) / (area[i] + area[j])
+            e = both - across.colour
+            weight += ward_weight(area[i] + area[j], painted, e @ e)
+        return float(weight)
 
     def merge(i: int, j: int) -> tuple[int, int]:
         """Merge the pair; (kept, gone) labels."""
@@ -285,6 +293,11 @@ def merge_targets(
         for k, length in nbrs[j].items():
             if k == i:
                 continue
+            jk, ik = (min(j, k), max(j, k)), (min(i, k), max(i, k))
+            if jk in ink:  # the stroke between j and k is now between i and k
+                ink[ik] = ink.get(ik, 0.0) + ink.pop(jk)
+            if jk in touch:
+                touch.add(ik)
             nbrs[i][k] = nbrs[i].get(k, 0) + length
             del nbrs[k][j]
             nbrs[k][i] = nbrs[i][k]
@@ -292,22 +305,26 @@ def merge_targets(
         nbrs[j] = {}
         return i, j
 
-    heap = [(cost(i, j), i, j, 0, 0) for i in range(1, n) for j in nbrs[i] if i < j]
+    def tier(i: int, j: int) -> int:  # fills that share a border first; across a stroke only then
+        return 0 if ((i, j) if i < j else (j, i)) in touch else 1
+
+    heap = [(tier(i, j), cost(i, j), i, j, 0, 0) for i in range(1, n) for j in nbrs[i] if i < j]
     heapq.heapify(heap)
     left = int(np.count_nonzero(counts[1:]))  # besides the background
     budget = 0.0
     while heap and left > detail:
-        weight, i, j, vi, vj = heapq.heappop(heap)
+        level, weight, i, j, vi, vj = heapq.heappop(heap)
         if vi != version[i] or vj != version[j] or target[i] != i or target[j] != j:
             continue  # stale: a side was merged since
         if not allowed(i, j):
             continue  # taken anew when either side grows
         left -= 1
-        budget = max(budget, weight)
+        if level == 0:  # a merge across a stroke does not raise what the marks are weighed against
+            budget = max(budget, weight)
         i, _ = merge(i, j)
         for k in nbrs[i]:
             a, b = (i, k) if i < k else (k, i)
-            heapq.heappush(heap, (cost(a, b), a, b, int(version[a]), int(version[b])))
+            heapq.heappush(heap, (tier(a, b), cost(a, b), a, b, int(version[a]), int(version[b])))
     if arcs is not None:  # then down to the arc budget, the least weight per arc first
         inner = _boundary_arcs(regions if sides is None else sides.given, stroke, target)
 
@@ -334,8 +351,8 @@ def merge_targets(
                     heapq.heappush(rate, (key(a, b, inner[a, b]), a, b, int(version[a]), int(version[b])))
     # The detail budget: the weight of the next merge the ranking would make, the lightest
     # boundary it kept (the heaviest it made where none is left to make).
-    for weight, i, j, vi, vj in sorted(heap):
-        if vi == version[i] and vj == version[j] and target[i] == i and target[j] == j and allowed(i, j):
+    for level, weight, i, j, vi, vj in sorted(heap):
+        if level == 0 and vi == version[i] and vj == version[j] and target[i] == i and target[j] == j and allowed(i, j):
             budget = max(budget, weight)
             break
     _follow(target)

@@ -97,54 +97,80 @@ def _side_pairs(sides: StrokeSides) -> tuple[np.ndarray, np.ndarray, np.ndarray,
     return np.concatenate(rows), np.concatenate(cols), np.concatenate(first), np.concatenate(second)
 
 
-def across_strokes(sides: StrokeSides, fixed: np.ndarray) -> dict[tuple[int, int], int]:
-    """The fills that face each other across a stroke: {(i, j): length of the side-border} for i < j.
+class Across(NamedTuple):
+    """Fills facing each other across a stroke: {(i, j): ...} for i < j.
+
+    ``border``: the length of their side-border, px (4-adjacent pixel pairs);
+    ``ink``: the stroke pixels between them (those whose nearest side-border
+    is theirs), which merging them paints; ``colour`` (3,) the strokes' mean
+    CIELAB colour.
+    """
+
+    border: dict[tuple[int, int], int]
+    ink: dict[tuple[int, int], int]
+    colour: np.ndarray
+
+
+def across_strokes(sides: StrokeSides, fixed: np.ndarray, lab: np.ndarray) -> Across:
+    """The fills that face each other across a stroke, their side-border and the stroke between them.
 
     Pairs with a label of ``fixed`` (n,) bool (the background, the ink
-    outlines on it) are left out: they take part in no merge.
+    outlines on it) are left out: they take part in no merge. ``lab`` (H, W, 3)
+    the image's CIELAB colours.
     """
-    _, _, a, b = _side_pairs(sides)
+    rows, cols, a, b = _side_pairs(sides)
+    colour = lab[sides.strokes].mean(axis=0)
     keep = ~fixed[a] & ~fixed[b]
-    lo = np.minimum(a[keep], b[keep]).astype(np.int64)
-    hi = np.maximum(a[keep], b[keep]).astype(np.int64)
+    if not keep.any():
+        return Across({}, {}, colour)
     n = len(fixed)
-    pairs, counts = np.unique(lo * n + hi, return_counts=True)
-    return {(int(p // n), int(p % n)): int(c) for p, c in zip(pairs, counts, strict=True)}
+    key = np.minimum(a, b).astype(np.int64) * n + np.maximum(a, b)
+    pairs, counts = np.unique(key[keep], return_counts=True)
+    border = {(int(p // n), int(p % n)): int(c) for p, c in zip(pairs, counts, strict=True)}
+    nearest = _nearest_border(sides.strokes, rows, cols, key)
+    ink_pairs, ink_counts = np.unique(nearest[nearest >= 0], return_counts=True)
+    ink = {(int(p // n), int(p % n)): int(c) for p, c in zip(ink_pairs, ink_counts, strict=True)}
+    return Across(border, {k: ink.get(k, 0) for k in border}, colour)
+
+
+def _nearest_border(strokes: np.ndarray, rows: np.ndarray, cols: np.ndarray, key: np.ndarray) -> np.ndarray:
+    """For each stroke pixel (row-major order), the key of the nearest side-border pixel within
+    ``CLIPART_OUTLINE_WIDTH`` / 2 + 1 px, or -1 (a stroke that ends inside a fill, far from any)."""
+    import cv2
+
+    h, w = strokes.shape
+    mark = np.full((h, w), -1, dtype=np.int64)
+    mark[rows, cols] = key
+    free = np.where(mark >= 0, 0, 255).astype(np.uint8)
+    dist, nearest = cv2.distanceTransformWithLabels(free, cv2.DIST_L2, 5, labelType=cv2.DIST_LABEL_PIXEL)
+    br, bc = np.nonzero(free == 0)
+    of = np.full(int(nearest.max()) + 1, -1, dtype=np.int64)
+    of[nearest[br, bc]] = mark[br, bc]
+    out = of[nearest[strokes]]
+    out[dist[strokes] > CLIPART_OUTLINE_WIDTH / 2 + 1] = -1
+    return out
 
 
 def open_strokes(regions: np.ndarray, sides: StrokeSides, target: np.ndarray) -> np.ndarray:
     """``regions`` with the stroke between fills merged into one painted with that fill: (H, W) int.
 
     A stroke pixel goes to its side (``sides.given``) when the nearest
-    side-border (a pixel of two stroke pixels given to different sides) is
-    within ``CLIPART_OUTLINE_WIDTH`` / 2 + 1 px and between two labels that
+    side-border (two stroke pixels given to different sides) is within
+    ``CLIPART_OUTLINE_WIDTH`` / 2 + 1 px and between two labels that
     ``target`` (n,) merges into one, its own among them. The rest of the
     strokes stays ink: the silhouette, the strokes between fills kept apart,
     and a stroke that ends inside a fill, far from any side-border.
     """
-    import cv2
-
     rows, cols, a, b = _side_pairs(sides)
-    if len(rows) == 0:
+    if not (target[a] == target[b]).any():
         return regions
-    merged = target[a] == target[b]
-    if not merged.any():
-        return regions
-    h, w = regions.shape
-    # Each side-border pair marks its first pixel; a pixel of both a merged and a kept border stays.
-    border = np.zeros((h, w), dtype=np.int8)  # 0 none, 1 merged, 2 kept
-    np.maximum.at(border, (rows, cols), np.where(merged, 1, 2).astype(np.int8))
-    free = np.where(border > 0, 0, 255).astype(np.uint8)
-    dist, nearest = cv2.distanceTransformWithLabels(free, cv2.DIST_L2, 5, labelType=cv2.DIST_LABEL_PIXEL)
-    br, bc = np.nonzero(free == 0)
-    kind = np.zeros(int(nearest.max()) + 1, dtype=np.int8)
-    group = np.full(len(kind), -1, dtype=np.int64)
-    kind[nearest[br, bc]] = border[br, bc]
-    group[nearest[br, bc]] = target[sides.given[br, bc]]
-    near = nearest[sides.strokes]
-    own = target[sides.given[sides.strokes]]
-    paint = (kind[near] == 1) & (group[near] == own) & (dist[sides.strokes] <= CLIPART_OUTLINE_WIDTH / 2 + 1)
-    out = regions.copy()
+    n = len(target)
+    key = np.minimum(a, b).astype(np.int64) * n + np.maximum(a, b)
+    nearest = _nearest_border(sides.strokes, rows, cols, key)
     sr, sc = np.nonzero(sides.strokes)
+    own = target[sides.given[sr, sc]]
+    lo, hi = target[np.maximum(nearest, 0) // n], target[np.maximum(nearest, 0) % n]
+    paint = (nearest >= 0) & (lo == hi) & (lo == own)
+    out = regions.copy()
     out[sr[paint], sc[paint]] = sides.given[sr[paint], sc[paint]]
     return out
