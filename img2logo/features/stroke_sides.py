@@ -114,7 +114,9 @@ class Across(NamedTuple):
 def across_strokes(sides: StrokeSides, fixed: np.ndarray, lab: np.ndarray) -> Across:
     """The fills that face each other across a stroke, their side-border and the stroke between them.
 
-    Pairs with a label of ``fixed`` (n,) bool (the background, the ink
+    Their side-border is longer than ``CLIPART_OUTLINE_WIDTH``: two fills
+    that meet only where strokes cross (diagonal squares of a grid) meet along
+    about a stroke's width and face each other across no stroke. Pairs with a label of ``fixed`` (n,) bool (the background, the ink
     outlines on it) are left out: they take part in no merge. ``lab`` (H, W, 3)
     the image's CIELAB colours.
     """
@@ -126,7 +128,11 @@ def across_strokes(sides: StrokeSides, fixed: np.ndarray, lab: np.ndarray) -> Ac
     n = len(fixed)
     key = np.minimum(a, b).astype(np.int64) * n + np.maximum(a, b)
     pairs, counts = np.unique(key[keep], return_counts=True)
-    border = {(int(p // n), int(p % n)): int(c) for p, c in zip(pairs, counts, strict=True)}
+    # Fills that meet only where strokes cross (two diagonal squares of a grid) meet along about
+    # a stroke's width: they do not face each other across a stroke.
+    border = {
+        (int(p // n), int(p % n)): int(c) for p, c in zip(pairs, counts, strict=True) if c > CLIPART_OUTLINE_WIDTH
+    }
     nearest = _nearest_border(sides.strokes, rows, cols, key)
     ink_pairs, ink_counts = np.unique(nearest[nearest >= 0], return_counts=True)
     ink = {(int(p // n), int(p % n)): int(c) for p, c in zip(ink_pairs, ink_counts, strict=True)}
