@@ -16,14 +16,14 @@ the option, what was expected and what came.
 from __future__ import annotations
 
 import dataclasses
-import math
 from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
 from ._validation import check_choice, check_positive
-from .constants import DETAIL, MAX_LENGTH, MIN_LADDER_RADIUS, MIN_SEGMENT_LENGTH, RDP_TOLERANCE, TOLERANCE
+from .constants import DETAIL, MIN_LADDER_RADIUS, MIN_SEGMENT_LENGTH, RDP_TOLERANCE, TOLERANCE
 from .errors import InvalidParameterError, UnknownOptionError
+from .option_values import check_length, check_symmetry_option, parse_budget, parse_radii, refuse_lock_mask
 
 __all__ = [
     "ABSTRACT_OPTIONS",
@@ -36,9 +36,6 @@ __all__ = [
     "cli_fields",
     "refuse_lock_mask",
 ]
-
-#: The largest angle an option takes, degrees (``symmetry``'s axis direction, either sign).
-MAX_ANGLE_DEGREES: float = 360.0
 
 #: Default time budget of the progressive optimization, s of CPU time of the process running it (on an idle machine
 #: about the wall time): past it the merge loop stops at its last level (``Options.time_budget``).
@@ -93,43 +90,6 @@ def _switch(flag: str, what: str, *, default: bool = True) -> Any:
     if default:
         return _option(True, flags=(flag,), action="store_false", help=f"switch off {what}")
     return _option(False, flags=(flag,), action="store_true", help=what)
-
-
-def _check_length(value: object, name: str, *, allow_zero: bool = False, low: float = 0.0) -> float:
-    """A length option, px: a finite number > 0 (or >= 0), at least ``low``, at most ``MAX_LENGTH``."""
-    import numpy as np
-
-    if isinstance(value, bool | np.bool_) or isinstance(value, str):
-        raise InvalidParameterError(f"{name} must be a number of px, got {value!r}")
-    v = check_positive(value, name, allow_zero=allow_zero)
-    if low and not low <= v <= MAX_LENGTH:
-        raise InvalidParameterError(f"{name} must be in {low:g}..{MAX_LENGTH:g} px, got {v:g}")
-    if v > MAX_LENGTH:
-        raise InvalidParameterError(f"{name} must be at most {MAX_LENGTH:g} px (longer than any image), got {v:g}")
-    return v
-
-
-def _parse_budget(text: str | float | None) -> float | None:
-    """``--time-budget S`` as seconds, or None for ``none`` (no bound)."""
-    if text is None or (isinstance(text, str) and text.strip().lower() == "none"):
-        return None
-    try:
-        return float(text)
-    except ValueError as exc:
-        raise InvalidParameterError(f"--time-budget must be a number of seconds or none, got {text!r}") from exc
-
-
-def _parse_radii(text: str | None) -> tuple[int, ...] | None:
-    """``--radii K1,K2,...`` as exponents."""
-    if text is None:
-        return None
-    try:
-        values = [int(v) for v in text.split(",") if v.strip()]
-    except ValueError as exc:
-        raise InvalidParameterError(f"--radii must be integers separated by commas, got {text!r}") from exc
-    if not values:
-        raise InvalidParameterError("--radii must list at least one exponent k")
-    return tuple(values)
 
 
 @dataclass(frozen=True)
@@ -322,7 +282,7 @@ class Options:
     exponents: tuple[int, ...] | None = _option(
         None,
         flags=("--radii",),
-        parse=_parse_radii,
+        parse=parse_radii,
         metavar="K1,K2,...",
         help="only these ladder exponents k: radii phi**(k + bias) (or unit * F(k))",
     )
@@ -353,7 +313,7 @@ class Options:
     time_budget: float | None = _option(
         TIME_BUDGET,
         flags=("--time-budget",),
-        parse=_parse_budget,
+        parse=parse_budget,
         metavar="S|none",
         help="seconds of CPU time the optimization may take; past them merging stops at the last level, which "
         f"is within T, and says so in one line; none: no bound (default {TIME_BUDGET:g})",
@@ -365,16 +325,16 @@ class Options:
         from .geometry.golden_ladder import make_ladder
 
         put = object.__setattr__
-        put(self, "tolerance", _check_length(self.tolerance, "tolerance"))
-        put(self, "rdp_tolerance", _check_length(self.rdp_tolerance, "rdp_tolerance"))
-        put(self, "min_length", _check_length(self.min_length, "min_length", allow_zero=True))
+        put(self, "tolerance", check_length(self.tolerance, "tolerance"))
+        put(self, "rdp_tolerance", check_length(self.rdp_tolerance, "rdp_tolerance"))
+        put(self, "min_length", check_length(self.min_length, "min_length", allow_zero=True))
         from .features.detail import check_detail
 
         put(self, "detail", check_detail(self.detail))
         if self.arcs is not None:
             put(self, "arcs", check_detail(self.arcs, "arcs", "arcs"))
         if self.stroke_width is not None:
-            put(self, "stroke_width", _check_length(self.stroke_width, "stroke_width"))
+            put(self, "stroke_width", check_length(self.stroke_width, "stroke_width"))
         check_choice(self.kind, "kind", ("auto", "photo", "clipart", "drawing"))
         # The photo modules load only for a value to check (the default "auto" needs none): a clip art's run skips them.
         if not (isinstance(self.foreground, str) and self.foreground == "auto"):
@@ -388,9 +348,9 @@ class Options:
         if self.max_arc_distance is not None and not (
             isinstance(self.max_arc_distance, str) and self.max_arc_distance == AUTO
         ):
-            put(self, "max_arc_distance", _check_length(self.max_arc_distance, "max_arc_distance"))
+            put(self, "max_arc_distance", check_length(self.max_arc_distance, "max_arc_distance"))
         if self.unit is not None:
-            put(self, "unit", _check_length(self.unit, "unit", low=MIN_LADDER_RADIUS))
+            put(self, "unit", check_length(self.unit, "unit", low=MIN_LADDER_RADIUS))
         if self.time_budget is not None:
             if isinstance(self.time_budget, bool | np.bool_ | str):
                 what = f"{self.time_budget!r}"
@@ -574,43 +534,3 @@ def check_lock_mask(options: Options, lock_mask: object) -> None:
     """Raise if a lock mask is given with a symmetric run: the two cannot be combined."""
     if check_symmetry_option(options.symmetry) is not None:
         refuse_lock_mask(lock_mask)
-
-
-def refuse_lock_mask(lock_mask: object) -> None:
-    """Raise if ``lock_mask`` is given: a symmetric optimization takes none."""
-    if lock_mask is not None:
-        raise InvalidParameterError("a lock mask cannot be combined with symmetry (use symmetry='none')")
-
-
-def check_symmetry_option(value: object) -> str | None:
-    """The ``symmetry`` option checked: None for ``"none"``, else its canonical text.
-
-    Accepts ``"none"``, ``"auto"``, ``"vertical"``, ``"horizontal"`` or an angle in
-    degrees (a number, or a string of one, within +-``MAX_ANGLE_DEGREES``), the
-    direction of the axis from +x towards +y (90 is upright).
-
-    Raises
-    ------
-    InvalidParameterError
-        For anything else.
-    """
-    if value is None or (isinstance(value, str) and value.strip().lower() == "none"):
-        return None
-    if isinstance(value, str) and value.strip().lower() in ("auto", "vertical", "horizontal"):
-        return value.strip().lower()
-    if isinstance(value, bool):
-        raise InvalidParameterError(
-            f"symmetry must be auto, none, vertical, horizontal or an angle in degrees, got {value!r}"
-        )
-    try:
-        angle = float(value)  # type: ignore[arg-type]
-    except (TypeError, ValueError):
-        raise InvalidParameterError(
-            f"symmetry must be auto, none, vertical, horizontal or an angle in degrees, got {value!r}"
-        ) from None
-    if not math.isfinite(angle) or abs(angle) > MAX_ANGLE_DEGREES:
-        raise InvalidParameterError(
-            f"symmetry angle must be a number of degrees in -{MAX_ANGLE_DEGREES:g}..{MAX_ANGLE_DEGREES:g}, "
-            f"got {value!r}"
-        )
-    return f"{angle:g}"

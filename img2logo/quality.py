@@ -46,13 +46,8 @@ import numpy as np
 from ._validation import check_instance, check_positive
 from .constants import GAP_MAX, GAP_MIN, SMOOTH_JOIN_ANGLE, TANGENT_JOIN_ANGLE
 from .errors import InvalidParameterError
-from .fit.arc_extraction import (
-    RedundantIntersection,
-    arc_intersections,
-    arc_pairs_near,
-    nearest_on_arc,
-    redundant_intersections,
-)
+from .fit.arc_extraction import nearest_on_arc
+from .fit.intersections import RedundantIntersection, arc_intersections, arc_pairs_near, redundant_intersections
 from .geometry.abstraction import Abstraction
 from .geometry.primitives import Arc
 from .segment_graph import SegmentGraph
@@ -381,7 +376,7 @@ def junction_gaps(
 def level_redundant_intersections(abstraction: Abstraction) -> list[RedundantIntersection]:
     """The redundant intersections of a level (Sec. 5.2, Fig. 6c, 12).
 
-    :func:`~img2logo.fit.arc_extraction.redundant_intersections` over all pairs of
+    :func:`~img2logo.fit.intersections.redundant_intersections` over all pairs of
     its arcs, each arc owning the junctions it starts at, passes through and ends at.
     """
     owned = [list(t.ordered) for t in abstraction.arc_junctions]

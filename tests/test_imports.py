@@ -187,7 +187,7 @@ def test_a_clip_art_run_of_the_command_loads_only_what_it_needs(tmp_path):
     )
     unneeded = (
         "numba scipy skimage PIL matplotlib numpy.ma img2logo.export.contract img2logo.features.photo.lines "
-        "img2logo.features.photo.subject"
+        "img2logo.features.photo.line_maps img2logo.features.photo.subject"
     )
     unneeded += " img2logo.app.batch.run img2logo.design.fills"
     pinned = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")

@@ -51,7 +51,7 @@ def _on_arc(arc, x, y, tol):  # pragma: no cover - compiled
 
 @_jit
 def arc_intersections_kernel(a, b, tol, out):  # pragma: no cover - compiled
-    """Points where two arcs meet (``arc_extraction.arc_intersections``): written to ``out`` (4, 2), count returned.
+    """Points where two arcs meet (``intersections.arc_intersections``): written to ``out`` (4, 2), count returned.
 
     Circle-circle intersection, then the angle ranges; arcs of one circle (centres and
     radii within ``tol``) meet at the end points of their overlap.
@@ -142,7 +142,7 @@ def bounding_boxes(params):  # pragma: no cover - compiled
 def arc_pairs_kernel(params, rows, tol):  # pragma: no cover - compiled
     """Pairs (K, 2) i < j, i or j in ``rows`` (sorted, unique), whose circles meet and boxes overlap within ``tol``.
 
-    Sorted by (i, j) (``arc_extraction.arc_pairs_near``).
+    Sorted by (i, j) (``intersections.arc_pairs_near``).
     """
     n = params.shape[0]
     boxes = bounding_boxes(params)
@@ -168,7 +168,7 @@ def arc_pairs_kernel(params, rows, tol):  # pragma: no cover - compiled
 
 @_jit
 def redundant_kernel(params, rows, junctions, owned_ptr, owned_idx, inter_tol, tol):  # pragma: no cover - compiled
-    """Redundant intersections (``arc_extraction.redundant_intersections``): pairs (K, 2) and points (K, 2).
+    """Redundant intersections (``intersections.redundant_intersections``): pairs (K, 2) and points (K, 2).
 
     Of the pairs of :func:`arc_pairs_kernel`, every meeting point (within
     ``inter_tol``) farther than ``tol`` px from all the junctions both arcs own
@@ -446,13 +446,13 @@ def extract_arc_kernel(cx, cy, r, seg, junctions, theta, junction_tol, ratio, sl
 
 
 # --------------------------------------------------------------------------------
-# Tangent biarcs (img2logo.fit.tangency.closest_biarcs): the fine search around the coarse grid's best
+# Tangent biarcs (img2logo.fit.biarcs.closest_biarcs): the fine search around the coarse grid's best
 # --------------------------------------------------------------------------------
 
 
 @_jit
 def biarc_best_kernel(chain, centre_a, centre_b, splits, radius_a, radius_b):  # pragma: no cover - compiled
-    """The best biarc of a grid of splits and turns (``tangency.biarc_fine``): (distance px, s, a).
+    """The best biarc of a grid of splits and turns (``biarcs.biarc_fine``): (distance px, s, a).
 
     For split ``splits[s]`` and turn ``a``, the head's pixels ``chain[:split + 1]``
     go with the circle of centre ``centre_a[s, a]`` and radius ``radius_a``, the
@@ -495,7 +495,7 @@ def biarc_best_kernel(chain, centre_a, centre_b, splits, radius_a, radius_b):  #
 
 @_jit
 def biarc_coarse_kernel(chain, index, splits, heads, tails, radius_a, radius_b):  # pragma: no cover - compiled
-    """The best biarc of the coarse grid for one pair of radii (``tangency.biarc_coarse``): (distance, j, s, a).
+    """The best biarc of the coarse grid for one pair of radii (``biarcs.biarc_coarse``): (distance, j, s, a).
 
     ``heads[side_a, s, a]`` and ``tails[side_b, s, a]`` are the centres of the
     head's and the tail's circles (sides -1, +1) at split ``splits[s]`` and turn

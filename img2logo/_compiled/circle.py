@@ -237,7 +237,7 @@ def mean_abs_error_kernel(p, cx, cy, radius):  # pragma: no cover - compiled
 
 @_jit
 def biarc_worst_kernel(chain, centre, index, splits, radius, head):  # pragma: no cover - compiled
-    """``tangency.biarc_worst`` past its circles' centres: the largest distance (S, A), px.
+    """``biarcs.biarc_worst`` past its circles' centres: the largest distance (S, A), px.
 
     ``centre`` (S, A, 2) holds the circle of each split and turn; of the pixels
     ``chain[index]`` those up to the split (``head``) or from it on count. The

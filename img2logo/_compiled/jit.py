@@ -11,9 +11,8 @@ from __future__ import annotations
 from numba import njit
 
 #: Whether numba can cache the kernels on disk. When it cannot (a read-only
-#: install and no writable user cache directory), every process would compile
-#: them again (seconds, more than the whole run): the callers then take their
-#: Python reference path instead, with the same results to the solver's tolerance.
+#: install and no writable user cache directory), every process compiles them
+#: again (seconds, more than the whole run; :mod:`img2logo._compiled.kernels` says so).
 CACHED = True
 
 

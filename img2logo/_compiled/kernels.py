@@ -1,7 +1,8 @@
 """The compiled kernels of the optimizer's inner loop, loaded without numba at run time.
 
 The kernels themselves are written in :mod:`img2logo._compiled.sqp` (the SQP of
-Eqn. 13 for a local window), :mod:`img2logo._compiled.arcs` (arc-arc
+Eqn. 13 for a local window, with its terms in :mod:`img2logo._compiled.sqp_terms` and its KKT
+systems in :mod:`img2logo._compiled.kkt`), :mod:`img2logo._compiled.arcs` (arc-arc
 intersections, the redundant-intersection test, the arc extraction with its
 Fréchet distance, the tangent biarcs' searches), :mod:`img2logo._compiled.circle` (the free circle fit, a
 golden circle's centre, the biarc search's worst distances), :mod:`img2logo._compiled.graph`
@@ -25,11 +26,10 @@ to their callers as attributes (``kernels.sqp_dense(...)``), loaded on first use
    cached kernel loaded), more than the run's own work on a clip art.
 2. **Just in time**, where no such module can be built (no C compiler): numba's
    ``njit(cache=True)``, loaded from numba's disk cache.
-3. **Not at all** where numba cannot cache either (:data:`CACHED` False): the
-   optimizer's callers run their Python reference, with the same results to the
-   solver's tolerance, rather than compile in every process; the image
-   operations (:mod:`img2logo.images.ndimage`) have no second path and are
-   compiled by the JIT in the process.
+3. **Just in time, in the process**, where numba cannot cache either (:data:`CACHED` False): every
+   process compiles the kernels it calls (seconds, said once in one line on stderr), with the same
+   results: the fit has no second path through the pipeline, and the Python references of its
+   kernels live in the tests, as their oracles.
 
 The compiled forms are the same numba code with the same types, compiled
 without fast-math (so nothing is reordered or fused): the same floating-point
@@ -147,6 +147,8 @@ _DTYPES: dict[str, np.dtype[Any]] = {
 }
 _SOURCES = (
     "sqp.py",
+    "sqp_terms.py",
+    "kkt.py",
     "arcs.py",
     "circle.py",
     "graph.py",
@@ -264,6 +266,14 @@ def _entry_points() -> dict[str, Any]:
     }
     CACHED = CACHED and kernels_jit.CACHED
     source = "numba's JIT"
+    if not CACHED:
+        import sys
+
+        print(
+            "img2logo: no disk cache for its kernels: numba compiles them in this process (seconds, every run)",
+            file=sys.stderr,
+            flush=True,
+        )
     return entries
 
 
@@ -343,7 +353,7 @@ def build(directory: Path, cpu: str = "host") -> Path:
 def main(argv: list[str] | None = None) -> int:
     """``python -m img2logo._compiled.kernels``: build (if need be) and load the kernels; print where from."""
     _load()
-    print(f"img2logo kernels: {source}" + ("" if CACHED else " (no disk cache: the Python reference runs)"))
+    print(f"img2logo kernels: {source}" + ("" if CACHED else " (no disk cache: compiled in every process)"))
     return 0
 
 

@@ -23,184 +23,12 @@ import numpy as np
 
 from .graph import _cuthill_mckee, banded_solve_ordered
 from .jit import jit as _jit
+from .kkt import kkt_pattern, lu_solve
+from .sqp_terms import max_abs, set_x, sqp_constraints, sqp_objective, sqp_tangency, trial_step
 
 # --------------------------------------------------------------------------------
 # The constrained fit (Eqn. 13), dense KKT systems
 # --------------------------------------------------------------------------------
-
-
-@_jit
-def _set_x(x, centers, disp, free_c, free_j):  # pragma: no cover - compiled
-    nc = free_c.shape[0]
-    for i in range(nc):
-        centers[free_c[i], 0] = x[2 * i]
-        centers[free_c[i], 1] = x[2 * i + 1]
-    for j in range(free_j.shape[0]):
-        disp[free_j[j], 0] = x[2 * (nc + j)]
-        disp[free_j[j], 1] = x[2 * (nc + j) + 1]
-
-
-@_jit
-def _objective(
-    centers, disp, free_j, px, py, pt_circle, r_pts, w_pts, f_const, wj, e, vx, vy, dist
-):  # pragma: no cover
-    """E^l (Eqn. 7); fills the residuals e, vectors o - p and distances of the free circles' points."""
-    s = 0.0
-    for p in range(px.shape[0]):
-        c = pt_circle[p]
-        ax = centers[c, 0] - px[p]
-        ay = centers[c, 1] - py[p]
-        d = math.sqrt(ax * ax + ay * ay)
-        vx[p], vy[p], dist[p] = ax, ay, d
-        ee = d - r_pts[p]
-        e[p] = ee
-        s += w_pts[p] * ee * ee
-    sd = 0.0
-    for j in range(free_j.shape[0]):
-        k = free_j[j]
-        sd += disp[k, 0] * disp[k, 0] + disp[k, 1] * disp[k, 1]
-    return f_const + s + wj * sd
-
-
-@_jit
-def _constraints(centers, disp, inc_i, inc_k, inc_p, inc_r, c_all, vcx, vcy):  # pragma: no cover - compiled
-    """All incidence residuals |o_i - (p_k + d_k)| - r_i and their vectors."""
-    for r in range(inc_i.shape[0]):
-        i, k = inc_i[r], inc_k[r]
-        ax = centers[i, 0] - inc_p[r, 0] - disp[k, 0]
-        ay = centers[i, 1] - inc_p[r, 1] - disp[k, 1]
-        vcx[r], vcy[r] = ax, ay
-        c_all[r] = math.sqrt(ax * ax + ay * ay) - inc_r[r]
-
-
-@_jit
-def _tangency(centers, disp, junctions, tan_a, tan_b, tan_k, tan_s, t_all, tab):  # pragma: no cover - compiled
-    """All tangency residuals cross(o_a - q, o_b - q) / max(r_a, r_b); the vectors a, b as rows (ax, ay, bx, by)."""
-    for t in range(tan_a.shape[0]):
-        k = tan_k[t]
-        qx = junctions[k, 0] + disp[k, 0]
-        qy = junctions[k, 1] + disp[k, 1]
-        ax = centers[tan_a[t], 0] - qx
-        ay = centers[tan_a[t], 1] - qy
-        bx = centers[tan_b[t], 0] - qx
-        by = centers[tan_b[t], 1] - qy
-        tab[t, 0], tab[t, 1], tab[t, 2], tab[t, 3] = ax, ay, bx, by
-        t_all[t] = (ax * by - ay * bx) * tan_s[t]
-
-
-@_jit
-def _merit(nu, f, c_all, active, t_all, tan_active):  # pragma: no cover - compiled
-    """The L1 merit E^l + nu * sum |c| over the constraints."""
-    s = 0.0
-    for r in range(c_all.shape[0]):
-        if active[r]:
-            s += abs(c_all[r])
-    out = f + nu * s
-    st = 0.0
-    n_on = 0
-    for t in range(t_all.shape[0]):
-        if tan_active[t]:
-            st += abs(t_all[t])
-            n_on += 1
-    if n_on:
-        out += nu * st
-    return out
-
-
-@_jit
-def _trial_step(
-    x,
-    alpha,
-    dx,
-    xt,
-    centers,
-    disp,
-    free_c,
-    free_j,
-    px,
-    py,
-    pt_circle,
-    r_pts,
-    w_pts,
-    f_const,
-    wj,
-    e,
-    vx,
-    vy,
-    dist,
-    inc_i,
-    inc_k,
-    inc_p,
-    inc_r,
-    c_all,
-    vcx,
-    vcy,
-    junctions,
-    tan_a,
-    tan_b,
-    tan_k,
-    tan_s_all,
-    t_all,
-    tab,
-    active,
-    tan_active,
-    nu,
-):  # pragma: no cover - compiled
-    """Move to ``x + alpha dx`` and evaluate it: (its L1 merit, its constraint violation).
-
-    The trial point of the line search and of the last polishing step
-    (``alpha`` = 1): E^l, every incidence and tangency residual at it.
-    """
-    for u in range(x.shape[0]):
-        xt[u] = x[u] + alpha * dx[u]
-    _set_x(xt, centers, disp, free_c, free_j)
-    f_new = _objective(centers, disp, free_j, px, py, pt_circle, r_pts, w_pts, f_const, wj, e, vx, vy, dist)
-    _constraints(centers, disp, inc_i, inc_k, inc_p, inc_r, c_all, vcx, vcy)
-    violation = _max_abs(c_all)
-    if tan_a.shape[0]:
-        _tangency(centers, disp, junctions, tan_a, tan_b, tan_k, tan_s_all, t_all, tab)
-        violation = max(violation, _max_abs(t_all))
-    return _merit(nu, f_new, c_all, active, t_all, tan_active), violation
-
-
-@_jit
-def _max_abs(values):  # pragma: no cover - compiled
-    out = 0.0
-    for v in values:
-        out = max(out, abs(v))
-    return out
-
-
-@_jit
-def _lu_solve(a, b):  # pragma: no cover - compiled
-    """Solve a x = b in place by Gaussian elimination with partial pivoting; False on an exactly zero pivot."""
-    n = a.shape[0]
-    for k in range(n):
-        p = k
-        best = abs(a[k, k])
-        for i in range(k + 1, n):
-            v = abs(a[i, k])
-            if v > best:
-                best, p = v, i
-        if best == 0.0:
-            return False
-        if p != k:
-            for j in range(n):
-                a[k, j], a[p, j] = a[p, j], a[k, j]
-            b[k], b[p] = b[p], b[k]
-        piv = a[k, k]
-        for i in range(k + 1, n):
-            f = a[i, k] / piv
-            if f != 0.0:
-                for j in range(k + 1, n):
-                    a[i, j] -= f * a[k, j]
-                b[i] -= f * b[k]
-    for i in range(n - 1, -1, -1):
-        s = b[i]
-        for j in range(i + 1, n):
-            s -= a[i, j] * b[j]
-        b[i] = s / a[i, i]
-    return True
 
 
 @_jit
@@ -261,98 +89,6 @@ def sqp_banded(
         points, owner, radii, centers, junctions, disp, incidence, free_c, free_j, ws, wj, connectivity, tangents,
         tan_s_all, held, tol, max_iter, stall, ftol, damping, True,
     )  # fmt: skip
-
-
-@_jit
-def _kkt_pattern(n, nc, m_inc, m_tan, act_rows, inc_i, inc_k, pos_c, pos_j, tan_rows, tan_a, tan_b, tan_k, keep):
-    """The entries (rows, cols) of the KKT matrix, in the order of the Python reference's (``Problem``).
-
-    The 2x2 blocks of H, the entries of A (centres, then displacements, then the
-    tangencies' o_a, o_b, d_k), those of A^T, the coupling blocks (o_i, d_k) and
-    (d_k, o_i) of the constraint curvature, the diagonal of the multipliers, then
-    the tangencies' curvature blocks; reduced to the unknowns ``keep`` and
-    renumbered. An entry repeated (a tangency's curvature on a coupling block)
-    is listed each time, as the reference lists it; ``first`` marks the first.
-    """
-    size = n + m_inc + m_tan
-    cap = 4 * (n // 2) + 4 * 2 * (2 * m_inc + 6 * m_tan) + 8 * m_inc + (m_inc + m_tan) + 24 * m_tan
-    rows = np.empty(cap, np.int64)
-    cols = np.empty(cap, np.int64)
-    e = 0
-    for b in range(n // 2):
-        for u in range(4):
-            rows[e], cols[e] = 2 * b + u // 2, 2 * b + u % 2
-            e += 1
-    a0 = e
-    for q in range(m_inc):
-        ci = pos_c[inc_i[act_rows[q]]]
-        if ci >= 0:
-            for u in range(2):
-                rows[e], cols[e] = n + q, 2 * ci + u
-                e += 1
-    for q in range(m_inc):
-        ck = pos_j[inc_k[act_rows[q]]]
-        if ck >= 0:
-            for u in range(2):
-                rows[e], cols[e] = n + q, 2 * (nc + ck) + u
-                e += 1
-    for v in range(3):
-        for q in range(m_tan):
-            t = tan_rows[q]
-            blk = pos_c[tan_a[t]] if v == 0 else (pos_c[tan_b[t]] if v == 1 else pos_j[tan_k[t]])
-            if blk >= 0:
-                if v == 2:
-                    blk += nc
-                for u in range(2):
-                    rows[e], cols[e] = n + m_inc + q, 2 * blk + u
-                    e += 1
-    a1 = e
-    for f in range(a0, a1):
-        rows[e], cols[e] = cols[f], rows[f]
-        e += 1
-    for side in range(2):
-        for q in range(m_inc):
-            ci, ck = pos_c[inc_i[act_rows[q]]], pos_j[inc_k[act_rows[q]]]
-            if ci >= 0 and ck >= 0:
-                cb, kb = 2 * ci, 2 * (nc + ck)
-                rb, lb = (cb, kb) if side == 0 else (kb, cb)
-                for u in range(4):
-                    rows[e], cols[e] = rb + u // 2, lb + u % 2
-                    e += 1
-    for q in range(m_inc + m_tan):
-        rows[e], cols[e] = n + q, n + q
-        e += 1
-    for pr in range(3):
-        for side in range(2):
-            for half in range(2):
-                for q in range(m_tan):
-                    t = tan_rows[q]
-                    ba, bb = pos_c[tan_a[t]], pos_c[tan_b[t]]
-                    bk = nc + pos_j[tan_k[t]] if pos_j[tan_k[t]] >= 0 else -1
-                    r, c = (ba, bb) if pr == 0 else ((ba, bk) if pr == 1 else (bb, bk))
-                    if r >= 0 and c >= 0:
-                        if side == 1:
-                            r, c = c, r
-                        rows[e], cols[e] = 2 * r + half, 2 * c + 1 - half
-                        e += 1
-    new = -np.ones(size, np.int64)
-    for a in range(keep.shape[0]):
-        new[keep[a]] = a
-    seen = np.zeros((keep.shape[0], keep.shape[0]), np.bool_)
-    out_r, out_c = np.empty(e, np.int64), np.empty(e, np.int64)
-    full_r, full_c = np.empty(e, np.int64), np.empty(e, np.int64)
-    first = np.zeros(e, np.bool_)
-    k = 0
-    for f in range(e):
-        r, c = new[rows[f]], new[cols[f]]
-        if r >= 0 and c >= 0:
-            out_r[k], out_c[k] = r, c
-            full_r[k], full_c[k] = rows[f], cols[f]
-            if not seen[r, c]:
-                seen[r, c] = True
-                first[k] = True
-            k += 1
-    return out_r[:k].copy(), out_c[:k].copy(), full_r[:k].copy(), full_c[:k].copy(), first[:k].copy()
 
 
 @_jit
@@ -493,7 +229,7 @@ def _sqp(
     mat = np.zeros((size, size))
     sub = np.zeros((0, 0) if banded else (n_keep, n_keep))
     if banded:
-        pat_r, pat_c, pat_fr, pat_fc, pat_first = _kkt_pattern(
+        pat_r, pat_c, pat_fr, pat_fc, pat_first = kkt_pattern(
             n, nc, m_inc, m_tan, act_rows, inc_i, inc_k, pos_c, pos_j, tan_rows, tan_a, tan_b, tan_k, keep
         )
     else:
@@ -520,7 +256,7 @@ def _sqp(
 
     while True:
         # --- linearize: E^l, its gradient, the active constraints, the violation
-        f = _objective(centers, disp, free_j, px, py, pt_circle, r_pts, w_pts, f_const, wj, e, vx, vy, dist)
+        f = sqp_objective(centers, disp, free_j, px, py, pt_circle, r_pts, w_pts, f_const, wj, e, vx, vy, dist)
         g.fill(0.0)
         gn.fill(0.0)
         hq.fill(0.0)
@@ -554,7 +290,7 @@ def _sqp(
             g[2 * (nc + j) + 1] = 2.0 * wj * disp[free_j[j], 1]
             gn[nc + j, 0] = 2.0 * wj
             gn[nc + j, 3] = 2.0 * wj
-        _constraints(centers, disp, inc_i, inc_k, inc_p, inc_r, c_all, vcx, vcy)
+        sqp_constraints(centers, disp, inc_i, inc_k, inc_p, inc_r, c_all, vcx, vcy)
         for q in range(m_inc):
             r = act_rows[q]
             c[q] = c_all[r]
@@ -563,10 +299,10 @@ def _sqp(
             uc[q, 0] = vcx[r] / dsafe if d > 0 else 1.0
             uc[q, 1] = vcy[r] / dsafe
             dc[q] = dsafe
-        violation = _max_abs(c_all)
+        violation = max_abs(c_all)
         if t_n:
-            _tangency(centers, disp, junctions, tan_a, tan_b, tan_k, tan_s_all, t_all, tab)
-            violation = max(violation, _max_abs(t_all))
+            sqp_tangency(centers, disp, junctions, tan_a, tan_b, tan_k, tan_s_all, t_all, tab)
+            violation = max(violation, max_abs(t_all))
             for q in range(m_tan):
                 t = tan_rows[q]
                 s = tan_s_all[t]
@@ -677,7 +413,7 @@ def _sqp(
                 for a in range(n_keep):
                     for b in range(n_keep):
                         sub[a, b] = mat[keep[a], keep[b]]
-                ok = _lu_solve(sub, rhs)
+                ok = lu_solve(sub, rhs)
             if ok:
                 for a in range(n_keep):
                     if not math.isfinite(rhs[a]):
@@ -717,7 +453,7 @@ def _sqp(
         if feasible and (dx_max <= tol or abs(curvature) <= ftol * f):
             # Converged; a last full step polishes the result, if it helps.
             converged = True
-            merit, new_violation = _trial_step(
+            merit, new_violation = trial_step(
                 x, 1.0, dx, xt, centers, disp, free_c, free_j, px, py, pt_circle, r_pts, w_pts, f_const, wj, e, vx,
                 vy, dist, inc_i, inc_k, inc_p, inc_r, c_all, vcx, vcy, junctions, tan_a, tan_b, tan_k, tan_s_all,
                 t_all, tab, active, tan_active, nu,
@@ -725,7 +461,7 @@ def _sqp(
             if merit <= phi0 and (not connectivity or new_violation <= violation):
                 iterations += 1
             else:
-                _set_x(x, centers, disp, free_c, free_j)
+                set_x(x, centers, disp, free_c, free_j)
             break
         gdx = 0.0
         for u in range(n):
@@ -733,7 +469,7 @@ def _sqp(
         slope = gdx - nu * c_sum
         alpha, accepted = 1.0, False
         for _ in range(40):
-            merit, _ = _trial_step(
+            merit, _ = trial_step(
                 x, alpha, dx, xt, centers, disp, free_c, free_j, px, py, pt_circle, r_pts, w_pts, f_const, wj, e, vx,
                 vy, dist, inc_i, inc_k, inc_p, inc_r, c_all, vcx, vcy, junctions, tan_a, tan_b, tan_k, tan_s_all,
                 t_all, tab, active, tan_active, nu,
@@ -743,19 +479,19 @@ def _sqp(
                 break
             alpha *= 0.5
         if not accepted:
-            _set_x(x, centers, disp, free_c, free_j)
+            set_x(x, centers, disp, free_c, free_j)
             converged = feasible
             break
         for u in range(n):
             x[u] = x[u] + alpha * dx[u]
         iterations += 1
 
-    f = _objective(centers, disp, free_j, px, py, pt_circle, r_pts, w_pts, f_const, wj, e, vx, vy, dist)
-    _constraints(centers, disp, inc_i, inc_k, inc_p, inc_r, c_all, vcx, vcy)
-    violation = _max_abs(c_all)
+    f = sqp_objective(centers, disp, free_j, px, py, pt_circle, r_pts, w_pts, f_const, wj, e, vx, vy, dist)
+    sqp_constraints(centers, disp, inc_i, inc_k, inc_p, inc_r, c_all, vcx, vcy)
+    violation = max_abs(c_all)
     if t_n:
-        _tangency(centers, disp, junctions, tan_a, tan_b, tan_k, tan_s_all, t_all, tab)
-        violation = max(violation, _max_abs(t_all))
+        sqp_tangency(centers, disp, junctions, tan_a, tan_b, tan_k, tan_s_all, t_all, tab)
+        violation = max(violation, max_abs(t_all))
     return iterations, converged, f, violation
 
 

@@ -7,7 +7,7 @@ computes those regions, the *faces* of the arrangement of the arcs, exactly.
 Faces (:func:`faces`). Every arc is split at its end points, at the junctions on
 it, at the end points of other arcs that lie on it and at its exact
 intersections with the other arcs (circle-circle intersections,
-:func:`img2logo.fit.arc_extraction.arc_intersections`); points closer than
+:func:`img2logo.fit.intersections.arc_intersections`); points closer than
 ``FACE_SNAP_TOLERANCE`` are one vertex, placed on the junction when the group has
 one (junctions are exact to about 1e-6 px and arcs end exactly on them). The
 pieces form a planar graph whose bridges (dangling arcs, arcs joining two
@@ -284,7 +284,7 @@ class _Arrangement:
     """The planar graph of the pieces of the arcs (the arcs split where they meet)."""
 
     def __init__(self, abstraction: Abstraction, snap: float) -> None:
-        from ..fit.arc_extraction import arc_intersections
+        from ..fit.intersections import arc_intersections
 
         arcs = abstraction.arcs
         self.snap = snap

@@ -2,7 +2,7 @@
 
 An edit changes a circle or an arc; :func:`refit` re-solves the junctions and the
 neighbouring circles around it by the connectivity-constrained fit of Eqn. 13 in a
-local window (:func:`~img2logo.fit.constrained_fit.fit_window`, grown ring by ring like
+local window (:func:`~img2logo.fit.local_window.fit_window`, grown ring by ring like
 the localized fitting of Sec. 5.4), :func:`reextract` runs each changed arc between
 its moved junctions, and :func:`edited` assembles the new abstraction, recording the
 edit, after :func:`check_connected` has checked that every junction still lies on
@@ -20,7 +20,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from ..errors import FitError
-from ..fit.constrained_fit import fit_window
+from ..fit.local_window import fit_window
 from ..geometry.abstraction import Abstraction
 from ..geometry.circle_fitting import fit_center
 from ..geometry.primitives import TAU, Arc, ArcJunctions, Circle

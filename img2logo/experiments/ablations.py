@@ -16,7 +16,7 @@ import numpy as np
 from ..constants import TOLERANCE
 from ..errors import InvalidParameterError
 from ..export.plotting import frame_image, plot_segment_graph
-from ..fit.arc_extraction import RedundantIntersection
+from ..fit.intersections import RedundantIntersection
 from ..geometry.abstraction import Abstraction
 from ..geometry.primitives import Arc
 from ..quality import junction_gaps, level_redundant_intersections

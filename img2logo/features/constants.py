@@ -136,7 +136,7 @@ FOCUS_GRABCUT_ITERATIONS: int = 5
 SUBJECT_FRAME_INSET: float = 0.05
 #: ... but an object found that comes within this many strip widths of the strip (it runs into it: a disc almost
 #: filling the picture, a portrait's shoulders) has the strip near it reopened as probable background, for the
-#: colour models to decide (subject.reach_frame).
+#: colour models to decide (subject_cut.reach_frame).
 SUBJECT_FRAME_REACH: float = 2.0
 #: ... in at most this many rounds of one GrabCut iteration (about 50 ms of CPU each at the working size), each
 #: reopening the strip near the object as it has grown (a part of the object that the first cut's background model

@@ -53,7 +53,7 @@ from .constants import (
 from .detail import check_detail, close_line_ends, merge_by_importance
 
 if TYPE_CHECKING:
-    from .photo.lines import edge_tangent_flow, flow_dog
+    from .photo.line_maps import edge_tangent_flow, flow_dog
     from .photo.subject import Subject
 
 # The photo modules (the flow-based lines, the subject's segmentation) load only for a
@@ -63,7 +63,7 @@ _PHOTO_NAMES = ("edge_tangent_flow", "flow_dog")
 
 def __getattr__(name: str) -> Any:
     if name in _PHOTO_NAMES:
-        from .photo import lines as photo
+        from .photo import line_maps as photo
 
         return getattr(photo, name)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
@@ -543,7 +543,8 @@ def extract_feature_lines(
         raw = _join(clipart_lines(regions, label_means(regions, img.lab)[1][:, 0]))
         min_len = spur_length if min_line_length is None else min_line_length
     else:
-        from .photo.lines import line_maps, photo_feature_lines, start_photo_line_maps, subject_dots, subject_pupils
+        from .photo.line_maps import line_maps, start_photo_line_maps
+        from .photo.lines import photo_feature_lines, subject_dots, subject_pupils
         from .photo.subject import find_subject
 
         found = find_subject(img, foreground, subject, beside=start_photo_line_maps)  # the line maps beside the cuts

@@ -19,12 +19,12 @@ RUNG_CHOICES: int = 2
 #: The joint refit of a level's tangent joins (img2logo.fit.tangency._all_at_once) tries at most this many times,
 #: releasing one join after each failure: every try solves the whole drawing at once.
 ALL_AT_ONCE_TRIES: int = 2
-#: The result's level (img2logo.fit.tangency.tangent_level): a smooth join left kinked weighs this many arcs, and
+#: The result's level (img2logo.fit.kinks.tangent_level): a smooth join left kinked weighs this many arcs, and
 #: the level kept, the merge loop's last or one before it, has the fewest arcs plus weighted kinks after its
 #: tangent refit.
 KINK_WEIGHT: int = 2
 #: A smooth join that no refit from its circles makes tangent is fitted as one unit, a tangent biarc over its two
-#: groups' joined pixels (img2logo.fit.tangency.closest_biarcs).
+#: groups' joined pixels (img2logo.fit.biarcs.closest_biarcs).
 BIARC_STEP: int = 6
 #: ... its common tangent there up to this far from the chain's direction, rad (the kinks left on smooth input are
 #: 3-25 degrees, measured) ...
@@ -38,7 +38,7 @@ BIARC_STARTS: int = 2
 #: fit_constrained: default tolerance on the connectivity constraints (Eqn. 13), and on the size of the last SQP
 #: step, px.
 CONSTRAINED_FIT_TOL: float = 1e-6
-#: FitState.solve with a bound: a fit is cut off once a lower bound of E^s exceeds the bound by more than this
+#: window_solve.solve with a bound: a fit is cut off once a lower bound of E^s exceeds the bound by more than this
 #: fraction of it (at least 1 px times it).
 CUT_MARGIN: float = 1e-9
 #: fit_constrained: a feasible iterate whose next step would lower E^l (Eqn. 7) by less than this fraction of it

@@ -390,8 +390,7 @@ def _solve_sparse(mat: SparseKKT, rhs: np.ndarray, keep: np.ndarray | None) -> n
     after reordering, which it solves in well under a millisecond, and a run
     imports neither ``scipy.sparse`` nor ``scipy.linalg`` (about 0.4 s of CPU)
     for scipy's SuperLU. The two agree to rounding (about 1e-11 relative on the
-    giraffe's 155 global steps; the tests compare them). Without the compiled
-    kernels, LAPACK on the dense matrix.
+    giraffe's 155 global steps; the tests compare them).
     """
     from .._compiled import kernels
 
@@ -402,13 +401,6 @@ def _solve_sparse(mat: SparseKKT, rhs: np.ndarray, keep: np.ndarray | None) -> n
         rows, cols = new[rows], new[cols]
         on = (rows >= 0) & (cols >= 0)
         rows, cols, data = rows[on], cols[on], data[on]
-    if not kernels.usable():
-        dense = np.zeros((len(rhs), len(rhs)))
-        np.add.at(dense, (rows, cols), data)
-        try:
-            return np.linalg.solve(dense, rhs)
-        except np.linalg.LinAlgError:
-            return None
     out = np.empty(len(rhs))
     if kernels.banded_solve_kernel(
         np.ascontiguousarray(rows, dtype=np.int64), np.ascontiguousarray(cols, dtype=np.int64), data, rhs, out

@@ -2,245 +2,43 @@
 
 :class:`FitState` holds what the stages of :func:`img2logo.fit.progressive.optimize`
 read and change: the segment groups (:class:`~img2logo.fit.simplification.Group`),
-the golden circle and arc of each (:class:`GroupFit`), the junction
-displacements d_k, the ladder, the released junctions and tangencies, and the
-counts of :class:`Stats`. It fits circles (the free fit and its snapping to the
-ladder, Eqn. 12, as a :class:`Seed`), solves the connectivity-constrained fit of
-Eqn. 13 over a window of groups, extracts arcs and measures E^s (Eqn. 3). The
-stages that drive it are their own modules and import this one, never the other
-way: the merge loop (:mod:`img2logo.fit.merging`), the recovery of an initial fit
-that fails (:mod:`img2logo.fit.recovery`) and the tangent joins
-(:mod:`img2logo.fit.tangency`). A symmetric run hands it the mirror axis as an
-:class:`AxisConstraints` (:class:`img2logo.fit.symmetry.HalfAxis` is one).
+the golden circle and arc of each, the junction displacements d_k, the ladder,
+the released junctions and tangencies, and the counts of a run (the values of
+:mod:`img2logo.fit.fit_values`). It fits circles (the free fit and its snapping
+to the ladder, Eqn. 12), extracts arcs and measures E^s (Eqn. 3). The stages
+that drive it are their own modules and import this one, never the other way:
+the constrained fit over a window of groups (:mod:`img2logo.fit.window_solve`),
+the merge loop (:mod:`img2logo.fit.merging`) and what a merge must not make
+(:mod:`img2logo.fit.merge_checks`), the silhouette's arcs
+(:mod:`img2logo.fit.outline`), the recovery of an initial fit that fails
+(:mod:`img2logo.fit.recovery`) and the tangent joins (:mod:`img2logo.fit.tangency`).
+A symmetric run hands it the mirror axis as an :class:`~img2logo.fit.fit_values.AxisConstraints`
+(:class:`img2logo.fit.symmetry.HalfAxis` is one).
 
 Coordinates: px, x right, y down (``contract/README.md``).
 """
 
 from __future__ import annotations
 
-import dataclasses
 import math
-from collections.abc import Callable, Collection, Hashable, Mapping, Sequence
-from dataclasses import dataclass, replace
-from functools import cached_property
-from typing import Any, NamedTuple, Protocol, TypeAlias, cast
+from collections.abc import Collection, Mapping, Sequence
+from typing import Any, cast
 
 import numpy as np
 
-from ..constants import GAP_MAX, GAP_MIN, JUNCTION_TOLERANCE
+from ..constants import JUNCTION_TOLERANCE
 from ..geometry.abstraction import Abstraction
-from ..geometry.circle_fitting import fit_center, fit_circle, mean_abs_error
+from ..geometry.circle_fitting import fit_center, mean_abs_error
 from ..geometry.golden_ladder import Ladder
 from ..geometry.primitives import ArcJunctions, Circle, Line, line_arc
 from ..options import Options
 from ..segment_graph import SegmentGraph
-from .arc_extraction import ArcFit, _extract, _redundant_arrays, distances_to_arcs
-from .constants import CONSTRAINED_FIT_TOL, CUT_MARGIN, LINE_MIN_ANGLE, REDUNDANT_INTERSECTION_TOL, SYMMETRY_FIT_STALL
-from .constrained_fit import WindowFit, fit_window
+from .arc_extraction import ArcFit, _extract
+from .constants import CONSTRAINED_FIT_TOL, LINE_MIN_ANGLE, SYMMETRY_FIT_STALL
+from .fit_values import AxisConstraints, FreeCircles, GroupFit, Seed, Stats, on_axis
 from .simplification import Group, straight_line
 
-__all__ = ["AxisConstraints", "FitState", "FreeCircles", "GroupFit", "Seed", "Stats"]
-
-
-# --------------------------------------------------------------------------- values
-class Seed(NamedTuple):
-    """A group's circle before the constrained fit: its centre, its radius on the ladder, its rung.
-
-    Attributes
-    ----------
-    center : ndarray, shape (2,)
-        The starting centre, px.
-    radius : float
-        The fixed radius, px: ``ladder.radius(k)`` (Eqn. 12), or ``LINE_RADIUS``
-        for a straight line.
-    k : int or None
-        The ladder exponent; None for a straight line (held fixed in the fit).
-    """
-
-    center: np.ndarray
-    radius: float
-    k: int | None
-
-
-@dataclass(frozen=True, eq=False)
-class GroupFit:
-    """A group's golden circle after the constrained fit (Eqn. 13) and its arc.
-
-    Attributes
-    ----------
-    center : ndarray, shape (2,)
-        The fitted centre, px.
-    radius : float
-        The radius, px (the seed's: radii stay on their rungs).
-    k : int or None
-        The ladder exponent; None for a straight line.
-    arc : ArcFit
-        The arc extracted on the circle and its discrete Fréchet distance to the group's pixels, px.
-    """
-
-    center: np.ndarray
-    radius: float
-    k: int | None
-    arc: ArcFit
-
-    @cached_property
-    def seed(self) -> Seed:
-        """This circle as the start of the next fit (made once: every candidate merge's window asks)."""
-        return Seed(self.center, self.radius, self.k)
-
-    @cached_property
-    def arc_row(self) -> tuple[float, float, float, float, float]:
-        """The arc as (cx, cy, r, theta0, sweep), the compiled redundant-intersection test's row (made once)."""
-        a = self.arc.arc
-        return (a.circle.cx, a.circle.cy, a.circle.r, a.theta0, a.sweep)
-
-
-@dataclass
-class Stats:
-    """Counts of one run, reported in :attr:`img2logo.fit.progressive.Progression.stats` (as a dict, in this order).
-
-    Attributes
-    ----------
-    evaluated : int
-        Merge candidates evaluated (:func:`img2logo.fit.merging.evaluate`).
-    local_failed : int
-        Local windows (Sec. 5.4) that did not solve.
-    global_solves : int
-        Solves of the whole problem (:meth:`FitState.solve_whole`).
-    rejected_hopeless : int
-        Candidates rejected without a global solve: their own golden circle is off by more than T.
-    rejected_intersections : int
-        Candidates left with redundant intersections (Fig. 12) when the loop stopped.
-    rejected_far_arc : int
-        Candidates whose arc strays farther than ``max_arc_distance``: found by
-        their fit, or before it where no circle of their radius comes that near.
-    released_junctions : int
-        Junctions whose connectivity constraint was given up (:func:`img2logo.fit.recovery.recover`).
-    tangent_joins : int
-        Smooth joins whose circles touch in the result (:mod:`img2logo.fit.tangency`).
-    released_tangencies : int
-        Smooth joins whose tangency was given up.
-    rejected_crossing : int
-        Candidates rejected because another arc runs on through their junction (an X), or
-        because their arc would run on past an end of its path through a junction another arc
-        runs on through (checked for the merge the loop chose, :func:`img2logo.fit.merging.merge_loop`).
-    rejected_gaps : int
-        Candidates left with a near-miss gap they would make (a free end brought 0.75-6 px
-        from an arc; checked for the merge the loop chose, :func:`img2logo.fit.merging.merge_loop`)
-        when the loop stopped.
-    split_groups : int
-        Groups of the line-segment simplification split into their segments again because
-        their arc in A^0 made a redundant intersection (:func:`img2logo.fit.progressive.split_crossed`).
-    wide_windows : int
-        Merge candidates whose local window failed, refitted in the wider window of
-        ``MERGE_FALLBACK_RINGS`` rings instead (:func:`img2logo.fit.merging.evaluate`).
-    """
-
-    evaluated: int = 0
-    local_failed: int = 0
-    global_solves: int = 0
-    rejected_hopeless: int = 0
-    rejected_intersections: int = 0
-    rejected_far_arc: int = 0
-    released_junctions: int = 0
-    tangent_joins: int = 0
-    released_tangencies: int = 0
-    rejected_crossing: int = 0
-    rejected_gaps: int = 0
-    split_groups: int = 0
-    wide_windows: int = 0
-
-    def as_dict(self) -> dict[str, int]:
-        """The counts by name, in the order of the fields."""
-        return dataclasses.asdict(self)
-
-
-class AxisConstraints(Protocol):
-    """The mirror axis of a symmetric run, as the state reads it (:class:`img2logo.fit.symmetry.HalfAxis`).
-
-    The graph is one half of a mirror-symmetric drawing, in a frame where the
-    axis is the vertical line x = ``x`` px; junctions ``nodes`` stay on it, and
-    a group whose end (segment, node) is in ``smooth`` has its circle centred on it.
-    """
-
-    @property
-    def x(self) -> float: ...
-
-    @property
-    def nodes(self) -> frozenset[int]: ...
-
-    @property
-    def smooth(self) -> frozenset[tuple[int, int]]: ...
-
-    def mirror(self, points: np.ndarray) -> np.ndarray:
-        """Mirror images of frame points (N, 2), px."""
-        ...
-
-
-#: The result of a constrained fit over a window: the new fits by group, the displacements d_k by node.
-Solution: TypeAlias = "tuple[dict[int, GroupFit], dict[int, np.ndarray]]"  # a string: autodoc documents it as data
-#: :meth:`FitState.solve`'s ``regroup``: (node -> d_k, the fitted groups) -> (groups split anew, join -> px off
-#: the line), or None to fail the fit.
-Regroup: TypeAlias = (
-    "Callable[[Callable[[int], np.ndarray], set[int]], tuple[Mapping[int, Group], Mapping[int, float]] | None]"
-)
-
-
-def on_axis(symmetry: AxisConstraints | None, group: Group) -> bool:
-    """Whether ``group``'s circle is centred on the mirror axis (symmetric runs, :mod:`img2logo.fit.symmetry`).
-
-    So it is when the group ends where a line crosses the axis square to it:
-    the arc and its mirror image are then one arc through the axis.
-    """
-    if symmetry is None:
-        return False
-    ends = ((group.segments[0], group.nodes[0]), (group.segments[-1], group.nodes[-1]))
-    return ends[0] in symmetry.smooth or ends[1] in symmetry.smooth
-
-
-class FreeCircles:
-    """The unconstrained circle fits of groups (Sec. 5.3, first stage), cached by their segments.
-
-    Made before the ladder (the bias of Eqn. 14 comes from the longest
-    segment's free circle), then handed to the :class:`FitState`.
-    """
-
-    def __init__(self, symmetry: AxisConstraints | None = None) -> None:
-        self.symmetry = symmetry
-        self._cache: dict[tuple[int, ...], tuple[np.ndarray, float]] = {}
-
-    def circle(self, group: Group) -> tuple[np.ndarray, float]:
-        """(centre px, radius px) of the group's free fit.
-
-        A circle on the mirror axis is fitted to the pixels and their mirror image.
-        """
-        key = group.segments
-        if key not in self._cache:
-            pts = group.points
-            if self.symmetry is not None and on_axis(self.symmetry, group):
-                pts = np.vstack([pts, self.symmetry.mirror(pts)])
-            if len(pts) < 3:  # two pixels: a straight piece, capped like any
-                pts = np.linspace(pts[0], pts[-1], 3)
-            fit = fit_circle(pts, refine=False)  # the centre is refitted after snapping
-            self._cache[key] = (np.asarray(fit.center, dtype=np.float64), float(fit.radius))
-        return self._cache[key]
-
-    def error(self, group: Group) -> float:
-        """Mean distance of the group's pixels to its free circle, px."""
-        center, radius = self.circle(group)
-        return mean_abs_error(group.points, center, radius)
-
-
-class _Lazy(dict):
-    """A mapping whose values are computed on first access (only the window's are needed)."""
-
-    def __init__(self, value: Callable[[Any], Any]) -> None:
-        super().__init__()
-        self._value = value
-
-    def __missing__(self, key: Any) -> Any:
-        value = self[key] = self._value(key)
-        return value
+__all__ = ["FitState"]
 
 
 def _rung_reaching(ladder: Ladder, k: int, reach: float) -> tuple[int, float]:
@@ -259,15 +57,6 @@ def _rung_reaching(ladder: Ladder, k: int, reach: float) -> tuple[int, float]:
 
 
 # --------------------------------------------------------------------------- the state
-
-
-def near_miss(nearest: np.ndarray) -> np.ndarray:
-    """Whether free ends whose nearest other arc is ``nearest`` (m,) px away are near-miss gaps, (m,) bool.
-
-    ``GAP_MIN`` to ``GAP_MAX`` px, as :func:`img2logo.quality.near_miss_gaps` counts them: an end the
-    eye joins to the arc beside it and the logo does not.
-    """
-    return (nearest >= GAP_MIN) & (nearest <= GAP_MAX)
 
 
 class FitState:
@@ -352,10 +141,10 @@ class FitState:
         #: Tangent joins whose junction slides along the input's line (img2logo.fit.tangency):
         #: node -> its distance off the line, px, which E^s counts instead of |d_k|.
         self.off_line: dict[int, float] = {}
-        #: What the merge loop keeps of one level for all its candidates (img2logo.fit.merging.level_view).
+        #: What the merge loop keeps of one level for all its candidates (img2logo.fit.merge_checks.level_view).
         self.merge_cache: object | None = None
         #: (merged group's segments, nodes, radius) -> whether no circle of that radius comes within
-        #: the arc bound of its pixels (img2logo.fit.merging._too_far): asked again at every level.
+        #: the arc bound of its pixels (img2logo.fit.merge_checks.too_far): asked again at every level.
         self.far_arcs: dict[tuple[tuple[int, ...], tuple[int, ...], float], bool] = {}
 
     # ----------------------------------------------------------------- groups and nodes
@@ -437,15 +226,6 @@ class FitState:
                 out.add(n)
         return out
 
-    def _touching(
-        self, groups: Mapping[int, Group], seeds: Mapping[int, Seed], tangent: bool | Collection[int]
-    ) -> dict[int, tuple[int, int]]:
-        """:meth:`tangencies` of ``groups``; only those at the nodes ``tangent`` when it is a collection."""
-        joins = self.tangencies(groups, seeds)
-        if tangent is True:
-            return joins
-        return {n: pair for n, pair in joins.items() if n in cast(Collection[int], tangent)}
-
     def constrained_nodes(self, group: Group) -> tuple[int, ...]:
         """Nodes where ``group``'s arc must pass (its J' part), in path order.
 
@@ -526,57 +306,12 @@ class FitState:
         return on_axis(self.symmetry, group)
 
     def free_circle(self, group: Group) -> tuple[np.ndarray, float]:
-        """Unconstrained circle fit of a group (Sec. 5.3, first stage), cached (:class:`FreeCircles`)."""
+        """Unconstrained circle fit of a group (Sec. 5.3, first stage), cached (``circles``, a FreeCircles)."""
         return self.circles.circle(group)
 
     def free_error(self, group: Group) -> float:
         """Mean distance of the group's pixels to its free circle, px."""
         return self.circles.error(group)
-
-    def on_outline(self, group: Group) -> bool:
-        """Whether ``group`` runs through a segment of the object's silhouette (:attr:`outline`)."""
-        return bool(self.outline) and not self.outline.isdisjoint(group.segments)
-
-    def arc_cap(self, group: Group) -> float | None:
-        """The farthest an arc of ``group`` may lie from its pixels (discrete Fréchet), px; None: no bound.
-
-        ``Options.arc_bound``, and on the object's silhouette (a group through a
-        segment of :attr:`outline`) the tolerance T, whichever is less.
-        """
-        cap = self.options.arc_bound
-        if self.on_outline(group):
-            tolerance = float(self.options.tolerance)
-            cap = tolerance if cap is None else min(cap, tolerance)
-        return cap
-
-    def outline_strays(
-        self, fits: Mapping[int, GroupFit], groups: Mapping[int, Group], before: Mapping[int, GroupFit]
-    ) -> bool:
-        """:meth:`strays` of those of ``fits`` whose groups run on the object's silhouette (:meth:`on_outline`).
-
-        A refit moves the junctions, so the arcs beside the ones it was for
-        change too; one of the silhouette's moved farther than T is the
-        silhouette cut as the refitted arc would cut it.
-        """
-        if not self.outline:
-            return False
-        return self.strays({g: f for g, f in fits.items() if self.on_outline(groups[g])}, groups, before)
-
-    def strays(self, fits: Mapping[int, GroupFit], groups: Mapping[int, Group], before: Mapping[int, GroupFit]) -> bool:
-        """Whether a refit's arc lies farther from its pixels than its :meth:`arc_cap` and than before.
-
-        ``fits`` are the refit's arcs by group id, ``groups`` their groups, ``before`` the fits
-        they replace (a group missing there is held to its cap alone).
-        """
-        for g, fit in fits.items():
-            cap = self.arc_cap(groups[g])
-            if (
-                cap is not None
-                and fit.arc.frechet > cap
-                and (g not in before or fit.arc.frechet > before[g].arc.frechet)
-            ):
-                return True
-        return False
 
     def golden_error(self, group: Group) -> float:
         """Mean distance of the group's pixels to its golden circle, px.
@@ -599,7 +334,7 @@ class FitState:
         return error
 
     def golden(self, group: Group, *, held: Mapping[int, list[np.ndarray]] | None = None) -> Seed:
-        """Free fit snapped to the ladder (Eqn. 12): the group's :class:`Seed`.
+        """Free fit snapped to the ladder (Eqn. 12): the group's :class:`~img2logo.fit.fit_values.Seed`.
 
         With the lines option, a group whose pixels all lie within
         ``LINE_TOLERANCE`` of the chord between its ends is a straight line
@@ -713,113 +448,6 @@ class FitState:
         fit = _extract(circle, np.asarray(group.points, dtype=np.float64), pts, self.options.arc_selection)
         return fit if k is not None else ArcFit(Line.of(fit.arc), fit.frechet)
 
-    # ----------------------------------------------------------------- the constrained fit
-    def solve(
-        self,
-        groups: Mapping[int, Group],
-        seeds: Mapping[int, Seed],
-        node_groups: Mapping[int, Sequence[int]],
-        *,
-        changed: Sequence[int],
-        free_nodes: Sequence[int],
-        fixed: set[int],
-        n_groups_total: int,
-        n_junctions_total: int,
-        rings: int = 1,
-        first_ring: int = 1,
-        order: Callable[[int], Any] | None = None,
-        tangent: bool | Collection[int] = False,
-        cap: float | None = None,
-        lines: Collection[int] | None = None,
-        bound: float | None = None,
-        regroup: Regroup | None = None,
-        tried: set[int] | None = None,
-        stop_when_stuck: bool = False,
-    ) -> Solution | None:
-        """Eqn. 13 over a window of ``groups`` (:func:`~img2logo.fit.constrained_fit.fit_window`), then their arcs.
-
-        The window is the ``changed`` groups and those through ``free_nodes``,
-        grown by up to ``rings`` rings (solved from ring ``first_ring`` on); the ``fixed`` groups keep their circles,
-        and so do straight lines (a huge free circle is nearly singular along
-        its chord: their junctions slide onto them). With ``tangent``, the
-        circles of :meth:`tangencies` touch at their junctions too. With ``cap``
-        (px), a merged group (id -1) whose arc strays farther than that is the
-        only fit returned (see :meth:`_fits`). ``lines``: the groups whose seeds
-        are straight lines (k None), when the caller knows them (a merge candidate's
-        from its level's); default found in ``seeds``. With ``bound`` (px), None
-        as soon as E^s (Eqn. 3) of the state with the new fits and displacements
-        must exceed it, and ``regroup`` may split groups anew before their arcs
-        are extracted (:meth:`_fits_within`; a tangent join's slide). None if it fails;
-        then ``tried``, when given, receives the groups of the last (widest) window solved.
-        ``stop_when_stuck``: that of :func:`~img2logo.fit.constrained_fit.fit_window`.
-        """
-        fixed = set(fixed)
-        fixed.update({g for g in groups if seeds[g].k is None} if lines is None else lines)
-        window = fit_window(
-            _Lazy(lambda g: groups[g].points),
-            _Lazy(lambda g: seeds[g].radius),
-            _Lazy(lambda g: seeds[g].center),
-            _Lazy(lambda g: tuple(set(self.constrained_nodes(groups[g])))),
-            cast(Mapping[Hashable, Sequence[Hashable]], node_groups),
-            self.graph.junctions,
-            changed=changed,
-            free_junctions=free_nodes,
-            fixed=fixed,
-            rings=rings,
-            first_ring=first_ring,
-            order=cast(Callable[[Hashable], Any] | None, order),
-            displacements0=self.disp,
-            n_circles=n_groups_total,
-            n_junctions=n_junctions_total,
-            connectivity=self.options.connectivity,
-            constraints=lambda circles, nodes: self.axis_constraints(
-                cast(Sequence[int], circles), groups, cast(Sequence[int], nodes)
-            ),
-            tangencies=cast(Mapping[Hashable, tuple[Hashable, Hashable]], self._touching(groups, seeds, tangent))
-            if tangent
-            else None,
-            stop_when_stuck=stop_when_stuck,
-        )
-        if not window.ok:
-            if tried is not None:
-                tried.update(cast(Collection[int], window.circles))
-            return None
-        if bound is not None:
-            return self._fits_within(window, groups, seeds, fixed, node_groups, bound, regroup)
-        return self._fits(window, groups, seeds, fixed, cap)
-
-    def solve_whole(
-        self,
-        groups: Mapping[int, Group],
-        seeds: Mapping[int, Seed],
-        node_groups: Mapping[int, Sequence[int]],
-        *,
-        n_groups_total: int,
-        n_junctions_total: int,
-        order: Callable[[int], Any] | None = None,
-        tangent: bool | Collection[int] = False,
-        cap: float | None = None,
-    ) -> Solution | None:
-        """:meth:`solve` over all of ``groups`` at once, every junction free (a global solve, counted).
-
-        The initial fit of A^0, a connected part in :func:`~img2logo.fit.recovery.recover`, a merge
-        whose local windows failed, the tangent refit: none of them holds a circle fixed.
-        """
-        self.stats.global_solves += 1
-        return self.solve(
-            groups,
-            seeds,
-            node_groups,
-            changed=list(groups),
-            free_nodes=sorted(node_groups),
-            fixed=set(),
-            n_groups_total=n_groups_total,
-            n_junctions_total=n_junctions_total,
-            order=order,
-            tangent=tangent,
-            cap=cap,
-        )
-
     def axis_constraints(
         self, gids: Sequence[int], groups: Mapping[int, Group], node_list: Sequence[int]
     ) -> dict[str, Any]:
@@ -833,204 +461,6 @@ class FitState:
             "axis_junctions": [i for i, n in enumerate(node_list) if n in sym.nodes],
             "stall": SYMMETRY_FIT_STALL,
         }
-
-    def _window_displacements(self, window: WindowFit) -> dict[int, np.ndarray]:
-        """The window's d_k by node (px, (2,) each): zero for every junction without connectivity."""
-        if not self.options.connectivity:
-            return {cast(int, n): np.zeros(2) for n in window.junctions}
-        return cast(dict[int, np.ndarray], window.displacements())
-
-    def _refitted(
-        self, window: WindowFit, groups: Mapping[int, Group], seeds: Mapping[int, Seed], fixed: set[int]
-    ) -> list[int]:
-        """The window's groups whose arcs are extracted anew, in its order.
-
-        Its free groups, and the straight lines (fixed) whose junctions moved.
-        """
-        moved = window.free_junctions
-        return [
-            gid
-            for gid in cast(Sequence[int], window.circles)
-            if gid not in fixed or (seeds[gid].k is None and bool(moved & set(self.constrained_nodes(groups[gid]))))
-        ]
-
-    def _fits(
-        self,
-        window: WindowFit,
-        groups: Mapping[int, Group],
-        seeds: Mapping[int, Seed],
-        fixed: set[int],
-        cap: float | None = None,
-    ) -> Solution:
-        """The new fits (the window's free groups, and lines whose junctions moved) and displacements.
-
-        With ``cap``, the merged group's (id -1) arc is extracted first, and
-        when it is farther than ``cap`` px from its pixels only it is returned:
-        the merge loop rejects that merge (``max_arc_distance``) and reads no other arc.
-        """
-        disp = self._window_displacements(window)
-        todo = self._refitted(window, groups, seeds, fixed)
-
-        def fit(gid: int) -> GroupFit:
-            _, r, k = seeds[gid]
-            center = window.center(gid)
-            return GroupFit(center, r, k, self.arc_for(groups[gid], center, r, k, disp.__getitem__))
-
-        first = None
-        if cap is not None and -1 in todo:
-            first = fit(-1)
-            if first.arc.frechet > cap:
-                return {-1: first}, disp  # the merge is rejected: the window's other arcs are not needed
-        fits = {gid: first if gid == -1 and first is not None else fit(gid) for gid in todo}
-        return fits, disp
-
-    def _fits_within(
-        self,
-        window: WindowFit,
-        groups: Mapping[int, Group],
-        seeds: Mapping[int, Seed],
-        fixed: set[int],
-        node_groups: Mapping[int, Sequence[int]],
-        bound: float,
-        regroup: Regroup | None,
-    ) -> Solution | None:
-        """:meth:`_fits`, or None once E^s (Eqn. 3) of the state with them must exceed ``bound`` px.
-
-        With ``regroup``, called with the window's displacements (node -> d_k,
-        the others the state's) and the groups it fits, the groups it returns
-        take the pixels it gives them before any arc is extracted (a group
-        outside the window keeps its circle), and its joins are counted by their
-        distance off the line (``off_line``); None from it is None. A lower bound
-        of E^s is kept as the arcs are extracted: the Fréchet distances of the
-        current fits left as they are and of the arcs extracted so far, over the
-        number of fits, plus the displacements over the number of nodes of
-        ``node_groups`` (each term at least 0). Once it exceeds ``bound`` by
-        more than the rounding of the sums (``CUT_MARGIN``) so does E^s, and no
-        further arc is extracted (on the clip-art fish 14 of 25 tangent tries,
-        on the polar bear 258 of 358, were rejected for E^s only after every
-        arc). Otherwise the fits are those :meth:`_fits` and then a re-extraction
-        of the regrouped groups' arcs would give, the same numbers.
-        """
-        disp = self._window_displacements(window)
-        todo = self._refitted(window, groups, seeds, fixed)
-        now = self.disp
-
-        def at(n: int) -> np.ndarray:
-            return disp[n] if n in disp else now[n]
-
-        new_groups: Mapping[int, Group] = {}
-        off: Mapping[int, float] = {}
-        if regroup is not None:
-            out = regroup(at, set(todo))
-            if out is None:
-                return None
-            new_groups, off = out
-        fitted = set(todo)
-        todo += [g for g in new_groups if g not in fitted]
-        n_fits = len(self.fits.keys() | set(todo))
-        skip = set(todo)
-        running = sum(f.arc.frechet for g, f in self.fits.items() if g not in skip)
-        off_line = {**self.off_line, **off}
-        d = sum(off_line[n] if n in off_line else float(np.hypot(*at(n))) for n in node_groups)
-        shift = d / len(node_groups) if node_groups else 0.0
-        limit = bound + CUT_MARGIN * max(1.0, abs(bound))
-        fits = {}
-        for gid in todo:
-            if running / max(n_fits, 1) + shift > limit:
-                return None
-            group = new_groups.get(gid, groups[gid])
-            if gid in fitted:
-                _, r, k = seeds[gid]
-                center = window.center(gid)
-                f = GroupFit(center, r, k, self.arc_for(group, center, r, k, at))
-            else:  # split anew at a join of a fitted group: its circle stays
-                f = self.fits[gid]
-                f = replace(f, arc=self.arc_for(group, f.center, f.radius, f.k, at))
-            fits[gid] = f
-            running += f.arc.frechet
-        if running / max(n_fits, 1) + shift > limit:
-            return None
-        return fits, disp
-
-    # ----------------------------------------------------------------- topology
-    def redundant_pairs(self, of: Collection[int] | None = None) -> list[tuple[int, int]]:
-        """Redundant intersections (Sec. 5.2, Fig. 6c, 12) of the current arcs: the pairs of groups that meet.
-
-        Two arcs meet redundantly at a point farther than ``REDUNDANT_INTERSECTION_TOL``
-        from every junction they both pass (their constrained nodes, displaced);
-        :func:`~img2logo.fit.arc_extraction.redundant_intersections` on arrays the
-        state already has (the fits' arc rows, every junction's p_k + d_k at
-        once), past its checks: the same test on the same numbers. Only pairs
-        with a group of ``of`` (default all), in the state's order of groups;
-        a pair that meets at several points appears once per point.
-        """
-        gids = list(self.groups)
-        node_groups = self.node_groups()
-        nodes = sorted(node_groups)
-        index = {n: i for i, n in enumerate(nodes)}
-        at = np.asarray(nodes, dtype=np.intp)
-        points = (self.graph.junctions[at] + self.disp[at]).reshape(-1, 2)
-        owned = [[index[n] for n in self.constrained_nodes(self.groups[g])] for g in gids]
-        ptr = np.zeros(len(gids) + 1, dtype=np.int64)
-        ptr[1:] = np.cumsum([len(ks) for ks in owned])
-        flat = np.fromiter((k for ks in owned for k in ks), dtype=np.int64, count=int(ptr[-1]))
-        rows = np.array([i for i, g in enumerate(gids) if of is None or g in of], dtype=np.int64)
-        fits = [self.fits[g] for g in gids]
-        params = np.array([f.arc_row for f in fits], dtype=np.float64).reshape(-1, 5)
-        arcs = [f.arc.arc for f in fits]
-        pairs, _ = _redundant_arrays(arcs, points, ptr, flat, rows, REDUNDANT_INTERSECTION_TOL, params)
-        return [(gids[i], gids[j]) for i, j in pairs.tolist()]
-
-    def open_ends(self) -> list[tuple[int, int]]:
-        """The free ends of the current groups: (node, group) pairs, by node.
-
-        A node of J' where exactly one group is constrained, at an end of it,
-        the group not closed: the input's line ends there, and so does its arc
-        (to ``JUNCTION_TOLERANCE``). At every other node of J' two arcs or more
-        meet, so no end there is open; nor on a symmetric run's mirror axis,
-        where the arc meets its mirror image.
-        """
-        axis = self.symmetry.nodes if self.symmetry is not None else frozenset()
-        out = []
-        for n, gs in self.node_groups().items():
-            if len(gs) == 1 and n not in axis:
-                group = self.groups[gs[0]]
-                if not group.closed and n in group.ends:
-                    out.append((n, gs[0]))
-        out.sort()
-        return out
-
-    def gap_ends(self) -> set[int]:
-        """The free ends (:meth:`open_ends`) that are near-miss gaps now: their nearest other arc 0.75-6 px away.
-
-        As :func:`img2logo.quality.near_miss_gaps` counts them (``GAP_MIN`` to
-        ``GAP_MAX``): an end the eye joins to the arc beside it and the logo does
-        not. Measured from the junction's p_k + d_k to every other arc.
-        """
-        ends = self.open_ends()
-        if not ends or len(self.fits) < 2:
-            return set()
-        gids = list(self.fits)
-        col = {g: i for i, g in enumerate(gids)}
-        rows = np.array([self.fits[g].arc_row for g in gids], dtype=np.float64)
-        _, distances = self.end_distances(ends, rows, [col[g] for _, g in ends])
-        gap = near_miss(distances.min(axis=1))
-        return {n for (n, _), is_gap in zip(ends, gap.tolist(), strict=True) if is_gap}
-
-    def end_distances(
-        self, ends: Sequence[tuple[int, int]], rows: np.ndarray, own: Sequence[int] | np.ndarray
-    ) -> tuple[np.ndarray, np.ndarray]:
-        """Free ends (:meth:`open_ends`) and how far each lies from arcs: points (m, 2) and distances (m, n), px.
-
-        ``rows`` (n, 5) are arcs as :attr:`GroupFit.arc_row`; ``own`` (m,) the row of
-        each end's own arc, whose distance is infinite. The points are the
-        junctions' p_k + d_k; distances beyond ``GAP_MAX`` may be any larger value.
-        """
-        nodes = np.array([n for n, _ in ends], dtype=np.intp)
-        points = (self.graph.junctions[nodes] + self.disp[nodes]).reshape(-1, 2)
-        distances = distances_to_arcs(points, rows, GAP_MAX)
-        distances[np.arange(len(ends)), np.asarray(own, dtype=np.intp)] = np.inf
-        return points, distances
 
     # ----------------------------------------------------------------- errors
     def totals(self) -> tuple[float, float, int]:

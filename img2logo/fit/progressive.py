@@ -51,12 +51,16 @@ from ..geometry.golden_ladder import FibonacciLadder, Ladder, make_ladder
 from ..geometry.primitives import polyline_length
 from ..options import Options
 from ..segment_graph import SegmentGraph
+from . import window_solve
 from .constants import OUTLINE_DISTANCE
-from .fit_state import AxisConstraints, FitState, FreeCircles, Seed
+from .fit_state import FitState
+from .fit_values import AxisConstraints, FreeCircles, Seed
+from .kinks import tangent_level
+from .merge_checks import redundant_pairs
 from .merging import TIME_BUDGET_STOP, merge_loop
 from .recovery import check_reach, check_span, recover
 from .simplification import Group, hold_line, simplify as simplify_groups
-from .tangency import snapshot, tangent_level
+from .tangency import snapshot
 
 #: Signature of a progress callback: (level t, number of arcs, E^s in px).
 ProgressCallback = Callable[[int, int, float], None]
@@ -87,7 +91,7 @@ class Progression:
         Why the loop stopped: ``"tolerance"``, ``"no mergeable pair"``, ``"merging off"``
         or ``"time budget"`` (``Options.time_budget``; a :class:`TimeBudgetWarning` says so).
     stats : dict of str to int
-        The counts of :class:`~img2logo.fit.fit_state.Stats` by name, in its order:
+        The counts of :class:`~img2logo.fit.fit_values.Stats` by name, in its order:
         merge candidates evaluated, local windows that failed, global solves,
         candidates rejected (hopeless, redundant intersections, an arc too far,
         a crossing), released junctions and tangencies, tangent joins.
@@ -157,8 +161,13 @@ def _fit_all(state: FitState) -> None:
             hold_line(held, state.groups[gid], state.constrained_nodes(state.groups[gid]))
     check_reach(state, seeds)
     node_groups = state.node_groups()
-    out = state.solve_whole(
-        dict(state.groups), seeds, node_groups, n_groups_total=len(state.groups), n_junctions_total=len(node_groups)
+    out = window_solve.solve_whole(
+        state,
+        dict(state.groups),
+        seeds,
+        node_groups,
+        n_groups_total=len(state.groups),
+        n_junctions_total=len(node_groups),
     )
     if out is None:
         out = recover(state, seeds)
@@ -186,7 +195,7 @@ def split_crossed(state: FitState) -> int:
     :func:`optimize` adds them) and without fits, for the fit of A^0 again;
     the displacements are reset. Counted in ``stats.split_groups``.
     """
-    crossed = {g for pair in state.redundant_pairs() for g in pair if len(state.groups[g].segments) > 1}
+    crossed = {g for pair in redundant_pairs(state) for g in pair if len(state.groups[g].segments) > 1}
     if not crossed:
         return 0
     graph = state.graph

@@ -20,10 +20,12 @@ import numpy as np
 
 from ..constants import MAX_RADIUS_FACTOR
 from ..errors import FitError, InvalidParameterError
+from . import window_solve
 
 if TYPE_CHECKING:
     from ..geometry.golden_ladder import Ladder
-    from .fit_state import FitState, GroupFit, Seed, Solution
+    from .fit_state import FitState
+    from .fit_values import GroupFit, Seed, Solution
 
 
 class ConnectivityWarning(UserWarning):
@@ -89,15 +91,20 @@ def recover(state: FitState, seeds: Mapping[int, Seed]) -> Solution:
         while True:
             groups = {g: state.groups[g] for g in part}
             at = state.node_groups(groups)
-            out = state.solve_whole(
-                groups, seeds, at, n_groups_total=n_total, n_junctions_total=max(len(state.node_groups()), 1)
+            out = window_solve.solve_whole(
+                state, groups, seeds, at, n_groups_total=n_total, n_junctions_total=max(len(state.node_groups()), 1)
             )
             if out is None:
                 # The free centres with the snapped radii can start the fit far from the pixels;
                 # the same problem from the centres that fit each radius best, before any release.
                 centred = centred_seeds(state, seeds) if centred is None else centred
-                out = state.solve_whole(
-                    groups, centred, at, n_groups_total=n_total, n_junctions_total=max(len(state.node_groups()), 1)
+                out = window_solve.solve_whole(
+                    state,
+                    groups,
+                    centred,
+                    at,
+                    n_groups_total=n_total,
+                    n_junctions_total=max(len(state.node_groups()), 1),
                 )
             if out is not None:
                 fits.update(out[0])

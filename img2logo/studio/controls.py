@@ -14,6 +14,7 @@ from typing import Any
 from ..experiments.paths import example_images, kit_module
 from .drawing import PIXEL_RATIO, ipycanvas_module
 from .session import Studio
+from .zoom_pan import ZoomPan
 
 #: Width of the controls' labels (the designer's words), CSS px.
 LABEL_WIDTH = "122px"
@@ -52,7 +53,7 @@ body[data-voila] { padding: 6px 12px; }
 
 
 def make_controls(studio: Studio, size: int) -> dict[str, Any]:
-    """The page's widgets by name (``canvas``, ``run``, ``level``, ``tolerance``, ``upload``, ``tool``, ...), not wired.
+    """The page's widgets by name (``canvas``, its ``zoom_pan``, ``run``, ``level``, ``tool``, ...), not wired.
 
     ``size`` is the side of the square drawing on screen, CSS px (its canvas has ``PIXEL_RATIO`` times the pixels).
     """
@@ -65,10 +66,28 @@ def make_controls(studio: Studio, size: int) -> dict[str, Any]:
         kwargs.setdefault("style", style)
         return kind(description=description, layout=layout, **kwargs)
 
+    def setting(description: str, value: float, bounds: tuple[float, float, float], tooltip: str, **kwargs: Any) -> Any:
+        """The slider of a Run's setting, ``bounds`` (min, max, step): its value is taken when it is let go."""
+        low, high, step = bounds
+        return labelled(
+            w.FloatSlider,
+            description,
+            value=value,
+            min=low,
+            max=high,
+            step=step,
+            continuous_update=False,
+            tooltip=tooltip,
+            **kwargs,
+        )
+
     side = size * PIXEL_RATIO
-    c["canvas"] = ipycanvas_module().MultiCanvas(
+    ipycanvas = ipycanvas_module()
+    c["canvas"] = ipycanvas.MultiCanvas(
         5, width=side, height=side, layout=w.Layout(width=f"{size}px", height=f"{size}px", flex="0 0 auto")
     )
+    c["view_marker"] = ipycanvas.Canvas(width=1, height=1)
+    c["zoom_pan"] = ZoomPan(canvas=c["canvas"], marker=c["view_marker"], layout=w.Layout(display="none"))
 
     c["status"] = w.HTML(layout=w.Layout(width="100%")).add_class("studio-status")
     c["title"] = w.HTML(layout=wide).add_class("studio-title")
@@ -92,6 +111,9 @@ def make_controls(studio: Studio, size: int) -> dict[str, Any]:
         ],
         style={"button_width": "68px"},
     )
+    # The browser knows the tool at once (a Hand drag pans there: zoom_pan.js), not after a round trip.
+    c["zoom_pan"].pan_tool = [value for _label, value in c["tool"].options].index("hand")
+    w.jslink((c["tool"], "index"), (c["zoom_pan"], "tool_index"))
     c["colour"] = w.ColorPicker(
         value="#e76f51", concise=True, tooltip="the Colour tool's colour", layout=w.Layout(width="36px")
     )
@@ -128,38 +150,26 @@ def make_controls(studio: Studio, size: int) -> dict[str, Any]:
         value=s.kind,
         tooltip="kind (--kind): how the feature lines are found (Sec. 4)",
     )
-    c["tolerance"] = labelled(
-        w.FloatSlider,
+    c["tolerance"] = setting(
         "Tolerance (px)",
-        value=s.tolerance,
-        min=0.5,
-        max=30.0,
-        step=0.5,
-        continuous_update=False,
-        tooltip="T: merging stops before a level whose error E^s exceeds it (Sec. 5.2); larger, fewer arcs",
+        s.tolerance,
+        (0.5, 30.0, 0.5),
+        "T: merging stops before a level whose error E^s exceeds it (Sec. 5.2); larger, fewer arcs",
     )
-    c["bias"] = labelled(
-        w.FloatSlider,
+    c["bias"] = setting(
         "Circle size offset",
-        w.Layout(width=f"{CONTROLS_WIDTH - 100}px"),
-        value=0.0 if s.bias is None else s.bias,
-        min=0.0,
-        max=0.99,
-        step=0.01,
+        0.0 if s.bias is None else s.bias,
+        (0.0, 0.99, 0.01),
+        "\u03c3: the radii are \u03c6^(k + \u03c3) (Eqn. 10); automatic: the best fit (Eqn. 14)",
+        layout=w.Layout(width=f"{CONTROLS_WIDTH - 100}px"),
         disabled=s.bias is None,
-        continuous_update=False,
-        tooltip="\u03c3: the radii are \u03c6^(k + \u03c3) (Eqn. 10); automatic: the best fit (Eqn. 14)",
     )
     c["bias_auto"] = w.Checkbox(value=s.bias is None, description="auto", indent=False, layout=w.Layout(width="80px"))
-    c["rdp_tolerance"] = labelled(
-        w.FloatSlider,
+    c["rdp_tolerance"] = setting(
         "Simplify lines (px)",
-        value=s.rdp_tolerance,
-        min=0.5,
-        max=8.0,
-        step=0.25,
-        continuous_update=False,
-        tooltip="the Ramer-Douglas-Peucker tolerance of the feature lines (Sec. 4); larger, less detail",
+        s.rdp_tolerance,
+        (0.5, 8.0, 0.25),
+        "the Ramer-Douglas-Peucker tolerance of the feature lines (Sec. 4); larger, less detail",
     )
     c["symmetry"] = labelled(
         w.Dropdown,
@@ -306,7 +316,7 @@ def page_layout(c: dict[str, Any], size: int) -> Any:
         ],
         layout=w.Layout(width=f"{size}px"),
     )
-    left = w.VBox([c["canvas"], tools], layout=w.Layout(flex="0 0 auto"))
+    left = w.VBox([c["canvas"], c["zoom_pan"], tools], layout=w.Layout(flex="0 0 auto"))
     middle = w.VBox(
         [
             section("Your image"),

@@ -11,6 +11,7 @@ a zoom or pan sends no pixels. The canvas has twice the pixels of its size on sc
 
 from __future__ import annotations
 
+import importlib
 import zlib
 from typing import TYPE_CHECKING, Any
 
@@ -42,6 +43,8 @@ FRAME_COLOR = "#eeeeee"
 #: The largest zoom (times the fitted drawing) and the step of a wheel notch or a + / - key.
 MAX_ZOOM = 16.0
 ZOOM_STEP = 1.25
+#: How much of the square a pan keeps the zoomed image in, at least (each way).
+PAN_KEEP = 0.25
 #: How much the input under the logo is faded towards white: as the PNG writer's, more, or hidden.
 INPUT_FADES = {"faded": IMAGE_FADE, "dim": 0.88, "hidden": 1.0}
 #: The golden circles on screen (the SVG's construction layer), and the selected arc's circle and centre.
@@ -66,16 +69,20 @@ def one_outline(rings: list[np.ndarray]) -> np.ndarray:
     return np.vstack([*closed, *back])
 
 
-def ipycanvas_module() -> Any:
-    """ipycanvas, or one line saying how to install it (the extra ``[studio]``)."""
+def studio_module(name: str) -> Any:
+    """``name``, a package of the extra ``[studio]`` (ipycanvas, anywidget), or one line saying how to install it."""
     try:
-        import ipycanvas
+        return importlib.import_module(name)
     except ImportError:
         raise Img2LogoError(
-            "ipycanvas is missing: the studio needs the extra [studio] (pip install -e '.[studio]'; make studio "
+            f"{name} is missing: the studio needs the extra [studio] (pip install -e '.[studio]'; make studio "
             "installs it)"
         ) from None
-    return ipycanvas
+
+
+def ipycanvas_module() -> Any:
+    """ipycanvas, or one line saying how to install it (the extra ``[studio]``)."""
+    return studio_module("ipycanvas")
 
 
 class StudioDrawing:
@@ -89,7 +96,8 @@ class StudioDrawing:
         Five layers: the faded image, the golden circles, the logo, the lock mask, the selection
         (its circle and centre) and the subject.
     controls : dict
-        The page's widgets by name: the drawing reads ``input`` and ``circles`` and sets ``zoom``.
+        The page's widgets by name: the drawing reads ``input`` and ``circles``, sets ``zoom``, and
+        announces its views to ``zoom_pan`` (:mod:`.zoom_pan`), drawing ``view_marker`` last.
     """
 
     studio: Studio
@@ -130,38 +138,78 @@ class StudioDrawing:
         return self.scale / self._fit()[0]
 
     def zoom_at(self, x: float, y: float, factor: float) -> None:
-        """Zoom by ``factor`` about canvas point (x, y) (the image point under it stays), within 1..``MAX_ZOOM``."""
+        """Zoom by ``factor`` about canvas point (x, y) (the image point under it stays), within 1..``MAX_ZOOM``.
+
+        Changes the view only: :meth:`show_view` draws it.
+        """
         fit, _, _ = self._fit()
         k = min(max(self.scale * float(factor), fit), fit * MAX_ZOOM)
         ix, iy = self.to_image(x, y)
         self._view = None if k <= fit * (1.0 + 1e-9) else (k, float(x) - ix * k, float(y) - iy * k)
-        self._redraw_view()
 
     def pan_by(self, dx: float, dy: float) -> None:
-        """Move the zoomed drawing by (dx, dy), canvas px (the image keeps a quarter of the square in view)."""
+        """Move the zoomed drawing by (dx, dy), canvas px (the image keeps ``PAN_KEEP`` of the square in view).
+
+        Changes the view only: :meth:`show_view` draws it.
+        """
         img = self.studio.image
         if self._view is None or img is None:
             return
         k, x, y = self._view
         w, h = img.input_width * k, img.input_height * k
-        keep = self.side / 4.0
+        keep = self.side * PAN_KEEP
         x = min(max(x + float(dx), keep - w), self.side - keep)
         y = min(max(y + float(dy), keep - h), self.side - keep)
         self._view = (k, x, y)
-        self._redraw_view()
 
     def fit_view(self) -> None:
-        """The whole image in the square again."""
+        """The whole image in the square again, drawn."""
         self._view = None
-        self._redraw_view()
+        self.show_view()
 
-    def _redraw_view(self) -> None:
-        """Every layer again at the view's zoom and pan (the files do not change)."""
+    def view_geometry(self) -> dict[str, Any]:
+        """What the browser needs to foresee a zoom or pan (:class:`~.zoom_pan.ZoomPan`'s ``geometry``)."""
+        img = self.studio.image
+        size = (0, 0) if img is None else (img.input_width, img.input_height)
+        return {
+            "view": None if self._view is None else list(self._view),
+            "fit": list(self._fit()),
+            "size": list(size),
+            "side": self.side,
+            "max_zoom": MAX_ZOOM,
+            "keep": self.side * PAN_KEEP,
+            "step": ZOOM_STEP,
+            "frame": FRAME_COLOR,
+        }
+
+    def show_view(self, *, answer: bool = False) -> None:
+        """Every layer again at the view's zoom and pan (the files do not change), announced to the browser.
+
+        The view is announced before its drawing (``answer``: to the browser's message that
+        asked for it), and the drawing ends on the marker canvas: the browser then knows which
+        view the canvas holds (:mod:`.zoom_pan`).
+        """
+        geometry = self.view_geometry()
+        front = self.controls["zoom_pan"]
+        front.send({"view": geometry["view"], "geometry": geometry, "answer": answer})
         with ipycanvas_module().hold_canvas():
             for draw in (self._draw_background, self._draw_circles, self._draw_logo, self._draw_mask):
                 draw()
             self._draw_overlay()
+            self.controls["view_marker"].clear()
+        front.geometry = geometry  # a page opened later starts from it
         self.controls["zoom"].value = f"{self.zoom:.0%}" if self._view is not None else "fit"
+
+    def operate(self, ops: list[tuple[str, tuple[float, ...]]]) -> None:
+        """Zoom and pan by the browser's operations (:func:`~.zoom_pan.operations`), in order, then draw once."""
+        try:
+            for name, args in ops:
+                if name == "zoom":
+                    self.zoom_at(*args)
+                else:
+                    self.pan_by(*args)
+        finally:  # always answered: the browser waits for it to send what came meanwhile
+            self.show_view(answer=True)
 
     def to_image(self, x: float, y: float) -> tuple[float, float]:
         """Canvas pixels to image pixels."""
@@ -169,6 +217,7 @@ class StudioDrawing:
         return (float(x) - ox) / self.scale, (float(y) - oy) / self.scale
 
     def _redraw_layer(self, draw: Any) -> None:
+        """One layer again (``draw``, one of the ``_draw_*`` methods), in one message to the browser."""
         with ipycanvas_module().hold_canvas():
             draw()
 

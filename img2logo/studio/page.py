@@ -11,7 +11,9 @@ The golden circles of the level shown can be drawn under it (the SVG's
 construction layer), the selected arc's circle and centre always are; dragging
 that centre moves the circle (:func:`img2logo.design.edits.move_circle`, on
 release). The wheel zooms about the mouse (the + and - keys too, 0 fits the
-image again), the Hand tool (or any tool with Space held) drags the zoomed drawing.
+image again), the Hand tool (or any tool with Space held) drags the zoomed drawing:
+the browser shows each such frame at once and this page draws it exactly
+(:mod:`.zoom_pan`).
 With the drawing focused (click it) the keys edit: Ctrl+Z and
 Ctrl+Shift+Z (or Ctrl+Y) undo and redo, Delete removes the selected arcs, the
 arrows nudge the selected circle (with Shift ten times as far), Escape clears
@@ -34,7 +36,6 @@ from __future__ import annotations
 
 import asyncio
 import html
-import time
 from typing import Any
 
 import numpy as np
@@ -52,14 +53,12 @@ from .drawing import (
     ipycanvas_module,
 )
 from .session import PICK_DISTANCE, Studio
+from .zoom_pan import operations
 
 #: Step of the move buttons and arrow keys, px of the image.
 MOVE_STEP = 2.0
 #: Seconds the page must be still before the download links are made (a scrub makes none on the way).
 DOWNLOADS_DELAY = 0.25
-#: A key held repeats its press every ~33 ms after ~0.5 s: a drag that starts within this many seconds of
-#: the Space key's last press is a pan (Space held, as in Illustrator and Inkscape).
-SPACE_HELD = 0.6
 ARROW_KEYS = {"ArrowLeft": (-1, 0), "ArrowUp": (0, -1), "ArrowDown": (0, 1), "ArrowRight": (1, 0)}
 
 
@@ -97,8 +96,6 @@ class StudioPage(StudioDrawing):
         self._locked = None
         self._pointer = (self.size * PIXEL_RATIO / 2.0,) * 2  # the mouse's last canvas position: the wheel's centre
         self._add_next = False
-        self._space_at = -np.inf  # when the Space key last came (ipycanvas sends no key release)
-        self._panning = False
         self._syncing = False
         self.controls = make_controls(studio, self.size)
         self.canvas = self.controls["canvas"]
@@ -119,7 +116,8 @@ class StudioPage(StudioDrawing):
         top.on_mouse_up(self._mouse_up)
         top.on_mouse_out(self._mouse_up)
         top.on_key_down(self._key_down)
-        top.on_mouse_wheel(self._wheel)
+        # The wheel and the pan are the browser's (zoom_pan.js): it sends their operations, the view draws them.
+        c["zoom_pan"].on_msg(lambda _widget, content, _buffers: self.operate(operations(content)))
         c["level"].observe(self._level_changed, names="value")
         for name, (_label, dx, dy) in MOVES.items():
             c[f"move_{name}"].on_click(
@@ -155,12 +153,12 @@ class StudioPage(StudioDrawing):
         The downloads are made last: until then their links are names without a link
         (:meth:`_downloads_pending`), so that the drawing appears first and no click saves an old file.
         """
-        ipycanvas = ipycanvas_module()
         self._downloads_pending()
-        with ipycanvas.hold_canvas():
-            if background:
-                self._draw_background()
-                mask = True
+        if background:  # every layer: the view's own drawing
+            self.show_view()
+            self._sync()
+            return
+        with ipycanvas_module().hold_canvas():
             if logo:
                 self._draw_circles()
                 self._draw_logo()
@@ -169,10 +167,6 @@ class StudioPage(StudioDrawing):
             if overlay:
                 self._draw_overlay()
         self._sync()
-
-    def _redraw_layer(self, draw: Any) -> None:
-        with ipycanvas_module().hold_canvas():
-            draw()
 
     def _sync(self) -> None:
         """The title, status line, level slider, progress and downloads from the studio's state."""
@@ -309,7 +303,6 @@ class StudioPage(StudioDrawing):
             self.redraw(logo=False, overlay=False)
             return
         self._view = None
-        self.controls["zoom"].value = "fit"
         self.redraw(background=True)
         self.run()
 
@@ -345,8 +338,7 @@ class StudioPage(StudioDrawing):
         self._add_next = key == "Shift"
         if key == "Shift":
             return
-        if key == " ":  # held, it repeats: a drag that starts now pans, whatever the tool
-            self._space_at = time.monotonic()
+        if key == " ":  # held, a drag pans whatever the tool: the browser's (zoom_pan.js)
             return
         if command and key.lower() == "z":
             self._act(s.redo if shift else s.undo)
@@ -360,10 +352,9 @@ class StudioPage(StudioDrawing):
             self._act(lambda: s.move_selected(dx * step, dy * step))
         elif key == "0":
             self.fit_view()
-        elif key in ("+", "="):
-            self.zoom_at(*self._pointer, ZOOM_STEP)
-        elif key == "-":
-            self.zoom_at(*self._pointer, 1.0 / ZOOM_STEP)
+        elif key in ("+", "=", "-"):
+            self.zoom_at(*self._pointer, ZOOM_STEP if key != "-" else 1.0 / ZOOM_STEP)
+            self.show_view()
         elif key == "Escape":
             s.selected = []
             s.message, s.ok = "nothing selected", True
@@ -379,9 +370,8 @@ class StudioPage(StudioDrawing):
 
     def _mouse_down(self, x: float, y: float) -> None:
         tool = self.controls["tool"].value
-        if time.monotonic() - self._space_at <= SPACE_HELD:
-            tool = "hand"
-        self._panning = tool == "hand"
+        if tool == "hand":  # a pan: the browser's (zoom_pan.js)
+            return
         ix, iy = self.to_image(x, y)
         add, self._add_next = self._add_next, False
         if tool == "select":
@@ -395,9 +385,6 @@ class StudioPage(StudioDrawing):
             self.studio.select_at(ix, iy, reach, add=add)
             self.redraw(logo=False)
             return
-        if tool == "hand":
-            self._drag = [(float(x), float(y))]  # canvas px: the view moves under the mouse
-            return
         if tool == "colour":
             self._act(lambda: self.studio.colour_region_at(ix, iy, self.controls["colour"].value))
             return
@@ -405,17 +392,8 @@ class StudioPage(StudioDrawing):
         if tool in ("brush", "eraser"):
             self._paint_segment()
 
-    def _wheel(self, dx: float, dy: float) -> None:
-        """The wheel zooms about the mouse: a step of ``ZOOM_STEP`` a notch, in towards the screen."""
-        if dy:
-            self.zoom_at(*self._pointer, ZOOM_STEP ** (-np.sign(dy)))
-
     def _mouse_move(self, x: float, y: float) -> None:
         self._pointer = (float(x), float(y))
-        if self._drag and self._panning:
-            (x0, y0), self._drag = self._drag[-1], [(float(x), float(y))]
-            self.pan_by(float(x) - x0, float(y) - y0)
-            return
         if self._moving is not None:
             ix, iy = self.to_image(x, y)
             with ipycanvas_module().hold_canvas():
@@ -449,9 +427,6 @@ class StudioPage(StudioDrawing):
             return
         tool, drag = self.controls["tool"].value, self._drag
         self._drag = []
-        if self._panning:
-            self._panning = False
-            return
         if tool == "subject":
             (x0, y0), (x1, y1) = drag[0], self.to_image(x, y)
             self.studio.set_subject(x0, y0, x1, y1)

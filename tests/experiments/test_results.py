@@ -31,7 +31,7 @@ def run() -> experiments.Run:
 @pytest.fixture(scope="module")
 def sweep() -> list[experiments.Run]:
     # The paper's fit: with tangent joins the result may be a level before the loop's last
-    # (img2logo.fit.tangency.tangent_level), and the runs are no longer prefixes of one another.
+    # (img2logo.fit.kinks.tangent_level), and the runs are no longer prefixes of one another.
     return experiments.sweep([experiments.data_path(IMAGE)], {"tolerance": [12.0, 3.0, 6.0]}, tangency=False)
 
 

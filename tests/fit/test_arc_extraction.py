@@ -8,14 +8,8 @@ import numpy as np
 import pytest
 
 from img2logo.errors import FitError, InvalidParameterError
-from img2logo.fit.arc_extraction import (
-    ArcFit,
-    arc_intersections,
-    discrete_frechet,
-    extract_arc,
-    frechet_distance,
-    redundant_intersections,
-)
+from img2logo.fit.arc_extraction import ArcFit, discrete_frechet, extract_arc, frechet_distance
+from img2logo.fit.intersections import arc_intersections, redundant_intersections
 from img2logo.geometry.primitives import TAU, Arc, Circle
 
 
@@ -163,7 +157,8 @@ def test_extract_arc_with_a_far_first_candidate_matches_the_whole_table(monkeypa
     monkeypatch.setattr(
         extraction, "discrete_frechet", lambda p, q, bound=math.inf: tried.append(len(q)) or frechet_table(p, q)
     )
-    want = extraction._extract_reference(circle, seg, junctions)
+    kept, cap = extraction.admissible_arcs(circle, seg, junctions)
+    want = extraction.best_by_frechet(kept, seg, cap)  # the compiled extraction's Python reference
     assert tried[0] > 150  # the long way round first
     monkeypatch.undo()
     got = extract_arc(circle, seg, junctions)
@@ -451,7 +446,8 @@ def test_redundant_intersections_of_fewer_than_two_arcs_are_none() -> None:
 
 
 def test_distances_to_many_arcs_are_nearest_on_arcs_and_bounded_beyond_the_limit():
-    from img2logo.fit.arc_extraction import arc_params, distances_to_arcs, nearest_on_arc
+    from img2logo.fit.arc_extraction import distances_to_arcs, nearest_on_arc
+    from img2logo.fit.intersections import arc_params
 
     rng = np.random.default_rng(3)
     arcs = [

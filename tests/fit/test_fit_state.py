@@ -8,7 +8,10 @@ import numpy as np
 import pytest
 from helpers import golden_chain, golden_radius, hand_built_state
 
-from img2logo.fit.fit_state import FitState, FreeCircles, GroupFit, Seed, Stats, on_axis
+from img2logo.fit import window_solve
+from img2logo.fit.fit_state import FitState
+from img2logo.fit.fit_values import FreeCircles, GroupFit, Seed, Stats, on_axis
+from img2logo.fit.merge_checks import gap_ends, open_ends, redundant_pairs
 from img2logo.fit.progressive import initial_fit, optimize
 from img2logo.fit.simplification import merge_groups
 from img2logo.fit.symmetry import HalfAxis
@@ -169,12 +172,12 @@ def _similarity_with(state, out):
 
 def test_a_bounded_solve_fails_exactly_where_the_unbounded_one_exceeds_the_bound():
     state, seeds, node_groups, keywords = _bounded_chain()
-    out = state.solve(dict(state.groups), seeds, node_groups, **keywords)
+    out = window_solve.solve(state, dict(state.groups), seeds, node_groups, **keywords)
     assert out is not None
     after = _similarity_with(state, out)
     assert after > 0.1  # the rung moved: not an exact fit
     for factor in (0.0, 0.5, 0.999, 1.001, 2.0):
-        got = state.solve(dict(state.groups), seeds, node_groups, **keywords, bound=factor * after)
+        got = window_solve.solve(state, dict(state.groups), seeds, node_groups, **keywords, bound=factor * after)
         assert (got is None) == (after > factor * after)
         if got is not None:  # a fit within the bound is the unbounded one, the same numbers
             assert got[0].keys() == out[0].keys() and got[1].keys() == out[1].keys()
@@ -193,8 +196,8 @@ def test_a_bounded_solve_regroups_before_extracting_and_fails_with_the_regroup()
         seen.append((sorted(moved), {n: at(n).copy() for n in node_groups}))
         return {0: dataclasses.replace(state.groups[0], points=state.groups[0].points[:-3])}, {}
 
-    out = state.solve(dict(state.groups), seeds, node_groups, **keywords)
-    got = state.solve(dict(state.groups), seeds, node_groups, **keywords, bound=np.inf, regroup=regroup)
+    out = window_solve.solve(state, dict(state.groups), seeds, node_groups, **keywords)
+    got = window_solve.solve(state, dict(state.groups), seeds, node_groups, **keywords, bound=np.inf, regroup=regroup)
     assert got is not None and len(seen) == 1
     moved, at = seen[0]
     assert moved == sorted(out[0])  # called with the groups the window fits, and every node's d_k after it
@@ -206,7 +209,9 @@ def test_a_bounded_solve_regroups_before_extracting_and_fails_with_the_regroup()
     shorter = dataclasses.replace(state.groups[0], points=state.groups[0].points[:-3])
     expected = state.arc_for(shorter, fit0.center, fit0.radius, fit0.k, lambda n: at[n])
     assert got[0][0].arc.frechet == expected.frechet
-    failed = state.solve(dict(state.groups), seeds, node_groups, **keywords, bound=np.inf, regroup=lambda *a: None)
+    failed = window_solve.solve(
+        state, dict(state.groups), seeds, node_groups, **keywords, bound=np.inf, regroup=lambda *a: None
+    )
     assert failed is None
 
 
@@ -224,17 +229,17 @@ def test_open_ends_are_the_free_ends_and_a_gap_is_one_0_75_to_6_px_from_another_
     for tip, gaps in ((7.5, set()), (3.0, {4}), (0.2, set())):
         state = hand_built_state(_line_and_a_stroke_towards_it(tip))
         initial_fit(state)
-        assert state.open_ends() == [(0, 0), (2, 1), (3, 2), (4, 2)]  # node 1 joins two arcs: not open
-        assert state.gap_ends() == gaps, tip  # 7.5 px: a free end; 3 px: a near miss; 0.2 px: joined (0.55 px)
+        assert open_ends(state) == [(0, 0), (2, 1), (3, 2), (4, 2)]  # node 1 joins two arcs: not open
+        assert gap_ends(state) == gaps, tip  # 7.5 px: a free end; 3 px: a near miss; 0.2 px: joined (0.55 px)
 
 
 def test_redundant_pairs_are_the_groups_whose_arcs_cross_away_from_their_junctions():
     state = hand_built_state(_line_and_a_stroke_towards_it(-8.0))  # the stroke runs 8 px on across the line
     initial_fit(state)
-    assert state.redundant_pairs() == [(0, 2)] and state.redundant_pairs(of={1}) == []
+    assert redundant_pairs(state) == [(0, 2)] and redundant_pairs(state, of={1}) == []
     state = hand_built_state(_line_and_a_stroke_towards_it(3.0))
     initial_fit(state)
-    assert state.redundant_pairs() == []
+    assert redundant_pairs(state) == []
 
 
 def test_reach_is_half_the_widest_span_of_the_junctions_a_circle_must_pass():

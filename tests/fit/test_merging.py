@@ -10,10 +10,14 @@ import pytest
 from helpers import DATA, golden_chain, golden_radius, hand_built_state, sampled_arc
 
 from img2logo import build_segment_graph, extract_feature_lines, quality
-from img2logo.fit.arc_extraction import ArcFit, redundant_intersections
+from img2logo.fit import window_solve
+from img2logo.fit.arc_extraction import ArcFit
 from img2logo.fit.constants import MERGE_FALLBACK_RINGS
-from img2logo.fit.fit_state import FitState, GroupFit
-from img2logo.fit.merging import candidates, evaluate, merge_loop, new_gaps
+from img2logo.fit.fit_state import FitState
+from img2logo.fit.fit_values import GroupFit
+from img2logo.fit.intersections import redundant_intersections
+from img2logo.fit.merge_checks import gap_ends, new_gaps
+from img2logo.fit.merging import candidates, evaluate, merge_loop
 from img2logo.fit.progressive import initial_fit, optimize
 from img2logo.fit.simplification import Group, merge_groups
 from img2logo.fit.symmetry import HalfAxis
@@ -29,15 +33,23 @@ class _Unsolvable(FitState):
 
     failing = False
 
-    def solve(self, *args, **kwargs):
-        if self.failing:
-            self.tried.append((kwargs.get("rings", 1), kwargs.get("first_ring", 1), bool(kwargs.get("tangent"))))
-            return None
-        return super().solve(*args, **kwargs)
-
     @property
     def tried(self):  # the (rings, first ring, tangent) of every failed solve
         return self.__dict__.setdefault("_tried", [])
+
+
+@pytest.fixture(autouse=True)
+def _unsolvable_fails(monkeypatch):
+    """:func:`~img2logo.fit.window_solve.solve` of an :class:`_Unsolvable` state fails once it is ``failing``."""
+    solve = window_solve.solve
+
+    def solve_unless_failing(state, *args, **kwargs):
+        if getattr(state, "failing", False):
+            state.tried.append((kwargs.get("rings", 1), kwargs.get("first_ring", 1), bool(kwargs.get("tangent"))))
+            return None
+        return solve(state, *args, **kwargs)
+
+    monkeypatch.setattr(window_solve, "solve", solve_unless_failing)
 
 
 def _fitted_chain(cls=FitState, **settings):
@@ -159,8 +171,6 @@ def test_a_merged_arc_no_circle_of_its_radius_brings_near_is_rejected_before_its
 def test_the_far_circle_proof_never_excludes_a_circle_that_comes_near():
     from img2logo._compiled import kernels
 
-    if not kernels.usable():
-        pytest.skip("no compiled kernels")
     rng = np.random.default_rng(7)
     # Points on a circle of radius 40 (a 2 rad arc), with noise.
     t = np.linspace(0.0, 2.0, 60)
@@ -226,7 +236,7 @@ def test_a_merge_that_brings_a_free_end_within_a_near_miss_is_counted_and_not_ma
     # whose arc sagged 3 px would leave it 4.5 px from the arc: a near-miss gap it made.
     state = hand_built_state(_line_and_a_stroke_below(7.5))
     initial_fit(state)
-    assert state.gap_ends() == set()
+    assert gap_ends(state) == set()
     assert new_gaps(state, (0, 1, 1), {-1: _sagging(3.0)}, {}) == 1
     assert new_gaps(state, (0, 1, 1), {-1: _sagging(0.5)}, {}) == 0  # 7 px: still a free end
     assert new_gaps(state, (0, 1, 1), {-1: _sagging(7.2)}, {}) == 0  # 0.3 px: joined
@@ -236,7 +246,7 @@ def test_a_merge_that_brings_a_free_end_within_a_near_miss_is_counted_and_not_ma
     # A gap the input has already is no reason to refuse the merge.
     state = hand_built_state(_line_and_a_stroke_below(3.0))
     initial_fit(state)
-    assert state.gap_ends() == {4} and new_gaps(state, (0, 1, 1), {-1: _sagging(0.5)}, {}) == 0
+    assert gap_ends(state) == {4} and new_gaps(state, (0, 1, 1), {-1: _sagging(0.5)}, {}) == 0
     out = evaluate(state, (0, 1, 1))
     assert out is not None and out.gaps == 0 and out.redundant == 0
 
@@ -396,7 +406,7 @@ def test_a_far_merged_arc_is_found_before_the_windows_other_arcs():
 
 
 def test_the_levels_arrays_are_made_again_after_a_merge():
-    from img2logo.fit.merging import level_view
+    from img2logo.fit.merge_checks import level_view
 
     state = _fitted_chain()
     first = level_view(state)

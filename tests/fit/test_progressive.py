@@ -12,7 +12,8 @@ from helpers import BIAS, DATA, blank, check_level, golden_chain, hand_built_sta
 
 from img2logo import InvalidParameterError, SegmentGraph, build_segment_graph, extract_feature_lines
 from img2logo.constants import PHI
-from img2logo.fit.arc_extraction import redundant_intersections
+from img2logo.fit.intersections import redundant_intersections
+from img2logo.fit.merge_checks import redundant_pairs
 from img2logo.fit.progressive import initial_fit, optimize
 from img2logo.fit.simplification import merge_groups
 from img2logo.geometry.abstraction import Abstraction
@@ -418,10 +419,10 @@ def test_a_simplified_group_whose_arc_crosses_another_is_split_into_its_segments
     state.invalidate()
     initial_fit(state)
     if avoid:
-        assert state.stats.split_groups == 1 and state.redundant_pairs() == []
+        assert state.stats.split_groups == 1 and redundant_pairs(state) == []
         assert sorted(g.segments for g in state.groups.values()) == [(0,), (1,), (2,)]
     else:  # without the avoidance (Fig. 12) the crossing is not looked for
-        assert state.stats.split_groups == 0 and len(state.redundant_pairs()) == 1
+        assert state.stats.split_groups == 0 and len(redundant_pairs(state)) == 1
     assert state.stats.global_solves == (2 if avoid else 1)
 
 

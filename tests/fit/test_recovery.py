@@ -9,7 +9,8 @@ import pytest
 from helpers import DATA, check_level, golden_chain, golden_radius, hand_built_state, sampled_arc
 
 from img2logo import InvalidParameterError
-from img2logo.fit.fit_state import Seed
+from img2logo.fit import window_solve
+from img2logo.fit.fit_values import Seed
 from img2logo.fit.progressive import optimize
 from img2logo.fit.recovery import ConnectivityWarning, centred_seeds, parts, recover
 from img2logo.geometry.primitives import line_arc
@@ -46,7 +47,9 @@ def test_recover_releases_the_junction_the_circles_miss_most_and_keeps_the_rest(
     graph, seeds = _three_lines_and_an_arc()
     state = hand_built_state(graph)
     assert parts(state) == [[0, 1, 2], [3]]
-    whole = state.solve_whole(dict(state.groups), seeds, state.node_groups(), n_groups_total=4, n_junctions_total=6)
+    whole = window_solve.solve_whole(
+        state, dict(state.groups), seeds, state.node_groups(), n_groups_total=4, n_junctions_total=6
+    )
     assert whole is None  # the joint fit fails: recovery's case
     with pytest.warns(ConnectivityWarning, match=r"could not meet 1 of 6 junctions"):
         fits, disp = recover(state, seeds)
@@ -86,17 +89,17 @@ def test_radii_too_small_for_the_junctions_are_named():
 
 
 def test_a_junction_the_fit_cannot_meet_is_released(monkeypatch):
-    from img2logo.fit import fit_state, recovery
+    from img2logo.fit import recovery
 
     graph, _ = golden_chain()
     stuck = 2  # pretend that no fit can meet junction 2 (where arcs 2 and 3 join)
-    solve = fit_state.FitState.solve
+    solve = window_solve.solve
 
-    def failing(self, groups, *args, **kwargs):
-        nodes = {n for g in groups.values() for n in self.constrained_nodes(g)}
-        return None if stuck in nodes else solve(self, groups, *args, **kwargs)
+    def failing(state, groups, *args, **kwargs):
+        nodes = {n for g in groups.values() for n in state.constrained_nodes(g)}
+        return None if stuck in nodes else solve(state, groups, *args, **kwargs)
 
-    monkeypatch.setattr(fit_state.FitState, "solve", failing)
+    monkeypatch.setattr(window_solve, "solve", failing)
     with pytest.warns(recovery.ConnectivityWarning, match=r"could not meet [12] of 4 junctions"):
         progression = optimize(graph, merging=False, simplify=False)
     assert 1 <= progression.stats["released_junctions"] <= 2
@@ -109,16 +112,16 @@ def test_a_junction_the_fit_cannot_meet_is_released(monkeypatch):
 def test_a_part_with_every_junction_released_still_gets_its_arcs(monkeypatch):
     # No fit with any constraint succeeds: recovery releases every junction, and the last
     # solve (a window no junction touches) fits each circle alone.
-    from img2logo.fit import fit_state, recovery
+    from img2logo.fit import recovery
 
     graph, truth = golden_chain()
-    solve = fit_state.FitState.solve
+    solve = window_solve.solve
 
-    def failing(self, groups, *args, **kwargs):
-        constrained = any(self.constrained_nodes(g) for g in groups.values())
-        return None if constrained else solve(self, groups, *args, **kwargs)
+    def failing(state, groups, *args, **kwargs):
+        constrained = any(state.constrained_nodes(g) for g in groups.values())
+        return None if constrained else solve(state, groups, *args, **kwargs)
 
-    monkeypatch.setattr(fit_state.FitState, "solve", failing)
+    monkeypatch.setattr(window_solve, "solve", failing)
     with pytest.warns(recovery.ConnectivityWarning, match=r"could not meet 4 of 4 junctions"):
         progression = optimize(graph, merging=False, simplify=False)
     level = progression.levels[0]
@@ -169,18 +172,16 @@ def test_centred_seeds_put_each_golden_circle_where_its_pixels_are():
 def test_a_part_that_stalls_from_the_free_centres_is_solved_from_the_centred_ones(monkeypatch):
     # Eqn. 13 from the free centres is made to fail; the retry from the centred seeds converges
     # before any junction is released.
-    from img2logo.fit import fit_state
-
     graph, truth = golden_chain()
     state = hand_built_state(graph)
     seeds = {g: Seed(c + np.array([30.0, 0.0]), r, 8 + g) for g, (c, r) in enumerate(truth)}
-    solve = fit_state.FitState.solve
+    solve = window_solve.solve
 
-    def stalls_off_the_pixels(self, groups, seeds_, *args, **kwargs):
+    def stalls_off_the_pixels(state, groups, seeds_, *args, **kwargs):
         off = any(np.hypot(*(seeds_[g].center - truth[g][0])) > 1.0 for g in groups)
-        return None if off else solve(self, groups, seeds_, *args, **kwargs)
+        return None if off else solve(state, groups, seeds_, *args, **kwargs)
 
-    monkeypatch.setattr(fit_state.FitState, "solve", stalls_off_the_pixels)
+    monkeypatch.setattr(window_solve, "solve", stalls_off_the_pixels)
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         fits, disp = recover(state, seeds)

@@ -146,10 +146,19 @@ def _focus_drawing(page) -> None:
     _wait_status(page, "nothing selected")
 
 
+def _longest_arc(a) -> int:
+    """The index of the longest arc of the logo ``a``."""
+    return max(range(len(a.arcs)), key=lambda j: a.arcs[j].length)
+
+
+def _middle_on_screen(page, a, arc) -> tuple[float, float]:
+    """The middle of ``arc``, an arc on the logo ``a``, in page coordinates (the drawing fitted)."""
+    points = arc.sample(step=1.0)
+    return _to_screen(page, *points[len(points) // 2], (a.width, a.height))
+
+
 def _select_arc(page, fish, i: int) -> None:
-    a = fish.shown
-    points = a.arcs[i].sample(step=1.0)
-    page.mouse.click(*_to_screen(page, *points[len(points) // 2], (a.width, a.height)))
+    page.mouse.click(*_middle_on_screen(page, fish.shown, fish.shown.arcs[i]))
 
 
 def _canvas_box(page) -> dict:
@@ -226,9 +235,8 @@ def test_moving_the_level_redraws_the_drawing(page):
 
 def test_click_an_arc_delete_it_and_undo(page, fish):
     a = fish.shown
-    i = max(range(len(a.arcs)), key=lambda j: a.arcs[j].length)
-    points = a.arcs[i].sample(step=1.0)
-    x, y = _to_screen(page, *points[len(points) // 2], (a.width, a.height))
+    i = _longest_arc(a)
+    x, y = _middle_on_screen(page, a, a.arcs[i])
     _tool(page, "Select")
     page.mouse.click(x, y)
     _wait_status(page, f"arc {i} selected")
@@ -244,7 +252,7 @@ def test_click_an_arc_delete_it_and_undo(page, fish):
 
 def test_the_keys_undo_redo_delete_and_nudge(page, fish):
     a = fish.shown
-    i = max(range(len(a.arcs)), key=lambda j: a.arcs[j].length)
+    i = _longest_arc(a)
     _select_arc(page, fish, i)
     _wait_status(page, f"arc {i} selected")
     page.keyboard.press("Delete")
@@ -450,11 +458,93 @@ def test_space_held_pans_the_zoomed_drawing_with_any_tool(page):
     page.wait_for_function("old => document.querySelector('.img2logo-studio canvas').toDataURL() === old", arg=before)
 
 
+def _wait_exact(page, zoom: str) -> None:
+    """Wait until the drawing on screen is the kernel's own drawing of the view shown, at ``zoom`` (the label)."""
+    page.wait_for_function(
+        "z => document.querySelector('.img2logo-studio canvas').dataset.view === 'exact' &&"
+        " [...document.querySelectorAll('.img2logo-studio .widget-label')].some(e => e.innerText === z)",
+        arg=zoom,
+    )
+
+
+#: JS on ``d`` (the RGBA values around a point): some pixel is the arcs' black.
+DARK = "d.some((v, i) => i % 4 === 0 && v < 60 && d[i + 1] < 60 && d[i + 2] < 60)"
+
+
+def test_a_wheel_notch_zooms_about_the_mouse_and_a_click_after_a_pan_selects_the_arc_under_it(page, fish):
+    from img2logo.studio.drawing import ZOOM_STEP
+
+    a = fish.shown
+    i = _longest_arc(a)
+    x, y = _middle_on_screen(page, a, a.arcs[i])
+    _tool(page, "Select")
+    _click_button(page, "Hidden")  # the arcs alone on white
+    box = _canvas_box(page)
+    mouse = (box["x"] + 0.3 * box["width"], box["y"] + 0.6 * box["height"])  # off the centre
+    page.mouse.move(*mouse)
+    page.mouse.wheel(0, -100)
+    _wait_exact(page, f"{ZOOM_STEP:.0%}")
+    # About the mouse: the point under it stays, the arc's point goes ZOOM_STEP times as far from it.
+    x, y = mouse[0] + (x - mouse[0]) * ZOOM_STEP, mouse[1] + (y - mouse[1]) * ZOOM_STEP
+    _wait_pixels(page, x, y, 2, DARK)
+    _tool(page, "Hand")
+    page.mouse.move(*mouse)
+    page.mouse.down()
+    page.mouse.move(mouse[0] + 36, mouse[1] - 24, steps=4)
+    page.mouse.up()
+    x, y = x + 36, y - 24
+    _wait_pixels(page, x, y, 2, DARK)
+    _wait_exact(page, f"{ZOOM_STEP:.0%}")
+    _tool(page, "Select")
+    page.mouse.click(x, y)  # the kernel's view is the one on screen: the click finds the arc
+    _wait_status(page, f"arc {i} selected")
+    page.keyboard.press("Escape")
+    _wait_status(page, "nothing selected")
+    _click_button(page, "Fit")
+    _wait_exact(page, "fit")
+    _click_button(page, "Faded")
+
+
+def test_quick_wheel_notches_and_pan_moves_end_at_the_view_of_slow_ones(page):
+    """Notches and moves that come while the kernel draws go to it together: the same view, the same drawing."""
+    box = _canvas_box(page)
+    mouse = (box["x"] + 0.6 * box["width"], box["y"] + 0.45 * box["height"])
+    _tool(page, "Select")
+
+    def gesture(slow: bool) -> str:
+        _focus_drawing(page)  # Space to the drawing
+        page.mouse.move(*mouse)
+        for n in range(1, 5):
+            page.mouse.wheel(0, -100)
+            if slow:
+                _wait_exact(page, f"{1.25**n:.0%}")
+        page.keyboard.down(" ")
+        page.mouse.down()
+        for step in range(1, 7):
+            page.mouse.move(mouse[0] - 9 * step, mouse[1] + 5 * step)
+            if slow:
+                page.wait_for_function(
+                    "() => document.querySelector('.img2logo-studio canvas').dataset.view === 'exact'"
+                )
+        page.mouse.up()
+        page.keyboard.up(" ")
+        _wait_exact(page, f"{1.25**4:.0%}")
+        return _logo_pixels(page)
+
+    slow = gesture(slow=True)
+    _click_button(page, "Fit")
+    _wait_exact(page, "fit")
+    quick = gesture(slow=False)
+    assert quick == slow
+    _click_button(page, "Fit")
+    _wait_exact(page, "fit")
+
+
 def test_click_two_free_ends_and_add_an_arc_on_a_chosen_circle(page, fish):
     from img2logo.studio.session import Studio
 
     a = fish.shown
-    i = max(range(len(a.arcs)), key=lambda j: a.arcs[j].length)
+    i = _longest_arc(a)
     # The same edits in Python: the free ends the deletion leaves, and the arcs that would join two of them.
     s = Studio("clipart-fish.png")
     s.result, s.levels, s.level, s.selected = fish.result, fish.levels, fish.level, [i]
@@ -476,8 +566,7 @@ def test_click_two_free_ends_and_add_an_arc_on_a_chosen_circle(page, fish):
     s.other_end_circle()
     arc = s.end_arc()
     assert arc is not None
-    points = arc.sample(step=1.0)
-    x, y = _to_screen(page, *points[len(points) // 2], (a.width, a.height))
+    x, y = _middle_on_screen(page, a, arc)
     _wait_pixels(page, x, y, 2, "d.some((v, i) => i % 4 === 0 && v > 180 && d[i + 1] < 120 && d[i + 2] < 90)")
     _click_button(page, "Add arc")
     _wait_status(page, f"arc added between free ends {j0} and {j1}; {len(b.arcs) + 1} arcs")
@@ -535,7 +624,7 @@ def test_a_download_is_always_the_level_shown(page):
 
 def test_paint_a_lock_stroke_and_run_again(page, fish):
     a = fish.shown
-    i = max(range(len(a.arcs)), key=lambda j: a.arcs[j].length)
+    i = _longest_arc(a)
     points = a.arcs[i].sample(step=8.0)
     _tool(page, "Brush")
     before = _logo_pixels(page)
@@ -697,9 +786,8 @@ def test_an_input_over_2048_px_shows_its_logo_in_one_unit(page, tmp_path):
     s = Studio(str(big))
     assert s.run(), s.message
     a = s.shown
-    i = max(range(len(a.arcs)), key=lambda j: a.arcs[j].length)
-    points = a.arcs[i].sample(step=4.0)
-    x, y = _to_screen(page, *points[len(points) // 2], (a.width, a.height))
+    i = _longest_arc(a)
+    x, y = _middle_on_screen(page, a, a.arcs[i])
     assert _pixel(page, x, y)[:3] == [0, 0, 0] or sum(_pixel(page, x, y)[:3]) < 200  # the logo is drawn there
     _tool(page, "Select")
     page.mouse.click(x, y)

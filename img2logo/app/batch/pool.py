@@ -142,7 +142,7 @@ def ignored_subject_options(lines: Any, given: Sequence[str]) -> str | None:
 
 
 def _symmetry_cell(choice: Any) -> str:
-    """The summary's symmetry cell of a :class:`~img2logo.fit.symmetry.SymmetryChoice` (None: not asked for)."""
+    """The summary's symmetry cell of a :class:`~img2logo.fit.symmetry_axis.SymmetryChoice` (None: not asked for)."""
     if choice is None:
         return ""
     if choice.axis is None:

@@ -122,7 +122,7 @@ def dark_dots(rgb: np.ndarray, mask: np.ndarray | None, lines: np.ndarray | None
     mask : ndarray of bool, shape (H, W), or None
         The subject; None: the whole image.
     lines : ndarray of bool, shape (H, W), optional
-        The photo's lightness lines (:func:`img2logo.features.photo.lines.photo_lines`): the
+        The photo's lightness lines (:func:`img2logo.features.photo.line_maps.photo_lines`): the
         dark dots inside their closed loops are found too (:func:`enclosed_dots`).
     """
 
@@ -247,7 +247,7 @@ def enclosed_dots(
     lightness : ndarray of float, shape (H, W)
         The photo's CIELAB lightness, L*.
     lines : ndarray of bool, shape (H, W)
-        Its lightness lines (:func:`img2logo.features.photo.lines.photo_lines`), before any length filter.
+        Its lightness lines (:func:`img2logo.features.photo.line_maps.photo_lines`), before any length filter.
     mask : ndarray of bool, shape (H, W)
         The subject: a dot lies on it.
 

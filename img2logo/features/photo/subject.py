@@ -31,7 +31,7 @@ only (paper Fig. 1, 10). :func:`find_subject` finds it without user input
   different texture joined by a thin neck (a pagoda and the trees beside
   it) keeps its dominant part (:func:`dominant_part`). Before that, a kept
   candidate from the frame that comes near the frame strip is let into the
-  strip where its colours say so (:func:`reach_frame`: a disc that almost
+  strip where its colours say so (:func:`~img2logo.features.photo.subject_cut.reach_frame`: a disc that almost
   fills the picture, a portrait's shoulders that run off its foot), if it is
   then still one dominant object with an object's outline. Last, the thin
   parts that leave it, which GrabCut at the working size and the smoothing
@@ -44,7 +44,7 @@ only (paper Fig. 1, 10). :func:`find_subject` finds it without user input
 * ``"none"``: the whole image.
 
 Whatever found the subject, the frontal faces in it are found too
-(:func:`find_faces`, :attr:`Subject.faces`): a portrait's eyes, brows, nose and
+(:func:`~img2logo.features.photo.faces.find_faces`, :attr:`Subject.faces`): a portrait's eyes, brows, nose and
 mouth are kept as inner lines (:mod:`img2logo.features.photo.lines`).
 
 The mask is cleaned the same way whatever found it: its largest connected
@@ -69,17 +69,10 @@ from ..._compat import median
 from ..._validation import readonly
 from ...errors import InvalidParameterError
 from ...images.loading import LoadedImage, load_mask
-from ...images.ndimage import dilate, distance, erode, label
+from ...images.ndimage import dilate, label
 from ..constants import (
-    FACE_MIN_NEIGHBOURS,
-    FACE_MIN_SIDE,
-    FACE_SCALE_STEP,
-    FOCUS_GRABCUT_ITERATIONS,
     FOCUS_MIN_STEP,
     SUBJECT_CONTRAST_STEP,
-    SUBJECT_FRAME_REACH,
-    SUBJECT_FRAME_ROUNDS,
-    SUBJECT_GRABCUT_ITERATIONS,
     SUBJECT_MAX_AREA,
     SUBJECT_MAX_FRAME,
     SUBJECT_MIN_AREA,
@@ -87,7 +80,6 @@ from ..constants import (
     SUBJECT_MIN_PART,
     SUBJECT_MIN_TEXTURE_STEP,
     SUBJECT_NECK,
-    SUBJECT_REFINE_BAND,
     SUBJECT_TEXTURE_WEIGHT,
 )
 from .subject_cues import (
@@ -96,32 +88,23 @@ from .subject_cues import (
     fill_small_holes,
     focus_seeds,
     focus_step,
-    frame_box,
     frame_strip,
     largest_part,
     outline_contrast,
-    texture_colour_image,
-    texture_lab,
-    texture_map,
     texture_step,
     thin_parts,
-    work_scale,
-    working_copy,
 )
+from .subject_cut import SmallCut, both_cuts, grab_cut, near_frame_strip, reach_frame, refine_cut, start_beside
 from .subject_shadow import cast_shadow
 
 if TYPE_CHECKING:
-    from collections.abc import Callable
     from concurrent.futures import Executor
 
-    #: :func:`find_subject`'s ``beside``: work started in a spare thread of the subject search.
-    _Beside = Callable[[LoadedImage, Executor], object]
+    from .subject_cut import Beside
+from .faces import find_faces
 
 #: The string values of ``foreground``.
 FOREGROUND_CHOICES = ("auto", "none", "grabcut")
-#: The rectangle argument of ``cv2.grabCut`` where it is unused (GC_INIT_WITH_MASK, GC_EVAL): OpenCV
-#: accepts None there, its type stubs want a rectangle.
-_NO_RECT = (0, 0, 0, 0)
 
 
 @dataclass(frozen=True, eq=False)
@@ -138,7 +121,7 @@ class Subject:
     description : str
         One line for the user: what was kept and how it was found.
     faces : tuple of (x, y, w, h)
-        The faces found in it (:func:`find_faces`), px; their inner lines
+        The faces found in it (:func:`~img2logo.features.photo.faces.find_faces`), px; their inner lines
         (eyes, brows, nose, mouth) are kept as features of the subject.
     """
 
@@ -206,9 +189,9 @@ def find_subject(
     foreground: object = "auto",
     subject: object = None,
     *,
-    beside: _Beside | None = None,
+    beside: Beside | None = None,
 ) -> Subject:
-    """Find the subject of a photo, and the faces in it (:func:`find_faces`).
+    """Find the subject of a photo, and the faces in it (:func:`~img2logo.features.photo.faces.find_faces`).
 
     Parameters
     ----------
@@ -250,7 +233,7 @@ def find_subject(
 
 
 def _find_subject(
-    img: LoadedImage, foreground: object, subject: object, pool: Executor | None, beside: _Beside | None
+    img: LoadedImage, foreground: object, subject: object, pool: Executor | None, beside: Beside | None
 ) -> Subject:
     shape = (img.height, img.width)
     check_foreground_option(foreground)
@@ -263,7 +246,7 @@ def _find_subject(
             raise InvalidParameterError("subject (a rectangle) needs foreground auto or grabcut, not a mask or none")
         said = parse_subject_rectangle(subject, (img.input_height, img.input_width))  # the input's pixels
         rect = said if img.scale == 1.0 else _at_working_size(said, img)
-        _start_beside(img, pool, beside)  # one cut: the other core makes the line maps
+        start_beside(img, pool, beside)  # one cut: the other core makes the line maps
         mask = clean_mask(grab_cut(img, rect=rect))
         if not mask.any():
             raise InvalidParameterError(f"no object found in the subject rectangle {','.join(map(str, said))}")
@@ -286,7 +269,7 @@ def _find_subject(
                 if outline_contrast(img, textured, lab=lab) > outline_contrast(img, mask, lab=lab):
                     mask, taken = textured, 1
         else:
-            _start_beside(img, pool, beside)
+            start_beside(img, pool, beside)
             mask = clean_mask(grab_cut(img))
         if foreground == "grabcut":
             if not mask.any():
@@ -312,7 +295,7 @@ def _find_subject(
                 why = f"{why}; from depth of field: {why_focus}"
         if why:
             return Subject(None, "auto", f"kept the whole image: no dominant object ({why})")
-        if how.startswith("found by GrabCut from the image frame") and _near_frame_strip(mask):
+        if how.startswith("found by GrabCut from the image frame") and near_frame_strip(mask):
             # one dominant object, found with the frame strip as certain background: it runs into the strip,
             # so its cut goes on with the strip near it open (reach_frame); kept if it is still one object
             cut = reach_frame(small_cuts[taken])
@@ -377,67 +360,6 @@ def _at_working_size(rect: tuple[int, int, int, int], img: LoadedImage) -> tuple
     return x0, y0, x1 - x0, y1 - y0
 
 
-def _start_beside(img: LoadedImage, pool: Executor | None, beside: _Beside | None) -> None:
-    """Start :func:`find_subject`'s ``beside`` work in ``pool``, if it was given."""
-    if pool is not None and beside is not None:
-        beside(img, pool)
-
-
-def both_cuts(
-    img: LoadedImage,
-    pool: Executor | None = None,
-    beside: _Beside | None = None,
-    keep: list[SmallCut] | None = None,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray | None]:
-    """GrabCut on the colours and on colour and texture, run side by side: (mask, texture, textured mask, lab).
-
-    The two cuts are independent and OpenCV releases the interpreter while it
-    cuts, so they run in two threads, each seeding its own random generator:
-    the result is the same as one after the other. The work around them is
-    shared out too: while this thread takes the photo's smoothed CIELAB
-    (``img.smooth_lab``), the other makes the texture map, then waits for the
-    CIELAB to make its feature image; after its cut it makes what the two
-    candidates' outlines are compared on, ``lab``
-    (:func:`~img2logo.features.photo.subject_cues.texture_lab`; None when the textured cut
-    found nothing). Given a ``pool`` of two threads (:func:`find_subject`'s
-    ``beside``), the other cut runs in it, and once this thread's cut is
-    done ``beside`` is started in its second thread. Given a list ``keep``,
-    the two cuts at the working scale are appended to it, the colours' first
-    (:func:`grab_cut`).
-    """
-    import threading
-    from concurrent.futures import ThreadPoolExecutor
-
-    lab_ready = threading.Event()
-    kept_colour: list[SmallCut] = []
-    kept_texture: list[SmallCut] = []
-
-    def textured() -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
-        texture = texture_map(img.rgb, work_scale(img))
-        lab_ready.wait()
-        cut = clean_mask(grab_cut(img, texture=texture, keep=kept_texture))
-        return texture, cut, texture_lab(img, texture) if cut.any() else None
-
-    own = ThreadPoolExecutor(max_workers=1) if pool is None else None
-    runner = pool if pool is not None else own
-    assert runner is not None
-    try:
-        other = runner.submit(textured)
-        try:
-            _ = img.smooth_lab  # computed once, here, while the other thread makes the texture map
-        finally:
-            lab_ready.set()
-        mask = clean_mask(grab_cut(img, keep=kept_colour))
-        _start_beside(img, pool, beside)  # a core is free now, or will be as soon as the other cut is done
-        texture, cut, lab = other.result()
-    finally:
-        if own is not None:
-            own.shutdown()
-    if keep is not None:
-        keep.extend(kept_colour + kept_texture)
-    return mask, texture, cut, lab
-
-
 def dominant_part(mask: np.ndarray, texture: np.ndarray | None) -> np.ndarray:
     """The dominant part of a subject made of parts of different texture joined by a thin neck, (H, W) bool.
 
@@ -472,119 +394,6 @@ def dominant_part(mask: np.ndarray, texture: np.ndarray | None) -> np.ndarray:
     return largest_part(mask & near)
 
 
-def find_faces(img: LoadedImage, mask: np.ndarray | None = None) -> tuple[tuple[int, int, int, int], ...]:
-    """Frontal faces in a photo, as boxes (x, y, w, h) in px, largest first.
-
-    scikit-image's LBP frontal-face cascade (OpenCV's ``lbpcascade_frontalface``,
-    shipped inside scikit-image: nothing is downloaded) run on the working copy
-    (longer side ``SUBJECT_WORK_SIDE`` px); a face at least ``FACE_MIN_SIDE`` of
-    the shorter side, found at ``FACE_MIN_NEIGHBOURS`` neighbouring windows or
-    more (a face answers at many positions and scales, a face-like patch of
-    texture at a few), and with its centre in ``mask`` when one is given.
-    """
-    import cv2
-
-    small, scale = working_copy(img)
-    sh, sw = small.shape[:2]
-    side = max(8, round(FACE_MIN_SIDE * min(sh, sw)))
-    r0, c0 = 0, 0
-    if mask is not None:  # only the subject's box is searched: a face outside it is dropped anyway
-        rows, cols = np.nonzero(cv2.resize(mask.astype(np.uint8), (sw, sh), interpolation=cv2.INTER_NEAREST))
-        if rows.size == 0:
-            return ()
-        r0, c0 = int(rows.min()), int(cols.min())
-        small = small[r0 : int(rows.max()) + 1, c0 : int(cols.max()) + 1]
-    largest = min(small.shape[:2])
-    if largest < side:
-        return ()
-    cascade = _cascade_class()(_cascade_file())
-    gray = cv2.cvtColor(np.ascontiguousarray(np.clip(small, 0, 1)), cv2.COLOR_RGB2GRAY)
-    found = cascade.detect_multi_scale(
-        img=gray,
-        scale_factor=FACE_SCALE_STEP,
-        step_ratio=1,
-        min_size=(side, side),
-        max_size=(largest, largest),
-        min_neighbor_number=FACE_MIN_NEIGHBOURS,
-    )
-    faces = []
-    for f in sorted(found, key=lambda f: -f["width"] * f["height"]):
-        x, y = round((f["c"] + c0) / scale), round((f["r"] + r0) / scale)
-        w, h = round(f["width"] / scale), round(f["height"] / scale)
-        cx, cy = min(img.width - 1, x + w // 2), min(img.height - 1, y + h // 2)
-        if mask is None or mask[cy, cx]:
-            faces.append((x, y, w, h))
-    return tuple(faces)
-
-
-def _cascade_file() -> str:
-    """The path of scikit-image's LBP frontal-face cascade (``skimage.data.lbp_frontal_face_cascade_filename``).
-
-    It ships in the package's ``data`` folder; asking ``skimage.data`` for it
-    loads its download registry and ``skimage.util`` (0.03 s of CPU a run).
-    """
-    import importlib.util
-
-    spec = importlib.util.find_spec("skimage")
-    if spec is not None and spec.origin is not None:
-        path = Path(spec.origin).parent / "data" / "lbpcascade_frontalface_opencv.xml"
-        if path.is_file():
-            return str(path)
-    from skimage import data
-
-    return str(data.lbp_frontal_face_cascade_filename())
-
-
-def _cascade_class() -> type:
-    """scikit-image's ``skimage.feature.Cascade``, without importing ``skimage.color``'s colour conversions.
-
-    The compiled module ``skimage.feature._cascade`` imports ``rgb2gray`` from
-    ``skimage.color`` when it loads (for colour images; :func:`find_faces` gives
-    it gray ones), and ``skimage.color`` imports ``scipy.linalg``, whose array-API
-    layer imports most of numpy's optional modules: about 0.4 s of CPU, a fifth
-    of a photo's command line. While the module loads, ``skimage.color`` is a
-    stand-in whose ``rgb2gray`` imports the real one when first called; the
-    stand-in is gone as soon as the module is loaded. Should a later
-    scikit-image's cascade import more than that, the stand-in is dropped and
-    the package imported as usual (slower, the same faces).
-    """
-    import sys
-    import types
-
-    loaded = sys.modules.get("skimage.feature._cascade")
-    if loaded is not None or "skimage.color.colorconv" in sys.modules:
-        from skimage.feature import Cascade
-
-        return Cascade
-    import skimage
-
-    def rgb2gray(*args: object, **kwargs: object) -> np.ndarray:
-        from skimage.color import rgb2gray as real
-
-        return real(*args, **kwargs)
-
-    stand_in = types.ModuleType("skimage.color")
-    stand_in.rgb2gray = rgb2gray  # type: ignore[attr-defined]
-    before = sys.modules.get("skimage.color")
-    sys.modules["skimage.color"] = stand_in
-    try:
-        import skimage.feature._cascade as module
-    except ImportError:  # a scikit-image whose cascade needs more of skimage.color: the whole import
-        module = None
-    finally:
-        if before is None:
-            sys.modules.pop("skimage.color", None)
-        else:
-            sys.modules["skimage.color"] = before
-        if getattr(skimage, "color", None) is stand_in:
-            del skimage.color
-    if module is None:
-        from skimage.feature import Cascade
-
-        return Cascade
-    return module.Cascade
-
-
 def _not_dominant(mask: np.ndarray, frame: bool = True) -> str:
     """Why ``mask`` is not one dominant object, or ``""`` if it is.
 
@@ -616,7 +425,7 @@ def _object_outline(img: LoadedImage, texture: np.ndarray | None, mask: np.ndarr
 
     The tests a candidate from the image frame passes (:func:`_weak_outline`,
     :func:`~img2logo.features.photo.subject_cues.texture_step`), asked again of it once it
-    has reached into the frame strip (:func:`reach_frame`).
+    has reached into the frame strip (:func:`~img2logo.features.photo.subject_cut.reach_frame`).
     """
     if not _weak_outline(img, mask):
         return True
@@ -630,7 +439,7 @@ def moved_outline(img: LoadedImage, before: np.ndarray, after: np.ndarray) -> fl
     ``after`` (H, W) bool within 2 px of the pixels where the two masks
     differ, and farther than two ``SUBJECT_CONTRAST_STEP`` from the image
     frame (nearer, its samples fall off the picture; on the frame the outline
-    is the picture's edge, not the object's). A part that :func:`reach_frame`
+    is the picture's edge, not the object's). A part that :func:`~img2logo.features.photo.subject_cut.reach_frame`
     let into the frame strip is the object's when the outline it moved to is
     an edge, as every object's outline is (at least ``SUBJECT_MIN_CONTRAST``):
     a disc's rim, a portrait's arm against the backdrop. Measured: skimage's
@@ -659,191 +468,3 @@ def _weak_focus_outline(img: LoadedImage, seeds: FocusSeeds, mask: np.ndarray) -
         f"the candidate's outline is no edge: colour step across it {ratio:.1f}x the texture's, "
         f"sharpness inside {step:.1f}x outside"
     )
-
-
-@dataclass(frozen=True, eq=False)
-class SmallCut:
-    """GrabCut's result at the working scale, and what its full-size refinement starts from.
-
-    Attributes
-    ----------
-    label : ndarray of uint8, shape (h, w)
-        GrabCut's labels at the working scale.
-    bgd, fgd : ndarray of float, shape (1, 65)
-        The background's and the object's colour models (OpenCV's GMMs).
-    full8 : ndarray of uint8, shape (H, W, 3)
-        The image cut, at full size (colours, or colour and texture).
-    small8 : ndarray of uint8, shape (h, w, 3)
-        The same at the working scale.
-    rect : (x, y, w, h) or None
-        The user's rectangle, px of the full-size image: outside it stays background.
-    """
-
-    label: np.ndarray
-    bgd: np.ndarray
-    fgd: np.ndarray
-    full8: np.ndarray
-    small8: np.ndarray
-    rect: tuple[int, int, int, int] | None
-
-
-def grab_cut(
-    img: LoadedImage,
-    rect: tuple[int, int, int, int] | None = None,
-    seeds: FocusSeeds | None = None,
-    texture: np.ndarray | None = None,
-    keep: list[SmallCut] | None = None,
-) -> np.ndarray:
-    """GrabCut from a rectangle (default: the frame inset by ``SUBJECT_FRAME_INSET``) or focus seeds, (H, W) bool.
-
-    Run on a copy whose longer side is ``SUBJECT_WORK_SIDE`` px
-    (``SUBJECT_GRABCUT_ITERATIONS`` iterations from a rectangle,
-    ``FOCUS_GRABCUT_ITERATIONS`` from focus seeds), then once more at full
-    size (:func:`refine_cut`).
-    Given the photo's :func:`~img2logo.features.photo.subject_cues.texture_map` ``texture``, it cuts on
-    :func:`~img2logo.features.photo.subject_cues.texture_colour_image` instead of the colours alone.
-    Given a list ``keep``, the cut at the working scale is appended to it (for
-    :func:`reach_frame`). Deterministic (OpenCV's random generator is seeded).
-    """
-    cut = cut_small(img, rect, seeds, texture)
-    if keep is not None:
-        keep.append(cut)
-    return refine_cut(img, cut)
-
-
-def cut_small(
-    img: LoadedImage,
-    rect: tuple[int, int, int, int] | None = None,
-    seeds: FocusSeeds | None = None,
-    texture: np.ndarray | None = None,
-) -> SmallCut:
-    """:func:`grab_cut`'s cut at the working scale."""
-    import cv2
-
-    h, w = img.height, img.width
-    small, _ = working_copy(img)
-    sh, sw = small.shape[:2]
-    sx, sy = sw / w, sh / h
-    bgd, fgd = np.zeros((1, 65), np.float64), np.zeros((1, 65), np.float64)
-    cv2.setRNGSeed(0)
-    # one feature image at full size, shrunk for the first run: the refinement reuses its models
-    textured = texture is not None
-    full8 = texture_colour_image(img.smooth_lab, texture) if textured else _bgr8(img.rgb)
-    small8 = cv2.resize(full8, (sw, sh), interpolation=cv2.INTER_AREA) if textured else _bgr8(small)
-    if seeds is not None:
-        label = seeds.label.copy()
-        cv2.grabCut(small8, label, _NO_RECT, bgd, fgd, FOCUS_GRABCUT_ITERATIONS, cv2.GC_INIT_WITH_MASK)
-    else:
-        if rect is None:
-            box = frame_box((sh, sw))
-        else:
-            x, y, rw, rh = rect
-            bx0, by0 = int(np.floor(x * sx)), int(np.floor(y * sy))
-            bx1, by1 = min(sw, int(np.ceil((x + rw) * sx))), min(sh, int(np.ceil((y + rh) * sy)))
-            box = (bx0, by0, max(2, bx1 - bx0), max(2, by1 - by0))
-        label = np.zeros((sh, sw), np.uint8)
-        cv2.grabCut(small8, label, box, bgd, fgd, SUBJECT_GRABCUT_ITERATIONS, cv2.GC_INIT_WITH_RECT)
-    return SmallCut(label, bgd, fgd, full8, small8, rect)
-
-
-def refine_cut(img: LoadedImage, cut: SmallCut) -> np.ndarray:
-    """A cut at the working scale (:func:`cut_small`) refined at full size, (H, W) bool.
-
-    GrabCut once more at full size, only in a band of ``SUBJECT_REFINE_BAND`` px
-    (at the working scale) around the boundary found, on the band's bounding
-    box, starting from the colour models of the first run (copied: ``cut`` is
-    left as it is).
-    """
-    import cv2
-
-    h, w = img.height, img.width
-    scale = work_scale(img)
-    bgd, fgd = cut.bgd.copy(), cut.fgd.copy()
-    fg = largest_part((cut.label == cv2.GC_FGD) | (cut.label == cv2.GC_PR_FGD))
-    if not fg.any():
-        return np.zeros((h, w), bool)
-    fg = fill_small_holes(fg)
-    up = cv2.resize(fg.astype(np.float32), (w, h), interpolation=cv2.INTER_LINEAR) >= 0.5
-    if scale == 1.0:
-        return up
-    band = max(2, round(SUBJECT_REFINE_BAND / scale))
-    full = np.full((h, w), cv2.GC_BGD, np.uint8)
-    near = dilate(up, band)
-    full[near] = cv2.GC_PR_BGD
-    full[up] = cv2.GC_PR_FGD
-    full[erode(up, band)] = cv2.GC_FGD
-    if cut.rect is not None:  # outside the user's rectangle stays background
-        x, y, rw, rh = cut.rect
-        outside = np.ones((h, w), bool)
-        outside[y : y + rh, x : x + rw] = False
-        full[outside] = cv2.GC_BGD
-    # Only the band is open: the cut runs on its bounding box (and 1 px of fixed background
-    # around it, so every open pixel keeps its neighbours), starting from the first run's colour
-    # models (GC_EVAL: no k-means start at full size; they are re-learnt on the box once).
-    rows, cols = np.nonzero(near)
-    r0, r1 = max(0, rows.min() - 1), min(h, rows.max() + 2)
-    c0, c1 = max(0, cols.min() - 1), min(w, cols.max() + 2)
-    crop = np.ascontiguousarray(full[r0:r1, c0:c1])
-    cv2.grabCut(np.ascontiguousarray(cut.full8[r0:r1, c0:c1]), crop, _NO_RECT, bgd, fgd, 1, cv2.GC_EVAL)
-    full[r0:r1, c0:c1] = crop
-    return (full == cv2.GC_FGD) | (full == cv2.GC_PR_FGD)
-
-
-def reach_frame(cut: SmallCut) -> SmallCut | None:
-    """The object of a cut from the frame let into the frame strip where its colours say so.
-
-    GrabCut from the frame (:func:`~img2logo.features.photo.subject_cues.frame_box`) takes the strip of
-    ``SUBJECT_FRAME_INSET`` of each side for certain background. An object
-    that reaches into it (a disc almost filling the picture, a portrait's
-    shoulders running off its foot) then loses its part there, and worse: that
-    part's colours are learnt by the background's model, which then eats into
-    the object's own pixels of those colours inside the box too (a flat side,
-    notches). So the strip within ``SUBJECT_FRAME_REACH`` strip widths of the
-    object found (its largest piece) is opened, made probable background, and
-    GrabCut goes on for one iteration from the models of the cut: a strip pixel
-    the object's colour model explains better than the background's joins the
-    object, and once it does the background's model is learnt without it (the
-    mechanism by which GrabCut decides inside the box). This is repeated, for
-    the strip near the object as it has grown, up to ``SUBJECT_FRAME_ROUNDS``
-    times. The rest of the strip stays certain background. ``cut`` is left as
-    it is. None if no pixel of the strip joined the object (nothing to refine
-    or check again).
-    """
-    import cv2
-
-    label, bgd, fgd = cut.label.copy(), cut.bgd.copy(), cut.fgd.copy()
-    sh, sw = label.shape
-    x0, y0, _, _ = frame_box((sh, sw))
-    closed = frame_strip((sh, sw)) & (label == cv2.GC_BGD)
-    for _ in range(SUBJECT_FRAME_ROUNDS):
-        fg = largest_part((label == cv2.GC_FGD) | (label == cv2.GC_PR_FGD))
-        if not fg.any():
-            break
-        near = closed & (distance(~fg) <= SUBJECT_FRAME_REACH * max(x0, y0))
-        if not near.any():
-            break
-        label[near] = cv2.GC_PR_BGD
-        closed &= ~near
-        cv2.grabCut(cut.small8, label, _NO_RECT, bgd, fgd, 1, cv2.GC_EVAL)
-    joined = frame_strip((sh, sw)) & ((label == cv2.GC_FGD) | (label == cv2.GC_PR_FGD))
-    if not joined.any():
-        return None
-    return dataclasses.replace(cut, label=label, bgd=bgd, fgd=fgd)
-
-
-def _near_frame_strip(mask: np.ndarray) -> bool:
-    """Whether a subject ``mask`` (H, W) bool comes within ``SUBJECT_FRAME_REACH`` strip widths of the frame strip."""
-    h, w = mask.shape
-    x0, y0, bw, bh = frame_box((h, w))
-    reach = SUBJECT_FRAME_REACH * max(x0, y0)
-    rows = np.flatnonzero(mask.any(axis=1))
-    cols = np.flatnonzero(mask.any(axis=0))
-    if rows.size == 0:
-        return False
-    return bool(
-        rows[0] - y0 < reach or y0 + bh - 1 - rows[-1] < reach or cols[0] - x0 < reach or x0 + bw - 1 - cols[-1] < reach
-    )
-
-
-def _bgr8(rgb: np.ndarray) -> np.ndarray:
-    return np.ascontiguousarray((np.clip(rgb[:, :, ::-1], 0.0, 1.0) * 255).round().astype(np.uint8))

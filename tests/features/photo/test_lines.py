@@ -127,7 +127,8 @@ def test_a_portrait_keeps_the_eyes_and_mouth_inside_the_face():
 
 
 def test_a_slit_pupil_with_a_catch_light_is_drawn_as_one_outline():
-    from img2logo.features.photo.lines import line_maps, subject_dots
+    from img2logo.features.photo.line_maps import line_maps
+    from img2logo.features.photo.lines import subject_dots
 
     # A light iris (radius 24 px) on a lighter face, a dark vertical slit (5 x 14 px) in it and a
     # bright catch light in the slit: the lightness lines go round the slit and the catch light.
@@ -170,7 +171,7 @@ def _two_discs(noise=0.01, seed=0):
 
 
 def test_a_colour_edge_without_a_lightness_step_is_drawn_once():
-    from img2logo.features.photo.lines import photo_line_maps
+    from img2logo.features.photo.line_maps import photo_line_maps
 
     rgb, a, b = _two_discs()
     lightness, colour = photo_line_maps(load_image(rgb))
@@ -193,7 +194,7 @@ def test_a_colour_edge_without_a_lightness_step_is_drawn_once():
 
 
 def test_flow_dog_binarizes_the_response_on_its_own_scale():
-    from img2logo.features.photo.lines import flow_dog, flow_dog_response
+    from img2logo.features.photo.line_maps import flow_dog, flow_dog_response
 
     rgb, _, _ = _two_discs()
     gray = load_image(rgb).gray.astype(np.float32)
@@ -203,7 +204,7 @@ def test_flow_dog_binarizes_the_response_on_its_own_scale():
 
 
 def test_opponent_channel_is_the_main_chroma_axis_pointing_to_red():
-    from img2logo.features.photo.lines import opponent_channel
+    from img2logo.features.photo.line_maps import opponent_channel
 
     rgb, a, _ = _two_discs(noise=0.0)
     u = opponent_channel(rgb)
@@ -227,57 +228,6 @@ def test_colour_lines_come_after_the_lightness_lines_in_the_budget(monkeypatch):
     assert np.mean(ndimage.distance_transform_edt(~tight)[edge_a] <= 6) < 0.2
 
 
-def _maps(colour, edges, lightness_step, colour_step):
-    from img2logo.features.photo.lines import LineMaps
-
-    shape = colour.shape
-    return LineMaps(
-        np.zeros(shape, bool),
-        colour,
-        edges,
-        np.broadcast_to(np.float32(lightness_step), shape).copy() * edges,
-        np.broadcast_to(np.float32(colour_step), shape).copy(),
-    )
-
-
-def test_a_colour_line_beside_an_undrawn_lightness_edge_is_kept_only_if_its_step_is_the_stronger():
-    from img2logo.features.photo.lines import new_colour_lines
-
-    # A 60 px colour line (row 50, 3 px thick) and, 3 px beside it, a 16 px lightness edge that is
-    # not drawn (too short): a pink nose's top on tan fur beside a faint stroke of lightness.
-    colour = np.zeros((100, 120), bool)
-    colour[49:52, 30:90] = True
-    edges = np.zeros_like(colour)
-    edges[53:56, 50:66] = True
-    nothing = np.zeros_like(colour)
-    kept = new_colour_lines(_maps(colour, edges, 0.1, 0.2), nothing)
-    assert np.array_equal(kept, colour)  # the colour step is the stronger: the edge is one of colour
-    # A stronger lightness step there: the colour line is that edge's tint (a petal's shading),
-    # left out within the gate of it, kept beyond.
-    tint = new_colour_lines(_maps(colour, edges, 0.3, 0.2), nothing)
-    assert not tint[50, 50:66].any()
-    assert tint[50, 30:35].all() and tint[50, 85:90].all()
-
-
-def test_a_colour_line_is_gated_by_the_drawn_lines_and_drawn_back_to_the_line_it_meets():
-    from img2logo.features.photo.lines import new_colour_lines
-
-    drawn = np.zeros((100, 140), bool)
-    drawn[:, 20] = True  # a drawn lightness line, both its sides lightness edges (cols 17-23)
-    edges = np.zeros_like(drawn)
-    edges[:, 17:24] = True
-    colour = np.zeros_like(drawn)
-    colour[50, 21:120] = True  # a colour line that leaves it at a right angle ...
-    colour[:, 26] = True  # ... and one beside it, all along: the same edge again
-    out = new_colour_lines(_maps(colour, edges, 0.5, 0.2), drawn)
-    assert out[50, 23:120].all()  # whole, back to the line it meets (its sides: join_line_ends links)
-    assert out[:, 26].sum() <= 3  # the doubled edge is not drawn (but where the first line crosses it)
-    # A colour line that runs only beside the drawn line is left out whole.
-    beside = np.zeros_like(drawn)
-    beside[:, 26] = True
-    assert not new_colour_lines(_maps(beside, edges, 0.5, 0.2), drawn).any()
-
-
 def test_a_photo_s_subject_and_line_maps_import_no_scipy_package(data_dir):
     """The subject search, the faces, the line maps and the outline load nothing of scipy (the kernels give
     its filters): importing ``scipy.ndimage`` or ``scipy.linalg`` (their array-API layer) costs most of a second."""
@@ -287,8 +237,8 @@ def test_a_photo_s_subject_and_line_maps_import_no_scipy_package(data_dir):
     code = (
         "import sys\n"
         "from img2logo import load_image\n"
-        "from img2logo.features.photo.lines import photo_line_maps, reach_outline, start_photo_line_maps\n"
-        "from img2logo.features.photo.lines import subject_outline\n"
+        "from img2logo.features.photo.line_maps import photo_line_maps, start_photo_line_maps\n"
+        "from img2logo.features.photo.lines import reach_outline, subject_outline\n"
         "from img2logo.features.photo.subject import find_subject\n"
         f"img = load_image({str(data_dir / 'photo-flower.png')!r})\n"
         "found = find_subject(img, beside=start_photo_line_maps)\n"

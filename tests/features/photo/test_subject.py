@@ -261,7 +261,7 @@ def same_hue_photo(size=(240, 320), seed=0):
 
 
 def test_auto_finds_an_object_of_the_backgrounds_own_hue_by_its_texture():
-    from img2logo.features.photo.subject import grab_cut
+    from img2logo.features.photo.subject_cut import grab_cut
 
     rgb, truth = same_hue_photo()
     img = load_image(rgb)
@@ -272,8 +272,8 @@ def test_auto_finds_an_object_of_the_backgrounds_own_hue_by_its_texture():
 
 
 def test_the_two_cuts_side_by_side_are_those_made_one_after_the_other():
-    from img2logo.features.photo.subject import both_cuts, grab_cut
     from img2logo.features.photo.subject_cues import clean_mask, texture_lab, texture_map, work_scale
+    from img2logo.features.photo.subject_cut import both_cuts, grab_cut
 
     rgb, (truth,) = textured_photo([(170, 120, 80, 60, (0.95, 0.75, 0.2))], size=(300, 400))
     img = load_image(rgb)  # 400 px: the working copy is smaller, so the full-size refinement runs
@@ -287,8 +287,8 @@ def test_the_two_cuts_side_by_side_are_those_made_one_after_the_other():
 
 
 def test_the_cuts_kept_at_the_working_scale_refine_to_the_same_masks():
-    from img2logo.features.photo.subject import both_cuts, refine_cut
     from img2logo.features.photo.subject_cues import clean_mask
+    from img2logo.features.photo.subject_cut import both_cuts, refine_cut
 
     rgb, _ = textured_photo([(170, 120, 80, 60, (0.95, 0.75, 0.2))], size=(300, 400))
     img = load_image(rgb)
@@ -317,7 +317,7 @@ def test_a_disc_that_almost_fills_the_picture_keeps_its_round_outline():
     # GrabCut from the frame took the strip along it for certain background, so the disc's rim
     # there was lost, and the background model, having learnt the rim's colours, ate into the disc inside
     # too (mask IoU 0.94, flat sides). Let into the strip where its colours say so, the disc is whole.
-    from img2logo.features.photo.subject import SmallCut, cut_small, reach_frame
+    from img2logo.features.photo.subject_cut import SmallCut, cut_small, reach_frame
 
     rgb, truth = disc_photo()
     img = load_image(rgb)
@@ -407,25 +407,6 @@ def test_texture_step_tells_another_texture_from_a_cut_through_one():
     assert texture_step(img, texture, truth) > 0.5
     assert texture_step(img, texture, cut) < 0.1
     assert texture_step(img, texture, np.zeros((240, 320), bool)) == 0.0
-
-
-def test_faces_are_found_in_a_portrait_and_not_in_texture():
-    from skimage import data
-
-    from img2logo.features.photo.subject import find_faces
-
-    img = load_image(data.astronaut())  # ships with scikit-image, as does the cascade
-    faces = find_faces(img)
-    assert len(faces) == 1
-    x, y, w, h = faces[0]
-    assert 150 < x + w / 2 < 280 and 60 < y + h / 2 < 170  # the face, not the patch or the helmet
-    subject = find_subject(img)
-    assert len(subject.faces) == 1  # searched in the subject's box only: the same face, to a few px
-    assert np.abs(np.subtract(subject.faces[0], faces[0])).max() <= 6
-    assert "1 face(s) kept with their features" in subject.description
-    rgb, _ = textured_photo([(170, 120, 80, 60, (0.95, 0.75, 0.2))])
-    assert find_faces(load_image(rgb)) == ()
-    assert find_subject(load_image(rgb)).faces == ()
 
 
 def test_dominant_part_leaves_out_a_part_of_another_texture_beyond_a_thin_neck():
@@ -562,7 +543,7 @@ def test_the_cues_do_not_import_scipy_ndimage():
 
 
 def test_the_line_maps_made_beside_the_cuts_are_those_made_after(monkeypatch):
-    from img2logo.features.photo import lines as photo
+    from img2logo.features.photo import line_maps as photo
 
     rgb, _ = textured_photo([(170, 120, 80, 60, (0.95, 0.75, 0.2))])
     img = load_image(rgb)
