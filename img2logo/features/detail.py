@@ -27,6 +27,12 @@ asked, the dark marks on the object's fills (an eye, a pupil, a spot), which
 only take in smaller regions (a pupil's highlight, the spots a wing's black
 encloses).
 
+Fills that face each other across a stroke of that outline (the cartoon
+style, where fills touch only the outline) are neighbours too, weighed with
+the stroke between them, which goes when they merge
+(:mod:`img2logo.features.stroke_sides`); the count takes them only when no
+fills sharing a border are left to merge.
+
 With an arc budget (``arcs``, :func:`merge_by_importance`) merging then goes
 on, the least Ward weight per predicted arc saved first
 (:mod:`img2logo.features.boundary_cost`), until the logo's predicted arcs
