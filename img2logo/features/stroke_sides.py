@@ -116,9 +116,10 @@ def across_strokes(sides: StrokeSides, fixed: np.ndarray, lab: np.ndarray) -> Ac
 
     Their side-border is longer than ``CLIPART_OUTLINE_WIDTH``: two fills
     that meet only where strokes cross (diagonal squares of a grid) meet along
-    about a stroke's width and face each other across no stroke. Pairs with a label of ``fixed`` (n,) bool (the background, the ink
-    outlines on it) are left out: they take part in no merge. ``lab`` (H, W, 3)
-    the image's CIELAB colours.
+    about a stroke's width and face each other across no stroke. Pairs with a
+    label of ``fixed`` (n,) bool (the background, the ink outlines on it) are
+    left out: they take part in no merge. ``lab`` (H, W, 3) the image's
+    CIELAB colours.
     """
     rows, cols, a, b = _side_pairs(sides)
     colour = lab[sides.strokes].mean(axis=0)
