@@ -9,6 +9,7 @@ from helpers import blank
 from img2logo import extract_feature_lines, load_image
 from img2logo.features.clipart import clipart_regions
 from img2logo.features.detail import merge_targets, outline_sides, region_adjacency
+from img2logo.features.stroke_sides import across_strokes
 
 ORANGE, YELLOW = (230, 120, 40), (240, 200, 60)
 
@@ -49,3 +50,24 @@ def test_merged_fills_lose_the_stroke_between_them_and_the_outline_stays():
     assert _lines_near(one.lines, 150, 150, reach=20) == 0  # the stroke between them is no line
     for x, y in ((35, 150), (265, 150), (95, 90), (205, 210)):  # the silhouette, at the outline's outer edge
         assert _lines_near(one.lines, x, y) > 0, (x, y)
+
+
+def test_fills_meeting_only_where_strokes_cross_are_no_neighbours():
+    im = blank(300)
+    cv2.rectangle(im, (40, 40), (260, 260), (0, 0, 0), -1)
+    colours = ((230, 120, 40), (240, 200, 60), (60, 160, 220), (120, 200, 90))
+    for k, colour in enumerate(colours):  # a 2 x 2 grid of squares, 10 px strokes between them
+        x, y = 50 + 105 * (k % 2), 50 + 105 * (k // 2)
+        cv2.rectangle(im, (x, y), (x + 94, y + 94), colour, -1)
+    img = load_image(im)
+    regions = clipart_regions(img)
+    square = [int(regions[50 + 105 * (k // 2) + 47, 50 + 105 * (k % 2) + 47]) for k in range(4)]
+    sides = outline_sides(regions, img.lab)
+    assert sides is not None
+    fixed = np.zeros(int(regions.max()) + 1, dtype=bool)
+    fixed[0] = True
+    fixed[int(regions[45, 150])] = True  # the outline
+    border = across_strokes(sides, fixed, img.lab).border
+    pairs = {tuple(sorted((square[a], square[b]))) for a, b in ((0, 1), (2, 3), (0, 2), (1, 3))}
+    assert set(border) == pairs  # side by side across a stroke; the diagonal ones meet only at the crossing
+    assert all(length >= 80 for length in border.values())
