@@ -20,6 +20,9 @@ from .zoom_pan import ZoomPan
 LABEL_WIDTH = "122px"
 #: Width of each column of controls, CSS px.
 CONTROLS_WIDTH = 400
+
+#: The largest arc budget the page offers: past it a clip art's logo is never cut (0 on the page: no budget).
+ARC_BUDGET_MAX = 999
 #: The move buttons, by name: their arrow and direction (x right, y down).
 MOVES = {"left": ("\u2190", -1, 0), "up": ("\u2191", 0, -1), "down": ("\u2193", 0, 1), "right": ("\u2192", 1, 0)}
 #: The Fills menu: each choice sets the ``--fill`` option beside it (which a designer may edit).
@@ -280,6 +283,16 @@ def make_controls(studio: Studio, size: int) -> dict[str, Any]:
         continuous_update=False,
         tooltip="clip art: the regions kept besides the background (--detail); fewer, the least important merge",
     )
+    c["arcs"] = labelled(
+        w.BoundedIntText,
+        "Arc budget",
+        layout=w.Layout(width="230px"),
+        value=0 if s.arcs is None else s.arcs,
+        min=0,
+        max=ARC_BUDGET_MAX,
+        tooltip="clip art: about this many arcs at most (--arcs); the regions that cost most arcs for the least "
+        "colour merge first; the silhouette and eyes stay; 0: no budget",
+    )
     c["sizes"] = labelled(
         w.Text,
         "Only circle sizes",
@@ -327,6 +340,7 @@ def page_layout(c: dict[str, Any], size: int) -> Any:
             w.HBox([c["bias"], c["bias_auto"]]),
             c["rdp_tolerance"],
             c["detail"],
+            w.HBox([c["arcs"], w.Label("0: no budget")]),
             c["symmetry"],
             w.HBox([w.Label("Ladder", layout=w.Layout(width="126px")), c["ladder"]]),
             c["sizes"],

@@ -250,6 +250,7 @@ class StudioPage(StudioDrawing):
             "symmetry": c["symmetry"].value,
             "lines": bool(c["lines"].value),
             "detail": int(c["detail"].value),
+            "arcs": int(c["arcs"].value) or None,
             "ladder": c["ladder"].value,
             "fill": fill,
         }

@@ -49,6 +49,8 @@ class StudioSettings:
         ``"phi"`` (golden) or ``"fibonacci"`` (Fig. 2b).
     detail : int
         Clip art: the regions kept besides the background (``--detail``).
+    arcs : int or None
+        Clip art: about this many arcs at most (``--arcs``); None: no budget.
     exponents : tuple of int or None
         Only these ladder exponents k (the subset of golden circles of Fig. 15, ``--radii``);
         None: every rung.
@@ -68,6 +70,7 @@ class StudioSettings:
     ladder: str = "phi"
     exponents: tuple[int, ...] | None = None
     detail: int = DETAIL
+    arcs: int | None = None
     fill: str = "none"
 
 
