@@ -30,8 +30,9 @@ encloses).
 Fills that face each other across a stroke of that outline (the cartoon
 style, where fills touch only the outline) are neighbours too, weighed with
 the stroke between them, which goes when they merge
-(:mod:`img2logo.features.stroke_sides`); the count takes them only when no
-fills sharing a border are left to merge.
+(:mod:`img2logo.features.stroke_sides`), under an arc budget only: there the
+count takes them when no fills sharing a border are left to merge, and the
+budget by its one order; without one the outline stays as drawn.
 
 With an arc budget (``arcs``, :func:`merge_by_importance`) merging then goes
 on, the least Ward weight per predicted arc saved first
@@ -165,7 +166,9 @@ def merge_by_importance(
         merge made (0 when none was), squared Delta E times px.
     """
     n = int(regions.max()) + 1
-    sides = outline_sides(regions, lab)
+    # Under an arc budget fills facing each other across the outline's strokes merge too; the count
+    # alone keeps the outline as drawn (a beak or an eye enclosed by it stays its own fill).
+    sides = outline_sides(regions, lab) if arcs is not None else None
     target, budget = merge_targets(regions, lab, detail, marks=True, arcs=arcs, sides=sides)
     if n - 1 <= detail and len(np.unique(target)) == n:
         return Merged(regions, n - 1, budget)

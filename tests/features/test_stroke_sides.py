@@ -39,13 +39,15 @@ def test_fills_across_a_stroke_are_neighbours():
     assert target[left] == target[right]  # merged across the stroke
 
 
-def test_merged_fills_lose_the_stroke_between_them_and_the_outline_stays():
+def test_under_an_arc_budget_merged_fills_lose_the_stroke_between_them_and_the_outline_stays():
     image = _two_discs()
     kept = extract_feature_lines(image)  # the default detail keeps both discs and the stroke between them
     assert kept.kind == "clipart"
     assert kept.regions[150, 95] != kept.regions[150, 205]
     assert _lines_near(kept.lines, 150, 150) > 0
-    one = extract_feature_lines(image, detail=1)
+    counted = extract_feature_lines(image, detail=1)  # the count alone keeps the outline as drawn
+    assert counted.regions[150, 95] != counted.regions[150, 205]
+    one = extract_feature_lines(image, detail=1, arcs=1)  # an arc budget merges across its strokes
     assert one.regions[150, 95] == one.regions[150, 205]  # one region
     assert _lines_near(one.lines, 150, 150, reach=20) == 0  # the stroke between them is no line
     for x, y in ((35, 150), (265, 150), (95, 90), (205, 210)):  # the silhouette, at the outline's outer edge
