@@ -140,6 +140,8 @@ build/html/%.html: build/notebooks/%.ipynb | $(HTMLKIT)
 # works, the design notes, the quality and performance pages, the API reference from the docstrings,
 # and the pages of make html when they exist. A warning fails the build.
 docs: | $(DOCSKIT)
+	@# autosummary writes docs/generated/ anew: a page of a module that no longer exists would fail -W
+	@rm -rf docs/generated
 	$(BIN)/sphinx-build -q -W --keep-going -b html docs build/docs
 	@echo "wrote build/docs/index.html"
 

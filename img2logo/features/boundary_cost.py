@@ -68,7 +68,8 @@ def boundary_arcs(
     n = int(regions.max()) + 1
     half = np.ones(n)
     if strokes is not None and len(strokes):
-        half[np.asarray(strokes, dtype=np.int64)] = 0.5
+        labels = np.asarray(strokes, dtype=np.int64)
+        half[labels[labels < n]] = 0.5  # a stroke given away to its sides has no label left
     padded = np.pad(regions, 1, mode="edge")
     seen: dict[tuple[int, int], list[float]] = {}
     from scipy import ndimage

@@ -235,7 +235,7 @@ def enclosed_paper(regions: np.ndarray, img: LoadedImage) -> np.ndarray:
     piece = new_label[pieces]
     sources = np.where(opened, 0, piece)  # -1: neither the background nor an enclosed piece
     rest = background & (sources < 0)
-    given = _nearest_labels(sources, sources < 0)
+    given = nearest_labels(sources, sources < 0)
     return _relabel(np.where(background & ~opened, np.where(rest, given, piece), regions))
 
 
@@ -819,9 +819,9 @@ def clipart_lines(regions: np.ndarray, lightness: np.ndarray | None = None) -> n
         far = strokes & ~near_paper
         given = merged
         if far.any():  # the nearest region of any kind: the boundary runs along the stroke's middle
-            given = np.where(far, _nearest_labels(merged, strokes), given)
+            given = np.where(far, nearest_labels(merged, strokes), given)
         if near_paper.any():  # the nearest region of the object: the line runs along the silhouette
-            given = np.where(near_paper, _nearest_labels(merged, strokes | paper), given)
+            given = np.where(near_paper, nearest_labels(merged, strokes | paper), given)
         merged = given
         drawn |= far
     return region_boundaries(merged) | (drawn & frame_interior(regions.shape))
@@ -899,7 +899,7 @@ def _ink_parts(regions: np.ndarray, labels: np.ndarray) -> Iterator[tuple[int, t
         yield int(label), sl, keep[pieces]
 
 
-def _nearest_labels(regions: np.ndarray, strokes: np.ndarray) -> np.ndarray:
+def nearest_labels(regions: np.ndarray, strokes: np.ndarray) -> np.ndarray:
     """``regions`` with every pixel of ``strokes`` given the label of the nearest pixel outside them: (H, W) int."""
     import cv2
 

@@ -27,6 +27,13 @@ asked, the dark marks on the object's fills (an eye, a pupil, a spot), which
 only take in smaller regions (a pupil's highlight, the spots a wing's black
 encloses).
 
+Fills that face each other across a stroke of that outline (the cartoon
+style, where fills touch only the outline) are neighbours too, weighed with
+the stroke between them, which goes when they merge
+(:mod:`img2logo.features.stroke_sides`), under an arc budget only: there the
+count takes them when no fills sharing a border are left to merge, and the
+budget by its one order; without one the outline stays as drawn.
+
 With an arc budget (``arcs``, :func:`merge_by_importance`) merging then goes
 on, the least Ward weight per predicted arc saved first
 (:mod:`img2logo.features.boundary_cost`), until the logo's predicted arcs
@@ -52,6 +59,7 @@ from ..errors import InvalidParameterError
 from .boundary_cost import boundary_arcs
 from .clipart import ink_outlines, label_means, outline_strokes, thin_regions
 from .constants import CLIPART_MARK_CONTRAST, CLIPART_MAX_REGIONS, CLIPART_OUTLINE_WIDTH
+from .stroke_sides import StrokeSides, across_strokes, open_strokes, stroke_sides
 
 
 def check_detail(value: object, name: str = "detail", unit: str = "regions") -> int:
@@ -158,11 +166,14 @@ def merge_by_importance(
         merge made (0 when none was), squared Delta E times px.
     """
     n = int(regions.max()) + 1
-    target, budget = merge_targets(regions, lab, detail, marks=True, arcs=arcs)
+    # Under an arc budget fills facing each other across the outline's strokes merge too; the count
+    # alone keeps the outline as drawn (a beak or an eye enclosed by it stays its own fill).
+    sides = outline_sides(regions, lab) if arcs is not None else None
+    target, budget = merge_targets(regions, lab, detail, marks=True, arcs=arcs, sides=sides)
     if n - 1 <= detail and len(np.unique(target)) == n:
         return Merged(regions, n - 1, budget)
     if len(np.unique(target)) > max_regions:  # the dark marks too, down to the bound
-        target, budget = merge_targets(regions, lab, min(detail, max_regions - 1), marks=False, arcs=arcs)
+        target, budget = merge_targets(regions, lab, min(detail, max_regions - 1), marks=False, arcs=arcs, sides=sides)
         import warnings
 
         warnings.warn(
@@ -174,14 +185,34 @@ def merge_by_importance(
     kept = len(np.unique(target))
     if kept == n:
         return Merged(regions, n - 1, budget)
+    if sides is not None:  # the stroke between fills merged into one goes, as a shared boundary would
+        regions = open_strokes(regions, sides, target)
     alive = np.zeros(len(target), dtype=bool)
     alive[target] = True
     packed = np.cumsum(alive) - 1
     return Merged(packed[target][regions].astype(np.int64), kept - 1, budget)
 
 
+def outline_sides(regions: np.ndarray, lab: np.ndarray) -> StrokeSides | None:
+    """The sides of the strokes of the ink outlines on the paper (:func:`img2logo.features.stroke_sides.stroke_sides`).
+
+    ``regions`` (H, W) int, 0 = background; ``lab`` (H, W, 3) CIELAB. None when there are none.
+    """
+    _, means = label_means(regions, lab)
+    n = len(means)
+    on_paper = np.zeros(n, dtype=bool)
+    on_paper[[j for i, j in region_adjacency(regions) if i == 0]] = True
+    return stroke_sides(regions, means[:, 0], thin_regions(regions, means[:, 0]), on_paper)
+
+
 def merge_targets(
-    regions: np.ndarray, lab: np.ndarray, detail: int, *, marks: bool = True, arcs: float | None = None
+    regions: np.ndarray,
+    lab: np.ndarray,
+    detail: int,
+    *,
+    marks: bool = True,
+    arcs: float | None = None,
+    sides: StrokeSides | None = None,
 ) -> tuple[np.ndarray, float]:
     """The region each label is merged into by :func:`merge_by_importance`, and the detail budget.
 
@@ -193,7 +224,10 @@ def merge_targets(
     least Ward weight per predicted arc of the boundary it removes (a
     rate-distortion order: the least colour error per arc saved); its merges
     do not raise the returned budget, which the marks' line ends are weighed
-    against (:func:`close_line_ends`).
+    against (:func:`close_line_ends`). ``sides``: the strokes of the ink
+    outlines on the paper (:func:`outline_sides`): the fills facing each other
+    across them are neighbours too (:func:`img2logo.features.stroke_sides.across_strokes`),
+    the side-border's length their border.
 
     Returns
     -------
@@ -228,11 +262,16 @@ def merge_targets(
         dark[ink_outlines(regions, means[:, 0], paper=False, contrast=CLIPART_MARK_CONTRAST)] = True
     stroke = np.zeros(n, dtype=bool)
     stroke[thin_regions(regions, means[:, 0])] = True
-    for (i, j), length in adjacency.items():
+    # Fills facing each other across a stroke of the outline on the paper are neighbours too,
+    # the stroke between them their boundary (stroke_sides).
+    across = None if sides is None else across_strokes(sides, fixed, lab)
+    ink: dict[tuple[int, int], float] = {} if across is None else {k: float(v) for k, v in across.ink.items()}
+    touch = {pair for pair in adjacency if not (fixed[pair[0]] or fixed[pair[1]])}  # a shared border
+    for (i, j), length in [*adjacency.items(), *([] if across is None else across.border.items())]:
         if fixed[i] or fixed[j] or (dark[i] and dark[j]):
             continue
-        nbrs[i][j] = length
-        nbrs[j][i] = length
+        nbrs[i][j] = nbrs[i].get(j, 0) + length
+        nbrs[j][i] = nbrs[i][j]
     version = np.zeros(n, dtype=np.int64)
 
     def allowed(i: int, j: int) -> bool:  # a mark, never a stroke, takes in only what is smaller than it
@@ -241,7 +280,13 @@ def merge_targets(
 
     def cost(i: int, j: int) -> float:
         d = colour[i] - colour[j]
-        return float(ward_weight(area[i], area[j], d @ d))
+        weight = ward_weight(area[i], area[j], d @ d)
+        painted = ink.get((i, j) if i < j else (j, i), 0.0)
+        if painted and across is not None:  # and the stroke between them, painted in their mean colour
+            both = (area[i] * colour[i] + area[j] * colour[j]) / (area[i] + area[j])
+            e = both - across.colour
+            weight += ward_weight(area[i] + area[j], painted, e @ e)
+        return float(weight)
 
     def merge(i: int, j: int) -> tuple[int, int]:
         """Merge the pair; (kept, gone) labels."""
@@ -257,6 +302,11 @@ def merge_targets(
         for k, length in nbrs[j].items():
             if k == i:
                 continue
+            jk, ik = (min(j, k), max(j, k)), (min(i, k), max(i, k))
+            if jk in ink:  # the stroke between j and k is now between i and k
+                ink[ik] = ink.get(ik, 0.0) + ink.pop(jk)
+            if jk in touch:
+                touch.add(ik)
             nbrs[i][k] = nbrs[i].get(k, 0) + length
             del nbrs[k][j]
             nbrs[k][i] = nbrs[i][k]
@@ -264,24 +314,28 @@ def merge_targets(
         nbrs[j] = {}
         return i, j
 
-    heap = [(cost(i, j), i, j, 0, 0) for i in range(1, n) for j in nbrs[i] if i < j]
+    def tier(i: int, j: int) -> int:  # fills that share a border first; across a stroke only then
+        return 0 if ((i, j) if i < j else (j, i)) in touch else 1
+
+    heap = [(tier(i, j), cost(i, j), i, j, 0, 0) for i in range(1, n) for j in nbrs[i] if i < j]
     heapq.heapify(heap)
     left = int(np.count_nonzero(counts[1:]))  # besides the background
     budget = 0.0
     while heap and left > detail:
-        weight, i, j, vi, vj = heapq.heappop(heap)
+        level, weight, i, j, vi, vj = heapq.heappop(heap)
         if vi != version[i] or vj != version[j] or target[i] != i or target[j] != j:
             continue  # stale: a side was merged since
         if not allowed(i, j):
             continue  # taken anew when either side grows
         left -= 1
-        budget = max(budget, weight)
+        if level == 0:  # a merge across a stroke does not raise what the marks are weighed against
+            budget = max(budget, weight)
         i, _ = merge(i, j)
         for k in nbrs[i]:
             a, b = (i, k) if i < k else (k, i)
-            heapq.heappush(heap, (cost(a, b), a, b, int(version[a]), int(version[b])))
+            heapq.heappush(heap, (tier(a, b), cost(a, b), a, b, int(version[a]), int(version[b])))
     if arcs is not None:  # then down to the arc budget, the least weight per arc first
-        inner = _boundary_arcs(regions, stroke, target)
+        inner = _boundary_arcs(regions if sides is None else sides.given, stroke, target)
 
         def key(i: int, j: int, c: float) -> float:  # the colour error painted over per arc saved
             return cost(i, j) / c
@@ -306,8 +360,8 @@ def merge_targets(
                     heapq.heappush(rate, (key(a, b, inner[a, b]), a, b, int(version[a]), int(version[b])))
     # The detail budget: the weight of the next merge the ranking would make, the lightest
     # boundary it kept (the heaviest it made where none is left to make).
-    for weight, i, j, vi, vj in sorted(heap):
-        if vi == version[i] and vj == version[j] and target[i] == i and target[j] == j and allowed(i, j):
+    for level, weight, i, j, vi, vj in sorted(heap):
+        if level == 0 and vi == version[i] and vj == version[j] and target[i] == i and target[j] == j and allowed(i, j):
             budget = max(budget, weight)
             break
     _follow(target)
