@@ -8,6 +8,7 @@ show any level without recomputing and a figure can show any stage.
 from __future__ import annotations
 
 import dataclasses
+import functools
 import sys
 import time
 from collections.abc import Mapping
@@ -21,7 +22,7 @@ from .constants import SYNTHETIC_WORK_SIDE
 from .errors import InvalidParameterError
 from .export.constants import MIN_STROKE_WIDTH
 from .features.preprocessing import FeatureLines, LoadedImage, extract_feature_lines, load_image, photo_reason
-from .fit.progressive import ProgressCallback, Progression, optimize
+from .fit.progressive import Levels, ProgressCallback, Progression, optimize
 from .geometry.abstraction import Abstraction
 from .images.loading import downscale, mask_to_working_size, warn_downscaled
 from .options import AUTO, Options, check_lock_mask, check_symmetry_option
@@ -81,10 +82,10 @@ class Result:
     params: Mapping[str, Any] = field(default_factory=dict)
     symmetry: SymmetryChoice | None = None
 
-    @property
+    @functools.cached_property
     def levels(self) -> tuple[Abstraction, ...]:
-        """A^0 ... A^final."""
-        return self.progression.levels
+        """A^0 ... A^final, all of them made (``progression.levels`` makes each when first asked for)."""
+        return tuple(self.progression.levels)
 
     @property
     def final(self) -> Abstraction:
@@ -256,7 +257,7 @@ def abstract(
     if img.scale != 1.0:
         progression = _in_input_pixels(progression, img)
     timings.update(progression.timings)
-    return Result(img, lines, graph, progression, timings, progression.levels[0].params, choice)
+    return Result(img, lines, graph, progression, timings, progression.final.params, choice)
 
 
 def _working_copy(img: LoadedImage, kind: str) -> tuple[LoadedImage, str, str | None]:
@@ -300,8 +301,13 @@ def _in_input_pixels(progression: Progression, img: LoadedImage) -> Progression:
             out["symmetry"] = {**sym, "point": [float(v) * factor for v in sym["point"]]}
         return out
 
-    levels = tuple(a.scaled(factor, img.input_width, img.input_height, params=params(a)) for a in progression.levels)
-    return dataclasses.replace(progression, levels=levels, bias=levels[0].bias, ladder=levels[0].ladder)
+    def scaled(a: Abstraction) -> Abstraction:
+        return a.scaled(factor, img.input_width, img.input_height, params=params(a))
+
+    levels = progression.levels
+    scaled_levels = levels.map(scaled) if isinstance(levels, Levels) else Levels([scaled(a) for a in levels])
+    final = scaled_levels[-1]  # every level has the same ladder
+    return dataclasses.replace(progression, levels=scaled_levels, bias=final.bias, ladder=final.ladder)
 
 
 def _progress(progress: ProgressCallback | bool | None, tolerance: float) -> tuple[ProgressCallback | None, Any]:

@@ -350,10 +350,10 @@ def _batch_progress(quiet: bool, say):
 def _pick_level(result, n: int | None):
     if n is None:
         return result.final
-    count = len(result.levels)
+    count = len(result.progression.levels)  # without making every level
     if not 0 <= n < count:
         raise InvalidParameterError(f"--level must be in 0..{count - 1} (this run has {count} levels), got {n}")
-    return result.levels[n]
+    return result.level(n)
 
 
 def _write_outputs(result, level, args: argparse.Namespace, say, fill_spec) -> None:

@@ -271,8 +271,8 @@ class Run:
 
     @property
     def levels(self) -> tuple[Abstraction, ...]:
-        """A^0 ... A^final."""
-        return self._progression.levels
+        """A^0 ... A^final, all of them made (the result's :attr:`~img2logo.pipeline.Result.levels`)."""
+        return self._result.levels
 
     @property
     def final(self) -> Abstraction:
@@ -286,13 +286,17 @@ class Run:
 
     def level(self, t: int) -> Abstraction:
         """A^t; negative t counts from the end."""
-        return self.levels[t]
+        return self._progression.levels[t]
 
     @property
     def _progression(self) -> Progression:
+        return self._result.progression
+
+    @property
+    def _result(self) -> Result:
         if self.result is None:
             raise Img2LogoError(f"{self.name} was only preprocessed: it has no levels")
-        return self.result.progression
+        return self.result
 
 
 def preprocess(

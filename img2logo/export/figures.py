@@ -103,6 +103,36 @@ def write_png(
     160
     """
     check_format_suffix(path, "png")
+    data = png_bytes(
+        abstraction,
+        image=image,
+        dpi=dpi,
+        show_junctions=show_junctions,
+        show_circles=show_circles,
+        stroke_width=stroke_width,
+        fills=fills,
+        background=background,
+        scale=scale,
+    )
+    return atomic_write(path, lambda f: f.write(data))
+
+
+def png_bytes(
+    abstraction: Abstraction,
+    *,
+    image: np.ndarray | None = None,
+    dpi: float = PNG_DPI,
+    show_junctions: bool = False,
+    show_circles: bool = False,
+    stroke_width: float | None = None,
+    fills: Sequence[Fill] | None = None,
+    background: str | None = None,
+    scale: float | None = None,
+) -> bytes:
+    """The bytes of the PNG :func:`write_png` writes (the same parameters, without the path).
+
+    For a caller that keeps the file in memory (the batch's workers hand their files back as bytes).
+    """
     fill_list, width, height, sw = checked_drawing(abstraction, fills, stroke_width)
     d = check_positive(dpi, "dpi")
     if background is None:
@@ -123,7 +153,7 @@ def write_png(
             fills=fill_list,
         )
 
-    return _write_figure_png(path, width, height, d, draw, size=size, transparent=background == "transparent")
+    return _figure_png(width, height, d, draw, size=size, transparent=background == "transparent")
 
 
 def png_size(width: float, height: float, scale: float | None = None, background: str = "white") -> tuple[int, int]:
@@ -192,6 +222,19 @@ def write_pdf(
         The path of the PDF written.
     """
     check_format_suffix(path, "pdf")
+    data = pdf_bytes(abstraction, stroke_width=stroke_width, fills=fills)
+    return atomic_write(path, lambda f: f.write(data))
+
+
+def pdf_bytes(
+    abstraction: Abstraction,
+    *,
+    stroke_width: float | None = None,
+    fills: Sequence[Fill] | None = None,
+) -> bytes:
+    """The bytes of the PDF :func:`write_pdf` writes (the same parameters, without the path)."""
+    import io
+
     import matplotlib.style
     from matplotlib.backends.backend_pdf import FigureCanvasPdf
     from matplotlib.figure import Figure
@@ -202,7 +245,7 @@ def write_pdf(
     from .plotting import draw_fills, frame_image
 
     fill_list, width, height, sw = checked_drawing(abstraction, fills, stroke_width)
-    target = as_path(path)
+    buffer = io.BytesIO()
     with matplotlib.style.context("default"):
         fig = Figure(figsize=(width / 72.0, height / 72.0), dpi=72.0, facecolor="white")
         FigureCanvasPdf(fig)
@@ -219,13 +262,10 @@ def write_pdf(
                 unit = MplPath.arc(lo, lo + math.degrees(abs(a.sweep)))
                 shape = Affine2D().scale(a.circle.r).translate(a.circle.cx, a.circle.cy).transform_path(unit)
             ax.add_patch(PathPatch(shape, zorder=3, **style))
-
-        def save(f: IO[bytes]) -> None:
-            fig.savefig(
-                f, format="pdf", facecolor="white", metadata={"Creator": None, "Producer": None, "CreationDate": None}
-            )
-
-        return atomic_write(target, save)
+        fig.savefig(
+            buffer, format="pdf", facecolor="white", metadata={"Creator": None, "Producer": None, "CreationDate": None}
+        )
+    return buffer.getvalue()
 
 
 def write_segment_graph_png(
@@ -298,23 +338,37 @@ def _write_figure_png(
     height: int,
     dpi: float,
     draw: Callable[[Any], None],
+) -> Path:
+    """Draw on full-figure axes of a ``width`` x ``height`` px Agg figure (:func:`_figure_png`); save it atomically."""
+    target = as_path(path)
+    data = _figure_png(width, height, dpi, draw)
+    return atomic_write(target, lambda f: f.write(data))
+
+
+def _figure_png(
+    width: int,
+    height: int,
+    dpi: float,
+    draw: Callable[[Any], None],
     *,
     size: tuple[int, int] | None = None,
     transparent: bool = False,
-) -> Path:
-    """Draw on full-figure axes of a ``width`` x ``height`` px Agg figure and save it atomically.
+) -> bytes:
+    """The PNG of full-figure axes of a ``width`` x ``height`` px Agg figure that ``draw(ax)`` drew on.
 
     ``size`` (px) resamples the figure to another pixel size: the figure keeps its
     size in points and is saved at ``dpi`` times the scale, so strokes scale with it.
     """
+    import io
+
     import matplotlib.style
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
 
-    target = as_path(path)
     out_w, out_h = (width, height) if size is None else size
     save_dpi = dpi * out_w / width
     paper = "none" if transparent else "white"
+    buffer = io.BytesIO()
     with matplotlib.style.context("default"):
         # The figure is out_w x out_h px at save_dpi, in inches of the input's size at dpi.
         fig = Figure(figsize=(out_w / save_dpi, out_h / save_dpi), dpi=dpi, facecolor=paper)
@@ -323,28 +377,24 @@ def _write_figure_png(
         draw(ax)
         if transparent:
             ax.patch.set_alpha(0.0)
+            fig.savefig(
+                buffer,
+                format="png",
+                dpi=save_dpi,
+                facecolor=paper,
+                edgecolor=paper,
+                transparent=True,
+                metadata={"Software": None},
+            )
+            return buffer.getvalue()
+        # On white every pixel is opaque: an RGB PNG, without an alpha channel of 255 everywhere.
+        from PIL import Image
 
-        def save(f: IO[bytes]) -> None:
-            if transparent:
-                fig.savefig(
-                    f,
-                    format="png",
-                    dpi=save_dpi,
-                    facecolor=paper,
-                    edgecolor=paper,
-                    transparent=True,
-                    metadata={"Software": None},
-                )
-                return
-            # On white every pixel is opaque: an RGB PNG, without an alpha channel of 255 everywhere.
-            from PIL import Image
-
-            fig.set_dpi(save_dpi)
-            canvas.draw()
-            rgba = np.asarray(canvas.buffer_rgba())
-            Image.fromarray(np.ascontiguousarray(rgba[..., :3])).save(f, format="png", dpi=(save_dpi, save_dpi))
-
-        return atomic_write(target, save)
+        fig.set_dpi(save_dpi)
+        canvas.draw()
+        rgba = np.asarray(canvas.buffer_rgba())
+        Image.fromarray(np.ascontiguousarray(rgba[..., :3])).save(buffer, format="png", dpi=(save_dpi, save_dpi))
+    return buffer.getvalue()
 
 
 def save_figure(fig: Any, path: str | os.PathLike[str], *, dpi: float = PNG_DPI) -> Path:

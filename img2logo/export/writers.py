@@ -47,7 +47,16 @@ from ..geometry.abstraction import Abstraction
 if TYPE_CHECKING:
     pass
 
-from .figures import PNG_BACKGROUNDS, png_size, save_figure, write_pdf, write_png, write_segment_graph_png
+from .figures import (
+    PNG_BACKGROUNDS,
+    pdf_bytes,
+    png_bytes,
+    png_size,
+    save_figure,
+    write_pdf,
+    write_png,
+    write_segment_graph_png,
+)
 from .formats import FORMAT_SUFFIXES, check_format_suffix
 from .svg import SVG_METADATA_NS, to_svg, write_svg
 
@@ -58,7 +67,11 @@ __all__ = [
     "SVG_METADATA_NS",
     "check_format_suffix",
     "check_output_paths",
+    "encode",
+    "json_bytes",
     "output_set",
+    "pdf_bytes",
+    "png_bytes",
     "png_size",
     "read_json",
     "save_figure",
@@ -149,17 +162,28 @@ def write_json(
     >>> len(read_json("ring.json").arcs)
     1
     """
+    check_format_suffix(path, "json")
+    data = json_bytes(abstraction, params, check=check, fills=fills)
+    return atomic_write(path, lambda f: f.write(data))
+
+
+def json_bytes(
+    abstraction: Abstraction,
+    params: Mapping[str, Any] | None = None,
+    *,
+    check: bool = False,
+    fills: Sequence[Fill] | None = None,
+) -> bytes:
+    """The bytes of the JSON document :func:`write_json` writes (the same parameters, without the path)."""
     import json
 
     from .contract import to_document
 
-    check_format_suffix(path, "json")
     doc = to_document(abstraction, params, check=check, fills=fills)
     text = json.dumps(doc, indent=2, sort_keys=True, allow_nan=False, ensure_ascii=False) + "\n"
     # A file name of bytes that are not UTF-8 holds surrogate escapes (PEP 383): written as JSON's own
     # escape (\udce9), valid UTF-8 that json.loads reads back as the same name.
-    data = text.encode("utf-8", errors="backslashreplace")
-    return atomic_write(path, lambda f: f.write(data))
+    return text.encode("utf-8", errors="backslashreplace")
 
 
 #: The formats :func:`write` writes a level in.
@@ -209,6 +233,49 @@ def write(
     if format == "pdf":
         return write_pdf(level, path, fills=fills)
     return write_png(level, path, image=image, fills=fills, background=background, scale=scale)
+
+
+def encode(
+    level: Abstraction,
+    format: str,
+    *,
+    fills: Sequence[Fill] | None = None,
+    image: np.ndarray | None = None,
+    background: str | None = None,
+    scale: float | None = None,
+) -> bytes:
+    """The bytes :func:`write` writes for ``level`` in ``format``, kept in memory (no file).
+
+    The batch's workers make their files so and hand them back as bytes: the same
+    bytes as :func:`write`'s file, with no temporary file written, synced and read back.
+
+    Parameters
+    ----------
+    level : Abstraction
+        The level to encode.
+    format : {"json", "svg", "pdf", "png"}
+        As :func:`json_bytes`, :func:`~img2logo.export.svg.to_svg` (UTF-8),
+        :func:`~img2logo.export.figures.pdf_bytes` or :func:`~img2logo.export.figures.png_bytes`.
+    fills, image, background, scale
+        As in :func:`write`.
+
+    Returns
+    -------
+    bytes
+
+    Raises
+    ------
+    InvalidParameterError
+        If ``format`` is none of ``LEVEL_FORMATS``, or the encoder refuses a value.
+    """
+    check_choice(format, "format", LEVEL_FORMATS)
+    if format == "json":
+        return json_bytes(level, fills=fills)
+    if format == "svg":
+        return to_svg(level, fills=fills).encode("utf-8")
+    if format == "pdf":
+        return pdf_bytes(level, fills=fills)
+    return png_bytes(level, image=image, fills=fills, background=background, scale=scale)
 
 
 def write_table(table: Any, path: str | os.PathLike[str]) -> Path:

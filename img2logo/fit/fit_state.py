@@ -26,11 +26,9 @@ from typing import Any, cast
 
 import numpy as np
 
-from ..constants import JUNCTION_TOLERANCE
-from ..geometry.abstraction import Abstraction
 from ..geometry.circle_fitting import fit_center, mean_abs_error
 from ..geometry.golden_ladder import Ladder
-from ..geometry.primitives import ArcJunctions, Circle, Line, line_arc
+from ..geometry.primitives import Circle, Line, line_arc
 from ..options import Options
 from ..segment_graph import SegmentGraph
 from .arc_extraction import ArcFit, _extract
@@ -126,14 +124,6 @@ class FitState:
         #: group path -> (released junctions when made, :meth:`golden_error`).
         self._golden_error: dict[tuple[tuple[int, ...], tuple[int, ...]], tuple[int, float]] = {}
         self._node_groups: dict[int, list[int]] | None = None
-        #: group -> (arc, junction nodes, the :meth:`abstraction` call that last saw it, ArcJunctions
-        #: by path position, the nodes' indices in that level, its ArcJunctions there, whether a
-        #: level checked that arc at those points): :meth:`_topology`.
-        self._topologies: dict[
-            int, tuple[Any, tuple[int, ...], int, ArcJunctions, tuple[int, ...], ArcJunctions | None, bool]
-        ] = {}
-        #: What the last :meth:`abstraction` call read: its number, every node's displaced point, J' in order.
-        self._last_level: tuple[int, np.ndarray | None, list[int]] = (0, None, [])
         self.smooth: frozenset[int] = graph.smooth_nodes() if options.tangency and options.connectivity else frozenset()
         self.loose: set[int] = set()
         #: Smooth joins the merge loop made tangent (img2logo.fit.merging): held in every later merge's window.
@@ -476,124 +466,3 @@ class FitState:
         """E^s (Eqn. 3): mean Fréchet distance of the arcs plus mean junction displacement."""
         f, d, nj = self.totals()
         return f / max(len(self.fits), 1) + (d / nj if nj else 0.0)
-
-    # ----------------------------------------------------------------- levels
-    def abstraction(self, level: int, params: Mapping[str, Any]) -> Abstraction:
-        """The current state as a frozen :class:`Abstraction` A^t, with its ladder and topology."""
-        order = sorted(self.groups, key=lambda g: min(self.groups[g].segments))
-        nodes = sorted(self.node_groups())
-        junction = {n: i for i, n in enumerate(nodes)}
-        displaced = self.graph.junctions + self.disp  # every node's p_k + d_k at once, (N, 2)
-        points = displaced[np.asarray(nodes, dtype=np.intp)].reshape(-1, 2)
-        arcs = tuple(self.fits[g].arc.arc for g in order)
-        # The nodes whose point moved since the last call (all of them on the first), and
-        # whether J' is numbered as then: a group's topology is read again only where they changed.
-        call, before, nodes_before = self._last_level
-        moved: set[int] | None = None
-        if before is not None and before.shape == displaced.shape:
-            moved = set(np.flatnonzero((displaced != before).any(axis=1)).tolist())
-        self._last_level = (call + 1, displaced, nodes)
-        renumbered = nodes != nodes_before
-        topology = tuple(
-            self._topology(g, arc, junction, displaced, moved, renumbered, call)
-            for g, arc in zip(order, arcs, strict=True)
-        )
-        # Each junction's arcs in index order: the groups walked in that order (what
-        # sorting each node's groups by index gives, without a sort per node).
-        at_node: dict[int, list[int]] = {n: [] for n in nodes}
-        for i, g in enumerate(order):
-            for n in set(self.constrained_nodes(self.groups[g])):
-                at_node[n].append(i)
-        # The arcs an earlier level checked, with the same junction points: left out of its geometric check.
-        known = tuple(self._topologies[g][6] for g in order)
-        out = Abstraction._with_known(
-            known,
-            level=level,
-            arcs=arcs,
-            arc_segments=tuple(self.groups[g].segments for g in order),
-            junctions=points,
-            junction_arcs=tuple(map(tuple, map(at_node.__getitem__, nodes))),
-            similarity=float(self.similarity()),
-            bias=float(self.ladder.bias),
-            tolerance=float(self.options.tolerance),
-            width=self.graph.width,
-            height=self.graph.height,
-            params=params,
-            ladder=self.ladder,
-            arc_junctions=topology,
-            junction_nodes=tuple(nodes),
-            connected=self.options.connectivity,
-        )
-        for g in order:  # checked now
-            entry = self._topologies[g]
-            if not entry[6]:
-                self._topologies[g] = (*entry[:6], True)
-        return out
-
-    def _topology(
-        self,
-        g: int,
-        arc: Any,
-        junction: Mapping[int, int],
-        displaced: np.ndarray,
-        moved: set[int] | None,
-        renumbered: bool,
-        call: int,
-    ) -> ArcJunctions:
-        """:meth:`arc_junctions` of group ``g``'s ``arc``, its junctions numbered by ``junction`` (node -> index).
-
-        Found in the group's own path positions and kept while its arc and its
-        junctions' points (rows of ``displaced``, by node) stay the same: between
-        two levels most arcs do; so is the numbered value while the numbering does.
-        ``moved``: the nodes whose point changed since the last :meth:`abstraction`
-        call (None: any may have), ``call`` that call's number; ``renumbered``:
-        whether J' is numbered differently from then. An entry is reused only when
-        that last call saw it (a group of an earlier level restored later is read again).
-        """
-        nodes = self.constrained_nodes(self.groups[g])
-        cached = self._topologies.get(g)
-        if (
-            cached is None
-            or cached[0] is not arc
-            or cached[2] != call
-            or cached[1] != nodes
-            or moved is None
-            or not moved.isdisjoint(nodes)
-        ):
-            points = displaced[list(nodes)]
-            cached = (arc, nodes, call, self.arc_junctions(arc, range(len(nodes)), points), (), None, False)
-        elif not renumbered and cached[5] is not None:
-            self._topologies[g] = (*cached[:2], call + 1, *cached[3:])
-            return cached[5]
-        at = tuple(junction[n] for n in nodes)
-        if cached[5] is not None and cached[4] == at:
-            self._topologies[g] = (*cached[:2], call + 1, *cached[3:])
-            return cached[5]
-        local = cached[3]
-        value = ArcJunctions(
-            None if local.start is None else at[local.start],
-            None if local.end is None else at[local.end],
-            tuple(at[i] for i in local.through),
-        )
-        self._topologies[g] = (*cached[:2], call + 1, cached[3], at, value, cached[6])
-        return value
-
-    @staticmethod
-    def arc_junctions(arc: Any, path: Sequence[int], points: np.ndarray) -> ArcJunctions:
-        """Which of a group's junctions (``path``: indices into ``points``, in path order) are at the arc's ends.
-
-        The arc was extracted between (the projections on its circle of) the
-        junctions of its path (:meth:`arc_for`): an end is at the junction whose
-        projection it is, to ``JUNCTION_TOLERANCE``; an end at none (a released
-        junction's projection) is free. The others are passed through, in path order.
-        """
-        c = arc.circle
-        ends: list[int | None] = []
-        # The projections of all the path's junctions at once (the same values as one at a time).
-        proj = c.point_at(c.angle_of(points[np.asarray(path, dtype=np.intp)])).reshape(-1, 2)
-        for end in (arc.start, arc.end):
-            d = np.hypot(proj[:, 0] - end[0], proj[:, 1] - end[1])
-            near = d <= JUNCTION_TOLERANCE
-            # The nearest within the tolerance; on a tie the first in path order.
-            ends.append(path[int(np.argmin(np.where(near, d, np.inf)))] if near.any() else None)
-        return ArcJunctions(ends[0], ends[1], tuple(j for j in path if j not in ends))

@@ -56,7 +56,7 @@ def _overshoots(state: FitState, group: Group, fit: GroupFit, at: Callable[[int]
     hit = _OVERSHOOTS.get(fit)
     if hit is not None and hit[0] == nodes:
         return hit[1]
-    # FitState.arc_junctions' test for the path's two end nodes: a node is an end of the arc
+    # img2logo.fit.levels.arc_junctions' test for the path's two end nodes: a node is an end of the arc
     # when its projection on the circle lies within JUNCTION_TOLERANCE of one of the arc's ends.
     arc = fit.arc.arc
     cx, cy, r = arc.circle.cx, arc.circle.cy, arc.circle.r

@@ -26,11 +26,12 @@ the current state whenever one of them changed.
 
 This module holds the entry point :func:`optimize` and the initial fit; the
 optimizer's state (groups, golden circles, arcs, the constrained fit of a
-window, the levels) is :class:`img2logo.fit.fit_state.FitState`. The stages it
+window) is :class:`img2logo.fit.fit_state.FitState`. The stages it
 runs are their own modules: the segment groups and the
 line-segment simplification (:mod:`img2logo.fit.simplification`), the recovery of
-an initial fit that fails (:mod:`img2logo.fit.recovery`), and the merge
-candidates, their evaluation and the loop (:mod:`img2logo.fit.merging`).
+an initial fit that fails (:mod:`img2logo.fit.recovery`), the merge
+candidates, their evaluation and the loop (:mod:`img2logo.fit.merging`), and the
+levels, each made when first asked for (:mod:`img2logo.fit.levels`).
 
 Coordinates: px, x right, y down (``contract/README.md``).
 """
@@ -39,7 +40,7 @@ from __future__ import annotations
 
 import time
 import warnings
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -56,6 +57,7 @@ from .constants import OUTLINE_DISTANCE
 from .fit_state import FitState
 from .fit_values import AxisConstraints, FreeCircles, Seed
 from .kinks import tangent_level
+from .levels import LevelContext, Levels, LevelState
 from .merge_checks import redundant_pairs
 from .merging import TIME_BUDGET_STOP, merge_loop
 from .recovery import check_reach, check_span, recover
@@ -77,10 +79,11 @@ class Progression:
 
     Attributes
     ----------
-    levels : tuple of Abstraction
+    levels : Levels (a sequence of Abstraction)
         ``levels[t]`` is A^t; each has fewer arcs than the one before. The last
         one is the result: its E^s is within the tolerance (unless A^0 already
-        exceeds it, then A^0 is the only level).
+        exceeds it, then A^0 is the only level). Each level is made when it is
+        first asked for (:class:`Levels`); a run that uses only its result makes only that.
     bias : float
         The ladder bias sigma used (Eqn. 14 from the longest segment, or given);
         0.0 on the Fibonacci ladder (its unit is ``ladder.unit``).
@@ -109,7 +112,7 @@ class Progression:
     (True, True)
     """
 
-    levels: tuple[Abstraction, ...]
+    levels: Sequence[Abstraction]
     bias: float
     simplified: tuple[tuple[int, ...], ...]
     stopped_because: str
@@ -125,11 +128,15 @@ class Progression:
     @property
     def arc_counts(self) -> list[int]:
         """|A^t| for every level t."""
+        if isinstance(self.levels, Levels):
+            return self.levels.arc_counts()
         return [len(a.arcs) for a in self.levels]
 
     @property
     def similarities(self) -> list[float]:
         """E^s(A^t) for every level t, px."""
+        if isinstance(self.levels, Levels):
+            return self.levels.similarities()
         return [a.similarity for a in self.levels]
 
 
@@ -335,8 +342,9 @@ def optimize(
     record["bias"] = float(golden.bias)
     if isinstance(golden, FibonacciLadder):
         record["unit"] = float(golden.unit)
-    levels = [state.abstraction(0, record)]
-    simplified = tuple(lv for lv in levels[0].arc_segments)
+    run = LevelContext(state)
+    levels: list[LevelState | Abstraction] = [LevelState.of(state, 0, record, run)]
+    simplified = levels[0].arc_segments
     timings["initial_fit"] = time.perf_counter() - start
     if progress:
         progress(0, len(levels[0].arcs), levels[0].similarity)
@@ -345,7 +353,7 @@ def optimize(
 
     def add_level(state: FitState) -> None:
         """A merge was made: the state is level A^t, t = len(levels)."""
-        level = state.abstraction(len(levels), record)
+        level = LevelState.of(state, len(levels), record, run)
         levels.append(level)
         if state.smooth:
             history.append(snapshot(state))
@@ -363,12 +371,13 @@ def optimize(
         # a level before the loop's last, whose shorter arcs leave room for more tangencies.
         back = tangent_level(state, opts.tolerance, history, over_budget)
         del levels[len(levels) - back :]
-        levels[-1] = state.abstraction(levels[-1].level, record)
+        levels[-1] = LevelState.of(state, levels[-1].level, record, run).abstraction()
         if progress:  # the result: an earlier t than the last reported when levels were dropped
             progress(levels[-1].level, len(levels[-1].arcs), levels[-1].similarity)
     timings["tangency"] = time.perf_counter() - start
+    made = Levels(levels)
     if stopped == TIME_BUDGET_STOP:
-        final = levels[-1]
+        final = made[-1]
         warnings.warn(
             TimeBudgetWarning(
                 f"the optimization reached its time budget ({opts.time_budget:g} s of CPU) and stopped merging at "
@@ -377,7 +386,7 @@ def optimize(
             ),
             stacklevel=2,
         )
-    return Progression(tuple(levels), float(golden.bias), simplified, stopped, state.stats.as_dict(), timings, golden)
+    return Progression(made, float(golden.bias), simplified, stopped, state.stats.as_dict(), timings, golden)
 
 
 def _budget(seconds: float | None) -> Callable[[], bool] | None:

@@ -161,7 +161,7 @@ class Abstraction:
     def _with_known(cls, known: Sequence[bool], **fields: Any) -> Abstraction:
         """``Abstraction(**fields)``, with the arcs ``known`` (by index) left out of the geometric topology check.
 
-        For :meth:`img2logo.fit.fit_state.FitState.abstraction`, which knows the
+        For :meth:`img2logo.fit.levels.LevelState.abstraction`, which knows the
         arcs that an earlier level checked with the same junction points (and
         the same ladder, the run's: they are left out of the radius check too);
         every other check runs as for any value.
@@ -272,7 +272,7 @@ class Abstraction:
         checks decide, and name what fails. The arcs ``known`` (by index) are
         left out: those the progressive optimization checked at an earlier
         level, with the same arc and the same junction points
-        (:meth:`img2logo.fit.fit_state.FitState.abstraction`).
+        (:meth:`img2logo.fit.levels.LevelState.abstraction`).
         """
         tol, margin = JUNCTION_TOLERANCE, 1e-9
         on_arc: list[int] = []

@@ -596,3 +596,39 @@ def test_write_is_the_formats_own_writer(tmp_path):
     with pytest.raises(InvalidParameterError, match="format"):
         writers.write(a, tmp_path / "a.gif", "gif")
     assert not (tmp_path / "a.gif").exists()
+
+
+@pytest.mark.parametrize("fmt", writers.LEVEL_FORMATS)
+def test_encode_gives_the_bytes_write_writes(tmp_path, fmt):
+    """``encode`` keeps in memory (the batch's workers) exactly the file ``write`` and each format's writer write."""
+    a = make_abstraction()
+    regions = palette_fills(a)
+    image = np.zeros((HEIGHT, WIDTH, 3), dtype=np.uint8)
+    data = writers.encode(a, fmt, fills=regions, image=image)
+    assert data == writers.write(a, tmp_path / f"w.{fmt}", fmt, fills=regions, image=image).read_bytes()
+    own = {
+        "json": lambda p: writers.write_json(a, p, fills=regions),
+        "svg": lambda p: writers.write_svg(a, p, fills=regions),
+        "pdf": lambda p: writers.write_pdf(a, p, fills=regions),
+        "png": lambda p: writers.write_png(a, p, fills=regions, image=image),
+    }[fmt]
+    assert data == own(tmp_path / f"own.{fmt}").read_bytes()
+    assert writers.encode(a, fmt, fills=regions, image=image) == data  # deterministic
+    if fmt == "png":  # the other backgrounds too
+        for background in ("white", "transparent"):
+            png = writers.encode(a, "png", background=background, scale=1.5)
+            assert (
+                png
+                == writers.write_png(a, tmp_path / f"{background}.png", background=background, scale=1.5).read_bytes()
+            )
+
+
+def test_encode_and_write_refuse_what_they_cannot_make(tmp_path):
+    a = make_abstraction()
+    with pytest.raises(InvalidParameterError, match="format must be one of"):
+        writers.encode(a, "gif")
+    with pytest.raises(InvalidParameterError, match=r"\.svg names another format \(this writes PNG\)"):
+        writers.write(a, tmp_path / "logo.svg", "png")
+    with pytest.raises(InvalidParameterError, match='background "input" needs the input image'):
+        writers.encode(a, "png", background="input")
+    assert list(tmp_path.iterdir()) == []

@@ -10,9 +10,9 @@ own whose workers end with their parent, retrying the images of a pool that brok
 from __future__ import annotations
 
 import contextlib
+import gc
 import os
 import sys
-import tempfile
 import threading
 import time
 import warnings
@@ -58,9 +58,8 @@ def process_image(
         The options of :func:`img2logo.abstract` (:class:`~img2logo.options.Options`,
         or its keywords: ``tolerance``, ``kind``, ``ladder``, ...).
     outputs : sequence of {"svg", "json", "png"}
-        The files to make, as :func:`img2logo.export.writers.write_svg`,
-        :func:`~img2logo.export.writers.write_json` and :func:`~img2logo.export.writers.write_png`
-        (over the faded input) write them.
+        The files to make, as :func:`img2logo.export.writers.write` writes them (the PNG over
+        the faded input), made in memory by :func:`img2logo.export.writers.encode`.
     fill : str
         The ``--fill`` option (:func:`img2logo.design.fills.parse_fill_option`).
 
@@ -109,15 +108,13 @@ def _process(
         warnings.warn(ignored, UserWarning, stacklevel=2)
     fills = None if spec.mode == "none" else spec.make(final, result.image)
     files: dict[str, bytes] = {}
-    if outputs:
-        with _WRITE_LOCK, tempfile.TemporaryDirectory(prefix="img2logo-") as tmp:
-            for fmt in outputs:
-                target = writers.write(final, Path(tmp) / f"logo.{fmt}", fmt, fills=fills, image=result.image.rgb)
-                files[fmt] = target.read_bytes()
+    with _WRITE_LOCK:  # in memory: the calling process writes the files
+        for fmt in outputs:
+            files[fmt] = writers.encode(final, fmt, fills=fills, image=result.image.rgb)
     return {
         "kind": result.lines.kind,
         "arcs": len(final.arcs),
-        "levels": len(result.levels),
+        "levels": len(result.progression.levels),  # without making every level
         "similarity": float(final.similarity),
         "symmetry": _symmetry_cell(result.symmetry),
         "files": files,
@@ -181,6 +178,9 @@ def _init_worker(parent: int | None = None) -> None:
         cv2.setNumThreads(1)
     except ImportError:  # pragma: no cover - a dependency
         pass
+    # The modules loaded before the fork (:func:`_warm`) live as long as the worker: out of the cyclic
+    # collector's sight, its collections walk only the objects of the images run here.
+    gc.freeze()
 
 
 def _die_with_parent(parent: int) -> None:
@@ -270,7 +270,7 @@ def run_tasks(
                 alone = breaks >= _POOL_BREAKS_BEFORE_ALONE
                 broken: list[int] = []
                 for chunk in [[i] for i in pending] if alone else [pending]:
-                    pool = _default_pool(min(workers, len(chunk)))
+                    pool = _default_pool(min(workers, len(chunk)), drawn=any("png" in t[2] for t in tasks))
                     lost = _run_on(pool, tasks, chunk, finish, start_bar, own=True)
                     if alone and lost:  # this task, alone in its pool, killed its worker
                         finish(lost[0], _lost(tasks[lost[0]], _WORKER_DIED))
@@ -368,26 +368,28 @@ def _opencv_threads(n: int | None) -> Iterator[None]:
         cv2.setNumThreads(before)
 
 
-def _default_pool(workers: int) -> Executor:
+def _default_pool(workers: int, *, drawn: bool = True) -> Executor:
     """A ProcessPoolExecutor of ``workers`` processes, by the platform's default start method.
 
     That is fork on Linux before Python 3.14: a script without an ``if __name__ ==
-    "__main__":`` guard works, and the workers start warm (:func:`_warm`). Where it
-    is spawn or forkserver, the guard is needed.
+    "__main__":`` guard works, and the workers start warm (:func:`_warm`; ``drawn``:
+    the PNG's modules too). Where it is spawn or forkserver, the guard is needed.
     """
     import multiprocessing
     from concurrent.futures import ProcessPoolExecutor
 
     if multiprocessing.get_start_method() == "fork":
-        _warm()
+        _warm(drawn=drawn)
     return ProcessPoolExecutor(max_workers=workers, initializer=_init_worker, initargs=(os.getpid(),))
 
 
-def _warm() -> None:
+def _warm(*, drawn: bool) -> None:
     """Load in this process what every image's run loads (the pipeline, the writers, the compiled kernels, OpenCV).
 
     The workers forked from it start with them loaded: each saves their load
     (about 0.15 s of CPU; 10 small drawings on two workers: 4.2 -> 3.9 s of CPU in all).
+    With ``drawn`` (PNGs are made) also matplotlib's Agg canvas and Pillow's PNG encoder:
+    about 0.5 s of CPU that every worker would spend on its first PNG.
     """
     import cv2  # noqa: F401
 
@@ -396,6 +398,14 @@ def _warm() -> None:
     from ...pipeline import abstract  # noqa: F401
 
     kernels.usable()
+    if drawn:
+        import matplotlib.backends.backend_agg
+        import matplotlib.collections
+        import matplotlib.figure
+        import matplotlib.style  # noqa: F401
+        from PIL import Image
+
+        Image.preinit()  # the encoders a first PNG would load
 
 
 def _progress(progress: BatchProgress | bool | None, total: int) -> tuple[BatchProgress, Callable[[], None]]:

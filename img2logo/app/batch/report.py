@@ -2,7 +2,8 @@
 
 A :class:`BatchReport` holds one :class:`BatchRow` per image done and one
 :class:`BatchFailure` per image that failed, in input order; :meth:`BatchReport.to_frame`
-is ``summary.csv`` (``SUMMARY_COLUMNS``), :meth:`BatchReport.summary` the text table
+is the summary table (``SUMMARY_COLUMNS``), :meth:`BatchReport.summary_csv` its
+``summary.csv``, :meth:`BatchReport.summary` the text table
 the command line prints. :func:`report_of` builds the report from the worker's plain
 results (:func:`img2logo.app.batch.pool.process_image`).
 """
@@ -118,7 +119,30 @@ class BatchReport:
         """The summary table: one row per image (failed ones with their ``error``), ``SUMMARY_COLUMNS``."""
         import pandas as pd
 
-        keyed = [
+        table = pd.DataFrame.from_records(self._records(), columns=list(SUMMARY_COLUMNS))
+        return table.astype({"arcs": "Int64", "levels": "Int64"})
+
+    def summary_csv(self) -> str:
+        """``summary.csv``: :meth:`to_frame` as CSV, a text cell a spreadsheet would run as a formula quoted.
+
+        The text of ``csv_safe(report.to_frame()).to_csv(index=False, lineterminator="\\n",
+        float_format="%.6g")``, written with the standard library's :mod:`csv` (pandas'
+        import is a quarter of a second at the end of every batch): a missing cell empty,
+        floats to 6 significant digits, quotes only where needed.
+        """
+        import csv
+        import io
+
+        text = io.StringIO()
+        out = csv.writer(text, lineterminator="\n")
+        out.writerow(SUMMARY_COLUMNS)
+        for record in self._records():
+            out.writerow([_csv_cell(column, record.get(column)) for column in SUMMARY_COLUMNS])
+        return text.getvalue()
+
+    def _records(self) -> list[dict[str, Any]]:
+        """The table's rows in input order: one per image done, then failed ones with only ``image`` and ``error``."""
+        keyed: list[tuple[str, dict[str, Any]]] = [
             (
                 r.path,
                 {
@@ -137,8 +161,7 @@ class BatchReport:
         keyed += [(f.path, {"image": f.image, "error": f.message}) for f in self.failures]
         order = {path: i for i, path in enumerate(self.inputs)}
         keyed.sort(key=lambda item: order.get(item[0], len(order)))  # stable: rows before failures otherwise
-        table = pd.DataFrame.from_records([rec for _, rec in keyed], columns=list(SUMMARY_COLUMNS))
-        return table.astype({"arcs": "Int64", "levels": "Int64"})
+        return [rec for _, rec in keyed]
 
     def summary(self, *, failures: bool = True) -> str:
         """The summary as a text table: image, kind, arcs, E^s, (symmetry,) seconds; then the failures.
@@ -201,6 +224,20 @@ def report_of(
 _FORMULA_STARTS: tuple[str, ...] = ("=", "+", "-", "@", "\t", "\r")
 
 
+def _csv_cell(column: str, value: Any) -> str:
+    """One cell of ``summary.csv`` (:meth:`BatchReport.summary_csv`): as pandas writes it, formulas quoted."""
+    if value is None:
+        return ""
+    if column in ("similarity", "seconds"):
+        return "" if value != value else "%.6g" % value  # noqa: UP031 - pandas' float_format
+    return str(_not_a_formula(value))
+
+
+def _not_a_formula(value: Any) -> Any:
+    """``value``, quoted by a leading ``'`` if it is text that a spreadsheet would run as a formula."""
+    return f"'{value}" if isinstance(value, str) and value.startswith(_FORMULA_STARTS) else value
+
+
 def csv_safe(table: pd.DataFrame) -> pd.DataFrame:
     """``table`` with every text cell that a spreadsheet would run as a formula quoted by a leading ``'``.
 
@@ -209,5 +246,5 @@ def csv_safe(table: pd.DataFrame) -> pd.DataFrame:
     """
     safe = table.copy()
     for column in ("image", "kind", "symmetry", "error"):
-        safe[column] = [f"'{v}" if isinstance(v, str) and v.startswith(_FORMULA_STARTS) else v for v in safe[column]]
+        safe[column] = [_not_a_formula(v) for v in safe[column]]
     return safe

@@ -58,7 +58,7 @@ from .folder import (
     write_manifest,
 )
 from .pool import OUTPUT_FORMATS, BatchProgress, ignored_subject_options, process_image, run_tasks
-from .report import SUMMARY_COLUMNS, BatchFailure, BatchReport, BatchRow, csv_safe, report_of
+from .report import SUMMARY_COLUMNS, BatchFailure, BatchReport, BatchRow, report_of
 
 __all__ = [
     "IMAGE_SUFFIXES",
@@ -195,7 +195,7 @@ def run_batch(
         Colour the regions (paper Fig. 18): the ``--fill`` option's syntax,
         e.g. ``"auto"`` (:func:`img2logo.design.fills.parse_fill_option`).
     summary : bool
-        Write ``output_dir/summary.csv`` (:meth:`BatchReport.to_frame`) and
+        Write ``output_dir/summary.csv`` (:meth:`BatchReport.summary_csv`) and
         ``output_dir/index.html``, the gallery of inputs and logos (:mod:`img2logo.app.batch.gallery`).
     options : Options, optional
         The options of every image (:class:`~img2logo.options.Options`).
@@ -267,12 +267,12 @@ def run_batch(
             results = run_tasks(tasks, executor, jobs, progress, on_result=write, notes=notes)
             report = report_of(inputs, results, written, notes)
             if summary:  # the table and the gallery (img2logo.app.batch.gallery) appear together, or neither
-                from ..._io import output_set
-                from ...export.writers import write_table
+                from ..._io import atomic_write, output_set
                 from .gallery import write_gallery
 
+                table = report.summary_csv().encode("utf-8", "surrogateescape")
                 with output_set():
-                    path = write_table(csv_safe(report.to_frame()), out_dir / "summary.csv")
+                    path = atomic_write(out_dir / "summary.csv", _writer(table))
                     gallery = write_gallery(report, out_dir)
                 manifest.update((path.name, gallery.name))
                 report = dataclasses.replace(report, summary_path=str(path))

@@ -519,3 +519,61 @@ def test_a_batch_into_a_full_disk_leaves_no_lock_file(tmp_path, monkeypatch, exi
         with batch_lock(out):
             pass
     assert (sorted(out.iterdir()) == []) if existing else not out.exists()
+
+
+_WORKER_PROBE = """
+import gc, sys
+import img2logo.app.batch.pool as pool
+
+def probe(path, options, outputs, fill):  # what a worker holds when its first image comes
+    loaded = ("matplotlib.backends.backend_agg" in sys.modules, "img2logo.pipeline" in sys.modules)
+    state = (*loaded, gc.get_freeze_count() > 0)
+    return {"image": path, "path": path, "seconds": 0.0, "warnings": [], "error": repr(state)}
+
+pool.process_image = probe
+outputs = tuple(sys.argv[1].split(","))
+results = pool.run_tasks([("a.png", None, outputs, "none"), ("b.png", None, outputs, "none")], None, 2, False)
+print(sorted({r["error"] for r in results}))
+"""
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="workers forked from a warm parent")
+@pytest.mark.parametrize(("outputs", "drawn"), [("svg,json,png", True), ("svg,json", False)])
+def test_workers_start_warm_with_their_inherited_heap_frozen(outputs, drawn):
+    """The default pool's workers are forked with the pipeline (and for PNGs matplotlib's canvas) loaded, the
+    inherited objects out of the garbage collector's sight."""
+    import os
+
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join(sys.path)}
+    done = subprocess.run(
+        [sys.executable, "-c", _WORKER_PROBE, outputs], capture_output=True, text=True, env=env, timeout=300, check=True
+    )
+    assert done.stdout.strip() == repr([repr((drawn, True, True))])
+
+
+def _report(rows: int, failures: int) -> BatchReport:
+    """A report of ``rows`` images done and ``failures`` failed, interleaved, with names that need quoting."""
+    from img2logo.app.batch.report import BatchFailure, BatchRow
+
+    names = ["=SUM(1).png", 'a "quoted", name.png', "plain.png", "@at.png", "-minus.png", "tab\tname.png", "x.png"]
+    done, failed, inputs = [], [], []
+    for i in range(rows + failures):
+        name = names[i % len(names)] if i < len(names) else f"img{i}.png"
+        path = f"in/{name}"
+        inputs.append(path)
+        if (i % 2 and len(failed) < failures) or len(done) == rows:
+            failed.append(BatchFailure(name, path, f'{path}: not a readable image, 3.5 MB, "odd" {i}'))
+        else:
+            seconds, similarity = 10.0 ** (i - 3) / 3.0, 4.0 / (i + 1)
+            done.append(BatchRow(name, path, "clipart", 10 + i, 3 + i, similarity, seconds, (), "" if i % 3 else "+90"))
+    return BatchReport(tuple(done), tuple(failed), tuple(inputs))
+
+
+@pytest.mark.parametrize(("rows", "failures"), [(4, 3), (5, 0), (0, 2)])
+def test_summary_csv_text_is_that_of_pandas(rows, failures):
+    """``summary.csv`` is written without pandas, as pandas writes the safe table (``csv_safe(to_frame())``)."""
+    from img2logo.app.batch.report import csv_safe
+
+    report = _report(rows, failures)
+    expected = csv_safe(report.to_frame()).to_csv(index=False, lineterminator="\n", float_format="%.6g")
+    assert report.summary_csv() == expected
