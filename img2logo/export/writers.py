@@ -226,13 +226,9 @@ def write(
         If ``format`` is none of ``LEVEL_FORMATS``, or the writer refuses a value.
     """
     check_choice(format, "format", LEVEL_FORMATS)
-    if format == "json":
-        return write_json(level, path, fills=fills)
-    if format == "svg":
-        return write_svg(level, path, fills=fills)
-    if format == "pdf":
-        return write_pdf(level, path, fills=fills)
-    return write_png(level, path, image=image, fills=fills, background=background, scale=scale)
+    check_format_suffix(path, format)
+    data = encode(level, format, fills=fills, image=image, background=background, scale=scale)
+    return atomic_write(path, lambda f: f.write(data))
 
 
 def encode(

@@ -523,10 +523,14 @@ def test_a_write_error_is_one_line_exit_one_and_leaves_no_partial_set(tmp_path, 
     from img2logo.errors import OutputError
     from img2logo.export import writers
 
-    def full_disk(*args, **kwargs):
-        raise OutputError(f"cannot write {args[1]}: No space left on device")
+    real = writers.atomic_write
 
-    monkeypatch.setattr(writers, "write_png", full_disk)  # after the JSON and the SVG
+    def full_disk(path, write):  # the PNG, written after the JSON and the SVG
+        if str(path).endswith(".png"):
+            raise OutputError(f"cannot write {path}: No space left on device")
+        return real(path, write)
+
+    monkeypatch.setattr(writers, "atomic_write", full_disk)
     out = tmp_path / "new" / "deeper"
     args = ["--json", str(out / "a.json"), "--svg", str(out / "a.svg"), "--png", str(out / "a.png")]
     assert main([str(DATA / "drawing-leaf.png"), *args]) == EXIT_FAILED
@@ -803,11 +807,15 @@ def test_levels_dir_removes_the_level_files_of_an_earlier_run_only(tmp_path, cap
     (lv / "notes.txt").write_text("mine\n")
     foreign = ["level-0097.svg", "level-0098.svg", "level-0099.json", "notes.txt"]
 
-    def full_disk(*args, **kwargs):
-        raise OutputError(f"cannot write {args[1]}: No space left on device")
+    real = writers.atomic_write
+
+    def full_disk(path, write):
+        if str(path).endswith(".png"):
+            raise OutputError(f"cannot write {path}: No space left on device")
+        return real(path, write)
 
     with monkeypatch.context() as m:  # a run that fails removes nothing: the set is all or nothing
-        m.setattr(writers, "write_png", full_disk)
+        m.setattr(writers, "atomic_write", full_disk)
         assert main([src, "-q", "--levels-dir", str(lv), "-T", "3", "--png", str(tmp_path / "o.png")]) == EXIT_FAILED
     assert sorted(p.name for p in lv.iterdir()) == sorted([*many, *foreign])
     capsys.readouterr()
