@@ -8,7 +8,9 @@ import pytest
 from helpers import DATA, blank, two_discs
 
 from img2logo import build_segment_graph, detect_kind, extract_feature_lines, load_image
-from img2logo.features.clipart import clipart_regions, colour_noise, thin_regions
+from img2logo.features.clipart import clipart_regions
+from img2logo.features.clipart_colours import colour_noise
+from img2logo.features.clipart_strokes import thin_regions
 
 EVAL = DATA.parent / "benchmarks" / "data"
 
@@ -254,7 +256,7 @@ def test_a_jpeg_of_an_example_draws_the_same_lines(name):
 def test_near_entries_match_a_whole_image_dilation():
     # The entries are dilated within their boxes (a speed-up): the same answer as dilating
     # each entry's mask over the whole image, at the image's edges too.
-    from img2logo.features.clipart import near_entries
+    from img2logo.features.clipart_palette import near_entries
 
     rng = np.random.default_rng(7)
     for _ in range(40):
@@ -274,7 +276,7 @@ def test_near_entries_match_a_whole_image_dilation():
 def test_flat_areas_match_the_padded_window():
     # Each pixel pair is measured once (a speed-up): the same areas as the window's
     # largest difference over an edge-padded image, as first written.
-    from img2logo.features.clipart import flat_areas
+    from img2logo.features.clipart_colours import flat_areas
     from img2logo.features.constants import CLIPART_FLAT_RADIUS as rad
 
     def reference(lab: np.ndarray, link: float) -> np.ndarray:
@@ -305,7 +307,7 @@ def test_flat_areas_match_the_padded_window():
 
 def test_label_means_match_bincount():
     # One compiled pass for all channels (a speed-up): the same bits as np.bincount per channel.
-    from img2logo.features.clipart import label_means
+    from img2logo.features.clipart_colours import label_means
 
     rng = np.random.default_rng(9)
     for _ in range(20):
@@ -323,7 +325,7 @@ def test_label_means_match_bincount():
 def test_spread_kernel_is_the_numpy_reference(monkeypatch):
     # The colour spreads of the flat areas and the noise, compiled: the same float32 bits as numpy's.
     from img2logo._compiled import kernels
-    from img2logo.features.clipart import lab_spread
+    from img2logo.features.clipart_colours import lab_spread
 
     window = [(dr, dc) for dr in range(3) for dc in range(-2, 3) if dr > 0 or dc > 0]
     rng = np.random.default_rng(5)
@@ -353,7 +355,7 @@ def test_regions_are_the_same_without_the_compiled_kernels(monkeypatch, path):
 
 def test_near_entries_look_round_or_dilate_alike(monkeypatch):
     # Each pixel looking round itself (compiled) and each entry dilated: the same answer.
-    from img2logo.features import clipart
+    from img2logo.features import clipart_palette as clipart
 
     rng = np.random.default_rng(3)
     index = np.where(rng.random((60, 80)) < 0.2, -1, rng.integers(0, 5, (60, 80)))
@@ -366,7 +368,7 @@ def test_near_entries_look_round_or_dilate_alike(monkeypatch):
 
 def test_colour_distance_and_spreads_are_numpys(monkeypatch):
     from img2logo._compiled import kernels
-    from img2logo.features.clipart import colour_distance, lab_spread, lab_spreads
+    from img2logo.features.clipart_colours import colour_distance, lab_spread, lab_spreads
 
     rng = np.random.default_rng(4)
     labs = [rng.random((h, w, 3)) * 100.0 for h, w in ((1, 1), (2, 7), (9, 3), (40, 33))]

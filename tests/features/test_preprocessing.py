@@ -264,7 +264,7 @@ def test_detect_kind_of_an_upscaled_drawing_is_a_drawing():
 
     import cv2
 
-    from img2logo.features.preprocessing import detect_kind_and_regions
+    from img2logo.features.kinds import detect_kind_and_regions
 
     small = cv2.imread(str(DATA.parent / "benchmarks" / "data" / "drawing-deer.png"))[:, :, ::-1]
     big = np.ascontiguousarray(cv2.resize(small, (2048, 2048), interpolation=cv2.INTER_CUBIC))
@@ -415,7 +415,7 @@ def test_a_12_px_ring_is_a_drawing_of_its_stroke_width():
 
 
 def test_median_stroke_width_known_answers():
-    from img2logo.features.preprocessing import median_stroke_width
+    from img2logo.features.drawing_lines import median_stroke_width
 
     ink = np.zeros((100, 100), dtype=bool)
     assert median_stroke_width(ink) == 0.0
@@ -647,7 +647,7 @@ def test_clipart_boundaries_and_small_parts_match_skimage() -> None:
     from skimage.segmentation import find_boundaries
 
     from img2logo.features.clipart import frame_interior, region_boundaries
-    from img2logo.features.preprocessing import without_small_parts
+    from img2logo.features.drawing_lines import without_small_parts
 
     for mask in _random_masks(150, 5):
         regions = (mask.cumsum(axis=0) % 4).astype(np.int64)
@@ -663,7 +663,7 @@ def test_drawing_blur_and_threshold_match_ndimage_and_skimage() -> None:
     from scipy import ndimage
     from skimage.filters import threshold_otsu
 
-    from img2logo.features.preprocessing import gaussian_blur, otsu_threshold
+    from img2logo.features.drawing_lines import gaussian_blur, otsu_threshold
 
     rng = np.random.default_rng(6)
     for mask in _random_masks(60, 6):
@@ -722,7 +722,7 @@ def _bubble(tail: bool = False, dot: bool = False, width: int = 18) -> np.ndarra
 
 def test_a_fill_with_an_outline_like_a_thought_bubble_is_a_clip_art():
     """Known answer: shapes filled white and drawn by their 18 px outlines alone are outlined shapes."""
-    from img2logo.features.preprocessing import outline_band_width
+    from img2logo.features.kinds import outline_band_width
 
     kind, reason = detect_kind(_bubble())
     assert kind == "clipart", reason
@@ -733,7 +733,7 @@ def test_a_fill_with_an_outline_like_a_thought_bubble_is_a_clip_art():
 @pytest.mark.parametrize(("tail", "dot"), [(True, False), (False, True)])
 def test_outlines_with_a_stroke_running_off_or_ink_inside_are_a_drawing(tail, dot):
     """A stroke that leaves an outline (a string) or ink inside one (an eye) is a line drawing's."""
-    from img2logo.features.preprocessing import outline_band_width
+    from img2logo.features.kinds import outline_band_width
 
     kind, reason = detect_kind(_bubble(tail=tail, dot=dot))
     assert kind == "drawing", reason
