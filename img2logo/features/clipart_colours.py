@@ -83,15 +83,13 @@ def colour_noise(lab: np.ndarray, *, most: np.ndarray | None = None) -> tuple[fl
 def colour_distance(lab: np.ndarray, colour: np.ndarray) -> np.ndarray:
     """``np.linalg.norm(lab - colour, axis=2)``: the distance of every colour of ``lab`` (H, W, 3) to ``colour`` (3,).
 
-    (H, W) float64, the same bits; compiled where the kernels are usable
+    (H, W) float64, the same bits; compiled
     (:func:`img2logo._compiled.front.colour_distance_kernel`: one pass, no
     temporary images).
     """
     from .._compiled import kernels
 
-    if kernels.usable():
-        return kernels.colour_distance_kernel(lab, np.asarray(colour, dtype=np.float64))
-    return np.linalg.norm(lab - colour, axis=2)
+    return kernels.colour_distance_kernel(lab, np.asarray(colour, dtype=np.float64))
 
 
 def label_means(labels: np.ndarray, values: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -104,26 +102,22 @@ def label_means(labels: np.ndarray, values: np.ndarray) -> tuple[np.ndarray, np.
 
     flat = labels.ravel()
     chans = values.reshape(len(flat), -1)
-    if kernels.usable() and len(flat):  # one pass for every channel, adding as np.bincount does
-        counts, sums = kernels.label_sums_kernel(flat, chans, int(flat.max()) + 1)
-    else:
-        counts = np.bincount(flat).astype(np.float64)
-        sums = np.stack(
-            [np.bincount(flat, weights=chans[:, c], minlength=len(counts)) for c in range(chans.shape[1])], 1
-        )
+    if not len(flat):  # no label: no count, no mean
+        return np.zeros(0), np.zeros((0, chans.shape[1]))
+    # One pass for every channel, adding as np.bincount does.
+    counts, sums = kernels.label_sums_kernel(flat, chans, int(flat.max()) + 1)
     return counts, sums / np.maximum(counts, 1.0)[:, None]
 
 
 def label_means_of_two(labels: np.ndarray, a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, ...]:
     """:func:`label_means` of ``labels`` for two images of values at once: (counts, means of a, means of b).
 
-    One pass over the labels where the kernels are usable
-    (:func:`img2logo._compiled.front.label_sums2_kernel`): the same sums.
+    One pass over the labels (:func:`img2logo._compiled.front.label_sums2_kernel`): the same sums.
     """
     from .._compiled import kernels
 
     flat = labels.ravel()
-    if not (kernels.usable() and len(flat)):
+    if not len(flat):
         counts, a_means = label_means(labels, a)
         return counts, a_means, label_means(labels, b)[1]
     counts, a_sums, b_sums = kernels.label_sums2_kernel(
@@ -185,12 +179,10 @@ def lab_spreads(
 ) -> tuple[np.ndarray, np.ndarray]:
     """:func:`lab_spread` of ``lab`` for two sets of offsets: two (H, W) float32, the same bits.
 
-    Compiled, in one pass (:func:`img2logo._compiled.front.spreads_kernel`), where the kernels are usable.
+    Compiled, in one pass (:func:`img2logo._compiled.front.spreads_kernel`).
     """
     from .._compiled import kernels
 
-    if not kernels.usable():
-        return lab_spread(lab, pairs_a), lab_spread(lab, pairs_b)
     both = sorted(set(pairs_a) | set(pairs_b))
     return kernels.spreads_kernel(
         np.ascontiguousarray(lab, dtype=np.float64),
@@ -203,26 +195,12 @@ def lab_spreads(
 def lab_spread(lab: np.ndarray, pairs: list[tuple[int, int]]) -> np.ndarray:
     """Largest squared CIELAB difference of every pixel to the pixels at ``pairs`` (dr, dc) from it and to it.
 
-    (H, W) float32. Squared distances in float32 (a third of the time of
-    float64); compiled (:func:`img2logo._compiled.front.spreads_kernel` with one set, the
-    same bits) where the kernels are usable, else the numpy below.
+    (H, W) float32: squared distances in float32 (a third of the time of
+    float64), compiled (:func:`img2logo._compiled.front.spreads_kernel` with one set).
+    A pair that reaches beyond so small an image counts for no pixel.
     """
     from .._compiled import kernels
 
-    h, w = lab.shape[:2]
-    if kernels.usable():
-        offsets = np.array(pairs, dtype=np.int64).reshape(-1, 2)
-        every, none = np.ones(len(offsets), dtype=bool), np.zeros(len(offsets), dtype=bool)
-        return kernels.spreads_kernel(np.ascontiguousarray(lab, dtype=np.float64), offsets, every, none)[0]
-    lab32 = lab.astype(np.float32)
-    most = np.zeros((h, w), dtype=np.float32)
-    for dr, dc in pairs:
-        if dr >= h or abs(dc) >= w:
-            continue  # no such pair in so small an image
-        here = (slice(0, h - dr), slice(max(0, -dc), w - max(0, dc)))
-        there = (slice(dr, h), slice(max(0, dc), w - max(0, -dc)))
-        diff = lab32[there] - lab32[here]
-        d = np.einsum("ijk,ijk->ij", diff, diff)
-        np.maximum(most[here], d, out=most[here])
-        np.maximum(most[there], d, out=most[there])
-    return most
+    offsets = np.array(pairs, dtype=np.int64).reshape(-1, 2)
+    every, none = np.ones(len(offsets), dtype=bool), np.zeros(len(offsets), dtype=bool)
+    return kernels.spreads_kernel(np.ascontiguousarray(lab, dtype=np.float64), offsets, every, none)[0]

@@ -46,7 +46,6 @@ def palette_regions(
     tip). They seed entries too.
     """
     from .._compiled import kernels
-    from ..images.ndimage import components
 
     counts, lab_means, rgb_means = label_means_of_two(areas, lab, rgb)
     seeds = np.flatnonzero(counts >= seed_area)
@@ -92,16 +91,10 @@ def palette_regions(
         lonely = ~near.any(axis=1)
         cost[lonely] = ((colours[lonely, None, :] - pal[None]) ** 2).sum(axis=2)
         index[rest] = np.argmin(cost, axis=1)
-    # A 1 px line drawn without anti-aliasing is a string of pixels touching at
-    # their corners: tiny 4-connected pieces that are one 8-connected region.
-    if kernels.usable():  # the steps below in one compiled call
-        return kernels.palette_regions_kernel(index, CLIPART_MIN_REGION_AREA), ~rest
-    regions = components(index, connectivity=1, background=-1)
-    tiny = np.bincount(regions.ravel())[regions] < CLIPART_MIN_REGION_AREA
-    if tiny.any():
-        joined = components(np.where(tiny, index, -1), connectivity=2, background=-1)
-        regions = np.where(tiny, joined + regions.max() + 1, regions)
-    return relabel(regions), ~rest
+    # The 4-connected pieces of one entry; a 1 px line drawn without anti-aliasing is a string
+    # of pixels touching at their corners: tiny 4-connected pieces that are one 8-connected
+    # region. Labelled, joined and packed in one compiled call.
+    return kernels.palette_regions_kernel(index, CLIPART_MIN_REGION_AREA), ~rest
 
 
 #: :func:`near_entries` looks round each pixel (compiled) while that reads at most this many
@@ -123,7 +116,7 @@ def near_entries(index: np.ndarray, n: int, rest: np.ndarray, radius: int = CLIP
     h, w = index.shape
     pix_rows, pix_cols = nonzero(rest)
     offsets = np.argwhere(disk) - radius  # the disc is symmetric: a dilation by it reads these
-    if kernels.usable() and len(pix_rows) * len(offsets) <= _NEAR_PIXEL_WORK * index.size:
+    if len(pix_rows) * len(offsets) <= _NEAR_PIXEL_WORK * index.size:
         # Few pixels to answer (a clean clip art's rims): each looks round itself, compiled.
         return kernels.near_kernel(index, pix_rows, pix_cols, n, offsets)
     # Each entry is dilated within its bounding box grown by the radius: nothing
@@ -245,19 +238,13 @@ def _unexplained(
     near = near_entries(seed_of, n, rest)
     at = np.flatnonzero(rest)  # by index: a third of the time of the mask on (H, W, 3)
     colours, colours_lab = rgb.reshape(-1, 3)[at], lab.reshape(-1, 3)[at]
-    best = np.full(len(colours), np.inf)
     singles = rgb2lab(areas_rgb[None])[0]
     if lonely:
         alone = ~near.any(axis=1)
         if alone.any():
             near[alone] = _reached_entries(seed_of, singles, lab, contrast, rest, np.asarray(alone))
-    if kernels.usable():  # the loop below, compiled: the same norms, their minimum
-        best = kernels.nearest_colour_kernel(colours_lab, np.ascontiguousarray(singles, dtype=np.float64), near)
-    else:
-        for a in range(n):
-            on_a = near[:, a]
-            if on_a.any():
-                best[on_a] = np.minimum(best[on_a], np.linalg.norm(colours_lab[on_a] - singles[a], axis=1))
+    # The distance to the nearest seed's own colour among those near each pixel, compiled.
+    best = kernels.nearest_colour_kernel(colours_lab, np.ascontiguousarray(singles, dtype=np.float64), near)
     # Only a pixel far from every seed's own colour can be far from every blend: the blends
     # (an sRGB to CIELAB conversion each) are taken for those alone.
     far = np.flatnonzero(best > contrast)
@@ -331,11 +318,8 @@ def _reached_entries(
 def relabel(regions: np.ndarray) -> np.ndarray:
     """Labels 0..n-1 in the order of the (non-negative) values: the used ones, packed; int64.
 
-    Compiled where the kernels are usable (:func:`img2logo._compiled.front.relabel_kernel`).
+    ``regions`` (H, W); compiled (:func:`img2logo._compiled.front.relabel_kernel`).
     """
     from .._compiled import kernels
 
-    if kernels.usable() and regions.ndim == 2:
-        return kernels.relabel_kernel(regions)
-    used = np.bincount(regions.ravel()) > 0
-    return (np.cumsum(used) - 1)[regions].astype(np.int64)
+    return kernels.relabel_kernel(regions)
