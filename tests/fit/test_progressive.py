@@ -440,7 +440,10 @@ def test_the_coffee_cup_has_no_crossing_and_no_near_miss_gap():
         pytest.skip("scikit-image ships no coffee.png")
     # (Since the subject keeps the whole saucer, its hairpin is gone: the outcome is checked here, the
     # mechanisms by the known answers above and by the polar bear below.)
-    result = abstract(path, progress=False)
+    from img2logo import DownscaleWarning
+
+    with pytest.warns(DownscaleWarning, match="worked at 512 px"):  # a 600 x 400 photo, worked at 512 px
+        result = abstract(path, progress=False)
     for level in (result.levels[0], result.final):
         assert len(quality.crossings(level)) == 0 and len(quality.near_miss_gaps(level)) == 0
 
