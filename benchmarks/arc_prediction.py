@@ -33,7 +33,8 @@ def main(argv: list[str] | None = None) -> int:
 
     from img2logo import abstract, load_image
     from img2logo.features.boundary_cost import boundary_arcs
-    from img2logo.features.clipart import label_means, thin_regions
+    from img2logo.features.clipart_colours import label_means
+    from img2logo.features.clipart_strokes import thin_regions
 
     ratios = []
     for case in quality.cases():

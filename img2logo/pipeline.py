@@ -21,10 +21,11 @@ import numpy as np
 from .constants import SYNTHETIC_WORK_SIDE
 from .errors import InvalidParameterError
 from .export.constants import MIN_STROKE_WIDTH
-from .features.preprocessing import FeatureLines, LoadedImage, extract_feature_lines, load_image, photo_reason
+from .features.kinds import photo_reason
+from .features.preprocessing import FeatureLines, extract_feature_lines
 from .fit.progressive import Levels, ProgressCallback, Progression, optimize
 from .geometry.abstraction import Abstraction
-from .images.loading import downscale, mask_to_working_size, warn_downscaled
+from .images.loading import LoadedImage, downscale, load_image, mask_to_working_size, warn_downscaled
 from .options import AUTO, Options, check_lock_mask, check_symmetry_option
 from .segment_graph import SegmentGraph, build_segment_graph
 

@@ -468,10 +468,10 @@ def lost_ink_parts(
 def stroke_width_ratio(logo_width: float, ink: np.ndarray) -> float:
     """The logo's stroke width over the input's median stroke width; NaN without ink.
 
-    The input's width is :func:`img2logo.features.preprocessing.median_stroke_width` of
+    The input's width is :func:`img2logo.features.drawing_lines.median_stroke_width` of
     ``ink`` (H, W) bool: twice the median distance from the ink's medial axis to its edge.
     """
-    from .features.preprocessing import median_stroke_width
+    from .features.drawing_lines import median_stroke_width
 
     width = median_stroke_width(_check_map(ink, "ink"))
     return float(logo_width) / width if width > 0 else float("nan")

@@ -308,3 +308,16 @@ def textured_photo(shapes, size=(240, 320), seed=0):
         masks.append(inside)
     img = ndimage.gaussian_filter(img, (0.8, 0.8, 0)) + 0.01 * rng.standard_normal((h, w, 3))
     return np.clip(img, 0, 1), masks
+
+
+def random_masks(n: int, seed: int) -> list[np.ndarray]:
+    """``n`` random bool masks up to 47 x 47 px, noise or blobs and strokes, from the generator ``seed``."""
+    rng = np.random.default_rng(seed)
+    out = []
+    for _ in range(n):
+        h, w = (int(v) for v in rng.integers(1, 48, 2))
+        mask = rng.random((h, w)) < rng.uniform(0.05, 0.95)
+        if rng.random() < 0.5:  # blobs and strokes, not only noise
+            mask = cv2.dilate(mask.astype(np.uint8), np.ones((2, 2), np.uint8)) > 0
+        out.append(mask)
+    return out

@@ -418,7 +418,7 @@ def edt_kernel(inside):  # pragma: no cover - compiled
 
 @_jit
 def palette_regions_kernel(index, min_area):  # pragma: no cover - compiled
-    """The regions of a palette's entries ``index`` (H, W) (``clipart._palette_regions``' last steps).
+    """The regions of a palette's entries ``index`` (H, W) (``clipart_palette.palette_regions``' last steps).
 
     The 4-connected pieces of one entry (:func:`label_kernel`, -1 no entry);
     the pixels of pieces under ``min_area`` px joined into their 8-connected

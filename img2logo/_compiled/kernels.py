@@ -28,8 +28,8 @@ to their callers as attributes (``kernels.sqp_dense(...)``), loaded on first use
    ``njit(cache=True)``, loaded from numba's disk cache.
 3. **Just in time, in the process**, where numba cannot cache either (:data:`CACHED` False): every
    process compiles the kernels it calls (seconds, said once in one line on stderr), with the same
-   results: the fit has no second path through the pipeline, and the Python references of its
-   kernels live in the tests, as their oracles.
+   results: the fit and the clip-art front end have no second path through the pipeline, and the
+   Python references of their kernels live in the tests, as their oracles.
 
 The compiled forms are the same numba code with the same types, compiled
 without fast-math (so nothing is reordered or fused): the same floating-point

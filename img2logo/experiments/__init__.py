@@ -27,7 +27,8 @@ from typing import TYPE_CHECKING, Any
 
 from ..constants import MIN_SEGMENT_LENGTH, RDP_TOLERANCE
 from ..errors import Img2LogoError, InvalidParameterError
-from ..features.preprocessing import FeatureLines, LoadedImage, extract_feature_lines
+from ..features.preprocessing import FeatureLines, extract_feature_lines
+from ..images.loading import LoadedImage
 from ..segment_graph import SegmentGraph, build_segment_graph
 from .paths import (  # noqa: F401  (re-exported)
     ROOT_ENV,

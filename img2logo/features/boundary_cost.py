@@ -20,7 +20,7 @@ junctions, where arcs end). A run shorter than twice the tolerance (a corner
 pixel, an antialiased step) is no line of its own and counts nothing. A
 boundary is seen from both its regions; its cost is the mean of the two. The
 outline of a stroke (a thin region, drawn once along its middle,
-:func:`img2logo.features.clipart.clipart_lines`) is one line for its two
+:func:`img2logo.features.clipart_strokes.clipart_lines`) is one line for its two
 edges, so each of its edges counts half.
 
 Arrays are indexed (row, column).

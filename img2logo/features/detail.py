@@ -57,7 +57,8 @@ import numpy as np
 from ..constants import LINE_JOIN_DISTANCE
 from ..errors import InvalidParameterError
 from .boundary_cost import boundary_arcs
-from .clipart import ink_outlines, label_means, outline_strokes, thin_regions
+from .clipart_colours import label_means
+from .clipart_strokes import ink_outlines, outline_strokes, thin_regions
 from .constants import CLIPART_MARK_CONTRAST, CLIPART_MAX_REGIONS, CLIPART_OUTLINE_WIDTH
 from .stroke_sides import StrokeSides, across_strokes, open_strokes, stroke_sides
 
@@ -405,7 +406,7 @@ def close_line_ends(lines: np.ndarray, regions: np.ndarray, lab: np.ndarray, bud
        (:func:`img2logo.images.line_ends.join_line_ends`): a stroke that meets
        the silhouette in the input stops an outline's width short of it in the
        map (its pixels there are the silhouette's line,
-       :func:`img2logo.features.clipart.clipart_lines`), and one that meets an
+       :func:`img2logo.features.clipart_strokes.clipart_lines`), and one that meets an
        inner boundary stops about its half width short, plus a near-miss;
     2. else **dropped whole** (a branch back to the junction it hangs on, an
        open line entirely) when its visual weight is below the detail

@@ -5,12 +5,12 @@ strokes, not by shared borders: a rooster's tail feathers are strips of colour,
 each enclosed by the black outline, so no two fills are adjacent in the region
 adjacency graph and none could be merged (they touch only the outline, which
 is kept whole as the silhouette's ink). A designer reads the outline network
-as *lines* (:func:`img2logo.features.clipart.clipart_lines` draws its thin
+as *lines* (:func:`img2logo.features.clipart_strokes.clipart_lines` draws its thin
 parts once, along their middle) and the fills as the regions. So:
 
 - **Sides.** Each pixel of a thin part of an ink outline on the paper
-  (:func:`img2logo.features.clipart.ink_strokes` of
-  :func:`img2logo.features.clipart.outline_strokes` touching the background,
+  (:func:`img2logo.features.clipart_strokes.ink_strokes` of
+  :func:`img2logo.features.clipart_strokes.outline_strokes` touching the background,
   at most ``CLIPART_OUTLINE_WIDTH`` px wide) is given to the nearest region
   outside the strokes (a distance transform), as ``clipart_lines`` does: the
   border between two sides runs along the stroke's middle.
@@ -36,7 +36,8 @@ from typing import NamedTuple
 
 import numpy as np
 
-from .clipart import ink_strokes, nearest_labels, outline_strokes
+from .clipart import nearest_labels
+from .clipart_strokes import ink_strokes, outline_strokes
 from .constants import CLIPART_OUTLINE_WIDTH
 
 
@@ -64,7 +65,7 @@ def stroke_sides(
     lightness : ndarray, shape (n,)
         The regions' mean L*.
     thin : ndarray of int
-        The thin regions' labels (:func:`img2logo.features.clipart.thin_regions`).
+        The thin regions' labels (:func:`img2logo.features.clipart_strokes.thin_regions`).
     on_paper : ndarray of bool, shape (n,)
         The labels that touch the background.
     """

@@ -8,7 +8,9 @@ import pytest
 from helpers import DATA, blank, two_discs
 
 from img2logo import build_segment_graph, detect_kind, extract_feature_lines, load_image
-from img2logo.features.clipart import clipart_regions, colour_noise, thin_regions
+from img2logo.features.clipart import clipart_regions
+from img2logo.features.clipart_colours import colour_noise
+from img2logo.features.clipart_strokes import thin_regions
 
 EVAL = DATA.parent / "benchmarks" / "data"
 
@@ -254,7 +256,7 @@ def test_a_jpeg_of_an_example_draws_the_same_lines(name):
 def test_near_entries_match_a_whole_image_dilation():
     # The entries are dilated within their boxes (a speed-up): the same answer as dilating
     # each entry's mask over the whole image, at the image's edges too.
-    from img2logo.features.clipart import near_entries
+    from img2logo.features.clipart_palette import near_entries
 
     rng = np.random.default_rng(7)
     for _ in range(40):
@@ -274,7 +276,7 @@ def test_near_entries_match_a_whole_image_dilation():
 def test_flat_areas_match_the_padded_window():
     # Each pixel pair is measured once (a speed-up): the same areas as the window's
     # largest difference over an edge-padded image, as first written.
-    from img2logo.features.clipart import flat_areas
+    from img2logo.features.clipart_colours import flat_areas
     from img2logo.features.constants import CLIPART_FLAT_RADIUS as rad
 
     def reference(lab: np.ndarray, link: float) -> np.ndarray:
@@ -305,7 +307,7 @@ def test_flat_areas_match_the_padded_window():
 
 def test_label_means_match_bincount():
     # One compiled pass for all channels (a speed-up): the same bits as np.bincount per channel.
-    from img2logo.features.clipart import label_means
+    from img2logo.features.clipart_colours import label_means
 
     rng = np.random.default_rng(9)
     for _ in range(20):
@@ -320,40 +322,135 @@ def test_label_means_match_bincount():
         assert np.array_equal(got_means, sums / np.maximum(counts, 1.0)[:, None])
 
 
-def test_spread_kernel_is_the_numpy_reference(monkeypatch):
+# --------------------------------------------------------------------------- the kernels' oracles
+def lab_spread_reference(lab: np.ndarray, pairs: list[tuple[int, int]]) -> np.ndarray:
+    """:func:`lab_spread` in numpy: the largest squared float32 CIELAB difference over ``pairs``, (H, W)."""
+    h, w = lab.shape[:2]
+    lab32 = lab.astype(np.float32)
+    most = np.zeros((h, w), dtype=np.float32)
+    for dr, dc in pairs:
+        if dr >= h or abs(dc) >= w:
+            continue  # no such pair in so small an image
+        here = (slice(0, h - dr), slice(max(0, -dc), w - max(0, dc)))
+        there = (slice(dr, h), slice(max(0, dc), w - max(0, -dc)))
+        diff = lab32[there] - lab32[here]
+        d = np.einsum("ijk,ijk->ij", diff, diff)
+        np.maximum(most[here], d, out=most[here])
+        np.maximum(most[there], d, out=most[there])
+    return most
+
+
+def spreads_reference(lab, pairs, in_a, in_b):
+    """``spreads_kernel``'s two spreads, each by :func:`lab_spread_reference`."""
+    offsets = [(int(dr), int(dc)) for dr, dc in pairs]
+    return (
+        lab_spread_reference(lab, [o for o, a in zip(offsets, in_a, strict=True) if a]),
+        lab_spread_reference(lab, [o for o, b in zip(offsets, in_b, strict=True) if b]),
+    )
+
+
+def label_sums_reference(labels, values, n):
+    """``label_sums_kernel``: np.bincount's counts and sums by channel."""
+    counts = np.bincount(labels, minlength=n).astype(np.float64)
+    sums = np.stack([np.bincount(labels, weights=values[:, c], minlength=n) for c in range(values.shape[1])], 1)
+    return counts, sums
+
+
+def label_sums2_reference(labels, a, b, n):
+    """``label_sums2_kernel``: :func:`label_sums_reference` of two images of values."""
+    counts, a_sums = label_sums_reference(labels, a, n)
+    return counts, a_sums, label_sums_reference(labels, b, n)[1]
+
+
+def nearest_colour_reference(colours, singles, near):
+    """``nearest_colour_kernel``: each colour's distance to the nearest of the ``near`` seeds' colours (inf: none)."""
+    best = np.full(len(colours), np.inf)
+    for a in range(len(singles)):
+        on_a = near[:, a]
+        if on_a.any():
+            best[on_a] = np.minimum(best[on_a], np.linalg.norm(colours[on_a] - singles[a], axis=1))
+    return best
+
+
+def relabel_reference(regions):
+    """``relabel_kernel``: the used labels packed to 0..n-1 in their order, int64."""
+    used = np.bincount(regions.ravel()) > 0
+    return (np.cumsum(used) - 1)[regions].astype(np.int64)
+
+
+def palette_regions_reference(index, min_area):
+    """``palette_regions_kernel``: 4-connected pieces of one entry, tiny ones joined 8-connected, packed."""
+    from img2logo.images.ndimage import components
+
+    regions = components(index, connectivity=1, background=-1)
+    tiny = np.bincount(regions.ravel())[regions] < min_area
+    if tiny.any():
+        joined = components(np.where(tiny, index, -1), connectivity=2, background=-1)
+        regions = np.where(tiny, joined + regions.max() + 1, regions)
+    return relabel_reference(regions)
+
+
+REFERENCES = {
+    "spreads_kernel": spreads_reference,
+    "colour_distance_kernel": lambda lab, colour: np.linalg.norm(lab - colour, axis=2),
+    "label_sums_kernel": label_sums_reference,
+    "label_sums2_kernel": label_sums2_reference,
+    "nearest_colour_kernel": nearest_colour_reference,
+    "relabel_kernel": relabel_reference,
+    "palette_regions_kernel": palette_regions_reference,
+}
+
+
+def test_spread_kernel_is_the_numpy_reference():
     # The colour spreads of the flat areas and the noise, compiled: the same float32 bits as numpy's.
-    from img2logo._compiled import kernels
-    from img2logo.features.clipart import lab_spread
+    from img2logo.features.clipart_colours import lab_spread
 
     window = [(dr, dc) for dr in range(3) for dc in range(-2, 3) if dr > 0 or dc > 0]
     rng = np.random.default_rng(5)
     labs = [rng.random((h, w, 3)) * 100.0 for h, w in ((1, 1), (2, 7), (9, 3), (40, 33))]
     labs.append(load_image(DATA / "clipart-fish.png").lab)
-    compiled = [(lab_spread(lab, window), lab_spread(lab, [(0, 1), (1, 0)])) for lab in labs]
-    monkeypatch.setattr(kernels, "CACHED", False)
-    for lab, (a, b) in zip(labs, compiled, strict=True):
-        assert a.dtype == np.float32 and np.array_equal(a, lab_spread(lab, window))
-        assert np.array_equal(b, lab_spread(lab, [(0, 1), (1, 0)]))
+    for lab in labs:
+        got = lab_spread(lab, window)
+        assert got.dtype == np.float32 and np.array_equal(got, lab_spread_reference(lab, window))
+        assert np.array_equal(lab_spread(lab, [(0, 1), (1, 0)]), lab_spread_reference(lab, [(0, 1), (1, 0)]))
+
+
+def test_palette_kernels_are_their_references():
+    from img2logo._compiled import kernels
+
+    rng = np.random.default_rng(6)
+    for _ in range(30):
+        h, w = (int(v) for v in rng.integers(1, 40, 2))
+        index = rng.integers(-1, int(rng.integers(1, 6)), (h, w))
+        assert np.array_equal(kernels.palette_regions_kernel(index, 3), palette_regions_reference(index, 3))
+        labels = rng.integers(0, 50, (h, w)) * int(rng.integers(1, 4))
+        assert np.array_equal(kernels.relabel_kernel(labels), relabel_reference(labels))
+        colours, singles = rng.random((h * w, 3)) * 100.0, rng.random((5, 3)) * 100.0
+        near = rng.random((h * w, 5)) < 0.3
+        assert np.array_equal(
+            kernels.nearest_colour_kernel(colours, singles, near), nearest_colour_reference(colours, singles, near)
+        )
 
 
 @pytest.mark.parametrize("path", [DATA / "clipart-fish.png", EVAL / "clipart-giraffe-jpeg.jpg"])
-def test_regions_are_the_same_without_the_compiled_kernels(monkeypatch, path):
-    # The compiled steps (the spreads, colour distances, label sums, near entries, nearest seed
-    # colours, the palette's labelling and packing) against numpy and OpenCV: the same regions,
-    # for a clean clip art and a compressed one.
+def test_regions_are_the_same_with_the_kernels_references(monkeypatch, path):
+    # The compiled steps (the spreads, colour distances, label sums, nearest seed colours, the
+    # palette's labelling and packing) against their numpy and OpenCV references: the same
+    # regions, for a clean clip art and a compressed one.
     from img2logo._compiled import kernels
 
     img = load_image(path)
     compiled = clipart_regions(img)
     thin = thin_regions(compiled)  # (its edges' distances are compiled either way)
-    monkeypatch.setattr(kernels, "CACHED", False)
+    for name, reference in REFERENCES.items():
+        monkeypatch.setattr(kernels, name, reference)
     assert np.array_equal(compiled, clipart_regions(img))
     assert np.array_equal(thin, thin_regions(compiled))
 
 
 def test_near_entries_look_round_or_dilate_alike(monkeypatch):
     # Each pixel looking round itself (compiled) and each entry dilated: the same answer.
-    from img2logo.features import clipart
+    from img2logo.features import clipart_palette as clipart
 
     rng = np.random.default_rng(3)
     index = np.where(rng.random((60, 80)) < 0.2, -1, rng.integers(0, 5, (60, 80)))
@@ -364,19 +461,17 @@ def test_near_entries_look_round_or_dilate_alike(monkeypatch):
     assert looked.any() and not looked.all()
 
 
-def test_colour_distance_and_spreads_are_numpys(monkeypatch):
-    from img2logo._compiled import kernels
-    from img2logo.features.clipart import colour_distance, lab_spread, lab_spreads
+def test_colour_distance_and_spreads_are_numpys():
+    from img2logo.features.clipart_colours import colour_distance, lab_spreads
 
     rng = np.random.default_rng(4)
     labs = [rng.random((h, w, 3)) * 100.0 for h, w in ((1, 1), (2, 7), (9, 3), (40, 33))]
     pairs_a, pairs_b = [(0, 1), (1, 0)], [(0, 1), (1, -1), (1, 0), (1, 1), (2, 2)]
-    compiled = [(colour_distance(lab, lab[0, 0]), lab_spreads(lab, pairs_a, pairs_b)) for lab in labs]
-    monkeypatch.setattr(kernels, "CACHED", False)
-    for lab, (dist, (a, b)) in zip(labs, compiled, strict=True):
-        assert np.array_equal(dist, np.linalg.norm(lab - lab[0, 0], axis=2))
-        assert a.dtype == np.float32 and np.array_equal(a, lab_spread(lab, pairs_a))
-        assert np.array_equal(b, lab_spread(lab, pairs_b))
+    for lab in labs:
+        assert np.array_equal(colour_distance(lab, lab[0, 0]), np.linalg.norm(lab - lab[0, 0], axis=2))
+        a, b = lab_spreads(lab, pairs_a, pairs_b)
+        assert a.dtype == np.float32 and np.array_equal(a, lab_spread_reference(lab, pairs_a))
+        assert np.array_equal(b, lab_spread_reference(lab, pairs_b))
 
 
 # --------------------------------------------------------------------------- the silhouette, JPEG parity

@@ -10,7 +10,8 @@ import pytest
 from helpers import DATA, blank
 
 from img2logo import DetailWarning, InvalidParameterError, Options, abstract, extract_feature_lines, load_image
-from img2logo.features.clipart import clipart_regions, thin_regions
+from img2logo.features.clipart import clipart_regions
+from img2logo.features.clipart_strokes import thin_regions
 from img2logo.features.detail import merge_by_importance, region_adjacency
 
 OPENCLIPART = DATA.parent / "benchmarks" / "data" / "openclipart"
@@ -191,7 +192,7 @@ def test_an_ink_outline_is_a_stroke_but_a_light_band_of_its_width_is_not():
     cv2.circle(im, (128, 128), 80, (0, 0, 0), 10, lineType=cv2.LINE_AA)
     img = load_image(im)
     regions = clipart_regions(img)
-    from img2logo.features.clipart import label_means
+    from img2logo.features.clipart_colours import label_means
 
     lightness = label_means(regions, img.lab)[1][:, 0]
     ring = int(regions[128, 48])

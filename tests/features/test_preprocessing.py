@@ -7,7 +7,7 @@ import warnings
 import cv2
 import numpy as np
 import pytest
-from helpers import DATA, drawing, two_discs
+from helpers import DATA, drawing, random_masks, two_discs
 
 from img2logo import (
     DownscaleWarning,
@@ -264,7 +264,7 @@ def test_detect_kind_of_an_upscaled_drawing_is_a_drawing():
 
     import cv2
 
-    from img2logo.features.preprocessing import detect_kind_and_regions
+    from img2logo.features.kinds import detect_kind_and_regions
 
     small = cv2.imread(str(DATA.parent / "benchmarks" / "data" / "drawing-deer.png"))[:, :, ::-1]
     big = np.ascontiguousarray(cv2.resize(small, (2048, 2048), interpolation=cv2.INTER_CUBIC))
@@ -414,15 +414,6 @@ def test_a_12_px_ring_is_a_drawing_of_its_stroke_width():
     assert np.all(np.abs(np.hypot(cols - 100, rows - 100) - 50) <= 1.5)  # its centre line, once
 
 
-def test_median_stroke_width_known_answers():
-    from img2logo.features.preprocessing import median_stroke_width
-
-    ink = np.zeros((100, 100), dtype=bool)
-    assert median_stroke_width(ink) == 0.0
-    ink[40:50, 10:90] = True  # a bar 10 px wide
-    assert abs(median_stroke_width(ink) - 10.0) <= 1.0
-
-
 @pytest.mark.parametrize("name", ["drawing-bird", "drawing-fish", "drawing-snail"])
 @pytest.mark.parametrize("kernel", [9, 13])
 def test_thick_strokes_with_enclosed_paper_are_a_drawing_drawn_along_their_centre_lines(name, kernel):
@@ -513,18 +504,6 @@ def test_a_speck_below_the_dot_size_is_still_dropped():
 # The run avoids importing scipy.ndimage, scipy.spatial and skimage.morphology
 # (their imports cost about 0.2 s of CPU a run); what replaces them must give the
 # very same pixels and numbers, so the logos stay byte-identical.
-def _random_masks(n: int, seed: int) -> list[np.ndarray]:
-    rng = np.random.default_rng(seed)
-    out = []
-    for _ in range(n):
-        h, w = (int(v) for v in rng.integers(1, 48, 2))
-        mask = rng.random((h, w)) < rng.uniform(0.05, 0.95)
-        if rng.random() < 0.5:  # blobs and strokes, not only noise
-            mask = cv2.dilate(mask.astype(np.uint8), np.ones((2, 2), np.uint8)) > 0
-        out.append(mask)
-    return out
-
-
 def test_skeleton_label_matches_skimage_and_ndimage() -> None:
     from scipy import ndimage
     from skimage.measure import label as sk_label
@@ -532,7 +511,7 @@ def test_skeleton_label_matches_skimage_and_ndimage() -> None:
     from img2logo.images.ndimage import components as label
 
     rng = np.random.default_rng(3)
-    for mask in _random_masks(150, 1):
+    for mask in random_masks(150, 1):
         for connectivity in (1, 2):
             expected = sk_label(mask, connectivity=connectivity)
             got = label(mask, connectivity=connectivity)
@@ -551,7 +530,7 @@ def test_skeleton_distance_and_slices_match_ndimage() -> None:
 
     from img2logo.images.ndimage import bounding_slices, distance
 
-    for mask in _random_masks(150, 2):
+    for mask in random_masks(150, 2):
         if mask.all():
             mask[0, 0] = False
         expected = ndimage.distance_transform_edt(mask)
@@ -613,7 +592,7 @@ def test_skeleton_thinning_and_joins_match_skimage_and_cKDTree() -> None:
         return out, tied
 
     compared = 0
-    for mask in _random_masks(150, 4):
+    for mask in random_masks(150, 4):
         skel = skeletonize(mask)
         assert np.array_equal(skel, sk_skeletonize(mask))
         for distance in (6.0, 3.5):
@@ -647,32 +626,15 @@ def test_clipart_boundaries_and_small_parts_match_skimage() -> None:
     from skimage.segmentation import find_boundaries
 
     from img2logo.features.clipart import frame_interior, region_boundaries
-    from img2logo.features.preprocessing import without_small_parts
+    from img2logo.features.drawing_lines import without_small_parts
 
-    for mask in _random_masks(150, 5):
+    for mask in random_masks(150, 5):
         regions = (mask.cumsum(axis=0) % 4).astype(np.int64)
         expected = find_boundaries(regions, connectivity=1, mode="inner") & frame_interior(regions.shape)
         assert np.array_equal(region_boundaries(regions), expected)
         for size in (0, 2, 7):
             assert np.array_equal(without_small_parts(mask, size), remove_small_objects(mask, max_size=size))
             assert np.array_equal(~without_small_parts(~mask, size), remove_small_holes(mask, max_size=size))
-
-
-def test_drawing_blur_and_threshold_match_ndimage_and_skimage() -> None:
-    # A drawing's run avoids scipy.ndimage and skimage.filters (which imports it): about 0.1 s of CPU.
-    from scipy import ndimage
-    from skimage.filters import threshold_otsu
-
-    from img2logo.features.preprocessing import gaussian_blur, otsu_threshold
-
-    rng = np.random.default_rng(6)
-    for mask in _random_masks(60, 6):
-        image = mask * rng.uniform(0.2, 1.0) + rng.random(mask.shape) * rng.uniform(0.0, 0.3)
-        for sigma in (1.0, 0.7, 2.5):
-            expected = ndimage.gaussian_filter(image, sigma)
-            assert np.array_equal(gaussian_blur(image, sigma).view(np.uint64), expected.view(np.uint64))
-        assert otsu_threshold(image) == threshold_otsu(image)
-    assert otsu_threshold(np.full((4, 5), 0.25)) == 0.25  # one grey: skimage returns it
 
 
 def test_a_drawing_run_imports_no_ndimage(tmp_path) -> None:
@@ -704,61 +666,3 @@ def test_classify_matches_the_ring_of_shifted_copies():
         crossings, count = classify(skel)
         assert np.array_equal(crossings, np.sum(~ring & np.roll(ring, -1, axis=0), axis=0))
         assert np.array_equal(count, ring.sum(axis=0))
-
-
-# --------------------------------------------------------------------------- outlined shapes
-def _bubble(tail: bool = False, dot: bool = False, width: int = 18) -> np.ndarray:
-    """A thought bubble: an ellipse and two small circles drawn by outlines ``width`` px wide, filled white."""
-    im = np.full((400, 400, 3), 255, np.uint8)
-    cv2.ellipse(im, (190, 160), (140, 100), 0, 0, 360, (0, 0, 0), width, cv2.LINE_AA)
-    cv2.circle(im, (300, 300), 24, (0, 0, 0), 2 * width // 3, cv2.LINE_AA)
-    cv2.circle(im, (345, 355), 14, (0, 0, 0), width // 2, cv2.LINE_AA)
-    if tail:  # a stroke running off the outline: a balloon's string
-        cv2.line(im, (190, 260), (150, 390), (0, 0, 0), width // 2, cv2.LINE_AA)
-    if dot:  # ink inside an outline: a face's eye
-        cv2.circle(im, (150, 140), 10, (0, 0, 0), -1, cv2.LINE_AA)
-    return im
-
-
-def test_a_fill_with_an_outline_like_a_thought_bubble_is_a_clip_art():
-    """Known answer: shapes filled white and drawn by their 18 px outlines alone are outlined shapes."""
-    from img2logo.features.preprocessing import outline_band_width
-
-    kind, reason = detect_kind(_bubble())
-    assert kind == "clipart", reason
-    assert "closed outlines" in reason
-    assert abs(outline_band_width(_bubble()[:, :, 0] < 128) - 16.0) <= 3.0  # the three bands' mean width
-
-
-@pytest.mark.parametrize(("tail", "dot"), [(True, False), (False, True)])
-def test_outlines_with_a_stroke_running_off_or_ink_inside_are_a_drawing(tail, dot):
-    """A stroke that leaves an outline (a string) or ink inside one (an eye) is a line drawing's."""
-    from img2logo.features.preprocessing import outline_band_width
-
-    kind, reason = detect_kind(_bubble(tail=tail, dot=dot))
-    assert kind == "drawing", reason
-    assert outline_band_width(_bubble(tail=tail, dot=dot)[:, :, 0] < 128) is None
-
-
-def test_thin_closed_outlines_are_still_a_drawing():
-    """Outlines no wider than one drawn once (CLIPART_OUTLINE_WIDTH): their centre line stands for both edges."""
-    kind, reason = detect_kind(_bubble(width=9))
-    assert kind == "drawing", reason
-
-
-def test_the_openclipart_thought_bubble_is_a_clip_art_and_keeps_its_silhouette():
-    """Openclipart's thought bubble (a white fill with a black outline), read as a drawing before: its
-    logo followed the stroke's centre line, 9 px inside the silhouette (sil6 0.09)."""
-    import warnings
-
-    from img2logo import abstract
-    from img2logo.quality import logo_points, silhouette_recall
-
-    folder = DATA.parent / "benchmarks" / "data" / "openclipart"
-    kind, reason = detect_kind(folder / "clipart-thought.png")
-    assert kind == "clipart", reason
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        result = abstract(folder / "clipart-thought.png", progress=False)
-    mask = cv2.imread(str(folder / "clipart-thought.silhouette.png"), cv2.IMREAD_GRAYSCALE) > 127
-    assert silhouette_recall(logo_points(result.final), mask) >= 0.95
