@@ -72,9 +72,9 @@ def boundary_arcs(
         half[labels[labels < n]] = 0.5  # a stroke given away to its sides has no label left
     padded = np.pad(regions, 1, mode="edge")
     seen: dict[tuple[int, int], list[float]] = {}
-    from scipy import ndimage
+    from ..images.ndimage import bounding_slices
 
-    boxes = ndimage.find_objects(regions + 1)
+    boxes = bounding_slices(regions + 1)
     for label, box in enumerate(boxes):
         if box is None:
             continue
@@ -104,7 +104,7 @@ def boundary_arcs(
 
 
 def _across(padded: np.ndarray, xy: np.ndarray, label: int) -> np.ndarray:
-    """The label on the other side of each outline pixel (its first 4-neighbour not ``label``; -1 if none)."""
+    """The label across each outline pixel: its first 4-neighbour, then diagonal one, not ``label`` (-1 if none)."""
     r = xy[:, 1] + 1
     c = xy[:, 0] + 1
     out = np.full(len(xy), -1, dtype=np.int64)

@@ -56,10 +56,8 @@ def detect_kind(image: object) -> tuple[str, str]:
 
     Examples
     --------
-    >>> import cv2, numpy as np
-    >>> image = np.full((160, 160, 3), 255, np.uint8)
-    >>> _ = cv2.circle(image, (80, 80), 50, (0, 0, 0), 3)  # a black ring, 50 px round
-    >>> from img2logo import detect_kind
+    >>> from img2logo import data, detect_kind
+    >>> image = data.ring()  # a black ring, 50 px round, on 160 x 160 px
     >>> kind, why = detect_kind(image)
     >>> kind
     'drawing'
@@ -111,11 +109,10 @@ def detect_kind_and_regions(img: LoadedImage) -> tuple[str, str, np.ndarray | No
     colours = 1 + len(_distinct(means[solid]))
     if _one_ink(means[solid], area[solid]):
         inked = solid[regions]
-        stroke = median_stroke_width(inked)
-        outlined = _outlined_shapes(inked)
-        if outlined is not None:
+        kind, outlined, stroke = _ink_kind(inked)
+        if kind == "clipart":
             return "clipart", outlined, regions
-        if stroke <= DRAWING_MAX_STROKE_FRACTION * min(regions.shape):
+        if kind == "drawing":
             return (
                 "drawing",
                 f"one ink colour on a plain background, {inked.mean():.0%} of the pixels, in strokes about "
@@ -126,11 +123,10 @@ def detect_kind_and_regions(img: LoadedImage) -> tuple[str, str, np.ndarray | No
     ink = _shaded_ink(regions, img.rgb, means, solid, paper)
     if ink is not None:
         inked = ink[regions]
-        stroke = median_stroke_width(inked)
-        outlined = _outlined_shapes(inked)
-        if outlined is not None:
+        kind, outlined, stroke = _ink_kind(inked)
+        if kind == "clipart":
             return "clipart", outlined, regions
-        if stroke <= DRAWING_MAX_STROKE_FRACTION * min(regions.shape):
+        if kind == "drawing":
             share = area[ink].sum() / area[solid].sum()
             return (
                 "drawing",
@@ -139,6 +135,22 @@ def detect_kind_and_regions(img: LoadedImage) -> tuple[str, str, np.ndarray | No
                 None,
             )
     return "clipart", f"{flat:.0%} of the pixels sit in flat fills of {colours} colours: a clip art", regions
+
+
+def _ink_kind(ink: np.ndarray) -> tuple[str | None, str, float]:
+    """What one ink ``ink`` (H, W) bool draws: (kind, reason, median stroke width px).
+
+    ``"clipart"`` with the reason when it is outlined shapes (:func:`_outlined_shapes`),
+    ``"drawing"`` when its strokes are at most ``DRAWING_MAX_STROKE_FRACTION`` of the
+    shorter image side, else None (shapes too wide for strokes).
+    """
+    stroke = median_stroke_width(ink)
+    outlined = _outlined_shapes(ink)
+    if outlined is not None:
+        return "clipart", outlined, stroke
+    if stroke <= DRAWING_MAX_STROKE_FRACTION * min(ink.shape):
+        return "drawing", "", stroke
+    return None, "", stroke
 
 
 def _outlined_shapes(ink: np.ndarray) -> str | None:

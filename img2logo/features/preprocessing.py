@@ -101,10 +101,8 @@ class FeatureLines:
 
     Examples
     --------
-    >>> import cv2, numpy as np
-    >>> image = np.full((160, 160, 3), 255, np.uint8)
-    >>> _ = cv2.circle(image, (80, 80), 50, (0, 0, 0), 3)  # a black ring, 50 px round
-    >>> from img2logo import extract_feature_lines
+    >>> from img2logo import data, extract_feature_lines
+    >>> image = data.ring()  # a black ring, 50 px round, on 160 x 160 px
     >>> lines = extract_feature_lines(image)  # FeatureLines
     >>> lines.shape, bool(lines.lines.any())
     ((160, 160), True)
@@ -172,10 +170,8 @@ def extract_feature_lines(
 
     Examples
     --------
-    >>> import cv2, numpy as np
-    >>> image = np.full((160, 160, 3), 255, np.uint8)
-    >>> _ = cv2.circle(image, (80, 80), 50, (0, 0, 0), 3)  # a black ring, 50 px round
-    >>> from img2logo import extract_feature_lines
+    >>> from img2logo import data, extract_feature_lines
+    >>> image = data.ring()  # a black ring, 50 px round, on 160 x 160 px
     >>> lines = extract_feature_lines(image)
     >>> lines.kind, lines.lines.shape, lines.lines.dtype
     ('drawing', (160, 160), dtype('bool'))

@@ -215,12 +215,10 @@ def run_batch(
 
     Examples
     --------
-    >>> import cv2, numpy as np
-    >>> image = np.full((160, 160, 3), 255, np.uint8)
-    >>> _ = cv2.circle(image, (80, 80), 50, (0, 0, 0), 3)  # a black ring, 50 px round
+    >>> import cv2
     >>> from pathlib import Path
-    >>> from img2logo import run_batch
-    >>> _ = cv2.imwrite("ring.png", image)
+    >>> from img2logo import data, run_batch
+    >>> _ = cv2.imwrite("ring.png", data.ring())  # a black ring, 50 px round, on 160 x 160 px
     >>> report = run_batch(["ring.png"], "logos", outputs=("svg",), jobs=1, progress=False)
     >>> len(report.rows), len(report.failures), [p.name for p in Path("logos").glob("*.svg")]
     (1, 0, ['ring.svg'])
