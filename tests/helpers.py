@@ -6,7 +6,10 @@ fixtures are in ``conftest.py``.
 
 from __future__ import annotations
 
+import ast
 import math
+import subprocess
+import sys
 from pathlib import Path
 
 import cv2
@@ -18,7 +21,21 @@ from img2logo.geometry.abstraction import Abstraction
 from img2logo.geometry.primitives import TAU, Arc, Circle
 from img2logo.segment_graph import SegmentGraph
 
-DATA = Path(__file__).resolve().parents[1] / "data"
+ROOT = Path(__file__).resolve().parents[1]
+DATA = ROOT / "data"
+
+
+def modules_loaded(code: str, *packages: str, cwd: Path = ROOT) -> list[str]:
+    """The modules of ``packages`` (each with what is under it) loaded once ``code`` has run in a new interpreter.
+
+    What an import or a run costs at start-up; sorted. ``code`` may print: the answer is the last line.
+    """
+    probe = (
+        f"{code}\nimport sys\n"
+        f"print(sorted(m for m in sys.modules if any(m == p or m.startswith(p + '.') for p in {packages!r})))"
+    )
+    out = subprocess.run([sys.executable, "-c", probe], cwd=cwd, capture_output=True, text=True, check=True)
+    return ast.literal_eval(out.stdout.strip().splitlines()[-1])
 
 
 def blank(size: int = 200) -> np.ndarray:
