@@ -99,6 +99,29 @@ BIAS = 0.3
 WIDTH, HEIGHT = 200, 160
 
 
+def frechet_table(p: np.ndarray, q: np.ndarray) -> float:
+    """The discrete Fréchet distance of two polylines, (N, 2) and (M, 2), px: the textbook O(N M) table.
+
+    The recurrence of [Eiter & Mannila 1994] in plain Python, on squared distances as the compiled
+    kernel computes them (the same bits), the square root taken at the end.
+    """
+    n, m = len(p), len(q)
+    c = np.empty((n, m))
+    for i in range(n):
+        for j in range(m):
+            dx, dy = p[i, 0] - q[j, 0], p[i, 1] - q[j, 1]
+            d2 = dx * dx + dy * dy
+            if i == 0 and j == 0:
+                c[i, j] = d2
+            elif i == 0:
+                c[i, j] = max(c[0, j - 1], d2)
+            elif j == 0:
+                c[i, j] = max(c[i - 1, 0], d2)
+            else:
+                c[i, j] = max(min(c[i - 1, j], c[i - 1, j - 1], c[i, j - 1]), d2)
+    return math.sqrt(c[-1, -1])
+
+
 def golden(cx: float, cy: float, k: int, bias: float = BIAS) -> Circle:
     return Circle(cx, cy, PHI ** (k + bias), k)
 
