@@ -296,6 +296,18 @@ def golden_chain(noise: float = 0.0, seed: int = 0) -> tuple[SegmentGraph, list[
     return graph, [(c1, r1), (c2, r2), (c3, r3)]
 
 
+def line_and_a_stroke(x: float, tip: float) -> SegmentGraph:
+    """A line in two segments (nodes 0-1-2 along y = 100.5, node 1 at x = 150.5) and a stroke up to it at x = ``x``.
+
+    The stroke ends ``tip`` px short of the line (past it when negative); 300 x 300 px.
+    """
+    left = np.linspace([50.5, 100.5], [150.5, 100.5], 101)
+    right = np.linspace([150.5, 100.5], [250.5, 100.5], 101)
+    stroke = np.linspace([x, 130.5], [x, 100.5 + tip], 31)
+    junctions = np.array([left[0], left[-1], right[-1], stroke[0], stroke[-1]])
+    return SegmentGraph((left, right, stroke), junctions, np.array([[0, 1], [1, 2], [3, 4]]), 300, 300)
+
+
 def hand_built_state(graph: SegmentGraph, state_class: type | None = None, **settings):
     """A :class:`~img2logo.fit.fit_state.FitState` of ``graph`` on ``BIAS``'s ladder, a group per segment, unfitted.
 
