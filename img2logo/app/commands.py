@@ -260,9 +260,12 @@ def run_image(args: argparse.Namespace, say, *, freeze: bool = False) -> int:
         f"segment graph: {graph.n_segments} segments, {graph.n_junctions} nodes "
         f"({_count(int((graph.valence >= 3).sum()), 'junction')}), {_count(graph.n_components(), 'component')}"
     )
+    past = f"; past it, up to {options.stretch:.3g} T, for the arc budget" if "(past T)" in prog.stopped_because else ""
     say(
         f"levels: {len(prog.levels)}, arcs {prog.arc_counts[0]} -> {prog.arc_counts[-1]}, "
-        f"E^s {prog.final.similarity:.2f} px (T = {prog.final.tolerance:g}), {_ladder_text(prog)}, "
+        f"E^s {prog.final.similarity:.2f} px (T = {prog.final.tolerance:g}"
+        f"{past}), "
+        f"{_ladder_text(prog)}, "
         f"stopped: {prog.stopped_because}, {sum(result.timings.values()):.2f} s"
     )
     level = _pick_level(result, args.level)

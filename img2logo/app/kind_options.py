@@ -24,23 +24,23 @@ def kind_options(options: Options, subject: str | None = None) -> dict[str, list
     """The options given that act on one kind of image only, as typed: ``{"photo": [...], "clipart": [...]}``.
 
     ``--subject`` and ``--foreground`` (other than auto) choose a photo's
-    subject; ``--detail`` (other than its default) and ``--arcs`` choose what a
-    clip art keeps. ``subject`` is ``--subject`` as typed (it is checked
-    against the image, so it is not yet in ``options``).
+    subject; ``--detail`` (other than its default) chooses the regions a clip
+    art keeps (``--arcs`` acts on every kind: the fit goes past T to meet
+    it). ``subject`` is ``--subject`` as typed (it is checked against the
+    image, so it is not yet in ``options``).
 
     Examples
     --------
     >>> from img2logo import Options
     >>> from img2logo.app.kind_options import kind_options
-    >>> kind_options(Options(arcs=40))
-    {'photo': [], 'clipart': ['--arcs 40']}
+    >>> kind_options(Options(detail=5))
+    {'photo': [], 'clipart': ['--detail 5']}
     """
     fg = options.foreground
     photo = [] if subject is None else [f"--subject {subject}"]
     if not (isinstance(fg, str) and fg == "auto"):
         photo.append(f"--foreground {fg if isinstance(fg, str | Path) else 'MASK'}")
     clipart = [] if options.detail == DETAIL else [f"--detail {options.detail}"]
-    clipart += [] if options.arcs is None else [f"--arcs {options.arcs}"]
     return {"photo": photo, "clipart": clipart}
 
 
