@@ -50,7 +50,7 @@ class StudioSettings:
     detail : int
         Clip art: the regions kept besides the background (``--detail``).
     arcs : int or None
-        Clip art: about this many arcs at most (``--arcs``); None: no budget.
+        About this many arcs at most (``--arcs``); None: the default, about ``LOGO_ARCS``.
     exponents : tuple of int or None
         Only these ladder exponents k (the subset of golden circles of Fig. 15, ``--radii``);
         None: every rung.

@@ -574,7 +574,7 @@ def test_an_arc_budget_of_a_clip_art_is_a_setting_of_the_run():
     many = len(s.shown.arcs)
     assert s.run(arcs=many // 2), s.message
     assert s.settings.arcs == many // 2 and len(s.shown.arcs) < many
-    assert not s.run(arcs=0) and "arcs" in s.message  # a budget is at least 1 arc (the page's 0 is no budget)
+    assert not s.run(arcs=0) and "arcs" in s.message  # a budget is at least 1 arc (the page's 0 is the default)
 
 
 def test_any_two_free_ends_clicked_are_joined_on_the_circle_chosen(ran):
