@@ -260,7 +260,8 @@ def run_image(args: argparse.Namespace, say, *, freeze: bool = False) -> int:
         f"segment graph: {graph.n_segments} segments, {graph.n_junctions} nodes "
         f"({_count(int((graph.valence >= 3).sum()), 'junction')}), {_count(graph.n_components(), 'component')}"
     )
-    past = f"; past it, up to {options.stretch:.3g} T, for the arc budget" if "(past T)" in prog.stopped_because else ""
+    past_t = prog.stopped_because.startswith("past T")
+    past = f"; past it, up to {options.stretch:.3g} T, for the arc budget" if past_t else ""
     say(
         f"levels: {len(prog.levels)}, arcs {prog.arc_counts[0]} -> {prog.arc_counts[-1]}, "
         f"E^s {prog.final.similarity:.2f} px (T = {prog.final.tolerance:g}"

@@ -95,9 +95,9 @@ class Progression:
     stopped_because : str
         Why the loop stopped: ``"tolerance"``, ``"no mergeable pair"``, ``"merging off"``
         or ``"time budget"`` (``Options.time_budget``; a :class:`TimeBudgetWarning` says so);
-        where it went on past T (``Options.stretch``), ``"40 arcs (past T)"`` (the
-        budget reached), ``"1.62 T (past T)"`` (the stretched tolerance reached) or
-        ``"no mergeable pair (past T)"``.
+        where it went on past T (``Options.stretch``), ``"past T, 40 arcs"`` (the
+        budget reached), ``"past T, 1.62 T"`` (the stretched tolerance reached) or
+        ``"past T, no mergeable pair"``.
     stats : dict of str to int
         The counts of :class:`~img2logo.fit.fit_values.Stats` by name, in its order:
         merge candidates evaluated, local windows that failed, global solves,
@@ -379,7 +379,7 @@ def optimize(
             state.options = dataclasses.replace(opts, tolerance=tolerance)
             stopped = merge_loop(state, tolerance, add_level, over_budget, arcs=budget)
             said = {"arcs": f"{budget} arcs", "tolerance": f"{opts.stretch:.3g} T"}.get(stopped, stopped)
-            stopped = f"{said} (past T)"
+            stopped = f"past T, {said}"
     timings["loop"] = time.perf_counter() - start
     start = time.perf_counter()
     if state.smooth:
@@ -392,7 +392,7 @@ def optimize(
             progress(levels[-1].level, len(levels[-1].arcs), levels[-1].similarity)
     timings["tangency"] = time.perf_counter() - start
     made = Levels(levels)
-    if stopped.startswith(TIME_BUDGET_STOP):
+    if stopped.endswith(TIME_BUDGET_STOP):
         final = made[-1]
         warnings.warn(
             TimeBudgetWarning(

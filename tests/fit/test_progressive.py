@@ -100,12 +100,12 @@ def test_past_t_merging_goes_on_down_to_the_arc_budget(fish_progression):
     within_t = len(prog.final.arcs)
     budget = within_t - 6
     past = optimize(graph, tolerance=5.0, arcs=budget)
-    assert past.stopped_because.endswith("(past T)")
+    assert past.stopped_because.startswith("past T, ")
     within = len(prog.levels) - 1  # the levels within T are the paper's (the last may be the tangent refit)
     assert past.arc_counts[:within] == prog.arc_counts[:within]
     final = past.final
     assert len(final.arcs) < within_t  # simpler than the paper's result
-    assert len(final.arcs) == budget or past.stopped_because != f"{budget} arcs (past T)"
+    assert len(final.arcs) == budget or past.stopped_because != f"past T, {budget} arcs"
     assert final.similarity <= PHI * 5.0 + 1e-9  # within the stretched tolerance
     assert final.tolerance == 5.0 and final.params["stretch"] == pytest.approx(PHI) and final.params["arcs"] == budget
     check_level(final)
