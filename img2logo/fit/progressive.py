@@ -369,15 +369,15 @@ def optimize(
     start = time.perf_counter()
     stopped = "merging off"
     tolerance = opts.tolerance
-    budget = arc_budget(opts, symmetry is not None)
+    budget = arc_budget(opts)
     if opts.merging:
         stopped = merge_loop(state, tolerance, add_level, over_budget)
-        if stopped != TIME_BUDGET_STOP and opts.stretch > 1.0 and len(state.fits) > budget:
+        if stopped != TIME_BUDGET_STOP and opts.stretch > 1.0 and logo_arcs(state) > budget:
             # Simplicity past T: more arcs than a logo holds. Merging goes on, the cheapest first,
             # every check as before and the silhouette's arcs held to the stretched tolerance.
             tolerance = opts.stretch * opts.tolerance
             state.options = dataclasses.replace(opts, tolerance=tolerance)
-            stopped = merge_loop(state, tolerance, add_level, over_budget, arcs=budget)
+            stopped = merge_loop(state, tolerance, add_level, over_budget, lambda: logo_arcs(state) <= budget)
             said = {"arcs": f"{budget} arcs", "tolerance": f"{opts.stretch:.3g} T"}.get(stopped, stopped)
             stopped = f"past T, {said}"
     timings["loop"] = time.perf_counter() - start
@@ -406,18 +406,26 @@ def optimize(
     return Progression(made, float(golden.bias), simplified, stopped, state.stats.as_dict(), timings, golden)
 
 
-def arc_budget(options: Options, half: bool = False) -> int:
-    """The arcs a logo holds: ``options.arcs``, or ``LOGO_ARCS`` when none is given; half of it for a symmetric half.
+def arc_budget(options: Options) -> int:
+    """The arcs a logo holds: ``options.arcs``, or ``LOGO_ARCS`` when none is given.
 
     Examples
     --------
     >>> from img2logo import Options
     >>> from img2logo.fit.progressive import arc_budget
-    >>> arc_budget(Options()), arc_budget(Options(arcs=25), half=True)
-    (40, 13)
+    >>> arc_budget(Options()), arc_budget(Options(arcs=25))
+    (40, 25)
     """
-    arcs = LOGO_ARCS if options.arcs is None else options.arcs
-    return max(1, (arcs + 1) // 2) if half else arcs
+    return LOGO_ARCS if options.arcs is None else options.arcs
+
+
+def logo_arcs(state: FitState) -> int:
+    """The arcs of the logo the state draws: one per group; for a symmetric half (:mod:`img2logo.fit.symmetry`)
+    each with its mirror image, but for those centred on the axis, which are one arc with it."""
+    n = len(state.fits)
+    if state.symmetry is None:
+        return n
+    return 2 * n - sum(1 for g in state.fits if state.on_axis(state.groups[g]))
 
 
 def _budget(seconds: float | None) -> Callable[[], bool] | None:

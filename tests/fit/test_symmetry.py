@@ -280,3 +280,17 @@ def test_a_batch_passes_symmetry_on(tmp_path):
     with ThreadPoolExecutor(1) as pool:
         free = run_batch([src], tmp_path / "free", executor=pool, progress=False, kind="drawing")
     assert free.rows[0].symmetry == "" and "symmetry" not in free.summary().splitlines()[0]
+
+
+def test_the_arc_budget_counts_the_whole_symmetric_logo():
+    # The symmetric polar bear is 36 arcs within T: under the budget of 40, though its half has more
+    # than 20 groups (the arcs centred on the axis are one arc with their mirror image).
+    from helpers import DATA
+
+    bear = DATA.parent / "benchmarks" / "data" / "clipart-polar-bear.png"
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        run = img2logo.abstract(bear, symmetry="vertical", progress=False)
+    assert run.symmetry is not None and run.symmetry.axis is not None
+    assert run.progression.stopped_because == "tolerance" and len(run.final.arcs) <= 40
+    assert run.final.similarity <= run.final.tolerance
