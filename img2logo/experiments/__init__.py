@@ -277,21 +277,17 @@ class Run:
 
     @property
     def final(self) -> Abstraction:
-        """The result: the last level."""
-        return self._progression.final
+        """The result: the last level (the result's :attr:`~img2logo.pipeline.Result.final`)."""
+        return self._result.final
 
     @property
     def bias(self) -> float:
         """The ladder bias sigma the run used."""
-        return self._progression.bias
+        return self._result.bias
 
     def level(self, t: int) -> Abstraction:
-        """A^t; negative t counts from the end."""
-        return self._progression.levels[t]
-
-    @property
-    def _progression(self) -> Progression:
-        return self._result.progression
+        """A^t; negative t counts from the end (the result's :meth:`~img2logo.pipeline.Result.level`)."""
+        return self._result.level(t)
 
     @property
     def _result(self) -> Result:
