@@ -210,6 +210,66 @@ def bench_startup(repeat: int) -> None:
     print(f" (CPU {cpu * 1e3:.0f} ms)")
 
 
+#: The images of :func:`bench_command_parts`: a drawing and a clip art of the command-line comparison.
+PARTS_IMAGES = (BENCHMARK_DATA / "drawing-bike.png", DATA / "clipart-fish.png")
+#: The steps of :func:`bench_command_parts`, each a process that does one thing more than the one before.
+_PARTS = (
+    ("the interpreter's start (python -c pass)", "pass"),
+    ("img2logo.app.cli, argparse", "import img2logo.app.cli as c; c._start_command()"),
+    ("numpy (one BLAS thread)", "import img2logo.app.cli as c; c._start_command(); import numpy"),
+    ("OpenCV", "import img2logo.app.cli as c; c._start_command(); import numpy, cv2"),
+    (
+        "img2logo's modules, the kernels' load",
+        "import img2logo.app.cli as c; c._start_command(); import numpy, cv2; "
+        "import img2logo.pipeline, img2logo.export.writers, img2logo._compiled.kernels as k; "
+        "import img2logo.app.commands as m; k.usable(); m.freeze_heap()",
+    ),
+)
+
+
+def bench_command_parts(repeat: int, page: Page) -> None:
+    """Where the command's time goes: whole processes that each do one step more, alternated run by run.
+
+    The steps (:data:`_PARTS`) start Python, import the command's module (as the command starts: one BLAS
+    thread, no collections meanwhile), numpy, OpenCV, then img2logo's modules with the compiled kernels'
+    load; the last process is the command on the image (``-m img2logo.app.cli IMAGE -q --svg OUT``). The
+    difference of two consecutive medians is what the step adds; the last row (the run: reading the image,
+    :func:`img2logo.abstract`, writing the SVG, the interpreter's exit) also holds ``-m``'s own start.
+    """
+    page.say(f"\nWhere the command's time goes (whole processes, alternated, median of {repeat}); {_load()}")
+    columns: list[list[tuple[float, float]]] = []
+    with tempfile.TemporaryDirectory() as tmp:
+        steps = [[sys.executable, "-c", code] for _, code in _PARTS]
+        for path in PARTS_IMAGES:
+            run = [sys.executable, "-m", "img2logo.app.cli", str(path), "-q", "--svg", os.path.join(tmp, "o.svg")]
+            wall, cpu = _alternated([*steps, run], repeat)
+            parts = [(cpu[0], wall[0])] + [(cpu[i] - cpu[i - 1], wall[i] - wall[i - 1]) for i in range(1, len(cpu))]
+            columns.append(parts)
+            page.say(f"{path.stem}: CPU {cpu[-1] * 1e3:.0f} ms, wall {wall[-1] * 1e3:.0f} ms")
+    labels = [label for label, _ in _PARTS] + ["the run (read, abstract, write, exit)"]
+    rows = []
+    for i, label in enumerate(labels):
+        cells: list[object] = [label]
+        for col in columns:
+            total = sum(c for c, _ in col)
+            cells += [f"{col[i][0] * 1e3:.0f}", f"{col[i][0] / total:.0%}", f"{col[i][1] * 1e3:.0f}"]
+        rows.append(cells)
+        page.say(f"  {label:42s} " + "  ".join(f"{c!s:>6s}" for c in cells[1:]))
+    page.say(f"  (per image: CPU ms, share of CPU, wall ms); {_load()} at the end")
+    head: list[str] = ["part"]
+    for path in PARTS_IMAGES:
+        head += [f"{path.stem} CPU (ms)", "share", "wall (ms)"]
+    page.table(
+        "Where the command's time goes",
+        head,
+        rows,
+        f"Whole processes, each one step more than the last, alternated run by run, medians of {repeat}; a part "
+        "is the difference of two consecutive medians (`benchmarks/bench.py --only startup`). The last row is "
+        "the command on the image minus the processes before it: reading the image, `abstract()`, writing the "
+        "SVG and the exit.",
+    )
+
+
 def _process_seconds(cmd: list[str]) -> float:
     return _process_times(cmd)[0]
 
@@ -626,6 +686,7 @@ def main() -> None:
             bench_table3("clipart-fish", max(1, args.repeat // 2))
         if "startup" in only:
             bench_startup(args.repeat)
+            bench_command_parts(args.repeat, page)
         if "cli" in only:
             bench_cli_vs_vtracer(args.repeat, page)
         if "growth" in only:

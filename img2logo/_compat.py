@@ -6,9 +6,13 @@ functions saves its library call's cost on a clip art's run, measured by
 
 * :func:`unique`: ``np.unique``'s first call imports ``numpy.ma``: 0.008 s of CPU.
 * :func:`median`: ``np.median`` looks ``np.ma`` up, which imports ``numpy.ma``: the same 0.008 s.
+* :func:`intersect1d`, :func:`setdiff1d`, :func:`union1d`: numpy's, given the inputs' :func:`unique` values
+  (numpy's own call of ``np.unique`` would import ``numpy.ma``).
 * :func:`nonzero`: ``np.nonzero`` of a 512 x 512 mask takes 2.5 ms whatever its count (``python -m
   timeit``), ``np.flatnonzero`` and a division 0.22 ms.
 * :func:`line`: ``skimage.draw.line``'s first call imports scikit-image and scipy: 0.017 s of CPU.
+* :func:`circle_perimeter`: ``skimage.draw.circle_perimeter``'s first call imports them too (a drawing with a
+  filled dot, an animal's eye): 64 M instructions (valgrind), 0.015 s of CPU.
 """
 
 from __future__ import annotations
@@ -22,6 +26,21 @@ def unique(values: np.ndarray) -> np.ndarray:
     if a.size > 1:
         a = a[np.concatenate(([True], a[1:] != a[:-1]))]
     return a
+
+
+def intersect1d(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """``np.intersect1d(a, b)`` of integer arrays: the values in both, sorted, 1-D."""
+    return np.intersect1d(unique(a), unique(b), assume_unique=True)
+
+
+def setdiff1d(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """``np.setdiff1d(a, b)`` of integer arrays: the values of ``a`` not in ``b``, sorted, 1-D."""
+    return np.setdiff1d(unique(a), unique(b), assume_unique=True)
+
+
+def union1d(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """``np.union1d(a, b)`` of integer arrays: the values in either, sorted, 1-D."""
+    return unique(np.concatenate((a, b), axis=None))
 
 
 def median(values: np.ndarray) -> np.floating:
@@ -77,3 +96,29 @@ def line(r0: int, c0: int, r1: int, c1: int) -> tuple[np.ndarray, np.ndarray]:
     rr.append(r1)
     cc.append(c1)
     return np.array(rr, dtype=np.intp), np.array(cc, dtype=np.intp)
+
+
+def circle_perimeter(r: int, c: int, radius: int, shape: tuple[int, int]) -> tuple[np.ndarray, np.ndarray]:
+    """The pixels (rows, columns) of the digital circle of centre (r, c) and ``radius``, inside ``shape``.
+
+    ``skimage.draw.circle_perimeter(r, c, radius, shape=shape)`` pixel for pixel: Bresenham's midpoint
+    circle (scikit-image's default method), one octant stepped from the top and mirrored eight ways, the
+    pixels outside an image of ``shape`` (rows, columns) left out.
+    """
+    rows: list[int] = []
+    cols: list[int] = []
+    x, y = 0, radius
+    d = 3 - 2 * radius  # the midpoint's decision variable
+    while y >= x:
+        rows += [y, -y, y, -y, x, -x, x, -x]
+        cols += [x, x, -x, -x, y, y, -y, -y]
+        if d < 0:
+            d += 4 * x + 6
+        else:
+            d += 4 * (x - y) + 10
+            y -= 1
+        x += 1
+    rr = np.array(rows, dtype=np.intp) + r
+    cc = np.array(cols, dtype=np.intp) + c
+    inside = (rr >= 0) & (rr < shape[0]) & (cc >= 0) & (cc < shape[1])
+    return rr[inside], cc[inside]

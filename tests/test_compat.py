@@ -3,7 +3,7 @@
 import numpy as np
 from helpers import modules_loaded
 
-from img2logo._compat import line, median, nonzero, unique
+from img2logo._compat import circle_perimeter, intersect1d, line, median, nonzero, setdiff1d, union1d, unique
 
 
 def test_median_is_numpys_to_the_bit():
@@ -28,6 +28,17 @@ def test_unique_is_numpys():
     assert np.array_equal(unique(np.array([[3, 1], [1, 3]])), [1, 3])
 
 
+def test_set_operations_are_numpys():
+    rng = np.random.default_rng(7)
+    for n, m in ((0, 0), (0, 3), (1, 1), (5, 9), (60, 40)):
+        for dtype in (np.int32, np.int64):
+            a, b = rng.integers(-4, 9, n).astype(dtype), rng.integers(0, 12, m).astype(np.int64)
+            for ours, numpys in ((intersect1d, np.intersect1d), (setdiff1d, np.setdiff1d), (union1d, np.union1d)):
+                got, want = ours(a, b), numpys(a, b)
+                assert got.dtype == want.dtype and np.array_equal(got, want), (ours.__name__, n, m, dtype)
+    assert np.array_equal(intersect1d(np.array([[3, 1], [1, 5]]), np.array([5, 5, 1])), [1, 5])
+
+
 def test_nonzero_is_numpys():
     rng = np.random.default_rng(6)
     for h, w in ((0, 5), (1, 1), (7, 3), (40, 61)):
@@ -47,10 +58,26 @@ def test_line_is_skimages_pixel_for_pixel():
             np.testing.assert_array_equal(g, w)
 
 
+def test_circle_perimeter_is_skimages_pixel_for_pixel():
+    from skimage.draw import circle_perimeter as oracle
+
+    rng = np.random.default_rng(8)
+    cases = [(int(a), int(b), int(k), (int(h) + 11, int(w) + 11)) for a, b, k, h, w in rng.integers(-10, 40, (2000, 5))]
+    cases += [(4, 4, 3, (10, 10)), (0, 0, 0, (1, 1)), (2, 2, 5, (3, 3)), (200, 100, 60, (512, 320))]
+    for r, c, radius, shape in cases:
+        got, want = circle_perimeter(r, c, radius, shape), oracle(r, c, radius, shape=shape)
+        for g, w in zip(got, want, strict=True):
+            assert g.dtype == w.dtype
+            np.testing.assert_array_equal(g, w)
+
+
 def test_none_imports_numpy_ma_or_scikit_image():
     code = (
         "import sys, numpy as np\n"
-        "from img2logo._compat import line, median, nonzero, unique\n"
+        "from img2logo._compat import circle_perimeter, intersect1d, line, median, nonzero, setdiff1d, union1d\n"
+        "from img2logo._compat import unique\n"
         "median(np.arange(5.0)); unique(np.array([2, 1, 2])); nonzero(np.eye(3)); line(0, 0, 3, 5)\n"
+        "circle_perimeter(4, 4, 3, (10, 10))\n"
+        "a, b = np.array([3, 1, 3]), np.array([1, 2]); intersect1d(a, b); setdiff1d(a, b); union1d(a, b)\n"
     )
     assert modules_loaded(code, "numpy.ma", "skimage", "scipy") == []

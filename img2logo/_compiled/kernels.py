@@ -41,7 +41,6 @@ from __future__ import annotations
 import importlib.machinery
 import importlib.util
 import os
-import tempfile
 import threading
 from pathlib import Path
 from types import ModuleType
@@ -326,6 +325,7 @@ def build(directory: Path, cpu: str = "host") -> Path:
     JIT (:func:`_entry_points`' second way) until they are built by its successor (numba's planned
     ahead-of-time compiler), and ``numba`` is pinned below that release in ``pyproject.toml`` meanwhile.
     """
+    import tempfile
     import warnings
 
     with warnings.catch_warnings():

@@ -40,7 +40,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._compat import median
+from .._compat import median, unique
 from ..images.loading import LoadedImage
 from .clipart_colours import (
     NOISE_PAIRS,
@@ -145,7 +145,7 @@ def enclosed_paper(regions: np.ndarray, img: LoadedImage) -> np.ndarray:
     paper = background & (colour_distance(lab, colour) <= contrast)
     count, parts = cv2.connectedComponents(paper.view(np.uint8), connectivity=4)
     open_paper = np.zeros(count, dtype=bool)
-    open_paper[np.unique(parts[frame & paper])] = True
+    open_paper[unique(parts[frame & paper])] = True
     open_paper[0] = False
     opened = open_paper[parts]
     enclosed = paper & ~opened

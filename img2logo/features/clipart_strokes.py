@@ -15,7 +15,7 @@ from collections.abc import Iterator
 
 import numpy as np
 
-from .._compat import median
+from .._compat import intersect1d, median, setdiff1d, union1d
 from .clipart import border_lengths, frame_interior, nearest_labels, region_boundaries
 from .constants import (
     CLIPART_EDGE_CONTRAST,
@@ -134,7 +134,7 @@ def clipart_lines(regions: np.ndarray, lightness: np.ndarray | None = None) -> n
     thin = thin_regions(regions, lightness)
     if lightness is not None:
         strokes = ink_strokes(regions, lightness, thin)
-        thin = np.setdiff1d(thin, ink_outlines(regions, lightness))
+        thin = setdiff1d(thin, ink_outlines(regions, lightness))
     if len(thin) == 0 and strokes is None:
         return region_boundaries(regions)
     drawn = np.isin(regions, thin)
@@ -177,8 +177,8 @@ def ink_strokes(regions: np.ndarray, lightness: np.ndarray, thin: np.ndarray) ->
     across inside them covers (:func:`_ink_parts`).
     """
     inks = ink_outlines(regions, lightness)
-    out = np.isin(regions, np.intersect1d(thin, inks))
-    for _, sl, part in _ink_parts(regions, np.setdiff1d(inks, thin)):
+    out = np.isin(regions, intersect1d(thin, inks))
+    for _, sl, part in _ink_parts(regions, setdiff1d(inks, thin)):
         out[sl] |= part
     return out if out.any() else None
 
@@ -191,12 +191,10 @@ def outline_strokes(regions: np.ndarray, lightness: np.ndarray) -> np.ndarray:
     network with a few wider blobs); a dark fill (a black disc) is none.
     """
     inks = ink_outlines(regions, lightness)
-    thin = np.intersect1d(thin_regions(regions, lightness), inks)
+    thin = intersect1d(thin_regions(regions, lightness), inks)
     area = np.bincount(regions.ravel())
-    mostly = [
-        label for label, _, part in _ink_parts(regions, np.setdiff1d(inks, thin)) if 2 * part.sum() >= area[label]
-    ]
-    return np.union1d(thin, np.array(mostly, dtype=np.int64))
+    mostly = [label for label, _, part in _ink_parts(regions, setdiff1d(inks, thin)) if 2 * part.sum() >= area[label]]
+    return union1d(thin, np.array(mostly, dtype=np.int64))
 
 
 def _ink_parts(regions: np.ndarray, labels: np.ndarray) -> Iterator[tuple[int, tuple[slice, slice], np.ndarray]]:

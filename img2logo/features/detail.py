@@ -54,6 +54,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from .._compat import intersect1d, unique
 from ..constants import LINE_JOIN_DISTANCE
 from ..errors import InvalidParameterError
 from .boundary_cost import boundary_arcs
@@ -171,19 +172,19 @@ def merge_by_importance(
     # alone keeps the outline as drawn (a beak or an eye enclosed by it stays its own fill).
     sides = outline_sides(regions, lab) if arcs is not None else None
     target, budget = merge_targets(regions, lab, detail, marks=True, arcs=arcs, sides=sides)
-    if n - 1 <= detail and len(np.unique(target)) == n:
+    if n - 1 <= detail and len(unique(target)) == n:
         return Merged(regions, n - 1, budget)
-    if len(np.unique(target)) > max_regions:  # the dark marks too, down to the bound
+    if len(unique(target)) > max_regions:  # the dark marks too, down to the bound
         target, budget = merge_targets(regions, lab, min(detail, max_regions - 1), marks=False, arcs=arcs, sides=sides)
         import warnings
 
         warnings.warn(
             f"{n} regions at detail {detail} are more than the optimization takes at once ({max_regions}): "
-            f"coarsened to detail {len(np.unique(target)) - 1}, {len(np.unique(target))} regions",
+            f"coarsened to detail {len(unique(target)) - 1}, {len(unique(target))} regions",
             DetailWarning,
             stacklevel=2,
         )
-    kept = len(np.unique(target))
+    kept = len(unique(target))
     if kept == n:
         return Merged(regions, n - 1, budget)
     if sides is not None:  # the stroke between fills merged into one goes, as a shared boundary would
@@ -253,7 +254,7 @@ def merge_targets(
     fixed[0] = True
     on_paper = np.zeros(n, dtype=bool)
     on_paper[[j for i, j in adjacency if i == 0]] = True
-    fixed[np.intersect1d(outline_strokes(regions, means[:, 0]), np.flatnonzero(on_paper))] = True
+    fixed[intersect1d(outline_strokes(regions, means[:, 0]), np.flatnonzero(on_paper))] = True
     # Nor is a dark mark on the object's lighter fills (an eye, a pupil, a spot, an inner
     # outline), the first thing the eye finds in a picture and what a designer keeps, ever
     # painted over: it only takes in smaller regions (a pupil's highlight, the light spots

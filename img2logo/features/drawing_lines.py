@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._compat import median
+from .._compat import circle_perimeter, median
 from ..constants import BLANK_IMAGE_RANGE, JUNCTION_MERGE_DISTANCE
 from ..images import skeleton as _skeleton
 from ..images.loading import LoadedImage
@@ -131,8 +131,6 @@ def keep_dots(lines: np.ndarray, ink: np.ndarray, stroke_width: float) -> np.nda
     bare = [k for k in range(1, n + 1) if not lined[k] and diameter[k] >= DOT_MIN_DIAMETER]
     if not bare:
         return lines
-    from skimage.draw import circle_perimeter  # only for a dot (skimage.draw imports scipy)
-
     out = lines.copy()
     # scipy.ndimage.center_of_mass(ink, labels, bare): the same sums, by label.
     rows, cols = np.indices(ink.shape, dtype=np.float64)
@@ -144,7 +142,7 @@ def keep_dots(lines: np.ndarray, ink: np.ndarray, stroke_width: float) -> np.nda
     )
     for k, (r, c) in zip(bare, centres, strict=True):
         radius = max(DOT_MIN_RADIUS, (diameter[k] - stroke_width) / 2.0)
-        rr, cc = circle_perimeter(round(r), round(c), round(radius), shape=out.shape)
+        rr, cc = circle_perimeter(round(r), round(c), round(radius), out.shape)
         out[rr, cc] = True
     return out
 

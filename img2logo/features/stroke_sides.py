@@ -36,6 +36,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from .._compat import intersect1d
 from .clipart import nearest_labels
 from .clipart_strokes import ink_strokes, outline_strokes
 from .constants import CLIPART_OUTLINE_WIDTH
@@ -69,7 +70,7 @@ def stroke_sides(
     on_paper : ndarray of bool, shape (n,)
         The labels that touch the background.
     """
-    inks = np.intersect1d(outline_strokes(regions, lightness), np.flatnonzero(on_paper))
+    inks = intersect1d(outline_strokes(regions, lightness), np.flatnonzero(on_paper))
     if len(inks) == 0:
         return None
     strokes = ink_strokes(regions, lightness, thin)

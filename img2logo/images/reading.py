@@ -10,11 +10,10 @@ import contextlib
 import os
 import re
 import sys
-import tempfile
 import warnings
 from collections.abc import Iterator
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import IO, TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -386,7 +385,7 @@ _DECODER_LINE = re.compile(
 
 @contextlib.contextmanager
 def _decoder_stderr() -> Iterator[None]:
-    """Hold standard error (file descriptor 2) in a temporary file while a C decoder runs.
+    """Hold standard error (file descriptor 2) in an anonymous file (:func:`_anonymous_file`) while a C decoder runs.
 
     libpng writes ``libpng warning: iCCP: known incorrect sRGB profile`` (and the
     like) straight to file descriptor 2, which no Python setting silences; the
@@ -401,7 +400,7 @@ def _decoder_stderr() -> Iterator[None]:
     except OSError:  # no standard error at all: nothing to hold
         yield
         return
-    hold = tempfile.TemporaryFile()
+    hold = _anonymous_file()
     try:
         os.dup2(hold.fileno(), 2)
         try:
@@ -416,6 +415,22 @@ def _decoder_stderr() -> Iterator[None]:
     finally:
         os.close(saved)
         hold.close()
+
+
+def _anonymous_file() -> IO[bytes]:
+    """A file without a name, read and written as bytes: in memory (``memfd_create``) where the system has it.
+
+    Elsewhere (or if the call fails) a temporary file; :mod:`tempfile` (with :mod:`random`) is imported only
+    then, not by every run of the command.
+    """
+    if hasattr(os, "memfd_create"):
+        try:
+            return os.fdopen(os.memfd_create("img2logo-stderr", os.MFD_CLOEXEC), "w+b")
+        except OSError:  # no memfd in this kernel (or a sandbox refuses it)
+            pass
+    import tempfile
+
+    return tempfile.TemporaryFile()
 
 
 def _float_image_size(path: Path) -> tuple[int, int, str] | None:
