@@ -12,7 +12,7 @@ import os
 import re
 import warnings
 from pathlib import Path
-from typing import TYPE_CHECKING, Literal
+from typing import TYPE_CHECKING
 
 from ..errors import InvalidImageError
 from .constants import MAX_WHOLE_TIFF_BYTES
@@ -404,8 +404,7 @@ def _exif_orientation(tiff: bytes) -> tuple[int | None] | None:
     None if unclear: a header that is no TIFF's, a directory past the data, the tag more than
     once or not one SHORT (Pillow decodes those its own way).
     """
-    orders: dict[bytes, Literal["little", "big"]] = {b"II": "little", b"MM": "big"}
-    order = orders.get(tiff[:2])
+    order = {b"II": "little", b"MM": "big"}.get(tiff[:2])
     if order is None or len(tiff) < 8 or int.from_bytes(tiff[2:4], order) != 42:
         return None
     ifd = int.from_bytes(tiff[4:8], order)
