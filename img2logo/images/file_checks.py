@@ -39,12 +39,6 @@ def probe(path: Path, max_pixels: int, max_side: int | None = None) -> tuple[int
         if w * h > max_pixels:
             raise InvalidImageError(too_many_pixels(path, f"{w}x{h} px", max_pixels))
         return w, h, 1, "PNG", 1
-    jpeg = _plain_jpeg(path)
-    if jpeg is not None:  # what Pillow would say: one frame of format JPEG, the EXIF orientation
-        w, h, orientation = jpeg
-        if w * h > max_pixels:
-            raise InvalidImageError(too_many_pixels(path, f"{w}x{h} px", max_pixels))
-        return w, h, 1, "JPEG", orientation
     try:
         from PIL import Image
     except ImportError:  # pragma: no cover - a dependency of matplotlib and of img2logo
@@ -307,121 +301,6 @@ def _plain_png_size(path: Path, *, pixels_first: bool = False) -> tuple[int, int
     except OSError:
         return None
     return None
-
-
-#: Pillow's refusal of a decompression bomb: more than twice its ``Image.MAX_IMAGE_PIXELS`` (89 478 485) pixels.
-_PILLOW_BOMB_PIXELS = 2 * 89_478_485
-
-#: How many bytes of a JPEG :func:`_plain_jpeg` reads: the segments before the first scan of a camera's or an
-#: editor's file (EXIF with its thumbnail, ICC profile, XMP) fit; a larger header is left to Pillow.
-_JPEG_HEAD_BYTES = 1 << 20
-
-
-def _plain_jpeg(path: Path) -> tuple[int, int, int] | None:
-    """(width, height, EXIF orientation) of a plain JPEG from its marker segments, or None for any other file.
-
-    Plain: SOI, then marker segments (ITU-T T.81, Annex B) up to the first scan (SOS), with one
-    frame header (SOF) of 8-bit samples, 1, 3 or 4 components and a nonzero size within Pillow's
-    own limit, at most one APP1 ``Exif`` segment and no APP2 ``MPF`` (a multi-picture file,
-    which Pillow opens as MPO). The orientation is tag 0x0112 of the EXIF's first image file
-    directory (TIFF 6.0, Sec. 2), one SHORT; without it, the XMP's ``tiff:Orientation`` digit as
-    Pillow reads it (its last XMP segment); 1 without either. Such a file is one frame of format
-    JPEG for Pillow too, with that orientation: :func:`probe` then needs no Pillow, whose import
-    and EXIF reading cost more than numpy.ma and scipy's together (81 M instructions). Anything
-    else (fill or junk bytes, another kind of orientation entry, a damaged EXIF) is left to Pillow.
-    """
-    try:
-        with open(path, "rb") as f:
-            data = f.read(_JPEG_HEAD_BYTES)
-    except OSError:
-        return None
-    if data[:3] != b"\xff\xd8\xff":
-        return None
-    pos, size, orientation, exif, xmp = 2, None, None, False, b""
-    while pos + 4 <= len(data):
-        if data[pos] != 0xFF or data[pos + 1] not in _JPEG_SEGMENTS:
-            return None  # not a segment Pillow reads by its length (a fill byte, a standalone marker)
-        marker, length = data[pos + 1], int.from_bytes(data[pos + 2 : pos + 4], "big")
-        segment = data[pos + 4 : pos + 2 + length]
-        if length < 2 or len(segment) != length - 2 or not _pillow_reads(marker, segment):
-            return None
-        if marker == 0xDA:  # the first scan: every header before it was read
-            break
-        if marker in _JPEG_FRAMES:
-            if size is not None or len(segment) < 6 or segment[0] != 8 or segment[5] not in (1, 3, 4):
-                return None
-            height, width = int.from_bytes(segment[1:3], "big"), int.from_bytes(segment[3:5], "big")
-            if height == 0 or width == 0 or width * height > _PILLOW_BOMB_PIXELS:
-                return None
-            size = width, height
-        elif marker == 0xE1 and segment.startswith(b"Exif\0\0"):
-            tag = None if exif else _exif_orientation(segment[6:])
-            if tag is None:
-                return None
-            orientation, exif = tag[0], True
-        elif marker == 0xE1 and segment.startswith(b"http://ns.adobe.com/xap/1.0/\0"):
-            xmp = segment.split(b"\0", 1)[1]
-        elif marker == 0xE2 and segment.startswith(b"MPF\0"):
-            return None
-        pos += 2 + length
-    else:
-        return None  # no scan in the bytes read
-    if orientation is None:
-        said = re.search(rb'tiff:Orientation(="|>)([0-9])', xmp) if xmp else None
-        orientation = int(said[2]) if said else 1
-    return None if size is None else (size[0], size[1], orientation)
-
-
-#: The markers of the segments Pillow's JPEG reader skips by their length (the frames, DHT, DAC, SOS, DQT, DNL,
-#: DRI, EXP, APP0-15, COM); DHP, a frame header Pillow reads as one, is left to it with the rest.
-_JPEG_SEGMENTS = frozenset(_JPEG_FRAMES | {0xC4, 0xCC, 0xDA, 0xDB, 0xDC, 0xDD, 0xDF, 0xFE} | set(range(0xE0, 0xF0)))
-
-
-def _pillow_reads(marker: int, segment: bytes) -> bool:
-    """Whether Pillow's JPEG reader takes ``segment`` without an error: the checks of its handlers.
-
-    A quantization table shorter than its precision says, and a JFIF, Adobe or ICC segment too
-    short for the fields it reads, make Pillow refuse the file, which :func:`probe` then leaves to OpenCV.
-    """
-    if marker == 0xDB:
-        while segment:
-            length = 1 + 64 * (1 if segment[0] < 16 else 2)
-            if len(segment) < length:
-                return False
-            segment = segment[length:]
-    elif marker == 0xE0 and segment.startswith(b"JFIF"):
-        return len(segment) >= 7
-    elif marker == 0xEE and segment.startswith(b"Adobe"):
-        return len(segment) >= 7
-    elif marker == 0xE2 and segment.startswith(b"ICC_PROFILE\0"):
-        return len(segment) >= 14
-    return True
-
-
-def _exif_orientation(tiff: bytes) -> tuple[int | None] | None:
-    """Tag 0x0112 of the first image file directory of EXIF data (a TIFF header on): (value,), (None,) if absent.
-
-    None if unclear: a header that is no TIFF's, a directory past the data, the tag more than
-    once or not one SHORT (Pillow decodes those its own way).
-    """
-    order = {b"II": "little", b"MM": "big"}.get(tiff[:2])
-    if order is None or len(tiff) < 8 or int.from_bytes(tiff[2:4], order) != 42:
-        return None
-    ifd = int.from_bytes(tiff[4:8], order)
-    if ifd < 8 or ifd + 2 > len(tiff):
-        return None
-    count = int.from_bytes(tiff[ifd : ifd + 2], order)
-    if ifd + 2 + 12 * count > len(tiff):
-        return None
-    found = []
-    for k in range(count):
-        entry = tiff[ifd + 2 + 12 * k : ifd + 14 + 12 * k]
-        if int.from_bytes(entry[:2], order) == 0x0112:
-            kind, n = int.from_bytes(entry[2:4], order), int.from_bytes(entry[4:8], order)
-            found.append(int.from_bytes(entry[8:10], order) if (kind, n) == (3, 1) else None)
-    if not found:
-        return (None,)
-    return (found[0],) if len(found) == 1 and found[0] is not None else None
 
 
 def _png_size(path: Path) -> tuple[int, int] | None:

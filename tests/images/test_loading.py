@@ -10,7 +10,6 @@ import zlib
 import cv2
 import numpy as np
 import pytest
-from helpers import modules_loaded
 
 from img2logo.constants import MAX_IMAGE_SIDE
 from img2logo.errors import ImageNotFoundError, InvalidImageError
@@ -294,63 +293,6 @@ def test_a_plain_png_is_probed_without_pillow(tmp_path, monkeypatch):
     )
     with pytest.raises(InvalidImageError, match=r"70x40 px, more than the limit"):
         file_checks.probe(plain, 100)
-
-
-def _jpegs(folder) -> dict[str, object]:
-    """JPEGs as Pillow writes them: each EXIF orientation, progressive, grey, CMYK, an ICC profile in two
-    segments, a comment, restart markers, XMP with and without an EXIF orientation; and files Pillow
-    reads otherwise (a fill byte before a marker, an EXIF that is no TIFF, a multi-picture file)."""
-    from PIL import Image
-
-    image = Image.fromarray(np.random.default_rng(3).integers(0, 255, (37, 53, 3), dtype=np.uint8))
-    xmp = b'<x:xmpmeta><rdf:Description tiff:Orientation="6"/></x:xmpmeta>'
-    made = {}
-
-    def save(name: str, im=image, **kw) -> None:
-        made[name] = folder / f"{name}.jpg"
-        im.save(made[name], format=kw.pop("format", "JPEG"), **kw)
-
-    def exif(**tags: int) -> Image.Exif:
-        e = Image.Exif()
-        for tag, value in tags.items():
-            e[int(tag[1:], 16)] = value
-        return e
-
-    for o in range(10):
-        save(f"o{o}", exif=exif(t0112=o))
-        save(f"o{o}-progressive", exif=exif(t0112=o), progressive=True)
-    save("grey", image.convert("L"))
-    save("cmyk", image.convert("CMYK"))
-    save("icc", icc_profile=b"x" * 70000)
-    save("comment", comment=b"a comment")
-    save("restarts", restart_marker_blocks=2)
-    save("xmp", xmp=xmp)
-    save("xmp-exif", xmp=xmp, exif=exif(t0112=3))
-    save("xmp-exif-without-orientation", xmp=xmp, exif=exif(t0131=7))
-    save("mpo", format="MPO", save_all=True, append_images=[image])
-    data = made["o6"].read_bytes()
-    made["fill"], made["not-tiff"] = folder / "fill.jpg", folder / "not-tiff.jpg"
-    made["fill"].write_bytes(data[:2] + b"\xff" + data[2:])
-    made["not-tiff"].write_bytes(data.replace(b"Exif\0\0MM", b"Exif\0\0XX").replace(b"Exif\0\0II", b"Exif\0\0XX"))
-    return made
-
-
-def test_a_plain_jpeg_is_probed_without_pillow(tmp_path, monkeypatch):
-    # The size and EXIF orientation of a plain JPEG are read from its markers (Pillow's import and EXIF
-    # reading: 81 M instructions a run): the same answers as Pillow's probe; other files still go to Pillow.
-    made = _jpegs(tmp_path)
-    plain = {name: file_checks._plain_jpeg(path) for name, path in made.items()}
-    assert [name for name, got in plain.items() if got is None] == ["mpo", "fill", "not-tiff"]
-    assert plain["o6"] == (53, 37, 6) and plain["xmp"] == (53, 37, 6) and plain["xmp-exif"] == (53, 37, 3)
-    ours = {name: file_checks.probe(path, 10**9) for name, path in made.items()}
-    monkeypatch.setattr(file_checks, "_plain_jpeg", lambda path: None)
-    assert ours == {name: file_checks.probe(path, 10**9) for name, path in made.items()}  # Pillow's
-    monkeypatch.undo()
-    with pytest.raises(InvalidImageError, match=r"53x37 px, more than the limit"):
-        file_checks.probe(made["o1"], 100)
-    code = "import pathlib\nfrom img2logo.images.file_checks import probe\n"
-    code += f"assert probe(pathlib.Path({str(made['o6'])!r}), 10**9) == (53, 37, 1, 'JPEG', 6)"
-    assert modules_loaded(code, "PIL") == []
 
 
 # --------------------------------------------------------------------------- a large PNG, strip by strip
