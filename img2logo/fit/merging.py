@@ -75,25 +75,34 @@ def candidates(state: FitState) -> list[Pair]:
     return out
 
 
-def evaluate(state: FitState, pair: Pair, tried: set[int] | None = None) -> MergeOutcome | None:
+def evaluate(
+    state: FitState, pair: Pair, tried: set[int] | None = None, level: LevelView | None = None
+) -> MergeOutcome | None:
     """Merge ``pair`` tentatively, refit, and score it; None if infeasible.
 
     ``tried``: when given and the refit fails (its windows, or the global
     problem, have no solution), it receives the groups of the state whose
     circles the windows held (the pair's two for the merged group): the
     problem they solved, but for the weights 1/|A| and 1/|J'|, stays as it is
-    until a merge changes one of them (:func:`merge_loop`).
+    until a merge changes one of them (:func:`merge_loop`). ``level``: the
+    state's :func:`~img2logo.fit.merge_checks.level_view`, when the caller has it.
     """
     state.stats.evaluated += 1
     a, b, node = pair
-    level = level_view(state)
+    level = level_view(state) if level is None else level
     # Two arcs that both run on through one junction cross there (an X): one
     # of them ends at the junction instead, so that arcs meet only at their
     # ends or where one ends on the other (a T), and no crossing is left.
     if any(g != a and g != b for g in level.inner.get(node, ())):
         state.stats.rejected_crossing += 1
         return None
-    merged = merge_groups(state.groups[a], state.groups[b], node)
+    group_a, group_b = state.groups[a], state.groups[b]
+    far = state.far_pairs.get(pair)
+    if far is not None and far[0] is group_a and far[1] is group_b and far[2] == len(state.released):
+        # :func:`too_far` rejected this merge of these two groups before: it reads nothing else that changes.
+        state.stats.rejected_far_arc += 1
+        return None
+    merged = merge_groups(group_a, group_b, node)
     after = dict(state.groups)  # in the state's order, the merged group last
     del after[a], after[b]
     after[-1] = merged
@@ -113,6 +122,8 @@ def evaluate(state: FitState, pair: Pair, tried: set[int] | None = None) -> Merg
     if cap is not None and too_far(state, merged, seeds[-1], cap):
         # Every path below would end in the rejection of the fit's arc (or a failed fit).
         state.stats.rejected_far_arc += 1
+        if not held:  # (the lines held at its junctions refused a straight line: that may change)
+            state.far_pairs[pair] = (group_a, group_b, len(state.released))
         return None
 
     merged_nodes = set(state.constrained_nodes(merged))
@@ -321,7 +332,7 @@ def merge_loop(
 
     def score(pair: Pair) -> None:
         tried: set[int] = set()
-        cache[pair] = out = evaluate(state, pair, tried)
+        cache[pair] = out = evaluate(state, pair, tried, level)
         stale.discard(pair)
         if out is None and tried:
             failed[pair] = frozenset(tried)
@@ -330,6 +341,7 @@ def merge_loop(
 
     while True:
         pairs = candidates(state)
+        level = level_view(state)  # the level's view for its candidates: they change nothing it was made of
         if not pairs:
             return "no mergeable pair"
         f, d, nj = state.totals()
