@@ -81,11 +81,10 @@ def evaluate(
     """Merge ``pair`` tentatively, refit, and score it; None if infeasible.
 
     ``tried``: when given and the refit fails (its windows, or the global
-    problem, have no solution) or its arcs lie too far from their pixels, it
-    receives the groups of the state whose circles the windows held (the
-    pair's two for the merged group): the problem they solved, but for the
-    weights 1/|A| and 1/|J'|, stays as it is until a merge changes one of
-    them (:func:`merge_loop`). ``level``: the
+    problem, have no solution), it receives the groups of the state whose
+    circles the windows held (the pair's two for the merged group): the
+    problem they solved, but for the weights 1/|A| and 1/|J'|, stays as it is
+    until a merge changes one of them (:func:`merge_loop`). ``level``: the
     state's :func:`~img2logo.fit.merge_checks.level_view`, when the caller has it.
     """
     state.stats.evaluated += 1
@@ -135,7 +134,6 @@ def evaluate(
     global_solve = not state.options.localized
     out: Solution | None = None
     windows: set[int] = set()  # the groups of the windows that failed
-    solved: set[int] = set()  # the groups of the window that solved
 
     def solve_window(fixed: set[int], tangent: bool | set[int] = False, rings: int = 2) -> Solution | None:
         return window_solve.solve(
@@ -155,7 +153,6 @@ def evaluate(
             cap=cap,
             lines=lines,
             tried=windows,
-            solved=solved,
             stop_when_stuck=rings > 2,
         )
 
@@ -208,15 +205,12 @@ def evaluate(
         _tried(pair, windows, tried)
         return None
     fits, disp = out
-    # An arc too far is the refit's own outcome, like a failed window's: its window's groups go to ``tried``.
     if cap is not None and fits[-1].arc.frechet > cap:  # (then the window's other arcs were not extracted)
         state.stats.rejected_far_arc += 1
-        _tried(pair, windows | solved, tried)
         return None
     # The merged arc (id -1) is held to its cap above; the silhouette's arcs beside it, moved by the refit, here.
     if outline_strays(state, {g: f for g, f in fits.items() if g != -1}, after, state.fits):
         state.stats.rejected_far_arc += 1
-        _tried(pair, windows | solved, tried)
         return None
 
     old_nodes = set(state.node_groups())
@@ -331,9 +325,9 @@ def merge_loop(
     """
     cache: dict[Pair, MergeOutcome | None] = {}
     stale: set[Pair] = set()
-    # A candidate whose refit failed or left an arc too far, by the groups its windows held (evaluate's
-    # ``tried``): it is tried again once a merge changed one of them, like a candidate with a score (the
-    # windows' constraints are the same until then; only the weights 1/|A|, 1/|J'| of their objective move).
+    # A candidate whose refit failed, by the groups its windows held (evaluate's ``tried``): it is
+    # tried again once a merge changed one of them, like a candidate with a score (the windows'
+    # constraints are the same until then; only the weights 1/|A|, 1/|J'| of their objective move).
     failed: dict[Pair, frozenset[int]] = {}
 
     def score(pair: Pair) -> None:

@@ -70,7 +70,6 @@ def solve(
     bound: float | None = None,
     regroup: Regroup | None = None,
     tried: set[int] | None = None,
-    solved: set[int] | None = None,
     stop_when_stuck: bool = False,
 ) -> Solution | None:
     """Eqn. 13 over a window of ``groups`` (:func:`~img2logo.fit.local_window.fit_window`), then their arcs.
@@ -87,8 +86,7 @@ def solve(
     as soon as E^s (Eqn. 3) of the state with the new fits and displacements
     must exceed it, and ``regroup`` may split groups anew before their arcs
     are extracted (:func:`_fits_within`; a tangent join's slide). None if it fails;
-    then ``tried``, when given, receives the groups of the last (widest) window solved;
-    otherwise ``solved``, when given, receives the groups of the window that solved.
+    then ``tried``, when given, receives the groups of the last (widest) window solved.
     ``stop_when_stuck``: that of :func:`~img2logo.fit.local_window.fit_window`.
     """
     fixed = set(fixed)
@@ -122,8 +120,6 @@ def solve(
         if tried is not None:
             tried.update(cast(Collection[int], window.circles))
         return None
-    if solved is not None:
-        solved.update(cast(Collection[int], window.circles))
     if bound is not None:
         return _fits_within(state, window, groups, seeds, fixed, node_groups, bound, regroup)
     return _fits(state, window, groups, seeds, fixed, cap)

@@ -154,12 +154,6 @@ def test_a_merged_arc_farther_than_the_bound_is_rejected():
     assert free is not None and free.fits[-1].arc.frechet > 10.0  # one arc for the S: far from its pixels
     state = _fitted_chain(max_arc_distance=10.0)
     assert evaluate(state, (0, 1, 1)) is None and state.stats.rejected_far_arc == 1
-    # Rejected after its refit (a circle of its radius could come within the bound, the fit's does not): the
-    # groups of the window it was refitted in, as for a refit that fails (merge_loop scores it again once a
-    # merge changed one of them).
-    state, tried = _fitted_chain(max_arc_distance=30.0), set()
-    assert evaluate(state, (0, 1, 1), tried) is None and state.stats.rejected_far_arc == 1
-    assert tried == {0, 1, 2}
 
 
 def test_a_merged_arc_no_circle_of_its_radius_brings_near_is_rejected_before_its_fit():
