@@ -262,8 +262,10 @@ def _all_at_once(
     groups = dict(opt.groups)
     node_groups = opt.node_groups()
     before = _state(opt)
-    crossings = _redundant(opt, set(groups))
-    gaps = gap_ends(opt)
+    # The state's redundant intersections and near-miss gaps, read once a refit needs them (most end above
+    # ``bound``, and the solve then returns None): the state is as it came until a refit is applied.
+    crossings: int | None = None
+    gaps: set[int] = set()
     for _ in range(ALL_AT_ONCE_TRIES):
         touching = opt.tangencies(groups, seeds)
         if not touching or len(touching) < least:
@@ -276,8 +278,11 @@ def _all_at_once(
             n_groups_total=len(groups),
             n_junctions_total=len(node_groups),
             tangent=True,
+            bound=bound,  # E^s above it fails the try below: its arcs are extracted only while it may not
         )
         if out is not None:
+            if crossings is None:
+                crossings, gaps = _redundant(opt, set(groups)), gap_ends(opt)
             fits, disp = out
             opt.fits.update(fits)
             for n, d in disp.items():
