@@ -392,21 +392,40 @@ def redundant_pairs(state: FitState, of: Collection[int] | None = None) -> list[
     with a group of ``of`` (default all), in the state's order of groups;
     a pair that meets at several points appears once per point.
     """
-    gids = list(state.groups)
-    node_groups = state.node_groups()
-    nodes = sorted(node_groups)
-    index = {n: i for i, n in enumerate(nodes)}
-    at = np.asarray(nodes, dtype=np.intp)
+    gids = tuple(state.groups)
+    at, ptr, flat = _incidence(state, gids)
     points = (state.graph.junctions[at] + state.disp[at]).reshape(-1, 2)
-    owned = [[index[n] for n in state.constrained_nodes(state.groups[g])] for g in gids]
-    ptr = np.zeros(len(gids) + 1, dtype=np.int64)
-    ptr[1:] = np.cumsum([len(ks) for ks in owned])
-    flat = np.fromiter((k for ks in owned for k in ks), dtype=np.int64, count=int(ptr[-1]))
     rows = np.array([i for i, g in enumerate(gids) if of is None or g in of], dtype=np.int64)
     fits = [state.fits[g] for g in gids]
     params = np.array([f.arc_row for f in fits], dtype=np.float64).reshape(-1, 5)
     pairs, _ = redundant_arrays(params, points, ptr, flat, rows, REDUNDANT_INTERSECTION_TOL)
     return [(gids[i], gids[j]) for i, j in pairs.tolist()]
+
+
+#: :func:`_incidence` of a state, with the node_groups and the groups' order it was made for.
+_INCIDENCE: WeakKeyDictionary[FitState, tuple[dict[int, list[int]], tuple[int, ...], tuple]] = WeakKeyDictionary()
+
+
+def _incidence(state: FitState, gids: tuple[int, ...]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The nodes of J' (sorted, as indices into the graph's), and each group's of ``gids``: (at, ptr, flat).
+
+    Group ``gids[i]`` passes the nodes ``at[flat[ptr[i]:ptr[i + 1]]]`` (its constrained nodes in path
+    order). Made again when :meth:`FitState.node_groups` was (the groups' paths or the released
+    junctions changed) or the groups' order did: the tangent pass asks on every try.
+    """
+    node_groups = state.node_groups()
+    hit = _INCIDENCE.get(state)
+    if hit is not None and hit[0] is node_groups and hit[1] == gids:
+        return hit[2]
+    nodes = sorted(node_groups)
+    index = {n: i for i, n in enumerate(nodes)}
+    at = np.asarray(nodes, dtype=np.intp)
+    owned = [[index[n] for n in state.constrained_nodes(state.groups[g])] for g in gids]
+    ptr = np.zeros(len(gids) + 1, dtype=np.int64)
+    ptr[1:] = np.cumsum([len(ks) for ks in owned])
+    flat = np.fromiter((k for ks in owned for k in ks), dtype=np.int64, count=int(ptr[-1]))
+    _INCIDENCE[state] = (node_groups, gids, (at, ptr, flat))
+    return at, ptr, flat
 
 
 def open_ends(state: FitState) -> list[tuple[int, int]]:

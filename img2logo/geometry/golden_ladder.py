@@ -74,6 +74,12 @@ def _powers(exponents: np.ndarray) -> np.ndarray:
     return np.power(PHI, np.asarray(exponents, dtype=np.float64))
 
 
+@lru_cache(maxsize=1024)
+def _power(exponent: float) -> float:
+    """:func:`_powers` of one exponent, as a float: a rung's radius is asked for again and again (the tangent pass)."""
+    return float(_powers(np.array([exponent]))[0])
+
+
 @dataclass(frozen=True)
 class GoldenLadder:
     """The golden ratio radii ``phi ** (k + bias)`` (Eqn. 10), optionally a subset.
@@ -140,7 +146,7 @@ class GoldenLadder:
         """
         if isinstance(k, bool) or not isinstance(k, numbers.Integral):
             raise InvalidParameterError(f"k must be an integer, got {k!r}")
-        return float(_powers(np.array([int(k) + self.bias]))[0])
+        return _power(int(k) + self.bias)
 
     def exponent(self, r: float) -> float:
         """The continuous exponent ``log r / log phi - bias`` of radius ``r`` (px)."""
