@@ -135,7 +135,9 @@ def evaluate(
     out: Solution | None = None
     windows: set[int] = set()  # the groups of the windows that failed
 
-    def solve_window(fixed: set[int], tangent: bool | set[int] = False, rings: int = 2) -> Solution | None:
+    def solve_window(
+        fixed: set[int], tangent: bool | dict[int, tuple[int, int]] = False, rings: int = 2
+    ) -> Solution | None:
         return window_solve.solve(
             state,
             after,
@@ -184,7 +186,7 @@ def evaluate(
                 out = solve_window(set(), rings=MERGE_FALLBACK_RINGS)
     if global_solve:
 
-        def solve_global(tangent: bool | set[int] = False) -> Solution | None:
+        def solve_global(tangent: bool | dict[int, tuple[int, int]] = False) -> Solution | None:
             return window_solve.solve_whole(
                 state,
                 after,
@@ -238,20 +240,21 @@ def _tried(pair: Pair, windows: set[int], tried: set[int] | None) -> None:
 
 def held_joins(
     state: FitState, seeds: dict[int, Seed], merged: Group, pair: Pair, level: LevelView | None = None
-) -> set[int]:
+) -> dict[int, tuple[int, int]]:
     """The smooth joins a merge's refit holds tangent (beyond the paper, :mod:`img2logo.fit.tangency`).
 
     Those the loop made tangent before (``state.held``) and those at the merged
     group's two ends: a merge is judged with the tangencies it would leave in
     place. Not the merge's own node, which the merged arc runs on through.
-    Each is a join of :meth:`FitState.tangencies` after the merge, found from
-    the groups ending at it (only the merge's two groups and the merged one change).
+    Each is a join of :meth:`FitState.tangencies` after the merge (the merged
+    group's id -1, last), found from the groups ending at it (only the merge's
+    two groups and the merged one change): node -> its two groups, as there.
     """
     if not state.smooth:
-        return set()
+        return {}
     a, b, node = pair
     ends = (level_view(state) if level is None else level).ends
-    out = set()
+    out = {}
     for n in state.held | set(merged.ends):
         if n == node or n not in state.smooth or n in state.loose or n in state.released:
             continue
@@ -260,7 +263,7 @@ def held_joins(
             gids.append(-1)
         if len(gids) != 2 or (seeds[gids[0]].k is None and seeds[gids[1]].k is None):
             continue
-        out.add(n)
+        out[n] = (gids[0], gids[1])
     return out
 
 

@@ -42,8 +42,11 @@ def _touching(
 ) -> dict[int, tuple[int, int]]:
     """:meth:`~img2logo.fit.fit_state.FitState.tangencies` of ``groups``.
 
-    Only those at the nodes ``tangent`` when it is a collection.
+    Only those at the nodes ``tangent`` when it is a collection; ``tangent`` itself when it is a
+    mapping (node -> the two groups: the caller found them, :func:`img2logo.fit.merging.held_joins`).
     """
+    if isinstance(tangent, Mapping):
+        return dict(tangent)
     joins = state.tangencies(groups, seeds)
     if tangent is True:
         return joins
@@ -78,7 +81,8 @@ def solve(
     grown by up to ``rings`` rings (solved from ring ``first_ring`` on); the ``fixed`` groups keep their circles,
     and so do straight lines (a huge free circle is nearly singular along
     its chord: their junctions slide onto them). With ``tangent``, the
-    circles of :meth:`~img2logo.fit.fit_state.FitState.tangencies` touch at their junctions too. With ``cap``
+    circles of :meth:`~img2logo.fit.fit_state.FitState.tangencies` touch at their junctions too (those
+    at its nodes when it is a collection; its joins when it is a mapping, :func:`_touching`). With ``cap``
     (px), a merged group (id -1) whose arc strays farther than that is the
     only fit returned (see :func:`_fits`). ``lines``: the groups whose seeds
     are straight lines (k None), when the caller knows them (a merge candidate's

@@ -377,7 +377,10 @@ def test_a_merge_is_judged_with_the_smooth_join_it_ends_at_tangent():
     after = {-1: merge_groups(state.groups[0], state.groups[1], 1), 2: state.groups[2]}
     seeds = {2: state.fits[2].seed, -1: state.golden(after[-1])}
     # The merged arc ends at node 2, a smooth join with group 2; node 1 is inside it now.
-    assert held_joins(state, seeds, after[-1], (0, 1, 1)) == {2}
+    held = held_joins(state, seeds, after[-1], (0, 1, 1))
+    assert held == {2: (2, -1)}
+    # The joins of FitState.tangencies after the merge, the two groups in its order (the merged one last).
+    assert held == {n: p for n, p in state.tangencies({2: after[2], -1: after[-1]}, seeds).items() if n in held}
     out = evaluate(state, (0, 1, 1))
     assert out is not None and not out.global_solve
     assert _touch(state, out, 2, (-1, 2)) <= 1e-6
