@@ -406,7 +406,7 @@ def _budget(seconds: float | None) -> Callable[[], bool] | None:
     # A process's CPU clock runs at most as fast as the wall clock times the machine's CPUs: until the wall
     # clock has run that far, the CPU clock cannot have passed the deadline, and it is not read (each read
     # is a system call, some microseconds of CPU; the merge loop asks before every candidate's refit).
-    cpus = os.cpu_count() or 1
+    cpus = os.cpu_count()  # (None when unknown: then the CPU clock is read every time)
     unread_until = -math.inf  # the wall time before which the answer is known to be False, s
 
     def over() -> bool:
@@ -417,7 +417,8 @@ def _budget(seconds: float | None) -> Callable[[], bool] | None:
         left = deadline - time.process_time()
         if left < 0.0:
             return True
-        unread_until = now + left / cpus
+        if cpus:
+            unread_until = now + left / cpus
         return False
 
     return over

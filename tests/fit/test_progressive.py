@@ -540,3 +540,10 @@ def test_the_budget_reads_the_cpu_clock_only_when_it_may_have_run_out(monkeypatc
     assert all(got == want for got, want in answers)
     assert answers[-1] == (True, True)
     assert before < len(answers) // 10
+    # With the number of CPUs unknown the CPU clock is read at every call.
+    monkeypatch.setattr(progressive.os, "cpu_count", lambda: None)
+    reads.clear()
+    over = progressive._budget(1.0)
+    assert [over() for _ in range(3)] == [False] * 3 and len(reads) == 4  # (one read for the deadline)
+    clocks["cpu"] += 1.5
+    assert over() and len(reads) == 5
