@@ -49,20 +49,13 @@ $(LAB): pyproject.toml $(KIT)
 	@echo '{"@jupyterlab/apputils-extension:notification": {"fetchNews": "false", "checkForUpdates": false}}' > $(LAB_OVERRIDES)
 	@touch $@
 
-$(HTMLKIT): pyproject.toml $(KIT)
-	$(BIN)/python -m pip install --quiet -e '.[dev,kit,html]'
-	@touch $@
-
-$(DOCSKIT): pyproject.toml $(KIT)
-	$(BIN)/python -m pip install --quiet -e '.[dev,kit,docs]'
-	@touch $@
-
-$(BROWSER): pyproject.toml $(KIT)
-	$(BIN)/python -m pip install --quiet -e '.[dev,kit,browser,docs]'
-	@touch $@
-
-$(STUDIO): pyproject.toml $(KIT)
-	$(BIN)/python -m pip install --quiet -e '.[dev,kit,studio]'
+# The extras each of these installs beside [dev,kit].
+$(HTMLKIT): EXTRAS := html
+$(DOCSKIT): EXTRAS := docs
+$(BROWSER): EXTRAS := browser,docs
+$(STUDIO): EXTRAS := studio
+$(HTMLKIT) $(DOCSKIT) $(BROWSER) $(STUDIO): pyproject.toml $(KIT)
+	$(BIN)/python -m pip install --quiet -e '.[dev,kit,$(EXTRAS)]'
 	@touch $@
 
 # The level explorer (notebook 11) in JupyterLab, the studio (notebook 14) in Voila and the docs site (make docs's

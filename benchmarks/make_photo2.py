@@ -41,112 +41,15 @@ SRC = ROOT / "benchmarks" / "data"
 OUT = SRC / "photo2"
 HELDOUT_OUT = SRC / "heldout-photo"
 
-#: One entry per image: the clip art, the background (scikit-image function, crop [x0, y0,
-#: x1, y1], rotation in degrees), the canvas (w, h), the object's box [x, y, size], the
-#: tint of the gray background (two RGB colours, dark and light, of a duotone; None for a
-#: colour background), the shadow, blur, noise, format and seed.
-CASES = [
-    dict(
-        name="photo2-cactus",
-        icon="clipart-cactus",
-        background="grass",
-        crop=[0, 0, 256, 192],
-        rotation=0,
-        canvas=(512, 384),
-        box=[150, 20, 340],
-        duotone=[(80, 150, 35), (175, 235, 105)],
-        shadow=dict(dx=6, dy=8, sigma=6.0, opacity=0.35),
-        blur=0.8,
-        noise=3.0,
-        fmt="jpg",
-        seed=201,
-        hard="same hue as the background (green on green grass), another texture",
-    ),
-    dict(
-        name="photo2-seal",
-        icon="clipart-seal",
-        background="gravel",
-        crop=[0, 0, 256, 256],
-        rotation=0,
-        canvas=(512, 512),
-        box=[60, 110, 360],
-        duotone=[(70, 70, 72), (175, 175, 178)],
-        shadow=dict(dx=5, dy=7, sigma=5.0, opacity=0.35),
-        blur=1.0,
-        noise=3.0,
-        fmt="png",
-        seed=202,
-        hard="grey object on grey gravel",
-    ),
-    dict(
-        name="photo2-giraffe",
-        icon="clipart-giraffe",
-        background="coffee",
-        crop=[0, 310, 90, 400],
-        rotation=0,
-        canvas=(512, 512),
-        box=[40, 60, 350],
-        duotone=None,
-        shadow=dict(dx=70, dy=40, sigma=12.0, opacity=0.55),
-        blur=0.8,
-        noise=2.5,
-        fmt="jpg",
-        seed=203,
-        hard="soft cast shadow on wood",
-    ),
-    dict(
-        name="photo2-octopus",
-        icon="clipart-octopus",
-        background="brick",
-        crop=[0, 0, 256, 192],
-        rotation=0,
-        canvas=(512, 384),
-        box=[170, 30, 320],
-        duotone=[(90, 40, 30), (200, 150, 120)],
-        shadow=dict(dx=6, dy=8, sigma=5.0, opacity=0.4),
-        blur=0.7,
-        noise=2.0,
-        fmt="png",
-        seed=204,
-        hard="",
-    ),
-    dict(
-        name="photo2-honeybee",
-        icon="clipart-honeybee",
-        background="rocket",
-        crop=[95, 10, 175, 110],
-        rotation=0,
-        canvas=(512, 384),
-        box=[40, 30, 310],
-        duotone=None,
-        shadow=dict(dx=5, dy=6, sigma=5.0, opacity=0.3),
-        blur=1.2,
-        noise=4.0,
-        fmt="jpg",
-        seed=205,
-        hard="",
-    ),
-    dict(
-        name="photo2-sunflower",
-        icon="clipart-sunflower",
-        background="grass",
-        crop=[256, 0, 512, 256],
-        rotation=90,
-        canvas=(512, 512),
-        box=[120, 80, 380],
-        duotone=[(40, 50, 20), (150, 160, 90)],
-        shadow=dict(dx=7, dy=9, sigma=6.0, opacity=0.35),
-        blur=0.9,
-        noise=3.0,
-        fmt="png",
-        seed=206,
-        hard="",
-    ),
-]
 
+def _case(name: str, icon: str, background: str, crop: list, box: list, seed: int, **more) -> dict:
+    """One image of either family, the evaluation set's usual rest unless ``more`` says otherwise.
 
-def _heldout(name: str, icon: str, background: str, crop: list, box: list, seed: int, **more) -> dict:
-    """A held-out case: the evaluation set's usual shadow, blur, noise and JPEG unless ``more`` says otherwise."""
+    The clip art ``icon``, the ``background`` (a scikit-image function) cropped to ``crop`` [x0, y0, x1, y1], the
+    object's ``box`` [x, y, size] and the noise's ``seed``. The usual rest: no ``rotation`` (degrees), a 512 x 384
+    ``canvas`` (w, h), a colour background (``duotone``: the dark and light RGB colours a gray one is tinted with,
+    else None), the ``shadow``, ``blur`` and ``noise`` below, JPEG, no ``hard`` case.
+    """
     case = dict(
         name=name,
         icon=icon,
@@ -167,12 +70,89 @@ def _heldout(name: str, icon: str, background: str, crop: list, box: list, seed:
     return case
 
 
+#: The photo2 family (``photo2/``).
+CASES = [
+    _case(
+        "photo2-cactus",
+        "clipart-cactus",
+        "grass",
+        [0, 0, 256, 192],
+        [150, 20, 340],
+        201,
+        duotone=[(80, 150, 35), (175, 235, 105)],
+        hard="same hue as the background (green on green grass), another texture",
+    ),
+    _case(
+        "photo2-seal",
+        "clipart-seal",
+        "gravel",
+        [0, 0, 256, 256],
+        [60, 110, 360],
+        202,
+        canvas=(512, 512),
+        duotone=[(70, 70, 72), (175, 175, 178)],
+        shadow=dict(dx=5, dy=7, sigma=5.0, opacity=0.35),
+        blur=1.0,
+        fmt="png",
+        hard="grey object on grey gravel",
+    ),
+    _case(
+        "photo2-giraffe",
+        "clipart-giraffe",
+        "coffee",
+        [0, 310, 90, 400],
+        [40, 60, 350],
+        203,
+        canvas=(512, 512),
+        shadow=dict(dx=70, dy=40, sigma=12.0, opacity=0.55),
+        noise=2.5,
+        hard="soft cast shadow on wood",
+    ),
+    _case(
+        "photo2-octopus",
+        "clipart-octopus",
+        "brick",
+        [0, 0, 256, 192],
+        [170, 30, 320],
+        204,
+        duotone=[(90, 40, 30), (200, 150, 120)],
+        shadow=dict(dx=6, dy=8, sigma=5.0, opacity=0.4),
+        blur=0.7,
+        noise=2.0,
+        fmt="png",
+    ),
+    _case(
+        "photo2-honeybee",
+        "clipart-honeybee",
+        "rocket",
+        [95, 10, 175, 110],
+        [40, 30, 310],
+        205,
+        shadow=dict(dx=5, dy=6, sigma=5.0, opacity=0.3),
+        blur=1.2,
+        noise=4.0,
+    ),
+    _case(
+        "photo2-sunflower",
+        "clipart-sunflower",
+        "grass",
+        [256, 0, 512, 256],
+        [120, 80, 380],
+        206,
+        rotation=90,
+        canvas=(512, 512),
+        duotone=[(40, 50, 20), (150, 160, 90)],
+        shadow=dict(dx=7, dy=9, sigma=6.0, opacity=0.35),
+        blur=0.9,
+        fmt="png",
+    ),
+]
+
+
 #: The held-out photo-like family (``heldout-photo/``): objects and background crops no other family uses.
 HELDOUT_CASES = [
-    _heldout(
-        "heldout-photo-critter-a", "heldout/clipart-critter-a", "chelsea", [360, 120, 451, 300], [120, 30, 320], 301
-    ),
-    _heldout(
+    _case("heldout-photo-critter-a", "heldout/clipart-critter-a", "chelsea", [360, 120, 451, 300], [120, 30, 320], 301),
+    _case(
         "heldout-photo-critter-b",
         "heldout/clipart-critter-b",
         "camera",
@@ -181,7 +161,7 @@ HELDOUT_CASES = [
         302,
         duotone=[(60, 90, 40), (170, 200, 120)],
     ),
-    _heldout(
+    _case(
         "heldout-photo-critter-c",
         "heldout/clipart-critter-c",
         "coffee",
@@ -191,7 +171,7 @@ HELDOUT_CASES = [
         shadow=dict(dx=10, dy=12, sigma=8.0, opacity=0.45),
         hard="light grey object with a strong shadow on wood",
     ),
-    _heldout(
+    _case(
         "heldout-photo-critter-d",
         "heldout/clipart-critter-d",
         "astronaut",
@@ -200,7 +180,7 @@ HELDOUT_CASES = [
         304,
         rotation=90,
     ),
-    _heldout(
+    _case(
         "heldout-photo-polar-bear",
         "clipart-polar-bear",
         "gravel",
@@ -210,7 +190,7 @@ HELDOUT_CASES = [
         duotone=[(120, 110, 100), (230, 225, 215)],
         hard="white object with a grey rim on light gravel",
     ),
-    _heldout(
+    _case(
         "heldout-photo-ewe",
         "clipart-ewe",
         "grass",

@@ -311,10 +311,23 @@ def main(argv: list[str] | None = None) -> int:
         metavar="N",
         help="run with abstract(..., arcs=N), the clip arts' arc budget (default: the default options)",
     )
+    parser.add_argument(
+        "--set",
+        action="append",
+        default=[],
+        metavar="NAME=VALUE",
+        help="run with abstract(..., NAME=VALUE), a number (e.g. --set stretch=1, --set tolerance=7); repeatable",
+    )
     args = parser.parse_args(argv)
-    settings = {} if args.arcs is None else {"arcs": args.arcs}
+    settings: dict = {} if args.arcs is None else {"arcs": args.arcs}
+    for item in args.set:
+        name, _, value = item.partition("=")
+        try:
+            settings[name.strip()] = float(value)
+        except ValueError:
+            parser.error(f"--set takes NAME=NUMBER, got {item!r}")
     if settings and args.docs is None and args.only == "*":
-        parser.error("--arcs measures options other than the defaults: give --only or --docs")
+        parser.error("--arcs and --set measure options other than the defaults: give --only or --docs")
 
     import pandas as pd
 

@@ -32,6 +32,29 @@ def check_length(value: object, name: str, *, allow_zero: bool = False, low: flo
     return v
 
 
+#: The largest ``stretch``: past it E^s is no bound (MAX_LENGTH px at T = 1 px does the same).
+MAX_STRETCH: float = 100.0
+
+
+def check_stretch(value: object) -> float:
+    """The ``stretch`` option: a finite factor of T, 1 (the paper's rule) to ``MAX_STRETCH``.
+
+    Examples
+    --------
+    >>> from img2logo.option_values import check_stretch
+    >>> check_stretch(1.5)
+    1.5
+    """
+    import numpy as np
+
+    if isinstance(value, bool | np.bool_ | str) or not isinstance(value, int | float | np.integer | np.floating):
+        raise InvalidParameterError(f"stretch must be a factor of T from 1 to {MAX_STRETCH:g}, got {value!r}")
+    v = float(value)
+    if not 1.0 <= v <= MAX_STRETCH:  # NaN fails too
+        raise InvalidParameterError(f"stretch must be a factor of T from 1 to {MAX_STRETCH:g}, got {v:g}")
+    return v
+
+
 def parse_budget(text: str | float | None) -> float | None:
     """``--time-budget S`` as seconds, or None for ``none`` (no bound)."""
     if text is None or (isinstance(text, str) and text.strip().lower() == "none"):

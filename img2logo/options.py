@@ -21,9 +21,16 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from ._validation import check_choice, check_positive
-from .constants import DETAIL, MIN_LADDER_RADIUS, MIN_SEGMENT_LENGTH, RDP_TOLERANCE, TOLERANCE
+from .constants import DETAIL, LOGO_ARCS, MIN_LADDER_RADIUS, MIN_SEGMENT_LENGTH, RDP_TOLERANCE, STRETCH, TOLERANCE
 from .errors import InvalidParameterError, UnknownOptionError
-from .option_values import check_length, check_symmetry_option, parse_budget, parse_radii, refuse_lock_mask
+from .option_values import (
+    check_length,
+    check_stretch,
+    check_symmetry_option,
+    parse_budget,
+    parse_radii,
+    refuse_lock_mask,
+)
 
 __all__ = [
     "ABSTRACT_OPTIONS",
@@ -121,10 +128,14 @@ class Options:
         neighbours first. The silhouette, its ink outline and the dark marks on
         the object (eyes) are always kept. Other kinds: unused.
     arcs : int or None
-        Clip art: an arc budget, at least 1, or None (default: none)
-        (:func:`img2logo.features.detail.merge_by_importance`): after ``detail``,
-        the regions of least Ward weight per predicted arc merge until the
-        logo's predicted arcs (:func:`img2logo.features.boundary_cost.boundary_arcs`)
+        The logo's arc budget, at least 1, or None (default: about
+        ``LOGO_ARCS`` = 40, by the fit alone). Every kind: where the fit within
+        T has more arcs, merging goes on past T, up to ``stretch`` T, until the
+        logo has this many (:func:`img2logo.fit.progressive.optimize`). A clip
+        art given a budget also merges regions first
+        (:func:`img2logo.features.detail.merge_by_importance`): after
+        ``detail``, the regions of least Ward weight per predicted arc, until
+        the logo's predicted arcs (:func:`img2logo.features.boundary_cost.boundary_arcs`)
         are at most this; the silhouette and the eyes are kept beyond it.
     stroke_width : float or None
         Width of the logo's strokes in the SVG and PNG, px (> 0), recorded in
@@ -138,7 +149,14 @@ class Options:
         others force its direction (degrees from +x towards +y); ``none``: free.
         Not with a lock mask (:func:`check_lock_mask`).
     tolerance : float
-        T of Eqn. 1, px (> 0): merging stops before E^s would exceed it.
+        T of Eqn. 1, px (> 0): merging stops before E^s would exceed it (but
+        for ``stretch``).
+    stretch : float
+        Simplicity past T (beyond the paper), at least 1: where the logo within
+        T has more arcs than its budget (``arcs``, default ``LOGO_ARCS``),
+        merging goes on, the cheapest merge first, until it has that many or
+        E^s would pass ``stretch`` x T; the silhouette's arcs are then held to
+        ``stretch`` x T each. 1: the paper's rule (stop at T).
     ladder : {"phi", "fibonacci"}
         Radii ``phi ** (k + bias)`` (Eqn. 10) or ``unit * F(k)`` (Fig. 2b).
     bias : float or None
@@ -244,9 +262,10 @@ class Options:
         flags=("--arcs",),
         type=int,
         metavar="N",
-        help="clip art: an arc budget; after --detail, regions go on merging, the least visual weight (contrast "
-        "times area) per predicted arc first, until the logo is predicted to take at most about N arcs; the "
-        "silhouette and dark marks such as eyes are always kept (default: none)",
+        help="the logo's arc budget: where the fit within T has more arcs, merging goes on past T (up to "
+        "--stretch times T); a clip art also merges regions first, the least visual weight (contrast times area) "
+        "per predicted arc first, keeping the silhouette and dark marks such as eyes (default: about "
+        f"{LOGO_ARCS} arcs, by the fit alone)",
     )
     stroke_width: float | None = _option(
         None,
@@ -260,6 +279,15 @@ class Options:
     # ----------------------------------------------------------------- the optimization
     tolerance: float = _px(
         TOLERANCE, "--tolerance", "largest similarity error E^s", "-T", note="larger gives fewer arcs"
+    )
+    stretch: float = _option(
+        STRETCH,
+        flags=("--stretch",),
+        type=float,
+        metavar="F",
+        help="how far past T merging may go, as a factor of T, while the logo has more arcs than its budget "
+        f"(--arcs); the silhouette's arcs are held to it too; 1: stop at T, as the paper does (default {STRETCH:.3f}, "
+        "phi)",
     )
     ladder: str = _option(
         "phi",
@@ -326,6 +354,7 @@ class Options:
 
         put = object.__setattr__
         put(self, "tolerance", check_length(self.tolerance, "tolerance"))
+        put(self, "stretch", check_stretch(self.stretch))
         put(self, "rdp_tolerance", check_length(self.rdp_tolerance, "rdp_tolerance"))
         put(self, "min_length", check_length(self.min_length, "min_length", allow_zero=True))
         from .features.detail import check_detail

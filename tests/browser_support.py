@@ -12,6 +12,8 @@ import urllib.request
 from dataclasses import dataclass
 from pathlib import Path
 
+import pytest
+
 
 def free_port() -> int:
     """A TCP port on 127.0.0.1 that nothing listens on now (for a server the test starts)."""
@@ -52,6 +54,15 @@ CHROMIUM_ARGS = [
     "--disable-sync",
     "--no-first-run",
 ]
+
+
+def skip_unless_installed(*modules: str, chromium: bool = False) -> None:
+    """Skip the test unless every module of ``modules`` imports (and, with ``chromium``, Debian's chromium is there)."""
+    if chromium and not Path(CHROMIUM).is_file():
+        pytest.skip(f"no chromium at {CHROMIUM} (Debian: apt-get install chromium; or set IMG2LOGO_CHROMIUM)")
+    for module in modules:
+        reason = f"{module} is not installed (make test-browser installs the [browser] extra)"
+        pytest.importorskip(module, reason=reason)
 
 
 @dataclass(frozen=True)

@@ -19,3 +19,12 @@ def discs_result():
     import img2logo
 
     return img2logo.abstract(two_discs())
+
+
+@pytest.fixture
+def close_figures():
+    """Closes every matplotlib figure the test left open (pyplot keeps them, and they add up)."""
+    yield
+    import matplotlib.pyplot as plt
+
+    plt.close("all")

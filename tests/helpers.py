@@ -6,7 +6,10 @@ fixtures are in ``conftest.py``.
 
 from __future__ import annotations
 
+import ast
 import math
+import subprocess
+import sys
 from pathlib import Path
 
 import cv2
@@ -18,7 +21,21 @@ from img2logo.geometry.abstraction import Abstraction
 from img2logo.geometry.primitives import TAU, Arc, Circle
 from img2logo.segment_graph import SegmentGraph
 
-DATA = Path(__file__).resolve().parents[1] / "data"
+ROOT = Path(__file__).resolve().parents[1]
+DATA = ROOT / "data"
+
+
+def modules_loaded(code: str, *packages: str, cwd: Path = ROOT) -> list[str]:
+    """The modules of ``packages`` (each with what is under it) loaded once ``code`` has run in a new interpreter.
+
+    What an import or a run costs at start-up; sorted. ``code`` may print: the answer is the last line.
+    """
+    probe = (
+        f"{code}\nimport sys\n"
+        f"print(sorted(m for m in sys.modules if any(m == p or m.startswith(p + '.') for p in {packages!r})))"
+    )
+    out = subprocess.run([sys.executable, "-c", probe], cwd=cwd, capture_output=True, text=True, check=True)
+    return ast.literal_eval(out.stdout.strip().splitlines()[-1])
 
 
 def blank(size: int = 200) -> np.ndarray:
@@ -80,6 +97,29 @@ def small_graph():
 
 BIAS = 0.3
 WIDTH, HEIGHT = 200, 160
+
+
+def frechet_table(p: np.ndarray, q: np.ndarray) -> float:
+    """The discrete Fréchet distance of two polylines, (N, 2) and (M, 2), px: the textbook O(N M) table.
+
+    The recurrence of [Eiter & Mannila 1994] in plain Python, on squared distances as the compiled
+    kernel computes them (the same bits), the square root taken at the end.
+    """
+    n, m = len(p), len(q)
+    c = np.empty((n, m))
+    for i in range(n):
+        for j in range(m):
+            dx, dy = p[i, 0] - q[j, 0], p[i, 1] - q[j, 1]
+            d2 = dx * dx + dy * dy
+            if i == 0 and j == 0:
+                c[i, j] = d2
+            elif i == 0:
+                c[i, j] = max(c[0, j - 1], d2)
+            elif j == 0:
+                c[i, j] = max(c[i - 1, 0], d2)
+            else:
+                c[i, j] = max(min(c[i - 1, j], c[i - 1, j - 1], c[i, j - 1]), d2)
+    return math.sqrt(c[-1, -1])
 
 
 def golden(cx: float, cy: float, k: int, bias: float = BIAS) -> Circle:
@@ -254,6 +294,18 @@ def golden_chain(noise: float = 0.0, seed: int = 0) -> tuple[SegmentGraph, list[
         height=600,
     )
     return graph, [(c1, r1), (c2, r2), (c3, r3)]
+
+
+def line_and_a_stroke(x: float, tip: float) -> SegmentGraph:
+    """A line in two segments (nodes 0-1-2 along y = 100.5, node 1 at x = 150.5) and a stroke up to it at x = ``x``.
+
+    The stroke ends ``tip`` px short of the line (past it when negative); 300 x 300 px.
+    """
+    left = np.linspace([50.5, 100.5], [150.5, 100.5], 101)
+    right = np.linspace([150.5, 100.5], [250.5, 100.5], 101)
+    stroke = np.linspace([x, 130.5], [x, 100.5 + tip], 31)
+    junctions = np.array([left[0], left[-1], right[-1], stroke[0], stroke[-1]])
+    return SegmentGraph((left, right, stroke), junctions, np.array([[0, 1], [1, 2], [3, 4]]), 300, 300)
 
 
 def hand_built_state(graph: SegmentGraph, state_class: type | None = None, **settings):

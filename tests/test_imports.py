@@ -13,6 +13,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+from helpers import modules_loaded
+
 PACKAGE = Path(__file__).resolve().parents[1] / "img2logo"
 
 
@@ -163,9 +165,7 @@ CONTRACT_MODULES = {
 
 
 def test_the_file_format_loads_only_what_it_needs():
-    code = "import sys, img2logo.export.contract; print(sorted(m for m in sys.modules if m.startswith('img2logo')))"
-    out = subprocess.run([sys.executable, "-c", code], cwd=PACKAGE.parent, capture_output=True, text=True, check=True)
-    loaded = set(ast.literal_eval(out.stdout))
+    loaded = set(modules_loaded("import img2logo.export.contract", "img2logo"))
     assert loaded <= CONTRACT_MODULES, sorted(loaded - CONTRACT_MODULES)
     assert "img2logo.export.contract" in loaded and "img2logo.design.fill_values" in loaded  # the list is read
 

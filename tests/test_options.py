@@ -24,6 +24,7 @@ def test_defaults_and_record():
     assert (o.tolerance, o.kind, o.ladder, o.max_arc_distance, o.arc_bound) == (5.0, "auto", "phi", AUTO, None)
     assert o.record() == {
         "tolerance": 5.0,
+        "stretch": pytest.approx(1.618, abs=1e-3),
         "bias_given": None,
         "exponents": None,
         "rounding": "nearest",

@@ -11,7 +11,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from helpers import abstraction_of, golden, svg_arc_center
+from helpers import abstraction_of, frechet_table, golden, svg_arc_center
 from hypothesis import HealthCheck, given, settings, strategies as st
 
 from img2logo.export.contract import from_document, to_document
@@ -29,24 +29,6 @@ PROPERTY = settings(
 coordinate = st.floats(-200.0, 200.0, allow_nan=False, allow_infinity=False)
 
 
-def _textbook_frechet(p: np.ndarray, q: np.ndarray) -> float:
-    """The discrete Fréchet distance by its recurrence [Eiter & Mannila 1994], in plain Python."""
-    n, m = len(p), len(q)
-    ca = np.full((n, m), math.inf)
-    for i in range(n):
-        for j in range(m):
-            d = math.dist(p[i], q[j])
-            if i == 0 and j == 0:
-                ca[i, j] = d
-            elif i == 0:
-                ca[i, j] = max(ca[0, j - 1], d)
-            elif j == 0:
-                ca[i, j] = max(ca[i - 1, 0], d)
-            else:
-                ca[i, j] = max(min(ca[i - 1, j], ca[i - 1, j - 1], ca[i, j - 1]), d)
-    return float(ca[-1, -1])
-
-
 polyline = st.lists(st.tuples(coordinate, coordinate), min_size=1, max_size=12).map(np.array)
 
 
@@ -54,7 +36,7 @@ polyline = st.lists(st.tuples(coordinate, coordinate), min_size=1, max_size=12).
 @PROPERTY
 @given(polyline, polyline)
 def test_frechet_distance_is_the_textbook_recurrence(p, q):
-    assert math.isclose(frechet_distance(p, q), _textbook_frechet(p, q), rel_tol=1e-12, abs_tol=1e-9)
+    assert math.isclose(frechet_distance(p, q), frechet_table(p, q), rel_tol=1e-12, abs_tol=1e-9)
 
 
 @PROPERTY

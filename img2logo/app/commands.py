@@ -190,8 +190,10 @@ def run_image(args: argparse.Namespace, say, *, freeze: bool = False) -> int:
 
     from ..images.loading import load_image
     from ..pipeline import abstract
+    from .kind_options import ignored_options, kind_options
 
     options = _abstract_options(args)
+    given = kind_options(options, args.subject)  # as typed, before a mask file is read into the options
     fill_spec = _fill_spec(args.fill)
     if not any(getattr(args, flag[2:].replace("-", "_")) for flag in _OUTPUT_FLAGS):  # before any work
         raise InvalidParameterError(f"nothing to write: give {', '.join(_OUTPUT_FLAGS[:-1])} or {_OUTPUT_FLAGS[-1]}")
@@ -245,14 +247,7 @@ def run_image(args: argparse.Namespace, say, *, freeze: bool = False) -> int:
     say(f"kind {result.lines.kind} ({result.lines.reason})")
     if result.lines.detail is not None and options.arcs is not None:  # what the arc budget kept
         say(f"detail: {result.lines.detail} regions kept besides the background, for about {options.arcs} arcs")
-    given = [f"--subject {args.subject}"] if args.subject is not None else []
-    given += [f"--foreground {args.foreground}"] if args.foreground != "auto" else []
-    ignored = None
-    if given:
-        from .batch.pool import ignored_subject_options
-
-        ignored = ignored_subject_options(result.lines, given)
-    if ignored:
+    for ignored in ignored_options(result.lines, given):
         say(f"img2logo: warning: {ignored}")
     if result.lines.subject is not None:
         say(f"subject: {result.lines.subject.description}")
@@ -265,9 +260,13 @@ def run_image(args: argparse.Namespace, say, *, freeze: bool = False) -> int:
         f"segment graph: {graph.n_segments} segments, {graph.n_junctions} nodes "
         f"({_count(int((graph.valence >= 3).sum()), 'junction')}), {_count(graph.n_components(), 'component')}"
     )
+    past_t = prog.stopped_because.startswith("past T")
+    past = f"; past it, up to {options.stretch:.3g} T, for the arc budget" if past_t else ""
     say(
         f"levels: {len(prog.levels)}, arcs {prog.arc_counts[0]} -> {prog.arc_counts[-1]}, "
-        f"E^s {prog.final.similarity:.2f} px (T = {prog.final.tolerance:g}), {_ladder_text(prog)}, "
+        f"E^s {prog.final.similarity:.2f} px (T = {prog.final.tolerance:g}"
+        f"{past}), "
+        f"{_ladder_text(prog)}, "
         f"stopped: {prog.stopped_because}, {sum(result.timings.values()):.2f} s"
     )
     level = _pick_level(result, args.level)

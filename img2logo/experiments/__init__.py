@@ -277,21 +277,17 @@ class Run:
 
     @property
     def final(self) -> Abstraction:
-        """The result: the last level."""
-        return self._progression.final
+        """The result: the last level (the result's :attr:`~img2logo.pipeline.Result.final`)."""
+        return self._result.final
 
     @property
     def bias(self) -> float:
         """The ladder bias sigma the run used."""
-        return self._progression.bias
+        return self._result.bias
 
     def level(self, t: int) -> Abstraction:
-        """A^t; negative t counts from the end."""
-        return self._progression.levels[t]
-
-    @property
-    def _progression(self) -> Progression:
-        return self._result.progression
+        """A^t; negative t counts from the end (the result's :meth:`~img2logo.pipeline.Result.level`)."""
+        return self._result.level(t)
 
     @property
     def _result(self) -> Result:
@@ -366,7 +362,10 @@ def sweep(
         the environment variable ``IMG2LOGO_PROGRESS`` is ``"0"`` (papermill's
         runs for ``make figures``: no bar in the executed notebooks).
     **options
-        Keywords shared by every run.
+        Keywords shared by every run. A grid over ``tolerance`` runs with the
+        paper's stopping rule, ``stretch=1``, unless ``stretch`` is given: a
+        sweep over T shows T's effect alone, where the library's default goes
+        on past T down to about ``LOGO_ARCS`` arcs.
 
     Returns
     -------
@@ -392,6 +391,8 @@ def sweep(
         if not isinstance(values, list | tuple) or not values:
             raise InvalidParameterError(f"grid[{name!r}]: expected a non-empty list of values, got {values!r}")
     points = [dict(zip(grid, values, strict=True)) for values in product(*grid.values())]
+    if "tolerance" in grid and "stretch" not in grid:  # T's effect alone: the paper's rule
+        options = {"stretch": 1.0, **options}
     jobs: list[tuple[Run, str, dict[str, Any]]] = []
     for ex in images if pipeline else _preprocessed(images, kind):
         for point in points:

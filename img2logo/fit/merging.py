@@ -299,6 +299,7 @@ def merge_loop(
     tolerance: float,
     merged: MergeCallback | None = None,
     over_budget: Callable[[], bool] | None = None,
+    arcs: int = 0,
 ) -> str:
     """Merge the best pair until E^s would exceed ``tolerance`` (Sec. 5.2, steps 1-6).
 
@@ -308,7 +309,8 @@ def merge_loop(
     and is rescored from the current state when it comes out best: so the pair
     merged is always scored exactly (lazy greedy). After every merge it calls
     ``merged(state)`` (the progressive optimization records the level there);
-    returns why it stopped: ``"tolerance"``, ``"no mergeable pair"`` or
+    returns why it stopped: ``"tolerance"``, ``"arcs"`` (at most ``arcs`` arcs
+    are left, when ``arcs`` > 0), ``"no mergeable pair"`` or
     ``"time budget"``: ``over_budget()`` was true before a candidate's refit,
     and the state is the last level made (a refit is tentative: a level's
     candidates stop wherever the budget ends, and nothing of them is kept).
@@ -343,6 +345,8 @@ def merge_loop(
             failed.pop(pair, None)
 
     while True:
+        if arcs and len(state.fits) <= arcs:
+            return "arcs"
         pairs = candidates(state)
         level = level_view(state)  # the level's view for its candidates: they change nothing it was made of
         if not pairs:

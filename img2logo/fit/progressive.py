@@ -38,6 +38,7 @@ Coordinates: px, x right, y down (``contract/README.md``).
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import os
 import time
@@ -48,6 +49,7 @@ from typing import Any
 
 import numpy as np
 
+from ..constants import LOGO_ARCS
 from ..errors import InvalidParameterError
 from ..geometry.abstraction import Abstraction
 from ..geometry.golden_ladder import FibonacciLadder, Ladder, make_ladder
@@ -94,7 +96,10 @@ class Progression:
         (Sec. 5.4), in the order of A^0's arcs.
     stopped_because : str
         Why the loop stopped: ``"tolerance"``, ``"no mergeable pair"``, ``"merging off"``
-        or ``"time budget"`` (``Options.time_budget``; a :class:`TimeBudgetWarning` says so).
+        or ``"time budget"`` (``Options.time_budget``; a :class:`TimeBudgetWarning` says so);
+        where it went on past T (``Options.stretch``), ``"past T, 40 arcs"`` (the
+        budget reached), ``"past T, 1.62 T"`` (the stretched tolerance reached) or
+        ``"past T, no mergeable pair"``.
     stats : dict of str to int
         The counts of :class:`~img2logo.fit.fit_values.Stats` by name, in its order:
         merge candidates evaluated, local windows that failed, global solves,
@@ -283,7 +288,8 @@ def optimize(
     -------
     Progression
         Every level records :meth:`Options.record` in its ``params`` (with
-        ``locked_segments``, ``params``, and the ``bias``, or Fibonacci ``unit``,
+        ``arcs``, the arc budget of :func:`arc_budget`, ``locked_segments``,
+        ``params``, and the ``bias``, or Fibonacci ``unit``,
         used), and carries its ladder: phi with the bias of Eqn. 14 (or the one
         given), or the Fibonacci grid with its unit (bias 0.0).
 
@@ -309,7 +315,7 @@ def optimize(
     if graph.n_segments == 0:
         raise InvalidParameterError("the segment graph has no segments: nothing to abstract (no feature lines found)")
     locked = locked_segments(graph, lock_mask)
-    record = {**opts.record(), "locked_segments": int(locked.sum()), **(params or {})}
+    record = {**opts.record(), "arcs": arc_budget(opts), "locked_segments": int(locked.sum()), **(params or {})}
     ladder, bias, unit, simplify = opts.ladder, opts.bias, opts.unit, opts.simplify
 
     circles = FreeCircles(symmetry)
@@ -364,31 +370,56 @@ def optimize(
 
     start = time.perf_counter()
     stopped = "merging off"
+    tolerance = opts.tolerance
+    budget = arc_budget(opts, symmetry is not None)
     if opts.merging:
-        stopped = merge_loop(state, opts.tolerance, add_level, over_budget)
+        stopped = merge_loop(state, tolerance, add_level, over_budget)
+        if stopped != TIME_BUDGET_STOP and opts.stretch > 1.0 and len(state.fits) > budget:
+            # Simplicity past T: more arcs than a logo holds. Merging goes on, the cheapest first,
+            # every check as before and the silhouette's arcs held to the stretched tolerance.
+            tolerance = opts.stretch * opts.tolerance
+            state.options = dataclasses.replace(opts, tolerance=tolerance)
+            stopped = merge_loop(state, tolerance, add_level, over_budget, arcs=budget)
+            said = {"arcs": f"{budget} arcs", "tolerance": f"{opts.stretch:.3g} T"}.get(stopped, stopped)
+            stopped = f"past T, {said}"
     timings["loop"] = time.perf_counter() - start
     start = time.perf_counter()
     if state.smooth:
         # The result, its circles touching at the smooth joins (beyond the paper); it may be
         # a level before the loop's last, whose shorter arcs leave room for more tangencies.
-        back = tangent_level(state, opts.tolerance, history, over_budget)
+        back = tangent_level(state, tolerance, history, over_budget)
         del levels[len(levels) - back :]
         levels[-1] = LevelState.of(state, levels[-1].level, record, run).abstraction()
         if progress:  # the result: an earlier t than the last reported when levels were dropped
             progress(levels[-1].level, len(levels[-1].arcs), levels[-1].similarity)
     timings["tangency"] = time.perf_counter() - start
     made = Levels(levels)
-    if stopped == TIME_BUDGET_STOP:
+    if stopped.endswith(TIME_BUDGET_STOP):
         final = made[-1]
         warnings.warn(
             TimeBudgetWarning(
                 f"the optimization reached its time budget ({opts.time_budget:g} s of CPU) and stopped merging at "
-                f"level {final.level}: {len(final.arcs)} arcs, E^s {final.similarity:.2f} px within T = "
-                f"{opts.tolerance:g} px (fewer arcs may fit: give it longer with --time-budget S or none)"
+                f"level {final.level}: {len(final.arcs)} arcs, E^s {final.similarity:.2f} px within "
+                f"{'T' if tolerance == opts.tolerance else f'{opts.stretch:.3g} T'} = {tolerance:g} px "
+                "(fewer arcs may fit: give it longer with --time-budget S or none)"
             ),
             stacklevel=2,
         )
     return Progression(made, float(golden.bias), simplified, stopped, state.stats.as_dict(), timings, golden)
+
+
+def arc_budget(options: Options, half: bool = False) -> int:
+    """The arcs a logo holds: ``options.arcs``, or ``LOGO_ARCS`` when none is given; half of it for a symmetric half.
+
+    Examples
+    --------
+    >>> from img2logo import Options
+    >>> from img2logo.fit.progressive import arc_budget
+    >>> arc_budget(Options()), arc_budget(Options(arcs=25), half=True)
+    (40, 13)
+    """
+    arcs = LOGO_ARCS if options.arcs is None else options.arcs
+    return max(1, (arcs + 1) // 2) if half else arcs
 
 
 def _budget(seconds: float | None) -> Callable[[], bool] | None:

@@ -11,6 +11,7 @@ from __future__ import annotations
 import html
 from typing import Any
 
+from ..constants import LOGO_ARCS
 from ..experiments.paths import example_images, kit_module
 from .drawing import PIXEL_RATIO, ipycanvas_module
 from .session import Studio
@@ -290,8 +291,9 @@ def make_controls(studio: Studio, size: int) -> dict[str, Any]:
         value=0 if s.arcs is None else s.arcs,
         min=0,
         max=ARC_BUDGET_MAX,
-        tooltip="clip art: about this many arcs at most (--arcs); the regions that cost most arcs for the least "
-        "colour merge first; the silhouette and eyes stay; 0: no budget",
+        tooltip="about this many arcs at most (--arcs): merging goes on past T (up to phi T); a clip art also "
+        "merges the regions that cost most arcs for the least colour first, the silhouette and eyes kept; "
+        f"0: the default, about {LOGO_ARCS} arcs by the fit alone",
     )
     c["sizes"] = labelled(
         w.Text,
@@ -340,7 +342,7 @@ def page_layout(c: dict[str, Any], size: int) -> Any:
             w.HBox([c["bias"], c["bias_auto"]]),
             c["rdp_tolerance"],
             c["detail"],
-            w.HBox([c["arcs"], w.Label("0: no budget")]),
+            w.HBox([c["arcs"], w.Label(f"0: about {LOGO_ARCS}")]),
             c["symmetry"],
             w.HBox([w.Label("Ladder", layout=w.Layout(width="126px")), c["ladder"]]),
             c["sizes"],

@@ -50,7 +50,7 @@ class StudioSettings:
     detail : int
         Clip art: the regions kept besides the background (``--detail``).
     arcs : int or None
-        Clip art: about this many arcs at most (``--arcs``); None: no budget.
+        About this many arcs at most (``--arcs``); None: the default, about ``LOGO_ARCS``.
     exponents : tuple of int or None
         Only these ladder exponents k (the subset of golden circles of Fig. 15, ``--radii``);
         None: every rung.
@@ -159,7 +159,8 @@ class StudioState:
     def title(self) -> str:
         """One line about the logo shown, in a designer's words: the level t, |A| arcs, the error E^s, T, the edits.
 
-        ``fish: level 12 of 30, 25 arcs, error 3.21 px (tolerance 5 px), 1 edit``.
+        ``fish: level 12 of 30, 25 arcs, error 3.21 px (tolerance 5 px), 1 edit``; a level made
+        past T for the arc budget: ``... error 6.80 px (tolerance 5 px, past it for the arc budget)``.
         """
         a = self.shown
         if a is None:
@@ -170,9 +171,11 @@ class StudioState:
         k = self.work_scale
         work = self.result.image if self.result is not None and k != 1.0 else None
         size = f" of the {work.width}x{work.height} px working copy" if work is not None else ""
+        # A level made past T for the arc budget (Options.stretch) says so: its error is above the tolerance.
+        past = ", past it for the arc budget" if a.similarity > a.tolerance else ""
         return (
             f"{self.stem}: level {self.level} of {len(self.levels) - 1}, {len(a.arcs)} arcs, "
-            f"error {a.similarity * k:.2f} px (tolerance {self.settings.tolerance:g} px{size}){edits}"
+            f"error {a.similarity * k:.2f} px (tolerance {self.settings.tolerance:g} px{size}{past}){edits}"
         )
 
     @property

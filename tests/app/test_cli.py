@@ -9,7 +9,7 @@ import sys
 
 import numpy as np
 import pytest
-from helpers import DATA
+from helpers import DATA, modules_loaded
 
 from img2logo.app.cli import EXIT_ERROR, main
 
@@ -788,6 +788,30 @@ def test_subject_options_on_a_drawing_are_ignored_with_one_warning(tmp_path, cap
     assert "warning" not in capsys.readouterr().err  # not given: nothing to say
 
 
+def test_a_logo_brought_to_its_arc_budget_past_t_says_so(tmp_path, capsys):
+    import json
+
+    out = tmp_path / "cat.json"
+    assert main([str(DATA / "clipart-cat.png"), "--json", str(out)]) == 0  # 49 arcs within T
+    err = capsys.readouterr().err
+    assert "(T = 5; past it, up to 1.62 T, for the arc budget)" in err and "stopped: past T, " in err
+    params = json.loads(out.read_text())["params"]
+    assert params["arcs"] == 40 and params["stretch"] == pytest.approx(1.618, abs=1e-3)
+    assert main([str(DATA / "clipart-cat.png"), "--json", str(out), "--stretch", "1"]) == 0  # the paper's rule
+    assert "past" not in capsys.readouterr().err and json.loads(out.read_text())["similarity"] <= 5.0
+
+
+def test_clipart_options_on_a_drawing_are_ignored_with_one_warning(tmp_path, capsys):
+    out = ["--json", str(tmp_path / "leaf.json")]
+    assert main([str(DATA / "drawing-leaf.png"), "--detail", "3", "--arcs", "20", *out]) == 0
+    warned = [line for line in capsys.readouterr().err.splitlines() if line.startswith("img2logo: warning: ")]
+    assert len(warned) == 1  # --arcs acts on every kind
+    assert warned[0].startswith("img2logo: warning: --detail 3 is ignored: the image is drawing (")
+    assert warned[0].endswith("and only a clip art has colour regions to keep (give --kind clipart to treat it as one)")
+    assert main([str(DATA / "drawing-leaf.png"), "--detail", "24", *out]) == 0
+    assert "warning" not in capsys.readouterr().err  # the default detail: nothing was asked
+
+
 def test_levels_dir_removes_the_level_files_of_an_earlier_run_only(tmp_path, capsys, monkeypatch):
     import json
 
@@ -971,10 +995,8 @@ def test_version_and_help_load_no_numeric_library():
         "for argv in (['--version'], ['--help'], ['batch', '--help']):\n"
         "    with contextlib.redirect_stdout(io.StringIO()), contextlib.suppress(SystemExit):\n"
         "        main(argv)\n"
-        "print(sorted(m for m in ('numpy', 'scipy', 'cv2', 'numba', 'PIL') if m in sys.modules))\n"
     )
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
-    assert out.strip() == "[]"
+    assert modules_loaded(code, "numpy", "scipy", "cv2", "numba", "PIL") == []
 
 
 def test_same_files_whatever_the_thread_counts(tmp_path):

@@ -22,7 +22,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import pytest
-from browser_support import CHROMIUM, CHROMIUM_ARGS, free_port, wait_until_up
+from browser_support import CHROMIUM, CHROMIUM_ARGS, free_port, skip_unless_installed, wait_until_up
 
 pytestmark = pytest.mark.browser
 
@@ -34,20 +34,8 @@ STEP_TIMEOUT_MS = 60_000
 
 try:
     from playwright.sync_api import TimeoutError as PlaywrightTimeoutError
-except ImportError:  # the test skips (see _requirements)
+except ImportError:  # the test skips (see skip_unless_installed)
     PlaywrightTimeoutError = TimeoutError
-
-
-def _requirements() -> str | None:
-    """Why the test cannot run here, or None."""
-    if not Path(CHROMIUM).is_file():
-        return f"no chromium at {CHROMIUM} (Debian: apt-get install chromium; or set IMG2LOGO_CHROMIUM)"
-    for module, extra in (("playwright", "browser"), ("jupyterlab", "browser")):
-        try:
-            __import__(module)
-        except ImportError:
-            return f"{module} is not installed (make test-browser installs the [{extra}] extra)"
-    return None
 
 
 @dataclass(frozen=True)
@@ -61,9 +49,7 @@ class Lab:
 @pytest.fixture(scope="module")
 def lab(tmp_path_factory):
     """A JupyterLab server on 127.0.0.1 with a token, serving notebook 11 with interactive = True."""
-    reason = _requirements()
-    if reason:
-        pytest.skip(reason)
+    skip_unless_installed("playwright", "jupyterlab", chromium=True)
     import papermill
 
     from img2logo.experiments.runner import SMOKE

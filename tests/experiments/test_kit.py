@@ -89,7 +89,10 @@ def test_a_sweep_runs_every_image_with_every_grid_point_and_variant():
         ("merged", 9.0),
         ("A^0 only", 9.0),
     ]
-    assert dict(runs[1].settings) == {"tolerance": 3.0, "merging": False} and len(runs[1].levels) == 1
+    # A sweep over T runs with the paper's stopping rule (stretch 1): T's effect alone.
+    assert dict(runs[1].settings) == {"stretch": 1.0, "tolerance": 3.0, "merging": False} and len(runs[1].levels) == 1
+    assert all(r.final.params["stretch"] == 1.0 for r in runs)
+    assert sweep([leaf], {"tolerance": [3.0]}, stretch=2.0)[0].final.params["stretch"] == 2.0  # unless given
     assert len(runs[2].final.arcs) <= len(runs[0].final.arcs)  # a larger T merges at least as much
     same = optimize(leaf.graph, tolerance=9.0)
     assert [len(a.arcs) for a in runs[2].levels] == [len(a.arcs) for a in same.levels]

@@ -18,10 +18,7 @@ from img2logo.experiments import layout
 W, H = 120, 90
 
 
-@pytest.fixture(autouse=True)
-def _close_figures():
-    yield
-    plt.close("all")
+pytestmark = pytest.mark.usefixtures("close_figures")
 
 
 def test_panel_grid_sizes_the_figure_by_its_panels():

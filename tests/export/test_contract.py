@@ -6,12 +6,11 @@ import copy
 import json
 import math
 import re
-import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
-from helpers import BIAS, HEIGHT, WIDTH, four_arcs, make_abstraction, palette_fills
+from helpers import BIAS, HEIGHT, WIDTH, four_arcs, make_abstraction, modules_loaded, palette_fills
 
 from img2logo.constants import FORMAT_NAME, PHI
 from img2logo.design import fills
@@ -348,16 +347,7 @@ def test_json_fills_validation():
 def test_reading_a_document_loads_no_part_of_the_pipeline():
     # The file format is a reader's business: reading or writing a (symmetric) document must not
     # load the axis search, the segment graph or the optimizer (the axis helpers are in mirror).
-    import ast
-    import subprocess
-
-    code = (
-        "import sys, img2logo.export.contract, img2logo.export.writers; "
-        "print(sorted(m for m in sys.modules if m.startswith('img2logo.')))"
-    )
-    root = Path(__file__).resolve().parents[2]
-    out = subprocess.run([sys.executable, "-c", code], cwd=root, capture_output=True, text=True, check=True)
-    loaded = set(ast.literal_eval(out.stdout))
+    loaded = set(modules_loaded("import img2logo.export.contract, img2logo.export.writers", "img2logo"))
     pipeline = {
         "fit.symmetry",
         "fit.progressive",

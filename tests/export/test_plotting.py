@@ -28,10 +28,7 @@ from img2logo.segment_graph import SegmentGraph
 W, H = 120, 90
 
 
-@pytest.fixture(autouse=True)
-def _close_figures():
-    yield
-    plt.close("all")
+pytestmark = pytest.mark.usefixtures("close_figures")
 
 
 def make_abstraction() -> Abstraction:

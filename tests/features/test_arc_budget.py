@@ -93,6 +93,6 @@ def test_the_arc_budget_is_an_option_of_abstract():
     im = _square_with(9, wiggly=True)
     whole = abstract(im, progress=False)
     budget = abstract(im, progress=False, arcs=12)
-    assert Options().arcs is None  # no budget unless asked
+    assert Options().arcs is None  # no region merged for the count unless asked (the fit alone: LOGO_ARCS)
     assert budget.final.params["detail"] < whole.final.params["detail"] == 10  # fewer regions kept
     assert len(budget.final.arcs) < len(whole.final.arcs)

@@ -6,31 +6,12 @@ import math
 
 import numpy as np
 import pytest
+from helpers import frechet_table
 
 from img2logo.errors import FitError, InvalidParameterError
 from img2logo.fit.arc_extraction import ArcFit, discrete_frechet, extract_arc, frechet_distance
 from img2logo.fit.intersections import arc_intersections, redundant_intersections
 from img2logo.geometry.primitives import TAU, Arc, Circle
-
-
-def frechet_reference(p: np.ndarray, q: np.ndarray) -> float:
-    """Discrete Fréchet distance by the textbook O(N M) table [EM94]."""
-    n, m = len(p), len(q)
-    d = np.hypot(p[:, None, 0] - q[None, :, 0], p[:, None, 1] - q[None, :, 1])
-    c = np.empty((n, m))
-    for i in range(n):
-        for j in range(m):
-            if i == 0 and j == 0:
-                prev = -math.inf
-            elif i == 0:
-                prev = c[0, j - 1]
-            elif j == 0:
-                prev = c[i - 1, 0]
-            else:
-                prev = min(c[i - 1, j], c[i - 1, j - 1], c[i, j - 1])
-            c[i, j] = max(d[i, j], prev)
-    return float(c[-1, -1])
-
 
 CIRCLE = Circle(100.0, 100.0, 50.0)
 
@@ -67,15 +48,15 @@ def test_frechet_matches_the_reference_on_random_curves() -> None:
         n, m = rng.integers(1, 25, 2)
         p = np.cumsum(rng.normal(size=(n, 2)), axis=0)
         q = np.cumsum(rng.normal(size=(m, 2)), axis=0) if trial % 2 else p[np.sort(rng.integers(0, n, m))] + 0.2
-        assert frechet_distance(p, q) == pytest.approx(frechet_reference(p, q), abs=1e-12)
+        assert frechet_distance(p, q) == pytest.approx(frechet_table(p, q), abs=1e-12)
 
 
 def test_frechet_of_unequal_long_curves_matches_the_reference() -> None:
     rng = np.random.default_rng(8)
     p, q = rng.normal(size=(40, 2)), rng.normal(size=(300, 2))
-    assert frechet_distance(p, q) == pytest.approx(frechet_reference(p, q), abs=1e-12)
-    assert frechet_distance(q[:5], p) == pytest.approx(frechet_reference(q[:5], p), abs=1e-12)
-    assert frechet_distance(p[:1], q) == pytest.approx(frechet_reference(p[:1], q), abs=1e-12)
+    assert frechet_distance(p, q) == pytest.approx(frechet_table(p, q), abs=1e-12)
+    assert frechet_distance(q[:5], p) == pytest.approx(frechet_table(q[:5], p), abs=1e-12)
+    assert frechet_distance(p[:1], q) == pytest.approx(frechet_table(p[:1], q), abs=1e-12)
 
 
 def test_frechet_of_one_point_is_its_largest_distance() -> None:
@@ -96,28 +77,9 @@ def test_frechet_is_symmetric_and_sees_direction() -> None:
 def test_bounded_frechet_stops_early_only_when_it_cannot_win() -> None:
     rng = np.random.default_rng(9)
     p, q = rng.normal(size=(60, 2)), rng.normal(size=(70, 2)) * 3
-    exact = frechet_reference(p, q)
+    exact = frechet_table(p, q)
     assert discrete_frechet(p, q, bound=exact + 1e-9) == pytest.approx(exact)
     assert discrete_frechet(p, q, bound=exact * 0.5) == math.inf
-
-
-def frechet_table(p: np.ndarray, q: np.ndarray) -> float:
-    """The whole O(N M) table on squared distances, as the compiled kernel computes them (bit for bit)."""
-    n, m = len(p), len(q)
-    c = np.empty((n, m))
-    for i in range(n):
-        for j in range(m):
-            dx, dy = p[i, 0] - q[j, 0], p[i, 1] - q[j, 1]
-            d2 = dx * dx + dy * dy
-            if i == 0 and j == 0:
-                c[i, j] = d2
-            elif i == 0:
-                c[i, j] = max(c[0, j - 1], d2)
-            elif j == 0:
-                c[i, j] = max(c[i - 1, 0], d2)
-            else:
-                c[i, j] = max(min(c[i - 1, j], c[i - 1, j - 1], c[i, j - 1]), d2)
-    return math.sqrt(c[-1, -1])
 
 
 @pytest.mark.parametrize("seed", range(4))

@@ -26,6 +26,13 @@ def test_a_biarc_is_found_where_its_two_circles_touch():
     assert closest_biarcs(chain[:6], [50.0], [80.0]) == []
 
 
+def noisy_arc(rng: np.random.Generator, n: int) -> tuple[np.ndarray, float]:
+    """``n`` pixels (N, 2) of an arc of a random radius (returned, px) and turn, with noise, rounded to the grid."""
+    t = np.linspace(0.0, rng.uniform(0.5, 3.0), n)
+    radius = rng.uniform(10.0, 200.0)
+    return np.round(np.stack([radius * np.cos(t), radius * np.sin(t)], 1) + rng.normal(0, 0.7, (n, 2))) + 100.5, radius
+
+
 def biarc_worst_reference(
     chain: np.ndarray, centre: np.ndarray, index: np.ndarray, splits: np.ndarray, r: float, head: bool
 ) -> np.ndarray:
@@ -43,9 +50,7 @@ def test_biarc_worst_kernel_matches_the_numpy_reference():
     rng = np.random.default_rng(5)
     for _ in range(40):
         n = int(rng.integers(20, 120))
-        t = np.linspace(0.0, rng.uniform(0.5, 3.0), n)
-        radius = rng.uniform(10.0, 200.0)
-        chain = np.round(np.stack([radius * np.cos(t), radius * np.sin(t)], 1) + rng.normal(0, 0.7, (n, 2))) + 100.5
+        chain, _ = noisy_arc(rng, n)
         splits, turns = np.arange(4, n - 5, 3), np.linspace(-0.3, 0.3, 7)
         for head in (True, False):
             for stride in (1, 3):
@@ -65,9 +70,7 @@ def test_biarc_fine_search_is_the_grids_argmin():
     rng = np.random.default_rng(11)
     for _ in range(40):
         n = int(rng.integers(20, 120))
-        t = np.linspace(0.0, rng.uniform(0.5, 3.0), n)
-        radius = rng.uniform(10.0, 200.0)
-        chain = np.round(np.stack([radius * np.cos(t), radius * np.sin(t)], 1) + rng.normal(0, 0.7, (n, 2))) + 100.5
+        chain, _ = noisy_arc(rng, n)
         splits = np.sort(rng.integers(4, n - 5, 9))
         turns = np.sort(np.concatenate([rng.uniform(-0.3, 0.3, 5), [0.0, 0.0]]))
         head = (rng.uniform(5.0, 300.0), float(rng.choice([-1.0, 1.0])))
@@ -90,9 +93,7 @@ def test_biarc_coarse_search_is_the_grids_choice():
     rng = np.random.default_rng(12)
     for _ in range(20):
         n = int(rng.integers(30, 200))
-        t = np.linspace(0.0, rng.uniform(0.5, 3.0), n)
-        radius = rng.uniform(10.0, 200.0)
-        chain = np.round(np.stack([radius * np.cos(t), radius * np.sin(t)], 1) + rng.normal(0, 0.7, (n, 2))) + 100.5
+        chain, radius = noisy_arc(rng, n)
         splits = np.arange(5, n - 5, 4)
         turns = np.sort(np.concatenate([rng.uniform(-0.4, 0.4, 6), [0.0, 0.0]]))
         radii_a, radii_b = list(rng.uniform(5.0, 300.0, 2)), [radius, *rng.uniform(5.0, 300.0, 2)]

@@ -6,7 +6,7 @@ import dataclasses
 
 import numpy as np
 import pytest
-from helpers import golden_chain, golden_radius, hand_built_state
+from helpers import golden_chain, golden_radius, hand_built_state, line_and_a_stroke
 
 from img2logo.fit import window_solve
 from img2logo.fit.fit_state import FitState
@@ -124,7 +124,6 @@ def test_a_circle_on_the_mirror_axis_is_fitted_with_its_mirror_image():
     # A half circle left of the axis x = 100, ending square to it at node 1: its circle is centred on the axis.
     t = np.linspace(np.pi / 2, np.pi, 40)
     half = np.column_stack([100 + 30 * np.cos(t), 100 + 30 * np.sin(t)])
-    from img2logo.segment_graph import SegmentGraph
 
     graph = SegmentGraph((half,), np.array([half[0], half[-1]]), np.array([[0, 1]]), 200, 200)
     axis = HalfAxis(100.0, frozenset({0}), frozenset({(0, 0)}))
@@ -216,28 +215,19 @@ def test_a_bounded_solve_regroups_before_extracting_and_fails_with_the_regroup()
 
 
 # --------------------------------------------------------------------------- topology
-def _line_and_a_stroke_towards_it(tip: float) -> SegmentGraph:
-    """A line in two segments (nodes 0-1-2 along y = 100) and a stroke up towards the first, ``tip`` px short."""
-    left = np.linspace([50.5, 100.5], [150.5, 100.5], 101)
-    right = np.linspace([150.5, 100.5], [250.5, 100.5], 101)
-    stroke = np.linspace([120.5, 130.5], [120.5, 100.5 + tip], 31)
-    junctions = np.array([left[0], left[-1], right[-1], stroke[0], stroke[-1]])
-    return SegmentGraph((left, right, stroke), junctions, np.array([[0, 1], [1, 2], [3, 4]]), 300, 300)
-
-
 def test_open_ends_are_the_free_ends_and_a_gap_is_one_0_75_to_6_px_from_another_arc():
     for tip, gaps in ((7.5, set()), (3.0, {4}), (0.2, set())):
-        state = hand_built_state(_line_and_a_stroke_towards_it(tip))
+        state = hand_built_state(line_and_a_stroke(120.5, tip))
         initial_fit(state)
         assert open_ends(state) == [(0, 0), (2, 1), (3, 2), (4, 2)]  # node 1 joins two arcs: not open
         assert gap_ends(state) == gaps, tip  # 7.5 px: a free end; 3 px: a near miss; 0.2 px: joined (0.55 px)
 
 
 def test_redundant_pairs_are_the_groups_whose_arcs_cross_away_from_their_junctions():
-    state = hand_built_state(_line_and_a_stroke_towards_it(-8.0))  # the stroke runs 8 px on across the line
+    state = hand_built_state(line_and_a_stroke(120.5, -8.0))  # the stroke runs 8 px on across the line
     initial_fit(state)
     assert redundant_pairs(state) == [(0, 2)] and redundant_pairs(state, of={1}) == []
-    state = hand_built_state(_line_and_a_stroke_towards_it(3.0))
+    state = hand_built_state(line_and_a_stroke(120.5, 3.0))
     initial_fit(state)
     assert redundant_pairs(state) == []
 

@@ -7,7 +7,7 @@ import itertools
 
 import numpy as np
 import pytest
-from helpers import DATA, golden_chain, golden_radius, hand_built_state, sampled_arc
+from helpers import DATA, golden_chain, golden_radius, hand_built_state, line_and_a_stroke, sampled_arc
 
 from img2logo import build_segment_graph, extract_feature_lines, quality
 from img2logo.fit import window_solve
@@ -219,15 +219,6 @@ def test_a_merge_that_leaves_a_redundant_intersection_is_counted_and_not_made():
     assert merge_loop(state, 5.0) == "no mergeable pair" and len(state.groups) == 2
 
 
-def _line_and_a_stroke_below(tip: float) -> SegmentGraph:
-    """A straight line in two segments (nodes 0-1-2 along y = 100) and a stroke up towards node 1, ``tip`` px short."""
-    left = np.linspace([50.5, 100.5], [150.5, 100.5], 101)
-    right = np.linspace([150.5, 100.5], [250.5, 100.5], 101)
-    stroke = np.linspace([150.5, 130.5], [150.5, 100.5 + tip], 31)
-    junctions = np.array([left[0], left[-1], right[-1], stroke[0], stroke[-1]])
-    return SegmentGraph((left, right, stroke), junctions, np.array([[0, 1], [1, 2], [3, 4]]), 300, 300)
-
-
 def _sagging(sag: float) -> GroupFit:
     """A fit of the whole line from (50.5, 100.5) to (250.5, 100.5) whose arc sags ``sag`` px in its middle."""
     r = (100.0**2 + sag**2) / (2 * sag)
@@ -239,7 +230,7 @@ def _sagging(sag: float) -> GroupFit:
 def test_a_merge_that_brings_a_free_end_within_a_near_miss_is_counted_and_not_made():
     # The stroke's tip (node 4) is 7.5 px below the line: a free end, no gap. A merge of the line
     # whose arc sagged 3 px would leave it 4.5 px from the arc: a near-miss gap it made.
-    state = hand_built_state(_line_and_a_stroke_below(7.5))
+    state = hand_built_state(line_and_a_stroke(150.5, 7.5))
     initial_fit(state)
     assert gap_ends(state) == set()
     assert new_gaps(state, (0, 1, 1), {-1: _sagging(3.0)}, {}) == 1
@@ -249,7 +240,7 @@ def test_a_merge_that_brings_a_free_end_within_a_near_miss_is_counted_and_not_ma
     stroke = dataclasses.replace(state.fits[2])
     assert new_gaps(state, (0, 1, 1), {-1: _sagging(0.5), 2: stroke}, {4: np.array([0.0, -3.0])}) == 1
     # A gap the input has already is no reason to refuse the merge.
-    state = hand_built_state(_line_and_a_stroke_below(3.0))
+    state = hand_built_state(line_and_a_stroke(150.5, 3.0))
     initial_fit(state)
     assert gap_ends(state) == {4} and new_gaps(state, (0, 1, 1), {-1: _sagging(0.5)}, {}) == 0
     out = evaluate(state, (0, 1, 1))
@@ -259,7 +250,7 @@ def test_a_merge_that_brings_a_free_end_within_a_near_miss_is_counted_and_not_ma
 def test_the_loop_refuses_a_merge_that_would_leave_a_near_miss_gap(monkeypatch):
     import img2logo.fit.merging as merging
 
-    state = hand_built_state(_line_and_a_stroke_below(7.5))
+    state = hand_built_state(line_and_a_stroke(150.5, 7.5))
     initial_fit(state)
     # Every refit of the line sags 3 px (as the coffee cup's rim's did), then the loop must not merge.
     real = merging.evaluate

@@ -10,8 +10,8 @@ import numpy as np
 import pytest
 from helpers import BIAS, DATA, blank, check_level, golden_chain, hand_built_state, sampled_arc
 
-from img2logo import InvalidParameterError, SegmentGraph, build_segment_graph, extract_feature_lines
-from img2logo.constants import PHI
+from img2logo import InvalidParameterError, Options, SegmentGraph, build_segment_graph, extract_feature_lines
+from img2logo.constants import LOGO_ARCS, PHI
 from img2logo.fit.intersections import redundant_intersections
 from img2logo.fit.merge_checks import redundant_pairs
 from img2logo.fit.progressive import initial_fit, optimize
@@ -85,6 +85,38 @@ def test_arc_count_decreases_and_final_is_within_tolerance(fish_progression):
     assert prog.stopped_because in ("tolerance", "no mergeable pair")
     assert counts[-1] <= 0.5 * graph.n_segments
     assert [lv.level for lv in prog.levels] == list(range(len(prog.levels)))
+
+
+def test_a_logo_within_its_arcs_at_t_stops_at_t(fish_progression):
+    # The fish takes 25 arcs within T: under the default budget of LOGO_ARCS, the paper's rule alone.
+    graph, prog = fish_progression
+    assert len(prog.final.arcs) <= LOGO_ARCS
+    paper = optimize(graph, tolerance=5.0, stretch=1.0)
+    assert paper.arc_counts == prog.arc_counts and paper.stopped_because == prog.stopped_because
+
+
+def test_past_t_merging_goes_on_down_to_the_arc_budget(fish_progression):
+    graph, prog = fish_progression
+    within_t = len(prog.final.arcs)
+    budget = within_t - 6
+    past = optimize(graph, tolerance=5.0, arcs=budget)
+    assert past.stopped_because.startswith("past T, ")
+    within = len(prog.levels) - 1  # the levels within T are the paper's (the last may be the tangent refit)
+    assert past.arc_counts[:within] == prog.arc_counts[:within]
+    final = past.final
+    assert len(final.arcs) < within_t  # simpler than the paper's result
+    assert len(final.arcs) == budget or past.stopped_because != f"past T, {budget} arcs"
+    assert final.similarity <= PHI * 5.0 + 1e-9  # within the stretched tolerance
+    assert final.tolerance == 5.0 and final.params["stretch"] == pytest.approx(PHI) and final.params["arcs"] == budget
+    check_level(final)
+    # Stretch 1 is the paper's rule: the budget is not met past T.
+    assert optimize(graph, tolerance=5.0, arcs=budget, stretch=1.0).arc_counts == prog.arc_counts
+
+
+@pytest.mark.parametrize("bad", [0.5, float("nan"), "2", True, 1e9])
+def test_a_stretch_out_of_range_is_refused(bad):
+    with pytest.raises(InvalidParameterError, match="stretch must be a factor of T from 1 to 100"):
+        Options(stretch=bad)
 
 
 def test_every_segment_is_in_exactly_one_arc(fish_progression):

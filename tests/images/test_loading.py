@@ -296,6 +296,15 @@ def test_a_plain_png_is_probed_without_pillow(tmp_path, monkeypatch):
 
 
 # --------------------------------------------------------------------------- a large PNG, strip by strip
+def _refused_in_one_line(path, match: str, max_side: int) -> None:
+    """``load_image`` refuses ``path`` with a one-line message matching ``match``, whatever it would downscale."""
+    with pytest.raises(InvalidImageError, match=match) as caught:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", DownscaleWarning)
+            load_image(path, max_side=max_side)
+    assert "\n" not in str(caught.value)
+
+
 def _box_mean(arr: np.ndarray, factor: int, alpha: bool) -> np.ndarray:
     """Reference of the large-image reduce: (H, W, C) samples to the float box means (colour premultiplied),
     the last boxes filled out with the edge pixels."""
@@ -421,11 +430,7 @@ def test_a_cut_or_damaged_png_is_one_line_at_any_size(tmp_path, damage, message,
         data[middle : middle + 64] = bytes(64)
     path = tmp_path / "big.png"
     path.write_bytes(bytes(data))
-    with pytest.raises(InvalidImageError, match=r"big\.png: " + message) as caught:
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", DownscaleWarning)
-            load_image(path, max_side=max_side)
-    assert "\n" not in str(caught.value)
+    _refused_in_one_line(path, r"big\.png: " + message, max_side)
     trailing = tmp_path / "trailing.png"  # bytes after IEND are not damage: libpng ignores them
     trailing.write_bytes(cv2.imencode(".png", arr)[1].tobytes() + bytes(70000))
     with warnings.catch_warnings():
@@ -608,11 +613,7 @@ def test_a_cut_or_damaged_tiff_is_one_line_at_any_size(tmp_path, damage, max_sid
         fmt = {3: "H", 4: "I", 16: "Q"}[int(kind)]
         struct.pack_into(f"<{len(offsets)}{fmt}", data, at, *[o + len(data) for o in offsets])
     path.write_bytes(bytes(data))
-    with pytest.raises(InvalidImageError, match=r"big\.tif: not a readable image") as caught:
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", DownscaleWarning)
-            load_image(path, max_side=max_side)
-    assert "\n" not in str(caught.value)
+    _refused_in_one_line(path, r"big\.tif: not a readable image", max_side)
 
 
 def test_a_tiff_in_strips_over_the_byte_budget_is_refused(tmp_path, monkeypatch):
@@ -656,11 +657,7 @@ def test_a_large_jpeg_2000_is_decoded_at_a_reduced_resolution(tmp_path):
     assert np.abs(img.rgb - rgb).max() < 1.5 / 255
     damaged = tmp_path / "cut.jp2"
     damaged.write_bytes(path.read_bytes()[: path.stat().st_size // 3])
-    with pytest.raises(InvalidImageError, match=r"cut\.jp2: not a readable image") as caught:
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", DownscaleWarning)
-            load_image(damaged, max_side=300)
-    assert "\n" not in str(caught.value)
+    _refused_in_one_line(damaged, r"cut\.jp2: not a readable image", 300)
 
 
 @pytest.mark.parametrize("suffix", [".hdr", ".pfm"])
@@ -714,11 +711,7 @@ def test_a_large_gif_is_decoded_as_its_palette_and_reduced_by_strips(tmp_path, t
     assert np.abs(img.rgb - rgb).mean() < 0.01 and np.abs(img.alpha - a).mean() < 0.01  # reduce by 3, then area
     cut = tmp_path / "cut.gif"
     cut.write_bytes(path.read_bytes()[:200])
-    with pytest.raises(InvalidImageError, match=r"cut\.gif: not a readable image") as caught:
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", DownscaleWarning)
-            load_image(cut, max_side=200)
-    assert "\n" not in str(caught.value)
+    _refused_in_one_line(cut, r"cut\.gif: not a readable image", 200)
 
 
 @pytest.mark.parametrize(("channels", "dtype", "factor"), [(3, np.uint16, 3), (1, np.uint8, 4), (3, np.uint8, 2)])
@@ -735,11 +728,7 @@ def test_a_large_ppm_is_read_by_libvips_as_its_box_reduce(tmp_path, channels, dt
     assert np.abs(got.reshape(expected.shape) - expected).max() <= 0.5
     cut = tmp_path / "cut.ppm"
     cut.write_bytes(path.read_bytes()[: path.stat().st_size // 2])
-    with pytest.raises(InvalidImageError, match=r"cut\.ppm: not a readable image: its pixel data ends") as caught:
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", DownscaleWarning)
-            load_image(cut, max_side=64)
-    assert "\n" not in str(caught.value)
+    _refused_in_one_line(cut, r"cut\.ppm: not a readable image: its pixel data ends", 64)
 
 
 # --------------------------------------------------------------------------- hostile and unusual files

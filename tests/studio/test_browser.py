@@ -20,7 +20,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from browser_support import CHROMIUM, CHROMIUM_ARGS, start_studio
+from browser_support import CHROMIUM, CHROMIUM_ARGS, skip_unless_installed, start_studio
 
 from img2logo.studio.serve import stop_server
 
@@ -34,23 +34,10 @@ STEP_TIMEOUT_MS = int(os.environ.get("IMG2LOGO_BROWSER_STEP_MS", "300000"))
 VIEWPORT = {"width": 1366, "height": 768}
 
 
-def _requirements() -> str | None:
-    if not Path(CHROMIUM).is_file():
-        return f"no chromium at {CHROMIUM} (Debian: apt-get install chromium; or set IMG2LOGO_CHROMIUM)"
-    for module in ("playwright", "voila", "ipycanvas"):
-        try:
-            __import__(module)
-        except ImportError:
-            return f"{module} is not installed (make test-browser installs the [browser] extra)"
-    return None
-
-
 @pytest.fixture(scope="module")
 def server(tmp_path_factory):
     """``make studio``'s Voila on a free port with its token; stopped and reaped at the end."""
-    reason = _requirements()
-    if reason:
-        pytest.skip(reason)
+    skip_unless_installed("playwright", "voila", "ipycanvas", chromium=True)
     folder = tmp_path_factory.mktemp("studio")
     try:
         studio = start_studio(folder, ROOT, START_TIMEOUT)

@@ -17,7 +17,7 @@ import urllib.parse
 from pathlib import Path
 
 import pytest
-from browser_support import CHROMIUM, CHROMIUM_ARGS, start_studio
+from browser_support import CHROMIUM, CHROMIUM_ARGS, skip_unless_installed, start_studio
 
 from img2logo.studio.serve import stop_server
 
@@ -34,15 +34,6 @@ IDLE, CULL_INTERVAL = 20, 2
 SHUTDOWN_WAIT = 60.0
 #: A kernel id that no kernel has.
 NO_KERNEL = "0d2b7c9e-1111-4222-8333-444455556666"
-
-
-def _requirements(*modules: str) -> str | None:
-    for module in modules:
-        try:
-            __import__(module)
-        except ImportError:
-            return f"{module} is not installed (make test-browser installs the [browser] extra)"
-    return None
 
 
 def _kernels(process) -> list:
@@ -106,9 +97,7 @@ def _cookies(headers) -> dict[str, str]:
 @pytest.fixture(scope="module")
 def studio(tmp_path_factory):
     """``make studio``'s server with its token, culling kernels no page is connected to after IDLE s."""
-    reason = _requirements("voila", "psutil")
-    if reason:
-        pytest.skip(reason)
+    skip_unless_installed("voila", "psutil")
     try:
         server = start_studio(
             tmp_path_factory.mktemp("studio-http"), ROOT, START_TIMEOUT, idle_timeout=IDLE, cull_interval=CULL_INTERVAL
@@ -206,11 +195,7 @@ def test_a_plain_get_leaves_no_kernel_behind(studio):
 
 # --------------------------------------------------------------------------- a designer's tabs
 def test_ten_pages_opened_and_closed_leave_no_kernel(tmp_path, record_property):
-    if not Path(CHROMIUM).is_file():
-        pytest.skip(f"no chromium at {CHROMIUM} (Debian: apt-get install chromium; or set IMG2LOGO_CHROMIUM)")
-    reason = _requirements("playwright", "voila", "ipycanvas", "psutil")
-    if reason:
-        pytest.skip(reason)
+    skip_unless_installed("playwright", "voila", "ipycanvas", "psutil", chromium=True)
     from playwright.sync_api import sync_playwright
 
     studio = start_studio(tmp_path, ROOT, START_TIMEOUT)  # make studio's own culling: 300 s, longer than the wait

@@ -574,7 +574,17 @@ def test_an_arc_budget_of_a_clip_art_is_a_setting_of_the_run():
     many = len(s.shown.arcs)
     assert s.run(arcs=many // 2), s.message
     assert s.settings.arcs == many // 2 and len(s.shown.arcs) < many
-    assert not s.run(arcs=0) and "arcs" in s.message  # a budget is at least 1 arc (the page's 0 is no budget)
+    assert not s.run(arcs=0) and "arcs" in s.message  # a budget is at least 1 arc (the page's 0 is the default)
+
+
+def test_a_level_made_past_t_for_the_arc_budget_says_so():
+    s = Studio("clipart-cat.png")  # 49 arcs within T: the default budget of 40 takes it past T
+    assert s.run(), s.message
+    a = s.shown
+    assert len(a.arcs) <= 40 and a.similarity > a.tolerance
+    assert s.title.endswith("(tolerance 5 px, past it for the arc budget)")
+    assert s.set_level(0)  # the initial fit is within T
+    assert "past it" not in s.title
 
 
 def test_any_two_free_ends_clicked_are_joined_on_the_circle_chosen(ran):

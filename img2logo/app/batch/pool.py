@@ -23,8 +23,9 @@ from typing import Any
 
 from ...errors import Img2LogoError, InvalidParameterError
 from ...options import Options
+from ..kind_options import ignored_options, kind_options
 
-__all__ = ["OUTPUT_FORMATS", "BatchProgress", "ignored_subject_options", "one_line", "process_image", "run_tasks"]
+__all__ = ["OUTPUT_FORMATS", "BatchProgress", "one_line", "process_image", "run_tasks"]
 
 #: The files written per image, by suffix.
 OUTPUT_FORMATS: tuple[str, ...] = ("svg", "json", "png")
@@ -99,12 +100,7 @@ def _process(
         options = Options.from_keywords(options or {})
     result = abstract(path, options=options, progress=False)
     final = result.final
-    fg = options.foreground
-    given = (
-        [] if isinstance(fg, str) and fg == "auto" else [f"--foreground {fg if isinstance(fg, str | Path) else 'MASK'}"]
-    )
-    ignored = ignored_subject_options(result.lines, given)
-    if ignored:
+    for ignored in ignored_options(result.lines, kind_options(options)):
         warnings.warn(ignored, UserWarning, stacklevel=2)
     fills = None if spec.mode == "none" else spec.make(final, result.image)
     files: dict[str, bytes] = {}
@@ -119,23 +115,6 @@ def _process(
         "symmetry": _symmetry_cell(result.symmetry),
         "files": files,
     }
-
-
-def ignored_subject_options(lines: Any, given: Sequence[str]) -> str | None:
-    """The warning that the subject options ``given`` (``"--subject 1,2,3,4"``) are ignored, or None.
-
-    Only a photo has a subject to find (:mod:`img2logo.features.photo.subject`); for clip art
-    and drawings every line is drawn, so ``foreground`` and ``subject`` do nothing.
-    ``lines`` is the run's :class:`~img2logo.features.preprocessing.FeatureLines`.
-    """
-    if not given or lines.kind == "photo":
-        return None
-    which = " and ".join(given)
-    verb = "is" if len(given) == 1 else "are"
-    return (
-        f"{which} {verb} ignored: the image is {lines.kind} ({lines.reason}), and only a photo has a subject "
-        "to find (give --kind photo to treat it as one)"
-    )
 
 
 def _symmetry_cell(choice: Any) -> str:

@@ -57,7 +57,7 @@ from .folder import (
     remove_old_outputs,
     write_manifest,
 )
-from .pool import OUTPUT_FORMATS, BatchProgress, ignored_subject_options, process_image, run_tasks
+from .pool import OUTPUT_FORMATS, BatchProgress, process_image, run_tasks
 from .report import SUMMARY_COLUMNS, BatchFailure, BatchReport, BatchRow, report_of
 
 __all__ = [
@@ -74,7 +74,6 @@ __all__ = [
     "check_options",
     "find_images",
     "foreground_file",
-    "ignored_subject_options",
     "process_image",
     "run_batch",
 ]

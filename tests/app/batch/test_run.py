@@ -479,6 +479,12 @@ def test_a_foreground_for_a_drawing_is_ignored_with_one_warning(tmp_path):
     assert report.warnings[0].endswith("and only a photo has a subject to find (give --kind photo to treat it as one)")
 
 
+def test_a_detail_for_a_drawing_is_ignored_with_one_warning(tmp_path):
+    report = run_batch([DATA / GOOD[0]], tmp_path, jobs=1, progress=False, outputs=("json",), detail=3, arcs=30)
+    assert report.ok and len(report.warnings) == 1
+    assert report.warnings[0].startswith(f"{GOOD[0]}: --detail 3 is ignored: the image is drawing (")
+
+
 @pytest.mark.parametrize("link", ["symbolic", "hard"])
 def test_a_planted_lock_file_never_writes_over_a_users_file(tmp_path, link):
     import os
