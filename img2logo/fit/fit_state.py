@@ -136,6 +136,9 @@ class FitState:
         #: (merged group's segments, nodes, radius) -> whether no circle of that radius comes within
         #: the arc bound of its pixels (img2logo.fit.merge_checks.too_far): asked again at every level.
         self.far_arcs: dict[tuple[tuple[int, ...], tuple[int, ...], float], bool] = {}
+        #: Merge candidates (a, b, node) whose merged arc too_far rejected -> (group a, group b, released
+        #: junctions then): the same two groups are rejected again without being merged (img2logo.fit.merging).
+        self.far_pairs: dict[tuple[int, int, int], tuple[Group, Group, int]] = {}
 
     # ----------------------------------------------------------------- groups and nodes
     def add_group(self, group: Group) -> int:

@@ -189,33 +189,32 @@ def redundant_intersections(
         if len(rows) and (rows[0] < 0 or rows[-1] >= n):
             raise InvalidParameterError(f"candidates must index arcs 0..{n - 1}")
     ptr = np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)
-    pairs, points = redundant_arrays(arcs, junctions, ptr, flat.astype(np.int64), rows.astype(np.int64), tol)
+    pairs, points = redundant_arrays(
+        arc_params(arcs), junctions, ptr, flat.astype(np.int64), rows.astype(np.int64), tol
+    )
     return [RedundantIntersection(i, j, readonly(p.copy())) for (i, j), p in zip(pairs.tolist(), points, strict=True)]
 
 
 def redundant_arrays(
-    arcs: Sequence[Arc],
+    params: np.ndarray,
     junctions: np.ndarray,
     ptr: np.ndarray,
     flat: np.ndarray,
     rows: np.ndarray,
     tol: float,
-    params: np.ndarray | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """:func:`redundant_intersections` on checked arrays: (pairs (R, 2), points (R, 2)).
 
-    Arc i's junctions are ``flat[ptr[i]:ptr[i + 1]]`` (int64, indices into
-    ``junctions``); ``rows`` the sorted candidate arcs; ``params`` the arcs'
-    rows of :func:`arc_params` when the caller has them. The merge loop calls
+    The arcs are the rows (n, 5) of :func:`arc_params` ``params``; arc i's
+    junctions are ``flat[ptr[i]:ptr[i + 1]]`` (int64, indices into
+    ``junctions``); ``rows`` the sorted candidate arcs. The merge loop calls
     it directly with arrays it builds (every candidate merge is checked).
     """
-    if len(arcs) < 2 or len(rows) == 0:
+    if len(params) < 2 or len(rows) == 0:
         return np.zeros((0, 2), dtype=np.int64), np.zeros((0, 2))
 
     from .._compiled import kernels  # the compiled kernels load on the first check, not at import
 
-    if params is None:
-        params = arc_params(arcs)
     return kernels.redundant_kernel(params, rows, junctions, ptr, flat, INTERSECTION_TOL, tol)
 
 

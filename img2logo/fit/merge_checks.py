@@ -23,7 +23,6 @@ from weakref import WeakKeyDictionary
 import numpy as np
 
 from ..constants import GAP_MAX, JUNCTION_TOLERANCE
-from ..geometry.primitives import Arc
 from .arc_extraction import distances_to_arcs
 from .constants import FAR_ARC_BUDGET, FAR_ARC_MARGIN, REDUNDANT_INTERSECTION_TOL
 from .fit_state import FitState
@@ -176,8 +175,8 @@ class LevelView:
     """What every candidate of one level reads of the current groups (made once a level, :func:`level_view`).
 
     ``groups``, ``fits``, ``released``: what it was made from (compared by
-    identity). ``gids``: the groups in ``state.groups``'s order; ``arcs`` and
-    ``params`` their arcs and rows (cx, cy, r, theta0, sweep) of the compiled
+    identity). ``gids``: the groups in ``state.groups``'s order; ``params``
+    their arcs' rows (cx, cy, r, theta0, sweep) of the compiled
     redundant-intersection test; ``flat`` their junction nodes in order, of
     arc ``owner``; ``lengths`` how many each; ``inner`` node -> the groups
     that run on through it; ``ends`` node -> the groups ending there (each
@@ -190,7 +189,6 @@ class LevelView:
     fits: tuple[GroupFit | None, ...]
     released: int
     gids: tuple[int, ...]
-    arcs: list[Arc]
     params: np.ndarray
     flat: np.ndarray
     owner: np.ndarray
@@ -230,7 +228,6 @@ def level_view(state: FitState) -> LevelView:
         fits,
         len(state.released),
         gids,
-        [f.arc.arc for f in fits if f is not None],
         np.array([f.arc_row for f in fits if f is not None], dtype=np.float64).reshape(-1, 5),
         np.fromiter(chain.from_iterable(owned), dtype=np.int64, count=int(lengths.sum())),
         np.repeat(np.arange(len(gids), dtype=np.int64), lengths),
@@ -270,17 +267,14 @@ def redundant_after_merge(
     # After the merge: arc i of the level is arc i - (how many of a, b come before it).
     new_pos = np.cumsum(keep) - 1
     params = np.vstack([level.params[keep], np.asarray(fits[-1].arc_row, dtype=np.float64).reshape(1, 5)])
-    arcs = [arc for arc, k in zip(level.arcs, keep.tolist(), strict=True) if k]
-    arcs.append(fits[-1].arc.arc)
     changed_list = []
     for g, f in fits.items():
         if g == -1:
             continue
         i = int(new_pos[pos[g]])
         params[i] = f.arc_row
-        arcs[i] = f.arc.arc
         changed_list.append(i)
-    changed_list.append(len(arcs) - 1)
+    changed_list.append(len(params) - 1)
     changed = np.array(sorted(changed_list), dtype=np.int64)
     merged_nodes = state.constrained_nodes(merged)
     lengths = np.append(level.lengths[keep], len(merged_nodes))
@@ -294,7 +288,7 @@ def redundant_after_merge(
     if disp:
         moved = np.fromiter(disp, dtype=np.intp, count=len(disp))
         points[moved] = junctions[moved] + np.array(list(disp.values()), dtype=np.float64).reshape(-1, 2)
-    pairs, _ = redundant_arrays(arcs, points, ptr, flat, changed, REDUNDANT_INTERSECTION_TOL, params)
+    pairs, _ = redundant_arrays(params, points, ptr, flat, changed, REDUNDANT_INTERSECTION_TOL)
     return len(pairs)
 
 
@@ -398,22 +392,40 @@ def redundant_pairs(state: FitState, of: Collection[int] | None = None) -> list[
     with a group of ``of`` (default all), in the state's order of groups;
     a pair that meets at several points appears once per point.
     """
-    gids = list(state.groups)
+    gids = tuple(state.groups)
+    at, ptr, flat = _incidence(state, gids)
+    points = (state.graph.junctions[at] + state.disp[at]).reshape(-1, 2)
+    rows = np.array([i for i, g in enumerate(gids) if of is None or g in of], dtype=np.int64)
+    fits = [state.fits[g] for g in gids]
+    params = np.array([f.arc_row for f in fits], dtype=np.float64).reshape(-1, 5)
+    pairs, _ = redundant_arrays(params, points, ptr, flat, rows, REDUNDANT_INTERSECTION_TOL)
+    return [(gids[i], gids[j]) for i, j in pairs.tolist()]
+
+
+#: :func:`_incidence` of a state, with the node_groups and the groups' order it was made for.
+_INCIDENCE: WeakKeyDictionary[FitState, tuple[dict[int, list[int]], tuple[int, ...], tuple]] = WeakKeyDictionary()
+
+
+def _incidence(state: FitState, gids: tuple[int, ...]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The nodes of J' (sorted, as indices into the graph's), and each group's of ``gids``: (at, ptr, flat).
+
+    Group ``gids[i]`` passes the nodes ``at[flat[ptr[i]:ptr[i + 1]]]`` (its constrained nodes in path
+    order). Made again when :meth:`FitState.node_groups` was (the groups' paths or the released
+    junctions changed) or the groups' order did: the tangent pass asks on every try.
+    """
     node_groups = state.node_groups()
+    hit = _INCIDENCE.get(state)
+    if hit is not None and hit[0] is node_groups and hit[1] == gids:
+        return hit[2]
     nodes = sorted(node_groups)
     index = {n: i for i, n in enumerate(nodes)}
     at = np.asarray(nodes, dtype=np.intp)
-    points = (state.graph.junctions[at] + state.disp[at]).reshape(-1, 2)
     owned = [[index[n] for n in state.constrained_nodes(state.groups[g])] for g in gids]
     ptr = np.zeros(len(gids) + 1, dtype=np.int64)
     ptr[1:] = np.cumsum([len(ks) for ks in owned])
     flat = np.fromiter((k for ks in owned for k in ks), dtype=np.int64, count=int(ptr[-1]))
-    rows = np.array([i for i, g in enumerate(gids) if of is None or g in of], dtype=np.int64)
-    fits = [state.fits[g] for g in gids]
-    params = np.array([f.arc_row for f in fits], dtype=np.float64).reshape(-1, 5)
-    arcs = [f.arc.arc for f in fits]
-    pairs, _ = redundant_arrays(arcs, points, ptr, flat, rows, REDUNDANT_INTERSECTION_TOL, params)
-    return [(gids[i], gids[j]) for i, j in pairs.tolist()]
+    _INCIDENCE[state] = (node_groups, gids, (at, ptr, flat))
+    return at, ptr, flat
 
 
 def open_ends(state: FitState) -> list[tuple[int, int]]:

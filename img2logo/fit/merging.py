@@ -75,25 +75,34 @@ def candidates(state: FitState) -> list[Pair]:
     return out
 
 
-def evaluate(state: FitState, pair: Pair, tried: set[int] | None = None) -> MergeOutcome | None:
+def evaluate(
+    state: FitState, pair: Pair, tried: set[int] | None = None, level: LevelView | None = None
+) -> MergeOutcome | None:
     """Merge ``pair`` tentatively, refit, and score it; None if infeasible.
 
     ``tried``: when given and the refit fails (its windows, or the global
     problem, have no solution), it receives the groups of the state whose
     circles the windows held (the pair's two for the merged group): the
     problem they solved, but for the weights 1/|A| and 1/|J'|, stays as it is
-    until a merge changes one of them (:func:`merge_loop`).
+    until a merge changes one of them (:func:`merge_loop`). ``level``: the
+    state's :func:`~img2logo.fit.merge_checks.level_view`, when the caller has it.
     """
     state.stats.evaluated += 1
     a, b, node = pair
-    level = level_view(state)
+    level = level_view(state) if level is None else level
     # Two arcs that both run on through one junction cross there (an X): one
     # of them ends at the junction instead, so that arcs meet only at their
     # ends or where one ends on the other (a T), and no crossing is left.
     if any(g != a and g != b for g in level.inner.get(node, ())):
         state.stats.rejected_crossing += 1
         return None
-    merged = merge_groups(state.groups[a], state.groups[b], node)
+    group_a, group_b = state.groups[a], state.groups[b]
+    far = state.far_pairs.get(pair)
+    if far is not None and far[0] is group_a and far[1] is group_b and far[2] == len(state.released):
+        # :func:`too_far` rejected this merge of these two groups before: it reads nothing else that changes.
+        state.stats.rejected_far_arc += 1
+        return None
+    merged = merge_groups(group_a, group_b, node)
     after = dict(state.groups)  # in the state's order, the merged group last
     del after[a], after[b]
     after[-1] = merged
@@ -113,6 +122,8 @@ def evaluate(state: FitState, pair: Pair, tried: set[int] | None = None) -> Merg
     if cap is not None and too_far(state, merged, seeds[-1], cap):
         # Every path below would end in the rejection of the fit's arc (or a failed fit).
         state.stats.rejected_far_arc += 1
+        if not held:  # (the lines held at its junctions refused a straight line: that may change)
+            state.far_pairs[pair] = (group_a, group_b, len(state.released))
         return None
 
     merged_nodes = set(state.constrained_nodes(merged))
@@ -124,7 +135,9 @@ def evaluate(state: FitState, pair: Pair, tried: set[int] | None = None) -> Merg
     out: Solution | None = None
     windows: set[int] = set()  # the groups of the windows that failed
 
-    def solve_window(fixed: set[int], tangent: bool | set[int] = False, rings: int = 2) -> Solution | None:
+    def solve_window(
+        fixed: set[int], tangent: bool | dict[int, tuple[int, int]] = False, rings: int = 2
+    ) -> Solution | None:
         return window_solve.solve(
             state,
             after,
@@ -173,7 +186,7 @@ def evaluate(state: FitState, pair: Pair, tried: set[int] | None = None) -> Merg
                 out = solve_window(set(), rings=MERGE_FALLBACK_RINGS)
     if global_solve:
 
-        def solve_global(tangent: bool | set[int] = False) -> Solution | None:
+        def solve_global(tangent: bool | dict[int, tuple[int, int]] = False) -> Solution | None:
             return window_solve.solve_whole(
                 state,
                 after,
@@ -227,20 +240,21 @@ def _tried(pair: Pair, windows: set[int], tried: set[int] | None) -> None:
 
 def held_joins(
     state: FitState, seeds: dict[int, Seed], merged: Group, pair: Pair, level: LevelView | None = None
-) -> set[int]:
+) -> dict[int, tuple[int, int]]:
     """The smooth joins a merge's refit holds tangent (beyond the paper, :mod:`img2logo.fit.tangency`).
 
     Those the loop made tangent before (``state.held``) and those at the merged
     group's two ends: a merge is judged with the tangencies it would leave in
     place. Not the merge's own node, which the merged arc runs on through.
-    Each is a join of :meth:`FitState.tangencies` after the merge, found from
-    the groups ending at it (only the merge's two groups and the merged one change).
+    Each is a join of :meth:`FitState.tangencies` after the merge (the merged
+    group's id -1, last), found from the groups ending at it (only the merge's
+    two groups and the merged one change): node -> its two groups, as there.
     """
     if not state.smooth:
-        return set()
+        return {}
     a, b, node = pair
     ends = (level_view(state) if level is None else level).ends
-    out = set()
+    out = {}
     for n in state.held | set(merged.ends):
         if n == node or n not in state.smooth or n in state.loose or n in state.released:
             continue
@@ -249,7 +263,7 @@ def held_joins(
             gids.append(-1)
         if len(gids) != 2 or (seeds[gids[0]].k is None and seeds[gids[1]].k is None):
             continue
-        out.add(n)
+        out[n] = (gids[0], gids[1])
     return out
 
 
@@ -323,7 +337,7 @@ def merge_loop(
 
     def score(pair: Pair) -> None:
         tried: set[int] = set()
-        cache[pair] = out = evaluate(state, pair, tried)
+        cache[pair] = out = evaluate(state, pair, tried, level)
         stale.discard(pair)
         if out is None and tried:
             failed[pair] = frozenset(tried)
@@ -334,6 +348,7 @@ def merge_loop(
         if done is not None and done():
             return "arcs"
         pairs = candidates(state)
+        level = level_view(state)  # the level's view for its candidates: they change nothing it was made of
         if not pairs:
             return "no mergeable pair"
         f, d, nj = state.totals()

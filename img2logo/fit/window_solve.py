@@ -42,8 +42,11 @@ def _touching(
 ) -> dict[int, tuple[int, int]]:
     """:meth:`~img2logo.fit.fit_state.FitState.tangencies` of ``groups``.
 
-    Only those at the nodes ``tangent`` when it is a collection.
+    Only those at the nodes ``tangent`` when it is a collection; ``tangent`` itself when it is a
+    mapping (node -> the two groups: the caller found them, :func:`img2logo.fit.merging.held_joins`).
     """
+    if isinstance(tangent, Mapping):
+        return dict(tangent)
     joins = state.tangencies(groups, seeds)
     if tangent is True:
         return joins
@@ -78,7 +81,8 @@ def solve(
     grown by up to ``rings`` rings (solved from ring ``first_ring`` on); the ``fixed`` groups keep their circles,
     and so do straight lines (a huge free circle is nearly singular along
     its chord: their junctions slide onto them). With ``tangent``, the
-    circles of :meth:`~img2logo.fit.fit_state.FitState.tangencies` touch at their junctions too. With ``cap``
+    circles of :meth:`~img2logo.fit.fit_state.FitState.tangencies` touch at their junctions too (those
+    at its nodes when it is a collection; its joins when it is a mapping, :func:`_touching`). With ``cap``
     (px), a merged group (id -1) whose arc strays farther than that is the
     only fit returned (see :func:`_fits`). ``lines``: the groups whose seeds
     are straight lines (k None), when the caller knows them (a merge candidate's
@@ -136,11 +140,13 @@ def solve_whole(
     order: Callable[[int], Any] | None = None,
     tangent: bool | Collection[int] = False,
     cap: float | None = None,
+    bound: float | None = None,
 ) -> Solution | None:
     """:func:`solve` over all of ``groups`` at once, every junction free (a global solve, counted).
 
     The initial fit of A^0, a connected part in :func:`~img2logo.fit.recovery.recover`, a merge
-    whose local windows failed, the tangent refit: none of them holds a circle fixed.
+    whose local windows failed, the tangent refit: none of them holds a circle fixed. ``bound``:
+    that of :func:`solve` (None once E^s must exceed it, its arcs extracted only until then).
     """
     state.stats.global_solves += 1
     return solve(
@@ -156,6 +162,7 @@ def solve_whole(
         order=order,
         tangent=tangent,
         cap=cap,
+        bound=bound,
     )
 
 
@@ -259,7 +266,14 @@ def _fits_within(
     skip = set(todo)
     running = sum(f.arc.frechet for g, f in state.fits.items() if g not in skip)
     off_line = {**state.off_line, **off}
-    d = sum(off_line[n] if n in off_line else float(np.hypot(*at(n))) for n in node_groups)
+    # |d_k| of every node at once (np.hypot's loop: the numbers of its call on each vector), summed in order.
+    nodes = np.fromiter(node_groups, dtype=np.intp, count=len(node_groups))
+    moved = np.array([n in disp for n in node_groups], dtype=bool)
+    d_all = now[nodes]
+    if moved.any():
+        d_all[moved] = [disp[n] for n in node_groups if n in disp]
+    lengths = np.hypot(d_all[:, 0], d_all[:, 1]).tolist()
+    d = sum(off_line[n] if n in off_line else h for n, h in zip(node_groups, lengths, strict=True))
     shift = d / len(node_groups) if node_groups else 0.0
     limit = bound + CUT_MARGIN * max(1.0, abs(bound))
     fits = {}

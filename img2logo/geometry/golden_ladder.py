@@ -74,6 +74,12 @@ def _powers(exponents: np.ndarray) -> np.ndarray:
     return np.power(PHI, np.asarray(exponents, dtype=np.float64))
 
 
+@lru_cache(maxsize=1024)
+def _power(exponent: float) -> float:
+    """:func:`_powers` of one exponent, as a float: a rung's radius is asked for again and again (the tangent pass)."""
+    return float(_powers(np.array([exponent]))[0])
+
+
 @dataclass(frozen=True)
 class GoldenLadder:
     """The golden ratio radii ``phi ** (k + bias)`` (Eqn. 10), optionally a subset.
@@ -140,7 +146,7 @@ class GoldenLadder:
         """
         if isinstance(k, bool) or not isinstance(k, numbers.Integral):
             raise InvalidParameterError(f"k must be an integer, got {k!r}")
-        return float(_powers(np.array([int(k) + self.bias]))[0])
+        return _power(int(k) + self.bias)
 
     def exponent(self, r: float) -> float:
         """The continuous exponent ``log r / log phi - bias`` of radius ``r`` (px)."""
@@ -165,7 +171,9 @@ class GoldenLadder:
         InvalidParameterError
             If ``r`` is not finite or not > 0.
         """
-        k = int(self.snap_many(np.array([_check_radius(r)]))[0][0])
+        # The one radius checked here: snap_many's checks of an array cost more than the snap (the merge
+        # loop snaps every new merged group's circle).
+        k = int(self._snap_checked(np.array([_check_radius(r)]))[0][0])
         return k, self.radius(k)
 
     def snap_many(self, radii: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -173,6 +181,10 @@ class GoldenLadder:
         r = np.asarray(radii, dtype=np.float64)
         if not np.all(np.isfinite(r)) or np.any(r <= 0):
             raise InvalidParameterError("radii must be finite and > 0")
+        return self._snap_checked(r)
+
+    def _snap_checked(self, r: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """:meth:`snap_many` of float64 radii already known to be finite and > 0."""
         x = np.log(r) / LOG_PHI - self.bias
         if self.exponents is None and self.rounding == "nearest":
             k = np.floor(x + 0.5).astype(np.int64)  # ties go to the larger radius

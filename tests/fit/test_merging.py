@@ -162,7 +162,12 @@ def test_a_merged_arc_no_circle_of_its_radius_brings_near_is_rejected_before_its
     assert evaluate(state, (0, 1, 1)) is None
     assert state.stats.rejected_far_arc == 1 and state.stats.local_failed == 0
     assert list(state.far_arcs.values()) == [True]  # the proof is made once per merged group and radius
+    assert state.far_pairs == {(0, 1, 1): (state.groups[0], state.groups[1], 0)}  # and the pair's two groups
     assert evaluate(state, (0, 1, 1)) is None and state.stats.rejected_far_arc == 2
+    # Another group under one of the ids (a tangent join's slide splits pixels anew): proved again.
+    state.groups[0] = dataclasses.replace(state.groups[0])
+    state.far_arcs.clear()
+    assert evaluate(state, (0, 1, 1)) is None and state.stats.rejected_far_arc == 3 and state.far_arcs
     # A bound the merged arc meets: no proof, the fit decides.
     state = _fitted_chain(max_arc_distance=1000.0)
     assert evaluate(state, (0, 1, 1)) is not None and list(state.far_arcs.values()) == [False]
@@ -250,8 +255,8 @@ def test_the_loop_refuses_a_merge_that_would_leave_a_near_miss_gap(monkeypatch):
     # Every refit of the line sags 3 px (as the coffee cup's rim's did), then the loop must not merge.
     real = merging.evaluate
 
-    def sagging(state, pair, tried=None):
-        out = real(state, pair, tried)
+    def sagging(state, pair, tried=None, level=None):
+        out = real(state, pair, tried, level)
         if out is None or pair[:2] != (0, 1):
             return out
         fits = {**out.fits, -1: _sagging(3.0)}
@@ -363,7 +368,10 @@ def test_a_merge_is_judged_with_the_smooth_join_it_ends_at_tangent():
     after = {-1: merge_groups(state.groups[0], state.groups[1], 1), 2: state.groups[2]}
     seeds = {2: state.fits[2].seed, -1: state.golden(after[-1])}
     # The merged arc ends at node 2, a smooth join with group 2; node 1 is inside it now.
-    assert held_joins(state, seeds, after[-1], (0, 1, 1)) == {2}
+    held = held_joins(state, seeds, after[-1], (0, 1, 1))
+    assert held == {2: (2, -1)}
+    # The joins of FitState.tangencies after the merge, the two groups in its order (the merged one last).
+    assert held == {n: p for n, p in state.tangencies({2: after[2], -1: after[-1]}, seeds).items() if n in held}
     out = evaluate(state, (0, 1, 1))
     assert out is not None and not out.global_solve
     assert _touch(state, out, 2, (-1, 2)) <= 1e-6
@@ -428,13 +436,13 @@ def test_a_failed_candidate_is_tried_again_only_once_a_merge_changed_its_windows
 
     real, calls = merging.evaluate, []
 
-    def evaluate_(state, pair, tried=None):
+    def evaluate_(state, pair, tried=None, level=None):
         calls.append(pair)
         if pair[:2] in ((1, 2), (2, 3)):
             state.stats.evaluated += 1
             tried.update(set(state.groups) if whole else {pair[1]})
             return None
-        return real(state, pair, tried)
+        return real(state, pair, tried, level)
 
     monkeypatch.setattr(merging, "evaluate", evaluate_)
     state = hand_built_state(_four_arcs_chain(), tangency=False)

@@ -252,9 +252,11 @@ def test_time_budget_stops_at_the_last_level_and_says_so(fish_progression, monke
     graph, unbounded = fish_progression
     assert unbounded.stopped_because == "tolerance"  # the default budget is far from reached here
     plain = optimize(graph, tolerance=5.0, tangency=False, time_budget=None)
-    # A CPU clock that moves one second every time it is read: the loop reads it before every refit.
+    # A clock that moves one second every time it is read, the CPU clock reading it as the wall clock does:
+    # the loop asks before every refit (and reads the CPU clock only once the wall clock says it may be late).
     clock = itertools.count()
     monkeypatch.setattr(progressive.time, "process_time", lambda: float(next(clock)))
+    monkeypatch.setattr(progressive.time, "perf_counter", lambda: float(next(clock)))
     budget = plain.stats["evaluated"] * 3 // 4  # past the first level's candidates, before the last level
     with pytest.warns(progressive.TimeBudgetWarning, match=rf"time budget \({budget} s of CPU\) and stopped merging"):
         prog = optimize(graph, tolerance=5.0, time_budget=budget, tangency=False)
@@ -542,3 +544,38 @@ def test_outline_segments_are_those_along_the_paper():
     assert not outline_segments(graph, None).any()
     with pytest.raises(InvalidParameterError, match="silhouette must have the image's shape"):
         outline_segments(graph, np.zeros((3, 3), bool))
+
+
+def test_the_budget_reads_the_cpu_clock_only_when_it_may_have_run_out(monkeypatch):
+    """``over()`` answers as ``process_time() > deadline`` does at every call, the CPU clock read far less often.
+
+    The CPU clock of the process runs at most ``os.cpu_count()`` times as fast as the wall clock.
+    """
+    import img2logo.fit.progressive as progressive
+
+    rng = np.random.default_rng(5)
+    cpus = 2
+    clocks = {"wall": 0.0, "cpu": 0.0}
+    reads = []
+    monkeypatch.setattr(progressive.os, "cpu_count", lambda: cpus)
+    monkeypatch.setattr(progressive.time, "perf_counter", lambda: clocks["wall"])
+    monkeypatch.setattr(progressive.time, "process_time", lambda: reads.append(1) or clocks["cpu"])
+    over = progressive._budget(3.0)
+    answers = []
+    while clocks["cpu"] < 3.2:
+        step = float(rng.exponential(0.01))
+        clocks["wall"] += step
+        clocks["cpu"] += step * cpus * float(rng.uniform(0.0, 1.0))
+        answers.append((over(), clocks["cpu"] > 3.0))
+        if not answers[-1][1]:
+            before = len(reads)  # the reads while the budget lasted
+    assert all(got == want for got, want in answers)
+    assert answers[-1] == (True, True)
+    assert before < len(answers) // 10
+    # With the number of CPUs unknown the CPU clock is read at every call.
+    monkeypatch.setattr(progressive.os, "cpu_count", lambda: None)
+    reads.clear()
+    over = progressive._budget(1.0)
+    assert [over() for _ in range(3)] == [False] * 3 and len(reads) == 4  # (one read for the deadline)
+    clocks["cpu"] += 1.5
+    assert over() and len(reads) == 5
