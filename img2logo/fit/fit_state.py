@@ -133,12 +133,13 @@ class FitState:
         self.off_line: dict[int, float] = {}
         #: What the merge loop keeps of one level for all its candidates (img2logo.fit.merge_checks.level_view).
         self.merge_cache: object | None = None
-        #: (merged group's segments, nodes, radius) -> whether no circle of that radius comes within
-        #: the arc bound of its pixels (img2logo.fit.merge_checks.too_far): asked again at every level.
-        self.far_arcs: dict[tuple[tuple[int, ...], tuple[int, ...], float], bool] = {}
+        #: (merged group's segments, nodes, radius, arc bound) -> whether no circle of that radius comes
+        #: within the bound of its pixels (img2logo.fit.merge_checks.too_far): asked again at every level.
+        self.far_arcs: dict[tuple[tuple[int, ...], tuple[int, ...], float, float], bool] = {}
         #: Merge candidates (a, b, node) whose merged arc too_far rejected -> (group a, group b, released
-        #: junctions then): the same two groups are rejected again without being merged (img2logo.fit.merging).
-        self.far_pairs: dict[tuple[int, int, int], tuple[Group, Group, int]] = {}
+        #: junctions then, T then): the same two groups are rejected again without being merged while T
+        #: is the same (past T it grows: img2logo.fit.progressive) (img2logo.fit.merging).
+        self.far_pairs: dict[tuple[int, int, int], tuple[Group, Group, int, float]] = {}
 
     # ----------------------------------------------------------------- groups and nodes
     def add_group(self, group: Group) -> int:

@@ -151,7 +151,7 @@ def too_far(state: FitState, merged: Group, seed: Seed, cap: float) -> bool:
     """
     if seed.k is None:
         return False
-    key = (merged.segments, merged.nodes, float(seed.radius))
+    key = (merged.segments, merged.nodes, float(seed.radius), float(cap))
     hit = state.far_arcs.get(key)
     if hit is None:
         from .._compiled import kernels  # loaded by the first fit already

@@ -98,7 +98,8 @@ def evaluate(
         return None
     group_a, group_b = state.groups[a], state.groups[b]
     far = state.far_pairs.get(pair)
-    if far is not None and far[0] is group_a and far[1] is group_b and far[2] == len(state.released):
+    then = (len(state.released), state.options.tolerance)
+    if far is not None and far[0] is group_a and far[1] is group_b and far[2:] == then:
         # :func:`too_far` rejected this merge of these two groups before: it reads nothing else that changes.
         state.stats.rejected_far_arc += 1
         return None
@@ -123,7 +124,7 @@ def evaluate(
         # Every path below would end in the rejection of the fit's arc (or a failed fit).
         state.stats.rejected_far_arc += 1
         if not held:  # (the lines held at its junctions refused a straight line: that may change)
-            state.far_pairs[pair] = (group_a, group_b, len(state.released))
+            state.far_pairs[pair] = (group_a, group_b, *then)
         return None
 
     merged_nodes = set(state.constrained_nodes(merged))

@@ -162,12 +162,15 @@ def test_a_merged_arc_no_circle_of_its_radius_brings_near_is_rejected_before_its
     assert evaluate(state, (0, 1, 1)) is None
     assert state.stats.rejected_far_arc == 1 and state.stats.local_failed == 0
     assert list(state.far_arcs.values()) == [True]  # the proof is made once per merged group and radius
-    assert state.far_pairs == {(0, 1, 1): (state.groups[0], state.groups[1], 0)}  # and the pair's two groups
+    # ... and the pair's two groups, under this T (past T the bound grows: the pair is proved again)
+    assert state.far_pairs == {(0, 1, 1): (state.groups[0], state.groups[1], 0, state.options.tolerance)}
     assert evaluate(state, (0, 1, 1)) is None and state.stats.rejected_far_arc == 2
+    state.options = dataclasses.replace(state.options, tolerance=2 * state.options.tolerance)  # past T
+    assert evaluate(state, (0, 1, 1)) is None and state.far_pairs[0, 1, 1][3] == state.options.tolerance
     # Another group under one of the ids (a tangent join's slide splits pixels anew): proved again.
     state.groups[0] = dataclasses.replace(state.groups[0])
     state.far_arcs.clear()
-    assert evaluate(state, (0, 1, 1)) is None and state.stats.rejected_far_arc == 3 and state.far_arcs
+    assert evaluate(state, (0, 1, 1)) is None and state.stats.rejected_far_arc == 4 and state.far_arcs
     # A bound the merged arc meets: no proof, the fit decides.
     state = _fitted_chain(max_arc_distance=1000.0)
     assert evaluate(state, (0, 1, 1)) is not None and list(state.far_arcs.values()) == [False]
@@ -396,7 +399,8 @@ def test_a_far_merged_arc_is_found_before_the_windows_other_arcs():
     arc_for = state.arc_for
     state.arc_for = lambda group, *a: calls.append(group) or arc_for(group, *a)
     merged = merge_groups(state.groups[0], state.groups[1], 1)
-    state.far_arcs[(merged.segments, merged.nodes, float(state.golden(merged).radius))] = False  # not proved far
+    key = (merged.segments, merged.nodes, float(state.golden(merged).radius), 10.0)
+    state.far_arcs[key] = False  # not proved far (under the bound of 10 px)
     assert evaluate(state, (0, 1, 1)) is None and state.stats.rejected_far_arc == 1
     assert len(calls) == 1  # the merged arc only: the merge is rejected on it
     state = _fitted_chain()
