@@ -509,7 +509,8 @@ def bench_growth(repeat: int, page: Page) -> None:
                 for t in tiled
             ],
             f"`python benchmarks/growth.py --image {image.relative_to(ROOT)}`: n copies at {growth.TILE_SIDE} px side "
-            "by side, the segment graph optimized as it is (no downscale, no time budget), CPU time, medians of "
+            "by side, the segment graph optimized as it is (no downscale, no time budget, stopped at T: no arc "
+            "budget), CPU time, medians of "
             f"{repeat}; 'per copy' is CPU per copy over one copy's (1.00: linear).{bound}",
         )
 
