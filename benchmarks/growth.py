@@ -55,7 +55,7 @@ def tiled_rows(
     noise on a shared machine would otherwise move every row's 'per copy'.
     """
     rows = []
-    settings: dict = {"stretch": 1.0} if budget is None else {"stretch": 1.0, "time_budget": budget}
+    settings: dict = {"stretch": 1.0, **({} if budget is None else {"time_budget": budget})}
     for n in copies:
         lines = extract_feature_lines(tiled(path, n), kind="drawing" if path.stem.startswith("drawing") else "clipart")
         graph = build_segment_graph(lines)

@@ -260,7 +260,8 @@ def run_image(args: argparse.Namespace, say, *, freeze: bool = False) -> int:
         f"segment graph: {graph.n_segments} segments, {graph.n_junctions} nodes "
         f"({_count(int((graph.valence >= 3).sum()), 'junction')}), {_count(graph.n_components(), 'component')}"
     )
-    past_t = prog.stopped_because.startswith("past T")
+    # As the studio's title: the level's own E^s above T (a loop past T may end within it).
+    past_t = prog.final.similarity > prog.final.tolerance
     past = f"; past it, up to {options.stretch:.3g} T, for the arc budget" if past_t else ""
     say(
         f"levels: {len(prog.levels)}, arcs {prog.arc_counts[0]} -> {prog.arc_counts[-1]}, "

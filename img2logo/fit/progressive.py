@@ -315,7 +315,8 @@ def optimize(
     if graph.n_segments == 0:
         raise InvalidParameterError("the segment graph has no segments: nothing to abstract (no feature lines found)")
     locked = locked_segments(graph, lock_mask)
-    record = {**opts.record(), "arcs": arc_budget(opts), "locked_segments": int(locked.sum()), **(params or {})}
+    budget = arc_budget(opts)
+    record = {**opts.record(), "arcs": budget, "locked_segments": int(locked.sum()), **(params or {})}
     ladder, bias, unit, simplify = opts.ladder, opts.bias, opts.unit, opts.simplify
 
     circles = FreeCircles(symmetry)
@@ -371,7 +372,6 @@ def optimize(
     start = time.perf_counter()
     stopped = "merging off"
     tolerance = opts.tolerance
-    budget = arc_budget(opts)
     if opts.merging:
         stopped = merge_loop(state, tolerance, add_level, over_budget)
         if stopped != TIME_BUDGET_STOP and opts.stretch > 1.0 and logo_arcs(state) > budget:
