@@ -113,9 +113,9 @@ def test_cutting_off_tries_over_the_bound_changes_no_result(monkeypatch):
     within = window_solve._fits_within
     cuts = []
 
-    def never_cut(state, window, groups, seeds, fixed, node_groups, bound, regroup):
-        out = within(state, window, groups, seeds, fixed, node_groups, bound, regroup)
-        full = within(state, window, groups, seeds, fixed, node_groups, math.inf, regroup)
+    def never_cut(state, window, disp, groups, seeds, fixed, node_groups, bound, regroup):
+        out = within(state, window, disp, groups, seeds, fixed, node_groups, bound, regroup)
+        full = within(state, window, disp, groups, seeds, fixed, node_groups, math.inf, regroup)
         cuts.append(out is None and full is not None)
         return full
 
