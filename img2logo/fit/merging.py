@@ -28,7 +28,7 @@ from typing import TypeAlias, cast
 import numpy as np
 
 from . import window_solve
-from .constants import MERGE_FALLBACK_RINGS
+from .constants import FAR_ARC_RETRY, MERGE_FALLBACK_RINGS
 from .fit_state import FitState
 from .fit_values import GroupFit, Seed, Solution
 from .merge_checks import LevelView, Pair, level_view, new_gaps, redundant_after_merge, runs_through_twice, too_far
@@ -81,10 +81,11 @@ def evaluate(
     """Merge ``pair`` tentatively, refit, and score it; None if infeasible.
 
     ``tried``: when given and the refit fails (its windows, or the global
-    problem, have no solution), it receives the groups of the state whose
-    circles the windows held (the pair's two for the merged group): the
-    problem they solved, but for the weights 1/|A| and 1/|J'|, stays as it is
-    until a merge changes one of them (:func:`merge_loop`). ``level``: the
+    problem, have no solution), or its merged arc lies farther than
+    ``FAR_ARC_RETRY`` times its cap from its pixels, it receives the groups of
+    the state whose circles the windows held (the pair's two for the merged
+    group): the problem they solved, but for the weights 1/|A| and 1/|J'|,
+    stays as it is until a merge changes one of them (:func:`merge_loop`). ``level``: the
     state's :func:`~img2logo.fit.merge_checks.level_view`, when the caller has it.
     """
     state.stats.evaluated += 1
@@ -210,6 +211,8 @@ def evaluate(
     fits, disp = out
     if cap is not None and fits[-1].arc.frechet > cap:  # (then the window's other arcs were not extracted)
         state.stats.rejected_far_arc += 1
+        if fits[-1].arc.frechet > FAR_ARC_RETRY * cap:  # far enough that the weights alone will not bring it in
+            _tried(pair, windows, tried)
         return None
     # The merged arc (id -1) is held to its cap above; the silhouette's arcs beside it, moved by the refit, here.
     if outline_strays(state, {g: f for g, f in fits.items() if g != -1}, after, state.fits):
@@ -331,9 +334,10 @@ def merge_loop(
     """
     cache: dict[Pair, MergeOutcome | None] = {}
     stale: set[Pair] = set()
-    # A candidate whose refit failed, by the groups its windows held (evaluate's ``tried``): it is
-    # tried again once a merge changed one of them, like a candidate with a score (the windows'
-    # constraints are the same until then; only the weights 1/|A|, 1/|J'| of their objective move).
+    # A candidate whose refit failed, or left its arc far past its cap, by the groups its windows held
+    # (evaluate's ``tried``): it is tried again once a merge changed one of them, like a candidate with
+    # a score (the windows' problem is the same until then; only the weights 1/|A|, 1/|J'| of their
+    # objective move).
     failed: dict[Pair, frozenset[int]] = {}
 
     def score(pair: Pair) -> None:

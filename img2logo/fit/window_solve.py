@@ -90,8 +90,8 @@ def solve(
     from its level's); default found in ``seeds``. With ``bound`` (px), None
     as soon as E^s (Eqn. 3) of the state with the new fits and displacements
     must exceed it, and ``regroup`` may split groups anew before their arcs
-    are extracted (:func:`_fits_within`; a tangent join's slide). None if it fails;
-    then ``tried``, when given, receives the groups of the last (widest) window solved.
+    are extracted (:func:`_fits_within`; a tangent join's slide). None if it fails.
+    ``tried``, when given, receives the groups of the last (widest) window solved, whether it solved or not.
     ``stop_when_stuck``: that of :func:`~img2logo.fit.local_window.fit_window`. ``rest``: junction ->
     its rest point p_k for the fit instead of the graph's, px (2,) (a tangent biarc's junction: its d_k
     starts at zero there); the displacements returned, and those the arcs are extracted with, are from
@@ -130,9 +130,9 @@ def solve(
         else None,
         stop_when_stuck=stop_when_stuck,
     )
+    if tried is not None:
+        tried.update(cast(Collection[int], window.circles))
     if not window.ok:
-        if tried is not None:
-            tried.update(cast(Collection[int], window.circles))
         return None
     disp = _window_displacements(state, window)
     for n, p in (rest or {}).items():
