@@ -512,21 +512,13 @@ def split_chain(chain: np.ndarray, q: np.ndarray) -> tuple[np.ndarray, np.ndarra
     The nearest point of the polyline ends the head and starts the tail. None
     if either would keep fewer than ``SLIDE_MIN_PIXELS`` pixels.
     """
-    # In place and without numpy's wrappers (np.diff, np.clip, np.vstack): the same numbers, a third of the time.
-    a = chain[:-1]
-    v = chain[1:] - a
-    t = np.einsum("ij,ij->i", q - a, v) / np.maximum(np.einsum("ij,ij->i", v, v), 1e-300)
-    np.maximum(t, 0.0, out=t)
-    np.minimum(t, 1.0, out=t)
-    foot = a + t[:, None] * v
-    off = q - foot
-    dist = np.hypot(off[:, 0], off[:, 1])
-    i = int(dist.argmin())
-    at = foot[i : i + 1]
-    head, tail = np.concatenate((chain[: i + 1], at)), np.concatenate((at, chain[i + 1 :]))
-    if len(head) <= SLIDE_MIN_PIXELS or len(tail) <= SLIDE_MIN_PIXELS:  # the pixels and the foot
+    from .._compiled import kernels  # loaded by the first fit already
+
+    i, x, y, dist = kernels.nearest_on_chain_kernel(chain, float(q[0]), float(q[1]))
+    if i + 2 <= SLIDE_MIN_PIXELS or len(chain) - i <= SLIDE_MIN_PIXELS:  # the pixels and the foot
         return None
-    return head, tail, float(dist[i])
+    at = np.array([[x, y]])
+    return np.concatenate((chain[: i + 1], at)), np.concatenate((at, chain[i + 1 :])), float(dist)
 
 
 def _window(opt: FitState, made: dict[int, tuple[int, int]], pair: tuple[int, int]) -> tuple[set[int], set[int]]:
