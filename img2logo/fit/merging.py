@@ -85,7 +85,9 @@ def evaluate(
     ``FAR_ARC_RETRY`` times its cap from its pixels, it receives the groups of
     the state whose circles the windows held (the pair's two for the merged
     group): the problem they solved, but for the weights 1/|A| and 1/|J'|,
-    stays as it is until a merge changes one of them (:func:`merge_loop`). ``level``: the
+    stays as it is until a merge changes one of them (:func:`merge_loop`).
+    When :func:`~img2logo.fit.merge_checks.too_far` proves the merged arc too far
+    (it reads the two groups only), it receives the pair's two groups. ``level``: the
     state's :func:`~img2logo.fit.merge_checks.level_view`, when the caller has it.
     """
     state.stats.evaluated += 1
@@ -103,6 +105,7 @@ def evaluate(
     if far is not None and far[0] is group_a and far[1] is group_b and far[2:] == then:
         # :func:`too_far` rejected this merge of these two groups before: it reads nothing else that changes.
         state.stats.rejected_far_arc += 1
+        _tried(pair, {-1}, tried)  # (until a merge changes a or b: then the pair is gone)
         return None
     merged = merge_groups(group_a, group_b, node)
     after = dict(state.groups)  # in the state's order, the merged group last
@@ -126,6 +129,7 @@ def evaluate(
         state.stats.rejected_far_arc += 1
         if not held:  # (the lines held at its junctions refused a straight line: that may change)
             state.far_pairs[pair] = (group_a, group_b, *then)
+            _tried(pair, {-1}, tried)
         return None
 
     merged_nodes = set(state.constrained_nodes(merged))

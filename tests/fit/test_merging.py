@@ -164,7 +164,9 @@ def test_a_merged_arc_no_circle_of_its_radius_brings_near_is_rejected_before_its
     assert list(state.far_arcs.values()) == [True]  # the proof is made once per merged group and radius
     # ... and the pair's two groups, under this T (past T the bound grows: the pair is proved again)
     assert state.far_pairs == {(0, 1, 1): (state.groups[0], state.groups[1], 0, state.options.tolerance)}
-    assert evaluate(state, (0, 1, 1)) is None and state.stats.rejected_far_arc == 2
+    # The loop evaluates it again only once a merge changed one of the two (``tried``): then it is gone.
+    tried: set[int] = set()
+    assert evaluate(state, (0, 1, 1), tried) is None and state.stats.rejected_far_arc == 2 and tried == {0, 1}
     state.options = dataclasses.replace(state.options, tolerance=2 * state.options.tolerance)  # past T
     assert evaluate(state, (0, 1, 1)) is None and state.far_pairs[0, 1, 1][3] == state.options.tolerance
     # Another group under one of the ids (a tangent join's slide splits pixels anew): proved again.
