@@ -134,6 +134,9 @@ def png_bytes(
     """The bytes of the PNG :func:`write_png` writes (the same parameters, without the path).
 
     For a caller that keeps the file in memory (the batch's workers hand their files back as bytes).
+    An input of the PNG's own pixel size is laid under the drawing pixel for pixel
+    (:func:`img2logo.export.plotting.faded_pixels`), the bytes ``imshow`` would give without its resampling
+    pass; another size (a downscaled working image, a ``scale``) is resampled by ``imshow``.
     """
     fill_list, width, height, sw = checked_drawing(abstraction, fills, stroke_width)
     d = check_positive(dpi, "dpi")
