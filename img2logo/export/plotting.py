@@ -507,12 +507,8 @@ def faded_pixels(image: np.ndarray, width: int, height: int, fade: float = IMAGE
 
     Parameters
     ----------
-    image : array_like, shape (height, width) or (height, width, C), C in 1..4
-        As :func:`_background_rgb` reads it.
-    width, height : int
-        The size the image must have, px.
-    fade : float
-        In [0, 1]: 0 keeps the image, 1 makes it white.
+    image, width, height, fade
+        As :func:`_background_rgb` takes them: the input, the size it must have (px), the fade in [0, 1].
 
     Returns
     -------
