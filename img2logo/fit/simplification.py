@@ -68,11 +68,11 @@ def merge_groups(a: Group, b: Group, node: int) -> Group:
 
 
 #: The merges :func:`merge_candidate` scored, by the two groups' segments: (error, merged group).
-Scores = dict[tuple[tuple[int, ...], tuple[int, ...]], tuple[float, Group]]
+_Scores = dict[tuple[tuple[int, ...], tuple[int, ...]], tuple[float, Group]]
 
 
 def merge_candidate(
-    ga: Group, gb: Group, node: int, error: Callable[[Group], float], scores: Scores
+    ga: Group, gb: Group, node: int, error: Callable[[Group], float], scores: _Scores
 ) -> tuple[float, Group] | None:
     """The simplification's candidate of two groups that meet at a split ``node``: (error, merged group), or None.
 
@@ -117,7 +117,7 @@ def simplify(
             at.setdefault(n, []).append(i)
     pairs: dict[int, tuple[int, int, Group]] = {}  # node -> the pair whose merge there is a candidate, merged
     heap: list[tuple[float, int, int, int]] = []
-    scores: Scores = {}
+    scores: _Scores = {}
     split = set(np.flatnonzero(np.asarray(valence) == 2).tolist())  # the split points: valence 2
 
     def score(node: int) -> None:
