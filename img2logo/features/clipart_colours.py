@@ -6,9 +6,6 @@ the mean shift that flattens a compressed one's fills (:func:`mean_shift`), the
 largest colour difference in each pixel's window (:func:`lab_spread`) and the
 flat areas it gives (:func:`flat_areas`), and the regions' mean colours
 (:func:`label_means`).
-
-Arrays are indexed (row, column); points are (x, y) = (column + 0.5, row + 0.5)
-in px, x to the right, y downwards (``contract/README.md``).
 """
 
 from __future__ import annotations

@@ -4,9 +4,6 @@ A *thin* region (a whisker, a mouth line, an outline stroke: at most
 ``CLIPART_STROKE_WIDTH`` px wide and much longer than wide, :func:`thin_regions`)
 and an *ink outline* (a region darker than what it touches, :func:`ink_outlines`)
 give their centreline instead of a double boundary (:func:`clipart_lines`).
-
-Arrays are indexed (row, column); points are (x, y) = (column + 0.5, row + 0.5)
-in px, x to the right, y downwards (``contract/README.md``).
 """
 
 from __future__ import annotations

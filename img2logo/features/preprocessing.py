@@ -10,9 +10,6 @@ Three kinds of input, as in the paper:
 
 The kind is told by :mod:`img2logo.features.kinds`. Loading is :mod:`img2logo.images.loading`; its
 names, and the kinds' and the drawing lines' public ones, are re-exported here.
-
-Arrays are indexed (row, column); points are (x, y) = (column + 0.5, row + 0.5)
-in px, x to the right, y downwards (``contract/README.md``).
 """
 
 from __future__ import annotations
