@@ -387,7 +387,11 @@ def optimize(
     if state.smooth:
         # The result, its circles touching at the smooth joins (beyond the paper); it may be
         # a level before the loop's last, whose shorter arcs leave room for more tangencies.
-        back = tangent_level(state, tolerance, history, over_budget)
+        # An arc budget the loop met bounds the result: a tangency trades for arcs only below it. One the
+        # stretched tolerance kept it from does not: those levels back lower E^s past T as well as kinks.
+        arcs = logo_arcs(state)
+        room = (budget - arcs) // (1 if state.symmetry is None else 2) if arcs <= budget else None
+        back = tangent_level(state, tolerance, history, over_budget, room)
         del levels[len(levels) - back :]
         levels[-1] = LevelState.of(state, levels[-1].level, record, run).abstraction()
         if progress:  # the result: an earlier t than the last reported when levels were dropped
