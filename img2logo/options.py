@@ -131,7 +131,8 @@ class Options:
         The logo's arc budget, at least 1, or None (default: about
         ``LOGO_ARCS`` = 40, by the fit alone). Every kind: where the fit within
         T has more arcs, merging goes on past T, up to ``stretch`` T, until the
-        logo has this many (:func:`img2logo.fit.progressive.optimize`). A clip
+        logo has this many (:func:`img2logo.fit.progressive.optimize`); where
+        it does, the tangent joins add no arcs past it. A clip
         art given a budget also merges regions first
         (:func:`img2logo.features.detail.merge_by_importance`): after
         ``detail``, the regions of least Ward weight per predicted arc, until

@@ -34,7 +34,7 @@ def thin_regions(regions: np.ndarray, lightness: np.ndarray | None = None) -> np
     ``CLIPART_STROKE_ELONGATION`` times longer than that width: a whisker or
     an outline, not a dot.
 
-    An **ink outline** (:func:`ink_outlines`, given the regions' mean L*
+    An **ink outline** (:func:`ink_outlines`, given the regions' median L*
     ``lightness`` (n,)), a region darker than what it touches, is a stroke up
     to ``CLIPART_OUTLINE_WIDTH`` px wide: the cartoon style's dark line between
     lighter fills, drawn once along its centre as a drawing's stroke is, not as
@@ -84,8 +84,9 @@ def ink_outlines(
 
     A region is one when at least ``CLIPART_INK_BORDER`` of its border (in
     pixel pairs) is with regions lighter by ``contrast`` (L*, default
-    ``CLIPART_EDGE_CONTRAST``; ``lightness`` (n,) the regions' mean): a cartoon's outline runs between
-    lighter fills, and touches the odd dark detail (a pupil, a dark shading)
+    ``CLIPART_EDGE_CONTRAST``; ``lightness`` (n,) the regions' median L*,
+    :func:`~img2logo.features.clipart_colours.label_lightness`): a cartoon's
+    outline runs between lighter fills, and touches the odd dark detail (a pupil, a dark shading)
     along a little of its length. The background is none. Without ``paper``
     the border with the background does not count: a dark mark on the
     object's lighter fills (an eye, a spot, an inner outline), and not a dark
@@ -110,7 +111,7 @@ def clipart_lines(regions: np.ndarray, lightness: np.ndarray | None = None) -> n
     are added to the map, so that thinning turns each into its centreline,
     joined to the boundaries it touches.
 
-    With ``lightness`` (n,), the regions' mean L*, the **ink outlines** are
+    With ``lightness`` (n,), the regions' median L*, the **ink outlines** are
     drawn once, as a drawing's strokes (:func:`ink_strokes`: the thin ink
     regions and the thin parts of the others, a cartoon's outline network).
     Each of their pixels is given to the region nearest to it, so that the

@@ -579,3 +579,35 @@ def test_the_budget_reads_the_cpu_clock_only_when_it_may_have_run_out(monkeypatc
     assert [over() for _ in range(3)] == [False] * 3 and len(reads) == 4  # (one read for the deadline)
     clocks["cpu"] += 1.5
     assert over() and len(reads) == 5
+
+
+def _outlined(stroke: int = 5) -> np.ndarray:
+    """A clip art: a light outline stroke ``stroke`` px wide round a dark ellipse, drawn at 4x and reduced."""
+    s = 4
+    big = np.full((256 * s, 256 * s, 3), 255, np.uint8)
+    cv2.ellipse(big, (128 * s, 128 * s), (90 * s, 60 * s), 0, 0, 360, (120, 40, 20), -1)
+    cv2.ellipse(big, (128 * s, 128 * s), (90 * s, 60 * s), 0, 0, 360, (80, 180, 250), stroke * s)
+    return cv2.resize(big, (256, 256), interpolation=cv2.INTER_AREA)
+
+
+def test_an_outline_strokes_centre_line_is_the_silhouette():
+    """Known answer: a thin outline stroke 5 px wide between the paper and a fill (lighter than the fill,
+    so no ink outline) is drawn once along its middle, 2.5 px from the paper, farther than a fill's edge
+    runs; that line is the object's silhouette all round, and held."""
+    from img2logo.fit.progressive import outline_segments
+
+    lines = extract_feature_lines(_outlined())
+    graph = build_segment_graph(lines)
+    points = np.concatenate(graph.segments)
+    r = np.hypot((points[:, 0] - 128) / 90, (points[:, 1] - 128) / 60)
+    assert np.abs(r - 1).max() < 0.03  # the stroke's centre line, not one of its edges
+    on = outline_segments(graph, lines.regions == 0)
+    assert on.all()
+
+
+def test_the_outline_strokes_reach_is_half_the_widest_thin_stroke():
+    """The silhouette's reach into an outline stroke follows the front end's stroke width."""
+    from img2logo.features.constants import CLIPART_STROKE_WIDTH
+    from img2logo.fit.constants import OUTLINE_DISTANCE, OUTLINE_STROKE_DISTANCE
+
+    assert OUTLINE_STROKE_DISTANCE == OUTLINE_DISTANCE + CLIPART_STROKE_WIDTH / 2
