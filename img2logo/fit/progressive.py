@@ -240,6 +240,7 @@ def optimize(
     progress: ProgressCallback | None = None,
     params: Mapping[str, Any] | None = None,
     symmetry: AxisConstraints | None = None,
+    started: float | None = None,
     **settings: Any,
 ) -> Progression:
     """Run the progressive optimization of Sec. 5.2 on a segment graph.
@@ -280,6 +281,11 @@ def optimize(
         the vertical line ``symmetry.x``; junctions ``symmetry.nodes`` stay on
         it, circles ending square to it are centred on it, and no arc runs on
         through it (Eqn. 13 with the symmetry constraints).
+    started : float, optional
+        The process's CPU time (:func:`time.process_time`, s) the time budget
+        (``Options.time_budget``) counts from: default this call's start;
+        :func:`img2logo.abstract` gives its own, so that the budget bounds the
+        whole run, the image's feature lines and segment graph included.
     **settings
         Fields of :class:`~img2logo.options.Options` (``tolerance=7.0``,
         ``merging=False``, ...), replacing those of ``options``.
@@ -322,7 +328,7 @@ def optimize(
     circles = FreeCircles(symmetry)
     axis_nodes = symmetry.nodes if symmetry is not None else frozenset()
     timings: dict[str, float] = {}
-    over_budget = _budget(opts.time_budget)
+    over_budget = _budget(opts.time_budget, started)
     start = time.perf_counter()
     groups = [
         Group((i,), tuple(int(n) for n in graph.ends[i]), seg, bool(locked[i])) for i, seg in enumerate(graph.segments)
@@ -434,8 +440,8 @@ def logo_arcs(state: FitState) -> int:
     return 2 * n - sum(1 for g in state.fits if state.on_axis(state.groups[g]))
 
 
-def _budget(seconds: float | None) -> Callable[[], bool] | None:
-    """Whether ``seconds`` of this process's CPU time have passed since now (None: no bound).
+def _budget(seconds: float | None, since: float | None = None) -> Callable[[], bool] | None:
+    """Whether ``seconds`` of this process's CPU time have passed since ``since`` (default now; None: no bound).
 
     CPU time, not wall time: other processes' load does not shorten it (a run
     stops at about the same merge on an idle and on a busy machine). The
@@ -445,7 +451,7 @@ def _budget(seconds: float | None) -> Callable[[], bool] | None:
     """
     if seconds is None:
         return None
-    deadline = time.process_time() + seconds
+    deadline = (time.process_time() if since is None else since) + seconds
     # A process's CPU clock runs at most as fast as the wall clock times the machine's CPUs: until the wall
     # clock has run that far, the CPU clock cannot have passed the deadline, and it is not read (each read
     # is a system call, some microseconds of CPU; the merge loop asks before every candidate's refit).

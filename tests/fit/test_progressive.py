@@ -4,13 +4,14 @@ from __future__ import annotations
 
 import itertools
 import math
+import time
 
 import cv2
 import numpy as np
 import pytest
 from helpers import BIAS, DATA, blank, check_level, golden_chain, hand_built_state, sampled_arc
 
-from img2logo import InvalidParameterError, Options, SegmentGraph, build_segment_graph, extract_feature_lines
+from img2logo import InvalidParameterError, Options, SegmentGraph, abstract, build_segment_graph, extract_feature_lines
 from img2logo.constants import LOGO_ARCS, PHI
 from img2logo.fit.intersections import redundant_intersections
 from img2logo.fit.merge_checks import redundant_pairs
@@ -270,6 +271,34 @@ def test_time_budget_stops_at_the_last_level_and_says_so(fish_progression, monke
     with pytest.warns(progressive.TimeBudgetWarning):
         optimize(graph, tolerance=5.0, time_budget=budget, progress=lambda t, n, e: seen.append(t))
     assert seen[-1] == seen[-2]  # the result is the loop's last level, refitted
+
+
+def test_the_time_budget_counts_from_the_start_given(fish_progression):
+    """A budget already spent when the optimization starts (the run's feature lines took it): A^0 is the logo."""
+    import img2logo.fit.progressive as progressive
+
+    graph, _ = fish_progression
+    with pytest.warns(progressive.TimeBudgetWarning):
+        prog = optimize(graph, tolerance=5.0, time_budget=1.0, tangency=False, started=time.process_time() - 2.0)
+    assert prog.stopped_because == "time budget" and len(prog.levels) == 1
+    assert prog.final.arcs == optimize(graph, tolerance=5.0, tangency=False, merging=False).final.arcs
+
+
+def test_abstract_s_budget_counts_from_its_own_start(monkeypatch):
+    import img2logo.pipeline as pipeline
+
+    seen = []
+    real = pipeline.optimize
+
+    def spy(*args, **kwargs):
+        seen.append((kwargs["started"], time.process_time()))
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(pipeline, "optimize", spy)
+    before = time.process_time()
+    abstract(DATA / "drawing-fish.png", progress=False)
+    ((started, called),) = seen
+    assert before <= started < called  # the image read and its feature lines are inside the budget
 
 
 def test_a_budget_not_reached_changes_nothing(fish_progression):
