@@ -180,7 +180,8 @@ def merge_by_importance(
 
         warnings.warn(
             f"{n} regions at detail {detail} are more than the optimization takes at once ({max_regions}): "
-            f"coarsened to detail {len(unique(target)) - 1}, {len(unique(target))} regions",
+            f"coarsened to detail {len(unique(target)) - 1}, {len(unique(target))} regions"
+            + (" (no fewer without merging across the outline)" if len(unique(target)) > max_regions else ""),
             DetailWarning,
             stacklevel=2,
         )

@@ -174,6 +174,24 @@ def test_too_many_regions_are_coarsened_and_said_in_one_line():
     assert "\n" not in message and f"{regions.max() + 1} regions" in message and "40 regions" in message
 
 
+def test_fills_that_touch_only_the_outline_are_not_merged_across_it_and_the_warning_says_so():
+    im = blank(400)
+    rng = np.random.default_rng(5)
+    cv2.rectangle(im, (36, 36), (363, 363), (0, 0, 0), -1)  # a black outline network ...
+    for row in range(8):
+        for col in range(8):  # ... round 64 tiles of distinct light colours, each touching only the black
+            colour = tuple(int(v) for v in rng.integers(120, 255, 3))
+            cv2.rectangle(im, (42 + 40 * col, 42 + 40 * row), (75 + 40 * col, 75 + 40 * row), colour, -1)
+    img = load_image(im)
+    regions = clipart_regions(img)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        merged, kept, _ = merge_by_importance(regions, img.lab, 24, max_regions=40)
+    assert merged.max() == regions.max() == kept == 65  # the tiles, the outline and the paper: nothing merged
+    (w,) = [c for c in caught if issubclass(c.category, DetailWarning)]
+    assert str(w.message).endswith("66 regions (no fewer without merging across the outline)")
+
+
 def test_few_regions_give_no_warning_and_detail_one_changes_nothing():
     im = _disc()
     img = load_image(im)
