@@ -1,4 +1,4 @@
-"""numpy and scikit-image functions written again for start-up time, each with the library's result (tests compare).
+"""numpy and scikit-image functions written again for start-up time or speed, each with the library's result.
 
 A run of the command pays for every module it imports; each of these few
 functions saves its library call's cost on a clip art's run, measured by
@@ -6,6 +6,8 @@ functions saves its library call's cost on a clip art's run, measured by
 
 * :func:`unique`: ``np.unique``'s first call imports ``numpy.ma``: 0.008 s of CPU.
 * :func:`median`: ``np.median`` looks ``np.ma`` up, which imports ``numpy.ma``: the same 0.008 s.
+* :func:`unique_rows`: ``np.unique(a, axis=0)`` sorts a structured view: 28 us against 7.7 us on a local
+  window's 12 incidence rows (``timeit`` under load); it runs for every constrained fit.
 * :func:`intersect1d`, :func:`setdiff1d`, :func:`union1d`: numpy's, given the inputs' :func:`unique` values
   (numpy's own call of ``np.unique`` would import ``numpy.ma``).
 * :func:`nonzero`: ``np.nonzero`` of a 512 x 512 mask takes 2.5 ms whatever its count (``python -m
@@ -26,6 +28,17 @@ def unique(values: np.ndarray) -> np.ndarray:
     if a.size > 1:
         a = a[np.concatenate(([True], a[1:] != a[:-1]))]
     return a
+
+
+def unique_rows(arr: np.ndarray) -> np.ndarray:
+    """``np.unique(arr, axis=0)`` of an integer array (R, K) as int64: the distinct rows, sorted (by a lexsort)."""
+    arr = arr.astype(np.int64)
+    if len(arr) < 2:
+        return arr
+    rows = arr[np.lexsort(arr.T[::-1])]
+    keep = np.ones(len(rows), dtype=bool)
+    keep[1:] = (rows[1:] != rows[:-1]).any(axis=1)
+    return rows[keep]
 
 
 def intersect1d(a: np.ndarray, b: np.ndarray) -> np.ndarray:

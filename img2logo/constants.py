@@ -89,7 +89,8 @@ MAX_RADIUS_FACTOR: float = 20.0
 #: Default tolerance T on the similarity error E^s (Eqn. 1), px; the paper's default.
 TOLERANCE: float = 5.0
 #: A logo's arcs when no budget is given (``Options.arcs`` None): where the fit within T has more, merging goes on
-#: past T (``Options.stretch``). A golden ratio logo is a silhouette and a few inner lines, a few dozen arcs.
+#: past T (``Options.stretch``); where it reaches the budget, the tangent pass adds no arcs past it. A golden ratio
+#: logo is a silhouette and a few inner lines, a few dozen arcs.
 LOGO_ARCS: int = 40
 #: How far past T merging may go to bring a logo down to its arcs, as a factor of T: phi, one step of the golden
 #: ladder. docs/design/logo-size.md has the measurements (2 T cut the silhouettes of busy clip arts).

@@ -44,8 +44,8 @@ __all__ = [
     "refuse_lock_mask",
 ]
 
-#: Default time budget of the progressive optimization, s of CPU time of the process running it (on an idle machine
-#: about the wall time): past it the merge loop stops at its last level (``Options.time_budget``).
+#: Default time budget of a run, s of CPU time of the process running it (on an idle machine about the wall time),
+#: from the start of ``abstract()``: past it the merge loop stops at its last level (``Options.time_budget``).
 TIME_BUDGET: float = 10.0
 
 #: ``max_arc_distance``'s default: ``PHOTO_MAX_ARC_FACTOR * tolerance`` for a photo, no bound otherwise.
@@ -131,7 +131,8 @@ class Options:
         The logo's arc budget, at least 1, or None (default: about
         ``LOGO_ARCS`` = 40, by the fit alone). Every kind: where the fit within
         T has more arcs, merging goes on past T, up to ``stretch`` T, until the
-        logo has this many (:func:`img2logo.fit.progressive.optimize`). A clip
+        logo has this many (:func:`img2logo.fit.progressive.optimize`); where
+        it does, the tangent joins add no arcs past it. A clip
         art given a budget also merges regions first
         (:func:`img2logo.features.detail.merge_by_importance`): after
         ``detail``, the regions of least Ward weight per predicted arc, until
@@ -186,7 +187,10 @@ class Options:
         the constrained fit, Eqn. 13). Off: the paper's kinks.
     time_budget : float or None
         Seconds of CPU time (of the process running it; on an idle machine
-        about the wall time) the progressive optimization may take, > 0; None: no bound.
+        about the wall time) a run may take, > 0; None: no bound. Counted from
+        the start of :func:`img2logo.abstract` (reading the image, its feature
+        lines and segment graph included), or of
+        :func:`img2logo.fit.progressive.optimize` called alone.
         Past it the merge loop stops at its last level (every level is within T)
         and the tangent joins try no level before it, with a
         :class:`~img2logo.fit.progressive.TimeBudgetWarning` saying so in one line.
@@ -343,7 +347,7 @@ class Options:
         flags=("--time-budget",),
         parse=parse_budget,
         metavar="S|none",
-        help="seconds of CPU time the optimization may take; past them merging stops at the last level, which "
+        help="seconds of CPU time the run may take, from its start; past them merging stops at the last level, which "
         f"is within T, and says so in one line; none: no bound (default {TIME_BUDGET:g})",
     )
 

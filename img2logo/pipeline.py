@@ -179,6 +179,7 @@ def abstract(
     >>> result.lines.kind, len(result.final.arcs), result.final.arcs[0].is_full_circle
     ('drawing', 1, True)
     """
+    started = time.process_time()  # the time budget bounds the whole run
     given = {name: value for name, value in (("tolerance", tolerance), ("kind", kind)) if value is not _DEFAULT}
     if not (progress is None or isinstance(progress, bool) or callable(progress)):
         raise InvalidParameterError(
@@ -246,12 +247,14 @@ def abstract(
     try:
         if choice is not None and choice.axis is not None:
             progression, graph, _ = optimize_symmetric(
-                graph, choice.axis, choice=choice, options=opts, progress=callback, params=params
+                graph, choice.axis, choice=choice, options=opts, progress=callback, params=params, started=started
             )
         else:
             # A clip art's background is the paper round the object: its silhouette is held (optimize).
             paper = lines.regions == 0 if lines.kind == "clipart" and lines.regions is not None else None
-            progression = optimize(graph, opts, lock_mask=lock_mask, silhouette=paper, progress=callback, params=params)
+            progression = optimize(
+                graph, opts, lock_mask=lock_mask, silhouette=paper, progress=callback, params=params, started=started
+            )
     finally:
         if bar is not None:
             bar.close()

@@ -3,7 +3,17 @@
 import numpy as np
 from helpers import modules_loaded
 
-from img2logo._compat import circle_perimeter, intersect1d, line, median, nonzero, setdiff1d, union1d, unique
+from img2logo._compat import (
+    circle_perimeter,
+    intersect1d,
+    line,
+    median,
+    nonzero,
+    setdiff1d,
+    union1d,
+    unique,
+    unique_rows,
+)
 
 
 def test_median_is_numpys_to_the_bit():
@@ -26,6 +36,15 @@ def test_unique_is_numpys():
             got, want = unique(values), np.unique(values)
             assert got.dtype == want.dtype and np.array_equal(got, want)
     assert np.array_equal(unique(np.array([[3, 1], [1, 3]])), [1, 3])
+
+
+def test_unique_rows_is_numpys_unique_along_rows():
+    rng = np.random.default_rng(3)
+    for _ in range(300):
+        rows = rng.integers(0, 5, (int(rng.integers(0, 12)), int(rng.integers(2, 4))))
+        got = unique_rows(rows)
+        want = np.unique(rows.astype(np.int64), axis=0)
+        assert got.dtype == np.int64 and got.shape == want.shape and (got == want).all()
 
 
 def test_set_operations_are_numpys():

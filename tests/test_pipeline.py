@@ -436,11 +436,12 @@ def test_every_free_end_of_a_real_logo_is_an_end_of_the_input_s_lines(name):
     assert at_ends == found
 
 
-@pytest.mark.parametrize(("name", "least"), [("clipart-pansement", 0.97), ("clipart-beagle", 0.95)])
+@pytest.mark.parametrize(("name", "least"), [("clipart-pansement", 0.97), ("clipart-beagle", 0.94)])
 def test_a_real_clip_art_s_silhouette_survives_the_fit(name, least):
     """Openclipart: the silhouette is in the segment graph whole (sil6 of the first level about 1.0) and the
     merges and tangent joins no longer cut it (final sil6 0.84 for the bandage, whose rounded ends were
-    cut by single arcs, and 0.89 for the beagle, before its arcs were held to T)."""
+    cut by single arcs, and 0.89 for the beagle, before its arcs were held to T). The beagle's bound
+    leaves room for the eye it keeps at the level T allows (0.949 with it, 0.97 without)."""
     import cv2
 
     from img2logo.quality import logo_points, silhouette_recall

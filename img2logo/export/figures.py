@@ -7,6 +7,7 @@ scale), without timestamp or software metadata; the PDF by matplotlib's PDF back
 
 from __future__ import annotations
 
+import functools
 import math
 import os
 from collections.abc import Callable, Sequence
@@ -25,6 +26,7 @@ from .constants import PNG_DPI
 from .plotting import (
     ARC_COLOR,
     default_stroke_width,
+    faded_pixels,
     plot_abstraction,
     plot_segment_graph,
 )
@@ -132,6 +134,9 @@ def png_bytes(
     """The bytes of the PNG :func:`write_png` writes (the same parameters, without the path).
 
     For a caller that keeps the file in memory (the batch's workers hand their files back as bytes).
+    An input of the PNG's own pixel size is laid under the drawing pixel for pixel
+    (:func:`img2logo.export.plotting.faded_pixels`), the bytes ``imshow`` would give without its resampling
+    pass; another size (a downscaled working image, a ``scale``) is resampled by ``imshow``.
     """
     fill_list, width, height, sw = checked_drawing(abstraction, fills, stroke_width)
     d = check_positive(dpi, "dpi")
@@ -141,19 +146,24 @@ def png_bytes(
     if background == "input" and image is None:
         raise InvalidParameterError('background "input" needs the input image (image=...), got none')
     size = png_size(width, height, scale, background)
+    under = image if background == "input" else None
+    backdrop = None
+    if under is not None and size == (width, height) and np.shape(under)[:2] == (height, width):
+        # Pixel for pixel: the faded input is laid down as it is, not resampled by imshow (the same bytes).
+        backdrop, under = faded_pixels(under, width, height), None
 
     def draw(ax: Any) -> None:
         plot_abstraction(
             abstraction,
             ax,
-            image=image if background == "input" else None,
+            image=under,
             show_circles=show_circles,
             show_junctions=show_junctions,
             linewidth=sw * 72.0 / d,
             fills=fill_list,
         )
 
-    return _figure_png(width, height, d, draw, size=size, transparent=background == "transparent")
+    return _figure_png(width, height, d, draw, size=size, transparent=background == "transparent", backdrop=backdrop)
 
 
 def png_size(width: float, height: float, scale: float | None = None, background: str = "white") -> tuple[int, int]:
@@ -353,11 +363,14 @@ def _figure_png(
     *,
     size: tuple[int, int] | None = None,
     transparent: bool = False,
+    backdrop: np.ndarray | None = None,
 ) -> bytes:
     """The PNG of full-figure axes of a ``width`` x ``height`` px Agg figure that ``draw(ax)`` drew on.
 
     ``size`` (px) resamples the figure to another pixel size: the figure keeps its
     size in points and is saved at ``dpi`` times the scale, so strokes scale with it.
+    ``backdrop``, uint8 RGB of shape (out_h, out_w, 3), is laid under the drawing pixel for pixel
+    (in place of the white page; not with ``transparent``).
     """
     import io
 
@@ -391,10 +404,45 @@ def _figure_png(
         from PIL import Image
 
         fig.set_dpi(save_dpi)
+        if backdrop is not None:
+            fig.add_artist(_pixel_layer(backdrop))
         canvas.draw()
         rgba = np.asarray(canvas.buffer_rgba())
         Image.fromarray(np.ascontiguousarray(rgba[..., :3])).save(buffer, format="png", dpi=(save_dpi, save_dpi))
     return buffer.getvalue()
+
+
+def _pixel_layer(pixels: np.ndarray) -> Any:
+    """A figure artist that lays ``pixels`` (uint8 RGB, shape (rows, columns, 3)) on the canvas from its top left.
+
+    Through :meth:`RendererAgg.draw_image`, unresampled: each pixel is one device pixel, as ``imshow``
+    draws an image of the canvas's size with ``interpolation="nearest"``, without its resampling pass.
+    Drawn first (``zorder`` below the axes).
+    """
+    rgba = np.empty((*pixels.shape[:2], 4), dtype=np.uint8)
+    rgba[..., :3] = pixels[::-1]  # draw_image's rows go up from the bottom
+    rgba[..., 3] = 255
+    layer = _pixel_layer_class()(rgba)
+    layer.set_zorder(-1.0)
+    return layer
+
+
+@functools.cache
+def _pixel_layer_class() -> type:
+    """The artist class of :func:`_pixel_layer`, made once (matplotlib loads lazily)."""
+    from matplotlib.artist import Artist
+
+    class PixelLayer(Artist):
+        def __init__(self, rgba: np.ndarray) -> None:
+            super().__init__()
+            self.rgba = rgba
+
+        def draw(self, renderer: Any) -> None:
+            gc = renderer.new_gc()
+            renderer.draw_image(gc, 0.0, 0.0, self.rgba)
+            gc.restore()
+
+    return PixelLayer
 
 
 def save_figure(fig: Any, path: str | os.PathLike[str], *, dpi: float = PNG_DPI) -> Path:

@@ -46,6 +46,7 @@ __all__ = [
     "default_stroke_width",
     "draw_fills",
     "evenodd_orient",
+    "faded_pixels",
     "frame_image",
     "level_stroke_width",
     "plot_abstraction",
@@ -494,6 +495,26 @@ def _draw_image(ax: Axes, image: np.ndarray, width: int, height: int, fade: floa
             return
     rgb = _background_rgb(image, width, height, fade)
     ax.imshow(rgb, extent=(0.0, float(width), float(height), 0.0), origin="upper", interpolation="nearest", zorder=0)
+
+
+def faded_pixels(image: np.ndarray, width: int, height: int, fade: float = IMAGE_FADE) -> np.ndarray:
+    """The input faded towards white as the 8-bit pixels that :func:`plot_abstraction` draws of it at 1 px a pixel.
+
+    Matplotlib turns the float RGB of :func:`_background_rgb` into bytes as
+    ``floor(255 * value)`` (``ScalarMappable.to_rgba(bytes=True)``); so does this,
+    so that a PNG that lays these pixels down directly has the bytes of one drawn with
+    ``imshow`` (:func:`img2logo.export.figures.png_bytes`).
+
+    Parameters
+    ----------
+    image, width, height, fade
+        As :func:`_background_rgb` takes them: the input, the size it must have (px), the fade in [0, 1].
+
+    Returns
+    -------
+    ndarray, shape (height, width, 3), uint8
+    """
+    return (_background_rgb(image, width, height, fade) * 255.0).astype(np.uint8)
 
 
 def _background_rgb(image: np.ndarray, width: int, height: int, fade: float = IMAGE_FADE) -> np.ndarray:

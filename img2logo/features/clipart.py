@@ -31,9 +31,6 @@ Region boundaries (the background included) are the feature lines; a *thin*
 region (a whisker, a mouth line, an outline stroke: at most
 ``CLIPART_STROKE_WIDTH`` px wide and much longer than wide) gives its centreline
 instead of a double boundary (:func:`~img2logo.features.clipart_strokes.thin_regions`).
-
-Arrays are indexed (row, column); points are (x, y) = (column + 0.5, row + 0.5)
-in px, x to the right, y downwards (``contract/README.md``).
 """
 
 from __future__ import annotations

@@ -6,9 +6,6 @@ the mean shift that flattens a compressed one's fills (:func:`mean_shift`), the
 largest colour difference in each pixel's window (:func:`lab_spread`) and the
 flat areas it gives (:func:`flat_areas`), and the regions' mean colours
 (:func:`label_means`).
-
-Arrays are indexed (row, column); points are (x, y) = (column + 0.5, row + 0.5)
-in px, x to the right, y downwards (``contract/README.md``).
 """
 
 from __future__ import annotations
@@ -107,6 +104,32 @@ def label_means(labels: np.ndarray, values: np.ndarray) -> tuple[np.ndarray, np.
     # One pass for every channel, adding as np.bincount does.
     counts, sums = kernels.label_sums_kernel(flat, chans, int(flat.max()) + 1)
     return counts, sums / np.maximum(counts, 1.0)[:, None]
+
+
+def label_lightness(labels: np.ndarray, lightness: np.ndarray) -> np.ndarray:
+    """The median L* of every label, to 0.1: (n,) float64.
+
+    ``labels`` (H, W) non-negative ints, ``lightness`` (H, W) L* in [0, 100]; n is
+    the largest label + 1, an unused label 0. The median, not the mean: a thin
+    stroke's anti-aliased rim is half its pixels and takes a mean halfway to the
+    fills beside it (a cartoon's black outline 3-4 px wide beside dark brown hair:
+    mean L* 16, median 0.5). From one histogram per label (scipy's
+    ``ndimage.median`` sorts every pixel: 60 times longer on a 512 px image).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> labels = np.array([[0, 0, 1, 1, 1]])
+    >>> label_lightness(labels, np.array([[50.0, 60.0, 0.0, 0.0, 40.0]]))
+    array([50.,  0.])
+    """
+    flat = np.asarray(labels).ravel()
+    if not len(flat):
+        return np.zeros(0)
+    n = int(flat.max()) + 1
+    steps = np.clip(np.rint(np.asarray(lightness, dtype=np.float64).ravel() * 10.0), 0, 1000).astype(np.int64)
+    cumulative = np.cumsum(np.bincount(flat * 1001 + steps, minlength=n * 1001).reshape(n, 1001), axis=1)
+    return np.argmax(2 * cumulative >= cumulative[:, -1:], axis=1) / 10.0
 
 
 def label_means_of_two(labels: np.ndarray, a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, ...]:

@@ -4,9 +4,6 @@ Steps 3 and 4 of :mod:`img2logo.features.clipart`: flat areas large enough are
 seeds, pixels that no blend of the seeds near them explains seed colours of their
 own (:func:`palette_regions`), and every other pixel takes the nearest entry
 among the seeds near it (:func:`near_entries`).
-
-Arrays are indexed (row, column); points are (x, y) = (column + 0.5, row + 0.5)
-in px, x to the right, y downwards (``contract/README.md``).
 """
 
 from __future__ import annotations

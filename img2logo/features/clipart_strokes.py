@@ -4,9 +4,6 @@ A *thin* region (a whisker, a mouth line, an outline stroke: at most
 ``CLIPART_STROKE_WIDTH`` px wide and much longer than wide, :func:`thin_regions`)
 and an *ink outline* (a region darker than what it touches, :func:`ink_outlines`)
 give their centreline instead of a double boundary (:func:`clipart_lines`).
-
-Arrays are indexed (row, column); points are (x, y) = (column + 0.5, row + 0.5)
-in px, x to the right, y downwards (``contract/README.md``).
 """
 
 from __future__ import annotations
@@ -37,7 +34,7 @@ def thin_regions(regions: np.ndarray, lightness: np.ndarray | None = None) -> np
     ``CLIPART_STROKE_ELONGATION`` times longer than that width: a whisker or
     an outline, not a dot.
 
-    An **ink outline** (:func:`ink_outlines`, given the regions' mean L*
+    An **ink outline** (:func:`ink_outlines`, given the regions' median L*
     ``lightness`` (n,)), a region darker than what it touches, is a stroke up
     to ``CLIPART_OUTLINE_WIDTH`` px wide: the cartoon style's dark line between
     lighter fills, drawn once along its centre as a drawing's stroke is, not as
@@ -87,8 +84,9 @@ def ink_outlines(
 
     A region is one when at least ``CLIPART_INK_BORDER`` of its border (in
     pixel pairs) is with regions lighter by ``contrast`` (L*, default
-    ``CLIPART_EDGE_CONTRAST``; ``lightness`` (n,) the regions' mean): a cartoon's outline runs between
-    lighter fills, and touches the odd dark detail (a pupil, a dark shading)
+    ``CLIPART_EDGE_CONTRAST``; ``lightness`` (n,) the regions' median L*,
+    :func:`~img2logo.features.clipart_colours.label_lightness`): a cartoon's
+    outline runs between lighter fills, and touches the odd dark detail (a pupil, a dark shading)
     along a little of its length. The background is none. Without ``paper``
     the border with the background does not count: a dark mark on the
     object's lighter fills (an eye, a spot, an inner outline), and not a dark
@@ -113,7 +111,7 @@ def clipart_lines(regions: np.ndarray, lightness: np.ndarray | None = None) -> n
     are added to the map, so that thinning turns each into its centreline,
     joined to the boundaries it touches.
 
-    With ``lightness`` (n,), the regions' mean L*, the **ink outlines** are
+    With ``lightness`` (n,), the regions' median L*, the **ink outlines** are
     drawn once, as a drawing's strokes (:func:`ink_strokes`: the thin ink
     regions and the thin parts of the others, a cartoon's outline network).
     Each of their pixels is given to the region nearest to it, so that the
@@ -232,7 +230,8 @@ def _ink_parts(regions: np.ndarray, labels: np.ndarray) -> Iterator[tuple[int, t
         # area over its width, twice its largest inner distance), as thin_regions asks.
         depth = cv2.distanceTransform(part.view(np.uint8), cv2.DIST_L2, 5)
         half = np.zeros(count)
-        np.maximum.at(half, pieces.ravel(), depth.ravel())
+        inside = pieces > 0  # ufunc.at is slow per element: only the pieces' pixels
+        np.maximum.at(half, pieces[inside], depth[inside])
         area = stats[:, cv2.CC_STAT_AREA]
         keep = (area >= CLIPART_MIN_REGION_AREA) & (area >= CLIPART_STROKE_ELONGATION * (2.0 * half) ** 2)
         keep[0] = False

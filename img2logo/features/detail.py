@@ -58,7 +58,7 @@ from .._compat import intersect1d, unique
 from ..constants import LINE_JOIN_DISTANCE
 from ..errors import InvalidParameterError
 from .boundary_cost import boundary_arcs
-from .clipart_colours import label_means
+from .clipart_colours import label_lightness, label_means
 from .clipart_strokes import ink_outlines, outline_strokes, thin_regions
 from .constants import CLIPART_MARK_CONTRAST, CLIPART_MAX_REGIONS, CLIPART_OUTLINE_WIDTH
 from .stroke_sides import StrokeSides, across_strokes, open_strokes, stroke_sides
@@ -180,7 +180,8 @@ def merge_by_importance(
 
         warnings.warn(
             f"{n} regions at detail {detail} are more than the optimization takes at once ({max_regions}): "
-            f"coarsened to detail {len(unique(target)) - 1}, {len(unique(target))} regions",
+            f"coarsened to detail {len(unique(target)) - 1}, {len(unique(target))} regions"
+            + (" (no fewer without merging across the outline)" if len(unique(target)) > max_regions else ""),
             DetailWarning,
             stacklevel=2,
         )
@@ -200,11 +201,10 @@ def outline_sides(regions: np.ndarray, lab: np.ndarray) -> StrokeSides | None:
 
     ``regions`` (H, W) int, 0 = background; ``lab`` (H, W, 3) CIELAB. None when there are none.
     """
-    _, means = label_means(regions, lab)
-    n = len(means)
-    on_paper = np.zeros(n, dtype=bool)
+    lightness = label_lightness(regions, lab[..., 0])
+    on_paper = np.zeros(len(lightness), dtype=bool)
     on_paper[[j for i, j in region_adjacency(regions) if i == 0]] = True
-    return stroke_sides(regions, means[:, 0], thin_regions(regions, means[:, 0]), on_paper)
+    return stroke_sides(regions, lightness, thin_regions(regions, lightness), on_paper)
 
 
 def merge_targets(
@@ -254,16 +254,17 @@ def merge_targets(
     fixed[0] = True
     on_paper = np.zeros(n, dtype=bool)
     on_paper[[j for i, j in adjacency if i == 0]] = True
-    fixed[intersect1d(outline_strokes(regions, means[:, 0]), np.flatnonzero(on_paper))] = True
+    lightness = label_lightness(regions, lab[..., 0])  # a stroke's colour, not its rim's (label_lightness)
+    fixed[intersect1d(outline_strokes(regions, lightness), np.flatnonzero(on_paper))] = True
     # Nor is a dark mark on the object's lighter fills (an eye, a pupil, a spot, an inner
     # outline), the first thing the eye finds in a picture and what a designer keeps, ever
     # painted over: it only takes in smaller regions (a pupil's highlight, the light spots
     # enclosed by a wing's black), which take its colour, and no other mark.
     dark = np.zeros(n, dtype=bool)
     if marks:
-        dark[ink_outlines(regions, means[:, 0], paper=False, contrast=CLIPART_MARK_CONTRAST)] = True
+        dark[ink_outlines(regions, lightness, paper=False, contrast=CLIPART_MARK_CONTRAST)] = True
     stroke = np.zeros(n, dtype=bool)
-    stroke[thin_regions(regions, means[:, 0])] = True
+    stroke[thin_regions(regions, lightness)] = True
     # Fills facing each other across a stroke of the outline on the paper are neighbours too,
     # the stroke between them their boundary (stroke_sides).
     across = None if sides is None else across_strokes(sides, fixed, lab)

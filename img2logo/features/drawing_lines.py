@@ -4,9 +4,6 @@ The ink is the drawing's dark (or light) strokes by Otsu's threshold, the paper
 pinched between two strokes kept apart (:func:`drawing_ink`); thinned to a 1-px
 skeleton, its spurs, specks and tiny loops pruned (:func:`clean_skeleton`, for
 every kind); a filled dot left without a line gets a circle (:func:`keep_dots`).
-
-Arrays are indexed (row, column); points are (x, y) = (column + 0.5, row + 0.5)
-in px, x to the right, y downwards (``contract/README.md``).
 """
 
 from __future__ import annotations

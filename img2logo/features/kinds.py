@@ -4,9 +4,6 @@ Told from what the pixels show (:func:`detect_kind`): camera noise and texture
 make a photo; flat fills a synthetic image, a line drawing when it has one ink
 (with its anti-aliased rims, or grey shading) drawn in strokes, else a clip art.
 A clip art's regions, found on the way, are kept (:func:`detect_kind_and_regions`).
-
-Arrays are indexed (row, column); points are (x, y) = (column + 0.5, row + 0.5)
-in px, x to the right, y downwards (``contract/README.md``).
 """
 
 from __future__ import annotations

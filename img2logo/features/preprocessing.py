@@ -10,9 +10,6 @@ Three kinds of input, as in the paper:
 
 The kind is told by :mod:`img2logo.features.kinds`. Loading is :mod:`img2logo.images.loading`; its
 names, and the kinds' and the drawing lines' public ones, are re-exported here.
-
-Arrays are indexed (row, column); points are (x, y) = (column + 0.5, row + 0.5)
-in px, x to the right, y downwards (``contract/README.md``).
 """
 
 from __future__ import annotations
@@ -29,7 +26,7 @@ from ..images.line_ends import join_line_ends
 from ..images.loading import load_image, load_mask
 from ..images.ndimage import skeletonize
 from .clipart import clipart_regions, enclosed_paper
-from .clipart_colours import label_means
+from .clipart_colours import label_lightness
 from .clipart_strokes import clipart_lines
 from .constants import PHOTO_MIN_LINE_LENGTH, PHOTO_SPUR_LENGTH, SPUR_LENGTH
 from .detail import check_detail, close_line_ends, merge_by_importance
@@ -202,7 +199,7 @@ def extract_feature_lines(
         regions, detail_used, budget = merge_by_importance(
             regions, img.lab, check_detail(detail), arcs=None if arcs is None else check_detail(arcs, "arcs", "arcs")
         )
-        raw = _join(clipart_lines(regions, label_means(regions, img.lab)[1][:, 0]))
+        raw = _join(clipart_lines(regions, label_lightness(regions, img.lab[..., 0])))
         min_len = spur_length if min_line_length is None else min_line_length
     else:
         from .photo.line_maps import line_maps, start_photo_line_maps

@@ -1,7 +1,6 @@
 """The defaults and thresholds that only the ``fit`` stage uses.
 
-Units: lengths in pixels of the input image (px), angles in radians. One line of reason each;
-how each value was measured, and what was tried instead, is in ``docs/design/defaults.md``.
+One line of reason each; units, and where the measurements are, as in :mod:`img2logo.constants`.
 """
 
 from __future__ import annotations
@@ -69,8 +68,11 @@ MERGE_FALLBACK_RINGS: int = 6
 #: mean absolute error below this, px (the paper's 1.0).
 SIMPLIFICATION_ERROR: float = 1.0
 #: A segment of a clip art is on the object's silhouette when most of its points lie within this many px of the
-#: background (its line runs on the object's pixels next to the paper), px.
+#: background (its line runs on the object's pixels next to the paper), px ...
 OUTLINE_DISTANCE: float = 2.0
+#: ... or within this many px and reached from the paper without crossing another line: the centre line of an
+#: outline stroke up to CLIPART_STROKE_WIDTH (6 px) wide lies half its width from the paper, px.
+OUTLINE_STROKE_DISTANCE: float = OUTLINE_DISTANCE + 3.0
 #: A merge candidate whose new circle (radius fixed on the ladder) cannot pass within ``max_arc_distance`` + this
 #: of all its pixels, wherever its centre, is rejected before its fit (img2logo.fit.merging,
 #: kernels_sqp.far_circle_kernel): the fit's arc, coupled to every pixel by the Fréchet distance, would be farther.

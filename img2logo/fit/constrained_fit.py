@@ -22,7 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._compat import unique
+from .._compat import unique, unique_rows
 from .._validation import check_finite, check_points, check_positive, readonly
 from ..errors import InvalidParameterError
 from .constants import (
@@ -90,21 +90,6 @@ def _index_array(values: object, name: str, size: int) -> np.ndarray:
     if arr.min() < 0 or arr.max() >= size:
         raise InvalidParameterError(f"{name} must index 0..{size - 1}, got values from {arr.min()} to {arr.max()}")
     return unique(arr).astype(np.int64)
-
-
-def _unique_rows(arr: np.ndarray) -> np.ndarray:
-    """``np.unique(arr, axis=0)`` of an integer array (R, K) as int64: the distinct rows, sorted.
-
-    By a lexsort: np.unique with an axis sorts a structured view, ~10x slower on
-    the few rows of a window (this runs for every fit).
-    """
-    arr = arr.astype(np.int64)
-    if len(arr) < 2:
-        return arr
-    rows = arr[np.lexsort(arr.T[::-1])]
-    keep = np.ones(len(rows), dtype=bool)
-    keep[1:] = (rows[1:] != rows[:-1]).any(axis=1)
-    return rows[keep]
 
 
 def _as_points(values: object, name: str, count: int | None = None) -> np.ndarray:
@@ -380,8 +365,8 @@ class WindowProblem:
         ``axis``, the centres ``on_c`` and junctions ``on_j`` are placed on it
         and their x coordinates held.
         """
-        inc = _unique_rows(incidence)
-        tan = _unique_rows(tangents)
+        inc = unique_rows(incidence)
+        tan = unique_rows(tangents)
         held: list[int] = []
         if axis is not None:
             on_c = np.zeros(0, dtype=np.int64) if on_c is None else on_c

@@ -34,7 +34,11 @@ from .tangency import Outscored, restore, snapshot, split_chain, tangent_joins
 
 
 def tangent_level(
-    opt: FitState, tolerance: float, history: Sequence[tuple], over_budget: Callable[[], bool] | None = None
+    opt: FitState,
+    tolerance: float,
+    history: Sequence[tuple],
+    over_budget: Callable[[], bool] | None = None,
+    room: int | None = None,
 ) -> int:
     """Make the result's smooth joins tangent, on the last level or one before it; how many levels back.
 
@@ -53,11 +57,15 @@ def tangent_level(
     art at 2048 px), while the kinks left fall slowly with the levels gone
     back, so the levels between two tried ones seldom score better. Once
     ``over_budget()`` is true no further level is tried (the last level always
-    is). ``opt`` is left in the kept level's state, tangent where it could be made so.
+    is). ``room`` bounds the arcs the levels back and the splits add (None: no bound): the logo's
+    arc budget is a ceiling on the result, so a kink is kept rather than an arc added past it.
+    ``opt`` is left in the kept level's state, tangent where it could be made so.
     """
     best: tuple[int, int, tuple, Stats] | None = None
     for back in _levels_back(len(history)):
         if best is not None and (back >= best[0] or (over_budget is not None and over_budget())):
+            break
+        if room is not None and back > room:
             break
         if back:
             restore(opt, history[-1 - back])
@@ -73,11 +81,11 @@ def tangent_level(
     assert best is not None  # the last level is always tried
     restore(opt, best[2])
     opt.stats = best[3]
-    split_kinks(opt, tolerance)
+    split_kinks(opt, tolerance, None if room is None else room - best[1])
     return best[1]
 
 
-def split_kinks(opt: FitState, tolerance: float) -> int:
+def split_kinks(opt: FitState, tolerance: float, room: int | None = None) -> int:
     """Split an arc at a kinked join of the silhouette where that makes the joins tangent; how many split.
 
     A join of two arcs of the object's silhouette is left kinked when no two
@@ -90,13 +98,14 @@ def split_kinks(opt: FitState, tolerance: float) -> int:
     tangent pass run again (every join, its refits held to the same rules). The split
     is kept when it lowers the score :func:`tangent_level` ranks levels by (arcs
     plus ``KINK_WEIGHT`` x kinked joins) with E^s within ``max(T, E^s now)``
-    and no arc of the silhouette moved farther than T from its pixels (or than it was).
+    and no arc of the silhouette moved farther than T from its pixels (or than it was). At most
+    ``room`` arcs are split (None: no bound).
     """
     splits = 0
     if not opt.outline or not opt.loose or opt.symmetry is not None:  # a mirror pairs the groups as they are
         return splits
     tried: set[tuple[int, ...]] = set()
-    while True:
+    while room is None or splits < room:
         seeds = {g: f.seed for g, f in opt.fits.items()}
         loose, opt.loose = opt.loose, set()
         joins = opt.tangencies(opt.groups, seeds)  # the released joins too
@@ -130,6 +139,7 @@ def split_kinks(opt: FitState, tolerance: float) -> int:
                 break
         if not done:
             return splits
+    return splits
 
 
 def _split_node(opt: FitState, group: Group, join: int) -> int | None:

@@ -57,7 +57,7 @@ from ..geometry.primitives import polyline_length
 from ..options import Options
 from ..segment_graph import SegmentGraph
 from . import window_solve
-from .constants import OUTLINE_DISTANCE
+from .constants import OUTLINE_DISTANCE, OUTLINE_STROKE_DISTANCE
 from .fit_state import FitState
 from .fit_values import AxisConstraints, FreeCircles, Seed
 from .kinks import tangent_level
@@ -240,6 +240,7 @@ def optimize(
     progress: ProgressCallback | None = None,
     params: Mapping[str, Any] | None = None,
     symmetry: AxisConstraints | None = None,
+    started: float | None = None,
     **settings: Any,
 ) -> Progression:
     """Run the progressive optimization of Sec. 5.2 on a segment graph.
@@ -280,6 +281,11 @@ def optimize(
         the vertical line ``symmetry.x``; junctions ``symmetry.nodes`` stay on
         it, circles ending square to it are centred on it, and no arc runs on
         through it (Eqn. 13 with the symmetry constraints).
+    started : float, optional
+        The process's CPU time (:func:`time.process_time`, s) the time budget
+        (``Options.time_budget``) counts from: default this call's start;
+        :func:`img2logo.abstract` gives its own, so that the budget bounds the
+        whole run, the image's feature lines and segment graph included.
     **settings
         Fields of :class:`~img2logo.options.Options` (``tolerance=7.0``,
         ``merging=False``, ...), replacing those of ``options``.
@@ -322,7 +328,7 @@ def optimize(
     circles = FreeCircles(symmetry)
     axis_nodes = symmetry.nodes if symmetry is not None else frozenset()
     timings: dict[str, float] = {}
-    over_budget = _budget(opts.time_budget)
+    over_budget = _budget(opts.time_budget, started)
     start = time.perf_counter()
     groups = [
         Group((i,), tuple(int(n) for n in graph.ends[i]), seg, bool(locked[i])) for i, seg in enumerate(graph.segments)
@@ -387,7 +393,11 @@ def optimize(
     if state.smooth:
         # The result, its circles touching at the smooth joins (beyond the paper); it may be
         # a level before the loop's last, whose shorter arcs leave room for more tangencies.
-        back = tangent_level(state, tolerance, history, over_budget)
+        # An arc budget the loop met bounds the result: a tangency trades for arcs only below it. One the
+        # stretched tolerance kept it from does not: those levels back lower E^s past T as well as kinks.
+        arcs = logo_arcs(state)
+        room = (budget - arcs) // (1 if state.symmetry is None else 2) if arcs <= budget else None
+        back = tangent_level(state, tolerance, history, over_budget, room)
         del levels[len(levels) - back :]
         levels[-1] = LevelState.of(state, levels[-1].level, record, run).abstraction()
         if progress:  # the result: an earlier t than the last reported when levels were dropped
@@ -430,8 +440,8 @@ def logo_arcs(state: FitState) -> int:
     return 2 * n - sum(1 for g in state.fits if state.on_axis(state.groups[g]))
 
 
-def _budget(seconds: float | None) -> Callable[[], bool] | None:
-    """Whether ``seconds`` of this process's CPU time have passed since now (None: no bound).
+def _budget(seconds: float | None, since: float | None = None) -> Callable[[], bool] | None:
+    """Whether ``seconds`` of this process's CPU time have passed since ``since`` (default now; None: no bound).
 
     CPU time, not wall time: other processes' load does not shorten it (a run
     stops at about the same merge on an idle and on a busy machine). The
@@ -441,7 +451,7 @@ def _budget(seconds: float | None) -> Callable[[], bool] | None:
     """
     if seconds is None:
         return None
-    deadline = time.process_time() + seconds
+    deadline = (time.process_time() if since is None else since) + seconds
     # A process's CPU clock runs at most as fast as the wall clock times the machine's CPUs: until the wall
     # clock has run that far, the CPU clock cannot have passed the deadline, and it is not read (each read
     # is a system call, some microseconds of CPU; the merge loop asks before every candidate's refit).
@@ -466,16 +476,42 @@ def _budget(seconds: float | None) -> Callable[[], bool] | None:
 def outline_segments(graph: SegmentGraph, silhouette: np.ndarray | None) -> np.ndarray:
     """Segments along the edge of ``silhouette`` (H, W) bool, the paper around the object: (n_segments,) bool.
 
-    Those with most of their points within ``OUTLINE_DISTANCE`` px of the paper and
-    not on it: a clip art's line between the background and the object runs on the
-    object's pixels next to the paper (:func:`img2logo.features.clipart.region_boundaries`).
+    Those with most of their points on the object's outermost line: a clip art's
+    line between the background and a fill runs on the object's pixels next to the
+    paper (:func:`img2logo.features.clipart.region_boundaries`), within
+    ``OUTLINE_DISTANCE`` px of it; an outline stroke is drawn along its middle
+    (:func:`img2logo.features.clipart_strokes.clipart_lines`), half its width from
+    the paper, and is the silhouette where the paper reaches it without crossing
+    another line (4-connected, so no diagonal step of a line lets it through),
+    within ``OUTLINE_STROKE_DISTANCE`` px. An inner line behind it is not.
     """
     if silhouette is None:
         return np.zeros(graph.n_segments, dtype=bool)
+    import cv2
+
     from ..images.ndimage import distance
 
     paper = _image_mask(graph, silhouette, "silhouette")
-    return _mostly_inside(graph, ~paper & (distance(~paper) <= OUTLINE_DISTANCE))
+    away = distance(~paper)
+    drawn = np.zeros(paper.shape, dtype=np.uint8)
+    cv2.polylines(  # each segment joined point to point, up to its junctions: no gap lets the paper in
+        drawn,
+        [
+            np.stack([_pixel_cols(seg, graph.width), _pixel_rows(seg, graph.height)], axis=1).astype(np.int32)
+            for seg in graph.segments
+        ],
+        isClosed=False,
+        color=1,
+        lineType=cv2.LINE_8,
+    )
+    lines = drawn.view(bool)
+    count, pieces = cv2.connectedComponents((~lines).view(np.uint8), connectivity=4)
+    touches = np.zeros(count, dtype=bool)
+    touches[pieces[paper & ~lines]] = True
+    reached = touches[pieces] & ~lines
+    beside = cv2.dilate(reached.view(np.uint8), cv2.getStructuringElement(cv2.MORPH_CROSS, (3, 3))) > 0
+    outermost = lines & beside & (away <= OUTLINE_STROKE_DISTANCE)
+    return _mostly_inside(graph, (~paper & (away <= OUTLINE_DISTANCE)) | outermost)
 
 
 def locked_segments(graph: SegmentGraph, lock_mask: np.ndarray | None) -> np.ndarray:
@@ -499,7 +535,15 @@ def _mostly_inside(graph: SegmentGraph, mask: np.ndarray) -> np.ndarray:
     """Which segments have more than half of their points on ``mask`` (H, W) bool: (n_segments,) bool."""
     out = np.zeros(graph.n_segments, dtype=bool)
     for i, seg in enumerate(graph.segments):
-        cols = np.clip((seg[:, 0] - 0.5).round().astype(int), 0, graph.width - 1)
-        rows = np.clip((seg[:, 1] - 0.5).round().astype(int), 0, graph.height - 1)
-        out[i] = mask[rows, cols].mean() > 0.5
+        out[i] = mask[_pixel_rows(seg, graph.height), _pixel_cols(seg, graph.width)].mean() > 0.5
     return out
+
+
+def _pixel_cols(points: np.ndarray, width: int) -> np.ndarray:
+    """The pixel columns of points (N, 2) px (x = column + 0.5), within the image."""
+    return np.clip((points[:, 0] - 0.5).round().astype(int), 0, width - 1)
+
+
+def _pixel_rows(points: np.ndarray, height: int) -> np.ndarray:
+    """The pixel rows of points (N, 2) px (y = row + 0.5), within the image."""
+    return np.clip((points[:, 1] - 0.5).round().astype(int), 0, height - 1)

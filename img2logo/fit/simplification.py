@@ -67,6 +67,29 @@ def merge_groups(a: Group, b: Group, node: int) -> Group:
     )
 
 
+#: The merges :func:`merge_candidate` scored, by the two groups' segments: (error, merged group).
+_Scores = dict[tuple[tuple[int, ...], tuple[int, ...]], tuple[float, Group]]
+
+
+def merge_candidate(
+    ga: Group, gb: Group, node: int, error: Callable[[Group], float], scores: _Scores
+) -> tuple[float, Group] | None:
+    """The simplification's candidate of two groups that meet at a split ``node``: (error, merged group), or None.
+
+    None where either group is locked (the lock mask) or they are one group (the
+    two ends of a closed one). Scored once per pair of groups, kept in
+    ``scores``: two groups that share both their ends (a loop of two) are one
+    candidate, merged at the node where it was first scored.
+    """
+    if ga.locked or gb.locked or ga is gb:
+        return None
+    key = (ga.segments, gb.segments)
+    if key not in scores:
+        merged = merge_groups(ga, gb, node)
+        scores[key] = (error(merged), merged)
+    return scores[key]
+
+
 def simplify(
     groups: list[Group],
     error: Callable[[Group], float],
@@ -94,9 +117,7 @@ def simplify(
             at.setdefault(n, []).append(i)
     pairs: dict[int, tuple[int, int, Group]] = {}  # node -> the pair whose merge there is a candidate, merged
     heap: list[tuple[float, int, int, int]] = []
-    # Scored once per pair of groups: two groups that share both their ends (a loop
-    # of two) are one candidate, merged at the node where it was first scored.
-    scores: dict[tuple[tuple[int, ...], tuple[int, ...]], tuple[float, Group]] = {}
+    scores: _Scores = {}
     split = set(np.flatnonzero(np.asarray(valence) == 2).tolist())  # the split points: valence 2
 
     def score(node: int) -> None:
@@ -104,14 +125,10 @@ def simplify(
         idx = at.get(node, [])
         if node not in split or len(idx) != 2 or node in axis_nodes:
             return
-        ga, gb = current[idx[0]], current[idx[1]]
-        if ga.locked or gb.locked or ga is gb:
+        scored = merge_candidate(current[idx[0]], current[idx[1]], node, error, scores)
+        if scored is None:
             return
-        key = (ga.segments, gb.segments)
-        if key not in scores:
-            merged = merge_groups(ga, gb, node)
-            scores[key] = (error(merged), merged)
-        err, merged = scores[key]
+        err, merged = scored
         if err < SIMPLIFICATION_ERROR:  # (a NaN never is)
             pairs[node] = (idx[0], idx[1], merged)
             heapq.heappush(heap, (err, node, idx[0], idx[1]))  # (node, i, j) is never pushed twice

@@ -20,9 +20,8 @@ in three steps:
    exactly mirrored centres, merges are made in mirrored pairs, and E^s is
    the half's (each arc and its mirror image are equally far from their pixels).
 
-Coordinates: input-image pixels, x right, y down, pixel (row i, column j)
-centred at (j + 0.5, i + 0.5). Angles: from +x towards +y; an axis at 90 degrees
-is vertical (upright).
+Coordinates and angles: those of the axis, :mod:`img2logo.geometry.mirror`
+(px, x right, y down; an axis at 90 degrees is vertical).
 """
 
 from __future__ import annotations

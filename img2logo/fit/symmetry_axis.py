@@ -10,9 +10,8 @@ matched pairs (each pixel's mirror image against its nearest line pixel).
 :func:`choose_axis` decides what ``symmetry=...`` asks for one image
 (:class:`SymmetryChoice`); the symmetric fit is :mod:`img2logo.fit.symmetry`.
 
-Coordinates: input-image pixels, x right, y down, pixel (row i, column j)
-centred at (j + 0.5, i + 0.5). Angles: from +x towards +y; an axis at 90 degrees
-is vertical (upright).
+Coordinates and angles: those of the axis, :mod:`img2logo.geometry.mirror`
+(px, x right, y down; an axis at 90 degrees is vertical).
 """
 
 from __future__ import annotations

@@ -44,12 +44,8 @@ the input turns) are never constrained.
 
 Where the tangencies are made, and why there. With the radii fixed on the
 ladder, a chain of tangent circles is rigid, and the first levels join every
-short piece of the over-segmentation. Measured (``make quality``):
-enforcing every tangency in A^0 and every merge's window raises E^s(A^0) of the
-clip-art fish from 2.36 to 9.77 px (no merge fits under T = 5 any more), and on
-the evaluation set's clip arts gives 47.1 arcs instead of 40.0 and one failed
-run; enforcing all of a window's tangencies in the merges gives 41.6 arcs and
-33 % tangent. So four narrower steps:
+short piece of the over-segmentation: enforcing every tangency from A^0 on
+leaves no merge under T. So four narrower steps:
 
 * a merge is judged with the tangencies it leaves in place
   (:func:`img2logo.fit.merging.evaluate`): the smooth joins at the merged arc's
@@ -427,17 +423,12 @@ class _Start:
 def _biarc_starts(opt: FitState, node: int, pair: tuple[int, int]) -> list[tuple[dict[int, int], _Start]]:
     """Tangent biarcs over a smooth join's two groups, as starts of its refit: (rung steps, start), best first.
 
-    Why: two circles of fixed rungs touch at one point only, and where the
-    curvature of a smooth line changes from one rung to the next is seldom where
-    the over-segmentation put the node: measured on the polar bear's kinked
-    joins, the best tangent biarc over the two groups' joined pixels has its
-    junction 15-85 px along the line from the node, and its pixels within
-    1.5-3 px of its circles (the two arcs now: 1-4 px), while the refit from the
-    current circles keeps the junction within a few px of the node (its
-    displacement term) and each group's pixels on their own circle. So the two
-    circles are fitted as one unit (:func:`~img2logo.fit.biarcs.closest_biarcs`) on the rungs of both and one
-    rung up or down for each, and the ``BIARC_STARTS`` of smallest largest
-    pixel distance are returned. None for a straight line (fixed) or a closed group.
+    Two circles of fixed rungs touch at one point only, seldom where the
+    over-segmentation put the node, and the refit from the current circles keeps
+    the junction near the node (the module's docstring). So the two circles are
+    fitted as one unit (:func:`~img2logo.fit.biarcs.closest_biarcs`) on the rungs
+    of both and one rung up or down for each, and the ``BIARC_STARTS`` of smallest
+    largest pixel distance are returned. None for a straight line (fixed) or a closed group.
     """
     a, b = pair
     fa, fb = opt.fits[a], opt.fits[b]

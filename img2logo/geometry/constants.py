@@ -1,7 +1,6 @@
 """The defaults and thresholds that only the ``geometry`` stage uses.
 
-Units: lengths in pixels of the input image (px), angles in radians. One line of reason each;
-how each value was measured, and what was tried instead, is in ``docs/design/defaults.md``.
+One line of reason each; units, and where the measurements are, as in :mod:`img2logo.constants`.
 """
 
 from __future__ import annotations

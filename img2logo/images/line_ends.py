@@ -49,7 +49,7 @@ def join_line_ends(skel: np.ndarray, distance: float = LINE_JOIN_DISTANCE) -> np
             continue
         own = pixels_within_steps(out, end, near_steps)
         best, best_d, tied = None, math.inf, []
-        for q in _pixels_within(first, end, distance):
+        for q in pixels_within(first, end, distance):
             if q in own or not out[q]:
                 continue
             d = math.hypot(q[0] - end[0], q[1] - end[1])
@@ -72,8 +72,12 @@ def join_line_ends(skel: np.ndarray, distance: float = LINE_JOIN_DISTANCE) -> np
     return out
 
 
-def _pixels_within(pixels: np.ndarray, at: tuple[int, int], distance: float) -> list[tuple[int, int]]:
-    """The set pixels of ``pixels`` (H, W) at most ``distance`` px from ``at`` (row, col)."""
+def pixels_within(pixels: np.ndarray, at: tuple[int, int], distance: float) -> list[tuple[int, int]]:
+    """The set pixels of ``pixels`` (H, W) bool at most ``distance`` px from ``at`` (row, col), in raster order.
+
+    The ball query of a k-d tree over the set pixels, read off the window of
+    ``2 * floor(distance) + 1`` px around ``at`` instead (no tree to build per map).
+    """
     reach = math.floor(distance)
     r0, c0 = max(at[0] - reach, 0), max(at[1] - reach, 0)
     rows, cols = np.nonzero(pixels[r0 : at[0] + reach + 1, c0 : at[1] + reach + 1])

@@ -72,14 +72,21 @@ def test_final_level_rules_differ_when_similarity_is_not_monotone():
 
 
 # --------------------------------------------------------------------------- junction gaps
+def _spread(a):
+    """How far apart the arcs of each junction pass, px (:func:`img2logo.quality.junction_gaps`)."""
+    from img2logo.quality import junction_gaps
+
+    return junction_gaps(a.arcs, a.junctions, a.junction_arcs)[1]
+
+
 def test_circle_fitting_stages_meet_only_with_connectivity(run):
     stages = results.circle_fitting_stages([run])
     free, con = (s.final for s in stages)
     assert [s.variant for s in stages] == ["independent", "constrained"]
     assert free.arc_segments == con.arc_segments
     assert [a.circle.r for a in free.arcs] == pytest.approx([a.circle.r for a in con.arcs])
-    assert results._gaps(con).max() < 1e-3
-    assert results._gaps(free).max() > 0.5
+    assert _spread(con).max() < 1e-3
+    assert _spread(free).max() > 0.5
     table = results.circle_fitting_table(stages)
     assert list(table.columns) == [
         "image",
@@ -161,16 +168,15 @@ def test_simplicity_table(run):
 
 # --------------------------------------------------------------------------- Table 2
 def test_tolerance_sweep_arc_counts_fall_with_tolerance(sweep):
-    (mine,) = results._tolerance_sweeps(sweep).values()
+    mine = sorted(sweep, key=lambda r: r.final.tolerance)  # one image's runs
     assert [r.final.tolerance for r in mine] == [3.0, 6.0, 12.0]
     arcs = [len(r.final.arcs) for r in mine]
     assert arcs == sorted(arcs, reverse=True)
     assert arcs[0] > arcs[-1]
     for r in mine:
         assert r.final.similarity <= r.final.tolerance
-    assert results._at(mine, 6.0) is mine[1].progression
-    with pytest.raises(InvalidParameterError):
-        results._at(mine, 4.0)
+    with pytest.raises(InvalidParameterError, match=r"^no run with T = 4.0 in the sweep \[3.0, 6.0, 12.0\]"):
+        results.plot_tolerance_results(sweep, (4.0,))
 
 
 def test_tolerance_tables(sweep):

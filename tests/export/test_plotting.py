@@ -115,23 +115,31 @@ def test_plot_abstraction_rejects_bad_input():
 
 
 def test_background_conversion():
-    rgb = plotting._background_rgb(np.zeros((2, 3), dtype=np.uint8), 3, 2, fade=0.6)
-    assert rgb.shape == (2, 3, 3)
+    a = make_abstraction()
+
+    def drawn(image, fade=0.6):  # the faded image plot_abstraction draws, (H, W, 3) in [0, 1]
+        ax = plotting.plot_abstraction(a, image=image, image_fade=fade)
+        array = np.asarray(ax.images[0].get_array())
+        plt.close(ax.figure)
+        return array
+
+    rgb = drawn(np.zeros((H, W), dtype=np.uint8), fade=0.6)
+    assert rgb.shape == (H, W, 3)
     np.testing.assert_allclose(rgb, 0.6)
-    np.testing.assert_allclose(plotting._background_rgb(np.ones((2, 3), dtype=bool), 3, 2, fade=0.0), 1.0)
-    rgba = np.zeros((2, 3, 4))
+    np.testing.assert_allclose(drawn(np.ones((H, W), dtype=bool), fade=0.0), 1.0)
+    rgba = np.zeros((H, W, 4))
     rgba[..., 3] = 0.0  # fully transparent -> white
-    np.testing.assert_allclose(plotting._background_rgb(rgba, 3, 2, fade=0.0), 1.0)
-    grey16 = np.full((2, 3), 65535, dtype=np.uint16)
-    np.testing.assert_allclose(plotting._background_rgb(grey16, 3, 2, fade=0.0), 1.0)
+    np.testing.assert_allclose(drawn(rgba, fade=0.0), 1.0)
+    grey16 = np.full((H, W), 65535, dtype=np.uint16)
+    np.testing.assert_allclose(drawn(grey16, fade=0.0), 1.0)
     # Grey + alpha, read as an input image is (img2logo.images.loading.composite_on_white).
-    grey_alpha = np.zeros((2, 3, 2))
-    grey_alpha[0, :, 1] = 1.0  # top row opaque black, bottom row transparent -> white
-    np.testing.assert_allclose(plotting._background_rgb(grey_alpha, 3, 2, fade=0.0)[:, 0], [[0, 0, 0], [1, 1, 1]])
+    grey_alpha = np.zeros((H, W, 2))
+    grey_alpha[0, :, 1] = 1.0  # top row opaque black, the others transparent -> white
+    np.testing.assert_allclose(drawn(grey_alpha, fade=0.0)[:2, 0], [[0, 0, 0], [1, 1, 1]])
     with pytest.raises(InvalidImageError, match="image contains NaN or infinite values"):
-        plotting._background_rgb(np.full((2, 3), np.nan), 3, 2)
+        drawn(np.full((H, W), np.nan))
     with pytest.raises(InvalidImageError, match=r"float images must have values in \[0, 1\], got \[2, 2\]"):
-        plotting._background_rgb(np.full((2, 3), 2.0), 3, 2)
+        drawn(np.full((H, W), 2.0))
 
 
 def test_plot_segment_graph():

@@ -289,6 +289,39 @@ def test_png_with_background_image(tmp_path):
         writers.write_png(a, tmp_path / "x.png", dpi=0)
 
 
+@pytest.mark.parametrize("form", ["rgb", "grey", "rgba", "uint16", "float"])
+def test_png_over_the_input_has_the_bytes_matplotlib_draws(form):
+    # The faded input is laid down pixel for pixel (figures._pixel_layer): the file is the one drawn with imshow.
+    import matplotlib.style
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    from img2logo.export import figures, plotting
+
+    a = make_abstraction()
+    rng = np.random.default_rng(3)
+    image = {
+        "rgb": rng.integers(0, 256, (HEIGHT, WIDTH, 3), dtype=np.uint8),
+        "grey": rng.integers(0, 256, (HEIGHT, WIDTH), dtype=np.uint8),
+        "rgba": rng.integers(0, 256, (HEIGHT, WIDTH, 4), dtype=np.uint8),
+        "uint16": rng.integers(0, 65536, (HEIGHT, WIDTH, 3), dtype=np.uint16),
+        "float": rng.random((HEIGHT, WIDTH, 3)),
+    }[form]
+    data = writers.png_bytes(a, image=image, fills=palette_fills(a), show_junctions=True)
+    with matplotlib.style.context("default"):
+        fig = Figure(figsize=(WIDTH / 100.0, HEIGHT / 100.0), dpi=100.0, facecolor="white")
+        canvas = FigureCanvasAgg(fig)
+        ax = fig.add_axes((0.0, 0.0, 1.0, 1.0))
+        width = plotting.level_stroke_width(a) * 72.0 / 100.0
+        plotting.plot_abstraction(a, ax, image=image, show_junctions=True, linewidth=width, fills=palette_fills(a))
+        canvas.draw()
+        drawn = np.asarray(canvas.buffer_rgba())[..., :3]
+    assert np.array_equal(read_png_bytes(data), drawn / 255.0)
+    pixels = plotting.faded_pixels(image, WIDTH, HEIGHT)
+    assert pixels.dtype == np.uint8 and pixels.shape == (HEIGHT, WIDTH, 3)
+    assert figures.png_bytes(a, image=image) != figures.png_bytes(a, image=255 - pixels)  # the input is drawn
+
+
 def test_segment_graph_png(tmp_path):
     graph = small_graph()
     assert list(graph.valence) == [1, 3, 2, 1, 1]

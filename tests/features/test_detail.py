@@ -11,7 +11,9 @@ from helpers import DATA, blank
 
 from img2logo import DetailWarning, InvalidParameterError, Options, abstract, extract_feature_lines, load_image
 from img2logo.features.clipart import clipart_regions
-from img2logo.features.clipart_strokes import thin_regions
+from img2logo.features.clipart_colours import label_lightness
+from img2logo.features.clipart_strokes import ink_outlines, thin_regions
+from img2logo.features.constants import CLIPART_EDGE_CONTRAST
 from img2logo.features.detail import merge_by_importance, region_adjacency
 
 OPENCLIPART = DATA.parent / "benchmarks" / "data" / "openclipart"
@@ -172,6 +174,24 @@ def test_too_many_regions_are_coarsened_and_said_in_one_line():
     assert "\n" not in message and f"{regions.max() + 1} regions" in message and "40 regions" in message
 
 
+def test_fills_that_touch_only_the_outline_are_not_merged_across_it_and_the_warning_says_so():
+    im = blank(400)
+    rng = np.random.default_rng(5)
+    cv2.rectangle(im, (36, 36), (363, 363), (0, 0, 0), -1)  # a black outline network ...
+    for row in range(8):
+        for col in range(8):  # ... round 64 tiles of distinct light colours, each touching only the black
+            colour = tuple(int(v) for v in rng.integers(120, 255, 3))
+            cv2.rectangle(im, (42 + 40 * col, 42 + 40 * row), (75 + 40 * col, 75 + 40 * row), colour, -1)
+    img = load_image(im)
+    regions = clipart_regions(img)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        merged, kept, _ = merge_by_importance(regions, img.lab, 24, max_regions=40)
+    assert merged.max() == regions.max() == kept == 65  # the tiles, the outline and the paper: nothing merged
+    (w,) = [c for c in caught if issubclass(c.category, DetailWarning)]
+    assert str(w.message).endswith("66 regions (no fewer without merging across the outline)")
+
+
 def test_few_regions_give_no_warning_and_detail_one_changes_nothing():
     im = _disc()
     img = load_image(im)
@@ -192,9 +212,7 @@ def test_an_ink_outline_is_a_stroke_but_a_light_band_of_its_width_is_not():
     cv2.circle(im, (128, 128), 80, (0, 0, 0), 10, lineType=cv2.LINE_AA)
     img = load_image(im)
     regions = clipart_regions(img)
-    from img2logo.features.clipart_colours import label_means
-
-    lightness = label_means(regions, img.lab)[1][:, 0]
+    lightness = label_lightness(regions, img.lab[..., 0])
     ring = int(regions[128, 48])
     assert ring in thin_regions(regions, lightness)
     assert ring not in thin_regions(regions)  # 10 px: wider than a fill's stroke
@@ -202,8 +220,30 @@ def test_an_ink_outline_is_a_stroke_but_a_light_band_of_its_width_is_not():
     cv2.circle(light, (128, 128), 80, (250, 220, 120), 10, lineType=cv2.LINE_AA)  # lighter than the fill
     img = load_image(light)
     regions = clipart_regions(img)
-    lightness = label_means(regions, img.lab)[1][:, 0]
+    lightness = label_lightness(regions, img.lab[..., 0])
     assert int(regions[128, 48]) not in thin_regions(regions, lightness)
+
+
+def test_a_thin_black_outline_beside_a_dark_fill_is_ink_drawn_once():
+    """Known answer: a black outline 3 px wide round a dark brown disc (L* 16), drawn at 4x and reduced
+    as an SVG is rendered: its anti-aliased rim is most of its pixels, so its mean L* is 2.4 from the
+    brown's, under an edge's contrast; its median is the black's, and it is an ink outline, drawn once."""
+    s = 4
+    big = np.full((256 * s, 256 * s, 3), 255, np.uint8)
+    cv2.circle(big, (128 * s, 128 * s), 80 * s, (12, 36, 92), -1)
+    cv2.circle(big, (128 * s, 128 * s), 80 * s, (0, 0, 0), 3 * s)
+    im = cv2.resize(big, (256, 256), interpolation=cv2.INTER_AREA)
+    img = load_image(im)
+    regions = clipart_regions(img)
+    ring, brown = int(regions[128, 48]), int(regions[128, 128])
+    from img2logo.features.clipart_colours import label_means
+
+    mean = label_means(regions, img.lab)[1][:, 0]
+    median = label_lightness(regions, img.lab[..., 0])
+    assert mean[brown] - mean[ring] < CLIPART_EDGE_CONTRAST <= median[brown] - median[ring]
+    assert ring in ink_outlines(regions, median) and ring not in ink_outlines(regions, mean)
+    lines = extract_feature_lines(im).lines
+    assert 1 == int(lines[128, 30:70].sum()) == int(lines[128, 186:226].sum())
 
 
 # --------------------------------------------------------------------------- the option

@@ -542,83 +542,13 @@ def test_skeleton_distance_and_slices_match_ndimage() -> None:
     assert np.array_equal(distance(full), ndimage.distance_transform_edt(full))
 
 
-def test_skeleton_thinning_and_joins_match_skimage_and_cKDTree() -> None:
-    import math
-
-    from scipy.spatial import cKDTree
-    from skimage.draw import line
+def test_skeleton_thinning_matches_skimage() -> None:
     from skimage.morphology import skeletonize as sk_skeletonize
 
-    from img2logo.images.line_ends import branch_to_fork, join_line_ends, pixels_within_steps
     from img2logo.images.ndimage import skeletonize
-    from img2logo.images.skeleton import classify
 
-    def joined_by_tree(skel: np.ndarray, distance: float) -> tuple[np.ndarray, bool]:
-        """join_line_ends as it was written with a k-d tree over the line pixels; whether a tie was met."""
-        out = skel.copy()
-        pixels = np.argwhere(out)
-        tied = False
-        if len(pixels) == 0:
-            return out, tied
-        tree = cKDTree(pixels)
-        h, w = out.shape
-        for r, c in np.argwhere(out & (classify(out)[1] == 1)):
-            end = (int(r), int(c))
-            if not out[end]:
-                continue
-            own = pixels_within_steps(out, end, math.ceil(1.5 * distance))
-            best, best_d = None, math.inf
-            dists = []
-            for k in tree.query_ball_point((r, c), distance):
-                q = (int(pixels[k][0]), int(pixels[k][1]))
-                if q in own or not out[q]:
-                    continue
-                d = math.hypot(q[0] - r, q[1] - c)
-                dists.append(d)
-                if d < best_d:
-                    best, best_d = q, d
-            tied = tied or dists.count(best_d) > 1
-            if best is None or best_d <= 1.5:
-                continue
-            reach = math.ceil(3.0 * distance)
-            if best in pixels_within_steps(out, end, reach):
-                spur = branch_to_fork(out, end)
-                if spur is not None and len(spur) <= reach:
-                    for q in spur:
-                        out[q] = False
-            else:
-                rr, cc = line(end[0], end[1], best[0], best[1])
-                out[np.clip(rr, 0, h - 1), np.clip(cc, 0, w - 1)] = True
-        return out, tied
-
-    compared = 0
     for mask in random_masks(150, 4):
-        skel = skeletonize(mask)
-        assert np.array_equal(skel, sk_skeletonize(mask))
-        for distance in (6.0, 3.5):
-            by_tree, tied = joined_by_tree(skel, distance)
-            if not tied:  # equally near pixels: the tree's order was arbitrary; join_line_ends' rule is tested below
-                compared += 1
-                assert np.array_equal(join_line_ends(skel, distance), by_tree)
-    assert compared >= 4
-
-
-def test_a_line_end_with_equally_near_pixels_joins_the_one_it_points_at() -> None:
-    from img2logo.images.line_ends import join_line_ends
-
-    skel = np.zeros((30, 40), bool)
-    skel[10, 0:11] = True  # a line along +x, ending at (10, 10)
-    skel[5:25, 15] = True  # a line across x = 15: (10, 15) is 5 px straight ahead ...
-    skel[13, 14] = skel[14, 13] = False  # (nothing else within 5 px but the column)
-    joined = join_line_ends(skel, 6.0)
-    assert joined[10, 11:15].all()  # ... joined straight on
-    # Two pixels 5 px away: the one the line turns less towards is joined.
-    skel = np.zeros((30, 40), bool)
-    skel[10, 0:11] = True
-    skel[14, 13] = skel[13, 14] = True  # both 5 px from (10, 10); (13, 14) turns less from +x
-    joined = join_line_ends(skel, 6.0)
-    assert joined[11, 11] and joined[12, 12] and joined[12, 13]  # the run to (13, 14) ...
-    assert not joined[13, 12]  # ... not the one to (14, 13)
+        assert np.array_equal(skeletonize(mask), sk_skeletonize(mask))
 
 
 def test_clipart_boundaries_and_small_parts_match_skimage() -> None:

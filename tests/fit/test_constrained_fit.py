@@ -335,15 +335,6 @@ def test_fit_center_matches_the_unconstrained_fit_of_fit_constrained():
     np.testing.assert_allclose(fit_center(pts, 120.0, [0.0, 0.0]), ref.centers[0], atol=1e-6)
 
 
-def test_unique_rows_is_numpys_unique_along_rows():
-    rng = np.random.default_rng(3)
-    for _ in range(300):
-        rows = rng.integers(0, 5, (int(rng.integers(0, 12)), int(rng.integers(2, 4))))
-        got = cfit._unique_rows(rows)
-        want = np.unique(rows.astype(np.int64), axis=0)
-        assert got.dtype == np.int64 and got.shape == want.shape and (got == want).all()
-
-
 def test_window_problem_is_what_fit_constrained_solves(chain):
     sets, radii, centers, junctions, incidence = chain
     free_c, free_j = np.array([1]), np.array([1, 2])

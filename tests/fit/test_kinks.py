@@ -63,6 +63,28 @@ def test_the_level_kept_has_the_fewest_arcs_plus_weighted_kinks(monkeypatch, kin
     assert len(levels.loose) == kinks[back]
 
 
+@pytest.mark.parametrize(("room", "back", "passes"), [(0, 0, 1), (1, 1, 2), (2, 2, 3), (None, 2, 3)])
+def test_the_levels_back_stay_within_the_arc_budget(monkeypatch, room, back, passes):
+    """4 kinks on the last level, 2 one back, none two back: a kink weighs one arc, so two levels back win,
+    unless the arc budget leaves room for fewer arcs; then the kinks stay."""
+    from img2logo.fit import kinks as kink_pass, tangency
+
+    kinks = (4, 2, 0, 0, 0)
+    levels = _Levels(kinks)
+    history = [tangency.snapshot(_at(levels, len(kinks) - k)) for k in range(len(kinks))][::-1]
+    levels.groups = dict.fromkeys(range(len(kinks)))
+
+    def fake_pass(opt, tolerance, most_loose=None):
+        opt.passes.append(len(kinks) - len(opt.groups))
+        opt.loose = set(range(kinks[len(kinks) - len(opt.groups)]))
+        return True
+
+    monkeypatch.setattr(kink_pass, "tangent_joins", fake_pass)
+    monkeypatch.setattr(kink_pass, "KINK_WEIGHT", 1)
+    assert kink_pass.tangent_level(levels, 5.0, history, room=room) == back
+    assert len(levels.passes) == passes and len(levels.loose) == kinks[back]
+
+
 def _at(levels, n):
     levels.groups = dict.fromkeys(range(n))
     return levels
@@ -75,7 +97,7 @@ def warning_sign():
 
     path = DATA.parent / "benchmarks" / "data" / "openclipart" / "clipart-charge.png"
     with pytest.MonkeyPatch.context() as patch:
-        patch.setattr(kink_pass, "split_kinks", lambda opt, tolerance: 0)
+        patch.setattr(kink_pass, "split_kinks", lambda opt, tolerance, room=None: 0)
         kinked = abstract(path, progress=False)
     return path, kinked, abstract(path, progress=False)
 

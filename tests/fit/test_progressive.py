@@ -4,13 +4,14 @@ from __future__ import annotations
 
 import itertools
 import math
+import time
 
 import cv2
 import numpy as np
 import pytest
 from helpers import BIAS, DATA, blank, check_level, golden_chain, hand_built_state, sampled_arc
 
-from img2logo import InvalidParameterError, Options, SegmentGraph, build_segment_graph, extract_feature_lines
+from img2logo import InvalidParameterError, Options, SegmentGraph, abstract, build_segment_graph, extract_feature_lines
 from img2logo.constants import LOGO_ARCS, PHI
 from img2logo.fit.intersections import redundant_intersections
 from img2logo.fit.merge_checks import redundant_pairs
@@ -270,6 +271,34 @@ def test_time_budget_stops_at_the_last_level_and_says_so(fish_progression, monke
     with pytest.warns(progressive.TimeBudgetWarning):
         optimize(graph, tolerance=5.0, time_budget=budget, progress=lambda t, n, e: seen.append(t))
     assert seen[-1] == seen[-2]  # the result is the loop's last level, refitted
+
+
+def test_the_time_budget_counts_from_the_start_given(fish_progression):
+    """A budget already spent when the optimization starts (the run's feature lines took it): A^0 is the logo."""
+    import img2logo.fit.progressive as progressive
+
+    graph, _ = fish_progression
+    with pytest.warns(progressive.TimeBudgetWarning):
+        prog = optimize(graph, tolerance=5.0, time_budget=1.0, tangency=False, started=time.process_time() - 2.0)
+    assert prog.stopped_because == "time budget" and len(prog.levels) == 1
+    assert prog.final.arcs == optimize(graph, tolerance=5.0, tangency=False, merging=False).final.arcs
+
+
+def test_abstract_s_budget_counts_from_its_own_start(monkeypatch):
+    import img2logo.pipeline as pipeline
+
+    seen = []
+    real = pipeline.optimize
+
+    def spy(*args, **kwargs):
+        seen.append((kwargs["started"], time.process_time()))
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(pipeline, "optimize", spy)
+    before = time.process_time()
+    abstract(DATA / "drawing-fish.png", progress=False)
+    ((started, called),) = seen
+    assert before <= started < called  # the image read and its feature lines are inside the budget
 
 
 def test_a_budget_not_reached_changes_nothing(fish_progression):
@@ -579,3 +608,35 @@ def test_the_budget_reads_the_cpu_clock_only_when_it_may_have_run_out(monkeypatc
     assert [over() for _ in range(3)] == [False] * 3 and len(reads) == 4  # (one read for the deadline)
     clocks["cpu"] += 1.5
     assert over() and len(reads) == 5
+
+
+def _outlined(stroke: int = 5) -> np.ndarray:
+    """A clip art: a light outline stroke ``stroke`` px wide round a dark ellipse, drawn at 4x and reduced."""
+    s = 4
+    big = np.full((256 * s, 256 * s, 3), 255, np.uint8)
+    cv2.ellipse(big, (128 * s, 128 * s), (90 * s, 60 * s), 0, 0, 360, (120, 40, 20), -1)
+    cv2.ellipse(big, (128 * s, 128 * s), (90 * s, 60 * s), 0, 0, 360, (80, 180, 250), stroke * s)
+    return cv2.resize(big, (256, 256), interpolation=cv2.INTER_AREA)
+
+
+def test_an_outline_strokes_centre_line_is_the_silhouette():
+    """Known answer: a thin outline stroke 5 px wide between the paper and a fill (lighter than the fill,
+    so no ink outline) is drawn once along its middle, 2.5 px from the paper, farther than a fill's edge
+    runs; that line is the object's silhouette all round, and held."""
+    from img2logo.fit.progressive import outline_segments
+
+    lines = extract_feature_lines(_outlined())
+    graph = build_segment_graph(lines)
+    points = np.concatenate(graph.segments)
+    r = np.hypot((points[:, 0] - 128) / 90, (points[:, 1] - 128) / 60)
+    assert np.abs(r - 1).max() < 0.03  # the stroke's centre line, not one of its edges
+    on = outline_segments(graph, lines.regions == 0)
+    assert on.all()
+
+
+def test_the_outline_strokes_reach_is_half_the_widest_thin_stroke():
+    """The silhouette's reach into an outline stroke follows the front end's stroke width."""
+    from img2logo.features.constants import CLIPART_STROKE_WIDTH
+    from img2logo.fit.constants import OUTLINE_DISTANCE, OUTLINE_STROKE_DISTANCE
+
+    assert OUTLINE_STROKE_DISTANCE == OUTLINE_DISTANCE + CLIPART_STROKE_WIDTH / 2

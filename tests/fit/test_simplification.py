@@ -8,7 +8,7 @@ from helpers import DATA
 from img2logo import build_segment_graph, extract_feature_lines
 from img2logo.fit.constants import SIMPLIFICATION_ERROR
 from img2logo.fit.progressive import optimize
-from img2logo.fit.simplification import Group, is_straight, merge_groups, simplify, straight_line
+from img2logo.fit.simplification import Group, is_straight, merge_candidate, merge_groups, simplify, straight_line
 
 
 def test_simplification_reduces_the_initial_arcs():
@@ -35,6 +35,23 @@ def test_merge_groups_joins_at_the_common_node_whatever_the_directions():
     assert again.nodes == (0, 1, 2)
 
 
+def test_a_merge_candidate_is_scored_once_per_pair_and_never_of_a_locked_group():
+    a = Group((0,), (0, 1), _arc(0.0, 1.0), False)
+    b = Group((1,), (1, 2), _arc(1.0, 2.0), False)
+    calls = []
+
+    def error(g):
+        calls.append(g.segments)
+        return 0.25
+
+    scores = {}
+    err, merged = merge_candidate(a, b, 1, error, scores)
+    assert err == 0.25 and merged.segments == (0, 1) and merged.nodes == (0, 1, 2)
+    assert merge_candidate(a, b, 1, error, scores) == (err, merged) and calls == [(0, 1)]  # scored once
+    assert merge_candidate(a, Group((1,), (1, 2), b.points, True), 1, error, scores) is None  # locked
+    assert merge_candidate(a, a, 1, error, scores) is None  # one group's two ends
+
+
 def test_simplify_merges_at_split_points_only_below_the_error():
     parts = [Group((0,), (0, 1), _arc(0.0, 1.0), False), Group((1,), (1, 2), _arc(1.0, 2.0), False)]
     valence = np.array([1, 2, 1])
@@ -59,7 +76,7 @@ def test_a_straight_stroke_is_told_from_an_arc():
 
 
 def _full_scan(groups, error, valence, axis_nodes=frozenset()):
-    """The simplification as first written: every node scanned in order after each merge (the reference)."""
+    """The simplification by a scan of every node in order after each merge (the reference of the incremental order)."""
     current = list(groups)
     scores = {}
     while True:
@@ -71,14 +88,10 @@ def _full_scan(groups, error, valence, axis_nodes=frozenset()):
         for node, idx in sorted(at.items()):
             if valence[node] != 2 or len(idx) != 2 or node in axis_nodes:
                 continue
-            ga, gb = current[idx[0]], current[idx[1]]
-            if ga.locked or gb.locked or ga is gb:
+            scored = merge_candidate(current[idx[0]], current[idx[1]], node, error, scores)
+            if scored is None:
                 continue
-            key = (ga.segments, gb.segments)
-            if key not in scores:
-                merged = merge_groups(ga, gb, node)
-                scores[key] = (error(merged), merged)
-            err, merged = scores[key]
+            err, merged = scored
             if err < best_err:
                 best, best_err = (idx[0], idx[1], merged), err
         if best is None:

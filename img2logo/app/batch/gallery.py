@@ -1,7 +1,7 @@
 """The gallery of a batch run: ``OUTPUT_DIR/index.html``, every input beside its logo (beyond the paper).
 
 :func:`gallery_html` makes one self-contained HTML page from a
-:class:`~img2logo.app.batch.run.BatchReport`: a row per image, in input order, with the
+:class:`~img2logo.app.batch.report.BatchReport`: a row per image, in input order, with the
 input, the logo (its SVG, else its PNG), |A| (arcs), E^s (paper Eqn. 3, px), the
 levels and the seconds it took; a failed image shows its one-line error. The
 page has no script and loads nothing from the network: its style is inline and
@@ -15,51 +15,16 @@ from __future__ import annotations
 
 import html
 import os
-from collections.abc import Sequence
 from pathlib import Path
-from typing import Protocol
+from typing import TYPE_CHECKING
 from urllib.parse import quote
 
 from ..._io import atomic_write
 
-__all__ = ["GALLERY_NAME", "GalleryReport", "gallery_html", "write_gallery"]
+if TYPE_CHECKING:
+    from .report import BatchReport
 
-
-# What the page reads of a :class:`~img2logo.app.batch.run.BatchReport` (which :mod:`img2logo.app.batch.run`
-# hands it): the gallery, imported by the batch, does not import the batch back.
-class _Row(Protocol):
-    @property
-    def path(self) -> str: ...
-    @property
-    def kind(self) -> str: ...
-    @property
-    def arcs(self) -> int: ...
-    @property
-    def similarity(self) -> float: ...
-    @property
-    def levels(self) -> int: ...
-    @property
-    def seconds(self) -> float: ...
-    @property
-    def outputs(self) -> tuple[str, ...]: ...
-
-
-class _Failure(Protocol):
-    @property
-    def path(self) -> str: ...
-    @property
-    def message(self) -> str: ...
-
-
-class GalleryReport(Protocol):
-    """A batch run as the gallery reads it: :class:`img2logo.app.batch.run.BatchReport` is one."""
-
-    @property
-    def rows(self) -> Sequence[_Row]: ...
-    @property
-    def failures(self) -> Sequence[_Failure]: ...
-    @property
-    def inputs(self) -> Sequence[str]: ...
+__all__ = ["GALLERY_NAME", "gallery_html", "write_gallery"]
 
 
 #: The gallery's file name in the output folder.
@@ -86,7 +51,7 @@ def _link(target: str | os.PathLike[str], folder: Path) -> str:
     return quote(os.fsencode(Path(rel).as_posix()))  # a name's own bytes, UTF-8 or not, %-escaped
 
 
-def gallery_html(report: GalleryReport, output_dir: str | os.PathLike[str], *, title: str | None = None) -> str:
+def gallery_html(report: BatchReport, output_dir: str | os.PathLike[str], *, title: str | None = None) -> str:
     """The gallery page of ``report`` whose files are in ``output_dir`` (see the module docstring).
 
     Parameters
@@ -163,7 +128,7 @@ def gallery_html(report: GalleryReport, output_dir: str | os.PathLike[str], *, t
     )
 
 
-def write_gallery(report: GalleryReport, output_dir: str | os.PathLike[str], *, title: str | None = None) -> Path:
+def write_gallery(report: BatchReport, output_dir: str | os.PathLike[str], *, title: str | None = None) -> Path:
     """Write :func:`gallery_html` to ``output_dir/index.html``, whole or not at all; return its path."""
     # A file name of bytes that are not UTF-8 (surrogate escapes) is shown with U+FFFD for them; its links
     # carry its bytes (_link).

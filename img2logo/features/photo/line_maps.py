@@ -7,9 +7,6 @@ colour lines; one is drawn where no drawn line is that edge already and no stron
 lies beside it (:func:`new_colour_lines`). The maps do not depend on the subject: they are made
 once per image (:func:`line_maps`), ahead of their use while the subject is found
 (:func:`start_photo_line_maps`). :mod:`img2logo.features.photo.lines` draws the subject with them.
-
-Arrays are indexed (row, column); points are (x, y) = (column + 0.5, row + 0.5)
-in px, x to the right, y downwards (``contract/README.md``).
 """
 
 from __future__ import annotations

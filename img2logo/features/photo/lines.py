@@ -33,9 +33,6 @@
 Without a subject (a scene) the salient lines of the whole image are drawn and
 joined. The caller prunes spurs (``PHOTO_SPUR_LENGTH``) and short isolated
 lines.
-
-Arrays are indexed (row, column); points are (x, y) = (column + 0.5, row + 0.5)
-in px, x to the right, y downwards (``contract/README.md``).
 """
 
 from __future__ import annotations

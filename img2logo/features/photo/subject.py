@@ -51,9 +51,6 @@ The mask is cleaned the same way whatever found it: its largest connected
 piece, holes under ``SUBJECT_MAX_HOLE`` of its area filled (a handle's loop
 stays open), then smoothed by a Gaussian of ``SUBJECT_SMOOTH_SIGMA``
 (no pixel staircase from the small working copy).
-
-Arrays are indexed (row, column); a rectangle is (x, y, w, h) in px with x the
-column and y the row of its top-left corner.
 """
 
 from __future__ import annotations

@@ -6,9 +6,6 @@
 the frame that comes near the frame strip is let into the strip where its colours say so
 (:func:`reach_frame`). :func:`img2logo.features.photo.subject.find_subject` decides which cut is the
 subject.
-
-Arrays are indexed (row, column); a rectangle is (x, y, w, h) in px with x the
-column and y the row of its top-left corner.
 """
 
 from __future__ import annotations
