@@ -540,3 +540,23 @@ def biarc_coarse_kernel(chain, index, splits, heads, tails, radius_a, radius_b):
                 if worst < best:
                     best, best_j, best_s, best_a = worst, j, s, a
     return best, best_j, best_s, best_a
+
+
+@_jit
+def nearest_on_chain_kernel(chain, qx, qy):  # pragma: no cover - compiled
+    """The point of a pixel chain (n, 2) nearest to (qx, qy), px: (segment i, foot x, foot y, distance).
+
+    ``tangency.split_chain``'s arithmetic: on each step ``chain[i]`` -> ``chain[i + 1]`` the foot of
+    the perpendicular at its parameter clipped to [0, 1]; the first step of the smallest distance.
+    """
+    best, bi, bx, by = math.inf, 0, chain[0, 0], chain[0, 1]
+    for i in range(chain.shape[0] - 1):
+        ax, ay = chain[i, 0], chain[i, 1]
+        vx, vy = chain[i + 1, 0] - ax, chain[i + 1, 1] - ay
+        t = ((qx - ax) * vx + (qy - ay) * vy) / max(vx * vx + vy * vy, 1e-300)
+        t = min(max(t, 0.0), 1.0)
+        fx, fy = ax + t * vx, ay + t * vy
+        d = math.hypot(qx - fx, qy - fy)
+        if d < best:
+            best, bi, bx, by = d, i, fx, fy
+    return bi, bx, by, best

@@ -131,6 +131,7 @@ ENTRY_POINTS: dict[str, tuple[str, tuple[str, ...], str]] = {
         tuple("f8[:,::1] i8[::1] i8[::1] f8[:,:,:,::1] f8[:,:,:,::1] f8 f8".split()),
         "Tuple((f8, i8, i8, i8))",
     ),
+    "nearest_on_chain_kernel": ("arcs", ("f8[:,::1]", "f8", "f8"), "Tuple((i8, f8, f8, f8))"),
     "thin_kernel": ("ndimage", ("u1[:,::1]",), "b1[:,::1]"),
     "correlate_kernel": ("ndimage", ("f8[:,:,::1]", "f8[::1]", "i8", "f8", "!f8[:,:,::1]"), "i8"),
     "correlate32_kernel": ("ndimage", ("f4[:,:,::1]", "f8[::1]", "i8", "f8", "!f4[:,:,::1]"), "i8"),

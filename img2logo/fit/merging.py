@@ -28,7 +28,7 @@ from typing import TypeAlias, cast
 import numpy as np
 
 from . import window_solve
-from .constants import MERGE_FALLBACK_RINGS
+from .constants import FAR_ARC_RETRY, MERGE_FALLBACK_RINGS
 from .fit_state import FitState
 from .fit_values import GroupFit, Seed, Solution
 from .merge_checks import LevelView, Pair, level_view, new_gaps, redundant_after_merge, runs_through_twice, too_far
@@ -81,10 +81,13 @@ def evaluate(
     """Merge ``pair`` tentatively, refit, and score it; None if infeasible.
 
     ``tried``: when given and the refit fails (its windows, or the global
-    problem, have no solution), it receives the groups of the state whose
-    circles the windows held (the pair's two for the merged group): the
-    problem they solved, but for the weights 1/|A| and 1/|J'|, stays as it is
-    until a merge changes one of them (:func:`merge_loop`). ``level``: the
+    problem, have no solution), or its merged arc lies farther than
+    ``FAR_ARC_RETRY`` times its cap from its pixels, it receives the groups of
+    the state whose circles the windows held (the pair's two for the merged
+    group): the problem they solved, but for the weights 1/|A| and 1/|J'|,
+    stays as it is until a merge changes one of them (:func:`merge_loop`).
+    When :func:`~img2logo.fit.merge_checks.too_far` proves the merged arc too far
+    (it reads the two groups only), it receives the pair's two groups. ``level``: the
     state's :func:`~img2logo.fit.merge_checks.level_view`, when the caller has it.
     """
     state.stats.evaluated += 1
@@ -102,6 +105,7 @@ def evaluate(
     if far is not None and far[0] is group_a and far[1] is group_b and far[2:] == then:
         # :func:`too_far` rejected this merge of these two groups before: it reads nothing else that changes.
         state.stats.rejected_far_arc += 1
+        _tried(pair, {-1}, tried)  # (until a merge changes a or b: then the pair is gone)
         return None
     merged = merge_groups(group_a, group_b, node)
     after = dict(state.groups)  # in the state's order, the merged group last
@@ -125,6 +129,7 @@ def evaluate(
         state.stats.rejected_far_arc += 1
         if not held:  # (the lines held at its junctions refused a straight line: that may change)
             state.far_pairs[pair] = (group_a, group_b, *then)
+            _tried(pair, {-1}, tried)
         return None
 
     merged_nodes = set(state.constrained_nodes(merged))
@@ -210,6 +215,8 @@ def evaluate(
     fits, disp = out
     if cap is not None and fits[-1].arc.frechet > cap:  # (then the window's other arcs were not extracted)
         state.stats.rejected_far_arc += 1
+        if fits[-1].arc.frechet > FAR_ARC_RETRY * cap:  # far enough that the weights alone will not bring it in
+            _tried(pair, windows, tried)
         return None
     # The merged arc (id -1) is held to its cap above; the silhouette's arcs beside it, moved by the refit, here.
     if outline_strays(state, {g: f for g, f in fits.items() if g != -1}, after, state.fits):
@@ -331,9 +338,10 @@ def merge_loop(
     """
     cache: dict[Pair, MergeOutcome | None] = {}
     stale: set[Pair] = set()
-    # A candidate whose refit failed, by the groups its windows held (evaluate's ``tried``): it is
-    # tried again once a merge changed one of them, like a candidate with a score (the windows'
-    # constraints are the same until then; only the weights 1/|A|, 1/|J'| of their objective move).
+    # A candidate whose refit failed, or left its arc far past its cap, by the groups its windows held
+    # (evaluate's ``tried``): it is tried again once a merge changed one of them, like a candidate with
+    # a score (the windows' problem is the same until then; only the weights 1/|A|, 1/|J'| of their
+    # objective move).
     failed: dict[Pair, frozenset[int]] = {}
 
     def score(pair: Pair) -> None:

@@ -80,7 +80,6 @@ from .fit_values import Seed
 from .simplification import Group, merge_groups
 
 if TYPE_CHECKING:
-    from ..segment_graph import SegmentGraph
     from .fit_state import FitState
     from .fit_values import GroupFit
 from . import window_solve
@@ -208,8 +207,10 @@ def _one_at_a_time(
         best = None
         before: dict[frozenset[int], int] = {}  # the state's crossings by window: the same for every try here
         gaps = gap_ends(opt)  # the state's near-miss gaps: the same for every try here
+        # The joins held tangent in every try here: a try moves the groups' pixels and rungs, not their ends.
+        touching = opt.tangencies(opt.groups, seeds)
         for combo in rung_choices(opt, node, (a, b)):
-            trial = _try(opt, made, node, combo, bound, before=before, gaps=gaps)
+            trial = _try(opt, made, node, combo, bound, before=before, gaps=gaps, touching=touching)
             if trial is not None and (best is None or trial.similarity < best.similarity):
                 best = trial
             if best is not None and not any(combo.values()):
@@ -219,7 +220,7 @@ def _one_at_a_time(
             # (a tangent biarc over the two groups' joined pixels, the junction anywhere on
             # them, :func:`~img2logo.fit.biarcs.closest_biarcs`) and start the refit from there.
             for combo, start in _biarc_starts(opt, node, (a, b)):
-                trial = _try(opt, made, node, combo, bound, start, before=before, gaps=gaps)
+                trial = _try(opt, made, node, combo, bound, start, before=before, gaps=gaps, touching=touching)
                 if trial is not None and (best is None or trial.similarity < best.similarity):
                     best = trial
         if best is None:
@@ -318,6 +319,7 @@ def _try(
     *,
     before: dict[frozenset[int], int] | None = None,
     gaps: set[int] | None = None,
+    touching: dict[int, tuple[int, int]] | None = None,
 ) -> _Trial | None:
     """Refit the window of the join at ``node`` with the rung steps ``combo``; None if it fails a rule.
 
@@ -329,13 +331,14 @@ def _try(
     and ``regroup``; measured, the arcs extracted in the tangent pass 286 -> 212
     on the clip-art fish, 4986 -> 3815 on the polar bear, the same results).
     With ``start`` (:func:`_biarc_starts`) the fit starts from a tangent
-    biarc (its arcs extracted after the fit, as before): the join's two circles there, their pixels split at its
+    biarc: the join's two circles there, their pixels split at its
     junction, and the junction's rest point moved there for the fit (its
     displacement term of Eqn. 13 pulls towards the biarc's junction, not back
-    along the line to the node). The state is left as it was. ``before`` caches
+    along the line to the node; ``window_solve.solve``'s ``rest``). The state is left as it was. ``before`` caches
     the state's redundant intersections by the groups refitted, for the tries of
     one join (the state does not change between them); ``gaps`` the state's
-    near-miss gaps (:func:`~img2logo.fit.merge_checks.gap_ends`, made here without it).
+    near-miss gaps (:func:`~img2logo.fit.merge_checks.gap_ends`, made here without it); ``touching`` the
+    state's :meth:`~img2logo.fit.fit_state.FitState.tangencies` (made here without it), held in the fit.
     """
     seeds = {g: f.seed for g, f in opt.fits.items()}
     for g, step in combo.items():
@@ -345,7 +348,6 @@ def _try(
     changed, free = _window(opt, made, made[node])
     node_groups = opt.node_groups()
     saved = dict(opt.fits), opt.disp.copy(), dict(opt.groups), dict(opt.off_line)
-    graph = opt.graph
     slid: tuple[dict[int, Group], dict[int, float]] = ({}, {})
 
     def regroup(at: Any, moved: set[int]) -> tuple[dict[int, Group], dict[int, float]] | None:
@@ -360,10 +362,6 @@ def _try(
         if start is not None:
             seeds.update(start.seeds)
             opt.groups.update(start.groups)
-            rest = graph.junctions.copy()
-            rest[node] = start.junction
-            opt.disp[node] = 0.0
-            opt.graph = cast("SegmentGraph", _Moved(graph, rest))
         out = window_solve.solve(
             opt,
             dict(opt.groups),
@@ -375,34 +373,21 @@ def _try(
             n_groups_total=len(opt.groups),
             n_junctions_total=len(node_groups),
             rings=2,
-            tangent=True,
+            tangent=True if touching is None else touching,
             # E^s above ``bound`` fails the try below: no arc is extracted once it must be, and the
             # groups at the tangent joins are split anew (:func:`_slide`) before their arcs are
-            # extracted, not after. A biarc's start keeps the order below: its junction's rest point
-            # is moved for the fit and its arcs read the graph's own again.
-            bound=None if start is not None else bound,
-            regroup=None if start is not None else regroup,
+            # extracted, not after.
+            bound=bound,
+            regroup=regroup,
+            rest=None if start is None else {node: start.junction},
         )
-        if start is not None:
-            opt.graph = graph
-            if out is not None:  # the displacements from the graph's own node again
-                out[1][node] = out[1].get(node, opt.disp[node]) + start.junction - graph.junctions[node]
         if out is None:
             return None
         fits, disp = out
         opt.fits.update(fits)
         for n, d in disp.items():
             opt.disp[n] = d
-        if start is None:
-            groups, off_line = slid  # split in the solve, the arcs extracted there
-        else:
-            moved, off_line = _slide(opt, made, set(fits))
-            if moved is None:
-                return None
-            groups = moved
-            for g, group in groups.items():
-                f = opt.fits[g]
-                fits[g] = replace(f, arc=opt.arc_for(group, f.center, f.radius, f.k, opt.disp.__getitem__))
+        groups, off_line = slid  # split in the solve, the arcs extracted there
         opt.groups.update(groups)
         opt.off_line.update(off_line)
         if strays(opt, fits, opt.groups, saved[0]):
@@ -414,7 +399,6 @@ def _try(
         crossings = _redundant(opt, set(fits))
         made_gaps = gap_ends(opt)
     finally:
-        opt.graph = graph
         opt.fits, opt.disp, opt.groups, opt.off_line = saved
     before = {} if before is None else before
     key = frozenset(fits)
@@ -425,17 +409,6 @@ def _try(
     if not made_gaps <= (gap_ends(opt) if gaps is None else gaps):
         return None
     return _Trial(similarity, fits, disp, groups, off_line)
-
-
-class _Moved:
-    """A segment graph with other rest points for its junctions (a biarc's start, :func:`_try`)."""
-
-    def __init__(self, graph: SegmentGraph, junctions: np.ndarray) -> None:
-        self._graph = graph
-        self.junctions = junctions
-
-    def __getattr__(self, name: str) -> Any:
-        return getattr(self._graph, name)
 
 
 @dataclass(frozen=True)
@@ -530,21 +503,13 @@ def split_chain(chain: np.ndarray, q: np.ndarray) -> tuple[np.ndarray, np.ndarra
     The nearest point of the polyline ends the head and starts the tail. None
     if either would keep fewer than ``SLIDE_MIN_PIXELS`` pixels.
     """
-    # In place and without numpy's wrappers (np.diff, np.clip, np.vstack): the same numbers, a third of the time.
-    a = chain[:-1]
-    v = chain[1:] - a
-    t = np.einsum("ij,ij->i", q - a, v) / np.maximum(np.einsum("ij,ij->i", v, v), 1e-300)
-    np.maximum(t, 0.0, out=t)
-    np.minimum(t, 1.0, out=t)
-    foot = a + t[:, None] * v
-    off = q - foot
-    dist = np.hypot(off[:, 0], off[:, 1])
-    i = int(dist.argmin())
-    at = foot[i : i + 1]
-    head, tail = np.concatenate((chain[: i + 1], at)), np.concatenate((at, chain[i + 1 :]))
-    if len(head) <= SLIDE_MIN_PIXELS or len(tail) <= SLIDE_MIN_PIXELS:  # the pixels and the foot
+    from .._compiled import kernels  # loaded by the first fit already
+
+    i, x, y, dist = kernels.nearest_on_chain_kernel(chain, float(q[0]), float(q[1]))
+    if i + 2 <= SLIDE_MIN_PIXELS or len(chain) - i <= SLIDE_MIN_PIXELS:  # the pixels and the foot
         return None
-    return head, tail, float(dist[i])
+    at = np.array([[x, y]])
+    return np.concatenate((chain[: i + 1], at)), np.concatenate((at, chain[i + 1 :])), float(dist)
 
 
 def _window(opt: FitState, made: dict[int, tuple[int, int]], pair: tuple[int, int]) -> tuple[set[int], set[int]]:

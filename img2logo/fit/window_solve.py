@@ -74,6 +74,7 @@ def solve(
     regroup: Regroup | None = None,
     tried: set[int] | None = None,
     stop_when_stuck: bool = False,
+    rest: Mapping[int, np.ndarray] | None = None,
 ) -> Solution | None:
     """Eqn. 13 over a window of ``groups`` (:func:`~img2logo.fit.local_window.fit_window`), then their arcs.
 
@@ -89,11 +90,20 @@ def solve(
     from its level's); default found in ``seeds``. With ``bound`` (px), None
     as soon as E^s (Eqn. 3) of the state with the new fits and displacements
     must exceed it, and ``regroup`` may split groups anew before their arcs
-    are extracted (:func:`_fits_within`; a tangent join's slide). None if it fails;
-    then ``tried``, when given, receives the groups of the last (widest) window solved.
-    ``stop_when_stuck``: that of :func:`~img2logo.fit.local_window.fit_window`.
+    are extracted (:func:`_fits_within`; a tangent join's slide). None if it fails.
+    ``tried``, when given, receives the groups of the last (widest) window solved, whether it solved or not.
+    ``stop_when_stuck``: that of :func:`~img2logo.fit.local_window.fit_window`. ``rest``: junction ->
+    its rest point p_k for the fit instead of the graph's, px (2,) (a tangent biarc's junction: its d_k
+    starts at zero there); the displacements returned, and those the arcs are extracted with, are from
+    the graph's own points again.
     """
     fixed = set(fixed)
+    junctions, disp0 = state.graph.junctions, state.disp
+    if rest:
+        junctions, disp0 = junctions.copy(), disp0.copy()
+        for n, p in rest.items():
+            junctions[n] = p
+            disp0[n] = 0.0
     fixed.update({g for g in groups if seeds[g].k is None} if lines is None else lines)
     window = fit_window(
         _Lazy(lambda g: groups[g].points),
@@ -101,14 +111,14 @@ def solve(
         _Lazy(lambda g: seeds[g].center),
         _Lazy(lambda g: tuple(set(state.constrained_nodes(groups[g])))),
         cast(Mapping[Hashable, Sequence[Hashable]], node_groups),
-        state.graph.junctions,
+        junctions,
         changed=changed,
         free_junctions=free_nodes,
         fixed=fixed,
         rings=rings,
         first_ring=first_ring,
         order=cast(Callable[[Hashable], Any] | None, order),
-        displacements0=state.disp,
+        displacements0=disp0,
         n_circles=n_groups_total,
         n_junctions=n_junctions_total,
         connectivity=state.options.connectivity,
@@ -120,13 +130,16 @@ def solve(
         else None,
         stop_when_stuck=stop_when_stuck,
     )
+    if tried is not None:
+        tried.update(cast(Collection[int], window.circles))
     if not window.ok:
-        if tried is not None:
-            tried.update(cast(Collection[int], window.circles))
         return None
+    disp = _window_displacements(state, window)
+    for n, p in (rest or {}).items():
+        disp[n] = disp.get(n, 0.0) + p - state.graph.junctions[n]
     if bound is not None:
-        return _fits_within(state, window, groups, seeds, fixed, node_groups, bound, regroup)
-    return _fits(state, window, groups, seeds, fixed, cap)
+        return _fits_within(state, window, disp, groups, seeds, fixed, node_groups, bound, regroup)
+    return _fits(state, window, disp, groups, seeds, fixed, cap)
 
 
 def solve_whole(
@@ -191,6 +204,7 @@ def _refitted(
 def _fits(
     state: FitState,
     window: WindowFit,
+    disp: dict[int, np.ndarray],
     groups: Mapping[int, Group],
     seeds: Mapping[int, Seed],
     fixed: set[int],
@@ -201,8 +215,8 @@ def _fits(
     With ``cap``, the merged group's (id -1) arc is extracted first, and
     when it is farther than ``cap`` px from its pixels only it is returned:
     the merge loop rejects that merge (``max_arc_distance``) and reads no other arc.
+    ``disp``: the window's d_k by node (:func:`_window_displacements`).
     """
-    disp = _window_displacements(state, window)
     todo = _refitted(state, window, groups, seeds, fixed)
 
     def fit(gid: int) -> GroupFit:
@@ -222,6 +236,7 @@ def _fits(
 def _fits_within(
     state: FitState,
     window: WindowFit,
+    disp: dict[int, np.ndarray],
     groups: Mapping[int, Group],
     seeds: Mapping[int, Seed],
     fixed: set[int],
@@ -246,7 +261,6 @@ def _fits_within(
     arc). Otherwise the fits are those :func:`_fits` and then a re-extraction
     of the regrouped groups' arcs would give, the same numbers.
     """
-    disp = _window_displacements(state, window)
     todo = _refitted(state, window, groups, seeds, fixed)
     now = state.disp
 

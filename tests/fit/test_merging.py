@@ -12,7 +12,7 @@ from helpers import DATA, golden_chain, golden_radius, hand_built_state, line_an
 from img2logo import build_segment_graph, extract_feature_lines, quality
 from img2logo.fit import window_solve
 from img2logo.fit.arc_extraction import ArcFit
-from img2logo.fit.constants import MERGE_FALLBACK_RINGS
+from img2logo.fit.constants import FAR_ARC_RETRY, MERGE_FALLBACK_RINGS
 from img2logo.fit.fit_state import FitState
 from img2logo.fit.fit_values import GroupFit
 from img2logo.fit.intersections import redundant_intersections
@@ -164,7 +164,9 @@ def test_a_merged_arc_no_circle_of_its_radius_brings_near_is_rejected_before_its
     assert list(state.far_arcs.values()) == [True]  # the proof is made once per merged group and radius
     # ... and the pair's two groups, under this T (past T the bound grows: the pair is proved again)
     assert state.far_pairs == {(0, 1, 1): (state.groups[0], state.groups[1], 0, state.options.tolerance)}
-    assert evaluate(state, (0, 1, 1)) is None and state.stats.rejected_far_arc == 2
+    # The loop evaluates it again only once a merge changed one of the two (``tried``): then it is gone.
+    tried: set[int] = set()
+    assert evaluate(state, (0, 1, 1), tried) is None and state.stats.rejected_far_arc == 2 and tried == {0, 1}
     state.options = dataclasses.replace(state.options, tolerance=2 * state.options.tolerance)  # past T
     assert evaluate(state, (0, 1, 1)) is None and state.far_pairs[0, 1, 1][3] == state.options.tolerance
     # Another group under one of the ids (a tangent join's slide splits pixels anew): proved again.
@@ -406,6 +408,20 @@ def test_a_far_merged_arc_is_found_before_the_windows_other_arcs():
     state = _fitted_chain()
     out = evaluate(state, (0, 1, 1))
     assert out is not None and sorted(out.fits) == [-1, 2]  # without a bound, the window's arcs
+
+
+def test_a_merged_arc_far_past_the_bound_is_refitted_again_only_once_its_window_changed():
+    frechet = evaluate(_fitted_chain(), (0, 1, 1)).fits[-1].arc.frechet
+    # Far past the bound: the window's groups go to ``tried`` (the merged group's as the pair's two), as
+    # for a failed refit, so that the loop refits it again only once a merge changed one of them.
+    # Just past it (within FAR_ARC_RETRY times the bound): refitted at every level, none go.
+    for bound, window in ((frechet / (2 * FAR_ARC_RETRY), {0, 1, 2}), (frechet / (0.5 + 0.5 * FAR_ARC_RETRY), set())):
+        state = _fitted_chain(max_arc_distance=bound)
+        merged = merge_groups(state.groups[0], state.groups[1], 1)
+        state.far_arcs[(merged.segments, merged.nodes, float(state.golden(merged).radius), bound)] = False
+        tried: set[int] = set()
+        assert evaluate(state, (0, 1, 1), tried) is None and state.stats.rejected_far_arc == 1
+        assert tried == window
 
 
 def test_the_levels_arrays_are_made_again_after_a_merge():

@@ -104,6 +104,26 @@ def test_joins_made_tangent_one_at_a_time_stay_exact(umbrella):
     assert level.similarity <= level.tolerance
 
 
+def test_the_compiled_split_finds_numpys_foot_to_the_bit():
+    from img2logo.fit.tangency import split_chain
+
+    rng = np.random.default_rng(7)
+    for _ in range(200):
+        chain = np.cumsum(rng.normal(size=(int(rng.integers(12, 60)), 2)), axis=0)
+        q = chain[int(rng.integers(len(chain)))] + rng.normal(scale=2.0, size=2)
+        # The feet of q on every step of the chain, in numpy (the first nearest one is the split).
+        a, v = chain[:-1], chain[1:] - chain[:-1]
+        t = np.einsum("ij,ij->i", q - a, v) / np.maximum(np.einsum("ij,ij->i", v, v), 1e-300)
+        foot = a + np.clip(t, 0.0, 1.0)[:, None] * v
+        dist = np.hypot(*(q - foot).T)
+        i = int(dist.argmin())
+        out = split_chain(chain, q)
+        if out is not None:
+            head, tail, off = out
+            assert len(head) == i + 2 and np.array_equal(head[-1], foot[i]) and np.array_equal(tail[0], foot[i])
+            assert off == dist[i]
+
+
 def test_cutting_off_tries_over_the_bound_changes_no_result(monkeypatch):
     """A try is cut off once its E^s must exceed the bound (``window_solve.solve``'s ``bound``): the same logo."""
     from img2logo.fit import window_solve
@@ -113,9 +133,9 @@ def test_cutting_off_tries_over_the_bound_changes_no_result(monkeypatch):
     within = window_solve._fits_within
     cuts = []
 
-    def never_cut(state, window, groups, seeds, fixed, node_groups, bound, regroup):
-        out = within(state, window, groups, seeds, fixed, node_groups, bound, regroup)
-        full = within(state, window, groups, seeds, fixed, node_groups, math.inf, regroup)
+    def never_cut(state, window, disp, groups, seeds, fixed, node_groups, bound, regroup):
+        out = within(state, window, disp, groups, seeds, fixed, node_groups, bound, regroup)
+        full = within(state, window, disp, groups, seeds, fixed, node_groups, math.inf, regroup)
         cuts.append(out is None and full is not None)
         return full
 
