@@ -320,6 +320,10 @@ def optimize(
         raise InvalidParameterError(f"graph must be a SegmentGraph, got {type(graph).__name__}")
     if graph.n_segments == 0:
         raise InvalidParameterError("the segment graph has no segments: nothing to abstract (no feature lines found)")
+    if started is not None and (
+        isinstance(started, bool) or not isinstance(started, int | float) or math.isnan(started)
+    ):
+        raise InvalidParameterError(f"started must be a process_time() reading, s, or None, got {started!r}")
     locked = locked_segments(graph, lock_mask)
     budget = arc_budget(opts)
     record = {**opts.record(), "arcs": budget, "locked_segments": int(locked.sum()), **(params or {})}

@@ -284,6 +284,13 @@ def test_the_time_budget_counts_from_the_start_given(fish_progression):
     assert prog.final.arcs == optimize(graph, tolerance=5.0, tangency=False, merging=False).final.arcs
 
 
+@pytest.mark.parametrize("started", ["now", float("nan"), True])
+def test_a_start_that_is_no_clock_reading_is_refused(fish_progression, started):
+    graph, _ = fish_progression
+    with pytest.raises(InvalidParameterError, match=r"started must be a process_time\(\) reading"):
+        optimize(graph, started=started)
+
+
 def test_abstract_s_budget_counts_from_its_own_start(monkeypatch):
     import img2logo.pipeline as pipeline
 
