@@ -34,8 +34,8 @@ INK_COLOUR_SPREAD: float = 4.6
 #: half its pixels), not a grey of its own (a grey fill or line has no pixel of the ink's colour).
 INK_SHARE: float = 0.25
 #: Kind detection: an image of one ink with shading (its other colours all blends of the paper and the ink: greys
-#: for black ink) is a line drawing when the ink is more than this share of what is drawn, the ink's regions over
-#: all non-paper regions by area: the lines are then what the image is made of, the shading an accent between them.
+#: for black ink) is a line drawing when the ink is more than this share of what is drawn, the regions of the ink's
+#: colour over all non-paper regions by area: the lines are then what the image is made of, the shading an accent.
 SHADED_INK_SHARE: float = 0.6
 #: ... and its ink is dark: CIELAB L* at most this (half the paper's), so that greys lie between it and the paper.
 SHADED_INK_MAX_LIGHTNESS: float = 50.0

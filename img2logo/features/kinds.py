@@ -248,11 +248,11 @@ def _shaded_ink(
     blends of the paper and the ink, each within ``INK_COLOUR_SPREAD`` of one (:func:`_blends`;
     a black ink's greys: a colour of its own is no shading), the ink being the drawn colour
     farthest from the paper's, and dark (L* at most ``SHADED_INK_MAX_LIGHTNESS``). The regions
-    nearer the ink than the paper on that blend are ink, as a threshold halfway between them
-    reads it (:func:`~img2logo.features.drawing_lines.drawing_ink`); the lighter ones are
-    shading. It is such a drawing when the ink is more than ``SHADED_INK_SHARE`` of what is
-    drawn (the ``solid`` regions, by area): its lines carry it, the shading is an accent. A
-    grey animal with a black outline is mostly fill: a clip art of greys.
+    of the ink's colour (within ``INK_COLOUR_SPREAD`` of it) are ink; every other blend, dark
+    or light, is shading laid with it. It is such a drawing when the ink is more than
+    ``SHADED_INK_SHARE`` of what is drawn (the ``solid`` regions, by area): its lines carry it,
+    the shading is an accent. A grey animal or vehicle with a black outline is mostly fill, in
+    greys dark and light: a clip art of greys.
     """
     drawn = np.flatnonzero(solid)
     if len(drawn) < 2:
@@ -266,7 +266,7 @@ def _shaded_ink(
     if np.any(gap.min(axis=1) > INK_COLOUR_SPREAD):
         return None
     ink = np.zeros(len(means), dtype=bool)
-    ink[drawn[np.argmin(gap, axis=1) >= len(blends) // 2]] = True
+    ink[drawn[np.linalg.norm(means[drawn] - means[darkest], axis=1) <= INK_COLOUR_SPREAD]] = True
     return ink if area[ink].sum() > SHADED_INK_SHARE * area[solid].sum() else None
 
 

@@ -228,6 +228,14 @@ def test_one_ink_with_some_grey_shading_is_a_drawing():
     # no dark ink: two pale greys are not an ink and its shading
     pale = _shaded(True, fill_value=235, outline=200)
     assert detect_kind(pale)[0] == "clipart"
+    # dark greys are fills too: panels in greys darker than halfway to the paper, outlined in black
+    # (a vehicle's grille and doors), are a clip art of greys, not an ink drawing
+    panels = np.full((300, 300, 3), 255, np.uint8)
+    for i, x in enumerate(range(40, 260, 22)):
+        cv2.rectangle(panels, (x, 60), (x + 14, 240), (60 + 25 * (i % 2),) * 3, -1, cv2.LINE_AA)
+    cv2.rectangle(panels, (36, 56), (262, 244), (0, 0, 0), 2, cv2.LINE_AA)
+    kind, reason = detect_kind(panels)
+    assert kind == "clipart", reason
 
 
 def test_a_staff_of_long_grey_lines_is_a_drawing():
