@@ -174,18 +174,20 @@ def merge_by_importance(
     target, budget = merge_targets(regions, lab, detail, marks=True, arcs=arcs, sides=sides)
     if n - 1 <= detail and len(unique(target)) == n:
         return Merged(regions, n - 1, budget)
-    if len(unique(target)) > max_regions:  # the dark marks too, down to the bound
+    coarsened = len(unique(target)) > max_regions
+    if coarsened:  # the dark marks too, down to the bound
         target, budget = merge_targets(regions, lab, min(detail, max_regions - 1), marks=False, arcs=arcs, sides=sides)
+    kept = len(unique(target))
+    if coarsened:
         import warnings
 
         warnings.warn(
             f"{n} regions at detail {detail} are more than the optimization takes at once ({max_regions}): "
-            f"coarsened to detail {len(unique(target)) - 1}, {len(unique(target))} regions"
-            + (" (no fewer without merging across the outline)" if len(unique(target)) > max_regions else ""),
+            f"coarsened to detail {kept - 1}, {kept} regions"
+            + (" (no fewer without merging across the outline)" if kept > max_regions else ""),
             DetailWarning,
             stacklevel=2,
         )
-    kept = len(unique(target))
     if kept == n:
         return Merged(regions, n - 1, budget)
     if sides is not None:  # the stroke between fills merged into one goes, as a shared boundary would
