@@ -451,95 +451,142 @@ def extract_arc_kernel(cx, cy, r, seg, junctions, theta, junction_tol, ratio, sl
 
 
 @_jit
-def biarc_best_kernel(chain, centre_a, centre_b, splits, radius_a, radius_b):  # pragma: no cover - compiled
-    """The best biarc of a grid of splits and turns (``biarcs.biarc_fine``): (distance px, s, a).
+def biarc_fine_kernel(chain, heads, tails, splits, counts, radii_a, radii_b, most):  # pragma: no cover - compiled
+    """The best biarc of each pair's fine grid (``biarcs.closest_biarcs``): (distance px, s, a) per pair.
 
-    For split ``splits[s]`` and turn ``a``, the head's pixels ``chain[:split + 1]``
-    go with the circle of centre ``centre_a[s, a]`` and radius ``radius_a``, the
-    tail's ``chain[split:]`` with ``centre_b[s, a]`` and ``radius_b``; a biarc's
-    distance is the largest distance of a pixel from its circle (the arithmetic
-    of :func:`img2logo._compiled.circle.biarc_worst_kernel`). Returned: the
-    smallest over the grid, and where, the first in row-major order on a tie
-    (numpy's ``argmin`` of the grid of both kernels' ``maximum``). A biarc's
-    pixels stop being measured once it is known to be no better than the best
-    so far (its largest distance can only grow): most of the grid is left after
-    a few pixels.
+    For pair ``p``, split ``splits[p, s]`` (``s < counts[p]``) and turn ``a``, the
+    head's pixels ``chain[:split + 1]`` go with the circle of centre ``heads[p, s, a]``
+    and radius ``radii_a[p]``, the tail's ``chain[split:]`` with ``tails[p, s, a]``
+    and ``radii_b[p]``; a biarc's distance is the largest distance of a pixel from
+    its circle (the arithmetic of :func:`img2logo._compiled.circle.biarc_worst_kernel`).
+    Each pair's smallest over its grid and where, the first in row-major order on
+    a tie. With ``most`` > 0 only the pairs that can be among the ``most`` smallest
+    (the earlier pair first on a tie) are searched to the end: a pair's search
+    starts from the ``most``-th smallest distance of the pairs before it, and a
+    pair that finds nothing below it gets s = -1. A biarc's pixels stop being
+    measured once it is known to be no better than the best so far (its largest
+    distance can only grow).
     """
     n = chain.shape[0]
-    best = math.inf
-    best_s, best_a = 0, 0
-    for s in range(centre_a.shape[0]):
-        split = splits[s]
-        for a in range(centre_a.shape[1]):
-            worst = 0.0
-            cx, cy = centre_a[s, a, 0], centre_a[s, a, 1]
-            for i in range(split + 1):
-                d = abs(math.hypot(chain[i, 0] - cx, chain[i, 1] - cy) - radius_a)
-                if d > worst:
-                    worst = d
-                    if worst >= best:
-                        break
-            if worst >= best:
-                continue
-            cx, cy = centre_b[s, a, 0], centre_b[s, a, 1]
-            for i in range(split, n):
-                d = abs(math.hypot(chain[i, 0] - cx, chain[i, 1] - cy) - radius_b)
-                if d > worst:
-                    worst = d
-                    if worst >= best:
-                        break
-            if worst < best:
-                best, best_s, best_a = worst, s, a
-    return best, best_s, best_a
-
-
-@_jit
-def biarc_coarse_kernel(chain, index, splits, heads, tails, radius_a, radius_b):  # pragma: no cover - compiled
-    """The best biarc of the coarse grid for one pair of radii (``biarcs.biarc_coarse``): (distance, j, s, a).
-
-    ``heads[side_a, s, a]`` and ``tails[side_b, s, a]`` are the centres of the
-    head's and the tail's circles (sides -1, +1) at split ``splits[s]`` and turn
-    ``a``; of the pixels ``chain[index]`` (increasing) those up to the split go
-    with the head's circle, those from it on with the tail's (the arithmetic of
-    :func:`img2logo._compiled.circle.biarc_worst_kernel`). Over j = 2 side_a +
-    side_b, then the grid in row-major order, the smallest largest distance and
-    where it is first reached; a biarc's pixels stop being measured once it is
-    known to be no better than the best so far.
-    """
-    n_index = index.shape[0]
-    best = math.inf
-    best_j, best_s, best_a = 0, 0, 0
-    for j in range(4):
-        side_a, side_b = j // 2, j % 2
-        for s in range(heads.shape[1]):
-            split = splits[s]
+    n_pairs = heads.shape[0]
+    worst_out = np.full(n_pairs, math.inf)
+    s_out = np.full(n_pairs, -1, dtype=np.int64)
+    a_out = np.full(n_pairs, -1, dtype=np.int64)
+    top = np.full(max(most, 1), math.inf)  # the smallest distances found so far, increasing
+    for p in range(n_pairs):
+        best = top[most - 1] if most > 0 else math.inf
+        best_s, best_a = -1, -1
+        ra, rb = radii_a[p], radii_b[p]
+        for s in range(counts[p]):
+            split = splits[p, s]
             for a in range(heads.shape[2]):
                 worst = 0.0
-                cx, cy = heads[side_a, s, a, 0], heads[side_a, s, a, 1]
-                for k in range(n_index):
-                    i = index[k]
-                    if i > split:
-                        break
-                    d = abs(math.hypot(chain[i, 0] - cx, chain[i, 1] - cy) - radius_a)
+                cx, cy = heads[p, s, a, 0], heads[p, s, a, 1]
+                for i in range(split + 1):
+                    d = abs(math.hypot(chain[i, 0] - cx, chain[i, 1] - cy) - ra)
                     if d > worst:
                         worst = d
                         if worst >= best:
                             break
                 if worst >= best:
                     continue
-                cx, cy = tails[side_b, s, a, 0], tails[side_b, s, a, 1]
-                for k in range(n_index - 1, -1, -1):
-                    i = index[k]
-                    if i < split:
-                        break
-                    d = abs(math.hypot(chain[i, 0] - cx, chain[i, 1] - cy) - radius_b)
+                cx, cy = tails[p, s, a, 0], tails[p, s, a, 1]
+                for i in range(split, n):
+                    d = abs(math.hypot(chain[i, 0] - cx, chain[i, 1] - cy) - rb)
                     if d > worst:
                         worst = d
                         if worst >= best:
                             break
                 if worst < best:
-                    best, best_j, best_s, best_a = worst, j, s, a
-    return best, best_j, best_s, best_a
+                    best, best_s, best_a = worst, s, a
+        if best_s < 0:
+            continue
+        worst_out[p], s_out[p], a_out[p] = best, best_s, best_a
+        if most > 0:  # insert into the increasing list, the last one dropped
+            k = most - 1
+            while k > 0 and top[k - 1] > best:
+                top[k] = top[k - 1]
+                k -= 1
+            top[k] = best
+    return worst_out, s_out, a_out
+
+
+@_jit
+def biarc_coarse_kernel(chain, index, splits, heads, tails, radii_a, radii_b):  # pragma: no cover - compiled
+    """The best biarc of the coarse grid for every pair of radii (``biarcs.biarc_coarse``): (ia, ib) -> (j, s, a).
+
+    ``heads[ia, side_a, s, a]`` and ``tails[ib, side_b, s, a]`` are the centres
+    of the head's circle of radius ``radii_a[ia]`` and the tail's of ``radii_b[ib]``
+    (sides -1, +1) at split ``splits[s]`` and turn ``a``; of the pixels
+    ``chain[index]`` (increasing) those up to the split go with the head's circle,
+    those from it on with the tail's (the arithmetic of
+    :func:`img2logo._compiled.circle.biarc_worst_kernel`). For each pair of radii,
+    over j = 2 side_a + side_b, then the grid in row-major order, the smallest
+    largest distance and where it is first reached. A biarc's pixels stop being
+    measured once it is known to be no better than the best so far; a circle's
+    largest distance measured so far, and where it stopped, are kept for the
+    other pairs that share it (a head's circle serves every tail's and the
+    reverse): measuring on from there gives the same maximum as from the start.
+    """
+    n_a, n_b = heads.shape[0], tails.shape[0]
+    n_s, n_t = heads.shape[2], heads.shape[3]
+    n_index = index.shape[0]
+    head_worst = np.zeros((n_a, 2, n_s, n_t))
+    head_next = np.zeros((n_a, 2, n_s, n_t), dtype=np.int64)  # the next of index to measure, forwards
+    tail_worst = np.zeros((n_b, 2, n_s, n_t))
+    tail_next = np.full((n_b, 2, n_s, n_t), n_index - 1, dtype=np.int64)  # backwards from the chain's end
+    out = np.zeros((n_a, n_b, 3), dtype=np.int64)
+    for ia in range(n_a):
+        ra = radii_a[ia]
+        for ib in range(n_b):
+            rb = radii_b[ib]
+            best = math.inf
+            best_j, best_s, best_a = 0, 0, 0
+            for j in range(4):
+                side_a, side_b = j // 2, j % 2
+                for s in range(n_s):
+                    split = splits[s]
+                    for a in range(n_t):
+                        worst = head_worst[ia, side_a, s, a]
+                        if worst >= best:
+                            continue
+                        k = head_next[ia, side_a, s, a]
+                        cx, cy = heads[ia, side_a, s, a, 0], heads[ia, side_a, s, a, 1]
+                        while k < n_index:
+                            i = index[k]
+                            if i > split:
+                                break
+                            k += 1
+                            d = abs(math.hypot(chain[i, 0] - cx, chain[i, 1] - cy) - ra)
+                            if d > worst:
+                                worst = d
+                                if worst >= best:
+                                    break
+                        head_worst[ia, side_a, s, a] = worst
+                        head_next[ia, side_a, s, a] = k
+                        if worst >= best:
+                            continue
+                        tail = tail_worst[ib, side_b, s, a]
+                        if tail >= best:
+                            continue
+                        k = tail_next[ib, side_b, s, a]
+                        cx, cy = tails[ib, side_b, s, a, 0], tails[ib, side_b, s, a, 1]
+                        while k >= 0:
+                            i = index[k]
+                            if i < split:
+                                break
+                            k -= 1
+                            d = abs(math.hypot(chain[i, 0] - cx, chain[i, 1] - cy) - rb)
+                            if d > tail:
+                                tail = d
+                                if tail >= best:
+                                    break
+                        tail_worst[ib, side_b, s, a] = tail
+                        tail_next[ib, side_b, s, a] = k
+                        if tail < best:
+                            best, best_j, best_s, best_a = max(worst, tail), j, s, a
+            out[ia, ib, 0], out[ia, ib, 1], out[ia, ib, 2] = best_j, best_s, best_a
+    return out
 
 
 @_jit

@@ -121,15 +121,15 @@ ENTRY_POINTS: dict[str, tuple[str, tuple[str, ...], str]] = {
     "sparse_label_kernel": ("front", ("i8[::1]", "i8[::1]", "i8", "i8"), "i8[::1]"),
     "near_kernel": ("front", ("i8[:,::1]", "i8[::1]", "i8[::1]", "i8", "i8[:,::1]"), "b1[:,::1]"),
     "biarc_worst_kernel": ("circle", tuple("f8[:,::1] f8[:,:,::1] i8[::1] i8[::1] f8 b1".split()), "f8[:,::1]"),
-    "biarc_best_kernel": (
+    "biarc_fine_kernel": (
         "arcs",
-        tuple("f8[:,::1] f8[:,:,::1] f8[:,:,::1] i8[::1] f8 f8".split()),
-        "Tuple((f8, i8, i8))",
+        tuple("f8[:,::1] f8[:,:,:,::1] f8[:,:,:,::1] i8[:,::1] i8[::1] f8[::1] f8[::1] i8".split()),
+        "Tuple((f8[::1], i8[::1], i8[::1]))",
     ),
     "biarc_coarse_kernel": (
         "arcs",
-        tuple("f8[:,::1] i8[::1] i8[::1] f8[:,:,:,::1] f8[:,:,:,::1] f8 f8".split()),
-        "Tuple((f8, i8, i8, i8))",
+        tuple("f8[:,::1] i8[::1] i8[::1] f8[:,:,:,:,::1] f8[:,:,:,:,::1] f8[::1] f8[::1]".split()),
+        "i8[:,:,::1]",
     ),
     "nearest_on_chain_kernel": ("arcs", ("f8[:,::1]", "f8", "f8"), "Tuple((i8, f8, f8, f8))"),
     "thin_kernel": ("ndimage", ("u1[:,::1]",), "b1[:,::1]"),

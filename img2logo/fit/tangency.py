@@ -445,10 +445,10 @@ def _biarc_starts(opt: FitState, node: int, pair: tuple[int, int]) -> list[tuple
     key = (ga.segments, gb.segments, node, len(chain), *chain[0], *chain[-1], *radii)
     cache = _BIARCS.setdefault(opt, {})
     if key not in cache:
-        cache[key] = closest_biarcs(chain, [r for _, _, r in rungs[a]], [r for _, _, r in rungs[b]])
+        cache[key] = closest_biarcs(chain, [r for _, _, r in rungs[a]], [r for _, _, r in rungs[b]], BIARC_STARTS)
     found = cache[key]
     out = []
-    for _, ia, ib, i, ca, cb in found[:BIARC_STARTS]:
+    for _, ia, ib, i, ca, cb in found:
         (sa, ka, ra), (sb, kb, rb) = rungs[a][ia], rungs[b][ib]
         head, tail = chain[: i + 1], chain[i:]
         groups = {
