@@ -28,8 +28,9 @@ from .simplification import Group
 class _Lazy(dict):
     """A mapping whose values are computed on first access (only the window's are needed)."""
 
-    def __init__(self, value: Callable[[Any], Any]) -> None:
-        super().__init__()
+    __slots__ = ("_value",)
+
+    def __init__(self, value: Callable[[Any], Any]) -> None:  # empty as made: dict's own __init__ adds nothing
         self._value = value
 
     def __missing__(self, key: Any) -> Any:
