@@ -15,6 +15,7 @@ from __future__ import annotations
 from collections.abc import Callable, Collection, Hashable, Mapping, Sequence
 from dataclasses import replace
 from typing import Any, cast
+from weakref import WeakKeyDictionary
 
 import numpy as np
 
@@ -291,6 +292,7 @@ def _fits_within(
     d = sum(off_line[n] if n in off_line else h for n, h in zip(node_groups, lengths, strict=True))
     shift = d / len(node_groups) if node_groups else 0.0
     limit = bound + CUT_MARGIN * max(1.0, abs(bound))
+    memo = _ARCS.setdefault(state, {})
     fits = {}
     for gid in todo:
         if running / max(n_fits, 1) + shift > limit:
@@ -299,7 +301,9 @@ def _fits_within(
         if gid in fitted:
             _, r, k = seeds[gid]
             center = window.center(gid)
-            f = GroupFit(center, r, k, state.arc_for(group, center, r, k, at))
+            # Memoized for the state's own groups only: a group split anew has new pixels every time.
+            arc = state.arc_for(group, center, r, k, at, memo if group is state.groups.get(gid) else None)
+            f = GroupFit(center, r, k, arc)
         else:  # split anew at a join of a fitted group: its circle stays
             f = state.fits[gid]
             f = replace(f, arc=state.arc_for(group, f.center, f.radius, f.k, at))
@@ -308,3 +312,9 @@ def _fits_within(
     if running / max(n_fits, 1) + shift > limit:
         return None
     return fits, disp
+
+
+#: The arcs extracted by :func:`_fits_within` in a run (:meth:`~img2logo.fit.fit_state.FitState.arc_for`'s
+#: ``memo``): the tangent passes solve some windows again to the same circles (the passes that
+#: :func:`~img2logo.fit.kinks.split_kinks` runs after each split it tries share their groups and weights).
+_ARCS: WeakKeyDictionary[FitState, dict] = WeakKeyDictionary()

@@ -214,6 +214,23 @@ def test_a_bounded_solve_regroups_before_extracting_and_fails_with_the_regroup()
     assert failed is None
 
 
+def test_an_arc_memoized_is_the_arc_extracted_again_for_the_same_pixels_circle_and_ends():
+    graph, _ = golden_chain()
+    state = hand_built_state(graph)
+    initial_fit(state)
+    group, fit = state.groups[0], state.fits[0]
+    at = state.disp.__getitem__
+    memo: dict = {}
+    first = state.arc_for(group, fit.center, fit.radius, fit.k, at, memo)
+    assert first == state.arc_for(group, fit.center, fit.radius, fit.k, at) and len(memo) == 1
+    assert state.arc_for(group, fit.center, fit.radius, fit.k, at, memo) is first  # read back
+    # Another group's circle and ends: its own arc; another pixel array (equal values, another object): anew.
+    other, fit1 = state.groups[1], state.fits[1]
+    assert state.arc_for(other, fit1.center, fit1.radius, fit1.k, at, memo) == fit1.arc and len(memo) == 2
+    copy = dataclasses.replace(group, points=group.points.copy())
+    assert state.arc_for(copy, fit.center, fit.radius, fit.k, at, memo) is not first and len(memo) == 3
+
+
 # --------------------------------------------------------------------------- topology
 def test_open_ends_are_the_free_ends_and_a_gap_is_one_0_75_to_6_px_from_another_arc():
     for tip, gaps in ((7.5, set()), (3.0, {4}), (0.2, set())):
