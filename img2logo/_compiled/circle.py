@@ -236,6 +236,17 @@ def mean_abs_error_kernel(p, cx, cy, radius):  # pragma: no cover - compiled
 
 
 @_jit
+def largest_gap_kernel(p, cx, cy, radius):  # pragma: no cover - compiled
+    """The largest | |p - o| - r | of points (N, 2), px: the farthest point's distance from the circle."""
+    worst = 0.0
+    for i in range(len(p)):
+        d = abs(math.hypot(p[i, 0] - cx, p[i, 1] - cy) - radius)
+        if d > worst:
+            worst = d
+    return worst
+
+
+@_jit
 def biarc_worst_kernel(chain, centre, index, splits, radius, head):  # pragma: no cover - compiled
     """``biarcs.biarc_worst`` past its circles' centres: the largest distance (S, A), px.
 

@@ -90,6 +90,8 @@ ENTRY_POINTS: dict[str, tuple[str, tuple[str, ...], str]] = {
     "fit_circle_kernel": ("circle", ("f8[:,::1]", "f8", "f8"), "Tuple((i8, f8, f8, f8, f8, b1))"),
     "fit_center_kernel": ("circle", ("f8[:,::1]", "f8", "f8", "f8", "i8"), "UniTuple(f8, 2)"),
     "mean_abs_error_kernel": ("circle", ("f8[:,::1]", "f8", "f8", "f8"), "f8"),
+    # (loop) a lower bound of an arc's Fréchet distance before it is extracted (the tangent pass).
+    "largest_gap_kernel": ("circle", ("f8[:,::1]", "f8", "f8", "f8"), "f8"),
     "dijkstra_kernel": ("graph", ("i8[::1]", "i8[::1]", "f8[::1]", "i8[::1]", "!f8[::1]", "!i8[::1]"), "i8"),
     "banded_solve_kernel": ("graph", ("i8[::1]", "i8[::1]", "f8[::1]", "f8[::1]", "!f8[::1]"), "i8"),
     "end_tangents_kernel": (
