@@ -197,6 +197,8 @@ def _one_at_a_time(
     """
     seeds = {g: f.seed for g, f in opt.fits.items()}
     order = sorted(joins, key=lambda n: (_apart(opt, seeds, n, joins[n]), n))
+    # The state's tangencies but for the joins loose at the time: a try moves pixels and rungs, not ends.
+    every = opt.tangencies(opt.groups, seeds)
     opt.loose |= set(joins)
     made: dict[int, tuple[int, int]] = {}
     released = 0
@@ -204,7 +206,7 @@ def _one_at_a_time(
         a, b = joins[node]
         opt.loose.discard(node)
         made[node] = (a, b)
-        join = _join(opt, made, node, seeds)
+        join = _join(opt, made, node, {n: pair for n, pair in every.items() if n not in opt.loose})
         # The rungs the paper chose first: when they serve, no reason to leave them (nor to rank the others).
         best = _try(opt, made, join, {a: 0, b: 0}, bound)
         if best is None:
@@ -320,10 +322,11 @@ class _Join:
     touching: dict[int, tuple[int, int]]  # the joins held tangent: a try moves pixels and rungs, not ends
     gaps: set[int]  # the state's near-miss gaps (:func:`~img2logo.fit.merge_checks.gap_ends`)
     crossings: dict[frozenset[int], int]  # the state's redundant intersections by the groups refitted
+    chains: dict  # the joined pixels of two groups at a join (:func:`_slide`), by the join and the groups
 
 
-def _join(opt: FitState, made: dict[int, tuple[int, int]], node: int, seeds: dict[int, Seed]) -> _Join:
-    """The :class:`_Join` of the join at ``node`` (in ``made``) in the current state; ``seeds`` for its tangencies."""
+def _join(opt: FitState, made: dict[int, tuple[int, int]], node: int, touching: dict[int, tuple[int, int]]) -> _Join:
+    """The :class:`_Join` of the join at ``node`` (in ``made``) in the current state, ``touching`` its tangencies."""
     changed, free = _window(opt, made, made[node])
     now = {g: f.seed for g, f in opt.fits.items()}
     return _Join(
@@ -332,8 +335,9 @@ def _join(opt: FitState, made: dict[int, tuple[int, int]], node: int, seeds: dic
         sorted(changed),
         sorted(free),
         {g for g, seed in now.items() if seed.k is None},
-        opt.tangencies(opt.groups, seeds),
+        touching,
         gap_ends(opt),
+        {},
         {},
     )
 
@@ -373,7 +377,7 @@ def _try(
 
     def regroup(at: Any, moved: set[int]) -> tuple[dict[int, Group], dict[int, float]] | None:
         nonlocal slid
-        groups, off_line = _slide(opt, made, moved, at)
+        groups, off_line = _slide(opt, made, moved, at, join.chains)
         if groups is None:
             return None
         slid = groups, off_line
@@ -488,7 +492,7 @@ _BIARCS: WeakKeyDictionary[FitState, dict[tuple, list]] = WeakKeyDictionary()
 
 
 def _slide(
-    opt: FitState, made: dict[int, tuple[int, int]], moved: set[int], disp: Any = None
+    opt: FitState, made: dict[int, tuple[int, int]], moved: set[int], disp: Any = None, chains: dict | None = None
 ) -> tuple[dict[int, Group] | None, dict[int, float]]:
     """The groups split anew at the tangent joins of ``moved`` groups, and those joins' distances off the line.
 
@@ -500,7 +504,8 @@ def _slide(
     off the line instead of its displacement (``opt.off_line``). (None, {}) if
     a junction slid past the end of one of the groups (fewer than
     ``SLIDE_MIN_PIXELS`` left): the join would swallow it. ``disp``: node ->
-    d_k (default the state's), for a fit not applied yet.
+    d_k (default the state's), for a fit not applied yet. ``chains`` keeps the joined pixels of the two
+    groups (the same objects) at a join for the next call.
     """
     disp = opt.disp.__getitem__ if disp is None else disp
     groups: dict[int, Group] = {}
@@ -509,7 +514,13 @@ def _slide(
         if a not in moved and b not in moved:
             continue
         ga, gb = groups.get(a, opt.groups[a]), groups.get(b, opt.groups[b])
-        chain = merge_groups(ga, gb, n).points
+        hit = None if chains is None else chains.get((n, id(ga), id(gb)))
+        if hit is not None and hit[0] is ga and hit[1] is gb:  # the groups are held there: ids not reused
+            chain = hit[2]
+        else:
+            chain = merge_groups(ga, gb, n).points
+            if chains is not None:
+                chains[n, id(ga), id(gb)] = (ga, gb, chain)
         split = split_chain(chain, opt.graph.junctions[n] + disp(n))
         if split is None:
             return None, {}
