@@ -63,10 +63,9 @@ def closest_biarcs(
     heads = [(radii_a[ia], sa) for (ia, _), (_, _, (sa, _)) in zip(pairs, grids, strict=True)]
     tails = [(radii_b[ib], sb) for (_, ib), (_, _, (_, sb)) in zip(pairs, grids, strict=True)]
     found = biarc_fine(chain, [g[0] for g in grids], [g[1] for g in grids], heads, tails, most or 0)
+    kept = [(f, pair, grid) for f, pair, grid in zip(found, pairs, grids, strict=True) if f is not None]
     out = []
-    for p in sorted((p for p in range(len(pairs)) if found[p] is not None), key=lambda p: found[p][0])[:most]:
-        worst, s2, t2 = found[p]
-        (ia, ib), (fine, near, (sa, sb)) = pairs[p], grids[p]
+    for (worst, s2, t2), (ia, ib), (fine, near, (sa, sb)) in sorted(kept, key=lambda k: k[0][0])[:most]:
         ra, rb = radii_a[ia], radii_b[ib]
         i = int(fine[s2])
         normal = biarc_normals(chain, np.array([i]), np.array([near[t2]]))[0, 0]
