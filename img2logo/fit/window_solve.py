@@ -62,8 +62,8 @@ def solve(
     changed: Sequence[int],
     free_nodes: Sequence[int],
     fixed: set[int],
-    n_groups_total: int,
-    n_junctions_total: int,
+    n_groups_total: int | None = None,
+    n_junctions_total: int | None = None,
     rings: int = 1,
     first_ring: int = 1,
     order: Callable[[int], Any] | None = None,
@@ -92,6 +92,8 @@ def solve(
     must exceed it, and ``regroup`` may split groups anew before their arcs
     are extracted (:func:`_fits_within`; a tangent join's slide). None if it fails.
     ``tried``, when given, receives the groups of the last (widest) window solved, whether it solved or not.
+    ``n_groups_total``, ``n_junctions_total``: C and J of the weights (``n_circles`` and ``n_junctions`` of
+    :func:`~img2logo.fit.local_window.fit_window`), default the counts of ``groups`` and ``node_groups``.
     ``stop_when_stuck``: that of :func:`~img2logo.fit.local_window.fit_window`. ``rest``: junction ->
     its rest point p_k for the fit instead of the graph's, px (2,) (a tangent biarc's junction: its d_k
     starts at zero there); the displacements returned, and those the arcs are extracted with, are from
@@ -119,8 +121,8 @@ def solve(
         first_ring=first_ring,
         order=cast(Callable[[Hashable], Any] | None, order),
         displacements0=disp0,
-        n_circles=n_groups_total,
-        n_junctions=n_junctions_total,
+        n_circles=len(groups) if n_groups_total is None else n_groups_total,
+        n_junctions=len(node_groups) if n_junctions_total is None else n_junctions_total,
         connectivity=state.options.connectivity,
         constraints=lambda circles, nodes: state.axis_constraints(
             cast(Sequence[int], circles), groups, cast(Sequence[int], nodes)
@@ -148,8 +150,8 @@ def solve_whole(
     seeds: Mapping[int, Seed],
     node_groups: Mapping[int, Sequence[int]],
     *,
-    n_groups_total: int,
-    n_junctions_total: int,
+    n_groups_total: int | None = None,
+    n_junctions_total: int | None = None,
     order: Callable[[int], Any] | None = None,
     tangent: bool | Collection[int] = False,
     cap: float | None = None,
