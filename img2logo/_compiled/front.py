@@ -331,20 +331,7 @@ def near_kernel(index, rows, cols, n, offsets):  # pragma: no cover - compiled
 def relabel_kernel(labels):  # pragma: no cover - compiled
     """Non-negative labels (H, W) renumbered 0..n-1 in the order of their values, the used ones packed."""
     h, w = labels.shape
-    top = 0
-    for i in range(h):
-        for j in range(w):
-            if labels[i, j] > top:
-                top = labels[i, j]
-    rank = np.zeros(top + 1, dtype=np.int64)
-    for i in range(h):
-        for j in range(w):
-            rank[labels[i, j]] = 1
-    total = 0
-    for k in range(top + 1):
-        used = rank[k]
-        rank[k] = total - 1 + used  # the used label's place; an unused one's is never read
-        total += used
+    rank = np.cumsum(np.bincount(labels.ravel()) > 0) - 1  # the used label's place; an unused one's is never read
     out = np.empty((h, w), dtype=np.int64)
     for i in range(h):
         for j in range(w):
@@ -427,15 +414,8 @@ def palette_regions_kernel(index, min_area):  # pragma: no cover - compiled
     """
     h, w = index.shape
     regions = label_kernel(index, -1, False)
-    top = 0
-    for i in range(h):
-        for j in range(w):
-            if regions[i, j] > top:
-                top = regions[i, j]
-    counts = np.zeros(top + 1, dtype=np.int64)
-    for i in range(h):
-        for j in range(w):
-            counts[regions[i, j]] += 1
+    counts = np.bincount(regions.ravel())
+    top = counts.shape[0] - 1
     tiny = np.empty((h, w), dtype=np.int64)
     any_tiny = False
     for i in range(h):
