@@ -19,7 +19,7 @@ gives them, by a bit set of the 2**24 codes instead of a sort.
 The rest are the front's other full-image passes in one loop each,
 every one the same numbers as the numpy or OpenCV steps it replaces (the tests
 compare them): :func:`colour_distance_kernel` (a CIELAB distance image),
-:func:`spreads_kernel` (two sets of spreads in one pass), :func:`label_sums2_kernel`,
+:func:`spreads_kernel` (two sets of spreads in one pass),
 :func:`bounds_kernel` (``find_objects``' boxes), :func:`near_kernel` (the entries
 round each rim pixel), :func:`nearest_colour_kernel`, :func:`relabel_kernel`,
 :func:`palette_regions_kernel` (the palette's pieces, joined and packed),
@@ -50,22 +50,6 @@ def label_sums_kernel(labels, values, n):  # pragma: no cover - compiled
         for c in range(values.shape[1]):
             sums[k, c] += values[i, c]
     return counts, sums
-
-
-@_jit
-def label_sums2_kernel(labels, a, b, n):  # pragma: no cover - compiled
-    """:func:`label_sums_kernel` for two sets of values (N, C) and (N, D) in one pass: (counts, sums a, sums b)."""
-    counts = np.zeros(n)
-    sums_a = np.zeros((n, a.shape[1]))
-    sums_b = np.zeros((n, b.shape[1]))
-    for i in range(len(labels)):
-        k = labels[i]
-        counts[k] += 1.0
-        for c in range(a.shape[1]):
-            sums_a[k, c] += a[i, c]
-        for c in range(b.shape[1]):
-            sums_b[k, c] += b[i, c]
-    return counts, sums_a, sums_b
 
 
 @_jit
