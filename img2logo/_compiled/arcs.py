@@ -17,6 +17,7 @@ import math
 
 import numpy as np
 
+from .circle import farthest_from_circle, measure_from_circle
 from .jit import jit as _jit
 
 # --------------------------------------------------------------------------------
@@ -458,7 +459,7 @@ def biarc_fine_kernel(chain, heads, tails, splits, counts, radii_a, radii_b, mos
     head's pixels ``chain[:split + 1]`` go with the circle of centre ``heads[p, s, a]``
     and radius ``radii_a[p]``, the tail's ``chain[split:]`` with ``tails[p, s, a]``
     and ``radii_b[p]``; a biarc's distance is the largest distance of a pixel from
-    its circle (the arithmetic of :func:`img2logo._compiled.circle.biarc_worst_kernel`).
+    its circle (:func:`img2logo._compiled.circle.farthest_from_circle`).
     Each pair's smallest over its grid and where, the first in row-major order on
     a tie. With ``most`` > 0 only the pairs that can be among the ``most`` smallest
     (the earlier pair first on a tie) are searched to the end: a pair's search
@@ -467,7 +468,6 @@ def biarc_fine_kernel(chain, heads, tails, splits, counts, radii_a, radii_b, mos
     measured once it is known to be no better than the best so far (its largest
     distance can only grow).
     """
-    n = chain.shape[0]
     n_pairs = heads.shape[0]
     worst_out = np.full(n_pairs, math.inf)
     s_out = np.full(n_pairs, -1, dtype=np.int64)
@@ -478,25 +478,12 @@ def biarc_fine_kernel(chain, heads, tails, splits, counts, radii_a, radii_b, mos
         best_s, best_a = -1, -1
         ra, rb = radii_a[p], radii_b[p]
         for s in range(counts[p]):
-            split = splits[p, s]
+            head, tail = chain[: splits[p, s] + 1], chain[splits[p, s] :]
             for a in range(heads.shape[2]):
-                worst = 0.0
-                cx, cy = heads[p, s, a, 0], heads[p, s, a, 1]
-                for i in range(split + 1):
-                    d = abs(math.hypot(chain[i, 0] - cx, chain[i, 1] - cy) - ra)
-                    if d > worst:
-                        worst = d
-                        if worst >= best:
-                            break
+                worst = farthest_from_circle(head, heads[p, s, a, 0], heads[p, s, a, 1], ra, 0.0, best)
                 if worst >= best:
                     continue
-                cx, cy = tails[p, s, a, 0], tails[p, s, a, 1]
-                for i in range(split, n):
-                    d = abs(math.hypot(chain[i, 0] - cx, chain[i, 1] - cy) - rb)
-                    if d > worst:
-                        worst = d
-                        if worst >= best:
-                            break
+                worst = farthest_from_circle(tail, tails[p, s, a, 0], tails[p, s, a, 1], rb, worst, best)
                 if worst < best:
                     best, best_s, best_a = worst, s, a
         if best_s < 0:
@@ -530,11 +517,15 @@ def biarc_coarse_kernel(chain, index, splits, heads, tails, radii_a, radii_b):  
     """
     n_a, n_b = heads.shape[0], tails.shape[0]
     n_s, n_t = heads.shape[2], heads.shape[3]
-    n_index = index.shape[0]
+    pixels = chain[index]
+    # Each split's pixels up to it, from the chain's start; those from it on, from the chain's end.
+    up_to = np.searchsorted(index, splits, side="right")
+    from_on = np.searchsorted(index, splits, side="left")
+    backwards = pixels[::-1].copy()
     head_worst = np.zeros((n_a, 2, n_s, n_t))
-    head_next = np.zeros((n_a, 2, n_s, n_t), dtype=np.int64)  # the next of index to measure, forwards
+    head_done = np.zeros((n_a, 2, n_s, n_t), dtype=np.int64)  # how many of its pixels are measured
     tail_worst = np.zeros((n_b, 2, n_s, n_t))
-    tail_next = np.full((n_b, 2, n_s, n_t), n_index - 1, dtype=np.int64)  # backwards from the chain's end
+    tail_done = np.zeros((n_b, 2, n_s, n_t), dtype=np.int64)
     out = np.zeros((n_a, n_b, 3), dtype=np.int64)
     for ia in range(n_a):
         ra = radii_a[ia]
@@ -545,46 +536,28 @@ def biarc_coarse_kernel(chain, index, splits, heads, tails, radii_a, radii_b):  
             for j in range(4):
                 side_a, side_b = j // 2, j % 2
                 for s in range(n_s):
-                    split = splits[s]
+                    head, tail = pixels[: up_to[s]], backwards[: len(pixels) - from_on[s]]
                     for a in range(n_t):
                         worst = head_worst[ia, side_a, s, a]
                         if worst >= best:
                             continue
-                        k = head_next[ia, side_a, s, a]
-                        cx, cy = heads[ia, side_a, s, a, 0], heads[ia, side_a, s, a, 1]
-                        while k < n_index:
-                            i = index[k]
-                            if i > split:
-                                break
-                            k += 1
-                            d = abs(math.hypot(chain[i, 0] - cx, chain[i, 1] - cy) - ra)
-                            if d > worst:
-                                worst = d
-                                if worst >= best:
-                                    break
-                        head_worst[ia, side_a, s, a] = worst
-                        head_next[ia, side_a, s, a] = k
+                        done = head_done[ia, side_a, s, a]
+                        worst, more = measure_from_circle(
+                            head[done:], heads[ia, side_a, s, a, 0], heads[ia, side_a, s, a, 1], ra, worst, best
+                        )
+                        head_worst[ia, side_a, s, a], head_done[ia, side_a, s, a] = worst, done + more
                         if worst >= best:
                             continue
-                        tail = tail_worst[ib, side_b, s, a]
-                        if tail >= best:
+                        tail_far = tail_worst[ib, side_b, s, a]
+                        if tail_far >= best:
                             continue
-                        k = tail_next[ib, side_b, s, a]
-                        cx, cy = tails[ib, side_b, s, a, 0], tails[ib, side_b, s, a, 1]
-                        while k >= 0:
-                            i = index[k]
-                            if i < split:
-                                break
-                            k -= 1
-                            d = abs(math.hypot(chain[i, 0] - cx, chain[i, 1] - cy) - rb)
-                            if d > tail:
-                                tail = d
-                                if tail >= best:
-                                    break
-                        tail_worst[ib, side_b, s, a] = tail
-                        tail_next[ib, side_b, s, a] = k
-                        if tail < best:
-                            best, best_j, best_s, best_a = max(worst, tail), j, s, a
+                        done = tail_done[ib, side_b, s, a]
+                        tail_far, more = measure_from_circle(
+                            tail[done:], tails[ib, side_b, s, a, 0], tails[ib, side_b, s, a, 1], rb, tail_far, best
+                        )
+                        tail_worst[ib, side_b, s, a], tail_done[ib, side_b, s, a] = tail_far, done + more
+                        if tail_far < best:
+                            best, best_j, best_s, best_a = max(worst, tail_far), j, s, a
             out[ia, ib, 0], out[ia, ib, 1], out[ia, ib, 2] = best_j, best_s, best_a
     return out
 

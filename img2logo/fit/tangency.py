@@ -273,8 +273,6 @@ def _all_at_once(
             groups,
             seeds,
             node_groups,
-            n_groups_total=len(groups),
-            n_junctions_total=len(node_groups),
             tangent=True,
             bound=bound,  # E^s above it fails the try below: its arcs are extracted only while it may not
         )
@@ -395,8 +393,6 @@ def _try(
             changed=join.changed,
             free_nodes=join.free,
             fixed=set(),
-            n_groups_total=len(opt.groups),
-            n_junctions_total=len(node_groups),
             rings=2,
             tangent=join.touching,
             lines=join.lines,

@@ -64,8 +64,8 @@ def solve(
     changed: Sequence[int],
     free_nodes: Sequence[int],
     fixed: set[int],
-    n_groups_total: int,
-    n_junctions_total: int,
+    n_groups_total: int | None = None,
+    n_junctions_total: int | None = None,
     rings: int = 1,
     first_ring: int = 1,
     order: Callable[[int], Any] | None = None,
@@ -92,8 +92,10 @@ def solve(
     from its level's); default found in ``seeds``. With ``bound`` (px), None
     as soon as E^s (Eqn. 3) of the state with the new fits and displacements
     must exceed it, and ``regroup`` may split groups anew before their arcs
-    are extracted (:func:`_fits_within`; a tangent join's slide). None if it fails.
+    are extracted (:func:`_fits`; a tangent join's slide). None if it fails.
     ``tried``, when given, receives the groups of the last (widest) window solved, whether it solved or not.
+    ``n_groups_total``, ``n_junctions_total``: C and J of the weights (``n_circles`` and ``n_junctions`` of
+    :func:`~img2logo.fit.local_window.fit_window`), default the counts of ``groups`` and ``node_groups``.
     ``stop_when_stuck``: that of :func:`~img2logo.fit.local_window.fit_window`. ``rest``: junction ->
     its rest point p_k for the fit instead of the graph's, px (2,) (a tangent biarc's junction: its d_k
     starts at zero there); the displacements returned, and those the arcs are extracted with, are from
@@ -121,8 +123,8 @@ def solve(
         first_ring=first_ring,
         order=cast(Callable[[Hashable], Any] | None, order),
         displacements0=disp0,
-        n_circles=n_groups_total,
-        n_junctions=n_junctions_total,
+        n_circles=len(groups) if n_groups_total is None else n_groups_total,
+        n_junctions=len(node_groups) if n_junctions_total is None else n_junctions_total,
         connectivity=state.options.connectivity,
         constraints=lambda circles, nodes: state.axis_constraints(
             cast(Sequence[int], circles), groups, cast(Sequence[int], nodes)
@@ -139,9 +141,7 @@ def solve(
     disp = _window_displacements(state, window)
     for n, p in (rest or {}).items():
         disp[n] = disp.get(n, 0.0) + p - state.graph.junctions[n]
-    if bound is not None:
-        return _fits_within(state, window, disp, groups, seeds, fixed, node_groups, bound, regroup)
-    return _fits(state, window, disp, groups, seeds, fixed, cap)
+    return _fits(state, window, disp, groups, seeds, fixed, node_groups, cap=cap, bound=bound, regroup=regroup)
 
 
 def solve_whole(
@@ -150,8 +150,8 @@ def solve_whole(
     seeds: Mapping[int, Seed],
     node_groups: Mapping[int, Sequence[int]],
     *,
-    n_groups_total: int,
-    n_junctions_total: int,
+    n_groups_total: int | None = None,
+    n_junctions_total: int | None = None,
     order: Callable[[int], Any] | None = None,
     tangent: bool | Collection[int] = False,
     cap: float | None = None,
@@ -210,44 +210,19 @@ def _fits(
     groups: Mapping[int, Group],
     seeds: Mapping[int, Seed],
     fixed: set[int],
+    node_groups: Mapping[int, Sequence[int]],
+    *,
     cap: float | None = None,
-) -> Solution:
+    bound: float | None = None,
+    regroup: Regroup | None = None,
+) -> Solution | None:
     """The new fits (the window's free groups, and lines whose junctions moved) and displacements.
 
-    With ``cap``, the merged group's (id -1) arc is extracted first, and
-    when it is farther than ``cap`` px from its pixels only it is returned:
-    the merge loop rejects that merge (``max_arc_distance``) and reads no other arc.
-    ``disp``: the window's d_k by node (:func:`_window_displacements`).
-    """
-    todo = _refitted(state, window, groups, seeds, fixed)
+    ``disp``: the window's d_k by node (:func:`_window_displacements`). With ``cap``, the merged
+    group's (id -1) arc is extracted first, and when it is farther than ``cap`` px from its pixels
+    only it is returned: the merge loop rejects that merge (``max_arc_distance``) and reads no other arc.
 
-    def fit(gid: int) -> GroupFit:
-        _, r, k = seeds[gid]
-        center = window.center(gid)
-        return GroupFit(center, r, k, state.arc_for(groups[gid], center, r, k, disp.__getitem__))
-
-    first = None
-    if cap is not None and -1 in todo:
-        first = fit(-1)
-        if first.arc.frechet > cap:
-            return {-1: first}, disp  # the merge is rejected: the window's other arcs are not needed
-    fits = {gid: first if gid == -1 and first is not None else fit(gid) for gid in todo}
-    return fits, disp
-
-
-def _fits_within(
-    state: FitState,
-    window: WindowFit,
-    disp: dict[int, np.ndarray],
-    groups: Mapping[int, Group],
-    seeds: Mapping[int, Seed],
-    fixed: set[int],
-    node_groups: Mapping[int, Sequence[int]],
-    bound: float,
-    regroup: Regroup | None,
-) -> Solution | None:
-    """:func:`_fits`, or None once E^s (Eqn. 3) of the state with them must exceed ``bound`` px.
-
+    With ``bound``, None once E^s (Eqn. 3) of the state with the fits must exceed ``bound`` px.
     With ``regroup``, called with the window's displacements (node -> d_k,
     the others the state's) and the groups it fits, the groups it returns
     take the pixels it gives them before any arc is extracted (a group
@@ -264,7 +239,7 @@ def _fits_within(
     Fréchet distance replaced by its :func:`_arc_floor` (its pixels' largest
     distance from its circle) decides most of those: on the polar bear 259
     of the 299 calls that return None, with 659 of the 801 arcs they
-    extracted. Otherwise the fits are those :func:`_fits` and then a re-extraction
+    extracted. Otherwise the fits are those without ``bound`` and then a re-extraction
     of the regrouped groups' arcs would give, the same numbers.
     """
     todo = _refitted(state, window, groups, seeds, fixed)
@@ -282,6 +257,32 @@ def _fits_within(
         new_groups, off = out
     fitted = set(todo)
     todo += [g for g in new_groups if g not in fitted]
+
+    memo = None if bound is None else _ARCS.setdefault(state, {})
+    centers: dict[int, np.ndarray] = {}
+
+    def center(gid: int) -> np.ndarray:
+        if gid not in centers:
+            centers[gid] = window.center(gid)
+        return centers[gid]
+
+    def fit(gid: int) -> GroupFit:
+        group = new_groups.get(gid, groups[gid])
+        if gid in fitted:
+            _, r, k = seeds[gid]
+            # Memoized for the state's own groups only: a group split anew has new pixels every time.
+            keep = memo if group is state.groups.get(gid) else None
+            return GroupFit(center(gid), r, k, state.arc_for(group, center(gid), r, k, at, keep))
+        f = state.fits[gid]  # split anew at a join of a fitted group: its circle stays
+        return replace(f, arc=state.arc_for(group, f.center, f.radius, f.k, at))
+
+    first = None
+    if cap is not None and -1 in fitted:
+        first = fit(-1)
+        if first.arc.frechet > cap:
+            return {-1: first}, disp  # the merge is rejected: the window's other arcs are not needed
+    if bound is None:
+        return {gid: first if gid == -1 and first is not None else fit(gid) for gid in todo}, disp
     n_fits = len(state.fits.keys() | set(todo))
     skip = set(todo)
     running = sum(f.arc.frechet for g, f in state.fits.items() if g not in skip)
@@ -296,31 +297,22 @@ def _fits_within(
     d = sum(off_line[n] if n in off_line else h for n, h in zip(node_groups, lengths, strict=True))
     shift = d / len(node_groups) if node_groups else 0.0
     limit = bound + CUT_MARGIN * max(1.0, abs(bound))
-    centers = {gid: window.center(gid) for gid in fitted}
     # Each arc's Fréchet distance is at least its pixels' largest distance from its circle (_arc_floor):
     # once those alone take E^s past the bound, so would the arcs, and none is extracted.
     floor = running
     for gid in todo:
-        circle = (centers[gid], seeds[gid][1]) if gid in fitted else (state.fits[gid].center, state.fits[gid].radius)
+        if gid == -1 and first is not None:
+            floor += first.arc.frechet
+            continue
+        circle = (center(gid), seeds[gid][1]) if gid in fitted else (state.fits[gid].center, state.fits[gid].radius)
         floor += _arc_floor(new_groups.get(gid, groups[gid]).points, *circle)
         if floor / max(n_fits, 1) + shift > limit + CUT_MARGIN * max(1.0, abs(limit)):
             return None
-    memo = _ARCS.setdefault(state, {})
     fits = {}
     for gid in todo:
         if running / max(n_fits, 1) + shift > limit:
             return None
-        group = new_groups.get(gid, groups[gid])
-        if gid in fitted:
-            _, r, k = seeds[gid]
-            center = centers[gid]
-            # Memoized for the state's own groups only: a group split anew has new pixels every time.
-            arc = state.arc_for(group, center, r, k, at, memo if group is state.groups.get(gid) else None)
-            f = GroupFit(center, r, k, arc)
-        else:  # split anew at a join of a fitted group: its circle stays
-            f = state.fits[gid]
-            f = replace(f, arc=state.arc_for(group, f.center, f.radius, f.k, at))
-        fits[gid] = f
+        fits[gid] = f = first if gid == -1 and first is not None else fit(gid)
         running += f.arc.frechet
     if running / max(n_fits, 1) + shift > limit:
         return None
@@ -339,7 +331,7 @@ def _arc_floor(points: np.ndarray, center: np.ndarray, radius: float) -> float:
     return max(0.0, kernels.largest_gap_kernel(points, cx, cy, r) - 1e-9 * (r + abs(cx) + abs(cy) + 1.0))
 
 
-#: The arcs extracted by :func:`_fits_within` in a run (:meth:`~img2logo.fit.fit_state.FitState.arc_for`'s
+#: The arcs extracted by :func:`_fits` with a bound in a run (:meth:`~img2logo.fit.fit_state.FitState.arc_for`'s
 #: ``memo``): the tangent passes solve some windows again to the same circles (the passes that
 #: :func:`~img2logo.fit.kinks.split_kinks` runs after each split it tries share their groups and weights).
 _ARCS: WeakKeyDictionary[FitState, dict] = WeakKeyDictionary()
