@@ -236,7 +236,7 @@ def _fits(
     further arc is extracted (on the clip-art fish 14 of 25 tangent tries,
     on the polar bear 258 of 358, were rejected for E^s only after every
     arc). Before any arc is extracted, the same bound with every arc's
-    Fréchet distance replaced by its :func:`_arc_floor` (its pixels' largest
+    Fréchet distance replaced by its :func:`arc_floor` (its pixels' largest
     distance from its circle) decides most of those: on the polar bear 259
     of the 299 calls that return None, with 659 of the 801 arcs they
     extracted. Otherwise the fits are those without ``bound`` and then a re-extraction
@@ -297,7 +297,7 @@ def _fits(
     d = sum(off_line[n] if n in off_line else h for n, h in zip(node_groups, lengths, strict=True))
     shift = d / len(node_groups) if node_groups else 0.0
     limit = bound + CUT_MARGIN * max(1.0, abs(bound))
-    # Each arc's Fréchet distance is at least its pixels' largest distance from its circle (_arc_floor):
+    # Each arc's Fréchet distance is at least its pixels' largest distance from its circle (arc_floor):
     # once those alone take E^s past the bound, so would the arcs, and none is extracted.
     floor = running
     for gid in todo:
@@ -305,7 +305,7 @@ def _fits(
             floor += first.arc.frechet
             continue
         circle = (center(gid), seeds[gid][1]) if gid in fitted else (state.fits[gid].center, state.fits[gid].radius)
-        floor += _arc_floor(new_groups.get(gid, groups[gid]).points, *circle)
+        floor += arc_floor(new_groups.get(gid, groups[gid]).points, *circle)
         if floor / max(n_fits, 1) + shift > limit + CUT_MARGIN * max(1.0, abs(limit)):
             return None
     fits = {}
@@ -319,7 +319,7 @@ def _fits(
     return fits, disp
 
 
-def _arc_floor(points: np.ndarray, center: np.ndarray, radius: float) -> float:
+def arc_floor(points: np.ndarray, center: np.ndarray, radius: float) -> float:
     """A lower bound (px) of the discrete Fréchet distance of ``points`` (N, 2) from any arc of the circle.
 
     The coupling pairs every pixel with a point of the arc, on the circle: at least the pixel's distance from
@@ -335,3 +335,8 @@ def _arc_floor(points: np.ndarray, center: np.ndarray, radius: float) -> float:
 #: ``memo``): the tangent passes solve some windows again to the same circles (the passes that
 #: :func:`~img2logo.fit.kinks.split_kinks` runs after each split it tries share their groups and weights).
 _ARCS: WeakKeyDictionary[FitState, dict] = WeakKeyDictionary()
+
+
+def forget_arcs(state: FitState) -> None:
+    """Drop the arcs :func:`_fits` kept for ``state`` (its tangent passes are over: no window is solved again)."""
+    _ARCS.pop(state, None)

@@ -272,7 +272,7 @@ def test_an_arcs_floor_is_at_most_its_frechet_distance():
     # The bound the tangent pass rejects a refit by before extracting its arcs: never above the
     # extracted arc's discrete Fréchet distance; the pixels' largest distance from the circle.
     from img2logo.fit.arc_extraction import extract_arc
-    from img2logo.fit.window_solve import _arc_floor
+    from img2logo.fit.window_solve import arc_floor
     from img2logo.geometry.primitives import Circle
 
     rng = np.random.default_rng(3)
@@ -282,6 +282,6 @@ def test_an_arcs_floor_is_at_most_its_frechet_distance():
         points = c + (r + rng.normal(0.0, rng.uniform(0.0, 4.0), len(t)))[:, None] * np.stack([np.cos(t), np.sin(t)], 1)
         ends = c + r * np.stack([np.cos(t[[0, -1]]), np.sin(t[[0, -1]])], 1)
         fit = extract_arc(Circle(float(c[0]), float(c[1]), r), points, ends)
-        floor = _arc_floor(points, c, r)
+        floor = arc_floor(points, c, r)
         assert 0.0 <= floor <= fit.frechet
         assert floor == pytest.approx(np.max(np.abs(np.hypot(*(points - c).T) - r)), abs=1e-6)
