@@ -499,6 +499,21 @@ def biarc_fine_kernel(chain, heads, tails, splits, counts, radii_a, radii_b, mos
 
 
 @_jit
+def _measure_on(points, cx, cy, radius, worst, done, at, best):  # pragma: no cover - compiled
+    """The largest distance of ``points`` from a circle, measured on from where a measure of it stopped, px.
+
+    ``worst[at]`` is the largest of its first ``done[at]`` points' distances (both updated); nothing is
+    measured once that reaches ``best`` (:func:`img2logo._compiled.circle.measure_from_circle`).
+    """
+    if worst[at] >= best:
+        return worst[at]
+    far, more = measure_from_circle(points[done[at] :], cx, cy, radius, worst[at], best)
+    worst[at] = far
+    done[at] += more
+    return far
+
+
+@_jit
 def biarc_coarse_kernel(chain, index, splits, heads, tails, radii_a, radii_b):  # pragma: no cover - compiled
     """The best biarc of the coarse grid for every pair of radii (``biarcs.biarc_coarse``): (ia, ib) -> (j, s, a).
 
@@ -538,24 +553,16 @@ def biarc_coarse_kernel(chain, index, splits, heads, tails, radii_a, radii_b):  
                 for s in range(n_s):
                     head, tail = pixels[: up_to[s]], backwards[: len(pixels) - from_on[s]]
                     for a in range(n_t):
-                        worst = head_worst[ia, side_a, s, a]
+                        centre = heads[ia, side_a, s, a]
+                        worst = _measure_on(
+                            head, centre[0], centre[1], ra, head_worst, head_done, (ia, side_a, s, a), best
+                        )
                         if worst >= best:
                             continue
-                        done = head_done[ia, side_a, s, a]
-                        worst, more = measure_from_circle(
-                            head[done:], heads[ia, side_a, s, a, 0], heads[ia, side_a, s, a, 1], ra, worst, best
+                        centre = tails[ib, side_b, s, a]
+                        tail_far = _measure_on(
+                            tail, centre[0], centre[1], rb, tail_worst, tail_done, (ib, side_b, s, a), best
                         )
-                        head_worst[ia, side_a, s, a], head_done[ia, side_a, s, a] = worst, done + more
-                        if worst >= best:
-                            continue
-                        tail_far = tail_worst[ib, side_b, s, a]
-                        if tail_far >= best:
-                            continue
-                        done = tail_done[ib, side_b, s, a]
-                        tail_far, more = measure_from_circle(
-                            tail[done:], tails[ib, side_b, s, a, 0], tails[ib, side_b, s, a, 1], rb, tail_far, best
-                        )
-                        tail_worst[ib, side_b, s, a], tail_done[ib, side_b, s, a] = tail_far, done + more
                         if tail_far < best:
                             best, best_j, best_s, best_a = max(worst, tail_far), j, s, a
             out[ia, ib, 0], out[ia, ib, 1], out[ia, ib, 2] = best_j, best_s, best_a
