@@ -499,15 +499,13 @@ def biarc_fine_kernel(chain, heads, tails, splits, counts, radii_a, radii_b, mos
 
 
 @_jit
-def _measure_on(points, cx, cy, radius, worst, done, at, best):  # pragma: no cover - compiled
+def _measure_on(points, centre, radius, worst, done, at, best):  # pragma: no cover - compiled
     """The largest distance of ``points`` from a circle, measured on from where a measure of it stopped, px.
 
-    ``worst[at]`` is the largest of its first ``done[at]`` points' distances (both updated); nothing is
-    measured once that reaches ``best`` (:func:`img2logo._compiled.circle.measure_from_circle`).
+    ``worst[at]`` is the largest of its first ``done[at]`` points' distances (both updated), below
+    ``best``; the measure stops once it reaches ``best`` (:func:`img2logo._compiled.circle.measure_from_circle`).
     """
-    if worst[at] >= best:
-        return worst[at]
-    far, more = measure_from_circle(points[done[at] :], cx, cy, radius, worst[at], best)
+    far, more = measure_from_circle(points[done[at] :], centre[0], centre[1], radius, worst[at], best)
     worst[at] = far
     done[at] += more
     return far
@@ -553,16 +551,14 @@ def biarc_coarse_kernel(chain, index, splits, heads, tails, radii_a, radii_b):  
                 for s in range(n_s):
                     head, tail = pixels[: up_to[s]], backwards[: len(pixels) - from_on[s]]
                     for a in range(n_t):
-                        centre = heads[ia, side_a, s, a]
-                        worst = _measure_on(
-                            head, centre[0], centre[1], ra, head_worst, head_done, (ia, side_a, s, a), best
-                        )
-                        if worst >= best:
+                        if head_worst[ia, side_a, s, a] >= best:  # known before measuring on: no call
                             continue
-                        centre = tails[ib, side_b, s, a]
-                        tail_far = _measure_on(
-                            tail, centre[0], centre[1], rb, tail_worst, tail_done, (ib, side_b, s, a), best
-                        )
+                        at = (ia, side_a, s, a)
+                        worst = _measure_on(head, heads[at], ra, head_worst, head_done, at, best)
+                        if worst >= best or tail_worst[ib, side_b, s, a] >= best:
+                            continue
+                        at = (ib, side_b, s, a)
+                        tail_far = _measure_on(tail, tails[at], rb, tail_worst, tail_done, at, best)
                         if tail_far < best:
                             best, best_j, best_s, best_a = max(worst, tail_far), j, s, a
             out[ia, ib, 0], out[ia, ib, 1], out[ia, ib, 2] = best_j, best_s, best_a
