@@ -120,6 +120,26 @@ def test_not_a_regular_file_is_named_as_such(tmp_path):
         load_image(tmp_path)
 
 
+@pytest.mark.parametrize("dtype", [np.uint8, np.uint16, np.float32, np.float64, bool])
+@pytest.mark.parametrize("channels", [3, 4])
+def test_bgr_is_read_as_the_reversed_colour_channels_to_the_bit(dtype, channels):
+    rng = np.random.default_rng(channels)
+    if dtype is bool:
+        arr = rng.random((9, 7, channels)) > 0.5
+    elif np.issubdtype(dtype, np.floating):
+        arr = rng.random((9, 7, channels)).astype(dtype)
+        arr[0, 0, 0] = -0.0
+    else:
+        arr = rng.integers(0, np.iinfo(dtype).max + 1, (9, 7, channels)).astype(dtype)
+    original = arr.copy()
+    for given in (arr, arr[::-1], np.asfortranarray(arr)):  # any memory layout
+        want = composite_on_white(np.concatenate([given[:, :, 2::-1], given[:, :, 3:]], axis=2), "x")
+        got = composite_on_white(given, "x", bgr=True)
+        assert got[0].tobytes() == want[0].tobytes() and got[1].tobytes() == want[1].tobytes()
+        assert got[0].flags.c_contiguous and not np.shares_memory(got[0], given)
+    assert np.array_equal(arr, original)  # the input is never modified
+
+
 @pytest.mark.parametrize(
     ("bgr", "hex_colour"), [((0, 0, 255), "#ff0000"), ((200, 120, 30), "#1e78c8"), ((0, 0, 0), "#000000")]
 )
