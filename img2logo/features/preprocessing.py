@@ -30,7 +30,7 @@ from .clipart_colours import label_lightness
 from .clipart_strokes import clipart_lines
 from .constants import PHOTO_MIN_LINE_LENGTH, PHOTO_SPUR_LENGTH, SPUR_LENGTH
 from .detail import check_detail, close_line_ends, merge_by_importance
-from .drawing_lines import clean_skeleton, drawing_ink, half_width, keep_dots, median_stroke_width, without_small_parts
+from .drawing_lines import clean_skeleton, drawing_ink, keep_dots, median_stroke_width, without_small_parts
 from .kinds import detect_kind, detect_kind_and_regions, photo_reason
 
 if TYPE_CHECKING:
@@ -188,8 +188,7 @@ def extract_feature_lines(
     radius = stroke = detail_used = None
     budget = 0.0
     if kind == "drawing":
-        ink = drawing_ink(img)
-        radius = half_width(ink)
+        ink, radius = drawing_ink(img)
         axis = skeletonize(ink)
         stroke = float(2.0 * median(radius[axis])) if axis.any() else 0.0
         raw = join_line_ends(axis)
