@@ -142,12 +142,17 @@ def keep_dots(lines: np.ndarray, ink: np.ndarray, stroke_width: float) -> np.nda
     if not bare:
         return lines
     out = lines.copy()
-    # scipy.ndimage.center_of_mass(ink, labels, bare): the same sums, by label.
-    rows, cols = np.indices(ink.shape, dtype=np.float64)
-    mass = np.bincount(labels.ravel(), weights=ink.ravel())[bare]
+    # scipy.ndimage.center_of_mass(ink, labels, bare): the same sums, by label, over the bare parts'
+    # pixels only (in raster order, as over the whole image: the same additions in the same order).
+    is_bare = np.zeros(n + 1, dtype=bool)
+    is_bare[bare] = True
+    at = np.flatnonzero(is_bare[labels])
+    label_at = labels.ravel()[at]
+    rows, cols = np.divmod(at, ink.shape[1])
+    mass = np.bincount(label_at, weights=np.ones(len(at)), minlength=n + 1)[bare]
     centres = zip(
-        np.bincount(labels.ravel(), weights=(ink * rows).ravel())[bare] / mass,
-        np.bincount(labels.ravel(), weights=(ink * cols).ravel())[bare] / mass,
+        np.bincount(label_at, weights=rows.astype(np.float64), minlength=n + 1)[bare] / mass,
+        np.bincount(label_at, weights=cols.astype(np.float64), minlength=n + 1)[bare] / mass,
         strict=True,
     )
     for k, (r, c) in zip(bare, centres, strict=True):
