@@ -191,7 +191,10 @@ class Options:
         about the wall time) a run may take, > 0; None: no bound. Counted from
         the start of :func:`img2logo.abstract` (reading the image, its feature
         lines and segment graph included), or of
-        :func:`img2logo.fit.progressive.optimize` called alone.
+        :func:`img2logo.fit.progressive.optimize` called alone, once the
+        compiled kernels have loaded: their one compilation on a new machine
+        is not counted (without a C compiler numba's JIT compiles each kernel
+        on its first call, inside the budget).
         Past it the merge loop stops at its last level (every level is within T)
         and the tangent joins try no level before it, with a
         :class:`~img2logo.fit.progressive.TimeBudgetWarning` saying so in one line.
