@@ -24,6 +24,7 @@ from ._validation import check_choice, check_positive
 from .constants import DETAIL, LOGO_ARCS, MIN_LADDER_RADIUS, MIN_SEGMENT_LENGTH, RDP_TOLERANCE, STRETCH, TOLERANCE
 from .errors import InvalidParameterError, UnknownOptionError
 from .option_values import (
+    check_detail,
     check_length,
     check_stretch,
     check_symmetry_option,
@@ -364,8 +365,6 @@ class Options:
         put(self, "stretch", check_stretch(self.stretch))
         put(self, "rdp_tolerance", check_length(self.rdp_tolerance, "rdp_tolerance"))
         put(self, "min_length", check_length(self.min_length, "min_length", allow_zero=True))
-        from .features.detail import check_detail
-
         put(self, "detail", check_detail(self.detail))
         if self.arcs is not None:
             put(self, "arcs", check_detail(self.arcs, "arcs", "arcs"))
