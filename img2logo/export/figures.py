@@ -22,7 +22,7 @@ from ..constants import MAX_IMAGE_SIDE, MAX_PNG_IMAGE_SIDE, MAX_PNG_SIDE
 from ..design.fill_values import Fill
 from ..errors import InvalidParameterError
 from ..geometry.abstraction import Abstraction
-from .constants import PNG_DPI
+from .constants import PNG_DPI, PNG_ZLIB_STRATEGY
 from .plotting import (
     ARC_COLOR,
     default_stroke_width,
@@ -136,7 +136,8 @@ def png_bytes(
     For a caller that keeps the file in memory (the batch's workers hand their files back as bytes).
     An input of the PNG's own pixel size is laid under the drawing pixel for pixel
     (:func:`img2logo.export.plotting.faded_pixels`), the bytes ``imshow`` would give without its resampling
-    pass; another size (a downscaled working image, a ``scale``) is resampled by ``imshow``.
+    pass; another size (a downscaled working image, a ``scale``) is resampled by ``imshow``. Deflated with
+    zlib's run-length strategy (``PNG_ZLIB_STRATEGY``): the pixels of zlib's default, in about 0.4 of its time.
     """
     fill_list, width, height, sw = checked_drawing(abstraction, fills, stroke_width)
     d = check_positive(dpi, "dpi")
@@ -163,7 +164,16 @@ def png_bytes(
             fills=fill_list,
         )
 
-    return _figure_png(width, height, d, draw, size=size, transparent=background == "transparent", backdrop=backdrop)
+    return _figure_png(
+        width,
+        height,
+        d,
+        draw,
+        size=size,
+        transparent=background == "transparent",
+        backdrop=backdrop,
+        zlib_strategy=PNG_ZLIB_STRATEGY,
+    )
 
 
 def png_size(width: float, height: float, scale: float | None = None, background: str = "white") -> tuple[int, int]:
@@ -364,13 +374,15 @@ def _figure_png(
     size: tuple[int, int] | None = None,
     transparent: bool = False,
     backdrop: np.ndarray | None = None,
+    zlib_strategy: int = -1,
 ) -> bytes:
     """The PNG of full-figure axes of a ``width`` x ``height`` px Agg figure that ``draw(ax)`` drew on.
 
     ``size`` (px) resamples the figure to another pixel size: the figure keeps its
     size in points and is saved at ``dpi`` times the scale, so strokes scale with it.
     ``backdrop``, uint8 RGB of shape (out_h, out_w, 3), is laid under the drawing pixel for pixel
-    (in place of the white page; not with ``transparent``).
+    (in place of the white page; not with ``transparent``). ``zlib_strategy`` is zlib's (Pillow's
+    ``compress_type``; -1: zlib's default): it changes the file's size and the time to make it, never its pixels.
     """
     import io
 
@@ -398,6 +410,7 @@ def _figure_png(
                 edgecolor=paper,
                 transparent=True,
                 metadata={"Software": None},
+                pil_kwargs={"compress_type": zlib_strategy},
             )
             return buffer.getvalue()
         # On white every pixel is opaque: an RGB PNG, without an alpha channel of 255 everywhere.
@@ -408,7 +421,9 @@ def _figure_png(
             fig.add_artist(_pixel_layer(backdrop))
         canvas.draw()
         rgba = np.asarray(canvas.buffer_rgba())
-        Image.fromarray(np.ascontiguousarray(rgba[..., :3])).save(buffer, format="png", dpi=(save_dpi, save_dpi))
+        Image.fromarray(np.ascontiguousarray(rgba[..., :3])).save(
+            buffer, format="png", dpi=(save_dpi, save_dpi), compress_type=zlib_strategy
+        )
     return buffer.getvalue()
 
 

@@ -322,6 +322,29 @@ def test_png_over_the_input_has_the_bytes_matplotlib_draws(form):
     assert figures.png_bytes(a, image=image) != figures.png_bytes(a, image=255 - pixels)  # the input is drawn
 
 
+@pytest.mark.parametrize("background", ["input", "white", "transparent"])
+def test_png_run_length_deflate_keeps_the_pixels(background, monkeypatch):
+    """A level's PNG is deflated with zlib's run-length strategy: the pixels of zlib's default, read by any decoder."""
+    import cv2
+    from PIL import Image
+
+    from img2logo.export import figures
+
+    a = make_abstraction()
+    image = np.random.default_rng(5).integers(0, 256, (HEIGHT, WIDTH, 3), dtype=np.uint8)
+    fast = writers.png_bytes(a, image=image, background=background, show_junctions=True)
+    monkeypatch.setattr(figures, "PNG_ZLIB_STRATEGY", -1)
+    default = writers.png_bytes(a, image=image, background=background, show_junctions=True)
+    assert fast != default  # another deflate stream
+    mine, theirs = Image.open(io.BytesIO(fast)), Image.open(io.BytesIO(default))
+    assert mine.mode == theirs.mode and mine.info["dpi"] == theirs.info["dpi"]
+    pixels = np.asarray(mine)
+    assert np.array_equal(pixels, np.asarray(theirs))
+    libpng = cv2.imdecode(np.frombuffer(fast, np.uint8), cv2.IMREAD_UNCHANGED)  # OpenCV's libpng: BGR(A)
+    order = [2, 1, 0, 3] if pixels.shape[2] == 4 else [2, 1, 0]
+    assert np.array_equal(libpng[..., order], pixels)
+
+
 def test_segment_graph_png(tmp_path):
     graph = small_graph()
     assert list(graph.valence) == [1, 3, 2, 1, 1]
