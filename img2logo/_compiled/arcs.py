@@ -17,6 +17,7 @@ import math
 
 import numpy as np
 
+from .circle import farthest_from_circle
 from .jit import jit as _jit
 
 # --------------------------------------------------------------------------------
@@ -457,37 +458,23 @@ def biarc_best_kernel(chain, centre_a, centre_b, splits, radius_a, radius_b):  #
     For split ``splits[s]`` and turn ``a``, the head's pixels ``chain[:split + 1]``
     go with the circle of centre ``centre_a[s, a]`` and radius ``radius_a``, the
     tail's ``chain[split:]`` with ``centre_b[s, a]`` and ``radius_b``; a biarc's
-    distance is the largest distance of a pixel from its circle (the arithmetic
-    of :func:`img2logo._compiled.circle.biarc_worst_kernel`). Returned: the
+    distance is the largest distance of a pixel from its circle
+    (:func:`img2logo._compiled.circle.farthest_from_circle`, as in ``biarc_worst_kernel``). Returned: the
     smallest over the grid, and where, the first in row-major order on a tie
     (numpy's ``argmin`` of the grid of both kernels' ``maximum``). A biarc's
     pixels stop being measured once it is known to be no better than the best
     so far (its largest distance can only grow): most of the grid is left after
     a few pixels.
     """
-    n = chain.shape[0]
     best = math.inf
     best_s, best_a = 0, 0
     for s in range(centre_a.shape[0]):
-        split = splits[s]
+        head, tail = chain[: splits[s] + 1], chain[splits[s] :]
         for a in range(centre_a.shape[1]):
-            worst = 0.0
-            cx, cy = centre_a[s, a, 0], centre_a[s, a, 1]
-            for i in range(split + 1):
-                d = abs(math.hypot(chain[i, 0] - cx, chain[i, 1] - cy) - radius_a)
-                if d > worst:
-                    worst = d
-                    if worst >= best:
-                        break
+            worst = farthest_from_circle(head, centre_a[s, a, 0], centre_a[s, a, 1], radius_a, 0.0, best)
             if worst >= best:
                 continue
-            cx, cy = centre_b[s, a, 0], centre_b[s, a, 1]
-            for i in range(split, n):
-                d = abs(math.hypot(chain[i, 0] - cx, chain[i, 1] - cy) - radius_b)
-                if d > worst:
-                    worst = d
-                    if worst >= best:
-                        break
+            worst = farthest_from_circle(tail, centre_b[s, a, 0], centre_b[s, a, 1], radius_b, worst, best)
             if worst < best:
                 best, best_s, best_a = worst, s, a
     return best, best_s, best_a
@@ -500,43 +487,28 @@ def biarc_coarse_kernel(chain, index, splits, heads, tails, radius_a, radius_b):
     ``heads[side_a, s, a]`` and ``tails[side_b, s, a]`` are the centres of the
     head's and the tail's circles (sides -1, +1) at split ``splits[s]`` and turn
     ``a``; of the pixels ``chain[index]`` (increasing) those up to the split go
-    with the head's circle, those from it on with the tail's (the arithmetic of
-    :func:`img2logo._compiled.circle.biarc_worst_kernel`). Over j = 2 side_a +
+    with the head's circle, those from it on with the tail's
+    (:func:`img2logo._compiled.circle.farthest_from_circle`, as in ``biarc_worst_kernel``). Over j = 2 side_a +
     side_b, then the grid in row-major order, the smallest largest distance and
     where it is first reached; a biarc's pixels stop being measured once it is
     known to be no better than the best so far.
     """
-    n_index = index.shape[0]
+    pixels = chain[index]
     best = math.inf
     best_j, best_s, best_a = 0, 0, 0
     for j in range(4):
         side_a, side_b = j // 2, j % 2
         for s in range(heads.shape[1]):
-            split = splits[s]
+            # The pixels up to the split, from the chain's start; those from it on, from the chain's end.
+            head = pixels[: np.searchsorted(index, splits[s], side="right")]
+            tail = pixels[np.searchsorted(index, splits[s], side="left") :][::-1]
             for a in range(heads.shape[2]):
-                worst = 0.0
                 cx, cy = heads[side_a, s, a, 0], heads[side_a, s, a, 1]
-                for k in range(n_index):
-                    i = index[k]
-                    if i > split:
-                        break
-                    d = abs(math.hypot(chain[i, 0] - cx, chain[i, 1] - cy) - radius_a)
-                    if d > worst:
-                        worst = d
-                        if worst >= best:
-                            break
+                worst = farthest_from_circle(head, cx, cy, radius_a, 0.0, best)
                 if worst >= best:
                     continue
                 cx, cy = tails[side_b, s, a, 0], tails[side_b, s, a, 1]
-                for k in range(n_index - 1, -1, -1):
-                    i = index[k]
-                    if i < split:
-                        break
-                    d = abs(math.hypot(chain[i, 0] - cx, chain[i, 1] - cy) - radius_b)
-                    if d > worst:
-                        worst = d
-                        if worst >= best:
-                            break
+                worst = farthest_from_circle(tail, cx, cy, radius_b, worst, best)
                 if worst < best:
                     best, best_j, best_s, best_a = worst, j, s, a
     return best, best_j, best_s, best_a

@@ -247,18 +247,29 @@ def biarc_worst_kernel(chain, centre, index, splits, radius, head):  # pragma: n
     """
     n_splits = centre.shape[0]
     n_turns = centre.shape[1]
+    pixels = chain[index]
     out = np.zeros((n_splits, n_turns))
     for s in range(n_splits):
-        split = splits[s]
+        if head:  # index increases: the pixels up to the split are a head of them, those from it on a tail
+            side = pixels[: np.searchsorted(index, splits[s], side="right")]
+        else:
+            side = pixels[np.searchsorted(index, splits[s], side="left") :]
         for a in range(n_turns):
-            cx = centre[s, a, 0]
-            cy = centre[s, a, 1]
-            worst = 0.0
-            for j in range(len(index)):
-                i = index[j]
-                if (head and i <= split) or (not head and i >= split):
-                    d = abs(math.hypot(chain[i, 0] - cx, chain[i, 1] - cy) - radius)
-                    if d > worst:
-                        worst = d
-            out[s, a] = worst
+            out[s, a] = farthest_from_circle(side, centre[s, a, 0], centre[s, a, 1], radius, 0.0, math.inf)
     return out
+
+
+@_jit
+def farthest_from_circle(points, cx, cy, radius, worst, best):  # pragma: no cover - compiled
+    """The largest of ``worst`` and the distances | |p - o| - r | of ``points`` (n, 2) from a circle, px.
+
+    In the points' order, stopping once it reaches ``best`` (it can only grow): a biarc
+    search's candidate that far is no better than the best so far.
+    """
+    for i in range(points.shape[0]):
+        d = abs(math.hypot(points[i, 0] - cx, points[i, 1] - cy) - radius)
+        if d > worst:
+            worst = d
+            if worst >= best:
+                break
+    return worst

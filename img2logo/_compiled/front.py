@@ -19,7 +19,7 @@ gives them, by a bit set of the 2**24 codes instead of a sort.
 The rest are the front's other full-image passes in one loop each,
 every one the same numbers as the numpy or OpenCV steps it replaces (the tests
 compare them): :func:`colour_distance_kernel` (a CIELAB distance image),
-:func:`spreads_kernel` (two sets of spreads in one pass), :func:`label_sums2_kernel`,
+:func:`spreads_kernel` (two sets of spreads in one pass),
 :func:`bounds_kernel` (``find_objects``' boxes), :func:`near_kernel` (the entries
 round each rim pixel), :func:`nearest_colour_kernel`, :func:`relabel_kernel`,
 :func:`palette_regions_kernel` (the palette's pieces, joined and packed),
@@ -50,22 +50,6 @@ def label_sums_kernel(labels, values, n):  # pragma: no cover - compiled
         for c in range(values.shape[1]):
             sums[k, c] += values[i, c]
     return counts, sums
-
-
-@_jit
-def label_sums2_kernel(labels, a, b, n):  # pragma: no cover - compiled
-    """:func:`label_sums_kernel` for two sets of values (N, C) and (N, D) in one pass: (counts, sums a, sums b)."""
-    counts = np.zeros(n)
-    sums_a = np.zeros((n, a.shape[1]))
-    sums_b = np.zeros((n, b.shape[1]))
-    for i in range(len(labels)):
-        k = labels[i]
-        counts[k] += 1.0
-        for c in range(a.shape[1]):
-            sums_a[k, c] += a[i, c]
-        for c in range(b.shape[1]):
-            sums_b[k, c] += b[i, c]
-    return counts, sums_a, sums_b
 
 
 @_jit
@@ -331,20 +315,7 @@ def near_kernel(index, rows, cols, n, offsets):  # pragma: no cover - compiled
 def relabel_kernel(labels):  # pragma: no cover - compiled
     """Non-negative labels (H, W) renumbered 0..n-1 in the order of their values, the used ones packed."""
     h, w = labels.shape
-    top = 0
-    for i in range(h):
-        for j in range(w):
-            if labels[i, j] > top:
-                top = labels[i, j]
-    rank = np.zeros(top + 1, dtype=np.int64)
-    for i in range(h):
-        for j in range(w):
-            rank[labels[i, j]] = 1
-    total = 0
-    for k in range(top + 1):
-        used = rank[k]
-        rank[k] = total - 1 + used  # the used label's place; an unused one's is never read
-        total += used
+    rank = np.cumsum(np.bincount(labels.ravel()) > 0) - 1  # the used label's place; an unused one's is never read
     out = np.empty((h, w), dtype=np.int64)
     for i in range(h):
         for j in range(w):
@@ -427,15 +398,8 @@ def palette_regions_kernel(index, min_area):  # pragma: no cover - compiled
     """
     h, w = index.shape
     regions = label_kernel(index, -1, False)
-    top = 0
-    for i in range(h):
-        for j in range(w):
-            if regions[i, j] > top:
-                top = regions[i, j]
-    counts = np.zeros(top + 1, dtype=np.int64)
-    for i in range(h):
-        for j in range(w):
-            counts[regions[i, j]] += 1
+    counts = np.bincount(regions.ravel())
+    top = counts.shape[0] - 1
     tiny = np.empty((h, w), dtype=np.int64)
     any_tiny = False
     for i in range(h):

@@ -98,11 +98,6 @@ ENTRY_POINTS: dict[str, tuple[str, tuple[str, ...], str]] = {
         "f8[:,::1]",
     ),
     "label_sums_kernel": ("front", ("i8[::1]", "f8[:,::1]", "i8"), "Tuple((f8[::1], f8[:,::1]))"),
-    "label_sums2_kernel": (
-        "front",
-        ("i8[::1]", "f8[:,::1]", "f8[:,::1]", "i8"),
-        "Tuple((f8[::1], f8[:,::1], f8[:,::1]))",
-    ),
     "spreads_kernel": (
         "front",
         ("f8[:,:,::1]", "i8[:,::1]", "b1[::1]", "b1[::1]"),

@@ -132,24 +132,6 @@ def label_lightness(labels: np.ndarray, lightness: np.ndarray) -> np.ndarray:
     return np.argmax(2 * cumulative >= cumulative[:, -1:], axis=1) / 10.0
 
 
-def label_means_of_two(labels: np.ndarray, a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, ...]:
-    """:func:`label_means` of ``labels`` for two images of values at once: (counts, means of a, means of b).
-
-    One pass over the labels (:func:`img2logo._compiled.front.label_sums2_kernel`): the same sums.
-    """
-    from .._compiled import kernels
-
-    flat = labels.ravel()
-    if not len(flat):
-        counts, a_means = label_means(labels, a)
-        return counts, a_means, label_means(labels, b)[1]
-    counts, a_sums, b_sums = kernels.label_sums2_kernel(
-        flat, a.reshape(len(flat), -1), b.reshape(len(flat), -1), int(flat.max()) + 1
-    )
-    scale = np.maximum(counts, 1.0)[:, None]
-    return counts, a_sums / scale, b_sums / scale
-
-
 def mean_shift(rgb: np.ndarray, colour_radius: float) -> tuple[np.ndarray, np.ndarray]:
     """Mean shift filtering (Comaniciu and Meer 2002) of a noisy clip art: sRGB and CIELAB, (H, W, 3) each.
 

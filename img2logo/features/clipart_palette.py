@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .clipart_colours import label_means, label_means_of_two
+from .clipart_colours import label_means
 from .constants import (
     CLIPART_BLOCK_REACH,
     CLIPART_EDGE_CONTRAST,
@@ -44,7 +44,8 @@ def palette_regions(
     """
     from .._compiled import kernels
 
-    counts, lab_means, rgb_means = label_means_of_two(areas, lab, rgb)
+    counts, lab_means = label_means(areas, lab)
+    rgb_means = label_means(areas, rgb)[1]
     seeds = np.flatnonzero(counts >= seed_area)
     if len(seeds) == 0:
         seeds = np.array([int(np.argmax(counts))])

@@ -178,17 +178,14 @@ def _split_group(opt: FitState, gid: int, node: int, bound: float) -> bool:
         seeds[h] = opt.golden(opt.groups[h])
         if seeds[h].k is None:
             return False
-    node_groups = opt.node_groups()
     out = window_solve.solve(
         opt,
         dict(opt.groups),
         seeds,
-        node_groups,
+        opt.node_groups(),
         changed=halves,
         free_nodes=sorted({n for h in halves for n in opt.constrained_nodes(opt.groups[h])}),
         fixed=set(),
-        n_groups_total=len(opt.groups),
-        n_junctions_total=len(node_groups),
         rings=2,
     )
     if out is None or not all(h in out[0] for h in halves):

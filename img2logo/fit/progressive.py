@@ -174,15 +174,7 @@ def _fit_all(state: FitState) -> None:
         if seeds[gid].k is None:
             hold_line(held, state.groups[gid], state.constrained_nodes(state.groups[gid]))
     check_reach(state, seeds)
-    node_groups = state.node_groups()
-    out = window_solve.solve_whole(
-        state,
-        dict(state.groups),
-        seeds,
-        node_groups,
-        n_groups_total=len(state.groups),
-        n_junctions_total=len(node_groups),
-    )
+    out = window_solve.solve_whole(state, dict(state.groups), seeds, state.node_groups())
     if out is None:
         out = recover(state, seeds)
     fits, disp = out

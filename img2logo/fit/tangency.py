@@ -272,8 +272,6 @@ def _all_at_once(
             groups,
             seeds,
             node_groups,
-            n_groups_total=len(groups),
-            n_junctions_total=len(node_groups),
             tangent=True,
             bound=bound,  # E^s above it fails the try below: its arcs are extracted only while it may not
         )
@@ -370,8 +368,6 @@ def _try(
             changed=sorted(changed),
             free_nodes=sorted(free),
             fixed=set(),
-            n_groups_total=len(opt.groups),
-            n_junctions_total=len(node_groups),
             rings=2,
             tangent=True if touching is None else touching,
             # E^s above ``bound`` fails the try below: no arc is extracted once it must be, and the

@@ -62,8 +62,8 @@ def solve(
     changed: Sequence[int],
     free_nodes: Sequence[int],
     fixed: set[int],
-    n_groups_total: int,
-    n_junctions_total: int,
+    n_groups_total: int | None = None,
+    n_junctions_total: int | None = None,
     rings: int = 1,
     first_ring: int = 1,
     order: Callable[[int], Any] | None = None,
@@ -90,8 +90,10 @@ def solve(
     from its level's); default found in ``seeds``. With ``bound`` (px), None
     as soon as E^s (Eqn. 3) of the state with the new fits and displacements
     must exceed it, and ``regroup`` may split groups anew before their arcs
-    are extracted (:func:`_fits_within`; a tangent join's slide). None if it fails.
+    are extracted (:func:`_fits`; a tangent join's slide). None if it fails.
     ``tried``, when given, receives the groups of the last (widest) window solved, whether it solved or not.
+    ``n_groups_total``, ``n_junctions_total``: C and J of the weights (``n_circles`` and ``n_junctions`` of
+    :func:`~img2logo.fit.local_window.fit_window`), default the counts of ``groups`` and ``node_groups``.
     ``stop_when_stuck``: that of :func:`~img2logo.fit.local_window.fit_window`. ``rest``: junction ->
     its rest point p_k for the fit instead of the graph's, px (2,) (a tangent biarc's junction: its d_k
     starts at zero there); the displacements returned, and those the arcs are extracted with, are from
@@ -119,8 +121,8 @@ def solve(
         first_ring=first_ring,
         order=cast(Callable[[Hashable], Any] | None, order),
         displacements0=disp0,
-        n_circles=n_groups_total,
-        n_junctions=n_junctions_total,
+        n_circles=len(groups) if n_groups_total is None else n_groups_total,
+        n_junctions=len(node_groups) if n_junctions_total is None else n_junctions_total,
         connectivity=state.options.connectivity,
         constraints=lambda circles, nodes: state.axis_constraints(
             cast(Sequence[int], circles), groups, cast(Sequence[int], nodes)
@@ -137,9 +139,7 @@ def solve(
     disp = _window_displacements(state, window)
     for n, p in (rest or {}).items():
         disp[n] = disp.get(n, 0.0) + p - state.graph.junctions[n]
-    if bound is not None:
-        return _fits_within(state, window, disp, groups, seeds, fixed, node_groups, bound, regroup)
-    return _fits(state, window, disp, groups, seeds, fixed, cap)
+    return _fits(state, window, disp, groups, seeds, fixed, node_groups, cap=cap, bound=bound, regroup=regroup)
 
 
 def solve_whole(
@@ -148,8 +148,8 @@ def solve_whole(
     seeds: Mapping[int, Seed],
     node_groups: Mapping[int, Sequence[int]],
     *,
-    n_groups_total: int,
-    n_junctions_total: int,
+    n_groups_total: int | None = None,
+    n_junctions_total: int | None = None,
     order: Callable[[int], Any] | None = None,
     tangent: bool | Collection[int] = False,
     cap: float | None = None,
@@ -208,44 +208,19 @@ def _fits(
     groups: Mapping[int, Group],
     seeds: Mapping[int, Seed],
     fixed: set[int],
+    node_groups: Mapping[int, Sequence[int]],
+    *,
     cap: float | None = None,
-) -> Solution:
+    bound: float | None = None,
+    regroup: Regroup | None = None,
+) -> Solution | None:
     """The new fits (the window's free groups, and lines whose junctions moved) and displacements.
 
-    With ``cap``, the merged group's (id -1) arc is extracted first, and
-    when it is farther than ``cap`` px from its pixels only it is returned:
-    the merge loop rejects that merge (``max_arc_distance``) and reads no other arc.
-    ``disp``: the window's d_k by node (:func:`_window_displacements`).
-    """
-    todo = _refitted(state, window, groups, seeds, fixed)
+    ``disp``: the window's d_k by node (:func:`_window_displacements`). With ``cap``, the merged
+    group's (id -1) arc is extracted first, and when it is farther than ``cap`` px from its pixels
+    only it is returned: the merge loop rejects that merge (``max_arc_distance``) and reads no other arc.
 
-    def fit(gid: int) -> GroupFit:
-        _, r, k = seeds[gid]
-        center = window.center(gid)
-        return GroupFit(center, r, k, state.arc_for(groups[gid], center, r, k, disp.__getitem__))
-
-    first = None
-    if cap is not None and -1 in todo:
-        first = fit(-1)
-        if first.arc.frechet > cap:
-            return {-1: first}, disp  # the merge is rejected: the window's other arcs are not needed
-    fits = {gid: first if gid == -1 and first is not None else fit(gid) for gid in todo}
-    return fits, disp
-
-
-def _fits_within(
-    state: FitState,
-    window: WindowFit,
-    disp: dict[int, np.ndarray],
-    groups: Mapping[int, Group],
-    seeds: Mapping[int, Seed],
-    fixed: set[int],
-    node_groups: Mapping[int, Sequence[int]],
-    bound: float,
-    regroup: Regroup | None,
-) -> Solution | None:
-    """:func:`_fits`, or None once E^s (Eqn. 3) of the state with them must exceed ``bound`` px.
-
+    With ``bound``, None once E^s (Eqn. 3) of the state with the fits must exceed ``bound`` px.
     With ``regroup``, called with the window's displacements (node -> d_k,
     the others the state's) and the groups it fits, the groups it returns
     take the pixels it gives them before any arc is extracted (a group
@@ -258,7 +233,7 @@ def _fits_within(
     more than the rounding of the sums (``CUT_MARGIN``) so does E^s, and no
     further arc is extracted (on the clip-art fish 14 of 25 tangent tries,
     on the polar bear 258 of 358, were rejected for E^s only after every
-    arc). Otherwise the fits are those :func:`_fits` and then a re-extraction
+    arc). Otherwise the fits are those without ``bound`` and then a re-extraction
     of the regrouped groups' arcs would give, the same numbers.
     """
     todo = _refitted(state, window, groups, seeds, fixed)
@@ -276,6 +251,23 @@ def _fits_within(
         new_groups, off = out
     fitted = set(todo)
     todo += [g for g in new_groups if g not in fitted]
+
+    def fit(gid: int) -> GroupFit:
+        group = new_groups.get(gid, groups[gid])
+        if gid in fitted:
+            _, r, k = seeds[gid]
+            center = window.center(gid)
+            return GroupFit(center, r, k, state.arc_for(group, center, r, k, at))
+        f = state.fits[gid]  # split anew at a join of a fitted group: its circle stays
+        return replace(f, arc=state.arc_for(group, f.center, f.radius, f.k, at))
+
+    first = None
+    if cap is not None and -1 in fitted:
+        first = fit(-1)
+        if first.arc.frechet > cap:
+            return {-1: first}, disp  # the merge is rejected: the window's other arcs are not needed
+    if bound is None:
+        return {gid: first if gid == -1 and first is not None else fit(gid) for gid in todo}, disp
     n_fits = len(state.fits.keys() | set(todo))
     skip = set(todo)
     running = sum(f.arc.frechet for g, f in state.fits.items() if g not in skip)
@@ -294,15 +286,7 @@ def _fits_within(
     for gid in todo:
         if running / max(n_fits, 1) + shift > limit:
             return None
-        group = new_groups.get(gid, groups[gid])
-        if gid in fitted:
-            _, r, k = seeds[gid]
-            center = window.center(gid)
-            f = GroupFit(center, r, k, state.arc_for(group, center, r, k, at))
-        else:  # split anew at a join of a fitted group: its circle stays
-            f = state.fits[gid]
-            f = replace(f, arc=state.arc_for(group, f.center, f.radius, f.k, at))
-        fits[gid] = f
+        fits[gid] = f = first if gid == -1 and first is not None else fit(gid)
         running += f.arc.frechet
     if running / max(n_fits, 1) + shift > limit:
         return None

@@ -356,12 +356,6 @@ def label_sums_reference(labels, values, n):
     return counts, sums
 
 
-def label_sums2_reference(labels, a, b, n):
-    """``label_sums2_kernel``: :func:`label_sums_reference` of two images of values."""
-    counts, a_sums = label_sums_reference(labels, a, n)
-    return counts, a_sums, label_sums_reference(labels, b, n)[1]
-
-
 def nearest_colour_reference(colours, singles, near):
     """``nearest_colour_kernel``: each colour's distance to the nearest of the ``near`` seeds' colours (inf: none)."""
     best = np.full(len(colours), np.inf)
@@ -394,7 +388,6 @@ REFERENCES = {
     "spreads_kernel": spreads_reference,
     "colour_distance_kernel": lambda lab, colour: np.linalg.norm(lab - colour, axis=2),
     "label_sums_kernel": label_sums_reference,
-    "label_sums2_kernel": label_sums2_reference,
     "nearest_colour_kernel": nearest_colour_reference,
     "relabel_kernel": relabel_reference,
     "palette_regions_kernel": palette_regions_reference,

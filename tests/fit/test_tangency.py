@@ -130,16 +130,18 @@ def test_cutting_off_tries_over_the_bound_changes_no_result(monkeypatch):
 
     image = DATA / "clipart-fish.png"
     cut = abstract(image, progress=False)
-    within = window_solve._fits_within
+    within = window_solve._fits
     cuts = []
 
-    def never_cut(state, window, disp, groups, seeds, fixed, node_groups, bound, regroup):
-        out = within(state, window, disp, groups, seeds, fixed, node_groups, bound, regroup)
-        full = within(state, window, disp, groups, seeds, fixed, node_groups, math.inf, regroup)
+    def never_cut(*args, bound=None, **kwargs):
+        if bound is None:
+            return within(*args, **kwargs)
+        out = within(*args, bound=bound, **kwargs)
+        full = within(*args, bound=math.inf, **kwargs)
         cuts.append(out is None and full is not None)
         return full
 
-    monkeypatch.setattr(window_solve, "_fits_within", never_cut)
+    monkeypatch.setattr(window_solve, "_fits", never_cut)
     whole = abstract(image, progress=False)
     assert any(cuts)  # some tries were cut off, and every one would have failed on E^s
     assert whole.progression.stats == cut.progression.stats
