@@ -16,15 +16,36 @@ Examples
 [(50.0, True)]
 """
 
-import lazy_loader as _lazy
+from __future__ import annotations
+
+from collections.abc import Callable as _Callable
 
 __version__ = "0.1.0"
 
-_load, __dir__, __all__ = _lazy.attach_stub(__name__, __file__)
-__all__ = [*__all__, "__version__"]
+#: lazy_loader's (``__getattr__``, ``__dir__``, ``__all__``) of the stub, made on first use: the command line
+#: imports its own modules (``import img2logo.app.cli``) and never reads a public name here, so it does not
+#: parse the stub (with ``ast``, about 3 ms of CPU a start).
+_attached: tuple[_Callable[[str], object], _Callable[[], list[str]], list[str]] | None = None
+
+
+def _public() -> tuple[_Callable[[str], object], _Callable[[], list[str]], list[str]]:
+    global _attached
+    if _attached is None:
+        import lazy_loader
+
+        load, names, public = lazy_loader.attach_stub(__name__, __file__)
+        _attached = (load, names, [*public, "__version__"])
+    return _attached
 
 
 def __getattr__(name: str) -> object:
-    if name not in __all__:  # Python's own message, not lazy_loader's
+    load, _, public = _public()
+    if name == "__all__":
+        return list(public)
+    if name not in public:  # Python's own message, not lazy_loader's
         raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    return _load(name)
+    return load(name)
+
+
+def __dir__() -> list[str]:
+    return _public()[1]()

@@ -1,4 +1,5 @@
-"""The values of single options, checked or parsed: lengths in px, the symmetry axis, the time budget, radii.
+"""The values of single options, checked or parsed: lengths in px, the regions kept, the symmetry axis, the time
+budget, radii.
 
 :class:`img2logo.options.Options` checks each field with these when it is made; the
 command line parses its flags' text with them. Each raises
@@ -116,3 +117,22 @@ def check_symmetry_option(value: object) -> str | None:
             f"got {value!r}"
         )
     return f"{angle:g}"
+
+
+def check_detail(value: object, name: str = "detail", unit: str = "regions") -> int:
+    """The ``detail`` option (or ``arcs``: ``name``, ``unit``) checked: a whole number, at least 1, as int.
+
+    Raises
+    ------
+    InvalidParameterError
+        For anything else (a bool, a string, a fraction, 0 or less).
+    """
+    import numpy as np
+
+    message = f"{name} must be a whole number of {unit}, at least 1, got {value!r}"
+    if isinstance(value, bool | np.bool_ | str) or not isinstance(value, int | float | np.integer | np.floating):
+        raise InvalidParameterError(message)
+    v = float(value)
+    if not (np.isfinite(v) and v >= 1.0 and v == int(v)):
+        raise InvalidParameterError(message)
+    return int(v)

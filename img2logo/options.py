@@ -24,6 +24,7 @@ from ._validation import check_choice, check_positive
 from .constants import DETAIL, LOGO_ARCS, MIN_LADDER_RADIUS, MIN_SEGMENT_LENGTH, RDP_TOLERANCE, STRETCH, TOLERANCE
 from .errors import InvalidParameterError, UnknownOptionError
 from .option_values import (
+    check_detail,
     check_length,
     check_stretch,
     check_symmetry_option,
@@ -190,7 +191,10 @@ class Options:
         about the wall time) a run may take, > 0; None: no bound. Counted from
         the start of :func:`img2logo.abstract` (reading the image, its feature
         lines and segment graph included), or of
-        :func:`img2logo.fit.progressive.optimize` called alone.
+        :func:`img2logo.fit.progressive.optimize` called alone, once the
+        compiled kernels have loaded: their one compilation on a new machine
+        is not counted (without a C compiler numba's JIT compiles each kernel
+        on its first call, inside the budget).
         Past it the merge loop stops at its last level (every level is within T)
         and the tangent joins try no level before it, with a
         :class:`~img2logo.fit.progressive.TimeBudgetWarning` saying so in one line.
@@ -361,8 +365,6 @@ class Options:
         put(self, "stretch", check_stretch(self.stretch))
         put(self, "rdp_tolerance", check_length(self.rdp_tolerance, "rdp_tolerance"))
         put(self, "min_length", check_length(self.min_length, "min_length", allow_zero=True))
-        from .features.detail import check_detail
-
         put(self, "detail", check_detail(self.detail))
         if self.arcs is not None:
             put(self, "arcs", check_detail(self.arcs, "arcs", "arcs"))

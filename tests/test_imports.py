@@ -178,7 +178,8 @@ def test_a_run_of_the_command_loads_only_what_it_needs(tmp_path, image):
     Not numba (the kernels are compiled ahead of time), scipy, scikit-image (not
     even their compiled modules: their operations are kernels), Pillow, matplotlib, numpy.ma, the JSON
     contract, the photo path or the batch; nor :mod:`tempfile` (the image decoder's standard error is
-    held in a memory file).
+    held in a memory file), nor the fills' and the mirror's modules; a drawing's, nor the clip art's strokes and
+    ranking of regions.
     """
     code = (
         "import os, sys\n"
@@ -194,6 +195,9 @@ def test_a_run_of_the_command_loads_only_what_it_needs(tmp_path, image):
         "img2logo.features.photo.line_maps img2logo.features.photo.subject"
     )
     unneeded += " img2logo.app.batch.run img2logo.design.fills tempfile"
+    unneeded += " img2logo.design.fill_values img2logo.geometry.mirror"  # no fills, no mirror axis
+    if "drawing" in image:  # nor a clip art's strokes and regions' ranking
+        unneeded += " img2logo.features.detail img2logo.features.stroke_sides img2logo.features.clipart_strokes"
     pinned = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")
     env = {k: v for k, v in os.environ.items() if k not in pinned}
     svg = tmp_path / "logo.svg"

@@ -95,6 +95,20 @@ class _Parser(argparse.ArgumentParser):
         self._given = list(sys.argv[1:] if args is None else args)
         return super().parse_args(self._given, namespace)
 
+    def add_argument(self, *args, **kwargs):  # type: ignore[no-untyped-def]
+        # argparse makes a help formatter for every option added, only to check its metavar; that
+        # check needs no width, which the formatter would ask the terminal for (importing shutil).
+        self._checking_metavar = True
+        try:
+            return super().add_argument(*args, **kwargs)
+        finally:
+            self._checking_metavar = False
+
+    def _get_formatter(self) -> argparse.HelpFormatter:
+        if getattr(self, "_checking_metavar", False):
+            return self.formatter_class(prog=self.prog, width=80)  # type: ignore[call-arg]
+        return super()._get_formatter()
+
     def error(self, message: str) -> NoReturn:
         about_inputs = message.startswith(("the following arguments are required", "unrecognized arguments"))
         unknown = self._unknown_option() if about_inputs else None  # not for an option's own bad value

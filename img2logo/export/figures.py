@@ -20,7 +20,6 @@ import numpy as np
 from .._io import as_path, atomic_write
 from .._validation import check_choice, check_integer, check_positive
 from ..constants import MAX_IMAGE_SIDE, MAX_PNG_IMAGE_SIDE, MAX_PNG_SIDE
-from ..design.fill_values import Fill
 from ..errors import InvalidParameterError
 from ..geometry.abstraction import Abstraction
 from .constants import PNG_DPI, PNG_ZLIB_STRATEGY
@@ -33,6 +32,7 @@ from .plotting import (
 )
 
 if TYPE_CHECKING:
+    from ..design.fill_values import Fill
     from ..segment_graph import SegmentGraph
 
 from .formats import check_format_suffix, checked_drawing

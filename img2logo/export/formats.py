@@ -7,15 +7,15 @@ from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
 from .._validation import check_instance, check_integer, check_positive
-from ..design.fill_values import Fill, check_fills
 from ..errors import InvalidParameterError
 from ..geometry.abstraction import Abstraction
 from .plotting import (
+    given_fills,
     level_stroke_width,
 )
 
 if TYPE_CHECKING:
-    pass
+    from ..design.fill_values import Fill
 
 
 #: Suffixes that name a file format (lower case): an output named with one of them must be of that format.
@@ -51,7 +51,7 @@ def checked_drawing(
 ) -> tuple[list[Fill], int, int, float]:
     """The checked inputs of a drawn file: the fills (a list), width and height (px), the stroke width (px)."""
     check_instance(abstraction, Abstraction, "abstraction")
-    fill_list = check_fills(fills) or []
+    fill_list = given_fills(fills)
     width = check_integer(abstraction.width, "width", 1)
     height = check_integer(abstraction.height, "height", 1)
     sw = level_stroke_width(abstraction) if stroke_width is None else check_positive(stroke_width, "stroke_width")

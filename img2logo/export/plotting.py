@@ -23,7 +23,6 @@ import numpy as np
 
 from .._validation import check_instance, check_positive
 from ..constants import ARC_SAMPLE_STEP, IMAGE_FADE
-from ..design.fill_values import check_fills
 from ..errors import InvalidParameterError
 from ..geometry.abstraction import Abstraction
 from ..geometry.primitives import Circle
@@ -48,6 +47,7 @@ __all__ = [
     "evenodd_orient",
     "faded_pixels",
     "frame_image",
+    "given_fills",
     "level_stroke_width",
     "plot_abstraction",
     "plot_circles",
@@ -76,6 +76,19 @@ def default_stroke_width(width: int, height: int) -> float:
     (both in :mod:`img2logo.export.constants`).
     """
     return max(MIN_STROKE_WIDTH, STROKE_WIDTH_FRACTION * max(int(width), int(height)))
+
+
+def given_fills(fills: object) -> list[Fill]:
+    """``fills`` checked (:func:`img2logo.design.fill_values.check_fills`) as a list; [] when None.
+
+    The fills' module is imported only when some are given: a logo written without
+    fills (the command's default) does not load it.
+    """
+    if fills is None:
+        return []
+    from ..design.fill_values import check_fills
+
+    return check_fills(fills) or []
 
 
 def level_stroke_width(abstraction: Abstraction) -> float:
@@ -155,7 +168,7 @@ def plot_abstraction(
     check_instance(abstraction, Abstraction, "abstraction")
     lw = check_positive(linewidth, "linewidth")
     width, height = int(abstraction.width), int(abstraction.height)
-    fill_list = check_fills(fills) or []
+    fill_list = given_fills(fills)
     ax = _axes(ax, width, height)
     if image is not None:
         _draw_image(ax, image, width, height, image_fade)
@@ -402,7 +415,7 @@ def draw_fills(
     from matplotlib.patches import PathPatch
     from matplotlib.path import Path as MplPath
 
-    fill_list = check_fills(fills) or []
+    fill_list = given_fills(fills)
     w = int(check_positive(width, "width"))
     h = int(check_positive(height, "height"))
     gradients: dict[object, np.ndarray] = {}

@@ -16,11 +16,9 @@ from typing import TYPE_CHECKING, Any
 from .._io import atomic_write
 from .._validation import check_positive
 from ..constants import FORMAT_NAME
-from ..design.fill_values import Fill
 from ..errors import InvalidParameterError
 from ..geometry.abstraction import Abstraction
 from ..geometry.golden_ladder import FibonacciLadder
-from ..geometry.mirror import axis_segment
 from ..geometry.primitives import Circle
 from ..geometry.svg_path import arc_path, svg_number
 from .constants import CONSTRUCTION_MARGIN
@@ -30,7 +28,7 @@ from .plotting import (
 )
 
 if TYPE_CHECKING:
-    pass
+    from ..design.fill_values import Fill
 
 from .formats import check_format_suffix, checked_drawing
 
@@ -108,7 +106,11 @@ def to_svg(
         )
         for i, c in enumerate(circles):
             lines.append(f'    <circle id="circle-{i}"{_k_attr(c)} cx="{n(c.cx)}" cy="{n(c.cy)}" r="{n(c.r)}"/>')
-        guide = axis_segment(abstraction.params, width, height)
+        guide = None
+        if "symmetry" in abstraction.params:  # a symmetric logo's record: the mirror's module loads for it only
+            from ..geometry.mirror import axis_segment
+
+            guide = axis_segment(abstraction.params, width, height)
         if guide is not None:  # a symmetric logo: its mirror axis as a guide line across the image
             (x0, y0), (x1, y1) = guide
             ends = f'x1="{n(x0)}" y1="{n(y0)}" x2="{n(x1)}" y2="{n(y1)}"'

@@ -40,12 +40,11 @@ import numpy as np
 
 from .._io import as_path, atomic_write, check_output_paths, output_set
 from .._validation import check_choice
-from ..design.fill_values import Fill
 from ..errors import InputNotFoundError, InvalidParameterError
 from ..geometry.abstraction import Abstraction
 
 if TYPE_CHECKING:
-    pass
+    from ..design.fill_values import Fill
 
 from .figures import (
     PNG_BACKGROUNDS,

@@ -56,29 +56,11 @@ import numpy as np
 
 from .._compat import intersect1d, unique
 from ..constants import LINE_JOIN_DISTANCE
-from ..errors import InvalidParameterError
 from .boundary_cost import boundary_arcs
 from .clipart_colours import label_lightness, label_means
 from .clipart_strokes import ink_outlines, outline_strokes, thin_regions
 from .constants import CLIPART_MARK_CONTRAST, CLIPART_MAX_REGIONS, CLIPART_OUTLINE_WIDTH
 from .stroke_sides import StrokeSides, across_strokes, open_strokes, stroke_sides
-
-
-def check_detail(value: object, name: str = "detail", unit: str = "regions") -> int:
-    """The ``detail`` option (or ``arcs``: ``name``, ``unit``) checked: a whole number, at least 1, as int.
-
-    Raises
-    ------
-    InvalidParameterError
-        For anything else (a bool, a string, a fraction, 0 or less).
-    """
-    message = f"{name} must be a whole number of {unit}, at least 1, got {value!r}"
-    if isinstance(value, bool | np.bool_ | str) or not isinstance(value, int | float | np.integer | np.floating):
-        raise InvalidParameterError(message)
-    v = float(value)
-    if not (np.isfinite(v) and v >= 1.0 and v == int(v)):
-        raise InvalidParameterError(message)
-    return int(v)
 
 
 def region_adjacency(regions: np.ndarray) -> dict[tuple[int, int], int]:

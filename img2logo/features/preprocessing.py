@@ -25,12 +25,11 @@ from ..constants import DETAIL
 from ..images.line_ends import join_line_ends
 from ..images.loading import load_image, load_mask
 from ..images.ndimage import skeletonize
+from ..option_values import check_detail
 from .clipart import clipart_regions, enclosed_paper
 from .clipart_colours import label_lightness
-from .clipart_strokes import clipart_lines
 from .constants import PHOTO_MIN_LINE_LENGTH, PHOTO_SPUR_LENGTH, SPUR_LENGTH
-from .detail import check_detail, close_line_ends, merge_by_importance
-from .drawing_lines import clean_skeleton, drawing_ink, half_width, keep_dots, median_stroke_width, without_small_parts
+from .drawing_lines import clean_skeleton, drawing_ink, keep_dots, median_stroke_width, without_small_parts
 from .kinds import detect_kind, detect_kind_and_regions, photo_reason
 
 if TYPE_CHECKING:
@@ -188,13 +187,16 @@ def extract_feature_lines(
     radius = stroke = detail_used = None
     budget = 0.0
     if kind == "drawing":
-        ink = drawing_ink(img)
-        radius = half_width(ink)
+        ink, radius = drawing_ink(img)
         axis = skeletonize(ink)
         stroke = float(2.0 * median(radius[axis])) if axis.any() else 0.0
         raw = join_line_ends(axis)
         min_len = spur_length if min_line_length is None else min_line_length
     elif kind == "clipart":
+        # The clip art's modules (its strokes, the regions' ranking) load only for a clip art.
+        from .clipart_strokes import clipart_lines
+        from .detail import close_line_ends, merge_by_importance
+
         regions = enclosed_paper(clipart_regions(img) if regions is None else regions, img)
         regions, detail_used, budget = merge_by_importance(
             regions, img.lab, check_detail(detail), arcs=None if arcs is None else check_detail(arcs, "arcs", "arcs")

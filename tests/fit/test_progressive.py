@@ -5,17 +5,26 @@ from __future__ import annotations
 import itertools
 import math
 import time
+import warnings
 
 import cv2
 import numpy as np
 import pytest
 from helpers import BIAS, DATA, blank, check_level, golden_chain, hand_built_state, sampled_arc
 
-from img2logo import InvalidParameterError, Options, SegmentGraph, abstract, build_segment_graph, extract_feature_lines
+from img2logo import (
+    InvalidParameterError,
+    Options,
+    SegmentGraph,
+    abstract,
+    build_segment_graph,
+    data,
+    extract_feature_lines,
+)
 from img2logo.constants import LOGO_ARCS, PHI
 from img2logo.fit.intersections import redundant_intersections
 from img2logo.fit.merge_checks import redundant_pairs
-from img2logo.fit.progressive import initial_fit, optimize
+from img2logo.fit.progressive import TimeBudgetWarning, initial_fit, optimize
 from img2logo.fit.simplification import merge_groups
 from img2logo.geometry.abstraction import Abstraction
 
@@ -306,6 +315,31 @@ def test_abstract_s_budget_counts_from_its_own_start(monkeypatch):
     abstract(DATA / "drawing-fish.png", progress=False)
     ((started, called),) = seen
     assert before <= started < called  # the image read and its feature lines are inside the budget
+
+
+@pytest.mark.parametrize("call", ["abstract", "optimize"])
+def test_the_kernels_load_before_the_budget_s_clock_starts(monkeypatch, call):
+    """A first run that compiles the kernels (about a minute, once per machine) still has its whole budget."""
+    from img2logo._compiled import kernels
+
+    loads = []
+    real = kernels.usable
+
+    def slow_load() -> bool:  # a load that takes longer than the whole budget
+        spent = time.process_time()
+        while time.process_time() - spent < 0.6:
+            pass
+        loads.append(time.process_time())
+        return real()
+
+    monkeypatch.setattr(kernels, "usable", slow_load)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", TimeBudgetWarning)
+        if call == "abstract":
+            abstract(data.ring(), progress=False, time_budget=0.5)
+        else:
+            optimize(build_segment_graph(extract_feature_lines(data.ring())), time_budget=0.5)
+    assert len(loads) == 1
 
 
 def test_a_budget_not_reached_changes_nothing(fish_progression):

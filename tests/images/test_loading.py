@@ -14,7 +14,7 @@ import pytest
 from img2logo.constants import MAX_IMAGE_SIDE
 from img2logo.errors import ImageNotFoundError, InvalidImageError
 from img2logo.images import file_checks, reading
-from img2logo.images.loading import DownscaleWarning, PageWarning, composite_on_white, load_image
+from img2logo.images.loading import DownscaleWarning, LoadedImage, PageWarning, composite_on_white, load_image
 
 
 def _shapes(h: int, w: int, alpha: bool) -> np.ndarray:
@@ -118,6 +118,26 @@ def test_not_a_regular_file_is_named_as_such(tmp_path):
         load_image(tmp_path / "pipe.png")
     with pytest.raises(ImageNotFoundError, match=r"is a directory, not an image file"):
         load_image(tmp_path)
+
+
+@pytest.mark.parametrize("dtype", [np.uint8, np.uint16, np.float32, np.float64, bool])
+@pytest.mark.parametrize("channels", [3, 4])
+def test_bgr_is_read_as_the_reversed_colour_channels_to_the_bit(dtype, channels):
+    rng = np.random.default_rng(channels)
+    if dtype is bool:
+        arr = rng.random((9, 7, channels)) > 0.5
+    elif np.issubdtype(dtype, np.floating):
+        arr = rng.random((9, 7, channels)).astype(dtype)
+        arr[0, 0, 0] = -0.0
+    else:
+        arr = rng.integers(0, np.iinfo(dtype).max + 1, (9, 7, channels)).astype(dtype)
+    original = arr.copy()
+    for given in (arr, arr[::-1], np.asfortranarray(arr)):  # any memory layout
+        want = composite_on_white(np.concatenate([given[:, :, 2::-1], given[:, :, 3:]], axis=2), "x")
+        got = composite_on_white(given, "x", bgr=True)
+        assert got[0].tobytes() == want[0].tobytes() and got[1].tobytes() == want[1].tobytes()
+        assert got[0].flags.c_contiguous and not np.shares_memory(got[0], given)
+    assert np.array_equal(arr, original)  # the input is never modified
 
 
 @pytest.mark.parametrize(
@@ -894,3 +914,22 @@ def test_the_strip_by_strip_reduce_gives_pillows_reduce_exactly(mode, factor):
     arr = rng.integers(0, 256, (1303, 517, channels), dtype=np.uint8)  # 1303 rows: a partial last strip and block
     im = Image.fromarray(arr[:, :, 0] if channels == 1 else arr, mode)
     assert np.array_equal(reduce_by_strips(im, factor), np.array(im.reduce(factor)))
+
+
+def test_flat_fraction_counts_pixels_whose_four_neighbours_have_their_8_bit_colour():
+    rng = np.random.default_rng(11)
+    for _ in range(60):
+        h, w = (int(v) for v in rng.integers(1, 30, 2))
+        levels = int(rng.choice([2, 4, 256]))  # few colours (many flat pixels) to every 8-bit one
+        rgb = np.round(rng.random((h, w, 3)) * (levels - 1)) / (levels - 1)
+        if rng.random() < 0.3:  # values between the 8-bit ones: rounded to them
+            rgb = np.clip(rgb + rng.normal(0.0, 0.002, rgb.shape), 0.0, 1.0)
+        codes = np.round(rgb * 255.0).astype(np.int64) @ np.array([1 << 16, 1 << 8, 1])
+        padded = np.pad(codes, 1, mode="edge")  # the frame's missing neighbours count as equal
+        same = (
+            (padded[1:-1, :-2] == codes)
+            & (padded[1:-1, 2:] == codes)
+            & (padded[:-2, 1:-1] == codes)
+            & (padded[2:, 1:-1] == codes)
+        )
+        assert LoadedImage(rgb, np.ones((h, w))).flat_fraction == float(same.mean())
