@@ -34,10 +34,11 @@ test: $(KIT)
 	$(BIN)/python -m pytest -m "not browser and not wheel"
 
 # Optional extras, installed on first use: [kit] (papermill, ipywidgets: the notebooks) for make test,
-# make figures and make lab; [lab] (JupyterLab) for make lab; [browser] (JupyterLab and playwright) for
-# make test-browser. The library (make install, the img2logo command) needs none of them.
+# make figures and make lab, and [dask] for make test (the batch on a dask LocalCluster); [lab] (JupyterLab)
+# for make lab; [browser] (JupyterLab and playwright) for make test-browser. The library (make install, the
+# img2logo command) needs none of them.
 $(KIT): pyproject.toml $(STAMP)
-	$(BIN)/python -m pip install --quiet -e '.[dev,kit]'
+	$(BIN)/python -m pip install --quiet -e '.[dev,kit,dask]'
 	@touch $@
 
 # JupyterLab's settings for make lab (its app settings, inside .venv/): no news pop-up, no update check.

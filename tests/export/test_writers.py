@@ -8,6 +8,7 @@ import math
 import os
 import re
 import subprocess
+import threading
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
@@ -320,6 +321,64 @@ def test_png_over_the_input_has_the_bytes_matplotlib_draws(form):
     pixels = plotting.faded_pixels(image, WIDTH, HEIGHT)
     assert pixels.dtype == np.uint8 and pixels.shape == (HEIGHT, WIDTH, 3)
     assert figures.png_bytes(a, image=image) != figures.png_bytes(a, image=255 - pixels)  # the input is drawn
+
+
+@pytest.mark.parametrize("background", ["input", "white", "transparent"])
+def test_png_run_length_deflate_keeps_the_pixels(background, monkeypatch):
+    """A level's PNG is deflated with zlib's run-length strategy: the pixels of zlib's default, read by any decoder."""
+    import cv2
+    from PIL import Image
+
+    from img2logo.export import figures
+
+    a = make_abstraction()
+    image = np.random.default_rng(5).integers(0, 256, (HEIGHT, WIDTH, 3), dtype=np.uint8)
+    fast = writers.png_bytes(a, image=image, background=background, show_junctions=True)
+    monkeypatch.setattr(figures, "PNG_ZLIB_STRATEGY", -1)
+    default = writers.png_bytes(a, image=image, background=background, show_junctions=True)
+    assert fast != default  # another deflate stream
+    mine, theirs = Image.open(io.BytesIO(fast)), Image.open(io.BytesIO(default))
+    assert mine.mode == theirs.mode and mine.info["dpi"] == theirs.info["dpi"]
+    pixels = np.asarray(mine)
+    assert np.array_equal(pixels, np.asarray(theirs))
+    libpng = cv2.imdecode(np.frombuffer(fast, np.uint8), cv2.IMREAD_UNCHANGED)  # OpenCV's libpng: BGR(A)
+    order = [2, 1, 0, 3] if pixels.shape[2] == 4 else [2, 1, 0]
+    assert np.array_equal(libpng[..., order], pixels)
+
+
+def test_png_figure_kept_for_the_next_draws_the_same_bytes(monkeypatch):
+    """The emptied figure a PNG is drawn on again gives the bytes of a new one, also after a drawing that failed."""
+    from img2logo.export import figures, plotting
+
+    a, b = make_abstraction(), four_arcs()
+    image = np.random.default_rng(7).integers(0, 256, (HEIGHT, WIDTH, 3), dtype=np.uint8)
+    draws = [
+        dict(level=a, image=image, fills=palette_fills(a), show_junctions=True),
+        dict(level=b, background="white", show_circles=True),
+        dict(level=a, background="transparent"),
+        dict(level=a, image=image, scale=0.5),
+        dict(level=a, image=image),
+    ]
+
+    def png(kw: dict, *, fresh: bool) -> bytes:
+        if fresh:
+            monkeypatch.setattr(figures, "_LAST_AXES", threading.local())
+        kw = dict(kw)
+        return writers.png_bytes(kw.pop("level"), **kw)
+
+    new = [png(kw, fresh=True) for kw in draws]
+    assert [png(kw, fresh=False) for kw in draws + draws] == new + new
+    assert figures._LAST_AXES.kept is not None  # the last one was kept
+
+    def fails(*args, **kwargs):
+        raise RuntimeError("half-way")
+
+    drawn = plotting.plot_abstraction
+    monkeypatch.setattr(figures, "plot_abstraction", lambda *args, **kw: (drawn(*args, **kw), fails())[0])
+    with pytest.raises(RuntimeError, match="half-way"):
+        png(draws[4], fresh=False)
+    monkeypatch.setattr(figures, "plot_abstraction", drawn)
+    assert png(draws[4], fresh=False) == new[4]
 
 
 def test_segment_graph_png(tmp_path):

@@ -117,20 +117,31 @@ def test_outputs_do_not_depend_on_the_executor(runs):
             assert (a / file).read_bytes() == (b / file).read_bytes(), file
 
 
-def test_a_dask_cluster_gives_the_same_files(folder, runs, tmp_path):
-    """The ``[dask]`` extra: a LocalCluster's executor runs the batch, its files byte-identical to a process pool's."""
+@pytest.mark.parametrize("processes", [False, True], ids=["threads", "worker-processes"])
+def test_a_dask_cluster_gives_the_same_files(folder, runs, tmp_path, processes):
+    """The ``[dask]`` extra: a LocalCluster's executor runs the batch, its files byte-identical to a process pool's.
+
+    In threads of this process, and in worker processes of their own, as on a cluster: the options go to
+    the workers and the files come back pickled.
+    """
     distributed = pytest.importorskip("distributed")
     _, reference = runs["processes"]
     with (
-        distributed.LocalCluster(n_workers=1, threads_per_worker=2, processes=False, dashboard_address=None) as cluster,
+        distributed.LocalCluster(
+            n_workers=2 if processes else 1,
+            threads_per_worker=1 if processes else 2,
+            processes=processes,
+            dashboard_address=None,
+            local_directory=str(tmp_path / "dask-scratch"),
+        ) as cluster,
         distributed.Client(cluster) as client,
     ):
-        report = run_batch(find_images(folder), tmp_path, executor=client.get_executor(), progress=False)
+        report = run_batch(find_images(folder), tmp_path / "out", executor=client.get_executor(), progress=False)
     assert [r.image for r in report.rows] == list(GOOD) and len(report.failures) == 1
     for name in GOOD:
         for fmt in ("svg", "json", "png"):
             file = f"{Path(name).stem}.{fmt}"
-            assert (tmp_path / file).read_bytes() == (reference / file).read_bytes(), file
+            assert (tmp_path / "out" / file).read_bytes() == (reference / file).read_bytes(), file
 
 
 def test_outputs_are_those_of_the_single_image_command(runs, tmp_path):
