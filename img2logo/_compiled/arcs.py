@@ -17,7 +17,7 @@ import math
 
 import numpy as np
 
-from .circle import farthest_from_circle
+from .circle import farthest_from_circle, measure_from_circle
 from .jit import jit as _jit
 
 # --------------------------------------------------------------------------------
@@ -452,66 +452,117 @@ def extract_arc_kernel(cx, cy, r, seg, junctions, theta, junction_tol, ratio, sl
 
 
 @_jit
-def biarc_best_kernel(chain, centre_a, centre_b, splits, radius_a, radius_b):  # pragma: no cover - compiled
-    """The best biarc of a grid of splits and turns (``biarcs.biarc_fine``): (distance px, s, a).
+def biarc_fine_kernel(chain, heads, tails, splits, counts, radii_a, radii_b, most):  # pragma: no cover - compiled
+    """The best biarc of each pair's fine grid (``biarcs.closest_biarcs``): (distance px, s, a) per pair.
 
-    For split ``splits[s]`` and turn ``a``, the head's pixels ``chain[:split + 1]``
-    go with the circle of centre ``centre_a[s, a]`` and radius ``radius_a``, the
-    tail's ``chain[split:]`` with ``centre_b[s, a]`` and ``radius_b``; a biarc's
-    distance is the largest distance of a pixel from its circle
-    (:func:`img2logo._compiled.circle.farthest_from_circle`, as in ``biarc_worst_kernel``). Returned: the
-    smallest over the grid, and where, the first in row-major order on a tie
-    (numpy's ``argmin`` of the grid of both kernels' ``maximum``). A biarc's
-    pixels stop being measured once it is known to be no better than the best
-    so far (its largest distance can only grow): most of the grid is left after
-    a few pixels.
+    For pair ``p``, split ``splits[p, s]`` (``s < counts[p]``) and turn ``a``, the
+    head's pixels ``chain[:split + 1]`` go with the circle of centre ``heads[p, s, a]``
+    and radius ``radii_a[p]``, the tail's ``chain[split:]`` with ``tails[p, s, a]``
+    and ``radii_b[p]``; a biarc's distance is the largest distance of a pixel from
+    its circle (:func:`img2logo._compiled.circle.farthest_from_circle`).
+    Each pair's smallest over its grid and where, the first in row-major order on
+    a tie. With ``most`` > 0 only the pairs that can be among the ``most`` smallest
+    (the earlier pair first on a tie) are searched to the end: a pair's search
+    starts from the ``most``-th smallest distance of the pairs before it, and a
+    pair that finds nothing below it gets s = -1. A biarc's pixels stop being
+    measured once it is known to be no better than the best so far (its largest
+    distance can only grow).
     """
-    best = math.inf
-    best_s, best_a = 0, 0
-    for s in range(centre_a.shape[0]):
-        head, tail = chain[: splits[s] + 1], chain[splits[s] :]
-        for a in range(centre_a.shape[1]):
-            worst = farthest_from_circle(head, centre_a[s, a, 0], centre_a[s, a, 1], radius_a, 0.0, best)
-            if worst >= best:
-                continue
-            worst = farthest_from_circle(tail, centre_b[s, a, 0], centre_b[s, a, 1], radius_b, worst, best)
-            if worst < best:
-                best, best_s, best_a = worst, s, a
-    return best, best_s, best_a
+    n_pairs = heads.shape[0]
+    worst_out = np.full(n_pairs, math.inf)
+    s_out = np.full(n_pairs, -1, dtype=np.int64)
+    a_out = np.full(n_pairs, -1, dtype=np.int64)
+    top = np.full(max(most, 1), math.inf)  # the smallest distances found so far, increasing
+    for p in range(n_pairs):
+        best = top[most - 1] if most > 0 else math.inf
+        best_s, best_a = -1, -1
+        ra, rb = radii_a[p], radii_b[p]
+        for s in range(counts[p]):
+            head, tail = chain[: splits[p, s] + 1], chain[splits[p, s] :]
+            for a in range(heads.shape[2]):
+                worst = farthest_from_circle(head, heads[p, s, a, 0], heads[p, s, a, 1], ra, 0.0, best)
+                if worst >= best:
+                    continue
+                worst = farthest_from_circle(tail, tails[p, s, a, 0], tails[p, s, a, 1], rb, worst, best)
+                if worst < best:
+                    best, best_s, best_a = worst, s, a
+        if best_s < 0:
+            continue
+        worst_out[p], s_out[p], a_out[p] = best, best_s, best_a
+        if most > 0:  # insert into the increasing list, the last one dropped
+            k = most - 1
+            while k > 0 and top[k - 1] > best:
+                top[k] = top[k - 1]
+                k -= 1
+            top[k] = best
+    return worst_out, s_out, a_out
 
 
 @_jit
-def biarc_coarse_kernel(chain, index, splits, heads, tails, radius_a, radius_b):  # pragma: no cover - compiled
-    """The best biarc of the coarse grid for one pair of radii (``biarcs.biarc_coarse``): (distance, j, s, a).
+def _measure_on(points, centre, radius, worst, done, at, best):  # pragma: no cover - compiled
+    """The largest distance of ``points`` from a circle, measured on from where a measure of it stopped, px.
 
-    ``heads[side_a, s, a]`` and ``tails[side_b, s, a]`` are the centres of the
-    head's and the tail's circles (sides -1, +1) at split ``splits[s]`` and turn
-    ``a``; of the pixels ``chain[index]`` (increasing) those up to the split go
-    with the head's circle, those from it on with the tail's
-    (:func:`img2logo._compiled.circle.farthest_from_circle`, as in ``biarc_worst_kernel``). Over j = 2 side_a +
-    side_b, then the grid in row-major order, the smallest largest distance and
-    where it is first reached; a biarc's pixels stop being measured once it is
-    known to be no better than the best so far.
+    ``worst[at]`` is the largest of its first ``done[at]`` points' distances (both updated), below
+    ``best``; the measure stops once it reaches ``best`` (:func:`img2logo._compiled.circle.measure_from_circle`).
     """
+    far, more = measure_from_circle(points[done[at] :], centre[0], centre[1], radius, worst[at], best)
+    worst[at] = far
+    done[at] += more
+    return far
+
+
+@_jit
+def biarc_coarse_kernel(chain, index, splits, heads, tails, radii_a, radii_b):  # pragma: no cover - compiled
+    """The best biarc of the coarse grid for every pair of radii (``biarcs.biarc_coarse``): (ia, ib) -> (j, s, a).
+
+    ``heads[ia, side_a, s, a]`` and ``tails[ib, side_b, s, a]`` are the centres
+    of the head's circle of radius ``radii_a[ia]`` and the tail's of ``radii_b[ib]``
+    (sides -1, +1) at split ``splits[s]`` and turn ``a``; of the pixels
+    ``chain[index]`` (increasing) those up to the split go with the head's circle,
+    those from it on with the tail's (the arithmetic of
+    :func:`img2logo._compiled.circle.biarc_worst_kernel`). For each pair of radii,
+    over j = 2 side_a + side_b, then the grid in row-major order, the smallest
+    largest distance and where it is first reached. A biarc's pixels stop being
+    measured once it is known to be no better than the best so far; a circle's
+    largest distance measured so far, and where it stopped, are kept for the
+    other pairs that share it (a head's circle serves every tail's and the
+    reverse): measuring on from there gives the same maximum as from the start.
+    """
+    n_a, n_b = heads.shape[0], tails.shape[0]
+    n_s, n_t = heads.shape[2], heads.shape[3]
     pixels = chain[index]
-    best = math.inf
-    best_j, best_s, best_a = 0, 0, 0
-    for j in range(4):
-        side_a, side_b = j // 2, j % 2
-        for s in range(heads.shape[1]):
-            # The pixels up to the split, from the chain's start; those from it on, from the chain's end.
-            head = pixels[: np.searchsorted(index, splits[s], side="right")]
-            tail = pixels[np.searchsorted(index, splits[s], side="left") :][::-1]
-            for a in range(heads.shape[2]):
-                cx, cy = heads[side_a, s, a, 0], heads[side_a, s, a, 1]
-                worst = farthest_from_circle(head, cx, cy, radius_a, 0.0, best)
-                if worst >= best:
-                    continue
-                cx, cy = tails[side_b, s, a, 0], tails[side_b, s, a, 1]
-                worst = farthest_from_circle(tail, cx, cy, radius_b, worst, best)
-                if worst < best:
-                    best, best_j, best_s, best_a = worst, j, s, a
-    return best, best_j, best_s, best_a
+    # Each split's pixels up to it, from the chain's start; those from it on, from the chain's end.
+    up_to = np.searchsorted(index, splits, side="right")
+    from_on = np.searchsorted(index, splits, side="left")
+    backwards = pixels[::-1].copy()
+    head_worst = np.zeros((n_a, 2, n_s, n_t))
+    head_done = np.zeros((n_a, 2, n_s, n_t), dtype=np.int64)  # how many of its pixels are measured
+    tail_worst = np.zeros((n_b, 2, n_s, n_t))
+    tail_done = np.zeros((n_b, 2, n_s, n_t), dtype=np.int64)
+    out = np.zeros((n_a, n_b, 3), dtype=np.int64)
+    for ia in range(n_a):
+        ra = radii_a[ia]
+        for ib in range(n_b):
+            rb = radii_b[ib]
+            best = math.inf
+            best_j, best_s, best_a = 0, 0, 0
+            for j in range(4):
+                side_a, side_b = j // 2, j % 2
+                for s in range(n_s):
+                    head, tail = pixels[: up_to[s]], backwards[: len(pixels) - from_on[s]]
+                    for a in range(n_t):
+                        if head_worst[ia, side_a, s, a] >= best:  # known before measuring on: no call
+                            continue
+                        at = (ia, side_a, s, a)
+                        worst = _measure_on(head, heads[at], ra, head_worst, head_done, at, best)
+                        if worst >= best or tail_worst[ib, side_b, s, a] >= best:
+                            continue
+                        at = (ib, side_b, s, a)
+                        tail_far = _measure_on(tail, tails[at], rb, tail_worst, tail_done, at, best)
+                        if tail_far < best:
+                            best, best_j, best_s, best_a = max(worst, tail_far), j, s, a
+            out[ia, ib, 0], out[ia, ib, 1], out[ia, ib, 2] = best_j, best_s, best_a
+    return out
 
 
 @_jit

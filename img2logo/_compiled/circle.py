@@ -236,6 +236,12 @@ def mean_abs_error_kernel(p, cx, cy, radius):  # pragma: no cover - compiled
 
 
 @_jit
+def largest_gap_kernel(p, cx, cy, radius):  # pragma: no cover - compiled
+    """The largest | |p - o| - r | of points (N, 2), px: the farthest point's distance from the circle."""
+    return farthest_from_circle(p, cx, cy, radius, 0.0, math.inf)
+
+
+@_jit
 def biarc_worst_kernel(chain, centre, index, splits, radius, head):  # pragma: no cover - compiled
     """``biarcs.biarc_worst`` past its circles' centres: the largest distance (S, A), px.
 
@@ -266,10 +272,19 @@ def farthest_from_circle(points, cx, cy, radius, worst, best):  # pragma: no cov
     In the points' order, stopping once it reaches ``best`` (it can only grow): a biarc
     search's candidate that far is no better than the best so far.
     """
+    return measure_from_circle(points, cx, cy, radius, worst, best)[0]
+
+
+@_jit
+def measure_from_circle(points, cx, cy, radius, worst, best):  # pragma: no cover - compiled
+    """:func:`farthest_from_circle`, and how many of the points it measured (all, or up to the one reaching ``best``).
+
+    Measuring the rest later, from the largest so far, gives the same largest distance as from the start.
+    """
     for i in range(points.shape[0]):
         d = abs(math.hypot(points[i, 0] - cx, points[i, 1] - cy) - radius)
         if d > worst:
             worst = d
             if worst >= best:
-                break
-    return worst
+                return worst, i + 1
+    return worst, points.shape[0]

@@ -90,6 +90,8 @@ ENTRY_POINTS: dict[str, tuple[str, tuple[str, ...], str]] = {
     "fit_circle_kernel": ("circle", ("f8[:,::1]", "f8", "f8"), "Tuple((i8, f8, f8, f8, f8, b1))"),
     "fit_center_kernel": ("circle", ("f8[:,::1]", "f8", "f8", "f8", "i8"), "UniTuple(f8, 2)"),
     "mean_abs_error_kernel": ("circle", ("f8[:,::1]", "f8", "f8", "f8"), "f8"),
+    # (loop) a lower bound of an arc's Fréchet distance before it is extracted (the tangent pass).
+    "largest_gap_kernel": ("circle", ("f8[:,::1]", "f8", "f8", "f8"), "f8"),
     "dijkstra_kernel": ("graph", ("i8[::1]", "i8[::1]", "f8[::1]", "i8[::1]", "!f8[::1]", "!i8[::1]"), "i8"),
     "banded_solve_kernel": ("graph", ("i8[::1]", "i8[::1]", "f8[::1]", "f8[::1]", "!f8[::1]"), "i8"),
     "end_tangents_kernel": (
@@ -116,15 +118,15 @@ ENTRY_POINTS: dict[str, tuple[str, tuple[str, ...], str]] = {
     "sparse_label_kernel": ("front", ("i8[::1]", "i8[::1]", "i8", "i8"), "i8[::1]"),
     "near_kernel": ("front", ("i8[:,::1]", "i8[::1]", "i8[::1]", "i8", "i8[:,::1]"), "b1[:,::1]"),
     "biarc_worst_kernel": ("circle", tuple("f8[:,::1] f8[:,:,::1] i8[::1] i8[::1] f8 b1".split()), "f8[:,::1]"),
-    "biarc_best_kernel": (
+    "biarc_fine_kernel": (
         "arcs",
-        tuple("f8[:,::1] f8[:,:,::1] f8[:,:,::1] i8[::1] f8 f8".split()),
-        "Tuple((f8, i8, i8))",
+        tuple("f8[:,::1] f8[:,:,:,::1] f8[:,:,:,::1] i8[:,::1] i8[::1] f8[::1] f8[::1] i8".split()),
+        "Tuple((f8[::1], i8[::1], i8[::1]))",
     ),
     "biarc_coarse_kernel": (
         "arcs",
-        tuple("f8[:,::1] i8[::1] i8[::1] f8[:,:,:,::1] f8[:,:,:,::1] f8 f8".split()),
-        "Tuple((f8, i8, i8, i8))",
+        tuple("f8[:,::1] i8[::1] i8[::1] f8[:,:,:,:,::1] f8[:,:,:,:,::1] f8[::1] f8[::1]".split()),
+        "i8[:,:,::1]",
     ),
     "nearest_on_chain_kernel": ("arcs", ("f8[:,::1]", "f8", "f8"), "Tuple((i8, f8, f8, f8))"),
     "thin_kernel": ("ndimage", ("u1[:,::1]",), "b1[:,::1]"),

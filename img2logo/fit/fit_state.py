@@ -423,8 +423,14 @@ class FitState:
         return reach
 
     # ----------------------------------------------------------------- arcs
-    def arc_for(self, group: Group, center: np.ndarray, radius: float, k: int | None, disp: Any) -> ArcFit:
-        """Extract the arc of ``group`` on its circle through its displaced junctions."""
+    def arc_for(
+        self, group: Group, center: np.ndarray, radius: float, k: int | None, disp: Any, memo: dict | None = None
+    ) -> ArcFit:
+        """Extract the arc of ``group`` on its circle through its displaced junctions.
+
+        ``memo``: the arcs extracted before, by the group's pixel array (the same object), the circle
+        and the arc's ends, kept and read there (the same arc again: extraction is a function of them).
+        """
         circle = Circle(float(center[0]), float(center[1]), float(radius), None if k is None else int(k))
         nodes = self.path_nodes(group)
         pts = np.array([self.graph.junctions[n] + (self.disp[n] if n in self.released else disp(n)) for n in nodes])
@@ -439,8 +445,17 @@ class FitState:
             loose = np.array([n in self.released for n in nodes])
             if loose.any():
                 pts[loose] = circle.point_at(circle.angle_of(pts[loose]))
+        key = None
+        if memo is not None:
+            key = (id(group.points), circle.k, np.array([circle.cx, circle.cy, circle.r]).tobytes(), pts.tobytes())
+            hit = memo.get(key)
+            if hit is not None and hit[0] is group.points:  # the array is held there: its id is not reused
+                return hit[1]
         fit = _extract(circle, np.asarray(group.points, dtype=np.float64), pts, self.options.arc_selection)
-        return fit if k is not None else ArcFit(Line.of(fit.arc), fit.frechet)
+        out = fit if k is not None else ArcFit(Line.of(fit.arc), fit.frechet)
+        if key is not None:
+            cast(dict, memo)[key] = (group.points, out)
+        return out
 
     def axis_constraints(
         self, gids: Sequence[int], groups: Mapping[int, Group], node_list: Sequence[int]

@@ -82,6 +82,7 @@ def tangent_level(
     restore(opt, best[2])
     opt.stats = best[3]
     split_kinks(opt, tolerance, None if room is None else room - best[1])
+    window_solve.forget_arcs(opt)
     return best[1]
 
 

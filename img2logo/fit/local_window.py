@@ -230,7 +230,7 @@ def fit_window(
             fit = solve_sqp(
                 WindowProblem(
                     np.concatenate([np.asarray(s, dtype=np.float64) for s in sets]) if sets else np.zeros((0, 2)),
-                    np.repeat(np.arange(len(window)), lengths),
+                    np.arange(len(window)).repeat(lengths),  # np.repeat's wrapper costs more than the copy
                     np.array([radii[c] for c in window], dtype=np.float64),
                     np.array([centers[c] for c in window], dtype=np.float64).reshape(-1, 2),
                     np.asarray(junc, dtype=np.float64).reshape(-1, 2),

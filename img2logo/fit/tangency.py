@@ -63,7 +63,7 @@ Coordinates: px, x right, y down (``contract/README.md``).
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Collection, Mapping
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Any, cast
 from weakref import WeakKeyDictionary
@@ -197,6 +197,8 @@ def _one_at_a_time(
     """
     seeds = {g: f.seed for g, f in opt.fits.items()}
     order = sorted(joins, key=lambda n: (_apart(opt, seeds, n, joins[n]), n))
+    # The state's tangencies but for the joins loose at the time: a try moves pixels and rungs, not ends.
+    every = opt.tangencies(opt.groups, seeds)
     opt.loose |= set(joins)
     made: dict[int, tuple[int, int]] = {}
     released = 0
@@ -204,23 +206,22 @@ def _one_at_a_time(
         a, b = joins[node]
         opt.loose.discard(node)
         made[node] = (a, b)
-        best = None
-        before: dict[frozenset[int], int] = {}  # the state's crossings by window: the same for every try here
-        gaps = gap_ends(opt)  # the state's near-miss gaps: the same for every try here
-        # The joins held tangent in every try here: a try moves the groups' pixels and rungs, not their ends.
-        touching = opt.tangencies(opt.groups, seeds)
-        for combo in rung_choices(opt, node, (a, b)):
-            trial = _try(opt, made, node, combo, bound, before=before, gaps=gaps, touching=touching)
-            if trial is not None and (best is None or trial.similarity < best.similarity):
-                best = trial
-            if best is not None and not any(combo.values()):
-                break  # the rungs the paper chose serve: no reason to leave them
+        join = _join(opt, made, node, {n: pair for n, pair in every.items() if n not in opt.loose})
+        # The rungs the paper chose first: when they serve, no reason to leave them (nor to rank the others).
+        best = _try(opt, made, join, {a: 0, b: 0}, bound)
+        if best is None:
+            for combo in rung_choices(opt, node, (a, b))[1:]:
+                # A try kept only below the best's E^s: its solve stops once E^s must reach that.
+                trial = _try(opt, made, join, combo, bound if best is None else min(bound, best.similarity))
+                if trial is not None and (best is None or trial.similarity < best.similarity):
+                    best = trial
         if best is None:
             # No start near the current circles touches within T: fit the pair as one unit
             # (a tangent biarc over the two groups' joined pixels, the junction anywhere on
             # them, :func:`~img2logo.fit.biarcs.closest_biarcs`) and start the refit from there.
             for combo, start in _biarc_starts(opt, node, (a, b)):
-                trial = _try(opt, made, node, combo, bound, start, before=before, gaps=gaps, touching=touching)
+                # As above: a try that cannot beat the best so far stops early.
+                trial = _try(opt, made, join, combo, bound if best is None else min(bound, best.similarity), start)
                 if trial is not None and (best is None or trial.similarity < best.similarity):
                     best = trial
         if best is None:
@@ -307,19 +308,47 @@ class _Trial:
     off_line: dict[int, float]  # tangent join -> its junction's distance off the input's line, px
 
 
+@dataclass(frozen=True)
+class _Join:
+    """What every try of one join shares (:func:`_try`): the state does not change between them."""
+
+    node: int  # the join's node
+    seeds: dict[int, Seed]  # the state's circles
+    changed: list[int]  # the window's groups (:func:`_window`), sorted
+    free: list[int]  # its free junctions, sorted
+    lines: set[int]  # the groups that are straight lines: fixed in the fit, never given a rung
+    touching: dict[int, tuple[int, int]]  # the joins held tangent: a try moves pixels and rungs, not ends
+    gaps: set[int]  # the state's near-miss gaps (:func:`~img2logo.fit.merge_checks.gap_ends`)
+    crossings: dict[frozenset[int], int]  # the state's redundant intersections by the groups refitted
+    chains: dict  # the joined pixels of two groups at a join (:func:`_slide`), by the join and the groups
+
+
+def _join(opt: FitState, made: dict[int, tuple[int, int]], node: int, touching: dict[int, tuple[int, int]]) -> _Join:
+    """The :class:`_Join` of the join at ``node`` (in ``made``) in the current state, ``touching`` its tangencies."""
+    changed, free = _window(opt, made, made[node])
+    now = {g: f.seed for g, f in opt.fits.items()}
+    return _Join(
+        node,
+        now,
+        sorted(changed),
+        sorted(free),
+        {g for g, seed in now.items() if seed.k is None},
+        touching,
+        gap_ends(opt),
+        {},
+        {},
+    )
+
+
 def _try(
     opt: FitState,
     made: dict[int, tuple[int, int]],
-    node: int,
+    join: _Join,
     combo: dict[int, int],
     bound: float,
     start: _Start | None = None,
-    *,
-    before: dict[frozenset[int], int] | None = None,
-    gaps: set[int] | None = None,
-    touching: dict[int, tuple[int, int]] | None = None,
 ) -> _Trial | None:
-    """Refit the window of the join at ``node`` with the rung steps ``combo``; None if it fails a rule.
+    """Refit the window of ``join`` with the rung steps ``combo``; None if it fails a rule.
 
     The rules are those of :func:`tangent_joins`. After the fit, the pixels of
     the two groups at every tangent join in the window are split anew where the
@@ -332,25 +361,21 @@ def _try(
     biarc: the join's two circles there, their pixels split at its
     junction, and the junction's rest point moved there for the fit (its
     displacement term of Eqn. 13 pulls towards the biarc's junction, not back
-    along the line to the node; ``window_solve.solve``'s ``rest``). The state is left as it was. ``before`` caches
-    the state's redundant intersections by the groups refitted, for the tries of
-    one join (the state does not change between them); ``gaps`` the state's
-    near-miss gaps (:func:`~img2logo.fit.merge_checks.gap_ends`, made here without it); ``touching`` the
-    state's :meth:`~img2logo.fit.fit_state.FitState.tangencies` (made here without it), held in the fit.
+    along the line to the node; ``window_solve.solve``'s ``rest``). The state is left as it was;
+    ``join.crossings`` gains the state's redundant intersections of the groups refitted.
     """
-    seeds = {g: f.seed for g, f in opt.fits.items()}
+    seeds = dict(join.seeds)
     for g, step in combo.items():
         if step:
             k, r = offered_rung(opt, g, step)
             seeds[g] = Seed(opt.fits[g].center, r, k)
-    changed, free = _window(opt, made, made[node])
     node_groups = opt.node_groups()
     saved = dict(opt.fits), opt.disp.copy(), dict(opt.groups), dict(opt.off_line)
     slid: tuple[dict[int, Group], dict[int, float]] = ({}, {})
 
     def regroup(at: Any, moved: set[int]) -> tuple[dict[int, Group], dict[int, float]] | None:
         nonlocal slid
-        groups, off_line = _slide(opt, made, moved, at)
+        groups, off_line = _slide(opt, made, moved, at, join.chains)
         if groups is None:
             return None
         slid = groups, off_line
@@ -365,17 +390,18 @@ def _try(
             dict(opt.groups),
             seeds,
             node_groups,
-            changed=sorted(changed),
-            free_nodes=sorted(free),
+            changed=join.changed,
+            free_nodes=join.free,
             fixed=set(),
             rings=2,
-            tangent=True if touching is None else touching,
+            tangent=join.touching,
+            lines=join.lines,
             # E^s above ``bound`` fails the try below: no arc is extracted once it must be, and the
             # groups at the tangent joins are split anew (:func:`_slide`) before their arcs are
             # extracted, not after.
             bound=bound,
             regroup=regroup,
-            rest=None if start is None else {node: start.junction},
+            rest=None if start is None else {join.node: start.junction},
         )
         if out is None:
             return None
@@ -390,19 +416,19 @@ def _try(
             return None
         opt.fits.update(fits)
         similarity = opt.similarity()
-        if similarity > bound or not _touching(opt, made):
+        # The joins made before touched in the state the try starts from (a try is kept only then).
+        if similarity > bound or not _touching(opt, made, fits, disp):
             return None
         crossings = _redundant(opt, set(fits))
         made_gaps = gap_ends(opt)
     finally:
         opt.fits, opt.disp, opt.groups, opt.off_line = saved
-    before = {} if before is None else before
     key = frozenset(fits)
-    if key not in before:
-        before[key] = _redundant(opt, set(fits))
-    if crossings > before[key]:
+    if key not in join.crossings:
+        join.crossings[key] = _redundant(opt, set(fits))
+    if crossings > join.crossings[key]:
         return None
-    if not made_gaps <= (gap_ends(opt) if gaps is None else gaps):
+    if not made_gaps <= join.gaps:
         return None
     return _Trial(similarity, fits, disp, groups, off_line)
 
@@ -441,10 +467,10 @@ def _biarc_starts(opt: FitState, node: int, pair: tuple[int, int]) -> list[tuple
     key = (ga.segments, gb.segments, node, len(chain), *chain[0], *chain[-1], *radii)
     cache = _BIARCS.setdefault(opt, {})
     if key not in cache:
-        cache[key] = closest_biarcs(chain, [r for _, _, r in rungs[a]], [r for _, _, r in rungs[b]])
+        cache[key] = closest_biarcs(chain, [r for _, _, r in rungs[a]], [r for _, _, r in rungs[b]], BIARC_STARTS)
     found = cache[key]
     out = []
-    for _, ia, ib, i, ca, cb in found[:BIARC_STARTS]:
+    for _, ia, ib, i, ca, cb in found:
         (sa, ka, ra), (sb, kb, rb) = rungs[a][ia], rungs[b][ib]
         head, tail = chain[: i + 1], chain[i:]
         groups = {
@@ -462,7 +488,7 @@ _BIARCS: WeakKeyDictionary[FitState, dict[tuple, list]] = WeakKeyDictionary()
 
 
 def _slide(
-    opt: FitState, made: dict[int, tuple[int, int]], moved: set[int], disp: Any = None
+    opt: FitState, made: dict[int, tuple[int, int]], moved: set[int], disp: Any = None, chains: dict | None = None
 ) -> tuple[dict[int, Group] | None, dict[int, float]]:
     """The groups split anew at the tangent joins of ``moved`` groups, and those joins' distances off the line.
 
@@ -474,7 +500,8 @@ def _slide(
     off the line instead of its displacement (``opt.off_line``). (None, {}) if
     a junction slid past the end of one of the groups (fewer than
     ``SLIDE_MIN_PIXELS`` left): the join would swallow it. ``disp``: node ->
-    d_k (default the state's), for a fit not applied yet.
+    d_k (default the state's), for a fit not applied yet. ``chains`` keeps the joined pixels of the two
+    groups (the same objects) at a join for the next call.
     """
     disp = opt.disp.__getitem__ if disp is None else disp
     groups: dict[int, Group] = {}
@@ -483,13 +510,19 @@ def _slide(
         if a not in moved and b not in moved:
             continue
         ga, gb = groups.get(a, opt.groups[a]), groups.get(b, opt.groups[b])
-        chain = merge_groups(ga, gb, n).points
+        hit = None if chains is None else chains.get((n, id(ga), id(gb)))
+        if hit is not None and hit[0] is ga and hit[1] is gb:  # the groups are held there: ids not reused
+            chain = hit[2]
+        else:
+            chain = merge_groups(ga, gb, n).points
+            if chains is not None:
+                chains[n, id(ga), id(gb)] = (ga, gb, chain)
         split = split_chain(chain, opt.graph.junctions[n] + disp(n))
         if split is None:
             return None, {}
         pa, pb, off[n] = split
-        groups[a] = replace(ga, points=pa if ga.nodes[-1] == n else pa[::-1])
-        groups[b] = replace(gb, points=pb if gb.nodes[0] == n else pb[::-1])
+        groups[a] = Group(ga.segments, ga.nodes, pa if ga.nodes[-1] == n else pa[::-1], ga.locked)
+        groups[b] = Group(gb.segments, gb.nodes, pb if gb.nodes[0] == n else pb[::-1], gb.locked)
     return groups, off
 
 
@@ -535,12 +568,17 @@ def _window(opt: FitState, made: dict[int, tuple[int, int]], pair: tuple[int, in
         free |= more
 
 
-def _touching(opt: FitState, made: dict[int, tuple[int, int]]) -> bool:
-    """Whether the circles of every join in ``made`` touch at it, to ``CONSTRAINED_FIT_TOL`` px (see :func:`_apart`)."""
-    seeds = {g: f.seed for g, f in opt.fits.items()}
+def _touching(opt: FitState, made: dict[int, tuple[int, int]], groups: Collection[int], nodes: Collection[int]) -> bool:
+    """Whether the circles of every join in ``made`` touch at it, to ``CONSTRAINED_FIT_TOL`` px (see :func:`_apart`).
+
+    Only the joins of a group of ``groups`` or at a node of ``nodes`` are measured: the state's other
+    circles and junctions are those of a state where every join of ``made`` touched (the caller's).
+    """
+    fits = opt.fits
     return all(
-        _apart(opt, seeds, n, pair) * min(opt.fits[pair[0]].radius, opt.fits[pair[1]].radius) <= CONSTRAINED_FIT_TOL
+        _apart(opt, fits, n, pair) * min(fits[pair[0]].radius, fits[pair[1]].radius) <= CONSTRAINED_FIT_TOL
         for n, pair in made.items()
+        if pair[0] in groups or pair[1] in groups or n in nodes
     )
 
 
@@ -552,8 +590,11 @@ def _redundant(opt: FitState, of: set[int]) -> int:
     return len(redundant_pairs(opt, of))
 
 
-def _apart(opt: FitState, seeds: dict, node: int, pair: tuple[int, int]) -> float:
-    """|sin| of the angle between two circles' radii to a junction: 0 where they touch there."""
+def _apart(opt: FitState, circles: Mapping[int, Any], node: int, pair: tuple[int, int]) -> float:
+    """|sin| of the angle between two circles' radii to a junction: 0 where they touch there.
+
+    ``circles``: group -> its :class:`~img2logo.fit.fit_values.Seed` or fit (anything with a ``center``).
+    """
     p = opt.graph.junctions[node] + opt.disp[node]
-    a, b = seeds[pair[0]][0] - p, seeds[pair[1]][0] - p
+    a, b = circles[pair[0]].center - p, circles[pair[1]].center - p
     return abs(float(a[0] * b[1] - a[1] * b[0])) / max(float(np.hypot(*a) * np.hypot(*b)), 1e-300)

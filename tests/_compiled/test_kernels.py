@@ -570,3 +570,19 @@ def test_two_threads_loading_at_once_both_get_every_entry_point(monkeypatch):
         t.join()
     assert seen == [set(kernels.ENTRY_POINTS)] * 2
     assert len(calls) == 1
+
+
+def largest_gap_reference(points: np.ndarray, cx: float, cy: float, radius: float) -> float:
+    """The farthest point's distance from the circle, in numpy: the oracle of ``largest_gap_kernel``."""
+    return float(np.max(np.abs(np.hypot(points[:, 0] - cx, points[:, 1] - cy) - radius)))
+
+
+def test_largest_gap_kernel_matches_the_reference():
+    from img2logo._compiled import kernels
+
+    rng = np.random.default_rng(17)
+    for _ in range(50):
+        points = rng.uniform(-300.0, 300.0, (int(rng.integers(1, 400)), 2))
+        cx, cy, radius = *rng.uniform(-200.0, 200.0, 2), float(rng.uniform(1.0, 1e6))
+        got = kernels.largest_gap_kernel(points, cx, cy, radius)
+        assert got == pytest.approx(largest_gap_reference(points, cx, cy, radius), rel=1e-12, abs=1e-9)

@@ -62,24 +62,57 @@ def test_biarc_worst_kernel_matches_the_numpy_reference():
 
 
 def test_biarc_fine_search_is_the_grids_argmin():
-    # The compiled search stops measuring a biarc once it cannot win: the same value and the
-    # same place as numpy's argmin over the two grids' maximum, the first one on a tie
-    # (repeated splits and turns make ties).
+    # The compiled search stops measuring a biarc once it cannot win: for each grid the same
+    # value and the same place as numpy's argmin over the two grids' maximum, the first one on
+    # a tie (repeated splits and turns make ties); with ``most``, None exactly for the grids
+    # that cannot be among the ``most`` smallest (an earlier grid first on a tie).
     from img2logo.fit.biarcs import biarc_fine, biarc_worst
 
     rng = np.random.default_rng(11)
     for _ in range(40):
         n = int(rng.integers(20, 120))
         chain, _ = noisy_arc(rng, n)
-        splits = np.sort(rng.integers(4, n - 5, 9))
-        turns = np.sort(np.concatenate([rng.uniform(-0.3, 0.3, 5), [0.0, 0.0]]))
-        head = (rng.uniform(5.0, 300.0), float(rng.choice([-1.0, 1.0])))
-        tail = (rng.uniform(5.0, 300.0), float(rng.choice([-1.0, 1.0])))
-        w = np.maximum(
-            biarc_worst(chain, splits, turns, *head, True, 1), biarc_worst(chain, splits, turns, *tail, False, 1)
-        )
-        s, a = np.unravel_index(int(np.argmin(w)), w.shape)
-        assert biarc_fine(chain, splits, turns, head, tail) == (float(w[s, a]), int(s), int(a))
+        grids = []
+        for _ in range(int(rng.integers(1, 7))):
+            splits = np.sort(rng.integers(4, n - 5, int(rng.integers(1, 10))))
+            turns = np.sort(np.concatenate([rng.uniform(-0.3, 0.3, 5), [0.0, 0.0]]))
+            head = (rng.uniform(5.0, 300.0), float(rng.choice([-1.0, 1.0])))
+            tail = (rng.uniform(5.0, 300.0), float(rng.choice([-1.0, 1.0])))
+            grids.append((splits, turns, head, tail))
+        if rng.random() < 0.3:
+            grids.append(grids[0])  # a tie between two grids: the earlier one is kept
+        expected = []
+        for splits, turns, head, tail in grids:
+            w = np.maximum(
+                biarc_worst(chain, splits, turns, *head, True, 1), biarc_worst(chain, splits, turns, *tail, False, 1)
+            )
+            s, a = np.unravel_index(int(np.argmin(w)), w.shape)
+            expected.append((float(w[s, a]), int(s), int(a)))
+        args = [list(g) for g in zip(*grids, strict=True)]
+        assert biarc_fine(chain, *args) == expected
+        for most in (1, 2, 3):
+            got = biarc_fine(chain, *args, most=most)
+            for p, (g, e) in enumerate(zip(got, expected, strict=True)):
+                before = sorted(x[0] for x in expected[:p])
+                hopeless = len(before) >= most and e[0] >= before[most - 1]
+                assert g == (None if hopeless else e)
+
+
+def test_the_first_biarcs_alone_are_the_first_of_all():
+    from img2logo.fit.biarcs import closest_biarcs
+
+    rng = np.random.default_rng(13)
+    for _ in range(30):
+        n = int(rng.integers(8, 160))
+        chain, radius = noisy_arc(rng, n)
+        radii_a = list(rng.uniform(5.0, 300.0, int(rng.integers(1, 4))))
+        radii_b = [radius, *rng.uniform(5.0, 300.0, int(rng.integers(0, 3)))]
+        every = closest_biarcs(chain, radii_a, radii_b)
+        for most in (1, 2, 4):
+            first = closest_biarcs(chain, radii_a, radii_b, most)
+            assert len(first) == min(most, len(every))
+            for got, want in zip(first, every, strict=False):
+                assert got[:4] == want[:4] and np.array_equal(got[4], want[4]) and np.array_equal(got[5], want[5])
 
 
 def test_biarc_coarse_search_is_the_grids_choice():

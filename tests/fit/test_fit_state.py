@@ -214,6 +214,23 @@ def test_a_bounded_solve_regroups_before_extracting_and_fails_with_the_regroup()
     assert failed is None
 
 
+def test_an_arc_memoized_is_the_arc_extracted_again_for_the_same_pixels_circle_and_ends():
+    graph, _ = golden_chain()
+    state = hand_built_state(graph)
+    initial_fit(state)
+    group, fit = state.groups[0], state.fits[0]
+    at = state.disp.__getitem__
+    memo: dict = {}
+    first = state.arc_for(group, fit.center, fit.radius, fit.k, at, memo)
+    assert first == state.arc_for(group, fit.center, fit.radius, fit.k, at) and len(memo) == 1
+    assert state.arc_for(group, fit.center, fit.radius, fit.k, at, memo) is first  # read back
+    # Another group's circle and ends: its own arc; another pixel array (equal values, another object): anew.
+    other, fit1 = state.groups[1], state.fits[1]
+    assert state.arc_for(other, fit1.center, fit1.radius, fit1.k, at, memo) == fit1.arc and len(memo) == 2
+    copy = dataclasses.replace(group, points=group.points.copy())
+    assert state.arc_for(copy, fit.center, fit.radius, fit.k, at, memo) is not first and len(memo) == 3
+
+
 # --------------------------------------------------------------------------- topology
 def test_open_ends_are_the_free_ends_and_a_gap_is_one_0_75_to_6_px_from_another_arc():
     for tip, gaps in ((7.5, set()), (3.0, {4}), (0.2, set())):
@@ -249,3 +266,22 @@ def test_reach_is_half_the_widest_span_of_the_junctions_a_circle_must_pass():
     assert state.reach(state.groups[2]) == 0.5 * float(np.hypot(*(j[2] - j[3])))
     state.release(3)  # node 2 is all its circle must pass now: no span
     assert state.reach(state.groups[2]) == 0.0
+
+
+def test_an_arcs_floor_is_at_most_its_frechet_distance():
+    # The bound the tangent pass rejects a refit by before extracting its arcs: never above the
+    # extracted arc's discrete Fréchet distance; the pixels' largest distance from the circle.
+    from img2logo.fit.arc_extraction import extract_arc
+    from img2logo.fit.window_solve import arc_floor
+    from img2logo.geometry.primitives import Circle
+
+    rng = np.random.default_rng(3)
+    for _ in range(200):
+        r, c = float(rng.uniform(5.0, 400.0)), rng.uniform(-50.0, 50.0, 2)
+        t = np.linspace(0.0, rng.uniform(0.3, 5.0), int(rng.integers(3, 120)))
+        points = c + (r + rng.normal(0.0, rng.uniform(0.0, 4.0), len(t)))[:, None] * np.stack([np.cos(t), np.sin(t)], 1)
+        ends = c + r * np.stack([np.cos(t[[0, -1]]), np.sin(t[[0, -1]])], 1)
+        fit = extract_arc(Circle(float(c[0]), float(c[1]), r), points, ends)
+        floor = arc_floor(points, c, r)
+        assert 0.0 <= floor <= fit.frechet
+        assert floor == pytest.approx(np.max(np.abs(np.hypot(*(points - c).T) - r)), abs=1e-6)
